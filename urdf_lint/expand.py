@@ -1,0 +1,488 @@
+"""xacro expansion without ROS that knows where every output element came from.
+
+We run the real (pinned) xacro and hook a handful of its module globals, all looked up at
+call time:
+
+* ``parse`` parses every file with an expat builder that stamps each element with
+  ``(file, line, col)`` through minidom user data (invisible to xacro, survives ``cloneNode``);
+  it also resolves ``package://`` includes, confines reads to the package roots and refuses
+  entity declarations;
+* ``handle_macro_call`` / ``grab_macro`` give the elements cloned out of a macro body the
+  call chain that produced them;
+* ``eval_all`` and friends track the innermost element being evaluated, so that errors point
+  at a source line;
+* ``$(find)``, ``$(env)``, ``$(optenv)``, ``load_yaml`` and expression evaluation are routed
+  through our resolver and policies (see :mod:`urdf_lint.safe_eval`).
+
+The output text is exactly ``doc.toprettyxml(indent='  ')``, i.e. what the xacro CLI writes.
+"""
+from __future__ import annotations
+
+import io
+import os
+import sys
+import xml.dom
+import xml.parsers.expat
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from xml.dom import expatbuilder
+
+import xacro
+import xacro.substitution_args as _subst
+
+from .packages import OutsideRoots, PackageNotFound, PackageResolver
+from . import safe_eval
+
+KEY = "urdf_lint.origin"
+DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
+                     "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
+
+
+class XmlSyntaxError(xacro.XacroException):
+    def __init__(self, msg, file, line, col):
+        super().__init__(msg)
+        self.loc = (file, line, col)
+
+
+class RefusedInput(xacro.XacroException):
+    """Input refused for safety (entity declarations, files outside the roots, ...)."""
+    def __init__(self, msg, code, loc=None):
+        super().__init__(msg)
+        self.code = code
+        self.loc = loc
+
+
+@dataclass
+class Expansion:
+    """The result of expanding one entry file (plain data, so it can cross a process pipe)."""
+    entry: str
+    args: dict
+    xml: str | None = None
+    origins: list = field(default_factory=list)   # per output element, document order
+    deps: list = field(default_factory=list)      # files read (absolute), entry first
+    error: dict | None = None                     # {code, message, file, line, col, chain}
+    notes: list = field(default_factory=list)     # non-fatal findings raised during expansion
+
+
+# ---------------------------------------------------------------------------------------------
+# per-expansion state
+class _State:
+    def __init__(self, resolver, env_allow, expr_policy):
+        self.resolver: PackageResolver = resolver
+        self.env_allow = set(env_allow)
+        self.deps: dict[str, None] = {}
+        self.notes: list[dict] = []
+        self.stack: list = []          # nodes being evaluated (eval_all / macro calls)
+        self.touched = None            # a child node being handled inline by its parent
+        self.pending_chain = ()        # chain to give to the macro body being cloned
+        self.include_chain = ()        # chain of the include element being processed
+        self.expr_policy = expr_policy
+
+    def current_node(self):
+        if self.touched is not None:
+            return self.touched
+        return self.stack[-1] if self.stack else None
+
+    def note(self, code, message, node=None, loc=None):
+        if loc is None:
+            loc = origin_of(node if node is not None else self.current_node())
+        self.notes.append({"code": code, "message": message, "file": loc[0], "line": loc[1],
+                           "col": loc[2], "chain": [list(c) for c in loc[3]] if len(loc) > 3 else []})
+
+
+_state: _State | None = None
+
+
+def origin_of(node):
+    """(file, line, col, chain) of a minidom node, or of its nearest stamped ancestor."""
+    while node is not None:
+        if node.nodeType == xml.dom.Node.ELEMENT_NODE:
+            data = node.getUserData(KEY)
+            if data is not None:
+                return data[:4]
+        node = node.parentNode
+    top = xacro.filestack[0] if xacro.filestack else ""
+    return (os.path.abspath(top) if top else "", 1, 1, ())
+
+
+class _CloneHandler:
+    """Copies the origin to clones; a macro body being instantiated gets the call chain."""
+
+    def handle(self, operation, key, data, src, dst):
+        if operation == xml.dom.UserDataHandler.NODE_CLONED and dst is not None:
+            file, line, col, chain, template = data
+            if template:
+                chain = _state.pending_chain if _state is not None else chain
+            dst.setUserData(key, (file, line, col, chain, False), self)
+
+
+_HANDLER = _CloneHandler()
+
+
+class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
+    def __init__(self, file, chain):
+        super().__init__()
+        self._file = file
+        self._chain = chain
+
+    def install(self, parser):
+        super().install(parser)
+        parser.EntityDeclHandler = self._refuse_entity
+        parser.StartDoctypeDeclHandler = self._doctype
+        try:
+            parser.SetParamEntityParsing(xml.parsers.expat.XML_PARAM_ENTITY_PARSING_NEVER)
+        except Exception:  # pragma: no cover - very old expat
+            pass
+
+    def _refuse_entity(self, name, *args):
+        p = self._parser
+        raise RefusedInput(f"XML entity declaration '{name}' refused (entities can read files "
+                           f"or blow up memory)", "UL007",
+                           (self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
+
+    def _doctype(self, name, system_id, public_id, has_subset):
+        p = self._parser
+        if _state is not None:
+            _state.note("UL007", f"DOCTYPE declaration '<!DOCTYPE {name}>' in a robot description; "
+                        "remove it (URDF needs none, and urdf-lint never loads DTDs)",
+                        loc=(self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
+        if system_id or public_id:
+            raise RefusedInput(f"DOCTYPE with an external DTD ('{system_id or public_id}') refused",
+                               "UL007", (self._file, p.CurrentLineNumber,
+                                         p.CurrentColumnNumber + 1, self._chain))
+        return super().start_doctype_decl_handler(name, system_id, public_id, has_subset)
+
+    def start_element_handler(self, name, attributes):
+        super().start_element_handler(name, attributes)
+        p = self._parser
+        self.curNode.setUserData(KEY, (self._file, p.CurrentLineNumber,
+                                       p.CurrentColumnNumber + 1, self._chain, False), _HANDLER)
+
+
+def parse_bytes(data: bytes, file: str, chain=()):
+    builder = _LocatingBuilder(file, chain)
+    try:
+        return builder.parseString(data)
+    except xml.parsers.expat.ExpatError as e:
+        msg = xml.parsers.expat.ErrorString(e.code)
+        raise XmlSyntaxError(f"XML syntax error: {msg}", file, e.lineno, e.offset + 1) from None
+
+
+# ---------------------------------------------------------------------------------------------
+# hooks
+_orig = {}
+
+
+def _hook_parse(inp, filename=None):
+    if inp is None:
+        path = os.path.join(xacro.root_dir, filename)
+        absolute = os.path.abspath(path)
+        st = _state
+        chain = st.include_chain if st else ()
+        if st is not None and not st.resolver.is_inside(absolute):
+            xacro.filestack.pop()
+            raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
+                               "linted repository; it was not read", "UL902")
+        try:
+            with open(path, "rb") as f:
+                data = f.read()
+        except (IOError, OSError) as e:
+            xacro.filestack.pop()
+            raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e)
+        if st is not None:
+            st.deps[absolute] = None
+        return parse_bytes(data, absolute, chain)
+    if isinstance(inp, str):
+        return parse_bytes(inp.encode("utf-8"), "<string>")
+    if hasattr(inp, "read"):
+        data = inp.read()
+        return parse_bytes(data.encode("utf-8") if isinstance(data, str) else data, "<stream>")
+    return inp
+
+
+def _hook_abs_filename_spec(filename_spec):
+    spec = str(filename_spec)
+    if spec.startswith("package://") and _state is not None:
+        return str(_state.resolver.resolve_uri(spec, None))
+    if spec.startswith("file://"):
+        spec = spec[len("file://"):]
+    return _orig["abs_filename_spec"](spec)
+
+
+def _hook_eval_all(node, macros, symbols):
+    st = _state
+    st.stack.append(node)
+    st.touched = None
+    _orig["eval_all"](node, macros, symbols)
+    st.stack.pop()
+    st.touched = None
+
+
+def _hook_handle_macro_call(node, macros, symbols):
+    st = _state
+    if node.tagName != "xacro:call" and not node.tagName.startswith("xacro:"):
+        return False
+    st.stack.append(node)
+    st.touched = None
+    saved = st.pending_chain
+    file, line, col, chain = origin_of(node)
+    st.pending_chain = tuple(chain) + ((file, line, col),)
+    try:
+        result = _orig["handle_macro_call"](node, macros, symbols)
+    except KeyError as e:  # xacro lets some lookups escape as KeyError
+        raise xacro.XacroException("unknown macro or namespace: %s" % e) from None
+    st.pending_chain = saved
+    st.stack.pop()
+    st.touched = None
+    return result
+
+
+def _mark_template(elt):
+    stack = [elt]
+    while stack:
+        n = stack.pop()
+        if n.nodeType == xml.dom.Node.ELEMENT_NODE:
+            data = n.getUserData(KEY)
+            if data is not None and not data[4]:
+                n.setUserData(KEY, data[:4] + (True,), _HANDLER)
+            stack.extend(n.childNodes)
+
+
+def _hook_grab_macro(elt, macros):
+    _state.touched = elt
+    _mark_template(elt)
+    _orig["grab_macro"](elt, macros)
+    _state.touched = None
+
+
+def _hook_grab_property(elt, table):
+    _state.touched = elt
+    _orig["grab_property"](elt, table)
+    _state.touched = None
+
+
+def _hook_process_include(elt, macros, symbols, func):
+    st = _state
+    st.touched = elt
+    saved = st.include_chain
+    st.include_chain = origin_of(elt)[3]
+    _orig["process_include"](elt, macros, symbols, func)
+    st.include_chain = saved
+    st.touched = None
+
+
+def _hook_check_attrs(tag, required, optional):
+    _state.touched = tag
+    return _orig["check_attrs"](tag, required, optional)
+
+
+def _hook_reqd_attrs(tag, attrs):
+    _state.touched = tag
+    return _orig["reqd_attrs"](tag, attrs)
+
+
+def _hook_load_yaml(filename):
+    st = _state
+    path = os.path.abspath(xacro.abs_filename_spec(filename))
+    if not st.resolver.is_inside(path):
+        raise RefusedInput(f"load_yaml('{filename}') resolves outside the package roots and the "
+                           "linted repository; it was not read", "UL902")
+    st.deps[path] = None
+    return _orig["load_yaml"](path)
+
+
+def _hook_eval_find(pkg):
+    return str(_state.resolver.find(pkg))
+
+
+def _hook_eval_env(name):
+    st = _state
+    if name in st.env_allow:
+        return _orig["eval_env"](name)
+    st.note("UL901", f"$(env {name}) reads an environment variable that is not in "
+            f"'env-allow'; the value was not substituted (add it to env-allow if it is safe)")
+    return ""
+
+
+def _hook_eval_optenv(name, default=""):
+    st = _state
+    if name in st.env_allow:
+        return _orig["eval_optenv"](name, default)
+    if name in os.environ:
+        st.note("UL901", f"$(optenv {name}) reads an environment variable that is not in "
+                f"'env-allow'; its default was used instead of the value")
+    return default
+
+
+def _hook_warning(*args, **kwargs):
+    if _state is not None:
+        msg = " ".join(str(a) for a in args).strip()
+        if msg:
+            _state.note("UL008", "xacro: " + msg)
+    return ""
+
+
+def _hook_print_location(*args, **kwargs):
+    return ""
+
+
+def _install_hooks():
+    if _orig:
+        return
+    for name in ("parse", "abs_filename_spec", "eval_all", "handle_macro_call", "grab_macro",
+                 "grab_property", "process_include", "check_attrs", "reqd_attrs", "load_yaml",
+                 "warning", "print_location", "safe_eval"):
+        _orig[name] = getattr(xacro, name)
+    _orig["eval_env"] = _subst._eval_env
+    _orig["eval_optenv"] = _subst._eval_optenv
+    xacro.parse = _hook_parse
+    xacro.abs_filename_spec = _hook_abs_filename_spec
+    xacro.eval_all = _hook_eval_all
+    xacro.handle_macro_call = _hook_handle_macro_call
+    xacro.grab_macro = _hook_grab_macro
+    xacro.grab_property = _hook_grab_property
+    xacro.process_include = _hook_process_include
+    xacro.check_attrs = _hook_check_attrs
+    xacro.reqd_attrs = _hook_reqd_attrs
+    xacro.warning = _hook_warning
+    xacro.print_location = _hook_print_location
+    xacro.safe_eval = safe_eval.xacro_safe_eval
+    _subst._eval_find = _hook_eval_find
+    _subst._eval_env = _hook_eval_env
+    _subst._eval_optenv = _hook_eval_optenv
+    _subst._eval_dict["find"] = _hook_eval_find
+    _subst._eval_dict["env"] = _hook_eval_env
+    _subst._eval_dict["optenv"] = _hook_eval_optenv
+    _subst._eval = safe_eval.substitution_eval
+    # the expression namespace captured load_yaml / abs_filename when it was built
+    g = xacro._global_symbols
+    ns = g["xacro"]
+    dict.__setitem__(ns, "load_yaml", _hook_load_yaml)
+    dict.__setitem__(ns, "abs_filename", _hook_abs_filename_spec)
+    dict.__setitem__(g, "load_yaml", _hook_load_yaml)
+    dict.__setitem__(g, "abs_filename", _hook_abs_filename_spec)
+    safe_eval.install_xacro_symbols(g)
+
+
+@contextmanager
+def _session(state):
+    global _state
+    _install_hooks()
+    old_stderr, old_stdout = sys.stderr, sys.stdout
+    sys.stderr = io.StringIO()
+    sys.stdout = io.StringIO()
+    _state = state
+    xacro.all_includes = []
+    xacro.verbosity = 1
+    xacro.substitution_args_context.clear()
+    try:
+        yield state
+    finally:
+        _state = None
+        sys.stderr, sys.stdout = old_stderr, old_stdout
+        xacro.all_includes = []
+
+
+# ---------------------------------------------------------------------------------------------
+def _elements(node, out):
+    for c in node.childNodes:
+        if c.nodeType == xml.dom.Node.ELEMENT_NODE:
+            data = c.getUserData(KEY)
+            out.append(tuple(data[:4]) if data is not None else None)
+            _elements(c, out)
+    return out
+
+
+def _fill_unknown(doc, origins):
+    """Elements xacro created itself inherit their parent's origin."""
+    parents = []
+    stack = [(doc.documentElement, None)]
+    # simple pass: unknown ones take the previous known origin
+    last = None
+    for i, o in enumerate(origins):
+        if o is None:
+            origins[i] = last
+        else:
+            last = o
+    return origins
+
+
+def _error_dict(code, message, loc):
+    file, line, col = loc[0], loc[1], loc[2]
+    chain = [list(c) for c in (loc[3] if len(loc) > 3 else ())]
+    return {"code": code, "message": message, "file": file, "line": line, "col": col,
+            "chain": chain}
+
+
+def _macro_context():
+    names = []
+    for m in reversed(xacro.macrostack or []):
+        try:
+            names.append(m.body.getAttribute("name"))
+        except Exception:
+            pass
+    return names
+
+
+def classify_error(e: BaseException, st: _State) -> dict:
+    """Turn an exception from xacro into one located diagnostic."""
+    here = origin_of(st.current_node()) if st.current_node() is not None else None
+    if here is None:
+        top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
+        here = (top, 1, 1, ())
+    macros = _macro_context()
+    suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
+    if isinstance(e, XmlSyntaxError):
+        return _error_dict("UL001", str(e), e.loc + (st.include_chain,))
+    if isinstance(e, RefusedInput):
+        return _error_dict(e.code, str(e), e.loc or here)
+    inner = getattr(e, "exc", None)
+    if isinstance(e, RecursionError) or isinstance(inner, RecursionError):
+        return _error_dict("UL904", "recursion too deep while expanding (a macro that calls "
+                           "itself without end?)" + suffix, here)
+    if isinstance(e, PackageNotFound) or isinstance(inner, PackageNotFound):
+        pe = e if isinstance(e, PackageNotFound) else inner
+        return _error_dict("UL004", str(pe), here)
+    if isinstance(e, OutsideRoots) or isinstance(inner, OutsideRoots):
+        return _error_dict("UL902", str(inner or e), here)
+    if isinstance(inner, _subst.ArgException):
+        name = str(inner)
+        return _error_dict("UL005", f"xacro arg '{name}' has no default and no value was given; "
+                           f"pass {name}:=VALUE or list the model with its args under "
+                           "[tool.urdf-lint] models", here)
+    if isinstance(inner, (IOError, OSError)) and getattr(inner, "filename", None):
+        return _error_dict("UL003", f"included file not found: {inner.filename}", here)
+    if isinstance(e, safe_eval.UnsafeExpression) or isinstance(inner, safe_eval.UnsafeExpression):
+        return _error_dict("UL903", str(inner or e) + suffix, here)
+    if isinstance(e, MemoryError) or isinstance(inner, MemoryError):
+        return _error_dict("UL904", "expansion ran out of memory" + suffix, here)
+    msg = str(e).strip() or repr(e)
+    msg = " ".join(msg.split())
+    return _error_dict("UL002", msg + suffix, here)
+
+
+def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
+                env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
+                expr_policy=None) -> Expansion:
+    """Expand one xacro (or URDF) file in process. Never raises for bad input."""
+    path = os.path.abspath(path)
+    args = dict(args or {})
+    res = Expansion(entry=path, args=dict(args))
+    if resolver is None:
+        resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
+    st = _State(resolver, env_allow, expr_policy)
+    with _session(st):
+        try:
+            if not resolver.is_inside(path):
+                raise RefusedInput(f"'{path}' is outside the package roots", "UL902")
+            with safe_eval.policy(expr_policy):
+                doc = xacro.process_file(display_name or path, mappings=dict(args))
+            res.xml = doc.toprettyxml(indent="  ")
+            res.origins = _fill_unknown(doc, _elements(doc, []))
+        except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
+            if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
+                raise
+            res.error = classify_error(e, st)
+        res.deps = [path] + [d for d in st.deps if d != path]
+        res.notes = st.notes
+    return res

@@ -1,0 +1,428 @@
+"""An allow-list evaluator for xacro's ``${...}`` and ``$(eval ...)`` expressions.
+
+xacro evaluates expressions with Python's ``eval`` and a deny-list; that sandbox was escaped
+here. We instead walk the expression's AST and evaluate only what robot descriptions compute:
+literals, arithmetic, comparisons, conditionals, comprehensions and lambdas, calls of the
+functions xacro exposes (math, a few builtins, ``xacro.*``), and *allow-listed* methods of plain
+values (str, numbers, lists, dicts, YAML data). Attribute access is only possible on those
+values and on xacro namespaces, never on anything starting with ``_``. The safety argument is
+therefore by construction: an object that is not on the list cannot be reached, whatever the
+spelling. Sizes are capped (huge powers, repetitions, shifts and loops are refused).
+"""
+from __future__ import annotations
+
+import ast
+import math
+import operator
+import string
+from contextlib import contextmanager
+
+
+class UnsafeExpression(Exception):
+    pass
+
+
+_MAX_POW_BITS = 1 << 16        # refuse integer powers whose result exceeds ~65k bits
+_MAX_SEQ = 10_000_000          # refuse building strings/lists longer than this
+_MAX_STEPS = 2_000_000         # evaluation steps per expression (loops, comprehensions)
+
+_STR_METHODS = {
+    "capitalize", "casefold", "center", "count", "endswith", "expandtabs", "find", "format",
+    "index", "isalnum", "isalpha", "isascii", "isdecimal", "isdigit", "isidentifier", "islower",
+    "isnumeric", "isspace", "istitle", "isupper", "join", "ljust", "lower", "lstrip",
+    "partition", "removeprefix", "removesuffix", "replace", "rfind", "rindex", "rjust",
+    "rpartition", "rsplit", "rstrip", "split", "splitlines", "startswith", "strip", "swapcase",
+    "title", "upper", "zfill"}
+_LIST_METHODS = {"append", "clear", "copy", "count", "extend", "index", "insert", "pop",
+                 "remove", "reverse", "sort"}
+_DICT_METHODS = {"clear", "copy", "get", "items", "keys", "pop", "setdefault", "update",
+                 "values"}
+_SET_METHODS = {"add", "copy", "difference", "discard", "intersection", "isdisjoint",
+                "issubset", "issuperset", "pop", "remove", "symmetric_difference", "union",
+                "update"}
+_NUM_ATTRS = {"real", "imag", "conjugate", "is_integer", "as_integer_ratio", "bit_length",
+              "numerator", "denominator"}
+
+_BIN = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+        ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
+        ast.Pow: operator.pow, ast.LShift: operator.lshift, ast.RShift: operator.rshift,
+        ast.BitAnd: operator.and_, ast.BitOr: operator.or_, ast.BitXor: operator.xor}
+_UN = {ast.UAdd: operator.pos, ast.USub: operator.neg, ast.Not: operator.not_,
+       ast.Invert: operator.invert}
+_CMP = {ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
+        ast.Gt: operator.gt, ast.GtE: operator.ge, ast.Is: operator.is_,
+        ast.IsNot: operator.is_not, ast.In: lambda a, b: a in b,
+        ast.NotIn: lambda a, b: a not in b}
+
+_SAFE_BUILTINS = {
+    "abs": abs, "all": all, "any": any, "bool": bool, "chr": chr, "complex": complex,
+    "dict": dict, "divmod": divmod, "enumerate": enumerate, "filter": filter, "float": float,
+    "frozenset": frozenset, "hash": hash, "int": int, "isinstance": isinstance, "len": len,
+    "list": list, "map": map, "max": max, "min": min, "ord": ord, "pow": pow, "range": range,
+    "repr": repr, "reversed": reversed, "round": round, "set": set, "slice": slice,
+    "sorted": sorted, "str": str, "sum": sum, "tuple": tuple, "zip": zip,
+}
+_DENIED_CALLABLES = {type, vars, getattr, setattr, delattr, eval, exec, compile, open,
+                     __import__, globals, locals, dir, object, super, classmethod,
+                     staticmethod, property, memoryview, bytearray, breakpoint, input, help}
+
+_safe_ids: set[int] = {id(v) for v in _SAFE_BUILTINS.values()}
+_safe_ids |= {id(v) for k, v in math.__dict__.items() if not k.startswith("_") and callable(v)}
+_value_types: tuple = (str, int, float, complex, bool, list, tuple, dict, set, frozenset,
+                       range, type(None))
+_namespace_types: tuple = ()
+_yaml_dict_types: tuple = ()
+
+_policy = {"max_steps": _MAX_STEPS}
+
+
+@contextmanager
+def policy(p):
+    saved = dict(_policy)
+    if p:
+        _policy.update(p)
+    try:
+        yield
+    finally:
+        _policy.clear()
+        _policy.update(saved)
+
+
+def install_xacro_symbols(global_symbols):
+    """Register everything callable that xacro exposes to expressions (minus type/vars)."""
+    global _namespace_types, _yaml_dict_types, _value_types
+    import xacro
+    _namespace_types = (xacro.Table,)
+    _yaml_dict_types = (xacro.YamlDictWrapper,)
+    _value_types = _value_types + (xacro.YamlListWrapper, xacro.YamlDictWrapper)
+
+    def walk(d):
+        for v in dict.values(d):
+            if isinstance(v, xacro.Table):
+                walk(v)
+            elif callable(v) and v not in _DENIED_CALLABLES:
+                _safe_ids.add(id(v))
+    walk(global_symbols)
+    _safe_ids.add(id(xacro.YamlDictWrapper))
+
+
+class _SafeFormatter(string.Formatter):
+    def get_field(self, field_name, args, kwargs):
+        for part in field_name.replace("[", ".").split("."):
+            if part.startswith("_"):
+                raise UnsafeExpression(f"format field '{field_name}' is not allowed")
+        obj, used = super().get_field(field_name, args, kwargs)
+        if not isinstance(obj, _value_types + _namespace_types):
+            raise UnsafeExpression(f"format field '{field_name}' reaches a non-value object")
+        return obj, used
+
+
+_FORMATTER = _SafeFormatter()
+
+
+def _safe_format(s):
+    def fmt(*args, **kwargs):
+        return _FORMATTER.vformat(s, args, kwargs)
+    _safe_ids.add(id(fmt))
+    return fmt
+
+
+class _Lambda:
+    def __init__(self, node, ev, scope):
+        self.node, self.ev, self.scope = node, ev, scope
+
+    def __call__(self, *args):
+        params = [a.arg for a in self.node.args.args]
+        if len(args) != len(params):
+            raise TypeError(f"lambda takes {len(params)} arguments ({len(args)} given)")
+        return self.ev.eval(self.node.body, dict(zip(params, args)), parent=self.scope)
+
+
+class _Scope:
+    __slots__ = ("vars", "parent")
+
+    def __init__(self, vars, parent):
+        self.vars, self.parent = vars, parent
+
+
+class Evaluator:
+    def __init__(self, lookup):
+        self.lookup = lookup  # name -> value, raises KeyError
+        self.steps = 0
+
+    def tick(self):
+        self.steps += 1
+        if self.steps > _policy["max_steps"]:
+            raise UnsafeExpression("expression too expensive (evaluation step limit reached)")
+
+    def name(self, n, scope):
+        while scope is not None:
+            if n in scope.vars:
+                return scope.vars[n]
+            scope = scope.parent
+        if n.startswith("__"):
+            raise UnsafeExpression(f"use of invalid name '{n}'")
+        try:
+            return self.lookup(n)
+        except KeyError:
+            raise NameError(f"name '{n}' is not defined") from None
+
+    def eval(self, node, vars=None, parent=None):
+        return self._ev(node, _Scope(vars or {}, parent))
+
+    # -- attribute / call gates --------------------------------------------------------------
+    def attr(self, obj, a):
+        if a.startswith("_"):
+            raise UnsafeExpression(f"access to attribute '{a}' is not allowed")
+        if _namespace_types and isinstance(obj, _namespace_types):
+            if a in _DICT_METHODS:
+                return getattr(obj, a)
+            try:
+                return obj[a]
+            except KeyError:
+                raise NameError(f"name '{a}' is not defined") from None
+        if _yaml_dict_types and isinstance(obj, _yaml_dict_types):
+            if a in _DICT_METHODS:
+                return getattr(obj, a)
+            return getattr(obj, a)
+        if isinstance(obj, str) and a in _STR_METHODS:
+            if a == "format":
+                return _safe_format(obj)
+            return getattr(obj, a)
+        if isinstance(obj, list) and a in _LIST_METHODS:
+            return getattr(obj, a)
+        if isinstance(obj, dict) and a in _DICT_METHODS:
+            return getattr(obj, a)
+        if isinstance(obj, (set, frozenset)) and a in _SET_METHODS:
+            return getattr(obj, a)
+        if isinstance(obj, tuple) and a in ("count", "index"):
+            return getattr(obj, a)
+        if isinstance(obj, (int, float, complex)) and a in _NUM_ATTRS:
+            return getattr(obj, a)
+        raise UnsafeExpression(f"attribute '{a}' of a {type(obj).__name__} value is not allowed")
+
+    def call(self, fn, args, kwargs):
+        if isinstance(fn, _Lambda) or id(fn) in _safe_ids:
+            pass
+        elif getattr(fn, "__self__", None) is not None and isinstance(fn.__self__, _value_types) \
+                and type(fn).__name__ in ("builtin_function_or_method", "method"):
+            pass
+        else:
+            raise UnsafeExpression(f"calling {getattr(fn, '__name__', type(fn).__name__)} is not allowed")
+        if fn in (map, filter, sorted, max, min):
+            for f in list(args[:1]) + [kwargs.get("key")]:
+                if callable(f) and not (isinstance(f, _Lambda) or id(f) in _safe_ids
+                                        or isinstance(getattr(f, "__self__", None), _value_types)):
+                    raise UnsafeExpression("passing that function is not allowed")
+        if fn is range or fn is list or fn is tuple or fn is set:
+            result = fn(*args, **kwargs)
+            if fn is not range and len(result) > _MAX_SEQ:
+                raise UnsafeExpression("sequence too large")
+            return result
+        return fn(*args, **kwargs)
+
+    def binop(self, op, a, b):
+        if op is ast.Pow and isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
+            if b > 0 and abs(a) > 1 and a.bit_length() * b > _MAX_POW_BITS:
+                raise UnsafeExpression(f"integer power too large ({a}**{b})")
+        if op is ast.Mult:
+            for s, n in ((a, b), (b, a)):
+                if isinstance(s, (str, list, tuple, bytes)) and isinstance(n, int) \
+                        and len(s) * n > _MAX_SEQ:
+                    raise UnsafeExpression("repetition too large")
+        if op is ast.LShift and isinstance(b, int) and b > _MAX_POW_BITS:
+            raise UnsafeExpression("shift too large")
+        if op is ast.Mod and isinstance(a, str):
+            return a % b  # %-formatting only looks keys up, it cannot reach attributes
+        return _BIN[op](a, b)
+
+    # -- the walk ----------------------------------------------------------------------------
+    def _ev(self, n, sc):
+        self.tick()
+        t = type(n)
+        if t is ast.Constant:
+            return n.value
+        if t is ast.Name:
+            return self.name(n.id, sc)
+        if t is ast.BinOp:
+            return self.binop(type(n.op), self._ev(n.left, sc), self._ev(n.right, sc))
+        if t is ast.UnaryOp:
+            return _UN[type(n.op)](self._ev(n.operand, sc))
+        if t is ast.BoolOp:
+            if isinstance(n.op, ast.And):
+                v = True
+                for x in n.values:
+                    v = self._ev(x, sc)
+                    if not v:
+                        return v
+                return v
+            v = False
+            for x in n.values:
+                v = self._ev(x, sc)
+                if v:
+                    return v
+            return v
+        if t is ast.Compare:
+            left = self._ev(n.left, sc)
+            for op, c in zip(n.ops, n.comparators):
+                right = self._ev(c, sc)
+                if not _CMP[type(op)](left, right):
+                    return False
+                left = right
+            return True
+        if t is ast.IfExp:
+            return self._ev(n.body, sc) if self._ev(n.test, sc) else self._ev(n.orelse, sc)
+        if t is ast.Attribute:
+            return self.attr(self._ev(n.value, sc), n.attr)
+        if t is ast.Subscript:
+            obj = self._ev(n.value, sc)
+            key = self._ev(n.slice, sc)
+            if not isinstance(obj, _value_types + _namespace_types):
+                raise UnsafeExpression(f"indexing a {type(obj).__name__} is not allowed")
+            if isinstance(obj, _namespace_types) and isinstance(key, str) and key.startswith("_"):
+                raise UnsafeExpression(f"access to '{key}' is not allowed")
+            return obj[key]
+        if t is ast.Slice:
+            return slice(*(self._ev(x, sc) if x is not None else None
+                           for x in (n.lower, n.upper, n.step)))
+        if t is ast.Call:
+            fn = self._ev(n.func, sc)
+            args = []
+            for a in n.args:
+                if isinstance(a, ast.Starred):
+                    args.extend(self._ev(a.value, sc))
+                else:
+                    args.append(self._ev(a, sc))
+            kwargs = {}
+            for k in n.keywords:
+                if k.arg is None:
+                    kwargs.update(self._ev(k.value, sc))
+                else:
+                    kwargs[k.arg] = self._ev(k.value, sc)
+            return self.call(fn, args, kwargs)
+        if t in (ast.List, ast.Tuple, ast.Set):
+            items = []
+            for e in n.elts:
+                if isinstance(e, ast.Starred):
+                    items.extend(self._ev(e.value, sc))
+                else:
+                    items.append(self._ev(e, sc))
+            return list(items) if t is ast.List else tuple(items) if t is ast.Tuple else set(items)
+        if t is ast.Dict:
+            d = {}
+            for k, v in zip(n.keys, n.values):
+                if k is None:
+                    d.update(self._ev(v, sc))
+                else:
+                    d[self._ev(k, sc)] = self._ev(v, sc)
+            return d
+        if t in (ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp):
+            out = []
+            self._comp(n.generators, 0, _Scope({}, sc), n, out)
+            if t is ast.DictComp:
+                return dict(out)
+            if t is ast.SetComp:
+                return set(out)
+            return out if t is ast.ListComp else iter(out)
+        if t is ast.JoinedStr:
+            parts = []
+            for v in n.values:
+                parts.append(v.value if isinstance(v, ast.Constant) else self._ev(v, sc))
+            return "".join(parts)
+        if t is ast.FormattedValue:
+            v = self._ev(n.value, sc)
+            if n.conversion == ord("r"):
+                v = repr(v)
+            elif n.conversion == ord("s"):
+                v = str(v)
+            elif n.conversion == ord("a"):
+                v = ascii(v)
+            spec = self._ev(n.format_spec, sc) if n.format_spec is not None else ""
+            return format(v, spec)
+        if t is ast.Lambda:
+            a = n.args
+            if a.vararg or a.kwarg or a.kwonlyargs or a.defaults or a.posonlyargs:
+                raise UnsafeExpression("only simple lambdas are supported")
+            return _Lambda(n, self, sc)
+        raise UnsafeExpression(f"{t.__name__} is not allowed in xacro expressions")
+
+    def _comp(self, gens, i, sc, node, out):
+        if i == len(gens):
+            self.tick()
+            if isinstance(node, ast.DictComp):
+                out.append((self._ev(node.key, sc), self._ev(node.value, sc)))
+            else:
+                out.append(self._ev(node.elt, sc))
+            if len(out) > _MAX_SEQ:
+                raise UnsafeExpression("comprehension too large")
+            return
+        g = gens[i]
+        for item in self._ev(g.iter, sc):
+            self.tick()
+            inner = _Scope({}, sc)
+            self._assign(g.target, item, inner)
+            if all(self._ev(c, inner) for c in g.ifs):
+                self._comp(gens, i + 1, inner, node, out)
+
+    def _assign(self, target, value, sc):
+        if isinstance(target, ast.Name):
+            sc.vars[target.id] = value
+        elif isinstance(target, (ast.Tuple, ast.List)):
+            values = list(value)
+            if len(values) != len(target.elts):
+                raise ValueError("cannot unpack")
+            for t, v in zip(target.elts, values):
+                self._assign(t, v, sc)
+        else:
+            raise UnsafeExpression("unsupported comprehension target")
+
+
+def evaluate(expr: str, lookup):
+    try:
+        tree = ast.parse(expr.strip(), mode="eval")
+    except SyntaxError:
+        raise
+    return Evaluator(lookup).eval(tree.body)
+
+
+def xacro_safe_eval(expr, globals, locals=None):
+    """Drop-in for ``xacro.safe_eval``: names resolve through xacro's symbol Table."""
+    if locals is not None:
+        def lookup(name):
+            try:
+                return locals[name]
+            except KeyError:
+                return globals[name]
+    else:
+        lookup = globals.__getitem__
+    return evaluate(expr, lookup)
+
+
+def substitution_eval(s, context):
+    """Drop-in for ``xacro.substitution_args._eval`` (``$(eval ...)``)."""
+    from xacro import substitution_args as sa
+    if "arg" not in context:
+        context["arg"] = {}
+
+    functions = {
+        "arg": lambda name: sa.convert_value(sa._eval_arg(name, args=context["arg"]), "auto"),
+        "dirname": lambda: sa._eval_dirname(context["filename"]),
+    }
+    for f in functions.values():
+        _safe_ids.add(id(f))
+    functions.update({k: v for k, v in sa._eval_dict.items() if k != "__builtins__"})
+    for k in ("find", "env", "optenv"):
+        _safe_ids.add(id(sa._eval_dict[k]))
+
+    def lookup(name):
+        if name in functions:
+            return functions[name]
+        if name in context["arg"]:
+            return sa.convert_value(context["arg"][name], "auto")
+        if name in _SAFE_BUILTINS:
+            return _SAFE_BUILTINS[name]
+        raise KeyError(name)
+
+    if s.find("__") >= 0:
+        raise sa.SubstitutionException("$(eval ...) may not contain double underscore expressions")
+    return str(evaluate(s, lookup))
