@@ -1,0 +1,55 @@
+"""The URDF element/attribute schema shared by UL209 and UL210 (not a rule: starts with _)."""
+
+CHILDREN = {
+    "robot": {"link", "joint", "material", "transmission", "gazebo", "ros2_control", "mujoco",
+              "sensor", "plugin"},
+    "link": {"inertial", "visual", "collision", "self_collision_checking"},
+    "inertial": {"origin", "mass", "inertia"},
+    "visual": {"origin", "geometry", "material"},
+    "collision": {"origin", "geometry"},
+    "geometry": {"box", "cylinder", "sphere", "mesh", "capsule"},
+    "material": {"color", "texture"},
+    "joint": {"origin", "parent", "child", "axis", "calibration", "dynamics", "limit", "mimic",
+              "safety_controller"},
+}
+# elements whose content belongs to other tools (Gazebo, ros2_control, MuJoCo ...)
+FREE_FORM = {"transmission", "gazebo", "ros2_control", "mujoco", "sensor", "plugin"}
+ATTRIBUTES = {
+    "robot": {"name", "version"},
+    "link": {"name", "type"},
+    "joint": {"name", "type"},
+    "origin": {"xyz", "rpy"},
+    "mass": {"value"},
+    "inertia": {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"},
+    "visual": {"name"},
+    "collision": {"name"},
+    "box": {"size"},
+    "cylinder": {"radius", "length"},
+    "capsule": {"radius", "length"},
+    "sphere": {"radius"},
+    "mesh": {"filename", "scale"},
+    "material": {"name"},
+    "color": {"rgba"},
+    "texture": {"filename"},
+    "parent": {"link"},
+    "child": {"link"},
+    "axis": {"xyz"},
+    "calibration": {"rising", "falling", "reference_position"},
+    "dynamics": {"damping", "friction"},
+    "limit": {"lower", "upper", "effort", "velocity"},
+    "mimic": {"joint", "multiplier", "offset"},
+    "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
+}
+
+
+def is_foreign(el):
+    """Namespaced (``drake:...``) or under a free-form extension element."""
+    tag = el.tag if isinstance(el.tag, str) else ""
+    if tag.startswith("{") or ":" in tag:
+        return True
+    p = el.getparent()
+    while p is not None:
+        if p.tag in FREE_FORM:
+            return True
+        p = p.getparent()
+    return False

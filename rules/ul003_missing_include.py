@@ -1,0 +1,19 @@
+"""An ``xacro:include`` names a file that does not exist.
+
+Relative names resolve against the including file; ``$(find pkg)`` and ``package://pkg`` against
+the package. Fix the path, or mark a genuinely optional include with ``optional="true"``.
+"""
+CODE = "UL003"
+NAME = "missing-include"
+SEVERITY = "error"
+ORIGIN = "expansion"
+FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="no_such_file.xacro"/>
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="no_such_file.xacro" optional="true"/>
+  <link name="a"/>
+</robot>
+"""

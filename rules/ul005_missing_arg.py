@@ -1,0 +1,18 @@
+"""A ``$(arg name)`` has no default and no value was given.
+
+Give the arg a default (``<xacro:arg name="x" default="..."/>``), or list the model with its
+args in the config (``[[tool.urdf-lint.models]] path = ... args = {x = "..."}``).
+"""
+CODE = "UL005"
+NAME = "missing-arg"
+SEVERITY = "error"
+ORIGIN = "expansion"
+FAIL = """<robot name="$(arg robot_name)" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="$(arg robot_name)" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="robot_name" default="r"/>
+  <link name="a"/>
+</robot>
+"""

@@ -1,0 +1,16 @@
+"""The document is not a robot: its root is not ``<robot>``, or it has no ``<link>``.
+
+A URDF needs a ``<robot name=...>`` root with at least one link. Macro-only xacro libraries are
+not models and are not reported; list a file under ``models`` only if it is an entry point.
+"""
+CODE = "UL006"
+NAME = "not-a-robot"
+SEVERITY = "error"
+ORIGIN = "expansion"
+FAIL = """<robot name="empty">
+</robot>
+"""
+PASS = """<robot name="one">
+  <link name="a"/>
+</robot>
+"""

@@ -1,0 +1,21 @@
+"""A DOCTYPE or entity declaration in a robot description.
+
+URDF needs no DTD. Entities can read local files or expand to gigabytes ("billion laughs"), so
+urdf-lint never loads DTDs or resolves entities, refuses entity declarations, and reports any
+DOCTYPE. Remove the declaration.
+"""
+CODE = "UL007"
+NAME = "doctype"
+SEVERITY = "error"
+ORIGIN = "expansion"
+FAIL = """<?xml version="1.0"?>
+<!DOCTYPE robot [<!ENTITY secret SYSTEM "file:///etc/passwd">]>
+<robot name="r">
+  <link name="&secret;"/>
+</robot>
+"""
+PASS = """<?xml version="1.0"?>
+<robot name="r">
+  <link name="a"/>
+</robot>
+"""

@@ -1,0 +1,19 @@
+"""xacro warned while expanding (an unknown attribute on a directive, a redefined global symbol,
+a glob include that matched nothing, a deprecated form).
+
+xacro prints these and carries on, so they are easy to miss in a build log. Fix the cause.
+"""
+CODE = "UL008"
+NAME = "xacro-warning"
+SEVERITY = "warning"
+ORIGIN = "expansion"
+FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="len" value="2" />
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="length" value="2" />
+  <link name="a"/>
+</robot>
+"""

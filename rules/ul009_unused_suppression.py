@@ -1,0 +1,21 @@
+"""An inline ``<!-- urdf-lint: ... -->`` suppression that suppresses nothing (like ruff's RUF100).
+
+Stale suppressions hide future problems. Remove the comment, or narrow it to the code that
+still fires.
+"""
+CODE = "UL009"
+NAME = "unused-suppression"
+SEVERITY = "warning"
+ORIGIN = "engine"
+FAIL = """<robot name="r">
+  <!-- urdf-lint: disable-next UL302 -->
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <!-- urdf-lint: disable-next UL103 -->
+  <joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>
+"""

@@ -1,0 +1,34 @@
+"""A link that no joint connects, in a model with more than one link.
+
+It floats free: parsers see it as a second root, and simulators drop or misplace it. Add the
+joint that attaches it, or remove it.
+"""
+CODE = "UL104"
+NAME = "disconnected-link"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="lonely"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    links = model.top_links()
+    if len(links) < 2:
+        return
+    used = set()
+    for j in model.top_joints():
+        for role in ("parent", "child"):
+            e = j.find(role)
+            if e is not None and e.get("link"):
+                used.add(e.get("link"))
+    for lk in links:
+        n = lk.get("name")
+        if n and n not in used and model.links.get(n) is lk:
+            yield lk, f"link '{n}' is not connected by any joint"

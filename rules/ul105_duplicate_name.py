@@ -1,0 +1,34 @@
+"""Two links, or two joints, share a name.
+
+URDF parsers reject the model (urdfdom: "link/joint is not unique"); with xacro this usually
+means a macro was called twice without a distinct ``prefix``.
+"""
+CODE = "UL105"
+NAME = "duplicate-name"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    from urdf_lint.locations import display_path
+    for tag in ("link", "joint"):
+        first = {}
+        for e in model.root:
+            if e.tag != tag or not e.get("name"):
+                continue
+            n = e.get("name")
+            if n in first:
+                o = model.origin(first[n])
+                yield e, (f"duplicate {tag} name '{n}' (first defined at "
+                          f"{display_path(o.file)}:{o.line}); give each a unique name")
+            else:
+                first[n] = e

@@ -1,0 +1,24 @@
+"""The robot, a link or a joint has no ``name`` (or an empty one).
+
+Names are how joints, transmissions, controllers and TF refer to things; URDF parsers reject
+nameless robots, links and joints.
+"""
+CODE = "UL201"
+NAME = "missing-name"
+SEVERITY = "error"
+FAIL = """<robot>
+  <link/>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/>
+</robot>
+"""
+
+
+def check(model, ctx):
+    if not (model.root.get("name") or "").strip():
+        yield model.root, "<robot> has no name attribute"
+    for e in model.root:
+        if e.tag in ("link", "joint") and not (e.get("name") or "").strip():
+            yield e, f"<{e.tag}> has no name attribute"

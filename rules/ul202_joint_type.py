@@ -1,0 +1,29 @@
+"""A joint has no ``type``, or one that URDF does not know.
+
+Valid types: revolute, continuous, prismatic, fixed, floating, planar.
+"""
+CODE = "UL202"
+NAME = "joint-type"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="rotational"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+
+TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        t = j.get("type")
+        if t is None:
+            yield j, f"joint '{j.get('name')}' has no type (one of {', '.join(TYPES)})"
+        elif t not in TYPES:
+            yield j, f"joint '{j.get('name')}': unknown type '{t}'" + did_you_mean(t, TYPES)

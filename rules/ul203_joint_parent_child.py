@@ -1,0 +1,29 @@
+"""A joint lacks its ``<parent link=...>`` or ``<child link=...>``.
+
+Every joint connects exactly one parent link to one child link.
+"""
+CODE = "UL203"
+NAME = "joint-parent-child"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        for role in ("parent", "child"):
+            found = j.findall(role)
+            if not found:
+                yield j, f"joint '{j.get('name')}' has no <{role} link=...>"
+            elif len(found) > 1:
+                yield found[1], f"joint '{j.get('name')}' has {len(found)} <{role}> elements"
+            elif not (found[0].get("link") or "").strip():
+                yield found[0], f"joint '{j.get('name')}': <{role}> has no link attribute"

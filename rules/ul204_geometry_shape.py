@@ -1,0 +1,47 @@
+"""A ``<visual>`` or ``<collision>`` needs one ``<geometry>`` holding exactly one shape.
+
+Shapes: box, cylinder, sphere, mesh. An empty geometry, two shapes in one geometry, or an
+unknown shape is rejected by URDF parsers (or silently drops the shape).
+"""
+CODE = "UL204"
+NAME = "geometry-shape"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><geometry><box size="1 1 1"/><sphere radius="1"/></geometry></visual>
+  </link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><geometry><box size="1 1 1"/></geometry></visual>
+  </link>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+
+
+def check(model, ctx):
+    for lk in model.top_links():
+        for part in lk:
+            if part.tag not in ("visual", "collision"):
+                continue
+            geoms = part.findall("geometry")
+            if not geoms:
+                yield part, f"link '{lk.get('name')}': <{part.tag}> has no <geometry>"
+                continue
+            for g in geoms[1:]:
+                yield g, f"link '{lk.get('name')}': <{part.tag}> has more than one <geometry>"
+            g = geoms[0]
+            shapes = [c for c in g if isinstance(c.tag, str)]
+            if not shapes:
+                yield g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>"
+            for s in shapes:
+                if s.tag not in SHAPES:
+                    yield s, (f"link '{lk.get('name')}': unknown shape <{s.tag}>"
+                              + did_you_mean(s.tag, SHAPES))
+            if len(shapes) > 1:
+                yield shapes[1], (f"link '{lk.get('name')}': <geometry> holds {len(shapes)} shapes "
+                                  f"({', '.join(s.tag for s in shapes)}); use one <{part.tag}> per shape")

@@ -1,0 +1,60 @@
+"""Shape dimensions must be valid: box ``size`` is three positive numbers, cylinder ``radius``
+and ``length`` and sphere ``radius`` are positive numbers, a mesh has a ``filename``.
+"""
+CODE = "UL205"
+NAME = "geometry-dimensions"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><geometry><box size="1 1"/></geometry></visual>
+    <collision><geometry><cylinder radius="-0.1" length="1"/></geometry></collision>
+  </link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><geometry><box size="1 1 0.5"/></geometry></visual>
+    <collision><geometry><cylinder radius="0.1" length="1"/></geometry></collision>
+  </link>
+</robot>
+"""
+from urdf_lint.ruleutil import number, numbers
+
+
+def _positive(model, el, attr, what):
+    v = el.get(attr)
+    if v is None:
+        return f"{what}: <{el.tag}> needs a '{attr}' attribute"
+    n = number(v)
+    if n is None:
+        return f"{what}: <{el.tag} {attr}=\"{v}\"> is not a number"
+    if n <= 0:
+        return f"{what}: <{el.tag} {attr}=\"{v}\"> must be positive"
+    return None
+
+
+def check(model, ctx):
+    for g in model.root.iter("geometry"):
+        lk = g.getparent().getparent() if g.getparent() is not None else None
+        what = f"link '{lk.get('name')}'" if lk is not None and lk.tag == "link" else "geometry"
+        for s in g:
+            if s.tag == "box":
+                v = s.get("size")
+                vals = numbers(v, 3)
+                if v is None:
+                    yield s, f"{what}: <box> needs size=\"x y z\""
+                elif vals is None:
+                    yield s, f"{what}: <box size=\"{v}\"> must be three numbers"
+                elif any(x <= 0 for x in vals):
+                    yield s, f"{what}: <box size=\"{v}\"> must be three positive numbers"
+            elif s.tag in ("cylinder", "capsule"):
+                for a in ("radius", "length"):
+                    msg = _positive(model, s, a, what)
+                    if msg:
+                        yield s, msg
+            elif s.tag == "sphere":
+                msg = _positive(model, s, "radius", what)
+                if msg:
+                    yield s, msg
+            elif s.tag == "mesh" and not (s.get("filename") or "").strip():
+                yield s, f"{what}: <mesh> has no filename"

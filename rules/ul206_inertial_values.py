@@ -1,0 +1,45 @@
+"""An ``<inertial>`` needs ``<mass value>`` and ``<inertia>`` with all six values
+(ixx ixy ixz iyy iyz izz), each a finite number.
+
+URDF parsers reject an inertial with a missing mass or inertia value; a typo in a number
+silently breaks dynamics.
+"""
+CODE = "UL206"
+NAME = "inertial-values"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>
+  </link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a">
+    <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+  </link>
+</robot>
+"""
+from urdf_lint.ruleutil import number
+
+INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+def check(model, ctx):
+    for lk in model.top_links():
+        for inr in lk.findall("inertial"):
+            name = lk.get("name")
+            m = inr.find("mass")
+            if m is None:
+                yield inr, f"link '{name}': <inertial> has no <mass value=...>"
+            elif number(m.get("value")) is None:
+                yield m, f"link '{name}': mass value {m.get('value')!r} is not a number"
+            i = inr.find("inertia")
+            if i is None:
+                yield inr, f"link '{name}': <inertial> has no <inertia .../>"
+                continue
+            missing = [a for a in INERTIA if i.get(a) is None]
+            if missing:
+                yield i, f"link '{name}': <inertia> is missing {', '.join(missing)}"
+            bad = [f"{a}={i.get(a)!r}" for a in INERTIA if i.get(a) is not None and number(i.get(a)) is None]
+            if bad:
+                yield i, f"link '{name}': <inertia> values are not numbers: {', '.join(bad)}"

@@ -1,0 +1,34 @@
+"""A ``<color rgba>`` must be four numbers, each in [0, 1].
+
+Values like ``255 0 0 1`` (0-255 scale) or three numbers are rejected or clipped by viewers.
+"""
+CODE = "UL208"
+NAME = "rgba"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <material name="red"><color rgba="255 0 0 1"/></material>
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="a"/>
+</robot>
+"""
+from urdf_lint.ruleutil import numbers
+
+
+def check(model, ctx):
+    for c in model.root.iter("color"):
+        if c.getparent() is None or c.getparent().tag != "material":
+            continue
+        v = c.get("rgba")
+        if v is None:
+            yield c, "<color> needs rgba=\"r g b a\""
+            continue
+        vals = numbers(v, 4)
+        if vals is None:
+            yield c, f"<color rgba=\"{v}\"> must be four numbers"
+        elif any(x < 0 or x > 1 for x in vals):
+            hint = " (0-255 values? divide by 255)" if any(x > 1 for x in vals) else ""
+            yield c, f"<color rgba=\"{v}\"> values must be within [0, 1]{hint}"

@@ -1,0 +1,39 @@
+"""An element URDF does not define at that place: usually a typo such as ``<orgin>`` or
+``<inertia>`` directly under ``<link>``. URDF parsers skip unknown elements silently, so the
+value you meant is lost.
+
+Extension blocks (``<gazebo>``, ``<transmission>``, ``<ros2_control>``, ``<mujoco>``) and
+namespaced elements (``drake:...``) are not checked.
+"""
+CODE = "UL209"
+NAME = "unknown-element"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><orgin xyz="0 0 1"/><geometry><sphere radius="1"/></geometry></visual>
+  </link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><origin xyz="0 0 1"/><geometry><sphere radius="1"/></geometry></visual>
+  </link>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._schema import CHILDREN, is_foreign
+
+
+def check(model, ctx):
+    for el in model.root.iter():
+        if not isinstance(el.tag, str) or is_foreign(el):
+            continue
+        allowed = CHILDREN.get(el.tag)
+        if allowed is None:
+            continue
+        for c in el:
+            if not isinstance(c.tag, str) or c.tag.startswith("{") or ":" in c.tag:
+                continue
+            if c.tag not in allowed:
+                yield c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
+                          + "; URDF parsers ignore it")

@@ -1,0 +1,35 @@
+"""An attribute URDF does not define on that element: usually a typo (``raduis``,
+``xzy``) whose value is then silently ignored.
+"""
+CODE = "UL210"
+NAME = "unknown-attribute"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><geometry><sphere raduis="1"/></geometry></visual>
+  </link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><geometry><sphere radius="1"/></geometry></visual>
+  </link>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._schema import ATTRIBUTES, is_foreign
+
+
+def check(model, ctx):
+    for el in model.root.iter():
+        if not isinstance(el.tag, str) or is_foreign(el):
+            continue
+        allowed = ATTRIBUTES.get(el.tag)
+        if allowed is None:
+            continue
+        for a in el.attrib:
+            if a.startswith("{") or ":" in a:
+                continue
+            if a not in allowed:
+                yield el, (f"unknown attribute '{a}' on <{el.tag}>" + did_you_mean(a, allowed)
+                           + "; URDF parsers ignore it")

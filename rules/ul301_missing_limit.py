@@ -1,0 +1,28 @@
+"""A revolute or prismatic joint has no ``<limit>``.
+
+URDF requires ``<limit effort=... velocity=...>`` (and usually ``lower``/``upper``) on these
+joints; urdfdom refuses the model without it. If the joint really has no position limits,
+make it ``continuous``.
+"""
+CODE = "UL301"
+NAME = "missing-limit"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+from urdf_lint.rules._joints import moving
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        if moving(j) and j.find("limit") is None:
+            yield j, (f"{j.get('type')} joint '{j.get('name')}' has no <limit>; add "
+                      "<limit lower=... upper=... effort=... velocity=...>")

@@ -1,0 +1,31 @@
+"""A joint's lower limit is above its upper limit, so no position is allowed.
+
+Usually the two were swapped, or a sign was lost in a mirrored (``reflect``) macro.
+"""
+CODE = "UL302"
+NAME = "limit-order"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="2.1" upper="-2.1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-2.1" upper="2.1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt
+from urdf_lint.rules._joints import limits, moving
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        if not moving(j):
+            continue
+        lim, lo, hi, _, _ = limits(j)
+        if lim is not None and lo is not None and hi is not None and lo > hi:
+            yield lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "
+                        "(swap them?)")

@@ -1,0 +1,33 @@
+"""A revolute or prismatic joint whose lower and upper limits are equal cannot move.
+
+This includes leaving both out, when they default to 0. If the joint should not move, make it
+``fixed``; otherwise set the range.
+"""
+CODE = "UL303"
+NAME = "limit-empty-range"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="slider" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/>
+    <limit effort="10" velocity="1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="slider" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/>
+    <limit lower="0" upper="0.2" effort="10" velocity="1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt
+from urdf_lint.rules._joints import limits, moving
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        if not moving(j):
+            continue
+        lim, lo, hi, _, _ = limits(j)
+        if lim is not None and lo is not None and hi is not None and lo == hi:
+            why = " (both default to 0)" if lim.get("lower") is None and lim.get("upper") is None else ""
+            yield lim, (f"joint '{j.get('name')}': lower == upper == {fmt(lo)}{why}, so it cannot "
+                        "move; set the range or make the joint fixed")

@@ -1,0 +1,28 @@
+"""A continuous joint carries ``lower``/``upper`` limits, which URDF ignores for that type.
+
+Either the joint should be ``revolute`` (limited), or the limits should go.
+"""
+CODE = "UL305"
+NAME = "continuous-limits"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="wheel"/>
+  <joint name="axle" type="continuous"><parent link="a"/><child link="wheel"/><axis xyz="0 1 0"/>
+    <limit lower="-3.14" upper="3.14" effort="10" velocity="10"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="wheel"/>
+  <joint name="axle" type="continuous"><parent link="a"/><child link="wheel"/><axis xyz="0 1 0"/>
+    <limit effort="10" velocity="10"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        lim = j.find("limit")
+        if j.get("type") == "continuous" and lim is not None and (
+                lim.get("lower") is not None or lim.get("upper") is not None):
+            yield lim, (f"continuous joint '{j.get('name')}' has position limits, which are ignored; "
+                        "make it revolute or drop lower/upper")

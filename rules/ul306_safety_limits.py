@@ -1,0 +1,46 @@
+"""``safety_controller`` soft limits lie outside the joint's hard limits, or are inverted.
+
+The soft limits should sit inside ``[lower, upper]``; otherwise the safety controller lets the
+joint run into its hard stops.
+"""
+CODE = "UL306"
+NAME = "safety-limits"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <safety_controller soft_lower_limit="-1.5" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt, number
+from urdf_lint.rules._joints import limits
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        sc = j.find("safety_controller")
+        if sc is None:
+            continue
+        if sc.get("k_velocity") is None:
+            yield sc, f"joint '{j.get('name')}': <safety_controller> needs k_velocity"
+        lim, lo, hi, _, _ = limits(j)
+        slo, shi = number(sc.get("soft_lower_limit", "0")), number(sc.get("soft_upper_limit", "0"))
+        if slo is not None and shi is not None and slo > shi:
+            yield sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} > "
+                       f"soft_upper_limit {fmt(shi)}")
+        if lim is None or j.get("type") not in ("revolute", "prismatic") or lo is None or hi is None:
+            continue
+        if slo is not None and slo < lo:
+            yield sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} is below the hard "
+                       f"lower limit {fmt(lo)}")
+        if shi is not None and shi > hi:
+            yield sc, (f"joint '{j.get('name')}': soft_upper_limit {fmt(shi)} is above the hard "
+                       f"upper limit {fmt(hi)}")

@@ -1,0 +1,43 @@
+"""A joint axis of zero length (no direction), or one that is not a unit vector.
+
+URDF normalises a non-unit axis silently in some tools and not in others, so joint velocities
+and limits are scaled differently per tool. Write a unit vector; a zero axis is an error.
+Non-unit axes are reported when the length differs from 1 by more than ``tolerance``.
+"""
+CODE = "UL307"
+NAME = "joint-axis"
+SEVERITY = "error"
+OPTIONS = {"tolerance": 1e-3}
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 0"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+import math
+
+from urdf_lint.ruleutil import fmt, numbers
+
+
+def check(model, ctx):
+    tol = float(ctx.options.get("tolerance", 1e-3))
+    for j in model.top_joints():
+        if j.get("type") in ("fixed", "floating"):
+            continue
+        ax = j.find("axis")
+        if ax is None:
+            continue
+        v = numbers(ax.get("xyz", "1 0 0"), 3)
+        if v is None:
+            continue  # UL207 reports the format
+        n = math.sqrt(sum(x * x for x in v))
+        if n == 0:
+            yield ax, f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"
+        elif abs(n - 1) > tol:
+            unit = " ".join(fmt(round(x / n, 6)) for x in v)
+            yield ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has length "
+                       f"{n:.4g}, not 1 (use \"{unit}\")")

@@ -1,0 +1,49 @@
+"""A ``<mimic joint=...>`` names an unknown joint, the joint itself, or mimic joints form a
+cycle (a mimics b mimics a). Such a model has no well-defined joint positions.
+"""
+CODE = "UL308"
+NAME = "mimic"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/>
+  <joint name="j1" type="continuous"><parent link="a"/><child link="b"/><mimic joint="j2"/></joint>
+  <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/>
+  <joint name="j1" type="continuous"><parent link="a"/><child link="b"/></joint>
+  <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1" multiplier="-1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+
+
+def check(model, ctx):
+    follows = {}
+    for j in model.top_joints():
+        m = j.find("mimic")
+        if m is None:
+            continue
+        target = m.get("joint")
+        name = j.get("name")
+        if not target:
+            yield m, f"joint '{name}': <mimic> has no joint attribute"
+        elif target == name:
+            yield m, f"joint '{name}' mimics itself"
+        elif target not in model.joints:
+            yield m, f"joint '{name}' mimics unknown joint '{target}'" + did_you_mean(target, model.joints)
+        else:
+            follows[name] = (target, m)
+    reported = set()
+    for start in follows:
+        seen, cur = [], start
+        while cur in follows and cur not in seen:
+            seen.append(cur)
+            cur = follows[cur][0]
+        if cur in seen:
+            cycle = seen[seen.index(cur):]
+            key = frozenset(cycle)
+            if key not in reported:
+                reported.add(key)
+                yield follows[cycle[0]][1], ("mimic cycle: " + " -> ".join(cycle + [cycle[0]]))

@@ -1,0 +1,29 @@
+"""A ``<mesh filename>`` does not resolve to a file: a missing file, a wrong path, or an
+unknown package.
+
+``package://pkg/...`` and ``$(find pkg)`` resolve through package.xml files (no ROS needed),
+``file://`` and absolute paths as written, and relative paths against the URDF's folder.
+"""
+CODE = "UL401"
+NAME = "mesh-not-found"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/missing.stl"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import TETRA_STL
+
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
+
+
+def check(model, ctx):
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if uri:
+            ref = ctx.mesh_ref(model, uri)
+            if ref.problem == CODE:
+                yield m, ref.message

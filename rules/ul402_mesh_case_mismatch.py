@@ -1,0 +1,28 @@
+"""A mesh path exists only with different letter case (``Base.STL`` vs ``base.stl``).
+
+It works on macOS and Windows, whose file systems ignore case, and fails on Linux, where ROS,
+CI and most robots run. Write the name exactly as the file is called.
+"""
+CODE = "UL402"
+NAME = "mesh-case-mismatch"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/Part.STL"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import TETRA_STL
+
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
+
+
+def check(model, ctx):
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if uri:
+            ref = ctx.mesh_ref(model, uri)
+            if ref.problem == CODE:
+                yield m, ref.message

@@ -1,0 +1,29 @@
+"""A mesh resolves (after symlinks) outside the package roots and the linted repository.
+
+Such a path works only on the author's machine, and a description under review could point a
+viewer at a secret (rerun embeds the bytes of whatever a mesh path names). urdf-lint never
+reads it. Keep meshes inside the package and use ``package://``.
+"""
+CODE = "UL403"
+NAME = "mesh-outside-roots"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="file:///etc/hostname"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import TETRA_STL
+
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
+
+
+def check(model, ctx):
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if uri:
+            ref = ctx.mesh_ref(model, uri)
+            if ref.problem == CODE:
+                yield m, ref.message

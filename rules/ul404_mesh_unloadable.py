@@ -1,0 +1,38 @@
+"""A mesh file cannot be loaded, is empty, or has non-finite vertices.
+
+Loaded with trimesh (DAE through pycollada). A truncated download, a Git LFS pointer committed
+instead of the file, or an exporter bug all end here. Mesh facts are cached by file content.
+"""
+CODE = "UL404"
+NAME = "mesh-unloadable"
+SEVERITY = "error"
+NEEDS = {"meshes"}
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/broken.stl"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import TETRA_STL
+
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
+                 "meshes/broken.stl": "version https://git-lfs.github.com/spec/v1\noid sha256:00\nsize 12\n"}
+
+
+def check(model, ctx):
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if not uri:
+            continue
+        ref = ctx.mesh_ref(model, uri)
+        if ref.problem or not ref.path:
+            continue
+        facts = ctx.mesh_facts(ref.path)
+        if not facts["ok"]:
+            yield m, f"mesh '{uri}' cannot be loaded: {facts['error']}"
+        elif facts["vertices"] == 0:
+            yield m, f"mesh '{uri}' is empty (no vertices)"
+        elif not facts["finite"]:
+            yield m, f"mesh '{uri}' has non-finite (NaN/inf) vertices"

@@ -1,0 +1,31 @@
+"""A mesh ``scale`` must be three finite, non-zero numbers.
+
+A zero scale flattens the mesh; a malformed one is rejected by parsers.
+"""
+CODE = "UL405"
+NAME = "mesh-scale"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import TETRA_STL
+from urdf_lint.ruleutil import numbers
+
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
+
+
+def check(model, ctx):
+    for m in model.root.iter("mesh"):
+        s = m.get("scale")
+        if s is None:
+            continue
+        v = numbers(s, 3)
+        if v is None:
+            yield m, f"mesh scale=\"{s}\" must be three numbers"
+        elif any(x == 0 for x in v):
+            yield m, f"mesh scale=\"{s}\" has a zero factor (the mesh collapses)"

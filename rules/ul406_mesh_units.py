@@ -1,0 +1,43 @@
+"""A mesh is far too large for a robot part: it was probably exported in millimetres while URDF
+is in metres.
+
+Reported when the scaled bounding box is larger than ``max-size`` metres (default 5). Add
+``scale="0.001 0.001 0.001"`` or re-export in metres.
+"""
+CODE = "UL406"
+NAME = "mesh-units"
+SEVERITY = "warning"
+NEEDS = {"meshes"}
+OPTIONS = {"max-size": 5.0}
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part_mm.stl"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part_mm.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
+</robot>
+"""
+from urdf_lint.rules._mesh_example import scaled
+from urdf_lint.ruleutil import numbers
+
+EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
+
+
+def check(model, ctx):
+    limit = float(ctx.options.get("max-size", 5.0))
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if not uri:
+            continue
+        ref = ctx.mesh_ref(model, uri)
+        if ref.problem or not ref.path:
+            continue
+        facts = ctx.mesh_facts(ref.path)
+        if not facts["ok"] or not facts["bounds"]:
+            continue
+        scale = numbers(m.get("scale", "1 1 1"), 3) or [1, 1, 1]
+        lo, hi = facts["bounds"]
+        size = max(abs(s) * (b - a) for s, a, b in zip(scale, lo, hi))
+        if size > limit:
+            hint = " (millimetres? add scale=\"0.001 0.001 0.001\")" if size / 1000 < limit else ""
+            yield m, f"mesh '{uri}' is {size:.4g} m across{hint}"

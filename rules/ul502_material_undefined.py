@@ -1,0 +1,31 @@
+"""A visual refers to a material by name, but no material of that name with a colour or texture
+is defined. URDF parsers reject the model or draw it untextured.
+"""
+CODE = "UL502"
+NAME = "material-undefined"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blu"/></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+
+
+def check(model, ctx):
+    defined = set()
+    for m in model.root.iter("material"):
+        if m.get("name") and (m.find("color") is not None or m.find("texture") is not None):
+            defined.add(m.get("name"))
+    for v in model.root.iter("visual"):
+        for m in v.findall("material"):
+            n = m.get("name")
+            if m.find("color") is None and m.find("texture") is None:
+                if not n:
+                    yield m, "<material> without a name, colour or texture"
+                elif n not in defined:
+                    yield m, f"material '{n}' is used but never defined" + did_you_mean(n, defined)

@@ -1,0 +1,28 @@
+"""A top-level material that no visual uses.
+
+Harmless, but often a sign of a renamed or misspelt reference. Materials from a shared colours
+include file are typical; ignore this rule per file with ``per-file-ignores`` if so.
+"""
+CODE = "UL503"
+NAME = "material-unused"
+SEVERITY = "info"
+FAIL = """<robot name="r">
+  <material name="orange"><color rgba="1 0.5 0 1"/></material>
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r">
+  <material name="orange"><color rgba="1 0.5 0 1"/></material>
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="orange"/></visual></link>
+</robot>
+"""
+
+
+def check(model, ctx):
+    used = {m.get("name") for v in model.root.iter("visual") for m in v.findall("material")}
+    seen = set()
+    for m in model.root:
+        if m.tag == "material" and m.get("name") and m.get("name") not in used \
+                and m.get("name") not in seen:
+            seen.add(m.get("name"))
+            yield m, f"material '{m.get('name')}' is defined but no visual uses it"

@@ -1,0 +1,43 @@
+"""The same colour is written inline again and again (under different names, or anonymously)
+where one named material should be defined once and reused by name, as the URDF tutorial
+teaches. Repeated inline colours drift apart when someone edits only one of them.
+
+Reported when one colour appears inline in at least ``min-repeats`` visuals (default 3).
+"""
+CODE = "UL504"
+NAME = "material-inline-repeated"
+SEVERITY = "info"
+OPTIONS = {"min-repeats": 3}
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="m1"><color rgba="0 0 1 1"/></material></visual></link>
+  <link name="b"><visual><geometry><box size="1 1 1"/></geometry><material name="m2"><color rgba="0 0 1 1"/></material></visual></link>
+  <link name="c"><visual><geometry><box size="1 1 1"/></geometry><material name=""><color rgba="0 0 1 1"/></material></visual></link>
+  <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
+  <link name="b"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
+  <link name="c"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
+  <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>
+"""
+from urdf_lint.rules._materials import all_materials
+
+
+def check(model, ctx):
+    n = int(ctx.options.get("min-repeats", 3))
+    groups = {}
+    for el, name, rgba, top in all_materials(model):
+        if not top and rgba is not None:
+            groups.setdefault(rgba, []).append((el, name))
+    for rgba, items in groups.items():
+        names = {nm for _, nm in items}
+        if len(items) >= n and (len(names) > 1 or "" in names or None in names):
+            shown = ", ".join(sorted(repr(x or "") for x in names))
+            yield items[0][0], (f"colour rgba {' '.join(map(str, rgba))} is written inline in "
+                                f"{len(items)} visuals (names {shown}); define one named "
+                                "<material> at the top and refer to it by name")

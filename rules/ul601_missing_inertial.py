@@ -1,0 +1,31 @@
+"""A moving link has no ``<inertial>``.
+
+Gazebo (and most physics engines) drop links without inertia, together with everything
+attached to them; the joint then does nothing in simulation. A link is "moving" when it is the
+child of a non-fixed joint. Fine for kinematics-only models: ignore this rule there.
+"""
+CODE = "UL601"
+NAME = "missing-inertial"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="base"/><link name="arm"/>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="base"/>
+  <link name="arm"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    for j in model.top_joints():
+        if j.get("type") in (None, "fixed"):
+            continue
+        c = j.find("child")
+        lk = model.links.get(c.get("link")) if c is not None else None
+        if lk is not None and lk.find("inertial") is None:
+            yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                       "<inertial>; simulators drop it")

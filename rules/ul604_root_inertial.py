@@ -1,0 +1,34 @@
+"""The root link carries an ``<inertial>``.
+
+KDL (robot_state_publisher, MoveIt, many IK solvers) cannot use inertia on the root link and
+warns or ignores it. The usual fix is a massless dummy root (``base_link`` → ``base_footprint``
+or ``world``) joined to the heavy base by a fixed joint.
+"""
+CODE = "UL604"
+NAME = "root-inertial"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="base"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <link name="arm"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="base_footprint"/>
+  <link name="base"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="j" type="fixed"><parent link="base_footprint"/><child link="base"/></joint>
+</robot>
+"""
+
+
+def check(model, ctx):
+    children = model.parents_of_links()
+    links = model.top_links()
+    if len(links) < 2:
+        return
+    for lk in links:
+        n = lk.get("name")
+        if n and n not in children and lk.find("inertial") is not None \
+                and model.links.get(n) is lk:
+            yield lk.find("inertial"), (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
+                                        "massless root link joined by a fixed joint")

@@ -1,0 +1,30 @@
+"""A ``<ros2_control>`` block names a joint (or a transmission joint) that the model does not
+define. controller_manager refuses to load the hardware interface.
+"""
+CODE = "UL702"
+NAME = "ros2-control-joint"
+SEVERITY = "error"
+FAIL = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="joint1" type="continuous"><parent link="a"/><child link="b"/></joint>
+  <ros2_control name="sys" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="joint_1"><command_interface name="position"/></joint></ros2_control>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/><link name="b"/>
+  <joint name="joint1" type="continuous"><parent link="a"/><child link="b"/></joint>
+  <ros2_control name="sys" type="system"><hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="joint1"><command_interface name="position"/></joint></ros2_control>
+</robot>
+"""
+from urdf_lint.ruleutil import did_you_mean
+
+
+def check(model, ctx):
+    for rc in model.root.iter("ros2_control"):
+        for j in rc.iter("joint"):
+            n = j.get("name")
+            if n and n not in model.joints:
+                yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
+                          + did_you_mean(n, model.joints))

@@ -1,0 +1,23 @@
+"""A link has a visual but no collision geometry.
+
+It is drawn but passes through everything in simulation and motion planning. Often intended
+(decorative parts); this is information, not an error.
+"""
+CODE = "UL801"
+NAME = "visual-without-collision"
+SEVERITY = "info"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual></link>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual>
+    <collision><geometry><box size="1 1 1"/></geometry></collision></link>
+</robot>
+"""
+
+
+def check(model, ctx):
+    for lk in model.top_links():
+        if lk.find("visual") is not None and lk.find("collision") is None:
+            yield lk, f"link '{lk.get('name')}' has a visual but no collision"

@@ -1,0 +1,18 @@
+"""An expression reads an environment variable that is not allow-listed.
+
+In CI the environment holds secrets (tokens, keys), and a description under review must not be
+able to copy them into its output. ``$(env X)`` and ``$(optenv X)`` only read variables in
+``env-allow`` (plus ROS_DISTRO and a few ROS ones); otherwise the value is not substituted.
+"""
+CODE = "UL901"
+NAME = "env-read"
+SEVERITY = "error"
+ORIGIN = "expansion"
+FAIL = """<robot name="r$(env URDF_LINT_EXAMPLE_SECRET)" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r$(optenv ROS_DISTRO)" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="a"/>
+</robot>
+"""

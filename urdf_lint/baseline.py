@@ -1,0 +1,42 @@
+"""``--baseline``: adopt urdf-lint on a repository with existing findings.
+
+A baseline records each finding by code, file (relative to the baseline's folder) and message,
+not by line, so unrelated edits that move lines do not resurrect old findings.
+"""
+from __future__ import annotations
+
+import json
+import os
+from collections import Counter
+
+
+def _key(f, base):
+    return (f.code, os.path.relpath(f.file, base), f.message)
+
+
+def write_baseline(path, findings):
+    base = os.path.dirname(os.path.abspath(path))
+    items = [{"code": c, "file": fl, "message": m} for c, fl, m in sorted(_key(f, base) for f in findings)]
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as fh:
+        json.dump({"version": 1, "findings": items}, fh, indent=1)
+    os.replace(tmp, path)
+
+
+def filter_baseline(path, findings):
+    base = os.path.dirname(os.path.abspath(path))
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+        known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        from .cli import UsageError
+        raise UsageError(f"cannot read baseline {path}: {e}") from None
+    out = []
+    for f in findings:
+        k = _key(f, base)
+        if known[k] > 0:
+            known[k] -= 1
+        else:
+            out.append(f)
+    return out

@@ -1,0 +1,123 @@
+"""Result cache, like ruff's: ``.urdf_lint_cache/`` at the repository root.
+
+A model's entry is keyed on the tool version, the entry file, its args and the lint settings
+(selected rules, options, package map, env allow-list). It is valid only while every file the
+model read (xacro, YAML, meshes) still has the content it had, and every file that was looked
+for and missing is still missing. Stat data (size, mtime) short-cuts the content hash. A corrupt
+or foreign entry is ignored.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+from pathlib import Path
+
+from . import __version__
+
+_GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
+
+
+def file_digest(path: str) -> str | None:
+    h = hashlib.blake2b(digest_size=16)
+    try:
+        with open(path, "rb") as f:
+            for chunk in iter(lambda: f.read(1 << 20), b""):
+                h.update(chunk)
+    except OSError:
+        return None
+    return h.hexdigest()
+
+
+def _stat(path):
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return [st.st_size, st.st_mtime_ns]
+
+
+class Cache:
+    def __init__(self, directory: str):
+        self.dir = str(directory)
+        self._writes = 0
+
+    @classmethod
+    def for_paths(cls, paths, cfg) -> "Cache":
+        from .check import repo_root
+        if cfg.cache_dir:
+            return cls(os.path.join(cfg.root, cfg.cache_dir))
+        first = os.path.abspath(paths[0] if paths else ".")
+        start = first if os.path.isdir(first) else os.path.dirname(first)
+        return cls(os.path.join(repo_root(start), ".urdf_lint_cache"))
+
+    def _key(self, job, settings) -> str:
+        blob = json.dumps([__version__, job["entry"], sorted(job.get("args", {}).items()),
+                           job.get("kind"), bool(job.get("explicit")),
+                           {k: settings[k] for k in ("selected", "options", "env_allow", "resolver")}],
+                          sort_keys=True)
+        return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
+
+    def _path(self, key) -> Path:
+        return Path(self.dir, "results", key[:2], key + ".json")
+
+    def get(self, job, settings):
+        p = self._path(self._key(job, settings))
+        try:
+            rec = json.loads(p.read_text(encoding="utf-8"))
+            if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
+                return None
+            for path, (stat, digest) in rec["deps"].items():
+                now = _stat(path)
+                if now is None:
+                    return None
+                if now != stat and file_digest(path) != digest:
+                    return None
+            for path in rec.get("missing", []):
+                if os.path.exists(path):
+                    return None
+            result = rec["result"]
+            if not isinstance(result.get("findings"), list):
+                return None
+            return result
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            return None
+
+    def put(self, job, settings, result):
+        deps = {}
+        for d in result.get("deps", []):
+            st = _stat(d)
+            dig = file_digest(d)
+            if st is None or dig is None:
+                continue
+            deps[d] = [st, dig]
+        rec = {"version": __version__, "deps": deps, "missing": result.get("missing", []),
+               "result": {k: result[k] for k in ("status", "stats", "deps", "findings")}}
+        p = self._path(self._key(job, settings))
+        try:
+            self._ensure()
+            p.parent.mkdir(parents=True, exist_ok=True)
+            tmp = p.with_suffix(f".tmp{os.getpid()}")
+            tmp.write_text(json.dumps(rec), encoding="utf-8")
+            os.replace(tmp, p)
+            self._writes += 1
+        except OSError:
+            pass
+
+    def _ensure(self):
+        d = Path(self.dir)
+        if not d.is_dir():
+            d.mkdir(parents=True, exist_ok=True)
+            (d / ".gitignore").write_text(_GITIGNORE)
+            (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
+                                            "# urdf-lint cache\n")
+
+    def flush(self):
+        pass
+
+    def clear(self) -> str | None:
+        if os.path.isdir(self.dir):
+            shutil.rmtree(self.dir, ignore_errors=True)
+            return self.dir
+        return None

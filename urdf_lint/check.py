@@ -1,0 +1,222 @@
+"""``urdf-lint check``: discover -> expand -> model -> rules -> findings.
+
+This module orchestrates; the work happens in :mod:`urdf_lint.lint` (inside workers).
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .config import Config
+from .findings import SEVERITY_RANK, Finding, merge
+from .packages import PackageResolver, iter_files
+
+
+@dataclass
+class ModelResult:
+    entry: str
+    args: dict
+    status: str
+    stats: dict
+    deps: list
+    findings: list            # raw dicts
+
+    @property
+    def label(self) -> str:
+        from .locations import display_path
+        base = display_path(self.entry)
+        if self.args:
+            base += " [" + " ".join(f"{k}:={v}" for k, v in sorted(self.args.items())) + "]"
+        return base
+
+
+@dataclass
+class CheckResult:
+    findings: list = field(default_factory=list)     # merged Finding objects, after filtering
+    models: list = field(default_factory=list)       # ModelResult of linted models
+    skipped: list = field(default_factory=list)      # libraries etc.
+    internal: list = field(default_factory=list)     # internal errors (exit 2)
+    unused_files: list = field(default_factory=list)
+
+
+def repo_root(start: str) -> str:
+    try:
+        out = subprocess.run(["git", "rev-parse", "--show-toplevel"], cwd=start,
+                             capture_output=True, text=True, timeout=5)
+        if out.returncode == 0 and out.stdout.strip():
+            return out.stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        pass
+    return os.path.abspath(start)
+
+
+def build_resolver(paths, cfg: Config, cli_packages: dict | None = None) -> PackageResolver:
+    scan = [os.path.abspath(p) for p in paths]
+    first = scan[0] if scan else os.getcwd()
+    start = first if os.path.isdir(first) else os.path.dirname(first)
+    root = repo_root(start)
+    scan.append(root)
+    # a single file's package: walk up to the nearest package.xml
+    for p in list(scan):
+        d = Path(p if os.path.isdir(p) else os.path.dirname(p))
+        for parent in [d, *d.parents]:
+            if (parent / "package.xml").is_file():
+                scan.append(str(parent))
+                break
+            if str(parent) == root:
+                break
+    explicit = dict(cfg.package_paths)
+    explicit.update(cli_packages or {})
+    extra_roots = [root] + [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]
+    return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots)
+
+
+def discover(paths, cfg: Config) -> list[dict]:
+    """Every candidate model file under the paths, with the arg sets to expand it with."""
+    configured = {m.path: m.arg_sets for m in cfg.models}
+    jobs, seen = [], set()
+    for p in paths:
+        p = os.path.abspath(p)
+        for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
+            f = str(f.resolve()) if not os.path.islink(f) else os.path.abspath(f)
+            if f in seen or (cfg.is_excluded(f) and f != p):
+                continue
+            seen.add(f)
+            kind = "urdf" if f.endswith(".urdf") else "xacro"
+            if f in configured:
+                for args in configured[f]:
+                    jobs.append({"entry": f, "args": dict(args), "kind": kind, "explicit": True})
+            else:
+                jobs.append({"entry": f, "args": {}, "kind": kind, "explicit": p == f})
+    # configured models inside the linted paths that the walk did not reach
+    for f, arg_sets in configured.items():
+        if f in seen or not any(_inside(f, os.path.abspath(p)) for p in paths):
+            continue
+        kind = "urdf" if f.endswith(".urdf") else "xacro"
+        for args in arg_sets:
+            jobs.append({"entry": f, "args": dict(args), "kind": kind, "explicit": True})
+    return jobs
+
+
+def _inside(f, p):
+    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+
+
+def selected_codes(cfg: Config) -> list[str]:
+    from .registry import load_rules
+    return [c for c, r in load_rules().items() if cfg.is_selected(c, r.name)]
+
+
+def settings_for(cfg: Config, resolver: PackageResolver, cache_dir: str | None) -> dict:
+    from .expand import DEFAULT_ENV_ALLOW
+    from .registry import load_rules
+    rules = load_rules()
+    options = {}
+    for code, r in rules.items():
+        o = cfg.options_for(code, r.name)
+        if o:
+            unknown = set(o) - set(r.options)
+            if unknown:
+                from .config import ConfigError
+                raise ConfigError(f"unknown option(s) for {code} {r.name}: "
+                                  f"{', '.join(sorted(unknown))} (known: "
+                                  f"{', '.join(sorted(r.options)) or 'none'})")
+            options[code] = o
+    return {"resolver": resolver.to_dict(), "selected": selected_codes(cfg), "options": options,
+            "env_allow": sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)),
+            "mesh_cache_dir": cache_dir}
+
+
+def to_findings(raw: list, label: str, cfg: Config) -> list[Finding]:
+    from .registry import load_rules
+    rules = load_rules()
+    out = []
+    for d in raw:
+        r = rules.get(d["code"])
+        name = r.name if r else d["code"]
+        sev, best = (r.severity if r else "error"), -1
+        for pat, s in cfg.severity.items():   # the most specific override wins
+            if (d["code"].startswith(pat) or pat == name) and len(pat) > best:
+                sev, best = s, len(pat)
+        out.append(Finding(code=d["code"], name=name, severity=sev, message=d["message"],
+                           file=d["file"], line=d["line"], col=d["col"],
+                           chain=tuple(tuple(c) for c in d.get("chain", ())), models=[label]))
+    return out
+
+
+def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=None,
+              only_entries: set | None = None, progress=None) -> CheckResult:
+    from .worker import run_jobs
+    from . import suppress
+
+    jobs = discover(paths, cfg)
+    if only_entries is not None:
+        jobs = [j for j in jobs if j["entry"] in only_entries]
+    settings = settings_for(cfg, resolver, cache.dir if cache else None)
+    results: list[ModelResult] = []
+    todo = []
+    for job in jobs:
+        hit = cache.get(job, settings) if cache else None
+        if hit is not None:
+            results.append(ModelResult(job["entry"], job["args"], hit["status"], hit["stats"],
+                                       hit["deps"], hit["findings"]))
+        else:
+            todo.append(job)
+    internal = []
+    if todo:
+        import xacro  # noqa: F401 - import once in the parent, shared by the forked workers
+        from . import expand  # noqa: F401
+        for n, (job, res) in enumerate(run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout,
+                                                memory_mb=cfg.memory_mb), 1):
+            internal.extend(res.get("internal", []))
+            mr = ModelResult(job["entry"], job["args"], res["status"], res["stats"], res["deps"],
+                             res["findings"])
+            results.append(mr)
+            if cache and not res.get("internal"):
+                cache.put(job, settings, res)
+            if progress:
+                progress(n, len(todo))
+
+    # a candidate that failed on its own but is included by a model is a library
+    used = set()
+    for r in results:
+        if r.status == "model":
+            used.update(r.deps[1:])
+    out = CheckResult(internal=internal)
+    for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
+        if r.status in ("library", "not-robot") or (r.status == "failed" and r.entry in used
+                                                    and not r.args):
+            out.skipped.append(r)
+        else:
+            out.models.append(r)
+
+    all_findings = []
+    for r in out.models:
+        all_findings.extend(to_findings(r.findings, r.label, cfg))
+    merged = merge(all_findings)
+    files = set()
+    for r in out.models:
+        files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
+    directives = {f: suppress.parse_directives(f) for f in sorted(files)}
+    kept, unused = suppress.apply(merged, directives)
+    kept += to_findings(unused, "", cfg)
+    final = []
+    for f in kept:
+        if not cfg.is_selected(f.code, f.name) or cfg.ignored_for_file(f.code, f.name, f.file):
+            continue
+        if f.code == "UL009":
+            f.models = []
+        final.append(f)
+    out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    return out
+
+
+def exit_code(result: CheckResult, fail_on: str) -> int:
+    if result.internal:
+        return 2
+    if fail_on == "never":
+        return 0
+    threshold = SEVERITY_RANK[fail_on]
+    return 1 if any(SEVERITY_RANK[f.severity] >= threshold for f in result.findings) else 0

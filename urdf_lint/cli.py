@@ -1,0 +1,272 @@
+"""Command line: ``urdf-lint check|expand|rules|rule|render|clean``.
+
+Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error.
+Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+
+class UsageError(Exception):
+    pass
+
+
+def _parse_package_paths(items):
+    out = {}
+    for it in items or []:
+        name, sep, d = it.partition("=")
+        if not sep or not name or not d:
+            raise UsageError(f"--package-path expects NAME=DIR, got {it!r}")
+        out[name] = os.path.abspath(d)
+    return out
+
+
+def _parse_mappings(items):
+    args, rest = {}, []
+    for it in items:
+        if ":=" in it:
+            k, _, v = it.partition(":=")
+            args[k] = v
+        else:
+            rest.append(it)
+    return args, rest
+
+
+def _codes(s):
+    return [c.strip() for c in s.split(",") if c.strip()] if s else []
+
+
+def build_parser():
+    p = argparse.ArgumentParser(prog="urdf-lint", description=__doc__.splitlines()[0])
+    p.add_argument("--version", action="store_true", help="print the version and exit")
+    sub = p.add_subparsers(dest="command")
+
+    c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS")
+    c.add_argument("paths", nargs="*", default=["."])
+    c.add_argument("--format", choices=["text", "json", "sarif", "github", "junit"])
+    c.add_argument("--output", "-o", help="write the report to this file")
+    c.add_argument("--select", help="comma-separated codes or prefixes (replaces config)")
+    c.add_argument("--extend-select", help="codes or prefixes to add")
+    c.add_argument("--ignore", help="codes or prefixes to ignore")
+    c.add_argument("--fail-on", choices=["error", "warning", "info", "never"])
+    c.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    c.add_argument("--config", help="config file (pyproject.toml or urdf-lint.toml)")
+    c.add_argument("--isolated", action="store_true", help="ignore all config files")
+    c.add_argument("-j", "--jobs", type=int, help="parallel workers (default: CPU count)")
+    c.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
+    c.add_argument("--statistics", action="store_true", help="print counts per rule")
+    c.add_argument("--render", metavar="DIR", help="also write snapshots (.rrd, .png) to DIR")
+    c.add_argument("--changed-since", metavar="REF",
+                   help="only the models affected by files changed since a git ref")
+    c.add_argument("--baseline", metavar="FILE",
+                   help="ignore findings recorded in FILE (create it with --write-baseline)")
+    c.add_argument("--write-baseline", metavar="FILE", help="record current findings to FILE")
+    c.add_argument("--timeout", type=float, help="per-model time limit in seconds")
+    c.add_argument("--quiet", "-q", action="store_true", help="no summary line when clean")
+
+    e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)")
+    e.add_argument("file")
+    e.add_argument("mappings", nargs="*", metavar="name:=value")
+    e.add_argument("-o", "--output")
+    e.add_argument("--package-path", action="append", metavar="NAME=DIR")
+
+    sub.add_parser("rules", help="list the rule catalogue")
+    r = sub.add_parser("rule", help="explain one rule")
+    r.add_argument("code")
+
+    rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots")
+    rd.add_argument("paths", nargs="*", default=["."])
+    rd.add_argument("--out", default="snapshots")
+    rd.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    rd.add_argument("--config")
+    rd.add_argument("--no-rrd", action="store_true")
+
+    cl = sub.add_parser("clean", help="remove the cache")
+    cl.add_argument("paths", nargs="*", default=["."])
+    return p
+
+
+def _load_cfg(args, paths):
+    from .config import find_config, load_config, validate_codes
+    from .registry import codes_to_names
+    known = codes_to_names()
+    if getattr(args, "isolated", False):
+        cfg = load_config(None)
+    else:
+        path = args.config or find_config(paths[0] if paths else ".")
+        cfg = load_config(path, known)
+    if getattr(args, "select", None):
+        cfg.select = _codes(args.select)
+    if getattr(args, "extend_select", None):
+        cfg.extend_select += _codes(args.extend_select)
+    if getattr(args, "ignore", None):
+        cfg.ignore += _codes(args.ignore)
+    if getattr(args, "fail_on", None):
+        cfg.fail_on = args.fail_on
+    if getattr(args, "timeout", None):
+        cfg.timeout = args.timeout
+    validate_codes(cfg, known)
+    return cfg
+
+
+def cmd_check(args) -> int:
+    from .check import build_resolver, exit_code, run_check
+    from . import report
+    for p in args.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
+    cfg = _load_cfg(args, args.paths)
+    resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    cache = None
+    if not args.no_cache:
+        from .cache import Cache
+        cache = Cache.for_paths(args.paths, cfg)
+    only = None
+    if args.changed_since:
+        from .changes import affected_entries
+        only = affected_entries(args.paths, cfg, resolver, cache, args.changed_since)
+    progress = None
+    if sys.stderr.isatty() and not os.environ.get("CI"):
+        def progress(n, total):
+            sys.stderr.write(f"\rlinting {n}/{total} models" + (" " * 10))
+            if n == total:
+                sys.stderr.write("\r" + " " * 40 + "\r")
+            sys.stderr.flush()
+    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
+                       only_entries=only, progress=progress)
+    if cache:
+        cache.flush()
+    if args.write_baseline:
+        from .baseline import write_baseline
+        write_baseline(args.write_baseline, result.findings)
+    if args.baseline:
+        from .baseline import filter_baseline
+        result.findings = filter_baseline(args.baseline, result.findings)
+    fmt = args.format or cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    if args.output:
+        with open(args.output + ".tmp", "w", encoding="utf-8") as f:
+            report.write(result, fmt, f, statistics=args.statistics, color=False)
+        os.replace(args.output + ".tmp", args.output)
+    elif not (args.quiet and not result.findings):
+        report.write(result, fmt, sys.stdout, statistics=args.statistics)
+    for msg in result.internal:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+    if args.render:
+        from .render import render_results
+        render_results(result, args.render, resolver, cfg)
+    return exit_code(result, cfg.fail_on)
+
+
+def cmd_expand(args) -> int:
+    from .config import load_config
+    from .check import build_resolver
+    from .expand import expand_file, DEFAULT_ENV_ALLOW
+    from .locations import display_path
+    if not os.path.isfile(args.file):
+        raise UsageError(f"no such file: {args.file}")
+    mappings, rest = _parse_mappings(args.mappings)
+    if rest:
+        raise UsageError(f"expected name:=value, got {' '.join(rest)}")
+    cfg = load_config(None)
+    resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
+    res = expand_file(args.file, mappings, resolver, env_allow=DEFAULT_ENV_ALLOW,
+                      display_name=args.file)
+    for n in res.notes:
+        sys.stderr.write(f"{display_path(n['file'])}:{n['line']}:{n['col']}: {n['code']} "
+                         f"{n['message']}\n")
+    if res.error:
+        e = res.error
+        sys.stderr.write(f"{display_path(e['file'])}:{e['line']}:{e['col']}: {e['code']} "
+                         f"{e['message']}\n")
+        return 1
+    if args.output:
+        d = os.path.dirname(os.path.abspath(args.output))
+        os.makedirs(d, exist_ok=True)
+        tmp = args.output + ".tmp"
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(res.xml)
+        os.replace(tmp, args.output)
+    else:
+        sys.stdout.write(res.xml)
+    return 0
+
+
+def cmd_rules(args) -> int:
+    from .registry import load_rules
+    for code, r in load_rules().items():
+        print(f"{code}  {r.name:<28} {r.severity:<8} {r.summary}")
+    return 0
+
+
+def cmd_rule(args) -> int:
+    from .registry import find_rule
+    r = find_rule(args.code)
+    if r is None:
+        raise UsageError(f"unknown rule {args.code!r} (see 'urdf-lint rules')")
+    print(f"{r.code} {r.name} (default severity: {r.severity})\n")
+    print(r.doc)
+    if r.options:
+        print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
+        for k, v in r.options.items():
+            print(f"  {k} = {v!r}")
+    print("\nFails:\n" + r.fail.strip())
+    print("\nPasses:\n" + r.passing.strip())
+    return 0
+
+
+def cmd_render(args) -> int:
+    from .render import render_paths
+    cfg = _load_cfg(args, args.paths)
+    return render_paths(args.paths, args.out, cfg, _parse_package_paths(args.package_path),
+                        rrd=not args.no_rrd)
+
+
+def cmd_clean(args) -> int:
+    from .cache import Cache
+    from .config import load_config
+    removed = Cache.for_paths(args.paths, load_config(None)).clear()
+    print(f"removed {removed}" if removed else "no cache to remove")
+    return 0
+
+
+COMMANDS = {"check": cmd_check, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
+            "render": cmd_render, "clean": cmd_clean}
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as e:
+        return 2 if e.code else 0
+    if args.version:
+        from . import __version__
+        print(f"urdf-lint {__version__}")
+        return 0
+    if not args.command:
+        parser.print_help()
+        return 2
+    from .config import ConfigError
+    try:
+        return COMMANDS[args.command](args)
+    except (UsageError, ConfigError) as e:
+        sys.stderr.write(f"urdf-lint: error: {e}\n")
+        return 2
+    except KeyboardInterrupt:
+        sys.stderr.write("urdf-lint: interrupted\n")
+        return 2
+    except BrokenPipeError:
+        return 0
+    except Exception as e:  # noqa: BLE001
+        import traceback
+        sys.stderr.write(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}\n")
+        if os.environ.get("URDF_LINT_DEBUG"):
+            traceback.print_exc()
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,200 @@
+"""``[tool.urdf-lint]`` in pyproject.toml, or urdf-lint.toml: loading and validation."""
+from __future__ import annotations
+
+import fnmatch
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+try:
+    import tomllib
+except ImportError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+
+class ConfigError(Exception):
+    pass
+
+
+KNOWN_KEYS = {
+    "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on",
+    "package-paths", "models", "exclude", "env-allow", "timeout", "memory-mb", "rule-options",
+    "jobs", "cache-dir", "format",
+}
+
+
+@dataclass
+class ModelSpec:
+    path: str                       # absolute
+    arg_sets: list                  # list of dicts
+
+
+@dataclass
+class Config:
+    path: str | None = None         # the file it came from
+    root: str = "."                 # folder paths are relative to
+    select: list = field(default_factory=lambda: ["UL"])
+    extend_select: list = field(default_factory=list)
+    ignore: list = field(default_factory=list)
+    per_file_ignores: dict = field(default_factory=dict)
+    severity: dict = field(default_factory=dict)
+    fail_on: str = "error"
+    package_paths: dict = field(default_factory=dict)
+    models: list = field(default_factory=list)
+    exclude: list = field(default_factory=list)
+    env_allow: list = field(default_factory=list)
+    timeout: float = 30.0
+    memory_mb: int = 2048
+    rule_options: dict = field(default_factory=dict)
+    jobs: int | None = None
+    cache_dir: str | None = None
+    format: str | None = None
+    raw: dict = field(default_factory=dict)
+
+    # -- selection -------------------------------------------------------------------------
+    def is_selected(self, code: str, name: str = "") -> bool:
+        sel = list(self.select) + list(self.extend_select)
+
+        def best(patterns):
+            lens = [len(p) for p in patterns if _matches(p, code, name)]
+            return max(lens) if lens else -1
+        s, i = best(sel), best(self.ignore)
+        return s >= 0 and s > i
+
+    def ignored_for_file(self, code: str, name: str, file: str) -> bool:
+        try:
+            rel = os.path.relpath(file, self.root)
+        except ValueError:
+            rel = file
+        for pattern, codes in self.per_file_ignores.items():
+            if fnmatch.fnmatch(rel, pattern) or fnmatch.fnmatch(os.path.basename(file), pattern):
+                if any(_matches(c, code, name) for c in codes):
+                    return True
+        return False
+
+    def is_excluded(self, path: str) -> bool:
+        try:
+            rel = os.path.relpath(path, self.root)
+        except ValueError:
+            rel = path
+        return any(fnmatch.fnmatch(rel, p) or fnmatch.fnmatch(rel, p.rstrip("/") + "/*")
+                   for p in self.exclude)
+
+    def options_for(self, code: str, name: str) -> dict:
+        out = {}
+        out.update(self.rule_options.get(name, {}))
+        out.update(self.rule_options.get(code, {}))
+        return out
+
+
+def _matches(pattern: str, code: str, name: str) -> bool:
+    return pattern == "ALL" or code.startswith(pattern) or pattern == name
+
+
+def find_config(start: str) -> Path | None:
+    p = Path(start).resolve()
+    if p.is_file():
+        p = p.parent
+    for d in [p, *p.parents]:
+        for fname in ("urdf-lint.toml", ".urdf-lint.toml"):
+            if (d / fname).is_file():
+                return d / fname
+        pp = d / "pyproject.toml"
+        if pp.is_file():
+            try:
+                data = tomllib.loads(pp.read_text(encoding="utf-8"))
+            except Exception:
+                continue
+            if "urdf-lint" in data.get("tool", {}):
+                return pp
+    return None
+
+
+def load_config(path: str | Path | None, known_codes: dict | None = None) -> Config:
+    """Load and validate. ``known_codes`` maps code -> name for checking codes and options."""
+    if path is None:
+        return Config(root=os.getcwd())
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except Exception as e:
+        raise ConfigError(f"{path}: cannot read config: {e}") from None
+    if path.name == "pyproject.toml":
+        data = data.get("tool", {}).get("urdf-lint", {})
+    cfg = Config(path=str(path), root=str(path.parent.resolve()), raw=data)
+    unknown = set(data) - KNOWN_KEYS
+    if unknown:
+        raise ConfigError(f"{path}: unknown key(s) in [tool.urdf-lint]: {', '.join(sorted(unknown))} "
+                          f"(known: {', '.join(sorted(KNOWN_KEYS))})")
+
+    def lst(key):
+        v = data.get(key, [])
+        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
+            raise ConfigError(f"{path}: '{key}' must be a list of strings")
+        return v
+    if "select" in data:
+        cfg.select = lst("select")
+    cfg.extend_select = lst("extend-select")
+    cfg.ignore = lst("ignore")
+    cfg.exclude = lst("exclude")
+    cfg.env_allow = lst("env-allow")
+    pfi = data.get("per-file-ignores", {})
+    if not isinstance(pfi, dict):
+        raise ConfigError(f"{path}: 'per-file-ignores' must be a table of glob = [codes]")
+    cfg.per_file_ignores = {k: list(v) for k, v in pfi.items()}
+    sev = data.get("severity", {})
+    for code, s in sev.items():
+        if s not in ("error", "warning", "info"):
+            raise ConfigError(f"{path}: severity of {code} must be error, warning or info, not {s!r}")
+    cfg.severity = dict(sev)
+    cfg.fail_on = data.get("fail-on", "error")
+    if cfg.fail_on not in ("error", "warning", "info", "never"):
+        raise ConfigError(f"{path}: 'fail-on' must be error, warning, info or never")
+    cfg.package_paths = {k: str((path.parent / v).resolve()) for k, v in
+                         data.get("package-paths", {}).items()}
+    cfg.timeout = float(data.get("timeout", cfg.timeout))
+    cfg.memory_mb = int(data.get("memory-mb", cfg.memory_mb))
+    cfg.jobs = data.get("jobs")
+    cfg.cache_dir = data.get("cache-dir")
+    cfg.format = data.get("format")
+    ro = data.get("rule-options", {})
+    if not isinstance(ro, dict):
+        raise ConfigError(f"{path}: 'rule-options' must be a table of tables")
+    cfg.rule_options = {k: dict(v) for k, v in ro.items()}
+    for m in data.get("models", []):
+        if not isinstance(m, dict) or "path" not in m:
+            raise ConfigError(f"{path}: each [[tool.urdf-lint.models]] needs a 'path'")
+        extra = set(m) - {"path", "args"}
+        if extra:
+            raise ConfigError(f"{path}: unknown key(s) in a models entry: {', '.join(sorted(extra))}")
+        args = m.get("args", [{}])
+        if isinstance(args, dict):
+            args = [args]
+        arg_sets = [{k: str(v) for k, v in a.items()} for a in args]
+        cfg.models.append(ModelSpec(path=str((path.parent / m["path"]).resolve()),
+                                    arg_sets=arg_sets))
+    if known_codes is not None:
+        validate_codes(cfg, known_codes, str(path))
+    return cfg
+
+
+def validate_codes(cfg: Config, known: dict, where: str = "command line"):
+    names = set(known.values())
+
+    def check(p, what):
+        if p == "ALL" or p in names:
+            return
+        if not any(c.startswith(p) for c in known):
+            raise ConfigError(f"{where}: unknown rule code or prefix {p!r} in {what} "
+                              f"(see 'urdf-lint rules')")
+    for p in cfg.select + cfg.extend_select:
+        check(p, "select")
+    for p in cfg.ignore:
+        check(p, "ignore")
+    for codes in cfg.per_file_ignores.values():
+        for p in codes:
+            check(p, "per-file-ignores")
+    for p in cfg.severity:
+        check(p, "severity")
+    for p in cfg.rule_options:
+        check(p, "rule-options")

@@ -1,0 +1,159 @@
+"""Lint one model: expand (or parse) it, build the Model, run the selected rules.
+
+``run_job`` takes and returns plain data, so it runs the same in process and in a worker.
+"""
+from __future__ import annotations
+
+import os
+import traceback
+
+from lxml import etree
+
+from .locations import Origin
+
+XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
+
+
+class Context:
+    """What a rule's ``check`` gets besides the model."""
+
+    def __init__(self, options: dict, mesh_cache_dir: str | None):
+        self.options = options
+        self.mesh_cache_dir = mesh_cache_dir
+        self._refs: dict = {}
+
+    def mesh_ref(self, model, uri):
+        from . import meshes
+        key = (model.base_dir, uri)
+        if key not in self._refs:
+            self._refs[key] = meshes.resolve(model, uri)
+        return self._refs[key]
+
+    def mesh_facts(self, path):
+        from . import meshes
+        return meshes.mesh_facts(path, self.mesh_cache_dir)
+
+
+def _finding(code, message, origin: Origin | tuple):
+    o = origin
+    return {"code": code, "message": message, "file": o[0], "line": o[1], "col": o[2],
+            "chain": [list(c) for c in (o[3] if len(o) > 3 else ())]}
+
+
+def classify_xacro(path: str) -> str:
+    """'candidate', 'library' (only macro/property/arg/include at top level) or 'not-robot'."""
+    try:
+        root = etree.parse(path, _quick_parser()).getroot()
+    except (etree.XMLSyntaxError, OSError):
+        return "candidate"  # let expansion report the problem with its location
+    if etree.QName(root).localname != "robot":
+        return "not-robot"
+    for el in root:
+        if not isinstance(el.tag, str):
+            continue
+        q = etree.QName(el)
+        if not (q.namespace and "xacro" in q.namespace and q.localname in XACRO_DIRECTIVES):
+            return "candidate"
+    return "library"
+
+
+def _quick_parser():
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
+
+
+def run_job(job: dict, settings: dict) -> dict:
+    from .packages import PackageResolver
+    from .model import model_from_xml, parse_urdf_bytes, Model
+    entry = job["entry"]
+    out = {"entry": entry, "args": job.get("args", {}), "status": "model", "deps": [entry],
+           "findings": [], "stats": {}, "internal": []}
+    resolver = PackageResolver.from_dict(settings["resolver"])
+    findings = out["findings"]
+
+    if job["kind"] == "xacro":
+        if not job.get("explicit"):
+            kind = classify_xacro(entry)
+            if kind != "candidate":
+                out["status"] = kind
+                return out
+        from .expand import expand_file
+        exp = expand_file(entry, job.get("args", {}), resolver,
+                          env_allow=settings.get("env_allow", ()),
+                          expr_policy=settings.get("expr_policy"))
+        out["deps"] = list(exp.deps)
+        findings.extend(exp.notes)
+        if exp.error is not None:
+            findings.append(exp.error)
+            out["status"] = "failed"
+            return out
+        model = model_from_xml(entry, job.get("args", {}), exp.xml, exp.origins, exp.deps,
+                               resolver)
+        if not model.top_links() and not job.get("explicit"):
+            out["status"] = "library"
+            out["findings"] = []
+            return out
+    else:
+        try:
+            with open(entry, "rb") as f:
+                data = f.read()
+        except OSError as e:
+            findings.append(_finding("UL001", f"cannot read file: {e.strerror}", (entry, 1, 1)))
+            out["status"] = "failed"
+            return out
+        if b"<!DOCTYPE" in data[:4096] or b"<!ENTITY" in data:
+            line = data[:data.find(b"<!")].count(b"\n") + 1
+            findings.append(_finding("UL007", "DOCTYPE/ENTITY declaration in a robot description; "
+                                     "remove it (URDF needs none, and urdf-lint never loads DTDs)",
+                                     (entry, line, 1)))
+        root, origins, error = parse_urdf_bytes(entry, data)
+        if error:
+            findings.append(error)
+        if root is None:
+            out["status"] = "failed"
+            return out
+        model = Model(entry=entry, args={}, root=root, origins=origins, deps=[entry],
+                      resolver=resolver, xml="")
+
+    if model.root.tag != "robot":
+        findings.append(_finding("UL006", f"root element is <{model.root.tag}>, not <robot>",
+                                 model.origin(model.root)))
+        out["status"] = "failed"
+        return out
+    if not model.top_links():
+        findings.append(_finding("UL006", "robot has no <link>: a URDF needs at least one link",
+                                 model.origin(model.root)))
+
+    from .registry import load_rules
+    rules = load_rules()
+    ctx = Context({}, settings.get("mesh_cache_dir"))
+    for code in settings["selected"]:
+        rule = rules.get(code)
+        if rule is None or rule.check is None:
+            continue
+        opts = dict(rule.options)
+        opts.update(settings.get("options", {}).get(code, {}))
+        ctx.options = opts
+        try:
+            for item in rule.check(model, ctx):
+                el, msg = item[0], item[1]
+                findings.append(_finding(code, msg, model.origin(el)))
+        except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
+            out["internal"].append(f"rule {code} crashed on {entry}:\n{traceback.format_exc()}")
+
+    # dependencies: every mesh / texture the model points at (resolved, inside the roots)
+    mesh_deps = []
+    from . import meshes
+    for m in model.root.iter("mesh"):
+        uri = m.get("filename")
+        if uri:
+            ref = ctx.mesh_ref(model, uri)
+            if ref.path and ref.problem is None:
+                mesh_deps.append(ref.path)
+    out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))
+    out["stats"] = {"name": model.name, "links": len(model.top_links()),
+                    "joints": len(model.top_joints()),
+                    "meshes": len(list(model.root.iter("mesh")))}
+    if settings.get("keep_xml"):
+        out["xml"] = model.xml or etree.tostring(model.root, encoding="unicode")
+        out["origins"] = None
+    return out

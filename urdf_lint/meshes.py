@@ -1,0 +1,171 @@
+"""Mesh references: resolution through the package resolver, confinement, and mesh facts.
+
+Resolution and existence checks are pure path work (no trimesh). Loading a mesh (for the
+rules that need its geometry, and for rendering) imports trimesh lazily, and its facts are
+cached by file content, so a mesh is read once per change, not once per model or run.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .packages import PackageNotFound
+
+
+@dataclass
+class MeshRef:
+    uri: str
+    path: str | None          # resolved absolute path (None when it cannot be resolved)
+    problem: str | None       # None, or a rule code: UL401 / UL402 / UL403
+    message: str = ""
+
+
+def _case_true_path(path: Path) -> tuple[bool, str | None]:
+    """(exists with exact case, the real spelling if it only exists with another case)."""
+    parts = path.parts
+    cur = Path(parts[0])
+    exact = True
+    for part in parts[1:]:
+        try:
+            names = os.listdir(cur)
+        except OSError:
+            return False, None
+        if part in names:
+            cur = cur / part
+            continue
+        low = [n for n in names if n.lower() == part.lower()]
+        if not low:
+            return False, None
+        exact = False
+        cur = cur / low[0]
+    return exact, (None if exact else str(cur))
+
+
+def resolve(model, uri: str) -> MeshRef:
+    resolver = model.resolver
+    try:
+        p = resolver.resolve_uri(uri, model.base_dir)
+    except PackageNotFound as e:
+        return MeshRef(uri, None, "UL401", f"mesh '{uri}': {e}")
+    p = Path(os.path.abspath(p))
+    exact, real = _case_true_path(p)
+    if not exact and real is None:
+        return MeshRef(uri, str(p), "UL401", f"mesh file not found: '{uri}' (looked for {p})")
+    if not exact:
+        return MeshRef(uri, real, "UL402", f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
+                       f"(case differs: works on macOS/Windows, fails on Linux)")
+    if not resolver.is_inside(p):
+        return MeshRef(uri, None, "UL403", f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+                       "the package roots; it is not read")
+    return MeshRef(uri, str(p), None)
+
+
+_DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
+_MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)*(\S.*?)\s*$", re.M)
+
+
+def texture_refs(path: str) -> list[str]:
+    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths."""
+    out = []
+    base = os.path.dirname(path)
+    low = path.lower()
+    try:
+        if low.endswith(".dae"):
+            with open(path, "rb") as f:
+                data = f.read()
+            for m in _DAE_IMAGE.finditer(data):
+                ref = m.group(1).decode("utf-8", "replace").strip()
+                if ref.startswith("file://"):
+                    ref = ref[7:]
+                if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
+                    out.append(os.path.normpath(os.path.join(base, ref)))
+        elif low.endswith(".obj"):
+            with open(path, "r", errors="replace") as f:
+                for line in f:
+                    if line.startswith("mtllib"):
+                        mtl = os.path.normpath(os.path.join(base, line.split(None, 1)[1].strip()))
+                        out.append(mtl)
+                        if os.path.isfile(mtl):
+                            with open(mtl, "r", errors="replace") as mf:
+                                for m in _MTL_MAP.finditer(mf.read()):
+                                    out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
+                                                                             m.group(1))))
+    except OSError:
+        pass
+    return out
+
+
+# -- mesh facts (geometry) -------------------------------------------------------------------
+_memory: dict = {}
+
+
+def _digest(path: str) -> str:
+    h = hashlib.blake2b(digest_size=16)
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def load_mesh(path: str):
+    """A trimesh.Trimesh (scene concatenated) or raises."""
+    import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
+    m = trimesh.load(path, force="mesh", process=False)
+    return m
+
+
+def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
+    """{ok, error, vertices, faces, finite, bounds} for a mesh file, cached by content."""
+    digest = _digest(path)
+    if digest in _memory:
+        return _memory[digest]
+    cache_file = None
+    if cache_dir:
+        cache_file = Path(cache_dir, "meshes", digest + ".json")
+        try:
+            facts = json.loads(cache_file.read_text())
+            if isinstance(facts, dict) and "ok" in facts:
+                _memory[digest] = facts
+                return facts
+        except (OSError, ValueError):
+            pass
+    try:
+        m = load_mesh(path)
+        import numpy as np
+        v = np.asarray(m.vertices, dtype=float)
+        finite = bool(np.isfinite(v).all()) if len(v) else True
+        bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
+            if len(v) and finite else None
+        facts = {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
+                 "finite": finite, "bounds": bounds}
+    except Exception as e:  # noqa: BLE001 - any loader failure is a finding
+        facts = {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
+                 "faces": 0, "finite": True, "bounds": None}
+    _memory[digest] = facts
+    if cache_file is not None:
+        try:
+            cache_file.parent.mkdir(parents=True, exist_ok=True)
+            tmp = cache_file.with_suffix(".tmp%d" % os.getpid())
+            tmp.write_text(json.dumps(facts))
+            os.replace(tmp, cache_file)
+        except OSError:
+            pass
+    return facts
+
+
+def parse_scale(s):
+    if s is None:
+        return [1.0, 1.0, 1.0]
+    parts = s.split()
+    try:
+        vals = [float(p) for p in parts]
+    except ValueError:
+        return None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        return None
+    return vals

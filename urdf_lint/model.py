@@ -1,0 +1,139 @@
+"""The expanded robot: an lxml tree whose every element knows its xacro origin."""
+from __future__ import annotations
+
+import os
+import xml.parsers.expat
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from .locations import Origin
+
+# Strict and inert: no entities resolved, no DTD loaded, nothing fetched.
+def safe_parser(recover: bool = False) -> etree.XMLParser:
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                           huge_tree=False, recover=recover, remove_comments=False)
+
+
+def element_positions(data: bytes) -> list[tuple[int, int]]:
+    """(line, col) of every start tag, in document order (namespace-unaware, so it works on
+    documents with undeclared prefixes)."""
+    out: list[tuple[int, int]] = []
+    p = xml.parsers.expat.ParserCreate()
+    p.StartElementHandler = lambda name, attrs: out.append(
+        (p.CurrentLineNumber, p.CurrentColumnNumber + 1))
+    p.EntityDeclHandler = _refuse_entities
+    try:
+        p.Parse(data, True)
+    except Exception:
+        pass
+    return out
+
+
+def _refuse_entities(*_):
+    raise ValueError("entity declarations are refused")
+
+
+@dataclass
+class Model:
+    entry: str                       # the entry file (absolute)
+    args: dict
+    root: etree._Element             # <robot>
+    origins: dict                    # lxml element -> Origin
+    deps: list                       # files read while expanding (absolute)
+    resolver: object = None          # PackageResolver
+    links: dict = field(default_factory=dict)
+    joints: dict = field(default_factory=dict)
+    materials: dict = field(default_factory=dict)   # top-level <material name=...>
+    xml: str = ""
+
+    def __post_init__(self):
+        for el in self.root:
+            if not isinstance(el.tag, str):
+                continue
+            name = el.get("name")
+            if el.tag == "link" and name is not None:
+                self.links.setdefault(name, el)
+            elif el.tag == "joint" and name is not None:
+                self.joints.setdefault(name, el)
+            elif el.tag == "material" and name is not None:
+                self.materials.setdefault(name, el)
+
+    # -- locations ---------------------------------------------------------------------------
+    def origin(self, el) -> Origin:
+        while el is not None:
+            o = self.origins.get(el)
+            if o is not None:
+                return o
+            el = el.getparent()
+        return Origin(self.entry, 1, 1, ())
+
+    @property
+    def name(self) -> str:
+        return self.root.get("name", "")
+
+    @property
+    def base_dir(self) -> str:
+        return os.path.dirname(self.entry)
+
+    def iter(self, tag: str):
+        return self.root.iter(tag)
+
+    def children(self, el, tag):
+        return [c for c in el if c.tag == tag]
+
+    def parents_of_links(self) -> dict:
+        """child link name -> list of joints that name it as child."""
+        out: dict = {}
+        for j in self.root.iter("joint"):
+            if j.getparent() is not self.root:
+                continue
+            c = j.find("child")
+            if c is not None and c.get("link") is not None:
+                out.setdefault(c.get("link"), []).append(j)
+        return out
+
+    def top_joints(self):
+        return [j for j in self.root if j.tag == "joint"]
+
+    def top_links(self):
+        return [lk for lk in self.root if lk.tag == "link"]
+
+
+def model_from_xml(entry: str, args: dict, xml_text: str, origins: list, deps: list,
+                   resolver=None) -> Model:
+    root = etree.fromstring(xml_text.encode("utf-8"), safe_parser())
+    elements = list(root.iter(tag=etree.Element))
+    omap = {}
+    for el, o in zip(elements, origins):
+        if o is not None:
+            omap[el] = Origin(o[0], o[1], o[2], tuple(tuple(c) for c in o[3]))
+    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver,
+                 xml=xml_text)
+
+
+def parse_urdf_bytes(entry: str, data: bytes):
+    """Parse a plain URDF. Returns (root or None, origins dict, error dict or None).
+
+    A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) is
+    reported, then read with recovery so that the rest of the model is still linted.
+    """
+    error = None
+    try:
+        root = etree.fromstring(data, safe_parser())
+    except etree.XMLSyntaxError as e:
+        line, col = (e.position if e.position else (1, 1))
+        error = {"code": "UL001", "message": f"XML syntax error: {e.msg}", "file": entry,
+                 "line": line, "col": max(col, 1), "chain": []}
+        try:
+            root = etree.fromstring(data, safe_parser(recover=True))
+        except etree.XMLSyntaxError:
+            root = None
+        if root is not None and "namespace" not in e.msg.lower() and "prefix" not in e.msg.lower():
+            root = None  # only recover from namespace problems; real syntax errors stop here
+    origins = {}
+    if root is not None:
+        positions = element_positions(data)
+        for el, (line, col) in zip(root.iter(tag=etree.Element), positions):
+            origins[el] = Origin(entry, line, col, ())
+    return root, origins, error

@@ -1,0 +1,46 @@
+"""Small helpers shared by rules: number parsing and "did you mean"."""
+from __future__ import annotations
+
+import difflib
+import math
+
+
+def number(s):
+    """A finite float from an attribute value, or None."""
+    if s is None:
+        return None
+    try:
+        v = float(s.strip())
+    except (ValueError, AttributeError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+def numbers(s, n=None):
+    """A list of finite floats from a whitespace-separated value (None if any is bad)."""
+    if s is None:
+        return None
+    parts = s.split()
+    if n is not None and len(parts) != n:
+        return None
+    out = []
+    for p in parts:
+        v = number(p)
+        if v is None:
+            return None
+        out.append(v)
+    return out
+
+
+def did_you_mean(word, candidates):
+    m = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
+    return f" (did you mean '{m[0]}'?)" if m else ""
+
+
+def fmt(v):
+    """Short, readable number."""
+    return f"{v:g}"
+
+
+def top(model, tag):
+    return [e for e in model.root if e.tag == tag]

@@ -1,0 +1,126 @@
+"""Inline suppression in XML comments of the xacro/URDF *source*.
+
+``<!-- urdf-lint: disable-next UL204 -->``  the next element, and all a macro call there makes
+``<!-- urdf-lint: disable UL3 -->`` ... ``<!-- urdf-lint: enable UL3 -->``  a range of lines
+``<!-- urdf-lint: disable-file UL101 -->``  the whole file
+
+No codes means every code. Codes match by prefix (``UL3`` = all joint-limit rules) or name.
+A directive that suppresses nothing is reported as ``UL009 unused-suppression``.
+"""
+from __future__ import annotations
+
+import re
+import xml.parsers.expat
+from dataclasses import dataclass, field
+
+_DIRECTIVE = re.compile(
+    r"<!--\s*urdf-lint:\s*(disable-next|disable-file|disable|enable)\b(.*?)-->", re.S)
+
+
+@dataclass
+class Directive:
+    kind: str
+    codes: list
+    file: str
+    line: int
+    col: int
+    span: tuple = ()          # ((start_line, start_col), end_line) for disable-next / ranges
+    used: bool = False
+
+    def matches_code(self, code, name):
+        return not self.codes or any(code.startswith(c) or c == name for c in self.codes)
+
+
+def _element_spans(data: bytes):
+    spans = []
+    stack = []
+    p = xml.parsers.expat.ParserCreate()
+
+    def start(name, attrs):
+        stack.append(len(spans))
+        spans.append([(p.CurrentLineNumber, p.CurrentColumnNumber + 1), None])
+
+    def end(name):
+        spans[stack.pop()][1] = p.CurrentLineNumber
+    p.StartElementHandler = start
+    p.EndElementHandler = end
+    try:
+        p.Parse(data, True)
+    except Exception:
+        pass
+    return spans
+
+
+def parse_directives(path: str) -> list[Directive]:
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError:
+        return []
+    if b"urdf-lint:" not in data:
+        return []
+    text = data.decode("utf-8", "replace")
+    out = []
+    spans = None
+    open_ranges: dict = {}
+    nlines = text.count("\n") + 1
+    for m in _DIRECTIVE.finditer(text):
+        kind = m.group(1)
+        codes = [c for c in re.split(r"[\s,]+", m.group(2).strip()) if c]
+        line = text.count("\n", 0, m.start()) + 1
+        col = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
+        end_line = text.count("\n", 0, m.end()) + 1
+        end_col = m.end() - (text.rfind("\n", 0, m.end()) + 1) + 1
+        d = Directive(kind, codes, path, line, col)
+        if kind == "disable-next":
+            if spans is None:
+                spans = _element_spans(data)
+            nxt = next((s for s in spans if s[0] >= (end_line, end_col)), None)
+            d.span = (nxt[0], nxt[1] or nxt[0][0]) if nxt else ((line, col), line)
+        elif kind == "disable":
+            d.span = ((line, col), nlines)
+            for c in (codes or ["*"]):
+                open_ranges[c] = d
+        elif kind == "enable":
+            for c in (codes or list(open_ranges)):
+                r = open_ranges.pop(c, None)
+                if r is not None:
+                    r.span = (r.span[0], line)
+            continue  # enable itself suppresses nothing
+        out.append(d)
+    return out
+
+
+def _covers(d: Directive, file, line, col) -> bool:
+    if file != d.file:
+        return False
+    if d.kind == "disable-file":
+        return True
+    (sl, sc), el = d.span
+    return (line, col) >= (sl, sc) and line <= el
+
+
+def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused=True):
+    """Drop suppressed findings; return (kept, unused-suppression findings as dicts)."""
+    directives = [d for ds in directives_by_file.values() for d in ds]
+    if not directives:
+        return list(findings), []
+    kept = []
+    for f in findings:
+        locs = [(f.file, f.line, f.col)] + [(c[0], c[1], c[2]) for c in f.chain]
+        hit = False
+        for d in directives:
+            if d.matches_code(f.code, f.name) and any(_covers(d, *loc) for loc in locs):
+                d.used = True
+                hit = True
+        if not hit:
+            kept.append(f)
+    unused = []
+    if report_unused:
+        for d in directives:
+            if not d.used:
+                what = ", ".join(d.codes) if d.codes else "all codes"
+                unused.append({"code": unused_code, "file": d.file, "line": d.line, "col": d.col,
+                               "chain": [], "message": f"unused suppression '{d.kind} {what}': "
+                               "nothing was reported here; remove the comment"})
+    return kept, unused

@@ -1,0 +1,147 @@
+"""Run lint jobs in isolated worker processes with a time limit and a memory limit.
+
+Each worker is a forked process with a scrubbed environment and an address-space limit.
+The parent hands out one job at a time; a worker that exceeds the time limit is killed (and
+replaced), and its job becomes a ``UL904`` finding. Other models keep going.
+"""
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import signal
+import sys
+import time
+from multiprocessing.connection import wait
+
+_KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHONHASHSEED",
+             "SYSTEMROOT"}
+
+
+def _scrub_environment(allow):
+    for k in list(os.environ):
+        if k in _KEEP_ENV or k.startswith("LC_") or k in allow:
+            continue
+        del os.environ[k]
+
+
+def _worker_main(conn, settings, memory_mb):
+    try:
+        import resource
+        limit = int(memory_mb) * 1024 * 1024
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    except (ImportError, ValueError, OSError):
+        pass
+    _scrub_environment(set(settings.get("env_allow", ())))
+    sys.setrecursionlimit(4000)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from .lint import run_job
+    while True:
+        try:
+            job = conn.recv()
+        except (EOFError, OSError):
+            return
+        if job is None:
+            return
+        try:
+            result = run_job(job, settings)
+        except MemoryError:
+            result = _limit_result(job, "expansion ran out of memory (memory-mb limit "
+                                   f"{memory_mb} MiB)")
+        except BaseException as e:  # noqa: BLE001
+            import traceback
+            result = {"entry": job["entry"], "args": job.get("args", {}), "status": "failed",
+                      "deps": [job["entry"]], "findings": [], "stats": {},
+                      "internal": [f"{type(e).__name__}: {e}\n{traceback.format_exc()}"]}
+        try:
+            conn.send(result)
+        except MemoryError:
+            conn.send(_limit_result(job, "result too large for the memory limit"))
+
+
+def _limit_result(job, message):
+    return {"entry": job["entry"], "args": job.get("args", {}), "status": "failed",
+            "deps": [job["entry"]], "stats": {}, "internal": [],
+            "findings": [{"code": "UL904", "message": message, "file": job["entry"],
+                          "line": 1, "col": 1, "chain": []}]}
+
+
+class _Worker:
+    def __init__(self, ctx, settings, memory_mb):
+        self.conn, child = ctx.Pipe()
+        self.proc = ctx.Process(target=_worker_main, args=(child, settings, memory_mb),
+                                daemon=True)
+        self.proc.start()
+        child.close()
+        self.job = None
+        self.started = 0.0
+
+    def kill(self):
+        try:
+            self.proc.kill()
+        except Exception:
+            pass
+        self.proc.join(1)
+        self.conn.close()
+
+
+def run_jobs(jobs, settings, jobs_n=None, timeout=30.0, memory_mb=2048, on_result=None):
+    """Yield (job, result) for every job; results arrive in completion order."""
+    jobs = list(jobs)
+    if not jobs:
+        return
+    try:
+        ctx = mp.get_context("fork")
+    except ValueError:  # pragma: no cover - no fork on this platform
+        ctx = mp.get_context()
+    n = max(1, min(jobs_n or os.cpu_count() or 1, len(jobs)))
+    pending = list(reversed(jobs))
+    workers = [_Worker(ctx, settings, memory_mb) for _ in range(n)]
+    try:
+        busy = {}
+        while pending or busy:
+            for w in workers:
+                if w.job is None and pending:
+                    w.job = pending.pop()
+                    w.started = time.monotonic()
+                    w.conn.send(w.job)
+                    busy[w.conn] = w
+            now = time.monotonic()
+            next_deadline = min(w.started + timeout for w in busy.values())
+            ready = wait(list(busy), timeout=max(0.0, next_deadline - now))
+            for conn in ready:
+                w = busy.pop(conn)
+                job = w.job
+                try:
+                    result = conn.recv()
+                except (EOFError, OSError):
+                    code = w.proc.exitcode
+                    result = _limit_result(job, "the expansion worker died (exit code "
+                                           f"{code}); likely the memory limit ({memory_mb} MiB)")
+                    workers.remove(w)
+                    w.kill()
+                    workers.append(_Worker(ctx, settings, memory_mb))
+                else:
+                    w.job = None
+                yield job, result
+            now = time.monotonic()
+            for conn, w in list(busy.items()):
+                if now - w.started >= timeout:
+                    busy.pop(conn)
+                    job = w.job
+                    workers.remove(w)
+                    w.kill()
+                    if pending or busy:
+                        workers.append(_Worker(ctx, settings, memory_mb))
+                    yield job, _limit_result(job, f"expansion/lint did not finish within the "
+                                             f"time limit ({timeout:g} s); a huge expression, "
+                                             "loop or recursion?")
+    finally:
+        for w in workers:
+            try:
+                w.conn.send(None)
+            except Exception:
+                pass
+        for w in workers:
+            w.proc.join(0.5)
+            if w.proc.is_alive():
+                w.kill()
