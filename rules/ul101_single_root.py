@@ -35,6 +35,9 @@ def check(model, ctx):
     roots = [n for n in dict.fromkeys(names) if n not in children]
     # isolated links (no joint at all) are UL104's business
     tree_roots = [n for n in roots if n in parents_of_joints or len(names) == 1]
+    undefined_parents = [p for p in parents_of_joints if p not in model.links]
+    if not roots and undefined_parents:
+        return  # the tree hangs off a link that is not defined: UL103 reports it
     if not roots:
         yield model.root, ("no root link: every link is the child of a joint, so the joints form "
                            "a closed loop; make one link the base (no joint names it as child)")

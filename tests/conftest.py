@@ -1,0 +1,73 @@
+"""Shared fixtures. Tests read ../shared (the corpus of real robots) when it exists and skip
+cleanly when it does not."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+SHARED = REPO.parent / "shared"
+CORPUS = SHARED / "corpus"
+DESCRIPTIONS = REPO / "descriptions"
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "support"))
+
+
+def corpus_entries():
+    f = CORPUS / "entries.json"
+    if not f.is_file():
+        return []
+    out = []
+    for e in json.loads(f.read_text()):
+        args = {k: v.replace("{CORPUS}", str(CORPUS)) for k, v in e["args"].items()}
+        out.append((e["file"], args))
+    return out
+
+
+@pytest.fixture(scope="session")
+def corpus():
+    if not (CORPUS / "MANIFEST.md").is_file():
+        pytest.skip("../shared/corpus is not present")
+    return CORPUS
+
+
+@pytest.fixture(scope="session")
+def corpus_resolver(corpus):
+    from urdf_lint.packages import PackageResolver
+    return PackageResolver.build([corpus], extra_roots=[corpus])
+
+
+def run_cli(*args, cwd=None, env=None, timeout=300, input=None):
+    """Run ``urdf-lint`` as a user would; never accept a traceback."""
+    e = dict(os.environ)
+    e.pop("GITHUB_ACTIONS", None)
+    if env:
+        e.update(env)
+    p = subprocess.run([sys.executable, "-m", "urdf_lint", *map(str, args)], cwd=cwd or REPO,
+                       capture_output=True, text=True, env=e, timeout=timeout, input=input)
+    assert "Traceback" not in p.stderr, p.stderr
+    assert "Traceback" not in p.stdout, p.stdout
+    return p
+
+
+def make_package(root: Path, name: str, files: dict) -> Path:
+    """Write a ROS-style package: package.xml plus the given files (text or bytes)."""
+    pkg = root / name
+    pkg.mkdir(parents=True, exist_ok=True)
+    (pkg / "package.xml").write_text(
+        f'<?xml version="1.0"?>\n<package format="3"><name>{name}</name><version>0.0.0</version>'
+        f'<description>t</description><maintainer email="a@b.c">t</maintainer>'
+        f'<license>BSD</license></package>\n')
+    for rel, content in files.items():
+        p = pkg / rel
+        p.parent.mkdir(parents=True, exist_ok=True)
+        if isinstance(content, bytes):
+            p.write_bytes(content)
+        else:
+            p.write_text(content)
+    return pkg
