@@ -7,12 +7,12 @@ CODE = "UL005"
 NAME = "missing-arg"
 SEVERITY = "error"
 ORIGIN = "expansion"
-FAIL = """<robot name="$(arg robot_name)" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <link name="a"/>
+FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="$(arg base_name)"/>
 </robot>
 """
-PASS = """<robot name="$(arg robot_name)" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:arg name="robot_name" default="r"/>
-  <link name="a"/>
+PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="base_name" default="base_link"/>
+  <link name="$(arg base_name)"/>
 </robot>
 """

@@ -195,12 +195,15 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
     all_findings = []
     for r in out.models:
         all_findings.extend(to_findings(r.findings, r.label, cfg))
+    all_findings.extend(to_findings(_duplicate_robot_names(out.models), "", cfg))
     merged = merge(all_findings)
     files = set()
     for r in out.models:
         files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
     directives = {f: suppress.parse_directives(f) for f in sorted(files)}
-    kept, unused = suppress.apply(merged, directives)
+    selected = settings["selected"]
+    kept, unused = suppress.apply(
+        merged, directives, is_selected=lambda c: any(s.startswith(c) for s in selected))
     kept += to_findings(unused, "", cfg)
     final = []
     for f in kept:
@@ -210,6 +213,27 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
             f.models = []
         final.append(f)
     out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    return out
+
+
+def _duplicate_robot_names(models) -> list:
+    """UL106: different entry files declaring the same robot name."""
+    from .locations import display_path
+    by_name: dict = {}
+    for m in models:
+        name = m.stats.get("name")
+        if name and m.stats.get("name_loc"):
+            by_name.setdefault(name, {}).setdefault(m.entry, m)
+    out = []
+    for name, entries in by_name.items():
+        if len(entries) < 2:
+            continue
+        for entry, m in entries.items():
+            rest = [display_path(e) for e in entries if e != entry]
+            others = ", ".join(rest[:3]) + (f" and {len(rest) - 3} more" if len(rest) > 3 else "")
+            f, line, col = m.stats["name_loc"]
+            out.append({"code": "UL106", "file": f, "line": line, "col": col, "chain": [],
+                        "message": f"robot name '{name}' is also used by {others}"})
     return out
 
 

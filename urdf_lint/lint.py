@@ -150,7 +150,9 @@ def run_job(job: dict, settings: dict) -> dict:
             if ref.path and ref.problem is None:
                 mesh_deps.append(ref.path)
     out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))
-    out["stats"] = {"name": model.name, "links": len(model.top_links()),
+    o = model.origin(model.root)
+    out["stats"] = {"name": model.name, "name_loc": [o.file, o.line, o.col],
+                    "links": len(model.top_links()),
                     "joints": len(model.top_joints()),
                     "meshes": len(list(model.root.iter("mesh")))}
     if settings.get("keep_xml"):

@@ -102,6 +102,7 @@ def texture_refs(path: str) -> list[str]:
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
 _memory: dict = {}
+FACTS_VERSION = 2  # bump when the loader changes what it measures
 
 
 def _digest(path: str) -> str:
@@ -112,11 +113,38 @@ def _digest(path: str) -> str:
     return h.hexdigest()
 
 
+def _quiet_loggers():
+    import logging
+    for name in ("trimesh", "collada", "PIL"):
+        lg = logging.getLogger(name)
+        lg.setLevel(logging.CRITICAL + 1)
+        lg.propagate = False
+
+
 def load_mesh(path: str):
     """A trimesh.Trimesh (scene concatenated) or raises."""
+    _quiet_loggers()
     import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
     m = trimesh.load(path, force="mesh", process=False)
+    unit = dae_unit(path) if path.lower().endswith(".dae") else 1.0
+    if unit != 1.0:
+        m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
     return m
+
+
+_DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
+
+
+def dae_unit(path: str) -> float:
+    """The metres-per-unit a COLLADA file declares in its <asset> (1.0 when absent)."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(8192)
+        m = _DAE_UNIT.search(head)
+        v = float(m.group(1)) if m else 1.0
+        return v if math.isfinite(v) and v > 0 else 1.0
+    except (OSError, ValueError):
+        return 1.0
 
 
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
@@ -126,7 +154,7 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
         return _memory[digest]
     cache_file = None
     if cache_dir:
-        cache_file = Path(cache_dir, "meshes", digest + ".json")
+        cache_file = Path(cache_dir, "meshes", f"v{FACTS_VERSION}-{digest}.json")
         try:
             facts = json.loads(cache_file.read_text())
             if isinstance(facts, dict) and "ok" in facts:

@@ -129,8 +129,9 @@ def parse_urdf_bytes(entry: str, data: bytes):
             root = etree.fromstring(data, safe_parser(recover=True))
         except etree.XMLSyntaxError:
             root = None
-        if root is not None and "namespace" not in e.msg.lower() and "prefix" not in e.msg.lower():
-            root = None  # only recover from namespace problems; real syntax errors stop here
+        recoverable = ("namespace", "prefix", "declaration")
+        if root is not None and not any(w in e.msg.lower() for w in recoverable):
+            root = None  # only recover from namespace/declaration problems; others stop here
     origins = {}
     if root is not None:
         positions = element_positions(data)

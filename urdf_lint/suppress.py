@@ -100,7 +100,8 @@ def _covers(d: Directive, file, line, col) -> bool:
     return (line, col) >= (sl, sc) and line <= el
 
 
-def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused=True):
+def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused=True,
+          is_selected=lambda code: True):
     """Drop suppressed findings; return (kept, unused-suppression findings as dicts)."""
     directives = [d for ds in directives_by_file.values() for d in ds]
     if not directives:
@@ -118,7 +119,8 @@ def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused
     unused = []
     if report_unused:
         for d in directives:
-            if not d.used:
+            # a directive for codes that were not run this time cannot be judged unused
+            if not d.used and (not d.codes or any(is_selected(c) for c in d.codes)):
                 what = ", ".join(d.codes) if d.codes else "all codes"
                 unused.append({"code": unused_code, "file": d.file, "line": d.line, "col": d.col,
                                "chain": [], "message": f"unused suppression '{d.kind} {what}': "

@@ -1,0 +1,70 @@
+"""Every rule in rules/ documents itself and its FAIL example fires while its PASS example does
+not. Adding a rule file adds it here automatically."""
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+
+from conftest import make_package, run_cli
+from urdf_lint.registry import load_rules
+
+RULES = load_rules()
+
+
+def _write_example(tmp_path, rule, text):
+    files = {k: v for k, v in rule.example_files.items()}
+    name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"
+    files[name] = text
+    return make_package(tmp_path, "example_pkg", files)
+
+
+def _codes(pkg, code):
+    p = run_cli("check", ".", "--no-cache", "--select", f"{code},UL009" if code != "UL009" else "UL",
+                "--format", "json", "--fail-on", "never", cwd=pkg,
+                env={"URDF_LINT_EXAMPLE_SECRET": "s3cr3t-value"})
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)["findings"]
+
+
+def test_catalogue_is_well_formed():
+    assert len(RULES) >= 50
+    for code, r in RULES.items():
+        assert re.fullmatch(r"UL\d{3}", code), code
+        assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", r.name), r.name
+        assert r.severity in ("error", "warning", "info"), code
+        assert len(r.doc) > 60, f"{code} needs a docstring explaining why and how to fix"
+        assert r.fail.strip() and r.passing.strip(), f"{code} needs FAIL and PASS examples"
+    names = [r.name for r in RULES.values()]
+    assert len(names) == len(set(names))
+
+
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_fail_example_fires(tmp_path, code):
+    rule = RULES[code]
+    pkg = _write_example(tmp_path, rule, rule.fail)
+    found = _codes(pkg, code)
+    assert any(f["code"] == code for f in found), f"{code} did not fire on its FAIL example: {found}"
+    for f in found:
+        if f["code"] == code:
+            assert f["line"] >= 1 and f["col"] >= 1 and f["file"].startswith("urdf/")
+    assert "s3cr3t-value" not in json.dumps(found)
+
+
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_pass_example_is_clean(tmp_path, code):
+    rule = RULES[code]
+    pkg = _write_example(tmp_path, rule, rule.passing)
+    found = _codes(pkg, code)
+    assert not [f for f in found if f["code"] == code], found
+
+
+def test_rules_and_rule_commands():
+    p = run_cli("rules")
+    assert p.returncode == 0 and "UL302  limit-order" in p.stdout
+    p = run_cli("rule", "UL302")
+    assert p.returncode == 0 and "limit-order" in p.stdout and "Fails:" in p.stdout
+    p = run_cli("rule", "limit-order")
+    assert p.returncode == 0 and p.stdout.startswith("UL302")
+    assert run_cli("rule", "UL999").returncode == 2
