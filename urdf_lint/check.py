@@ -147,7 +147,10 @@ def to_findings(raw: list, label: str, cfg: Config) -> list[Finding]:
 
 
 def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=None,
-              only_entries: set | None = None, progress=None) -> CheckResult:
+              only_entries: set | None = None, progress=None,
+              affected_by: set | None = None) -> CheckResult:
+    """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
+    models whose inputs include one of them; files no model uses land in ``unused_files``."""
     from .worker import run_jobs
     from . import suppress
 
@@ -192,10 +195,15 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
         else:
             out.models.append(r)
 
+    if affected_by is not None:
+        from .changes import affected
+        out.models, out.unused_files = affected(out.models, affected_by)
+        out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
     all_findings = []
     for r in out.models:
         all_findings.extend(to_findings(r.findings, r.label, cfg))
-    all_findings.extend(to_findings(_duplicate_robot_names(out.models), "", cfg))
+    if affected_by is None:
+        all_findings.extend(to_findings(_duplicate_robot_names(out.models), "", cfg))
     merged = merge(all_findings)
     files = set()
     for r in out.models:

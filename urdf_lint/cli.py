@@ -67,6 +67,18 @@ def build_parser():
     c.add_argument("--timeout", type=float, help="per-model time limit in seconds")
     c.add_argument("--quiet", "-q", action="store_true", help="no summary line when clean")
 
+    h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect")
+    h.add_argument("files", nargs="*")
+    h.add_argument("--format", choices=["text", "json", "sarif", "github", "junit"])
+    h.add_argument("--select")
+    h.add_argument("--extend-select")
+    h.add_argument("--ignore")
+    h.add_argument("--fail-on", choices=["error", "warning", "info", "never"])
+    h.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    h.add_argument("--config")
+    h.add_argument("-j", "--jobs", type=int)
+    h.add_argument("--no-cache", action="store_true")
+
     e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)")
     e.add_argument("file")
     e.add_argument("mappings", nargs="*", metavar="name:=value")
@@ -124,10 +136,16 @@ def cmd_check(args) -> int:
     if not args.no_cache:
         from .cache import Cache
         cache = Cache.for_paths(args.paths, cfg)
-    only = None
+    affected_by = None
     if args.changed_since:
-        from .changes import affected_entries
-        only = affected_entries(args.paths, cfg, resolver, cache, args.changed_since)
+        from .changes import GitError, changed_files
+        try:
+            affected_by = changed_files(args.changed_since, args.paths[0] if os.path.isdir(args.paths[0])
+                                        else os.path.dirname(os.path.abspath(args.paths[0])))
+        except (GitError, OSError) as e:
+            raise UsageError(f"--changed-since {args.changed_since}: {e}") from None
+    if getattr(args, "files", None) is not None:
+        affected_by = {os.path.abspath(f) for f in args.files}
     progress = None
     if sys.stderr.isatty() and not os.environ.get("CI"):
         def progress(n, total):
@@ -136,7 +154,7 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
-                       only_entries=only, progress=progress)
+                       progress=progress, affected_by=affected_by)
     if cache:
         cache.flush()
     if args.write_baseline:
@@ -152,12 +170,29 @@ def cmd_check(args) -> int:
         os.replace(args.output + ".tmp", args.output)
     elif not (args.quiet and not result.findings):
         report.write(result, fmt, sys.stdout, statistics=args.statistics)
+    for f in result.unused_files:
+        from .locations import display_path
+        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
     if args.render:
         from .render import render_results
         render_results(result, args.render, resolver, cfg)
     return exit_code(result, cfg.fail_on)
+
+
+def cmd_hook(args) -> int:
+    """Lint the whole repository (cached) and report the models that the files affect."""
+    from .check import repo_root
+    root = repo_root(os.getcwd())
+    ns = argparse.Namespace(paths=[root], output=None, statistics=False, render=None,
+                            changed_since=None, baseline=None, write_baseline=None, timeout=None,
+                            quiet=True, isolated=False, **vars(args))
+    ns.command = "check"
+    if not args.files:
+        return 0
+    return cmd_check(ns)
 
 
 def cmd_expand(args) -> int:
@@ -232,7 +267,7 @@ def cmd_clean(args) -> int:
     return 0
 
 
-COMMANDS = {"check": cmd_check, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
+COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
             "render": cmd_render, "clean": cmd_clean}
 
 
