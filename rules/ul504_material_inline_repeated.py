@@ -38,6 +38,6 @@ def check(model, ctx):
         names = {nm for _, nm in items}
         if len(items) >= n and (len(names) > 1 or "" in names or None in names):
             shown = ", ".join(sorted(repr(x or "") for x in names))
-            yield items[0][0], (f"colour rgba {' '.join(map(str, rgba))} is written inline in "
+            yield items[0][0], (f"colour rgba {' '.join(f'{x:g}' for x in rgba)} is written inline in "
                                 f"{len(items)} visuals (names {shown}); define one named "
                                 "<material> at the top and refer to it by name")

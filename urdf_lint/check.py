@@ -81,7 +81,8 @@ def discover(paths, cfg: Config) -> list[dict]:
         p = os.path.abspath(p)
         for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
             f = str(f.resolve()) if not os.path.islink(f) else os.path.abspath(f)
-            if f in seen or (cfg.is_excluded(f) and f != p):
+            # an exclude does not apply below a path that is itself excluded and named explicitly
+            if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
             seen.add(f)
             kind = "urdf" if f.endswith(".urdf") else "xacro"
