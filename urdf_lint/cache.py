@@ -46,6 +46,8 @@ class Cache:
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
         from .check import repo_root
+        if os.environ.get("URDF_LINT_CACHE_DIR"):
+            return cls(os.environ["URDF_LINT_CACHE_DIR"])
         if cfg.cache_dir:
             return cls(os.path.join(cfg.root, cfg.cache_dir))
         first = os.path.abspath(paths[0] if paths else ".")

@@ -205,9 +205,11 @@ def cmd_expand(args) -> int:
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")
-    cfg = load_config(None)
+    from .config import find_config
+    cfg = load_config(find_config(args.file))
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
-    res = expand_file(args.file, mappings, resolver, env_allow=DEFAULT_ENV_ALLOW,
+    res = expand_file(args.file, mappings, resolver,
+                      env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
                       display_name=args.file)
     for n in res.notes:
         sys.stderr.write(f"{display_path(n['file'])}:{n['line']}:{n['col']}: {n['code']} "

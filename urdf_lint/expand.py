@@ -308,9 +308,8 @@ def _hook_eval_optenv(name, default=""):
     st = _state
     if name in st.env_allow:
         return _orig["eval_optenv"](name, default)
-    if name in os.environ:
-        st.note("UL901", f"$(optenv {name}) reads an environment variable that is not in "
-                f"'env-allow'; its default was used instead of the value")
+    st.note("UL901", f"$(optenv {name}) reads an environment variable that is not in "
+            f"'env-allow'; its default was used instead of the value")
     return default
 
 
@@ -434,9 +433,14 @@ def classify_error(e: BaseException, st: _State) -> dict:
     suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
     if isinstance(e, XmlSyntaxError):
         return _error_dict("UL001", str(e), e.loc + (st.include_chain,))
-    if isinstance(e, RefusedInput):
-        return _error_dict(e.code, str(e), e.loc or here)
     inner = getattr(e, "exc", None)
+    while isinstance(inner, xacro.XacroException) and getattr(inner, "exc", None) is not None:
+        inner = inner.exc  # lazily evaluated properties wrap errors more than once
+    if isinstance(e, RefusedInput) or isinstance(inner, RefusedInput):
+        r = e if isinstance(e, RefusedInput) else inner
+        return _error_dict(r.code, str(r), r.loc or here)
+    if isinstance(inner, SyntaxError):
+        return _error_dict("UL002", f"invalid expression: {inner.msg}" + suffix, here)
     if isinstance(e, RecursionError) or isinstance(inner, RecursionError):
         return _error_dict("UL904", "recursion too deep while expanding (a macro that calls "
                            "itself without end?)" + suffix, here)

@@ -171,6 +171,10 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
             if len(v) and finite else None
         facts = {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
                  "finite": finite, "bounds": bounds}
+    except (PermissionError, MemoryError) as e:
+        # the environment refused (sandbox, memory limit): a finding now, never cached
+        return {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
+                "faces": 0, "finite": True, "bounds": None}
     except Exception as e:  # noqa: BLE001 - any loader failure is a finding
         facts = {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
                  "faces": 0, "finite": True, "bounds": None}

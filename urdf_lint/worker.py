@@ -24,6 +24,35 @@ def _scrub_environment(allow):
         del os.environ[k]
 
 
+_DENIED_EVENTS = {"os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", "os.spawn",
+                  "os.fork", "os.forkpty", "pty.spawn", "socket.connect", "socket.bind",
+                  "os.kill", "webbrowser.open", "shutil.rmtree", "os.remove",
+                  "os.rename", "os.rmdir", "os.chmod", "os.chown", "os.symlink", "os.link"}
+
+
+def _install_audit_hook(cache_dir):
+    """Second line of defence: even if an expression escaped the evaluator, the worker may not
+    start processes, open sockets or write files outside the cache directory."""
+    write_ok = os.path.realpath(cache_dir) + os.sep if cache_dir else None
+    flags_w = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
+
+    def hook(event, args):
+        if event in _DENIED_EVENTS:
+            if event in ("os.rename", "os.remove") and write_ok and args and \
+                    os.path.realpath(str(args[0])).startswith(write_ok):
+                return  # atomic cache writes
+            raise PermissionError(f"urdf-lint worker: {event} is not allowed")
+        if event == "open" and len(args) >= 3:
+            path, mode, flags = args[0], args[1], args[2]
+            writing = (isinstance(mode, str) and any(c in mode for c in "wax+")) or \
+                (isinstance(flags, int) and flags & flags_w)
+            if writing and isinstance(path, (str, bytes, os.PathLike)):
+                real = os.path.realpath(os.fsdecode(path))
+                if not (write_ok and real.startswith(write_ok)):
+                    raise PermissionError(f"urdf-lint worker: writing {real} is not allowed")
+    sys.addaudithook(hook)
+
+
 def _worker_main(conn, settings, memory_mb):
     try:
         import resource
@@ -33,6 +62,8 @@ def _worker_main(conn, settings, memory_mb):
         pass
     _scrub_environment(set(settings.get("env_allow", ())))
     sys.setrecursionlimit(4000)
+    sys.dont_write_bytecode = True
+    _install_audit_hook(settings.get("mesh_cache_dir"))
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     from .lint import run_job
     while True:

@@ -1,0 +1,237 @@
+"""Hostile input: one case per attack class. Each case is real: files on disk, a secret-looking
+environment variable, a file outside the repository. Every case must give a located finding and
+a non-zero exit, spawn nothing, write nothing outside the output folder, leak no secret, and end
+within its limit."""
+from __future__ import annotations
+
+import json
+import os
+import time
+
+import pytest
+
+from conftest import make_package, run_cli
+
+X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+SECRET = "ghp_TOPSECRET_0123456789abcdef"
+
+
+def robot(body, name="r"):
+    return f'<?xml version="1.0"?>\n<robot name="{name}" {X}>\n  <link name="base"/>\n{body}\n</robot>\n'
+
+
+@pytest.fixture()
+def world(tmp_path):
+    """A repository, a secret file outside it, a marker folder for side effects."""
+    repo = tmp_path / "repo"
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret.yaml").write_text(f"token: {SECRET}\n")
+    (outside / "secret.xacro").write_text(f'<robot {X}><link name="{SECRET}"/></robot>\n')
+    (outside / "secret.stl").write_text(f"solid {SECRET}\nendsolid\n")
+    marker = tmp_path / "pwned"
+    return repo, outside, marker
+
+
+def lint(repo, *extra, timeout=60):
+    before = snapshot(repo.parent)
+    t0 = time.monotonic()
+    p = run_cli("check", ".", "--no-cache", "--format", "json", *extra, cwd=repo,
+                env={"CI_DEPLOY_TOKEN": SECRET, "AWS_SECRET_ACCESS_KEY": SECRET}, timeout=timeout)
+    took = time.monotonic() - t0
+    assert p.returncode == 1, (p.returncode, p.stdout, p.stderr)
+    assert SECRET not in p.stdout and SECRET not in p.stderr
+    after = snapshot(repo.parent)
+    assert after == before, f"files appeared: {after - before}"
+    return json.loads(p.stdout)["findings"], took
+
+
+def snapshot(top):
+    out = set()
+    for d, _, files in os.walk(top):
+        for f in files:
+            out.add(os.path.join(d, f))
+    return out
+
+
+def assert_located(findings, code, file="p/urdf/r.urdf.xacro"):
+    hits = [f for f in findings if f["code"] == code]
+    assert hits, findings
+    assert all(f["line"] >= 1 and f["col"] >= 1 for f in hits)
+    assert any(f["file"] == file for f in hits), hits
+    return hits
+
+
+# -- no code execution ----------------------------------------------------------------------
+ESCAPES = [
+    "${''.__class__.__mro__[1].__subclasses__()}",
+    "${python.type(xacro)}",
+    "${python.vars(xacro)}",
+    "${xacro.load_yaml.__globals__['os'].system('touch MARKER')}",
+    "${[c for c in ().__class__.__base__.__subclasses__() if c.__name__ == 'Popen'][0]('touch MARKER', shell=True)}",
+    "${python['vars'](math)['__loader__']}",
+    "${'{0.__class__.__init__.__globals__}'.format(xacro.tokenize)}",
+    "${(lambda: 0).__code__}",
+    "$(eval __import__('os').system('touch MARKER'))",
+    "$(eval getattr(getattr, '_' + '_self_' + '_'))",
+    "$(eval [c for c in ().__class__.__base__.__subclasses__()])",
+]
+
+
+@pytest.mark.parametrize("payload", ESCAPES)
+def test_no_code_execution(world, payload):
+    repo, _, marker = world
+    payload = payload.replace("MARKER", str(marker))
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(f'  <link name="{payload}"/>')})
+    findings, _ = lint(repo)
+    codes = {f["code"] for f in findings}
+    assert codes & {"UL903", "UL002"}, findings
+    assert not marker.exists()
+
+
+# -- no secrets out -------------------------------------------------------------------------
+LEAKS = [
+    '<link name="$(env CI_DEPLOY_TOKEN)"/>',
+    '<link name="$(optenv AWS_SECRET_ACCESS_KEY fallback)"/>',
+    '<link name="${xacro.arg(\'x\')}$(optenv CI_DEPLOY_TOKEN)"/>',
+]
+
+
+@pytest.mark.parametrize("payload", LEAKS)
+def test_no_secrets_out(world, tmp_path, payload):
+    repo, _, _ = world
+    pkg = make_package(repo, "p", {"urdf/r.urdf.xacro": robot("  <xacro:arg name=\"x\" default=\"\"/>\n  " + payload)})
+    findings, _ = lint(repo)
+    assert_located(findings, "UL901")
+    assert SECRET not in json.dumps(findings)
+    # nor in an expanded URDF
+    out = tmp_path / "out.urdf"
+    p = run_cli("expand", pkg / "urdf/r.urdf.xacro", "-o", out, env={"CI_DEPLOY_TOKEN": SECRET,
+                                                                    "AWS_SECRET_ACCESS_KEY": SECRET})
+    assert SECRET not in p.stdout + p.stderr
+    assert not out.exists() or SECRET not in out.read_text()
+
+
+def test_allowed_env_is_read(world):
+    repo, _, _ = world
+    pkg = make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <link name="$(env MY_VARIANT)_x"/>')})
+    (repo / "urdf-lint.toml").write_text('env-allow = ["MY_VARIANT"]\n')
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=repo, env={"MY_VARIANT": "mk2"})
+    assert not [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL901"], p.stdout
+    out = run_cli("expand", pkg / "urdf/r.urdf.xacro", env={"MY_VARIANT": "mk2"}).stdout
+    assert '<link name="mk2_x"/>' in out
+
+
+# -- no files out ---------------------------------------------------------------------------
+def test_include_outside_is_refused(world):
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(f'  <xacro:include filename="{outside}/secret.xacro"/>')})
+    findings, _ = lint(repo)
+    assert_located(findings, "UL902")
+
+
+def test_load_yaml_outside_is_refused(world):
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
+        f'  <xacro:property name="s" value="${{xacro.load_yaml(\'{outside}/secret.yaml\')}}"/>\n'
+        '  <link name="${s.token}"/>')})
+    findings, _ = lint(repo)
+    assert_located(findings, "UL902")
+
+
+def test_symlinked_include_outside_is_refused(world):
+    repo, outside, _ = world
+    pkg = make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <xacro:include filename="inc.xacro"/>')})
+    os.symlink(outside / "secret.xacro", pkg / "urdf/inc.xacro")
+    findings, _ = lint(repo)
+    assert_located(findings, "UL902")
+
+
+def test_symlinked_mesh_outside_is_refused(world):
+    repo, outside, _ = world
+    pkg = make_package(repo, "p", {"urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
+                                   '<mesh filename="package://p/meshes/m.stl"/></geometry></visual></link></robot>'})
+    (pkg / "meshes").mkdir()
+    os.symlink(outside / "secret.stl", pkg / "meshes/m.stl")
+    findings, _ = lint(repo)
+    assert [f for f in findings if f["code"] == "UL403" and f["file"] == "p/urdf/r.urdf"], findings
+
+
+# -- no hangs or blow-ups -------------------------------------------------------------------
+@pytest.mark.parametrize("payload,code", [
+    ('<link name="${9**9**9}"/>', "UL903"),
+    ('<link name="${\'a\' * 10**10}"/>', "UL903"),
+    ('<link name="${len([x for x in python.range(10**9)])}"/>', "UL903"),
+    ('<xacro:macro name="m"><xacro:m/></xacro:macro>\n  <xacro:m/>', "UL904"),
+    ('<link name="${1 &lt;&lt; 10**9}"/>', "UL903"),
+])
+def test_no_hangs(world, payload, code):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot("  " + payload)})
+    findings, took = lint(repo, "--timeout", "20")
+    assert_located(findings, code)
+    assert took < 20
+
+
+def test_time_limit_kills_and_others_still_lint(world):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <link name="${python.sum(python.range(10**13))}"/>'),
+                             "urdf/ok.urdf": '<robot name="ok"><link name="a"/><link name="b"/></robot>'})
+    findings, took = lint(repo, "--timeout", "3")
+    hits = [f for f in findings if f["code"] == "UL904"]
+    assert hits and "time limit" in hits[0]["message"]
+    assert any(f["code"] == "UL104" and f["file"] == "p/urdf/ok.urdf" for f in findings)
+    assert took < 15
+
+
+def test_memory_limit(world):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <link name="${len(python.list(python.range(10**8)))}"/>')})
+    (repo / "urdf-lint.toml").write_text("memory-mb = 400\n")
+    findings, took = lint(repo)
+    assert [f for f in findings if f["code"] in ("UL904", "UL903")], findings
+
+
+# -- no XML tricks --------------------------------------------------------------------------
+def test_external_entity_in_urdf(world):
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf": f'<?xml version="1.0"?>\n<!DOCTYPE robot [<!ENTITY s SYSTEM "file://{outside}/secret.yaml">]>\n<robot name="r"><link name="&s;"/></robot>\n'})
+    findings, _ = lint(repo)
+    assert [f for f in findings if f["code"] == "UL007" and f["line"] == 2]
+
+
+def test_entity_in_xacro_is_refused(world):
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": f'<?xml version="1.0"?>\n<!DOCTYPE robot [<!ENTITY s SYSTEM "file://{outside}/secret.yaml">]>\n<robot name="r" {X}><link name="&s;"/></robot>\n'})
+    findings, _ = lint(repo)
+    assert_located(findings, "UL007")
+
+
+def test_billion_laughs(world):
+    repo, _, _ = world
+    ents = '<!ENTITY a0 "lol">' + "".join(f'<!ENTITY a{i} "&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};&a{i-1};">' for i in range(1, 10))
+    for name in ("r.urdf", "r.urdf.xacro"):
+        make_package(repo / name.replace(".", "_"), "p", {f"urdf/{name}": f'<?xml version="1.0"?>\n<!DOCTYPE robot [{ents}]>\n<robot name="r" {X}><link name="&a9;"/></robot>\n'})
+    findings, took = lint(repo)
+    assert len([f for f in findings if f["code"] == "UL007"]) >= 2
+    assert took < 30
+
+
+def test_safe_evaluator_still_computes_what_robots_compute():
+    """The allow-list covers real descriptions (the corpus byte-identity test covers more)."""
+    from urdf_lint.safe_eval import evaluate
+    env = {"a": 2, "d": {"k": [1, 2, 3]}, "s": "left", "str": str}
+    look = env.__getitem__
+    import math
+    assert evaluate("a * 3.5 + 1", look) == 8.0
+    assert evaluate("[x * 2 for x in d['k'] if x > 1]", look) == [4, 6]
+    assert evaluate("s.upper() + '_' + str(a)", look) == "LEFT_2"
+    assert evaluate("'{}_{:.2f}'.format(s, 1/3)", look) == "left_0.33"
+    assert evaluate("f'{s}-{a:03d}'", look) == "left-002"
+    assert evaluate("1 if s == 'left' else -1", look) == 1
+    assert evaluate("(lambda x: x + 1)(a)", look) == 3
+    assert evaluate("{k: v for k, v in [('x', 1)]}", look) == {"x": 1}
+    assert evaluate("2**10", look) == 1024
+    assert abs(evaluate("max(1, 2) * 0.5", lambda n: {"max": max}[n]) - 1.0) < 1e-12
+    assert evaluate("'%s-%d' % (s, a)", look) == "left-2"
+    assert math.isclose(evaluate("sum([0.1, 0.2])", lambda n: {"sum": sum}[n]), 0.3)
