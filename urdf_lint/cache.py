@@ -94,7 +94,7 @@ class Cache:
             if st is None or dig is None:
                 continue
             deps[d] = [st, dig]
-        rec = {"version": __version__, "deps": deps, "missing": result.get("missing", []),
+        rec = {"version": __version__, "deps": deps, "missing": result.get("missing") or [],
                "result": {k: result[k] for k in ("status", "stats", "deps", "findings")}}
         p = self._path(self._key(job, settings))
         try:

@@ -22,6 +22,7 @@ class ModelResult:
     stats: dict
     deps: list
     findings: list            # raw dicts
+    cached: bool = False
 
     @property
     def label(self) -> str:
@@ -165,7 +166,7 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
         hit = cache.get(job, settings) if cache else None
         if hit is not None:
             results.append(ModelResult(job["entry"], job["args"], hit["status"], hit["stats"],
-                                       hit["deps"], hit["findings"]))
+                                       hit["deps"], hit["findings"], cached=True))
         else:
             todo.append(job)
     internal = []

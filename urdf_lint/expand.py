@@ -62,6 +62,7 @@ class Expansion:
     deps: list = field(default_factory=list)      # files read (absolute), entry first
     error: dict | None = None                     # {code, message, file, line, col, chain}
     notes: list = field(default_factory=list)     # non-fatal findings raised during expansion
+    missing: list = field(default_factory=list)   # files looked for and not found
 
 
 # ---------------------------------------------------------------------------------------------
@@ -487,6 +488,9 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
             res.error = classify_error(e, st)
+            inner = getattr(e, "exc", None)
+            if isinstance(inner, OSError) and getattr(inner, "filename", None):
+                res.missing.append(os.path.abspath(str(inner.filename)))
         res.deps = [path] + [d for d in st.deps if d != path]
         res.notes = st.notes
     return res

@@ -81,6 +81,7 @@ def run_job(job: dict, settings: dict) -> dict:
                           env_allow=settings.get("env_allow", ()),
                           expr_policy=settings.get("expr_policy"))
         out["deps"] = list(exp.deps)
+        out["missing"] = list(exp.missing)
         findings.extend(exp.notes)
         if exp.error is not None:
             findings.append(exp.error)
@@ -141,15 +142,20 @@ def run_job(job: dict, settings: dict) -> dict:
             out["internal"].append(f"rule {code} crashed on {entry}:\n{traceback.format_exc()}")
 
     # dependencies: every mesh / texture the model points at (resolved, inside the roots)
-    mesh_deps = []
+    mesh_deps, missing = [], []
     from . import meshes
-    for m in model.root.iter("mesh"):
+    for m in list(model.root.iter("mesh")) + list(model.root.iter("texture")):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
             if ref.path and ref.problem is None:
                 mesh_deps.append(ref.path)
+                for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
+                    (mesh_deps if os.path.exists(t) else missing).append(t)
+            elif ref.path and ref.problem == "UL401":
+                missing.append(ref.path)
     out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))
+    out["missing"] = sorted(set(missing))
     o = model.origin(model.root)
     out["stats"] = {"name": model.name, "name_loc": [o.file, o.line, o.col],
                     "links": len(model.top_links()),

@@ -5,6 +5,7 @@ JSON schema (``--format json``), version 1::
     {
       "version": 1, "tool": "urdf-lint", "tool_version": "0.1.0",
       "models": [{"entry": str, "args": {str: str}, "name": str, "status": "model"|"failed",
+                  "cached": bool (result reused from .urdf_lint_cache),
                   "links": int, "joints": int, "meshes": int}],
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
                     "message": str, "file": str (relative to cwd when below it), "line": int,
@@ -78,6 +79,7 @@ def statistics_table(result, stream):
 def to_json(result, stream):
     doc = {"version": 1, "tool": "urdf-lint", "tool_version": __version__,
            "models": [{"entry": display_path(m.entry), "args": m.args, "status": m.status,
+                       "cached": m.cached,
                        "name": m.stats.get("name", ""), "links": m.stats.get("links", 0),
                        "joints": m.stats.get("joints", 0), "meshes": m.stats.get("meshes", 0)}
                       for m in result.models],

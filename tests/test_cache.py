@@ -1,0 +1,111 @@
+"""The result cache is invalidated when, and only when, an input changes: the entry, an
+included file, a YAML value, a mesh, the config or an arg. A corrupt entry is ignored."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import time
+
+import pytest
+
+from conftest import DESCRIPTIONS, run_cli
+
+
+@pytest.fixture()
+def repo(tmp_path):
+    r = tmp_path / "repo"
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", r / "r2d2_description")
+    return r
+
+
+def run(repo, *extra):
+    p = run_cli("check", ".", "--format", "json", *extra, cwd=repo)
+    assert p.returncode in (0, 1), p.stderr
+    doc = json.loads(p.stdout)
+    return {m["entry"]: m["cached"] for m in doc["models"]}, doc
+
+
+def cached(repo, *extra):
+    state, _ = run(repo, *extra)
+    return list(state.values())
+
+
+ENTRY = "r2d2_description/urdf/r2d2.urdf.xacro"
+
+
+def edit(path, old, new):
+    text = path.read_text()
+    assert old in text
+    path.write_text(text.replace(old, new))
+
+
+def test_invalidation(repo):
+    pkg = repo / "r2d2_description"
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    assert (repo / ".urdf_lint_cache" / ".gitignore").read_text().strip().endswith("*")
+    # an included macro file
+    edit(pkg / "urdf/r2d2_macros.xacro", 'mass="0.05"', 'mass="0.06"')
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    # same content, new mtime: still a hit
+    os.utime(pkg / "urdf/r2d2_macros.xacro", (time.time() + 5, time.time() + 5))
+    assert cached(repo) == [True]
+    # a YAML value
+    edit(pkg / "config/joint_limits.yaml", "upper: 0.548", "upper: 0.5")
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    # a mesh
+    data = (pkg / "meshes/l_finger.stl").read_bytes()
+    (pkg / "meshes/l_finger.stl").write_bytes(data[:80] + b"changed header".ljust(0) + data[94:])
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    # a file no model reads: still a hit
+    (pkg / "README.md").write_text("notes\n")
+    assert cached(repo) == [True]
+    # the config
+    (repo / "urdf-lint.toml").write_text('ignore = ["UL801"]\n')
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    # an arg
+    (repo / "urdf-lint.toml").write_text(f'ignore = ["UL801"]\n[[models]]\npath = "{ENTRY}"\nargs = {{ x = "1" }}\n')
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
+    # the CLI selection is part of the key
+    assert cached(repo, "--select", "UL3") == [False]
+    # --no-cache neither reads nor writes
+    assert cached(repo, "--no-cache") == [False]
+
+
+def test_missing_file_that_appears_invalidates(repo):
+    pkg = repo / "r2d2_description"
+    edit(pkg / "urdf/r2d2_macros.xacro", "meshes/l_finger_tip.stl", "meshes/l_finger_tip2.stl")
+    state, doc = run(repo)
+    assert [f["code"] for f in doc["findings"]].count("UL401") == 2
+    assert run(repo)[0] == {ENTRY: True}
+    shutil.copy(pkg / "meshes/l_finger_tip.stl", pkg / "meshes/l_finger_tip2.stl")
+    state, doc = run(repo)
+    assert state == {ENTRY: False} and not [f for f in doc["findings"] if f["code"] == "UL401"]
+
+
+def test_corrupt_cache_is_ignored(repo):
+    run(repo)
+    for d, _, files in os.walk(repo / ".urdf_lint_cache" / "results"):
+        for f in files:
+            with open(os.path.join(d, f), "w") as fh:
+                fh.write('{"version": "0.1.0", "deps": {"/etc/passwd": [[0, 0], "x"]}, "result": 5}')
+    state, doc = run(repo)
+    assert state == {ENTRY: False}
+    for d, _, files in os.walk(repo / ".urdf_lint_cache" / "results"):
+        for f in files:
+            with open(os.path.join(d, f), "wb") as fh:
+                fh.write(b"\x00\xff not json")
+    assert run(repo)[0] == {ENTRY: False}
+
+
+def test_clean(repo):
+    run(repo)
+    assert (repo / ".urdf_lint_cache").is_dir()
+    p = run_cli("clean", ".", cwd=repo)
+    assert p.returncode == 0 and not (repo / ".urdf_lint_cache").exists()
