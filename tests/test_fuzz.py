@@ -25,6 +25,8 @@ if (CORPUS / "urdf_tutorial").is_dir():
     SEEDS.append(CORPUS / "urdf_tutorial/urdf/08-macroed.urdf.xacro")
     SEEDS.append(CORPUS / "urdf_tutorial/urdf/07-physics.urdf")
 
+SEED_TEXT = {p: p.read_text() for p in SEEDS}  # a snapshot: generation must not depend on disk
+
 EXPRESSIONS = ["${1/0}", "${9**9**9}", "${'a'*10**9}", "${[1,2][5]}", "${undefined}", "${(}",
                "${xacro.load_yaml('/etc/passwd')}", "${''.__class__}", "$(arg nope)",
                "$(find nope)", "$(env HOME)", "${python.sum(python.range(10**4))}", "${-1e309}",
@@ -38,7 +40,7 @@ XML_BITS = ["<", ">", "/>", "</link>", "<link name=\"x\"/>", "<xacro:macro name=
 @st.composite
 def mutated(draw):
     seed = draw(st.sampled_from(SEEDS))
-    text = seed.read_text()
+    text = SEED_TEXT[seed]
     for _ in range(draw(st.integers(1, 4))):
         op = draw(st.sampled_from(["insert_expr", "insert_xml", "delete", "dup_line", "truncate",
                                    "swap_value"]))

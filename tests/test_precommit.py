@@ -1,0 +1,105 @@
+"""End to end with the real pre-commit tool: the hook from this checkout lints the models a
+commit affects, through the includes, YAML files and meshes they read."""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from conftest import DESCRIPTIONS, REPO
+
+pytestmark = pytest.mark.skipif(shutil.which("git") is None, reason="needs git")
+
+
+def sh(*cmd, cwd, check=True, env=None):
+    e = dict(os.environ)
+    e.update(env or {})
+    p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, env=e, timeout=900)
+    if check and p.returncode != 0:
+        raise AssertionError(f"{cmd} failed:\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+@pytest.fixture(scope="module")
+def hook_repo(tmp_path_factory):
+    head = sh("git", "rev-parse", "HEAD", cwd=REPO).stdout.strip()
+    dirty = sh("git", "status", "--porcelain", "--untracked-files=no", "--", "urdf_lint", "rules",
+               "pyproject.toml", ".pre-commit-hooks.yaml", cwd=REPO).stdout.strip()
+    if dirty and not os.environ.get("CI"):
+        pytest.skip("the pre-commit test installs the hook from HEAD: commit first")
+    work = tmp_path_factory.mktemp("precommit") / "robots"
+    work.mkdir()
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
+    (work / ".pre-commit-config.yaml").write_text(
+        f"repos:\n- repo: {REPO}\n  rev: {head}\n  hooks:\n  - id: urdf-lint\n")
+    (work / ".gitignore").write_text(".urdf_lint_cache/\n")
+    sh("git", "init", "-q", cwd=work)
+    sh("git", "config", "user.email", "t@example.invalid", cwd=work)
+    sh("git", "config", "user.name", "t", cwd=work)
+    home = Path(tempfile.gettempdir(), "urdf-lint-pre-commit-home")
+    env = {"PRE_COMMIT_HOME": str(home), "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    sh(sys.executable, "-m", "pre_commit", "install", cwd=work, env=env)
+    return work, env
+
+
+def commit(work, env, msg):
+    sh("git", "add", "-A", cwd=work)
+    return sh("git", "commit", "-q", "-m", msg, cwd=work, check=False, env=env)
+
+
+def replace(path, old, new):
+    text = path.read_text()
+    assert old in text, (path, old)
+    path.write_text(text.replace(old, new))
+
+
+def test_hook_follows_includes_yaml_and_meshes(hook_repo):
+    work, env = hook_repo
+    pkg = work / "r2d2_description"
+    # 1. a clean first commit passes
+    p = commit(work, env, "initial")
+    assert p.returncode == 0, p.stdout + p.stderr
+    # 2. a clean change passes
+    replace(pkg / "urdf/r2d2_macros.xacro", 'mass="10" x="0.2"', 'mass="11" x="0.2"')
+    p = commit(work, env, "heavier legs")
+    assert p.returncode == 0, p.stdout + p.stderr
+    # 3. break a macro in the included file: the finding is at the included file's line
+    macros = pkg / "urdf/r2d2_macros.xacro"
+    replace(macros, '<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>')
+    line = next(i for i, t in enumerate(macros.read_text().splitlines(), 1) if '<axis xyz="0 0 0"/>' in t)
+    p = commit(work, env, "break wheels")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0, out
+    assert "urdf-lint" in out and "Failed" in out
+    assert f"r2d2_description/urdf/r2d2_macros.xacro:{line}:7: UL307 joint 'right_front_wheel_joint'" in out, out
+    assert "called from r2d2_description/urdf/r2d2_macros.xacro:" in out
+    # 4. fix it: passes again
+    replace(macros, '<axis xyz="0 0 0"/>', '<axis xyz="0 1.0 0"/>')
+    p = commit(work, env, "fix wheels")
+    assert p.returncode == 0, p.stdout + p.stderr
+    # 5. a YAML value breaks a joint: reported at the xacro line that uses the value
+    replace(pkg / "config/joint_limits.yaml", "gripper_extension: {lower: -0.38, upper: 0.0",
+            "gripper_extension: {lower: 0.38, upper: 0.0")
+    p = commit(work, env, "bad yaml")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "UL302" in out and "r2d2_description/urdf/r2d2.urdf.xacro:" in out, out
+    replace(pkg / "config/joint_limits.yaml", "lower: 0.38, upper: 0.0", "lower: -0.36, upper: 0.0")
+    assert commit(work, env, "fix yaml").returncode == 0
+    # 6. a mesh replaced by a Git LFS pointer fails where the macro uses it
+    good = (pkg / "meshes/l_finger.stl").read_bytes()
+    (pkg / "meshes/l_finger.stl").write_text("version https://git-lfs.github.com/spec/v1\noid sha256:0\nsize 1\n")
+    p = commit(work, env, "lfs pointer")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "UL404" in out and "r2d2_description/urdf/r2d2_macros.xacro:" in out, out
+    (pkg / "meshes/l_finger.stl").write_bytes(b"re-exported finger".ljust(80, b" ") + good[80:])
+    assert commit(work, env, "real mesh").returncode == 0
+    # 7. a file no model reads does not fail the hook, and is mentioned
+    (pkg / "urdf/unused.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                           '<xacro:macro name="u"/></robot>\n')
+    p = commit(work, env, "unused macro file")
+    assert p.returncode == 0, p.stdout + p.stderr
