@@ -112,7 +112,7 @@ def selected_codes(cfg: Config) -> list[str]:
 
 
 def settings_for(cfg: Config, resolver: PackageResolver, cache_dir: str | None) -> dict:
-    from .expand import DEFAULT_ENV_ALLOW
+    from .config import DEFAULT_ENV_ALLOW
     from .registry import load_rules
     rules = load_rules()
     options = {}

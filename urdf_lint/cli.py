@@ -198,7 +198,8 @@ def cmd_hook(args) -> int:
 def cmd_expand(args) -> int:
     from .config import load_config
     from .check import build_resolver
-    from .expand import expand_file, DEFAULT_ENV_ALLOW
+    from .expand import expand_file
+    from .config import DEFAULT_ENV_ALLOW
     from .locations import display_path
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")

@@ -33,9 +33,9 @@ import xacro.substitution_args as _subst
 from .packages import OutsideRoots, PackageNotFound, PackageResolver
 from . import safe_eval
 
+from .config import DEFAULT_ENV_ALLOW
+
 KEY = "urdf_lint.origin"
-DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
-                     "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
 
 
 class XmlSyntaxError(xacro.XacroException):

@@ -1,0 +1,49 @@
+"""Start-up stays light: a warm (cached) run imports none of xacro, trimesh, yourdfpy, rerun."""
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+
+from conftest import DESCRIPTIONS
+
+CODE = """
+import sys
+from urdf_lint.cli import main
+rc = main(["check", ".", "-q"])
+heavy = sorted(m for m in ("xacro", "trimesh", "yourdfpy", "rerun", "collada", "PIL") if m in sys.modules)
+print(rc, heavy)
+"""
+
+
+def test_warm_run_imports_nothing_heavy(tmp_path):
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
+    first = subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path, capture_output=True, text=True)
+    assert first.stdout.strip() == "0 ['xacro']", first.stdout + first.stderr  # cold: expands
+    warm = subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path, capture_output=True, text=True)
+    assert warm.stdout.strip() == "0 []", warm.stdout + warm.stderr
+
+
+LINT_IN_PROCESS = """
+import sys
+from urdf_lint.check import build_resolver, discover, settings_for
+from urdf_lint.config import load_config
+from urdf_lint.lint import run_job
+cfg = load_config(None)
+cfg.ignore = IGNORE
+settings = settings_for(cfg, build_resolver(["."], cfg), None)
+results = [run_job(job, settings) for job in discover(["."], cfg)]
+assert [r["status"] for r in results].count("model") == 1, results
+print(sorted(m for m in ("trimesh", "collada", "yourdfpy", "rerun") if m in sys.modules))
+"""
+
+
+def test_mesh_loading_only_when_a_rule_needs_it(tmp_path):
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
+    run = lambda ignore: subprocess.run(  # noqa: E731
+        [sys.executable, "-c", LINT_IN_PROCESS.replace("IGNORE", repr(ignore))], cwd=tmp_path,
+        capture_output=True, text=True)
+    p = run(["UL404", "UL406"])
+    assert p.stdout.strip() == "[]", p.stdout + p.stderr
+    p = run([])
+    assert "trimesh" in p.stdout, p.stdout + p.stderr
