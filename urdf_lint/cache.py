@@ -95,7 +95,9 @@ class Cache:
                 continue
             deps[d] = [st, dig]
         rec = {"version": __version__, "deps": deps, "missing": result.get("missing") or [],
-               "result": {k: result[k] for k in ("status", "stats", "deps", "findings")}}
+               "result": {"status": result["status"], "deps": result["deps"],
+                          "findings": result["findings"],
+                          "stats": {k: v for k, v in result["stats"].items() if k != "snapshot"}}}
         p = self._path(self._key(job, settings))
         try:
             self._ensure()

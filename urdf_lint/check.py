@@ -42,7 +42,7 @@ class CheckResult:
     unused_files: list = field(default_factory=list)
 
 
-def repo_root(start: str) -> str:
+def git_root(start: str) -> str | None:
     try:
         out = subprocess.run(["git", "rev-parse", "--show-toplevel"], cwd=start,
                              capture_output=True, text=True, timeout=5)
@@ -50,23 +50,29 @@ def repo_root(start: str) -> str:
             return out.stdout.strip()
     except (OSError, subprocess.SubprocessError):
         pass
-    return os.path.abspath(start)
+    return None
+
+
+def repo_root(start: str) -> str:
+    """The git work tree holding ``start``, or ``start`` itself outside git."""
+    return git_root(start) or os.path.abspath(start)
 
 
 def build_resolver(paths, cfg: Config, cli_packages: dict | None = None) -> PackageResolver:
     scan = [os.path.abspath(p) for p in paths]
     first = scan[0] if scan else os.getcwd()
     start = first if os.path.isdir(first) else os.path.dirname(first)
-    root = repo_root(start)
+    top = git_root(start)
+    root = top or os.path.abspath(start)
     scan.append(root)
-    # a single file's package: walk up to the nearest package.xml
+    # a file's (or folder's) own package: walk up to the nearest package.xml, not past git's root
     for p in list(scan):
-        d = Path(p if os.path.isdir(p) else os.path.dirname(p))
+        d = Path(p if os.path.isdir(p) else os.path.dirname(p)).resolve()
         for parent in [d, *d.parents]:
             if (parent / "package.xml").is_file():
                 scan.append(str(parent))
                 break
-            if str(parent) == root:
+            if top is not None and str(parent) == top:
                 break
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
@@ -150,7 +156,8 @@ def to_findings(raw: list, label: str, cfg: Config) -> list[Finding]:
 
 def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=None,
               only_entries: set | None = None, progress=None,
-              affected_by: set | None = None) -> CheckResult:
+              affected_by: set | None = None, render_dir: str | None = None,
+              render_rrd: bool = True) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
     models whose inputs include one of them; files no model uses land in ``unused_files``."""
     from .worker import run_jobs
@@ -162,8 +169,13 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
     settings = settings_for(cfg, resolver, cache.dir if cache else None)
     results: list[ModelResult] = []
     todo = []
+    if render_dir:
+        os.makedirs(render_dir, exist_ok=True)
+        settings = dict(settings, render_dir=os.path.realpath(render_dir), render_rrd=render_rrd,
+                        render_base=os.getcwd())
     for job in jobs:
-        hit = cache.get(job, settings) if cache else None
+        # snapshots need the model itself, so a render pass expands everything once
+        hit = cache.get(job, settings) if cache and not render_dir else None
         if hit is not None:
             results.append(ModelResult(job["entry"], job["args"], hit["status"], hit["stats"],
                                        hit["deps"], hit["findings"], cached=True))

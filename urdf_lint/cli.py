@@ -94,7 +94,8 @@ def build_parser():
     rd.add_argument("--out", default="snapshots")
     rd.add_argument("--package-path", action="append", metavar="NAME=DIR")
     rd.add_argument("--config")
-    rd.add_argument("--no-rrd", action="store_true")
+    rd.add_argument("--no-rrd", action="store_true", help="PNG only")
+    rd.add_argument("-j", "--jobs", type=int)
 
     cl = sub.add_parser("clean", help="remove the cache")
     cl.add_argument("paths", nargs="*", default=["."])
@@ -153,8 +154,9 @@ def cmd_check(args) -> int:
             if n == total:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
+    render_dir = getattr(args, "render", None)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
-                       progress=progress, affected_by=affected_by)
+                       progress=progress, affected_by=affected_by, render_dir=render_dir)
     if cache:
         cache.flush()
     if args.write_baseline:
@@ -176,10 +178,28 @@ def cmd_check(args) -> int:
             sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
-    if args.render:
-        from .render import render_results
-        render_results(result, args.render, resolver, cfg)
+    if render_dir:
+        _report_snapshots(result, render_dir)
     return exit_code(result, cfg.fail_on)
+
+
+def _report_snapshots(result, out_dir):
+    from .render import write_summary
+    from .locations import display_path
+    written = 0
+    for m in result.models:
+        snap = m.stats.get("snapshot") or {}
+        for k in ("png", "rrd"):
+            if snap.get(k):
+                written += 1
+        for prob in snap.get("problems", []):
+            sys.stderr.write(f"urdf-lint: snapshot of {m.label}: {prob}\n")
+        if m.status != "model":
+            sys.stderr.write(f"urdf-lint: no snapshot of {m.label}: it did not expand "
+                             "(see 'urdf-lint check')\n")
+    summary = write_summary(result, out_dir)
+    sys.stderr.write(f"snapshots: {written} files for {len(result.models)} model(s) in "
+                     f"{display_path(out_dir)}/ (summary: {display_path(summary)})\n")
 
 
 def cmd_hook(args) -> int:
@@ -256,10 +276,24 @@ def cmd_rule(args) -> int:
 
 
 def cmd_render(args) -> int:
-    from .render import render_paths
+    from .check import build_resolver, run_check
+    for p in args.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
-    return render_paths(args.paths, args.out, cfg, _parse_package_paths(args.package_path),
-                        rrd=not args.no_rrd)
+    resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs,
+                       render_dir=args.out, render_rrd=not args.no_rrd)
+    _report_snapshots(result, args.out)
+    for m in result.models:
+        snap = m.stats.get("snapshot") or {}
+        for k in ("png", "rrd"):
+            if snap.get(k):
+                from .locations import display_path
+                print(display_path(snap[k]))
+    for msg in result.internal:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+    return 2 if result.internal else 0
 
 
 def cmd_clean(args) -> int:

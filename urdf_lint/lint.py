@@ -29,15 +29,32 @@ class Context:
             self._refs[key] = meshes.resolve(model, uri)
         return self._refs[key]
 
+    def mesh(self, path):
+        from . import meshes
+        return meshes.get_mesh(path)
+
     def mesh_facts(self, path):
         from . import meshes
         return meshes.mesh_facts(path, self.mesh_cache_dir)
 
 
-def _finding(code, message, origin: Origin | tuple):
+def _finding(code, message, origin: Origin | tuple, target=None):
     o = origin
-    return {"code": code, "message": message, "file": o[0], "line": o[1], "col": o[2],
-            "chain": [list(c) for c in (o[3] if len(o) > 3 else ())]}
+    d = {"code": code, "message": message, "file": o[0], "line": o[1], "col": o[2],
+         "chain": [list(c) for c in (o[3] if len(o) > 3 else ())]}
+    if target:
+        d["target"] = target
+    return d
+
+
+def _target(el):
+    """("link"|"joint", name) of the nearest enclosing top-level link or joint, for snapshots."""
+    while el is not None:
+        parent = el.getparent()
+        if el.tag in ("link", "joint") and parent is not None and parent.tag == "robot":
+            return [el.tag, el.get("name")]
+        el = parent
+    return None
 
 
 def classify_xacro(path: str) -> str:
@@ -137,7 +154,7 @@ def run_job(job: dict, settings: dict) -> dict:
         try:
             for item in rule.check(model, ctx):
                 el, msg = item[0], item[1]
-                findings.append(_finding(code, msg, model.origin(el)))
+                findings.append(_finding(code, msg, model.origin(el), _target(el)))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             out["internal"].append(f"rule {code} crashed on {entry}:\n{traceback.format_exc()}")
 
@@ -161,6 +178,14 @@ def run_job(job: dict, settings: dict) -> dict:
                     "links": len(model.top_links()),
                     "joints": len(model.top_joints()),
                     "meshes": len(list(model.root.iter("mesh")))}
+    if settings.get("render_dir"):
+        from .render import render_model
+        from .registry import load_rules as _lr
+        sev = {c: r.severity for c, r in _lr().items()}
+        shown = [dict(f, severity=sev.get(f["code"], "error")) for f in findings]
+        out["stats"]["snapshot"] = render_model(model, ctx, shown, settings["render_dir"],
+                                                settings.get("render_base"),
+                                                rrd=settings.get("render_rrd", True))
     if settings.get("keep_xml"):
         out["xml"] = model.xml or etree.tostring(model.root, encoding="unicode")
         out["origins"] = None

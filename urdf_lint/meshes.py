@@ -147,6 +147,17 @@ def dae_unit(path: str) -> float:
         return 1.0
 
 
+_loaded: dict = {}
+
+
+def get_mesh(path: str):
+    """The loaded mesh, shared in memory between the rules and the renderer (by content)."""
+    digest = _digest(path)
+    if digest not in _loaded:
+        _loaded[digest] = load_mesh(path)
+    return _loaded[digest]
+
+
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
     """{ok, error, vertices, faces, finite, bounds} for a mesh file, cached by content."""
     digest = _digest(path)
@@ -163,7 +174,7 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
         except (OSError, ValueError):
             pass
     try:
-        m = load_mesh(path)
+        m = get_mesh(path)
         import numpy as np
         v = np.asarray(m.vertices, dtype=float)
         finite = bool(np.isfinite(v).all()) if len(v) else True

@@ -30,26 +30,26 @@ _DENIED_EVENTS = {"os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", 
                   "os.rename", "os.rmdir", "os.chmod", "os.chown", "os.symlink", "os.link"}
 
 
-def _install_audit_hook(cache_dir):
+def _install_audit_hook(*writable):
     """Second line of defence: even if an expression escaped the evaluator, the worker may not
-    start processes, open sockets or write files outside the cache directory."""
-    write_ok = os.path.realpath(cache_dir) + os.sep if cache_dir else None
+    start processes, open sockets or write files outside the cache and snapshot folders."""
+    dirs = tuple(os.path.realpath(d) + os.sep for d in writable if d)
+
+    def ok(path):
+        return bool(dirs) and os.path.realpath(os.fsdecode(path)).startswith(dirs)
     flags_w = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
 
     def hook(event, args):
         if event in _DENIED_EVENTS:
-            if event in ("os.rename", "os.remove") and write_ok and args and \
-                    os.path.realpath(str(args[0])).startswith(write_ok):
-                return  # atomic cache writes
+            if event in ("os.rename", "os.remove") and args and ok(args[0]):
+                return  # atomic cache / snapshot writes
             raise PermissionError(f"urdf-lint worker: {event} is not allowed")
         if event == "open" and len(args) >= 3:
             path, mode, flags = args[0], args[1], args[2]
             writing = (isinstance(mode, str) and any(c in mode for c in "wax+")) or \
                 (isinstance(flags, int) and flags & flags_w)
-            if writing and isinstance(path, (str, bytes, os.PathLike)):
-                real = os.path.realpath(os.fsdecode(path))
-                if not (write_ok and real.startswith(write_ok)):
-                    raise PermissionError(f"urdf-lint worker: writing {real} is not allowed")
+            if writing and isinstance(path, (str, bytes, os.PathLike)) and not ok(path):
+                raise PermissionError(f"urdf-lint worker: writing {os.fsdecode(path)} is not allowed")
     sys.addaudithook(hook)
 
 
@@ -63,7 +63,7 @@ def _worker_main(conn, settings, memory_mb):
     _scrub_environment(set(settings.get("env_allow", ())))
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.get("mesh_cache_dir"))
+    _install_audit_hook(settings.get("mesh_cache_dir"), settings.get("render_dir"))
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     from .lint import run_job
     while True:
