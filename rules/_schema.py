@@ -54,3 +54,10 @@ def is_foreign(el):
             return True
         p = p.getparent()
     return False
+
+
+def checked_elements(model):
+    """Elements of the URDF schema (not namespaced, not inside extension blocks)."""
+    for el in model.root.iter():
+        if isinstance(el.tag, str) and not is_foreign(el):
+            yield el

@@ -21,13 +21,11 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import did_you_mean
-from urdf_lint.rules._schema import CHILDREN, is_foreign
+from urdf_lint.rules._schema import CHILDREN, checked_elements
 
 
 def check(model, ctx):
-    for el in model.root.iter():
-        if not isinstance(el.tag, str) or is_foreign(el):
-            continue
+    for el in checked_elements(model):
         allowed = CHILDREN.get(el.tag)
         if allowed is None:
             continue

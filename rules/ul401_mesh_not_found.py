@@ -15,15 +15,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
-from urdf_lint.rules._mesh_example import TETRA_STL
+from urdf_lint.rules._meshes import TETRA_STL, resolution_problems
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 
 
 def check(model, ctx):
-    for m in model.root.iter("mesh"):
-        uri = m.get("filename")
-        if uri:
-            ref = ctx.mesh_ref(model, uri)
-            if ref.problem == CODE:
-                yield m, ref.message
+    yield from resolution_problems(model, ctx, CODE)

@@ -15,21 +15,15 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
-from urdf_lint.rules._mesh_example import TETRA_STL
+from urdf_lint.rules._meshes import TETRA_STL, resolved_meshes
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
                  "meshes/broken.stl": "version https://git-lfs.github.com/spec/v1\noid sha256:00\nsize 12\n"}
 
 
 def check(model, ctx):
-    for m in model.root.iter("mesh"):
-        uri = m.get("filename")
-        if not uri:
-            continue
-        ref = ctx.mesh_ref(model, uri)
-        if ref.problem or not ref.path:
-            continue
-        facts = ctx.mesh_facts(ref.path)
+    for m, uri, path in resolved_meshes(model, ctx):
+        facts = ctx.mesh_facts(path)
         if not facts["ok"]:
             yield m, f"mesh '{uri}' cannot be loaded: {facts['error']}"
         elif facts["vertices"] == 0:

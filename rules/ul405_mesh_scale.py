@@ -13,7 +13,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>
 """
-from urdf_lint.rules._mesh_example import TETRA_STL
+from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.ruleutil import numbers
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}

@@ -17,7 +17,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part_mm.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>
 """
-from urdf_lint.rules._mesh_example import scaled
+from urdf_lint.rules._meshes import resolved_meshes, scaled
 from urdf_lint.ruleutil import numbers
 
 EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
@@ -25,14 +25,8 @@ EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
 
 def check(model, ctx):
     limit = float(ctx.options.get("max-size", 5.0))
-    for m in model.root.iter("mesh"):
-        uri = m.get("filename")
-        if not uri:
-            continue
-        ref = ctx.mesh_ref(model, uri)
-        if ref.problem or not ref.path:
-            continue
-        facts = ctx.mesh_facts(ref.path)
+    for m, uri, path in resolved_meshes(model, ctx):
+        facts = ctx.mesh_facts(path)
         if not facts["ok"] or not facts["bounds"]:
             continue
         scale = numbers(m.get("scale", "1 1 1"), 3) or [1, 1, 1]

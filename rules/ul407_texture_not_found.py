@@ -18,17 +18,13 @@ PASS = """<robot name="r">
 """
 import os
 
+from urdf_lint.rules._meshes import resolved_meshes
+
 
 def check(model, ctx):
     from urdf_lint.meshes import texture_refs
-    for m in model.root.iter("mesh"):
-        uri = m.get("filename")
-        if not uri:
-            continue
-        ref = ctx.mesh_ref(model, uri)
-        if ref.problem or not ref.path:
-            continue
-        for t in texture_refs(ref.path):
+    for m, uri, path in resolved_meshes(model, ctx):
+        for t in texture_refs(path):
             if not os.path.exists(t):
                 yield m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist"
     for t in model.root.iter("texture"):
