@@ -135,6 +135,22 @@ def main():
     print(f"hook, one robot, file changed:              {dt:7.2f} s  (unchanged: "
           f"{statistics.median(warm_hooks):.2f} s)")
 
+    # -- snapshots: a 22-link robot with 20 meshes (Panda + hand), lint vs lint + render --------
+    panda = corpus / "franka_description/robots/panda/panda.urdf.xacro"
+    pconf = tmp / "panda.toml"
+    pconf.write_text(f'[[models]]\npath = {json.dumps(str(panda))}\nargs = [{{hand = "true"}}]\n')
+    lint_only, with_render = [], []
+    for i in range(a.repeat):
+        dt, _ = run([str(REPO / ".venv/bin/urdf-lint"), "check", str(panda), "--config", str(pconf),
+                     "--no-cache", "-j", "1", "-q", "--fail-on", "never"])
+        lint_only.append(dt)
+        dt, p = run([str(REPO / ".venv/bin/urdf-lint"), "check", str(panda), "--config", str(pconf),
+                     "--no-cache", "-j", "1", "-q", "--fail-on", "never", "--render", str(tmp / f"snap{i}")])
+        with_render.append(dt)
+    lo, wr = statistics.median(lint_only), statistics.median(with_render)
+    print(f"Panda+hand (22 links, 20 meshes): lint {lo:.2f} s, lint + .rrd + .png {wr:.2f} s "
+          f"-> snapshots add {wr - lo:.2f} s")
+
     # -- start-up: a warm run must not import the heavy modules ------------------------------
     env = dict(os.environ, URDF_LINT_CACHE_DIR=str(tmp / "cache0"))
     code = ("import sys; from urdf_lint.cli import main; "

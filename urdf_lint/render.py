@@ -10,6 +10,8 @@ from __future__ import annotations
 import hashlib
 import math
 import os
+import sys
+import threading
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -447,6 +449,13 @@ def record_rrd(scene, model, ctx, findings, path, recording_id):
     return {"meshes": logged}
 
 
+def _import_rerun():
+    try:
+        import rerun  # noqa: F401
+    except Exception:  # noqa: BLE001 - reported by render_model when it imports again
+        pass
+
+
 # -- orchestration -----------------------------------------------------------------------------
 def snapshot_name(entry, args, base):
     from .locations import display_path
@@ -464,6 +473,11 @@ def snapshot_name(entry, args, base):
 def render_model(model, ctx, findings, out_dir, base, rrd=True):
     """Write <name>.png (and <name>.rrd); return a summary dict. Never raises for model problems."""
     os.makedirs(out_dir, exist_ok=True)
+    importer = None
+    if rrd and "rerun" not in sys.modules:
+        # rerun's import (~0.5 s) overlaps with the PNG rasterization
+        importer = threading.Thread(target=_import_rerun, daemon=True)
+        importer.start()
     name = snapshot_name(model.entry, model.args, base)
     scene = build_scene(model, ctx)
     info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": []}
@@ -473,6 +487,8 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
         info["problems"].append(f"png: {type(e).__name__}: {e}")
         info["png"] = None
     if rrd:
+        if importer is not None:
+            importer.join()
         try:
             import rerun  # noqa: F401
         except ImportError:
