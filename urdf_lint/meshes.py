@@ -69,8 +69,21 @@ _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
 _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)*(\S.*?)\s*$", re.M)
 
 
+_textures: dict = {}
+
+
 def texture_refs(path: str) -> list[str]:
-    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths."""
+    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths (memoized per version)."""
+    try:
+        key = _version(path)
+    except OSError:
+        return []
+    if key not in _textures:
+        _textures[key] = _texture_refs(path)
+    return list(_textures[key])
+
+
+def _texture_refs(path: str) -> list[str]:
     out = []
     base = os.path.dirname(path)
     low = path.lower()
@@ -105,7 +118,23 @@ _memory: dict = {}
 FACTS_VERSION = 2  # bump when the loader changes what it measures
 
 
+_digests: dict = {}
+
+
+def _version(path: str):
+    st = os.stat(path)
+    return (os.path.realpath(path), st.st_size, st.st_mtime_ns)
+
+
 def _digest(path: str) -> str:
+    """Content hash of a file, computed once per file version in this process."""
+    key = _version(path)
+    if key not in _digests:
+        _digests[key] = _hash_file(path)
+    return _digests[key]
+
+
+def _hash_file(path: str) -> str:
     h = hashlib.blake2b(digest_size=16)
     with open(path, "rb") as f:
         for chunk in iter(lambda: f.read(1 << 20), b""):
