@@ -12,6 +12,7 @@ spelling. Sizes are capped (huge powers, repetitions, shifts and loops are refus
 from __future__ import annotations
 
 import ast
+import functools
 import math
 import operator
 import string
@@ -377,12 +378,14 @@ class Evaluator:
             raise UnsafeExpression("unsupported comprehension target")
 
 
+@functools.lru_cache(maxsize=8192)
+def _parse(expr: str):
+    """Expressions repeat (every macro call evaluates its body again); the AST is read-only."""
+    return ast.parse(expr.strip(), mode="eval").body
+
+
 def evaluate(expr: str, lookup):
-    try:
-        tree = ast.parse(expr.strip(), mode="eval")
-    except SyntaxError:
-        raise
-    return Evaluator(lookup).eval(tree.body)
+    return Evaluator(lookup).eval(_parse(expr))
 
 
 def xacro_safe_eval(expr, globals, locals=None):
