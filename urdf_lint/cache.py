@@ -117,9 +117,6 @@ class Cache:
             (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
                                             "# urdf-lint cache\n")
 
-    def flush(self):
-        pass
-
     def clear(self) -> str | None:
         if os.path.isdir(self.dir):
             shutil.rmtree(self.dir, ignore_errors=True)

@@ -155,7 +155,7 @@ def to_findings(raw: list, label: str, cfg: Config) -> list[Finding]:
 
 
 def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=None,
-              only_entries: set | None = None, progress=None,
+              progress=None,
               affected_by: set | None = None, render_dir: str | None = None,
               render_rrd: bool = True) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
@@ -164,8 +164,6 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
     from . import suppress
 
     jobs = discover(paths, cfg)
-    if only_entries is not None:
-        jobs = [j for j in jobs if j["entry"] in only_entries]
     settings = settings_for(cfg, resolver, cache.dir if cache else None)
     results: list[ModelResult] = []
     todo = []

@@ -157,8 +157,6 @@ def cmd_check(args) -> int:
     render_dir = getattr(args, "render", None)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
-    if cache:
-        cache.flush()
     if args.write_baseline:
         from .baseline import write_baseline
         write_baseline(args.write_baseline, result.findings)

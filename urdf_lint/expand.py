@@ -393,11 +393,8 @@ def _elements(node, out):
     return out
 
 
-def _fill_unknown(doc, origins):
-    """Elements xacro created itself inherit their parent's origin."""
-    parents = []
-    stack = [(doc.documentElement, None)]
-    # simple pass: unknown ones take the previous known origin
+def _fill_unknown(origins):
+    """Elements without a stamp (none known today) take the previous element's origin."""
     last = None
     for i, o in enumerate(origins):
         if o is None:
@@ -483,7 +480,7 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             with safe_eval.policy(expr_policy):
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
             res.xml = doc.toprettyxml(indent="  ")
-            res.origins = _fill_unknown(doc, _elements(doc, []))
+            res.origins = _fill_unknown(_elements(doc, []))
         except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise

@@ -186,7 +186,4 @@ def run_job(job: dict, settings: dict) -> dict:
         out["stats"]["snapshot"] = render_model(model, ctx, shown, settings["render_dir"],
                                                 settings.get("render_base"),
                                                 rrd=settings.get("render_rrd", True))
-    if settings.get("keep_xml"):
-        out["xml"] = model.xml or etree.tostring(model.root, encoding="unicode")
-        out["origins"] = None
     return out

@@ -24,7 +24,6 @@ class Rule:
     options: dict = field(default_factory=dict)
     needs: frozenset = frozenset()
     example_files: dict = field(default_factory=dict)
-    example_args: dict = field(default_factory=dict)
     module: str = ""
 
     @property
@@ -58,7 +57,6 @@ def load_rules() -> dict:
                            options=dict(getattr(mod, "OPTIONS", {})),
                            needs=frozenset(getattr(mod, "NEEDS", ())),
                            example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
-                           example_args=dict(getattr(mod, "EXAMPLE_ARGS", {})),
                            module=mod.__name__)
     _RULES = dict(sorted(rules.items()))
     return _RULES

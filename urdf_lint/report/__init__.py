@@ -102,7 +102,7 @@ def _uri(path):
 def to_sarif(result, stream):
     from ..registry import load_rules
     rules = load_rules()
-    used = sorted({f.code for f in result.findings} | set())
+    used = sorted({f.code for f in result.findings})
     index = {c: i for i, c in enumerate(used)}
     driver_rules = []
     for c in used:
