@@ -140,3 +140,24 @@ def test_broken_model_renders_safely_with_findings(tmp_path):
     img = np.asarray(Image.open(png).convert("RGB")).astype(int)
     red = ((img[:, :, 0] > 180) & (img[:, :, 1] < 80) & (img[:, :, 2] < 80)).sum()
     assert red > 200  # the red placeholder boxes
+
+
+def test_corpus_robots_render_with_textures(corpus, tmp_path):
+    cfg = tmp_path / "urdf-lint.toml"
+    cfg.write_text(f'[[models]]\npath = "{corpus}/franka_description/robots/panda/panda.urdf.xacro"\n'
+                   'args = [{hand = "true"}]\n')
+    out = tmp_path / "snap"
+    p = run_cli("render", "ur_description/urdf/ur5e.xacro", "franka_description/robots/panda/panda.urdf.xacro",
+                "turtlebot3_description/urdf/turtlebot3_waffle_pi.urdf.xacro",
+                "urdf_tutorial/urdf/08-macroed.urdf.xacro", "--config", cfg, "--out", out, cwd=corpus)
+    assert p.returncode == 0, p.stderr
+    pngs = sorted(out.glob("*.png"))
+    assert len(pngs) == 4
+    for png in pngs:
+        span, fill, _ = foreground_share(png)
+        assert span > 0.6 and fill > 0.03, png.name
+    ents = entity_data(out / "urdf_tutorial__urdf__08-macroed.rrd")
+    textured = [p for p, c in ents.items() if "vertex_texcoords" in c and "albedo_texture" in c]
+    assert len(textured) == 4  # the gripper fingers' DAE textures
+    panda = entity_data(next(out.glob("franka*.rrd")))
+    assert sum(1 for p in panda if p.startswith("/robot/") and p.endswith("/visual/0/mesh")) >= 19

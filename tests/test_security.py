@@ -235,3 +235,34 @@ def test_safe_evaluator_still_computes_what_robots_compute():
     assert abs(evaluate("max(1, 2) * 0.5", lambda n: {"max": max}[n]) - 1.0) < 1e-12
     assert evaluate("'%s-%d' % (s, a)", look) == "left-2"
     assert math.isclose(evaluate("sum([0.1, 0.2])", lambda n: {"sum": sum}[n]), 0.3)
+
+
+def test_worker_audit_hook_blocks_processes_and_writes(tmp_path):
+    """Second line of defence, tested on its own: inside a worker, even code that escaped the
+    evaluator cannot start a process or write outside the cache/snapshot folders."""
+    import subprocess
+    import sys
+    marker = tmp_path / "pwned"
+    allowed = tmp_path / "cache"
+    allowed.mkdir()
+    code = f"""
+import os, subprocess
+from urdf_lint.worker import _install_audit_hook
+_install_audit_hook({str(allowed)!r})
+results = []
+for attempt in (lambda: os.system("touch {marker}"),
+                lambda: subprocess.run(["touch", "{marker}"]),
+                lambda: open("{marker}", "w"),
+                lambda: os.remove("{tmp_path / 'x'}")):
+    try:
+        attempt()
+        results.append("ran")
+    except PermissionError:
+        results.append("blocked")
+with open("{allowed / 'ok.json'}", "w") as f:
+    f.write("{{}}")
+print(results)
+"""
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert p.stdout.strip() == "['blocked', 'blocked', 'blocked', 'blocked']", p.stdout + p.stderr
+    assert not marker.exists() and (allowed / "ok.json").exists()

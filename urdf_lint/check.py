@@ -77,6 +77,11 @@ def build_resolver(paths, cfg: Config, cli_packages: dict | None = None) -> Pack
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
     extra_roots = [root] + [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]
+    if top is None:
+        # outside git, the folder the user works in is the repository when it holds the paths
+        cwd = os.getcwd()
+        if all(_inside(os.path.abspath(p), cwd) for p in paths):
+            extra_roots.append(cwd)
     return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots)
 
 

@@ -20,6 +20,7 @@ from .ruleutil import numbers
 
 PNG_SIZE = (960, 720)
 MAX_TRIANGLES = 120_000
+MAX_TEXTURE = 1024
 MISSING_RGBA = (0.9, 0.1, 0.1, 1.0)
 DEFAULT_RGBA = (0.72, 0.74, 0.78, 1.0)
 
@@ -174,20 +175,53 @@ def part_mesh(part, ctx):
         if not len(v) or not np.isfinite(v).all():
             part.problem = "empty mesh"
             return None
-        fc = None
+        faces = np.asarray(m.faces)
+        fc, tex = None, None
         try:
-            if m.visual is not None and m.visual.kind in ("face", "vertex"):
-                fc = np.asarray(m.visual.face_colors, dtype=float)[:, :3] / 255.0
-            elif m.visual is not None and m.visual.kind == "texture":
-                main = getattr(m.visual.material, "main_color", None)
-                if main is not None:
-                    fc = np.tile(np.asarray(main[:3], dtype=float) / 255.0, (len(m.faces), 1))
+            vis = m.visual
+            if vis is not None and vis.kind in ("face", "vertex"):
+                fc = np.asarray(vis.face_colors, dtype=float)[:, :3] / 255.0
+            elif vis is not None and vis.kind == "texture":
+                tex = _texture(vis)
+                if tex is not None:
+                    fc = _sample_texture(tex, faces)
+                else:
+                    main = getattr(vis.material, "main_color", None)
+                    if main is not None:
+                        fc = np.tile(np.asarray(main[:3], dtype=float) / 255.0, (len(faces), 1))
         except Exception:  # noqa: BLE001 - colours are best effort
-            fc = None
-        return v, np.asarray(m.faces), fc
+            fc, tex = None, None
+        part.params["texture"] = tex
+        return v, faces, fc
     else:
         return None
     return np.asarray(m.vertices, dtype=float), np.asarray(m.faces), None
+
+
+def _texture(vis):
+    """(uv per vertex, RGB image array) of a textured trimesh visual, or None."""
+    uv = getattr(vis, "uv", None)
+    mat = vis.material
+    img = getattr(mat, "image", None)
+    if img is None:
+        img = getattr(mat, "baseColorTexture", None)
+    if uv is None or img is None or len(uv) == 0:
+        return None
+    if max(img.size) > MAX_TEXTURE:  # plenty for a review snapshot, and bounded memory
+        img = img.copy()
+        img.thumbnail((MAX_TEXTURE, MAX_TEXTURE))
+    arr = np.asarray(img.convert("RGB"))
+    return np.asarray(uv, dtype=float), arr
+
+
+def _sample_texture(tex, faces):
+    """Per-face colour: the texture at each face's centroid UV (wrapped, v flipped)."""
+    uv, arr = tex
+    h, w = arr.shape[:2]
+    c = uv[faces].mean(axis=1) % 1.0
+    px = np.clip((c[:, 0] * (w - 1)).astype(int), 0, w - 1)
+    py = np.clip(((1.0 - c[:, 1]) * (h - 1)).astype(int), 0, h - 1)
+    return arr[py, px].astype(float) / 255.0
 
 
 def _transform(T, v):
@@ -423,7 +457,12 @@ def record_rrd(scene, model, ctx, findings, path, recording_id):
             rgba = [80, 160, 255, 110]
         kwargs = {"vertex_positions": v.astype(np.float32), "triangle_indices": f.astype(np.uint32),
                   "albedo_factor": rgba}
-        if fc is not None and len(fc) == len(f) and part.kind == "visual":
+        tex = part.params.get("texture") if part.kind == "visual" else None
+        if tex is not None and len(tex[0]) == len(v):
+            kwargs["vertex_texcoords"] = tex[0].astype(np.float32)
+            kwargs["albedo_texture"] = tex[1]
+            kwargs["albedo_factor"] = [255, 255, 255, 255]
+        elif fc is not None and len(fc) == len(f) and part.kind == "visual":
             vc = np.zeros((len(v), 3))
             vc[f.reshape(-1)] = np.repeat(fc, 3, axis=0)
             kwargs["vertex_colors"] = (vc * 255).astype(np.uint8)

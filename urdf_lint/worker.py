@@ -57,7 +57,10 @@ def _worker_main(conn, settings, memory_mb):
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
-        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
+        # RLIMIT_AS would also count the address space that native thread arenas only reserve.
+        which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
+        resource.setrlimit(which, (limit, limit))
     except (ImportError, ValueError, OSError):
         pass
     _scrub_environment(set(settings.get("env_allow", ())))
