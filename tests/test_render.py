@@ -157,7 +157,7 @@ def test_corpus_robots_render_with_textures(corpus, tmp_path):
         span, fill, _ = foreground_share(png)
         assert span > 0.6 and fill > 0.03, png.name
     ents = entity_data(out / "urdf_tutorial__urdf__08-macroed.rrd")
-    textured = [p for p, c in ents.items() if "vertex_texcoords" in c and "albedo_texture" in c]
+    textured = [p for p, c in ents.items() if "vertex_texcoords" in c and "albedo_texture_buffer" in c]
     assert len(textured) == 4  # the gripper fingers' DAE textures
     panda = entity_data(next(out.glob("franka*.rrd")))
     assert sum(1 for p in panda if p.startswith("/robot/") and p.endswith("/visual/0/mesh")) >= 19

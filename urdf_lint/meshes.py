@@ -11,6 +11,7 @@ import json
 import math
 import os
 import re
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -176,15 +177,24 @@ def dae_unit(path: str) -> float:
         return 1.0
 
 
-_loaded: dict = {}
+_loaded: "OrderedDict[str, object]" = OrderedDict()
+MAX_LOADED_VERTICES = 4_000_000   # bound the in-memory mesh cache of a long-lived worker
 
 
 def get_mesh(path: str):
-    """The loaded mesh, shared in memory between the rules and the renderer (by content)."""
+    """The loaded mesh, shared in memory between the rules and the renderer (by content).
+    Least recently used meshes are dropped beyond MAX_LOADED_VERTICES."""
     digest = _digest(path)
-    if digest not in _loaded:
-        _loaded[digest] = load_mesh(path)
-    return _loaded[digest]
+    if digest in _loaded:
+        _loaded.move_to_end(digest)
+        return _loaded[digest]
+    mesh = load_mesh(path)
+    _loaded[digest] = mesh
+    total = sum(len(m.vertices) for m in _loaded.values())
+    while total > MAX_LOADED_VERTICES and len(_loaded) > 1:
+        _, old = _loaded.popitem(last=False)
+        total -= len(old.vertices)
+    return mesh
 
 
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:

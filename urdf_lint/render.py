@@ -333,7 +333,7 @@ def _write_nearest(colour, zbuf, pix, z, c):
     colour.reshape(-1, 3)[pix[win]] = c[win]
 
 
-def rasterize(colour, X, Y, Z, rgb8, pixels_per_batch=1 << 22):
+def rasterize(colour, X, Y, Z, rgb8, pixels_per_batch=1 << 20):
     """Z-buffer triangles (pixel coordinates X, Y; depth Z, smaller is nearer) into ``colour``.
 
     Vectorized scanline rasterization: every (triangle, row) gets its covered x-span from the

@@ -13,6 +13,10 @@ import sys
 import time
 from multiprocessing.connection import wait
 
+# importing rerun reserves ~1.2 GB of writable address space (its Rust runtime) before any
+# data is logged; workers that write recordings get this on top of the memory limit
+RERUN_RESERVE_MB = 1536
+
 _KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHONHASHSEED",
              "SYSTEMROOT"}
 
@@ -57,6 +61,8 @@ def _worker_main(conn, settings, memory_mb):
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
+        if settings.get("render_dir") and settings.get("render_rrd", True):
+            limit += RERUN_RESERVE_MB * 1024 * 1024
         # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
         # RLIMIT_AS would also count the address space that native thread arenas only reserve.
         which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
