@@ -160,4 +160,4 @@ def test_corpus_robots_render_with_textures(corpus, tmp_path):
     textured = [p for p, c in ents.items() if "vertex_texcoords" in c and "albedo_texture_buffer" in c]
     assert len(textured) == 4  # the gripper fingers' DAE textures
     panda = entity_data(next(out.glob("franka*.rrd")))
-    assert sum(1 for p in panda if p.startswith("/robot/") and p.endswith("/visual/0/mesh")) >= 19
+    assert sum(1 for p in panda if p.startswith("/robot/") and p.endswith("/visual/0/mesh")) == 11  # link0-7, hand, 2 fingers
