@@ -92,7 +92,7 @@ def discover(paths, cfg: Config) -> list[dict]:
     for p in paths:
         p = os.path.abspath(p)
         for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
-            f = str(f.resolve()) if not os.path.islink(f) else os.path.abspath(f)
+            f = os.path.realpath(f) if not os.path.islink(f) else os.path.abspath(f)
             # an exclude does not apply below a path that is itself excluded and named explicitly
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
@@ -165,7 +165,6 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
               render_rrd: bool = True) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
     models whose inputs include one of them; files no model uses land in ``unused_files``."""
-    from .worker import run_jobs
     from . import suppress
 
     jobs = discover(paths, cfg)
@@ -186,6 +185,7 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
             todo.append(job)
     internal = []
     if todo:
+        from .worker import run_jobs
         import xacro  # noqa: F401 - import once in the parent, shared by the forked workers
         from . import expand  # noqa: F401
         for n, (job, res) in enumerate(run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout,

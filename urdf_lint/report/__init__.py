@@ -20,7 +20,6 @@ import json
 import os
 import sys
 from collections import Counter
-from xml.sax.saxutils import escape, quoteattr
 
 from .. import __version__
 from ..locations import Origin, display_path
@@ -160,6 +159,7 @@ def to_github(result, stream):
 
 
 def to_junit(result, stream):
+    from xml.sax.saxutils import escape, quoteattr  # heavy import chain: only for junit
     cases = []
     failures = 0
     for f in result.findings:
