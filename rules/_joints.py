@@ -13,3 +13,12 @@ def limits(j):
 
 def moving(j):
     return j.get("type") in ("revolute", "prismatic")
+
+
+def ranged(model):
+    """(joint, limit, lower, upper) of revolute/prismatic joints with numeric limits."""
+    for j in model.top_joints():
+        if moving(j):
+            lim, lo, hi, _, _ = limits(j)
+            if lim is not None and lo is not None and hi is not None:
+                yield j, lim, lo, hi

@@ -18,14 +18,11 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import fmt
-from urdf_lint.rules._joints import limits, moving
+from urdf_lint.rules._joints import ranged
 
 
 def check(model, ctx):
-    for j in model.top_joints():
-        if not moving(j):
-            continue
-        lim, lo, hi, _, _ = limits(j)
-        if lim is not None and lo is not None and hi is not None and lo > hi:
+    for j, lim, lo, hi in ranged(model):
+        if lo > hi:
             yield lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "
                         "(swap them?)")

@@ -130,7 +130,7 @@ def run_job(job: dict, settings: dict) -> dict:
             out["status"] = "failed"
             return out
         model = Model(entry=entry, args={}, root=root, origins=origins, deps=[entry],
-                      resolver=resolver, xml="")
+                      resolver=resolver)
 
     if model.root.tag != "robot":
         findings.append(_finding("UL006", f"root element is <{model.root.tag}>, not <robot>",

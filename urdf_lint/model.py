@@ -45,7 +45,6 @@ class Model:
     links: dict = field(default_factory=dict)
     joints: dict = field(default_factory=dict)
     materials: dict = field(default_factory=dict)   # top-level <material name=...>
-    xml: str = ""
 
     def __post_init__(self):
         for el in self.root:
@@ -108,8 +107,7 @@ def model_from_xml(entry: str, args: dict, xml_text: str, origins: list, deps: l
     for el, o in zip(elements, origins):
         if o is not None:
             omap[el] = Origin(o[0], o[1], o[2], tuple(tuple(c) for c in o[3]))
-    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver,
-                 xml=xml_text)
+    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver)
 
 
 def parse_urdf_bytes(entry: str, data: bytes):

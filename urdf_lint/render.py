@@ -418,7 +418,7 @@ def _safe(s):
     return "".join(ch if ch.isalnum() or ch in "_-." else "_" for ch in str(s)) or "_"
 
 
-def record_rrd(scene, model, ctx, findings, path, recording_id):
+def record_rrd(scene, ctx, findings, path, recording_id):
     import rerun as rr
     rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
     tmp = f"{path}.tmp{os.getpid()}"
@@ -535,7 +535,7 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
         else:
             path = os.path.join(out_dir, name + ".rrd")
             try:
-                info.update(record_rrd(scene, model, ctx, findings, path, recording_id=f"urdf-lint/{name}"))
+                info.update(record_rrd(scene, ctx, findings, path, recording_id=f"urdf-lint/{name}"))
                 info["rrd"] = path
             except Exception as e:  # noqa: BLE001
                 info["problems"].append(f"rrd: {type(e).__name__}: {e}")
