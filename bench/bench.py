@@ -163,13 +163,14 @@ def main():
     if a.profile:
         import cProfile
         import pstats
-        from urdf_lint.check import build_resolver, run_check
         from urdf_lint.config import load_config
+        from urdf_lint.discovery import build_resolver
         cfg = load_config(config)
         res = build_resolver(files, cfg)
         import urdf_lint.worker as w
         from urdf_lint.lint import run_job
-        from urdf_lint.check import discover, settings_for
+        from urdf_lint.discovery import discover
+        from urdf_lint.pipeline import settings_for
         jobs = discover(files, cfg)
         settings = settings_for(cfg, res, None)
         prof = cProfile.Profile()

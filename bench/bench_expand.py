@@ -60,8 +60,8 @@ def main():
     stock = float(subprocess.run([sys.executable, "-c", STOCK, json.dumps(xacro_entries), str(a.repeat)],
                                  env=env, capture_output=True, text=True, check=True).stdout)
 
-    from urdf_lint.expand import expand_file
-    from urdf_lint.check import settings_for
+    from urdf_lint.expansion import expand_file
+    from urdf_lint.pipeline import settings_for
     from urdf_lint.config import load_config
     from urdf_lint.lint import Context
     from urdf_lint.model import model_from_xml
@@ -85,10 +85,10 @@ def main():
     def run_rules():
         n = 0
         for m in built:
-            ctx = Context({}, settings["mesh_cache_dir"])
-            for code in settings["selected"]:
+            ctx = Context({}, settings.mesh_cache_dir)
+            for code in settings.selected:
                 r = rules[code]
-                if r.check is not None:
+                if r.check is not None and r.scope == "model":
                     ctx.options = dict(r.options)
                     n += sum(1 for _ in r.check(m, ctx))
         return n

@@ -27,26 +27,30 @@ def main():
     a = ap.parse_args()
     os.chdir(a.corpus)
     import rerun  # noqa: F401 - measured separately: imported once per worker process
-    from urdf_lint.check import build_resolver, settings_for
+    import dataclasses
     from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.jobs import LintJob
     from urdf_lint.lint import run_job
+    from urdf_lint.pipeline import settings_for
+    from urdf_lint.worker import process_job
     cfg = load_config(None)
     for path, args in ROBOTS:
         entry = os.path.abspath(path)
         settings = settings_for(cfg, build_resolver([entry], cfg), None)
-        job = {"entry": entry, "args": args, "kind": "xacro", "explicit": True}
+        job = LintJob(entry, args, "xacro", explicit=True)
         t0 = time.perf_counter()
         r = run_job(job, settings)
         cold = time.perf_counter() - t0
         t0 = time.perf_counter()
         run_job(job, settings)
         warm = time.perf_counter() - t0
-        rs = dict(settings, render_dir=tempfile.mkdtemp(), render_base=a.corpus)
+        rs = dataclasses.replace(settings, render_dir=tempfile.mkdtemp(), render_base=a.corpus)
         t0 = time.perf_counter()
-        r2 = run_job(job, rs)
+        r2 = process_job(job, rs)
         both = time.perf_counter() - t0
-        snap = r2["stats"]["snapshot"]
-        print(f"{path} {args or ''}: {r['stats']['links']} links, {r['stats']['meshes']} meshes, "
+        snap = r2.snapshot
+        print(f"{path} {args or ''}: {r.links} links, {r.meshes} meshes, "
               f"{snap.get('triangles')} triangles; lint cold {cold:.2f} s, lint {warm:.2f} s, "
               f"lint + snapshots {both:.2f} s -> snapshots add {both - warm:.2f} s")
     t0 = time.perf_counter()

@@ -1,4 +1,8 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
+from urdf_lint.meshes import MeshStatus
+
+# the resolution statuses that mean "there is no such file" (UL401, and UL407 for textures)
+NOT_FOUND = frozenset({MeshStatus.NOT_FOUND, MeshStatus.UNKNOWN_PACKAGE})
 TETRA_STL = """solid tetra
 facet normal 0 0 -1
  outer loop
@@ -43,13 +47,14 @@ def scaled(factor):
     return "\n".join(out) + "\n"
 
 
-def resolution_problems(model, ctx, code):
-    """(mesh element, message) for every <mesh> whose resolution failed with ``code``."""
-    for m in model.root.iter("mesh"):
+def resolution_problems(model, ctx, statuses, tag="mesh"):
+    """(element, message) for every ``<tag filename>`` whose resolution ended in one of
+    ``statuses`` (:class:`urdf_lint.meshes.MeshStatus`)."""
+    for m in model.root.iter(tag):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
-            if ref.problem == code:
+            if ref.status in statuses:
                 yield m, ref.message
 
 
@@ -60,5 +65,5 @@ def resolved_meshes(model, ctx):
         if not uri:
             continue
         ref = ctx.mesh_ref(model, uri)
-        if ref.problem is None and ref.path:
+        if ref.status is MeshStatus.OK and ref.path:
             yield m, uri, ref.path

@@ -7,7 +7,7 @@ one file may share a name; different entry files should not. This is a repositor
 CODE = "UL106"
 NAME = "duplicate-robot-name"
 SEVERITY = "info"
-ORIGIN = "repository"
+SCOPE = "run"
 FAIL = """<robot name="visual">
   <link name="a"/>
 </robot>
@@ -17,3 +17,18 @@ PASS = """<robot name="unique_name_for_this_example">
 </robot>
 """
 EXAMPLE_FILES = {"urdf/other.urdf": '<robot name="visual">\n  <link name="a"/>\n</robot>\n'}
+
+
+def check(run, ctx):
+    from urdf_lint.locations import display_path
+    by_name: dict = {}
+    for m in run.models:
+        if m.name and m.name_origin:
+            by_name.setdefault(m.name, {}).setdefault(m.entry, m)
+    for name, entries in by_name.items():
+        if len(entries) < 2:
+            continue
+        for entry, m in entries.items():
+            rest = [display_path(e) for e in entries if e != entry]
+            others = ", ".join(rest[:3]) + (f" and {len(rest) - 3} more" if len(rest) > 3 else "")
+            yield m.name_origin, f"robot name '{name}' is also used by {others}"

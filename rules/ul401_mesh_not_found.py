@@ -15,10 +15,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
-from urdf_lint.rules._meshes import TETRA_STL, resolution_problems
+from urdf_lint.rules._meshes import NOT_FOUND, TETRA_STL, resolution_problems
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 
 
 def check(model, ctx):
-    yield from resolution_problems(model, ctx, CODE)
+    yield from resolution_problems(model, ctx, NOT_FOUND)

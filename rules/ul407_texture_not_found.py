@@ -18,7 +18,7 @@ PASS = """<robot name="r">
 """
 import os
 
-from urdf_lint.rules._meshes import resolved_meshes
+from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_meshes
 
 
 def check(model, ctx):
@@ -27,9 +27,5 @@ def check(model, ctx):
         for t in texture_refs(path):
             if not os.path.exists(t):
                 yield m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist"
-    for t in model.root.iter("texture"):
-        uri = t.get("filename")
-        if uri:
-            ref = ctx.mesh_ref(model, uri)
-            if ref.problem == "UL401":
-                yield t, ref.message.replace("mesh", "texture", 1)
+    for t, message in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):
+        yield t, message.replace("mesh", "texture", 1)

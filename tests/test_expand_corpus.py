@@ -86,13 +86,13 @@ ENTRIES = corpus_entries()
 
 @pytest.mark.parametrize("entry,args", ENTRIES, ids=[_key(f, a)[:90] for f, a in ENTRIES])
 def test_byte_identical_to_stock_xacro(entry, args, corpus, corpus_resolver):
-    from urdf_lint.expand import expand_file
+    from urdf_lint.expansion import expand_file
     path = str(corpus / entry)
     ours = expand_file(path, args, corpus_resolver, display_name=path)
     rc, out, err = stock_xacro(path, args, corpus_resolver.scanned)
     if (entry, tuple(sorted(args.items()))) in EXPECTED_FAILURES:
         assert rc != 0 and ours.error is not None, "expected both to fail"
-        assert ours.error["line"] >= 1 and ours.error["file"]
+        assert ours.error.line >= 1 and ours.error.file
         return
     assert rc == 0, err
     assert ours.error is None, ours.error

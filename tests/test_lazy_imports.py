@@ -26,14 +26,15 @@ def test_warm_run_imports_nothing_heavy(tmp_path):
 
 LINT_IN_PROCESS = """
 import sys
-from urdf_lint.check import build_resolver, discover, settings_for
 from urdf_lint.config import load_config
+from urdf_lint.discovery import build_resolver, discover
 from urdf_lint.lint import run_job
+from urdf_lint.pipeline import settings_for
 cfg = load_config(None)
 cfg.ignore = IGNORE
 settings = settings_for(cfg, build_resolver(["."], cfg), None)
 results = [run_job(job, settings) for job in discover(["."], cfg)]
-assert [r["status"] for r in results].count("model") == 1, results
+assert [r.status for r in results].count("model") == 1, results
 print(sorted(m for m in ("trimesh", "collada", "yourdfpy", "rerun") if m in sys.modules))
 """
 

@@ -57,7 +57,7 @@ EXTRA = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
 
 @pytest.fixture()
 def model(tmp_path):
-    from urdf_lint.expand import expand_file
+    from urdf_lint.expansion import expand_file
     from urdf_lint.model import model_from_xml
     from urdf_lint.packages import PackageResolver
     pkg = make_package(tmp_path, "loc_pkg", {"urdf/robot.urdf.xacro": ROBOT, "urdf/arm.xacro": ARM,

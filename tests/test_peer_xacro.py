@@ -33,7 +33,7 @@ def peer(tmp_path_factory):
 
 def expand_both(peer, name, doc, args=None, monkeypatch=None):
     """(ours, stock) for a wrapper document written to test/<name>, cwd = test/ as upstream."""
-    from urdf_lint.expand import expand_file
+    from urdf_lint.expansion import expand_file
     from urdf_lint.packages import PackageResolver
     test = peer / "test"
     f = test / name
@@ -125,7 +125,7 @@ def test_yaml_support(peer, kind):
 def test_yaml_missing_key_must_fail(peer):
     doc = f'<a {X}><xacro:property name="s" value="${{xacro.load_yaml(\'settings.yaml\')}}"/><x v="${{s.baz}}"/></a>'
     got = expand_both(peer, "w_yaml_bad.xacro", doc)
-    assert got.error["code"] == "UL002" and "baz" in got.error["message"]
+    assert got.error.code == "UL002" and "baz" in got.error.message
 
 
 def test_yaml_lists(peer):
@@ -168,16 +168,16 @@ def test_unit_constructors_with_code_must_fail(peer, name):
 
 def test_broken_include(peer):
     got = expand_both(peer, "w_broken.xacro", f'<a {X}><xacro:include filename="broken.xacro"/></a>')
-    assert got.error["code"] == "UL001" and got.error["file"].endswith("broken.xacro")
+    assert got.error.code == "UL001" and got.error.file.endswith("broken.xacro")
 
 
 def test_error_reporting_names_the_macros(peer):
     got = expand_both(peer, "w_raise.xacro", f'<a {X}><xacro:include filename="raise.xacro"/><xacro:outer/></a>')
     e = got.error
-    assert e["code"] == "UL002" and "undefined" in e["message"]
-    assert "'inner' < 'outer'" in e["message"]
-    assert e["file"].endswith("raise.xacro") and e["line"] == 2
-    assert [os.path.basename(c[0]) for c in e["chain"]] == ["w_raise.xacro", "raise.xacro"]
+    assert e.code == "UL002" and "undefined" in e.message
+    assert "'inner' < 'outer'" in e.message
+    assert e.file.endswith("raise.xacro") and e.line == 2
+    assert [os.path.basename(c[0]) for c in e.chain] == ["w_raise.xacro", "raise.xacro"]
 
 
 def test_print_location_output(peer):
@@ -196,7 +196,7 @@ def test_cmake_args(peer):
                       {"bar": "foo", "foo": "bar"})
     assert body(got.xml)[1].attrib == {"foo": "bar", "bar": "foo"}
     got = expand_both(peer, "test-xacro-cmake/w2.xacro", (peer / "test/test-xacro-cmake/test.xacro").read_text())
-    assert got.error["code"] == "UL005"
+    assert got.error.code == "UL005"
 
 
 def test_namespace_lifting(peer):
@@ -206,7 +206,7 @@ def test_namespace_lifting(peer):
 
 def test_inline_behaviours(peer):
     missing = expand_both(peer, "w_m.xacro", f'<a {X}><xacro:include filename="nope.xml"/></a>')
-    assert missing.error["code"] == "UL003"
+    assert missing.error.code == "UL003"
     optional = expand_both(peer, "w_o.xacro", f'<a {X}><xacro:include filename="nope.xml" optional="True"/></a>')
     assert optional.error is None
     lazy = expand_both(peer, "w_if.xacro", f'<a {X}><xacro:if value="false"><xacro:include filename="$(find nonexistent_package)/x.xacro"/></xacro:if></a>')
@@ -245,7 +245,7 @@ def _xml_matches(a, b):
 
 
 def test_pr2_golden(peer):
-    from urdf_lint.expand import expand_file
+    from urdf_lint.expansion import expand_file
     from urdf_lint.packages import PackageResolver
     res = PackageResolver.build([peer], extra_roots=[peer])
     got = expand_file(str(peer / "test/robots/pr2/pr2.urdf.xacro"), {}, res)

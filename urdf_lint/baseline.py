@@ -30,7 +30,7 @@ def filter_baseline(path, findings):
             data = json.load(fh)
         known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
     except (OSError, ValueError, KeyError, TypeError) as e:
-        from .cli import UsageError
+        from .errors import UsageError
         raise UsageError(f"cannot read baseline {path}: {e}") from None
     out = []
     for f in findings:

@@ -15,19 +15,14 @@ import shutil
 from pathlib import Path
 
 from . import __version__
+from .discovery import start_dir
+from .hashing import file_digest
+from .jobs import LintJob, LintSettings, ModelReport
+from .vcs import repo_root
 
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
-
-
-def file_digest(path: str) -> str | None:
-    h = hashlib.blake2b(digest_size=16)
-    try:
-        with open(path, "rb") as f:
-            for chunk in iter(lambda: f.read(1 << 20), b""):
-                h.update(chunk)
-    except OSError:
-        return None
-    return h.hexdigest()
+# bump when the stored record changes shape
+RECORD_FORMAT = 2
 
 
 def _stat(path):
@@ -45,26 +40,21 @@ class Cache:
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
-        from .check import repo_root
         if os.environ.get("URDF_LINT_CACHE_DIR"):
             return cls(os.environ["URDF_LINT_CACHE_DIR"])
         if cfg.cache_dir:
             return cls(os.path.join(cfg.root, cfg.cache_dir))
-        first = os.path.abspath(paths[0] if paths else ".")
-        start = first if os.path.isdir(first) else os.path.dirname(first)
-        return cls(os.path.join(repo_root(start), ".urdf_lint_cache"))
+        return cls(os.path.join(repo_root(start_dir(paths)), ".urdf_lint_cache"))
 
-    def _key(self, job, settings) -> str:
-        blob = json.dumps([__version__, job["entry"], sorted(job.get("args", {}).items()),
-                           job.get("kind"), bool(job.get("explicit")),
-                           {k: settings[k] for k in ("selected", "options", "env_allow", "resolver")}],
-                          sort_keys=True)
+    def _key(self, job: LintJob, settings: LintSettings) -> str:
+        blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
+                           job.kind, bool(job.explicit), settings.cache_key()], sort_keys=True)
         return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> Path:
         return Path(self.dir, "results", key[:2], key + ".json")
 
-    def get(self, job, settings):
+    def get(self, job: LintJob, settings: LintSettings) -> ModelReport | None:
         p = self._path(self._key(job, settings))
         try:
             rec = json.loads(p.read_text(encoding="utf-8"))
@@ -79,25 +69,20 @@ class Cache:
             for path in rec.get("missing", []):
                 if os.path.exists(path):
                     return None
-            result = rec["result"]
-            if not isinstance(result.get("findings"), list):
-                return None
-            return result
-        except (OSError, ValueError, KeyError, TypeError, AttributeError):
+            return ModelReport.from_record(job, rec["result"])
+        except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 
-    def put(self, job, settings, result):
+    def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
         deps = {}
-        for d in result.get("deps", []):
+        for d in result.deps:
             st = _stat(d)
             dig = file_digest(d)
             if st is None or dig is None:
                 continue
             deps[d] = [st, dig]
-        rec = {"version": __version__, "deps": deps, "missing": result.get("missing") or [],
-               "result": {"status": result["status"], "deps": result["deps"],
-                          "findings": result["findings"],
-                          "stats": {k: v for k, v in result["stats"].items() if k != "snapshot"}}}
+        rec = {"version": __version__, "deps": deps, "missing": list(result.missing),
+               "result": result.to_record()}
         p = self._path(self._key(job, settings))
         try:
             self._ensure()

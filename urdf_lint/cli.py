@@ -10,8 +10,7 @@ import os
 import sys
 
 
-class UsageError(Exception):
-    pass
+from .errors import UsageError
 
 
 def _parse_package_paths(items):
@@ -126,7 +125,8 @@ def _load_cfg(args, paths):
 
 
 def cmd_check(args) -> int:
-    from .check import build_resolver, exit_code, run_check
+    from .discovery import build_resolver, start_dir
+    from .pipeline import exit_code, run_check
     from . import report
     for p in args.paths:
         if not os.path.exists(p):
@@ -139,10 +139,9 @@ def cmd_check(args) -> int:
         cache = Cache.for_paths(args.paths, cfg)
     affected_by = None
     if args.changed_since:
-        from .changes import GitError, changed_files
+        from .vcs import GitError, changed_files
         try:
-            affected_by = changed_files(args.changed_since, args.paths[0] if os.path.isdir(args.paths[0])
-                                        else os.path.dirname(os.path.abspath(args.paths[0])))
+            affected_by = changed_files(args.changed_since, start_dir(args.paths))
         except (GitError, OSError) as e:
             raise UsageError(f"--changed-since {args.changed_since}: {e}") from None
     if getattr(args, "files", None) is not None:
@@ -186,7 +185,7 @@ def _report_snapshots(result, out_dir):
     from .locations import display_path
     written = 0
     for m in result.models:
-        snap = m.stats.get("snapshot") or {}
+        snap = m.snapshot or {}
         for k in ("png", "rrd"):
             if snap.get(k):
                 written += 1
@@ -202,7 +201,7 @@ def _report_snapshots(result, out_dir):
 
 def cmd_hook(args) -> int:
     """Lint the whole repository (cached) and report the models that the files affect."""
-    from .check import repo_root
+    from .vcs import repo_root
     root = repo_root(os.getcwd())
     ns = argparse.Namespace(paths=[root], output=None, statistics=False, render=None,
                             changed_since=None, baseline=None, write_baseline=None, timeout=None,
@@ -215,8 +214,8 @@ def cmd_hook(args) -> int:
 
 def cmd_expand(args) -> int:
     from .config import load_config
-    from .check import build_resolver
-    from .expand import expand_file
+    from .discovery import build_resolver
+    from .expansion import expand_file
     from .config import DEFAULT_ENV_ALLOW
     from .locations import display_path
     if not os.path.isfile(args.file):
@@ -231,12 +230,10 @@ def cmd_expand(args) -> int:
                       env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
                       display_name=args.file)
     for n in res.notes:
-        sys.stderr.write(f"{display_path(n['file'])}:{n['line']}:{n['col']}: {n['code']} "
-                         f"{n['message']}\n")
+        sys.stderr.write(f"{display_path(n.file)}:{n.line}:{n.col}: {n.code} {n.message}\n")
     if res.error:
         e = res.error
-        sys.stderr.write(f"{display_path(e['file'])}:{e['line']}:{e['col']}: {e['code']} "
-                         f"{e['message']}\n")
+        sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
         return 1
     if args.output:
         d = os.path.dirname(os.path.abspath(args.output))
@@ -274,7 +271,8 @@ def cmd_rule(args) -> int:
 
 
 def cmd_render(args) -> int:
-    from .check import build_resolver, run_check
+    from .discovery import build_resolver
+    from .pipeline import run_check
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -284,7 +282,7 @@ def cmd_render(args) -> int:
                        render_dir=args.out, render_rrd=not args.no_rrd)
     _report_snapshots(result, args.out)
     for m in result.models:
-        snap = m.stats.get("snapshot") or {}
+        snap = m.snapshot or {}
         for k in ("png", "rrd"):
             if snap.get(k):
                 from .locations import display_path

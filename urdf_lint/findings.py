@@ -1,49 +1,98 @@
-"""Findings: what the rules and the expansion report."""
+"""The one problem type: what rules, expansion and the engine report, up to the reporters.
+
+A :class:`Problem` is created where a problem is found (a rule's ``check``, the expansion's
+error table, the run pipeline) with its code, message, source origin (file, line, col and the
+macro call chain) and, for snapshots, the link or joint it concerns. It crosses the worker pipe
+as is (it pickles), is stored in the cache as :meth:`Problem.to_record`, and the run pipeline
+fills in the rule name, the effective severity and the models it was found in before handing
+it to the reporters (:meth:`Problem.to_dict` is the JSON form).
+"""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import dataclasses
+from dataclasses import dataclass
+
+from .locations import Origin
 
 SEVERITIES = ("info", "warning", "error")
 SEVERITY_RANK = {s: i for i, s in enumerate(SEVERITIES)}
 
 
-@dataclass
-class Finding:
+@dataclass(frozen=True)
+class Problem:
     code: str
-    name: str
-    severity: str
     message: str
-    file: str
-    line: int
-    col: int
-    chain: tuple = ()
-    models: list = field(default_factory=list)   # display ids of the models it was found in
+    origin: Origin
+    target: tuple[str, str] | None = None   # ("link" | "joint", name) it concerns, for snapshots
+    name: str = ""                          # the rule's name (set by the run pipeline)
+    severity: str = ""                      # the effective severity (set by the run pipeline)
+    models: tuple[str, ...] = ()            # display labels of the models it was found in
+
+    @classmethod
+    def at(cls, code: str, message: str, loc, target=None) -> "Problem":
+        """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple."""
+        chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
+        return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
+                   tuple(target) if target else None)
+
+    # -- the origin, flat ----------------------------------------------------------------------
+    @property
+    def file(self) -> str:
+        return self.origin.file
+
+    @property
+    def line(self) -> int:
+        return self.origin.line
+
+    @property
+    def col(self) -> int:
+        return self.origin.col
+
+    @property
+    def chain(self) -> tuple:
+        return self.origin.chain
 
     def key(self):
         return (self.file, self.line, self.col, self.code, self.message)
 
+    def replace(self, **changes) -> "Problem":
+        return dataclasses.replace(self, **changes)
+
+    # -- serialisation ---------------------------------------------------------------------------
     def to_dict(self) -> dict:
+        """The JSON report's form of a finding (schema in :mod:`urdf_lint.report`)."""
         return {"code": self.code, "name": self.name, "severity": self.severity,
                 "message": self.message, "file": self.file, "line": self.line, "col": self.col,
                 "chain": [list(c) for c in self.chain], "models": list(self.models)}
 
+    def to_record(self) -> dict:
+        """Plain data for the cache (everything a worker produced)."""
+        d = {"code": self.code, "message": self.message, "file": self.file, "line": self.line,
+             "col": self.col, "chain": [list(c) for c in self.chain]}
+        if self.target:
+            d["target"] = list(self.target)
+        return d
+
     @classmethod
-    def from_dict(cls, d: dict) -> "Finding":
-        return cls(code=d["code"], name=d.get("name", ""), severity=d.get("severity", "error"),
-                   message=d["message"], file=d["file"], line=int(d["line"]), col=int(d["col"]),
-                   chain=tuple(tuple(c) for c in d.get("chain", ())),
-                   models=list(d.get("models", [])))
+    def from_record(cls, d: dict) -> "Problem":
+        return cls.at(d["code"], d["message"], (d["file"], d["line"], d["col"], d.get("chain", ())),
+                      d.get("target"))
 
 
-def merge(findings: list[Finding]) -> list[Finding]:
+# the name the reporters and older code use
+Finding = Problem
+
+
+def merge(findings: list[Problem]) -> list[Problem]:
     """One finding per source location and message; the models that share it are listed."""
     out: dict = {}
     for f in findings:
         k = f.key()
         if k in out:
-            for m in f.models:
-                if m not in out[k].models:
-                    out[k].models.append(m)
+            have = out[k]
+            more = tuple(m for m in f.models if m not in have.models)
+            if more:
+                out[k] = have.replace(models=have.models + more)
         else:
             out[k] = f
     return sorted(out.values(), key=lambda f: (f.file, f.line, f.col, f.code, f.message))

@@ -1,6 +1,8 @@
-"""Lint one model: expand (or parse) it, build the Model, run the selected rules.
+"""Lint one model: expand (or parse) it, build the Model, run the selected model-scope rules.
 
-``run_job`` takes and returns plain data, so it runs the same in process and in a worker.
+``lint_model`` takes a typed job and the run's settings and returns a :class:`ModelReport`
+(plus the model itself, for consumers such as the renderer). It runs the same in process and
+in a worker.
 """
 from __future__ import annotations
 
@@ -9,7 +11,10 @@ import traceback
 
 from lxml import etree
 
+from .findings import Problem
+from .jobs import LintJob, LintSettings, ModelReport, Status
 from .locations import Origin
+from .rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype
 
 XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
 
@@ -38,152 +43,153 @@ class Context:
         return meshes.mesh_facts(path, self.mesh_cache_dir)
 
 
-def _finding(code, message, origin: Origin | tuple, target=None):
-    o = origin
-    d = {"code": code, "message": message, "file": o[0], "line": o[1], "col": o[2],
-         "chain": [list(c) for c in (o[3] if len(o) > 3 else ())]}
-    if target:
-        d["target"] = target
-    return d
-
-
-def _target(el):
+def target_of(el):
     """("link"|"joint", name) of the nearest enclosing top-level link or joint, for snapshots."""
     while el is not None:
         parent = el.getparent()
         if el.tag in ("link", "joint") and parent is not None and parent.tag == "robot":
-            return [el.tag, el.get("name")]
+            return (el.tag, el.get("name"))
         el = parent
     return None
 
 
-def classify_xacro(path: str) -> str:
-    """'candidate', 'library' (only macro/property/arg/include at top level) or 'not-robot'."""
+def classify_xacro(path: str) -> Status | None:
+    """None for a candidate model, LIBRARY (only macro/property/arg/include at top level) or
+    NOT_ROBOT."""
     try:
         root = etree.parse(path, _quick_parser()).getroot()
     except (etree.XMLSyntaxError, OSError):
-        return "candidate"  # let expansion report the problem with its location
+        return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":
-        return "not-robot"
+        return Status.NOT_ROBOT
     for el in root:
         if not isinstance(el.tag, str):
             continue
         q = etree.QName(el)
         if not (q.namespace and "xacro" in q.namespace and q.localname in XACRO_DIRECTIVES):
-            return "candidate"
-    return "library"
+            return None
+    return Status.LIBRARY
 
 
 def _quick_parser():
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
-def run_job(job: dict, settings: dict) -> dict:
-    from .packages import PackageResolver
+def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
+    """The Model of the job, or None (``out`` then says why)."""
     from .model import model_from_xml, parse_urdf_bytes, Model
-    entry = job["entry"]
-    out = {"entry": entry, "args": job.get("args", {}), "status": "model", "deps": [entry],
-           "findings": [], "stats": {}, "internal": []}
-    resolver = PackageResolver.from_dict(settings["resolver"])
-    findings = out["findings"]
-
-    if job["kind"] == "xacro":
-        if not job.get("explicit"):
+    entry = job.entry
+    problems = out.problems
+    if job.kind == "xacro":
+        if not job.explicit:
             kind = classify_xacro(entry)
-            if kind != "candidate":
-                out["status"] = kind
-                return out
-        from .expand import expand_file
-        exp = expand_file(entry, job.get("args", {}), resolver,
-                          env_allow=settings.get("env_allow", ()),
-                          expr_policy=settings.get("expr_policy"))
-        out["deps"] = list(exp.deps)
-        out["missing"] = list(exp.missing)
-        findings.extend(exp.notes)
+            if kind is not None:
+                out.status = kind
+                return None
+        from .expansion import expand_file
+        exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
+                          expr_policy=settings.expr_policy)
+        out.deps = list(exp.deps)
+        out.missing = list(exp.missing)
+        problems.extend(exp.notes)
         if exp.error is not None:
-            findings.append(exp.error)
-            out["status"] = "failed"
-            return out
-        model = model_from_xml(entry, job.get("args", {}), exp.xml, exp.origins, exp.deps,
-                               resolver)
-        if not model.top_links() and not job.get("explicit"):
-            out["status"] = "library"
-            out["findings"] = []
-            return out
-    else:
-        try:
-            with open(entry, "rb") as f:
-                data = f.read()
-        except OSError as e:
-            findings.append(_finding("UL001", f"cannot read file: {e.strerror}", (entry, 1, 1)))
-            out["status"] = "failed"
-            return out
-        if b"<!DOCTYPE" in data[:4096] or b"<!ENTITY" in data:
-            line = data[:data.find(b"<!")].count(b"\n") + 1
-            findings.append(_finding("UL007", "DOCTYPE/ENTITY declaration in a robot description; "
-                                     "remove it (URDF needs none, and urdf-lint never loads DTDs)",
-                                     (entry, line, 1)))
-        root, origins, error = parse_urdf_bytes(entry, data)
-        if error:
-            findings.append(error)
-        if root is None:
-            out["status"] = "failed"
-            return out
-        model = Model(entry=entry, args={}, root=root, origins=origins, deps=[entry],
-                      resolver=resolver)
+            problems.append(exp.error)
+            out.status = Status.FAILED
+            return None
+        model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+        if not model.top_links() and not job.explicit:
+            out.status = Status.LIBRARY
+            out.problems = []
+            return None
+        return model
+    try:
+        with open(entry, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",
+                                   (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
+    if b"<!DOCTYPE" in data[:4096] or b"<!ENTITY" in data:
+        line = data[:data.find(b"<!")].count(b"\n") + 1
+        problems.append(Problem.at(ul007_doctype.CODE,
+                                   "DOCTYPE/ENTITY declaration in a robot description; remove it "
+                                   "(URDF needs none, and urdf-lint never loads DTDs)",
+                                   (entry, line, 1)))
+    root, origins, error = parse_urdf_bytes(entry, data)
+    if error:
+        problems.append(error)
+    if root is None:
+        out.status = Status.FAILED
+        return None
+    return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
 
+
+def lint_model(job: LintJob, settings: LintSettings):
+    """(ModelReport, Model or None, Context) for one job."""
+    from .packages import PackageResolver
+    out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
+    ctx = Context({}, settings.mesh_cache_dir)
+    resolver = PackageResolver.from_dict(settings.resolver)
+    model = _load(job, settings, resolver, out)
+    if model is None:
+        return out, None, ctx
+    problems = out.problems
     if model.root.tag != "robot":
-        findings.append(_finding("UL006", f"root element is <{model.root.tag}>, not <robot>",
-                                 model.origin(model.root)))
-        out["status"] = "failed"
-        return out
+        problems.append(Problem.at(ul006_not_a_robot.CODE,
+                                   f"root element is <{model.root.tag}>, not <robot>",
+                                   model.origin(model.root)))
+        out.status = Status.FAILED
+        return out, None, ctx
     if not model.top_links():
-        findings.append(_finding("UL006", "robot has no <link>: a URDF needs at least one link",
-                                 model.origin(model.root)))
+        problems.append(Problem.at(ul006_not_a_robot.CODE,
+                                   "robot has no <link>: a URDF needs at least one link",
+                                   model.origin(model.root)))
 
     from .registry import load_rules
     rules = load_rules()
-    ctx = Context({}, settings.get("mesh_cache_dir"))
-    for code in settings["selected"]:
+    for code in settings.selected:
         rule = rules.get(code)
-        if rule is None or rule.check is None:
+        if rule is None or rule.check is None or rule.scope != "model":
             continue
         opts = dict(rule.options)
-        opts.update(settings.get("options", {}).get(code, {}))
+        opts.update(settings.options.get(code, {}))
         ctx.options = opts
         try:
             for item in rule.check(model, ctx):
                 el, msg = item[0], item[1]
-                findings.append(_finding(code, msg, model.origin(el), _target(el)))
+                problems.append(Problem.at(code, msg, model.origin(el), target_of(el)))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
-            out["internal"].append(f"rule {code} crashed on {entry}:\n{traceback.format_exc()}")
+            out.internal.append(f"rule {code} crashed on {job.entry}:\n{traceback.format_exc()}")
 
-    # dependencies: every mesh / texture the model points at (resolved, inside the roots)
-    mesh_deps, missing = [], []
+    out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
+    out.name = model.name
+    o = model.origin(model.root)
+    out.name_origin = Origin(o.file, o.line, o.col)
+    out.links = len(model.top_links())
+    out.joints = len(model.top_joints())
+    out.meshes = len(list(model.root.iter("mesh")))
+    return out, model, ctx
+
+
+def _mesh_deps(model, ctx, deps):
+    """(deps + every mesh / texture the model points at that resolved inside the roots,
+    the ones that were looked for and are missing)."""
     from . import meshes
+    mesh_deps, missing = [], []
     for m in list(model.root.iter("mesh")) + list(model.root.iter("texture")):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
-            if ref.path and ref.problem is None:
+            if ref.path and ref.status is meshes.MeshStatus.OK:
                 mesh_deps.append(ref.path)
                 for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
                     (mesh_deps if os.path.exists(t) else missing).append(t)
-            elif ref.path and ref.problem == "UL401":
+            elif ref.path and ref.status is meshes.MeshStatus.NOT_FOUND:
                 missing.append(ref.path)
-    out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))
-    out["missing"] = sorted(set(missing))
-    o = model.origin(model.root)
-    out["stats"] = {"name": model.name, "name_loc": [o.file, o.line, o.col],
-                    "links": len(model.top_links()),
-                    "joints": len(model.top_joints()),
-                    "meshes": len(list(model.root.iter("mesh")))}
-    if settings.get("render_dir"):
-        from .render import render_model
-        from .registry import load_rules as _lr
-        sev = {c: r.severity for c, r in _lr().items()}
-        shown = [dict(f, severity=sev.get(f["code"], "error")) for f in findings]
-        out["stats"]["snapshot"] = render_model(model, ctx, shown, settings["render_dir"],
-                                                settings.get("render_base"),
-                                                rrd=settings.get("render_rrd", True))
-    return out
+    return list(dict.fromkeys(list(deps) + mesh_deps)), sorted(set(missing))
+
+
+def run_job(job: LintJob, settings: LintSettings) -> ModelReport:
+    """Lint one job in process (no rendering)."""
+    return lint_model(job, settings)[0]

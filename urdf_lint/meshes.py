@@ -6,7 +6,7 @@ cached by file content, so a mesh is read once per change, not once per model or
 """
 from __future__ import annotations
 
-import hashlib
+import enum
 import json
 import math
 import os
@@ -15,14 +15,24 @@ from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 
+from .hashing import file_digest
 from .packages import PackageNotFound
+
+
+class MeshStatus(enum.Enum):
+    """How a mesh or texture reference resolved (the UL4xx rules map these to codes)."""
+    OK = "ok"                          # an existing file inside the package roots
+    UNKNOWN_PACKAGE = "unknown-package"
+    NOT_FOUND = "not-found"
+    CASE_MISMATCH = "case-mismatch"    # exists only with different letter case
+    OUTSIDE_ROOTS = "outside-roots"    # resolves outside the package roots: never read
 
 
 @dataclass
 class MeshRef:
     uri: str
     path: str | None          # resolved absolute path (None when it cannot be resolved)
-    problem: str | None       # None, or a rule code: UL401 / UL402 / UL403
+    status: MeshStatus
     message: str = ""
 
 
@@ -52,18 +62,18 @@ def resolve(model, uri: str) -> MeshRef:
     try:
         p = resolver.resolve_uri(uri, model.base_dir)
     except PackageNotFound as e:
-        return MeshRef(uri, None, "UL401", f"mesh '{uri}': {e}")
+        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}")
     p = Path(os.path.abspath(p))
     exact, real = _case_true_path(p)
     if not exact and real is None:
-        return MeshRef(uri, str(p), "UL401", f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh file not found: '{uri}' (looked for {p})")
     if not exact:
-        return MeshRef(uri, real, "UL402", f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
+        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH, f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
                        f"(case differs: works on macOS/Windows, fails on Linux)")
     if not resolver.is_inside(p):
-        return MeshRef(uri, None, "UL403", f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS, f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
-    return MeshRef(uri, str(p), None)
+    return MeshRef(uri, str(p), MeshStatus.OK)
 
 
 _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
@@ -136,11 +146,10 @@ def _digest(path: str) -> str:
 
 
 def _hash_file(path: str) -> str:
-    h = hashlib.blake2b(digest_size=16)
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
+    digest = file_digest(path)
+    if digest is None:
+        raise OSError(f"cannot read {path}")
+    return digest
 
 
 def _quiet_loggers():

@@ -7,7 +7,9 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
+from .findings import Problem
 from .locations import Origin
+from .rules import ul001_xml_syntax as xml_syntax
 
 # Strict and inert: no entities resolved, no DTD loaded, nothing fetched.
 def safe_parser(recover: bool = False) -> etree.XMLParser:
@@ -99,19 +101,18 @@ class Model:
         return [lk for lk in self.root if lk.tag == "link"]
 
 
-def model_from_xml(entry: str, args: dict, xml_text: str, origins: list, deps: list,
+def model_from_xml(entry: str, args: dict, xml_text: str, origins, deps: list,
                    resolver=None) -> Model:
+    """The Model of an expansion's output; ``origins`` is its source map (one origin per
+    element, document order). Element and origin counts must agree (else ``ValueError``)."""
+    from .expansion.sourcemap import as_source_map
     root = etree.fromstring(xml_text.encode("utf-8"), safe_parser())
-    elements = list(root.iter(tag=etree.Element))
-    omap = {}
-    for el, o in zip(elements, origins):
-        if o is not None:
-            omap[el] = Origin(o[0], o[1], o[2], tuple(tuple(c) for c in o[3]))
+    omap = as_source_map(origins).align(root.iter(tag=etree.Element))
     return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver)
 
 
 def parse_urdf_bytes(entry: str, data: bytes):
-    """Parse a plain URDF. Returns (root or None, origins dict, error dict or None).
+    """Parse a plain URDF. Returns (root or None, origins dict, Problem or None).
 
     A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) is
     reported, then read with recovery so that the rest of the model is still linted.
@@ -121,8 +122,8 @@ def parse_urdf_bytes(entry: str, data: bytes):
         root = etree.fromstring(data, safe_parser())
     except etree.XMLSyntaxError as e:
         line, col = (e.position if e.position else (1, 1))
-        error = {"code": "UL001", "message": f"XML syntax error: {e.msg}", "file": entry,
-                 "line": line, "col": max(col, 1), "chain": []}
+        error = Problem.at(xml_syntax.CODE, f"XML syntax error: {e.msg}",
+                           (entry, line, max(col, 1)))
         try:
             root = etree.fromstring(data, safe_parser(recover=True))
         except etree.XMLSyntaxError:
@@ -133,6 +134,9 @@ def parse_urdf_bytes(entry: str, data: bytes):
     origins = {}
     if root is not None:
         positions = element_positions(data)
+        # expat stops at the first error (a recovered document, a refused entity declaration),
+        # so the positions may cover only a prefix of the elements: those keep theirs, the rest
+        # fall back to their parent's origin (Model.origin)
         for el, (line, col) in zip(root.iter(tag=etree.Element), positions):
             origins[el] = Origin(entry, line, col, ())
     return root, origins, error

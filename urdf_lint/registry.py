@@ -1,15 +1,30 @@
-"""The rule catalogue: every module in ``rules/`` (installed as ``urdf_lint.rules``) is a rule.
+"""The rule catalogue: every module in ``rules/`` (installed as ``urdf_lint.rules``) is a rule,
+and every code urdf-lint reports has one.
 
-A rule module defines ``CODE``, ``NAME``, ``SEVERITY``, a docstring, ``FAIL`` and ``PASS``
-examples, optional ``OPTIONS`` (defaults), ``NEEDS`` (e.g. ``{"meshes"}``) and
-``EXAMPLE_FILES``, and either a ``check(model, ctx)`` generator yielding ``(element, message)``
-or ``ORIGIN = "expansion"`` for problems that expansion itself reports.
+A rule module defines:
+
+* ``CODE``, ``NAME``, ``SEVERITY``, a docstring (why, how to fix, options), ``FAIL`` and
+  ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
+  report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
+* ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
+  for one expanded model, or ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
+  over every model of a run (e.g. UL106: the same robot name in two files);
+* or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
+  importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
+  table, :mod:`urdf_lint.expansion.errors`) or ``"engine"`` (the lint and run pipeline);
+* optional ``NEEDS = {"meshes"}``: the rule loads mesh geometry (slow on a cold cache; shown in
+  the rules page so that users know what ``ignore`` saves).
 """
 from __future__ import annotations
 
 import importlib
 import pkgutil
 from dataclasses import dataclass, field
+from typing import Callable
+
+SCOPES = ("model", "run")
+ORIGINS = ("rule", "expansion", "engine")
+KNOWN_NEEDS = frozenset({"meshes"})
 
 
 @dataclass
@@ -18,13 +33,16 @@ class Rule:
     name: str
     severity: str
     doc: str
-    check: object = None
+    check: Callable | None = None
     fail: str = ""
     passing: str = ""
     options: dict = field(default_factory=dict)
     needs: frozenset = frozenset()
     example_files: dict = field(default_factory=dict)
     module: str = ""
+    scope: str = "model"
+    origin: str = "rule"               # who raises it: a rule's check, expansion or the engine
+    fail_at: tuple = ()                # ((line, col), ...) the FAIL example must report
 
     @property
     def summary(self) -> str:
@@ -34,6 +52,29 @@ class Rule:
 
 
 _RULES: dict | None = None
+
+
+def rule_from_module(mod) -> Rule:
+    check = getattr(mod, "check", None)
+    origin = getattr(mod, "ORIGIN", "rule")
+    scope = getattr(mod, "SCOPE", "model")
+    needs = frozenset(getattr(mod, "NEEDS", ()))
+    where = f"{mod.__name__}"
+    if scope not in SCOPES:
+        raise RuntimeError(f"{where}: SCOPE must be one of {SCOPES}, not {scope!r}")
+    if origin not in ORIGINS:
+        raise RuntimeError(f"{where}: ORIGIN must be one of {ORIGINS}, not {origin!r}")
+    if (check is None) == (origin == "rule"):
+        raise RuntimeError(f"{where}: a rule has either check() or ORIGIN = 'expansion'/'engine'")
+    if needs - KNOWN_NEEDS:
+        raise RuntimeError(f"{where}: unknown NEEDS {sorted(needs - KNOWN_NEEDS)}")
+    return Rule(code=mod.CODE, name=mod.NAME, severity=mod.SEVERITY,
+                doc=(mod.__doc__ or "").strip(), check=check,
+                fail=getattr(mod, "FAIL", ""), passing=getattr(mod, "PASS", ""),
+                options=dict(getattr(mod, "OPTIONS", {})), needs=needs,
+                example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
+                module=mod.__name__, scope=scope, origin=origin,
+                fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())))
 
 
 def load_rules() -> dict:
@@ -51,13 +92,7 @@ def load_rules() -> dict:
             continue
         if code in rules:
             raise RuntimeError(f"duplicate rule code {code} in {info.name} and {rules[code].module}")
-        rules[code] = Rule(code=code, name=mod.NAME, severity=mod.SEVERITY,
-                           doc=(mod.__doc__ or "").strip(), check=getattr(mod, "check", None),
-                           fail=getattr(mod, "FAIL", ""), passing=getattr(mod, "PASS", ""),
-                           options=dict(getattr(mod, "OPTIONS", {})),
-                           needs=frozenset(getattr(mod, "NEEDS", ())),
-                           example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
-                           module=mod.__name__)
+        rules[code] = rule_from_module(mod)
     _RULES = dict(sorted(rules.items()))
     return _RULES
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .meshes import MeshStatus
 from .ruleutil import numbers
 
 PNG_SIZE = (960, 720)
@@ -146,7 +147,7 @@ def build_scene(model, ctx) -> Scene:
                     uri = shape.get("filename") or ""
                     ref = ctx.mesh_ref(model, uri) if uri else None
                     scale = numbers(shape.get("scale", "1 1 1"), 3) or [1, 1, 1]
-                    if ref is not None and ref.problem is None and ref.path:
+                    if ref is not None and ref.status is MeshStatus.OK and ref.path:
                         part.shape, part.params = "mesh", {"path": ref.path, "scale": scale, "uri": uri}
                     else:
                         part.problem = ref.message if ref else "mesh without filename"
@@ -471,17 +472,17 @@ def record_rrd(scene, ctx, findings, path, recording_id):
     # findings, on the entity of the link or joint they concern
     levels = {"error": "ERROR", "warning": "WARN", "info": "INFO"}
     for n, fd in enumerate(findings):
-        target = fd.get("target")
+        target = fd.target
         ent = "robot"
         if target and target[0] == "link" and target[1] in paths:
             ent = paths[target[1]]
         elif target and target[0] == "joint" and target[1] in joint_paths:
             ent = joint_paths[target[1]]
-        text = f"{fd['code']} {fd['message']} ({os.path.basename(fd['file'])}:{fd['line']})"
-        rec.log(f"{ent}/findings/{n}", rr.TextLog(text, level=levels.get(fd.get("severity"), "WARN")),
+        text = f"{fd.code} {fd.message} ({os.path.basename(fd.file)}:{fd.line})"
+        rec.log(f"{ent}/findings/{n}", rr.TextLog(text, level=levels.get(fd.severity, "WARN")),
                 static=True)
         rec.log(f"{ent}/findings/{n}", rr.Points3D([[0, 0, 0]], radii=[0.01], colors=[[230, 30, 30]],
-                                                  labels=[fd["code"]]), static=True)
+                                                  labels=[fd.code]), static=True)
     rec.flush()
     rec.disconnect()
     os.replace(tmp, path)
@@ -553,7 +554,7 @@ def write_summary(result, out_dir):
         c = Counter(f.severity for f in result.findings if m.label in f.models)
         lines.append(f"| `{m.label}` | {m.stats.get('links', '-')} | {m.stats.get('joints', '-')} | "
                      f"{m.stats.get('meshes', '-')} | {c['error']} | {c['warning']} | {c['info']} |")
-        snap = m.stats.get("snapshot") or {}
+        snap = m.snapshot or {}
         if snap.get("png"):
             images.append(f"### {m.label}\n\n![{m.label}]({os.path.relpath(snap['png'], out_dir)})\n")
             if snap.get("rrd"):

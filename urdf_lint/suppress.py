@@ -11,7 +11,10 @@ from __future__ import annotations
 
 import re
 import xml.parsers.expat
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+
+from .locations import Origin
+from .policy import code_matches
 
 _DIRECTIVE = re.compile(
     r"<!--\s*urdf-lint:\s*(disable-next|disable-file|disable|enable)\b(.*?)-->", re.S)
@@ -28,7 +31,7 @@ class Directive:
     used: bool = False
 
     def matches_code(self, code, name):
-        return not self.codes or any(code.startswith(c) or c == name for c in self.codes)
+        return not self.codes or any(code_matches(c, code, name) for c in self.codes)
 
 
 def _element_spans(data: bytes):
@@ -100,9 +103,11 @@ def _covers(d: Directive, file, line, col) -> bool:
     return (line, col) >= (sl, sc) and line <= el
 
 
-def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused=True,
+def apply(findings, directives_by_file: dict, report_unused=True,
           is_selected=lambda code: True):
-    """Drop suppressed findings; return (kept, unused-suppression findings as dicts)."""
+    """Drop suppressed findings; return (kept, [(Origin, message) of each unused directive]).
+
+    The run pipeline reports each unused directive as ``UL009 unused-suppression``."""
     directives = [d for ds in directives_by_file.values() for d in ds]
     if not directives:
         return list(findings), []
@@ -122,7 +127,7 @@ def apply(findings, directives_by_file: dict, unused_code="UL009", report_unused
             # a directive for codes that were not run this time cannot be judged unused
             if not d.used and (not d.codes or any(is_selected(c) for c in d.codes)):
                 what = ", ".join(d.codes) if d.codes else "all codes"
-                unused.append({"code": unused_code, "file": d.file, "line": d.line, "col": d.col,
-                               "chain": [], "message": f"unused suppression '{d.kind} {what}': "
-                               "nothing was reported here; remove the comment"})
+                unused.append((Origin(d.file, d.line, d.col),
+                               f"unused suppression '{d.kind} {what}': "
+                               "nothing was reported here; remove the comment"))
     return kept, unused

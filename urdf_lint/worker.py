@@ -13,6 +13,10 @@ import sys
 import time
 from multiprocessing.connection import wait
 
+from .findings import Problem
+from .jobs import LintJob, LintSettings, ModelReport
+from .rules import ul904_resource_limit as resource_limit
+
 # importing rerun reserves ~1.2 GB of writable address space (its Rust runtime) before any
 # data is logged; workers that write recordings get this on top of the memory limit
 RERUN_RESERVE_MB = 1536
@@ -57,11 +61,26 @@ def _install_audit_hook(*writable):
     sys.addaudithook(hook)
 
 
-def _worker_main(conn, settings, memory_mb):
+def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
+    """Lint one job; on a render run, hand the linted model to the renderer too."""
+    from .lint import lint_model
+    report, model, ctx = lint_model(job, settings)
+    if settings.render_dir and model is not None:
+        from .render import render_model
+        from .registry import load_rules
+        rules = load_rules()
+        shown = [p.replace(severity=rules[p.code].severity if p.code in rules else "error")
+                 for p in report.problems]
+        report.snapshot = render_model(model, ctx, shown, settings.render_dir,
+                                       settings.render_base, rrd=settings.render_rrd)
+    return report
+
+
+def _worker_main(conn, settings: LintSettings, memory_mb):
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
-        if settings.get("render_dir") and settings.get("render_rrd", True):
+        if settings.render_dir and settings.render_rrd:
             limit += RERUN_RESERVE_MB * 1024 * 1024
         # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
         # RLIMIT_AS would also count the address space that native thread arenas only reserve.
@@ -69,12 +88,11 @@ def _worker_main(conn, settings, memory_mb):
         resource.setrlimit(which, (limit, limit))
     except (ImportError, ValueError, OSError):
         pass
-    _scrub_environment(set(settings.get("env_allow", ())))
+    _scrub_environment(set(settings.env_allow))
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.get("mesh_cache_dir"), settings.get("render_dir"))
+    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    from .lint import run_job
     while True:
         try:
             job = conn.recv()
@@ -83,26 +101,22 @@ def _worker_main(conn, settings, memory_mb):
         if job is None:
             return
         try:
-            result = run_job(job, settings)
+            result = process_job(job, settings)
         except MemoryError:
             result = _limit_result(job, "expansion ran out of memory (memory-mb limit "
                                    f"{memory_mb} MiB)")
         except BaseException as e:  # noqa: BLE001
             import traceback
-            result = {"entry": job["entry"], "args": job.get("args", {}), "status": "failed",
-                      "deps": [job["entry"]], "findings": [], "stats": {},
-                      "internal": [f"{type(e).__name__}: {e}\n{traceback.format_exc()}"]}
+            result = ModelReport.failed(
+                job, internal=[f"{type(e).__name__}: {e}\n{traceback.format_exc()}"])
         try:
             conn.send(result)
         except MemoryError:
             conn.send(_limit_result(job, "result too large for the memory limit"))
 
 
-def _limit_result(job, message):
-    return {"entry": job["entry"], "args": job.get("args", {}), "status": "failed",
-            "deps": [job["entry"]], "stats": {}, "internal": [],
-            "findings": [{"code": "UL904", "message": message, "file": job["entry"],
-                          "line": 1, "col": 1, "chain": []}]}
+def _limit_result(job: LintJob, message: str) -> ModelReport:
+    return ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
 
 
 class _Worker:
@@ -124,8 +138,9 @@ class _Worker:
         self.conn.close()
 
 
-def run_jobs(jobs, settings, jobs_n=None, timeout=30.0, memory_mb=2048, on_result=None):
-    """Yield (job, result) for every job; results arrive in completion order."""
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
+             memory_mb=2048):
+    """Yield (job, ModelReport) for every job; results arrive in completion order."""
     jobs = list(jobs)
     if not jobs:
         return

@@ -30,38 +30,25 @@ from xml.dom import expatbuilder
 import xacro
 import xacro.substitution_args as _subst
 
-from .packages import OutsideRoots, PackageNotFound, PackageResolver
-from . import safe_eval
-
-from .config import DEFAULT_ENV_ALLOW
-
-KEY = "urdf_lint.origin"
-
-
-class XmlSyntaxError(xacro.XacroException):
-    def __init__(self, msg, file, line, col):
-        super().__init__(msg)
-        self.loc = (file, line, col)
-
-
-class RefusedInput(xacro.XacroException):
-    """Input refused for safety (entity declarations, files outside the roots, ...)."""
-    def __init__(self, msg, code, loc=None):
-        super().__init__(msg)
-        self.code = code
-        self.loc = loc
+from ..config import DEFAULT_ENV_ALLOW
+from ..findings import Problem
+from ..packages import PackageResolver
+from .. import safe_eval
+from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
+from .errors import RefusedInput, XmlSyntaxError, problem_for
+from .sourcemap import KEY, SourceMap
 
 
 @dataclass
 class Expansion:
-    """The result of expanding one entry file (plain data, so it can cross a process pipe)."""
+    """The result of expanding one entry file (plain data: it pickles)."""
     entry: str
     args: dict
     xml: str | None = None
-    origins: list = field(default_factory=list)   # per output element, document order
+    origins: SourceMap = field(default_factory=SourceMap)   # per output element, document order
     deps: list = field(default_factory=list)      # files read (absolute), entry first
-    error: dict | None = None                     # {code, message, file, line, col, chain}
-    notes: list = field(default_factory=list)     # non-fatal findings raised during expansion
+    error: Problem | None = None                  # why it failed (see expansion.errors)
+    notes: list = field(default_factory=list)     # Problems that did not stop the expansion
     missing: list = field(default_factory=list)   # files looked for and not found
 
 
@@ -72,7 +59,7 @@ class _State:
         self.resolver: PackageResolver = resolver
         self.env_allow = set(env_allow)
         self.deps: dict[str, None] = {}
-        self.notes: list[dict] = []
+        self.notes: list[Problem] = []
         self.stack: list = []          # nodes being evaluated (eval_all / macro calls)
         self.touched = None            # a child node being handled inline by its parent
         self.pending_chain = ()        # chain to give to the macro body being cloned
@@ -84,11 +71,11 @@ class _State:
             return self.touched
         return self.stack[-1] if self.stack else None
 
-    def note(self, code, message, node=None, loc=None):
+    def note(self, rule, message, node=None, loc=None):
+        """A problem that does not stop the expansion, reported as ``rule.CODE``."""
         if loc is None:
             loc = origin_of(node if node is not None else self.current_node())
-        self.notes.append({"code": code, "message": message, "file": loc[0], "line": loc[1],
-                           "col": loc[2], "chain": [list(c) for c in loc[3]] if len(loc) > 3 else []})
+        self.notes.append(Problem.at(rule.CODE, message, loc))
 
 
 _state: _State | None = None
@@ -138,18 +125,18 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
     def _refuse_entity(self, name, *args):
         p = self._parser
         raise RefusedInput(f"XML entity declaration '{name}' refused (entities can read files "
-                           f"or blow up memory)", "UL007",
+                           f"or blow up memory)", ul007_doctype,
                            (self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
 
     def _doctype(self, name, system_id, public_id, has_subset):
         p = self._parser
         if _state is not None:
-            _state.note("UL007", f"DOCTYPE declaration '<!DOCTYPE {name}>' in a robot description; "
+            _state.note(ul007_doctype, f"DOCTYPE declaration '<!DOCTYPE {name}>' in a robot description; "
                         "remove it (URDF needs none, and urdf-lint never loads DTDs)",
                         loc=(self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
         if system_id or public_id:
             raise RefusedInput(f"DOCTYPE with an external DTD ('{system_id or public_id}') refused",
-                               "UL007", (self._file, p.CurrentLineNumber,
+                               ul007_doctype, (self._file, p.CurrentLineNumber,
                                          p.CurrentColumnNumber + 1, self._chain))
         return super().start_doctype_decl_handler(name, system_id, public_id, has_subset)
 
@@ -166,7 +153,8 @@ def parse_bytes(data: bytes, file: str, chain=()):
         return builder.parseString(data)
     except xml.parsers.expat.ExpatError as e:
         msg = xml.parsers.expat.ErrorString(e.code)
-        raise XmlSyntaxError(f"XML syntax error: {msg}", file, e.lineno, e.offset + 1) from None
+        raise XmlSyntaxError(f"XML syntax error: {msg}", file, e.lineno, e.offset + 1,
+                             chain) from None
 
 
 # ---------------------------------------------------------------------------------------------
@@ -183,7 +171,7 @@ def _hook_parse(inp, filename=None):
         if st is not None and not st.resolver.is_inside(absolute):
             xacro.filestack.pop()
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
-                               "linted repository; it was not read", "UL902")
+                               "linted repository; it was not read", ul902_outside_roots)
         try:
             with open(path, "rb") as f:
                 data = f.read()
@@ -287,7 +275,7 @@ def _hook_load_yaml(filename):
     path = os.path.abspath(xacro.abs_filename_spec(filename))
     if not st.resolver.is_inside(path):
         raise RefusedInput(f"load_yaml('{filename}') resolves outside the package roots and the "
-                           "linted repository; it was not read", "UL902")
+                           "linted repository; it was not read", ul902_outside_roots)
     st.deps[path] = None
     return _orig["load_yaml"](path)
 
@@ -300,7 +288,7 @@ def _hook_eval_env(name):
     st = _state
     if name in st.env_allow:
         return _orig["eval_env"](name)
-    st.note("UL901", f"$(env {name}) reads an environment variable that is not in "
+    st.note(ul901_env_read, f"$(env {name}) reads an environment variable that is not in "
             f"'env-allow'; the value was not substituted (add it to env-allow if it is safe)")
     return ""
 
@@ -309,7 +297,7 @@ def _hook_eval_optenv(name, default=""):
     st = _state
     if name in st.env_allow:
         return _orig["eval_optenv"](name, default)
-    st.note("UL901", f"$(optenv {name}) reads an environment variable that is not in "
+    st.note(ul901_env_read, f"$(optenv {name}) reads an environment variable that is not in "
             f"'env-allow'; its default was used instead of the value")
     return default
 
@@ -318,7 +306,7 @@ def _hook_warning(*args, **kwargs):
     if _state is not None:
         msg = " ".join(str(a) for a in args).strip()
         if msg:
-            _state.note("UL008", "xacro: " + msg)
+            _state.note(ul008_xacro_warning, "xacro: " + msg)
     return ""
 
 
@@ -393,24 +381,6 @@ def _elements(node, out):
     return out
 
 
-def _fill_unknown(origins):
-    """Elements without a stamp (none known today) take the previous element's origin."""
-    last = None
-    for i, o in enumerate(origins):
-        if o is None:
-            origins[i] = last
-        else:
-            last = o
-    return origins
-
-
-def _error_dict(code, message, loc):
-    file, line, col = loc[0], loc[1], loc[2]
-    chain = [list(c) for c in (loc[3] if len(loc) > 3 else ())]
-    return {"code": code, "message": message, "file": file, "line": line, "col": col,
-            "chain": chain}
-
-
 def _macro_context():
     names = []
     for m in reversed(xacro.macrostack or []):
@@ -421,46 +391,13 @@ def _macro_context():
     return names
 
 
-def classify_error(e: BaseException, st: _State) -> dict:
-    """Turn an exception from xacro into one located diagnostic."""
+def classify_error(e: BaseException, st: _State) -> Problem:
+    """Turn an exception from xacro into one located problem (see :mod:`.errors`)."""
     here = origin_of(st.current_node()) if st.current_node() is not None else None
     if here is None:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
         here = (top, 1, 1, ())
-    macros = _macro_context()
-    suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
-    if isinstance(e, XmlSyntaxError):
-        return _error_dict("UL001", str(e), e.loc + (st.include_chain,))
-    inner = getattr(e, "exc", None)
-    while isinstance(inner, xacro.XacroException) and getattr(inner, "exc", None) is not None:
-        inner = inner.exc  # lazily evaluated properties wrap errors more than once
-    if isinstance(e, RefusedInput) or isinstance(inner, RefusedInput):
-        r = e if isinstance(e, RefusedInput) else inner
-        return _error_dict(r.code, str(r), r.loc or here)
-    if isinstance(inner, SyntaxError):
-        return _error_dict("UL002", f"invalid expression: {inner.msg}" + suffix, here)
-    if isinstance(e, RecursionError) or isinstance(inner, RecursionError):
-        return _error_dict("UL904", "recursion too deep while expanding (a macro that calls "
-                           "itself without end?)" + suffix, here)
-    if isinstance(e, PackageNotFound) or isinstance(inner, PackageNotFound):
-        pe = e if isinstance(e, PackageNotFound) else inner
-        return _error_dict("UL004", str(pe), here)
-    if isinstance(e, OutsideRoots) or isinstance(inner, OutsideRoots):
-        return _error_dict("UL902", str(inner or e), here)
-    if isinstance(inner, _subst.ArgException):
-        name = str(inner)
-        return _error_dict("UL005", f"xacro arg '{name}' has no default and no value was given; "
-                           f"pass {name}:=VALUE or list the model with its args under "
-                           "[tool.urdf-lint] models", here)
-    if isinstance(inner, (IOError, OSError)) and getattr(inner, "filename", None):
-        return _error_dict("UL003", f"included file not found: {inner.filename}", here)
-    if isinstance(e, safe_eval.UnsafeExpression) or isinstance(inner, safe_eval.UnsafeExpression):
-        return _error_dict("UL903", str(inner or e) + suffix, here)
-    if isinstance(e, MemoryError) or isinstance(inner, MemoryError):
-        return _error_dict("UL904", "expansion ran out of memory" + suffix, here)
-    msg = str(e).strip() or repr(e)
-    msg = " ".join(msg.split())
-    return _error_dict("UL002", msg + suffix, here)
+    return problem_for(e, here, _macro_context())
 
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
@@ -476,11 +413,11 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
     with _session(st):
         try:
             if not resolver.is_inside(path):
-                raise RefusedInput(f"'{path}' is outside the package roots", "UL902")
+                raise RefusedInput(f"'{path}' is outside the package roots", ul902_outside_roots)
             with safe_eval.policy(expr_policy):
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
             res.xml = doc.toprettyxml(indent="  ")
-            res.origins = _fill_unknown(_elements(doc, []))
+            res.origins = SourceMap.from_stamps(_elements(doc, []))
         except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise

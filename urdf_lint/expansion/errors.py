@@ -1,0 +1,124 @@
+"""How a failure while expanding becomes one located problem: the table of xacro errors.
+
+Every failure of xacro (or of our hooks and policies) ends as exactly one :class:`Problem`.
+:data:`ERROR_TABLE` is read top to bottom; the first row that matches decides the code (by the
+rule module, never a literal) and the message. A row looks at the raised exception, at the
+exception xacro wrapped in it (``XacroException.exc``, unwrapped to the innermost), or either.
+The location is the exception's own when it carries one (XML syntax errors, refused input),
+else the innermost element xacro was evaluating; ``(in macro 'inner' < 'outer')`` names the
+macros being expanded for rows marked ``macros``.
+
+==================================  ======  =================================================
+exception                           code    message
+==================================  ======  =================================================
+XmlSyntaxError (our parser)         UL001   ``XML syntax error: ...`` at its line and column
+RefusedInput (entities, DTD, roots) own     UL007 or UL902, at its own location if known
+SyntaxError in an expression        UL002   ``invalid expression: ...``
+RecursionError                      UL904   recursion too deep
+PackageNotFound (``$(find)``, ...)  UL004   unknown package, with the places searched
+OutsideRoots                        UL902   resolves outside the package roots
+ArgException (xacro)                UL005   arg without default or value
+OSError with a file name            UL003   included file not found
+UnsafeExpression (safe_eval)        UL903   refused by the allow-list evaluator
+MemoryError                         UL904   ran out of memory
+anything else                       UL002   xacro's message
+==================================  ======  =================================================
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Callable
+
+import xacro
+import xacro.substitution_args as _subst
+
+from .. import safe_eval
+from ..findings import Problem
+from ..packages import OutsideRoots, PackageNotFound
+from ..rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+                     ul004_unknown_package, ul005_missing_arg, ul902_outside_roots,
+                     ul903_unsafe_expression, ul904_resource_limit)
+
+
+class XmlSyntaxError(xacro.XacroException):
+    def __init__(self, msg, file, line, col, chain=()):
+        super().__init__(msg)
+        self.loc = (file, line, col, tuple(chain))
+
+
+class RefusedInput(xacro.XacroException):
+    """Input refused for safety (entity declarations, files outside the roots, ...); ``rule``
+    is the module of the code it is reported as."""
+    def __init__(self, msg, rule: ModuleType, loc=None):
+        super().__init__(msg)
+        self.rule = rule
+        self.loc = loc
+
+
+@dataclass(frozen=True)
+class ErrorRow:
+    catches: type | tuple
+    rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
+    message: Callable[[BaseException], str]
+    looks_at: str = "either"             # "raised" | "wrapped" | "either"
+    macros: bool = False                 # append the macro context
+    own_location: bool = False           # use the exception's .loc when it has one
+    when: Callable[[BaseException], bool] = lambda e: True
+
+
+def _missing_arg(e) -> str:
+    name = str(e)
+    return (f"xacro arg '{name}' has no default and no value was given; pass {name}:=VALUE or "
+            "list the model with its args under [tool.urdf-lint] models")
+
+
+def _generic(e) -> str:
+    return " ".join((str(e).strip() or repr(e)).split())
+
+
+ERROR_TABLE: tuple[ErrorRow, ...] = (
+    ErrorRow(XmlSyntaxError, ul001_xml_syntax, str, looks_at="raised", own_location=True),
+    ErrorRow(RefusedInput, None, str, own_location=True),
+    ErrorRow(SyntaxError, ul002_xacro_error, lambda e: f"invalid expression: {e.msg}",
+             looks_at="wrapped", macros=True),
+    ErrorRow(RecursionError, ul904_resource_limit,
+             lambda e: "recursion too deep while expanding (a macro that calls itself without "
+                       "end?)", macros=True),
+    ErrorRow(PackageNotFound, ul004_unknown_package, str),
+    ErrorRow(OutsideRoots, ul902_outside_roots, str),
+    ErrorRow(_subst.ArgException, ul005_missing_arg, _missing_arg, looks_at="wrapped"),
+    ErrorRow((IOError, OSError), ul003_missing_include,
+             lambda e: f"included file not found: {e.filename}", looks_at="wrapped",
+             when=lambda e: bool(getattr(e, "filename", None))),
+    ErrorRow(safe_eval.UnsafeExpression, ul903_unsafe_expression, str, macros=True),
+    ErrorRow(MemoryError, ul904_resource_limit, lambda e: "expansion ran out of memory",
+             macros=True),
+    ErrorRow(BaseException, ul002_xacro_error, _generic, looks_at="raised", macros=True),
+)
+
+
+def wrapped(e: BaseException):
+    """The innermost exception xacro wrapped in ``e`` (lazily evaluated properties wrap errors
+    more than once), or None."""
+    inner = getattr(e, "exc", None)
+    while isinstance(inner, xacro.XacroException) and getattr(inner, "exc", None) is not None:
+        inner = inner.exc
+    return inner
+
+
+def problem_for(e: BaseException, here, macros=()) -> Problem:
+    """The one located problem for a failed expansion. ``here`` is the origin of the innermost
+    element being evaluated, ``macros`` the names of the macros being expanded, innermost
+    first."""
+    inner = wrapped(e)
+    suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
+    for row in ERROR_TABLE:
+        candidates = {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
+        hit = next((x for x in candidates if isinstance(x, row.catches) and row.when(x)), None)
+        if hit is None:
+            continue
+        rule = row.rule or hit.rule
+        loc = (getattr(hit, "loc", None) if row.own_location else None) or here
+        return Problem.at(rule.CODE, row.message(hit) + (suffix if row.macros else ""), loc)
+    raise AssertionError("the last row catches everything")  # pragma: no cover

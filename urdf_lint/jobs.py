@@ -1,0 +1,107 @@
+"""The typed data that crosses the worker pipe: a job, the run's settings, a model's report.
+
+``LintJob`` and ``LintSettings`` go to a worker, a ``ModelReport`` comes back (pickled as is);
+the cache stores a ``ModelReport`` with :meth:`ModelReport.to_record`.
+"""
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+
+from .findings import Problem
+from .locations import Origin
+
+
+class Status(str, enum.Enum):
+    """What linting one candidate file found it to be."""
+    MODEL = "model"            # a robot model, linted
+    FAILED = "failed"          # could not be expanded or parsed (its problems say why)
+    LIBRARY = "library"        # a macro library (only macros/properties/args/includes)
+    NOT_ROBOT = "not-robot"    # an XML file whose root is not <robot>
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class LintJob:
+    """One model to lint: an entry file and the xacro args to expand it with."""
+    entry: str                 # absolute path
+    args: dict = field(default_factory=dict)
+    kind: str = "xacro"        # "xacro" | "urdf"
+    explicit: bool = False     # named by the user or the config (never skipped as a library)
+
+
+@dataclass(frozen=True)
+class LintSettings:
+    """Everything a worker needs besides the job; the same for every model of a run."""
+    resolver: dict                           # PackageResolver.to_dict()
+    selected: tuple[str, ...] = ()           # rule codes to run
+    options: dict = field(default_factory=dict)   # code -> {option: value} (configured only)
+    env_allow: tuple[str, ...] = ()
+    mesh_cache_dir: str | None = None
+    expr_policy: object = None
+    render_dir: str | None = None            # set: the worker also writes a snapshot
+    render_rrd: bool = True
+    render_base: str | None = None
+
+    def cache_key(self) -> list:
+        """What a cached result depends on (rendering does not change findings)."""
+        return [list(self.selected), self.options, list(self.env_allow), self.resolver]
+
+
+@dataclass
+class ModelReport:
+    """What linting one job produced."""
+    entry: str
+    args: dict
+    status: Status = Status.MODEL
+    deps: list = field(default_factory=list)        # files read (absolute), entry first
+    missing: list = field(default_factory=list)     # files looked for and not found
+    problems: list = field(default_factory=list)    # Problem, as found (before policy)
+    internal: list = field(default_factory=list)    # internal errors (exit 2)
+    name: str = ""                                  # the robot's name
+    name_origin: Origin | None = None               # where the name was set
+    links: int = 0
+    joints: int = 0
+    meshes: int = 0
+    snapshot: dict | None = None                    # what the renderer wrote (render runs only)
+    cached: bool = False
+
+    @classmethod
+    def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":
+        return cls(job.entry, dict(job.args), Status.FAILED, deps=[job.entry],
+                   problems=list(problems), internal=list(internal))
+
+    @property
+    def label(self) -> str:
+        from .locations import display_path
+        base = display_path(self.entry)
+        if self.args:
+            base += " [" + " ".join(f"{k}:={v}" for k, v in sorted(self.args.items())) + "]"
+        return base
+
+    @property
+    def stats(self) -> dict:
+        """The counts, as the reporters show them."""
+        return {"name": self.name, "links": self.links, "joints": self.joints,
+                "meshes": self.meshes}
+
+    # -- cache -------------------------------------------------------------------------------
+    def to_record(self) -> dict:
+        o = self.name_origin
+        return {"status": self.status.value, "deps": list(self.deps),
+                "missing": list(self.missing),
+                "problems": [p.to_record() for p in self.problems],
+                "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
+                "links": self.links, "joints": self.joints, "meshes": self.meshes}
+
+    @classmethod
+    def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
+        o = rec.get("name_origin")
+        return cls(job.entry, dict(job.args), Status(rec["status"]), deps=list(rec["deps"]),
+                   missing=list(rec.get("missing", [])),
+                   problems=[Problem.from_record(p) for p in rec["problems"]],
+                   name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
+                   links=rec.get("links", 0), joints=rec.get("joints", 0),
+                   meshes=rec.get("meshes", 0), cached=True)

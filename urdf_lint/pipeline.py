@@ -1,0 +1,208 @@
+"""The run pipeline of ``urdf-lint check``: discover -> lint every model (workers, cache) ->
+run-scope rules -> merge -> suppress -> policy -> CheckResult.
+
+Discovery is :mod:`urdf_lint.discovery`, one model's lint :mod:`urdf_lint.lint` (inside
+workers, :mod:`urdf_lint.worker`), what is kept and at what severity :mod:`urdf_lint.policy`.
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+import traceback
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from .discovery import discover
+from .findings import SEVERITY_RANK, Problem, merge
+from .jobs import LintJob, LintSettings, ModelReport, Status
+from .policy import Policy, code_matches
+from .rules import ul009_unused_suppression as unused_suppression
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .cache import Cache
+    from .config import Config
+    from .packages import PackageResolver
+
+# a finding of a run-scope rule belongs to no single model; its "models" list holds this label
+RUN_LABEL = ""
+
+
+@dataclass
+class CheckResult:
+    findings: list = field(default_factory=list)     # merged Problems, after policy
+    models: list = field(default_factory=list)       # ModelReport of linted models
+    skipped: list = field(default_factory=list)      # libraries etc.
+    internal: list = field(default_factory=list)     # internal errors (exit 2)
+    unused_files: list = field(default_factory=list)
+
+
+@dataclass
+class RunView:
+    """What a run-scope rule's ``check(run, ctx)`` sees: every linted model of the run."""
+    models: list                                     # ModelReport
+
+
+class RunContext:
+    def __init__(self, options: dict):
+        self.options = options
+
+
+def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | None,
+                 policy: Policy | None = None) -> LintSettings:
+    from .config import DEFAULT_ENV_ALLOW, ConfigError
+    from .registry import load_rules
+    rules = load_rules()
+    policy = policy or Policy.from_config(cfg)
+    options = {}
+    for code, r in rules.items():
+        o = cfg.options_for(code, r.name)
+        if o:
+            unknown = set(o) - set(r.options)
+            if unknown:
+                raise ConfigError(f"unknown option(s) for {code} {r.name}: "
+                                  f"{', '.join(sorted(unknown))} (known: "
+                                  f"{', '.join(sorted(r.options)) or 'none'})")
+            options[code] = o
+    return LintSettings(resolver=resolver.to_dict(), selected=tuple(policy.selected_codes(rules)),
+                        options=options,
+                        env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
+                        mesh_cache_dir=cache_dir)
+
+
+def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
+    """Problems with their rule name, effective severity and model label."""
+    from .registry import load_rules
+    rules = load_rules()
+    out = []
+    for p in problems:
+        r = rules.get(p.code)
+        name = r.name if r else p.code
+        sev = policy.severity_of(p.code, name, r.severity if r else "error")
+        out.append(p.replace(name=name, severity=sev, models=(label,)))
+    return out
+
+
+def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
+              cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
+              render_dir: str | None = None, render_rrd: bool = True) -> CheckResult:
+    """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
+    models whose inputs include one of them; files no model uses land in ``unused_files``."""
+    policy = Policy.from_config(cfg)
+    jobs = discover(paths, cfg)
+    settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
+    if render_dir:
+        os.makedirs(render_dir, exist_ok=True)
+        settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
+                                       render_rrd=render_rrd, render_base=os.getcwd())
+    results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress)
+    out = CheckResult(internal=internal)
+    out.models, out.skipped = _split_models(results)
+
+    if affected_by is not None:
+        from .changes import affected
+        out.models, out.unused_files = affected(out.models, affected_by)
+        out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
+    found = []
+    for r in out.models:
+        found.extend(_with_policy(r.problems, r.label, policy))
+    if affected_by is None:
+        found.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
+    kept = _suppress(merge(found), out.models, settings, policy)
+    final = [f for f in kept if policy.is_selected(f.code, f.name)
+             and not policy.ignored_for_file(f.code, f.name, f.file)]
+    out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    return out
+
+
+def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n, cache,
+              progress) -> tuple[list[ModelReport], list[str]]:
+    """A ModelReport for every job: from the cache, or linted by the workers."""
+    results: list[ModelReport] = []
+    todo = []
+    for job in jobs:
+        # snapshots need the model itself, so a render pass expands everything once
+        hit = cache.get(job, settings) if cache and not settings.render_dir else None
+        if hit is not None:
+            results.append(hit)
+        else:
+            todo.append(job)
+    internal: list[str] = []
+    if todo:
+        from .worker import run_jobs
+        import xacro  # noqa: F401 - import once in the parent, shared by the forked workers
+        from . import expansion  # noqa: F401
+        for n, (job, res) in enumerate(run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout,
+                                                memory_mb=cfg.memory_mb), 1):
+            internal.extend(res.internal)
+            results.append(res)
+            if cache and not res.internal:
+                cache.put(job, settings, res)
+            if progress:
+                progress(n, len(todo))
+    return results, internal
+
+
+def _split_models(results: list[ModelReport]):
+    """(models, skipped): a candidate that failed on its own but is included by a model is a
+    library, and so are macro-only files and XML that is not a robot."""
+    used = set()
+    for r in results:
+        if r.status is Status.MODEL:
+            used.update(r.deps[1:])
+    models, skipped = [], []
+    for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
+        if r.status in (Status.LIBRARY, Status.NOT_ROBOT) or (
+                r.status is Status.FAILED and r.entry in used and not r.args):
+            skipped.append(r)
+        else:
+            models.append(r)
+    return models, skipped
+
+
+def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
+    """The run-scope rules (``SCOPE = "run"``) over every linted model."""
+    from .registry import load_rules
+    rules = load_rules()
+    run = RunView(models=list(out.models))
+    problems = []
+    for code in settings.selected:
+        rule = rules.get(code)
+        if rule is None or rule.check is None or rule.scope != "run":
+            continue
+        opts = dict(rule.options)
+        opts.update(settings.options.get(code, {}))
+        try:
+            for loc, msg in rule.check(run, RunContext(opts)):
+                problems.append(Problem.at(code, msg, loc))
+        except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
+            out.internal.append(f"rule {code} crashed:\n{traceback.format_exc()}")
+    return problems
+
+
+def _suppress(merged: list[Problem], models, settings: LintSettings,
+              policy: Policy) -> list[Problem]:
+    """Drop what inline comments suppress; add a finding for each unused suppression."""
+    from . import suppress
+    from .registry import load_rules
+    rules = load_rules()
+    files = set()
+    for r in models:
+        files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
+    directives = {f: suppress.parse_directives(f) for f in sorted(files)}
+    selected = settings.selected
+    kept, unused = suppress.apply(
+        merged, directives,
+        is_selected=lambda c: any(code_matches(c, s, rules[s].name) for s in selected))
+    code = unused_suppression.CODE
+    kept += [p.replace(models=()) for p in _with_policy(
+        [Problem.at(code, msg, loc) for loc, msg in unused], RUN_LABEL, policy)]
+    return kept
+
+
+def exit_code(result: CheckResult, fail_on: str) -> int:
+    if result.internal:
+        return 2
+    if fail_on == "never":
+        return 0
+    threshold = SEVERITY_RANK[fail_on]
+    return 1 if any(SEVERITY_RANK[f.severity] >= threshold for f in result.findings) else 0
