@@ -1,13 +1,30 @@
-"""An allow-list evaluator for xacro's ``${...}`` and ``$(eval ...)`` expressions.
+"""A sound allow-list evaluator for xacro's ``${...}`` and ``$(eval ...)`` expressions.
 
 xacro evaluates expressions with Python's ``eval`` and a deny-list; that sandbox was escaped
-here. We instead walk the expression's AST and evaluate only what robot descriptions compute:
-literals, arithmetic, comparisons, conditionals, comprehensions and lambdas, calls of the
-functions xacro exposes (math, a few builtins, ``xacro.*``), and *allow-listed* methods of plain
-values (str, numbers, lists, dicts, YAML data). Attribute access is only possible on those
-values and on xacro namespaces, never on anything starting with ``_``. The safety argument is
-therefore by construction: an object that is not on the list cannot be reached, whatever the
-spelling. Sizes are capped (huge powers, repetitions, shifts and loops are refused).
+here. We instead walk the expression's AST and evaluate only what robot descriptions compute.
+
+The invariant (see SECURITY.md, "The evaluator invariant", and tests/test_evaluator_invariant.py)
+------------------------------------------------------------------------------------------------
+Every object an expression can hold is one of:
+
+* a **value**: ``str``, numbers, ``bool``, ``None``, ``list``/``tuple``/``dict``/``set``/
+  ``frozenset``/``range``/``slice`` and xacro's YAML wrappers (plus the iterators the allowed
+  builtins return, which expose nothing: attribute access and indexing on them are refused);
+* a **namespace** (``xacro.Table``), read through a read-only view: its mutating dict methods are
+  not reachable, so one model cannot change what the next model in the same worker sees;
+* an **allowed callable**, which is exactly one of
+  - an entry of :data:`ALLOWED` (a fixed table of builtins, ``math`` functions and xacro's
+    helpers, held by strong reference and compared by identity, so an address is never reused),
+  - a :class:`SafeCallable` (a marker type that only this module creates: allow-listed methods of
+    values, ``str.format`` with the safe formatter, the ``$(eval)`` helpers),
+  - a :class:`_Lambda` written in the expression itself (its body is evaluated by this walker).
+
+Every call site checks its callee **and every callable among its arguments** against that set,
+so higher-order builtins (``map``, ``filter``, ``sorted``, ``min``, ``max``, ``list.sort``, ``key=``,
+xacro's deprecation wrappers) can only ever call allowed callables. ``type``, ``vars`` and the
+other introspection builtins are removed from xacro's namespaces when the hooks are installed,
+so they are not reachable at all; attribute names starting with ``_`` are never looked up.
+Sizes are capped (huge powers, repetitions, shifts and loops are refused).
 """
 from __future__ import annotations
 
@@ -27,22 +44,25 @@ _MAX_POW_BITS = 1 << 16        # refuse integer powers whose result exceeds ~65k
 _MAX_SEQ = 10_000_000          # refuse building strings/lists longer than this
 _MAX_STEPS = 2_000_000         # evaluation steps per expression (loops, comprehensions)
 
-_STR_METHODS = {
+_STR_METHODS = frozenset({
     "capitalize", "casefold", "center", "count", "endswith", "expandtabs", "find", "format",
     "index", "isalnum", "isalpha", "isascii", "isdecimal", "isdigit", "isidentifier", "islower",
     "isnumeric", "isspace", "istitle", "isupper", "join", "ljust", "lower", "lstrip",
     "partition", "removeprefix", "removesuffix", "replace", "rfind", "rindex", "rjust",
     "rpartition", "rsplit", "rstrip", "split", "splitlines", "startswith", "strip", "swapcase",
-    "title", "upper", "zfill"}
-_LIST_METHODS = {"append", "clear", "copy", "count", "extend", "index", "insert", "pop",
-                 "remove", "reverse", "sort"}
-_DICT_METHODS = {"clear", "copy", "get", "items", "keys", "pop", "setdefault", "update",
-                 "values"}
-_SET_METHODS = {"add", "copy", "difference", "discard", "intersection", "isdisjoint",
-                "issubset", "issuperset", "pop", "remove", "symmetric_difference", "union",
-                "update"}
-_NUM_ATTRS = {"real", "imag", "conjugate", "is_integer", "as_integer_ratio", "bit_length",
-              "numerator", "denominator"}
+    "title", "upper", "zfill"})
+_LIST_METHODS = frozenset({"append", "clear", "copy", "count", "extend", "index", "insert",
+                           "pop", "remove", "reverse", "sort"})
+_DICT_METHODS = frozenset({"clear", "copy", "get", "items", "keys", "pop", "setdefault",
+                           "update", "values"})
+# namespaces are shared by every model a worker expands: only reading is allowed
+_NAMESPACE_METHODS = frozenset({"copy", "get", "items", "keys", "values"})
+_SET_METHODS = frozenset({"add", "copy", "difference", "discard", "intersection", "isdisjoint",
+                          "issubset", "issuperset", "pop", "remove", "symmetric_difference",
+                          "union", "update"})
+_TUPLE_METHODS = frozenset({"count", "index"})
+_NUM_ATTRS = frozenset({"real", "imag", "conjugate", "is_integer", "as_integer_ratio",
+                        "bit_length", "numerator", "denominator"})
 
 _BIN = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
         ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
@@ -58,23 +78,79 @@ _CMP = {ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.Lt
 _SAFE_BUILTINS = {
     "abs": abs, "all": all, "any": any, "bool": bool, "chr": chr, "complex": complex,
     "dict": dict, "divmod": divmod, "enumerate": enumerate, "filter": filter, "float": float,
-    "frozenset": frozenset, "hash": hash, "int": int, "isinstance": isinstance, "len": len,
-    "list": list, "map": map, "max": max, "min": min, "ord": ord, "pow": pow, "range": range,
-    "repr": repr, "reversed": reversed, "round": round, "set": set, "slice": slice,
-    "sorted": sorted, "str": str, "sum": sum, "tuple": tuple, "zip": zip,
+    "frozenset": frozenset, "hash": hash, "int": int, "isinstance": isinstance,
+    "issubclass": issubclass, "len": len, "list": list, "map": map, "max": max, "min": min,
+    "ord": ord, "pow": pow, "range": range, "repr": repr, "reversed": reversed, "round": round,
+    "set": set, "slice": slice, "sorted": sorted, "str": str, "sum": sum, "tuple": tuple,
+    "zip": zip,
 }
-_DENIED_CALLABLES = {type, vars, getattr, setattr, delattr, eval, exec, compile, open,
-                     __import__, globals, locals, dir, object, super, classmethod,
-                     staticmethod, property, memoryview, bytearray, breakpoint, input, help}
+# never reachable from an expression: install_xacro_symbols removes them from xacro's namespaces
+DENIED = (type, vars, getattr, setattr, delattr, eval, exec, compile, open, __import__, globals,
+          locals, dir, object, super, classmethod, staticmethod, property, memoryview,
+          bytearray, breakpoint, input, help, id, iter, next, callable, hasattr)
+_DENIED_IDS = frozenset(id(f) for f in DENIED)
 
-_safe_ids: set[int] = {id(v) for v in _SAFE_BUILTINS.values()}
-_safe_ids |= {id(v) for k, v in math.__dict__.items() if not k.startswith("_") and callable(v)}
+# id -> object, held by strong reference so that an id can never be reused by another object
+ALLOWED: dict[int, object] = {}
+
+
+def _allow(obj):
+    if id(obj) in _DENIED_IDS:
+        raise ValueError(f"{obj!r} may never be allowed")
+    ALLOWED[id(obj)] = obj
+
+
+for _f in _SAFE_BUILTINS.values():
+    _allow(_f)
+for _k, _f in math.__dict__.items():
+    if not _k.startswith("_") and callable(_f):
+        _allow(_f)
+
+
+class SafeCallable:
+    """Marks a callable made by this module as callable from expressions.
+
+    Calls through it check their arguments too, so an allowed builtin that calls it (``map``,
+    ``sorted``) cannot smuggle a foreign callable in."""
+    __slots__ = ("_fn", "_name")
+
+    def __init__(self, fn, name):
+        self._fn = fn
+        self._name = name
+
+    def __call__(self, *args, **kwargs):
+        _check_args(args, kwargs)
+        return self._fn(*args, **kwargs)
+
+    def __repr__(self):
+        return f"<function {self._name}>"
+
+
 _value_types: tuple = (str, int, float, complex, bool, list, tuple, dict, set, frozenset,
-                       range, type(None))
+                       range, slice, type(None))
 _namespace_types: tuple = ()
 _yaml_dict_types: tuple = ()
 
 _policy = {"max_steps": _MAX_STEPS}
+_removed: set[str] = set()   # names install_xacro_symbols took out of xacro's namespaces
+
+
+def is_allowed_callable(fn) -> bool:
+    return isinstance(fn, (SafeCallable, _Lambda)) or ALLOWED.get(id(fn)) is fn
+
+
+def _check_args(args, kwargs):
+    for a in args:
+        if callable(a) and not is_allowed_callable(a):
+            raise UnsafeExpression(f"passing {_name_of(a)} to a function is not allowed")
+    for a in kwargs.values():
+        if callable(a) and not is_allowed_callable(a):
+            raise UnsafeExpression(f"passing {_name_of(a)} to a function is not allowed")
+
+
+def _name_of(fn):
+    n = getattr(fn, "__name__", None)
+    return n if isinstance(n, str) else type(fn).__name__
 
 
 @contextmanager
@@ -90,21 +166,26 @@ def policy(p):
 
 
 def install_xacro_symbols(global_symbols):
-    """Register everything callable that xacro exposes to expressions (minus type/vars)."""
+    """Make xacro's expression namespaces safe: drop the introspection builtins xacro exposes
+    (``python.type``, ``python.vars``) and allow everything callable that remains, by identity."""
     global _namespace_types, _yaml_dict_types, _value_types
     import xacro
     _namespace_types = (xacro.Table,)
     _yaml_dict_types = (xacro.YamlDictWrapper,)
-    _value_types = _value_types + (xacro.YamlListWrapper, xacro.YamlDictWrapper)
+    if xacro.YamlListWrapper not in _value_types:
+        _value_types = _value_types + (xacro.YamlListWrapper, xacro.YamlDictWrapper)
 
     def walk(d):
-        for v in dict.values(d):
+        for k, v in list(dict.items(d)):
             if isinstance(v, xacro.Table):
                 walk(v)
-            elif callable(v) and v not in _DENIED_CALLABLES:
-                _safe_ids.add(id(v))
+            elif id(v) in _DENIED_IDS:
+                dict.__delitem__(d, k)
+                _removed.add(k)
+            elif callable(v):
+                _allow(v)
     walk(global_symbols)
-    _safe_ids.add(id(xacro.YamlDictWrapper))
+    _allow(xacro.YamlDictWrapper)
 
 
 class _SafeFormatter(string.Formatter):
@@ -122,13 +203,12 @@ _FORMATTER = _SafeFormatter()
 
 
 def _safe_format(s):
-    def fmt(*args, **kwargs):
-        return _FORMATTER.vformat(s, args, kwargs)
-    _safe_ids.add(id(fmt))
-    return fmt
+    return SafeCallable(functools.partial(_FORMATTER.format, s), "str.format")
 
 
 class _Lambda:
+    __slots__ = ("node", "ev", "scope")
+
     def __init__(self, node, ev, scope):
         self.node, self.ev, self.scope = node, ev, scope
 
@@ -144,6 +224,18 @@ class _Scope:
 
     def __init__(self, vars, parent):
         self.vars, self.parent = vars, parent
+
+
+def _method(obj, a):
+    return SafeCallable(getattr(obj, a), f"{type(obj).__name__}.{a}")
+
+
+def _gate(value, what):
+    """Whatever an expression reads (a name, an attribute, an item) must be a value, a namespace
+    or an allowed callable; anything else is refused before it can be used."""
+    if callable(value) and not is_allowed_callable(value):
+        raise UnsafeExpression(f"{what} is not available in xacro expressions")
+    return value
 
 
 class Evaluator:
@@ -164,9 +256,10 @@ class Evaluator:
         if n.startswith("__"):
             raise UnsafeExpression(f"use of invalid name '{n}'")
         try:
-            return self.lookup(n)
+            value = self.lookup(n)
         except KeyError:
             raise NameError(f"name '{n}' is not defined") from None
+        return _gate(value, f"'{n}'")
 
     def eval(self, node, vars=None, parent=None):
         return self._ev(node, _Scope(vars or {}, parent))
@@ -176,45 +269,42 @@ class Evaluator:
         if a.startswith("_"):
             raise UnsafeExpression(f"access to attribute '{a}' is not allowed")
         if _namespace_types and isinstance(obj, _namespace_types):
+            if a in _NAMESPACE_METHODS:
+                return _method(obj, a)
             if a in _DICT_METHODS:
-                return getattr(obj, a)
+                raise UnsafeExpression(f"namespaces are read-only ('{a}' is not allowed)")
             try:
-                return obj[a]
+                return _gate(obj[a], f"'{a}'")
             except KeyError:
+                if a in _removed:
+                    raise UnsafeExpression(f"'{a}' is not available in xacro expressions "
+                                           "(urdf-lint refuses introspection builtins)") from None
                 raise NameError(f"name '{a}' is not defined") from None
         if _yaml_dict_types and isinstance(obj, _yaml_dict_types):
             if a in _DICT_METHODS:
-                return getattr(obj, a)
-            return getattr(obj, a)
+                return _method(obj, a)
+            return _gate(obj[a], f"'{a}'")
         if isinstance(obj, str) and a in _STR_METHODS:
             if a == "format":
                 return _safe_format(obj)
-            return getattr(obj, a)
+            return _method(obj, a)
         if isinstance(obj, list) and a in _LIST_METHODS:
-            return getattr(obj, a)
+            return _method(obj, a)
         if isinstance(obj, dict) and a in _DICT_METHODS:
-            return getattr(obj, a)
+            return _method(obj, a)
         if isinstance(obj, (set, frozenset)) and a in _SET_METHODS:
-            return getattr(obj, a)
-        if isinstance(obj, tuple) and a in ("count", "index"):
-            return getattr(obj, a)
+            return _method(obj, a)
+        if isinstance(obj, tuple) and a in _TUPLE_METHODS:
+            return _method(obj, a)
         if isinstance(obj, (int, float, complex)) and a in _NUM_ATTRS:
-            return getattr(obj, a)
+            v = getattr(obj, a)
+            return SafeCallable(v, f"{type(obj).__name__}.{a}") if callable(v) else v
         raise UnsafeExpression(f"attribute '{a}' of a {type(obj).__name__} value is not allowed")
 
     def call(self, fn, args, kwargs):
-        if isinstance(fn, _Lambda) or id(fn) in _safe_ids:
-            pass
-        elif getattr(fn, "__self__", None) is not None and isinstance(fn.__self__, _value_types) \
-                and type(fn).__name__ in ("builtin_function_or_method", "method"):
-            pass
-        else:
-            raise UnsafeExpression(f"calling {getattr(fn, '__name__', type(fn).__name__)} is not allowed")
-        if fn in (map, filter, sorted, max, min):
-            for f in list(args[:1]) + [kwargs.get("key")]:
-                if callable(f) and not (isinstance(f, _Lambda) or id(f) in _safe_ids
-                                        or isinstance(getattr(f, "__self__", None), _value_types)):
-                    raise UnsafeExpression("passing that function is not allowed")
+        if not is_allowed_callable(fn):
+            raise UnsafeExpression(f"calling {_name_of(fn)} is not allowed")
+        _check_args(args, kwargs)
         if fn is range or fn is list or fn is tuple or fn is set:
             result = fn(*args, **kwargs)
             if fn is not range and len(result) > _MAX_SEQ:
@@ -282,7 +372,7 @@ class Evaluator:
                 raise UnsafeExpression(f"indexing a {type(obj).__name__} is not allowed")
             if isinstance(obj, _namespace_types) and isinstance(key, str) and key.startswith("_"):
                 raise UnsafeExpression(f"access to '{key}' is not allowed")
-            return obj[key]
+            return _gate(obj[key], "that item")
         if t is ast.Slice:
             return slice(*(self._ev(x, sc) if x is not None else None
                            for x in (n.lower, n.upper, n.step)))
@@ -408,14 +498,16 @@ def substitution_eval(s, context):
         context["arg"] = {}
 
     functions = {
-        "arg": lambda name: sa.convert_value(sa._eval_arg(name, args=context["arg"]), "auto"),
-        "dirname": lambda: sa._eval_dirname(context["filename"]),
+        "arg": SafeCallable(lambda name: sa.convert_value(sa._eval_arg(name, args=context["arg"]),
+                                                          "auto"), "arg"),
+        "dirname": SafeCallable(lambda: sa._eval_dirname(context["filename"]), "dirname"),
     }
-    for f in functions.values():
-        _safe_ids.add(id(f))
-    functions.update({k: v for k, v in sa._eval_dict.items() if k != "__builtins__"})
-    for k in ("find", "env", "optenv"):
-        _safe_ids.add(id(sa._eval_dict[k]))
+    for k, v in sa._eval_dict.items():
+        if k.startswith("_"):
+            continue
+        if callable(v) and not is_allowed_callable(v):
+            v = SafeCallable(v, k)  # find/env/optenv: our hooks
+        functions[k] = v
 
     def lookup(name):
         if name in functions:
