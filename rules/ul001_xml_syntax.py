@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
   <link name="a">
 </robot>
 """
+FAIL_AT = [(3, 9)]
 PASS = """<robot name="r">
   <link name="a"/>
 </robot>

@@ -12,6 +12,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="${undefined_name}"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:property name="n" value="base"/>
   <link name="${n}"/>

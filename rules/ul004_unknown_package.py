@@ -13,6 +13,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="$(find example_pkg)/urdf/parts.xacro"/>
   <link name="a"/>

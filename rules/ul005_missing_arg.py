@@ -11,6 +11,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="$(arg base_name)"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="base_name" default="base_link"/>
   <link name="$(arg base_name)"/>

@@ -10,6 +10,7 @@ ORIGIN = "expansion"
 FAIL = """<robot name="empty">
 </robot>
 """
+FAIL_AT = [(1, 1)]
 PASS = """<robot name="one">
   <link name="a"/>
 </robot>

@@ -14,6 +14,7 @@ FAIL = """<?xml version="1.0"?>
   <link name="&secret;"/>
 </robot>
 """
+FAIL_AT = [(2, 1)]
 PASS = """<?xml version="1.0"?>
 <robot name="r">
   <link name="a"/>

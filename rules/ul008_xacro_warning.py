@@ -12,6 +12,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:property name="length" value="2" />
   <link name="a"/>

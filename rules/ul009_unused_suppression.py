@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r">
   <link name="a"/>
   <link name="b"/>

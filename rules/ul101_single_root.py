@@ -14,6 +14,7 @@ FAIL = """<robot name="r">
   <joint name="j2" type="fixed"><parent link="c"/><child link="d"/></joint>
 </robot>
 """
+FAIL_AT = [(2, 35)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>

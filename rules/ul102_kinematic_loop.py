@@ -16,6 +16,7 @@ FAIL = """<robot name="linkage">
   <joint name="jD" type="fixed"><parent link="C"/><child link="D"/></joint>
 </robot>
 """
+FAIL_AT = [(6, 3)]
 PASS = """<robot name="linkage">
   <link name="A"/><link name="B"/><link name="C"/>
   <joint name="jA" type="fixed"><parent link="A"/><child link="B"/></joint>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="fixed"><parent link="base_lnk"/><child link="arm"/></joint>
 </robot>
 """
+FAIL_AT = [(3, 32)]
 PASS = """<robot name="r">
   <link name="base_link"/><link name="arm"/>
   <joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
 </robot>
 """
+FAIL_AT = [(2, 35)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>

@@ -12,6 +12,7 @@ FAIL = """<robot name="visual">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(1, 1)]
 PASS = """<robot name="unique_name_for_this_example">
   <link name="a"/>
 </robot>

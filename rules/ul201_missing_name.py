@@ -10,6 +10,7 @@ FAIL = """<robot>
   <link/>
 </robot>
 """
+FAIL_AT = [(1, 1), (2, 3)]
 PASS = """<robot name="r">
   <link name="a"/>
 </robot>

@@ -10,6 +10,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="fixed"><parent link="a"/></joint>
 </robot>
 """
+FAIL_AT = [(3, 3)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>

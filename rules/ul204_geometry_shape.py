@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
   </link>
 </robot>
 """
+FAIL_AT = [(3, 42)]
 PASS = """<robot name="r">
   <link name="a">
     <visual><geometry><box size="1 1 1"/></geometry></visual>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   </link>
 </robot>
 """
+FAIL_AT = [(3, 23), (4, 26)]
 PASS = """<robot name="r">
   <link name="a">
     <visual><geometry><box size="1 1 0.5"/></geometry></visual>

@@ -13,6 +13,7 @@ FAIL = """<robot name="r">
   </link>
 </robot>
 """
+FAIL_AT = [(3, 32)]
 PASS = """<robot name="r">
   <link name="a">
     <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>

@@ -14,6 +14,7 @@ FAIL = """<robot name="r">
   </joint>
 </robot>
 """
+FAIL_AT = [(4, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="j" type="continuous">

@@ -10,6 +10,7 @@ FAIL = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 24)]
 PASS = """<robot name="r">
   <material name="red"><color rgba="1 0 0 1"/></material>
   <link name="a"/>

@@ -14,6 +14,7 @@ FAIL = """<robot name="r">
   </link>
 </robot>
 """
+FAIL_AT = [(3, 13)]
 PASS = """<robot name="r">
   <link name="a">
     <visual><origin xyz="0 0 1"/><geometry><sphere radius="1"/></geometry></visual>

@@ -10,6 +10,7 @@ FAIL = """<robot name="r">
   </link>
 </robot>
 """
+FAIL_AT = [(3, 23)]
 PASS = """<robot name="r">
   <link name="a">
     <visual><geometry><sphere radius="1"/></geometry></visual>

@@ -8,6 +8,7 @@ FAIL = """<robot name="r" version="1">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(1, 1)]
 PASS = """<robot name="r" version="1.0">
   <link name="a"/>
 </robot>

@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
 </robot>
 """
+FAIL_AT = [(3, 3)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>

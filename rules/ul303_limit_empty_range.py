@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
     <limit effort="10" velocity="1"/></joint>
 </robot>
 """
+FAIL_AT = [(4, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="slider" type="prismatic"><parent link="a"/><child link="b"/><axis xyz="1 0 0"/>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
     <limit lower="-3.14" upper="3.14" effort="10" velocity="10"/></joint>
 </robot>
 """
+FAIL_AT = [(4, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="wheel"/>
   <joint name="axle" type="continuous"><parent link="a"/><child link="wheel"/><axis xyz="0 1 0"/>

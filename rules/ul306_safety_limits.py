@@ -13,6 +13,7 @@ FAIL = """<robot name="r">
     <safety_controller soft_lower_limit="-1.5" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
 </robot>
 """
+FAIL_AT = [(5, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>

@@ -13,6 +13,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 0"/></joint>
 </robot>
 """
+FAIL_AT = [(3, 72)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>

@@ -10,6 +10,7 @@ FAIL = """<robot name="r">
   <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1"/></joint>
 </robot>
 """
+FAIL_AT = [(3, 73)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/><link name="c"/>
   <joint name="j1" type="continuous"><parent link="a"/><child link="b"/></joint>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/broken.stl"/></geometry></visual></link>
 </robot>
 """
+FAIL_AT = [(2, 36)]
 PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>

@@ -9,6 +9,7 @@ FAIL = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001"/></geometry></visual></link>
 </robot>
 """
+FAIL_AT = [(2, 36)]
 PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 25)]
 PASS = """<robot name="r">
   <material name="skin"><color rgba="1 1 1 1"/></material>
   <link name="a"/>

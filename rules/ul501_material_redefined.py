@@ -13,6 +13,7 @@ FAIL = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(3, 3)]
 PASS = """<robot name="r">
   <material name="blue"><color rgba="0 0 0.8 1"/></material>
   <material name="light_blue"><color rgba="0 0 1 1"/></material>

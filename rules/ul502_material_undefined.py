@@ -8,6 +8,7 @@ FAIL = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blu"/></visual></link>
 </robot>
 """
+FAIL_AT = [(2, 66)]
 PASS = """<robot name="r">
   <material name="blue"><color rgba="0 0 1 1"/></material>
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>

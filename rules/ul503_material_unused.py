@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r">
   <material name="orange"><color rgba="1 0.5 0 1"/></material>
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="orange"/></visual></link>

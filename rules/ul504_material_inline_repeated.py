@@ -16,6 +16,7 @@ FAIL = """<robot name="r">
   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>
 </robot>
 """
+FAIL_AT = [(2, 66)]
 PASS = """<robot name="r">
   <material name="blue"><color rgba="0 0 1 1"/></material>
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>

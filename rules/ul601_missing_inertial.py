@@ -12,6 +12,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
 </robot>
 """
+FAIL_AT = [(2, 22)]
 PASS = """<robot name="r">
   <link name="base"/>
   <link name="arm"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <link name="a"><inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
 </robot>
 """
+FAIL_AT = [(2, 28)]
 PASS = """<robot name="r">
   <link name="a"><inertial><mass value="0.5"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
 </robot>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.5"/></inertial></link>
 </robot>
 """
+FAIL_AT = [(2, 45)]
 PASS = """<robot name="r">
   <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.15"/></inertial></link>
 </robot>

@@ -13,6 +13,7 @@ FAIL = """<robot name="r">
   <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>
 </robot>
 """
+FAIL_AT = [(2, 21)]
 PASS = """<robot name="r">
   <link name="base_footprint"/>
   <link name="base"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>

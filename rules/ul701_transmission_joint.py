@@ -14,6 +14,7 @@ FAIL = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
+FAIL_AT = [(5, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="continuous"><parent link="a"/><child link="b"/></joint>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
     <joint name="joint_1"><command_interface name="position"/></joint></ros2_control>
 </robot>
 """
+FAIL_AT = [(5, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="joint1" type="continuous"><parent link="a"/><child link="b"/></joint>

@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
   <gazebo reference="base_lnk"><material>Gazebo/Blue</material></gazebo>
 </robot>
 """
+FAIL_AT = [(3, 3)]
 PASS = """<robot name="r">
   <link name="base_link"/>
   <gazebo reference="base_link"><material>Gazebo/Blue</material></gazebo>

@@ -10,6 +10,7 @@ FAIL = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual></link>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry></visual>
     <collision><geometry><box size="1 1 1"/></geometry></collision></link>

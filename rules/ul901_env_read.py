@@ -12,6 +12,7 @@ FAIL = """<robot name="r$(env URDF_LINT_EXAMPLE_SECRET)" xmlns:xacro="http://www
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(1, 1)]
 PASS = """<robot name="r$(optenv ROS_DISTRO)" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"/>
 </robot>

@@ -14,6 +14,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 3)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="parts.xacro"/>
   <link name="a"/>

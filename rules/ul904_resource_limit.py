@@ -14,6 +14,7 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"/>
 </robot>
 """
+FAIL_AT = [(2, 29)]
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:macro name="once"><link name="a"/></xacro:macro>
   <xacro:once/>

@@ -1,5 +1,5 @@
 """Every rule in rules/ documents itself and its FAIL example fires while its PASS example does
-not. Adding a rule file adds it here automatically."""
+not, at the positions it pins (``FAIL_AT``). Adding a rule file adds it here automatically."""
 from __future__ import annotations
 
 import json
@@ -50,6 +50,41 @@ def test_fail_example_fires(tmp_path, code):
         if f["code"] == code:
             assert f["line"] >= 1 and f["col"] >= 1 and f["file"].startswith("urdf/")
     assert "s3cr3t-value" not in json.dumps(found)
+
+
+def _in_process(tmp_path, monkeypatch, rule, text):
+    """The findings of ``rule`` on one example, linted in this process (fast: no workers)."""
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.pipeline import run_check
+    pkg = _write_example(tmp_path, rule, text)
+    monkeypatch.chdir(pkg)
+    monkeypatch.setenv("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
+    cfg = load_config(None)
+    cfg.select = [rule.code, "UL009"] if rule.code != "UL009" else ["UL"]
+    res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+    assert not res.internal, res.internal
+    name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"
+    return [f for f in res.findings if f.code == rule.code], str(pkg / name)
+
+
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_fail_example_reports_its_pinned_positions(tmp_path, monkeypatch, code):
+    rule = RULES[code]
+    assert rule.fail_at, f"{code}: FAIL_AT must list the (line, col) its FAIL example reports"
+    found, example = _in_process(tmp_path, monkeypatch, rule, rule.fail)
+    at = sorted({(f.line, f.col) for f in found if f.file == example})
+    assert at == sorted(rule.fail_at), f"{code} reported at {at}, FAIL_AT says {rule.fail_at}"
+    lines = rule.fail.splitlines()
+    for line, col in rule.fail_at:
+        assert 1 <= line <= len(lines) and 1 <= col <= len(lines[line - 1]) + 1, (line, col)
+
+
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_pass_example_is_clean_in_process(tmp_path, monkeypatch, code):
+    rule = RULES[code]
+    found, _ = _in_process(tmp_path, monkeypatch, rule, rule.passing)
+    assert not found, found
 
 
 @pytest.mark.parametrize("code", sorted(RULES))

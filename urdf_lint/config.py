@@ -6,6 +6,8 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .policy import code_matches
+
 try:
     import tomllib
 except ImportError:  # pragma: no cover - Python 3.10
@@ -56,27 +58,6 @@ class Config:
     format: str | None = None
     raw: dict = field(default_factory=dict)
 
-    # -- selection -------------------------------------------------------------------------
-    def is_selected(self, code: str, name: str = "") -> bool:
-        sel = list(self.select) + list(self.extend_select)
-
-        def best(patterns):
-            lens = [len(p) for p in patterns if _matches(p, code, name)]
-            return max(lens) if lens else -1
-        s, i = best(sel), best(self.ignore)
-        return s >= 0 and s > i
-
-    def ignored_for_file(self, code: str, name: str, file: str) -> bool:
-        try:
-            rel = os.path.relpath(file, self.root)
-        except ValueError:
-            rel = file
-        for pattern, codes in self.per_file_ignores.items():
-            if fnmatch.fnmatch(rel, pattern) or fnmatch.fnmatch(os.path.basename(file), pattern):
-                if any(_matches(c, code, name) for c in codes):
-                    return True
-        return False
-
     def is_excluded(self, path: str) -> bool:
         try:
             rel = os.path.relpath(path, self.root)
@@ -90,10 +71,6 @@ class Config:
         out.update(self.rule_options.get(name, {}))
         out.update(self.rule_options.get(code, {}))
         return out
-
-
-def _matches(pattern: str, code: str, name: str) -> bool:
-    return pattern == "ALL" or code.startswith(pattern) or pattern == name
 
 
 def find_config(start: str) -> Path | None:
@@ -189,7 +166,7 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
     def check(p, what):
         if p == "ALL" or p in names:
             return
-        if not any(c.startswith(p) for c in known):
+        if not any(code_matches(p, c, n) for c, n in known.items()):
             raise ConfigError(f"{where}: unknown rule code or prefix {p!r} in {what} "
                               f"(see 'urdf-lint rules')")
     for p in cfg.select + cfg.extend_select:

@@ -84,9 +84,12 @@ def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
 
 def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
               cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
-              render_dir: str | None = None, render_rrd: bool = True) -> CheckResult:
+              render_dir: str | None = None, render_rrd: bool = True,
+              in_process: bool = False) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
-    models whose inputs include one of them; files no model uses land in ``unused_files``."""
+    models whose inputs include one of them; files no model uses land in ``unused_files``.
+    ``in_process`` lints in this process, without workers and their limits (trusted input
+    only: tests and benchmarks)."""
     policy = Policy.from_config(cfg)
     jobs = discover(paths, cfg)
     settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
@@ -94,7 +97,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         os.makedirs(render_dir, exist_ok=True)
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
                                        render_rrd=render_rrd, render_base=os.getcwd())
-    results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress)
+    results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
     out = CheckResult(internal=internal)
     out.models, out.skipped = _split_models(results)
 
@@ -115,7 +118,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
 
 
 def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n, cache,
-              progress) -> tuple[list[ModelReport], list[str]]:
+              progress, in_process=False) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers."""
     results: list[ModelReport] = []
     todo = []
@@ -128,11 +131,12 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
             todo.append(job)
     internal: list[str] = []
     if todo:
-        from .worker import run_jobs
+        from .worker import process_job, run_jobs
         import xacro  # noqa: F401 - import once in the parent, shared by the forked workers
         from . import expansion  # noqa: F401
-        for n, (job, res) in enumerate(run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout,
-                                                memory_mb=cfg.memory_mb), 1):
+        done = ((job, process_job(job, settings)) for job in todo) if in_process else \
+            run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
+        for n, (job, res) in enumerate(done, 1):
             internal.extend(res.internal)
             results.append(res)
             if cache and not res.internal:
