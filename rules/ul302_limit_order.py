@@ -11,6 +11,7 @@ FAIL = """<robot name="r">
     <limit lower="2.1" upper="-2.1" effort="10" velocity="1"/></joint>
 </robot>
 """
+FAIL_AT = [(4, 5)]
 PASS = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
