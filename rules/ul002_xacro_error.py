@@ -1,8 +1,11 @@
-"""xacro could not expand the file: an undefined property or macro, a bad macro parameter,
-a failing expression or a bad directive.
+"""xacro could not expand the file: an undefined property or macro, a bad macro parameter, a
+failing expression or a bad directive.
 
-The location is the innermost element xacro was evaluating; the message names the macro
-chain. Define the missing name, fix the expression, or pass the parameter.
+Why: Without an expansion there is no robot to check, and the xacro build step fails the same
+way. The location is the innermost element xacro was evaluating; the message names the macro
+chain.
+
+How to fix: Define the missing name, fix the expression, or pass the parameter.
 """
 CODE = "UL002"
 NAME = "xacro-error"

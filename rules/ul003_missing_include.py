@@ -1,7 +1,9 @@
-"""An ``xacro:include`` names a file that does not exist.
+"""An `xacro:include` names a file that does not exist.
 
-Relative names resolve against the including file; ``$(find pkg)`` and ``package://pkg`` against
-the package. Fix the path, or mark a genuinely optional include with ``optional="true"``.
+Why: xacro stops at a missing include, so the model cannot be built.
+
+How to fix: Fix the path: relative names resolve against the including file, `$(find pkg)` and
+`package://pkg` against the package. Mark a genuinely optional include with `optional="true"`.
 """
 CODE = "UL003"
 NAME = "missing-include"

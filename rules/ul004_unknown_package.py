@@ -1,8 +1,11 @@
-"""``$(find pkg)`` or ``package://pkg`` names a package that none of the searched places holds.
+"""`$(find pkg)` or `package://pkg` names a package that none of the searched places holds.
 
-urdf-lint needs no ROS: it finds packages from ``package.xml`` files under the linted paths and
-the repository, then ``AMENT_PREFIX_PATH`` and ``ROS_PACKAGE_PATH``. Map others with
-``--package-path name=dir`` or ``package-paths`` in the config.
+Why: Anything below that package (includes, YAML, meshes) cannot be read, on this machine or in
+CI.
+
+How to fix: urdf-lint needs no ROS: it finds packages from `package.xml` files under the linted
+paths and the repository, then `AMENT_PREFIX_PATH` and `ROS_PACKAGE_PATH`. Map others with
+`--package-path name=dir` or `package-paths` in the config.
 """
 CODE = "UL004"
 NAME = "unknown-package"

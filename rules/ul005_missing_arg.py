@@ -1,7 +1,10 @@
-"""A ``$(arg name)`` has no default and no value was given.
+"""A `$(arg name)` has no default and no value was given.
 
-Give the arg a default (``<xacro:arg name="x" default="..."/>``), or list the model with its
-args in the config (``[[tool.urdf-lint.models]] path = ... args = {x = "..."}``).
+Why: xacro refuses to expand the model, so it cannot be checked; anyone building it must know
+the arg.
+
+How to fix: Give the arg a default (`<xacro:arg name="x" default="..."/>`), or list the model
+with its args in the config (`[[tool.urdf-lint.models]] path = ... args = {x = "..."}`).
 """
 CODE = "UL005"
 NAME = "missing-arg"

@@ -1,8 +1,10 @@
 """A DOCTYPE or entity declaration in a robot description.
 
-URDF needs no DTD. Entities can read local files or expand to gigabytes ("billion laughs"), so
-urdf-lint never loads DTDs or resolves entities, refuses entity declarations, and reports any
-DOCTYPE. Remove the declaration.
+Why: URDF needs no DTD. Entities can read local files or expand to gigabytes ("billion laughs"),
+so urdf-lint never loads DTDs or resolves entities, refuses entity declarations, and reports any
+DOCTYPE.
+
+How to fix: Remove the declaration.
 """
 CODE = "UL007"
 NAME = "doctype"

@@ -1,7 +1,10 @@
-"""xacro warned while expanding (an unknown attribute on a directive, a redefined global symbol,
-a glob include that matched nothing, a deprecated form).
+"""xacro warned while expanding (an unknown attribute on a directive, a redefined global symbol, a
+glob include that matched nothing, a deprecated form).
 
-xacro prints these and carries on, so they are easy to miss in a build log. Fix the cause.
+Why: xacro prints these and carries on, so they are easy to miss in a build log, and the next
+xacro release may turn them into errors.
+
+How to fix: Fix the cause named in the message.
 """
 CODE = "UL008"
 NAME = "xacro-warning"

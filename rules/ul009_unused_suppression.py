@@ -1,7 +1,8 @@
-"""An inline ``<!-- urdf-lint: ... -->`` suppression that suppresses nothing (like ruff's RUF100).
+"""An inline `<!-- urdf-lint: ... -->` suppression that suppresses nothing (like ruff's RUF100).
 
-Stale suppressions hide future problems. Remove the comment, or narrow it to the code that
-still fires.
+Why: Stale suppressions hide future problems at that place.
+
+How to fix: Remove the comment, or narrow it to the code that still fires.
 """
 CODE = "UL009"
 NAME = "unused-suppression"

@@ -1,9 +1,11 @@
 """The model must have exactly one root link (a link that is no joint's child).
 
-No root means every link is somebody's child: the joints form a closed loop. Several roots mean
-separate trees; URDF parsers refuse both. Connect the extra trees with a joint (often a
-``fixed`` joint to the main base), or break the loop. Links that no joint touches at all are
-reported by UL104 instead.
+Why: No root means every link is somebody's child: the joints form a closed loop. Several roots
+mean separate trees. URDF parsers refuse both. Links that no joint touches at all are reported
+by UL104 instead.
+
+How to fix: Connect the extra trees with a joint (often a `fixed` joint to the main base), or
+break the loop.
 """
 CODE = "UL101"
 NAME = "single-root"

@@ -1,9 +1,11 @@
-"""A link is the child of more than one joint (a kinematic loop), or a joint connects a link
-to itself.
+"""A link is the child of more than one joint (a kinematic loop), or a joint connects a link to
+itself.
 
-URDF describes trees: every link but the root has exactly one parent joint. Closed chains
-(parallel grippers, four-bar linkages) must be opened in URDF and closed in the simulator
-(e.g. with a mimic joint or an SDF/MuJoCo equality constraint).
+Why: URDF describes trees: every link but the root has exactly one parent joint, and parsers
+refuse anything else.
+
+How to fix: Open closed chains (parallel grippers, four-bar linkages) in URDF and close them in
+the simulator (e.g. with a mimic joint or an SDF/MuJoCo equality constraint).
 """
 CODE = "UL102"
 NAME = "kinematic-loop"

@@ -1,7 +1,9 @@
 """A joint's parent or child names a link that is not defined.
 
-Usually a typo, a prefix that was not applied (``${prefix}base_link``), or a link defined behind
-an ``xacro:if`` that evaluated false. Define the link or fix the name.
+Why: Parsers refuse the model. Usually a typo, a prefix that was not applied
+(`${prefix}base_link`), or a link defined behind an `xacro:if` that evaluated false.
+
+How to fix: Define the link or fix the name.
 """
 CODE = "UL103"
 NAME = "missing-link"

@@ -1,7 +1,8 @@
 """A link that no joint connects, in a model with more than one link.
 
-It floats free: parsers see it as a second root, and simulators drop or misplace it. Add the
-joint that attaches it, or remove it.
+Why: It floats free: parsers see it as a second root, and simulators drop or misplace it.
+
+How to fix: Add the joint that attaches it, or remove it.
 """
 CODE = "UL104"
 NAME = "disconnected-link"

@@ -1,7 +1,9 @@
 """Two links, or two joints, share a name.
 
-URDF parsers reject the model (urdfdom: "link/joint is not unique"); with xacro this usually
-means a macro was called twice without a distinct ``prefix``.
+Why: URDF parsers reject the model (urdfdom: "link/joint is not unique"); with xacro this
+usually means a macro was called twice without a distinct `prefix`.
+
+How to fix: Rename one of them, or pass each macro call its own prefix.
 """
 CODE = "UL105"
 NAME = "duplicate-name"

@@ -1,8 +1,11 @@
 """Two different model files in the repository declare the same robot name.
 
-Tools that key on the robot name (Gazebo spawners, MoveIt configs, robot_state_publisher
+Why: Tools that key on the robot name (Gazebo spawners, MoveIt configs, robot_state_publisher
 namespaces, dashboards) then mix the two up; it is usually a copy-paste left-over. Arg sets of
-one file may share a name; different entry files should not. This is a repository-level check.
+one file may share a name; different entry files should not. This is a run-scope rule: it
+compares every model of the run.
+
+How to fix: Give each model file its own robot name.
 """
 CODE = "UL106"
 NAME = "duplicate-robot-name"

@@ -1,7 +1,9 @@
-"""The robot, a link or a joint has no ``name`` (or an empty one).
+"""The robot, a link or a joint has no `name` (or an empty one).
 
-Names are how joints, transmissions, controllers and TF refer to things; URDF parsers reject
-nameless robots, links and joints.
+Why: Names are how joints, transmissions, controllers and TF refer to things; URDF parsers
+reject nameless robots, links and joints.
+
+How to fix: Add a unique `name`.
 """
 CODE = "UL201"
 NAME = "missing-name"

@@ -1,6 +1,8 @@
-"""A joint has no ``type``, or one that URDF does not know.
+"""A joint has no `type`, or one that URDF does not know.
 
-Valid types: revolute, continuous, prismatic, fixed, floating, planar.
+Why: Parsers refuse the joint, and with it the model.
+
+How to fix: Use one of: revolute, continuous, prismatic, fixed, floating, planar.
 """
 CODE = "UL202"
 NAME = "joint-type"

@@ -1,6 +1,9 @@
-"""A joint lacks its ``<parent link=...>`` or ``<child link=...>``.
+"""A joint lacks its `<parent link=...>` or `<child link=...>`.
 
-Every joint connects exactly one parent link to one child link.
+Why: Every joint connects exactly one parent link to one child link; parsers refuse a joint
+without them.
+
+How to fix: Add the missing element with the link it connects.
 """
 CODE = "UL203"
 NAME = "joint-parent-child"

@@ -1,7 +1,10 @@
-"""A ``<visual>`` or ``<collision>`` needs one ``<geometry>`` holding exactly one shape.
+"""A `<visual>` or `<collision>` needs one `<geometry>` holding exactly one shape.
 
-Shapes: box, cylinder, sphere, mesh. An empty geometry, two shapes in one geometry, or an
-unknown shape is rejected by URDF parsers (or silently drops the shape).
+Why: An empty geometry, two shapes in one geometry, or an unknown shape is rejected by URDF
+parsers (or silently drops the shape).
+
+How to fix: Keep exactly one of box, cylinder, sphere or mesh in each geometry; split two shapes
+into two visuals or collisions.
 """
 CODE = "UL204"
 NAME = "geometry-shape"

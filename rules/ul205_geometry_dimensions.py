@@ -1,5 +1,9 @@
-"""Shape dimensions must be valid: box ``size`` is three positive numbers, cylinder ``radius``
-and ``length`` and sphere ``radius`` are positive numbers, a mesh has a ``filename``.
+"""Shape dimensions are invalid: a box `size` that is not three positive numbers, a cylinder
+`radius`/`length` or sphere `radius` that is not a positive number, a mesh without `filename`.
+
+Why: Parsers reject such shapes, or draw and collide with nothing.
+
+How to fix: Write the dimensions in metres as positive numbers.
 """
 CODE = "UL205"
 NAME = "geometry-dimensions"

@@ -1,8 +1,10 @@
-"""An ``<inertial>`` needs ``<mass value>`` and ``<inertia>`` with all six values
-(ixx ixy ixz iyy iyz izz), each a finite number.
+"""An `<inertial>` lacks `<mass value>` or an `<inertia>` with all six values (ixx ixy ixz iyy iyz
+izz), each a finite number.
 
-URDF parsers reject an inertial with a missing mass or inertia value; a typo in a number
+Why: URDF parsers reject an inertial with a missing mass or inertia value; a typo in a number
 silently breaks dynamics.
+
+How to fix: Give the mass and all six inertia values as numbers.
 """
 CODE = "UL206"
 NAME = "inertial-values"

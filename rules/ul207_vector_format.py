@@ -1,7 +1,9 @@
-"""``origin xyz/rpy`` and ``axis xyz`` must be three finite numbers.
+"""`origin xyz/rpy` or `axis xyz` is not three finite numbers.
 
-Two or four numbers, stray characters (``"0 0 1 }"``) or ``nan`` make URDF parsers fail or
+Why: Two or four numbers, stray characters (`"0 0 1 }"`) or `nan` make URDF parsers fail or
 produce NaN transforms.
+
+How to fix: Write exactly three numbers separated by spaces.
 """
 CODE = "UL207"
 NAME = "vector-format"

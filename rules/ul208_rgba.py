@@ -1,6 +1,8 @@
-"""A ``<color rgba>`` must be four numbers, each in [0, 1].
+"""A `<color rgba>` is not four numbers, each in [0, 1].
 
-Values like ``255 0 0 1`` (0-255 scale) or three numbers are rejected or clipped by viewers.
+Why: Values like `255 0 0 1` (0-255 scale) or three numbers are rejected or clipped by viewers.
+
+How to fix: Write four numbers between 0 and 1 (divide 0-255 values by 255).
 """
 CODE = "UL208"
 NAME = "rgba"

@@ -1,9 +1,12 @@
-"""An element URDF does not define at that place: usually a typo such as ``<orgin>`` or
-``<inertia>`` directly under ``<link>``. URDF parsers skip unknown elements silently, so the
-value you meant is lost.
+"""An element URDF does not define at that place: usually a typo such as `<orgin>` or `<inertia>`
+directly under `<link>`.
 
-Extension blocks (``<gazebo>``, ``<transmission>``, ``<ros2_control>``, ``<mujoco>``) and
-namespaced elements (``drake:...``) are not checked.
+Why: URDF parsers skip unknown elements silently, so the value you meant is lost. Extension
+blocks (`<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`) and namespaced elements
+(`drake:...`) are not checked.
+
+How to fix: Fix the element's name or move it to where URDF expects it (the message suggests the
+closest known name).
 """
 CODE = "UL209"
 NAME = "unknown-element"

@@ -1,5 +1,8 @@
-"""An attribute URDF does not define on that element: usually a typo (``raduis``,
-``xzy``) whose value is then silently ignored.
+"""An attribute URDF does not define on that element: usually a typo (`raduis`, `xzy`).
+
+Why: Parsers ignore unknown attributes, so the value you meant is silently lost.
+
+How to fix: Fix the attribute's name (the message suggests the closest known one).
 """
 CODE = "UL210"
 NAME = "unknown-attribute"

@@ -1,5 +1,8 @@
-"""``<robot version=...>`` must be ``major.minor``, and a version the URDF parsers support
-(1.0 or 1.1). urdfdom refuses ``version="1"``, ``"2"`` or ``"foo"``. Omit it for 1.0.
+"""`<robot version=...>` is not `major.minor`, or is a version the URDF parsers do not support.
+
+Why: urdfdom supports 1.0 and 1.1 and refuses `version="1"`, `"2"` or `"foo"`.
+
+How to fix: Write `1.0` or `1.1`, or omit the attribute for 1.0.
 """
 CODE = "UL211"
 NAME = "urdf-version"

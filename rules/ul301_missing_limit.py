@@ -1,8 +1,9 @@
-"""A revolute or prismatic joint has no ``<limit>``.
+"""A revolute or prismatic joint has no `<limit>`.
 
-URDF requires ``<limit effort=... velocity=...>`` (and usually ``lower``/``upper``) on these
-joints; urdfdom refuses the model without it. If the joint really has no position limits,
-make it ``continuous``.
+Why: URDF requires `<limit effort=... velocity=...>` (and usually `lower`/`upper`) on these
+joints; urdfdom refuses the model without it.
+
+How to fix: Add the limit. If the joint really has no position limits, make it `continuous`.
 """
 CODE = "UL301"
 NAME = "missing-limit"

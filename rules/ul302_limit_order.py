@@ -1,6 +1,9 @@
 """A joint's lower limit is above its upper limit, so no position is allowed.
 
-Usually the two were swapped, or a sign was lost in a mirrored (``reflect``) macro.
+Why: Controllers and planners refuse or clamp every position. Usually the two were swapped, or a
+sign was lost in a mirrored (`reflect`) macro.
+
+How to fix: Swap the two values, or fix the sign.
 """
 CODE = "UL302"
 NAME = "limit-order"

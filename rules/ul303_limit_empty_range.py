@@ -1,7 +1,8 @@
 """A revolute or prismatic joint whose lower and upper limits are equal cannot move.
 
-This includes leaving both out, when they default to 0. If the joint should not move, make it
-``fixed``; otherwise set the range.
+Why: This includes leaving both out, when they default to 0: the joint is silently frozen.
+
+How to fix: If the joint should not move, make it `fixed`; otherwise set the range.
 """
 CODE = "UL303"
 NAME = "limit-empty-range"

@@ -1,7 +1,9 @@
-"""A joint ``<limit>`` needs ``effort`` and ``velocity``, both positive.
+"""A joint `<limit>` lacks `effort` or `velocity`, or one of them is not positive.
 
-URDF parsers require both on revolute and prismatic joints; 0 means the joint can never move
-under control (controllers clamp to it).
+Why: URDF parsers require both on revolute and prismatic joints; 0 means the joint can never
+move under control (controllers clamp to it).
+
+How to fix: Set both to the actuator's real maxima (N or Nm, m/s or rad/s).
 """
 CODE = "UL304"
 NAME = "effort-velocity"

@@ -1,6 +1,8 @@
-"""A continuous joint carries ``lower``/``upper`` limits, which URDF ignores for that type.
+"""A continuous joint carries `lower`/`upper` limits, which URDF ignores for that type.
 
-Either the joint should be ``revolute`` (limited), or the limits should go.
+Why: The limits look effective to a reader but no tool applies them.
+
+How to fix: Either make the joint `revolute` (limited), or remove the limits.
 """
 CODE = "UL305"
 NAME = "continuous-limits"

@@ -1,7 +1,8 @@
-"""``safety_controller`` soft limits lie outside the joint's hard limits, or are inverted.
+"""`safety_controller` soft limits lie outside the joint's hard limits, or are inverted.
 
-The soft limits should sit inside ``[lower, upper]``; otherwise the safety controller lets the
-joint run into its hard stops.
+Why: The safety controller then lets the joint run into its hard stops.
+
+How to fix: Put the soft limits inside `[lower, upper]`, lower below upper.
 """
 CODE = "UL306"
 NAME = "safety-limits"

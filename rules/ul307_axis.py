@@ -1,8 +1,12 @@
 """A joint axis of zero length (no direction), or one that is not a unit vector.
 
-URDF normalises a non-unit axis silently in some tools and not in others, so joint velocities
-and limits are scaled differently per tool. Write a unit vector; a zero axis is an error.
-Non-unit axes are reported when the length differs from 1 by more than ``tolerance``.
+Why: URDF normalises a non-unit axis silently in some tools and not in others, so joint
+velocities and limits are scaled differently per tool; a zero axis has no direction at all.
+
+How to fix: Write a unit vector.
+
+Options: `tolerance` (default 0.001): non-unit axes are reported when their length differs from
+1 by more than this.
 """
 CODE = "UL307"
 NAME = "joint-axis"

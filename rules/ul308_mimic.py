@@ -1,5 +1,9 @@
-"""A ``<mimic joint=...>`` names an unknown joint, the joint itself, or mimic joints form a
-cycle (a mimics b mimics a). Such a model has no well-defined joint positions.
+"""A `<mimic joint=...>` names an unknown joint, the joint itself, or mimic joints form a cycle (a
+mimics b mimics a).
+
+Why: Such a model has no well-defined joint positions; parsers and controllers refuse it.
+
+How to fix: Point the mimic at an existing, different joint and break the cycle.
 """
 CODE = "UL308"
 NAME = "mimic"

@@ -1,8 +1,11 @@
-"""A ``<mesh filename>`` does not resolve to a file: a missing file, a wrong path, or an
-unknown package.
+"""A `<mesh filename>` does not resolve to a file: a missing file, a wrong path, or an unknown
+package.
 
-``package://pkg/...`` and ``$(find pkg)`` resolve through package.xml files (no ROS needed),
-``file://`` and absolute paths as written, and relative paths against the URDF's folder.
+Why: Viewers and simulators show nothing for the part, and collision checking ignores it.
+`package://pkg/...` and `$(find pkg)` resolve through package.xml files (no ROS needed),
+`file://` and absolute paths as written, and relative paths against the URDF's folder.
+
+How to fix: Fix the path or add the file.
 """
 CODE = "UL401"
 NAME = "mesh-not-found"

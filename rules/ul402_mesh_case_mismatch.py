@@ -1,7 +1,9 @@
-"""A mesh path exists only with different letter case (``Base.STL`` vs ``base.stl``).
+"""A mesh path exists only with different letter case (`Base.STL` vs `base.stl`).
 
-It works on macOS and Windows, whose file systems ignore case, and fails on Linux, where ROS,
-CI and most robots run. Write the name exactly as the file is called.
+Why: It works on macOS and Windows, whose file systems ignore case, and fails on Linux, where
+ROS, CI and most robots run.
+
+How to fix: Write the name exactly as the file is called.
 """
 CODE = "UL402"
 NAME = "mesh-case-mismatch"

@@ -1,8 +1,10 @@
 """A mesh resolves (after symlinks) outside the package roots and the linted repository.
 
-Such a path works only on the author's machine, and a description under review could point a
-viewer at a secret (rerun embeds the bytes of whatever a mesh path names). urdf-lint never
-reads it. Keep meshes inside the package and use ``package://``.
+Why: Such a path works only on the author's machine, and a description under review could point
+a viewer at a secret (rerun embeds the bytes of whatever a mesh path names). urdf-lint never
+reads it.
+
+How to fix: Keep meshes inside the package and use `package://`.
 """
 CODE = "UL403"
 NAME = "mesh-outside-roots"

@@ -1,7 +1,10 @@
 """A mesh file cannot be loaded, is empty, or has non-finite vertices.
 
-Loaded with trimesh (DAE through pycollada). A truncated download, a Git LFS pointer committed
-instead of the file, or an exporter bug all end here. Mesh facts are cached by file content.
+Why: A truncated download, a Git LFS pointer committed instead of the file, or an exporter bug
+all end here, and viewers show nothing. Meshes are loaded with trimesh (DAE through pycollada);
+their facts are cached by file content.
+
+How to fix: Re-export the mesh, or fetch the real file (`git lfs pull`).
 """
 CODE = "UL404"
 NAME = "mesh-unloadable"

@@ -1,6 +1,8 @@
-"""A mesh ``scale`` must be three finite, non-zero numbers.
+"""A mesh `scale` is not three finite, non-zero numbers.
 
-A zero scale flattens the mesh; a malformed one is rejected by parsers.
+Why: A zero scale flattens the mesh; a malformed one is rejected by parsers.
+
+How to fix: Write three non-zero numbers, e.g. `scale="0.001 0.001 0.001"`.
 """
 CODE = "UL405"
 NAME = "mesh-scale"

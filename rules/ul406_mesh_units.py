@@ -1,8 +1,12 @@
-"""A mesh is far too large for a robot part: it was probably exported in millimetres while URDF
-is in metres.
+"""A mesh is far too large for a robot part: it was probably exported in millimetres while URDF is
+in metres.
 
-Reported when the scaled bounding box is larger than ``max-size`` metres (default 5). Add
-``scale="0.001 0.001 0.001"`` or re-export in metres.
+Why: The part is drawn and collides a thousand times too large.
+
+How to fix: Add `scale="0.001 0.001 0.001"` or re-export in metres.
+
+Options: `max-size` (default 5.0): reported when the scaled bounding box is larger than this
+many metres.
 """
 CODE = "UL406"
 NAME = "mesh-units"

@@ -1,7 +1,9 @@
-"""A mesh refers to a texture or material file that does not exist (a DAE ``<init_from>`` image,
-an OBJ ``mtllib`` or a ``map_Kd`` in its MTL), or a ``<texture filename>`` does not resolve.
+"""A mesh refers to a texture or material file that does not exist (a DAE `<init_from>` image, an
+OBJ `mtllib` or a `map_Kd` in its MTL), or a `<texture filename>` does not resolve.
 
-Viewers then show the mesh untextured or fail to load it.
+Why: Viewers then show the mesh untextured or fail to load it.
+
+How to fix: Add the file or fix the reference in the mesh or the URDF.
 """
 CODE = "UL407"
 NAME = "texture-not-found"

@@ -1,8 +1,10 @@
 """A material name is defined twice with different colours.
 
-URDF keeps the first definition and silently ignores the rest, so some links are not the
-colour their author wrote. Give each colour its own name, or define the material once at the
-top level and refer to it by name.
+Why: URDF keeps the first definition and silently ignores the rest, so some links are not the
+colour their author wrote.
+
+How to fix: Give each colour its own name, or define the material once at the top level and
+refer to it by name.
 """
 CODE = "UL501"
 NAME = "material-redefined"

@@ -1,5 +1,9 @@
-"""A visual refers to a material by name, but no material of that name with a colour or texture
-is defined. URDF parsers reject the model or draw it untextured.
+"""A visual refers to a material by name, but no material of that name with a colour or texture is
+defined.
+
+Why: URDF parsers reject the model or draw it untextured.
+
+How to fix: Define the material at the top level, or fix the name.
 """
 CODE = "UL502"
 NAME = "material-undefined"

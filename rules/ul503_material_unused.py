@@ -1,7 +1,9 @@
 """A top-level material that no visual uses.
 
-Harmless, but often a sign of a renamed or misspelt reference. Materials from a shared colours
-include file are typical; ignore this rule per file with ``per-file-ignores`` if so.
+Why: Harmless, but often a sign of a renamed or misspelt reference.
+
+How to fix: Remove it or fix the reference. Materials from a shared colours include file are
+typical; ignore this rule for that file with `per-file-ignores`.
 """
 CODE = "UL503"
 NAME = "material-unused"

@@ -1,8 +1,13 @@
-"""The same colour is written inline again and again (under different names, or anonymously)
-where one named material should be defined once and reused by name, as the URDF tutorial
-teaches. Repeated inline colours drift apart when someone edits only one of them.
+"""The same colour is written inline again and again (under different names, or anonymously) where
+one named material should be defined once and reused by name.
 
-Reported when one colour appears inline in at least ``min-repeats`` visuals (default 3).
+Why: Repeated inline colours drift apart when someone edits only one of them; the URDF tutorial
+teaches named materials for this reason.
+
+How to fix: Define the material once at the top level and refer to it by name.
+
+Options: `min-repeats` (default 3): reported when one colour appears inline in at least this
+many visuals.
 """
 CODE = "UL504"
 NAME = "material-inline-repeated"

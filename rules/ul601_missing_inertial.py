@@ -1,8 +1,10 @@
-"""A moving link has no ``<inertial>``.
+"""A moving link has no `<inertial>`.
 
-Gazebo (and most physics engines) drop links without inertia, together with everything
+Why: Gazebo (and most physics engines) drop links without inertia, together with everything
 attached to them; the joint then does nothing in simulation. A link is "moving" when it is the
-child of a non-fixed joint. Fine for kinematics-only models: ignore this rule there.
+child of a non-fixed joint.
+
+How to fix: Add an inertial. For kinematics-only models, ignore this rule.
 """
 CODE = "UL601"
 NAME = "missing-inertial"

@@ -1,7 +1,12 @@
 """A link mass that is not positive, or implausibly tiny.
 
-Zero or negative masses break every physics engine; masses below ``min-mass`` kg (default
-1e-6) usually mean grams or millimetre-based units were written as kilograms.
+Why: Zero or negative masses break every physics engine; tiny masses usually mean grams or
+millimetre-based units were written as kilograms.
+
+How to fix: Write the mass in kilograms.
+
+Options: `min-mass` (default 1e-06): masses below this many kilograms are reported as
+implausibly tiny.
 """
 CODE = "UL602"
 NAME = "mass"

@@ -1,8 +1,10 @@
-"""An inertia tensor that no rigid body can have: not positive definite, or violating the
-triangle inequality (ixx + iyy >= izz, and the two other pairs).
+"""An inertia tensor that no rigid body can have: not positive definite, or violating the triangle
+inequality (ixx + iyy >= izz, and the two other pairs).
 
-Physics engines reject such links or explode. Typical causes: a sign error in a product of
+Why: Physics engines reject such links or explode. Typical causes: a sign error in a product of
 inertia, or principal moments copied from the wrong part. Products are taken as given.
+
+How to fix: Recompute the tensor from the part's geometry and mass (CAD tools export it).
 """
 CODE = "UL603"
 NAME = "inertia-tensor"

@@ -1,8 +1,10 @@
-"""The root link carries an ``<inertial>``.
+"""The root link carries an `<inertial>`.
 
-KDL (robot_state_publisher, MoveIt, many IK solvers) cannot use inertia on the root link and
-warns or ignores it. The usual fix is a massless dummy root (``base_link`` → ``base_footprint``
-or ``world``) joined to the heavy base by a fixed joint.
+Why: KDL (robot_state_publisher, MoveIt, many IK solvers) cannot use inertia on the root link
+and warns or ignores it.
+
+How to fix: Add a massless dummy root (`base_link` → `base_footprint` or `world`) joined to the
+heavy base by a fixed joint.
 """
 CODE = "UL604"
 NAME = "root-inertial"

@@ -1,7 +1,9 @@
-"""A ``<transmission>`` names a joint that the model does not define.
+"""A `<transmission>` names a joint that the model does not define.
 
-ros_control / gazebo_ros_control then fail at start-up with a message far from the cause.
-Typical after renaming a joint or changing a ``prefix``.
+Why: ros_control / gazebo_ros_control then fail at start-up with a message far from the cause.
+Typical after renaming a joint or changing a `prefix`.
+
+How to fix: Fix the joint name in the transmission.
 """
 CODE = "UL701"
 NAME = "transmission-joint"

@@ -1,5 +1,8 @@
-"""A ``<ros2_control>`` block names a joint (or a transmission joint) that the model does not
-define. controller_manager refuses to load the hardware interface.
+"""A `<ros2_control>` block names a joint (or a transmission joint) that the model does not define.
+
+Why: controller_manager refuses to load the hardware interface.
+
+How to fix: Fix the joint name in the ros2_control block.
 """
 CODE = "UL702"
 NAME = "ros2-control-joint"

@@ -1,7 +1,9 @@
-"""A ``<gazebo reference="...">`` names neither a link nor a joint of the model.
+"""A `<gazebo reference="...">` names neither a link nor a joint of the model.
 
-Gazebo silently ignores the block, so the friction, colour, sensor or plugin it carries never
-takes effect.
+Why: Gazebo silently ignores the block, so the friction, colour, sensor or plugin it carries
+never takes effect.
+
+How to fix: Fix the reference to the link or joint it is meant for.
 """
 CODE = "UL703"
 NAME = "gazebo-reference"

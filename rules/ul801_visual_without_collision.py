@@ -1,7 +1,10 @@
 """A link has a visual but no collision geometry.
 
-It is drawn but passes through everything in simulation and motion planning. Often intended
+Why: It is drawn but passes through everything in simulation and motion planning. Often intended
 (decorative parts); this is information, not an error.
+
+How to fix: Add a collision (a simple box or cylinder is enough), or ignore this rule for
+decorative links.
 """
 CODE = "UL801"
 NAME = "visual-without-collision"

@@ -1,8 +1,11 @@
 """An expression reads an environment variable that is not allow-listed.
 
-In CI the environment holds secrets (tokens, keys), and a description under review must not be
-able to copy them into its output. ``$(env X)`` and ``$(optenv X)`` only read variables in
-``env-allow`` (plus ROS_DISTRO and a few ROS ones); otherwise the value is not substituted.
+Why: In CI the environment holds secrets (tokens, keys), and a description under review must not
+be able to copy them into its output. `$(env X)` and `$(optenv X)` only read variables in
+`env-allow` (plus ROS_DISTRO and a few ROS ones); otherwise the value is not substituted.
+
+How to fix: Pass the value as a xacro arg, or add the variable to `env-allow` if it is safe to
+read.
 """
 CODE = "UL901"
 NAME = "env-read"

@@ -1,9 +1,10 @@
-"""An include, ``load_yaml`` or mesh resolves (after symlinks) outside the package roots and
-the linted repository.
+"""An include, `load_yaml` or mesh resolves (after symlinks) outside the package roots and the
+linted repository.
 
-urdf-lint never reads such files: a description under review must not be able to pull
-``/etc/passwd`` or a CI secret into its output or a recording. Keep files inside the package,
-or map the other package with ``--package-path``.
+Why: urdf-lint never reads such files: a description under review must not be able to pull
+`/etc/passwd` or a CI secret into its output or a recording.
+
+How to fix: Keep files inside the package, or map the other package with `--package-path`.
 """
 CODE = "UL902"
 NAME = "outside-roots"

@@ -1,10 +1,12 @@
 """An expression uses something the safe evaluator does not allow.
 
-urdf-lint evaluates ``${...}`` and ``$(eval ...)`` with an allow-list: arithmetic, math,
-comparisons, conditionals, comprehensions, string/list/dict methods, YAML data and ``xacro.*``
-helpers. Attribute access to anything starting with ``_``, ``type``/``vars``/``getattr``, and
-methods of non-value objects are refused, as are huge powers and repetitions. Real descriptions
-never need them.
+Why: urdf-lint evaluates `${...}` and `$(eval ...)` with an allow-list (arithmetic, math,
+comparisons, conditionals, comprehensions, string/list/dict methods, YAML data and `xacro.*`
+helpers) so that a description cannot run code. Attribute access to anything starting with `_`,
+`type`/`vars`/`getattr`, methods of non-value objects, huge powers and repetitions are refused.
+
+How to fix: Rewrite the expression with allowed operations; real descriptions never need the
+refused ones.
 """
 CODE = "UL903"
 NAME = "unsafe-expression"

@@ -1,8 +1,10 @@
 """Expansion hit a limit: the time limit, the memory limit, or endless macro recursion.
 
-Each model is expanded in a worker with a time limit (``timeout``, default 30 s) and a memory
-limit (``memory-mb``, default 2048); the other models are still linted. A macro that calls
-itself without a stopping condition ends here too.
+Why: Each model is expanded in a worker with a time limit and a memory limit so that one hostile
+or broken model cannot hang or exhaust the run; the other models are still linted.
+
+How to fix: Give a recursive macro a stopping condition, or raise `timeout` (default 30 s) /
+`memory-mb` (default 2048) for a genuinely huge model.
 """
 CODE = "UL904"
 NAME = "resource-limit"

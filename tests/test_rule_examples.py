@@ -103,3 +103,42 @@ def test_rules_and_rule_commands():
     p = run_cli("rule", "limit-order")
     assert p.returncode == 0 and p.stdout.startswith("UL302")
     assert run_cli("rule", "UL999").returncode == 2
+
+
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_docstring_has_the_fixed_sections(code):
+    from urdf_lint.rulesdoc import sections
+    rule = RULES[code]
+    s = sections(rule.doc)        # raises on a missing, repeated or misplaced section
+    assert len(s["why"]) > 20 and len(s["how to fix"]) > 10, s
+    if rule.options:
+        assert "options" in s, f"{code} has OPTIONS, so its docstring needs an Options: section"
+        for key in rule.options:
+            assert f"`{key}`" in s["options"], f"{code}: option {key} is not documented"
+    else:
+        assert "options" not in s, f"{code} documents options it does not have"
+    assert "``" not in rule.doc, f"{code}: reST markup; write `code` in single backticks"
+
+
+def test_sections_parser_rejects_bad_docstrings():
+    from urdf_lint.rulesdoc import DocError, sections
+    good = "What.\n\nWhy: because.\n\nHow to fix: do it."
+    assert sections(good)["how to fix"] == "do it."
+    for bad in ("What only.", "What.\n\nHow to fix: x.\n\nWhy: y.", "What.\n\nWhy: a.",
+                "What.\n\nWhy: a.\n\nWhy: b.\n\nHow to fix: c."):
+        with pytest.raises(DocError):
+            sections(bad)
+
+
+def test_rules_markdown_page():
+    p = run_cli("rules", "--format", "markdown")
+    assert p.returncode == 0, p.stderr
+    page = p.stdout
+    assert page.startswith("# urdf-lint rules\n")
+    for code, r in RULES.items():
+        assert f"\n## {code} {r.name}\n" in page
+        assert f"| [{code}](#{code.lower()}-{r.name}) | `{r.name}` | {r.severity} |" in page
+    ul302 = page.split("## UL302 limit-order")[1].split("\n## ")[0]
+    assert "**Why.**" in ul302 and "**How to fix.**" in ul302
+    assert "Reported at line 4, col 5" in ul302 and 'lower="2.1" upper="-2.1"' in ul302
+    assert "`tolerance`" in page.split("## UL307")[1].split("\n## ")[0]

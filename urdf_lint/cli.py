@@ -84,7 +84,9 @@ def build_parser():
     e.add_argument("-o", "--output")
     e.add_argument("--package-path", action="append", metavar="NAME=DIR")
 
-    sub.add_parser("rules", help="list the rule catalogue")
+    rl = sub.add_parser("rules", help="list the rule catalogue")
+    rl.add_argument("--format", choices=["text", "markdown"], default="text",
+                    help="text: one line per rule; markdown: the full rules page (default: text)")
     r = sub.add_parser("rule", help="explain one rule")
     r.add_argument("code")
 
@@ -249,6 +251,10 @@ def cmd_expand(args) -> int:
 
 def cmd_rules(args) -> int:
     from .registry import load_rules
+    if getattr(args, "format", "text") == "markdown":
+        from .rulesdoc import markdown
+        sys.stdout.write(markdown(load_rules()))
+        return 0
     for code, r in load_rules().items():
         print(f"{code}  {r.name:<28} {r.severity:<8} {r.summary}")
     return 0
