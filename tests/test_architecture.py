@@ -5,6 +5,8 @@ import ast
 import re
 from pathlib import Path
 
+import pytest
+
 from conftest import REPO
 from urdf_lint.registry import load_rules
 
@@ -144,3 +146,98 @@ def test_scopes():
     rules = load_rules()
     assert rules["UL106"].scope == "run" and rules["UL106"].check is not None
     assert all(r.scope in ("model", "run") for r in rules.values())
+
+
+# -- the typed data -------------------------------------------------------------------------------
+def test_problem_and_report_cross_the_pipe_and_the_cache():
+    import json
+    import pickle
+    from urdf_lint.findings import Problem
+    from urdf_lint.jobs import LintJob, ModelReport, Status
+    from urdf_lint.locations import Origin
+    p = Problem.at("UL302", "lower > upper", ("/r/arm.xacro", 14, 7, [["/r/robot.xacro", 7, 3]]),
+                   ["joint", "elbow"])
+    assert p.origin == Origin("/r/arm.xacro", 14, 7, (("/r/robot.xacro", 7, 3),))
+    assert p.target == ("joint", "elbow") and (p.file, p.line, p.col) == ("/r/arm.xacro", 14, 7)
+    assert pickle.loads(pickle.dumps(p)) == p
+    job = LintJob("/r/robot.xacro", {"side": "left"})
+    rep = ModelReport(job.entry, job.args, Status.MODEL, deps=[job.entry], problems=[p],
+                      name="r", name_origin=Origin("/r/robot.xacro", 1, 1), links=3)
+    assert pickle.loads(pickle.dumps(rep)) == rep
+    back = ModelReport.from_record(job, json.loads(json.dumps(rep.to_record())))
+    assert back.problems == [p] and back.cached and back.links == 3 and back.status is Status.MODEL
+    assert json.dumps({"status": Status.FAILED}) == '{"status": "failed"}'
+    assert rep.label.endswith("robot.xacro [side:=left]")
+    with pytest.raises(Exception):
+        p.code = "UL001"          # frozen
+
+
+def test_source_map_alignment_is_strict():
+    from lxml import etree
+    from urdf_lint.expansion.sourcemap import SourceMap
+    from urdf_lint.model import model_from_xml
+    stamps = [("/f.xacro", 1, 1, ()), None, ("/f.xacro", 3, 5, (("/g.xacro", 2, 3),))]
+    sm = SourceMap.from_stamps(stamps)
+    assert len(sm) == 3 and sm[1] == sm[0] and sm[2].chain == (("/g.xacro", 2, 3),)
+    xml = '<robot name="r"><link name="a"/><link name="b"/></robot>'
+    m = model_from_xml("/f.xacro", {}, xml, sm, ["/f.xacro"])
+    assert m.origin(m.links["b"]).line == 3
+    with pytest.raises(ValueError):
+        model_from_xml("/f.xacro", {}, xml, SourceMap(sm.origins[:2]), ["/f.xacro"])
+    with pytest.raises(ValueError):
+        sm.align(etree.fromstring("<a><b/><c/><d/></a>").iter())
+
+
+def test_error_table_maps_xacro_failures_to_rule_modules():
+    import xacro
+    import xacro.substitution_args as subst
+    from urdf_lint.expansion import errors
+    rules = load_rules()
+    for row in errors.ERROR_TABLE:
+        if row.rule is not None:
+            assert rules[row.rule.CODE].origin == "expansion", row.rule.CODE
+    here = ("/r/robot.xacro", 5, 3, ())
+    p = errors.problem_for(errors.XmlSyntaxError("XML syntax error: x", "/r/a.xacro", 2, 4,
+                                                 (("/r/robot.xacro", 9, 3),)), here)
+    assert (p.code, p.file, p.line, p.col, p.chain) == \
+        ("UL001", "/r/a.xacro", 2, 4, (("/r/robot.xacro", 9, 3),))
+    p = errors.problem_for(xacro.XacroException("x", exc=subst.ArgException("side")), here)
+    assert p.code == "UL005" and "'side'" in p.message and p.line == 5
+    p = errors.problem_for(xacro.XacroException("boom"), here, ["inner", "outer"])
+    assert p.code == "UL002" and p.message == "boom (in macro 'inner' < 'outer')"
+    p = errors.problem_for(RecursionError("deep"), here)
+    assert p.code == "UL904"
+    from urdf_lint.rules import ul902_outside_roots
+    p = errors.problem_for(errors.RefusedInput("no", ul902_outside_roots), here)
+    assert (p.code, p.line) == ("UL902", 5)
+
+
+def test_policy_is_one_matcher():
+    from urdf_lint.policy import Policy, code_matches
+    assert code_matches("UL3", "UL302") and code_matches("limit-order", "UL302", "limit-order")
+    assert code_matches("ALL", "UL302") and not code_matches("UL30", "UL401")
+    pol = Policy(select=("UL",), ignore=("UL3",), severity={"UL3": "warning", "UL302": "info"},
+                 per_file_ignores={"legacy/*.xacro": ["UL6"]}, root="/repo")
+    assert pol.is_selected("UL101") and not pol.is_selected("UL302")
+    assert Policy(select=("UL302",), ignore=("UL3",)).is_selected("UL302")   # more specific wins
+    assert pol.severity_of("UL302", "limit-order", "error") == "info"
+    assert pol.severity_of("UL303", "x", "error") == "warning"
+    assert pol.severity_of("UL101", "x", "error") == "error"
+    assert pol.ignored_for_file("UL601", "missing-inertial", "/repo/legacy/a.xacro")
+    assert not pol.ignored_for_file("UL601", "missing-inertial", "/repo/urdf/a.xacro")
+
+
+def test_a_plain_rule_module_still_loads():
+    """Backward compatible rule API: CODE/NAME/SEVERITY/FAIL/PASS and check(model, ctx)."""
+    import types
+    from urdf_lint.registry import rule_from_module
+    mod = types.ModuleType("urdf_lint.rules.ul999_plain")
+    mod.__doc__ = "Something.\n\nWhy: x.\n\nHow to fix: y."
+    mod.CODE, mod.NAME, mod.SEVERITY = "UL999", "plain", "warning"
+    mod.FAIL, mod.PASS = "<robot/>", "<robot/>"
+    mod.check = lambda model, ctx: iter(())
+    r = rule_from_module(mod)
+    assert (r.scope, r.origin, r.fail_at, r.check) == ("model", "rule", (), mod.check)
+    del mod.check
+    with pytest.raises(RuntimeError):
+        rule_from_module(mod)     # neither check() nor ORIGIN

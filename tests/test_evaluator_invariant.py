@@ -15,7 +15,8 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import xacro
 import xacro.substitution_args as sa
 
-from urdf_lint import expand, safe_eval
+from urdf_lint import safe_eval
+from urdf_lint.expansion import expand
 from urdf_lint.packages import PackageResolver
 from urdf_lint.safe_eval import UnsafeExpression, is_allowed_callable
 
@@ -155,8 +156,8 @@ def test_escape_in_a_real_expansion_is_a_located_unsafe_expression(tmp_path):
         </robot>
         """)
     assert r.xml is None
-    assert r.error["code"] == "UL903" and r.error["line"] == 2, r.error
-    assert "NameSpace" not in r.error["message"]
+    assert r.error.code == "UL903" and r.error.line == 2, r.error
+    assert "NameSpace" not in r.error.message
 
 
 def test_one_model_cannot_change_what_the_next_sees(tmp_path):
@@ -164,7 +165,7 @@ def test_one_model_cannot_change_what_the_next_sees(tmp_path):
     a = _expand(tmp_path, "a.urdf.xacro", f"""\
         <robot name="a" {X}><link name="${{math.update(pi=3)}}"/></robot>
         """)
-    assert a.error and a.error["code"] == "UL903"
+    assert a.error and a.error.code == "UL903"
     b = _expand(tmp_path, "b.urdf.xacro", f"""\
         <robot name="b" {X}><link name="l${{math.pi}}"/></robot>
         """)
@@ -175,7 +176,7 @@ def test_deprecated_global_sorted_is_checked(tmp_path):
     r = _expand(tmp_path, "r.urdf.xacro", f"""\
         <robot name="r" {X}><link name="${{sorted([2, 1], key=python.vars)}}"/></robot>
         """)
-    assert r.error and r.error["code"] == "UL903"
+    assert r.error and r.error.code == "UL903"
     ok = _expand(tmp_path, "ok.urdf.xacro", f"""\
         <robot name="r" {X}><link name="${{sorted([2, 1])[0]}}"/></robot>
         """)
