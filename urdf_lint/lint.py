@@ -7,7 +7,6 @@ in a worker.
 from __future__ import annotations
 
 import os
-import traceback
 
 from lxml import etree
 
@@ -146,21 +145,10 @@ def lint_model(job: LintJob, settings: LintSettings):
                                    "robot has no <link>: a URDF needs at least one link",
                                    model.origin(model.root)))
 
-    from .registry import load_rules
-    rules = load_rules()
-    for code in settings.selected:
-        rule = rules.get(code)
-        if rule is None or rule.check is None or rule.scope != "model":
-            continue
-        opts = dict(rule.options)
-        opts.update(settings.options.get(code, {}))
-        ctx.options = opts
-        try:
-            for item in rule.check(model, ctx):
-                el, msg = item[0], item[1]
-                problems.append(Problem.at(code, msg, model.origin(el), target_of(el)))
-        except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
-            out.internal.append(f"rule {code} crashed on {job.entry}:\n{traceback.format_exc()}")
+    from .registry import run_rules
+    for rule, el, msg in run_rules("model", settings.selected, settings.options, model, ctx,
+                                   out.internal, f" on {job.entry}"):
+        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el)))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import dataclasses
 import os
-import traceback
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -165,22 +164,11 @@ def _split_models(results: list[ModelReport]):
 
 def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
-    from .registry import load_rules
-    rules = load_rules()
+    from .registry import run_rules
     run = RunView(models=list(out.models))
-    problems = []
-    for code in settings.selected:
-        rule = rules.get(code)
-        if rule is None or rule.check is None or rule.scope != "run":
-            continue
-        opts = dict(rule.options)
-        opts.update(settings.options.get(code, {}))
-        try:
-            for loc, msg in rule.check(run, RunContext(opts)):
-                problems.append(Problem.at(code, msg, loc))
-        except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
-            out.internal.append(f"rule {code} crashed:\n{traceback.format_exc()}")
-    return problems
+    return [Problem.at(rule.code, msg, loc)
+            for rule, loc, msg in run_rules("run", settings.selected, settings.options, run,
+                                            RunContext({}), out.internal)]
 
 
 def _suppress(merged: list[Problem], models, settings: LintSettings,

@@ -97,6 +97,24 @@ def load_rules() -> dict:
     return _RULES
 
 
+def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = ""):
+    """Yield (rule, first item, message) for every selected rule of ``scope`` checking
+    ``subject`` (a Model, or a run), each with its options (defaults, then ``options[code]``) in
+    ``ctx.options``. A rule that crashes adds an internal error and the others still run."""
+    import traceback
+    rules = load_rules()
+    for code in selected:
+        rule = rules.get(code)
+        if rule is None or rule.check is None or rule.scope != scope:
+            continue
+        ctx.options = {**rule.options, **options.get(code, {})}
+        try:
+            for item in rule.check(subject, ctx):
+                yield rule, item[0], item[1]
+        except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
+            internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
+
+
 def codes_to_names() -> dict:
     return {c: r.name for c, r in load_rules().items()}
 
