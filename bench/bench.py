@@ -167,7 +167,6 @@ def main():
         from urdf_lint.discovery import build_resolver
         cfg = load_config(config)
         res = build_resolver(files, cfg)
-        import urdf_lint.worker as w
         from urdf_lint.lint import run_job
         from urdf_lint.discovery import discover
         from urdf_lint.pipeline import settings_for

@@ -45,7 +45,7 @@ def main() -> int:
             continue
         with tempfile.TemporaryDirectory() as d:
             at = positions(rule, Path(d))
-        print(f"{code} ({rule.module}.py): FAIL_AT = [{', '.join(f'({a}, {b})' for a, b in at)}]")
+        print(f"{code} (rules/{rule.module.rsplit('.', 1)[1]}.py): FAIL_AT = [{', '.join(f'({a}, {b})' for a, b in at)}]")
     return 0
 
 

@@ -95,6 +95,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             problems.append(exp.error)
             out.status = Status.FAILED
             return None
+        assert exp.xml is not None  # expand_file sets xml or error
         model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
         if not model.top_links() and not job.explicit:
             out.status = Status.LIBRARY

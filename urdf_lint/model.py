@@ -137,6 +137,6 @@ def parse_urdf_bytes(entry: str, data: bytes):
         # expat stops at the first error (a recovered document, a refused entity declaration),
         # so the positions may cover only a prefix of the elements: those keep theirs, the rest
         # fall back to their parent's origin (Model.origin)
-        for el, (line, col) in zip(root.iter(tag=etree.Element), positions):
+        for el, (line, col) in zip(root.iter(tag=etree.Element), positions, strict=False):
             origins[el] = Origin(entry, line, col, ())
     return root, origins, error

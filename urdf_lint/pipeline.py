@@ -177,7 +177,7 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     from . import suppress
     from .registry import load_rules
     rules = load_rules()
-    files = set()
+    files: set[str] = set()
     for r in models:
         files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
     directives = {f: suppress.parse_directives(f) for f in sorted(files)}

@@ -82,7 +82,7 @@ def load_rules() -> dict:
     if _RULES is not None:
         return _RULES
     import urdf_lint.rules as pkg
-    rules = {}
+    rules: dict[str, Rule] = {}
     for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda i: i.name):
         if info.name.startswith("_"):
             continue

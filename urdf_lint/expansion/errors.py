@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from types import ModuleType
-from typing import Callable
+from typing import Any, Callable
 
 import xacro
 import xacro.substitution_args as _subst
@@ -60,11 +60,11 @@ class RefusedInput(xacro.XacroException):
 class ErrorRow:
     catches: type | tuple
     rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
-    message: Callable[[BaseException], str]
+    message: Callable[[Any], str]
     looks_at: str = "either"             # "raised" | "wrapped" | "either"
     macros: bool = False                 # append the macro context
     own_location: bool = False           # use the exception's .loc when it has one
-    when: Callable[[BaseException], bool] = lambda e: True
+    when: Callable[[Any], bool] = lambda e: True
 
 
 def _missing_arg(e) -> str:
@@ -114,8 +114,8 @@ def problem_for(e: BaseException, here, macros=()) -> Problem:
     inner = wrapped(e)
     suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
     for row in ERROR_TABLE:
-        candidates = {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
-        hit = next((x for x in candidates if isinstance(x, row.catches) and row.when(x)), None)
+        candidates: tuple = {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
+        hit: Any = next((x for x in candidates if isinstance(x, row.catches) and row.when(x)), None)
         if hit is None:
             continue
         rule = row.rule or hit.rule

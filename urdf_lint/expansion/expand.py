@@ -25,6 +25,7 @@ import xml.dom
 import xml.parsers.expat
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import Any
 from xml.dom import expatbuilder
 
 import xacro
@@ -159,7 +160,7 @@ def parse_bytes(data: bytes, file: str, chain=()):
 
 # ---------------------------------------------------------------------------------------------
 # hooks
-_orig = {}
+_orig: dict[str, Any] = {}
 
 
 def _hook_parse(inp, filename=None):

@@ -28,14 +28,16 @@ KEY = "urdf_lint.origin"   # the minidom user-data key of an element's stamp
 
 @dataclass(frozen=True)
 class SourceMap(Sequence):
-    """One :class:`Origin` per output element, in document order."""
-    origins: tuple[Origin, ...] = ()
+    """One :class:`Origin` per output element, in document order (None only before the first
+    stamped element, which never happens for a parsed document)."""
+    origins: tuple[Origin | None, ...] = ()
 
     @classmethod
     def from_stamps(cls, stamps) -> "SourceMap":
         """From the ``(file, line, col, chain, ...)`` stamps of the output elements (None for
         an element without one: it takes the origin of the element before it)."""
-        out, last = [], None
+        out: list[Origin | None] = []
+        last: Origin | None = None
         for s in stamps:
             if s is not None:
                 last = Origin(s[0], s[1], s[2], tuple(tuple(c) for c in s[3]))
@@ -53,7 +55,7 @@ class SourceMap(Sequence):
     def __getitem__(self, i):
         return self.origins[i]
 
-    def __iter__(self) -> Iterator[Origin]:
+    def __iter__(self) -> Iterator[Origin | None]:
         return iter(self.origins)
 
 
