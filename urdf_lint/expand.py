@@ -31,7 +31,7 @@ import xacro
 import xacro.substitution_args as _subst
 
 from .packages import OutsideRoots, PackageNotFound, PackageResolver
-from . import safe_eval
+from . import safe_eval, splice
 
 from .config import DEFAULT_ENV_ALLOW
 
@@ -362,6 +362,7 @@ def _install_hooks():
     dict.__setitem__(g, "load_yaml", _hook_load_yaml)
     dict.__setitem__(g, "abs_filename", _hook_abs_filename_spec)
     safe_eval.install_xacro_symbols(g)
+    splice.install()
 
 
 @contextmanager
@@ -375,9 +376,11 @@ def _session(state):
     xacro.all_includes = []
     xacro.verbosity = 1
     xacro.substitution_args_context.clear()
+    splice.reset()
     try:
         yield state
     finally:
+        splice.reset()
         _state = None
         sys.stderr, sys.stdout = old_stderr, old_stdout
         xacro.all_includes = []
@@ -428,7 +431,8 @@ def classify_error(e: BaseException, st: _State) -> dict:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
         here = (top, 1, 1, ())
     macros = _macro_context()
-    suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
+    shown = [f"'{m}'" for m in macros[:3]] + ([f"... ({len(macros)} levels)"] if len(macros) > 3 else [])
+    suffix = (" (in macro " + " < ".join(shown) + ")") if macros else ""
     if isinstance(e, XmlSyntaxError):
         return _error_dict("UL001", str(e), e.loc + (st.include_chain,))
     inner = getattr(e, "exc", None)
