@@ -82,7 +82,7 @@ class Cache:
             result = rec["result"]
             if not isinstance(result.get("findings"), list):
                 return None
-            return result
+            return dict(result, missing=list(rec.get("missing", [])))
         except (OSError, ValueError, KeyError, TypeError, AttributeError):
             return None
 

@@ -23,6 +23,7 @@ class ModelResult:
     deps: list
     findings: list            # raw dicts
     cached: bool = False
+    missing: list = field(default_factory=list)   # files looked for and not found
 
     @property
     def label(self) -> str:
@@ -180,7 +181,8 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
         hit = cache.get(job, settings) if cache and not render_dir else None
         if hit is not None:
             results.append(ModelResult(job["entry"], job["args"], hit["status"], hit["stats"],
-                                       hit["deps"], hit["findings"], cached=True))
+                                       hit["deps"], hit["findings"], cached=True,
+                                       missing=hit.get("missing", [])))
         else:
             todo.append(job)
     internal = []
@@ -192,7 +194,7 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
                                                 memory_mb=cfg.memory_mb), 1):
             internal.extend(res.get("internal", []))
             mr = ModelResult(job["entry"], job["args"], res["status"], res["stats"], res["deps"],
-                             res["findings"])
+                             res["findings"], missing=res.get("missing", []))
             results.append(mr)
             if cache and not res.get("internal"):
                 cache.put(job, settings, res)

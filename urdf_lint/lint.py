@@ -110,6 +110,8 @@ def run_job(job: dict, settings: dict) -> dict:
             out["status"] = "library"
             out["findings"] = []
             return out
+        if settings.get("keep_model"):  # urdf-lint diff compares the robots themselves
+            out["model"] = {"xml": exp.xml, "origins": exp.origins}
     else:
         try:
             with open(entry, "rb") as f:
@@ -131,6 +133,8 @@ def run_job(job: dict, settings: dict) -> dict:
             return out
         model = Model(entry=entry, args={}, root=root, origins=origins, deps=[entry],
                       resolver=resolver)
+        if settings.get("keep_model"):
+            out["model"] = {"xml": None}   # the parent parses the .urdf itself
 
     if model.root.tag != "robot":
         findings.append(_finding("UL006", f"root element is <{model.root.tag}>, not <robot>",
