@@ -98,6 +98,23 @@ def build_parser():
     rd.add_argument("--no-rrd", action="store_true", help="PNG only")
     rd.add_argument("-j", "--jobs", type=int)
 
+    df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
+                        "every affected model between two git revisions")
+    df.add_argument("base", help="the base revision (e.g. origin/main)")
+    df.add_argument("head", nargs="?", help="the head revision (default: the working tree)")
+    df.add_argument("--path", action="append", dest="paths", metavar="PATH",
+                    help="limit to models under PATH (default: the whole repository)")
+    df.add_argument("--format", choices=["text", "json", "markdown"], default="text",
+                    help="output format (default: text)")
+    df.add_argument("--output", "-o", help="write the report to this file")
+    df.add_argument("--image-base-url", help="where snapshot images will be served from "
+                    "(markdown only)")
+    df.add_argument("--fail-on", choices=["error", "warning", "info", "never"],
+                    help="exit 1 when the change introduces findings at or above this "
+                    "severity (default: error)")
+    df.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    df.add_argument("-j", "--jobs", type=int, help="parallel workers (default: CPU count)")
+    df.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
     cl = sub.add_parser("clean", help="remove the cache")
     cl.add_argument("paths", nargs="*", default=["."])
     return p
@@ -298,6 +315,29 @@ def cmd_render(args) -> int:
     return 2 if result.internal else 0
 
 
+def cmd_diff(args) -> int:
+    from . import review, review_report
+    paths = args.paths or ["."]
+    for p in paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
+    args.config, args.isolated = None, False
+    try:
+        result = review.run_diff(args.base, args.head, paths, lambda ps: _load_cfg(args, ps),
+                                 _parse_package_paths(args.package_path), jobs_n=args.jobs,
+                                 use_cache=not args.no_cache)
+    except review.ReviewError as e:
+        raise UsageError(str(e)) from None
+    kw = {"image_base_url": args.image_base_url} if args.format == "markdown" else {}
+    if args.output:
+        review_report.write_file(result, args.format, args.output, **kw)
+    else:
+        review_report.write(result, args.format, sys.stdout, **kw)
+    for msg in result.internal:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+    return review.exit_code(result, args.fail_on or "error")
+
+
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
@@ -307,7 +347,7 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "clean": cmd_clean}
+            "render": cmd_render, "diff": cmd_diff, "clean": cmd_clean}
 
 
 def main(argv=None) -> int:

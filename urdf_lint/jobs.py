@@ -7,9 +7,13 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from .findings import Problem
 from .locations import Origin
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .expansion.sourcemap import SourceMap
 
 
 class Status(str, enum.Enum):
@@ -44,10 +48,18 @@ class LintSettings:
     render_dir: str | None = None            # set: the worker also writes a snapshot
     render_rrd: bool = True
     render_base: str | None = None
+    keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
 
     def cache_key(self) -> list:
         """What a cached result depends on (rendering does not change findings)."""
         return [list(self.selected), self.options, list(self.env_allow), self.resolver]
+
+
+@dataclass(frozen=True)
+class KeptModel:
+    """The expanded robot itself, sent back when ``LintSettings.keep_model`` is set."""
+    xml: str | None                          # None for a plain .urdf: the parent parses it
+    origins: "SourceMap | None" = None
 
 
 @dataclass
@@ -66,6 +78,7 @@ class ModelReport:
     joints: int = 0
     meshes: int = 0
     snapshot: dict | None = None                    # what the renderer wrote (render runs only)
+    kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
     cached: bool = False
 
     @classmethod

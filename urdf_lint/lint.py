@@ -11,7 +11,7 @@ import os
 from lxml import etree
 
 from .findings import Problem
-from .jobs import LintJob, LintSettings, ModelReport, Status
+from .jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from .locations import Origin
 from .rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype
 
@@ -101,6 +101,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             out.status = Status.LIBRARY
             out.problems = []
             return None
+        if settings.keep_model:  # urdf-lint diff compares the robots themselves
+            out.kept_model = KeptModel(exp.xml, exp.origins)
         return model
     try:
         with open(entry, "rb") as f:
@@ -122,6 +124,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
     if root is None:
         out.status = Status.FAILED
         return None
+    if settings.keep_model:
+        out.kept_model = KeptModel(None)   # the parent parses the .urdf itself
     return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
 
 

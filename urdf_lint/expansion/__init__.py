@@ -4,11 +4,18 @@
 * :mod:`.sourcemap`: the :class:`SourceMap` (file, line, col, chain per output element);
 * :mod:`.errors`: the table of how xacro's failures map to codes.
 
-Importing this package imports xacro; only the commands that expand pay for it.
+Importing :mod:`.expand` (``expand_file``, ``Expansion``) imports xacro, so it is loaded on
+first use: a cached run, and code that only needs the source-map type, never pay for it.
 """
 from __future__ import annotations
 
-from .expand import Expansion, expand_file
 from .sourcemap import SourceMap
 
 __all__ = ["Expansion", "SourceMap", "expand_file"]
+
+
+def __getattr__(name: str):
+    if name in ("Expansion", "expand_file"):
+        from . import expand
+        return getattr(expand, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

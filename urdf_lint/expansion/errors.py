@@ -6,7 +6,7 @@ rule module, never a literal) and the message. A row looks at the raised excepti
 exception xacro wrapped in it (``XacroException.exc``, unwrapped to the innermost), or either.
 The location is the exception's own when it carries one (XML syntax errors, refused input),
 else the innermost element xacro was evaluating; ``(in macro 'inner' < 'outer')`` names the
-macros being expanded for rows marked ``macros``.
+macros being expanded for rows marked ``macros`` (the innermost three, then the depth).
 
 ==================================  ======  =================================================
 exception                           code    message
@@ -112,7 +112,10 @@ def problem_for(e: BaseException, here, macros=()) -> Problem:
     element being evaluated, ``macros`` the names of the macros being expanded, innermost
     first."""
     inner = wrapped(e)
-    suffix = (" (in macro " + " < ".join(f"'{m}'" for m in macros) + ")") if macros else ""
+    macros = list(macros)
+    shown = [f"'{m}'" for m in macros[:3]] + \
+        ([f"... ({len(macros)} levels)"] if len(macros) > 3 else [])
+    suffix = (" (in macro " + " < ".join(shown) + ")") if macros else ""
     for row in ERROR_TABLE:
         candidates: tuple = {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
         hit: Any = next((x for x in candidates if isinstance(x, row.catches) and row.when(x)), None)

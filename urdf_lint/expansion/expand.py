@@ -36,6 +36,7 @@ from ..findings import Problem
 from ..packages import PackageResolver
 from .. import safe_eval
 from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
+from . import splice
 from .errors import RefusedInput, XmlSyntaxError, problem_for
 from .sourcemap import KEY, SourceMap
 
@@ -351,6 +352,7 @@ def _install_hooks():
     dict.__setitem__(g, "load_yaml", _hook_load_yaml)
     dict.__setitem__(g, "abs_filename", _hook_abs_filename_spec)
     safe_eval.install_xacro_symbols(g)
+    splice.install()
 
 
 @contextmanager
@@ -364,9 +366,11 @@ def _session(state):
     xacro.all_includes = []
     xacro.verbosity = 1
     xacro.substitution_args_context.clear()
+    splice.reset()
     try:
         yield state
     finally:
+        splice.reset()
         _state = None
         sys.stderr, sys.stdout = old_stderr, old_stdout
         xacro.all_includes = []

@@ -1,0 +1,176 @@
+"""``urdf-lint diff``: the semantic diff of what a commit did to the robots, on a git repository
+built here from the seed robots (issue #13)."""
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from conftest import DESCRIPTIONS
+from urdf_lint.cli import main
+
+
+def git(repo, *args):
+    subprocess.run(["git", *args], cwd=repo, check=True, capture_output=True)
+
+
+def edit(path: Path, old: str, new: str, count=1):
+    text = path.read_text()
+    assert old in text, (path, old)
+    path.write_text(text.replace(old, new, count))
+
+
+@pytest.fixture()
+def repo(tmp_path, monkeypatch):
+    r = tmp_path / "repo"
+    r.mkdir()
+    for name in ("r2d2_description", "double_pendulum_description"):
+        shutil.copytree(DESCRIPTIONS / name, r / name)
+    r2 = r / "r2d2_description"
+    # the head's mass comes from YAML, as robots with per-variant parameters do
+    (r2 / "config" / "inertial.yaml").write_text("head_mass: 2.0\n")
+    edit(r2 / "urdf" / "r2d2.urdf.xacro", '<xacro:box_inertial mass="2" x=',
+         '<xacro:box_inertial mass="${xacro.load_yaml(\'$(find r2d2_description)/config/'
+         'inertial.yaml\').head_mass}" x=')
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    monkeypatch.chdir(r)
+    return r
+
+
+def line_of(path: Path, needle: str) -> int:
+    for i, ln in enumerate(path.read_text().splitlines(), 1):
+        if needle in ln:
+            return i
+    raise AssertionError(needle)
+
+
+def run_json(capsys, *argv):
+    rc = main(["diff", *argv, "--format", "json", "--no-cache"])
+    out = capsys.readouterr().out
+    return rc, json.loads(out)
+
+
+def test_each_kind_of_change_is_listed_at_its_xacro_line(repo, capsys):
+    r2 = repo / "r2d2_description"
+    macros, top = r2 / "urdf" / "r2d2_macros.xacro", r2 / "urdf" / "r2d2.urdf.xacro"
+    # 1. a joint limit inside a macro (the four wheel joints)
+    edit(macros, '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
+    # 2. a mesh moved to another folder
+    (r2 / "meshes" / "tips").mkdir()
+    git(repo, "mv", "r2d2_description/meshes/l_finger_tip.stl",
+        "r2d2_description/meshes/tips/l_finger_tip.stl")
+    edit(macros, "meshes/l_finger_tip.stl", "meshes/tips/l_finger_tip.stl", count=-1)
+    # 3. a mass through YAML
+    (r2 / "config" / "inertial.yaml").write_text("head_mass: 2.5\n")
+    # 4. a new link, 5. a renamed joint
+    edit(top, '<joint name="tobox" type="fixed">', '<joint name="to_box" type="fixed">')
+    edit(top, "</robot>", '  <link name="antenna"/>\n  <joint name="antenna_joint" type="fixed">'
+         '<parent link="head"/><child link="antenna"/></joint>\n</robot>')
+
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0, json.dumps(doc)[-3000:]
+    assert doc["models_total"] == 2
+    assert doc["base_expanded"] == 1          # the unchanged double pendulum is not expanded
+    [m] = doc["models"]
+    assert m["model"] == "r2d2_description/urdf/r2d2.urdf.xacro" and m["status"] == "changed"
+
+    def src(c):
+        h = c["head"]
+        return f"{Path(h['file']).name}:{h['line']}"
+    got = {(c["kind"], c["name"], c["change"], c["field"], src(c)) for c in m["changes"]}
+    wheel = line_of(macros, 'effort="120"')
+    tip = line_of(macros, "meshes/tips/l_finger_tip.stl")
+    mass = line_of(macros, '<mass value="${mass}"/>')
+    inertia = line_of(macros, "<inertia ")
+    expected = {("joint", f"{side}_{end}_wheel_joint", "changed", "limit.effort",
+                 f"r2d2_macros.xacro:{wheel}") for side in ("left", "right") for end in ("front", "back")}
+    ctip = [i for i, ln in enumerate(macros.read_text().splitlines(), 1)
+            if "meshes/tips/l_finger_tip.stl" in ln][1]
+    expected |= {("link", f"{side}_tip", "changed", f"{part}[0].filename",
+                  f"r2d2_macros.xacro:{line}")
+                 for side in ("left", "right") for part, line in (("visual", tip), ("collision", ctip))}
+    expected |= {("link", "head", "changed", "inertial.mass", f"r2d2_macros.xacro:{mass}"),
+                 ("link", "head", "changed", "inertial.inertia", f"r2d2_macros.xacro:{inertia}"),
+                 ("link", "antenna", "added", "", f"r2d2.urdf.xacro:{line_of(top, 'antenna')}"),
+                 ("joint", "antenna_joint", "added", "",
+                  f"r2d2.urdf.xacro:{line_of(top, 'antenna_joint')}"),
+                 ("joint", "to_box", "renamed", "name", f"r2d2.urdf.xacro:{line_of(top, 'to_box')}")}
+    assert got == expected
+    by = {(c["name"], c["field"]): c for c in m["changes"]}
+    assert all(not c["base"] or not c["base"]["file"].startswith("/") for c in m["changes"])
+    assert by[("head", "inertial.mass")]["before"] == 2.0 and by[("head", "inertial.mass")]["after"] == 2.5
+    assert by[("to_box", "name")]["before"] == "tobox"
+    assert by[("left_front_wheel_joint", "limit.effort")]["head"]["chain"], "macro chain kept"
+    # a moved mesh file with the same bytes: same content hash, only the path changed
+    assert not [c for c in m["changes"] if c["field"].endswith(".content")]
+    assert m["moved"] == [] and m["findings_introduced"] == [] and m["findings_fixed"] == []
+
+
+def test_moved_links_and_introduced_findings(repo, capsys):
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.02}"')
+    edit(repo / "r2d2_description" / "config" / "joint_limits.yaml",
+         "gripper: {lower: 0.0, upper: 0.548", "gripper: {lower: 0.6, upper: 0.548")
+    rc, doc = run_json(capsys, "HEAD")
+    [m] = doc["models"]
+    moved = {x["link"]: x["distance"] for x in m["moved"]}
+    assert set(moved) == {"head", "box"} and all(abs(d - 0.02) < 1e-9 for d in moved.values())
+    assert {f["code"] for f in m["findings_introduced"]} == {"UL302"}
+    assert rc == 1                               # the change introduces an error
+    # fixing it again: the findings are fixed relative to a base that had them
+    git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qam", "bad")
+    edit(repo / "r2d2_description" / "config" / "joint_limits.yaml", "lower: 0.6", "lower: 0.0")
+    rc, doc = run_json(capsys, "HEAD")
+    [m] = doc["models"]
+    assert {f["code"] for f in m["findings_fixed"]} == {"UL302"} and rc == 0
+
+
+def test_deleted_model_and_committed_revisions(repo, capsys):
+    git(repo, "rm", "-q", "double_pendulum_description/urdf/double_pendulum.urdf.xacro")
+    git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "drop")
+    rc, doc = run_json(capsys, "HEAD~1", "HEAD")
+    assert [(m["model"], m["status"]) for m in doc["models"]] == [
+        ("double_pendulum_description/urdf/double_pendulum.urdf.xacro", "removed")]
+    removed = {c["name"] for c in doc["models"][0]["changes"] if c["change"] == "removed"}
+    assert {"link_A", "link_B"} <= removed or len(removed) >= 2
+
+
+def test_nothing_changed_and_bad_revision(repo, capsys):
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and doc["models"] == [] and doc["base_expanded"] == 0
+    rc = main(["diff", "no-such-ref", "--format", "json"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "not a commit" in err and len(err.strip().splitlines()) == 1
+
+
+def test_markdown_is_valid_gfm_and_escapes_names(repo, capsys):
+    cmarkgfm = pytest.importorskip("cmarkgfm")
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    edit(top, '<joint name="tobox" type="fixed">', '<joint name="to|box&lt;b&gt;" type="fixed">')
+    assert main(["diff", "HEAD", "--format", "markdown", "--no-cache",
+                 "--image-base-url", "https://example.invalid/run/1"]) == 0
+    md = capsys.readouterr().out
+    html = cmarkgfm.github_flavored_markdown_to_html(md)
+    assert "<table>" in html and "<details>" in md
+    assert "<b>" not in re.sub(r"<summary><b>[^<]*</b>", "", md.replace("<b>r2d2", "")), md
+    assert "to|box&lt;b&gt;" in html                 # the pipe did not split the cell
+    assert "https://example.invalid/run/1/r2d2_description_urdf_r2d2.urdf.xacro.after.png" in md
+
+
+def test_markdown_stays_under_the_limit():
+    from urdf_lint.review import DiffResult
+    from urdf_lint.review_report import to_markdown
+    from urdf_lint.robotdiff import Change, ModelDiff
+    r = DiffResult(base="a", head="b", total_models=400)
+    for i in range(400):
+        r.models.append(ModelDiff(model=f"pkg/urdf/robot_{i}.urdf.xacro", status="changed",
+                                  changes=[Change("joint", f"j{k}", "changed", "limit.upper",
+                                                  1.0, 2.0) for k in range(50)]))
+    md = to_markdown(r)
+    assert len(md) <= 60_000 and "robot_0" in md and "more model(s)" in md

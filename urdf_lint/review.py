@@ -1,0 +1,345 @@
+"""``urdf-lint diff BASE [HEAD]``: what a change did to the robots, for review in CI.
+
+1. Both revisions are materialised from git (``git archive``, extracted with tarfile's ``data``
+   filter); HEAD defaults to the working tree, used in place.
+2. HEAD is linted as ``check`` would (cache included); the models whose recorded inputs (every
+   xacro, YAML, mesh and texture read, and every file looked for and missing) meet a changed
+   path are *affected*. Deleted entry models are affected too.
+3. Only the affected models are expanded at BASE; every other model costs nothing there.
+4. Each affected model is expanded once more on each side in a worker (same isolation as
+   ``check``) to get the robot itself, and :mod:`urdf_lint.robotdiff` compares the two.
+5. Findings are compared by code, file (relative to the revision's root) and message: those
+   only at HEAD are *introduced*, those only at BASE are *fixed*.
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import tarfile
+import tempfile
+from collections import Counter
+from dataclasses import dataclass, field
+
+from .robotdiff import ModelDiff, diff_models
+from .rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+                    ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
+                    ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
+
+# the problems that say why a model could not be expanded or parsed
+_FAILURE_RULES = (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+                  ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
+                  ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
+
+MARKDOWN_LIMIT = 60_000
+
+
+class ReviewError(Exception):
+    pass
+
+
+def _git(top, *args, binary=False):
+    p = subprocess.run(["git", *args], cwd=top, capture_output=True, timeout=120)
+    if p.returncode != 0:
+        raise ReviewError(p.stderr.decode(errors="replace").strip().splitlines()[-1]
+                          if p.stderr.strip() else f"git {' '.join(args)} failed")
+    return p.stdout if binary else p.stdout.decode()
+
+
+def verify_rev(top: str, rev: str) -> str:
+    try:
+        return _git(top, "rev-parse", "--verify", "--quiet", rev + "^{commit}").strip()
+    except ReviewError:
+        raise ReviewError(f"'{rev}' is not a commit in {top} (fetch it first, e.g. "
+                          f"'git fetch origin {rev}')") from None
+
+
+def materialize(top: str, rev: str, dest: str, only=None) -> None:
+    """The tracked files of ``rev`` (or just ``only``, paths relative to the top) under
+    ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
+    os.makedirs(dest, exist_ok=True)
+    archive = os.path.join(os.path.dirname(dest), os.path.basename(dest) + ".tar")
+    if only is None:
+        batches = [[]]
+    else:
+        only = sorted(only)
+        batches = [only[i:i + 400] for i in range(0, len(only), 400)]
+    for batch in batches:
+        if only is not None and not batch:
+            continue
+        spec = ["--"] + [":(literal)" + p for p in batch] if batch else []
+        with open(archive, "wb") as f:
+            f.write(_git(top, "archive", "--format=tar", rev, *spec, binary=True))
+        with tarfile.open(archive) as tf:
+            tf.extractall(dest, filter="data")
+    if os.path.exists(archive):
+        os.remove(archive)
+
+
+def tracked_files(top: str, rev: str) -> set[str]:
+    return {p for p in _git(top, "ls-tree", "-r", "-z", "--name-only", rev).split("\0") if p}
+
+
+def name_status(top: str, base: str, head: str | None) -> list[tuple[str, str, str]]:
+    """(status letter, old path, new path) relative to the top, renames detected."""
+    args = ["diff", "--name-status", "-M", "-z", base] + ([head] if head else [])
+    parts = _git(top, *args).split("\0")
+    out, i = [], 0
+    while i < len(parts) and parts[i]:
+        st = parts[i]
+        if st.startswith(("R", "C")):
+            out.append((st[0], parts[i + 1], parts[i + 2]))
+            i += 3
+        else:
+            out.append((st[0], parts[i + 1], parts[i + 1]))
+            i += 2
+    if head is None:
+        for f in _git(top, "ls-files", "--others", "--exclude-standard", "-z").split("\0"):
+            if f:
+                out.append(("A", f, f))
+    return out
+
+
+@dataclass
+class Side:
+    root: str
+    models: dict = field(default_factory=dict)      # key -> ModelResult
+    findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
+    severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
+    robots: dict = field(default_factory=dict)      # key -> Model | None
+    errors: dict = field(default_factory=dict)      # key -> message
+
+
+@dataclass
+class DiffResult:
+    base: str
+    head: str
+    models: list = field(default_factory=list)      # ModelDiff, affected models only
+    total_models: int = 0
+    base_expanded: int = 0
+    internal: list = field(default_factory=list)
+
+
+def _key(rel_entry: str, args: dict) -> str:
+    return rel_entry + ("" if not args else " [" + " ".join(
+        f"{k}:={v}" for k, v in sorted(args.items())) + "]")
+
+
+def _rel(root, path):
+    return os.path.relpath(os.path.realpath(path), os.path.realpath(root))
+
+
+def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
+    from .discovery import build_resolver
+    from .pipeline import run_check
+    resolver = build_resolver(paths, cfg, package_paths)
+    result = run_check(paths, cfg, resolver, jobs_n=jobs_n, cache=cache)
+    labels = {}
+    for m in result.models:
+        k = _key(_rel(side.root, m.entry), m.args)
+        side.models[k] = m
+        labels[m.label] = k
+        side.findings[k] = Counter()
+    real_root = os.path.realpath(side.root)
+    for f in result.findings:
+        fk = (f.code, _rel(side.root, f.file),
+              f.message.replace(real_root + os.sep, "").replace(side.root + os.sep, ""))
+        side.severities[fk] = f.severity
+        for label in f.models:
+            if label in labels:
+                side.findings[labels[label]][fk] += 1
+    return resolver, result
+
+
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
+    """Expand the given models once more in workers and build the Model of each."""
+    import dataclasses
+    from .jobs import LintJob
+    from .model import Model, model_from_xml, parse_urdf_bytes
+    from .pipeline import settings_for
+    from .worker import run_jobs
+    jobs, key_of = [], {}
+    for k in keys:
+        m = side.models.get(k)
+        if m is None:
+            continue
+        kind = "urdf" if m.entry.endswith(".urdf") else "xacro"
+        job = LintJob(m.entry, dict(m.args), kind, explicit=True)
+        jobs.append(job)
+        key_of[id(job)] = k
+    settings = dataclasses.replace(settings_for(cfg, resolver, None), selected=(),
+                                   keep_model=True)
+    failures = {r.CODE for r in _FAILURE_RULES}
+    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n, timeout=cfg.timeout,
+                             memory_mb=cfg.memory_mb):
+        k = key_of[id(job)]
+        kept = res.kept_model
+        if kept is None:
+            msgs = [p.message for p in res.problems if p.code in failures]
+            side.robots[k] = None
+            side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
+            continue
+        if kept.xml is not None:
+            side.robots[k] = model_from_xml(job.entry, job.args, kept.xml, kept.origins,
+                                            res.deps, resolver)
+        else:
+            with open(job.entry, "rb") as f:
+                root, origins, _ = parse_urdf_bytes(job.entry, f.read())
+            side.robots[k] = (Model(entry=job.entry, args={}, root=root, origins=origins,
+                                    deps=[job.entry], resolver=resolver)
+                              if root is not None else None)
+
+
+def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
+             jobs_n=None, use_cache=True) -> DiffResult:
+    from .discovery import start_dir
+    from .vcs import git_root
+    top = git_root(start_dir(paths))
+    if top is None:
+        raise ReviewError("diff compares git revisions: run it inside a git repository")
+    base_sha = verify_rev(top, base_rev)
+    head_sha = verify_rev(top, head_rev) if head_rev else None
+    changes = name_status(top, base_sha, head_sha)
+    changed_head = {new for st, _, new in changes if st != "D"}
+    changed_base = {old for st, old, _ in changes if st != "A"}
+    renamed = {new: old for st, old, new in changes if st == "R"}
+    result = DiffResult(base=base_rev, head=head_rev or "working tree")
+    with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
+        head_root = top
+        if head_sha:
+            head_root = os.path.join(tmp, "head")
+            materialize(top, head_sha, head_root)
+        base_root = os.path.join(tmp, "base")
+        rel_paths = [os.path.relpath(os.path.abspath(p), top) for p in (paths or ["."])]
+
+        head = Side(head_root)
+        head_paths = [os.path.normpath(os.path.join(head_root, p)) for p in rel_paths]
+        head_paths = [p for p in head_paths if os.path.exists(p)] or [head_root]
+        cfg = cfg_loader(head_paths)
+        cache = None
+        if use_cache and head_sha is None:
+            from .cache import Cache
+            cache = Cache.for_paths(head_paths, cfg)
+        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n, cache)
+        result.internal += head_result.internal
+        result.total_models = len(head.models)
+
+        affected = []
+        for k, m in head.models.items():
+            inputs = {_rel(head_root, d) for d in list(m.deps) + list(getattr(m, "missing", []))}
+            inputs.add(_rel(head_root, m.entry))
+            if inputs & (changed_head | changed_base):
+                affected.append(k)
+        # the base needs only what the affected models can read there: their inputs at HEAD
+        # (through renames), every changed path, and the package manifests and configs
+        base_files = tracked_files(top, base_sha)
+        need = set(changed_base)
+        for k in affected:
+            m = head.models[k]
+            for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]:
+                rel = _rel(head_root, d)
+                need.add(renamed.get(rel, rel))
+        need |= {f for f in base_files if os.path.basename(f) in
+                 ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
+                  "CATKIN_IGNORE")}
+        materialize(top, base_sha, base_root, only=need & base_files)
+        # base entries: the affected models (through renames) and deleted model files
+        base_entries = set()
+        for k in affected:
+            rel = _rel(head_root, head.models[k].entry)
+            rel = renamed.get(rel, rel)
+            if os.path.exists(os.path.join(base_root, rel)):
+                base_entries.add(rel)
+        from .lint import classify_xacro
+        for st, old, new in changes:
+            if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
+                    any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
+                        for p in rel_paths):
+                f = os.path.join(base_root, old)
+                if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
+                    base_entries.add(old)
+        base = Side(base_root)
+        base_resolver = None
+        if base_entries:
+            base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
+            base_cfg = cfg_loader([base_root])
+            base_resolver, base_result = _lint_side(base, base_paths, base_cfg, package_paths,
+                                                    jobs_n, None)
+            result.internal += base_result.internal
+        result.base_expanded = len(base.models)
+
+        _load_robots(head, affected, head_resolver, cfg, jobs_n)
+        base_keys = {}
+        for k in affected:
+            m = head.models[k]
+            rel = _rel(head_root, m.entry)
+            bk = _key(renamed.get(rel, rel), m.args)
+            if bk in base.models:
+                base_keys[k] = bk
+        deleted = [k for k in base.models if k not in base_keys.values()]
+        if base_resolver is not None:
+            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n)
+
+        for k in sorted(affected):
+            bk = base_keys.get(k)
+            result.models.append(_model_diff(k, head, base, bk))
+        for bk in sorted(deleted):
+            result.models.append(_model_diff(bk, head, base, bk, removed=True))
+    return result
+
+
+def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
+    hm = None if removed else head.robots.get(k)
+    bm = base.robots.get(bk) if bk else None
+    if removed:
+        status = "removed"
+    elif bk is None:
+        status = "added"
+    else:
+        status = "changed"
+    md = ModelDiff(model=k, status=status)
+    if not removed and hm is None:
+        md.status, md.error = "failed", head.errors.get(k, "")
+    elif bk is not None and bm is None and not removed:
+        md.error = "at base: " + base.errors.get(bk, "")
+    try:
+        changes, md.moved = diff_models(bm, hm)
+        md.changes = [_rebase(c, base.root, head.root) for c in changes]
+    except Exception as e:  # noqa: BLE001 - a malformed model still gets its findings diff
+        md.error = f"could not compare: {type(e).__name__}: {e}"
+    hf = head.findings.get(k, Counter()) if not removed else Counter()
+    bf = base.findings.get(bk, Counter()) if bk else Counter()
+    md.findings_introduced = [(fk, head.severities.get(fk, "error"))
+                              for fk in sorted((hf - bf).elements())]
+    md.findings_fixed = [(fk, base.severities.get(fk, "error"))
+                         for fk in sorted((bf - hf).elements())]
+    if status == "changed" and not md.changes and not md.moved and not md.findings_introduced \
+            and not md.findings_fixed and not md.error:
+        md.status = "unchanged"
+    return md
+
+
+def _rebase(c, base_root, head_root):
+    """Base-side locations name the file where it is in the repository, not the temporary copy."""
+    from dataclasses import replace
+
+    from .locations import Origin
+    if c.base is None:
+        return c
+
+    def move(p):
+        rel = os.path.relpath(p, base_root)
+        return p if rel.startswith("..") else os.path.join(head_root, rel)
+    o = c.base
+    return replace(c, base=Origin(move(o.file), o.line, o.col,
+                                  tuple((move(x[0]),) + tuple(x[1:]) for x in o.chain)))
+
+
+def exit_code(result: DiffResult, fail_on: str) -> int:
+    from .findings import SEVERITY_RANK
+    if result.internal:
+        return 2
+    if fail_on == "never":
+        return 0
+    t = SEVERITY_RANK[fail_on]
+    return 1 if any(SEVERITY_RANK.get(sev, 2) >= t for m in result.models
+                    for _, sev in m.findings_introduced) else 0
