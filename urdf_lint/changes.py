@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import os
 
+from .vcs import GitError, changed_files  # noqa: F401 - the names callers used to import here
+
 
 def affected(models, files: set[str]):
     """(models whose inputs intersect ``files``, files no model uses)."""
