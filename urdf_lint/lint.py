@@ -182,6 +182,8 @@ def run_job(job: dict, settings: dict) -> dict:
                     "links": len(model.top_links()),
                     "joints": len(model.top_joints()),
                     "meshes": len(list(model.root.iter("mesh")))}
+    if settings.get("diff_render_dir") and out.get("model") is not None:
+        out["geometry"], out["rrd"] = _diff_snapshot(model, ctx, job, settings)
     if settings.get("render_dir"):
         from .render import render_model
         from .registry import load_rules as _lr
@@ -191,3 +193,22 @@ def run_job(job: dict, settings: dict) -> dict:
                                                 settings.get("render_base"),
                                                 rrd=settings.get("render_rrd", True))
     return out
+
+
+def _diff_snapshot(model, ctx, job, settings):
+    """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
+    revision's framing) and this revision's half of the shared recording."""
+    from . import render
+    scene = render.build_scene(model, ctx)
+    geometry = render.scene_geometry(scene, ctx)
+    rrd = None
+    if settings.get("diff_rrd", True):
+        try:
+            import rerun  # noqa: F401
+        except ImportError:
+            return geometry, None
+        stem = os.path.join(settings["diff_render_dir"], job["diff_stem"])
+        rrd = f"{stem}.{job['diff_side']}.rrd"
+        render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job['diff_stem']}",
+                          prefix=f"{job['diff_side']}/")
+    return geometry, rrd

@@ -98,6 +98,8 @@ class Side:
     findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
     severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
     robots: dict = field(default_factory=dict)      # key -> Model | None
+    geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
+    rrd: dict = field(default_factory=dict)         # key -> this revision's half recording
     errors: dict = field(default_factory=dict)      # key -> message
 
 
@@ -141,8 +143,15 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
     return resolver, result
 
 
-def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
-    """Expand the given models once more in workers and build the Model of each."""
+def image_stem(key: str) -> str:
+    """The file name stem of a model's diff snapshots (the markdown links to it)."""
+    return "".join(c if c.isalnum() or c in "._-" else "_" for c in key)
+
+
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_name="head",
+                 rrd=True):
+    """Expand the given models once more in workers and build the Model of each (and, for
+    ``--render``, the geometry of its picture and its half of the shared recording)."""
     from .check import settings_for
     from .model import Model, model_from_xml, parse_urdf_bytes
     from .worker import run_jobs
@@ -153,12 +162,18 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
             continue
         kind = "urdf" if m.entry.endswith(".urdf") else "xacro"
         jobs.append({"entry": m.entry, "args": dict(m.args), "kind": kind, "explicit": True,
-                     "key": k})
+                     "key": k, "diff_stem": image_stem(k), "diff_side": side_name})
     settings = dict(settings_for(cfg, resolver, None), selected=[], keep_model=True)
+    if render_dir:
+        settings.update(diff_render_dir=os.path.realpath(render_dir), diff_rrd=rrd)
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = job["key"]
         kept = res.get("model")
+        if res.get("geometry") is not None:
+            side.geometry[k] = res["geometry"]
+        if res.get("rrd"):
+            side.rrd[k] = res["rrd"]
         if not kept:
             msgs = [f["message"] for f in res.get("findings", [])
                     if f["code"] in ("UL001", "UL002", "UL003", "UL004", "UL005", "UL006",
@@ -178,7 +193,8 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
 
 
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
-             jobs_n=None, use_cache=True) -> DiffResult:
+             jobs_n=None, use_cache=True, render_dir: str | None = None,
+             rrd: bool = True) -> DiffResult:
     from .check import git_root
     start = os.path.abspath(paths[0] if paths else ".")
     top = git_root(start if os.path.isdir(start) else os.path.dirname(start))
@@ -255,7 +271,9 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             result.internal += base_result.internal
         result.base_expanded = len(base.models)
 
-        _load_robots(head, affected, head_resolver, cfg, jobs_n)
+        if render_dir:
+            _clear_snapshots(render_dir)
+        _load_robots(head, affected, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
         base_keys = {}
         for k in affected:
             m = head.models[k]
@@ -265,14 +283,69 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
         if base_resolver is not None:
-            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n)
+            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n,
+                         render_dir, "base", rrd)
 
         for k in sorted(affected):
             bk = base_keys.get(k)
             result.models.append(_model_diff(k, head, base, bk))
         for bk in sorted(deleted):
             result.models.append(_model_diff(bk, head, base, bk, removed=True))
+        if render_dir:
+            for md in result.models:
+                hk = None if md.status == "removed" else md.model
+                bk = base_keys.get(md.model) if md.status != "removed" else md.model
+                md.snapshot = _snapshot(md.model, head, base, hk, bk, render_dir, result)
     return result
+
+
+_SNAPSHOT_SUFFIXES = (".before.png", ".after.png", ".diff.png", ".rrd", ".base.rrd", ".head.rrd")
+
+
+def _clear_snapshots(render_dir):
+    """Remove what an earlier diff --render wrote here, so no stale picture survives."""
+    os.makedirs(render_dir, exist_ok=True)
+    if os.path.islink(render_dir):
+        raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
+    for name in os.listdir(render_dir):
+        p = os.path.join(render_dir, name)
+        if name.endswith(_SNAPSHOT_SUFFIXES) and os.path.isfile(p) and not os.path.islink(p):
+            os.remove(p)
+
+
+def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result) -> dict:
+    from . import render
+    stem = os.path.join(render_dir, image_stem(key))
+    before = base.geometry.get(bk) if bk else None
+    after = head.geometry.get(hk) if hk else None
+    info: dict = {}
+    if before is None and after is None:
+        result.internal.append(f"diff --render: no snapshot could be made for {key}")
+        return info
+    md = next(m for m in result.models if m.model == key)
+    changed = {name for name, _, _ in md.moved}
+    changed |= {c.name for c in md.changes if c.kind == "link"}
+    if md.status in ("added", "removed"):
+        changed |= set((after or before).part_links) | set((after or before).wire_links)
+    info.update(render.render_pair(before, after, stem, frozenset(changed)))
+    halves = [p for p in (base.rrd.get(bk) if bk else None, head.rrd.get(hk) if hk else None) if p]
+    if halves:
+        info["rrd"] = _merge_rrd(halves, stem + ".rrd")
+    return info
+
+
+def _merge_rrd(halves, out):
+    """One recording holding both revisions (entity roots /base and /head)."""
+    import shutil
+    import sys
+    exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
+    p = subprocess.run([exe, "rrd", "merge", *halves, "-o", out], capture_output=True,
+                       timeout=120)
+    if p.returncode != 0:
+        raise ReviewError("rerun rrd merge failed: " + p.stderr.decode(errors="replace")[-300:])
+    for h in halves:
+        os.remove(h)
+    return out
 
 
 def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:

@@ -61,7 +61,8 @@ def _worker_main(conn, settings, memory_mb):
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
-        if settings.get("render_dir") and settings.get("render_rrd", True):
+        if (settings.get("render_dir") and settings.get("render_rrd", True)) or \
+                (settings.get("diff_render_dir") and settings.get("diff_rrd", True)):
             limit += RERUN_RESERVE_MB * 1024 * 1024
         # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
         # RLIMIT_AS would also count the address space that native thread arenas only reserve.
@@ -72,7 +73,8 @@ def _worker_main(conn, settings, memory_mb):
     _scrub_environment(set(settings.get("env_allow", ())))
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.get("mesh_cache_dir"), settings.get("render_dir"))
+    _install_audit_hook(settings.get("mesh_cache_dir"), settings.get("render_dir"),
+                        settings.get("diff_render_dir"))
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     from .lint import run_job
     while True:
