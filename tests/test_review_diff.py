@@ -174,3 +174,108 @@ def test_markdown_stays_under_the_limit():
                                                   1.0, 2.0) for k in range(50)]))
     md = to_markdown(r)
     assert len(md) <= 60_000 and "robot_0" in md and "more model(s)" in md
+
+
+# -- diff --render ---------------------------------------------------------------------------
+def _img(path):
+    from PIL import Image
+    import numpy as np
+    return np.asarray(Image.open(path).convert("RGB"), dtype=int)
+
+
+def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
+    import numpy as np
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.05}"')
+    out = tmp_path / "snap"
+    out.mkdir()
+    (out / "stale.diff.png").write_bytes(b"old")        # an earlier run's file is cleared
+    assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
+    capsys.readouterr()
+    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    before, after, diff = (_img(f"{stem}.{s}.png") for s in ("before", "after", "diff"))
+    assert not (out / "stale.diff.png").exists()
+    assert before.shape == after.shape == diff.shape
+    tinted = (diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)   # magenta
+    outline = (diff[:, :, 2] > 150) & (diff[:, :, 0] < 80)                        # blue
+    marked = tinted | outline
+    # where the moved links are, computed here from both revisions with the same framing
+    base_copy = tmp_path / "base"
+    shutil.copytree(repo, base_copy)
+    git(base_copy, "checkout", "-q", "--", ".")
+    masks = [_link_mask(root, {"head", "box"}) for root in (base_copy, repo)]
+    frame = render_frame(masks)
+    m_before, m_after = (render_mask(g, frame, links) for g, links in masks)
+    assert m_after.sum() > 1000 and (m_before ^ m_after).sum() > 500
+    assert (tinted & m_after).sum() >= 0.9 * m_after.sum()       # the new place is tinted
+    near = dilate(m_before | m_after, 3)
+    assert marked.sum() > 500 and not (marked & ~near).any()      # nothing else is marked
+
+
+def _link_mask(root, links):
+    from urdf_lint.expansion import expand_file
+    from urdf_lint.lint import Context
+    from urdf_lint.model import model_from_xml
+    from urdf_lint.packages import PackageResolver
+    from urdf_lint import render
+    pkg = root / "r2d2_description"
+    res = PackageResolver.build([str(root)], extra_roots=[str(root)])
+    e = expand_file(str(pkg / "urdf" / "r2d2.urdf.xacro"), resolver=res)
+    model = model_from_xml(e.entry, {}, e.xml, e.origins, e.deps, res)
+    ctx = Context({}, None)
+    return render.scene_geometry(render.build_scene(model, ctx), ctx), links
+
+
+def render_frame(masks):
+    from urdf_lint import render
+    return render.frame_for([g for g, _ in masks])
+
+
+def render_mask(g, frame, links):
+    from urdf_lint import render
+    return render._mask(render.draw(g.only(links), frame))
+
+
+def dilate(m, n):
+    import numpy as np
+    out = m.copy()
+    for _ in range(n):
+        grown = out.copy()
+        grown[1:, :] |= out[:-1, :]
+        grown[:-1, :] |= out[1:, :]
+        grown[:, 1:] |= out[:, :-1]
+        grown[:, :-1] |= out[:, 1:]
+        out = grown
+    return out
+
+
+def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys):
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    edit(top, "<robot name", "<!-- a comment changes the file, not the robot -->\n<robot name")
+    out = tmp_path / "snap"
+    assert main(["diff", "HEAD", "--render", str(out), "--no-cache", "--format", "json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert [m["status"] for m in doc["models"]] == ["unchanged"]
+    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    assert Path(f"{stem}.before.png").read_bytes() == Path(f"{stem}.after.png").read_bytes()
+    diff = _img(f"{stem}.diff.png")
+    assert not ((diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)).any()
+
+
+def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
+    pytest.importorskip("rerun")
+    import warnings
+    from rerun.chunk import RrdReader
+    edit(repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro", '<box size="0.08 0.08 0.08"/>',
+         '<box size="0.1 0.08 0.08"/>')
+    out = tmp_path / "snap"
+    assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
+    capsys.readouterr()
+    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    roots = set()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for ch in RrdReader(str(rrd)).stream():
+            roots.add(str(ch.entity_path).strip("/").split("/")[0])
+    assert {"base", "head"} <= roots
+    assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))

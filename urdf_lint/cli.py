@@ -115,6 +115,9 @@ def build_parser():
     df.add_argument("--package-path", action="append", metavar="NAME=DIR")
     df.add_argument("-j", "--jobs", type=int, help="parallel workers (default: CPU count)")
     df.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
+    df.add_argument("--render", metavar="DIR", help="write before/after/difference PNGs with "
+                    "identical framing and one .rrd holding both revisions per affected model")
+    df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
     cl = sub.add_parser("clean", help="remove the cache")
     cl.add_argument("paths", nargs="*", default=["."])
     return p
@@ -325,7 +328,8 @@ def cmd_diff(args) -> int:
     try:
         result = review.run_diff(args.base, args.head, paths, lambda ps: _load_cfg(args, ps),
                                  _parse_package_paths(args.package_path), jobs_n=args.jobs,
-                                 use_cache=not args.no_cache)
+                                 use_cache=not args.no_cache, render_dir=args.render,
+                                 rrd=not args.no_rrd)
     except review.ReviewError as e:
         raise UsageError(str(e)) from None
     kw = {"image_base_url": args.image_base_url} if args.format == "markdown" else {}

@@ -34,6 +34,7 @@ class LintJob:
     args: dict = field(default_factory=dict)
     kind: str = "xacro"        # "xacro" | "urdf"
     explicit: bool = False     # named by the user or the config (never skipped as a library)
+    diff_stem: str | None = None   # diff --render: the file name stem of its snapshots
 
 
 @dataclass(frozen=True)
@@ -49,6 +50,9 @@ class LintSettings:
     render_rrd: bool = True
     render_base: str | None = None
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
+    diff_render_dir: str | None = None       # diff --render: where the snapshots go
+    diff_rrd: bool = True                    # diff --render: also this side's half recording
+    diff_side: str = "head"                  # diff --render: "base" or "head"
 
     def cache_key(self) -> list:
         """What a cached result depends on (rendering does not change findings)."""
@@ -79,6 +83,8 @@ class ModelReport:
     meshes: int = 0
     snapshot: dict | None = None                    # what the renderer wrote (render runs only)
     kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
+    diff_geometry: object = None                    # diff --render: render.Geometry
+    diff_rrd: str | None = None                     # diff --render: this side's recording
     cached: bool = False
 
     @classmethod

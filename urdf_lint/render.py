@@ -230,57 +230,116 @@ def _transform(T, v):
 
 
 # -- PNG -------------------------------------------------------------------------------------
-def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE):
-    from PIL import Image, ImageDraw
-    W, H = size
-    S = 2  # supersampling for anti-aliasing
-    tris, cols, wires = [], [], []
+@dataclass
+class Geometry:
+    """What a PNG shows, in world coordinates: plain arrays, so a worker can compute it from
+    the meshes it may read and the parent can draw several revisions with one framing."""
+    name: str
+    tris: list                 # per visual part: (faces, 3, 3) float array
+    cols: list                 # per visual part: (faces, 3) rgb in 0..1
+    wires: list                # world positions of placeholders for missing geometry
+    link_pts: np.ndarray       # (links, 3) link origins
+    links: int
+    part_links: list = field(default_factory=list)   # the link of each entry of ``tris``
+    wire_links: list = field(default_factory=list)   # the link of each entry of ``wires``
+
+    def only(self, links) -> "Geometry":
+        """The parts of the given links in black (for highlight masks: a white part would be
+        too close to the background to tell)."""
+        keep = [i for i, lk in enumerate(self.part_links) if lk in links]
+        wk = [i for i, lk in enumerate(self.wire_links) if lk in links]
+        return Geometry(self.name, [self.tris[i] for i in keep],
+                        [np.zeros_like(self.cols[i]) for i in keep],
+                        [self.wires[i] for i in wk], self.link_pts, self.links,
+                        [self.part_links[i] for i in keep], [self.wire_links[i] for i in wk])
+
+
+@dataclass
+class Frame:
+    center: np.ndarray
+    right: np.ndarray
+    up: np.ndarray
+    fwd: np.ndarray
+    view: np.ndarray
+    scale: float
+    ox: float
+    oy: float
+    box: float
+    size: tuple
+
+
+_SS = 2  # supersampling for anti-aliasing
+
+
+def scene_geometry(scene, ctx) -> Geometry:
+    tris, cols, wires, plinks, wlinks = [], [], [], [], []
     for part in scene.parts:
         if part.kind != "visual":
             continue
         got = part_mesh(part, ctx) if part.shape != "missing" else None
         if got is None:
-            wires.append(part)
+            wires.append(part.T[:3, 3].copy())
+            wlinks.append(part.link)
             continue
         v, f, fc = got
         vw = _transform(part.T, v)
         tris.append(vw[f])
+        plinks.append(part.link)
         base = np.asarray(part.rgba[:3], dtype=float)
         cols.append(fc if fc is not None and len(fc) == len(f) else np.tile(base, (len(f), 1)))
     link_pts = np.array([T[:3, 3] for T in scene.links.values()]) if scene.links else np.zeros((1, 3))
-    allv = np.concatenate([t.reshape(-1, 3) for t in tris] + [link_pts]) if tris else link_pts
+    return Geometry(scene.name, tris, cols, wires, link_pts, len(scene.links), plinks, wlinks)
+
+
+def _box_corners(c, box):
+    return np.array([[x, y, z] for x in (-box, box) for y in (-box, box) for z in (-box, box)]) + c
+
+
+def frame_for(geoms, size=PNG_SIZE) -> Frame:
+    """One camera for all ``geoms`` (a 3/4 view from the front left, fitted to their union)."""
+    W, H = size
+    pts = []
+    for g in geoms:
+        pts += [t.reshape(-1, 3) for t in g.tris] + [g.link_pts]
+    allv = np.concatenate(pts)
     lo, hi = allv.min(axis=0), allv.max(axis=0)
     diag = float(np.linalg.norm(hi - lo)) or 0.2
     box = max(0.02, 0.04 * diag)
-    for part in wires:  # placeholders for missing meshes: a red wire box at the link frame
-        c = part.T[:3, 3]
+    wires = [c for g in geoms for c in g.wires]
+    for c in wires:  # placeholders for missing meshes: a red wire box at the link frame
         lo, hi = np.minimum(lo, c - box), np.maximum(hi, c + box)
     center = (lo + hi) / 2
-    az, el = math.radians(-135 + 180), math.radians(25)   # a 3/4 view from the front left
+    az, el = math.radians(-135 + 180), math.radians(25)
     d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
     fwd = -d
     right = np.cross(fwd, [0, 0, 1.0])
     right /= np.linalg.norm(right)
     up = np.cross(right, fwd)
+    frame_pts = pts + [_box_corners(c, box) for c in wires]
+    q = np.concatenate(frame_pts) - center
+    pc = np.stack([q @ right, q @ up], axis=-1)
+    span = max(pc[:, 0].max() - pc[:, 0].min(), (pc[:, 1].max() - pc[:, 1].min()) * W / H, 1e-6)
+    S = _SS
+    scale = 0.86 * W * S / span
+    ox = W * S / 2 - scale * (pc[:, 0].max() + pc[:, 0].min()) / 2
+    oy = H * S / 2 + scale * (pc[:, 1].max() + pc[:, 1].min()) / 2
+    return Frame(center, right, up, fwd, d, scale, ox, oy, box, (W, H))
+
+
+def draw(g: Geometry, fr: Frame):
+    """The anti-aliased image of one geometry through one frame (no caption)."""
+    from PIL import Image, ImageDraw
+    W, H = fr.size
+    S = _SS
 
     def project(p):
-        q = p - center
-        return np.stack([q @ right, q @ up, q @ fwd], axis=-1)
-    frame_pts = [t.reshape(-1, 3) for t in tris] + [link_pts]
-    for part in wires:
-        c = part.T[:3, 3]
-        frame_pts.append(np.array([[x, y, z] for x in (-box, box) for y in (-box, box)
-                                   for z in (-box, box)]) + c)
-    pc = project(np.concatenate(frame_pts))
-    span = max(pc[:, 0].max() - pc[:, 0].min(), (pc[:, 1].max() - pc[:, 1].min()) * W / H, 1e-6)
-    scale = 0.86 * W * S / span
-    ox, oy = W * S / 2 - scale * (pc[:, 0].max() + pc[:, 0].min()) / 2, H * S / 2 + scale * (pc[:, 1].max() + pc[:, 1].min()) / 2
-
+        q = p - fr.center
+        return np.stack([q @ fr.right, q @ fr.up, q @ fr.fwd], axis=-1)
     background = np.array([236, 238, 241], dtype=np.uint8)
     colour = np.tile(background, (H * S, W * S, 1))
-    if tris:
-        T3 = np.concatenate(tris)
-        C = np.concatenate(cols)
+    if g.tris:
+        T3 = np.concatenate(g.tris)
+        C = np.concatenate(g.cols)
         if len(T3) > MAX_TRIANGLES:  # keep the largest triangles within the budget
             area = np.linalg.norm(np.cross(T3[:, 1] - T3[:, 0], T3[:, 2] - T3[:, 0]), axis=1)
             keep = np.sort(np.argsort(-area, kind="stable")[:MAX_TRIANGLES])
@@ -289,38 +348,114 @@ def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE):
         nn = np.linalg.norm(n, axis=1)
         ok = nn > 0
         T3, C, n = T3[ok], C[ok], n[ok] / nn[ok][:, None]
-        light = d + np.array([0.3, -0.2, 0.6])
+        light = fr.view + np.array([0.3, -0.2, 0.6])
         light /= np.linalg.norm(light)
         shade = 0.38 + 0.62 * np.abs(n @ light)
         rgb8 = (np.clip(C * shade[:, None], 0, 1) * 255).astype(np.uint8)
         P = project(T3.reshape(-1, 3)).reshape(-1, 3, 3)
-        X = ox + scale * P[:, :, 0]
-        Y = oy - scale * P[:, :, 1]
+        X = fr.ox + fr.scale * P[:, :, 0]
+        Y = fr.oy - fr.scale * P[:, :, 1]
         Z = P[:, :, 2]
         rasterize(colour, X, Y, Z, rgb8)
     img = Image.fromarray(colour, "RGB")
-    draw = ImageDraw.Draw(img)
-    for part in wires:
-        c = part.T[:3, 3]
-        pts = np.array([[x, y, z] for x in (-box, box) for y in (-box, box) for z in (-box, box)]) + c
-        q = project(pts)
-        q2 = [(ox + scale * a, oy - scale * b) for a, b, _ in q]
+    dr = ImageDraw.Draw(img)
+    for c in g.wires:
+        q = project(_box_corners(c, fr.box))
+        q2 = [(fr.ox + fr.scale * a, fr.oy - fr.scale * b) for a, b, _ in q]
         for a, b in ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7)):
-            draw.line([q2[a], q2[b]], fill=(220, 30, 30), width=3 * S)
-    img = img.resize((W, H), Image.LANCZOS)
-    draw = ImageDraw.Draw(img)
-    caption = scene.name or "robot"
-    caption += f"  ({len(scene.links)} links"
-    if wires:
-        caption += f", {len(wires)} missing geometry shown as red boxes"
-    if findings_count:
-        caption += f", {findings_count} findings"
-    caption += ")"
-    draw.text((12, 10), caption, fill=(40, 40, 40))
+            dr.line([q2[a], q2[b]], fill=(220, 30, 30), width=3 * S)
+    return img.resize((W, H), Image.LANCZOS)
+
+
+def _caption(img, text):
+    from PIL import ImageDraw
+    ImageDraw.Draw(img).text((12, 10), text, fill=(40, 40, 40))
+
+
+def _save_png(img, path):
     tmp = f"{path}.tmp{os.getpid()}.png"
     img.save(tmp, format="PNG", optimize=False)
     os.replace(tmp, path)
-    return {"triangles": int(sum(len(t) for t in tris)), "placeholders": len(wires)}
+
+
+def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE):
+    g = scene_geometry(scene, ctx)
+    img = draw(g, frame_for([g], size))
+    caption = scene.name or "robot"
+    caption += f"  ({len(scene.links)} links"
+    if g.wires:
+        caption += f", {len(g.wires)} missing geometry shown as red boxes"
+    if findings_count:
+        caption += f", {findings_count} findings"
+    caption += ")"
+    _caption(img, caption)
+    _save_png(img, path)
+    return {"triangles": int(sum(len(t) for t in g.tris)), "placeholders": len(g.wires)}
+
+
+_BACKGROUND = np.array([236, 238, 241])
+
+
+def _mask(img) -> np.ndarray:
+    return np.abs(np.asarray(img.convert("RGB"), dtype=np.int16) - _BACKGROUND).max(axis=2) > 12
+
+
+def _outline(mask) -> np.ndarray:
+    inner = mask.copy()
+    inner[1:, :] &= mask[:-1, :]
+    inner[:-1, :] &= mask[1:, :]
+    inner[:, 1:] &= mask[:, :-1]
+    inner[:, :-1] &= mask[:, 1:]
+    return mask & ~inner
+
+
+def difference_image(after, before_changed, after_changed):
+    """The after image washed out, the changed links tinted magenta where they are now, and
+    outlined in blue where they were: what moved stands out, the rest stays as context."""
+    from PIL import Image
+    b = np.asarray(after.convert("RGB"), dtype=float)
+    grey = b.mean(axis=2, keepdims=True)
+    out = 255 - (255 - np.repeat(grey, 3, axis=2)) * 0.35
+    out[after_changed] = 0.4 * out[after_changed] + 0.6 * np.array([230, 0, 160])
+    edge = _outline(before_changed)
+    thick = edge | np.roll(edge, 1, axis=0) | np.roll(edge, 1, axis=1)
+    out[thick] = (30, 60, 200)
+    return Image.fromarray(out.clip(0, 255).astype(np.uint8), "RGB")
+
+
+def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
+                changed_links=frozenset()) -> dict:
+    """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
+    nothing changed), and ``stem.diff.png`` highlighting ``changed_links``."""
+    from PIL import Image
+    geoms = [g for g in (before, after) if g is not None]
+    fr = frame_for(geoms)
+    out: dict = {}
+    blank = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
+    masks = {}
+    after_img = blank
+    for side, g in (("before", before), ("after", after)):
+        if g is None:
+            img = blank.copy()
+            _caption(img, "(no model)")
+            masks[side] = np.zeros((fr.size[1], fr.size[0]), dtype=bool)
+        else:
+            img = draw(g, fr)
+            if side == "after":
+                after_img = img.copy()
+            masks[side] = _mask(draw(g.only(changed_links), fr)) if changed_links else \
+                np.zeros((fr.size[1], fr.size[0]), dtype=bool)
+            _caption(img, f"{g.name or 'robot'}  ({g.links} links)")
+        path = f"{stem}.{side}.png"
+        _save_png(img, path)
+        out[side] = path
+    diff = difference_image(after_img, masks["before"], masks["after"])
+    n = int((masks["before"] | masks["after"]).sum())
+    _caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
+             + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else ""))
+    _save_png(diff, f"{stem}.diff.png")
+    out["diff"], out["changed_pixels"] = f"{stem}.diff.png", n
+    return out
 
 
 def _write_nearest(colour, zbuf, pix, z, c):
@@ -419,12 +554,17 @@ def _safe(s):
     return "".join(ch if ch.isalnum() or ch in "_-." else "_" for ch in str(s)) or "_"
 
 
-def record_rrd(scene, ctx, findings, path, recording_id):
+def record_rrd(scene, ctx, findings, path, recording_id, prefix=""):
+    """Log ``scene`` to ``path``; ``prefix`` (e.g. ``"head/"``) puts every entity under one
+    root, so that two revisions can share a recording."""
     import rerun as rr
     rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
     tmp = f"{path}.tmp{os.getpid()}"
     rec.save(tmp)
-    rec.log("robot", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+
+    def log(entity, *a, **kw):
+        rec.log(prefix + entity, *a, **kw)
+    log("robot", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     paths, joint_paths = entity_paths(scene)
     # the kinematic tree twice: /robot (frames, axes, visuals, findings) and /collision
     # (collision geometry only, so that it toggles as one subtree)
@@ -432,24 +572,24 @@ def record_rrd(scene, ctx, findings, path, recording_id):
         for parent, j, child in scene.tree:
             T = origin_matrix(j)
             jp = root + joint_paths[j.get("name")][len("robot"):]
-            rec.log(jp, rr.Transform3D(translation=T[:3, 3], mat3x3=T[:3, :3]), static=True)
+            log(jp, rr.Transform3D(translation=T[:3, 3], mat3x3=T[:3, :3]), static=True)
     for parent, j, child in scene.tree:
         if j.get("type") not in ("fixed", None):
             ax = j.find("axis")
             axis = numbers(ax.get("xyz") if ax is not None else "1 0 0", 3) or [1, 0, 0]
-            rec.log(f"{paths[child]}/joint_axis",
+            log(f"{paths[child]}/joint_axis",
                     rr.Arrows3D(origins=[[0, 0, 0]], vectors=[np.asarray(axis) * 0.1],
                                 colors=[[250, 200, 0]], labels=[j.get("name") or ""]), static=True)
     for link, p in paths.items():
-        rec.log(p, rr.TransformAxes3D(0.05), static=True)
+        log(p, rr.TransformAxes3D(0.05), static=True)
     logged = 0
     for part in scene.parts:
         root = "robot" if part.kind == "visual" else "collision"
         base = f"{root}{paths[part.link][len('robot'):]}/{part.kind}/{part.index}"
-        rec.log(base, rr.Transform3D(translation=part.local[:3, 3], mat3x3=part.local[:3, :3]), static=True)
+        log(base, rr.Transform3D(translation=part.local[:3, 3], mat3x3=part.local[:3, :3]), static=True)
         got = part_mesh(part, ctx) if part.shape != "missing" else None
         if got is None:
-            rec.log(f"{base}/missing", rr.Boxes3D(half_sizes=[[0.03, 0.03, 0.03]], colors=[[230, 30, 30]],
+            log(f"{base}/missing", rr.Boxes3D(half_sizes=[[0.03, 0.03, 0.03]], colors=[[230, 30, 30]],
                                                  labels=[part.problem or "missing geometry"]), static=True)
             continue
         v, f, fc = got
@@ -467,7 +607,7 @@ def record_rrd(scene, ctx, findings, path, recording_id):
             vc = np.zeros((len(v), 3))
             vc[f.reshape(-1)] = np.repeat(fc, 3, axis=0)
             kwargs["vertex_colors"] = (vc * 255).astype(np.uint8)
-        rec.log(f"{base}/mesh", rr.Mesh3D(**kwargs), static=True)
+        log(f"{base}/mesh", rr.Mesh3D(**kwargs), static=True)
         logged += 1
     # findings, on the entity of the link or joint they concern
     levels = {"error": "ERROR", "warning": "WARN", "info": "INFO"}
@@ -479,9 +619,9 @@ def record_rrd(scene, ctx, findings, path, recording_id):
         elif target and target[0] == "joint" and target[1] in joint_paths:
             ent = joint_paths[target[1]]
         text = f"{fd.code} {fd.message} ({os.path.basename(fd.file)}:{fd.line})"
-        rec.log(f"{ent}/findings/{n}", rr.TextLog(text, level=levels.get(fd.severity, "WARN")),
+        log(f"{ent}/findings/{n}", rr.TextLog(text, level=levels.get(fd.severity, "WARN")),
                 static=True)
-        rec.log(f"{ent}/findings/{n}", rr.Points3D([[0, 0, 0]], radii=[0.01], colors=[[230, 30, 30]],
+        log(f"{ent}/findings/{n}", rr.Points3D([[0, 0, 0]], radii=[0.01], colors=[[230, 30, 30]],
                                                   labels=[fd.code]), static=True)
     rec.flush()
     rec.disconnect()

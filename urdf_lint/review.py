@@ -106,6 +106,8 @@ class Side:
     findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
     severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
     robots: dict = field(default_factory=dict)      # key -> Model | None
+    geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
+    rrd: dict = field(default_factory=dict)         # key -> this revision's half recording
     errors: dict = field(default_factory=dict)      # key -> message
 
 
@@ -150,8 +152,15 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
     return resolver, result
 
 
-def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
-    """Expand the given models once more in workers and build the Model of each."""
+def image_stem(key: str) -> str:
+    """The file name stem of a model's diff snapshots (the markdown links to it)."""
+    return "".join(c if c.isalnum() or c in "._-" else "_" for c in key)
+
+
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_name="head",
+                 rrd=True):
+    """Expand the given models once more in workers and build the Model of each (and, for
+    ``--render``, the geometry of its picture and its half of the shared recording)."""
     import dataclasses
     from .jobs import LintJob
     from .model import Model, model_from_xml, parse_urdf_bytes
@@ -163,16 +172,23 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
         if m is None:
             continue
         kind = "urdf" if m.entry.endswith(".urdf") else "xacro"
-        job = LintJob(m.entry, dict(m.args), kind, explicit=True)
+        job = LintJob(m.entry, dict(m.args), kind, explicit=True, diff_stem=image_stem(k))
         jobs.append(job)
         key_of[id(job)] = k
     settings = dataclasses.replace(settings_for(cfg, resolver, None), selected=(),
                                    keep_model=True)
+    if render_dir:
+        settings = dataclasses.replace(settings, diff_render_dir=os.path.realpath(render_dir),
+                                       diff_rrd=rrd, diff_side=side_name)
     failures = {r.CODE for r in _FAILURE_RULES}
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = key_of[id(job)]
         kept = res.kept_model
+        if res.diff_geometry is not None:
+            side.geometry[k] = res.diff_geometry
+        if res.diff_rrd:
+            side.rrd[k] = res.diff_rrd
         if kept is None:
             msgs = [p.message for p in res.problems if p.code in failures]
             side.robots[k] = None
@@ -190,7 +206,8 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n):
 
 
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
-             jobs_n=None, use_cache=True) -> DiffResult:
+             jobs_n=None, use_cache=True, render_dir: str | None = None,
+             rrd: bool = True) -> DiffResult:
     from .discovery import start_dir
     from .vcs import git_root
     top = git_root(start_dir(paths))
@@ -267,7 +284,9 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             result.internal += base_result.internal
         result.base_expanded = len(base.models)
 
-        _load_robots(head, affected, head_resolver, cfg, jobs_n)
+        if render_dir:
+            _clear_snapshots(render_dir)
+        _load_robots(head, affected, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
         base_keys = {}
         for k in affected:
             m = head.models[k]
@@ -277,14 +296,69 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
         if base_resolver is not None:
-            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n)
+            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n,
+                         render_dir, "base", rrd)
 
         for k in sorted(affected):
             bk = base_keys.get(k)
             result.models.append(_model_diff(k, head, base, bk))
         for bk in sorted(deleted):
             result.models.append(_model_diff(bk, head, base, bk, removed=True))
+        if render_dir:
+            for md in result.models:
+                hk = None if md.status == "removed" else md.model
+                bk = base_keys.get(md.model) if md.status != "removed" else md.model
+                md.snapshot = _snapshot(md.model, head, base, hk, bk, render_dir, result)
     return result
+
+
+_SNAPSHOT_SUFFIXES = (".before.png", ".after.png", ".diff.png", ".rrd", ".base.rrd", ".head.rrd")
+
+
+def _clear_snapshots(render_dir):
+    """Remove what an earlier diff --render wrote here, so no stale picture survives."""
+    os.makedirs(render_dir, exist_ok=True)
+    if os.path.islink(render_dir):
+        raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
+    for name in os.listdir(render_dir):
+        p = os.path.join(render_dir, name)
+        if name.endswith(_SNAPSHOT_SUFFIXES) and os.path.isfile(p) and not os.path.islink(p):
+            os.remove(p)
+
+
+def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result) -> dict:
+    from . import render
+    stem = os.path.join(render_dir, image_stem(key))
+    before = base.geometry.get(bk) if bk else None
+    after = head.geometry.get(hk) if hk else None
+    info: dict = {}
+    if before is None and after is None:
+        result.internal.append(f"diff --render: no snapshot could be made for {key}")
+        return info
+    md = next(m for m in result.models if m.model == key)
+    changed = {name for name, _, _ in md.moved}
+    changed |= {c.name for c in md.changes if c.kind == "link"}
+    if md.status in ("added", "removed"):
+        changed |= set((after or before).part_links) | set((after or before).wire_links)
+    info.update(render.render_pair(before, after, stem, frozenset(changed)))
+    halves = [p for p in (base.rrd.get(bk) if bk else None, head.rrd.get(hk) if hk else None) if p]
+    if halves:
+        info["rrd"] = _merge_rrd(halves, stem + ".rrd")
+    return info
+
+
+def _merge_rrd(halves, out):
+    """One recording holding both revisions (entity roots /base and /head)."""
+    import shutil
+    import sys
+    exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
+    p = subprocess.run([exe, "rrd", "merge", *halves, "-o", out], capture_output=True,
+                       timeout=120)
+    if p.returncode != 0:
+        raise ReviewError("rerun rrd merge failed: " + p.stderr.decode(errors="replace")[-300:])
+    for h in halves:
+        os.remove(h)
+    return out
 
 
 def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:

@@ -54,6 +54,7 @@ class ModelDiff:
     findings_introduced: list = field(default_factory=list)
     findings_fixed: list = field(default_factory=list)
     error: str = ""
+    snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
 
 
 def _jsonable(v):

@@ -65,6 +65,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from .lint import lint_model
     report, model, ctx = lint_model(job, settings)
+    if settings.diff_render_dir and model is not None and report.kept_model is not None:
+        report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
         from .render import render_model
         from .registry import load_rules
@@ -76,11 +78,31 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     return report
 
 
+def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
+    """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
+    revision's framing) and this revision's half of the shared recording."""
+    from . import render
+    scene = render.build_scene(model, ctx)
+    geometry = render.scene_geometry(scene, ctx)
+    rrd = None
+    if settings.diff_rrd:
+        try:
+            import rerun  # noqa: F401
+        except ImportError:
+            return geometry, None
+        stem = os.path.join(settings.diff_render_dir, job.diff_stem)
+        rrd = f"{stem}.{settings.diff_side}.rrd"
+        render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job.diff_stem}",
+                          prefix=f"{settings.diff_side}/")
+    return geometry, rrd
+
+
 def _worker_main(conn, settings: LintSettings, memory_mb):
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
-        if settings.render_dir and settings.render_rrd:
+        if (settings.render_dir and settings.render_rrd) or \
+                (settings.diff_render_dir and settings.diff_rrd):
             limit += RERUN_RESERVE_MB * 1024 * 1024
         # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
         # RLIMIT_AS would also count the address space that native thread arenas only reserve.
@@ -91,7 +113,7 @@ def _worker_main(conn, settings: LintSettings, memory_mb):
     _scrub_environment(set(settings.env_allow))
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
+    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir, settings.diff_render_dir)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     while True:
         try:
