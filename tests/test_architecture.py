@@ -241,3 +241,24 @@ def test_a_plain_rule_module_still_loads():
     del mod.check
     with pytest.raises(RuntimeError):
         rule_from_module(mod)     # neither check() nor ORIGIN
+
+
+def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
+    from conftest import make_package
+    from urdf_lint.meshes import MeshStatus, resolve
+    from urdf_lint.model import Model
+    from urdf_lint.packages import PackageResolver
+    from lxml import etree
+    pkg = make_package(tmp_path, "p", {"meshes/part.stl": "solid x\nendsolid x\n"})
+    res = PackageResolver.build([tmp_path], extra_roots=[tmp_path])
+    model = Model(entry=str(pkg / "r.urdf"), args={}, root=etree.fromstring("<robot/>"),
+                  origins={}, deps=[], resolver=res)
+    cases = {"package://p/meshes/part.stl": MeshStatus.OK,
+             "package://p/meshes/Part.STL": MeshStatus.CASE_MISMATCH,
+             "package://p/meshes/none.stl": MeshStatus.NOT_FOUND,
+             "package://nopkg/x.stl": MeshStatus.UNKNOWN_PACKAGE,
+             "file:///etc/hostname": MeshStatus.OUTSIDE_ROOTS}
+    for uri, status in cases.items():
+        ref = resolve(model, uri)
+        assert ref.status is status, (uri, ref)
+        assert (ref.problem is None) == (status is MeshStatus.OK)

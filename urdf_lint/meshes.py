@@ -35,6 +35,12 @@ class MeshRef:
     status: MeshStatus
     message: str = ""
 
+    @property
+    def problem(self) -> MeshStatus | None:
+        """None when the reference resolved (``status is MeshStatus.OK``), else its status.
+        Kept for rules written before :class:`MeshStatus`; new code reads ``status``."""
+        return None if self.status is MeshStatus.OK else self.status
+
 
 def _case_true_path(path: Path) -> tuple[bool, str | None]:
     """(exists with exact case, the real spelling if it only exists with another case)."""
