@@ -1,4 +1,4 @@
-"""An inline `<!-- urdf-lint: ... -->` suppression that suppresses nothing (like ruff's RUF100).
+"""An inline `urdf-lint:` suppression comment that suppresses nothing (like ruff's RUF100).
 
 Why: Stale suppressions hide future problems at that place.
 
