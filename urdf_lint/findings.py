@@ -79,6 +79,17 @@ class Problem:
                       d.get("target"))
 
 
+def exit_status(severities, internal: bool, fail_on: str) -> int:
+    """The exit code of a run: 2 on an internal error, 1 when a severity reaches ``fail_on``
+    (error | warning | info; never: always 0), else 0. Unknown severities count as errors."""
+    if internal:
+        return 2
+    if fail_on == "never":
+        return 0
+    threshold = SEVERITY_RANK[fail_on]
+    return 1 if any(SEVERITY_RANK.get(s, 2) >= threshold for s in severities) else 0
+
+
 # the name the reporters and older code use
 Finding = Problem
 

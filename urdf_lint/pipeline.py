@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from .discovery import discover
-from .findings import SEVERITY_RANK, Problem, merge
+from .findings import Problem, exit_status, merge
 from .jobs import LintJob, LintSettings, ModelReport, Status
 from .policy import Policy, code_matches
 from .rules import ul009_unused_suppression as unused_suppression
@@ -192,9 +192,4 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
 
 
 def exit_code(result: CheckResult, fail_on: str) -> int:
-    if result.internal:
-        return 2
-    if fail_on == "never":
-        return 0
-    threshold = SEVERITY_RANK[fail_on]
-    return 1 if any(SEVERITY_RANK[f.severity] >= threshold for f in result.findings) else 0
+    return exit_status((f.severity for f in result.findings), bool(result.internal), fail_on)

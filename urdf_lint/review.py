@@ -409,11 +409,6 @@ def _rebase(c, base_root, head_root):
 
 
 def exit_code(result: DiffResult, fail_on: str) -> int:
-    from .findings import SEVERITY_RANK
-    if result.internal:
-        return 2
-    if fail_on == "never":
-        return 0
-    t = SEVERITY_RANK[fail_on]
-    return 1 if any(SEVERITY_RANK.get(sev, 2) >= t for m in result.models
-                    for _, sev in m.findings_introduced) else 0
+    from .findings import exit_status
+    return exit_status((sev for m in result.models for _, sev in m.findings_introduced),
+                       bool(result.internal), fail_on)
