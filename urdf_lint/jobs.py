@@ -54,6 +54,16 @@ class LintSettings:
     diff_rrd: bool = True                    # diff --render: also this side's half recording
     diff_side: str = "head"                  # diff --render: "base" or "head"
 
+    # read-only dict-style access, for worker start-up code written against the old dict
+    def __getitem__(self, key: str):
+        try:
+            return getattr(self, key)
+        except AttributeError:
+            raise KeyError(key) from None
+
+    def get(self, key: str, default=None):
+        return getattr(self, key, default)
+
     def cache_key(self) -> list:
         """What a cached result depends on (rendering does not change findings)."""
         return [list(self.selected), self.options, list(self.env_allow), self.resolver]
