@@ -262,3 +262,15 @@ def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
         ref = resolve(model, uri)
         assert ref.status is status, (uri, ref)
         assert (ref.problem is None) == (status is MeshStatus.OK)
+
+
+def test_settings_are_typed_and_readable_as_the_old_dict():
+    import dataclasses
+    from urdf_lint.jobs import LintSettings
+    s = LintSettings(resolver={"scanned": {}}, selected=("UL302",), mesh_cache_dir="/c")
+    assert s.selected == ("UL302",) and s["mesh_cache_dir"] == "/c" and s.get("render_dir") is None
+    with pytest.raises(KeyError):
+        s["no_such_setting"]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        s.selected = ()
+    assert dataclasses.replace(s, keep_model=True).keep_model
