@@ -151,9 +151,9 @@ def lint_model(job: LintJob, settings: LintSettings):
                                    model.origin(model.root)))
 
     from .registry import run_rules
-    for rule, el, msg in run_rules("model", settings.selected, settings.options, model, ctx,
-                                   out.internal, f" on {job.entry}"):
-        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el)))
+    for rule, el, msg, sev in run_rules("model", settings.selected, settings.options, model, ctx,
+                                        out.internal, f" on {job.entry}"):
+        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

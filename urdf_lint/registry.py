@@ -7,7 +7,7 @@ A rule module defines:
   ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
   report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
 * ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
-  for one expanded model, or ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
+  (or ``(element, message, severity)`` to raise or lower that one problem) for one model, or ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
   over every model of a run (e.g. UL106: the same robot name in two files);
 * or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
@@ -98,9 +98,10 @@ def load_rules() -> dict:
 
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = ""):
-    """Yield (rule, first item, message) for every selected rule of ``scope`` checking
-    ``subject`` (a Model, or a run), each with its options (defaults, then ``options[code]``) in
-    ``ctx.options``. A rule that crashes adds an internal error and the others still run."""
+    """Yield (rule, first item, message, severity or "") for every problem that a selected rule
+    of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
+    then ``options[code]``) in ``ctx.options``. A rule that crashes adds an internal error and
+    the others still run."""
     import traceback
     rules = load_rules()
     for code in selected:
@@ -110,7 +111,7 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                yield rule, item[0], item[1]
+                yield rule, item[0], item[1], (item[2] or "") if len(item) > 2 else ""
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 
