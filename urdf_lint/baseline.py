@@ -9,18 +9,26 @@ import json
 import os
 from collections import Counter
 
+from .atomic import atomic_write
+
+
+class BaselineError(Exception):
+    pass
+
 
 def _key(f, base):
     return (f.code, os.path.relpath(f.file, base), f.message)
 
 
-def write_baseline(path, findings):
+def write_baseline(path, findings) -> int:
+    """Record ``findings`` in ``path``; returns how many were recorded."""
     base = os.path.dirname(os.path.abspath(path))
     items = [{"code": c, "file": fl, "message": m} for c, fl, m in sorted(_key(f, base) for f in findings)]
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as fh:
-        json.dump({"version": 1, "findings": items}, fh, indent=1)
-    os.replace(tmp, path)
+    try:
+        atomic_write(path, json.dumps({"version": 1, "findings": items}, indent=1))
+    except OSError as e:
+        raise BaselineError(f"cannot write baseline {path}: {e.strerror or e}") from None
+    return len(items)
 
 
 def filter_baseline(path, findings):
@@ -30,8 +38,7 @@ def filter_baseline(path, findings):
             data = json.load(fh)
         known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
     except (OSError, ValueError, KeyError, TypeError) as e:
-        from .cli import UsageError
-        raise UsageError(f"cannot read baseline {path}: {e}") from None
+        raise BaselineError(f"cannot read baseline {path}: {e}") from None
     out = []
     for f in findings:
         k = _key(f, base)

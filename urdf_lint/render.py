@@ -316,9 +316,9 @@ def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE):
         caption += f", {findings_count} findings"
     caption += ")"
     draw.text((12, 10), caption, fill=(40, 40, 40))
-    tmp = f"{path}.tmp{os.getpid()}.png"
-    img.save(tmp, format="PNG", optimize=False)
-    os.replace(tmp, path)
+    from .atomic import atomic_path
+    with atomic_path(path, ".png") as tmp:
+        img.save(tmp, format="PNG", optimize=False)
     return {"triangles": int(sum(len(t) for t in tris)), "placeholders": len(wires)}
 
 
@@ -419,9 +419,14 @@ def _safe(s):
 
 
 def record_rrd(scene, ctx, findings, path, recording_id):
+    from .atomic import atomic_path
+    with atomic_path(path) as tmp:
+        return _record_rrd(scene, ctx, findings, tmp, recording_id)
+
+
+def _record_rrd(scene, ctx, findings, tmp, recording_id):
     import rerun as rr
     rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
-    tmp = f"{path}.tmp{os.getpid()}"
     rec.save(tmp)
     rec.log("robot", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     paths, joint_paths = entity_paths(scene)
@@ -484,7 +489,6 @@ def record_rrd(scene, ctx, findings, path, recording_id):
                                                   labels=[fd["code"]]), static=True)
     rec.flush()
     rec.disconnect()
-    os.replace(tmp, path)
     return {"meshes": logged}
 
 
@@ -561,8 +565,6 @@ def write_summary(result, out_dir):
                               f"(open with `rerun {display_path(snap['rrd'])}`)\n")
     text = "\n".join(lines) + "\n\n" + "\n".join(images)
     path = os.path.join(out_dir, "summary.md")
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    from .atomic import atomic_write
+    atomic_write(path, text)
     return path
