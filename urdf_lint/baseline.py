@@ -10,6 +10,7 @@ import os
 from collections import Counter
 
 from .atomic import atomic_write
+from .locations import display_path
 
 
 class BaselineError(Exception):
@@ -37,8 +38,12 @@ def filter_baseline(path, findings):
         with open(path, encoding="utf-8") as fh:
             data = json.load(fh)
         known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
-    except (OSError, ValueError, KeyError, TypeError) as e:
-        raise BaselineError(f"cannot read baseline {path}: {e}") from None
+    except OSError as e:
+        raise BaselineError(f"cannot read baseline {display_path(path)}: "
+                            f"{e.strerror or e}") from None
+    except (ValueError, KeyError, TypeError) as e:
+        raise BaselineError(f"{display_path(path)} is not a urdf-lint baseline ({e}); "
+                            "make one with --write-baseline") from None
     out = []
     for f in findings:
         k = _key(f, base)

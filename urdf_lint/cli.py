@@ -45,6 +45,13 @@ def plain(text: str) -> str:
     return re.sub(r"``(.+?)``", r"`\1`", text, flags=re.S)
 
 
+def first_sentence(doc: str) -> str:
+    """The first sentence of a rule's docstring, as plain text (an ellipsis is not an end)."""
+    para = " ".join(plain(doc).strip().split("\n\n")[0].split())
+    m = re.search(r"(?<!\.)\.(?!\.)\s+", para)
+    return para if m is None else para[:m.start() + 1]
+
+
 # -- the parser -------------------------------------------------------------------------------
 class _Parser(argparse.ArgumentParser):
     """An unknown flag gets this (sub)command's usage and the closest known flag."""
@@ -408,7 +415,7 @@ def cmd_expand(args) -> int:
 def cmd_rules(args) -> int:
     from .registry import load_rules
     for code, r in load_rules().items():
-        print(f"{code}  {r.name:<28} {r.severity:<8} {plain(r.summary)}")
+        print(f"{code}  {r.name:<28} {r.severity:<8} {first_sentence(r.doc)}")
     return 0
 
 

@@ -490,7 +490,8 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
         if p == "ALL" or p in names:
             return
         if not any(c.startswith(p) for c in known):
-            raise ConfigError(f"{where}: unknown rule code or prefix {p!r} in {what}"
+            line = _line_of(Path(where), what) if os.path.isfile(where) else ""
+            raise ConfigError(f"{where}{line}: unknown rule code or prefix {p!r} in {what}"
                               f"{did_you_mean(p, list(known) + sorted(names))} "
                               f"(see 'urdf-lint rules')")
     for p in cfg.select + cfg.extend_select:
