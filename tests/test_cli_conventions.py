@@ -23,16 +23,8 @@ from urdf_lint import cli, report
 from urdf_lint.cli import build_parser, main
 from urdf_lint.findings import Finding
 
-X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
-SRC = f"""<robot name="r" {X}>
-  <xacro:macro name="j" params="n">
-    <joint name="${{n}}" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
-      <limit lower="1" upper="0" effort="1" velocity="1"/></joint>
-  </xacro:macro>
-  <link name="a"/><link name="b"><visual><geometry><box size="1 1 1"/></geometry></visual></link>
-  <xacro:j n="elbow"/>
-</robot>
-"""
+from test_formats import SRC, X   # a macro-made joint whose limits are swapped (UL302)
+
 FINDING = re.compile(r"^[^\s:][^:]*:\d+:\d+: UL\d{3} ")
 
 
@@ -167,8 +159,9 @@ def test_no_rest_markup_in_help_or_rules(capsys):
 def test_help_lists_every_registered_format(capsys):
     build_parser()
     h = cli.SUBPARSERS["check"].format_help()
-    for name in report.names():
-        assert f"{name}:" in h
+    assert "output formats:\n" in h
+    for name, formatter in report.formats().items():
+        assert f"\n  {name:<9} {formatter.help}\n" in h + "\n", name
     assert report.names() == ("text", "concise", "json", "sarif", "github", "junit")
 
 

@@ -108,8 +108,9 @@ def _add_output(p):
     from .report import formats
     fmts = formats()
     p.add_argument("--output-format", "--format", dest="format", metavar="FORMAT",
-                   help="output format: " + "; ".join(f"{n}: {c.help}" for n, c in fmts.items())
-                   + " (default: text, or github when GITHUB_ACTIONS is set; config key 'format')")
+                   help="output format: " + ", ".join(fmts) + " (see below; default: text, or "
+                   "github when GITHUB_ACTIONS is set; config key 'format')")
+    p.epilog = "output formats:\n" + "\n".join(f"  {n:<9} {c.help}" for n, c in fmts.items())
     p.add_argument("--show-source", action="store_true",
                    help="show the source line of each finding under it (text format)")
     p.add_argument("--statistics", action="store_true",
@@ -133,11 +134,14 @@ SUBPARSERS: dict = {}
 
 
 def build_parser():
-    p = _Parser(prog="urdf-lint", description=plain(__doc__.splitlines()[0]))
+    p = _Parser(prog="urdf-lint", description="Expand xacro without ROS, lint robot "
+                "descriptions at their xacro source lines, and render review snapshots.")
     p.add_argument("--version", action="store_true", help="print the version and exit")
     sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
+    raw = argparse.RawDescriptionHelpFormatter   # keeps the epilog's table of formats
 
     c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS",
+                       formatter_class=raw,
                        description="Find, expand and lint every robot model under PATHS.")
     c.add_argument("paths", nargs="*", default=["."], metavar="PATH",
                    help="files or folders to lint (default: .)")
@@ -157,6 +161,7 @@ def build_parser():
     c.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
 
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
+                       formatter_class=raw,
                        description="Lint the models that the given (changed) files affect; "
                                    "the whole repository is linted through the cache.")
     h.add_argument("files", nargs="*", metavar="FILE",

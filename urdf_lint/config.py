@@ -180,15 +180,6 @@ class Models(Type):
         return out
 
 
-class Bool(Type):
-    expected = "true or false"
-
-    def check(self, v):
-        if not isinstance(v, bool):
-            raise _Bad(self.expected)
-        return v
-
-
 class RuleOptions(Type):
     expected = "a table of tables: [rule-options.CODE] option = value"
 
