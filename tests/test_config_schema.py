@@ -2,6 +2,7 @@
 and what was expected, in a config file and on the command line alike."""
 from __future__ import annotations
 
+import json
 import sys
 import types
 
@@ -180,3 +181,48 @@ def test_baseline_key_is_relative_to_the_config(pkg, capsys):
     assert cfg.baseline == str((sub / "known.json").resolve())
     rc, out, _ = run(capsys, "check", ".", "--no-cache", "--select", "UL307")
     assert rc == 0 and out == "All checks passed: 1 model(s).\n"
+
+
+# -- any value for any key: accepted with the right type, or a ConfigError naming the key ------
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_text = st.text(st.characters(min_codepoint=32, max_codepoint=0x2FF, blacklist_characters="\x7f"),
+                max_size=8)
+_scalars = st.one_of(_text, st.integers(-5, 10**6), st.booleans(),
+                     st.floats(allow_nan=False, allow_infinity=False, width=32),
+                     st.sampled_from(["UL3", "UL302", "ALL", "error", "json", "limit-order", "4"]))
+_values = st.recursive(_scalars, lambda inner: st.one_of(
+    st.lists(inner, max_size=3),
+    st.dictionaries(st.sampled_from(["a", "UL307", "tolerance", "*.xacro", "path", "args"]), inner,
+                    max_size=2)), max_leaves=6)
+
+
+def _toml(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml(x) for x in v) + "]"
+    return "{" + ", ".join(f"{json.dumps(k)} = {_toml(x)}" for k, x in v.items()) + "}"
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(key=st.sampled_from(sorted(KEYS)), value=_values)
+def test_any_value_is_accepted_or_named(tmp_path, key, value):
+    f = tmp_path / "urdf-lint.toml"
+    f.write_text(f"{key} = {_toml(value)}\n")
+    try:
+        cfg = load_config(f, codes_to_names())
+    except ConfigError as e:
+        msg = str(e)
+        assert "\n" not in msg and msg.startswith(str(f))
+        assert key in msg or "rule code" in msg or "rule-options" in msg, msg
+        return
+    got = getattr(cfg, KEYS[key].attr)
+    expected_type = {"timeout": float, "memory-mb": int, "jobs": int, "fail-on": str,
+                     "format": str, "cache-dir": str, "baseline": str}.get(key, (list, dict))
+    assert isinstance(got, expected_type), (key, value, got)

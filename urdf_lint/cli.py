@@ -57,6 +57,12 @@ class _Parser(argparse.ArgumentParser):
     """An unknown flag gets this (sub)command's usage and the closest known flag."""
 
     def error(self, message):
+        m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if m:
+            choices = re.findall(r"'([^']*)'", m.group(3))
+            close = difflib.get_close_matches(m.group(2), choices, n=1, cutoff=0.6)
+            if close:
+                message += f" (did you mean {close[0]}?)"
         m = re.match(r"unrecognized arguments: (.*)", message)
         if m:
             hints = []
@@ -410,8 +416,11 @@ def cmd_expand(args) -> int:
     if args.output:
         from .atomic import atomic_write
         d = os.path.dirname(os.path.abspath(args.output))
-        os.makedirs(d, exist_ok=True)
-        atomic_write(args.output, res.xml)
+        try:
+            os.makedirs(d, exist_ok=True)
+            atomic_write(args.output, res.xml)
+        except OSError as e:
+            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
     else:
         sys.stdout.write(res.xml)
     return 0

@@ -174,8 +174,10 @@ class Models(Type):
             args = m.get("args", [{}])
             if isinstance(args, dict):
                 args = [args]
-            if not isinstance(args, list) or not all(isinstance(a, dict) for a in args):
-                raise _Bad("'args' to be a table or a list of tables of xacro args", args)
+            if not isinstance(args, list) or not all(
+                    isinstance(a, dict) and all(isinstance(x, (str, int, float, bool)) for x in a.values())
+                    for a in args):
+                raise _Bad("'args' to be a table (or a list of tables) of xacro arg = value", args)
             out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args]})
         return out
 
@@ -537,7 +539,8 @@ def validate_rule_options(cfg: Config, where: str) -> None:
         for name, value in opts.items():
             line = _line_of(Path(where), name) if os.path.isfile(where) else ""
             if name not in types:
-                raise ConfigError(f"{where}{line}: unknown option {name!r} for {rule.code} {rule.name}"
+                raise ConfigError(f"{where}{line}: unknown option {name!r} in rule-options.{key} "
+                                  f"({rule.code} {rule.name})"
                                   f"{did_you_mean(name, types)} (known: "
                                   f"{', '.join(sorted(types)) or 'none'})")
             ok = types[name]
