@@ -327,7 +327,7 @@ def _parse_toml(path: Path) -> dict:
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as e:
-        raise ConfigError(f"{path}: cannot read config: {e}") from None
+        raise ConfigError(f"{_shown(path)}: cannot read config: {e}") from None
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
@@ -335,13 +335,13 @@ def _parse_toml(path: Path) -> dict:
         m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
         if m:
             msg = msg[:m.start()]
-            raise ConfigError(f"{path}:{m.group(1)}:{m.group(2)}: invalid TOML: {msg}") from None
+            raise ConfigError(f"{_shown(path)}:{m.group(1)}:{m.group(2)}: invalid TOML: {msg}") from None
         m = re.search(r"\s*\(at end of document\)$", msg)
         if m:
             line = text.count("\n") + 1
-            raise ConfigError(f"{path}:{line}: invalid TOML: {msg[:m.start()]} "
+            raise ConfigError(f"{_shown(path)}:{line}: invalid TOML: {msg[:m.start()]} "
                               "(at end of file)") from None
-        raise ConfigError(f"{path}: invalid TOML: {msg}") from None
+        raise ConfigError(f"{_shown(path)}: invalid TOML: {msg}") from None
 
 
 def _near_miss_table(tool: dict) -> str | None:
@@ -364,7 +364,7 @@ def _pyproject_table(path: Path, data: dict) -> dict | None:
         return tool["urdf-lint"]
     near = _near_miss_table(tool)
     if near is not None:
-        raise ConfigError(f"{path}: found [tool.{near}]; did you mean [{TABLE}]? "
+        raise ConfigError(f"{_shown(path)}: found [tool.{near}]; did you mean [{TABLE}]? "
                           f"(the table is named [{TABLE}], with a hyphen)")
     return None
 
@@ -381,6 +381,14 @@ def find_config(start: str) -> Path | None:
         if pp.is_file() and _pyproject_table(pp, _parse_toml(pp)) is not None:
             return pp
     return None
+
+
+def _shown(path) -> str:
+    """A config file's path as messages show it: relative to the working directory when below."""
+    if isinstance(path, str) and not os.path.exists(path):
+        return path                      # "command line"
+    from .locations import display_path
+    return display_path(os.path.abspath(path))
 
 
 def _line_of(path: Path, key: str) -> str:
@@ -427,14 +435,14 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
         table = path.name
         if "tool" in data and isinstance(data["tool"], dict) and (
                 "urdf-lint" in data["tool"] or _near_miss_table(data["tool"])):
-            raise ConfigError(f"{path}: in {path.name} the keys go at the top level, "
+            raise ConfigError(f"{_shown(path)}: in {path.name} the keys go at the top level, "
                               f"without a [{TABLE}] table")
     if not isinstance(data, dict):
-        raise ConfigError(f"{path}: [{TABLE}] must be a table")
+        raise ConfigError(f"{_shown(path)}: [{TABLE}] must be a table")
     cfg = Config(path=str(path), root=str(path.parent.resolve()), raw=data)
     for k in data:
         if k not in KEYS:
-            raise ConfigError(f"{path}{_line_of(path, k)}: unknown key {k!r} in {table}"
+            raise ConfigError(f"{_shown(path)}{_line_of(path, k)}: unknown key {k!r} in {table}"
                               f"{did_you_mean(k, KEYS)} (known: {', '.join(sorted(KEYS))})")
     for k, v in data.items():
         key = KEYS[k]
@@ -447,7 +455,7 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
                 bare = re.fullmatch(r"[A-Za-z0-9_-]+", e.where)
                 inner += "." + (e.where if bare else show(e.where))
             line = (_line_of(path, e.where) if e.where else "") or _line_of(path, k)
-            raise ConfigError(f"{path}{line}: invalid value for {inner}: {shown} "
+            raise ConfigError(f"{_shown(path)}{line}: invalid value for {inner}: {shown} "
                               f"(expected {e.expected})") from None
         _set(cfg, key, value, path.parent)
     if known_codes is not None:
@@ -484,7 +492,7 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
             return
         if not any(c.startswith(p) for c in known):
             line = _line_of(Path(where), what) if os.path.isfile(where) else ""
-            raise ConfigError(f"{where}{line}: unknown rule code or prefix {p!r} in {what}"
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule code or prefix {p!r} in {what}"
                               f"{did_you_mean(p, list(known) + sorted(names))} "
                               f"(see 'urdf-lint rules')")
     for p in cfg.select + cfg.extend_select:
@@ -531,15 +539,15 @@ def validate_rule_options(cfg: Config, where: str) -> None:
     for key, opts in cfg.rule_options.items():
         rule = rules.get(key) or by_name.get(key)
         if rule is None:
-            raise ConfigError(f"{where}{_line_of(Path(where), key) if os.path.isfile(where) else ''}: "
-                              f"unknown rule {key!r} in rule-options"
+            line = _line_of(Path(where), key) if os.path.isfile(where) else ""
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule {key!r} in rule-options"
                               f"{did_you_mean(key, list(rules) + list(by_name))} "
                               "(use a rule code like UL307 or its name)")
         types = option_types(rule)
         for name, value in opts.items():
             line = _line_of(Path(where), name) if os.path.isfile(where) else ""
             if name not in types:
-                raise ConfigError(f"{where}{line}: unknown option {name!r} in rule-options.{key} "
+                raise ConfigError(f"{_shown(where)}{line}: unknown option {name!r} in rule-options.{key} "
                                   f"({rule.code} {rule.name})"
                                   f"{did_you_mean(name, types)} (known: "
                                   f"{', '.join(sorted(types)) or 'none'})")
@@ -548,7 +556,7 @@ def validate_rule_options(cfg: Config, where: str) -> None:
                 expected = " or ".join(dict.fromkeys(_TYPE_NAMES.get(t, t.__name__) for t in ok))
                 if float in ok and int in ok:
                     expected = "a number"
-                raise ConfigError(f"{where}{line}: invalid value for rule-options.{key}.{name}: "
+                raise ConfigError(f"{_shown(where)}{line}: invalid value for rule-options.{key}.{name}: "
                                   f"{show(value)} (expected {expected}, like "
                                   f"{show(rule.options[name])})")
             if float in ok and isinstance(value, int) and not isinstance(value, bool):
