@@ -293,3 +293,33 @@ def test_one_atomic_write_helper():
         if "os.replace(" in text or "os.rename(" in text or ".tmp" in text:
             offenders.append(str(path.relative_to(REPO)))
     assert offenders == []
+
+
+def test_adding_a_format_is_adding_one_file(pkg, capsys, monkeypatch, tmp_path):
+    """A module with a BaseFormatter subclass in urdf_lint/report/ is a format: the CLI's
+    choices, help and config key all come from the registry."""
+    extra = tmp_path / "formats"
+    extra.mkdir()
+    (extra / "codes_only.py").write_text(
+        "from urdf_lint.report.base import BaseFormatter\n\n\n"
+        "class CodesOnly(BaseFormatter):\n"
+        "    name = 'codes'\n"
+        "    help = 'only the codes'\n\n"
+        "    def handle(self, f):\n"
+        "        self.stream.write(f.code + '\\n')\n")
+    monkeypatch.setattr(report, "__path__", [*report.__path__, str(extra)])
+    monkeypatch.setattr(report, "_FORMATS", None)
+    monkeypatch.delitem(sys.modules, "urdf_lint.report.codes_only", raising=False)
+    try:
+        assert "codes" in report.names()
+        rc, out, _ = run(capsys, "check", ".", "--no-cache", "--output-format", "codes",
+                         "--select", "UL302")
+        assert (rc, out) == (1, "UL302\n")
+        (pkg / "urdf-lint.toml").write_text('format = "codes"\n')
+        rc, out, _ = run(capsys, "check", ".", "--no-cache", "--select", "UL302")
+        assert (rc, out) == (1, "UL302\n")
+        build_parser()
+        assert "  codes     only the codes" in cli.SUBPARSERS["check"].format_help()
+    finally:
+        sys.modules.pop("urdf_lint.report.codes_only", None)
+    monkeypatch.setattr(report, "_FORMATS", None)
