@@ -17,7 +17,7 @@ from types import SimpleNamespace
 import pytest
 import yaml
 
-from conftest import CORPUS, REPO, make_package, run_cli
+from conftest import CORPUS, REPO, make_package
 
 from urdf_lint import cli, report
 from urdf_lint.cli import build_parser, main
