@@ -3,6 +3,7 @@ commit affects, through the includes, YAML files and meshes they read."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -35,8 +36,12 @@ def hook_repo(tmp_path_factory):
     work = tmp_path_factory.mktemp("precommit") / "robots"
     work.mkdir()
     shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
+    # the README's snippet as pasted, pointed at this checkout and its HEAD
+    from test_cli_conventions import readme_precommit_config
+    snippet = readme_precommit_config()
+    repo_url = re.search(r"repo: (\S+)", snippet).group(1)
     (work / ".pre-commit-config.yaml").write_text(
-        f"repos:\n- repo: {REPO}\n  rev: {head}\n  hooks:\n  - id: urdf-lint\n")
+        snippet.replace(repo_url, str(REPO)).replace("rev: v0.1.0", f"rev: {head}"))
     (work / ".gitignore").write_text(".urdf_lint_cache/\n")
     sh("git", "init", "-q", cwd=work)
     sh("git", "config", "user.email", "t@example.invalid", cwd=work)

@@ -9,18 +9,28 @@ import json
 import os
 from collections import Counter
 
+from .atomic import atomic_write
+from .errors import UsageError
+from .locations import display_path
+
+
+class BaselineError(UsageError):
+    """A baseline file that cannot be read or written (exit 2)."""
+
 
 def _key(f, base):
     return (f.code, os.path.relpath(f.file, base), f.message)
 
 
-def write_baseline(path, findings):
+def write_baseline(path, findings) -> int:
+    """Record ``findings`` in ``path``; returns how many were recorded."""
     base = os.path.dirname(os.path.abspath(path))
     items = [{"code": c, "file": fl, "message": m} for c, fl, m in sorted(_key(f, base) for f in findings)]
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as fh:
-        json.dump({"version": 1, "findings": items}, fh, indent=1)
-    os.replace(tmp, path)
+    try:
+        atomic_write(path, json.dumps({"version": 1, "findings": items}, indent=1))
+    except OSError as e:
+        raise BaselineError(f"cannot write baseline {path}: {e.strerror or e}") from None
+    return len(items)
 
 
 def filter_baseline(path, findings):
@@ -29,9 +39,12 @@ def filter_baseline(path, findings):
         with open(path, encoding="utf-8") as fh:
             data = json.load(fh)
         known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
-    except (OSError, ValueError, KeyError, TypeError) as e:
-        from .errors import UsageError
-        raise UsageError(f"cannot read baseline {path}: {e}") from None
+    except OSError as e:
+        raise BaselineError(f"cannot read baseline {display_path(path)}: "
+                            f"{e.strerror or e}") from None
+    except (ValueError, KeyError, TypeError) as e:
+        raise BaselineError(f"{display_path(path)} is not a urdf-lint baseline ({e}); "
+                            "make one with --write-baseline") from None
     out = []
     for f in findings:
         k = _key(f, base)

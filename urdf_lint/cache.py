@@ -15,6 +15,7 @@ import shutil
 from pathlib import Path
 
 from . import __version__
+from .atomic import atomic_write
 from .discovery import start_dir
 from .hashing import file_digest
 from .jobs import LintJob, LintSettings, ModelReport
@@ -87,9 +88,7 @@ class Cache:
         try:
             self._ensure()
             p.parent.mkdir(parents=True, exist_ok=True)
-            tmp = p.with_suffix(f".tmp{os.getpid()}")
-            tmp.write_text(json.dumps(rec), encoding="utf-8")
-            os.replace(tmp, p)
+            atomic_write(p, json.dumps(rec))
             self._writes += 1
         except OSError:
             pass

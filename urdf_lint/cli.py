@@ -1,12 +1,17 @@
-"""Command line: ``urdf-lint check|expand|rules|rule|render|clean``.
+"""Command line: urdf-lint check|hook|expand|rules|rule|render|clean.
 
-Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error.
+Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error, 130 Ctrl-C.
 Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
+Options that are also config keys (``--select``, ``--timeout``, ...) go through the config
+schema (:mod:`urdf_lint.config`), so a bad value on the command line gets the same message as
+in a config file.
 """
 from __future__ import annotations
 
 import argparse
+import difflib
 import os
+import re
 import sys
 
 
@@ -34,126 +39,256 @@ def _parse_mappings(items):
     return args, rest
 
 
-def _codes(s):
-    return [c.strip() for c in s.split(",") if c.strip()] if s else []
+def plain(text: str) -> str:
+    """Docstring text for a terminal: reST literals (````x````) become ```x```."""
+    return re.sub(r"``(.+?)``", r"`\1`", text, flags=re.S)
+
+
+def first_sentence(doc: str) -> str:
+    """The first sentence of a rule's docstring, as plain text (an ellipsis is not an end)."""
+    para = " ".join(plain(doc).strip().split("\n\n")[0].split())
+    m = re.search(r"(?<!\.)\.(?!\.)\s+", para)
+    return para if m is None else para[:m.start() + 1]
+
+
+# -- the parser -------------------------------------------------------------------------------
+class _Parser(argparse.ArgumentParser):
+    """An unknown flag gets this (sub)command's usage and the closest known flag."""
+
+    def error(self, message):
+        m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if m:
+            choices = re.findall(r"'([^']*)'", m.group(3))
+            close = difflib.get_close_matches(m.group(2), choices, n=1, cutoff=0.6)
+            if close:
+                message += f" (did you mean {close[0]}?)"
+        m = re.match(r"unrecognized arguments: (.*)", message)
+        if m:
+            hints = []
+            for arg in m.group(1).split():
+                if arg.startswith("-"):
+                    close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
+                                                      cutoff=0.6)
+                    if close:
+                        hints.append(f"{arg}: did you mean {close[0]}?")
+            if hints:
+                message += " (" + "; ".join(hints) + ")"
+        super().error(message)
+
+    def flags(self) -> list:
+        return [s for a in self._actions for s in a.option_strings]
+
+
+def _key_help(name: str, text: str | None = None) -> str:
+    from .config import KEYS
+    k = KEYS[name]
+    return f"{text or k.help} (default: {k.default_text}; config key '{name}')"
+
+
+def _add_selection(p):
+    p.add_argument("--select", metavar="CODES", help=_key_help(
+        "select", "comma-separated rule codes, prefixes or names to enable; replaces the config's"))
+    p.add_argument("--extend-select", metavar="CODES", help=_key_help(
+        "extend-select", "comma-separated codes or prefixes to enable on top of select"))
+    p.add_argument("--ignore", metavar="CODES", help=_key_help(
+        "ignore", "comma-separated codes or prefixes to disable"))
+    p.add_argument("--fail-on", metavar="{error,warning,info,never}", help=_key_help("fail-on"))
+    p.add_argument("--exit-zero", action="store_true",
+                   help="exit 0 even when there are findings (still 2 on errors)")
+
+
+def _add_inputs(p, config=True):
+    p.add_argument("--package-path", action="append", metavar="NAME=DIR",
+                   help="where package NAME is, for $(find NAME) and package://NAME; "
+                        "repeatable (default: package.xml files under the paths and the "
+                        "repository, AMENT_PREFIX_PATH, ROS_PACKAGE_PATH)")
+    if config:
+        p.add_argument("--config", metavar="FILE",
+                       help="config file: pyproject.toml or urdf-lint.toml (default: the "
+                            "nearest one above the first path)")
+        p.add_argument("-j", "--jobs", metavar="N", help=_key_help("jobs"))
+
+
+def _add_output(p):
+    from .report import formats
+    fmts = formats()
+    p.add_argument("--output-format", "--format", dest="format", metavar="FORMAT",
+                   help="output format: " + ", ".join(fmts) + " (see below; default: text, or "
+                   "github when GITHUB_ACTIONS is set; config key 'format')")
+    p.epilog = "output formats:\n" + "\n".join(f"  {n:<9} {c.help}" for n, c in fmts.items())
+    p.add_argument("--show-source", action="store_true",
+                   help="show the source line of each finding under it (text format)")
+    p.add_argument("--statistics", action="store_true",
+                   help="print only the number of findings per rule")
+    p.add_argument("--color", metavar="{auto,always,never}", default="auto",
+                   help="colour the text output; auto colours a terminal unless NO_COLOR is "
+                        "set, or anything when FORCE_COLOR is set (default: auto)")
+    p.add_argument("--baseline", metavar="FILE", help=_key_help(
+        "baseline", "ignore the findings recorded in FILE (make it with --write-baseline)"))
+    p.add_argument("--no-cache", action="store_true",
+                   help="do not read or write the result cache (.urdf_lint_cache/)")
+    v = p.add_mutually_exclusive_group()
+    v.add_argument("-q", "--quiet", action="store_true",
+                   help="print the findings and nothing else (no summary, notes or progress)")
+    v.add_argument("-v", "--verbose", action="store_true",
+                   help="also list the config, each model and every file it read, and files "
+                        "no model uses")
+
+
+SUBPARSERS: dict = {}
 
 
 def build_parser():
-    p = argparse.ArgumentParser(prog="urdf-lint", description=__doc__.splitlines()[0])
+    p = _Parser(prog="urdf-lint", description="Expand xacro without ROS, lint robot "
+                "descriptions at their xacro source lines, and render review snapshots.")
     p.add_argument("--version", action="store_true", help="print the version and exit")
-    sub = p.add_subparsers(dest="command")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
+    raw = argparse.RawDescriptionHelpFormatter   # keeps the epilog's table of formats
 
-    c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS")
-    c.add_argument("paths", nargs="*", default=["."])
-    c.add_argument("--format", choices=["text", "json", "sarif", "github", "junit"])
-    c.add_argument("--output", "-o", help="write the report to this file")
-    c.add_argument("--select", help="comma-separated codes or prefixes (replaces config)")
-    c.add_argument("--extend-select", help="codes or prefixes to add")
-    c.add_argument("--ignore", help="codes or prefixes to ignore")
-    c.add_argument("--fail-on", choices=["error", "warning", "info", "never"])
-    c.add_argument("--package-path", action="append", metavar="NAME=DIR")
-    c.add_argument("--config", help="config file (pyproject.toml or urdf-lint.toml)")
+    c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS",
+                       formatter_class=raw,
+                       description="Find, expand and lint every robot model under PATHS.")
+    c.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="files or folders to lint (default: .)")
+    _add_output(c)
+    c.add_argument("-o", "--output", metavar="FILE",
+                   help="write the report to FILE, atomically (default: standard output)")
+    _add_selection(c)
+    _add_inputs(c)
     c.add_argument("--isolated", action="store_true", help="ignore all config files")
-    c.add_argument("-j", "--jobs", type=int, help="parallel workers (default: CPU count)")
-    c.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
-    c.add_argument("--statistics", action="store_true", help="print counts per rule")
-    c.add_argument("--render", metavar="DIR", help="also write snapshots (.rrd, .png) to DIR")
+    c.add_argument("--render", metavar="DIR",
+                   help="also write snapshots (.rrd, .png) to DIR (default: no snapshots)")
     c.add_argument("--changed-since", metavar="REF",
-                   help="only the models affected by files changed since a git ref")
-    c.add_argument("--baseline", metavar="FILE",
-                   help="ignore findings recorded in FILE (create it with --write-baseline)")
-    c.add_argument("--write-baseline", metavar="FILE", help="record current findings to FILE")
-    c.add_argument("--timeout", type=float, help="per-model time limit in seconds")
-    c.add_argument("--quiet", "-q", action="store_true", help="no summary line when clean")
+                   help="only the models affected by files changed since a git ref, e.g. "
+                        "origin/main (default: every model)")
+    c.add_argument("--write-baseline", metavar="FILE",
+                   help="record the current findings in FILE and exit 0 (default: off)")
+    c.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
 
-    h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect")
-    h.add_argument("files", nargs="*")
-    h.add_argument("--format", choices=["text", "json", "sarif", "github", "junit"])
-    h.add_argument("--select")
-    h.add_argument("--extend-select")
-    h.add_argument("--ignore")
-    h.add_argument("--fail-on", choices=["error", "warning", "info", "never"])
-    h.add_argument("--package-path", action="append", metavar="NAME=DIR")
-    h.add_argument("--config")
-    h.add_argument("-j", "--jobs", type=int)
-    h.add_argument("--no-cache", action="store_true")
+    h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
+                       formatter_class=raw,
+                       description="Lint the models that the given (changed) files affect; "
+                                   "the whole repository is linted through the cache.")
+    h.add_argument("files", nargs="*", metavar="FILE",
+                   help="changed files, as pre-commit passes them (default: none)")
+    _add_output(h)
+    _add_selection(h)
+    _add_inputs(h)
 
-    e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)")
-    e.add_argument("file")
-    e.add_argument("mappings", nargs="*", metavar="name:=value")
-    e.add_argument("-o", "--output")
-    e.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)",
+                       description="Expand one xacro file to URDF, byte-identical to xacro 2.1.1.")
+    e.add_argument("file", help="the .xacro file")
+    e.add_argument("mappings", nargs="*", metavar="name:=value",
+                   help="xacro args (default: the args' defaults)")
+    e.add_argument("-o", "--output", metavar="FILE",
+                   help="write the URDF to FILE, atomically (default: standard output)")
+    _add_inputs(e, config=False)
 
-    rl = sub.add_parser("rules", help="list the rule catalogue")
+    rl = sub.add_parser("rules", help="list the rule catalogue", description="List the rule catalogue.")
     rl.add_argument("--format", choices=["text", "markdown"], default="text",
                     help="text: one line per rule; markdown: the full rules page (default: text)")
-    r = sub.add_parser("rule", help="explain one rule")
-    r.add_argument("code")
+    r = sub.add_parser("rule", help="explain one rule", description="Explain one rule.")
+    r.add_argument("code", help="a rule code (UL302) or name (limit-order)")
 
-    rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots")
-    rd.add_argument("paths", nargs="*", default=["."])
-    rd.add_argument("--out", default="snapshots")
-    rd.add_argument("--package-path", action="append", metavar="NAME=DIR")
-    rd.add_argument("--config")
-    rd.add_argument("--no-rrd", action="store_true", help="PNG only")
-    rd.add_argument("-j", "--jobs", type=int)
+    rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots",
+                        description="Write a .rrd recording and a PNG snapshot per model.")
+    rd.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                    help="files or folders (default: .)")
+    rd.add_argument("--out", default="snapshots", metavar="DIR",
+                    help="output folder (default: snapshots)")
+    _add_inputs(rd)
+    rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
 
     df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
-                        "every affected model between two git revisions")
+                        "every affected model between two git revisions",
+                        description="Compare every model a change affects between two git "
+                                    "revisions: links, joints, limits, inertials, geometry, "
+                                    "poses and findings, at their xacro lines.")
     df.add_argument("base", help="the base revision (e.g. origin/main)")
     df.add_argument("head", nargs="?", help="the head revision (default: the working tree)")
     df.add_argument("--path", action="append", dest="paths", metavar="PATH",
                     help="limit to models under PATH (default: the whole repository)")
     df.add_argument("--format", choices=["text", "json", "markdown"], default="text",
                     help="output format (default: text)")
-    df.add_argument("--output", "-o", help="write the report to this file")
-    df.add_argument("--image-base-url", help="where snapshot images will be served from "
-                    "(markdown only)")
+    df.add_argument("-o", "--output", metavar="FILE",
+                    help="write the report to FILE, atomically (default: standard output)")
+    df.add_argument("--image-base-url", metavar="URL",
+                    help="where the --render images will be served from, for the markdown "
+                         "(default: none, no images in the markdown)")
     df.add_argument("--fail-on", choices=["error", "warning", "info", "never"],
                     help="exit 1 when the change introduces findings at or above this "
-                    "severity (default: error)")
-    df.add_argument("--package-path", action="append", metavar="NAME=DIR")
-    df.add_argument("-j", "--jobs", type=int, help="parallel workers (default: CPU count)")
+                         "severity (default: error)")
+    df.add_argument("--package-path", action="append", metavar="NAME=DIR",
+                    help="where a package lives (default: found from package.xml files)")
+    df.add_argument("-j", "--jobs", metavar="N", help="parallel workers (default: CPU count)")
     df.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
     df.add_argument("--render", metavar="DIR", help="write before/after/difference PNGs with "
-                    "identical framing and one .rrd holding both revisions per affected model")
+                    "identical framing and one .rrd holding both revisions per affected model "
+                    "(default: no snapshots)")
     df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
-    cl = sub.add_parser("clean", help="remove the cache")
-    cl.add_argument("paths", nargs="*", default=["."])
+    cl = sub.add_parser("clean", help="remove the cache", description="Remove the result cache.")
+    cl.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                    help="find the cache from here (default: .)")
+    SUBPARSERS.clear()
+    SUBPARSERS.update(sub.choices)
     return p
 
 
+# -- config -----------------------------------------------------------------------------------
 def _load_cfg(args, paths):
-    from .config import find_config, load_config, validate_codes
+    from .config import apply_cli, find_config, load_config, validate_codes
     from .registry import codes_to_names
     known = codes_to_names()
     if getattr(args, "isolated", False):
         cfg = load_config(None)
     else:
-        path = args.config or find_config(paths[0] if paths else ".")
+        path = getattr(args, "config", None) or find_config(paths[0] if paths else ".")
         cfg = load_config(path, known)
-    if getattr(args, "select", None):
-        cfg.select = _codes(args.select)
-    if getattr(args, "extend_select", None):
-        cfg.extend_select += _codes(args.extend_select)
-    if getattr(args, "ignore", None):
-        cfg.ignore += _codes(args.ignore)
-    if getattr(args, "fail_on", None):
-        cfg.fail_on = args.fail_on
-    if getattr(args, "timeout", None):
-        cfg.timeout = args.timeout
+    apply_cli(cfg, {k: getattr(args, k.replace("-", "_"), None) for k in (
+        "select", "extend-select", "ignore", "fail-on", "timeout", "jobs", "format",
+        "baseline")})
     validate_codes(cfg, known)
     return cfg
 
 
+class _Out:
+    """Where the CLI's own messages go: stderr, filtered by -q / -v."""
+
+    def __init__(self, args):
+        self.quiet = getattr(args, "quiet", False)
+        self.verbose = getattr(args, "verbose", False)
+
+    def note(self, text):
+        if not self.quiet:
+            sys.stderr.write(text + "\n")
+
+    def info(self, text):
+        if self.verbose:
+            sys.stderr.write(text + "\n")
+
+
+def _color_mode(args) -> str:
+    mode = getattr(args, "color", "auto") or "auto"
+    if mode not in ("auto", "always", "never"):
+        from .config import did_you_mean
+        raise UsageError(f"--color: invalid value {mode!r} (expected auto, always or never"
+                         f"{did_you_mean(mode, ('auto', 'always', 'never'))})")
+    return mode
+
+
+# -- commands ---------------------------------------------------------------------------------
 def cmd_check(args) -> int:
-    from .discovery import build_resolver, start_dir
+    from .discovery import build_resolver
+    from .locations import display_path
     from .pipeline import exit_code, run_check
     from . import report
+    out = _Out(args)
+    color_mode = _color_mode(args)
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
+    out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
@@ -161,48 +296,92 @@ def cmd_check(args) -> int:
         cache = Cache.for_paths(args.paths, cfg)
     affected_by = None
     if args.changed_since:
-        from .vcs import GitError, changed_files
-        try:
-            affected_by = changed_files(args.changed_since, start_dir(args.paths))
-        except (GitError, OSError) as e:
-            raise UsageError(f"--changed-since {args.changed_since}: {e}") from None
+        affected_by = _changed_since(args.changed_since, args.paths[0])
     if getattr(args, "files", None) is not None:
         affected_by = {os.path.abspath(f) for f in args.files}
     progress = None
-    if sys.stderr.isatty() and not os.environ.get("CI"):
+    if sys.stderr.isatty() and not os.environ.get("CI") and not out.quiet:
         def progress(n, total):
             sys.stderr.write(f"\rlinting {n}/{total} models" + (" " * 10))
             if n == total:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
-    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
-    if args.write_baseline:
-        from .baseline import write_baseline
-        write_baseline(args.write_baseline, result.findings)
-    if args.baseline:
-        from .baseline import filter_baseline
-        result.findings = filter_baseline(args.baseline, result.findings)
-    fmt = args.format or cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
-    if args.output:
-        with open(args.output + ".tmp", "w", encoding="utf-8") as f:
-            report.write(result, fmt, f, statistics=args.statistics, color=False)
-        os.replace(args.output + ".tmp", args.output)
-    elif not (args.quiet and not result.findings):
-        report.write(result, fmt, sys.stdout, statistics=args.statistics)
-    for f in result.unused_files:
-        from .locations import display_path
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
+    if out.verbose:
+        _list_models(result, out)
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+    if args.write_baseline:
+        from .baseline import write_baseline
+        n = write_baseline(args.write_baseline, result.findings)
+        files = len({f.file for f in result.findings})
+        out.note(f"urdf-lint: wrote {n} finding(s) in {files} file(s) to "
+                 f"{display_path(os.path.abspath(args.write_baseline))}; "
+                 f"lint with --baseline {args.write_baseline} to report only new ones")
+        return 2 if result.internal else 0
+    if cfg.baseline:
+        from .baseline import filter_baseline
+        before = len(result.findings)
+        result.findings = filter_baseline(cfg.baseline, result.findings)
+        out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
+                 f"({display_path(cfg.baseline)})")
+    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet)
+    if getattr(args, "output", None):
+        from .atomic import atomic_open
+        try:
+            with atomic_open(args.output) as f:
+                report.write(result, fmt, f, color=color_mode == "always", **options)
+        except OSError as e:
+            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
+    elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
+              and not args.statistics):
+        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
+                     **options)
+    for f in result.unused_files:
+        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            out.info(f"note: {display_path(f)} is not used by any model")
     if render_dir:
-        _report_snapshots(result, render_dir)
+        _report_snapshots(result, render_dir, out)
+    if args.exit_zero:
+        return 2 if result.internal else 0
     return exit_code(result, cfg.fail_on)
 
 
-def _report_snapshots(result, out_dir):
+def _changed_since(ref, first_path):
+    from .vcs import GitError, changed_files
+    cwd = first_path if os.path.isdir(first_path) else os.path.dirname(os.path.abspath(first_path))
+    try:
+        return changed_files(ref, cwd)
+    except (GitError, OSError) as e:
+        lines = [ln.strip() for ln in str(e).splitlines() if ln.strip()]
+        text = " ".join(lines).lower()
+        if "not a git repository" in text:
+            why = f"{os.path.abspath(cwd)} is not inside a git repository"
+        elif "unknown revision" in text or "bad revision" in text or "ambiguous argument" in text:
+            why = f"no commit, branch or tag named {ref!r} (try e.g. origin/main or HEAD~1)"
+        elif isinstance(e, OSError):
+            why = f"cannot run git: {e.strerror or e}"
+        else:
+            why = re.sub(r"^(fatal|error): ", "", lines[0]) if lines else "git failed"
+        raise UsageError(f"--changed-since {ref}: {why}") from None
+
+
+def _list_models(result, out):
+    from .locations import display_path
+    for m in result.models:
+        state = "cached" if m.cached else m.status
+        reads = [d for d in m.deps if d != m.entry]
+        out.info(f"model: {m.label} ({state}, {len(reads)} other file(s) read)")
+        for d in reads:
+            out.info(f"    {display_path(d)}")
+    for m in result.skipped:
+        out.info(f"skipped: {display_path(m.entry)} ({m.status})")
+
+
+def _report_snapshots(result, out_dir, out=None):
     from .render import write_summary
     from .locations import display_path
     written = 0
@@ -217,17 +396,21 @@ def _report_snapshots(result, out_dir):
             sys.stderr.write(f"urdf-lint: no snapshot of {m.label}: it did not expand "
                              "(see 'urdf-lint check')\n")
     summary = write_summary(result, out_dir)
-    sys.stderr.write(f"snapshots: {written} files for {len(result.models)} model(s) in "
-                     f"{display_path(out_dir)}/ (summary: {display_path(summary)})\n")
+    msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
+           f"{display_path(out_dir)}/ (summary: {display_path(summary)})")
+    if out is not None:
+        out.note(msg)
+    else:
+        sys.stderr.write(msg + "\n")
 
 
 def cmd_hook(args) -> int:
     """Lint the whole repository (cached) and report the models that the files affect."""
     from .vcs import repo_root
     root = repo_root(os.getcwd())
-    ns = argparse.Namespace(paths=[root], output=None, statistics=False, render=None,
-                            changed_since=None, baseline=None, write_baseline=None, timeout=None,
-                            quiet=True, isolated=False, **vars(args))
+    ns = argparse.Namespace(paths=[root], output=None, render=None, changed_since=None,
+                            write_baseline=None, timeout=None, isolated=False, **vars(args))
+    ns.quiet = True if not args.verbose else False
     ns.command = "check"
     if not args.files:
         return 0
@@ -258,12 +441,13 @@ def cmd_expand(args) -> int:
         sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
         return 1
     if args.output:
+        from .atomic import atomic_write
         d = os.path.dirname(os.path.abspath(args.output))
-        os.makedirs(d, exist_ok=True)
-        tmp = args.output + ".tmp"
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(res.xml)
-        os.replace(tmp, args.output)
+        try:
+            os.makedirs(d, exist_ok=True)
+            atomic_write(args.output, res.xml)
+        except OSError as e:
+            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
     else:
         sys.stdout.write(res.xml)
     return 0
@@ -276,7 +460,7 @@ def cmd_rules(args) -> int:
         sys.stdout.write(markdown(load_rules()))
         return 0
     for code, r in load_rules().items():
-        print(f"{code}  {r.name:<28} {r.severity:<8} {r.summary}")
+        print(f"{code}  {r.name:<28} {r.severity:<8} {first_sentence(r.doc)}")
     return 0
 
 
@@ -284,9 +468,13 @@ def cmd_rule(args) -> int:
     from .registry import find_rule
     r = find_rule(args.code)
     if r is None:
-        raise UsageError(f"unknown rule {args.code!r} (see 'urdf-lint rules')")
+        from .config import did_you_mean
+        from .registry import load_rules
+        rules = load_rules()
+        hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
+        raise UsageError(f"unknown rule {args.code!r}{hint} (see 'urdf-lint rules')")
     print(f"{r.code} {r.name} (default severity: {r.severity})\n")
-    print(r.doc)
+    print(plain(r.doc))
     if r.options:
         print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
         for k, v in r.options.items():
@@ -304,7 +492,7 @@ def cmd_render(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
-    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs,
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd)
     _report_snapshots(result, args.out)
     for m in result.models:
@@ -324,10 +512,16 @@ def cmd_diff(args) -> int:
     for p in paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
-    args.config, args.isolated = None, False
+    # the config comes from each revision's own tree; the CLI adds only these keys
+    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs)
+    cfgs = []
+
+    def load(ps):
+        cfgs.append(_load_cfg(cfg_args, ps))
+        return cfgs[-1]
     try:
-        result = review.run_diff(args.base, args.head, paths, lambda ps: _load_cfg(args, ps),
-                                 _parse_package_paths(args.package_path), jobs_n=args.jobs,
+        result = review.run_diff(args.base, args.head, paths, load,
+                                 _parse_package_paths(args.package_path), jobs_n=None,
                                  use_cache=not args.no_cache, render_dir=args.render,
                                  rrd=not args.no_rrd)
     except review.ReviewError as e:
@@ -339,7 +533,7 @@ def cmd_diff(args) -> int:
         review_report.write(result, args.format, sys.stdout, **kw)
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
-    return review.exit_code(result, args.fail_on or "error")
+    return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
 
 
 def cmd_clean(args) -> int:
@@ -355,9 +549,20 @@ COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules":
 
 
 def main(argv=None) -> int:
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        sys.stderr.write("\nurdf-lint: interrupted\n")
+        return 130
+
+
+def _main(argv) -> int:
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args, extra = parser.parse_known_args(argv)
+        if extra:
+            (SUBPARSERS.get(args.command) or parser).error(
+                f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as e:
         return 2 if e.code else 0
     if args.version:
@@ -368,14 +573,14 @@ def main(argv=None) -> int:
         parser.print_help()
         return 2
     from .config import ConfigError
+    from .baseline import BaselineError
     try:
         return COMMANDS[args.command](args)
-    except (UsageError, ConfigError) as e:
+    except (UsageError, ConfigError, BaselineError) as e:
         sys.stderr.write(f"urdf-lint: error: {e}\n")
         return 2
     except KeyboardInterrupt:
-        sys.stderr.write("urdf-lint: interrupted\n")
-        return 2
+        raise
     except BrokenPipeError:
         return 0
     except Exception as e:  # noqa: BLE001

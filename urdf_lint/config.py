@@ -1,10 +1,23 @@
-"""``[tool.urdf-lint]`` in pyproject.toml, or urdf-lint.toml: loading and validation."""
+"""The configuration schema: ``[tool.urdf-lint]`` in pyproject.toml, ``urdf-lint.toml``, and the
+command line, all validated by the same table.
+
+:data:`SCHEMA` lists every key with its type, default and help. A config file and the CLI are two
+sources of values for the same keys; every value goes through its key's type, so a bad value is
+one :class:`ConfigError` (exit 2) naming the key, the value and what was expected. Rule options
+(``[tool.urdf-lint.rule-options.UL307]``) are typed from each rule's ``OPTIONS`` defaults: a
+float default accepts any number, an int default an integer, and a rule may declare other
+types with ``OPTION_TYPES = {"name": (int, float)}``.
+"""
 from __future__ import annotations
 
+import difflib
 import fnmatch
+import json
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, Callable
 
 from .policy import code_matches
 
@@ -18,16 +31,228 @@ except ImportError:  # pragma: no cover - Python 3.10
 DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
                      "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
 
+TABLE = "tool.urdf-lint"
+SEVERITY_NAMES = ("error", "warning", "info")
+FAIL_ON = ("error", "warning", "info", "never")
+
 
 class ConfigError(Exception):
     pass
 
 
-KNOWN_KEYS = {
-    "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on",
-    "package-paths", "models", "exclude", "env-allow", "timeout", "memory-mb", "rule-options",
-    "jobs", "cache-dir", "format",
-}
+class _Bad(Exception):
+    """A value does not fit its type; ``expected`` says what would have."""
+
+    def __init__(self, expected: str, value: Any = None, where: str = ""):
+        super().__init__(expected)
+        self.expected, self.value, self.where = expected, value, where
+
+
+def did_you_mean(word: str, candidates) -> str:
+    close = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def show(value: Any) -> str:
+    """A value as the user wrote it in TOML (strings in double quotes)."""
+    try:
+        return json.dumps(value, ensure_ascii=False)
+    except (TypeError, ValueError):
+        return repr(value)
+
+
+# -- value types ------------------------------------------------------------------------------
+class Type:
+    expected = "a value"
+
+    def check(self, v: Any) -> Any:
+        raise NotImplementedError
+
+    def from_cli(self, s: str) -> Any:
+        """The value of a command-line string (then checked like a config value)."""
+        return s
+
+
+class Str(Type):
+    expected = "a string"
+
+    def check(self, v):
+        if not isinstance(v, str):
+            raise _Bad(self.expected)
+        return v
+
+
+class StrList(Type):
+    def __init__(self, what: str = "strings"):
+        self.expected = f"a list of {what}"
+
+    def check(self, v):
+        if isinstance(v, str):
+            raise _Bad(f"{self.expected}, like [{show(v)}]")
+        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
+            raise _Bad(self.expected)
+        return list(v)
+
+    def from_cli(self, s):
+        return [c.strip() for c in s.split(",") if c.strip()]
+
+
+class Choice(Type):
+    def __init__(self, choices: tuple | Callable[[], tuple]):
+        self._choices = choices
+
+    @property
+    def choices(self) -> tuple:
+        return tuple(self._choices() if callable(self._choices) else self._choices)
+
+    @property
+    def expected(self):
+        return "one of " + ", ".join(self.choices)
+
+    def check(self, v):
+        if not isinstance(v, str) or v not in self.choices:
+            close = difflib.get_close_matches(v, self.choices, n=1, cutoff=0.6) \
+                if isinstance(v, str) else []
+            raise _Bad(self.expected + (f"; did you mean {show(close[0])}?" if close else ""))
+        return v
+
+
+class Number(Type):
+    """A number (int or float; booleans are not numbers) above ``minimum``."""
+
+    def __init__(self, kind=float, minimum: float | None = None, unit: str = ""):
+        self.kind, self.minimum = kind, minimum
+        noun = "an integer" if kind is int else "a number"
+        self.expected = noun + (f" of {unit}" if unit else "") + \
+            (f" > {minimum:g}" if minimum is not None else "")
+
+    def check(self, v):
+        ok_types = (int,) if self.kind is int else (int, float)
+        if isinstance(v, bool) or not isinstance(v, ok_types):
+            raise _Bad(self.expected)
+        if self.minimum is not None and not v > self.minimum:
+            raise _Bad(self.expected)
+        return self.kind(v)
+
+    def from_cli(self, s):
+        try:
+            return int(s) if self.kind is int else float(s)
+        except ValueError:
+            raise _Bad(self.expected) from None
+
+
+class Table(Type):
+    """A table of string keys to values of one type."""
+
+    def __init__(self, value: Type, what: str):
+        self.value, self.expected = value, what
+
+    def check(self, v):
+        if not isinstance(v, dict):
+            raise _Bad(self.expected)
+        out = {}
+        for k, x in v.items():
+            try:
+                out[k] = self.value.check(x)
+            except _Bad as e:
+                raise _Bad(e.expected, x, k) from None
+        return out
+
+
+class Models(Type):
+    expected = "an array of tables [[models]] with 'path' and optional 'args'"
+
+    def check(self, v):
+        if not isinstance(v, list):
+            raise _Bad(self.expected)
+        out = []
+        for m in v:
+            if not isinstance(m, dict) or not isinstance(m.get("path"), str):
+                raise _Bad("each [[models]] entry to have a string 'path'", m)
+            extra = set(m) - {"path", "args"}
+            if extra:
+                raise _Bad("only 'path' and 'args' in a [[models]] entry"
+                           + did_you_mean(sorted(extra)[0], ("path", "args")), m)
+            args = m.get("args", [{}])
+            if isinstance(args, dict):
+                args = [args]
+            if not isinstance(args, list) or not all(
+                    isinstance(a, dict) and all(isinstance(x, (str, int, float, bool)) for x in a.values())
+                    for a in args):
+                raise _Bad("'args' to be a table (or a list of tables) of xacro arg = value", args)
+            out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args]})
+        return out
+
+
+class RuleOptions(Type):
+    expected = "a table of tables: [rule-options.CODE] option = value"
+
+    def check(self, v):
+        if not isinstance(v, dict) or not all(isinstance(x, dict) for x in v.values()):
+            raise _Bad(self.expected)
+        return {k: dict(x) for k, x in v.items()}
+
+
+@dataclass(frozen=True)
+class Key:
+    name: str
+    type: Type
+    default: Any
+    help: str
+    cli_merge: str = "replace"      # "replace" or "extend" when given on the command line
+
+    @property
+    def attr(self) -> str:
+        return self.name.replace("-", "_")
+
+    @property
+    def default_text(self) -> str:
+        d = self.default
+        if d is None:
+            return {"jobs": "all cores", "format": "text, or github on GitHub Actions",
+                    "cache-dir": ".urdf_lint_cache", "baseline": "none"}.get(self.name, "none")
+        if isinstance(d, list):
+            return ",".join(d) if d else "none"
+        if isinstance(d, float) and d.is_integer():
+            return str(int(d))
+        return str(d) if not isinstance(d, dict) else "none"
+
+
+def _formats() -> tuple:
+    from .report import names
+    return names()
+
+
+SCHEMA: tuple[Key, ...] = (
+    Key("select", StrList("rule codes or prefixes"), ["UL"],
+        'rule codes, prefixes or names to enable ("ALL" for every rule)'),
+    Key("extend-select", StrList("rule codes or prefixes"), [],
+        "codes or prefixes to enable on top of select", cli_merge="extend"),
+    Key("ignore", StrList("rule codes or prefixes"), [],
+        "codes or prefixes to disable", cli_merge="extend"),
+    Key("per-file-ignores", Table(StrList("rule codes or prefixes"),
+                                  'a table of glob = ["CODE", ...]'), {},
+        "codes to ignore in files matching a glob"),
+    Key("severity", Table(Choice(SEVERITY_NAMES), "a table of CODE = error|warning|info"), {},
+        "override default severities"),
+    Key("fail-on", Choice(FAIL_ON), "error",
+        "lowest severity that makes the exit code 1"),
+    Key("package-paths", Table(Str(), 'a table of package = "folder"'), {},
+        "where packages that have no package.xml under the linted paths are"),
+    Key("models", Models(), [], "entry models and the xacro args to expand them with"),
+    Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
+    Key("env-allow", StrList("environment variable names"), [],
+        "environment variables $(env)/$(optenv) may read"),
+    Key("timeout", Number(float, 0, "seconds"), 30.0, "time limit per model, in seconds"),
+    Key("memory-mb", Number(int, 0, "MiB"), 2048, "memory limit per model, in MiB"),
+    Key("rule-options", RuleOptions(), {}, "options of single rules"),
+    Key("jobs", Number(int, 0), None, "parallel workers"),
+    Key("cache-dir", Str(), None, "folder of the result cache"),
+    Key("format", Choice(_formats), None, "output format"),
+    Key("baseline", Str(), None, "ignore the findings recorded in this file"),
+)
+KEYS = {k.name: k for k in SCHEMA}
+KNOWN_KEYS = set(KEYS)
 
 
 @dataclass
@@ -56,6 +281,7 @@ class Config:
     jobs: int | None = None
     cache_dir: str | None = None
     format: str | None = None
+    baseline: str | None = None     # absolute
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
@@ -73,6 +299,53 @@ class Config:
         return out
 
 
+# -- reading files ----------------------------------------------------------------------------
+def _parse_toml(path: Path) -> dict:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise ConfigError(f"{_shown(path)}: cannot read config: {e}") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        msg = str(e)
+        m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
+        if m:
+            msg = msg[:m.start()]
+            raise ConfigError(f"{_shown(path)}:{m.group(1)}:{m.group(2)}: invalid TOML: {msg}") from None
+        m = re.search(r"\s*\(at end of document\)$", msg)
+        if m:
+            line = text.count("\n") + 1
+            raise ConfigError(f"{_shown(path)}:{line}: invalid TOML: {msg[:m.start()]} "
+                              "(at end of file)") from None
+        raise ConfigError(f"{_shown(path)}: invalid TOML: {msg}") from None
+
+
+def _near_miss_table(tool: dict) -> str | None:
+    """A ``[tool.X]`` that was meant to be ``[tool.urdf-lint]``."""
+    for k in tool:
+        if not isinstance(k, str) or k == "urdf-lint":
+            continue
+        norm = re.sub(r"[-_. ]", "", k.lower())
+        if norm in ("urdflint", "urdflinter") or difflib.get_close_matches(
+                k.lower(), ["urdf-lint"], n=1, cutoff=0.8):
+            return k
+    return None
+
+
+def _pyproject_table(path: Path, data: dict) -> dict | None:
+    tool = data.get("tool", {})
+    if not isinstance(tool, dict):
+        return None
+    if "urdf-lint" in tool:
+        return tool["urdf-lint"]
+    near = _near_miss_table(tool)
+    if near is not None:
+        raise ConfigError(f"{_shown(path)}: found [tool.{near}]; did you mean [{TABLE}]? "
+                          f"(the table is named [{TABLE}], with a hyphen)")
+    return None
+
+
 def find_config(start: str) -> Path | None:
     p = Path(start).resolve()
     if p.is_file():
@@ -82,14 +355,48 @@ def find_config(start: str) -> Path | None:
             if (d / fname).is_file():
                 return d / fname
         pp = d / "pyproject.toml"
-        if pp.is_file():
-            try:
-                data = tomllib.loads(pp.read_text(encoding="utf-8"))
-            except Exception:
-                continue
-            if "urdf-lint" in data.get("tool", {}):
-                return pp
+        if pp.is_file() and _pyproject_table(pp, _parse_toml(pp)) is not None:
+            return pp
     return None
+
+
+def _shown(path) -> str:
+    """A config file's path as messages show it: relative to the working directory when below."""
+    if isinstance(path, str) and not os.path.exists(path):
+        return path                      # "command line"
+    from .locations import display_path
+    return display_path(os.path.abspath(path))
+
+
+def _line_of(path: Path, key: str) -> str:
+    """``:LINE`` of the first ``key = ...`` in the file, when it can be found."""
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except OSError:
+        return ""
+    pat = re.compile(r'^\s*(?:"|\')?' + re.escape(key) + r'(?:"|\')?\s*=')
+    header = re.compile(r'^\s*\[[^\]]*[."\']' + re.escape(key) + r'["\']?\s*\]')
+    ours = path.name != "pyproject.toml"   # in pyproject.toml, only [tool.urdf-lint...] tables
+    for i, ln in enumerate(lines, 1):
+        if ln.lstrip().startswith("["):
+            ours = path.name != "pyproject.toml" or ln.lstrip().lstrip("[").startswith(TABLE)
+            if ours and header.match(ln):
+                return f":{i}"
+        elif ours and pat.match(ln):
+            return f":{i}"
+    return ""
+
+
+# -- validation -------------------------------------------------------------------------------
+def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
+    if key.name == "package-paths":
+        value = {k: str((base / v).resolve()) for k, v in value.items()}
+    elif key.name == "models":
+        value = [ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
+                 for m in value]
+    elif key.name == "baseline" and value is not None:
+        value = str((base / value).resolve())
+    setattr(cfg, key.attr, value)
 
 
 def load_config(path: str | Path | None, known_codes: dict | None = None) -> Config:
@@ -97,66 +404,60 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
     if path is None:
         return Config(root=os.getcwd())
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except Exception as e:
-        raise ConfigError(f"{path}: cannot read config: {e}") from None
+    data = _parse_toml(path)
+    table = "[tool.urdf-lint]"
     if path.name == "pyproject.toml":
-        data = data.get("tool", {}).get("urdf-lint", {})
+        data = _pyproject_table(path, data) or {}
+    else:
+        table = path.name
+        if "tool" in data and isinstance(data["tool"], dict) and (
+                "urdf-lint" in data["tool"] or _near_miss_table(data["tool"])):
+            raise ConfigError(f"{_shown(path)}: in {path.name} the keys go at the top level, "
+                              f"without a [{TABLE}] table")
+    if not isinstance(data, dict):
+        raise ConfigError(f"{_shown(path)}: [{TABLE}] must be a table")
     cfg = Config(path=str(path), root=str(path.parent.resolve()), raw=data)
-    unknown = set(data) - KNOWN_KEYS
-    if unknown:
-        raise ConfigError(f"{path}: unknown key(s) in [tool.urdf-lint]: {', '.join(sorted(unknown))} "
-                          f"(known: {', '.join(sorted(KNOWN_KEYS))})")
-
-    def lst(key):
-        v = data.get(key, [])
-        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
-            raise ConfigError(f"{path}: '{key}' must be a list of strings")
-        return v
-    if "select" in data:
-        cfg.select = lst("select")
-    cfg.extend_select = lst("extend-select")
-    cfg.ignore = lst("ignore")
-    cfg.exclude = lst("exclude")
-    cfg.env_allow = lst("env-allow")
-    pfi = data.get("per-file-ignores", {})
-    if not isinstance(pfi, dict):
-        raise ConfigError(f"{path}: 'per-file-ignores' must be a table of glob = [codes]")
-    cfg.per_file_ignores = {k: list(v) for k, v in pfi.items()}
-    sev = data.get("severity", {})
-    for code, s in sev.items():
-        if s not in ("error", "warning", "info"):
-            raise ConfigError(f"{path}: severity of {code} must be error, warning or info, not {s!r}")
-    cfg.severity = dict(sev)
-    cfg.fail_on = data.get("fail-on", "error")
-    if cfg.fail_on not in ("error", "warning", "info", "never"):
-        raise ConfigError(f"{path}: 'fail-on' must be error, warning, info or never")
-    cfg.package_paths = {k: str((path.parent / v).resolve()) for k, v in
-                         data.get("package-paths", {}).items()}
-    cfg.timeout = float(data.get("timeout", cfg.timeout))
-    cfg.memory_mb = int(data.get("memory-mb", cfg.memory_mb))
-    cfg.jobs = data.get("jobs")
-    cfg.cache_dir = data.get("cache-dir")
-    cfg.format = data.get("format")
-    ro = data.get("rule-options", {})
-    if not isinstance(ro, dict):
-        raise ConfigError(f"{path}: 'rule-options' must be a table of tables")
-    cfg.rule_options = {k: dict(v) for k, v in ro.items()}
-    for m in data.get("models", []):
-        if not isinstance(m, dict) or "path" not in m:
-            raise ConfigError(f"{path}: each [[tool.urdf-lint.models]] needs a 'path'")
-        extra = set(m) - {"path", "args"}
-        if extra:
-            raise ConfigError(f"{path}: unknown key(s) in a models entry: {', '.join(sorted(extra))}")
-        args = m.get("args", [{}])
-        if isinstance(args, dict):
-            args = [args]
-        arg_sets = [{k: str(v) for k, v in a.items()} for a in args]
-        cfg.models.append(ModelSpec(path=str((path.parent / m["path"]).resolve()),
-                                    arg_sets=arg_sets))
+    for k in data:
+        if k not in KEYS:
+            raise ConfigError(f"{_shown(path)}{_line_of(path, k)}: unknown key {k!r} in {table}"
+                              f"{did_you_mean(k, KEYS)} (known: {', '.join(sorted(KEYS))})")
+    for k, v in data.items():
+        key = KEYS[k]
+        try:
+            value = key.type.check(v)
+        except _Bad as e:
+            shown = show(v if e.value is None else e.value)
+            inner = k
+            if e.where:
+                bare = re.fullmatch(r"[A-Za-z0-9_-]+", e.where)
+                inner += "." + (e.where if bare else show(e.where))
+            line = (_line_of(path, e.where) if e.where else "") or _line_of(path, k)
+            raise ConfigError(f"{_shown(path)}{line}: invalid value for {inner}: {shown} "
+                              f"(expected {e.expected})") from None
+        _set(cfg, key, value, path.parent)
     if known_codes is not None:
         validate_codes(cfg, known_codes, str(path))
+    return cfg
+
+
+def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config:
+    """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
+
+    ``values`` maps schema key names to the flag's string, or None when the flag was not
+    given. Keys with ``cli_merge="extend"`` add to the configured list."""
+    for name, s in values.items():
+        if s is None:
+            continue
+        key = KEYS[name]
+        try:
+            value = key.type.check(key.type.from_cli(s) if isinstance(s, str) else s)
+        except _Bad as e:
+            raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
+        if key.cli_merge == "extend":
+            value = list(getattr(cfg, key.attr)) + value
+        if key.name == "baseline":
+            value = os.path.abspath(value)
+        setattr(cfg, key.attr, value)
     return cfg
 
 
@@ -167,7 +468,9 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
         if p == "ALL" or p in names:
             return
         if not any(code_matches(p, c, n) for c, n in known.items()):
-            raise ConfigError(f"{where}: unknown rule code or prefix {p!r} in {what} "
+            line = _line_of(Path(where), what) if os.path.isfile(where) else ""
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule code or prefix {p!r} in {what}"
+                              f"{did_you_mean(p, list(known) + sorted(names))} "
                               f"(see 'urdf-lint rules')")
     for p in cfg.select + cfg.extend_select:
         check(p, "select")
@@ -178,5 +481,60 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
             check(p, "per-file-ignores")
     for p in cfg.severity:
         check(p, "severity")
-    for p in cfg.rule_options:
-        check(p, "rule-options")
+    validate_rule_options(cfg, where)
+
+
+def option_types(rule) -> dict:
+    """Option name -> accepted Python types, from the rule's ``OPTIONS`` defaults and its
+    optional ``OPTION_TYPES`` declaration."""
+    import sys
+    declared = dict(getattr(sys.modules.get(rule.module), "OPTION_TYPES", {}) or {})
+    out = {}
+    for name, default in rule.options.items():
+        if name in declared:
+            t = declared[name]
+            out[name] = tuple(t) if isinstance(t, (tuple, list)) else (t,)
+        elif isinstance(default, bool):
+            out[name] = (bool,)
+        elif isinstance(default, float):
+            out[name] = (float, int)
+        else:
+            out[name] = (type(default),)
+    return out
+
+
+_TYPE_NAMES = {bool: "true or false", int: "an integer", float: "a number", str: "a string",
+               list: "a list"}
+
+
+def validate_rule_options(cfg: Config, where: str) -> None:
+    if not cfg.rule_options:
+        return
+    from .registry import load_rules
+    rules = load_rules()
+    by_name = {r.name: r for r in rules.values()}
+    for key, opts in cfg.rule_options.items():
+        rule = rules.get(key) or by_name.get(key)
+        if rule is None:
+            line = _line_of(Path(where), key) if os.path.isfile(where) else ""
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule {key!r} in rule-options"
+                              f"{did_you_mean(key, list(rules) + list(by_name))} "
+                              "(use a rule code like UL307 or its name)")
+        types = option_types(rule)
+        for name, value in opts.items():
+            line = _line_of(Path(where), name) if os.path.isfile(where) else ""
+            if name not in types:
+                raise ConfigError(f"{_shown(where)}{line}: unknown option {name!r} in rule-options.{key} "
+                                  f"({rule.code} {rule.name})"
+                                  f"{did_you_mean(name, types)} (known: "
+                                  f"{', '.join(sorted(types)) or 'none'})")
+            ok = types[name]
+            if isinstance(value, bool) and bool not in ok or not isinstance(value, ok):
+                expected = " or ".join(dict.fromkeys(_TYPE_NAMES.get(t, t.__name__) for t in ok))
+                if float in ok and int in ok:
+                    expected = "a number"
+                raise ConfigError(f"{_shown(where)}{line}: invalid value for rule-options.{key}.{name}: "
+                                  f"{show(value)} (expected {expected}, like "
+                                  f"{show(rule.options[name])})")
+            if float in ok and isinstance(value, int) and not isinstance(value, bool):
+                opts[name] = float(value)

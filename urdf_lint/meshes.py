@@ -247,9 +247,8 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
     if cache_file is not None:
         try:
             cache_file.parent.mkdir(parents=True, exist_ok=True)
-            tmp = cache_file.with_suffix(".tmp%d" % os.getpid())
-            tmp.write_text(json.dumps(facts))
-            os.replace(tmp, cache_file)
+            from .atomic import atomic_write
+            atomic_write(cache_file, json.dumps(facts))
         except OSError:
             pass
     return facts

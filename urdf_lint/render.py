@@ -373,9 +373,9 @@ def _caption(img, text):
 
 
 def _save_png(img, path):
-    tmp = f"{path}.tmp{os.getpid()}.png"
-    img.save(tmp, format="PNG", optimize=False)
-    os.replace(tmp, path)
+    from .atomic import atomic_path
+    with atomic_path(path, ".png") as tmp:
+        img.save(tmp, format="PNG", optimize=False)
 
 
 def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE):
@@ -557,9 +557,14 @@ def _safe(s):
 def record_rrd(scene, ctx, findings, path, recording_id, prefix=""):
     """Log ``scene`` to ``path``; ``prefix`` (e.g. ``"head/"``) puts every entity under one
     root, so that two revisions can share a recording."""
+    from .atomic import atomic_path
+    with atomic_path(path) as tmp:
+        return _record_rrd(scene, ctx, findings, tmp, recording_id, prefix)
+
+
+def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix):
     import rerun as rr
     rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
-    tmp = f"{path}.tmp{os.getpid()}"
     rec.save(tmp)
 
     def log(entity, *a, **kw):
@@ -625,7 +630,6 @@ def record_rrd(scene, ctx, findings, path, recording_id, prefix=""):
                                                   labels=[fd.code]), static=True)
     rec.flush()
     rec.disconnect()
-    os.replace(tmp, path)
     return {"meshes": logged}
 
 
@@ -702,8 +706,6 @@ def write_summary(result, out_dir):
                               f"(open with `rerun {display_path(snap['rrd'])}`)\n")
     text = "\n".join(lines) + "\n\n" + "\n".join(images)
     path = os.path.join(out_dir, "summary.md")
-    tmp = path + ".tmp"
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    from .atomic import atomic_write
+    atomic_write(path, text)
     return path

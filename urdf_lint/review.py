@@ -134,7 +134,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
     from .discovery import build_resolver
     from .pipeline import run_check
     resolver = build_resolver(paths, cfg, package_paths)
-    result = run_check(paths, cfg, resolver, jobs_n=jobs_n, cache=cache)
+    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache)
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -181,7 +181,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
         settings = dataclasses.replace(settings, diff_render_dir=os.path.realpath(render_dir),
                                        diff_rrd=rrd, diff_side=side_name)
     failures = {r.CODE for r in _FAILURE_RULES}
-    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n, timeout=cfg.timeout,
+    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = key_of[id(job)]
         kept = res.kept_model

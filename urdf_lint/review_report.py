@@ -181,7 +181,6 @@ def write(r: DiffResult, fmt: str, stream, **kw) -> None:
 
 
 def write_file(r: DiffResult, fmt: str, path: str, **kw) -> None:
-    tmp = f"{path}.tmp{os.getpid()}"
-    with open(tmp, "w", encoding="utf-8") as f:
+    from .atomic import atomic_open
+    with atomic_open(path) as f:
         write(r, fmt, f, **kw)
-    os.replace(tmp, path)

@@ -147,7 +147,16 @@ class _Worker:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_main, args=(child, settings, memory_mb),
                                 daemon=True)
-        self.proc.start()
+        # the child ignores Ctrl-C from its first instruction (the parent exits 130 for both)
+        try:
+            old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        except ValueError:          # not the main thread: signals are not ours to change
+            old = None
+        try:
+            self.proc.start()
+        finally:
+            if old is not None:
+                signal.signal(signal.SIGINT, old)
         child.close()
         self.job = None
         self.started = 0.0

@@ -1,0 +1,91 @@
+"""The base of every output format (after flake8's ``BaseFormatter``)."""
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+
+from ..locations import Origin, display_path
+
+_COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
+BOLD, DIM, RESET = "\033[1m", "\033[2m", "\033[0m"
+MODELS_SHOWN = 3
+
+
+@dataclass
+class ReportOptions:
+    color: bool = False
+    show_source: bool = False
+    quiet: bool = False            # findings only: no summary line
+    show_models: bool = True
+
+
+class BaseFormatter:
+    """Subclass, set ``name`` and ``help``, and override :meth:`handle` (one finding) and/or
+    :meth:`start` / :meth:`finish` (the whole report)."""
+
+    name = ""
+    help = ""
+
+    def __init__(self, stream, options: ReportOptions | None = None):
+        self.stream = stream
+        self.options = options or ReportOptions()
+
+    def write(self, result) -> None:
+        self.start(result)
+        for f in result.findings:
+            self.handle(f)
+        self.finish(result)
+
+    def start(self, result) -> None:
+        pass
+
+    def handle(self, finding) -> None:
+        pass
+
+    def finish(self, result) -> None:
+        pass
+
+    def statistics(self, result) -> None:
+        """``--statistics``: only the count per rule, most frequent first."""
+        for (code, name, sev), n in counts(result):
+            self.stream.write(f"{n:5d}  {code}  {name:<28} {sev}\n")
+
+    # helpers ---------------------------------------------------------------------------------
+    def paint(self, text: str, style: str) -> str:
+        return f"{style}{text}{RESET}" if self.options.color else text
+
+    def severity_color(self, severity: str) -> str:
+        return _COLORS.get(severity, "")
+
+    def summary_line(self, result) -> str:
+        s = summary(result)
+        if result.findings:
+            return (f"Found {len(result.findings)} problem(s) ({s['errors']} error, "
+                    f"{s['warnings']} warning, {s['info']} info) in {s['models']} model(s).")
+        return f"All checks passed: {s['models']} model(s)."
+
+
+def counts(result) -> list:
+    c = Counter((f.code, f.name, f.severity) for f in result.findings)
+    return sorted(c.items(), key=lambda kv: (-kv[1], kv[0]))
+
+
+def summary(result) -> dict:
+    c = Counter(f.severity for f in result.findings)
+    return {"models": len(result.models), "errors": c["error"], "warnings": c["warning"],
+            "info": c["info"]}
+
+
+def chain_text(f) -> str:
+    return Origin(f.file, f.line, f.col, f.chain).format_chain() if f.chain else ""
+
+
+def fold(items, shown: int = MODELS_SHOWN) -> str:
+    """``a, b, c and 4 more``."""
+    items = list(items)
+    head = ", ".join(items[:shown])
+    return head + (f" and {len(items) - shown} more" if len(items) > shown else "")
+
+
+def location(f) -> str:
+    return f"{display_path(f.file)}:{f.line}:{f.col}"

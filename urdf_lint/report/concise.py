@@ -1,0 +1,21 @@
+"""``concise``: exactly one line per finding, ``path:line:col: CODE message [name]``, with the
+macro call chain folded into the line, for editors' problem matchers and grep."""
+from __future__ import annotations
+
+from .base import DIM, BaseFormatter, chain_text, location
+
+
+class ConciseFormatter(BaseFormatter):
+    name = "concise"
+    help = "one line per finding (path:line:col: CODE message), for editors and grep"
+
+    def handle(self, f):
+        code = self.paint(f.code, self.severity_color(f.severity))
+        ch = chain_text(f)
+        tail = f" ({ch})" if ch else ""
+        self.stream.write(f"{location(f)}: {code} {f.message} {self.paint(f'[{f.name}]', DIM)}"
+                          f"{tail}\n")
+
+    def finish(self, result):
+        if not self.options.quiet:
+            self.stream.write(self.summary_line(result) + "\n")

@@ -1,0 +1,29 @@
+"""``github``: GitHub Actions workflow commands (``::error file=...``), annotations on the pull
+request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
+from __future__ import annotations
+
+from ..locations import display_path
+from .base import BaseFormatter, chain_text
+
+_LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
+
+
+def _gh_escape(s, prop=False):
+    s = s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    if prop:
+        s = s.replace(":", "%3A").replace(",", "%2C")
+    return s
+
+
+class GithubFormatter(BaseFormatter):
+    name = "github"
+    help = "GitHub Actions annotations (default when GITHUB_ACTIONS is set)"
+
+    def handle(self, f):
+        msg = f.message
+        ch = chain_text(f)
+        if ch:
+            msg += f" ({ch})"
+        self.stream.write(f"::{_LEVEL[f.severity]} file={_gh_escape(display_path(f.file), True)},"
+                          f"line={f.line},col={f.col},title={_gh_escape(f.code + ' ' + f.name, True)}"
+                          f"::{_gh_escape(msg)}\n")

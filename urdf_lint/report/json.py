@@ -1,0 +1,32 @@
+"""``json``: the whole result as one document; the schema is in :mod:`urdf_lint.report`."""
+from __future__ import annotations
+
+import json
+
+from .. import __version__
+from ..locations import display_path
+from .base import BaseFormatter, counts, summary
+
+
+class JsonFormatter(BaseFormatter):
+    name = "json"
+    help = "one JSON document (schema version 1)"
+
+    def write(self, result):
+        doc = {"version": 1, "tool": "urdf-lint", "tool_version": __version__,
+               "models": [{"entry": display_path(m.entry), "args": m.args, "status": m.status,
+                           "cached": m.cached,
+                           "name": m.stats.get("name", ""), "links": m.stats.get("links", 0),
+                           "joints": m.stats.get("joints", 0), "meshes": m.stats.get("meshes", 0)}
+                          for m in result.models],
+               "findings": [dict(f.to_dict(), file=display_path(f.file),
+                                 chain=[[display_path(c[0]), c[1], c[2]] for c in f.chain])
+                            for f in result.findings],
+               "summary": summary(result)}
+        json.dump(doc, self.stream, indent=2)
+        self.stream.write("\n")
+
+    def statistics(self, result):
+        json.dump([{"code": code, "name": name, "severity": sev, "count": n}
+                   for (code, name, sev), n in counts(result)], self.stream, indent=2)
+        self.stream.write("\n")

@@ -1,0 +1,31 @@
+"""``junit``: JUnit XML, one failed test case per finding and one passed case per clean model."""
+from __future__ import annotations
+
+from ..locations import display_path
+from .base import BaseFormatter, chain_text
+
+
+class JunitFormatter(BaseFormatter):
+    name = "junit"
+    help = "JUnit XML for CI test reports"
+
+    def write(self, result):
+        from xml.sax.saxutils import escape, quoteattr  # heavy import chain: only for junit
+        cases = []
+        for f in result.findings:
+            name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
+            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}\n"
+                          + chain_text(f))
+            tag = "failure"
+            cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'
+                         f'<{tag} type={quoteattr(f.severity)} message={quoteattr(f.message)}>'
+                         f'{body}</{tag}></testcase>')
+        for m in result.models:
+            if not any(m.label in f.models for f in result.findings):
+                cases.append(f'    <testcase classname="urdf-lint.model" name={quoteattr(m.label)}/>')
+        w = self.stream.write
+        w('<?xml version="1.0" encoding="UTF-8"?>\n')
+        w(f'<testsuites name="urdf-lint" tests="{len(cases)}" failures={quoteattr(str(len(result.findings)))}>\n')
+        w(f'  <testsuite name="urdf-lint" tests="{len(cases)}" failures="{len(result.findings)}" errors="0">\n')
+        w("\n".join(cases) + ("\n" if cases else ""))
+        w("  </testsuite>\n</testsuites>\n")

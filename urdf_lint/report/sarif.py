@@ -1,0 +1,61 @@
+"""``sarif``: SARIF 2.1.0, for GitHub code scanning and other SARIF viewers."""
+from __future__ import annotations
+
+import json
+import os
+
+from .. import __version__
+from ..locations import display_path
+from .base import BaseFormatter
+
+_SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
+
+
+def _uri(path):
+    rel = display_path(path)
+    return rel.replace(os.sep, "/") if not os.path.isabs(rel) else "file://" + rel
+
+
+class SarifFormatter(BaseFormatter):
+    name = "sarif"
+    help = "SARIF 2.1.0 (GitHub code scanning)"
+
+    def write(self, result):
+        from ..registry import load_rules
+        rules = load_rules()
+        used = sorted({f.code for f in result.findings})
+        index = {c: i for i, c in enumerate(used)}
+        driver_rules = []
+        for c in used:
+            r = rules.get(c)
+            driver_rules.append({
+                "id": c, "name": r.name if r else c,
+                "shortDescription": {"text": r.summary if r else c},
+                "fullDescription": {"text": r.doc if r else c},
+                "defaultConfiguration": {"level": _SARIF_LEVEL[r.severity if r else "error"]},
+                "help": {"text": r.doc if r else c},
+            })
+        results = []
+        for f in result.findings:
+            res = {"ruleId": f.code, "ruleIndex": index[f.code], "level": _SARIF_LEVEL[f.severity],
+                   "message": {"text": f.message},
+                   "locations": [{"physicalLocation": {
+                       "artifactLocation": {"uri": _uri(f.file)},
+                       "region": {"startLine": max(1, f.line), "startColumn": max(1, f.col)}}}]}
+            if f.chain:
+                res["relatedLocations"] = [
+                    {"id": i, "message": {"text": "macro called here"},
+                     "physicalLocation": {"artifactLocation": {"uri": _uri(c[0])},
+                                          "region": {"startLine": max(1, c[1]),
+                                                     "startColumn": max(1, c[2])}}}
+                    for i, c in enumerate(reversed(f.chain))]
+            if f.models:
+                res["properties"] = {"models": f.models}
+            results.append(res)
+        doc = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
+               "runs": [{"tool": {"driver": {"name": "urdf-lint", "version": __version__,
+                                             "informationUri": "https://pypi.org/project/urdf-lint/",
+                                             "rules": driver_rules}},
+                         "results": results}]}
+        json.dump(doc, self.stream, indent=2)
+        self.stream.write("\n")

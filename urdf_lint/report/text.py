@@ -1,0 +1,65 @@
+"""``text`` (default): ``path:line:col: CODE message [name]``, then the macro call chain and the
+models that share the finding, each on an indented line; ``--show-source`` adds a code frame."""
+from __future__ import annotations
+
+from ..locations import display_path
+from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location
+
+
+class TextFormatter(BaseFormatter):
+    name = "text"
+    help = "one finding per block: location, message, call chain, models"
+
+    def start(self, result):
+        self._current = None
+        self._lines: dict = {}
+
+    def handle(self, f):
+        w = self.stream.write
+        path = display_path(f.file)
+        if self.options.color and path != self._current:
+            if self._current is not None:
+                w("\n")
+            w(f"{BOLD}{path}{RESET}\n")
+            self._current = path
+        code = self.paint(f.code, self.severity_color(f.severity))
+        name = self.paint(f"[{f.name}]", DIM)
+        w(f"{location(f)}: {code} {f.message} {name}\n")
+        if self.options.show_source:
+            w(self.code_frame(f))
+        ch = chain_text(f)
+        if ch:
+            w(f"    {ch}\n")
+        if self.options.show_models and len(f.models) > 1:
+            w(f"    in {len(f.models)} models: {fold(f.models)}\n")
+
+    def finish(self, result):
+        if not self.options.quiet:
+            self.stream.write(self.summary_line(result) + "\n")
+
+    def code_frame(self, f, context: int = 1) -> str:
+        """The source line of a finding with a caret under its column, and ``context`` lines
+        around it (like ruff's ``--show-source``)."""
+        lines = self._source(f.file)
+        if not lines or not 1 <= f.line <= len(lines):
+            return ""
+        first, last = max(1, f.line - context), min(len(lines), f.line + context)
+        width = len(str(last))
+        out = [f"{'':>{width}} |"]
+        for n in range(first, last + 1):
+            text = lines[n - 1]
+            out.append(f"{n:>{width}} | {text}".rstrip())
+            if n == f.line:
+                prefix = "".join(c if c == "\t" else " " for c in text[:max(0, f.col - 1)])
+                out.append(f"{'':>{width}} | {prefix}{self.paint('^', self.severity_color(f.severity))}")
+        out.append(f"{'':>{width}} |")
+        return "".join(f"  {ln}\n" for ln in out)
+
+    def _source(self, path):
+        if path not in self._lines:
+            try:
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    self._lines[path] = fh.read().splitlines()
+            except OSError:
+                self._lines[path] = []
+        return self._lines[path]
