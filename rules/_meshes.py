@@ -1,4 +1,6 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
+from urdf_lint.rules._schema import urdf_iter
+
 TETRA_STL = """solid tetra
 facet normal 0 0 -1
  outer loop
@@ -45,7 +47,7 @@ def scaled(factor):
 
 def resolution_problems(model, ctx, code):
     """(mesh element, message) for every <mesh> whose resolution failed with ``code``."""
-    for m in model.root.iter("mesh"):
+    for m in urdf_iter(model, "mesh"):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
@@ -55,7 +57,7 @@ def resolution_problems(model, ctx, code):
 
 def resolved_meshes(model, ctx):
     """(mesh element, uri, path) for every <mesh> that resolved inside the roots."""
-    for m in model.root.iter("mesh"):
+    for m in urdf_iter(model, "mesh"):
         uri = m.get("filename")
         if not uri:
             continue

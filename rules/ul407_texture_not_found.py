@@ -19,6 +19,7 @@ PASS = """<robot name="r">
 import os
 
 from urdf_lint.rules._meshes import resolved_meshes
+from urdf_lint.rules._schema import urdf_iter
 
 
 def check(model, ctx):
@@ -27,7 +28,7 @@ def check(model, ctx):
         for t in texture_refs(path):
             if not os.path.exists(t):
                 yield m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist"
-    for t in model.root.iter("texture"):
+    for t in urdf_iter(model, "texture"):
         uri = t.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)

@@ -1,25 +1,40 @@
-"""A link mass that is not positive, or implausibly tiny.
+"""A link mass that is negative, zero on a body that moves, or implausibly tiny.
 
-Zero or negative masses break every physics engine; masses below ``min-mass`` kg (default
-1e-6) usually mean grams or millimetre-based units were written as kilograms.
+Negative masses break every physics engine. A zero mass is fine on a frame that is attached
+by a ``fixed`` joint (sensor, marker and tool frames): KDL, Pinocchio and Gazebo merge it into
+its parent. It is an error only where the link can move on its own, that is when it belongs to
+a body (the link that a non-fixed joint moves, plus everything fixed to it) with no mass at
+all: simulators refuse such a body or let it accelerate without bound. Masses below
+``min-mass`` kg (default 1e-6) usually mean grams or millimetre-based units were written as
+kilograms.
 """
 CODE = "UL602"
 NAME = "mass"
 SEVERITY = "error"
 OPTIONS = {"min-mass": 1e-6}
 FAIL = """<robot name="r">
+  <link name="base"/>
   <link name="a"><inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
 PASS = """<robot name="r">
+  <link name="base"/>
   <link name="a"><inertial><mass value="0.5"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <link name="camera_frame"><inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="cam" type="fixed"><parent link="a"/><child link="camera_frame"/></joint>
 </robot>
 """
 from urdf_lint.ruleutil import number
+from urdf_lint.rules._inertial import Bodies, mass
 
 
 def check(model, ctx):
     tiny = float(ctx.options.get("min-mass", 1e-6))
+    bodies = None
     for lk in model.top_links():
         m = lk.find("inertial/mass")
         if m is None:
@@ -27,7 +42,18 @@ def check(model, ctx):
         v = number(m.get("value"))
         if v is None:
             continue  # UL206
-        if v <= 0:
-            yield m, f"link '{lk.get('name')}': mass {v:g} must be positive"
+        name = lk.get("name")
+        if v < 0:
+            yield m, f"link '{name}': mass {v:g} must not be negative"
+        elif v == 0:
+            bodies = bodies or Bodies(model)
+            body = bodies.moving_body(name)
+            if body is None or any((mass(o) or 0) > 0 for o in body[2]):
+                continue  # a fixed frame, or part of a body that has mass: merged, valid
+            root, j, links = body
+            via = "" if root == name else f" (fixed to '{root}')"
+            yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
+                      "and has no mass anywhere; give it its real mass (zero mass is only valid "
+                      "on frames attached by fixed joints to a body with mass)")
         elif v < tiny:
-            yield m, f"link '{lk.get('name')}': mass {v:g} kg is implausibly small (grams?)"
+            yield m, f"link '{name}': mass {v:g} kg is implausibly small (grams?)"
