@@ -149,7 +149,7 @@ def to_findings(raw: list, label: str, cfg: Config) -> list[Finding]:
     for d in raw:
         r = rules.get(d["code"])
         name = r.name if r else d["code"]
-        sev, best = (r.severity if r else "error"), -1
+        sev, best = d.get("severity") or (r.severity if r else "error"), -1
         for pat, s in cfg.severity.items():   # the most specific override wins
             if (d["code"].startswith(pat) or pat == name) and len(pat) > best:
                 sev, best = s, len(pat)

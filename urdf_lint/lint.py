@@ -155,6 +155,8 @@ def run_job(job: dict, settings: dict) -> dict:
             for item in rule.check(model, ctx):
                 el, msg = item[0], item[1]
                 findings.append(_finding(code, msg, model.origin(el), _target(el)))
+                if len(item) > 2 and item[2]:  # a rule may lower/raise one finding's severity
+                    findings[-1]["severity"] = item[2]
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             out["internal"].append(f"rule {code} crashed on {entry}:\n{traceback.format_exc()}")
 
@@ -182,7 +184,7 @@ def run_job(job: dict, settings: dict) -> dict:
         from .render import render_model
         from .registry import load_rules as _lr
         sev = {c: r.severity for c, r in _lr().items()}
-        shown = [dict(f, severity=sev.get(f["code"], "error")) for f in findings]
+        shown = [dict(f, severity=f.get("severity") or sev.get(f["code"], "error")) for f in findings]
         out["stats"]["snapshot"] = render_model(model, ctx, shown, settings["render_dir"],
                                                 settings.get("render_base"),
                                                 rrd=settings.get("render_rrd", True))
