@@ -421,6 +421,25 @@ def _macro_context():
     return names
 
 
+def _arg_declared_later(name: str, st: _State) -> str | None:
+    """``file:line`` of an ``<xacro:arg name=... default=...>`` in a file read so far (the
+    default exists, but xacro reached the use first)."""
+    import re
+    decl = re.compile(r"<xacro:arg\b[^>]*\bname\s*=\s*[\"']" + re.escape(name) + r"[\"'][^>]*\bdefault\s*=")
+    decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + re.escape(name) + r"[\"']")
+    for f in st.deps:
+        try:
+            with open(f, encoding="utf-8", errors="replace") as fh:
+                text = fh.read()
+        except OSError:
+            continue
+        m = decl.search(text) or decl2.search(text)
+        if m:
+            from .locations import display_path
+            return f"{display_path(f)}:{text.count(chr(10), 0, m.start()) + 1}"
+    return None
+
+
 def classify_error(e: BaseException, st: _State) -> dict:
     """Turn an exception from xacro into one located diagnostic."""
     here = origin_of(st.current_node()) if st.current_node() is not None else None
@@ -449,11 +468,18 @@ def classify_error(e: BaseException, st: _State) -> dict:
         return _error_dict("UL902", str(inner or e), here)
     if isinstance(inner, _subst.ArgException):
         name = str(inner)
+        later = _arg_declared_later(name, st)
+        if later:
+            return _error_dict("UL005", f"xacro arg '{name}' is used before it is declared: its "
+                               f"default ({later}) comes after its first use here; move the "
+                               "<xacro:arg> above its first use", here)
         return _error_dict("UL005", f"xacro arg '{name}' has no default and no value was given; "
                            f"pass {name}:=VALUE or list the model with its args under "
                            "[tool.urdf-lint] models", here)
     if isinstance(inner, (IOError, OSError)) and getattr(inner, "filename", None):
-        return _error_dict("UL003", f"included file not found: {inner.filename}", here)
+        yaml = os.path.abspath(str(inner.filename)) in st.deps  # load_yaml records it first
+        return _error_dict("UL003", f"{'YAML' if yaml else 'included'} file not found: "
+                           f"{inner.filename}", here)
     if isinstance(e, safe_eval.UnsafeExpression) or isinstance(inner, safe_eval.UnsafeExpression):
         return _error_dict("UL903", str(inner or e) + suffix, here)
     if isinstance(e, MemoryError) or isinstance(inner, MemoryError):
