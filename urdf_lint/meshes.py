@@ -116,7 +116,7 @@ def _texture_refs(path: str) -> list[str]:
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
 _memory: dict = {}
-FACTS_VERSION = 2  # bump when the loader changes what it measures
+FACTS_VERSION = 3  # bump when the loader changes what it measures
 
 
 _digests: dict = {}
@@ -152,14 +152,84 @@ def _quiet_loggers():
 
 
 def load_mesh(path: str):
-    """A trimesh.Trimesh (scene concatenated) or raises."""
+    """A trimesh.Trimesh (scene concatenated) or raises.
+
+    A COLLADA file whose geometry is lost to a broken internal reference (a ``<surface>``,
+    effect or material that points at nothing makes pycollada drop the whole
+    ``<instance_geometry>``) is loaded again without its materials, so a valid mesh is never
+    reported empty; the broken references are kept in ``metadata["broken_refs"]``."""
     _quiet_loggers()
     import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
-    m = trimesh.load(path, force="mesh", process=False)
-    unit = dae_unit(path) if path.lower().endswith(".dae") else 1.0
+    is_dae = path.lower().endswith(".dae")
+    try:
+        m = trimesh.load(path, force="mesh", process=False)
+        failure = None
+    except Exception as e:  # noqa: BLE001 - retried below for COLLADA, re-raised otherwise
+        if not is_dae:
+            raise
+        m, failure = None, e
+    if is_dae and (m is None or len(m.vertices) == 0):
+        broken = dae_broken_refs(path)
+        if broken:
+            try:
+                m = _load_dae_without_materials(path)
+            except Exception:  # noqa: BLE001 - report the original problem
+                if failure is not None:
+                    raise failure
+            m.metadata["broken_refs"] = broken
+    if m is None:
+        raise failure
+    unit = dae_unit(path) if is_dae else 1.0
     if unit != 1.0:
         m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
     return m
+
+
+def dae_broken_refs(path: str) -> list[str]:
+    """The broken internal references pycollada finds in a COLLADA file (messages)."""
+    import collada
+    ignore = [collada.common.DaeBrokenRefError, collada.common.DaeUnsupportedError,
+              collada.common.DaeIncompleteError, collada.common.DaeMalformedError,
+              collada.common.DaeError]
+    try:
+        c = collada.Collada(path, ignore=ignore)
+    except Exception:  # noqa: BLE001 - not a broken reference: the caller reports the failure
+        return []
+    out = []
+    for e in c.errors:
+        if isinstance(e, collada.common.DaeBrokenRefError):
+            msg = error_text(e)
+            if msg not in out:
+                out.append(msg)
+    return out
+
+
+def _load_dae_without_materials(path: str):
+    """The geometry of a COLLADA file with every material binding, effect and image removed
+    (what a broken material reference cannot take down)."""
+    import io
+    import trimesh
+    from lxml import etree
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=True)
+    root = etree.parse(path, parser).getroot()
+    drop = {"bind_material", "library_effects", "library_materials", "library_images"}
+    for el in [e for e in root.iter() if isinstance(e.tag, str)
+               and etree.QName(e).localname in drop]:
+        el.getparent().remove(el)
+    for el in root.iter():
+        if isinstance(el.tag, str) and etree.QName(el).localname in (
+                "triangles", "polylist", "polygons", "lines", "tristrips", "trifans"):
+            el.attrib.pop("material", None)
+    data = etree.tostring(root)
+    return trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", process=False)
+
+
+def error_text(e: BaseException) -> str:
+    """``Type: message`` once (pycollada's messages already start with their type)."""
+    msg = str(e).strip()
+    name = type(e).__name__
+    return msg if msg.startswith(name) else f"{name}: {msg}" if msg else name
 
 
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
@@ -220,13 +290,14 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
         bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
             if len(v) and finite else None
         facts = {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
-                 "finite": finite, "bounds": bounds}
+                 "finite": finite, "bounds": bounds,
+                 "broken_refs": list(m.metadata.get("broken_refs", ()))}
     except (PermissionError, MemoryError) as e:
         # the environment refused (sandbox, memory limit): a finding now, never cached
-        return {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
+        return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
                 "faces": 0, "finite": True, "bounds": None}
     except Exception as e:  # noqa: BLE001 - any loader failure is a finding
-        facts = {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
+        facts = {"ok": False, "error": error_text(e)[:300], "vertices": 0,
                  "faces": 0, "finite": True, "bounds": None}
     _memory[digest] = facts
     if cache_file is not None:
