@@ -234,7 +234,7 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
     for f in kept:
         if not cfg.is_selected(f.code, f.name) or cfg.ignored_for_file(f.code, f.name, f.file):
             continue
-        if f.code == "UL009":
+        if f.code in ("UL009", "UL010"):
             f.models = []
         final.append(f)
     out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))

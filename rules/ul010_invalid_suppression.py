@@ -1,0 +1,25 @@
+"""An inline ``<!-- urdf-lint: ... -->`` comment that urdf-lint cannot understand: an unknown
+directive (``disabel-next``) or a code that names no rule (``UL999``), like ruff's
+invalid-noqa (PGH004/RUF100 family).
+
+Such a comment suppresses nothing, so the finding it was written for is still reported, or,
+worse, a suppression you believe is in place is not. The message suggests the closest directive
+or code. Directives are ``disable-next``, ``disable``, ``enable`` and ``disable-file``; codes are
+rule codes, code prefixes (``UL3``) or rule names (``limit-order``).
+"""
+CODE = "UL010"
+NAME = "invalid-suppression"
+SEVERITY = "warning"
+ORIGIN = "engine"
+FAIL = """<robot name="r">
+  <!-- urdf-lint: disabel-next UL103 -->
+  <link name="a"/>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="a"/>
+  <link name="b"/>
+  <!-- urdf-lint: disable-next UL103 -->
+  <joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>
+"""
