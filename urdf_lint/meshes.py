@@ -322,3 +322,71 @@ def parse_scale(s):
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         return None
     return vals
+
+
+# -- mass properties (for the physical plausibility rules) ----------------------------------
+_mass_memory: dict = {}
+MASS_FACTS_VERSION = 1
+
+
+def mass_facts(path: str, cache_dir: str | None = None) -> dict:
+    """Volume properties of a mesh filled with unit density, cached by content (like
+    ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
+    bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
+    used instead (an open surface has no volume)."""
+    digest = _digest(path)
+    if digest in _mass_memory:
+        return _mass_memory[digest]
+    cache_file = None
+    if cache_dir:
+        cache_file = Path(cache_dir, "meshes", f"mass{MASS_FACTS_VERSION}-{digest}.json")
+        try:
+            facts = json.loads(cache_file.read_text())
+            if isinstance(facts, dict) and "ok" in facts:
+                _mass_memory[digest] = facts
+                return facts
+        except (OSError, ValueError):
+            pass
+    try:
+        facts = _mass_properties(get_mesh(path))
+    except (PermissionError, MemoryError):
+        return {"ok": False}
+    except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
+        facts = {"ok": False}
+    _mass_memory[digest] = facts
+    if cache_file is not None:
+        try:
+            cache_file.parent.mkdir(parents=True, exist_ok=True)
+            tmp = cache_file.with_suffix(".tmp%d" % os.getpid())
+            tmp.write_text(json.dumps(facts))
+            os.replace(tmp, cache_file)
+        except OSError:
+            pass
+    return facts
+
+
+def _mass_properties(mesh) -> dict:
+    import numpy as np
+    import trimesh
+    v = np.asarray(mesh.vertices, dtype=float)
+    if len(v) == 0 or len(mesh.faces) == 0 or not np.isfinite(v).all():
+        return {"ok": False}
+    tm = trimesh.Trimesh(v, np.asarray(mesh.faces), process=True)  # merged: a solid's edges pair
+    hull = not (tm.is_watertight and tm.is_winding_consistent)
+    if hull:
+        try:
+            tm = tm.convex_hull
+        except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
+            return {"ok": False}
+    props = tm.mass_properties
+    vol = float(props["volume"])
+    if not math.isfinite(vol) or abs(vol) < 1e-15:
+        return {"ok": False}
+    sign = 1.0 if vol > 0 else -1.0      # inside-out winding: every moment flips sign
+    vol *= sign
+    com = np.asarray(props["center_mass"], dtype=float)
+    inertia = sign * np.asarray(props["inertia"], dtype=float)   # about com, density 1
+    s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
+    second = s_com + vol * np.outer(com, com)
+    return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
+            "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}

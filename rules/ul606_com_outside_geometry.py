@@ -1,0 +1,53 @@
+"""A moving link's centre of mass (``<inertial><origin xyz>``) lies outside the bounding box of
+its collision geometry (visual when it has no collision) by more than ``tolerance`` metres
+(default 0.02).
+
+A rigid part's centre of mass is inside its convex hull, so well inside its bounding box. One
+outside means an origin in the wrong frame (the joint's, the parent's, a CAD assembly's),
+millimetres written as metres, or a sign error; gravity then pulls the joint the wrong way.
+Boxes, cylinders and spheres are exact; meshes are measured with trimesh. Links whose geometry
+cannot be measured are skipped. Option: ``tolerance``.
+"""
+CODE = "UL606"
+NAME = "com-outside-geometry"
+SEVERITY = "warning"
+NEEDS = {"meshes"}
+OPTIONS = {"tolerance": 0.02}
+FAIL = """<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><origin xyz="0 0 0.5"/><mass value="1"/><inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><origin xyz="0 0 0.02"/><mass value="1"/><inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt
+from urdf_lint.rules._physics import hull_note, measured_links, pose
+
+
+def check(model, ctx):
+    tol = float(ctx.options.get("tolerance", 0.02))
+    for lk, m, t, inr, g in measured_links(model, ctx):
+        import numpy as np
+        p = pose(inr, np)
+        if p is None:
+            continue
+        com = p[1]
+        out = [k for k in range(3) if com[k] < g.lo[k] - tol or com[k] > g.hi[k] + tol]
+        if out:
+            box = " x ".join(f"[{fmt(round(a, 4))}, {fmt(round(b, 4))}]" for a, b in zip(g.lo, g.hi))
+            where = inr.find("origin") if inr.find("origin") is not None else inr
+            yield where, (f"link '{lk.get('name')}': centre of mass "
+                          f"({' '.join(fmt(round(x, 4)) for x in com)}) is outside its {g.source} "
+                          f"geometry's bounding box {box} along {', '.join('xyz'[k] for k in out)} "
+                          f"(by more than {fmt(tol)} m){hull_note(g)}")

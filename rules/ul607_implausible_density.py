@@ -1,0 +1,50 @@
+"""A moving link's mass divided by the volume of its collision geometry (visual when it has no
+collision) is not the density of any material a robot is made of: below ``min-density``
+(default 50 kg/m³, lighter than foam) or above ``max-density`` (default 25,000 kg/m³, denser
+than tungsten).
+
+This is how unit mix-ups show: a mass in grams written as kilograms (x1000), a mesh in
+millimetres without ``scale`` (volume x10⁹), a scale applied twice. Hollow shells and
+cable-filled links still land well inside the band. Boxes, cylinders and spheres are exact;
+meshes are measured with trimesh (an open mesh through its convex hull, which the message
+says). Options: ``min-density``, ``max-density``.
+"""
+CODE = "UL607"
+NAME = "implausible-density"
+SEVERITY = "warning"
+NEEDS = {"meshes"}
+OPTIONS = {"min-density": 50.0, "max-density": 25000.0}
+FAIL = """<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><mass value="1000"/><inertia ixx="1.7" ixy="0" ixz="0" iyy="1.7" iyz="0" izz="1.7"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><mass value="2.7"/><inertia ixx="0.0045" ixy="0" ixz="0" iyy="0.0045" iyz="0" izz="0.0045"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt
+from urdf_lint.rules._physics import hull_note, measured_links
+
+
+def check(model, ctx):
+    lo = float(ctx.options.get("min-density", 50.0))
+    hi = float(ctx.options.get("max-density", 25000.0))
+    for lk, m, t, inr, g in measured_links(model, ctx):
+        rho = m / g.volume
+        if lo <= rho <= hi:
+            continue
+        hint = ("mass in grams? geometry too small (scale applied twice?)" if rho > hi else
+                "geometry too large (a mesh in millimetres without scale?) or the mass too small")
+        yield inr.find("mass"), (f"link '{lk.get('name')}': implied density {rho:.3g} kg/m³ "
+                                 f"({fmt(m)} kg in {g.volume:.3g} m³ of {g.source} geometry) is "
+                                 f"outside {fmt(lo)}-{fmt(hi)} kg/m³: {hint}{hull_note(g)}")

@@ -1,0 +1,46 @@
+"""A moving link carries a placeholder inertia: the identity tensor (``ixx=iyy=izz=1``, no
+products), or the very same tensor as every other moving link of the robot (at least
+``min-links`` of them, default 3).
+
+Both come from templates and copy-paste, not from the part: 1 kg·m² is the inertia of a
+1 m, 12 kg bar, and no two different links share a tensor to the last digit. Simulated joints
+then barely move or oscillate. Compute the inertia from the CAD model or from the geometry
+(e.g. ``trimesh``'s ``moment_inertia``), or see UL605 for what the geometry implies.
+"""
+CODE = "UL608"
+NAME = "placeholder-inertia"
+SEVERITY = "warning"
+OPTIONS = {"min-links": 3}
+FAIL = """<robot name="r">
+  <link name="base"/>
+  <link name="arm"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+PASS = """<robot name="r">
+  <link name="base"/>
+  <link name="arm"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.012" iyz="0" izz="0.004"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+from urdf_lint.ruleutil import fmt
+from urdf_lint.rules._inertial import INERTIA, is_zero, tensor
+from urdf_lint.rules._physics import is_identity, moving_links
+
+
+def check(model, ctx):
+    need = int(ctx.options.get("min-links", 3))
+    links = [(lk, tensor(lk)) for lk, _j in moving_links(model)]
+    links = [(lk, t) for lk, t in links if t is not None and not is_zero(t)]
+    for lk, t in links:
+        if is_identity(t):
+            yield lk.find("inertial/inertia"), (
+                f"link '{lk.get('name')}': inertia is the identity (ixx=iyy=izz=1), a template "
+                "placeholder; give the link its real inertia")
+    rest = [(lk, t) for lk, t in links if not is_identity(t)]
+    if len(rest) >= need and len({tuple(t[a] for a in INERTIA) for _, t in rest}) == 1:
+        lk, t = rest[0]
+        yield lk.find("inertial/inertia"), (
+            f"all {len(rest)} moving links declare the same inertia tensor "
+            f"(ixx={fmt(t['ixx'])} iyy={fmt(t['iyy'])} izz={fmt(t['izz'])}), a copy-pasted "
+            "placeholder; give each link its own inertia")
