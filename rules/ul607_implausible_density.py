@@ -43,7 +43,7 @@ def check(model, ctx):
         rho = m / g.volume
         if lo <= rho <= hi:
             continue
-        hint = ("mass in grams? geometry too small (scale applied twice?)" if rho > hi else
+        hint = ("mass in grams? geometry too small (a placeholder collision shape? scale applied twice?)" if rho > hi else
                 "geometry too large (a mesh in millimetres without scale?) or the mass too small")
         yield inr.find("mass"), (f"link '{lk.get('name')}': implied density {rho:.3g} kg/m³ "
                                  f"({fmt(m)} kg in {g.volume:.3g} m³ of {g.source} geometry) is "

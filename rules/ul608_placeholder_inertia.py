@@ -1,6 +1,7 @@
 """A moving link carries a placeholder inertia: the identity tensor (``ixx=iyy=izz=1``, no
 products), or the very same tensor as every other moving link of the robot (at least
-``min-links`` of them, default 3).
+``min-links`` of them, default 3) although those links differ in shape or mass (identical
+parts, like the four wheels of a cart, rightly share one tensor).
 
 Both come from templates and copy-paste, not from the part: 1 kg·m² is the inertia of a
 1 m, 12 kg bar, and no two different links share a tensor to the last digit. Simulated joints
@@ -24,8 +25,17 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import fmt
-from urdf_lint.rules._inertial import INERTIA, is_zero, tensor
+from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 from urdf_lint.rules._physics import is_identity, moving_links
+
+
+def _shape(lk):
+    """What the link looks like (its collision, else visual, geometry without placement):
+    identical parts, like the four wheels of a cart, rightly share one tensor."""
+    pieces = lk.findall("collision") or lk.findall("visual")
+    return tuple(sorted((s.tag, tuple(sorted(s.attrib.items())))
+                        for p in pieces for g in p.findall("geometry") for s in g
+                        if isinstance(s.tag, str)))
 
 
 def check(model, ctx):
@@ -38,7 +48,8 @@ def check(model, ctx):
                 f"link '{lk.get('name')}': inertia is the identity (ixx=iyy=izz=1), a template "
                 "placeholder; give the link its real inertia")
     rest = [(lk, t) for lk, t in links if not is_identity(t)]
-    if len(rest) >= need and len({tuple(t[a] for a in INERTIA) for _, t in rest}) == 1:
+    if len(rest) >= need and len({tuple(t[a] for a in INERTIA) for _, t in rest}) == 1 \
+            and (len({_shape(lk) for lk, _ in rest}) > 1 or len({mass(lk) for lk, _ in rest}) > 1):
         lk, t = rest[0]
         yield lk.find("inertial/inertia"), (
             f"all {len(rest)} moving links declare the same inertia tensor "
