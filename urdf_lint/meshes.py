@@ -367,18 +367,21 @@ def mass_facts(path: str, cache_dir: str | None = None) -> dict:
 
 def _mass_properties(mesh) -> dict:
     import numpy as np
-    import trimesh
+    from trimesh.triangles import mass_properties
     v = np.asarray(mesh.vertices, dtype=float)
-    if len(v) == 0 or len(mesh.faces) == 0 or not np.isfinite(v).all():
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
         return {"ok": False}
-    tm = trimesh.Trimesh(v, np.asarray(mesh.faces), process=True)  # merged: a solid's edges pair
-    hull = not (tm.is_watertight and tm.is_winding_consistent)
+    hull = not _closed(v, f)
     if hull:
         try:
-            tm = tm.convex_hull
+            h = _convex_hull(v)
         except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
             return {"ok": False}
-    props = tm.mass_properties
+        tris = np.asarray(h.vertices)[np.asarray(h.faces)]
+    else:
+        tris = v[f]
+    props = mass_properties(tris, density=1.0)
     vol = float(props["volume"])
     if not math.isfinite(vol) or abs(vol) < 1e-15:
         return {"ok": False}
@@ -390,3 +393,35 @@ def _mass_properties(mesh) -> dict:
     second = s_com + vol * np.outer(com, com)
     return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
             "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}
+
+
+def _closed(v, f) -> bool:
+    """Whether the triangles bound a volume: with coincident vertices merged, every directed
+    edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
+    building a processed trimesh.Trimesh for it."""
+    import numpy as np
+    _, inv = np.unique(np.round(v, 9), axis=0, return_inverse=True)
+    ff = inv.reshape(-1)[f]
+    ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
+    if len(ff) < 4:
+        return False
+    e = np.stack([ff[:, [0, 1]], ff[:, [1, 2]], ff[:, [2, 0]]], axis=1).reshape(-1, 2)
+    n = int(ff.max()) + 1
+    code = e[:, 0] * n + e[:, 1]
+    if len(np.unique(code)) != len(code):
+        return False
+    return bool(np.isin(e[:, 1] * n + e[:, 0], code).all())
+
+
+def _convex_hull(points):
+    """The convex hull of points as a trimesh.Trimesh, with manifold3d (a 4 MB wheel that
+    imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to import)."""
+    import manifold3d
+    import numpy as np
+    import trimesh
+    m = manifold3d.Manifold.hull_points(np.ascontiguousarray(points, dtype=np.float64)).to_mesh()
+    verts = np.asarray(m.vert_properties, dtype=float)[:, :3]
+    faces = np.asarray(m.tri_verts, dtype=np.int64)
+    if len(faces) < 4:
+        raise ValueError("degenerate hull")
+    return trimesh.Trimesh(verts, faces, process=False)
