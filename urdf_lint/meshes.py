@@ -400,17 +400,20 @@ def _closed(v, f) -> bool:
     edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
     building a processed trimesh.Trimesh for it."""
     import numpy as np
-    _, inv = np.unique(np.round(v, 9), axis=0, return_inverse=True)
-    ff = inv.reshape(-1)[f]
+    from trimesh.grouping import unique_rows
+    _, inv = unique_rows(v, digits=8)      # what trimesh's merge_vertices does
+    ff = np.asarray(inv).reshape(-1)[f]
     ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
     if len(ff) < 4:
         return False
     e = np.stack([ff[:, [0, 1]], ff[:, [1, 2]], ff[:, [2, 0]]], axis=1).reshape(-1, 2)
     n = int(ff.max()) + 1
-    code = e[:, 0] * n + e[:, 1]
-    if len(np.unique(code)) != len(code):
+    code = np.sort(e[:, 0] * n + e[:, 1])
+    if (code[1:] == code[:-1]).any():
         return False
-    return bool(np.isin(e[:, 1] * n + e[:, 0], code).all())
+    rev = e[:, 1] * n + e[:, 0]
+    pos = np.searchsorted(code, rev).clip(0, len(code) - 1)
+    return bool((code[pos] == rev).all())
 
 
 def _convex_hull(points):
