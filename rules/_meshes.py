@@ -89,56 +89,10 @@ BROKEN_SURFACE_DAE = """<?xml version="1.0" encoding="utf-8"?>
   <scene><instance_visual_scene url="#Scene"/></scene>
 </COLLADA>
 """
-PLAIN_DAE = """<?xml version="1.0" encoding="utf-8"?>
-<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-  <asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>
-  <library_images/>
-  <library_effects>
-    <effect id="skin-effect">
-      <profile_COMMON>
-        <technique sid="common">
-          <lambert>
-            <diffuse><color>0.8 0.8 0.8 1</color></diffuse>
-          </lambert>
-        </technique>
-      </profile_COMMON>
-    </effect>
-  </library_effects>
-  <library_materials>
-    <material id="skin-material" name="skin"><instance_effect url="#skin-effect"/></material>
-  </library_materials>
-  <library_geometries>
-    <geometry id="tetra-mesh" name="tetra">
-      <mesh>
-        <source id="tetra-positions">
-          <float_array id="tetra-positions-array" count="12">0 0 0 0.1 0 0 0 0.1 0 0 0 0.1</float_array>
-          <technique_common><accessor source="#tetra-positions-array" count="4" stride="3">
-            <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
-          </accessor></technique_common>
-        </source>
-        <vertices id="tetra-vertices"><input semantic="POSITION" source="#tetra-positions"/></vertices>
-        <triangles material="skin-material" count="4">
-          <input semantic="VERTEX" source="#tetra-vertices" offset="0"/>
-          <p>0 2 1 0 1 3 0 3 2 1 2 3</p>
-        </triangles>
-      </mesh>
-    </geometry>
-  </library_geometries>
-  <library_visual_scenes>
-    <visual_scene id="Scene" name="Scene">
-      <node id="tetra" name="tetra" type="NODE">
-        <matrix sid="transform">1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</matrix>
-        <instance_geometry url="#tetra-mesh" name="tetra">
-          <bind_material><technique_common>
-            <instance_material symbol="skin-material" target="#skin-material"/>
-          </technique_common></bind_material>
-        </instance_geometry>
-      </node>
-    </visual_scene>
-  </library_visual_scenes>
-  <scene><instance_visual_scene url="#Scene"/></scene>
-</COLLADA>
-"""
+PLAIN_DAE = BROKEN_SURFACE_DAE.replace(
+    '<newparam sid="skin-sampler">\n          <sampler2D><source>skin-surface</source></sampler2D>\n'
+    '        </newparam>\n', "").replace(
+    '<texture texture="skin-sampler" texcoord="UVMap"/>', "<color>0.8 0.8 0.8 1</color>")
 
 
 def scaled(factor):

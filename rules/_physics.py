@@ -217,5 +217,19 @@ def hull_note(g):
             + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
 
 
-__all__ = ["INERTIA", "measured_links", "declared_matrix", "hull_note", "is_identity",
+def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1"):
+    """FAIL/PASS text for the physics rules: a moving link 'arm' with a box collision."""
+    o = f'<origin xyz="{origin}"/>' if origin else ""
+    return f"""<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>{o}<mass value="{mass}"/><inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
+    <collision><geometry><box size="{box}"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+
+
+__all__ = ["example", "INERTIA", "measured_links", "declared_matrix", "hull_note", "is_identity",
            "moving_links", "pose"]

@@ -18,8 +18,7 @@ FAIL = """<robot name="r">
 """
 PASS = """<robot name="r">
   <link name="a"/>
-  <link name="b"/>
-  <!-- urdf-lint: disable-next UL103 -->
+  <!-- urdf-lint: disable-next missing-link, UL1 -->
   <joint name="j" type="fixed"><parent link="a"/><child link="c"/></joint>
 </robot>
 """

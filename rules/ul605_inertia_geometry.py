@@ -16,26 +16,10 @@ NAME = "inertia-geometry-mismatch"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"min-ratio": 0.1, "max-ratio": 10.0}
-FAIL = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><mass value="1"/><inertia ixx="0.5" ixy="0" ixz="0" iyy="0.5" iyz="0" izz="0.5"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><mass value="1"/><inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._physics import example, declared_matrix, hull_note, measured_links
+FAIL = example(1, 0.5, 0.5, 0.5)
+PASS = example(1, 0.0017, 0.0017, 0.0017)
 from urdf_lint.ruleutil import fmt
-from urdf_lint.rules._physics import declared_matrix, hull_note, measured_links
 
 WHICH = ("smallest", "middle", "largest")
 

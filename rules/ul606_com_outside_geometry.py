@@ -13,26 +13,10 @@ NAME = "com-outside-geometry"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"tolerance": 0.02}
-FAIL = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><origin xyz="0 0 0.5"/><mass value="1"/><inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><origin xyz="0 0 0.02"/><mass value="1"/><inertia ixx="0.0017" ixy="0" ixz="0" iyy="0.0017" iyz="0" izz="0.0017"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._physics import example, hull_note, measured_links, pose
+FAIL = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.5")
+PASS = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.02")
 from urdf_lint.ruleutil import fmt
-from urdf_lint.rules._physics import hull_note, measured_links, pose
 
 
 def check(model, ctx):

@@ -14,26 +14,10 @@ NAME = "implausible-density"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"min-density": 50.0, "max-density": 25000.0}
-FAIL = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><mass value="1000"/><inertia ixx="1.7" ixy="0" ixz="0" iyy="1.7" iyz="0" izz="1.7"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/>
-  <link name="arm">
-    <inertial><mass value="2.7"/><inertia ixx="0.0045" ixy="0" ixz="0" iyy="0.0045" iyz="0" izz="0.0045"/></inertial>
-    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
-  </link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._physics import example, hull_note, measured_links
+FAIL = example(1000, 1.7, 1.7, 1.7)
+PASS = example(2.7, 0.0045, 0.0045, 0.0045)
 from urdf_lint.ruleutil import fmt
-from urdf_lint.rules._physics import hull_note, measured_links
 
 
 def check(model, ctx):

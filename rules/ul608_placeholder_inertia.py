@@ -12,21 +12,11 @@ CODE = "UL608"
 NAME = "placeholder-inertia"
 SEVERITY = "warning"
 OPTIONS = {"min-links": 3}
-FAIL = """<robot name="r">
-  <link name="base"/>
-  <link name="arm"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/>
-  <link name="arm"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.012" iyz="0" izz="0.004"/></inertial></link>
-  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._physics import example, is_identity, moving_links
+FAIL = example(1, 1, 1, 1)
+PASS = example(1, 0.0017, 0.0017, 0.0017)
 from urdf_lint.ruleutil import fmt
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
-from urdf_lint.rules._physics import is_identity, moving_links
 
 
 def _shape(lk):

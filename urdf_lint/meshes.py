@@ -268,20 +268,12 @@ def get_mesh(path: str):
 
 
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
-    """{ok, error, vertices, faces, finite, bounds} for a mesh file, cached by content."""
-    digest = _digest(path)
-    if digest in _memory:
-        return _memory[digest]
-    cache_file = None
-    if cache_dir:
-        cache_file = Path(cache_dir, "meshes", f"v{FACTS_VERSION}-{digest}.json")
-        try:
-            facts = json.loads(cache_file.read_text())
-            if isinstance(facts, dict) and "ok" in facts:
-                _memory[digest] = facts
-                return facts
-        except (OSError, ValueError):
-            pass
+    """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
+    content."""
+    return _cached(_memory, f"v{FACTS_VERSION}", path, cache_dir, _measure)
+
+
+def _measure(path: str) -> dict:
     try:
         m = get_mesh(path)
         import numpy as np
@@ -289,17 +281,47 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
         finite = bool(np.isfinite(v).all()) if len(v) else True
         bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
             if len(v) and finite else None
-        facts = {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
-                 "finite": finite, "bounds": bounds,
-                 "broken_refs": list(m.metadata.get("broken_refs", ()))}
+        return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
+                "finite": finite, "bounds": bounds,
+                "broken_refs": list(m.metadata.get("broken_refs", ()))}
     except (PermissionError, MemoryError) as e:
         # the environment refused (sandbox, memory limit): a finding now, never cached
+        raise _Uncached({"ok": False, "error": error_text(e)[:300], "vertices": 0,
+                         "faces": 0, "finite": True, "bounds": None})
+    except Exception as e:  # noqa: BLE001 - any loader failure is a finding
         return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
                 "faces": 0, "finite": True, "bounds": None}
-    except Exception as e:  # noqa: BLE001 - any loader failure is a finding
-        facts = {"ok": False, "error": error_text(e)[:300], "vertices": 0,
-                 "faces": 0, "finite": True, "bounds": None}
-    _memory[digest] = facts
+
+
+class _Uncached(Exception):
+    """A result that depends on the environment, not on the file: returned, never cached."""
+
+    def __init__(self, facts):
+        super().__init__()
+        self.facts = facts
+
+
+def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute) -> dict:
+    """``compute(path)``, memoized in ``memory`` and on disk under ``cache_dir/meshes``, keyed
+    by the file's content."""
+    digest = _digest(path)
+    if digest in memory:
+        return memory[digest]
+    cache_file = None
+    if cache_dir:
+        cache_file = Path(cache_dir, "meshes", f"{prefix}-{digest}.json")
+        try:
+            facts = json.loads(cache_file.read_text())
+            if isinstance(facts, dict) and "ok" in facts:
+                memory[digest] = facts
+                return facts
+        except (OSError, ValueError):
+            pass
+    try:
+        facts = compute(path)
+    except _Uncached as e:
+        return e.facts
+    memory[digest] = facts
     if cache_file is not None:
         try:
             cache_file.parent.mkdir(parents=True, exist_ok=True)
@@ -334,35 +356,16 @@ def mass_facts(path: str, cache_dir: str | None = None) -> dict:
     ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
     bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
     used instead (an open surface has no volume)."""
-    digest = _digest(path)
-    if digest in _mass_memory:
-        return _mass_memory[digest]
-    cache_file = None
-    if cache_dir:
-        cache_file = Path(cache_dir, "meshes", f"mass{MASS_FACTS_VERSION}-{digest}.json")
-        try:
-            facts = json.loads(cache_file.read_text())
-            if isinstance(facts, dict) and "ok" in facts:
-                _mass_memory[digest] = facts
-                return facts
-        except (OSError, ValueError):
-            pass
+    return _cached(_mass_memory, f"mass{MASS_FACTS_VERSION}", path, cache_dir, _measure_mass)
+
+
+def _measure_mass(path: str) -> dict:
     try:
-        facts = _mass_properties(get_mesh(path))
+        return _mass_properties(get_mesh(path))
     except (PermissionError, MemoryError):
-        return {"ok": False}
+        raise _Uncached({"ok": False})
     except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
-        facts = {"ok": False}
-    _mass_memory[digest] = facts
-    if cache_file is not None:
-        try:
-            cache_file.parent.mkdir(parents=True, exist_ok=True)
-            tmp = cache_file.with_suffix(".tmp%d" % os.getpid())
-            tmp.write_text(json.dumps(facts))
-            os.replace(tmp, cache_file)
-        except OSError:
-            pass
-    return facts
+        return {"ok": False}
 
 
 def _mass_properties(mesh) -> dict:
