@@ -1,6 +1,5 @@
-"""An inline ``<!-- urdf-lint: ... -->`` comment that urdf-lint cannot understand: an unknown
-directive (``disabel-next``) or a code that names no rule (``UL999``), like ruff's
-invalid-noqa (PGH004/RUF100 family).
+"""A suppression comment that urdf-lint cannot understand: an unknown directive
+(``disabel-next``) or a code that names no rule (``UL999``), like ruff's invalid-noqa.
 
 Such a comment suppresses nothing, so the finding it was written for is still reported, or,
 worse, a suppression you believe is in place is not. The message suggests the closest directive
