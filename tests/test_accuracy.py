@@ -414,3 +414,17 @@ def test_geometry_moments_follow_scale_rotation_and_offset(tmp_path):
     assert g.volume == pytest.approx(both.volume, rel=1e-9)
     assert g.com == pytest.approx(both.center_mass, abs=1e-12)
     assert g.inertia(3.0) == pytest.approx(both.moment_inertia, rel=1e-9, abs=1e-15)
+
+
+def test_dae_losing_only_some_instances_is_loaded_whole(tmp_path):
+    """A broken material binding drops just the instance bound to it: the mesh is not empty,
+    but half of it is missing. The geometry is still loaded whole, and the reference reported."""
+    from urdf_lint import meshes
+    second = ('<node id="t2" name="t2" type="NODE"><matrix sid="transform">1 0 0 0.5 0 1 0 0 '
+              '0 0 1 0 0 0 0 1</matrix><instance_geometry url="#tetra-mesh" name="t2"/></node>\n'
+              '    </visual_scene>')
+    p = tmp_path / "partial.dae"
+    p.write_text(BROKEN_SURFACE_DAE.replace("</visual_scene>", second))
+    facts = meshes.mesh_facts(str(p))
+    assert facts["vertices"] == 8 and facts["bounds"][1][0] == pytest.approx(0.6)
+    assert facts["broken_refs"]

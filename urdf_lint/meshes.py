@@ -161,24 +161,30 @@ def load_mesh(path: str):
     _quiet_loggers()
     import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
     is_dae = path.lower().endswith(".dae")
-    try:
+    if not is_dae:
         m = trimesh.load(path, force="mesh", process=False)
-        failure = None
-    except Exception as e:  # noqa: BLE001 - retried below for COLLADA, re-raised otherwise
-        if not is_dae:
-            raise
-        m, failure = None, e
-    if is_dae and (m is None or len(m.vertices) == 0):
-        broken = dae_broken_refs(path)
+    else:
+        m, failure, lost = None, None, True
+        try:
+            scene = trimesh.load_scene(path, process=False)   # what force="mesh" does
+            m = scene.to_mesh()
+            # every <instance_geometry> that loads gives at least one geometry node
+            with open(path, "rb") as f:
+                lost = len(scene.graph.nodes_geometry) < f.read().count(b"<instance_geometry")
+        except Exception as e:  # noqa: BLE001 - retried without materials below
+            failure = e
+        broken = dae_broken_refs(path) if lost or m is None or len(m.vertices) == 0 else []
         if broken:
             try:
-                m = _load_dae_without_materials(path)
+                full = _load_dae_without_materials(path)
+                if m is None or len(full.vertices) > len(m.vertices):
+                    m = full
             except Exception:  # noqa: BLE001 - report the original problem
-                if failure is not None:
-                    raise failure
-            m.metadata["broken_refs"] = broken
-    if m is None:
-        raise failure
+                pass
+            if m is not None:
+                m.metadata["broken_refs"] = broken
+        if m is None:
+            raise failure
     unit = dae_unit(path) if is_dae else 1.0
     if unit != 1.0:
         m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
