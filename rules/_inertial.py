@@ -70,6 +70,19 @@ class Bodies:
             todo.extend(c for j, c in self.children.get(n, ()) if j.get("type") == "fixed")
         return out
 
+    def subtree_mass(self, root):
+        """Total declared mass of ``root`` and every link below it, through any joint."""
+        total, todo, seen = 0.0, [root], set()
+        while todo:
+            n = todo.pop()
+            if n in seen:
+                continue
+            seen.add(n)
+            lk = self.model.links.get(n)
+            total += max(mass(lk) or 0.0, 0.0) if lk is not None else 0.0
+            todo.extend(c for _j, c in self.children.get(n, ()))
+        return total
+
     def moving_body(self, name):
         """(root, joint, member link elements) when the link belongs to a body that a non-fixed
         joint moves, else None."""

@@ -4,7 +4,10 @@ Negative masses break every physics engine. A zero mass is fine on a frame that 
 by a ``fixed`` joint (sensor, marker and tool frames): KDL, Pinocchio and Gazebo merge it into
 its parent. It is an error only where the link can move on its own, that is when it belongs to
 a body (the link that a non-fixed joint moves, plus everything fixed to it) with no mass at
-all: simulators refuse such a body or let it accelerate without bound. Masses below
+all, and nothing below it has mass either: the joint then moves nothing, and simulators refuse
+such a body or let it accelerate without bound. A massless moving body that carries massive
+links (two joints in a row, as in a universal joint) is a warning: KDL and Pinocchio accept
+it, MuJoCo and Gazebo do not. Masses below
 ``min-mass`` kg (default 1e-6) usually mean grams or millimetre-based units were written as
 kilograms.
 """
@@ -52,8 +55,17 @@ def check(model, ctx):
                 continue  # a fixed frame, or part of a body that has mass: merged, valid
             root, j, links = body
             via = "" if root == name else f" (fixed to '{root}')"
+            if bodies.subtree_mass(root) > 0:
+                # a massless intermediate body (two joints in a row): the links it carries
+                # have mass, so KDL and Pinocchio cope; MuJoCo and Gazebo refuse it
+                yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint "
+                          f"'{j.get('name')}'); KDL and Pinocchio accept it because the links it "
+                          "carries have mass, but MuJoCo and Gazebo refuse massless moving "
+                          "bodies: give it a small real mass and inertia"), "warning"
+                continue
             yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
-                      "and has no mass anywhere; give it its real mass (zero mass is only valid "
-                      "on frames attached by fixed joints to a body with mass)")
+                      "and nothing it carries has mass; give it its real mass (zero mass is only "
+                      "valid on frames attached by fixed joints to a body with mass, or on bodies "
+                      "that carry massive links)")
         elif v < tiny:
             yield m, f"link '{name}': mass {v:g} kg is implausibly small (grams?)"

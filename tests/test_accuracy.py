@@ -66,6 +66,20 @@ def test_massless_moving_body_is_an_error(tmp_path):
     assert all(f["severity"] == "error" and "joint 'j'" in f["message"] for f in fs)
 
 
+def test_massless_intermediate_body_is_a_warning(tmp_path):
+    # a universal joint as two revolutes: the cross between them is massless, the leg is not
+    body = f"""<robot name="r">
+  <link name="base"/>
+  <link name="cross">{inertial(0)}</link>
+  <link name="leg">{inertial(3, (0.02, 0.02, 0.005))}</link>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="cross"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+  <joint name="roll" type="revolute"><parent link="cross"/><child link="leg"/><axis xyz="1 0 0"/>{LIMIT}</joint>
+</robot>"""
+    fs = only(lint(pkg_with(tmp_path, body)), "UL602")
+    assert len(fs) == 1 and fs[0]["severity"] == "warning" and "'cross'" in fs[0]["message"]
+    assert "MuJoCo and Gazebo refuse" in fs[0]["message"]
+
+
 def test_negative_mass_is_always_an_error(tmp_path):
     body = f'<robot name="r"><link name="a">{inertial(-1, (1, 1, 1))}</link></robot>'
     fs = only(lint(pkg_with(tmp_path, body)), "UL602")
