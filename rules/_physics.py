@@ -118,15 +118,17 @@ def _capsule(shape, np):
     return f["volume"], f["first"], f["second"], _box_corners([r, r, h / 2 + r], np)
 
 
-def link_geometry(model, ctx, lk, np):
-    """The link's Geometry, or None when any piece cannot be measured (a missing or broken mesh,
-    a bad value): no guess is better than a wrong one."""
+def link_geometry(model, ctx, lk, np, kind=None):
+    """The link's Geometry (its collision, else visual, pieces; or those of ``kind``), or None
+    when any piece cannot be measured (a missing or broken mesh, a bad value): no guess is
+    better than a wrong one."""
     from urdf_lint import meshes
-    pieces = lk.findall("collision") or lk.findall("visual")
+    kind = kind or ("collision" if lk.findall("collision") else "visual")
+    pieces = lk.findall(kind)
     if not pieces:
         return None
     g = Geometry(np)
-    g.source = "collision" if lk.findall("collision") else "visual"
+    g.source = kind
     for piece in pieces:
         shape = piece.find("geometry")
         shape = next((s for s in shape if isinstance(s.tag, str)), None) if shape is not None else None

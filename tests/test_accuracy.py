@@ -329,6 +329,16 @@ def test_com_outside_geometry(tmp_path):
     assert len(fs) == 1 and "along z" in fs[0]["message"] and "[0, 0.3]" in fs[0]["message"]
 
 
+def test_com_inside_visual_but_outside_a_partial_collision(tmp_path):
+    # the collision is a plate on top of the part; the visual is the whole part
+    body = arm(f'<inertial><origin xyz="0 0 0.15"/>{inertial(2, (0.01545, 0.01545, 0.0009))[10:]}',
+               '<origin xyz="0 0 0.29"/><geometry><box size="0.06 0.06 0.02"/></geometry>')
+    body = body.replace("<collision>", f"<visual>{CYL}</visual><collision>")
+    assert not only(lint(pkg_with(tmp_path, body)), "UL606")
+    no_visual = body.replace(f"<visual>{CYL}</visual>", "")
+    assert only(lint(pkg_with(tmp_path / "nv", no_visual)), "UL606")
+
+
 def test_density_catches_grams(tmp_path):
     # a 5 cm cube: 1.25e-4 m³. 337 "kg" is 2.7e6 kg/m³ (337 g of aluminium)
     box = '<geometry><box size="0.05 0.05 0.05"/></geometry>'
