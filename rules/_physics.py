@@ -184,8 +184,11 @@ def is_identity(t):
 def measured_links(model, ctx):
     """(link, mass, declared tensor, inertial element, Geometry) for every moving link whose
     declared inertial and geometry can both be measured. Memoized per model on the context."""
-    key = ("_physics", id(model))
-    cache = ctx.__dict__.setdefault("_physics_links", {})
+    key = id(model)
+    cache = getattr(ctx, "_physics_links", None)
+    if cache is None:
+        cache = {}
+        ctx._physics_links = cache
     if key in cache:
         return cache[key]
     out = []
