@@ -402,7 +402,7 @@ def classify_error(e: BaseException, st: _State) -> Problem:
     if here is None:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
         here = (top, 1, 1, ())
-    return problem_for(e, here, _macro_context())
+    return problem_for(e, here, _macro_context(), deps=list(st.deps))
 
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
