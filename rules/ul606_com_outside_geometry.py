@@ -32,7 +32,7 @@ def _outside(com, g, tol):
 
 def check(model, ctx):
     tol = float(ctx.options.get("tolerance", 0.02))
-    for lk, m, t, inr, g in measured_links(model, ctx):
+    for lk, _m, _t, inr, g in measured_links(model, ctx):
         import numpy as np
         p = pose(inr, np)
         if p is None:
@@ -47,7 +47,7 @@ def check(model, ctx):
             if vis is not None and not _outside(com, vis, tol):
                 continue
         if out:
-            box = " x ".join(f"[{fmt(round(a, 4))}, {fmt(round(b, 4))}]" for a, b in zip(g.lo, g.hi))
+            box = " x ".join(f"[{fmt(round(a, 4))}, {fmt(round(b, 4))}]" for a, b in zip(g.lo, g.hi, strict=True))
             where = inr.find("origin") if inr.find("origin") is not None else inr
             yield where, (f"link '{lk.get('name')}': centre of mass "
                           f"({' '.join(fmt(round(x, 4)) for x in com)}) is outside its {g.source} "

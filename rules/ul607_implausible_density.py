@@ -27,7 +27,7 @@ from urdf_lint.ruleutil import fmt
 def check(model, ctx):
     lo = float(ctx.options.get("min-density", 50.0))
     hi = float(ctx.options.get("max-density", 25000.0))
-    for lk, m, t, inr, g in measured_links(model, ctx):
+    for lk, m, _t, inr, g in measured_links(model, ctx):
         rho = m / g.volume
         if lo <= rho <= hi:
             continue

@@ -72,12 +72,15 @@ def resolve(model, uri: str) -> MeshRef:
     p = Path(os.path.abspath(p))
     exact, real = _case_true_path(p)
     if not exact and real is None:
-        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh file not found: '{uri}' (looked for {p})")
     if not exact:
-        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH, f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
+        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH,
+                       f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
                        f"(case differs: works on macOS/Windows, fails on Linux)")
     if not resolver.is_inside(p):
-        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS, f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
     return MeshRef(uri, str(p), MeshStatus.OK)
 
@@ -308,7 +311,7 @@ def _measure(path: str) -> dict:
     except (PermissionError, MemoryError) as e:
         # the environment refused (sandbox, memory limit): a finding now, never cached
         raise _Uncached({"ok": False, "error": error_text(e)[:300], "vertices": 0,
-                         "faces": 0, "finite": True, "bounds": None})
+                         "faces": 0, "finite": True, "bounds": None}) from e
     except Exception as e:  # noqa: BLE001 - any loader failure is a finding
         return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
                 "faces": 0, "finite": True, "bounds": None}
@@ -382,8 +385,8 @@ def mass_facts(path: str, cache_dir: str | None = None) -> dict:
 def _measure_mass(path: str) -> dict:
     try:
         return _mass_properties(get_mesh(path))
-    except (PermissionError, MemoryError):
-        raise _Uncached({"ok": False})
+    except (PermissionError, MemoryError) as e:
+        raise _Uncached({"ok": False}) from e
     except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
         return {"ok": False}
 

@@ -267,7 +267,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if os.path.exists(os.path.join(base_root, rel)):
                 base_entries.add(rel)
         from .lint import classify_xacro
-        for st, old, new in changes:
+        for st, old, _new in changes:
             if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
                     any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
                         for p in rel_paths):

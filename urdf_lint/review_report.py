@@ -3,7 +3,6 @@ markdown for a job summary or a pull-request comment (always under 60,000 charac
 from __future__ import annotations
 
 import json
-import os
 
 from .review import MARKDOWN_LIMIT, DiffResult
 
@@ -106,7 +105,7 @@ def _code(s) -> str:
 
 def to_markdown(r: DiffResult, image_base_url: str | None = None,
                 limit: int = MARKDOWN_LIMIT) -> str:
-    head = [f"## urdf-lint: what this change does to the robots",
+    head = ["## urdf-lint: what this change does to the robots",
             "",
             f"{_code(r.base)} → {_code(r.head)}: **{len(r.models)}** of {r.total_models} "
             f"model(s) affected ({r.base_expanded} expanded at the base).",
@@ -128,7 +127,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
         if image_base_url:
             stem = m.model.replace("/", "_").replace(" ", "_")
             base = image_base_url.rstrip("/")
-            rows += [f"| before | after | difference |", "|---|---|---|",
+            rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
                      f" | ![diff]({base}/{stem}.diff.png) |", ""]
         if m.changes:

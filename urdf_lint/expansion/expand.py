@@ -179,7 +179,7 @@ def _hook_parse(inp, filename=None):
                 data = f.read()
         except (IOError, OSError) as e:
             xacro.filestack.pop()
-            raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e)
+            raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
         if st is not None:
             st.deps[absolute] = None
         return parse_bytes(data, absolute, chain)
