@@ -368,7 +368,7 @@ def draw(g: Geometry, fr: Frame):
         q2 = [(fr.ox + fr.scale * a, fr.oy - fr.scale * b) for a, b, _ in q]
         for a, b in _BOX_EDGES:
             dr.line([q2[a], q2[b]], fill=(220, 30, 30), width=3 * S)
-    return img.resize((W, H), Image.LANCZOS)
+    return img.resize((W, H), Image.Resampling.LANCZOS)
 
 
 def _caption(img, text):

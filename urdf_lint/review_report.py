@@ -76,10 +76,11 @@ def to_json(r: DiffResult) -> str:
 
     def rel(p):
         return display_path(p)
+    models: list[dict] = []
     doc = {"version": 1, "base": r.base, "head": r.head, "models_total": r.total_models,
-           "base_expanded": r.base_expanded, "models": []}
+           "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
-        doc["models"].append({
+        models.append({
             "model": m.model, "status": m.status, "error": m.error,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],

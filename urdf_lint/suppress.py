@@ -37,8 +37,8 @@ class Directive:
 
 
 def _element_spans(data: bytes):
-    spans = []
-    stack = []
+    spans: list = []
+    stack: list = []
     p = xml.parsers.expat.ParserCreate()
 
     def start(name, attrs):
@@ -146,7 +146,8 @@ def apply(findings, directives_by_file: dict, report_unused=True,
                .replace(name=invalid_suppression.NAME)
                for d in directives for p in d.problems]
     directives = [d for d in directives if d.kind in KINDS]
-    kept, invalid_kept = [], []
+    kept: list = []
+    invalid_kept: list = []
     invalid_ids = {id(f) for f in invalid}
     for f in list(findings) + invalid:
         locs = [(f.file, f.line, f.col)] + [(c[0], c[1], c[2]) for c in f.chain]

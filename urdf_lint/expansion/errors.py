@@ -62,7 +62,7 @@ class RefusedInput(xacro.XacroException):
 class ErrorRow:
     catches: type | tuple
     rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
-    message: Callable[[Any], str]
+    message: Callable[..., str]
     looks_at: str = "either"             # "raised" | "wrapped" | "either"
     macros: bool = False                 # append the macro context
     own_location: bool = False           # use the exception's .loc when it has one
