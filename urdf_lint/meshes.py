@@ -26,12 +26,22 @@ class MeshRef:
     message: str = ""
 
 
-def _case_true_path(path: Path) -> tuple[bool, str | None]:
-    """(exists with exact case, the real spelling if it only exists with another case)."""
-    parts = path.parts
-    cur = Path(parts[0])
+def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | None]:
+    """(exists with exact case, the real spelling if it only exists with another case).
+
+    Only folders below ``top`` (the root holding ``path``) are listed: names of folders
+    outside the roots are never read."""
+    if top is not None:
+        try:
+            rest = path.relative_to(top).parts
+        except ValueError:
+            top = None
+    if top is None:
+        cur, rest = Path(path.parts[0]), path.parts[1:]
+    else:
+        cur = top
     exact = True
-    for part in parts[1:]:
+    for part in rest:
         try:
             names = os.listdir(cur)
         except OSError:
@@ -54,7 +64,16 @@ def resolve(model, uri: str) -> MeshRef:
     except PackageNotFound as e:
         return MeshRef(uri, None, "UL401", f"mesh '{uri}': {e}")
     p = Path(os.path.abspath(p))
-    exact, real = _case_true_path(p)
+    top = _root_of(resolver, p)
+    if top is None and resolver.is_inside(p):  # written outside, resolves inside (a symlink)
+        p = Path(os.path.realpath(p))
+        top = _root_of(resolver, p)
+    if top is None:
+        if not os.path.lexists(p):
+            return MeshRef(uri, str(p), "UL401", f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, None, "UL403", f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+                       "the package roots; it is not read")
+    exact, real = _case_true_path(p, top)
     if not exact and real is None:
         return MeshRef(uri, str(p), "UL401", f"mesh file not found: '{uri}' (looked for {p})")
     if not exact:
@@ -64,6 +83,20 @@ def resolve(model, uri: str) -> MeshRef:
         return MeshRef(uri, None, "UL403", f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
     return MeshRef(uri, str(p), None)
+
+
+def _root_of(resolver, p: Path) -> Path | None:
+    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    best = None
+    for r in resolver.roots:
+        r = Path(r)
+        try:
+            p.relative_to(r)
+        except ValueError:
+            continue
+        if best is None or len(r.parts) > len(best.parts):
+            best = r
+    return best
 
 
 _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")

@@ -70,6 +70,8 @@ def _worker_main(conn, settings, memory_mb):
     except (ImportError, ValueError, OSError):
         pass
     _scrub_environment(set(settings.get("env_allow", ())))
+    from .sandbox import enter_worker
+    enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
     _install_audit_hook(settings.get("mesh_cache_dir"), settings.get("render_dir"))
@@ -129,6 +131,8 @@ def run_jobs(jobs, settings, jobs_n=None, timeout=30.0, memory_mb=2048, on_resul
     jobs = list(jobs)
     if not jobs:
         return
+    from .sandbox import prepare
+    prepare()
     try:
         ctx = mp.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
