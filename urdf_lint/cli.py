@@ -97,6 +97,8 @@ def build_parser():
     rd.add_argument("--no-rrd", action="store_true", help="PNG only")
     rd.add_argument("-j", "--jobs", type=int)
 
+    sub.add_parser("doctor", help="show which protections the worker sandbox has here")
+
     cl = sub.add_parser("clean", help="remove the cache")
     cl.add_argument("paths", nargs="*", default=["."])
     return p
@@ -173,9 +175,9 @@ def cmd_check(args) -> int:
     for f in result.unused_files:
         from .locations import display_path
         if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
+            sys.stderr.write(f"note: {_safe_text(display_path(f))} is not used by any model\n")
     for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     if render_dir:
         _report_snapshots(result, render_dir)
     return exit_code(result, cfg.fail_on)
@@ -191,9 +193,9 @@ def _report_snapshots(result, out_dir):
             if snap.get(k):
                 written += 1
         for prob in snap.get("problems", []):
-            sys.stderr.write(f"urdf-lint: snapshot of {m.label}: {prob}\n")
+            sys.stderr.write(f"urdf-lint: snapshot of {_safe_text(m.label)}: {_safe_text(prob)}\n")
         if m.status != "model":
-            sys.stderr.write(f"urdf-lint: no snapshot of {m.label}: it did not expand "
+            sys.stderr.write(f"urdf-lint: no snapshot of {_safe_text(m.label)}: it did not expand "
                              "(see 'urdf-lint check')\n")
     summary = write_summary(result, out_dir)
     sys.stderr.write(f"snapshots: {written} files for {len(result.models)} model(s) in "
@@ -216,7 +218,6 @@ def cmd_hook(args) -> int:
 def cmd_expand(args) -> int:
     from .config import load_config
     from .check import build_resolver
-    from .expand import expand_file
     from .config import DEFAULT_ENV_ALLOW
     from .locations import display_path
     if not os.path.isfile(args.file):
@@ -227,17 +228,33 @@ def cmd_expand(args) -> int:
     from .config import find_config
     cfg = load_config(find_config(args.file))
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
-    res = expand_file(args.file, mappings, resolver,
-                      env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
-                      display_name=args.file)
-    for n in res.notes:
-        sys.stderr.write(f"{display_path(n['file'])}:{n['line']}:{n['col']}: {n['code']} "
-                         f"{n['message']}\n")
-    if res.error:
-        e = res.error
-        sys.stderr.write(f"{display_path(e['file'])}:{e['line']}:{e['col']}: {e['code']} "
-                         f"{e['message']}\n")
+    # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
+    from .worker import run_jobs
+    import xacro  # noqa: F401 - imported once in the parent, shared by the forked worker
+    from . import expand  # noqa: F401
+    job = {"entry": os.path.abspath(args.file), "args": mappings, "kind": "expand",
+           "explicit": True, "display_name": args.file}
+    settings = {"resolver": resolver.to_dict(), "selected": [], "options": {},
+                "env_allow": sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)),
+                "mesh_cache_dir": None}
+    res = {}
+    for _, res in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
+                           memory_mb=cfg.memory_mb):
+        pass
+    for msg in res.get("internal") or []:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
+        return 2
+    for n in res.get("notes") or []:
+        sys.stderr.write(f"{_safe_text(display_path(n['file']))}:{n['line']}:{n['col']}: {n['code']} "
+                         f"{_safe_text(n['message'])}\n")
+    error = res.get("error") or (res.get("findings") or [None])[0]
+    if error or res.get("xml") is None:
+        e = error or {"file": job["entry"], "line": 1, "col": 1, "code": "UL002",
+                      "message": "expansion failed"}
+        sys.stderr.write(f"{_safe_text(display_path(e['file']))}:{e['line']}:{e['col']}: {e['code']} "
+                         f"{_safe_text(e['message'])}\n")
         return 1
+    res = _Xml(res["xml"])
     if args.output:
         d = os.path.dirname(os.path.abspath(args.output))
         os.makedirs(d, exist_ok=True)
@@ -248,6 +265,20 @@ def cmd_expand(args) -> int:
     else:
         sys.stdout.write(res.xml)
     return 0
+
+
+class _Xml:
+    def __init__(self, xml):
+        self.xml = xml
+
+
+def _safe_text(s) -> str:
+    from .report.escape import escape_text
+    return escape_text(str(s))
+
+
+def _safe_lines(s) -> str:
+    return "\n".join(_safe_text(line) for line in str(s).split("\n"))
 
 
 def cmd_rules(args) -> int:
@@ -290,7 +321,7 @@ def cmd_render(args) -> int:
                 from .locations import display_path
                 print(display_path(snap[k]))
     for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     return 2 if result.internal else 0
 
 
@@ -302,7 +333,16 @@ def cmd_clean(args) -> int:
     return 0
 
 
-COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
+def cmd_doctor(args) -> int:
+    from . import __version__
+    from .sandbox import protections
+    print(f"urdf-lint {__version__} on {sys.platform}, Python {sys.version.split()[0]}")
+    for name, (ok, why) in protections().items():
+        print(f"  {'on ' if ok else 'OFF'}  {name:<12} {why}")
+    return 0
+
+
+COMMANDS = {"doctor": cmd_doctor, "check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
             "render": cmd_render, "clean": cmd_clean}
 
 
@@ -314,12 +354,21 @@ def main(argv=None) -> int:
         return 2 if e.code else 0
     if args.version:
         from . import __version__
-        print(f"urdf-lint {__version__}")
+        from .sandbox import summary_line
+        print(f"urdf-lint {__version__}\n{summary_line()}")
         return 0
     if not args.command:
         parser.print_help()
         return 2
     from .config import ConfigError
+    import signal
+
+    def _terminate(signum, frame):  # SIGTERM is handled like Ctrl-C: workers are stopped
+        raise KeyboardInterrupt
+    try:
+        signal.signal(signal.SIGTERM, _terminate)
+    except ValueError:  # pragma: no cover - not the main thread
+        pass
     try:
         return COMMANDS[args.command](args)
     except (UsageError, ConfigError) as e:

@@ -7,8 +7,6 @@ from __future__ import annotations
 import os
 import traceback
 
-from lxml import etree
-
 from .locations import Origin
 
 XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
@@ -59,6 +57,7 @@ def _target(el):
 
 def classify_xacro(path: str) -> str:
     """'candidate', 'library' (only macro/property/arg/include at top level) or 'not-robot'."""
+    from lxml import etree
     try:
         root = etree.parse(path, _quick_parser()).getroot()
     except (etree.XMLSyntaxError, OSError):
@@ -75,6 +74,7 @@ def classify_xacro(path: str) -> str:
 
 
 def _quick_parser():
+    from lxml import etree
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
@@ -86,6 +86,15 @@ def run_job(job: dict, settings: dict) -> dict:
            "findings": [], "stats": {}, "internal": []}
     resolver = PackageResolver.from_dict(settings["resolver"])
     findings = out["findings"]
+    if job["kind"] == "expand":  # `urdf-lint expand`: the expansion itself, in a worker too
+        from .expand import expand_file
+        exp = expand_file(entry, job.get("args", {}), resolver,
+                          env_allow=settings.get("env_allow", ()),
+                          display_name=job.get("display_name"),
+                          expr_policy=settings.get("expr_policy"))
+        out.update(status="failed" if exp.error else "model", deps=list(exp.deps), xml=exp.xml,
+                   notes=list(exp.notes), error=exp.error)
+        return out
 
     if job["kind"] == "xacro":
         if not job.get("explicit"):

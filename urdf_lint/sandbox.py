@@ -83,11 +83,37 @@ def landlock_status() -> tuple[bool, str]:
     return True, f"Landlock ABI {abi}"
 
 
+def _import_pyseccomp():
+    """pyseccomp looks its libraries up with ``ctypes.util.find_library``, which runs
+    ``ldconfig`` (~15 ms); try the usual sonames first and fall back to the lookup."""
+    if "pyseccomp" in sys.modules:
+        return sys.modules["pyseccomp"]
+    import ctypes.util
+    orig = ctypes.util.find_library
+    known = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
+
+    def fast(name):
+        so = known.get(name)
+        if so:
+            try:
+                ctypes.CDLL(so)
+                return so
+            except OSError:
+                pass
+        return orig(name)
+    ctypes.util.find_library = fast
+    try:
+        import pyseccomp
+    finally:
+        ctypes.util.find_library = orig
+    return pyseccomp
+
+
 def seccomp_status() -> tuple[bool, str]:
     if not sys.platform.startswith("linux"):
         return False, f"not available on {sys.platform} (seccomp is Linux-only)"
     try:
-        import pyseccomp  # noqa: F401 - raises when libseccomp.so.2 is missing
+        _import_pyseccomp()  # raises when libseccomp.so.2 is missing
     except ImportError:
         return False, "the 'pyseccomp' package is not installed"
     except Exception as e:  # noqa: BLE001 - OSError/AttributeError from the ctypes binding
@@ -103,6 +129,8 @@ def pdeathsig_status() -> tuple[bool, str]:
 
 def protections() -> dict[str, tuple[bool, str]]:
     """What the workers get on this machine, for ``urdf-lint doctor`` and ``--version``."""
+    global _disabled
+    _disabled = None  # parent side: read the environment afresh
     out = {}
     if disabled():
         off = (False, "turned off by URDF_LINT_SANDBOX=0")
@@ -169,12 +197,20 @@ def close_inherited_fds(keep) -> None:
                 os.closerange(lo, k)
             lo = k + 1
         return
+    import fcntl
+    import stat
     for fd in fds:
-        if fd not in keep:
-            try:
-                os.close(fd)
-            except OSError:
-                pass
+        if fd in keep:
+            continue
+        try:
+            # the write end of a pipe is how multiprocessing tells the parent this worker
+            # ended (its "sentinel"): keep it, or join() would think the worker is gone
+            if stat.S_ISFIFO(os.fstat(fd).st_mode) and \
+                    fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE == os.O_WRONLY:
+                continue
+            os.close(fd)
+        except OSError:
+            pass
 
 
 def runtime_read_paths() -> list[str]:
@@ -246,7 +282,7 @@ def apply_landlock(read_paths, write_paths) -> None:
 
 
 def apply_seccomp() -> None:
-    import pyseccomp as sc
+    sc = _import_pyseccomp()
     f = sc.SyscallFilter(defaction=sc.ALLOW)
     for name in DENIED_SYSCALLS:
         try:
@@ -294,6 +330,10 @@ def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
 def enter_worker(conn, settings: dict) -> dict:
     """The one call a worker makes at start-up, before it reads its first job."""
     import multiprocessing as mp
+    import signal
+    # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it (a Python
+    # handler would never run while a C-level loop holds the interpreter)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     parent = mp.parent_process()
     parent_pid = parent.pid if parent is not None and parent.pid else os.getppid()
     res = settings.get("resolver") or {}
@@ -307,7 +347,10 @@ def enter_worker(conn, settings: dict) -> dict:
                 write.append(d)
             except OSError:
                 pass
-    status = enter(parent_pid, read, write, keep_fds=(conn.fileno(),))
+    keep = [conn.fileno()]
+    if parent is not None and getattr(parent, "sentinel", None) is not None:
+        keep.append(parent.sentinel)
+    status = enter(parent_pid, read, write, keep_fds=keep)
     bad = {k: v for k, v in status.items() if v.startswith("failed")}
     if bad:  # the parent's probe said it would work: say why it did not
         os.write(2, ("urdf-lint: note: worker sandbox: " + "; ".join(
@@ -323,6 +366,5 @@ def prepare() -> None:
         return
     if landlock_status()[0]:
         import landlock.porcelain  # noqa: F401 - imported once, shared by the forked workers
-    if seccomp_status()[0]:
-        import pyseccomp  # noqa: F401
+    seccomp_status()
     note_missing()

@@ -23,13 +23,14 @@ from collections import Counter
 
 from .. import __version__
 from ..locations import Origin, display_path
+from .escape import escape_markdown, escape_text, escape_xml  # noqa: F401 - the shared helper
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
 _BOLD, _DIM, _RESET = "\033[1m", "\033[2m", "\033[0m"
 
 
 def _chain_text(f) -> str:
-    return Origin(f.file, f.line, f.col, f.chain).format_chain() if f.chain else ""
+    return escape_text(Origin(f.file, f.line, f.col, f.chain).format_chain()) if f.chain else ""
 
 
 def _summary(result):
@@ -42,7 +43,8 @@ def text(result, stream, color=False, statistics=False, show_models=True):
     w = stream.write
     current = None
     for f in result.findings:
-        path = display_path(f.file)
+        path = escape_text(display_path(f.file))
+        msg = escape_text(f.message)
         if color and path != current:
             if current is not None:
                 w("\n")
@@ -50,14 +52,14 @@ def text(result, stream, color=False, statistics=False, show_models=True):
             current = path
         if color:
             sev = f"{_COLORS[f.severity]}{f.code}{_RESET}"
-            w(f"{path}:{f.line}:{f.col}: {sev} {f.message} {_DIM}[{f.name}]{_RESET}\n")
+            w(f"{path}:{f.line}:{f.col}: {sev} {msg} {_DIM}[{f.name}]{_RESET}\n")
         else:
-            w(f"{path}:{f.line}:{f.col}: {f.code} {f.message} [{f.name}]\n")
+            w(f"{path}:{f.line}:{f.col}: {f.code} {msg} [{f.name}]\n")
         ch = _chain_text(f)
         if ch:
             w(f"    {ch}\n")
         if show_models and len(f.models) > 1:
-            shown = ", ".join(f.models[:6]) + (f", +{len(f.models) - 6} more" if len(f.models) > 6 else "")
+            shown = ", ".join(escape_text(m) for m in f.models[:6]) + (f", +{len(f.models) - 6} more" if len(f.models) > 6 else "")
             w(f"    in {len(f.models)} models: {shown}\n")
     if statistics:
         statistics_table(result, stream)
@@ -140,7 +142,7 @@ def to_sarif(result, stream):
 
 
 def _gh_escape(s, prop=False):
-    s = s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    s = escape_text(s).replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
     if prop:
         s = s.replace(":", "%3A").replace(",", "%2C")
     return s
@@ -159,7 +161,11 @@ def to_github(result, stream):
 
 
 def to_junit(result, stream):
-    from xml.sax.saxutils import escape, quoteattr  # heavy import chain: only for junit
+    def quoteattr(s):
+        return '"' + escape_xml(s) + '"'
+
+    def escape(s):
+        return escape_xml(s, keep_newlines=True)
     cases = []
     failures = 0
     for f in result.findings:
