@@ -31,10 +31,12 @@ import sys
 
 _PR_SET_PDEATHSIG = 1
 
-# syscalls a worker never needs; each fails with EPERM
+# syscalls a worker never needs; each fails with EPERM. socketpair() stays allowed: it makes
+# an already-connected pair inside the process (rerun's runtime uses one for signals) and
+# cannot reach anything outside it.
 DENIED_SYSCALLS = (
     "execve", "execveat",
-    "socket", "socketpair", "connect", "bind", "listen", "accept", "accept4",
+    "socket", "connect", "bind", "listen", "accept", "accept4",
     "ptrace", "process_vm_readv", "process_vm_writev",
     "io_uring_setup", "io_uring_enter", "io_uring_register",
     "unshare", "setns", "mount", "umount2", "pivot_root", "chroot",
