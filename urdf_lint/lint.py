@@ -78,6 +78,31 @@ def _quick_parser():
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
+def _expanded_xml_error(e: Exception, exp, entry: str) -> dict:
+    """A located UL001 for an expansion lxml cannot hold (nesting deeper than its limit, a
+    huge attribute, a control character an expression produced), at the source line of the
+    element the error is in."""
+    from .model import element_positions
+    msg = " ".join(str(getattr(e, "msg", None) or e).split())
+    line = (getattr(e, "position", None) or (0, 0))[0]
+    origin = (entry, 1, 1, ())
+    if line:
+        positions = element_positions(exp.xml.encode("utf-8", "replace"))
+        idx = max((i for i, (ln, _) in enumerate(positions) if ln <= line), default=None)
+        if positions and positions[-1][0] < line and len(positions) < len(exp.origins):
+            idx = len(positions)  # expat stopped at the same character: the next element
+        if idx is not None and idx < len(exp.origins) and exp.origins[idx] is not None:
+            origin = exp.origins[idx]
+    hint = ""
+    if "invalid character" in msg.lower() or "char" in msg.lower():
+        hint = " (an expression produced a character XML cannot hold)"
+    elif "depth" in msg.lower():
+        hint = " (elements nested deeper than 256 levels)"
+    elif "limit" in msg.lower():
+        hint = " (a text or attribute longer than 10 MB)"
+    return _finding("UL001", f"the expanded URDF is not valid XML: {msg}{hint}", origin)
+
+
 def run_job(job: dict, settings: dict) -> dict:
     from .packages import PackageResolver
     from .model import model_from_xml, parse_urdf_bytes, Model
@@ -113,8 +138,13 @@ def run_job(job: dict, settings: dict) -> dict:
             findings.append(exp.error)
             out["status"] = "failed"
             return out
-        model = model_from_xml(entry, job.get("args", {}), exp.xml, exp.origins, exp.deps,
-                               resolver)
+        try:
+            model = model_from_xml(entry, job.get("args", {}), exp.xml, exp.origins, exp.deps,
+                                   resolver)
+        except Exception as e:  # noqa: BLE001 - lxml refused what xacro produced
+            findings.append(_expanded_xml_error(e, exp, entry))
+            out["status"] = "failed"
+            return out
         if not model.top_links() and not job.get("explicit"):
             out["status"] = "library"
             out["findings"] = []

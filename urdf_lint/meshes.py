@@ -11,6 +11,7 @@ import json
 import math
 import os
 import re
+import stat
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
@@ -82,6 +83,14 @@ def resolve(model, uri: str) -> MeshRef:
     if not resolver.is_inside(p):
         return MeshRef(uri, None, "UL403", f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
+    try:
+        st = os.stat(p)
+    except OSError as e:  # a symlink loop, a dangling link, no permission
+        return MeshRef(uri, str(p), "UL401", f"mesh '{uri}' cannot be read: "
+                       f"{e.strerror or e} ({p})")
+    if not stat.S_ISREG(st.st_mode):
+        what = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file"
+        return MeshRef(uri, str(p), "UL401", f"mesh '{uri}' is {what}, not a mesh file ({p})")
     return MeshRef(uri, str(p), None)
 
 

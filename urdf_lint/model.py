@@ -121,7 +121,8 @@ def parse_urdf_bytes(entry: str, data: bytes):
         root = etree.fromstring(data, safe_parser())
     except etree.XMLSyntaxError as e:
         line, col = (e.position if e.position else (1, 1))
-        error = {"code": "UL001", "message": f"XML syntax error: {e.msg}", "file": entry,
+        error = {"code": "UL001", "message": f"XML syntax error: {' '.join(e.msg.split())}",
+                 "file": entry,
                  "line": line, "col": max(col, 1), "chain": []}
         try:
             root = etree.fromstring(data, safe_parser(recover=True))

@@ -68,11 +68,16 @@ class PackageResolver:
     roots: list[Path] = field(default_factory=list)
     scanned_dirs: list[str] = field(default_factory=list)
     use_environment: bool = True
+    # AMENT_PREFIX_PATH / ROS_PACKAGE_PATH as the parent saw them: workers run with a scrubbed
+    # environment, so the search path travels with the resolver
+    env_paths: dict = field(default_factory=dict)
 
     @classmethod
     def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
               use_environment: bool = True) -> "PackageResolver":
         res = cls(use_environment=use_environment)
+        if use_environment:
+            res.env_paths = environment_paths()
         for name, d in (explicit or {}).items():
             res.explicit[name] = Path(d).resolve()
         seen = set()
@@ -95,13 +100,13 @@ class PackageResolver:
     def _from_environment(self, name: str) -> Path | None:
         if not self.use_environment:
             return None
-        for prefix in filter(None, os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep)):
+        for prefix in self.env_paths.get("AMENT_PREFIX_PATH", ()):
             marker = Path(prefix, "share", "ament_index", "resource_index", "packages", name)
             if marker.exists():
                 share = Path(prefix, "share", name)
                 if share.is_dir():
                     return share.resolve()
-        for d in filter(None, os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep)):
+        for d in self.env_paths.get("ROS_PACKAGE_PATH", ()):
             for pxml in iter_files(Path(d), names={"package.xml"}):
                 if package_name(pxml) == name:
                     return pxml.parent.resolve()
@@ -122,9 +127,10 @@ class PackageResolver:
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]
         out += [f"package.xml under {d}" for d in self.scanned_dirs]
-        if self.use_environment:
-            out.append("AMENT_PREFIX_PATH=" + (os.environ.get("AMENT_PREFIX_PATH") or "(unset)"))
-            out.append("ROS_PACKAGE_PATH=" + (os.environ.get("ROS_PACKAGE_PATH") or "(unset)"))
+        if self.use_environment:  # never the values: messages carry no environment contents
+            for var in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
+                n = len(self.env_paths.get(var, ()))
+                out.append(f"{var} ({n} folder{'s' if n != 1 else ''})" if n else f"{var} (unset)")
         return out
 
     # -- URIs --------------------------------------------------------------------------------
@@ -164,11 +170,33 @@ class PackageResolver:
                 "scanned": {k: str(v) for k, v in self.scanned.items()},
                 "roots": [str(r) for r in self.roots],
                 "scanned_dirs": self.scanned_dirs,
-                "use_environment": self.use_environment}
+                "use_environment": self.use_environment,
+                "env_paths": {k: list(v) for k, v in self.env_paths.items()}}
 
     @classmethod
     def from_dict(cls, d: dict) -> "PackageResolver":
         return cls(explicit={k: Path(v) for k, v in d["explicit"].items()},
                    scanned={k: Path(v) for k, v in d["scanned"].items()},
                    roots=[Path(r) for r in d["roots"]], scanned_dirs=list(d["scanned_dirs"]),
-                   use_environment=d["use_environment"])
+                   use_environment=d["use_environment"],
+                   env_paths={k: list(v) for k, v in d.get("env_paths", {}).items()})
+
+    def read_paths(self) -> list[str]:
+        """Every folder a worker may read below: the roots and the environment's package
+        search path (packages found there become roots when a description uses them)."""
+        out = [str(r) for r in self.roots] + [str(p) for p in self.explicit.values()] + \
+            [str(p) for p in self.scanned.values()]
+        out += [os.path.join(p, "share") for p in self.env_paths.get("AMENT_PREFIX_PATH", ())]
+        out += list(self.env_paths.get("ROS_PACKAGE_PATH", ()))
+        return out
+
+
+def environment_paths() -> dict:
+    """The existing absolute folders of AMENT_PREFIX_PATH and ROS_PACKAGE_PATH."""
+    out = {}
+    for var in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
+        dirs = [os.path.abspath(d) for d in os.environ.get(var, "").split(os.pathsep) if d]
+        dirs = [d for d in dict.fromkeys(dirs) if os.path.isdir(d)]
+        if dirs:
+            out[var] = dirs
+    return out

@@ -338,9 +338,9 @@ def enter_worker(conn, settings: dict) -> dict:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     parent = mp.parent_process()
     parent_pid = parent.pid if parent is not None and parent.pid else os.getppid()
-    res = settings.get("resolver") or {}
-    read = list(res.get("roots", ())) + list(res.get("explicit", {}).values()) + \
-        list(res.get("scanned", {}).values())
+    from .packages import PackageResolver
+    read = PackageResolver.from_dict(settings["resolver"]).read_paths() \
+        if settings.get("resolver") else []
     write = []
     for d in (settings.get("mesh_cache_dir"), settings.get("render_dir")):
         if d:

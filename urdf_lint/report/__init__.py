@@ -67,6 +67,9 @@ def text(result, stream, color=False, statistics=False, show_models=True):
     if result.findings:
         w(f"Found {len(result.findings)} problem(s) ({s['errors']} error, {s['warnings']} warning, "
           f"{s['info']} info) in {s['models']} model(s).\n")
+    elif getattr(result, "internal", None):  # never "passed" after an error
+        w(f"Checks incomplete: {len(result.internal)} internal error(s), see above; "
+          f"no problems found in {s['models']} model(s).\n")
     else:
         w(f"All checks passed: {s['models']} model(s).\n")
 
