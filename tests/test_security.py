@@ -266,3 +266,131 @@ print(results)
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert p.stdout.strip() == "['blocked', 'blocked', 'blocked', 'blocked']", p.stdout + p.stderr
     assert not marker.exists() and (allowed / "ok.json").exists()
+
+
+# -- issue 15: no internal error on bad input ----------------------------------------------
+def _check_text(repo, *extra, env=None, timeout=120):
+    p = run_cli("check", ".", "--no-cache", *extra, cwd=repo, timeout=timeout,
+                env=dict({"CI_DEPLOY_TOKEN": SECRET}, **(env or {})))
+    assert "internal error" not in p.stderr, p.stderr
+    assert SECRET not in p.stdout + p.stderr
+    return p
+
+
+DEEP = "<a>" * 300 + "</a>" * 300
+
+
+@pytest.mark.parametrize("name,text", [
+    ("urdf/r.urdf", f'<robot name="r"><link name="x"/>{DEEP}</robot>\n'),
+    ("urdf/r.urdf.xacro", robot(DEEP)),
+    ("urdf/r.urdf.xacro", robot('  <link name="' + "a" * (50 * 1024 * 1024) + '"/>')),
+    ("urdf/r.urdf.xacro", robot("  <link name=\"${'a\\x01b'}\"/>")),
+], ids=["deep-urdf", "deep-xacro", "50MB-attribute", "control-char-in-expression"])
+def test_lxml_limits_are_located_findings(world, name, text):
+    repo, _, _ = world
+    make_package(repo, "p", {name: text})
+    p = _check_text(repo, "--format", "json")
+    assert p.returncode == 1, p.stderr
+    findings = json.loads(p.stdout)["findings"]
+    hits = assert_located(findings, "UL001", file=f"p/{name}")
+    if name.endswith(".xacro"):  # at the element, not at the top of the file
+        assert any(f["line"] >= 3 for f in hits), hits
+    t = _check_text(repo)
+    assert "All checks passed" not in t.stdout
+
+
+def test_mesh_directory_and_symlink_loop_are_located(world):
+    repo, _, _ = world
+    mesh = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="package://p/meshes/'
+            '{}"/></geometry></visual></link></robot>\n')
+    pkg = make_package(repo, "p", {"urdf/dir.urdf": mesh.format("d.stl"),
+                                   "urdf/loop.urdf": mesh.format("l1.stl")})
+    (pkg / "meshes" / "d.stl").mkdir(parents=True)
+    os.symlink("l2.stl", pkg / "meshes" / "l1.stl")
+    os.symlink("l1.stl", pkg / "meshes" / "l2.stl")
+    findings, took = lint(repo)
+    d = assert_located(findings, "UL401", file="p/urdf/dir.urdf")
+    assert any("directory" in f["message"] for f in d), d
+    lp = assert_located(findings, "UL401", file="p/urdf/loop.urdf")
+    assert any("symbolic links" in f["message"] for f in lp), lp
+
+
+def test_never_all_checks_passed_after_an_internal_error():
+    import io
+    from urdf_lint import report
+    from urdf_lint.check import CheckResult
+    out = io.StringIO()
+    report.write(CheckResult(internal=["boom"]), "text", out)
+    assert "All checks passed" not in out.getvalue() and "internal error" in out.getvalue()
+
+
+def test_check_honours_ros_package_path_and_prints_no_env_value(world, tmp_path):
+    repo, _, _ = world
+    ext = tmp_path / "ext"
+    make_package(ext, "extpkg", {"urdf/arm.xacro": f'<robot {X}><xacro:macro name="arm">'
+                                 '<link name="arm"/></xacro:macro></robot>\n'})
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
+        '  <xacro:include filename="$(find extpkg)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
+    ok = _check_text(repo, "--format", "json", env={"ROS_PACKAGE_PATH": str(ext)})
+    assert json.loads(ok.stdout)["findings"] == [], ok.stdout
+    # an unknown package names the variables it searched, never their values
+    secret_dir = tmp_path / SECRET
+    secret_dir.mkdir()
+    bad = _check_text(repo, "--format", "json", env={"AMENT_PREFIX_PATH": str(secret_dir)})
+    assert bad.returncode == 1
+    f = assert_located(json.loads(bad.stdout)["findings"], "UL004")
+    assert "AMENT_PREFIX_PATH (1 folder)" in f[0]["message"]
+
+
+# -- issue 15: output that cannot be forged --------------------------------------------------
+FORGED_NAME = "j&#10;::error file=x.py,line=1::pwned"
+
+
+def _forging_repo(repo):
+    pkg = make_package(repo, "p", {"urdf/r.urdf": (
+        f'<robot name="r"><link name="base"/><joint name="{FORGED_NAME}" type="fixed">'
+        '<parent link="base"/><child link="nope&#10;::warning::x"/></joint></robot>\n')})
+    # a file name with a newline, a workflow command and an ANSI escape
+    (pkg / "urdf" / "a\n::error file=y::\x1b[31mred.urdf").write_text(
+        (pkg / "urdf" / "r.urdf").read_text())
+    return pkg
+
+
+@pytest.mark.parametrize("fmt", ["text", "github", "junit"])
+def test_names_cannot_forge_output(world, fmt):
+    repo, _, _ = world
+    _forging_repo(repo)
+    p = _check_text(repo, "--format", fmt, env={"GITHUB_ACTIONS": ""})
+    assert p.returncode == 1
+    lines = p.stdout.splitlines()
+    assert "\x1b" not in p.stdout
+    forged = [ln for ln in lines if ln.startswith("::") and ("pwned" in ln.split("::")[-1]
+              and not ln.startswith("::error file=p/"))]
+    assert not forged, lines
+    if fmt == "github":
+        assert all(ln.startswith("::") for ln in lines), lines
+        assert len(lines) == 4
+    else:
+        assert not any(ln.startswith("::") for ln in lines), lines
+    if fmt == "junit":
+        import xml.dom.minidom
+        xml.dom.minidom.parseString(p.stdout)
+    else:
+        assert "\\x0a::error file=x.py,line=1::pwned" in p.stdout
+
+
+def test_summary_md_escapes_markdown_and_html():
+    from urdf_lint.check import CheckResult, ModelResult
+    from urdf_lint.render import write_summary
+    import tempfile
+    m = ModelResult("/r/a.urdf", {"x": "<img src=x onerror=alert(1)>](http://evil) | `b`\n# h"},
+                    "model", {"links": 1, "snapshot": {"png": "/tmp/s/a.png"}}, [], [])
+    with tempfile.TemporaryDirectory() as d:
+        text = open(write_summary(CheckResult(models=[m]), d), encoding="utf-8").read()
+    import re
+    outside_code = re.sub(r"`[^`\n]*`", "", text)  # a code span shows HTML as text
+    assert "<img" not in outside_code and "](http://evil)" not in outside_code
+    assert "\n# h" not in text
+    row = next(ln for ln in text.splitlines() if ln.startswith("| `"))
+    assert row.count(" | ") == 6, row  # the name did not add table cells

@@ -167,16 +167,15 @@ def to_junit(result, stream):
     def quoteattr(s):
         return '"' + escape_xml(s) + '"'
 
-    def escape(s):
-        return escape_xml(s, keep_newlines=True)
+    escape = escape_xml  # one line per part: a name cannot add lines to a CI log
     cases = []
     failures = 0
     for f in result.findings:
         if f.severity == "error":
             failures += 1
         name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
-        body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}\n"
-                      + _chain_text(f))
+        body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}") + "\n" \
+            + escape(_chain_text(f))
         tag = "failure"
         cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'
                      f'<{tag} type={quoteattr(f.severity)} message={quoteattr(f.message)}>'

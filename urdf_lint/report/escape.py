@@ -36,20 +36,22 @@ def escape_text(s) -> str:
 _XML = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;"})
 
 
-def escape_xml(s, keep_newlines: bool = False) -> str:
-    """Text or attribute content for XML 1.0 (always well-formed)."""
-    s = str(s)
-    if keep_newlines:
-        s = "\n".join(escape_text(line) for line in s.split("\n"))
-    else:
-        s = escape_text(s)
-    return s.translate(_XML)
+def escape_xml(s) -> str:
+    """One line of text or attribute content for XML 1.0 (always well-formed)."""
+    return escape_text(s).translate(_XML)
 
 
-_MD = re.compile(r"([\\`*_{}\[\]()#+!|~>-])")
+_MD = re.compile(r"([\\`*\[\]|])")
 
 
 def escape_markdown(s) -> str:
-    """Inline Markdown text: no HTML, no links, no emphasis, no table breaks."""
+    """Inline Markdown text: no HTML, no links or images, no code spans, no table breaks
+    (``_`` is left alone: paths are full of it and it only ever makes emphasis)."""
     s = escape_text(s).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
     return _MD.sub(r"\\\1", s)
+
+
+def escape_markdown_code(s) -> str:
+    """Text for inside a Markdown code span in a table cell: one line, no backtick to end the
+    span early, no ``|`` to end the cell."""
+    return escape_text(s).replace("`", "'").replace("|", "\\|")
