@@ -395,3 +395,52 @@ def test_summary_md_escapes_markdown_and_html():
     assert "\n# h" not in text
     row = next(ln for ln in text.splitlines() if ln.startswith("| `"))
     assert row.count(" | ") == 6, row  # the name did not add table cells
+
+
+# -- issue 15: roots, precisely ---------------------------------------------------------------
+def test_working_directory_is_never_a_root(world, tmp_path):
+    """`cd / && urdf-lint check /tmp/x`: the folder the user stands in widens nothing."""
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
+        '  <xacro:include filename="../../../outside/secret.xacro"/>')})
+    p = run_cli("check", repo, "--no-cache", "--format", "json", cwd=tmp_path)
+    assert p.returncode == 1 and SECRET not in p.stdout + p.stderr
+    hits = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL902"]
+    assert hits, p.stdout
+
+
+def _git(*args, cwd):
+    import subprocess
+    subprocess.run(["git", *args], cwd=cwd, check=True, capture_output=True)
+
+
+def test_without_git_roots_fail_closed(world, tmp_path):
+    repo, _, _ = world
+    make_package(repo, "a", {"urdf/r.urdf.xacro": robot(
+        '  <xacro:include filename="../../b/lib.xacro"/>\n  <xacro:m/>')})
+    (repo / "b").mkdir()
+    (repo / "b" / "lib.xacro").write_text(f'<robot {X}><xacro:macro name="m"><link name="l"/>'
+                                          '</xacro:macro></robot>\n')
+    _git("init", "-q", cwd=repo)
+    with_git = run_cli("check", "a", "--no-cache", "--format", "json", cwd=repo)
+    assert not [f for f in json.loads(with_git.stdout)["findings"] if f["code"] == "UL902"]
+    nogit = tmp_path / "nogit"
+    nogit.mkdir()
+    p = run_cli("check", "a", "--no-cache", "--format", "json", cwd=repo,
+                env={"PATH": str(nogit)})
+    assert p.returncode == 1
+    assert [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL902"], p.stdout
+
+
+def test_colcon_workspace_is_a_root(tmp_path):
+    ws = tmp_path / "ws"
+    make_package(ws / "src", "other", {"urdf/arm.xacro": f'<robot {X}><xacro:macro name="arm">'
+                                       '<link name="arm"/></xacro:macro></robot>\n'})
+    make_package(ws / "src", "p", {"urdf/r.urdf.xacro": robot(
+        '  <xacro:include filename="$(find other)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
+    p = run_cli("check", ws / "src" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert [f["code"] for f in json.loads(p.stdout)["findings"]] == ["UL004"]
+    (ws / "install").mkdir()
+    p = run_cli("check", ws / "src" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert json.loads(p.stdout)["findings"] == [], p.stdout

@@ -200,3 +200,50 @@ def environment_paths() -> dict:
         if dirs:
             out[var] = dirs
     return out
+
+
+def colcon_workspace(start: str) -> str | None:
+    """The colcon workspace holding ``start``: the nearest folder above it with a ``src``
+    folder and a colcon marker (``build``/``install``/``log`` or colcon's config files)."""
+    d = Path(start).resolve()
+    for parent in [d, *d.parents]:
+        if parent == Path(parent.anchor):
+            break
+        if (parent / "src").is_dir() and _inside(str(d), str(parent / "src")) and (
+                any((parent / m).is_dir() for m in ("build", "install", "log"))
+                or any((parent / m).is_file() for m in ("colcon.meta", "colcon_defaults.yaml"))):
+            return str(parent)
+    return None
+
+
+def _inside(f: str, p: str) -> bool:
+    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+
+
+def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
+    """(folders to scan for package.xml, extra roots) for the linted ``paths``.
+
+    Roots are exactly: the packages holding the linted paths, the git repository holding them
+    (``git_top``), the colcon workspace holding them, and the linted paths themselves. The
+    working directory is never a root by itself, and without git (not a repository, or git
+    not installed) nothing above the linted paths is: the tool fails closed.
+    """
+    scan = [os.path.abspath(p) for p in paths]
+    if git_top:
+        scan.append(git_top)
+    for p in list(scan):
+        d = Path(p if os.path.isdir(p) else os.path.dirname(p)).resolve()
+        for parent in [d, *d.parents]:
+            if (parent / "package.xml").is_file():  # the package a path belongs to
+                scan.append(str(parent))
+                break
+            if (git_top is not None and str(parent) == git_top) or parent == Path(parent.anchor):
+                break
+    for p in paths:
+        p = os.path.abspath(p)
+        ws = colcon_workspace(p if os.path.isdir(p) else os.path.dirname(p))
+        if ws and (git_top is None or _inside(ws, git_top) or _inside(git_top, ws)):
+            scan.append(os.path.join(ws, "src"))
+    scan = list(dict.fromkeys(scan))
+    extra = [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]
+    return scan, list(dict.fromkeys(extra))
