@@ -116,9 +116,15 @@ def test_allowed_env_is_read(world):
     repo, _, _ = world
     pkg = make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <link name="$(env MY_VARIANT)_x"/>')})
     (repo / "urdf-lint.toml").write_text('env-allow = ["MY_VARIANT"]\n')
-    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=repo, env={"MY_VARIANT": "mk2"})
+    # issue 15: the repository's own env-allow counts only when the user trusts its config
+    p = run_cli("check", ".", "--no-cache", "--format", "json", "--trust-config", cwd=repo,
+                env={"MY_VARIANT": "mk2"})
     assert not [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL901"], p.stdout
-    out = run_cli("expand", pkg / "urdf/r.urdf.xacro", env={"MY_VARIANT": "mk2"}).stdout
+    out = run_cli("expand", pkg / "urdf/r.urdf.xacro", "--trust-config",
+                  env={"MY_VARIANT": "mk2"}).stdout
+    assert '<link name="mk2_x"/>' in out
+    out = run_cli("expand", pkg / "urdf/r.urdf.xacro", "--env-allow", "MY_VARIANT",
+                  env={"MY_VARIANT": "mk2"}).stdout
     assert '<link name="mk2_x"/>' in out
 
 
@@ -444,3 +450,36 @@ def test_colcon_workspace_is_a_root(tmp_path):
     (ws / "install").mkdir()
     p = run_cli("check", ws / "src" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
     assert json.loads(p.stdout)["findings"] == [], p.stdout
+
+
+# -- issue 15: the linted repository cannot loosen the guarantees ------------------------------
+def test_repository_config_cannot_loosen(world, tmp_path):
+    repo, outside, _ = world
+    make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
+        '  <link name="$(optenv CI_DEPLOY_TOKEN none)"/>\n'
+        '  <xacro:include filename="$(find ext)/secret.xacro"/>')})
+    (outside / "package.xml").write_text("<package><name>ext</name></package>")
+    elsewhere = tmp_path / "elsewhere-cache"
+    (repo / "urdf-lint.toml").write_text(
+        'env-allow = ["CI_DEPLOY_TOKEN"]\n'
+        f'package-paths = {{ ext = "{outside}" }}\n'
+        f'cache-dir = "{elsewhere}"\n'
+        'timeout = 100000\nmemory-mb = 1000000\njobs = 500\n')
+    p = run_cli("check", ".", "--format", "json", cwd=repo, env={"CI_DEPLOY_TOKEN": SECRET})
+    assert p.returncode == 1 and SECRET not in p.stdout + p.stderr
+    for key in ("env-allow", "package-paths", "cache-dir", "timeout", "memory-mb", "jobs"):
+        assert f"ignored '{key}'" in p.stderr, (key, p.stderr)
+    codes = {f["code"] for f in json.loads(p.stdout)["findings"]}
+    assert {"UL901", "UL004"} <= codes, codes
+    assert not elsewhere.exists()
+
+
+def test_numeric_limits_are_clamped():
+    from urdf_lint import trust
+    from urdf_lint.config import Config
+    cfg = Config(timeout=1e9, memory_mb=10 ** 9, jobs=10 ** 6, raw={})
+    trust.apply(cfg, "/nonexistent", trusted=True)
+    assert (cfg.timeout, cfg.memory_mb, cfg.jobs) == (600.0, 65536, 64)
+    cfg = Config(timeout=-5, memory_mb=1, jobs=0, raw={})
+    trust.clamp(cfg)
+    assert (cfg.timeout, cfg.memory_mb, cfg.jobs) == (0.5, 128, 1)

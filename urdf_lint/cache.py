@@ -5,13 +5,27 @@ A model's entry is keyed on the tool version, the entry file, its args and the l
 model read (xacro, YAML, meshes) still has the content it had, and every file that was looked
 for and missing is still missing. Stat data (size, mtime) short-cuts the content hash. A corrupt
 or foreign entry is ignored.
+
+The cache cannot lie (issue 15):
+
+* every entry is signed (HMAC-SHA256) with a key kept outside the repository, in the user's
+  cache folder (``$XDG_CACHE_HOME/urdf-lint/key``, created 0600): an entry committed to the
+  repository, or written by anyone without the key, is ignored;
+* a cache folder that git tracks, or that is a symlink, is refused (the run goes on uncached);
+* the digests recorded are those of the bytes the worker actually read, with the file's stat
+  taken before the read (:func:`file_record`), so a file edited during a run can never have
+  the old result cached against its new content.
 """
 from __future__ import annotations
 
 import hashlib
+import hmac
 import json
 import os
 import shutil
+import stat as _st
+import subprocess
+import sys
 from pathlib import Path
 
 from . import __version__
@@ -30,6 +44,63 @@ def file_digest(path: str) -> str | None:
     return h.hexdigest()
 
 
+def file_record(path: str, data: bytes | None = None):
+    """[stat, digest] of a file as read now: the stat is taken before the bytes are read (or
+    passed in as ``data``), so a concurrent edit can only make the record stale, never wrong."""
+    before = _stat(path)
+    if before is None:
+        return None
+    if data is None:
+        digest = file_digest(path)
+    else:
+        digest = hashlib.blake2b(data, digest_size=16).hexdigest()
+    return None if digest is None else [before, digest]
+
+
+def key_path() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base, "urdf-lint", "key")
+
+
+def _load_key(repo_dirs=()) -> bytes | None:
+    """The signing key, created on first use (0600, in a 0700 folder). None when it cannot
+    be kept safely: then nothing is cached."""
+    p = key_path()
+    real = os.path.realpath(p.parent)
+    if any(real == d or real.startswith(d.rstrip(os.sep) + os.sep) for d in
+           (os.path.realpath(r) for r in repo_dirs if r)):
+        return None  # a key inside the linted repository would be the repository's
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        try:
+            fd = os.open(p, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0),
+                         0o600)
+        except FileExistsError:
+            pass
+        else:
+            with os.fdopen(fd, "wb") as f:
+                f.write(os.urandom(32))
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        with os.fdopen(fd, "rb") as f:
+            st = os.fstat(f.fileno())
+            if not _st.S_ISREG(st.st_mode) or (hasattr(os, "getuid") and st.st_uid != os.getuid()) \
+                    or st.st_mode & 0o077:
+                return None
+            key = f.read(64)
+        return key if len(key) >= 32 else None
+    except OSError:
+        return None
+
+
+def _git_tracks(directory: str) -> bool:
+    try:
+        out = subprocess.run(["git", "ls-files", "--", "."], cwd=directory, capture_output=True,
+                             text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return False  # no git: nothing can be tracked
+    return out.returncode == 0 and bool(out.stdout.strip())
+
+
 def _stat(path):
     try:
         st = os.stat(path)
@@ -39,20 +110,35 @@ def _stat(path):
 
 
 class Cache:
-    def __init__(self, directory: str):
+    def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
         self._writes = 0
+        self.refused: str | None = None
+        self._secret = _load_key([repo] if repo else [])
+        if self._secret is None:
+            self.refused = (f"no signing key could be kept at {key_path()} (outside the "
+                            "repository, mode 0600)")
+        elif os.path.islink(self.dir):
+            self.refused = f"{self.dir} is a symlink"
+        elif os.path.isdir(self.dir) and _git_tracks(self.dir):
+            self.refused = f"{self.dir} holds files tracked by git"
+        if self.refused:
+            sys.stderr.write(f"urdf-lint: note: not using the cache: {self.refused}\n")
+
+    def _mac(self, blob: str) -> str:
+        return hmac.new(self._secret, blob.encode("utf-8"), hashlib.sha256).hexdigest()
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
         from .check import repo_root
-        if os.environ.get("URDF_LINT_CACHE_DIR"):
-            return cls(os.environ["URDF_LINT_CACHE_DIR"])
-        if cfg.cache_dir:
-            return cls(os.path.join(cfg.root, cfg.cache_dir))
         first = os.path.abspath(paths[0] if paths else ".")
         start = first if os.path.isdir(first) else os.path.dirname(first)
-        return cls(os.path.join(repo_root(start), ".urdf_lint_cache"))
+        repo = repo_root(start)
+        if os.environ.get("URDF_LINT_CACHE_DIR"):
+            return cls(os.environ["URDF_LINT_CACHE_DIR"], repo)
+        if cfg.cache_dir:
+            return cls(os.path.join(cfg.root, cfg.cache_dir), repo)
+        return cls(os.path.join(repo, ".urdf_lint_cache"), repo)
 
     def _key(self, job, settings) -> str:
         blob = json.dumps([__version__, job["entry"], sorted(job.get("args", {}).items()),
@@ -65,9 +151,18 @@ class Cache:
         return Path(self.dir, "results", key[:2], key + ".json")
 
     def get(self, job, settings):
+        if self.refused:
+            return None
         p = self._path(self._key(job, settings))
         try:
-            rec = json.loads(p.read_text(encoding="utf-8"))
+            if p.is_symlink() or not p.is_file() or p.stat().st_size > (64 << 20):
+                return None
+            env = json.loads(p.read_text(encoding="utf-8"))
+            blob = env.get("entry")
+            if not isinstance(blob, str) or not isinstance(env.get("mac"), str) or \
+                    not hmac.compare_digest(env["mac"], self._mac(blob)):
+                return None  # not written by this user's urdf-lint
+            rec = json.loads(blob)
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
             for path, (stat, digest) in rec["deps"].items():
@@ -87,13 +182,16 @@ class Cache:
             return None
 
     def put(self, job, settings, result):
+        if self.refused:
+            return
         deps = {}
+        read = result.get("digests") or {}
         for d in result.get("deps", []):
-            st = _stat(d)
-            dig = file_digest(d)
-            if st is None or dig is None:
-                continue
-            deps[d] = [st, dig]
+            # the worker's record of what it read; a file it did not record is read here
+            rec = read.get(d) or file_record(d)
+            if rec is None:
+                return  # an input vanished: nothing trustworthy to cache
+            deps[d] = rec
         rec = {"version": __version__, "deps": deps, "missing": result.get("missing") or [],
                "result": {"status": result["status"], "deps": result["deps"],
                           "findings": result["findings"],
@@ -103,7 +201,8 @@ class Cache:
             self._ensure()
             p.parent.mkdir(parents=True, exist_ok=True)
             tmp = p.with_suffix(f".tmp{os.getpid()}")
-            tmp.write_text(json.dumps(rec), encoding="utf-8")
+            blob = json.dumps(rec)
+            tmp.write_text(json.dumps({"entry": blob, "mac": self._mac(blob)}), encoding="utf-8")
             os.replace(tmp, p)
             self._writes += 1
         except OSError:
@@ -111,8 +210,8 @@ class Cache:
 
     def _ensure(self):
         d = Path(self.dir)
-        if not d.is_dir():
-            d.mkdir(parents=True, exist_ok=True)
+        d.mkdir(parents=True, exist_ok=True)  # a worker may have made it for mesh facts
+        if not (d / ".gitignore").is_file():
             (d / ".gitignore").write_text(_GITIGNORE)
             (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
                                             "# urdf-lint cache\n")

@@ -65,6 +65,13 @@ def build_parser():
                    help="ignore findings recorded in FILE (create it with --write-baseline)")
     c.add_argument("--write-baseline", metavar="FILE", help="record current findings to FILE")
     c.add_argument("--timeout", type=float, help="per-model time limit in seconds")
+    c.add_argument("--memory-mb", type=int, help="per-model memory limit in MiB")
+    c.add_argument("--env-allow", action="append", metavar="VAR",
+                   help="an environment variable $(env)/$(optenv) may read (repeatable)")
+    c.add_argument("--cache-dir", metavar="DIR", help="where to keep the result cache")
+    c.add_argument("--trust-config", action="store_true",
+                   help="let the repository's config set env-allow, package-paths outside "
+                        "it, cache-dir, jobs and looser limits")
     c.add_argument("--quiet", "-q", action="store_true", help="no summary line when clean")
 
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect")
@@ -78,12 +85,15 @@ def build_parser():
     h.add_argument("--config")
     h.add_argument("-j", "--jobs", type=int)
     h.add_argument("--no-cache", action="store_true")
+    h.add_argument("--trust-config", action="store_true")
 
     e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)")
     e.add_argument("file")
     e.add_argument("mappings", nargs="*", metavar="name:=value")
     e.add_argument("-o", "--output")
     e.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    e.add_argument("--env-allow", action="append", metavar="VAR")
+    e.add_argument("--trust-config", action="store_true")
 
     sub.add_parser("rules", help="list the rule catalogue")
     r = sub.add_parser("rule", help="explain one rule")
@@ -96,6 +106,7 @@ def build_parser():
     rd.add_argument("--config")
     rd.add_argument("--no-rrd", action="store_true", help="PNG only")
     rd.add_argument("-j", "--jobs", type=int)
+    rd.add_argument("--trust-config", action="store_true")
 
     sub.add_parser("doctor", help="show which protections the worker sandbox has here")
 
@@ -113,6 +124,7 @@ def _load_cfg(args, paths):
     else:
         path = args.config or find_config(paths[0] if paths else ".")
         cfg = load_config(path, known)
+    _trust(cfg, args, paths)
     if getattr(args, "select", None):
         cfg.select = _codes(args.select)
     if getattr(args, "extend_select", None):
@@ -123,8 +135,33 @@ def _load_cfg(args, paths):
         cfg.fail_on = args.fail_on
     if getattr(args, "timeout", None):
         cfg.timeout = args.timeout
+    _cli_settings(cfg, args)
     validate_codes(cfg, known)
     return cfg
+
+
+def _trust(cfg, args, paths):
+    """The repository's config may not loosen the guarantees (see urdf_lint/trust.py)."""
+    from .check import repo_root
+    from . import trust
+    first = os.path.abspath(paths[0] if paths else ".")
+    start = first if os.path.isdir(first) else os.path.dirname(first)
+    for n in trust.apply(cfg, repo_root(start), trusted=getattr(args, "trust_config", False)):
+        sys.stderr.write(f"urdf-lint: {n}\n")
+
+
+def _cli_settings(cfg, args):
+    """What the user set on the command line wins, clamped like the rest."""
+    from . import trust
+    if getattr(args, "env_allow", None):
+        cfg.env_allow = list(cfg.env_allow) + list(args.env_allow)
+    if getattr(args, "memory_mb", None):
+        cfg.memory_mb = args.memory_mb
+    if getattr(args, "cache_dir", None):
+        cfg.cache_dir = os.path.abspath(args.cache_dir)
+    if getattr(args, "jobs", None):
+        cfg.jobs = args.jobs
+    trust.clamp(cfg)
 
 
 def cmd_check(args) -> int:
@@ -157,7 +194,7 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
-    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     if args.write_baseline:
         from .baseline import write_baseline
@@ -227,6 +264,8 @@ def cmd_expand(args) -> int:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")
     from .config import find_config
     cfg = load_config(find_config(args.file))
+    _trust(cfg, args, [args.file])
+    _cli_settings(cfg, args)
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
     # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
     from .worker import run_jobs
@@ -311,7 +350,7 @@ def cmd_render(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
-    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs,
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd)
     _report_snapshots(result, args.out)
     for m in result.models:

@@ -63,6 +63,7 @@ class Expansion:
     error: dict | None = None                     # {code, message, file, line, col, chain}
     notes: list = field(default_factory=list)     # non-fatal findings raised during expansion
     missing: list = field(default_factory=list)   # files looked for and not found
+    digests: dict = field(default_factory=dict)   # file -> [stat before read, digest of bytes read]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -72,6 +73,7 @@ class _State:
         self.resolver: PackageResolver = resolver
         self.env_allow = set(env_allow)
         self.deps: dict[str, None] = {}
+        self.digests: dict[str, list] = {}
         self.notes: list[dict] = []
         self.stack: list = []          # nodes being evaluated (eval_all / macro calls)
         self.touched = None            # a child node being handled inline by its parent
@@ -185,6 +187,7 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", "UL902")
         try:
+            before = os.stat(path)
             with open(path, "rb") as f:
                 data = f.read()
         except (IOError, OSError) as e:
@@ -192,6 +195,10 @@ def _hook_parse(inp, filename=None):
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e)
         if st is not None:
             st.deps[absolute] = None
+            # what was read, for the cache: the stat before the read, the digest of the bytes
+            import hashlib
+            st.digests[absolute] = [[before.st_size, before.st_mtime_ns],
+                                    hashlib.blake2b(data, digest_size=16).hexdigest()]
         return parse_bytes(data, absolute, chain)
     if isinstance(inp, str):
         return parse_bytes(inp.encode("utf-8"), "<string>")
@@ -489,5 +496,6 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(inner, OSError) and getattr(inner, "filename", None):
                 res.missing.append(os.path.abspath(str(inner.filename)))
         res.deps = [path] + [d for d in st.deps if d != path]
+        res.digests = dict(st.digests)
         res.notes = st.notes
     return res

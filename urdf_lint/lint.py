@@ -103,6 +103,18 @@ def _expanded_xml_error(e: Exception, exp, entry: str) -> dict:
     return _finding("UL001", f"the expanded URDF is not valid XML: {msg}{hint}", origin)
 
 
+def _record_reads(out: dict) -> None:
+    """Digests of the inputs not recorded at parse time (YAML, meshes, textures), taken here,
+    in the worker, right after it used them (see urdf_lint/cache.py)."""
+    from .cache import file_record
+    digests = out.setdefault("digests", {})
+    for d in out["deps"]:
+        if d not in digests:
+            rec = file_record(d)
+            if rec is not None:
+                digests[d] = rec
+
+
 def run_job(job: dict, settings: dict) -> dict:
     from .packages import PackageResolver
     from .model import model_from_xml, parse_urdf_bytes, Model
@@ -133,6 +145,7 @@ def run_job(job: dict, settings: dict) -> dict:
                           expr_policy=settings.get("expr_policy"))
         out["deps"] = list(exp.deps)
         out["missing"] = list(exp.missing)
+        out["digests"] = dict(exp.digests)
         findings.extend(exp.notes)
         if exp.error is not None:
             findings.append(exp.error)
@@ -151,8 +164,14 @@ def run_job(job: dict, settings: dict) -> dict:
             return out
     else:
         try:
+            from .cache import file_record
+            before = os.stat(entry)
             with open(entry, "rb") as f:
                 data = f.read()
+            rec = file_record(entry, data)
+            if rec is not None:
+                rec[0] = [before.st_size, before.st_mtime_ns]
+                out["digests"] = {entry: rec}
         except OSError as e:
             findings.append(_finding("UL001", f"cannot read file: {e.strerror}", (entry, 1, 1)))
             out["status"] = "failed"
@@ -211,6 +230,7 @@ def run_job(job: dict, settings: dict) -> dict:
             elif ref.path and ref.problem == "UL401":
                 missing.append(ref.path)
     out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))
+    _record_reads(out)
     out["missing"] = sorted(set(missing))
     o = model.origin(model.root)
     out["stats"] = {"name": model.name, "name_loc": [o.file, o.line, o.col],
