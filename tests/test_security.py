@@ -483,3 +483,91 @@ def test_numeric_limits_are_clamped():
     cfg = Config(timeout=-5, memory_mb=1, jobs=0, raw={})
     trust.clamp(cfg)
     assert (cfg.timeout, cfg.memory_mb, cfg.jobs) == (0.5, 128, 1)
+
+
+# -- issue 15: the cache cannot lie -------------------------------------------------------------
+BROKEN = '<robot name="r"><link name="a"/><link name="b"/></robot>\n'   # two roots: UL104
+
+
+def _entries(repo):
+    return sorted((repo / ".urdf_lint_cache" / "results").rglob("*.json"))
+
+
+def test_forged_or_foreign_cache_entry_is_ignored(world, tmp_path):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf": BROKEN})
+    key_a = {"XDG_CACHE_HOME": str(tmp_path / "home-a")}
+    p = run_cli("check", ".", "--format", "json", cwd=repo, env=key_a)
+    assert p.returncode == 1
+    [entry] = _entries(repo)
+    # forge "clean" into the entry, as a committed cache would
+    env = json.loads(entry.read_text())
+    rec = json.loads(env["entry"])
+    rec["result"]["findings"] = []
+    env["entry"] = json.dumps(rec)
+    entry.write_text(json.dumps(env))
+    p = run_cli("check", ".", "--format", "json", cwd=repo, env=key_a)
+    assert p.returncode == 1 and json.loads(p.stdout)["models"][0]["cached"] is False
+    # an entry signed with another key (another machine, a fresh clone) is ignored too
+    p = run_cli("check", ".", "--format", "json", cwd=repo,
+                env={"XDG_CACHE_HOME": str(tmp_path / "home-b")})
+    assert p.returncode == 1 and json.loads(p.stdout)["models"][0]["cached"] is False
+    key = tmp_path / "home-a" / "urdf-lint" / "key"
+    assert key.stat().st_mode & 0o777 == 0o600
+
+
+def test_git_tracked_or_symlinked_cache_is_refused(world, tmp_path):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf": BROKEN})
+    _git("init", "-q", cwd=repo)
+    run_cli("check", ".", cwd=repo)
+    _git("add", "-f", ".urdf_lint_cache", cwd=repo)
+    p = run_cli("check", ".", "--format", "json", cwd=repo)
+    assert "not using the cache" in p.stderr and "tracked by git" in p.stderr
+    assert json.loads(p.stdout)["models"][0]["cached"] is False
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    link_repo = tmp_path / "repo2"
+    make_package(link_repo, "p", {"urdf/r.urdf": BROKEN})
+    os.symlink(elsewhere, link_repo / ".urdf_lint_cache")
+    p = run_cli("check", ".", "--format", "json", cwd=link_repo)
+    assert "is a symlink" in p.stderr and not any(elsewhere.iterdir())
+
+
+def test_cache_records_the_bytes_the_worker_read(tmp_path, monkeypatch):
+    """A file edited during a run: the result of the old content is never filed under the new."""
+    from urdf_lint.cache import Cache, file_record
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "home"))
+    f = tmp_path / "r.urdf"
+    f.write_text(BROKEN)
+    read = file_record(str(f))                    # what the worker saw
+    f.write_text('<robot name="r"><link name="a"/></robot>\n')   # edited meanwhile
+    cache = Cache(str(tmp_path / "c"))
+    job = {"entry": str(f), "args": {}, "kind": "urdf"}
+    settings = {"selected": [], "options": {}, "env_allow": [], "resolver": {}}
+    res = {"status": "model", "deps": [str(f)], "findings": [{"code": "UL104"}], "stats": {},
+           "digests": {str(f): read}}
+    cache.put(job, settings, res)
+    assert cache.get(job, settings) is None
+    res["digests"] = {str(f): file_record(str(f))}
+    cache.put(job, settings, res)
+    assert cache.get(job, settings) is not None
+
+
+def test_render_refuses_a_symlinked_out(world, tmp_path):
+    repo, _, _ = world
+    make_package(repo, "p", {"urdf/r.urdf": BROKEN})
+    target = tmp_path / "target"
+    target.mkdir()
+    os.symlink(target, repo / "snaps")
+    for cmd in (["render", ".", "--out", "snaps"], ["check", ".", "--render", "snaps"]):
+        p = run_cli(*cmd, cwd=repo)
+        assert p.returncode == 2 and "symlink" in p.stderr, p.stderr
+    assert not any(target.iterdir())
+
+
+def test_trimesh_is_pinned_to_5():
+    import re
+    from importlib.metadata import requires, version
+    assert int(version("trimesh").split(".")[0]) >= 5
+    assert any(re.match(r"trimesh\s*>=\s*5", r) for r in requires("urdf-lint"))

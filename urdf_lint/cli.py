@@ -194,6 +194,7 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
+    _refuse_symlinked_out(render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     if args.write_baseline:
@@ -343,11 +344,18 @@ def cmd_rule(args) -> int:
     return 0
 
 
+def _refuse_symlinked_out(d):
+    """Snapshots are written where the user said, never through a link a repository planted."""
+    if d and os.path.islink(d.rstrip(os.sep) or d):
+        raise UsageError(f"output folder {d} is a symlink; refusing to write through it")
+
+
 def cmd_render(args) -> int:
     from .check import build_resolver, run_check
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
+    _refuse_symlinked_out(args.out)
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
