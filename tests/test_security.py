@@ -571,3 +571,77 @@ def test_trimesh_is_pinned_to_5():
     from importlib.metadata import requires, version
     assert int(version("trimesh").split(".")[0]) >= 5
     assert any(re.match(r"trimesh\s*>=\s*5", r) for r in requires("urdf-lint"))
+
+
+# -- issue 15: the parent reads nothing it should not --------------------------------------------
+def _bounded(repo, *extra, timeout=60):
+    """check must end quickly, with a bounded footprint, and no secret anywhere."""
+    import resource
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    p = run_cli("check", ".", "--format", "json", *extra, cwd=repo, timeout=timeout,
+                env={"CI_DEPLOY_TOKEN": SECRET})
+    grown = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    assert grown < max(before, 1) + 2_000_000, grown  # KiB: well under 2 GB
+    assert "internal error" not in p.stderr, p.stderr
+    assert SECRET not in p.stdout + p.stderr
+    return p
+
+
+def test_entry_symlinked_to_dev_zero_or_outside(world):
+    repo, outside, _ = world
+    pkg = make_package(repo, "p", {"urdf/ok.urdf": BROKEN})
+    os.symlink("/dev/zero", pkg / "urdf" / "zero.urdf")
+    (outside / "secret.urdf").write_text(f'<robot name="{SECRET}"><link name="a"/></robot>\n')
+    os.symlink(outside / "secret.urdf", pkg / "urdf" / "leak.urdf")
+    t0 = time.monotonic()
+    p = _bounded(repo)
+    assert time.monotonic() - t0 < 30
+    assert p.returncode == 1
+    findings = json.loads(p.stdout)["findings"]
+    assert_located(findings, "UL902", file="p/urdf/leak.urdf")
+    assert [f for f in findings if f["file"] == "p/urdf/zero.urdf"], findings
+    # the second run reads the cache: still bounded, still located
+    p = _bounded(repo)
+    assert [f for f in json.loads(p.stdout)["findings"] if f["file"] == "p/urdf/zero.urdf"]
+
+
+def test_dae_texture_to_dev_zero_and_obj_mtllib_outside(world):
+    repo, outside, _ = world
+    (outside / "evil.mtl").write_text(f"newmtl m\nmap_Kd {SECRET}.png\n")
+    dae = ('<?xml version="1.0"?><COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" '
+           'version="1.4.1"><library_images><image id="i"><init_from>zero.png</init_from>'
+           '</image></library_images></COLLADA>\n')
+    mesh = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="package://p/meshes/'
+            '{}"/></geometry></visual></link></robot>\n')
+    rel = os.path.relpath(outside / "evil.mtl", repo / "p" / "meshes")
+    pkg = make_package(repo, "p", {"urdf/dae.urdf": mesh.format("m.dae"),
+                                   "urdf/obj.urdf": mesh.format("m.obj"),
+                                   "meshes/m.dae": dae,
+                                   "meshes/m.obj": f"mtllib {rel}\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"})
+    os.symlink("/dev/zero", pkg / "meshes" / "zero.png")
+    t0 = time.monotonic()
+    p = _bounded(repo, "--no-cache")
+    p = _bounded(repo)
+    p = _bounded(repo)
+    assert time.monotonic() - t0 < 60
+    assert SECRET not in p.stdout
+
+
+def test_suppression_comments_are_read_only_from_the_roots(tmp_path):
+    """Files the parent scans for suppression comments pass the same confinement as reads."""
+    from urdf_lint.packages import PackageResolver
+    from urdf_lint.suppress import parse_directives
+    inside = tmp_path / "repo"
+    inside.mkdir()
+    (inside / "a.xacro").write_text("<!-- urdf-lint: disable-file UL1 --><robot/>")
+    os.symlink("/dev/zero", inside / "z.xacro")
+    os.mkfifo(inside / "f.xacro")
+    r = PackageResolver.build([inside], extra_roots=[inside])
+    assert r.readable(inside / "a.xacro")
+    assert not r.readable(inside / "z.xacro") and not r.readable(inside / "f.xacro")
+    assert not r.readable("/etc/hostname")
+    t0 = time.monotonic()
+    assert parse_directives(str(inside / "f.xacro")) == []   # a FIFO does not block
+    assert parse_directives(str(inside / "z.xacro")) == []
+    assert time.monotonic() - t0 < 2
+    assert parse_directives(str(inside / "a.xacro"))

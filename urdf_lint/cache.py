@@ -33,12 +33,25 @@ from . import __version__
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 
 
+MAX_HASHED_BYTES = 2 << 30
+
+
 def file_digest(path: str) -> str | None:
+    """Content hash of a regular file (None for a device, FIFO, folder, or above 2 GiB: a
+    symlink to /dev/zero must not hang the run or grow it without end)."""
     h = hashlib.blake2b(digest_size=16)
     try:
-        with open(path, "rb") as f:
-            for chunk in iter(lambda: f.read(1 << 20), b""):
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            st = os.fstat(f.fileno())
+            if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_HASHED_BYTES:
+                return None
+            left = st.st_size + 1
+            for chunk in iter(lambda: f.read(min(1 << 20, left)), b""):
                 h.update(chunk)
+                left -= len(chunk)
+                if left <= 0:
+                    return None  # grew while read
     except OSError:
         return None
     return h.hexdigest()
@@ -186,7 +199,13 @@ class Cache:
             return
         deps = {}
         read = result.get("digests") or {}
+        roots = None
+        if settings.get("resolver"):
+            from .packages import PackageResolver
+            roots = PackageResolver.from_dict(settings["resolver"])
         for d in result.get("deps", []):
+            if roots is not None and not roots.is_inside(d):
+                return  # a worker reporting a file outside the roots: cache nothing
             # the worker's record of what it read; a file it did not record is read here
             rec = read.get(d) or file_record(d)
             if rec is None:

@@ -208,7 +208,10 @@ def run_check(paths, cfg: Config, resolver: PackageResolver, jobs_n=None, cache=
     files = set()
     for r in out.models:
         files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
-    directives = {f: suppress.parse_directives(f) for f in sorted(files)}
+    from .packages import MAX_SOURCE_BYTES
+    # the parent reads only what the workers could: inside the roots, regular, bounded
+    directives = {f: suppress.parse_directives(f) for f in sorted(files)
+                  if resolver.readable(f, MAX_SOURCE_BYTES)}
     selected = settings["selected"]
     kept, unused = suppress.apply(
         merged, directives, is_selected=lambda c: any(s.startswith(c) for s in selected))

@@ -123,6 +123,8 @@ def run_job(job: dict, settings: dict) -> dict:
            "findings": [], "stats": {}, "internal": []}
     resolver = PackageResolver.from_dict(settings["resolver"])
     findings = out["findings"]
+    from . import meshes as _meshes
+    _meshes.set_confinement(resolver.is_inside)
     if job["kind"] == "expand":  # `urdf-lint expand`: the expansion itself, in a worker too
         from .expand import expand_file
         exp = expand_file(entry, job.get("args", {}), resolver,
@@ -163,6 +165,19 @@ def run_job(job: dict, settings: dict) -> dict:
             out["findings"] = []
             return out
     else:
+        from .packages import MAX_SOURCE_BYTES, regular_file
+        if not resolver.is_inside(entry):
+            findings.append(_finding("UL902", "this file resolves outside the package roots and "
+                                     "the linted repository (a symlink?); it was not read",
+                                     (entry, 1, 1)))
+            out["status"] = "failed"
+            return out
+        if not regular_file(entry, MAX_SOURCE_BYTES):
+            findings.append(_finding("UL001", "not a regular file of at most "
+                                     f"{MAX_SOURCE_BYTES >> 20} MiB (a device, FIFO or a huge "
+                                     "file?); it was not read", (entry, 1, 1)))
+            out["status"] = "failed"
+            return out
         try:
             from .cache import file_record
             before = os.stat(entry)
@@ -226,7 +241,8 @@ def run_job(job: dict, settings: dict) -> dict:
             if ref.path and ref.problem is None:
                 mesh_deps.append(ref.path)
                 for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
-                    (mesh_deps if os.path.exists(t) else missing).append(t)
+                    if resolver.is_inside(t):  # references outside the roots are never deps
+                        (mesh_deps if os.path.exists(t) else missing).append(t)
             elif ref.path and ref.problem == "UL401":
                 missing.append(ref.path)
     out["deps"] = list(dict.fromkeys(list(out["deps"]) + mesh_deps))

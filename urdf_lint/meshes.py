@@ -113,6 +113,18 @@ _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)
 
 
 _textures: dict = {}
+MAX_MESH_BYTES = 1 << 30
+_confine = None   # set per job to the resolver's is_inside: texture references stay in the roots
+
+
+def set_confinement(inside) -> None:
+    global _confine
+    _confine = inside
+
+
+def _readable(path: str) -> bool:
+    from .packages import regular_file
+    return regular_file(path, MAX_MESH_BYTES) and (_confine is None or _confine(path))
 
 
 def texture_refs(path: str) -> list[str]:
@@ -130,6 +142,8 @@ def _texture_refs(path: str) -> list[str]:
     out = []
     base = os.path.dirname(path)
     low = path.lower()
+    if not _readable(path):
+        return out
     try:
         if low.endswith(".dae"):
             with open(path, "rb") as f:
@@ -146,7 +160,7 @@ def _texture_refs(path: str) -> list[str]:
                     if line.startswith("mtllib"):
                         mtl = os.path.normpath(os.path.join(base, line.split(None, 1)[1].strip()))
                         out.append(mtl)
-                        if os.path.isfile(mtl):
+                        if _readable(mtl):
                             with open(mtl, "r", errors="replace") as mf:
                                 for m in _MTL_MAP.finditer(mf.read()):
                                     out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),

@@ -160,6 +160,11 @@ class PackageResolver:
                 continue
         return False
 
+    def readable(self, path: str | os.PathLike, cap: int | None = None) -> bool:
+        """May urdf-lint read this file? Inside the roots after symlinks, a regular file (not
+        a device, FIFO or folder) and, with ``cap``, at most that many bytes."""
+        return self.is_inside(path) and regular_file(path, cap)
+
     def confine(self, path: str | os.PathLike, what: str = "file") -> Path:
         if not self.is_inside(path):
             raise OutsideRoots(str(path), what)
@@ -189,6 +194,19 @@ class PackageResolver:
         out += [os.path.join(p, "share") for p in self.env_paths.get("AMENT_PREFIX_PATH", ())]
         out += list(self.env_paths.get("ROS_PACKAGE_PATH", ()))
         return out
+
+
+MAX_SOURCE_BYTES = 256 << 20   # an XML source file urdf-lint reads in the parent
+
+
+def regular_file(path, cap: int | None = None) -> bool:
+    """A regular file after symlinks (no device, FIFO, socket or folder), not above ``cap``."""
+    import stat
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return False
+    return stat.S_ISREG(st.st_mode) and (cap is None or st.st_size <= cap)
 
 
 def environment_paths() -> dict:
