@@ -68,6 +68,8 @@ def _attacks(job, settings):
     if fd >= 0:
         libc.write(fd, b"{}", 2)
         libc.close(fd)
+    out["write_cache_result"] = res(libc.open(p["cache_result"].encode(),
+                                              os.O_WRONLY | os.O_CREAT, 0o644))
     argv = (ctypes.c_char_p * 4)(b"/bin/sh", b"-c", f"touch {p['marker']}".encode(), None)
     out["execve"] = res(libc.execve(b"/bin/sh", argv, None))
     out["system"] = "ok" if libc.system(f"touch {p['marker']}".encode()) == 0 else "failed"
@@ -93,7 +95,8 @@ def attack_world(tmp_path):
     (outside / "secret.txt").write_text(SECRET)
     cache = repo / ".urdf_lint_cache"
     return {"inside": str(pkg / "urdf/r.urdf"), "secret": str(outside / "secret.txt"),
-            "marker": str(tmp_path / "pwned"), "cache_file": str(cache / "ok.json"),
+            "marker": str(tmp_path / "pwned"), "cache_file": str(cache / "meshes" / "ok.json"),
+            "cache_result": str(cache / "forged.json"),
             "repo": str(repo), "cache": str(cache)}
 
 
@@ -132,7 +135,7 @@ def test_escaped_code_in_a_real_worker_is_contained(attack_world, monkeypatch):
     assert r["write_cache"] == "ok", r
     assert os.path.exists(attack_world["cache_file"])
     for k in ("read_outside", "read_parent_environ", "read_own_environ", "list_root",
-              "write_outside"):
+              "write_outside", "write_cache_result"):
         assert r[k] == "EACCES", (k, r)
     for k in ("execve", "socket_inet", "socket_unix", "ptrace_parent", "signal_parent"):
         assert r[k] == "EPERM", (k, r)

@@ -342,7 +342,10 @@ def enter_worker(conn, settings: dict) -> dict:
     read = PackageResolver.from_dict(settings["resolver"]).read_paths() \
         if settings.get("resolver") else []
     write = []
-    for d in (settings.get("mesh_cache_dir"), settings.get("render_dir")):
+    # only the mesh-facts part of the cache: result entries are the parent's to write
+    facts = os.path.join(settings["mesh_cache_dir"], "meshes") \
+        if settings.get("mesh_cache_dir") else None
+    for d in (facts, settings.get("render_dir")):
         if d:
             try:
                 os.makedirs(d, exist_ok=True)
