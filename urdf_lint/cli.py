@@ -176,6 +176,8 @@ def cmd_check(args) -> int:
     if not args.no_cache:
         from .cache import Cache
         cache = Cache.for_paths(args.paths, cfg)
+        if cache.refused:  # said why on stderr; nothing (mesh facts included) goes there
+            cache = None
     affected_by = None
     if args.changed_since:
         from .changes import GitError, changed_files
