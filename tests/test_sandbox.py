@@ -171,14 +171,16 @@ from urdf_lint import lint
 from urdf_lint.packages import PackageResolver
 from urdf_lint.worker import run_jobs
 def slow(job, settings):
-    time.sleep(120)
+    if job["entry"] == "slow":
+        time.sleep(120)
+    return {{"entry": job["entry"]}}
 lint.run_job = slow
 r = PackageResolver.build([{repo!r}], extra_roots=[{repo!r}])
 settings = {{"resolver": r.to_dict(), "selected": [], "options": {{}}, "env_allow": [],
             "mesh_cache_dir": None}}
-jobs = [{{"entry": "x", "kind": "urdf"}}]
+jobs = [{{"entry": "slow", "kind": "urdf"}}, {{"entry": "quick", "kind": "urdf"}}]
 import multiprocessing as mp
-gen = run_jobs(jobs, settings, jobs_n=1, timeout=300)
+gen = run_jobs(jobs, settings, jobs_n=2, timeout=300)  # one busy worker, one idle
 import threading
 def report():
     time.sleep(1.0)
@@ -198,7 +200,7 @@ def test_no_worker_survives_its_parent(tmp_path, how):
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         pids = [int(x) for x in p.stdout.readline().split()]
-        assert pids, p.stderr.read()
+        assert len(pids) == 2, p.stderr.read()
         assert all(_state(pid) not in (None, "Z") for pid in pids)
         os.kill(p.pid, how)
         p.wait(10)

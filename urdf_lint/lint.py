@@ -117,7 +117,6 @@ def _record_reads(out: dict) -> None:
 
 def run_job(job: dict, settings: dict) -> dict:
     from .packages import PackageResolver
-    from .model import model_from_xml, parse_urdf_bytes, Model
     entry = job["entry"]
     out = {"entry": entry, "args": job.get("args", {}), "status": "model", "deps": [entry],
            "findings": [], "stats": {}, "internal": []}
@@ -134,6 +133,7 @@ def run_job(job: dict, settings: dict) -> dict:
         out.update(status="failed" if exp.error else "model", deps=list(exp.deps), xml=exp.xml,
                    notes=list(exp.notes), error=exp.error)
         return out
+    from .model import model_from_xml, parse_urdf_bytes, Model  # lxml: not needed by expand
 
     if job["kind"] == "xacro":
         if not job.get("explicit"):

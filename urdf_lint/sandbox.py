@@ -215,8 +215,19 @@ def close_inherited_fds(keep) -> None:
             pass
 
 
+_runtime_paths: list[str] | None = None
+
+
 def runtime_read_paths() -> list[str]:
-    """Folders the Python runtime itself needs: stdlib, site-packages, urdf-lint's own code."""
+    """Folders the Python runtime itself needs: stdlib, site-packages, urdf-lint's own code.
+    Computed once, in the parent (:func:`prepare`), and inherited by the forked workers."""
+    global _runtime_paths
+    if _runtime_paths is None:
+        _runtime_paths = _existing(_runtime_read_paths())
+    return list(_runtime_paths)
+
+
+def _runtime_read_paths() -> list[str]:
     import sysconfig
     out = []
     for k in ("stdlib", "platstdlib", "purelib", "platlib"):
@@ -372,4 +383,5 @@ def prepare() -> None:
     if landlock_status()[0]:
         import landlock.porcelain  # noqa: F401 - imported once, shared by the forked workers
     seccomp_status()
+    runtime_read_paths()
     note_missing()
