@@ -645,3 +645,27 @@ def test_suppression_comments_are_read_only_from_the_roots(tmp_path):
     assert parse_directives(str(inside / "z.xacro")) == []
     assert time.monotonic() - t0 < 2
     assert parse_directives(str(inside / "a.xacro"))
+
+
+def test_no_secret_in_cache_or_recordings(world, tmp_path):
+    """The env secrets and a secret file outside the roots end up in no file urdf-lint writes:
+    cache entries, mesh facts, .rrd recordings, PNGs, summary.md."""
+    repo, outside, _ = world
+    pkg = make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
+        '  <link name="$(optenv CI_DEPLOY_TOKEN x)">\n'
+        '    <visual><geometry><mesh filename="package://p/meshes/m.stl"/></geometry></visual>\n'
+        '  </link>\n  <joint name="j" type="fixed"><parent link="base"/>'
+        '<child link="x"/></joint>')})
+    (pkg / "meshes").mkdir()
+    os.symlink(outside / "secret.stl", pkg / "meshes" / "m.stl")
+    snaps = tmp_path / "snaps"
+    p = run_cli("check", ".", "--render", snaps, cwd=repo, timeout=300,
+                env={"CI_DEPLOY_TOKEN": SECRET, "XDG_CACHE_HOME": str(tmp_path / "home")})
+    p2 = run_cli("check", ".", cwd=repo, env={"CI_DEPLOY_TOKEN": SECRET,
+                                               "XDG_CACHE_HOME": str(tmp_path / "home")})
+    assert p.returncode == p2.returncode == 1
+    written = [f for top in (repo / ".urdf_lint_cache", snaps) for f in top.rglob("*")
+               if f.is_file()]
+    assert any(f.suffix == ".json" for f in written) and any(f.suffix == ".png" for f in written)
+    for f in written:
+        assert SECRET.encode() not in f.read_bytes(), f

@@ -4,6 +4,7 @@ This module orchestrates; the work happens in :mod:`urdf_lint.lint` (inside work
 """
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 from dataclasses import dataclass, field
@@ -43,6 +44,11 @@ class CheckResult:
 
 
 def git_root(start: str) -> str | None:
+    return _git_root(os.path.abspath(start))
+
+
+@functools.lru_cache(maxsize=16)  # asked by config trust, roots and the cache: one git call
+def _git_root(start: str) -> str | None:
     try:
         out = subprocess.run(["git", "rev-parse", "--show-toplevel"], cwd=start,
                              capture_output=True, text=True, timeout=5)
