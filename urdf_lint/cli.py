@@ -296,22 +296,17 @@ def cmd_expand(args) -> int:
         sys.stderr.write(f"{_safe_text(display_path(e['file']))}:{e['line']}:{e['col']}: {e['code']} "
                          f"{_safe_text(e['message'])}\n")
         return 1
-    res = _Xml(res["xml"])
+    xml = res["xml"]
     if args.output:
         d = os.path.dirname(os.path.abspath(args.output))
         os.makedirs(d, exist_ok=True)
         tmp = args.output + ".tmp"
         with open(tmp, "w", encoding="utf-8") as f:
-            f.write(res.xml)
+            f.write(xml)
         os.replace(tmp, args.output)
     else:
-        sys.stdout.write(res.xml)
+        sys.stdout.write(xml)
     return 0
-
-
-class _Xml:
-    def __init__(self, xml):
-        self.xml = xml
 
 
 def _safe_text(s) -> str:
