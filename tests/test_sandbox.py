@@ -258,3 +258,18 @@ def test_expand_runs_in_a_worker_with_limits(tmp_path):
     assert time.monotonic() - t0 < 15
     assert p.returncode == 1 and "UL904" in p.stderr and "time limit" in p.stderr, p.stderr
     assert not out.exists()
+
+
+def test_missing_kernel_features_are_said_once_and_the_run_goes_on(attack_world, monkeypatch,
+                                                                   capsys):
+    """A kernel without Landlock or seccomp: one note on stderr per run, the jobs still run
+    (with what remains: pdeathsig, closed descriptors, limits, scrubbed environment)."""
+    monkeypatch.setattr(sandbox, "landlock_status", lambda: (False, "not on this test kernel"))
+    monkeypatch.setattr(sandbox, "seccomp_status", lambda: (False, "no libseccomp here"))
+    monkeypatch.setattr(sandbox, "_noted", False)
+    for _ in range(2):
+        r = _run_in_worker(monkeypatch, attack_world, 9, mild=True)
+        assert r["read_inside"] == "ok", r
+    err = capsys.readouterr().err
+    assert err.count("without landlock: not on this test kernel") == 1, err
+    assert err.count("without seccomp: no libseccomp here") == 1, err
