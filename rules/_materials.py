@@ -1,5 +1,6 @@
 """Helpers for the material rules (not a rule)."""
 from urdf_lint.ruleutil import numbers
+from urdf_lint.rules._schema import urdf_iter
 
 
 def rgba(material):
@@ -13,7 +14,7 @@ def rgba(material):
 def all_materials(model):
     """(element, name, rgba, is_top_level) for every <material> in the model."""
     out = []
-    for m in model.root.iter("material"):
+    for m in urdf_iter(model, "material"):
         p = m.getparent()
         if p is model.root or (p is not None and p.tag == "visual"):
             out.append((m, m.get("name"), rgba(m), p is model.root))

@@ -61,3 +61,13 @@ def checked_elements(model):
     for el in model.root.iter():
         if isinstance(el.tag, str) and not is_foreign(el):
             yield el
+
+
+def urdf_iter(model, tag):
+    """The ``<tag>`` elements of the URDF part of the document: what ``model.root.iter(tag)``
+    gives, minus anything inside ``<gazebo>`` (SDF), ``<ros2_control>``, ``<transmission>`` and
+    the other extension blocks, and minus namespaced elements. Every rule about URDF elements
+    walks the document through this (or ``checked_elements``)."""
+    for el in model.root.iter(tag):
+        if not is_foreign(el):
+            yield el

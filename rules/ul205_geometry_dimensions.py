@@ -24,6 +24,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import number, numbers
+from urdf_lint.rules._schema import urdf_iter
 
 
 def _positive(model, el, attr, what):
@@ -39,7 +40,7 @@ def _positive(model, el, attr, what):
 
 
 def check(model, ctx):
-    for g in model.root.iter("geometry"):
+    for g in urdf_iter(model, "geometry"):
         lk = g.getparent().getparent() if g.getparent() is not None else None
         what = f"link '{lk.get('name')}'" if lk is not None and lk.tag == "link" else "geometry"
         for s in g:

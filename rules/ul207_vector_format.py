@@ -26,24 +26,12 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import numbers
-
-SKIP_UNDER = {"gazebo", "ros2_control", "transmission"}
-
-
-def _skip(el):
-    p = el.getparent()
-    while p is not None:
-        if p.tag in SKIP_UNDER:
-            return True
-        p = p.getparent()
-    return False
+from urdf_lint.rules._schema import urdf_iter
 
 
 def check(model, ctx):
     for tag, attrs in (("origin", ("xyz", "rpy")), ("axis", ("xyz",))):
-        for e in model.root.iter(tag):
-            if _skip(e):
-                continue
+        for e in urdf_iter(model, tag):
             for a in attrs:
                 v = e.get(a)
                 if v is not None and numbers(v, 3) is None:

@@ -19,10 +19,11 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import numbers
+from urdf_lint.rules._schema import urdf_iter
 
 
 def check(model, ctx):
-    for c in model.root.iter("color"):
+    for c in urdf_iter(model, "color"):
         if c.getparent() is None or c.getparent().tag != "material":
             continue
         v = c.get("rgba")

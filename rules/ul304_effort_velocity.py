@@ -1,13 +1,22 @@
 """A joint `<limit>` lacks `effort` or `velocity`, or one of them is not positive.
 
-Why: URDF parsers require both on revolute and prismatic joints; 0 means the joint can never
-move under control (controllers clamp to it).
+Why: URDF parsers require both on revolute and prismatic joints; a velocity of 0 means the
+joint can never move under control (controllers clamp to it). `effort="0"` is different: it is
+the ROS-Industrial convention for position-controlled industrial arms, whose drives are not
+torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on purpose). It is
+reported as a warning naming that convention, because it still breaks effort-based controllers
+and simulators.
 
 How to fix: Set both to the actuator's real maxima (N or Nm, m/s or rad/s).
+
+Options: `zero-effort` (`"warning"`, the default, or `"error"`) is the severity of
+`effort="0"`; `"error"` makes it strict, e.g. under `[tool.urdf-lint.rule-options.UL304]`
+write `zero-effort = "error"`.
 """
 CODE = "UL304"
 NAME = "effort-velocity"
 SEVERITY = "error"
+OPTIONS = {"zero-effort": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
@@ -23,8 +32,14 @@ PASS = """<robot name="r">
 """
 from urdf_lint.ruleutil import number
 
+ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but effort-based "
+               "controllers and simulators cannot move the joint; write the drive's rated torque "
+               "or force if you know it")
+
 
 def check(model, ctx):
+    zero_effort = str(ctx.options.get("zero-effort", "warning")).lower()
+    zero_effort = zero_effort if zero_effort in ("warning", "error", "info") else "warning"
     for j in model.top_joints():
         lim = j.find("limit")
         if lim is None:
@@ -39,5 +54,7 @@ def check(model, ctx):
             n = number(v)
             if n is None:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v!r} is not a number"
+            elif n == 0 and a == "effort" and required:
+                yield lim, f"joint '{j.get('name')}': limit effort=0 is {ZERO_EFFORT}", zero_effort
             elif n <= 0 and required:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v} must be positive"

@@ -37,7 +37,7 @@ def check(model, ctx):
         elif target == name:
             yield m, f"joint '{name}' mimics itself"
         elif target not in model.joints:
-            yield m, f"joint '{name}' mimics unknown joint '{target}'" + did_you_mean(target, model.joints)
+            yield m, f"joint '{name}' mimics unknown joint '{target}'" + did_you_mean(target, [n for n in model.joints if n != name])
         else:
             follows[name] = (target, m)
     reported = set()

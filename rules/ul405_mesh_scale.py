@@ -18,12 +18,13 @@ PASS = """<robot name="r">
 """
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.ruleutil import numbers
+from urdf_lint.rules._schema import urdf_iter
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 
 
 def check(model, ctx):
-    for m in model.root.iter("mesh"):
+    for m in urdf_iter(model, "mesh"):
         s = m.get("scale")
         if s is None:
             continue

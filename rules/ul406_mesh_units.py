@@ -36,7 +36,7 @@ def check(model, ctx):
             continue
         scale = numbers(m.get("scale", "1 1 1"), 3) or [1, 1, 1]
         lo, hi = facts["bounds"]
-        size = max(abs(s) * (b - a) for s, a, b in zip(scale, lo, hi))
+        size = max(abs(s) * (b - a) for s, a, b in zip(scale, lo, hi, strict=False))
         if size > limit:
             hint = " (millimetres? add scale=\"0.001 0.001 0.001\")" if size / 1000 < limit else ""
             yield m, f"mesh '{uri}' is {size:.4g} m across{hint}"

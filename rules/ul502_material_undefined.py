@@ -19,14 +19,15 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._schema import urdf_iter
 
 
 def check(model, ctx):
     defined = set()
-    for m in model.root.iter("material"):
+    for m in urdf_iter(model, "material"):
         if m.get("name") and (m.find("color") is not None or m.find("texture") is not None):
             defined.add(m.get("name"))
-    for v in model.root.iter("visual"):
+    for v in urdf_iter(model, "visual"):
         for m in v.findall("material"):
             n = m.get("name")
             if m.find("color") is None and m.find("texture") is None:

@@ -21,8 +21,10 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.rules._schema import urdf_iter
+
 def check(model, ctx):
-    used = {m.get("name") for v in model.root.iter("visual") for m in v.findall("material")}
+    used = {m.get("name") for v in urdf_iter(model, "visual") for m in v.findall("material")}
     seen = set()
     for m in model.root:
         if m.tag == "material" and m.get("name") and m.get("name") not in used \

@@ -43,7 +43,10 @@ def check(model, ctx):
     for rgba, items in groups.items():
         names = {nm for _, nm in items}
         if len(items) >= n and (len(names) > 1 or "" in names or None in names):
-            shown = ", ".join(sorted(repr(x or "") for x in names))
+            named = sorted(repr(x) for x in names if x)
+            anon = sum(1 for _, nm in items if not nm)
+            shown = (f"names {', '.join(named)}" if named else "") + \
+                ((", " if named else "") + f"{anon} anonymous" if anon else "")
             yield items[0][0], (f"colour rgba {' '.join(f'{x:g}' for x in rgba)} is written inline in "
-                                f"{len(items)} visuals (names {shown}); define one named "
+                                f"{len(items)} visuals ({shown}); define one named "
                                 "<material> at the top and refer to it by name")

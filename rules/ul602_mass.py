@@ -1,9 +1,16 @@
-"""A link mass that is not positive, or implausibly tiny.
+"""A link mass that is negative, zero on a body that moves, or implausibly tiny.
 
-Why: Zero or negative masses break every physics engine; tiny masses usually mean grams or
-millimetre-based units were written as kilograms.
+Why: Negative masses break every physics engine. A zero mass is fine on a frame attached by a
+`fixed` joint (sensor, marker and tool frames): KDL, Pinocchio and Gazebo merge it into its
+parent. It is an error only where the link can move on its own, that is when it belongs to a
+body (the link that a non-fixed joint moves, plus everything fixed to it) with no mass at all,
+and nothing below it has mass either: the joint then moves nothing, and simulators refuse such
+a body or let it accelerate without bound. A massless moving body that carries massive links
+(two joints in a row, as in a universal joint) is a warning: KDL and Pinocchio accept it,
+MuJoCo and Gazebo do not. Tiny masses usually mean grams or millimetre-based units were
+written as kilograms.
 
-How to fix: Write the mass in kilograms.
+How to fix: Write the mass in kilograms; give a moving body its real mass.
 
 Options: `min-mass` (default 1e-06): masses below this many kilograms are reported as
 implausibly tiny.
@@ -13,19 +20,29 @@ NAME = "mass"
 SEVERITY = "error"
 OPTIONS = {"min-mass": 1e-6}
 FAIL = """<robot name="r">
+  <link name="base"/>
   <link name="a"><inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
-FAIL_AT = [(2, 28)]
+FAIL_AT = [(3, 28)]
 PASS = """<robot name="r">
+  <link name="base"/>
   <link name="a"><inertial><mass value="0.5"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
+  <link name="camera_frame"><inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="cam" type="fixed"><parent link="a"/><child link="camera_frame"/></joint>
 </robot>
 """
 from urdf_lint.ruleutil import number
+from urdf_lint.rules._inertial import Bodies, mass
 
 
 def check(model, ctx):
     tiny = float(ctx.options.get("min-mass", 1e-6))
+    bodies = None
     for lk in model.top_links():
         m = lk.find("inertial/mass")
         if m is None:
@@ -33,7 +50,27 @@ def check(model, ctx):
         v = number(m.get("value"))
         if v is None:
             continue  # UL206
-        if v <= 0:
-            yield m, f"link '{lk.get('name')}': mass {v:g} must be positive"
+        name = lk.get("name")
+        if v < 0:
+            yield m, f"link '{name}': mass {v:g} must not be negative"
+        elif v == 0:
+            bodies = bodies or Bodies(model)
+            body = bodies.moving_body(name)
+            if body is None or any((mass(o) or 0) > 0 for o in body[2]):
+                continue  # a fixed frame, or part of a body that has mass: merged, valid
+            root, j, links = body
+            via = "" if root == name else f" (fixed to '{root}')"
+            if bodies.subtree_mass(root) > 0:
+                # a massless intermediate body (two joints in a row): the links it carries
+                # have mass, so KDL and Pinocchio cope; MuJoCo and Gazebo refuse it
+                yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint "
+                          f"'{j.get('name')}'); KDL and Pinocchio accept it because the links it "
+                          "carries have mass, but MuJoCo and Gazebo refuse massless moving "
+                          "bodies: give it a small real mass and inertia"), "warning"
+                continue
+            yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
+                      "and nothing it carries has mass; give it its real mass (zero mass is only "
+                      "valid on frames attached by fixed joints to a body with mass, or on bodies "
+                      "that carry massive links)")
         elif v < tiny:
-            yield m, f"link '{lk.get('name')}': mass {v:g} kg is implausibly small (grams?)"
+            yield m, f"link '{name}': mass {v:g} kg is implausibly small (grams?)"

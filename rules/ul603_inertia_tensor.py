@@ -4,6 +4,11 @@ inequality (ixx + iyy >= izz, and the two other pairs).
 Why: Physics engines reject such links or explode. Typical causes: a sign error in a product of
 inertia, or principal moments copied from the wrong part. Products are taken as given.
 
+Also reported: a link with a positive mass but an all-zero tensor on a body that moves (the
+link a non-fixed joint moves, plus everything fixed to it) where no link of that body has any
+inertia. Simulators either refuse such a body or let it spin freely. An all-zero tensor on a
+fixed frame, or on a massless link, is a placeholder and is left alone.
+
 How to fix: Recompute the tensor from the part's geometry and mass (CAD tools export it).
 """
 CODE = "UL603"
@@ -19,9 +24,24 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import fmt, number
+from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
+
+
+def _spins_freely(model, bodies, lk):
+    """The joint that moves this massive, inertia-less link's body, when nothing in the body
+    has inertia; else None."""
+    if not (mass(lk) or 0) > 0:
+        return None
+    body = bodies.moving_body(lk.get("name"))
+    if body is None:
+        return None
+    if any(tensor(o) is not None and not is_zero(tensor(o)) for o in body[2]):
+        return None
+    return body[1]
 
 
 def check(model, ctx):
+    bodies = None
     for lk in model.top_links():
         i = lk.find("inertial/inertia")
         if i is None:
@@ -33,7 +53,13 @@ def check(model, ctx):
         xy, xz, yz = v["ixy"], v["ixz"], v["iyz"]
         name = lk.get("name")
         if a == b == c == xy == xz == yz == 0:
-            continue  # an all-zero tensor is a (common) placeholder; UL602 checks the mass
+            bodies = bodies or Bodies(model)
+            j = _spins_freely(model, bodies, lk)
+            if j is not None:
+                yield i, (f"link '{name}': mass {fmt(mass(lk))} kg but an all-zero inertia tensor, "
+                          f"and it moves (joint '{j.get('name')}'); simulators refuse it or let it "
+                          "spin freely: give it the inertia of its geometry")
+            continue  # otherwise an all-zero tensor is a (common) placeholder
         d1, d2 = a, a * b - xy * xy
         d3 = a * (b * c - yz * yz) - xy * (xy * c - yz * xz) + xz * (xy * yz - b * xz)
         if d1 <= 0 or d2 <= 0 or d3 <= 0:

@@ -44,7 +44,10 @@ def test_mesh_loading_only_when_a_rule_needs_it(tmp_path):
     run = lambda ignore: subprocess.run(  # noqa: E731
         [sys.executable, "-c", LINT_IN_PROCESS.replace("IGNORE", repr(ignore))], cwd=tmp_path,
         capture_output=True, text=True)
-    p = run(["UL404", "UL406"])
+    from urdf_lint.registry import load_rules
+    mesh_rules = sorted(c for c, r in load_rules().items() if "meshes" in r.needs)
+    assert {"UL404", "UL406", "UL605", "UL606", "UL607"} <= set(mesh_rules)
+    p = run(mesh_rules)
     assert p.stdout.strip() == "[]", p.stdout + p.stderr
     p = run([])
     assert "trimesh" in p.stdout, p.stdout + p.stderr

@@ -37,15 +37,22 @@ REAL = {
     "UL503": ("ros2_control_demos/ros2_control_demo_description/carlikebot/urdf/carlikebot.materials.xacro", 12, 3),
     "UL504": ("airo_models/grippers/robotiq_2f_85/urdf/robotiq_2f_85.urdf", 21, 7),
     "UL601": ("fanuc/fanuc_m10ia_support/urdf/m10ia_macro.xacro", 37, 5),
-    "UL602": ("robot_properties_fingers/urdf/pro/fingerpro.urdf", 42, 7),
+    # romeo's fingers: revolute joints moving links with mass 0 and nothing massive below
+    "UL602": ("peer-tests/urdfdom/urdf_parser_py-0.4.1/romeo/romeo.urdf", 551, 7),
     "UL603": ("robot_properties_fingers/urdf/edu/fingeredu.urdf", 160, 7),
     "UL604": ("airo_models/grippers/schunk_egk40/urdf/schunk_egk40.urdf", 4, 9),
+    # gripper_pole: a 0.05 kg, r=0.01 m cylinder has 2.5e-6 kg·m² about its axis, not 0.001
+    "UL605": ("urdf_tutorial/urdf/07-physics.urdf", 261, 7),
+    "UL606": ("peer-tests/urdfdom/robot_model/fail_pr2_desc_no_filename_in_mesh.urdf", 92, 9),
+    # the 2020 autorace burger's wheels weigh 2.85 kg (the burger's: 0.0285 kg)
+    "UL607": ("turtlebot3_description/urdf/turtlebot3_burger_for_autorace_2020.urdf.xacro", 64, 7),
+    "UL608": ("ros2_control_demos/ros2_control_demo_description/r6bot/urdf/inc/create_link.xacro", 25, 9),
     "UL701": ("peer-tests/urdfdom/urdf_parser_py-0.4.1/transmission/test.urdf", 8, 5),
     "UL703": ("peer-tests/urdfdom/robot_model/fail_pr2_desc_no_filename_in_mesh.urdf", 736, 14),
     "UL801": ("robot_properties_fingers/urdf/pro/fingerpro.urdf", 66, 3),
 }
 # rules with no defect in these robots: a clean result on every corpus model
-CLEAN = ["UL002", "UL003", "UL004", "UL007", "UL009", "UL202", "UL204", "UL208", "UL301",
+CLEAN = ["UL002", "UL003", "UL004", "UL007", "UL009", "UL010", "UL408", "UL202", "UL204", "UL208", "UL301",
          "UL302", "UL305", "UL307", "UL308", "UL402", "UL403", "UL404", "UL405", "UL406",
          "UL502", "UL702", "UL901", "UL902", "UL903", "UL904"]
 
@@ -134,3 +141,24 @@ def test_urdfdom_rejects_get_an_error(report, fixture):
     path = f"peer-tests/urdfdom/{fixture}"
     errors = [x for x in report["findings"] if x["file"] == path and x["severity"] == "error"]
     assert errors, path
+
+
+def test_no_zero_mass_error_on_fixed_frames(report):
+    """Massless frames on fixed joints (the fingers' *_visuals and base links) are valid; only
+    romeo's moving, massless fingers remain."""
+    f = [x for x in report["findings"] if x["code"] == "UL602"]
+    assert f and all("romeo.urdf" in x["file"] and "on a body that moves" in x["message"] for x in f)
+    assert not any("robot_properties_fingers" in x["file"] for x in f)
+
+
+def test_zero_effort_is_a_warning_naming_the_convention(report):
+    f = [x for x in report["findings"] if x["code"] == "UL304" and "effort=0" in x["message"]]
+    assert len(f) >= 62 and all(x["severity"] == "warning" for x in f)
+    assert all("ROS-Industrial" in x["message"] for x in f)
+    # velocity=0 stays an error
+    assert any(x["code"] == "UL304" and "velocity=0" in x["message"] and x["severity"] == "error"
+               for x in report["findings"])
+
+
+def test_identical_wheels_may_share_a_tensor(report):
+    assert not any(x["code"] == "UL608" and "carlikebot" in x["file"] for x in report["findings"])

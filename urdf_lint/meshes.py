@@ -92,12 +92,15 @@ def resolve(model, uri: str) -> MeshRef:
                        "the package roots; it is not read")
     exact, real = _case_true_path(p, top)
     if not exact and real is None:
-        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh file not found: '{uri}' (looked for {p})")
     if not exact:
-        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH, f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
+        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH,
+                       f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
                        f"(case differs: works on macOS/Windows, fails on Linux)")
     if not resolver.is_inside(p):
-        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS, f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
     try:
         st = os.stat(p)
@@ -188,7 +191,7 @@ def _texture_refs(path: str) -> list[str]:
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
 _memory: dict = {}
-FACTS_VERSION = 2  # bump when the loader changes what it measures
+FACTS_VERSION = 3  # bump when the loader changes what it measures
 
 
 _digests: dict = {}
@@ -223,14 +226,90 @@ def _quiet_loggers():
 
 
 def load_mesh(path: str):
-    """A trimesh.Trimesh (scene concatenated) or raises."""
+    """A trimesh.Trimesh (scene concatenated) or raises.
+
+    A COLLADA file whose geometry is lost to a broken internal reference (a ``<surface>``,
+    effect or material that points at nothing makes pycollada drop the whole
+    ``<instance_geometry>``) is loaded again without its materials, so a valid mesh is never
+    reported empty; the broken references are kept in ``metadata["broken_refs"]``."""
     _quiet_loggers()
     import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
-    m = trimesh.load(path, force="mesh", process=False)
-    unit = dae_unit(path) if path.lower().endswith(".dae") else 1.0
+    is_dae = path.lower().endswith(".dae")
+    if not is_dae:
+        m = trimesh.load(path, force="mesh", process=False)
+    else:
+        m, failure, lost = None, None, True
+        try:
+            scene = trimesh.load_scene(path, process=False)   # what force="mesh" does
+            m = scene.to_mesh()
+            # every <instance_geometry> that loads gives at least one geometry node
+            with open(path, "rb") as f:
+                lost = len(scene.graph.nodes_geometry) < f.read().count(b"<instance_geometry")
+        except Exception as e:  # noqa: BLE001 - retried without materials below
+            failure = e
+        broken = dae_broken_refs(path) if lost or m is None or len(m.vertices) == 0 else []
+        if broken:
+            try:
+                full = _load_dae_without_materials(path)
+                if m is None or len(full.vertices) > len(m.vertices):
+                    m = full
+            except Exception:  # noqa: BLE001 - report the original problem
+                pass
+            if m is not None:
+                m.metadata["broken_refs"] = broken
+        if m is None:
+            raise failure
+    unit = dae_unit(path) if is_dae else 1.0
     if unit != 1.0:
         m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
     return m
+
+
+def dae_broken_refs(path: str) -> list[str]:
+    """The broken internal references pycollada finds in a COLLADA file (messages)."""
+    import collada
+    ignore = [collada.common.DaeBrokenRefError, collada.common.DaeUnsupportedError,
+              collada.common.DaeIncompleteError, collada.common.DaeMalformedError,
+              collada.common.DaeError]
+    try:
+        c = collada.Collada(path, ignore=ignore)
+    except Exception:  # noqa: BLE001 - not a broken reference: the caller reports the failure
+        return []
+    out = []
+    for e in c.errors:
+        if isinstance(e, collada.common.DaeBrokenRefError):
+            msg = error_text(e)
+            if msg not in out:
+                out.append(msg)
+    return out
+
+
+def _load_dae_without_materials(path: str):
+    """The geometry of a COLLADA file with every material binding, effect and image removed
+    (what a broken material reference cannot take down)."""
+    import io
+    import trimesh
+    from lxml import etree
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=True)
+    root = etree.parse(path, parser).getroot()
+    drop = {"bind_material", "library_effects", "library_materials", "library_images"}
+    for el in [e for e in root.iter() if isinstance(e.tag, str)
+               and etree.QName(e).localname in drop]:
+        el.getparent().remove(el)
+    for el in root.iter():
+        if isinstance(el.tag, str) and etree.QName(el).localname in (
+                "triangles", "polylist", "polygons", "lines", "tristrips", "trifans"):
+            el.attrib.pop("material", None)
+    data = etree.tostring(root)
+    return trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", process=False)
+
+
+def error_text(e: BaseException) -> str:
+    """``Type: message`` once (pycollada's messages already start with their type)."""
+    msg = str(e).strip()
+    name = type(e).__name__
+    return msg if msg.startswith(name) else f"{name}: {msg}" if msg else name
 
 
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
@@ -269,20 +348,12 @@ def get_mesh(path: str):
 
 
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
-    """{ok, error, vertices, faces, finite, bounds} for a mesh file, cached by content."""
-    digest = _digest(path)
-    if digest in _memory:
-        return _memory[digest]
-    cache_file = None
-    if cache_dir:
-        cache_file = Path(cache_dir, "meshes", f"v{FACTS_VERSION}-{digest}.json")
-        try:
-            facts = json.loads(cache_file.read_text())
-            if isinstance(facts, dict) and "ok" in facts:
-                _memory[digest] = facts
-                return facts
-        except (OSError, ValueError):
-            pass
+    """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
+    content."""
+    return _cached(_memory, f"v{FACTS_VERSION}", path, cache_dir, _measure)
+
+
+def _measure(path: str) -> dict:
     try:
         m = get_mesh(path)
         import numpy as np
@@ -290,16 +361,47 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
         finite = bool(np.isfinite(v).all()) if len(v) else True
         bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
             if len(v) and finite else None
-        facts = {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
-                 "finite": finite, "bounds": bounds}
+        return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
+                "finite": finite, "bounds": bounds,
+                "broken_refs": list(m.metadata.get("broken_refs", ()))}
     except (PermissionError, MemoryError) as e:
         # the environment refused (sandbox, memory limit): a finding now, never cached
-        return {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
-                "faces": 0, "finite": True, "bounds": None}
+        raise _Uncached({"ok": False, "error": error_text(e)[:300], "vertices": 0,
+                         "faces": 0, "finite": True, "bounds": None}) from e
     except Exception as e:  # noqa: BLE001 - any loader failure is a finding
-        facts = {"ok": False, "error": f"{type(e).__name__}: {e}"[:300], "vertices": 0,
-                 "faces": 0, "finite": True, "bounds": None}
-    _memory[digest] = facts
+        return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
+                "faces": 0, "finite": True, "bounds": None}
+
+
+class _Uncached(Exception):
+    """A result that depends on the environment, not on the file: returned, never cached."""
+
+    def __init__(self, facts):
+        super().__init__()
+        self.facts = facts
+
+
+def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute) -> dict:
+    """``compute(path)``, memoized in ``memory`` and on disk under ``cache_dir/meshes``, keyed
+    by the file's content."""
+    digest = _digest(path)
+    if digest in memory:
+        return memory[digest]
+    cache_file = None
+    if cache_dir:
+        cache_file = Path(cache_dir, "meshes", f"{prefix}-{digest}.json")
+        try:
+            facts = json.loads(cache_file.read_text())
+            if isinstance(facts, dict) and "ok" in facts:
+                memory[digest] = facts
+                return facts
+        except (OSError, ValueError):
+            pass
+    try:
+        facts = compute(path)
+    except _Uncached as e:
+        return e.facts
+    memory[digest] = facts
     if cache_file is not None:
         try:
             cache_file.parent.mkdir(parents=True, exist_ok=True)
@@ -321,3 +423,90 @@ def parse_scale(s):
     if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
         return None
     return vals
+
+
+# -- mass properties (for the physical plausibility rules) ----------------------------------
+_mass_memory: dict = {}
+MASS_FACTS_VERSION = 1
+
+
+def mass_facts(path: str, cache_dir: str | None = None) -> dict:
+    """Volume properties of a mesh filled with unit density, cached by content (like
+    ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
+    bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
+    used instead (an open surface has no volume)."""
+    return _cached(_mass_memory, f"mass{MASS_FACTS_VERSION}", path, cache_dir, _measure_mass)
+
+
+def _measure_mass(path: str) -> dict:
+    try:
+        return _mass_properties(get_mesh(path))
+    except (PermissionError, MemoryError) as e:
+        raise _Uncached({"ok": False}) from e
+    except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
+        return {"ok": False}
+
+
+def _mass_properties(mesh) -> dict:
+    import numpy as np
+    from trimesh.triangles import mass_properties
+    v = np.asarray(mesh.vertices, dtype=float)
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
+        return {"ok": False}
+    hull = not _closed(v, f)
+    if hull:
+        try:
+            h = _convex_hull(v)
+        except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
+            return {"ok": False}
+        tris = np.asarray(h.vertices)[np.asarray(h.faces)]
+    else:
+        tris = v[f]
+    props = mass_properties(tris, density=1.0)
+    vol = float(props["volume"])
+    if not math.isfinite(vol) or abs(vol) < 1e-15:
+        return {"ok": False}
+    sign = 1.0 if vol > 0 else -1.0      # inside-out winding: every moment flips sign
+    vol *= sign
+    com = np.asarray(props["center_mass"], dtype=float)
+    inertia = sign * np.asarray(props["inertia"], dtype=float)   # about com, density 1
+    s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
+    second = s_com + vol * np.outer(com, com)
+    return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
+            "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}
+
+
+def _closed(v, f) -> bool:
+    """Whether the triangles bound a volume: with coincident vertices merged, every directed
+    edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
+    building a processed trimesh.Trimesh for it."""
+    import numpy as np
+    from trimesh.grouping import unique_rows
+    _, inv = unique_rows(v, digits=8)      # what trimesh's merge_vertices does
+    ff = np.asarray(inv).reshape(-1)[f]
+    ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
+    if len(ff) < 4:
+        return False
+    e = np.stack([ff[:, [0, 1]], ff[:, [1, 2]], ff[:, [2, 0]]], axis=1).reshape(-1, 2)
+    n = int(ff.max()) + 1
+    code = np.sort(e[:, 0] * n + e[:, 1])
+    if (code[1:] == code[:-1]).any():
+        return False
+    rev = e[:, 1] * n + e[:, 0]
+    pos = np.searchsorted(code, rev).clip(0, len(code) - 1)
+    return bool((code[pos] == rev).all())
+
+
+def _convex_hull(points):
+    """The convex hull of points as a trimesh.Trimesh, with manifold3d (a 4 MB wheel that
+    imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to import)."""
+    import manifold3d
+    import numpy as np
+    import trimesh
+    m = manifold3d.Manifold.hull_points(np.ascontiguousarray(points, dtype=np.float64)).to_mesh()
+    verts = np.asarray(m.vert_properties, dtype=float)[:, :3]
+    faces = np.asarray(m.tri_verts, dtype=np.int64)
+    if len(faces) < 4:
+        raise ValueError("degenerate hull")
+    return trimesh.Trimesh(verts, faces, process=False)

@@ -16,6 +16,7 @@ from .findings import Problem, exit_status, merge
 from .jobs import LintJob, LintSettings, ModelReport, Status
 from .policy import Policy, code_matches
 from .rules import ul009_unused_suppression as unused_suppression
+from .rules import ul010_invalid_suppression as invalid_suppression
 
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
@@ -187,12 +188,12 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     directives = {f: suppress.parse_directives(f) for f in sorted(files)
                   if resolver.readable(f, MAX_SOURCE_BYTES)}
     selected = settings.selected
-    kept, unused = suppress.apply(
+    kept, unused, invalid = suppress.apply(
         merged, directives,
         is_selected=lambda c: any(code_matches(c, s, rules[s].name) for s in selected))
-    code = unused_suppression.CODE
-    kept += [p.replace(models=()) for p in _with_policy(
-        [Problem.at(code, msg, loc) for loc, msg in unused], RUN_LABEL, policy)]
+    about_comments = [Problem.at(unused_suppression.CODE, msg, loc) for loc, msg in unused]
+    about_comments += [Problem.at(invalid_suppression.CODE, msg, loc) for loc, msg in invalid]
+    kept += [p.replace(models=()) for p in _with_policy(about_comments, RUN_LABEL, policy)]
     return kept
 
 

@@ -291,6 +291,10 @@ def scene_geometry(scene, ctx) -> Geometry:
     return Geometry(scene.name, tris, cols, wires, link_pts, len(scene.links), plinks, wlinks)
 
 
+_BOX_EDGES = ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6),
+              (5, 7), (6, 7))
+
+
 def _box_corners(c, box):
     return np.array([[x, y, z] for x in (-box, box) for y in (-box, box) for z in (-box, box)]) + c
 
@@ -362,9 +366,9 @@ def draw(g: Geometry, fr: Frame):
     for c in g.wires:
         q = project(_box_corners(c, fr.box))
         q2 = [(fr.ox + fr.scale * a, fr.oy - fr.scale * b) for a, b, _ in q]
-        for a, b in ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7)):
+        for a, b in _BOX_EDGES:
             dr.line([q2[a], q2[b]], fill=(220, 30, 30), width=3 * S)
-    return img.resize((W, H), Image.LANCZOS)
+    return img.resize((W, H), Image.Resampling.LANCZOS)
 
 
 def _caption(img, text):
@@ -574,18 +578,18 @@ def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix):
     # the kinematic tree twice: /robot (frames, axes, visuals, findings) and /collision
     # (collision geometry only, so that it toggles as one subtree)
     for root in ("robot", "collision"):
-        for parent, j, child in scene.tree:
+        for _parent, j, _child in scene.tree:
             T = origin_matrix(j)
             jp = root + joint_paths[j.get("name")][len("robot"):]
             log(jp, rr.Transform3D(translation=T[:3, 3], mat3x3=T[:3, :3]), static=True)
-    for parent, j, child in scene.tree:
+    for _parent, j, child in scene.tree:
         if j.get("type") not in ("fixed", None):
             ax = j.find("axis")
             axis = numbers(ax.get("xyz") if ax is not None else "1 0 0", 3) or [1, 0, 0]
             log(f"{paths[child]}/joint_axis",
                     rr.Arrows3D(origins=[[0, 0, 0]], vectors=[np.asarray(axis) * 0.1],
                                 colors=[[250, 200, 0]], labels=[j.get("name") or ""]), static=True)
-    for link, p in paths.items():
+    for _link, p in paths.items():
         log(p, rr.TransformAxes3D(0.05), static=True)
     logged = 0
     for part in scene.parts:
@@ -650,7 +654,8 @@ def snapshot_name(entry, args, base):
             stem = stem[: -len(ext)]
     if args:
         stem += "__" + "_".join(f"{k}-{v}" for k, v in sorted(args.items()))
-        stem = stem[:150] + "_" + hashlib.blake2b(repr(sorted(args.items())).encode(), digest_size=4).hexdigest()
+        digest = hashlib.blake2b(repr(sorted(args.items())).encode(), digest_size=4).hexdigest()
+        stem = stem[:150] + "_" + digest
     return "".join(ch if ch.isalnum() or ch in "_-.@" else "_" for ch in stem)
 
 

@@ -58,6 +58,7 @@ def materialize(top: str, rev: str, dest: str, only=None) -> None:
     ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
     os.makedirs(dest, exist_ok=True)
     archive = os.path.join(os.path.dirname(dest), os.path.basename(dest) + ".tar")
+    batches: list[list[str]]
     if only is None:
         batches = [[]]
     else:
@@ -269,7 +270,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if os.path.exists(os.path.join(base_root, rel)):
                 base_entries.add(rel)
         from .lint import classify_xacro
-        for st, old, new in changes:
+        for st, old, _new in changes:
             if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
                     any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
                         for p in rel_paths):
@@ -302,15 +303,15 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                          render_dir, "base", rrd)
 
         for k in sorted(affected):
-            bk = base_keys.get(k)
-            result.models.append(_model_diff(k, head, base, bk))
-        for bk in sorted(deleted):
-            result.models.append(_model_diff(bk, head, base, bk, removed=True))
+            result.models.append(_model_diff(k, head, base, base_keys.get(k)))
+        for dk in sorted(deleted):
+            result.models.append(_model_diff(dk, head, base, dk, removed=True))
         if render_dir:
             for md in result.models:
-                hk = None if md.status == "removed" else md.model
-                bk = base_keys.get(md.model) if md.status != "removed" else md.model
-                md.snapshot = _snapshot(md.model, head, base, hk, bk, render_dir, result)
+                removed = md.status == "removed"
+                md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
+                                        md.model if removed else base_keys.get(md.model),
+                                        render_dir, result)
     return result
 
 
@@ -340,8 +341,9 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result) -> dict:
     md = next(m for m in result.models if m.model == key)
     changed = {name for name, _, _ in md.moved}
     changed |= {c.name for c in md.changes if c.kind == "link"}
-    if md.status in ("added", "removed"):
-        changed |= set((after or before).part_links) | set((after or before).wire_links)
+    whole = after if after is not None else before
+    if md.status in ("added", "removed") and whole is not None:
+        changed |= set(whole.part_links) | set(whole.wire_links)
     info.update(render.render_pair(before, after, stem, frozenset(changed)))
     halves = [p for p in (base.rrd.get(bk) if bk else None, head.rrd.get(hk) if hk else None) if p]
     if halves:

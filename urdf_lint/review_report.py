@@ -3,7 +3,6 @@ markdown for a job summary or a pull-request comment (always under 60,000 charac
 from __future__ import annotations
 
 import json
-import os
 
 from .report.escape import escape_markdown_code, escape_text
 from .review import MARKDOWN_LIMIT, DiffResult
@@ -79,10 +78,11 @@ def to_json(r: DiffResult) -> str:
 
     def rel(p):
         return display_path(p)
+    models: list[dict] = []
     doc = {"version": 1, "base": r.base, "head": r.head, "models_total": r.total_models,
-           "base_expanded": r.base_expanded, "models": []}
+           "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
-        doc["models"].append({
+        models.append({
             "model": m.model, "status": m.status, "error": m.error,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],
@@ -107,7 +107,7 @@ def _code(s) -> str:
 
 def to_markdown(r: DiffResult, image_base_url: str | None = None,
                 limit: int = MARKDOWN_LIMIT) -> str:
-    head = [f"## urdf-lint: what this change does to the robots",
+    head = ["## urdf-lint: what this change does to the robots",
             "",
             f"{_code(r.base)} → {_code(r.head)}: **{len(r.models)}** of {r.total_models} "
             f"model(s) affected ({r.base_expanded} expanded at the base).",
@@ -129,7 +129,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
         if image_base_url:
             stem = m.model.replace("/", "_").replace(" ", "_")
             base = image_base_url.rstrip("/")
-            rows += [f"| before | after | difference |", "|---|---|---|",
+            rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
                      f" | ![diff]({base}/{stem}.diff.png) |", ""]
         if m.changes:

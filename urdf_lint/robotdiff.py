@@ -271,7 +271,7 @@ def _angle_between(ra, rb) -> float:
 # -- comparison --------------------------------------------------------------------------------
 def _same(a, b) -> bool:
     if isinstance(a, tuple) and isinstance(b, tuple):
-        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
     if isinstance(a, float) and isinstance(b, float):
         return a == b or abs(a - b) <= _TOL * max(1.0, abs(a), abs(b))
     return a == b
@@ -330,10 +330,10 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
                         break
 
     new_names = {(k, n) for (k, _), n in renames.items()}
-    for (kind, name), (el, f) in sorted(head.items()):
+    for (kind, name), (el, _f) in sorted(head.items()):
         if (kind, name) not in base and (kind, name) not in new_names:
             changes.append(Change(kind, name, "added", head=hloc(el)))
-    for (kind, name), (el, f) in sorted(base.items()):
+    for (kind, name), (el, _f) in sorted(base.items()):
         if (kind, name) in head:
             continue
         if (kind, name) in renames:

@@ -216,7 +216,7 @@ class _Lambda:
         params = [a.arg for a in self.node.args.args]
         if len(args) != len(params):
             raise TypeError(f"lambda takes {len(params)} arguments ({len(args)} given)")
-        return self.ev.eval(self.node.body, dict(zip(params, args)), parent=self.scope)
+        return self.ev.eval(self.node.body, dict(zip(params, args, strict=True)), parent=self.scope)
 
 
 class _Scope:
@@ -355,7 +355,7 @@ class Evaluator:
             return v
         if t is ast.Compare:
             left = self._ev(n.left, sc)
-            for op, c in zip(n.ops, n.comparators):
+            for op, c in zip(n.ops, n.comparators, strict=True):
                 right = self._ev(c, sc)
                 if not _CMP[type(op)](left, right):
                     return False
@@ -401,7 +401,7 @@ class Evaluator:
             return list(items) if t is ast.List else tuple(items) if t is ast.Tuple else set(items)
         if t is ast.Dict:
             d = {}
-            for k, v in zip(n.keys, n.values):
+            for k, v in zip(n.keys, n.values, strict=True):
                 if k is None:
                     d.update(self._ev(v, sc))
                 else:
@@ -462,7 +462,7 @@ class Evaluator:
             values = list(value)
             if len(values) != len(target.elts):
                 raise ValueError("cannot unpack")
-            for t, v in zip(target.elts, values):
+            for t, v in zip(target.elts, values, strict=True):
                 self._assign(t, v, sc)
         else:
             raise UnsafeExpression("unsupported comprehension target")

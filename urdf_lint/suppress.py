@@ -5,19 +5,20 @@
 ``<!-- urdf-lint: disable-file UL101 -->``  the whole file
 
 No codes means every code. Codes match by prefix (``UL3`` = all joint-limit rules) or name.
-A directive that suppresses nothing is reported as ``UL009 unused-suppression``.
+A directive that suppresses nothing is reported as ``UL009 unused-suppression``; an unknown
+directive (``disabel-next``) or code (``UL999``) as ``UL010 invalid-suppression``.
 """
 from __future__ import annotations
 
 import re
 import xml.parsers.expat
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from .locations import Origin
 from .policy import code_matches
 
-_DIRECTIVE = re.compile(
-    r"<!--\s*urdf-lint:\s*(disable-next|disable-file|disable|enable)\b(.*?)-->", re.S)
+_DIRECTIVE = re.compile(r"<!--\s*urdf[-_]lint\s*:\s*([A-Za-z_-]*)(.*?)-->", re.S)
+KINDS = ("disable-next", "disable-file", "disable", "enable")
 
 
 @dataclass
@@ -29,14 +30,15 @@ class Directive:
     col: int
     span: tuple = ()          # ((start_line, start_col), end_line) for disable-next / ranges
     used: bool = False
+    problems: list = field(default_factory=list)   # what is wrong with the comment itself
 
     def matches_code(self, code, name):
         return not self.codes or any(code_matches(c, code, name) for c in self.codes)
 
 
 def _element_spans(data: bytes):
-    spans = []
-    stack = []
+    spans: list = []
+    stack: list = []
     p = xml.parsers.expat.ParserCreate()
 
     def start(name, attrs):
@@ -69,7 +71,7 @@ def parse_directives(path: str) -> list[Directive]:
             data = f.read(MAX_BYTES + 1)
     except OSError:
         return []
-    if b"urdf-lint:" not in data:
+    if b"urdf-lint" not in data and b"urdf_lint" not in data:
         return []
     text = data.decode("utf-8", "replace")
     out = []
@@ -84,6 +86,13 @@ def parse_directives(path: str) -> list[Directive]:
         end_line = text.count("\n", 0, m.end()) + 1
         end_col = m.end() - (text.rfind("\n", 0, m.end()) + 1) + 1
         d = Directive(kind, codes, path, line, col)
+        if kind not in KINDS:
+            d.problems.append(f"unknown suppression directive '{kind or m.group(2).strip()}'"
+                              + _did_you_mean(kind, KINDS) + "; it suppresses nothing")
+            d.used = True   # reported as invalid, not also as unused
+            out.append(d)
+            continue
+        d.problems.extend(_code_problems(codes))
         if kind == "disable-next":
             if spans is None:
                 spans = _element_spans(data)
@@ -103,6 +112,25 @@ def parse_directives(path: str) -> list[Directive]:
     return out
 
 
+def _did_you_mean(word, candidates):
+    from .ruleutil import did_you_mean
+    return did_you_mean(word, candidates)
+
+
+def _code_problems(codes) -> list[str]:
+    """Messages for codes that name no rule, no code prefix and no rule name."""
+    from .registry import load_rules
+    rules = load_rules()
+    names = {r.name for r in rules.values()}
+    out = []
+    for c in codes:
+        if c.upper() == "ALL" or c in names or any(k.startswith(c) for k in rules):
+            continue
+        out.append(f"unknown code '{c}' in a suppression comment"
+                   + _did_you_mean(c, list(rules) + sorted(names)) + "; it suppresses nothing")
+    return out
+
+
 def _covers(d: Directive, file, line, col) -> bool:
     if file != d.file:
         return False
@@ -114,14 +142,23 @@ def _covers(d: Directive, file, line, col) -> bool:
 
 def apply(findings, directives_by_file: dict, report_unused=True,
           is_selected=lambda code: True):
-    """Drop suppressed findings; return (kept, [(Origin, message) of each unused directive]).
-
-    The run pipeline reports each unused directive as ``UL009 unused-suppression``."""
+    """Drop suppressed findings; return ``(kept, unused, invalid)``, the last two as
+    ``(Origin, message)`` pairs: each directive that suppressed nothing, and each unknown
+    directive or code (unless a suppression covers it). The run pipeline reports them as
+    ``UL009 unused-suppression`` and ``UL010 invalid-suppression``."""
     directives = [d for ds in directives_by_file.values() for d in ds]
     if not directives:
-        return list(findings), []
-    kept = []
-    for f in findings:
+        return list(findings), [], []
+    from .findings import Problem
+    from .rules import ul010_invalid_suppression as invalid_suppression
+    invalid = [Problem.at(invalid_suppression.CODE, p, (d.file, d.line, d.col))
+               .replace(name=invalid_suppression.NAME)
+               for d in directives for p in d.problems]
+    directives = [d for d in directives if d.kind in KINDS]
+    kept: list = []
+    invalid_kept: list = []
+    invalid_ids = {id(f) for f in invalid}
+    for f in list(findings) + invalid:
         locs = [(f.file, f.line, f.col)] + [(c[0], c[1], c[2]) for c in f.chain]
         hit = False
         for d in directives:
@@ -129,14 +166,17 @@ def apply(findings, directives_by_file: dict, report_unused=True,
                 d.used = True
                 hit = True
         if not hit:
-            kept.append(f)
+            (invalid_kept if id(f) in invalid_ids else kept).append(f)
     unused = []
     if report_unused:
         for d in directives:
-            # a directive for codes that were not run this time cannot be judged unused
+            # a directive for codes that were not run this time cannot be judged unused; nor
+            # one whose codes are all unknown (reported as invalid instead)
+            if d.codes and len(d.problems) == len(d.codes):
+                continue
             if not d.used and (not d.codes or any(is_selected(c) for c in d.codes)):
                 what = ", ".join(d.codes) if d.codes else "all codes"
                 unused.append((Origin(d.file, d.line, d.col),
                                f"unused suppression '{d.kind} {what}': "
                                "nothing was reported here; remove the comment"))
-    return kept, unused
+    return kept, unused, [(f.origin, f.message) for f in invalid_kept]

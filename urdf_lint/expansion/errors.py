@@ -26,6 +26,8 @@ anything else                       UL002   xacro's message
 """
 from __future__ import annotations
 
+import os
+
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any, Callable
@@ -60,17 +62,49 @@ class RefusedInput(xacro.XacroException):
 class ErrorRow:
     catches: type | tuple
     rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
-    message: Callable[[Any], str]
+    message: Callable[..., str]
     looks_at: str = "either"             # "raised" | "wrapped" | "either"
     macros: bool = False                 # append the macro context
     own_location: bool = False           # use the exception's .loc when it has one
     when: Callable[[Any], bool] = lambda e: True
+    needs_deps: bool = False             # the message also gets the files read so far
 
 
-def _missing_arg(e) -> str:
+def _arg_declared_later(name: str, deps) -> str | None:
+    """``file:line`` of an ``<xacro:arg name=... default=...>`` in a file read so far: the
+    default exists, but xacro reached a use of the arg first."""
+    import re
+
+    from ..locations import display_path
+    q = re.escape(name)
+    decl = re.compile(r"<xacro:arg\b[^>]*\bname\s*=\s*[\"']" + q + r"[\"'][^>]*\bdefault\s*=")
+    decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + q + r"[\"']")
+    for f in deps:
+        try:
+            with open(f, encoding="utf-8", errors="replace") as fh:
+                text = fh.read()
+        except OSError:
+            continue
+        m = decl.search(text) or decl2.search(text)
+        if m:
+            return f"{display_path(f)}:{text.count(chr(10), 0, m.start()) + 1}"
+    return None
+
+
+def _missing_arg(e, deps=()) -> str:
     name = str(e)
+    later = _arg_declared_later(name, deps)
+    if later:
+        return (f"xacro arg '{name}' is used before it is declared: its default ({later}) comes "
+                "after its first use here; move the <xacro:arg> above its first use")
     return (f"xacro arg '{name}' has no default and no value was given; pass {name}:=VALUE or "
             "list the model with its args under [tool.urdf-lint] models")
+
+
+def _missing_file(e, deps=()) -> str:
+    # load_yaml records its file before opening it; an include is recorded only once read
+    yaml = os.path.abspath(str(e.filename)) in set(deps)
+    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}"
 
 
 def _generic(e) -> str:
@@ -87,9 +121,10 @@ ERROR_TABLE: tuple[ErrorRow, ...] = (
                        "end?)", macros=True),
     ErrorRow(PackageNotFound, ul004_unknown_package, str),
     ErrorRow(OutsideRoots, ul902_outside_roots, str),
-    ErrorRow(_subst.ArgException, ul005_missing_arg, _missing_arg, looks_at="wrapped"),
-    ErrorRow((IOError, OSError), ul003_missing_include,
-             lambda e: f"included file not found: {e.filename}", looks_at="wrapped",
+    ErrorRow(_subst.ArgException, ul005_missing_arg, _missing_arg, looks_at="wrapped",
+             needs_deps=True),
+    ErrorRow((IOError, OSError), ul003_missing_include, _missing_file, looks_at="wrapped",
+             needs_deps=True,
              when=lambda e: bool(getattr(e, "filename", None))),
     ErrorRow(safe_eval.UnsafeExpression, ul903_unsafe_expression, str, macros=True),
     ErrorRow(MemoryError, ul904_resource_limit, lambda e: "expansion ran out of memory",
@@ -107,7 +142,7 @@ def wrapped(e: BaseException):
     return inner
 
 
-def problem_for(e: BaseException, here, macros=()) -> Problem:
+def problem_for(e: BaseException, here, macros=(), deps=()) -> Problem:
     """The one located problem for a failed expansion. ``here`` is the origin of the innermost
     element being evaluated, ``macros`` the names of the macros being expanded, innermost
     first."""
@@ -123,5 +158,6 @@ def problem_for(e: BaseException, here, macros=()) -> Problem:
             continue
         rule = row.rule or hit.rule
         loc = (getattr(hit, "loc", None) if row.own_location else None) or here
-        return Problem.at(rule.CODE, row.message(hit) + (suffix if row.macros else ""), loc)
+        text = row.message(hit, deps) if row.needs_deps else row.message(hit)
+        return Problem.at(rule.CODE, text + (suffix if row.macros else ""), loc)
     raise AssertionError("the last row catches everything")  # pragma: no cover

@@ -182,7 +182,7 @@ def _hook_parse(inp, filename=None):
                 data = f.read()
         except (IOError, OSError) as e:
             xacro.filestack.pop()
-            raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e)
+            raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
         if st is not None:
             st.deps[absolute] = None
             # what was read, for the cache: the stat before the read, the digest of the bytes
@@ -409,7 +409,7 @@ def classify_error(e: BaseException, st: _State) -> Problem:
     if here is None:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
         here = (top, 1, 1, ())
-    return problem_for(e, here, _macro_context())
+    return problem_for(e, here, _macro_context(), deps=list(st.deps))
 
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,

@@ -65,7 +65,7 @@ def _splice(parent, i: int, new: list) -> None:
     old.previousSibling = old.nextSibling = None
     _hints[id(parent)] = (parent, i + len(new))
     if old.nodeType == _ELEMENT or any(c.nodeType == _ELEMENT for c in new):
-        minidom._clear_id_cache(parent)
+        minidom._clear_id_cache(parent)  # type: ignore[attr-defined]
 
 
 def _detach_children(doc) -> list:
@@ -75,7 +75,7 @@ def _detach_children(doc) -> list:
         c.parentNode = None
         c.previousSibling = c.nextSibling = None
     if any(c.nodeType == _ELEMENT for c in kids):
-        minidom._clear_id_cache(doc)
+        minidom._clear_id_cache(doc)  # type: ignore[attr-defined]
     return kids
 
 

@@ -29,7 +29,8 @@ class JunitFormatter(BaseFormatter):
                 cases.append(f'    <testcase classname="urdf-lint.model" name={quoteattr(m.label)}/>')
         w = self.stream.write
         w('<?xml version="1.0" encoding="UTF-8"?>\n')
-        w(f'<testsuites name="urdf-lint" tests="{len(cases)}" failures={quoteattr(str(len(result.findings)))}>\n')
-        w(f'  <testsuite name="urdf-lint" tests="{len(cases)}" failures="{len(result.findings)}" errors="0">\n')
+        failures = len(result.findings)
+        w(f'<testsuites name="urdf-lint" tests="{len(cases)}" failures={quoteattr(str(failures))}>\n')
+        w(f'  <testsuite name="urdf-lint" tests="{len(cases)}" failures="{failures}" errors="0">\n')
         w("\n".join(cases) + ("\n" if cases else ""))
         w("  </testsuite>\n</testsuites>\n")

@@ -1,0 +1,93 @@
+"""Helpers for the inertial rules (not a rule): declared mass and inertia, and the rigid bodies
+that physics engines actually simulate.
+
+KDL, Pinocchio and Gazebo merge every link attached by a ``fixed`` joint into its parent, so
+the unit that moves is a *body*: a link that is the child of a non-fixed joint (or the root),
+together with everything fixed to it. A massless sensor frame fixed to a heavy link is valid;
+a body that moves and has no mass at all is not.
+"""
+from urdf_lint.ruleutil import number
+
+INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+
+def mass(lk):
+    """The declared mass (float) of a link, or None when absent or not a number."""
+    m = lk.find("inertial/mass")
+    return number(m.get("value")) if m is not None else None
+
+
+def tensor(lk):
+    """{ixx..izz} of a link's declared inertia (missing values are 0), or None when absent or
+    any value is not a number (UL206 reports those)."""
+    i = lk.find("inertial/inertia")
+    if i is None:
+        return None
+    v = {a: number(i.get(a, "0")) for a in INERTIA}
+    return None if any(x is None for x in v.values()) else v
+
+
+def is_zero(t):
+    return t is not None and all(x == 0 for x in t.values())
+
+
+class Bodies:
+    """The fixed-merged bodies of a model."""
+
+    def __init__(self, model):
+        self.model = model
+        self.parent_joint = {}          # child link name -> first joint naming it as child
+        self.children = {}              # parent link name -> [(joint, child name)]
+        for j in model.top_joints():
+            p, c = j.find("parent"), j.find("child")
+            if p is None or c is None or not p.get("link") or not c.get("link"):
+                continue
+            self.parent_joint.setdefault(c.get("link"), j)
+            self.children.setdefault(p.get("link"), []).append((j, c.get("link")))
+
+    def root_of(self, name):
+        """(body root link name, the non-fixed joint that moves it or None), following fixed
+        joints up from ``name``."""
+        seen = set()
+        while name not in seen:
+            seen.add(name)
+            j = self.parent_joint.get(name)
+            if j is None:
+                return name, None
+            if j.get("type") != "fixed":
+                return name, j
+            name = j.find("parent").get("link")
+        return name, None  # a loop (UL102 reports it)
+
+    def members(self, root):
+        """Link names of the body rooted at ``root`` (the root and everything fixed below it)."""
+        out, todo = [], [root]
+        while todo:
+            n = todo.pop()
+            if n in out:
+                continue
+            out.append(n)
+            todo.extend(c for j, c in self.children.get(n, ()) if j.get("type") == "fixed")
+        return out
+
+    def subtree_mass(self, root):
+        """Total declared mass of ``root`` and every link below it, through any joint."""
+        total, todo, seen = 0.0, [root], set()
+        while todo:
+            n = todo.pop()
+            if n in seen:
+                continue
+            seen.add(n)
+            lk = self.model.links.get(n)
+            total += max(mass(lk) or 0.0, 0.0) if lk is not None else 0.0
+            todo.extend(c for _j, c in self.children.get(n, ()))
+        return total
+
+    def moving_body(self, name):
+        """(root, joint, member link elements) when the link belongs to a body that a non-fixed
+        joint moves, else None."""
+        root, j = self.root_of(name)
+        if j is None:
+            return None
+        links = [self.model.links[n] for n in self.members(root) if n in self.model.links]
+        return root, j, links

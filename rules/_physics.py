@@ -1,0 +1,240 @@
+"""Helpers for the physical plausibility rules UL605-UL607 (not a rule).
+
+For each moving link (the child of a non-fixed joint) with a declared mass and inertia, the
+link's collision geometry (its visual geometry when it has no collision) is filled uniformly
+and summed in the link frame: boxes, cylinders and spheres exactly, capsules and meshes through
+trimesh (imported only when a link has one). Mesh volume facts are cached by file content like
+every mesh fact, so a mesh is measured once per change. An open (non-watertight) mesh has no
+volume: its convex hull is used, and the rules say so.
+
+The moments are kept as unit-density volume integrals (V, ∫r dV, ∫r rᵀ dV) so that mesh
+scale, origin rotation and translation, and several geometries on one link combine exactly.
+"""
+from __future__ import annotations
+
+import math
+
+from urdf_lint.ruleutil import number, numbers
+from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
+
+
+class Geometry:
+    """Unit-density volume integrals of a link's geometry, in the link frame."""
+
+    def __init__(self, np):
+        self.np = np
+        self.volume = 0.0
+        self.first = np.zeros(3)
+        self.second = np.zeros((3, 3))
+        self.lo = np.full(3, np.inf)
+        self.hi = np.full(3, -np.inf)
+        self.hull = []          # uris of open meshes measured through their convex hull
+        self.source = "collision"
+
+    def add(self, vol, first, second, corners, rot, t):
+        """Add a piece given in its own frame, placed by rotation ``rot`` and offset ``t``."""
+        np = self.np
+        first = np.asarray(first, float)
+        second = np.asarray(second, float)
+        f2 = rot @ first
+        self.second += rot @ second @ rot.T + np.outer(f2, t) + np.outer(t, f2) + vol * np.outer(t, t)
+        self.first += f2 + vol * t
+        self.volume += vol
+        pts = np.asarray(corners, float) @ rot.T + t
+        self.lo = np.minimum(self.lo, pts.min(axis=0))
+        self.hi = np.maximum(self.hi, pts.max(axis=0))
+
+    @property
+    def com(self):
+        return self.first / self.volume
+
+    def inertia(self, m):
+        """Inertia tensor about the geometry's centre of mass, for mass ``m`` spread uniformly."""
+        np = self.np
+        c = self.com
+        s = self.second - self.volume * np.outer(c, c)
+        return (m / self.volume) * (np.trace(s) * np.eye(3) - s)
+
+
+def rotation(rpy, np):
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def pose(el, np):
+    """(rotation, translation) of the ``<origin>`` child of ``el`` (identity when absent)."""
+    o = el.find("origin") if el is not None else None
+    xyz = numbers(o.get("xyz", "0 0 0"), 3) if o is not None else [0, 0, 0]
+    rpy = numbers(o.get("rpy", "0 0 0"), 3) if o is not None else [0, 0, 0]
+    if xyz is None or rpy is None:
+        return None
+    return rotation(rpy, np), np.asarray(xyz, float)
+
+
+def _box_corners(half, np):
+    return np.array([[sx * half[0], sy * half[1], sz * half[2]]
+                     for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+
+
+def _primitive(shape, np):
+    """(volume, first, second, corners) of a box / cylinder / sphere centred at its origin, or
+    None (capsules and bad values)."""
+    if shape.tag == "box":
+        s = numbers(shape.get("size"), 3)
+        if not s or min(s) <= 0:
+            return None
+        a, b, c = s
+        v = a * b * c
+        return v, np.zeros(3), np.diag([v * a * a / 12, v * b * b / 12, v * c * c / 12]), \
+            _box_corners([a / 2, b / 2, c / 2], np)
+    r = number(shape.get("radius"))
+    if r is None or r <= 0:
+        return None
+    if shape.tag == "sphere":
+        v = 4 / 3 * math.pi * r ** 3
+        return v, np.zeros(3), np.eye(3) * v * r * r / 5, _box_corners([r, r, r], np)
+    if shape.tag == "cylinder":
+        h = number(shape.get("length"))
+        if h is None or h <= 0:
+            return None
+        v = math.pi * r * r * h
+        return v, np.zeros(3), np.diag([v * r * r / 4, v * r * r / 4, v * h * h / 12]), \
+            _box_corners([r, r, h / 2], np)
+    return None
+
+
+def _capsule(shape, np):
+    r, h = number(shape.get("radius")), number(shape.get("length"))
+    if r is None or h is None or r <= 0 or h <= 0:
+        return None
+    import trimesh
+    from urdf_lint.meshes import _mass_properties
+    f = _mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
+    if not f["ok"]:
+        return None
+    return f["volume"], f["first"], f["second"], _box_corners([r, r, h / 2 + r], np)
+
+
+def link_geometry(model, ctx, lk, np, kind=None):
+    """The link's Geometry (its collision, else visual, pieces; or those of ``kind``), or None
+    when any piece cannot be measured (a missing or broken mesh, a bad value): no guess is
+    better than a wrong one."""
+    from urdf_lint import meshes
+    kind = kind or ("collision" if lk.findall("collision") else "visual")
+    pieces = lk.findall(kind)
+    if not pieces:
+        return None
+    g = Geometry(np)
+    g.source = kind
+    for piece in pieces:
+        shape = piece.find("geometry")
+        shape = next((s for s in shape if isinstance(s.tag, str)), None) if shape is not None else None
+        p = pose(piece, np)
+        if shape is None or p is None:
+            return None
+        rot, t = p
+        if shape.tag == "mesh":
+            uri = shape.get("filename")
+            ref = ctx.mesh_ref(model, uri) if uri else None
+            if ref is None or ref.problem is not None or not ref.path:
+                return None
+            f = meshes.mass_facts(ref.path, ctx.mesh_cache_dir)
+            scale = numbers(shape.get("scale", "1 1 1"), 3)
+            if not f.get("ok") or not scale or any(s == 0 for s in scale):
+                return None
+            a = np.diag(scale)
+            det = abs(scale[0] * scale[1] * scale[2])
+            lo, hi = f["bounds"]
+            corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                                for z in (lo[2], hi[2])]) * np.asarray(scale)
+            g.add(det * f["volume"], det * (a @ np.asarray(f["first"])),
+                  det * (a @ np.asarray(f["second"]) @ a.T), corners, rot, t)
+            if f["hull"]:
+                g.hull.append(uri)
+        else:
+            prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)
+            if prim is None:
+                return None
+            g.add(*prim, rot, t)
+    return g if g.volume > 0 else None
+
+
+def moving_links(model):
+    """(link, joint) for every link that a non-fixed joint moves (first joint naming it)."""
+    seen = set()
+    for j in model.top_joints():
+        if j.get("type") in (None, "fixed"):
+            continue
+        c = j.find("child")
+        name = c.get("link") if c is not None else None
+        lk = model.links.get(name)
+        if lk is not None and name not in seen:
+            seen.add(name)
+            yield lk, j
+
+
+def is_identity(t):
+    return t is not None and t["ixx"] == t["iyy"] == t["izz"] == 1 and \
+        t["ixy"] == t["ixz"] == t["iyz"] == 0
+
+
+def measured_links(model, ctx):
+    """(link, mass, declared tensor, inertial element, Geometry) for every moving link whose
+    declared inertial and geometry can both be measured. Memoized per model on the context."""
+    key = id(model)
+    cache = getattr(ctx, "_physics_links", None)
+    if cache is None:
+        cache = {}
+        ctx._physics_links = cache
+    if key in cache:
+        return cache[key]
+    out = []
+    np = None
+    for lk, _j in moving_links(model):
+        m, t, inr = mass(lk), tensor(lk), lk.find("inertial")
+        if m is None or m <= 0 or t is None or is_zero(t) or is_identity(t):
+            continue
+        if np is None:
+            import numpy as np
+        g = link_geometry(model, ctx, lk, np)
+        if g is not None:
+            out.append((lk, m, t, inr, g))
+    cache[key] = out
+    return out
+
+
+def declared_matrix(t, inr, np):
+    """The declared inertia in link axes (rotated by the inertial origin's rpy)."""
+    m = np.array([[t["ixx"], t["ixy"], t["ixz"]], [t["ixy"], t["iyy"], t["iyz"]],
+                  [t["ixz"], t["iyz"], t["izz"]]])
+    p = pose(inr, np)
+    rot = p[0] if p else np.eye(3)
+    return rot @ m @ rot.T
+
+
+def hull_note(g):
+    if not g.hull:
+        return ""
+    return (f"; '{g.hull[0]}' is not watertight, so its convex hull was measured"
+            + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
+
+
+def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1"):
+    """FAIL/PASS text for the physics rules: a moving link 'arm' with a box collision."""
+    o = f'<origin xyz="{origin}"/>' if origin else ""
+    return f"""<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial>{o}<mass value="{mass}"/><inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>
+    <collision><geometry><box size="{box}"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+</robot>
+"""
+
+
+__all__ = ["example", "INERTIA", "measured_links", "declared_matrix", "hull_note", "is_identity",
+           "moving_links", "pose"]
