@@ -87,8 +87,10 @@ def resolve(model, uri: str) -> MeshRef:
         top = _root_of(resolver, p)
     if top is None:
         if not os.path.lexists(p):
-            return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh file not found: '{uri}' (looked for {p})")
-        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS, f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+            return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                           f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
     exact, real = _case_true_path(p, top)
     if not exact and real is None:
@@ -109,7 +111,8 @@ def resolve(model, uri: str) -> MeshRef:
                        f"{e.strerror or e} ({p})")
     if not stat.S_ISREG(st.st_mode):
         what = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file"
-        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh '{uri}' is {what}, not a mesh file ({p})")
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh '{uri}' is {what}, not a mesh file ({p})")
     return MeshRef(uri, str(p), MeshStatus.OK)
 
 

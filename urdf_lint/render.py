@@ -703,7 +703,8 @@ def write_summary(result, out_dir):
     for m in result.models:
         c = Counter(f.severity for f in result.findings if m.label in f.models)
         label = escape_markdown(m.label)  # names are the description's: no HTML, no links
-        lines.append(f"| `{escape_markdown_code(m.label)}` | {m.stats.get('links', '-')} | {m.stats.get('joints', '-')} | "
+        lines.append(f"| `{escape_markdown_code(m.label)}` | {m.stats.get('links', '-')} | "
+                     f"{m.stats.get('joints', '-')} | "
                      f"{m.stats.get('meshes', '-')} | {c['error']} | {c['warning']} | {c['info']} |")
         snap = m.snapshot or {}
         if snap.get("png"):
