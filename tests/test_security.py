@@ -672,3 +672,32 @@ def test_no_secret_in_cache_or_recordings(world, tmp_path):
     assert any(f.suffix == ".json" for f in written) and any(f.suffix == ".png" for f in written)
     for f in written:
         assert SECRET.encode() not in f.read_bytes(), f
+
+
+# -- the shared escaping helper in the formats that came with the restructured main ---------------
+def test_concise_format_cannot_be_forged(world):
+    repo, _, _ = world
+    _forging_repo(repo)
+    p = _check_text(repo, "--format", "concise", env={"GITHUB_ACTIONS": ""})
+    assert p.returncode == 1
+    assert "\x1b" not in p.stdout
+    assert not any(ln.startswith("::") for ln in p.stdout.splitlines()), p.stdout
+    assert "\\x0a::error file=x.py,line=1::pwned" in p.stdout
+
+
+def test_diff_reports_escape_names():
+    """urdf-lint diff's text and markdown show a description's names as one visible line."""
+    from urdf_lint import review_report
+    from urdf_lint.review import DiffResult
+    from urdf_lint.robotdiff import Change, ModelDiff
+    evil = "j\n::error file=x.py,line=1::pwned\x1b[31m\u202e"
+    r = DiffResult("base", "head", models=[ModelDiff(
+        "p/r.urdf", "changed", changes=[Change("joint", evil, "changed", "limit.upper",
+                                                1.0, f"<img src=x> | `{evil}`")],
+        error=evil)], total_models=1)
+    text = review_report.to_text(r)
+    assert "\x1b" not in text and "\u202e" not in text
+    assert not any(ln.startswith("::") for ln in text.splitlines()), text
+    md = review_report.to_markdown(r)
+    assert "\x1b" not in md and "\u202e" not in md and "<img" not in md
+    assert not any(ln.startswith("::") for ln in md.splitlines()), md
