@@ -212,14 +212,14 @@ def _record_reads(out: ModelReport) -> None:
 def lint_model(job: LintJob, settings: LintSettings):
     """(ModelReport, Model or None, Context) for one job."""
     from .packages import PackageResolver
-    from . import meshes
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
     resolver = PackageResolver.from_dict(settings.resolver)
-    meshes.set_confinement(resolver.is_inside)  # texture/MTL references stay in the roots
-    if job.kind == "expand":
+    if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)
         return out, None, ctx
+    from . import meshes
+    meshes.set_confinement(resolver.is_inside)  # texture/MTL references stay in the roots
     model = _load(job, settings, resolver, out)
     if model is None:
         return out, None, ctx
