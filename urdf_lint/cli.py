@@ -264,7 +264,7 @@ def build_parser():
 
 # -- config -----------------------------------------------------------------------------------
 def _load_cfg(args, paths):
-    from .config import apply_cli, find_config, load_config, validate_codes
+    from .config import find_config, load_config, validate_codes
     from .registry import codes_to_names
     known = codes_to_names()
     if getattr(args, "isolated", False):
@@ -513,11 +513,9 @@ def cmd_expand(args) -> int:
                   display_name=args.file)
     settings = LintSettings(resolver=resolver.to_dict(),
                             env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
-    res = None
-    for _, res in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
-                           memory_mb=cfg.memory_mb):
-        pass
-    assert res is not None
+    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
+                                      memory_mb=cfg.memory_mb)]
+    res = results[-1]
     for msg in res.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
         return 2

@@ -20,7 +20,10 @@ def file_digest(path: str) -> str | None:
             if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_HASHED_BYTES:
                 return None
             left = st.st_size + 1
-            for chunk in iter(lambda: f.read(min(1 << 20, left)), b""):
+            while True:
+                chunk = f.read(min(1 << 20, left))
+                if not chunk:
+                    break
                 h.update(chunk)
                 left -= len(chunk)
                 if left <= 0:
