@@ -5,47 +5,118 @@ A model's entry is keyed on the tool version, the entry file, its args and the l
 model read (xacro, YAML, meshes) still has the content it had, and every file that was looked
 for and missing is still missing. Stat data (size, mtime) short-cuts the content hash. A corrupt
 or foreign entry is ignored.
+
+The cache cannot lie (issue 15):
+
+* every entry is signed (HMAC-SHA256) with a key kept outside the repository, in the user's
+  cache folder (``$XDG_CACHE_HOME/urdf-lint/key``, created 0600): an entry committed to the
+  repository, or written by anyone without the key, is ignored;
+* a cache folder that git tracks, or that is a symlink, is refused (the run goes on uncached);
+* the digests recorded are those of the bytes the worker actually read, with the file's stat
+  taken before the read (:func:`file_record`), so a file edited during a run can never have
+  the old result cached against its new content.
 """
 from __future__ import annotations
 
 import hashlib
+import hmac
 import json
 import os
 import shutil
+import stat as _st
+import subprocess
+import sys
 from pathlib import Path
 
 from . import __version__
 from .atomic import atomic_write
 from .discovery import start_dir
-from .hashing import file_digest
+from .hashing import file_digest, file_record, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
 from .vcs import repo_root
 
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 # bump when the stored record changes shape
-RECORD_FORMAT = 3
+RECORD_FORMAT = 4
+
+__all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
 
-def _stat(path):
+def key_path() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base, "urdf-lint", "key")
+
+
+def _load_key(repo_dirs=()) -> bytes | None:
+    """The signing key, created on first use (0600, in a 0700 folder). None when it cannot
+    be kept safely: then nothing is cached."""
+    p = key_path()
+    real = os.path.realpath(p.parent)
+    if any(real == d or real.startswith(d.rstrip(os.sep) + os.sep) for d in
+           (os.path.realpath(r) for r in repo_dirs if r)):
+        return None  # a key inside the linted repository would be the repository's
     try:
-        st = os.stat(path)
+        p.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        try:
+            fd = os.open(p, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0),
+                         0o600)
+        except FileExistsError:
+            pass
+        else:
+            with os.fdopen(fd, "wb") as f:
+                f.write(os.urandom(32))
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+        with os.fdopen(fd, "rb") as f:
+            st = os.fstat(f.fileno())
+            if not _st.S_ISREG(st.st_mode) or (hasattr(os, "getuid") and st.st_uid != os.getuid()) \
+                    or st.st_mode & 0o077:
+                return None
+            key = f.read(64)
+        return key if len(key) >= 32 else None
     except OSError:
         return None
-    return [st.st_size, st.st_mtime_ns]
+
+
+def _git_tracks(directory: str) -> bool:
+    try:
+        out = subprocess.run(["git", "ls-files", "--", "."], cwd=directory, capture_output=True,
+                             text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return False  # no git: nothing can be tracked
+    return out.returncode == 0 and bool(out.stdout.strip())
+
+
+_stat = stat_key
 
 
 class Cache:
-    def __init__(self, directory: str):
+    def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
         self._writes = 0
+        self.refused: str | None = None
+        self._secret = _load_key([repo] if repo else [])
+        if self._secret is None:
+            self.refused = (f"no signing key could be kept at {key_path()} (outside the "
+                            "repository, mode 0600)")
+        elif os.path.islink(self.dir):
+            self.refused = f"{self.dir} is a symlink"
+        elif os.path.isdir(self.dir) and _git_tracks(self.dir):
+            self.refused = f"{self.dir} holds files tracked by git"
+        if self.refused:
+            sys.stderr.write(f"urdf-lint: note: not using the cache: {self.refused}\n")
+
+    def _mac(self, blob: str) -> str:
+        assert self._secret is not None
+        return hmac.new(self._secret, blob.encode("utf-8"), hashlib.sha256).hexdigest()
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
+        repo = repo_root(start_dir(paths))
         if os.environ.get("URDF_LINT_CACHE_DIR"):
-            return cls(os.environ["URDF_LINT_CACHE_DIR"])
+            return cls(os.environ["URDF_LINT_CACHE_DIR"], repo)
         if cfg.cache_dir:
-            return cls(os.path.join(cfg.root, cfg.cache_dir))
-        return cls(os.path.join(repo_root(start_dir(paths)), ".urdf_lint_cache"))
+            return cls(os.path.join(cfg.root, cfg.cache_dir), repo)
+        return cls(os.path.join(repo, ".urdf_lint_cache"), repo)
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
@@ -56,9 +127,18 @@ class Cache:
         return Path(self.dir, "results", key[:2], key + ".json")
 
     def get(self, job: LintJob, settings: LintSettings) -> ModelReport | None:
+        if self.refused:
+            return None
         p = self._path(self._key(job, settings))
         try:
-            rec = json.loads(p.read_text(encoding="utf-8"))
+            if p.is_symlink() or not p.is_file() or p.stat().st_size > (64 << 20):
+                return None
+            env = json.loads(p.read_text(encoding="utf-8"))
+            blob = env.get("entry")
+            if not isinstance(blob, str) or not isinstance(env.get("mac"), str) or \
+                    not hmac.compare_digest(env["mac"], self._mac(blob)):
+                return None  # not written by this user's urdf-lint
+            rec = json.loads(blob)
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
             for path, (stat, digest) in rec["deps"].items():
@@ -75,28 +155,38 @@ class Cache:
             return None
 
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
+        if self.refused:
+            return
         deps = {}
+        read = result.digests or {}
+        roots = None
+        if settings.resolver:
+            from .packages import PackageResolver
+            roots = PackageResolver.from_dict(settings.resolver)
         for d in result.deps:
-            st = _stat(d)
-            dig = file_digest(d)
-            if st is None or dig is None:
-                continue
-            deps[d] = [st, dig]
+            if roots is not None and not roots.is_inside(d):
+                return  # a worker reporting a file outside the roots: cache nothing
+            # the worker's record of what it read; a file it did not record is read here
+            rec = read.get(d) or file_record(d)
+            if rec is None:
+                return  # an input vanished: nothing trustworthy to cache
+            deps[d] = rec
         rec = {"version": __version__, "deps": deps, "missing": list(result.missing),
                "result": result.to_record()}
         p = self._path(self._key(job, settings))
         try:
             self._ensure()
             p.parent.mkdir(parents=True, exist_ok=True)
-            atomic_write(p, json.dumps(rec))
+            blob = json.dumps(rec)
+            atomic_write(p, json.dumps({"entry": blob, "mac": self._mac(blob)}))
             self._writes += 1
         except OSError:
             pass
 
     def _ensure(self):
         d = Path(self.dir)
-        if not d.is_dir():
-            d.mkdir(parents=True, exist_ok=True)
+        d.mkdir(parents=True, exist_ok=True)  # a worker may have made it for mesh facts
+        if not (d / ".gitignore").is_file():
             (d / ".gitignore").write_text(_GITIGNORE)
             (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
                                             "# urdf-lint cache\n")

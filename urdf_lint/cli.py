@@ -1,4 +1,4 @@
-"""Command line: urdf-lint check|hook|expand|rules|rule|render|clean.
+"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|clean|doctor.
 
 Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error, 130 Ctrl-C.
 Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
@@ -107,6 +107,24 @@ def _add_inputs(p, config=True):
                        help="config file: pyproject.toml or urdf-lint.toml (default: the "
                             "nearest one above the first path)")
         p.add_argument("-j", "--jobs", metavar="N", help=_key_help("jobs"))
+    _add_trust(p)
+
+
+def _add_trust(p):
+    """The keys a repository's own config may not set (urdf_lint/trust.py), and the switch
+    that lets it."""
+    p.add_argument("--env-allow", action="append", metavar="VAR", help=_key_help(
+        "env-allow", "an environment variable $(env)/$(optenv) may read; repeatable"))
+    p.add_argument("--trust-config", action="store_true",
+                   help="let the repository's config set env-allow, package-paths outside it, "
+                        "cache-dir, jobs and looser timeout/memory-mb (default: off, those "
+                        "keys are ignored with a note)")
+
+
+def _add_limits(p):
+    p.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
+    p.add_argument("--memory-mb", metavar="MIB", help=_key_help("memory-mb"))
+    p.add_argument("--cache-dir", metavar="DIR", help=_key_help("cache-dir"))
 
 
 def _add_output(p):
@@ -163,7 +181,7 @@ def build_parser():
                         "origin/main (default: every model)")
     c.add_argument("--write-baseline", metavar="FILE",
                    help="record the current findings in FILE and exit 0 (default: off)")
-    c.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
+    _add_limits(c)
 
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
                        formatter_class=raw,
@@ -174,6 +192,7 @@ def build_parser():
     _add_output(h)
     _add_selection(h)
     _add_inputs(h)
+    _add_limits(h)
 
     e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)",
                        description="Expand one xacro file to URDF, byte-identical to xacro 2.1.1.")
@@ -183,6 +202,8 @@ def build_parser():
     e.add_argument("-o", "--output", metavar="FILE",
                    help="write the URDF to FILE, atomically (default: standard output)")
     _add_inputs(e, config=False)
+    e.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
+    e.add_argument("--memory-mb", metavar="MIB", help=_key_help("memory-mb"))
 
     rl = sub.add_parser("rules", help="list the rule catalogue", description="List the rule catalogue.")
     rl.add_argument("--format", choices=["text", "markdown"], default="text",
@@ -197,6 +218,7 @@ def build_parser():
     rd.add_argument("--out", default="snapshots", metavar="DIR",
                     help="output folder (default: snapshots)")
     _add_inputs(rd)
+    _add_limits(rd)
     rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
 
     df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
@@ -226,6 +248,12 @@ def build_parser():
                     "identical framing and one .rrd holding both revisions per affected model "
                     "(default: no snapshots)")
     df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
+    df.add_argument("--trust-config", action="store_true",
+                    help="let each revision's config set env-allow, package-paths outside the "
+                         "repository, cache-dir, jobs and looser limits (default: off)")
+    sub.add_parser("doctor", help="show which protections the worker sandbox has here",
+                   description="Show which OS protections the workers get on this machine "
+                               "(Landlock, seccomp, parent-death signal) and which are missing.")
     cl = sub.add_parser("clean", help="remove the cache", description="Remove the result cache.")
     cl.add_argument("paths", nargs="*", default=["."], metavar="PATH",
                     help="find the cache from here (default: .)")
@@ -236,7 +264,7 @@ def build_parser():
 
 # -- config -----------------------------------------------------------------------------------
 def _load_cfg(args, paths):
-    from .config import apply_cli, find_config, load_config, validate_codes
+    from .config import find_config, load_config, validate_codes
     from .registry import codes_to_names
     known = codes_to_names()
     if getattr(args, "isolated", False):
@@ -244,11 +272,53 @@ def _load_cfg(args, paths):
     else:
         path = getattr(args, "config", None) or find_config(paths[0] if paths else ".")
         cfg = load_config(path, known)
-    apply_cli(cfg, {k: getattr(args, k.replace("-", "_"), None) for k in (
-        "select", "extend-select", "ignore", "fail-on", "timeout", "jobs", "format",
-        "baseline")})
+    _trust(cfg, args, paths)
+    _apply_cli(cfg, args)
     validate_codes(cfg, known)
     return cfg
+
+
+_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "timeout", "memory-mb", "jobs",
+             "format", "baseline", "env-allow", "cache-dir")
+
+
+def _apply_cli(cfg, args):
+    """What the user set on the command line wins (through the schema), clamped like the rest."""
+    from .config import apply_cli
+    from . import trust
+    values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
+    if values["env-allow"] and not isinstance(values["env-allow"], str):
+        values["env-allow"] = ",".join(values["env-allow"])  # --env-allow A --env-allow B
+    if values["cache-dir"]:
+        values["cache-dir"] = os.path.abspath(values["cache-dir"])
+    apply_cli(cfg, values)
+    trust.clamp(cfg)
+
+
+def _trust(cfg, args, paths):
+    """The repository's config may not loosen the guarantees (see urdf_lint/trust.py)."""
+    from .discovery import start_dir
+    from .vcs import repo_root
+    from . import trust
+    for n in trust.apply(cfg, repo_root(start_dir(paths)),
+                         trusted=getattr(args, "trust_config", False)):
+        if not getattr(args, "quiet", False):
+            sys.stderr.write(f"urdf-lint: {_safe_text(n)}\n")
+
+
+def _safe_text(s) -> str:
+    from .report.escape import escape_text
+    return escape_text(str(s))
+
+
+def _safe_lines(s) -> str:
+    return "\n".join(_safe_text(line) for line in str(s).split("\n"))
+
+
+def _refuse_symlinked_out(d):
+    """Snapshots are written where the user said, never through a link a repository planted."""
+    if d and os.path.islink(d.rstrip(os.sep) or d):
+        raise UsageError(f"output folder {d} is a symlink; refusing to write through it")
 
 
 class _Out:
@@ -294,6 +364,8 @@ def cmd_check(args) -> int:
     if not args.no_cache:
         from .cache import Cache
         cache = Cache.for_paths(args.paths, cfg)
+        if cache.refused:  # said why on stderr; nothing (mesh facts included) goes there
+            cache = None
     affected_by = None
     if args.changed_since:
         affected_by = _changed_since(args.changed_since, args.paths[0])
@@ -307,12 +379,13 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
+    _refuse_symlinked_out(render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     if out.verbose:
         _list_models(result, out)
     for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     if args.write_baseline:
         from .baseline import write_baseline
         n = write_baseline(args.write_baseline, result.findings)
@@ -342,7 +415,7 @@ def cmd_check(args) -> int:
                      **options)
     for f in result.unused_files:
         if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            out.info(f"note: {display_path(f)} is not used by any model")
+            out.info(f"note: {_safe_text(display_path(f))} is not used by any model")
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -374,11 +447,11 @@ def _list_models(result, out):
     for m in result.models:
         state = "cached" if m.cached else m.status
         reads = [d for d in m.deps if d != m.entry]
-        out.info(f"model: {m.label} ({state}, {len(reads)} other file(s) read)")
+        out.info(f"model: {_safe_text(m.label)} ({state}, {len(reads)} other file(s) read)")
         for d in reads:
-            out.info(f"    {display_path(d)}")
+            out.info(f"    {_safe_text(display_path(d))}")
     for m in result.skipped:
-        out.info(f"skipped: {display_path(m.entry)} ({m.status})")
+        out.info(f"skipped: {_safe_text(display_path(m.entry))} ({m.status})")
 
 
 def _report_snapshots(result, out_dir, out=None):
@@ -391,9 +464,9 @@ def _report_snapshots(result, out_dir, out=None):
             if snap.get(k):
                 written += 1
         for prob in snap.get("problems", []):
-            sys.stderr.write(f"urdf-lint: snapshot of {m.label}: {prob}\n")
+            sys.stderr.write(f"urdf-lint: snapshot of {_safe_text(m.label)}: {_safe_text(prob)}\n")
         if m.status != "model":
-            sys.stderr.write(f"urdf-lint: no snapshot of {m.label}: it did not expand "
+            sys.stderr.write(f"urdf-lint: no snapshot of {_safe_text(m.label)}: it did not expand "
                              "(see 'urdf-lint check')\n")
     summary = write_summary(result, out_dir)
     msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
@@ -409,7 +482,7 @@ def cmd_hook(args) -> int:
     from .vcs import repo_root
     root = repo_root(os.getcwd())
     ns = argparse.Namespace(paths=[root], output=None, render=None, changed_since=None,
-                            write_baseline=None, timeout=None, isolated=False, **vars(args))
+                            write_baseline=None, isolated=False, **vars(args))
     ns.quiet = True if not args.verbose else False
     ns.command = "check"
     if not args.files:
@@ -418,38 +491,54 @@ def cmd_hook(args) -> int:
 
 
 def cmd_expand(args) -> int:
-    from .config import load_config
+    from .config import DEFAULT_ENV_ALLOW, find_config, load_config
     from .discovery import build_resolver
-    from .expansion import expand_file
-    from .config import DEFAULT_ENV_ALLOW
+    from .jobs import LintJob, LintSettings, Status
     from .locations import display_path
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")
-    from .config import find_config
     cfg = load_config(find_config(args.file))
+    _trust(cfg, args, [args.file])
+    _apply_cli(cfg, args)
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
-    res = expand_file(args.file, mappings, resolver,
-                      env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
-                      display_name=args.file)
-    for n in res.notes:
-        sys.stderr.write(f"{display_path(n.file)}:{n.line}:{n.col}: {n.code} {n.message}\n")
-    if res.error:
-        e = res.error
-        sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
+    # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
+    from .worker import run_jobs
+    import xacro  # noqa: F401 - imported once in the parent, shared by the forked worker
+    from . import expansion  # noqa: F401
+    from . import lint  # noqa: F401
+    job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
+                  display_name=args.file)
+    settings = LintSettings(resolver=resolver.to_dict(),
+                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
+    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
+                                      memory_mb=cfg.memory_mb)]
+    res = results[-1]
+    for msg in res.internal:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
+        return 2
+    for n in res.problems:
+        sys.stderr.write(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
+                         f"{_safe_text(n.message)}\n")
+    xml = res.kept_model.xml if res.kept_model is not None else None
+    if res.status is Status.FAILED or xml is None:
+        if not res.problems:
+            from .rules import ul002_xacro_error
+            sys.stderr.write(f"{_safe_text(display_path(job.entry))}:1:1: "
+                             f"{ul002_xacro_error.CODE} expansion failed\n")
         return 1
     if args.output:
         from .atomic import atomic_write
         d = os.path.dirname(os.path.abspath(args.output))
         try:
             os.makedirs(d, exist_ok=True)
-            atomic_write(args.output, res.xml)
+            atomic_write(args.output, xml)
         except OSError as e:
             raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
     else:
-        sys.stdout.write(res.xml)
+        sys.stdout.write(xml)
     return 0
 
 
@@ -490,6 +579,7 @@ def cmd_render(args) -> int:
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
+    _refuse_symlinked_out(args.out)
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
@@ -502,7 +592,7 @@ def cmd_render(args) -> int:
                 from .locations import display_path
                 print(display_path(snap[k]))
     for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     return 2 if result.internal else 0
 
 
@@ -513,7 +603,9 @@ def cmd_diff(args) -> int:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only these keys
-    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs)
+    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs,
+                                  trust_config=args.trust_config)
+    _refuse_symlinked_out(args.render)
     cfgs = []
 
     def load(ps):
@@ -532,8 +624,17 @@ def cmd_diff(args) -> int:
     else:
         review_report.write(result, args.format, sys.stdout, **kw)
     for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
+
+
+def cmd_doctor(args) -> int:
+    from . import __version__
+    from .sandbox import protections
+    print(f"urdf-lint {__version__} on {sys.platform}, Python {sys.version.split()[0]}")
+    for name, (ok, why) in protections().items():
+        print(f"  {'on ' if ok else 'OFF'}  {name:<12} {why}")
+    return 0
 
 
 def cmd_clean(args) -> int:
@@ -545,7 +646,7 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "clean": cmd_clean}
+            "render": cmd_render, "diff": cmd_diff, "clean": cmd_clean, "doctor": cmd_doctor}
 
 
 def main(argv=None) -> int:
@@ -567,13 +668,22 @@ def _main(argv) -> int:
         return 2 if e.code else 0
     if args.version:
         from . import __version__
-        print(f"urdf-lint {__version__}")
+        from .sandbox import summary_line
+        print(f"urdf-lint {__version__}\n{summary_line()}")
         return 0
     if not args.command:
         parser.print_help()
         return 2
     from .config import ConfigError
     from .baseline import BaselineError
+    import signal
+
+    def _terminate(signum, frame):  # SIGTERM is handled like Ctrl-C: workers are stopped
+        raise KeyboardInterrupt
+    try:
+        signal.signal(signal.SIGTERM, _terminate)
+    except ValueError:  # pragma: no cover - not the main thread
+        pass
     try:
         return COMMANDS[args.command](args)
     except (UsageError, ConfigError, BaselineError) as e:

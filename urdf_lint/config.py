@@ -242,7 +242,7 @@ SCHEMA: tuple[Key, ...] = (
     Key("models", Models(), [], "entry models and the xacro args to expand them with"),
     Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
     Key("env-allow", StrList("environment variable names"), [],
-        "environment variables $(env)/$(optenv) may read"),
+        "environment variables $(env)/$(optenv) may read", cli_merge="extend"),
     Key("timeout", Number(float, 0, "seconds"), 30.0, "time limit per model, in seconds"),
     Key("memory-mb", Number(int, 0, "MiB"), 2048, "memory limit per model, in MiB"),
     Key("rule-options", RuleOptions(), {}, "options of single rules"),

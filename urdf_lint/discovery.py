@@ -26,28 +26,14 @@ def inside(f: str, p: str) -> bool:
 
 
 def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> PackageResolver:
-    scan = [os.path.abspath(p) for p in paths]
+    """The package roots of a run (:func:`urdf_lint.packages.discover_roots`): the packages,
+    the git repository and the colcon workspace holding the linted paths; never the working
+    directory by itself, and nothing above the linted paths without git (fail closed)."""
+    from .packages import discover_roots
     start = start_dir(paths) if paths else os.getcwd()
-    top = git_root(start)
-    root = top or os.path.abspath(start)
-    scan.append(root)
-    # a file's (or folder's) own package: walk up to the nearest package.xml, not past git's root
-    for p in list(scan):
-        d = Path(p if os.path.isdir(p) else os.path.dirname(p)).resolve()
-        for parent in [d, *d.parents]:
-            if (parent / "package.xml").is_file():
-                scan.append(str(parent))
-                break
-            if top is not None and str(parent) == top:
-                break
+    scan, extra_roots = discover_roots(paths or [start], git_root(start))
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
-    extra_roots = [root] + [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]
-    if top is None:
-        # outside git, the folder the user works in is the repository when it holds the paths
-        cwd = os.getcwd()
-        if all(inside(os.path.abspath(p), cwd) for p in paths):
-            extra_roots.append(cwd)
     return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots)
 
 

@@ -32,9 +32,10 @@ class LintJob:
     """One model to lint: an entry file and the xacro args to expand it with."""
     entry: str                 # absolute path
     args: dict = field(default_factory=dict)
-    kind: str = "xacro"        # "xacro" | "urdf"
+    kind: str = "xacro"        # "xacro" | "urdf" | "expand" (urdf-lint expand, in a worker too)
     explicit: bool = False     # named by the user or the config (never skipped as a library)
     diff_stem: str | None = None   # diff --render: the file name stem of its snapshots
+    display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
 
 
 @dataclass(frozen=True)
@@ -95,6 +96,7 @@ class ModelReport:
     kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
     diff_geometry: object = None                    # diff --render: render.Geometry
     diff_rrd: str | None = None                     # diff --render: this side's recording
+    digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
     cached: bool = False
 
     @classmethod

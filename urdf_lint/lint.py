@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import os
 
-from lxml import etree
-
 from .findings import Problem
 from .jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from .locations import Origin
-from .rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype
+from .rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
+
+# lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
 
 XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
 
@@ -55,6 +55,7 @@ def target_of(el):
 def classify_xacro(path: str) -> Status | None:
     """None for a candidate model, LIBRARY (only macro/property/arg/include at top level) or
     NOT_ROBOT."""
+    from lxml import etree
     try:
         root = etree.parse(path, _quick_parser()).getroot()
     except (etree.XMLSyntaxError, OSError):
@@ -71,6 +72,7 @@ def classify_xacro(path: str) -> Status | None:
 
 
 def _quick_parser():
+    from lxml import etree
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
@@ -90,13 +92,19 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                           expr_policy=settings.expr_policy)
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)
+        out.digests = dict(exp.digests)
         problems.extend(exp.notes)
         if exp.error is not None:
             problems.append(exp.error)
             out.status = Status.FAILED
             return None
         assert exp.xml is not None  # expand_file sets xml or error
-        model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+        try:
+            model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+        except Exception as e:  # noqa: BLE001 - lxml refused what xacro produced
+            problems.append(_expanded_xml_error(e, exp, entry))
+            out.status = Status.FAILED
+            return None
         if not model.top_links() and not job.explicit:
             out.status = Status.LIBRARY
             out.problems = []
@@ -104,9 +112,29 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
         if settings.keep_model:  # urdf-lint diff compares the robots themselves
             out.kept_model = KeptModel(exp.xml, exp.origins)
         return model
+    from .hashing import file_record
+    from .packages import MAX_SOURCE_BYTES, regular_file
+    if not resolver.is_inside(entry):
+        problems.append(Problem.at(ul902_outside_roots.CODE,
+                                   "this file resolves outside the package roots and the linted "
+                                   "repository (a symlink?); it was not read", (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
+    if not regular_file(entry, MAX_SOURCE_BYTES):
+        problems.append(Problem.at(ul001_xml_syntax.CODE,
+                                   f"not a regular file of at most {MAX_SOURCE_BYTES >> 20} MiB "
+                                   "(a device, FIFO or a huge file?); it was not read",
+                                   (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
     try:
+        before = os.stat(entry)
         with open(entry, "rb") as f:
             data = f.read()
+        rec = file_record(entry, data)
+        if rec is not None:  # the stat before the read, the digest of the bytes read
+            rec[0] = [before.st_size, before.st_mtime_ns]
+            out.digests = {entry: rec}
     except OSError as e:
         problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",
                                    (entry, 1, 1)))
@@ -129,12 +157,69 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
     return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
 
 
+def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelReport) -> None:
+    """`urdf-lint expand`: the expansion itself, in a worker too (limits, sandbox). The XML
+    comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
+    from .expansion import expand_file
+    exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
+                      display_name=job.display_name, expr_policy=settings.expr_policy)
+    out.deps = list(exp.deps)
+    out.problems.extend(exp.notes)
+    if exp.error is not None:
+        out.problems.append(exp.error)
+        out.status = Status.FAILED
+    else:
+        out.kept_model = KeptModel(exp.xml)
+
+
+def _expanded_xml_error(e: Exception, exp, entry: str) -> Problem:
+    """A located UL001 for an expansion lxml cannot hold (nesting deeper than its limit, a
+    huge attribute, a control character an expression produced), at the source line of the
+    element the error is in."""
+    from .model import element_positions
+    msg = " ".join(str(getattr(e, "msg", None) or e).split())
+    line = (getattr(e, "position", None) or (0, 0))[0]
+    origin = Origin(entry, 1, 1)
+    if line:
+        positions = element_positions(exp.xml.encode("utf-8", "replace"))
+        idx = max((i for i, (ln, _) in enumerate(positions) if ln <= line), default=None)
+        if positions and positions[-1][0] < line and len(positions) < len(exp.origins):
+            idx = len(positions)  # expat stopped at the same character: the next element
+        if idx is not None and idx < len(exp.origins) and exp.origins[idx] is not None:
+            origin = exp.origins[idx]
+    hint = ""
+    if "invalid character" in msg.lower() or "char" in msg.lower():
+        hint = " (an expression produced a character XML cannot hold)"
+    elif "depth" in msg.lower():
+        hint = " (elements nested deeper than 256 levels)"
+    elif "limit" in msg.lower():
+        hint = " (a text or attribute longer than 10 MB)"
+    return Problem.at(ul001_xml_syntax.CODE, f"the expanded URDF is not valid XML: {msg}{hint}",
+                      origin)
+
+
+def _record_reads(out: ModelReport) -> None:
+    """Digests of the inputs not recorded at parse time (YAML, meshes, textures), taken here,
+    in the worker, right after it used them (see urdf_lint/cache.py)."""
+    from .hashing import file_record
+    for d in out.deps:
+        if d not in out.digests:
+            rec = file_record(d)
+            if rec is not None:
+                out.digests[d] = rec
+
+
 def lint_model(job: LintJob, settings: LintSettings):
     """(ModelReport, Model or None, Context) for one job."""
     from .packages import PackageResolver
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
     resolver = PackageResolver.from_dict(settings.resolver)
+    if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
+        _expand_only(job, settings, resolver, out)
+        return out, None, ctx
+    from . import meshes
+    meshes.set_confinement(resolver.is_inside)  # texture/MTL references stay in the roots
     model = _load(job, settings, resolver, out)
     if model is None:
         return out, None, ctx
@@ -156,6 +241,7 @@ def lint_model(job: LintJob, settings: LintSettings):
         problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
+    _record_reads(out)
     out.name = model.name
     o = model.origin(model.root)
     out.name_origin = Origin(o.file, o.line, o.col)
@@ -177,7 +263,9 @@ def _mesh_deps(model, ctx, deps):
             if ref.path and ref.status is meshes.MeshStatus.OK:
                 mesh_deps.append(ref.path)
                 for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
-                    (mesh_deps if os.path.exists(t) else missing).append(t)
+                    if model.resolver is None or model.resolver.is_inside(t):
+                        # references outside the roots are never deps
+                        (mesh_deps if os.path.exists(t) else missing).append(t)
             elif ref.path and ref.status is meshes.MeshStatus.NOT_FOUND:
                 missing.append(ref.path)
     return list(dict.fromkeys(list(deps) + mesh_deps)), sorted(set(missing))

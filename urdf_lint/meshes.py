@@ -11,6 +11,7 @@ import json
 import math
 import os
 import re
+import stat
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,12 +43,22 @@ class MeshRef:
         return None if self.status is MeshStatus.OK else self.status
 
 
-def _case_true_path(path: Path) -> tuple[bool, str | None]:
-    """(exists with exact case, the real spelling if it only exists with another case)."""
-    parts = path.parts
-    cur = Path(parts[0])
+def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | None]:
+    """(exists with exact case, the real spelling if it only exists with another case).
+
+    Only folders below ``top`` (the root holding ``path``) are listed: names of folders
+    outside the roots are never read."""
+    if top is not None:
+        try:
+            rest = path.relative_to(top).parts
+        except ValueError:
+            top = None
+    if top is None:
+        cur, rest = Path(path.parts[0]), path.parts[1:]
+    else:
+        cur = top
     exact = True
-    for part in parts[1:]:
+    for part in rest:
         try:
             names = os.listdir(cur)
         except OSError:
@@ -70,7 +81,18 @@ def resolve(model, uri: str) -> MeshRef:
     except PackageNotFound as e:
         return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}")
     p = Path(os.path.abspath(p))
-    exact, real = _case_true_path(p)
+    top = _root_of(resolver, p)
+    if top is None and resolver.is_inside(p):  # written outside, resolves inside (a symlink)
+        p = Path(os.path.realpath(p))
+        top = _root_of(resolver, p)
+    if top is None:
+        if not os.path.lexists(p):
+            return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                           f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+                       "the package roots; it is not read")
+    exact, real = _case_true_path(p, top)
     if not exact and real is None:
         return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
                        f"mesh file not found: '{uri}' (looked for {p})")
@@ -82,7 +104,30 @@ def resolve(model, uri: str) -> MeshRef:
         return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
                        f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
                        "the package roots; it is not read")
+    try:
+        st = os.stat(p)
+    except OSError as e:  # a symlink loop, a dangling link, no permission
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh '{uri}' cannot be read: "
+                       f"{e.strerror or e} ({p})")
+    if not stat.S_ISREG(st.st_mode):
+        what = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file"
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh '{uri}' is {what}, not a mesh file ({p})")
     return MeshRef(uri, str(p), MeshStatus.OK)
+
+
+def _root_of(resolver, p: Path) -> Path | None:
+    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    best = None
+    for r in resolver.roots:
+        r = Path(r)
+        try:
+            p.relative_to(r)
+        except ValueError:
+            continue
+        if best is None or len(r.parts) > len(best.parts):
+            best = r
+    return best
 
 
 _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
@@ -90,6 +135,18 @@ _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)
 
 
 _textures: dict = {}
+MAX_MESH_BYTES = 1 << 30
+_confine = None   # set per job to the resolver's is_inside: texture references stay in the roots
+
+
+def set_confinement(inside) -> None:
+    global _confine
+    _confine = inside
+
+
+def _readable(path: str) -> bool:
+    from .packages import regular_file
+    return regular_file(path, MAX_MESH_BYTES) and (_confine is None or _confine(path))
 
 
 def texture_refs(path: str) -> list[str]:
@@ -107,6 +164,8 @@ def _texture_refs(path: str) -> list[str]:
     out = []
     base = os.path.dirname(path)
     low = path.lower()
+    if not _readable(path):
+        return out
     try:
         if low.endswith(".dae"):
             with open(path, "rb") as f:
@@ -123,7 +182,7 @@ def _texture_refs(path: str) -> list[str]:
                     if line.startswith("mtllib"):
                         mtl = os.path.normpath(os.path.join(base, line.split(None, 1)[1].strip()))
                         out.append(mtl)
-                        if os.path.isfile(mtl):
+                        if _readable(mtl):
                             with open(mtl, "r", errors="replace") as mf:
                                 for m in _MTL_MAP.finditer(mf.read()):
                                     out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),

@@ -122,7 +122,7 @@ def parse_urdf_bytes(entry: str, data: bytes):
         root = etree.fromstring(data, safe_parser())
     except etree.XMLSyntaxError as e:
         line, col = (e.position if e.position else (1, 1))
-        error = Problem.at(xml_syntax.CODE, f"XML syntax error: {e.msg}",
+        error = Problem.at(xml_syntax.CODE, f"XML syntax error: {' '.join(e.msg.split())}",
                            (entry, line, max(col, 1)))
         try:
             root = etree.fromstring(data, safe_parser(recover=True))

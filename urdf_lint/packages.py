@@ -68,11 +68,16 @@ class PackageResolver:
     roots: list[Path] = field(default_factory=list)
     scanned_dirs: list[str] = field(default_factory=list)
     use_environment: bool = True
+    # AMENT_PREFIX_PATH / ROS_PACKAGE_PATH as the parent saw them: workers run with a scrubbed
+    # environment, so the search path travels with the resolver
+    env_paths: dict = field(default_factory=dict)
 
     @classmethod
     def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
               use_environment: bool = True) -> "PackageResolver":
         res = cls(use_environment=use_environment)
+        if use_environment:
+            res.env_paths = environment_paths()
         for name, d in (explicit or {}).items():
             res.explicit[name] = Path(d).resolve()
         seen = set()
@@ -95,13 +100,13 @@ class PackageResolver:
     def _from_environment(self, name: str) -> Path | None:
         if not self.use_environment:
             return None
-        for prefix in filter(None, os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep)):
+        for prefix in self.env_paths.get("AMENT_PREFIX_PATH", ()):
             marker = Path(prefix, "share", "ament_index", "resource_index", "packages", name)
             if marker.exists():
                 share = Path(prefix, "share", name)
                 if share.is_dir():
                     return share.resolve()
-        for d in filter(None, os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep)):
+        for d in self.env_paths.get("ROS_PACKAGE_PATH", ()):
             for pxml in iter_files(Path(d), names={"package.xml"}):
                 if package_name(pxml) == name:
                     return pxml.parent.resolve()
@@ -122,9 +127,10 @@ class PackageResolver:
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]
         out += [f"package.xml under {d}" for d in self.scanned_dirs]
-        if self.use_environment:
-            out.append("AMENT_PREFIX_PATH=" + (os.environ.get("AMENT_PREFIX_PATH") or "(unset)"))
-            out.append("ROS_PACKAGE_PATH=" + (os.environ.get("ROS_PACKAGE_PATH") or "(unset)"))
+        if self.use_environment:  # never the values: messages carry no environment contents
+            for var in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
+                n = len(self.env_paths.get(var, ()))
+                out.append(f"{var} ({n} folder{'s' if n != 1 else ''})" if n else f"{var} (unset)")
         return out
 
     # -- URIs --------------------------------------------------------------------------------
@@ -154,6 +160,11 @@ class PackageResolver:
                 continue
         return False
 
+    def readable(self, path: str | os.PathLike, cap: int | None = None) -> bool:
+        """May urdf-lint read this file? Inside the roots after symlinks, a regular file (not
+        a device, FIFO or folder) and, with ``cap``, at most that many bytes."""
+        return self.is_inside(path) and regular_file(path, cap)
+
     def confine(self, path: str | os.PathLike, what: str = "file") -> Path:
         if not self.is_inside(path):
             raise OutsideRoots(str(path), what)
@@ -164,11 +175,93 @@ class PackageResolver:
                 "scanned": {k: str(v) for k, v in self.scanned.items()},
                 "roots": [str(r) for r in self.roots],
                 "scanned_dirs": self.scanned_dirs,
-                "use_environment": self.use_environment}
+                "use_environment": self.use_environment,
+                "env_paths": {k: list(v) for k, v in self.env_paths.items()}}
 
     @classmethod
     def from_dict(cls, d: dict) -> "PackageResolver":
         return cls(explicit={k: Path(v) for k, v in d["explicit"].items()},
                    scanned={k: Path(v) for k, v in d["scanned"].items()},
                    roots=[Path(r) for r in d["roots"]], scanned_dirs=list(d["scanned_dirs"]),
-                   use_environment=d["use_environment"])
+                   use_environment=d["use_environment"],
+                   env_paths={k: list(v) for k, v in d.get("env_paths", {}).items()})
+
+    def read_paths(self) -> list[str]:
+        """Every folder a worker may read below: the roots and the environment's package
+        search path (packages found there become roots when a description uses them)."""
+        out = [str(r) for r in self.roots] + [str(p) for p in self.explicit.values()] + \
+            [str(p) for p in self.scanned.values()]
+        out += [os.path.join(p, "share") for p in self.env_paths.get("AMENT_PREFIX_PATH", ())]
+        out += list(self.env_paths.get("ROS_PACKAGE_PATH", ()))
+        return out
+
+
+MAX_SOURCE_BYTES = 256 << 20   # an XML source file urdf-lint reads in the parent
+
+
+def regular_file(path, cap: int | None = None) -> bool:
+    """A regular file after symlinks (no device, FIFO, socket or folder), not above ``cap``."""
+    import stat
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return False
+    return stat.S_ISREG(st.st_mode) and (cap is None or st.st_size <= cap)
+
+
+def environment_paths() -> dict:
+    """The existing absolute folders of AMENT_PREFIX_PATH and ROS_PACKAGE_PATH."""
+    out = {}
+    for var in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
+        dirs = [os.path.abspath(d) for d in os.environ.get(var, "").split(os.pathsep) if d]
+        dirs = [d for d in dict.fromkeys(dirs) if os.path.isdir(d)]
+        if dirs:
+            out[var] = dirs
+    return out
+
+
+def colcon_workspace(start: str) -> str | None:
+    """The colcon workspace holding ``start``: the nearest folder above it with a ``src``
+    folder and a colcon marker (``build``/``install``/``log`` or colcon's config files)."""
+    d = Path(start).resolve()
+    for parent in [d, *d.parents]:
+        if parent == Path(parent.anchor):
+            break
+        if (parent / "src").is_dir() and _inside(str(d), str(parent / "src")) and (
+                any((parent / m).is_dir() for m in ("build", "install", "log"))
+                or any((parent / m).is_file() for m in ("colcon.meta", "colcon_defaults.yaml"))):
+            return str(parent)
+    return None
+
+
+def _inside(f: str, p: str) -> bool:
+    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+
+
+def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
+    """(folders to scan for package.xml, extra roots) for the linted ``paths``.
+
+    Roots are exactly: the packages holding the linted paths, the git repository holding them
+    (``git_top``), the colcon workspace holding them, and the linted paths themselves. The
+    working directory is never a root by itself, and without git (not a repository, or git
+    not installed) nothing above the linted paths is: the tool fails closed.
+    """
+    scan = [os.path.abspath(p) for p in paths]
+    if git_top:
+        scan.append(git_top)
+    for p in list(scan):
+        d = Path(p if os.path.isdir(p) else os.path.dirname(p)).resolve()
+        for parent in [d, *d.parents]:
+            if (parent / "package.xml").is_file():  # the package a path belongs to
+                scan.append(str(parent))
+                break
+            if (git_top is not None and str(parent) == git_top) or parent == Path(parent.anchor):
+                break
+    for p in paths:
+        p = os.path.abspath(p)
+        ws = colcon_workspace(p if os.path.isdir(p) else os.path.dirname(p))
+        if ws and (git_top is None or _inside(ws, git_top) or _inside(git_top, ws)):
+            scan.append(os.path.join(ws, "src"))
+    scan = list(dict.fromkeys(scan))
+    extra = [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]
+    return scan, list(dict.fromkeys(extra))

@@ -182,7 +182,11 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     files: set[str] = set()
     for r in models:
         files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
-    directives = {f: suppress.parse_directives(f) for f in sorted(files)}
+    from .packages import MAX_SOURCE_BYTES, PackageResolver
+    resolver = PackageResolver.from_dict(settings.resolver)
+    # the parent reads only what the workers could: inside the roots, regular, bounded
+    directives = {f: suppress.parse_directives(f) for f in sorted(files)
+                  if resolver.readable(f, MAX_SOURCE_BYTES)}
     selected = settings.selected
     kept, unused, invalid = suppress.apply(
         merged, directives,

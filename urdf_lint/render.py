@@ -69,17 +69,20 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
 def write_summary(result, out_dir):
     from collections import Counter
     from .locations import display_path
+    from .report.escape import escape_markdown, escape_markdown_code
     lines = ["# urdf-lint snapshots", "",
              "| model | links | joints | meshes | errors | warnings | info |",
              "|---|---:|---:|---:|---:|---:|---:|"]
     images = []
     for m in result.models:
         c = Counter(f.severity for f in result.findings if m.label in f.models)
-        lines.append(f"| `{m.label}` | {m.stats.get('links', '-')} | {m.stats.get('joints', '-')} | "
+        label = escape_markdown(m.label)  # names are the description's: no HTML, no links
+        lines.append(f"| `{escape_markdown_code(m.label)}` | {m.stats.get('links', '-')} | "
+                     f"{m.stats.get('joints', '-')} | "
                      f"{m.stats.get('meshes', '-')} | {c['error']} | {c['warning']} | {c['info']} |")
         snap = m.snapshot or {}
         if snap.get("png"):
-            images.append(f"### {m.label}\n\n![{m.label}]({os.path.relpath(snap['png'], out_dir)})\n")
+            images.append(f"### {label}\n\n![{label}]({os.path.relpath(snap['png'], out_dir)})\n")
             if snap.get("rrd"):
                 images.append(f"Recording: `{os.path.relpath(snap['rrd'], out_dir)}` "
                               f"(open with `rerun {display_path(snap['rrd'])}`)\n")

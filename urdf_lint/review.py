@@ -237,6 +237,8 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         if use_cache and head_sha is None:
             from .cache import Cache
             cache = Cache.for_paths(head_paths, cfg)
+            if cache.refused:  # said why on stderr; nothing goes there
+                cache = None
         head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n, cache)
         result.internal += head_result.internal
         result.total_models = len(head.models)

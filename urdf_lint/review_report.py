@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+from .report.escape import escape_markdown_code, escape_text
 from .review import MARKDOWN_LIMIT, DiffResult
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
@@ -68,7 +69,8 @@ def to_text(r: DiffResult) -> str:
             out.append(f"  introduced {sev}: {_finding(fk)}")
         for fk, sev in m.findings_fixed:
             out.append(f"  fixed {sev}: {_finding(fk)}")
-    return "\n".join(out) + "\n"
+    # names, values and messages are the description's: each line one visible line
+    return "\n".join(escape_text(line) for line in out) + "\n"
 
 
 def to_json(r: DiffResult) -> str:
@@ -92,12 +94,11 @@ def to_json(r: DiffResult) -> str:
 
 
 def md_escape(s: str) -> str:
-    """Text safe inside a GFM table cell: no HTML, no pipes, no line breaks, no code spans."""
-    s = str(s)
-    for a, b in (("&", "&amp;"), ("<", "&lt;"), (">", "&gt;"), ("|", "\\|"), ("`", "'"),
-                 ("\r", " "), ("\n", " ")):
-        s = s.replace(a, b)
-    return s
+    """Text safe inside a GFM table cell: no HTML, no pipes, no line breaks, no code spans, no
+    control or bidi characters (the shared helper, :mod:`urdf_lint.report.escape`)."""
+    s = str(s).replace("\r", " ").replace("\n", " ")
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return escape_markdown_code(s)
 
 
 def _code(s) -> str:

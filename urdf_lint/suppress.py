@@ -56,10 +56,19 @@ def _element_spans(data: bytes):
     return spans
 
 
+MAX_BYTES = 256 << 20
+
+
 def parse_directives(path: str) -> list[Directive]:
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
+    import os
+    import stat
+    try:  # a regular file of bounded size only (never a device, FIFO or folder)
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            st = os.fstat(f.fileno())
+            if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_BYTES:
+                return []
+            data = f.read(MAX_BYTES + 1)
     except OSError:
         return []
     if b"urdf-lint" not in data and b"urdf_lint" not in data:

@@ -1,6 +1,7 @@
 """git, the only version control urdf-lint talks to: the work tree root and changed files."""
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 
@@ -22,6 +23,11 @@ def _git(*args: str, cwd: str, timeout: float = 60) -> str:
 
 def git_root(start: str) -> str | None:
     """The top of the git work tree holding ``start``, or None outside git."""
+    return _git_root(os.path.abspath(start))
+
+
+@functools.lru_cache(maxsize=16)  # asked by config trust, roots and the cache: one git call
+def _git_root(start: str) -> str | None:
     try:
         top = _git("rev-parse", "--show-toplevel", cwd=start, timeout=5).strip()
     except GitError:

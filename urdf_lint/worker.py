@@ -112,6 +112,8 @@ def _worker_main(conn, settings: LintSettings, memory_mb):
     except (ImportError, ValueError, OSError):
         pass
     _scrub_environment(set(settings.env_allow))
+    from .sandbox import enter_worker
+    enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
     _install_audit_hook(settings.mesh_cache_dir, settings.render_dir, settings.diff_render_dir)
@@ -176,6 +178,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     jobs = list(jobs)
     if not jobs:
         return
+    from .sandbox import prepare
+    prepare()
     try:
         ctx = mp.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform

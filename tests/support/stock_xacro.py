@@ -30,8 +30,18 @@ def _shim_dir() -> str:
     d = Path(tempfile.gettempdir(), "urdf_lint_stock_shim")
     pkg = d / "ament_index_python"
     pkg.mkdir(parents=True, exist_ok=True)
-    (pkg / "__init__.py").write_text("")
-    (pkg / "packages.py").write_text(_SHIM)
+    # shared by every test run on the machine: never truncate a file another run may be
+    # importing (write beside it, then rename), and leave it alone when it is already right
+    for name, text in (("__init__.py", ""), ("packages.py", _SHIM)):
+        f = pkg / name
+        try:
+            if f.read_text() == text:
+                continue
+        except OSError:
+            pass
+        tmp = pkg / f".{name}.{os.getpid()}.tmp"
+        tmp.write_text(text)
+        os.replace(tmp, f)
     return str(d)
 
 

@@ -52,6 +52,7 @@ class Expansion:
     error: Problem | None = None                  # why it failed (see expansion.errors)
     notes: list = field(default_factory=list)     # Problems that did not stop the expansion
     missing: list = field(default_factory=list)   # files looked for and not found
+    digests: dict = field(default_factory=dict)   # file -> [stat before read, digest of bytes read]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -61,6 +62,7 @@ class _State:
         self.resolver: PackageResolver = resolver
         self.env_allow = set(env_allow)
         self.deps: dict[str, None] = {}
+        self.digests: dict[str, list] = {}
         self.notes: list[Problem] = []
         self.stack: list = []          # nodes being evaluated (eval_all / macro calls)
         self.touched = None            # a child node being handled inline by its parent
@@ -175,6 +177,7 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", ul902_outside_roots)
         try:
+            before = os.stat(path)
             with open(path, "rb") as f:
                 data = f.read()
         except (IOError, OSError) as e:
@@ -182,6 +185,10 @@ def _hook_parse(inp, filename=None):
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
         if st is not None:
             st.deps[absolute] = None
+            # what was read, for the cache: the stat before the read, the digest of the bytes
+            import hashlib
+            st.digests[absolute] = [[before.st_size, before.st_mtime_ns],
+                                    hashlib.blake2b(data, digest_size=16).hexdigest()]
         return parse_bytes(data, absolute, chain)
     if isinstance(inp, str):
         return parse_bytes(inp.encode("utf-8"), "<string>")
@@ -431,5 +438,6 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(inner, OSError) and getattr(inner, "filename", None):
                 res.missing.append(os.path.abspath(str(inner.filename)))
         res.deps = [path] + [d for d in st.deps if d != path]
+        res.digests = dict(st.digests)
         res.notes = st.notes
     return res

@@ -5,6 +5,7 @@ from collections import Counter
 from dataclasses import dataclass
 
 from ..locations import Origin, display_path
+from .escape import escape_text
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
 BOLD, DIM, RESET = "\033[1m", "\033[2m", "\033[0m"
@@ -62,6 +63,9 @@ class BaseFormatter:
         if result.findings:
             return (f"Found {len(result.findings)} problem(s) ({s['errors']} error, "
                     f"{s['warnings']} warning, {s['info']} info) in {s['models']} model(s).")
+        if getattr(result, "internal", None):  # never "passed" after an internal error
+            return (f"Checks incomplete: {len(result.internal)} internal error(s), see above; "
+                    f"no problems found in {s['models']} model(s).")
         return f"All checks passed: {s['models']} model(s)."
 
 
@@ -77,15 +81,16 @@ def summary(result) -> dict:
 
 
 def chain_text(f) -> str:
-    return Origin(f.file, f.line, f.col, f.chain).format_chain() if f.chain else ""
+    """The macro call chain, one visible line (names are the description's)."""
+    return escape_text(Origin(f.file, f.line, f.col, f.chain).format_chain()) if f.chain else ""
 
 
 def fold(items, shown: int = MODELS_SHOWN) -> str:
-    """``a, b, c and 4 more``."""
-    items = list(items)
+    """``a, b, c and 4 more`` (each item escaped to one visible line)."""
+    items = [escape_text(i) for i in items]
     head = ", ".join(items[:shown])
     return head + (f" and {len(items) - shown} more" if len(items) > shown else "")
 
 
 def location(f) -> str:
-    return f"{display_path(f.file)}:{f.line}:{f.col}"
+    return f"{escape_text(display_path(f.file))}:{f.line}:{f.col}"

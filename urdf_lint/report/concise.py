@@ -3,6 +3,7 @@ macro call chain folded into the line, for editors' problem matchers and grep.""
 from __future__ import annotations
 
 from .base import DIM, BaseFormatter, chain_text, location
+from .escape import escape_text
 
 
 class ConciseFormatter(BaseFormatter):
@@ -13,7 +14,7 @@ class ConciseFormatter(BaseFormatter):
         code = self.paint(f.code, self.severity_color(f.severity))
         ch = chain_text(f)
         tail = f" ({ch})" if ch else ""
-        self.stream.write(f"{location(f)}: {code} {f.message} {self.paint(f'[{f.name}]', DIM)}"
+        self.stream.write(f"{location(f)}: {code} {escape_text(f.message)} {self.paint(f'[{f.name}]', DIM)}"
                           f"{tail}\n")
 
     def finish(self, result):

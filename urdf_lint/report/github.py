@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from ..locations import display_path
 from .base import BaseFormatter, chain_text
+from .escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
 
 
 def _gh_escape(s, prop=False):
-    s = s.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    # one visible line first: a name carrying "\n::error ..." cannot start a workflow command
+    s = escape_text(s).replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
     if prop:
         s = s.replace(":", "%3A").replace(",", "%2C")
     return s

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from ..locations import display_path
 from .base import BaseFormatter, chain_text
+from .escape import escape_xml
 
 
 class JunitFormatter(BaseFormatter):
@@ -10,12 +11,15 @@ class JunitFormatter(BaseFormatter):
     help = "JUnit XML for CI test reports"
 
     def write(self, result):
-        from xml.sax.saxutils import escape, quoteattr  # heavy import chain: only for junit
+        def quoteattr(s):
+            return '"' + escape_xml(s) + '"'
+
+        escape = escape_xml  # one line per part: a name cannot add lines to a CI log
         cases = []
         for f in result.findings:
             name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
-            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}\n"
-                          + chain_text(f))
+            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}") \
+                + "\n" + escape(chain_text(f))
             tag = "failure"
             cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'
                          f'<{tag} type={quoteattr(f.severity)} message={quoteattr(f.message)}>'

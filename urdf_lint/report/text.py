@@ -3,6 +3,7 @@ models that share the finding, each on an indented line; ``--show-source`` adds 
 from __future__ import annotations
 
 from ..locations import display_path
+from .escape import escape_text
 from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location
 
 
@@ -16,7 +17,7 @@ class TextFormatter(BaseFormatter):
 
     def handle(self, f):
         w = self.stream.write
-        path = display_path(f.file)
+        path = escape_text(display_path(f.file))
         if self.options.color and path != self._current:
             if self._current is not None:
                 w("\n")
@@ -24,7 +25,7 @@ class TextFormatter(BaseFormatter):
             self._current = path
         code = self.paint(f.code, self.severity_color(f.severity))
         name = self.paint(f"[{f.name}]", DIM)
-        w(f"{location(f)}: {code} {f.message} {name}\n")
+        w(f"{location(f)}: {code} {escape_text(f.message)} {name}\n")
         if self.options.show_source:
             w(self.code_frame(f))
         ch = chain_text(f)
@@ -47,7 +48,8 @@ class TextFormatter(BaseFormatter):
         width = len(str(last))
         out = [f"{'':>{width}} |"]
         for n in range(first, last + 1):
-            text = lines[n - 1]
+            # the source is the description's: one visible line (tabs kept for the caret)
+            text = "\t".join(escape_text(part) for part in lines[n - 1].split("\t"))
             out.append(f"{n:>{width}} | {text}".rstrip())
             if n == f.line:
                 prefix = "".join(c if c == "\t" else " " for c in text[:max(0, f.col - 1)])

@@ -1,0 +1,288 @@
+"""The OS sandbox of the workers, tested as if the evaluator had fallen.
+
+The test injects arbitrary Python into a REAL worker (``run_jobs`` forks it from this process,
+so replacing ``urdf_lint.worker.process_job`` here is what the worker runs) and has it try what an
+escaped expression would: read a file outside the roots, read the parent's environment from
+``/proc``, run a program, open a network connection, write outside the cache, trace or signal
+the parent. Every attempt goes through ``ctypes`` (which the audit hook does not see), so what
+stops it is Landlock and seccomp, not Python.
+"""
+from __future__ import annotations
+
+import ctypes
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import REPO, make_package, run_cli
+
+from urdf_lint import sandbox
+
+LANDLOCK = sandbox.landlock_status()[0]
+SECCOMP = sandbox.seccomp_status()[0]
+SECRET = "ghp_SANDBOX_0123456789abcdef"
+
+
+def _attacks(job, settings):
+    """Runs inside the worker. Each attempt reports 'ok' or the errno name it failed with."""
+    import errno as E
+    libc = ctypes.CDLL(None, use_errno=True)
+    p = job["paths"]
+    out = {}
+
+    def res(rc):
+        return "ok" if rc >= 0 else E.errorcode.get(ctypes.get_errno(), str(ctypes.get_errno()))
+
+    def read(path):
+        fd = libc.open(path.encode(), os.O_RDONLY)
+        r = res(fd)
+        if fd >= 0:
+            buf = ctypes.create_string_buffer(4096)
+            n = libc.read(fd, buf, 4096)
+            out.setdefault("leaked", []).append(buf.raw[:max(n, 0)].decode("latin-1"))
+            libc.close(fd)
+        return r
+    out["read_inside"] = read(p["inside"])
+    out["read_outside"] = read(p["secret"])
+    out["read_parent_environ"] = read(f"/proc/{job['parent']}/environ")
+    out["read_own_environ"] = read("/proc/self/environ")
+    out["list_root"] = res(libc.open(b"/", os.O_RDONLY | os.O_DIRECTORY))
+    if job.get("mild"):  # the sandbox is off: only what does no harm
+        out["socket_inet"] = res(libc.socket(socket.AF_INET, socket.SOCK_STREAM, 0))
+        try:
+            os.fstat(job["parent_fd"])
+            out["parent_fd"] = "open"
+        except OSError as e:
+            out["parent_fd"] = E.errorcode[e.errno]
+        return out
+    fd = libc.open(p["marker"].encode(), os.O_WRONLY | os.O_CREAT, 0o644)
+    out["write_outside"] = res(fd)
+    fd = libc.open(p["cache_file"].encode(), os.O_WRONLY | os.O_CREAT, 0o644)
+    out["write_cache"] = res(fd)
+    if fd >= 0:
+        libc.write(fd, b"{}", 2)
+        libc.close(fd)
+    out["write_cache_result"] = res(libc.open(p["cache_result"].encode(),
+                                              os.O_WRONLY | os.O_CREAT, 0o644))
+    argv = (ctypes.c_char_p * 4)(b"/bin/sh", b"-c", f"touch {p['marker']}".encode(), None)
+    out["execve"] = res(libc.execve(b"/bin/sh", argv, None))
+    out["system"] = "ok" if libc.system(f"touch {p['marker']}".encode()) == 0 else "failed"
+    out["socket_inet"] = res(libc.socket(socket.AF_INET, socket.SOCK_STREAM, 0))
+    out["socket_unix"] = res(libc.socket(socket.AF_UNIX, socket.SOCK_STREAM, 0))
+    try:
+        s = socket.create_connection(("127.0.0.1", job["port"]), timeout=2)
+        s.close()
+        out["python_connect"] = "ok"
+    except OSError as e:
+        out["python_connect"] = type(e).__name__
+    out["ptrace_parent"] = res(libc.ptrace(16, job["parent"], None, None))  # PTRACE_ATTACH
+    out["signal_parent"] = res(libc.kill(job["parent"], 0))
+    return out
+
+
+@pytest.fixture()
+def attack_world(tmp_path):
+    repo = tmp_path / "repo"
+    pkg = make_package(repo, "p", {"urdf/r.urdf": '<robot name="r"><link name="a"/></robot>\n'})
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "secret.txt").write_text(SECRET)
+    cache = repo / ".urdf_lint_cache"
+    return {"inside": str(pkg / "urdf/r.urdf"), "secret": str(outside / "secret.txt"),
+            "marker": str(tmp_path / "pwned"), "cache_file": str(cache / "meshes" / "ok.json"),
+            "cache_result": str(cache / "forged.json"),
+            "repo": str(repo), "cache": str(cache)}
+
+
+class AttackJob(dict):
+    """A job carrying the attack's parameters (the worker hands it to the patched
+    ``process_job`` as is); ``entry``/``args`` as a LintJob has them, for the limit results."""
+
+    @property
+    def entry(self):
+        return self["entry"]
+
+    @property
+    def args(self):
+        return {}
+
+
+def _run_in_worker(monkeypatch, paths, port, env=None, mild=False, parent_fd=-1):
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintSettings
+    from urdf_lint.packages import PackageResolver
+    from urdf_lint.worker import run_jobs
+    monkeypatch.setattr(worker, "process_job", _attacks)
+    for k, v in (env or {}).items():
+        monkeypatch.setenv(k, v)
+    resolver = PackageResolver.build([paths["repo"]], extra_roots=[paths["repo"]])
+    settings = LintSettings(resolver=resolver.to_dict(), mesh_cache_dir=paths["cache"])
+    job = AttackJob(entry=paths["inside"], kind="urdf", paths=paths, parent=os.getpid(),
+                    port=port, mild=mild, parent_fd=parent_fd)
+    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=30)]
+    assert len(results) == 1
+    return results[0]
+
+
+@pytest.mark.skipif(not (LANDLOCK and SECCOMP), reason="needs Landlock and seccomp (Linux)")
+def test_escaped_code_in_a_real_worker_is_contained(attack_world, monkeypatch):
+    server = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    server.settimeout(0.5)
+    port = server.getsockname()[1]
+    try:
+        r = _run_in_worker(monkeypatch, attack_world, port, env={"CI_TOKEN": SECRET})
+        # nobody connected
+        with pytest.raises(socket.timeout):
+            server.accept()
+    finally:
+        server.close()
+    assert r["read_inside"] == "ok", r          # the sandbox still lets the worker do its job
+    assert r["write_cache"] == "ok", r
+    assert os.path.exists(attack_world["cache_file"])
+    for k in ("read_outside", "read_parent_environ", "read_own_environ", "list_root",
+              "write_outside", "write_cache_result"):
+        assert r[k] == "EACCES", (k, r)
+    for k in ("execve", "socket_inet", "socket_unix", "ptrace_parent", "signal_parent"):
+        assert r[k] == "EPERM", (k, r)
+    assert r["system"] == "failed" and r["python_connect"] == "PermissionError", r
+    assert not os.path.exists(attack_world["marker"])
+    assert SECRET not in json.dumps(r)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="Linux only")
+def test_sandbox_off_really_is_off(attack_world, monkeypatch):
+    """The same attacks with URDF_LINT_SANDBOX=0 succeed: the test above measures the sandbox,
+    not something else that happens to fail."""
+    with open(attack_world["secret"]) as held:  # a descriptor the parent happens to hold
+        r = _run_in_worker(monkeypatch, attack_world, 9, env={"URDF_LINT_SANDBOX": "0"},
+                           mild=True, parent_fd=held.fileno())
+    assert r["read_outside"] == "ok" and SECRET in "".join(r["leaked"]), r
+    assert r["socket_inet"] == "ok", r
+    # inherited descriptors are closed even then
+    assert r["parent_fd"] == "EBADF", r
+
+
+def _state(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return None
+
+
+PARENT = """
+import os, sys, time
+from urdf_lint import worker
+from urdf_lint.jobs import LintJob, LintSettings
+from urdf_lint.packages import PackageResolver
+from urdf_lint.worker import run_jobs
+def slow(job, settings):
+    if job.entry == "slow":
+        time.sleep(120)
+    return {{"entry": job.entry}}
+worker.process_job = slow
+r = PackageResolver.build([{repo!r}], extra_roots=[{repo!r}])
+settings = LintSettings(resolver=r.to_dict())
+jobs = [LintJob("slow", kind="urdf"), LintJob("quick", kind="urdf")]
+import multiprocessing as mp
+gen = run_jobs(jobs, settings, jobs_n=2, timeout=300)  # one busy worker, one idle
+import threading
+def report():
+    time.sleep(1.0)
+    print(" ".join(str(p.pid) for p in mp.active_children()), flush=True)
+threading.Thread(target=report, daemon=True).start()
+for _ in gen:
+    pass
+"""
+
+
+@pytest.mark.skipif(not sandbox.pdeathsig_status()[0], reason="needs PR_SET_PDEATHSIG")
+@pytest.mark.parametrize("how", [signal.SIGKILL, signal.SIGTERM])
+def test_no_worker_survives_its_parent(tmp_path, how):
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    p = subprocess.Popen([sys.executable, "-c", PARENT.format(repo=str(repo))], cwd=REPO,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        pids = [int(x) for x in p.stdout.readline().split()]
+        assert len(pids) == 2, p.stderr.read()
+        assert all(_state(pid) not in (None, "Z") for pid in pids)
+        os.kill(p.pid, how)
+        p.wait(10)
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline and any(_state(pid) not in (None, "Z") for pid in pids):
+            time.sleep(0.05)
+        assert all(_state(pid) in (None, "Z") for pid in pids), [_state(x) for x in pids]
+    finally:
+        if p.poll() is None:
+            p.kill()
+
+
+def test_sigterm_is_handled_like_ctrl_c(tmp_path):
+    repo = tmp_path / "repo"
+    make_package(repo, "p", {"urdf/r.urdf.xacro":
+                             '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                             '<link name="${python.sum(python.range(10**13))}"/></robot>\n'})
+    p = subprocess.Popen([sys.executable, "-m", "urdf_lint", "check", ".", "--no-cache"],
+                         cwd=repo, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        time.sleep(1.5)
+        p.send_signal(signal.SIGTERM)
+        out, err = p.communicate(timeout=10)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    assert p.returncode == 130, (out, err)  # like Ctrl-C (main: 130 when interrupted)
+    assert "interrupted" in err and "Traceback" not in err
+    assert "All checks passed" not in out
+
+
+def test_doctor_and_version_report_protections():
+    d = run_cli("doctor")
+    assert d.returncode == 0
+    for name in ("landlock", "seccomp", "pdeathsig"):
+        line = next(ln for ln in d.stdout.splitlines() if f" {name} " in ln)
+        on = sandbox.protections()[name][0]
+        assert line.lstrip().startswith("on " if on else "OFF"), d.stdout
+    v = run_cli("--version")
+    assert v.returncode == 0 and "worker sandbox:" in v.stdout
+    off = run_cli("doctor", env={"URDF_LINT_SANDBOX": "0"})
+    assert "OFF  landlock" in off.stdout and "URDF_LINT_SANDBOX=0" in off.stdout
+
+
+def test_expand_runs_in_a_worker_with_limits(tmp_path):
+    """`expand` has the time limit (and the rest of the worker) now: a hang becomes UL904."""
+    pkg = make_package(tmp_path / "repo", "p", {"urdf/r.urdf.xacro":
+                       '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                       '<link name="${python.sum(python.range(10**13))}"/></robot>\n'})
+    (tmp_path / "repo" / "urdf-lint.toml").write_text("timeout = 2\n")
+    out = tmp_path / "o.urdf"
+    t0 = time.monotonic()
+    p = run_cli("expand", pkg / "urdf/r.urdf.xacro", "-o", out, timeout=30)
+    assert time.monotonic() - t0 < 15
+    assert p.returncode == 1 and "UL904" in p.stderr and "time limit" in p.stderr, p.stderr
+    assert not out.exists()
+
+
+def test_missing_kernel_features_are_said_once_and_the_run_goes_on(attack_world, monkeypatch,
+                                                                   capsys):
+    """A kernel without Landlock or seccomp: one note on stderr per run, the jobs still run
+    (with what remains: pdeathsig, closed descriptors, limits, scrubbed environment)."""
+    monkeypatch.setattr(sandbox, "landlock_status", lambda: (False, "not on this test kernel"))
+    monkeypatch.setattr(sandbox, "seccomp_status", lambda: (False, "no libseccomp here"))
+    monkeypatch.setattr(sandbox, "_noted", False)
+    for _ in range(2):
+        r = _run_in_worker(monkeypatch, attack_world, 9, mild=True)
+        assert r["read_inside"] == "ok", r
+    err = capsys.readouterr().err
+    assert err.count("without landlock: not on this test kernel") == 1, err
+    assert err.count("without seccomp: no libseccomp here") == 1, err

@@ -1,0 +1,387 @@
+"""OS-level sandbox for the worker processes that expand and lint untrusted descriptions.
+
+The allow-list evaluator (:mod:`urdf_lint.safe_eval`) is the first line of defence; this module
+is what keeps the *next* evaluator hole harmless. :func:`enter` runs in every worker right
+after fork, before the worker reads any job, and applies, each where the platform has it:
+
+* ``PR_SET_PDEATHSIG``: the worker is killed when the urdf-lint process that forked it dies
+  (and exits at once if that already happened), so no worker outlives its parent;
+* closing every inherited file descriptor except the job pipe and stdio, so nothing the
+  parent had open (and no sibling worker's pipe) is reachable;
+* **Landlock** (Linux >= 5.13, PyPI ``landlock``): the filesystem is read-only below the
+  package roots, the repository and the Python runtime, writable only below the cache and
+  snapshot folders, and invisible everywhere else (``/proc`` included, so neither the
+  parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read);
+* **seccomp** (PyPI ``pyseccomp`` over ``libseccomp.so.2``): ``execve``/``execveat``, socket
+  creation and connection, ``ptrace``, cross-process memory access, ``io_uring`` and signals
+  to other processes fail with ``EPERM``.
+
+Filters are inherited by any thread the worker starts and cannot be lifted afterwards. A
+protection the kernel lacks is reported once by the parent (:func:`note_missing`) and the run
+goes on with the others. ``URDF_LINT_SANDBOX=0`` turns the OS layer off (for measuring its
+cost and for debugging only; ``urdf-lint doctor`` shows it).
+"""
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import errno
+import os
+import sys
+
+_PR_SET_PDEATHSIG = 1
+
+# syscalls a worker never needs; each fails with EPERM. socketpair() stays allowed: it makes
+# an already-connected pair inside the process (rerun's runtime uses one for signals) and
+# cannot reach anything outside it.
+DENIED_SYSCALLS = (
+    "execve", "execveat",
+    "socket", "connect", "bind", "listen", "accept", "accept4",
+    "ptrace", "process_vm_readv", "process_vm_writev",
+    "io_uring_setup", "io_uring_enter", "io_uring_register",
+    "unshare", "setns", "mount", "umount2", "pivot_root", "chroot",
+    "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key", "request_key",
+    "pidfd_open", "pidfd_getfd", "pidfd_send_signal",
+)
+# read-only system folders the runtime may load shared libraries and data from
+_SYSTEM_READ = ("/usr/lib", "/usr/lib64", "/usr/local/lib", "/lib", "/lib64", "/usr/share/zoneinfo",
+                "/etc/ld.so.cache", "/etc/localtime", "/dev/urandom", "/dev/random",
+                "/sys/devices/system/cpu")
+_SYSTEM_RW = ("/dev/null",)
+
+_noted = False
+_disabled: bool | None = None
+
+
+def disabled() -> bool:
+    """Decided once, in the parent (the worker's environment is scrubbed)."""
+    global _disabled
+    if _disabled is None:
+        _disabled = os.environ.get("URDF_LINT_SANDBOX", "").strip().lower() in (
+            "0", "off", "no", "false")
+    return _disabled
+
+
+# -- probing (parent side, cheap, applies nothing) ---------------------------------------------
+def _libc():
+    try:
+        return ctypes.CDLL(None, use_errno=True)
+    except OSError:
+        return None
+
+
+def landlock_status() -> tuple[bool, str]:
+    if not sys.platform.startswith("linux"):
+        return False, f"not available on {sys.platform} (Landlock is Linux-only)"
+    try:
+        import landlock
+    except ImportError:
+        return False, "the 'landlock' package is not installed"
+    try:
+        abi = landlock.landlock_abi_version()
+    except Exception as e:  # noqa: BLE001 - kernel without Landlock, or it is disabled
+        reason = getattr(e, "reason", None) or str(e).splitlines()[0]
+        return False, f"not available on this kernel ({reason})"
+    return True, f"Landlock ABI {abi}"
+
+
+def _import_pyseccomp():
+    """pyseccomp looks its libraries up with ``ctypes.util.find_library``, which runs
+    ``ldconfig`` (~15 ms); try the usual sonames first and fall back to the lookup."""
+    if "pyseccomp" in sys.modules:
+        return sys.modules["pyseccomp"]
+    import ctypes.util
+    orig = ctypes.util.find_library
+    known = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
+
+    def fast(name):
+        so = known.get(name)
+        if so:
+            try:
+                ctypes.CDLL(so)
+                return so
+            except OSError:
+                pass
+        return orig(name)
+    ctypes.util.find_library = fast
+    try:
+        import pyseccomp
+    finally:
+        ctypes.util.find_library = orig
+    return pyseccomp
+
+
+def seccomp_status() -> tuple[bool, str]:
+    if not sys.platform.startswith("linux"):
+        return False, f"not available on {sys.platform} (seccomp is Linux-only)"
+    try:
+        _import_pyseccomp()  # raises when libseccomp.so.2 is missing
+    except ImportError:
+        return False, "the 'pyseccomp' package is not installed"
+    except Exception as e:  # noqa: BLE001 - OSError/AttributeError from the ctypes binding
+        return False, f"libseccomp.so.2 could not be loaded ({e})"
+    return True, "seccomp filter via libseccomp"
+
+
+def pdeathsig_status() -> tuple[bool, str]:
+    if not sys.platform.startswith("linux") or _libc() is None:
+        return False, f"not available on {sys.platform}"
+    return True, "PR_SET_PDEATHSIG"
+
+
+def protections() -> dict[str, tuple[bool, str]]:
+    """What the workers get on this machine, for ``urdf-lint doctor`` and ``--version``."""
+    global _disabled
+    _disabled = None  # parent side: read the environment afresh
+    out = {}
+    if disabled():
+        off = (False, "turned off by URDF_LINT_SANDBOX=0")
+        out = {"landlock": off, "seccomp": off}
+    else:
+        out = {"landlock": landlock_status(), "seccomp": seccomp_status()}
+    out["pdeathsig"] = pdeathsig_status()
+    out["rlimits"] = (True, "time and memory limits per model")
+    out["environment"] = (True, "scrubbed to an allow-list")
+    out["audit-hook"] = (True, "Python audit hook (processes, sockets, writes)")
+    return out
+
+
+def summary_line() -> str:
+    p = protections()
+    on = [k for k in ("landlock", "seccomp", "pdeathsig") if p[k][0]]
+    off = [k for k in ("landlock", "seccomp", "pdeathsig") if not p[k][0]]
+    return ("worker sandbox: " + (", ".join(on) or "none")
+            + (f" (missing: {', '.join(off)})" if off else ""))
+
+
+def note_missing(stream=None) -> None:
+    """Say once per process which OS protections this machine lacks."""
+    global _noted
+    if _noted:
+        return
+    _noted = True
+    stream = stream or sys.stderr
+    p = protections()
+    for k in ("landlock", "seccomp"):
+        ok, why = p[k]
+        if not ok:
+            stream.write(f"urdf-lint: note: worker sandbox without {k}: {why}; "
+                         "see SECURITY.md\n")
+
+
+# -- applying (worker side) --------------------------------------------------------------------
+def set_parent_death_signal(parent_pid: int) -> bool:
+    libc = _libc()
+    if libc is None or not sys.platform.startswith("linux"):
+        return False
+    import signal
+    if libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0) != 0:
+        return False
+    if os.getppid() != parent_pid:  # the parent died before prctl: go now
+        os._exit(0)
+    return True
+
+
+def close_inherited_fds(keep) -> None:
+    keep = sorted({0, 1, 2} | {int(k) for k in keep if k is not None and k >= 0})
+    try:
+        fds = [int(n) for n in os.listdir("/proc/self/fd")]
+    except OSError:
+        fds = None
+    if fds is None:
+        try:
+            top = os.sysconf("SC_OPEN_MAX")
+        except (ValueError, OSError):
+            top = 4096
+        lo = 0
+        for k in keep + [top]:
+            if k > lo:
+                os.closerange(lo, k)
+            lo = k + 1
+        return
+    import fcntl
+    import stat
+    for fd in fds:
+        if fd in keep:
+            continue
+        try:
+            # the write end of a pipe is how multiprocessing tells the parent this worker
+            # ended (its "sentinel"): keep it, or join() would think the worker is gone
+            if stat.S_ISFIFO(os.fstat(fd).st_mode) and \
+                    fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE == os.O_WRONLY:
+                continue
+            os.close(fd)
+        except OSError:
+            pass
+
+
+_runtime_paths: list[str] | None = None
+
+
+def runtime_read_paths() -> list[str]:
+    """Folders the Python runtime itself needs: stdlib, site-packages, urdf-lint's own code.
+    Computed once, in the parent (:func:`prepare`), and inherited by the forked workers."""
+    global _runtime_paths
+    if _runtime_paths is None:
+        _runtime_paths = _existing(_runtime_read_paths())
+    return list(_runtime_paths)
+
+
+def _runtime_read_paths() -> list[str]:
+    import sysconfig
+    out = []
+    for k in ("stdlib", "platstdlib", "purelib", "platlib"):
+        p = sysconfig.get_paths().get(k)
+        if p:
+            out.append(p)
+    try:
+        import site
+        out += site.getsitepackages()
+    except Exception:  # noqa: BLE001 - some embedded interpreters have no site
+        pass
+    cwd = os.getcwd()
+    for p in sys.path:
+        # the folder `python -m` was started in is not runtime; it is only readable when it
+        # is a package root or the repository
+        if p and os.path.abspath(p) != cwd:
+            out.append(p)
+    here = os.path.dirname(os.path.abspath(__file__))
+    out.append(here)
+    try:
+        import urdf_lint.rules as r
+        out += list(r.__path__)
+    except Exception:  # noqa: BLE001
+        pass
+    return out
+
+
+def _existing(paths):
+    seen, out = set(), []
+    for p in paths:
+        if not p:
+            continue
+        try:
+            real = os.path.realpath(p)
+        except (OSError, ValueError):
+            continue
+        if real in seen or not os.path.exists(real) or real == "/":
+            continue
+        seen.add(real)
+        out.append(real)
+    return out
+
+
+def apply_landlock(read_paths, write_paths) -> None:
+    from landlock import FSAccess, Ruleset
+    handled = FSAccess.all()
+    ro_file = FSAccess.READ_FILE
+    ro_dir = FSAccess.READ_FILE | FSAccess.READ_DIR
+    rw_file = FSAccess.READ_FILE | FSAccess.WRITE_FILE
+    if FSAccess.TRUNCATE & handled:
+        rw_file |= FSAccess.TRUNCATE
+    rw_dir = ro_dir | rw_file | FSAccess.MAKE_REG | FSAccess.MAKE_DIR | \
+        FSAccess.REMOVE_FILE | FSAccess.REMOVE_DIR
+    rs = Ruleset(handled)
+    try:
+        for paths, fr, dr in ((read_paths, ro_file, ro_dir), (write_paths, rw_file, rw_dir)):
+            for p in _existing(paths):
+                rs.allow(p, rules=dr if os.path.isdir(p) else fr)
+        rs.apply()
+    finally:
+        try:
+            os.close(rs._fd)
+        except OSError:
+            pass
+
+
+def apply_seccomp() -> None:
+    sc = _import_pyseccomp()
+    f = sc.SyscallFilter(defaction=sc.ALLOW)
+    for name in DENIED_SYSCALLS:
+        try:
+            f.add_rule(sc.ERRNO(errno.EPERM), name)
+        except Exception:  # noqa: BLE001 - a syscall this architecture does not have
+            continue
+    me = os.getpid()
+    # signals only to itself (its own threads included)
+    for name in ("kill", "tgkill"):
+        try:
+            f.add_rule(sc.ERRNO(errno.EPERM), name, sc.Arg(0, sc.NE, me))
+        except Exception:  # noqa: BLE001
+            continue
+    f.load()
+
+
+def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
+    """Lock this (worker) process down. Returns {protection: "on" | reason it is off}."""
+    status = {}
+    status["pdeathsig"] = "on" if set_parent_death_signal(parent_pid) else "unavailable"
+    close_inherited_fds(keep_fds)
+    if disabled():
+        status["landlock"] = status["seccomp"] = "off (URDF_LINT_SANDBOX=0)"
+        return status
+    if landlock_status()[0]:
+        try:
+            apply_landlock(list(read_paths) + runtime_read_paths() + list(_SYSTEM_READ),
+                           list(write_paths) + list(_SYSTEM_RW))
+            status["landlock"] = "on"
+        except Exception as e:  # noqa: BLE001 - report and go on with what remains
+            status["landlock"] = f"failed: {e}"
+    else:
+        status["landlock"] = "unavailable"
+    if seccomp_status()[0]:
+        try:
+            apply_seccomp()
+            status["seccomp"] = "on"
+        except Exception as e:  # noqa: BLE001
+            status["seccomp"] = f"failed: {e}"
+    else:
+        status["seccomp"] = "unavailable"
+    return status
+
+
+def enter_worker(conn, settings) -> dict:
+    """The one call a worker makes at start-up, before it reads its first job (``settings`` is
+    the run's :class:`urdf_lint.jobs.LintSettings`)."""
+    import multiprocessing as mp
+    import signal
+    # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it (a Python
+    # handler would never run while a C-level loop holds the interpreter)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    parent = mp.parent_process()
+    parent_pid = parent.pid if parent is not None and parent.pid else os.getppid()
+    from .packages import PackageResolver
+    read = PackageResolver.from_dict(settings.resolver).read_paths() if settings.resolver else []
+    write = []
+    # only the mesh-facts part of the cache: result entries are the parent's to write
+    facts = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
+    # snapshots: check --render / render --out, and urdf-lint diff --render
+    for d in (facts, settings.render_dir, settings.diff_render_dir):
+        if d:
+            try:
+                os.makedirs(d, exist_ok=True)
+                write.append(d)
+            except OSError:
+                pass
+    keep = [conn.fileno()]
+    if parent is not None and getattr(parent, "sentinel", None) is not None:
+        keep.append(parent.sentinel)
+    status = enter(parent_pid, read, write, keep_fds=keep)
+    bad = {k: v for k, v in status.items() if v.startswith("failed")}
+    if bad:  # the parent's probe said it would work: say why it did not
+        os.write(2, ("urdf-lint: note: worker sandbox: " + "; ".join(
+            f"{k} {v}" for k, v in bad.items()) + "\n").encode("utf-8", "replace"))
+    return status
+
+
+def prepare() -> None:
+    """Parent side, before forking workers: warm the imports and say what is missing, once."""
+    global _disabled
+    _disabled = None
+    if disabled():
+        return
+    if landlock_status()[0]:
+        import landlock.porcelain  # noqa: F401 - imported once, shared by the forked workers
+    seccomp_status()
+    runtime_read_paths()
+    note_missing()

@@ -1,0 +1,86 @@
+"""The linted repository cannot loosen the guarantees.
+
+A repository's own config (``pyproject.toml`` / ``urdf-lint.toml``) is as untrusted as its
+descriptions: a pull request can change both. :func:`apply` runs on the loaded settings, after
+the config is read and before anything is linted, and keeps every key that could widen what a
+description may read, where results go, or how much of the machine a run may take, to what
+the *user* asked for:
+
+* ``env-allow``, ``cache-dir`` and ``jobs`` from the repository's config are ignored;
+* ``package-paths`` that point outside the repository are ignored (inside it they are kept);
+* ``timeout`` and ``memory-mb`` may only tighten the defaults;
+
+each with a note on stderr, unless the same setting is given on the command line or the user
+passes ``--trust-config``. Numeric limits are always clamped to sane ranges, trusted or not.
+"""
+from __future__ import annotations
+
+import os
+
+from .config import Config
+
+LOOSENING = ("env-allow", "package-paths", "cache-dir", "timeout", "memory-mb", "jobs")
+CLAMP = {"timeout": (0.5, 600.0), "memory-mb": (128, 65536), "jobs": (1, 64)}
+
+
+def _inside(f: str, p: str) -> bool:
+    f, p = os.path.realpath(f), os.path.realpath(p)
+    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+
+
+def _clamp(value, key):
+    lo, hi = CLAMP[key]
+    return min(max(value, lo), hi)
+
+
+def apply(cfg: Config, repo: str, trusted: bool = False) -> list[str]:
+    """Make ``cfg`` safe to use; return the notes to show. Run it before the command line's
+    settings are applied on top (they are the user's, not the repository's)."""
+    notes: list[str] = []
+    raw = cfg.raw or {}
+    where = os.path.basename(cfg.path) if cfg.path else "the config"
+    default = Config()
+    why = "a repository's own config cannot loosen urdf-lint's guarantees"
+    hint = "pass it on the command line or use --trust-config"
+
+    def note(key, what):
+        notes.append(f"note: ignored {key!r} from {where} ({what}; {why}: {hint})")
+
+    if not trusted:
+        if raw.get("env-allow"):
+            note("env-allow", "it lets descriptions read environment variables")
+            cfg.env_allow = []
+        if raw.get("cache-dir"):
+            note("cache-dir", "it moves where results are written and read")
+            cfg.cache_dir = None
+        if raw.get("jobs") is not None:
+            note("jobs", "it sets how many processes a run starts")
+            cfg.jobs = None
+        if "timeout" in raw and cfg.timeout > default.timeout:
+            note("timeout", f"{cfg.timeout:g} s is above the default {default.timeout:g} s")
+            cfg.timeout = default.timeout
+        if "memory-mb" in raw and cfg.memory_mb > default.memory_mb:
+            note("memory-mb", f"{cfg.memory_mb} MiB is above the default {default.memory_mb} MiB")
+            cfg.memory_mb = default.memory_mb
+        if raw.get("package-paths"):
+            kept = {}
+            for name, d in cfg.package_paths.items():
+                if _inside(d, repo):
+                    kept[name] = d
+                else:
+                    note("package-paths", f"{name} = {d} is outside the repository")
+            cfg.package_paths = kept
+    clamp(cfg)
+    return notes
+
+
+def clamp(cfg: Config) -> None:
+    """Numeric limits within sane ranges, wherever they came from."""
+    try:
+        cfg.timeout = float(_clamp(float(cfg.timeout), "timeout"))
+        cfg.memory_mb = int(_clamp(int(cfg.memory_mb), "memory-mb"))
+        if cfg.jobs is not None:
+            cfg.jobs = int(_clamp(int(cfg.jobs), "jobs"))
+    except (TypeError, ValueError):
+        from .config import ConfigError
+        raise ConfigError("'timeout', 'memory-mb' and 'jobs' must be numbers") from None
