@@ -15,6 +15,7 @@ import stat
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .hashing import file_digest
 from .packages import PackageNotFound
@@ -98,7 +99,7 @@ def resolve(model, uri: str) -> MeshRef:
                        f"mesh file not found: '{uri}' (looked for {p})")
     if not exact:
         return MeshRef(uri, real, MeshStatus.CASE_MISMATCH,
-                       f"mesh '{uri}' only exists as '{os.path.basename(real)}' "
+                       f"mesh '{uri}' only exists as '{os.path.basename(real or '')}' "
                        f"(case differs: works on macOS/Windows, fails on Linux)")
     if not resolver.is_inside(p):
         return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
@@ -161,7 +162,7 @@ def texture_refs(path: str) -> list[str]:
 
 
 def _texture_refs(path: str) -> list[str]:
-    out = []
+    out: list[str] = []
     base = os.path.dirname(path)
     low = path.lower()
     if not _readable(path):
@@ -184,9 +185,9 @@ def _texture_refs(path: str) -> list[str]:
                         out.append(mtl)
                         if _readable(mtl):
                             with open(mtl, "r", errors="replace") as mf:
-                                for m in _MTL_MAP.finditer(mf.read()):
+                                for ref in _MTL_MAP.finditer(mf.read()):
                                     out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
-                                                                             m.group(1))))
+                                                                             ref.group(1))))
     except OSError:
         pass
     return out
@@ -261,7 +262,8 @@ def load_mesh(path: str):
             if m is not None:
                 m.metadata["broken_refs"] = broken
         if m is None:
-            raise failure
+            raise failure if failure is not None else ValueError("the mesh has no geometry")
+    assert m is not None
     unit = dae_unit(path) if is_dae else 1.0
     if unit != 1.0:
         m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
@@ -330,7 +332,7 @@ def dae_unit(path: str) -> float:
         return 1.0
 
 
-_loaded: "OrderedDict[str, object]" = OrderedDict()
+_loaded: "OrderedDict[str, Any]" = OrderedDict()
 MAX_LOADED_VERTICES = 4_000_000   # bound the in-memory mesh cache of a long-lived worker
 
 

@@ -78,19 +78,19 @@ class PackageResolver:
         res = cls(use_environment=use_environment)
         if use_environment:
             res.env_paths = environment_paths()
-        for name, d in (explicit or {}).items():
-            res.explicit[name] = Path(d).resolve()
+        for name, where in (explicit or {}).items():
+            res.explicit[name] = Path(where).resolve()
         seen = set()
-        for d in scan_dirs:
-            d = Path(d).resolve()
+        for d0 in scan_dirs:
+            d = Path(d0).resolve()
             if d in seen or not d.exists():
                 continue
             seen.add(d)
             res.scanned_dirs.append(str(d))
             for pxml in iter_files(d, names={"package.xml"}):
-                name = package_name(pxml)
-                if name and name not in res.scanned:
-                    res.scanned[name] = pxml.parent.resolve()
+                found = package_name(pxml)
+                if found and found not in res.scanned:
+                    res.scanned[found] = pxml.parent.resolve()
         roots = list(res.explicit.values()) + list(res.scanned.values())
         roots += [Path(r).resolve() for r in extra_roots]
         res.roots = sorted(set(roots), key=str)

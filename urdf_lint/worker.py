@@ -12,6 +12,7 @@ import signal
 import sys
 import time
 from multiprocessing.connection import wait
+from typing import Any
 
 from .findings import Problem
 from .jobs import LintJob, LintSettings, ModelReport
@@ -91,7 +92,7 @@ def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
             import rerun  # noqa: F401
         except ImportError:
             return geometry, None
-        stem = os.path.join(settings.diff_render_dir, job.diff_stem)
+        stem = os.path.join(settings.diff_render_dir or "", job.diff_stem or "")
         rrd = f"{stem}.{settings.diff_side}.rrd"
         render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job.diff_stem}",
                           prefix=f"{settings.diff_side}/")
@@ -181,14 +182,14 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     from .sandbox import prepare
     prepare()
     try:
-        ctx = mp.get_context("fork")
+        ctx: Any = mp.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
         ctx = mp.get_context()
     n = max(1, min(jobs_n or os.cpu_count() or 1, len(jobs)))
     pending = list(reversed(jobs))
     workers = [_Worker(ctx, settings, memory_mb) for _ in range(n)]
     try:
-        busy = {}
+        busy: dict = {}
         while pending or busy:
             for w in workers:
                 if w.job is None and pending:
@@ -203,7 +204,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 w = busy.pop(conn)
                 job = w.job
                 try:
-                    result = conn.recv()
+                    result = w.conn.recv()
                 except (EOFError, OSError):
                     code = w.proc.exitcode
                     result = _limit_result(job, "the expansion worker died (exit code "
