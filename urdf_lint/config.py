@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from .policy import code_matches
+from .ruleutil import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
 
 try:
     import tomllib
@@ -46,11 +47,6 @@ class _Bad(Exception):
     def __init__(self, expected: str, value: Any = None, where: str = ""):
         super().__init__(expected)
         self.expected, self.value, self.where = expected, value, where
-
-
-def did_you_mean(word: str, candidates) -> str:
-    close = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
-    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def show(value: Any) -> str:
