@@ -97,8 +97,9 @@ def load_rules() -> dict:
     return _RULES
 
 
-def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = ""):
-    """Yield (rule, first item, message) for every selected rule of ``scope`` checking
+def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
+              with_fix: bool = False):
+    """Yield (rule, first item, message[, fix request with ``with_fix``]) for every selected rule of ``scope`` checking
     ``subject`` (a Model, or a run), each with its options (defaults, then ``options[code]``) in
     ``ctx.options``. A rule that crashes adds an internal error and the others still run."""
     import traceback
@@ -110,7 +111,10 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                yield rule, item[0], item[1]
+                if with_fix:   # (rule, item, message, fix request or None)
+                    yield rule, item[0], item[1], (item[2] if len(item) > 2 else None)
+                else:
+                    yield rule, item[0], item[1]
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 

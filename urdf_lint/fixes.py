@@ -1,0 +1,327 @@
+"""Fixes written back into the xacro source.
+
+A rule that knows the right value yields ``(element, message, request)``, where the request
+(:func:`set_attrs`) says which attributes of the *expanded* element should get which values.
+:func:`resolve` (run where the model is, in the worker) turns it into a :class:`Fix`: byte
+edits of the literal that produced each value, found from the element's origin by tokenising
+the start tag in the raw source (:mod:`urdf_lint.sourceedit`):
+
+* a literal in the element itself is edited in place;
+* ``${name}`` inside a macro, where the innermost call passes ``name=...``: the call's argument;
+* ``${name}`` naming a ``xacro:property`` defined exactly once in the files the model read;
+* ``${var['key']...}`` / ``${var.key}`` where ``var`` is a property set by ``load_yaml('f')``:
+  the YAML scalar;
+* anything else (an expression, ``$(arg)``, a property defined twice) is refused with "not
+  fixable automatically: the value comes from the expression at FILE:LINE".
+
+The run then checks that a fix is right for every model and arg set that uses the edited line
+(:mod:`urdf_lint.fixrun`).
+"""
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+
+from .sourceedit import Attr, Edit, escape, iter_start_tags, line_col, start_tag_at
+
+_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
+_YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|\d+)\s*\]"
+                       r"|\.[A-Za-z_]\w*)+)\s*\}")
+_KEY = re.compile(r"\[\s*(?:'([^']*)'|\"([^\"]*)\"|(\d+))\s*\]|\.([A-Za-z_]\w*)")
+_LOAD_YAML = re.compile(r"\$\{\s*(?:xacro\.)?load_yaml\(\s*(?:'([^']*)'|\"([^\"]*)\")\s*\)\s*\}")
+NOT_FIXABLE = "not fixable automatically"
+
+
+@dataclass(frozen=True)
+class Request:
+    """What a rule wants: new values for attributes of the expanded element."""
+    changes: tuple[tuple[str, str], ...]
+    description: str
+    safe: bool = True
+
+
+def set_attrs(changes: dict, description: str, safe: bool = True) -> Request:
+    return Request(tuple(changes.items()), description, safe)
+
+
+@dataclass(frozen=True)
+class Fix:
+    """A fix of one finding: byte edits of source files, or why there is none."""
+    description: str
+    safe: bool = True
+    edits: tuple[Edit, ...] = ()
+    refused: str = ""                                  # why it is not applied automatically
+    expect: tuple = field(default=(), compare=False)   # ((element index, attr, value), ...)
+
+    @property
+    def applicable(self) -> bool:
+        return bool(self.edits) and not self.refused
+
+    def to_dict(self) -> dict:
+        from .locations import display_path
+        d = {"description": self.description,
+             "applicability": "safe" if self.safe else "unsafe"}
+        if self.refused:
+            d["refused"] = self.refused
+        else:
+            d["edits"] = [dict(e.to_dict(), file=display_path(e.file)) for e in self.edits]
+        return d
+
+    def to_record(self) -> dict:
+        return {"description": self.description, "safe": self.safe, "refused": self.refused,
+                "edits": [e.to_dict() for e in self.edits],
+                "expect": [list(x) for x in self.expect]}
+
+    @classmethod
+    def from_record(cls, d: dict) -> "Fix":
+        return cls(d["description"], d["safe"], tuple(Edit(**e) for e in d["edits"]),
+                   d.get("refused", ""), tuple(tuple(x) for x in d.get("expect", ())))
+
+
+def combine(a: Fix, b: Fix, label_a: str = "", label_b: str = "") -> Fix:
+    """One fix for a finding reported by several models or macro instances: the union of
+    their edits when they agree, refused when they edit the same bytes differently."""
+    if a.refused:
+        return a
+    if b.refused:
+        return b
+    if a.edits == b.edits:
+        return a
+    by_range = {(e.file, e.start, e.end): e.text for e in a.edits}
+    for e in b.edits:
+        t = by_range.get((e.file, e.start, e.end))
+        if t is not None and t != e.text:
+            who = f" ({label_a} and {label_b})" if label_a and label_b else ""
+            return Fix(a.description, a.safe, (), f"{NOT_FIXABLE}: the models that use this "
+                       f"line need different values{who}")
+    edits = tuple(sorted(set(a.edits) | set(b.edits), key=lambda e: (e.file, e.start)))
+    return Fix(a.description, a.safe and b.safe, edits, "")
+
+
+class _Refuse(Exception):
+    pass
+
+
+class _Sources:
+    """The raw bytes of the files a model read (nothing else is read)."""
+
+    def __init__(self, model):
+        self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
+        self.data: dict = {}
+
+    def get(self, path: str) -> bytes:
+        real = os.path.realpath(path)
+        if real not in self.allowed:
+            raise _Refuse(f"{NOT_FIXABLE}: {_where(path)} was not read by the model")
+        if real not in self.data:
+            with open(real, "rb") as f:
+                self.data[real] = f.read()
+        return self.data[real]
+
+    def xacro_files(self):
+        return [p for p in sorted(self.allowed) if p.endswith((".xacro", ".urdf", ".xml"))]
+
+
+def _where(path, line=None):
+    from .locations import display_path
+    return f"{display_path(path)}:{line}" if line else display_path(path)
+
+
+def _expression(path, data, off):
+    return _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                   f"{_where(path, line_col(data, off)[0])}")
+
+
+def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
+    """The :class:`Fix` of ``req`` on ``el`` (refused, with the reason, when it cannot be
+    located or traced to one literal)."""
+    src = src or _Sources(model)
+    origin = model.origins.get(el)
+    try:
+        if origin is None:
+            raise _Refuse(f"{NOT_FIXABLE}: the element has no source location")
+        data = src.get(origin.file)
+        tag = start_tag_at(data, origin.line, origin.col)
+        if tag is None or tag.name.rpartition(":")[2] != el.tag:
+            raise _Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
+                          f"{_where(origin.file, origin.line)}")
+        edits = []
+        for attr, new in req.changes:
+            a = tag.attr(attr)
+            if a is None:
+                raise _Refuse(f"{NOT_FIXABLE}: {attr}= is not written at "
+                              f"{_where(origin.file, origin.line)}")
+            file, lit = _trace(src, origin.file, data, a, tuple(origin.chain), 0)
+            if not _same(lit.value, el.get(attr)):
+                raise _Refuse(f"{NOT_FIXABLE}: the literal at {_where(file)} "
+                              f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")
+            edits.append(Edit(file, lit.value_start, lit.value_end, escape(new, lit.quote))
+                         if isinstance(lit, Attr) else
+                         Edit(file, lit.value_start, lit.value_end, _yaml_text(new, lit)))
+        if len({(e.file, e.start) for e in edits}) != len(edits):
+            raise _Refuse(f"{NOT_FIXABLE}: two of the values come from the same literal")
+        return Fix(req.description, req.safe, tuple(edits), "", ())
+    except _Refuse as r:
+        return Fix(req.description, req.safe, (), str(r))
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
+
+
+def _same(literal: str, expanded) -> bool:
+    if expanded is None:
+        return False
+    if literal.strip() == expanded.strip():
+        return True
+    a, b = literal.split(), expanded.split()
+    try:
+        return len(a) == len(b) and all(float(x) == float(y) for x, y in zip(a, b))
+    except ValueError:
+        return False
+
+
+def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
+    """(file, the literal Attr or YAML scalar) that produced attribute ``a``."""
+    v = a.value
+    if "$" not in v:
+        return file, a
+    if depth > 8:
+        raise _expression(file, data, a.value_start)
+    m = _REF.fullmatch(v.strip())
+    if m:
+        name = m.group(1)
+        if chain:   # a macro parameter passed by the innermost call
+            cfile, cline, ccol = chain[-1][:3]
+            cdata = src.get(cfile)
+            call = start_tag_at(cdata, cline, ccol)
+            if call is not None:
+                p = call.attr(name)
+                if p is not None:
+                    return _trace(src, cfile, cdata, p, chain[:-1], depth + 1)
+        return _property(src, name, file, data, a, depth)
+    m = _YAML_REF.fullmatch(v.strip())
+    if m and not chain:
+        return _yaml_scalar(src, m, file, data, a)
+    raise _expression(file, data, a.value_start)
+
+
+def _property_defs(src, name):
+    out = []
+    for path in src.xacro_files():
+        d = src.get(path)
+        if name.encode() not in d:
+            continue
+        for t in iter_start_tags(d, "property"):
+            n = t.attr("name")
+            if n is not None and n.value == name:
+                out.append((path, d, t))
+    return out
+
+
+def _property(src, name, file, data, a, depth):
+    defs = _property_defs(src, name)
+    if len(defs) != 1:
+        if not defs:
+            raise _expression(file, data, a.value_start)
+        where = ", ".join(_where(p, line_col(d, t.start)[0]) for p, d, t in defs)
+        raise _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                      f"{_where(file, line_col(data, a.value_start)[0])} (property '{name}' "
+                      f"is defined {len(defs)} times: {where})")
+    path, d, t = defs[0]
+    val = t.attr("value")
+    if val is None:
+        raise _Refuse(f"{NOT_FIXABLE}: property '{name}' at {_where(path, line_col(d, t.start)[0])}"
+                      " has no value= literal")
+    return _trace(src, path, d, val, (), depth + 1)
+
+
+@dataclass(frozen=True)
+class YamlScalar:
+    value: str
+    value_start: int
+    value_end: int
+    style: str          # "" (plain), "'" or '"'
+
+
+def _yaml_scalar(src, m, file, data, a):
+    var, keys = m.group(1), [k for k in _KEY.findall(m.group(2))]
+    defs = _property_defs(src, var)
+    if len(defs) != 1:
+        raise _expression(file, data, a.value_start)
+    path, d, t = defs[0]
+    val = t.attr("value")
+    lm = _LOAD_YAML.fullmatch(val.value.strip()) if val is not None else None
+    if lm is None:
+        raise _expression(file, data, a.value_start)
+    ref = lm.group(1) or lm.group(2)
+    fm = re.fullmatch(r"\$\(find [\w-]+\)/(.+)", ref)
+    if fm:   # $(find pkg)/rest: the one YAML file the model read that ends with rest
+        hits = [p for p in src.allowed if p.endswith("/" + fm.group(1))]
+        if len(hits) != 1:
+            raise _expression(path, d, val.value_start)
+        yaml_path = hits[0]
+    elif "$" in ref:
+        raise _expression(path, d, val.value_start)
+    else:
+        yaml_path = os.path.normpath(os.path.join(os.path.dirname(path), ref))
+    ydata = src.get(yaml_path)
+    path_keys = [k[0] or k[1] or k[3] or (int(k[2]) if k[2] else "") for k in keys]
+    node = _yaml_node(ydata, path_keys)
+    if node is None:
+        raise _expression(file, data, a.value_start)
+    return yaml_path, node
+
+
+def _yaml_node(ydata: bytes, keys):
+    import yaml
+    try:
+        root = yaml.compose(ydata.decode("utf-8"), Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return None
+    node = root
+    for k in keys:
+        if isinstance(node, yaml.MappingNode):
+            node = next((v for kn, v in node.value if kn.value == str(k)), None)
+        elif isinstance(node, yaml.SequenceNode) and isinstance(k, int) and k < len(node.value):
+            node = node.value[k]
+        else:
+            return None
+        if node is None:
+            return None
+    if not isinstance(node, yaml.ScalarNode):
+        return None
+    # byte offsets: PyYAML marks count characters
+    text = ydata.decode("utf-8")
+    s = len(text[:node.start_mark.index].encode("utf-8"))
+    e = len(text[:node.end_mark.index].encode("utf-8"))
+    return YamlScalar(node.value, s, e, node.style or "")
+
+
+def _yaml_text(new: str, lit: YamlScalar) -> str:
+    if lit.style == "'":
+        return "'" + new.replace("'", "''") + "'"
+    if lit.style == '"':
+        return '"' + new.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return new
+
+
+class Fixer:
+    """Resolves the fix requests of one model (reads each source file once)."""
+
+    def __init__(self, model):
+        self.model = model
+        self.src = _Sources(model)
+        self._index: dict | None = None
+
+    def index(self, el) -> int:
+        if self._index is None:
+            from lxml import etree
+            self._index = {e: i for i, e in enumerate(self.model.root.iter(tag=etree.Element))}
+        return self._index[el]
+
+    def fix(self, el, req: Request) -> Fix:
+        f = resolve(self.model, el, req, self.src)
+        if f.refused:
+            return f
+        i = self.index(el)
+        return Fix(f.description, f.safe, f.edits, "", tuple((i, a, v) for a, v in req.changes))
