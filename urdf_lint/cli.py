@@ -65,6 +65,14 @@ def build_parser():
     c.add_argument("--write-baseline", metavar="FILE", help="record current findings to FILE")
     c.add_argument("--timeout", type=float, help="per-model time limit in seconds")
     c.add_argument("--quiet", "-q", action="store_true", help="no summary line when clean")
+    c.add_argument("--fix", action="store_true",
+                   help="apply the safe fixes to the xacro sources, then report what remains")
+    c.add_argument("--unsafe-fixes", action="store_true",
+                   help="with --fix or --diff: also the fixes that change structure")
+    c.add_argument("--diff", action="store_true",
+                   help="print the fixes as a unified diff of the sources instead of writing")
+    c.add_argument("--exit-non-zero-on-fix", action="store_true",
+                   help="with --fix: exit 1 when a file was changed (pre-commit)")
 
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect")
     h.add_argument("files", nargs="*")
@@ -176,6 +184,13 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
+    if getattr(args, "unsafe_fixes", False) and not (args.fix or args.diff):
+        raise UsageError("--unsafe-fixes needs --fix or --diff")
+    if getattr(args, "exit_non_zero_on_fix", False) and not args.fix:
+        raise UsageError("--exit-non-zero-on-fix needs --fix")
+    if getattr(args, "fix", False) or getattr(args, "diff", False):
+        from .fixcli import check_fix
+        return check_fix(args, cfg, resolver, affected_by, render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     if args.write_baseline:

@@ -1,0 +1,261 @@
+"""``urdf-lint check --fix``: apply the fixes of a run, verify them, roll back the wrong ones.
+
+1. Lint every model, keeping each expanded robot.
+2. Take the applicable fixes (safe ones; unsafe ones too with ``--unsafe-fixes``); two fixes that
+   edit overlapping bytes: the first one wins, the other waits for the next run.
+3. Write the edited sources (atomically) and lint again in the same run. A fix is rolled back
+   (and reported) when its finding is still there, when a finding appears that was not there
+   before in a model whose files it edited, or when the expanded robot of a model it touches is
+   not exactly the robot before with the fix's attribute values applied: this is what makes a
+   fix right "for every model and arg set that uses that source line" (a macro line or property
+   shared by a model without the finding changes that model, so the fix is refused).
+4. Repeat with the remaining fixes until the run verifies (at most a few rounds).
+"""
+from __future__ import annotations
+
+import difflib
+import os
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from .sourceedit import apply_edits, write_atomic
+
+MAX_ROUNDS = 4
+
+
+@dataclass
+class FixOutcome:
+    result: object                                   # the CheckResult after fixing
+    applied: list = field(default_factory=list)      # Problems whose fix was written
+    rolled_back: list = field(default_factory=list)  # (Problem, reason)
+    changed_files: list = field(default_factory=list)
+    diff: str = ""
+
+
+def _fkey(p):
+    return (p.code, p.file, p.line, p.col, p.message)
+
+
+def candidates(findings, unsafe: bool):
+    """(chosen, deferred): applicable fixes without overlapping edits, in finding order."""
+    chosen, deferred = [], []
+    taken: dict = {}
+    for p in findings:
+        fx = p.fix
+        if fx is None or not fx.applicable or (not fx.safe and not unsafe):
+            continue
+        clash = False
+        for e in fx.edits:
+            for (s, t, text) in taken.get(e.file, ()):
+                if e.start < t and s < e.end and not (s == e.start and t == e.end
+                                                      and text == e.text):
+                    clash = True
+        if clash:
+            deferred.append(p)
+            continue
+        for e in fx.edits:
+            taken.setdefault(e.file, []).append((e.start, e.end, e.text))
+        chosen.append(p)
+    return chosen, deferred
+
+
+def edited_sources(fixed, originals: dict) -> dict:
+    """{file: new bytes} for the fixes of ``fixed`` (each edit once)."""
+    per_file: dict = {}
+    for p in fixed:
+        for e in p.fix.edits:
+            per_file.setdefault(e.file, set()).add(e)
+    out = {}
+    for f, edits in per_file.items():
+        if f not in originals:
+            with open(f, "rb") as fh:
+                originals[f] = fh.read()
+        out[f] = apply_edits(originals[f], edits)
+    return out
+
+
+def unified_diff(new: dict, originals: dict) -> str:
+    from .locations import display_path
+    out = []
+    for f in sorted(new):
+        if new[f] == originals[f]:
+            continue
+        a = originals[f].decode("utf-8", "replace").splitlines(keepends=True)
+        b = new[f].decode("utf-8", "replace").splitlines(keepends=True)
+        name = display_path(f)
+        out.extend(difflib.unified_diff(a, b, f"a/{name}", f"b/{name}"))
+    return "".join(x if x.endswith("\n") else x + "\n\\ No newline at end of file\n"
+                   for x in out)
+
+
+# -- verification --------------------------------------------------------------------------------
+def _tree(report, xml_or_none):
+    if report.kept_model is None:
+        return None
+    xml = report.kept_model.xml if xml_or_none is None else xml_or_none
+    parser = etree.XMLParser(remove_blank_text=True, resolve_entities=False, no_network=True,
+                             load_dtd=False, remove_comments=True)
+    try:
+        if xml is None:
+            with open(report.entry, "rb") as f:
+                return etree.fromstring(f.read(), parser)
+        return etree.fromstring(xml.encode("utf-8"), parser)
+    except (OSError, etree.XMLSyntaxError):
+        return None
+
+
+def _values_equal(a, b) -> bool:
+    if a == b:
+        return True
+    if a is None or b is None:
+        return False
+    x, y = a.split(), b.split()
+    try:
+        return len(x) == len(y) and all(abs(float(p) - float(q)) <= 1e-9 * max(1, abs(float(p)))
+                                        for p, q in zip(x, y))
+    except ValueError:
+        return False
+
+
+def _same_robot(a, b) -> bool:
+    ea = list(a.iter(tag=etree.Element))
+    eb = list(b.iter(tag=etree.Element))
+    if len(ea) != len(eb):
+        return False
+    for x, y in zip(ea, eb):
+        if x.tag != y.tag or set(x.attrib) != set(y.attrib):
+            return False
+        if (x.text or "").strip() != (y.text or "").strip():
+            return False
+        if not all(_values_equal(x.get(k), y.get(k)) for k in x.attrib):
+            return False
+    return True
+
+
+def _snapshot(result) -> dict:
+    """{label: (report, tree)} of the models of a run, with their robots parsed now (a plain
+    .urdf is read from disk, so this runs before anything is written)."""
+    return {r.label: (r, _tree(r, None)) for r in result.models}
+
+
+def verify(before: dict, before_findings, after, fixed) -> dict:
+    """{finding key: reason} for the fixes of ``fixed`` that must be rolled back."""
+    from .locations import display_path
+    bad: dict = {}
+    fixed_keys = {_fkey(p): p for p in fixed}
+
+    def touches(p, report):
+        deps = {os.path.realpath(d) for d in report.deps}
+        return any(os.path.realpath(e.file) in deps for e in p.fix.edits)
+
+    # 1. the finding must be gone
+    after_keys = {_fkey(f) for f in after.findings}
+    for k, p in fixed_keys.items():
+        if k in after_keys:
+            bad[k] = "the fix did not remove its finding"
+    # 2. no finding may appear
+    before_keys = {_fkey(f) for f in before_findings}
+    after_models = {r.label: r for r in after.models}
+    for f in after.findings:
+        if _fkey(f) in before_keys:
+            continue
+        where = f"{display_path(f.file)}:{f.line}"
+        for label in f.models or tuple(before):
+            rep = before.get(label, (None,))[0]
+            for k, p in fixed_keys.items():
+                if k not in bad and (rep is None or touches(p, rep)):
+                    bad[k] = f"the fix adds {f.code} at {where} ({f.message})"
+    # 3. every model's robot is exactly the old one with the fixes' values
+    for label, (rep, tree) in before.items():
+        arep = after_models.get(label)
+        mine = [p for p in fixed if touches(p, rep)]
+        if not mine:
+            continue
+        if arep is None or tree is None:
+            for p in mine:
+                bad.setdefault(_fkey(p), f"{label} no longer expands")
+            continue
+        new = _tree(arep, None)
+        expected = _expected(tree, rep, fixed_keys)
+        if expected is None:      # a structural (unsafe) fix: its findings decide alone
+            continue
+        if new is None or not _same_robot(expected, new):
+            for p in mine:
+                k = _fkey(p)
+                if k in bad:
+                    continue
+                if label in p.models:
+                    bad[k] = f"the fix changes more of {label} than the flagged element"
+                else:
+                    bad[k] = (f"the edited source is also used by {label}, where the fix is "
+                              "wrong (it changes that robot)")
+    return bad
+
+
+def _expected(tree, rep, fixed_keys):
+    """The robot of ``rep`` before fixing with the attribute values of its fixed findings."""
+    import copy
+    out = copy.deepcopy(tree)
+    elements = list(out.iter(tag=etree.Element))
+    for p in rep.problems:
+        if p.fix is None or _fkey(p) not in fixed_keys:
+            continue
+        if not p.fix.expect:
+            return None
+        for i, attr, value in p.fix.expect:
+            if i < len(elements):
+                elements[i].set(attr, value)
+    return out
+
+
+def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
+            in_process: bool = False) -> FixOutcome:
+    from .pipeline import run_check
+    before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
+                              in_process=in_process)
+    chosen, _ = candidates(before_result.findings, unsafe)
+    originals: dict = {}
+    if diff_only:
+        new = edited_sources(chosen, originals)
+        return FixOutcome(before_result, chosen, [], sorted(f for f in new
+                                                            if new[f] != originals[f]),
+                          unified_diff(new, originals))
+    before = _snapshot(before_result)
+    rolled: list = []
+    result = before_result
+    written: set = set()
+    try:
+        for _ in range(MAX_ROUNDS):
+            if not chosen:
+                break
+            new = edited_sources(chosen, originals)
+            for f in set(originals) - set(new):      # a file whose fixes were all rolled back
+                if f in written:
+                    write_atomic(f, originals[f])
+                    written.discard(f)
+            for f, data in new.items():
+                write_atomic(f, data)
+                written.add(f)
+            result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
+                               in_process=in_process)
+            bad = verify(before, before_result.findings, result, chosen)
+            if not bad:
+                break
+            rolled += [(p, bad[_fkey(p)]) for p in chosen if _fkey(p) in bad]
+            chosen = [p for p in chosen if _fkey(p) not in bad]
+        else:
+            rolled += [(p, "the fixes did not verify") for p in chosen]
+            chosen = []
+        if not chosen:
+            for f in written:
+                write_atomic(f, originals[f])
+            written = set()
+            if rolled:
+                result = run_check(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
+    except BaseException:
+        for f in written:     # never leave half-fixed sources behind
+            write_atomic(f, originals[f])
+        raise
+    changed = sorted(f for f in written if originals.get(f) is not None)
+    return FixOutcome(result, chosen, rolled, changed, "")
