@@ -1,0 +1,204 @@
+"""``check --fix`` / ``--diff``: fixes written into the xacro source where the value is written.
+
+Each case is a small ROS package; the assertions are the exact diff bytes, the finding gone after
+``--fix``, a second ``--fix`` that changes nothing, and stock xacro's expansion of the fixed
+source equal to stock xacro's expansion of the hand-fixed source.
+"""
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from conftest import make_package, run_cli
+from support.stock_xacro import stock_xacro
+
+HEAD = '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+LINKS = '  <link name="a"/><link name="b"/>\n'
+
+
+def joint(limit: str) -> str:
+    return ('  <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>'
+            '<axis xyz="0 0 1"/>\n'
+            f'    {limit}\n  </joint>\n')
+
+
+def findings(pkg, *extra):
+    p = run_cli("check", pkg, "--format", "json", "--no-cache", "--isolated", *extra)
+    assert p.returncode in (0, 1), p.stderr
+    return json.loads(p.stdout)["findings"]
+
+
+def codes(pkg):
+    return sorted((f["code"], f["message"]) for f in findings(pkg))
+
+
+def fix_and_check(pkg: Path, code: str, expected_diff: str, hand_fixed: dict,
+                  entry="urdf/robot.urdf.xacro", args=None):
+    """--diff shows exactly ``expected_diff``; --fix removes the finding and nothing else;
+    a second --fix changes nothing; stock xacro of the fixed source == of the hand-fixed one."""
+    before = codes(pkg)
+    assert any(c == code for c, _ in before), before
+    d = run_cli("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
+    assert d.returncode == 1, d.stderr
+    assert d.stdout == expected_diff
+    snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 1 finding" in f.stderr, f.stderr
+    after = codes(pkg)
+    assert [c for c in after if c[0] == code] == [], after
+    assert set(after) <= set(before)            # nothing introduced
+    again = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
+    g = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 0 findings" in g.stderr
+    assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == again
+    assert again != snapshot
+    # stock xacro: the fixed source expands to what the hand-fixed source does
+    rc, fixed_urdf, err = stock_xacro(str(pkg / entry), args or {}, {pkg.name: pkg})
+    assert rc == 0, err
+    ref = pkg.parent / "hand_fixed"
+    shutil.copytree(pkg, ref)
+    for rel, text in hand_fixed.items():
+        (ref / rel).write_bytes(text if isinstance(text, bytes) else text.encode())
+    rc, want, err = stock_xacro(str(ref / entry), args or {}, {pkg.name: ref})
+    assert rc == 0, err
+    body = lambda u: u[u.index("<robot"):]   # noqa: E731 - the header names the file
+    assert body(fixed_urdf) == body(want)
+
+
+def test_literal_in_element(tmp_path):
+    src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
+    pkg = make_package(tmp_path, "lit", {"urdf/robot.urdf.xacro": src})
+    fix_and_check(pkg, "UL302", (
+        "--- a/urdf/robot.urdf.xacro\n+++ b/urdf/robot.urdf.xacro\n@@ -2,6 +2,6 @@\n"
+        ' <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '   <link name="a"/><link name="b"/>\n'
+        '   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>\n'
+        '-    <limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>\n'
+        '+    <limit lower="-2.1" upper="2.1" effort="1" velocity="1"/>\n'
+        "   </joint>\n </robot>\n"),
+        {"urdf/robot.urdf.xacro": src.replace('lower="2.1" upper="-2.1"', 'lower="-2.1" upper="2.1"')})
+
+
+def test_property_in_another_file(tmp_path):
+    props = HEAD + '  <xacro:property name="lo" value="1.5"/>\n  <xacro:property name="hi" value="-0.5"/>\n</robot>\n'
+    src = (HEAD + '  <xacro:include filename="$(find prop)/urdf/props.xacro"/>\n' + LINKS
+           + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "prop", {"urdf/robot.urdf.xacro": src, "urdf/props.xacro": props})
+    fix_and_check(pkg, "UL302", (
+        "--- a/urdf/props.xacro\n+++ b/urdf/props.xacro\n@@ -1,5 +1,5 @@\n"
+        ' <?xml version="1.0"?>\n <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '-  <xacro:property name="lo" value="1.5"/>\n-  <xacro:property name="hi" value="-0.5"/>\n'
+        '+  <xacro:property name="lo" value="-0.5"/>\n+  <xacro:property name="hi" value="1.5"/>\n'
+        " </robot>\n"),
+        {"urdf/props.xacro": props.replace('"1.5"', '"X"').replace('"-0.5"', '"1.5"').replace('"X"', '"-0.5"')})
+
+
+def test_macro_parameter(tmp_path):
+    parts = (HEAD + '  <xacro:macro name="hinge" params="name lower upper">\n'
+             '    <joint name="${name}" type="revolute"><parent link="a"/><child link="b"/>\n'
+             '      <axis xyz="0 0 1"/><limit lower="${lower}" upper="${upper}" effort="1" velocity="1"/>\n'
+             '    </joint>\n  </xacro:macro>\n</robot>\n')
+    src = (HEAD + '  <xacro:include filename="parts.xacro"/>\n' + LINKS
+           + '  <xacro:hinge name="elbow" lower="0.3" upper="-0.3"/>\n</robot>\n')
+    pkg = make_package(tmp_path, "mac", {"urdf/robot.urdf.xacro": src, "urdf/parts.xacro": parts})
+    fix_and_check(pkg, "UL302", (
+        "--- a/urdf/robot.urdf.xacro\n+++ b/urdf/robot.urdf.xacro\n@@ -2,5 +2,5 @@\n"
+        ' <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '   <xacro:include filename="parts.xacro"/>\n   <link name="a"/><link name="b"/>\n'
+        '-  <xacro:hinge name="elbow" lower="0.3" upper="-0.3"/>\n'
+        '+  <xacro:hinge name="elbow" lower="-0.3" upper="0.3"/>\n </robot>\n'),
+        {"urdf/robot.urdf.xacro": src.replace('lower="0.3" upper="-0.3"', 'lower="-0.3" upper="0.3"')})
+
+
+def test_yaml_scalar(tmp_path):
+    yml = "# joint limits\nelbow:\n  lower: 1.2   # rad\n  upper: -1.2\n"
+    src = (HEAD + '  <xacro:property name="lim" value="${load_yaml(\'limits.yaml\')}"/>\n' + LINKS
+           + joint('<limit lower="${lim[\'elbow\'][\'lower\']}" upper="${lim.elbow.upper}" '
+                   'effort="1" velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "yml", {"urdf/robot.urdf.xacro": src, "urdf/limits.yaml": yml})
+    fix_and_check(pkg, "UL302", (
+        "--- a/urdf/limits.yaml\n+++ b/urdf/limits.yaml\n@@ -1,4 +1,4 @@\n"
+        " # joint limits\n elbow:\n-  lower: 1.2   # rad\n-  upper: -1.2\n"
+        "+  lower: -1.2   # rad\n+  upper: 1.2\n"),
+        {"urdf/limits.yaml": "# joint limits\nelbow:\n  lower: -1.2   # rad\n  upper: 1.2\n"})
+
+
+def test_expression_is_refused_with_its_location(tmp_path):
+    src = (HEAD + '  <xacro:property name="lo" value="1"/>\n' + LINKS
+           + joint('<limit lower="${lo*2}" upper="-2" effort="1" velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "expr", {"urdf/robot.urdf.xacro": src})
+    p = run_cli("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
+    (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
+    assert f["fix"] == {"description": "swap lower and upper", "applicability": "safe",
+                        "refused": "not fixable automatically: the value comes from the "
+                                   "expression at urdf/robot.urdf.xacro:6"}
+    d = run_cli("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
+    assert d.stdout == "" and d.returncode == 0
+    before = (pkg / "urdf/robot.urdf.xacro").read_bytes()
+    run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert (pkg / "urdf/robot.urdf.xacro").read_bytes() == before
+
+
+def test_no_fix_keeps_json_unchanged(tmp_path):
+    src = HEAD + LINKS + joint('<limit lower="0" upper="1" effort="-1" velocity="1"/>') + "</robot>\n"
+    pkg = make_package(tmp_path, "nofix", {"urdf/robot.urdf.xacro": src})
+    fs = findings(pkg)
+    assert fs and all("fix" not in f for f in fs)
+    assert all(set(f) == {"code", "name", "severity", "message", "file", "line", "col", "chain",
+                          "models"} for f in fs)
+
+
+def test_fix_shared_with_a_model_it_would_break_is_rolled_back(tmp_path):
+    """`lo` is shared by two robots; swapping it is right for A (inverted) and wrong for B."""
+    common = HEAD + '  <xacro:property name="lo" value="1"/>\n</robot>\n'
+    def robot(hi):
+        return (HEAD + '  <xacro:include filename="common.xacro"/>\n'
+                f'  <xacro:property name="hi" value="{hi}"/>\n' + LINKS
+                + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "shared", {"urdf/common.xacro": common,
+                                            "urdf/a.urdf.xacro": robot("-1"),
+                                            "urdf/b.urdf.xacro": robot("3")})
+    snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "UL302 fix rolled back: the edited source is also used by urdf/b.urdf.xacro, where " \
+           "the fix is wrong" in f.stderr, f.stderr
+    assert "Fixed 0 findings" in f.stderr
+    assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == snapshot
+    assert any(c == "UL302" for c, _ in codes(pkg))
+
+
+def test_crlf_tabs_non_ascii_and_comments_survive(tmp_path):
+    src = ('<?xml version="1.0" encoding="UTF-8"?>\r\n<!-- bras articulé — ß -->\r\n'
+           '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\r\n'
+           '\t<link name="a"/><link name="b"/>\r\n'
+           '\t<joint name="coude_é" type="revolute"><parent link="a"/><child link="b"/>'
+           '<axis xyz="0 0 1"/>\r\n'
+           "\t\t<limit  effort='1'\tlower='2'\r\n\t\t\tupper = '-2' velocity=\"1\"><!-- été --></limit>\r\n"
+           '\t</joint>\r\n</robot>\r\n').encode("utf-8")
+    pkg = make_package(tmp_path, "crlf", {"urdf/robot.urdf.xacro": src})
+    run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    out = (pkg / "urdf/robot.urdf.xacro").read_bytes()
+    assert out == src.replace(b"lower='2'", b"lower='-2'").replace(b"upper = '-2'", b"upper = '2'")
+    assert not [c for c, _ in codes(pkg) if c == "UL302"]
+
+
+def test_axis_and_colour_fixes(tmp_path):
+    src = (HEAD + '  <material name="orange"><color rgba="255 128 0 1"/></material>\n'
+           '  <link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+           '<material name="orange"/></visual></link><link name="b"/>\n'
+           '  <joint name="j" type="continuous"><parent link="a"/><child link="b"/>'
+           '<axis xyz="0 0 2"/></joint>\n</robot>\n')
+    pkg = make_package(tmp_path, "ax", {"urdf/robot.urdf.xacro": src})
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 2 findings" in f.stderr, f.stderr
+    assert (pkg / "urdf/robot.urdf.xacro").read_text() == src.replace(
+        'rgba="255 128 0 1"', 'rgba="1 0.502 0 1"').replace('xyz="0 0 2"', 'xyz="0 0 1"')
+    assert not [c for c, _ in codes(pkg) if c in ("UL208", "UL307")]
+
+
+def test_fix_options_are_checked(tmp_path):
+    p = run_cli("check", ".", "--unsafe-fixes", "--isolated", cwd=tmp_path)
+    assert p.returncode == 2 and "--unsafe-fixes needs --fix or --diff" in p.stderr
