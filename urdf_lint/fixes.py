@@ -35,14 +35,24 @@ NOT_FIXABLE = "not fixable automatically"
 
 @dataclass(frozen=True)
 class Request:
-    """What a rule wants: new values for attributes of the expanded element."""
+    """What a rule wants done to the expanded element: ``kind`` "set" (``changes``: new values
+    of attributes), "rename_attr" (``changes``: ((old, new),)) or "rename_tag" (((old, new),))."""
     changes: tuple[tuple[str, str], ...]
     description: str
     safe: bool = True
+    kind: str = "set"
 
 
 def set_attrs(changes: dict, description: str, safe: bool = True) -> Request:
     return Request(tuple(changes.items()), description, safe)
+
+
+def rename_attr(old: str, new: str, safe: bool = True) -> Request:
+    return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
+
+
+def rename_tag(old: str, new: str, safe: bool = True) -> Request:
+    return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
 
 
 @dataclass(frozen=True)
@@ -52,7 +62,9 @@ class Fix:
     safe: bool = True
     edits: tuple[Edit, ...] = ()
     refused: str = ""                                  # why it is not applied automatically
-    expect: tuple = field(default=(), compare=False)   # ((element index, attr, value), ...)
+    # what the fix does to the expanded robot of the model that found it, for verification:
+    # ((kind, element index, attr | old name, value | new name), ...); () for a structural fix
+    expect: tuple = field(default=(), compare=False)
 
     @property
     def applicable(self) -> bool:
@@ -146,6 +158,8 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         if tag is None or tag.name.rpartition(":")[2] != el.tag:
             raise _Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
                           f"{_where(origin.file, origin.line)}")
+        if req.kind != "set":
+            return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
         edits = []
         for attr, new in req.changes:
             a = tag.attr(attr)
@@ -166,6 +180,30 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         return Fix(req.description, req.safe, (), str(r))
     except (OSError, UnicodeDecodeError, ValueError) as e:
         return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
+
+
+def _rename(src, origin, data, tag, req) -> tuple:
+    """The edits of a rename: names are always written literally in the start tag (and end
+    tag) at the element's origin."""
+    from .sourceedit import end_tag_of
+    ((old, new),) = req.changes
+    if req.kind == "rename_attr":
+        a = tag.attr(old)
+        if a is None:
+            raise _Refuse(f"{NOT_FIXABLE}: attribute '{old}' is not written at "
+                          f"{_where(origin.file, origin.line)}")
+        return (Edit(origin.file, a.name_start, a.name_start + len(old.encode()), new),)
+    start = tag.name_end - len(old.encode())
+    if tag.name != old:
+        raise _Refuse(f"{NOT_FIXABLE}: <{tag.name}> at {_where(origin.file, origin.line)}")
+    edits = [Edit(origin.file, start, tag.name_end, new)]
+    if not tag.self_closing:
+        end = end_tag_of(data, tag)
+        if end is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no end tag for <{old}> at "
+                          f"{_where(origin.file, origin.line)}")
+        edits.append(Edit(origin.file, end + 2, end + 2 + len(old.encode()), new))
+    return tuple(edits)
 
 
 def _same(literal: str, expanded) -> bool:
@@ -324,4 +362,5 @@ class Fixer:
         if f.refused:
             return f
         i = self.index(el)
-        return Fix(f.description, f.safe, f.edits, "", tuple((i, a, v) for a, v in req.changes))
+        return Fix(f.description, f.safe, f.edits, "",
+                   tuple((req.kind, i, a, v) for a, v in req.changes))

@@ -203,9 +203,18 @@ def _expected(tree, rep, fixed_keys):
             continue
         if not p.fix.expect:
             return None
-        for i, attr, value in p.fix.expect:
-            if i < len(elements):
-                elements[i].set(attr, value)
+        for kind, i, a, b in p.fix.expect:
+            if i >= len(elements):
+                continue
+            el = elements[i]
+            if kind == "set":
+                el.set(a, b)
+            elif kind == "rename_attr":
+                v = el.attrib.pop(a, None)
+                if v is not None:
+                    el.set(b, v)
+            elif kind == "rename_tag":
+                el.tag = b
     return out
 
 

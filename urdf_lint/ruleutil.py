@@ -37,6 +37,13 @@ def did_you_mean(word, candidates):
     return f" (did you mean '{m[0]}'?)" if m else ""
 
 
+def single_candidate(word, candidates):
+    """The one close match of ``word`` among ``candidates`` (None when there are none or
+    several): what a "did you mean" fix may apply."""
+    m = difflib.get_close_matches(word, list(candidates), n=2, cutoff=0.6)
+    return m[0] if len(m) == 1 else None
+
+
 def fmt(v):
     """Short, readable number."""
     return f"{v:g}"

@@ -153,6 +153,35 @@ def iter_start_tags(data: bytes, local_name: str):
                 yield st
 
 
+def end_tag_of(data: bytes, tag: StartTag) -> int | None:
+    """Offset of the '<' of the end tag that closes ``tag`` (not self-closing), skipping
+    comments, CDATA, processing instructions and nested elements of the same name."""
+    pat = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|</([^\s>]+)\s*>|<([^\s/>!?]+)",
+                     re.S)
+    name = tag.name.encode("utf-8")
+    depth = 0
+    pos = tag.end
+    while True:
+        m = pat.search(data, pos)
+        if m is None:
+            return None
+        if m.group(1) is not None:
+            if m.group(1) == name:
+                if depth == 0:
+                    return m.start()
+                depth -= 1
+            pos = m.end()
+        elif m.group(2) is not None:
+            inner = parse_start_tag(data, m.start())
+            if inner is None:
+                return None
+            if inner.name == tag.name and not inner.self_closing:
+                depth += 1
+            pos = inner.end
+        else:
+            pos = m.end()
+
+
 def line_col(data: bytes, off: int) -> tuple[int, int]:
     line = data.count(b"\n", 0, off) + 1
     start = data.rfind(b"\n", 0, off) + 1
