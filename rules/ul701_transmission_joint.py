@@ -4,6 +4,9 @@ Why: ros_control / gazebo_ros_control then fail at start-up with a message far f
 Typical after renaming a joint or changing a `prefix`.
 
 How to fix: Fix the joint name in the transmission.
+
+Fix: safe, when the name has a single close "did you mean" candidate that no other transmission names: `--fix`
+writes it where the name is written.
 """
 CODE = "UL701"
 NAME = "transmission-joint"
@@ -25,13 +28,19 @@ PASS = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.ruleutil import did_you_mean, reference_fixes
 
 
 def check(model, ctx):
+    found, taken = [], set()
     for t in model.root.iter("transmission"):
         for j in t.findall("joint"):
             n = j.get("name")
             if n and n not in model.joints:
-                yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
-                          + did_you_mean(n, model.joints))
+                found.append((t, j, n))
+            elif n:
+                taken.add(n)
+    fixes = reference_fixes([(j, "name", n) for _, j, n in found], model.joints, taken)
+    for t, j, n in found:
+        yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
+                  + did_you_mean(n, model.joints)), fixes.get((j, "name"))

@@ -3,6 +3,9 @@
 Why: controller_manager refuses to load the hardware interface.
 
 How to fix: Fix the joint name in the ros2_control block.
+
+Fix: safe, when the name has a single close "did you mean" candidate that no other ros2_control joint names: `--fix`
+writes it where the name is written.
 """
 CODE = "UL702"
 NAME = "ros2-control-joint"
@@ -22,13 +25,19 @@ PASS = """<robot name="r">
     <joint name="joint1"><command_interface name="position"/></joint></ros2_control>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.ruleutil import did_you_mean, reference_fixes
 
 
 def check(model, ctx):
+    found, taken = [], set()
     for rc in model.root.iter("ros2_control"):
         for j in rc.iter("joint"):
             n = j.get("name")
             if n and n not in model.joints:
-                yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
-                          + did_you_mean(n, model.joints))
+                found.append((rc, j, n))
+            elif n:
+                taken.add(n)
+    fixes = reference_fixes([(j, "name", n) for _, j, n in found], model.joints, taken)
+    for rc, j, n in found:
+        yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
+                  + did_you_mean(n, model.joints)), fixes.get((j, "name"))

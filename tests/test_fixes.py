@@ -218,3 +218,44 @@ def test_every_rule_with_a_fix_documents_it():
             with_fix += 1
             assert "fix" in s and s["fix"].startswith(("safe", "unsafe")), code
     assert with_fix >= 6
+
+
+def test_typo_and_reference_fixes(tmp_path):
+    """Names with one "did you mean" candidate, renamed in the source (start and end tags)."""
+    src = ('<?xml version="1.0"?>\n<robot name="r">\n'
+           '  <material name="orange"><color rgba="1 0.5 0 1"/></material>\n'
+           '  <link name="base_link"><visual><orgin xyz="0 0 1"></orgin><geometry>'
+           '<cylinder raduis="1" length="2"/></geometry><material name="ornage"/></visual></link>\n'
+           '  <link name="arm_link"/><link name="tip"/>\n'
+           '  <joint name="shoulder_joint" type="revolute"><parent link="base_link"/>'
+           '<child link="arm_link"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" '
+           'velocity="1"/>\n    <safety_controller soft_lower="-0.5" soft_upper_limit="0.5" '
+           'k_velocity="1"/></joint>\n'
+           '  <joint name="tip_joint" type="continuous"><parent link="arm_link"/>'
+           '<child link="tip"/><mimic joint="shoulder_jiont"/></joint>\n'
+           '  <transmission name="t"><type>transmission_interface/SimpleTransmission</type>\n'
+           '    <joint name="shoulder_jont"><hardwareInterface>x</hardwareInterface></joint>\n'
+           '  </transmission>\n  <gazebo reference="bse_link"/>\n</robot>\n')
+    pkg = make_package(tmp_path, "typo", {"urdf/robot.urdf": src})
+    before = codes(pkg)
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 7 findings" in f.stderr, f.stderr
+    want = (src.replace("<orgin xyz", "<origin xyz").replace("</orgin>", "</origin>")
+            .replace("raduis", "radius").replace("ornage", "orange")
+            .replace("soft_lower=", "soft_lower_limit=").replace("shoulder_jiont", "shoulder_joint")
+            .replace("shoulder_jont", "shoulder_joint").replace("bse_link", "base_link"))
+    assert (pkg / "urdf/robot.urdf").read_text() == want
+    after = codes(pkg)
+    assert not [c for c in after if c[0] in ("UL209", "UL210", "UL308", "UL502", "UL701",
+                                            "UL703")], after
+    assert set(after) <= set(before)
+
+
+def test_ambiguous_candidates_are_not_fixed(tmp_path):
+    """Two close candidates (iyx: ixy or iyz), or the candidate already present: no fix."""
+    src = ('<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"><inertial><mass value="1"/>'
+           '<inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0" iyx="0"/></inertial></link>\n'
+           '</robot>\n')
+    pkg = make_package(tmp_path, "amb", {"urdf/robot.urdf": src})
+    fs = [f for f in findings(pkg) if f["code"] == "UL210"]
+    assert fs and all("fix" not in f for f in fs)
