@@ -259,3 +259,19 @@ def test_ambiguous_candidates_are_not_fixed(tmp_path):
     pkg = make_package(tmp_path, "amb", {"urdf/robot.urdf": src})
     fs = [f for f in findings(pkg) if f["code"] == "UL210"]
     assert fs and all("fix" not in f for f in fs)
+
+
+def test_unused_suppression_comment_is_removed(tmp_path):
+    src = ('<?xml version="1.0"?>\r\n<robot name="r">\r\n'
+           '  <!-- urdf-lint: disable-next UL302 -->\r\n'
+           '  <link name="a"/>  <!-- urdf-lint: disable-next UL103 --> <!-- kept -->\r\n'
+           '  <link name="b"/>\r\n</robot>\r\n')
+    pkg = make_package(tmp_path, "sup", {"urdf/robot.urdf": src.encode()})
+    assert [c for c, _ in codes(pkg)].count("UL009") == 2
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 2 findings" in f.stderr, f.stderr
+    assert (pkg / "urdf/robot.urdf").read_bytes() == (
+        '<?xml version="1.0"?>\r\n<robot name="r">\r\n'
+        '  <link name="a"/>   <!-- kept -->\r\n'
+        '  <link name="b"/>\r\n</robot>\r\n').encode()
+    assert "UL009" not in [c for c, _ in codes(pkg)]

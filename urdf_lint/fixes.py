@@ -364,3 +364,30 @@ class Fixer:
         i = self.index(el)
         return Fix(f.description, f.safe, f.edits, "",
                    tuple((req.kind, i, a, v) for a, v in req.changes))
+
+
+_REMOVABLE = re.compile(rb"<!--\s*urdf-lint:\s*(disable-next|disable-file)\b.*?-->", re.S)
+
+
+def remove_comment(loc) -> Fix | None:
+    """The fix of an unused ``disable-next`` / ``disable-file`` comment at ``loc`` (file, line,
+    col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
+    its ``enable`` would dangle)."""
+    from .sourceedit import offset_of
+    try:
+        with open(loc[0], "rb") as f:
+            data = f.read()
+    except OSError:
+        return None
+    off = offset_of(data, loc[1], loc[2])
+    m = _REMOVABLE.match(data, off) if off is not None else None
+    if m is None:
+        return None
+    start, end = m.start(), m.end()
+    line_start = data.rfind(b"\n", 0, start) + 1
+    nl = data.find(b"\n", end)
+    line_end = len(data) if nl < 0 else nl + 1
+    if not data[line_start:start].strip() and not data[end:line_end].strip():
+        start, end = line_start, line_end        # alone on its line: the whole line goes
+    return Fix("remove the unused suppression comment", True, (Edit(loc[0], start, end, ""),),
+               "", (("none", 0, "", ""),))

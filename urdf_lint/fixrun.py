@@ -37,6 +37,39 @@ def _fkey(p):
     return (p.code, p.file, p.line, p.col, p.message)
 
 
+def _lkey(p, line_maps=None):
+    """A finding's identity across an edit: code, file, line (in the numbering before the
+    edits, through ``line_maps``) and message (columns move when a line is edited)."""
+    m = (line_maps or {}).get(p.file)
+    return (p.code, p.file, m(p.line) if m else p.line, p.message)
+
+
+def line_maps(fixed, originals: dict) -> dict:
+    """{file: new line -> old line} for the edits of ``fixed``."""
+    per_file: dict = {}
+    for p in fixed:
+        for e in p.fix.edits:
+            per_file.setdefault(e.file, set()).add(e)
+    out = {}
+    for f, edits in per_file.items():
+        data = originals[f]
+        shifts = []          # (first new line after the edit, lines added - lines removed)
+        delta = 0
+        for e in sorted(edits, key=lambda e: e.start):
+            old_end_line = data.count(b"\n", 0, e.end) + 1
+            delta += e.text.count("\n") - data.count(b"\n", e.start, e.end)
+            shifts.append((old_end_line + delta, delta))
+
+        def back(n, shifts=shifts):
+            d = 0
+            for first_new, dl in shifts:
+                if n >= first_new:
+                    d = dl
+            return n - d
+        out[f] = back
+    return out
+
+
 def candidates(findings, unsafe: bool):
     """(chosen, deferred): applicable fixes without overlapping edits, in finding order."""
     chosen, deferred = [], []
@@ -139,8 +172,9 @@ def _snapshot(result) -> dict:
     return {r.label: (r, _tree(r, None)) for r in result.models}
 
 
-def verify(before: dict, before_findings, after, fixed) -> dict:
-    """{finding key: reason} for the fixes of ``fixed`` that must be rolled back."""
+def verify(before: dict, before_findings, after, fixed, maps=None) -> dict:
+    """{finding key: reason} for the fixes of ``fixed`` that must be rolled back (``maps``:
+    :func:`line_maps` of the edits, to compare findings on lines that moved)."""
     from .locations import display_path
     bad: dict = {}
     fixed_keys = {_fkey(p): p for p in fixed}
@@ -150,15 +184,15 @@ def verify(before: dict, before_findings, after, fixed) -> dict:
         return any(os.path.realpath(e.file) in deps for e in p.fix.edits)
 
     # 1. the finding must be gone
-    after_keys = {_fkey(f) for f in after.findings}
+    after_keys = {_lkey(f, maps) for f in after.findings}
     for k, p in fixed_keys.items():
-        if k in after_keys:
+        if _lkey(p) in after_keys:
             bad[k] = "the fix did not remove its finding"
     # 2. no finding may appear
-    before_keys = {_fkey(f) for f in before_findings}
+    before_keys = {_lkey(f) for f in before_findings}
     after_models = {r.label: r for r in after.models}
     for f in after.findings:
-        if _fkey(f) in before_keys:
+        if _lkey(f, maps) in before_keys:
             continue
         where = f"{display_path(f.file)}:{f.line}"
         for label in f.models or tuple(before):
@@ -207,6 +241,8 @@ def _expected(tree, rep, fixed_keys):
             if i >= len(elements):
                 continue
             el = elements[i]
+            if kind == "none":       # e.g. a comment removed: the robot does not change
+                continue
             if kind == "set":
                 el.set(a, b)
             elif kind == "rename_attr":
@@ -248,7 +284,8 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
                 written.add(f)
             result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                                in_process=in_process)
-            bad = verify(before, before_result.findings, result, chosen)
+            bad = verify(before, before_result.findings, result, chosen,
+                         line_maps(chosen, originals))
             if not bad:
                 break
             rolled += [(p, bad[_fkey(p)]) for p in chosen if _fkey(p) in bad]

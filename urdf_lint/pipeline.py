@@ -189,8 +189,10 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
         merged, directives,
         is_selected=lambda c: any(code_matches(c, s, rules[s].name) for s in selected))
     code = unused_suppression.CODE
+    from .fixes import remove_comment
     kept += [p.replace(models=()) for p in _with_policy(
-        [Problem.at(code, msg, loc) for loc, msg in unused], RUN_LABEL, policy)]
+        [Problem.at(code, msg, loc, fix=remove_comment(loc)) for loc, msg in unused],
+        RUN_LABEL, policy)]
     return kept
 
 
