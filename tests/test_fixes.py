@@ -275,3 +275,24 @@ def test_unused_suppression_comment_is_removed(tmp_path):
         '  <link name="a"/>   <!-- kept -->\r\n'
         '  <link name="b"/>\r\n</robot>\r\n').encode()
     assert "UL009" not in [c for c, _ in codes(pkg)]
+
+
+def test_missing_dollar_in_a_macro(tmp_path):
+    parts = (HEAD + '  <xacro:macro name="arm" params="prefix">\n'
+             '    <link name="${prefix}base"/>\n    <link name="{prefix}tool"/>\n'
+             '    <joint name="${prefix}j" type="fixed"><parent link="${prefix}base"/>'
+             '<child link="${prefix}tool"/></joint>\n  </xacro:macro>\n</robot>\n')
+    src = (HEAD + '  <xacro:include filename="parts.xacro"/>\n  <link name="world"/>\n'
+           '  <xacro:arm prefix="left_"/>\n  <xacro:arm prefix="right_"/>\n'
+           '  <joint name="l" type="fixed"><parent link="world"/><child link="left_base"/></joint>\n'
+           '  <joint name="r" type="fixed"><parent link="world"/><child link="right_base"/></joint>\n'
+           '</robot>\n')
+    pkg = make_package(tmp_path, "dollar", {"urdf/robot.urdf.xacro": src, "urdf/parts.xacro": parts})
+    fix_and_check(pkg, "UL212", (
+        "--- a/urdf/parts.xacro\n+++ b/urdf/parts.xacro\n@@ -2,7 +2,7 @@\n"
+        ' <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '   <xacro:macro name="arm" params="prefix">\n     <link name="${prefix}base"/>\n'
+        '-    <link name="{prefix}tool"/>\n+    <link name="${prefix}tool"/>\n'
+        '     <joint name="${prefix}j" type="fixed"><parent link="${prefix}base"/>'
+        '<child link="${prefix}tool"/></joint>\n   </xacro:macro>\n </robot>\n'),
+        {"urdf/parts.xacro": parts.replace('"{prefix}tool"', '"${prefix}tool"')})

@@ -51,6 +51,32 @@ def rename_attr(old: str, new: str, safe: bool = True) -> Request:
     return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
 
 
+def add_dollar(attr: str, names, safe: bool = True) -> Request:
+    """Turn the literal ``{name}`` of each of ``names`` in ``attr`` into ``${name}``."""
+    return Request(((attr, ",".join(names)),), "add the missing '$' of "
+                   + ", ".join("${" + n + "}" for n in names), safe, "add_dollar")
+
+
+def names_in_scope(model) -> set:
+    """The xacro property and macro parameter names defined in the files the model read."""
+    src = _Sources(model)
+    out: set = set()
+    for path in src.xacro_files():
+        try:
+            d = src.get(path)
+        except (OSError, _Refuse):
+            continue
+        for t in iter_start_tags(d, "property"):
+            n = t.attr("name")
+            if n is not None:
+                out.add(n.value)
+        for t in iter_start_tags(d, "macro"):
+            p = t.attr("params")
+            for par in (p.value.split() if p is not None else ()):
+                out.add(par.lstrip("*").split(":=")[0].split("=")[0].lstrip("^"))
+    return out
+
+
 def rename_tag(old: str, new: str, safe: bool = True) -> Request:
     return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
 
@@ -158,6 +184,8 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         if tag is None or tag.name.rpartition(":")[2] != el.tag:
             raise _Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
                           f"{_where(origin.file, origin.line)}")
+        if req.kind == "add_dollar":
+            return Fix(req.description, req.safe, _add_dollar(origin, tag, req), "", ())
         if req.kind != "set":
             return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
         edits = []
@@ -180,6 +208,21 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         return Fix(req.description, req.safe, (), str(r))
     except (OSError, UnicodeDecodeError, ValueError) as e:
         return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
+
+
+def _add_dollar(origin, tag, req) -> tuple:
+    ((attr, names),) = req.changes
+    a = tag.attr(attr)
+    if a is None:
+        raise _Refuse(f"{NOT_FIXABLE}: {attr}= is not written at "
+                      f"{_where(origin.file, origin.line)}")
+    raw = a.raw
+    for n in names.split(","):
+        raw, k = re.subn(r"(?<![$\w}]){" + re.escape(n) + "}", "${" + n + "}", raw)
+        if not k:
+            raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
+                          f"{_where(origin.file, origin.line)}")
+    return (Edit(origin.file, a.value_start, a.value_end, raw),)
 
 
 def _rename(src, origin, data, tag, req) -> tuple:
@@ -362,6 +405,8 @@ class Fixer:
         if f.refused:
             return f
         i = self.index(el)
+        if req.kind == "add_dollar":    # the new value is whatever xacro makes of ${name}
+            return Fix(f.description, f.safe, f.edits, "", (("any", i, req.changes[0][0], ""),))
         return Fix(f.description, f.safe, f.edits, "",
                    tuple((req.kind, i, a, v) for a, v in req.changes))
 
