@@ -296,3 +296,21 @@ def test_missing_dollar_in_a_macro(tmp_path):
         '     <joint name="${prefix}j" type="fixed"><parent link="${prefix}base"/>'
         '<child link="${prefix}tool"/></joint>\n   </xacro:macro>\n </robot>\n'),
         {"urdf/parts.xacro": parts.replace('"{prefix}tool"', '"${prefix}tool"')})
+
+
+def test_json_and_sarif_carry_the_fix(tmp_path):
+    src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
+    pkg = make_package(tmp_path, "sarif", {"urdf/robot.urdf.xacro": src})
+    data = src.encode()
+    lo, hi = data.index(b'"2.1"') + 1, data.index(b'"-2.1"') + 1
+    p = run_cli("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
+    (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
+    assert f["fix"] == {"description": "swap lower and upper", "applicability": "safe", "edits": [
+        {"file": "urdf/robot.urdf.xacro", "start": lo, "end": lo + 3, "text": "-2.1"},
+        {"file": "urdf/robot.urdf.xacro", "start": hi, "end": hi + 4, "text": "2.1"}]}
+    p = run_cli("check", ".", "--format", "sarif", "--no-cache", "--isolated", cwd=pkg)
+    (r,) = [r for r in json.loads(p.stdout)["runs"][0]["results"] if r["ruleId"] == "UL302"]
+    assert r["fixes"] == [{"description": {"text": "swap lower and upper"}, "artifactChanges": [
+        {"artifactLocation": {"uri": "urdf/robot.urdf.xacro"}, "replacements": [
+            {"deletedRegion": {"byteOffset": lo, "byteLength": 3}, "insertedContent": {"text": "-2.1"}},
+            {"deletedRegion": {"byteOffset": hi, "byteLength": 4}, "insertedContent": {"text": "2.1"}}]}]}]

@@ -10,7 +10,12 @@ JSON schema (``--format json``), version 1::
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
                     "message": str, "file": str (relative to cwd when below it), "line": int,
                     "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
-                    "models": [str, ...]}],
+                    "models": [str, ...],
+                    "fix": {"description": str, "applicability": "safe"|"unsafe",
+                            "edits": [{"file": str, "start": int, "end": int, "text": str}]
+                                     (byte ranges of the source, replaced by text)
+                            | "refused": str (why it is not applied automatically)}
+                           (only when the rule has a fix for this finding)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 """
@@ -98,6 +103,21 @@ def _uri(path):
     return rel.replace(os.sep, "/") if not os.path.isabs(rel) else "file://" + rel
 
 
+def _sarif_fix(fix) -> dict:
+    """A SARIF ``fix``: one ``artifactChange`` per file, byte-offset replacements."""
+    by_file: dict = {}
+    for e in fix.edits:
+        by_file.setdefault(e.file, []).append(e)
+    return {"description": {"text": fix.description + ("" if fix.safe else " (unsafe)")},
+            "artifactChanges": [
+                {"artifactLocation": {"uri": _uri(path)},
+                 "replacements": [{"deletedRegion": {"byteOffset": e.start,
+                                                     "byteLength": e.end - e.start},
+                                   "insertedContent": {"text": e.text}}
+                                  for e in sorted(edits, key=lambda e: e.start)]}
+                for path, edits in sorted(by_file.items())]}
+
+
 def to_sarif(result, stream):
     from ..registry import load_rules
     rules = load_rules()
@@ -129,6 +149,8 @@ def to_sarif(result, stream):
                 for i, c in enumerate(reversed(f.chain))]
         if f.models:
             res["properties"] = {"models": f.models}
+        if f.fix is not None and f.fix.applicable:
+            res["fixes"] = [_sarif_fix(f.fix)]
         results.append(res)
     doc = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
            "runs": [{"tool": {"driver": {"name": "urdf-lint", "version": __version__,
