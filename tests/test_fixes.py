@@ -314,3 +314,26 @@ def test_json_and_sarif_carry_the_fix(tmp_path):
         {"artifactLocation": {"uri": "urdf/robot.urdf.xacro"}, "replacements": [
             {"deletedRegion": {"byteOffset": lo, "byteLength": 3}, "insertedContent": {"text": "-2.1"}},
             {"deletedRegion": {"byteOffset": hi, "byteLength": 4}, "insertedContent": {"text": "2.1"}}]}]}]
+
+
+def test_add_suppressions(tmp_path):
+    src = ('<?xml version="1.0"?>\r\n<robot name="r">\r\n  <link name="a"/><link name="b"/>\r\n'
+           '\t<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+           '<axis xyz="0 0 2"/>\r\n\t\t<limit lower="1" upper="-1" effort="1" velocity="1"/>\r\n'
+           '\t</joint>\r\n</robot>\r\n')
+    pkg = make_package(tmp_path, "adopt", {"urdf/robot.urdf": src.encode()})
+    before = codes(pkg)
+    assert sorted(c for c, _ in before) == ["UL302", "UL307", "UL601"]
+    p = run_cli("check", ".", "--add-suppressions", "--no-cache", "--isolated", cwd=pkg)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "Added 3 suppression comments in 1 file" in p.stderr
+    assert (pkg / "urdf/robot.urdf").read_bytes() == (
+        '<?xml version="1.0"?>\r\n<robot name="r">\r\n'
+        '  <!-- urdf-lint: disable-next UL601 -->\r\n'
+        '  <link name="a"/><link name="b"/>\r\n'
+        '\t<!-- urdf-lint: disable-next UL307 -->\r\n'
+        '\t<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 2"/>\r\n'
+        '\t\t<!-- urdf-lint: disable-next UL302 -->\r\n'
+        '\t\t<limit lower="1" upper="-1" effort="1" velocity="1"/>\r\n\t</joint>\r\n</robot>\r\n'
+    ).encode()
+    assert codes(pkg) == []

@@ -71,6 +71,9 @@ def build_parser():
                    help="with --fix or --diff: also the fixes that change structure")
     c.add_argument("--diff", action="store_true",
                    help="print the fixes as a unified diff of the sources instead of writing")
+    c.add_argument("--add-suppressions", action="store_true",
+                   help="write '<!-- urdf-lint: disable-next CODE -->' above each finding's "
+                   "source line (adopt the linter in one commit)")
     c.add_argument("--exit-non-zero-on-fix", action="store_true",
                    help="with --fix: exit 1 when a file was changed (pre-commit)")
 
@@ -188,7 +191,10 @@ def cmd_check(args) -> int:
         raise UsageError("--unsafe-fixes needs --fix or --diff")
     if getattr(args, "exit_non_zero_on_fix", False) and not args.fix:
         raise UsageError("--exit-non-zero-on-fix needs --fix")
-    if getattr(args, "fix", False) or getattr(args, "diff", False):
+    if getattr(args, "add_suppressions", False) and (args.fix or args.diff):
+        raise UsageError("--add-suppressions cannot be combined with --fix or --diff")
+    if getattr(args, "fix", False) or getattr(args, "diff", False) or \
+            getattr(args, "add_suppressions", False):
         from .fixcli import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,

@@ -23,17 +23,39 @@ def _summary(outcome) -> str:
     return "".join(lines)
 
 
+def _add_suppressions(args, cfg, resolver) -> int:
+    from . import report
+    from .addsuppress import add_suppressions
+    from .locations import display_path
+    from .pipeline import exit_code, run_check
+    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs)
+    if result.internal:
+        for msg in result.internal:
+            sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
+        return 2
+    n, files, _ = add_suppressions(result.findings)
+    result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs)
+    if result.findings:
+        report.write(result, args.format or "text", sys.stdout)
+    sys.stderr.write(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
+                     f"file{'s' if len(files) != 1 else ''}"
+                     + "".join(f"\n  {display_path(f)}" for f in files) + "\n")
+    return exit_code(result, cfg.fail_on)
+
+
 def check_fix(args, cfg, resolver, affected_by, render_dir) -> int:
     from . import report
     from .fixrun import run_fix
     from .pipeline import exit_code
     if render_dir:
-        raise UsageError("--fix/--diff cannot be combined with --render")
+        raise UsageError("--fix/--diff/--add-suppressions cannot be combined with --render")
     if affected_by is not None:
-        raise UsageError("--fix/--diff lint every model (a fix must be right for all of them); "
+        raise UsageError("--fix/--diff/--add-suppressions lint every model (a fix must be right for all of them); "
                          "drop --changed-since")
     if args.write_baseline:
         raise UsageError("--fix/--diff cannot be combined with --write-baseline")
+    if args.add_suppressions:
+        return _add_suppressions(args, cfg, resolver)
     outcome = run_fix(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs,
                       unsafe=args.unsafe_fixes, diff_only=args.diff)
     for msg in outcome.result.internal:
