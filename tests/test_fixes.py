@@ -382,3 +382,49 @@ def test_corpus_round_trip(tmp_path, corpus):
     again, err = run("--fix", "--unsafe-fixes")
     assert "Fixed 0 findings" in err
     assert {p: p.read_bytes() for p in copy.rglob("*") if p.is_file()} == state
+
+
+CONT = ('<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/><link name="w"/>\n'
+        '  <joint name="axle" type="continuous"><parent link="a"/><child link="w"/>'
+        '<axis xyz="0 1 0"/>\n    <limit lower="-3.14" upper="3.14" effort="10" velocity="10"/>\n'
+        '  </joint>\n</robot>\n')
+
+
+def test_unsafe_fixes_need_the_flag_continuous_limits_dropped(tmp_path):
+    pkg = make_package(tmp_path, "cont", {"urdf/robot.urdf": CONT})
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 0 findings" in f.stderr and (pkg / "urdf/robot.urdf").read_text() == CONT
+    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 1 finding" in f.stderr, f.stderr
+    assert (pkg / "urdf/robot.urdf").read_text() == CONT.replace(
+        '<limit lower="-3.14" upper="3.14" effort', '<limit effort')
+    assert "UL305" not in [c for c, _ in codes(pkg)]
+
+
+def test_continuous_limits_made_revolute_by_option(tmp_path):
+    pkg = make_package(tmp_path, "rev", {
+        "urdf/robot.urdf": CONT,
+        "urdf-lint.toml": '[rule-options.UL305]\nfix = "revolute"\n'})
+    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", cwd=pkg)
+    assert "Fixed 1 finding" in f.stderr, f.stderr
+    assert (pkg / "urdf/robot.urdf").read_text() == CONT.replace('"continuous"', '"revolute"')
+
+
+def test_root_inertial_gets_a_massless_root(tmp_path):
+    src = ('<?xml version="1.0"?>\r\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\r\n'
+           '\t<xacro:property name="base" value="base_link"/>\r\n'
+           '\t<link name="${base}"><inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" '
+           'iyy="1" iyz="0" izz="1"/></inertial></link>\r\n\t<link name="arm"/>\r\n'
+           '\t<joint name="j" type="fixed"><parent link="${base}"/><child link="arm"/></joint>\r\n'
+           '</robot>\r\n')
+    pkg = make_package(tmp_path, "root", {"urdf/robot.urdf.xacro": src.encode()})
+    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 1 finding" in f.stderr, f.stderr
+    fixed = src.replace('\t<link name="${base}">', '\t<link name="${base}_root"/>\r\n'
+                        '\t<joint name="${base}_root_joint" type="fixed"><parent link="${base}_root"/>'
+                        '<child link="${base}"/></joint>\r\n\t<link name="${base}">')
+    assert (pkg / "urdf/robot.urdf.xacro").read_bytes() == fixed.encode()
+    assert "UL604" not in [c for c, _ in codes(pkg)]
+    rc, out, err = stock_xacro(str(pkg / "urdf/robot.urdf.xacro"), {}, {"root": pkg})
+    assert rc == 0 and '<link name="base_link_root"/>' in out and \
+        '<parent link="base_link_root"/>' in out, err

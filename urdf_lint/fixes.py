@@ -41,10 +41,23 @@ class Request:
     description: str
     safe: bool = True
     kind: str = "set"
+    on_parent: bool = False      # the fix edits the parent of the element reported
 
 
-def set_attrs(changes: dict, description: str, safe: bool = True) -> Request:
-    return Request(tuple(changes.items()), description, safe)
+def set_attrs(changes: dict, description: str, safe: bool = True,
+              on_parent: bool = False) -> Request:
+    return Request(tuple(changes.items()), description, safe, "set", on_parent)
+
+
+def drop_attrs(names, description: str, safe: bool = False) -> Request:
+    """Remove attributes (with the blank before each) from the element's start tag."""
+    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+
+
+def new_root(description: str, suffix: str = "_root") -> Request:
+    """Unsafe: a massless root link joined by a fixed joint, inserted before the link that
+    the reported element (its ``<inertial>``) belongs to."""
+    return Request((("suffix", suffix),), description, False, "new_root", True)
 
 
 def rename_attr(old: str, new: str, safe: bool = True) -> Request:
@@ -175,6 +188,8 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
     """The :class:`Fix` of ``req`` on ``el`` (refused, with the reason, when it cannot be
     located or traced to one literal)."""
     src = src or _Sources(model)
+    if req.on_parent:
+        el = el.getparent()
     origin = model.origins.get(el)
     try:
         if origin is None:
@@ -186,6 +201,11 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
                           f"{_where(origin.file, origin.line)}")
         if req.kind == "add_dollar":
             return Fix(req.description, req.safe, _add_dollar(origin, tag, req), "", ())
+        if req.kind == "drop_attrs":
+            return Fix(req.description, req.safe, _drop(origin, data, tag, req), "", ())
+        if req.kind == "new_root":
+            return Fix(req.description, req.safe, _new_root(model, el, origin, data, tag, req),
+                       "", ())
         if req.kind != "set":
             return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
         edits = []
@@ -223,6 +243,54 @@ def _add_dollar(origin, tag, req) -> tuple:
             raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
                           f"{_where(origin.file, origin.line)}")
     return (Edit(origin.file, a.value_start, a.value_end, raw),)
+
+
+def _drop(origin, data, tag, req) -> tuple:
+    edits = []
+    for name, _ in req.changes:
+        a = tag.attr(name)
+        if a is None:
+            raise _Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
+                          f"{_where(origin.file, origin.line)}")
+        start = a.name_start
+        while start > 0 and data[start - 1:start] in (b" ", b"\t"):
+            start -= 1
+        if data[start - 1:start] in (b"\n", b"\r"):   # first on its line: keep the indentation
+            start = a.name_start
+            end = a.value_end + 1
+            while data[end:end + 1] in (b" ", b"\t"):
+                end += 1
+        else:
+            end = a.value_end + 1
+        edits.append(Edit(origin.file, start, end, ""))
+    return tuple(edits)
+
+
+def _new_root(model, link, origin, data, tag, req) -> tuple:
+    ((_, suffix),) = req.changes
+    if origin.chain:
+        raise _Refuse(f"{NOT_FIXABLE}: the root link is written in a macro "
+                      f"({_where(origin.file, origin.line)}) that may make other links too")
+    name = tag.attr("name")
+    if name is None:
+        raise _Refuse(f"{NOT_FIXABLE}: the link's name is not written at "
+                      f"{_where(origin.file, origin.line)}")
+    new = link.get("name") + suffix
+    if new in model.links or new + "_joint" in model.joints:
+        raise _Refuse(f"{NOT_FIXABLE}: '{new}' already exists")
+    raw = name.raw
+    q = name.quote
+    line_start = data.rfind(b"\n", 0, tag.start) + 1
+    before = data[line_start:tag.start]
+    eol = "\r\n" if data.find(b"\r\n", tag.start) == data.find(b"\n", tag.start) - 1 else "\n"
+    block = (f"<link name={q}{raw}{suffix}{q}/>", f"<joint name={q}{raw}{suffix}_joint{q} "
+             f"type={q}fixed{q}><parent link={q}{raw}{suffix}{q}/><child link={q}{raw}{q}/>"
+             "</joint>")
+    if not before.strip():
+        indent = before.decode("utf-8")
+        text = "".join(f"{indent}{b}{eol}" for b in block)
+        return (Edit(origin.file, line_start, line_start, text),)
+    return (Edit(origin.file, tag.start, tag.start, "".join(block)),)
 
 
 def _rename(src, origin, data, tag, req) -> tuple:
@@ -404,9 +472,14 @@ class Fixer:
         f = resolve(self.model, el, req, self.src)
         if f.refused:
             return f
-        i = self.index(el)
+        i = self.index(el.getparent() if req.on_parent else el)
         if req.kind == "add_dollar":    # the new value is whatever xacro makes of ${name}
             return Fix(f.description, f.safe, f.edits, "", (("any", i, req.changes[0][0], ""),))
+        if req.kind == "new_root":      # structure changes: the findings decide alone
+            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
+        if req.kind == "drop_attrs":
+            return Fix(f.description, f.safe, f.edits, "",
+                       tuple(("drop", i, a, "") for a, _ in req.changes))
         return Fix(f.description, f.safe, f.edits, "",
                    tuple((req.kind, i, a, v) for a, v in req.changes))
 

@@ -246,6 +246,11 @@ def _expected(tree, rep, fixed_keys):
             el = elements[i]
             if kind == "none":       # e.g. a comment removed: the robot does not change
                 continue
+            if kind == "structural":
+                return None
+            if kind == "drop":
+                el.attrib.pop(a, None)
+                continue
             if kind == "set":
                 el.set(a, b)
             elif kind == "any":      # this attribute may take any value
