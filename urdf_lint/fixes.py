@@ -42,6 +42,7 @@ class Request:
     safe: bool = True
     kind: str = "set"
     on_parent: bool = False      # the fix edits the parent of the element reported
+    elements: tuple = field(default=(), compare=False)   # more elements the fix edits
 
 
 def set_attrs(changes: dict, description: str, safe: bool = True,
@@ -52,6 +53,14 @@ def set_attrs(changes: dict, description: str, safe: bool = True,
 def drop_attrs(names, description: str, safe: bool = False) -> Request:
     """Remove attributes (with the blank before each) from the element's start tag."""
     return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+
+
+def named_material(elements, name: str, rgba: str, define: bool) -> Request:
+    """Unsafe: replace the inline ``<material>`` elements by ``<material name="name"/>`` and
+    (``define``) define it once, after the ``<robot>`` tag of the first one's file."""
+    return Request((("name", name), ("rgba", rgba), ("define", "1" if define else "")),
+                   f"use one named material '{name}' for the inline colour {rgba}", False,
+                   "named_material", False, tuple(elements))
 
 
 def new_root(description: str, suffix: str = "_root") -> Request:
@@ -203,6 +212,8 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
             return Fix(req.description, req.safe, _add_dollar(origin, tag, req), "", ())
         if req.kind == "drop_attrs":
             return Fix(req.description, req.safe, _drop(origin, data, tag, req), "", ())
+        if req.kind == "named_material":
+            return Fix(req.description, req.safe, _named_material(model, src, req), "", ())
         if req.kind == "new_root":
             return Fix(req.description, req.safe, _new_root(model, el, origin, data, tag, req),
                        "", ())
@@ -243,6 +254,50 @@ def _add_dollar(origin, tag, req) -> tuple:
             raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
                           f"{_where(origin.file, origin.line)}")
     return (Edit(origin.file, a.value_start, a.value_end, raw),)
+
+
+def _named_material(model, src, req) -> tuple:
+    from .sourceedit import end_tag_of, parse_start_tag
+    opts = dict(req.changes)
+    name, rgba = opts["name"], opts["rgba"]
+    edits = []
+    first = None
+    for el in req.elements:
+        o = model.origins.get(el)
+        if o is None or o.chain:
+            raise _Refuse(f"{NOT_FIXABLE}: an inline colour is written in a macro "
+                          f"({_where(o.file, o.line) if o else '?'}) that may make other colours")
+        data = src.get(o.file)
+        tag = start_tag_at(data, o.line, o.col)
+        if tag is None or tag.name.rpartition(":")[2] != "material" or tag.self_closing:
+            raise _Refuse(f"{NOT_FIXABLE}: <material> not found at {_where(o.file, o.line)}")
+        end = end_tag_of(data, tag)
+        if end is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no </material> for {_where(o.file, o.line)}")
+        inner = data[tag.end:end]
+        c = inner.find(b"<color")
+        ctag = parse_start_tag(data, tag.end + c) if c >= 0 else None
+        if ctag is None or ctag.attr("rgba") is None or "$" in ctag.attr("rgba").value \
+                or b"<texture" in inner:
+            raise _Refuse(f"{NOT_FIXABLE}: the colour at {_where(o.file, o.line)} is not a "
+                          "literal rgba")
+        q = tag.attrs[0].quote if tag.attrs else '"'
+        edits.append(Edit(o.file, tag.start, data.index(b">", end) + 1,
+                          f"<material name={q}{name}{q}/>"))
+        first = first or (o.file, data, q)
+    if opts["define"] and first is not None:
+        file, data, q = first
+        robot = next(iter_start_tags(data, "robot"), None)
+        if robot is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no <robot> in {_where(file)}")
+        nl = data.find(b"\n", robot.end)
+        eol = "\r\n" if nl > 0 and data[nl - 1:nl] == b"\r" else "\n"
+        nxt = data[nl + 1:data.find(b"\n", nl + 1)] if nl >= 0 else b""
+        indent = nxt[:len(nxt) - len(nxt.lstrip(b" \t"))].decode("utf-8") or "  "
+        edits.append(Edit(file, robot.end, robot.end,
+                          f"{eol}{indent}<material name={q}{name}{q}><color rgba={q}{rgba}{q}/>"
+                          "</material>"))
+    return tuple(edits)
 
 
 def _drop(origin, data, tag, req) -> tuple:
@@ -475,6 +530,8 @@ class Fixer:
         i = self.index(el.getparent() if req.on_parent else el)
         if req.kind == "add_dollar":    # the new value is whatever xacro makes of ${name}
             return Fix(f.description, f.safe, f.edits, "", (("any", i, req.changes[0][0], ""),))
+        if req.kind == "named_material":   # each inline colour becomes a reference
+            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
         if req.kind == "new_root":      # structure changes: the findings decide alone
             return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
         if req.kind == "drop_attrs":

@@ -45,27 +45,39 @@ def _lkey(p, line_maps=None):
 
 
 def line_maps(fixed, originals: dict) -> dict:
-    """{file: new line -> old line} for the edits of ``fixed``."""
+    """{file: new line -> old line} for the edits of ``fixed``: the old line of the first byte
+    of the new line (a line made by an edit maps to where the edit starts)."""
     per_file: dict = {}
     for p in fixed:
         for e in p.fix.edits:
             per_file.setdefault(e.file, set()).add(e)
     out = {}
     for f, edits in per_file.items():
-        data = originals[f]
-        shifts = []          # (first new line after the edit, lines added - lines removed)
-        delta = 0
-        for e in sorted(edits, key=lambda e: e.start):
-            old_end_line = data.count(b"\n", 0, e.end) + 1
-            delta += e.text.count("\n") - data.count(b"\n", e.start, e.end)
-            shifts.append((old_end_line + delta, delta))
+        old = originals[f]
+        new = apply_edits(old, edits)
+        spans = []            # (new start, new end, old start, old end) of each edit
+        shift = 0
+        for e in sorted(edits, key=lambda e: (e.start, e.end)):
+            n = len(e.text.encode("utf-8"))
+            spans.append((e.start + shift, e.start + shift + n, e.start, e.end))
+            shift += n - (e.end - e.start)
 
-        def back(n, shifts=shifts):
-            d = 0
-            for first_new, dl in shifts:
-                if n >= first_new:
-                    d = dl
-            return n - d
+        def back(line, old=old, new=new, spans=spans):
+            x = 0
+            for _ in range(line - 1):
+                nl = new.find(b"\n", x)
+                if nl < 0:
+                    return line
+                x = nl + 1
+            total = 0
+            for ns, ne, os_, oe in spans:
+                if x < ns:
+                    break
+                if x < ne:            # inside an edit's new text: where the edit starts
+                    return old.count(b"\n", 0, os_) + 1
+                total += (ne - ns) - (oe - os_)
+            o = x - total
+            return old.count(b"\n", 0, o) + 1
         out[f] = back
     return out
 
@@ -251,6 +263,7 @@ def _expected(tree, rep, fixed_keys):
             if kind == "drop":
                 el.attrib.pop(a, None)
                 continue
+
             if kind == "set":
                 el.set(a, b)
             elif kind == "any":      # this attribute may take any value
