@@ -28,19 +28,12 @@ PASS = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean, reference_fixes
+from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._joints import unknown_joint_refs
 
 
 def check(model, ctx):
-    found, taken = [], set()
-    for t in model.root.iter("transmission"):
-        for j in t.findall("joint"):
-            n = j.get("name")
-            if n and n not in model.joints:
-                found.append((t, j, n))
-            elif n:
-                taken.add(n)
-    fixes = reference_fixes([(j, "name", n) for _, j, n in found], model.joints, taken)
-    for t, j, n in found:
+    pairs = [(t, j) for t in model.root.iter("transmission") for j in t.findall("joint")]
+    for t, j, n, fix in unknown_joint_refs(model, pairs):
         yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
-                  + did_you_mean(n, model.joints)), fixes.get((j, "name"))
+                  + did_you_mean(n, model.joints)), fix

@@ -25,19 +25,12 @@ PASS = """<robot name="r">
     <joint name="joint1"><command_interface name="position"/></joint></ros2_control>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean, reference_fixes
+from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._joints import unknown_joint_refs
 
 
 def check(model, ctx):
-    found, taken = [], set()
-    for rc in model.root.iter("ros2_control"):
-        for j in rc.iter("joint"):
-            n = j.get("name")
-            if n and n not in model.joints:
-                found.append((rc, j, n))
-            elif n:
-                taken.add(n)
-    fixes = reference_fixes([(j, "name", n) for _, j, n in found], model.joints, taken)
-    for rc, j, n in found:
+    pairs = [(rc, j) for rc in model.root.iter("ros2_control") for j in rc.iter("joint")]
+    for rc, j, n, fix in unknown_joint_refs(model, pairs):
         yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
-                  + did_you_mean(n, model.joints)), fixes.get((j, "name"))
+                  + did_you_mean(n, model.joints)), fix

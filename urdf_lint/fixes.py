@@ -221,10 +221,7 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
             return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
         edits = []
         for attr, new in req.changes:
-            a = tag.attr(attr)
-            if a is None:
-                raise _Refuse(f"{NOT_FIXABLE}: {attr}= is not written at "
-                              f"{_where(origin.file, origin.line)}")
+            a = _written(tag, attr, origin)
             file, lit = _trace(src, origin.file, data, a, tuple(origin.chain), 0)
             if not _same(lit.value, el.get(attr)):
                 raise _Refuse(f"{NOT_FIXABLE}: the literal at {_where(file)} "
@@ -241,12 +238,18 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
 
 
+def _written(tag, name: str, origin):
+    """The attribute ``name`` of the start tag at ``origin`` (refused when not written there)."""
+    a = tag.attr(name)
+    if a is None:
+        raise _Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
+                      f"{_where(origin.file, origin.line)}")
+    return a
+
+
 def _add_dollar(origin, tag, req) -> tuple:
     ((attr, names),) = req.changes
-    a = tag.attr(attr)
-    if a is None:
-        raise _Refuse(f"{NOT_FIXABLE}: {attr}= is not written at "
-                      f"{_where(origin.file, origin.line)}")
+    a = _written(tag, attr, origin)
     raw = a.raw
     for n in names.split(","):
         raw, k = re.subn(r"(?<![$\w}]){" + re.escape(n) + "}", "${" + n + "}", raw)
@@ -303,10 +306,7 @@ def _named_material(model, src, req) -> tuple:
 def _drop(origin, data, tag, req) -> tuple:
     edits = []
     for name, _ in req.changes:
-        a = tag.attr(name)
-        if a is None:
-            raise _Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
-                          f"{_where(origin.file, origin.line)}")
+        a = _written(tag, name, origin)
         start = a.name_start
         while start > 0 and data[start - 1:start] in (b" ", b"\t"):
             start -= 1

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from .sourceedit import apply_edits, write_atomic
+from .sourceedit import apply_edits, line_offset, write_atomic
 
 MAX_ROUNDS = 4
 
@@ -47,12 +47,8 @@ def _lkey(p, line_maps=None):
 def line_maps(fixed, originals: dict) -> dict:
     """{file: new line -> old line} for the edits of ``fixed``: the old line of the first byte
     of the new line (a line made by an edit maps to where the edit starts)."""
-    per_file: dict = {}
-    for p in fixed:
-        for e in p.fix.edits:
-            per_file.setdefault(e.file, set()).add(e)
     out = {}
-    for f, edits in per_file.items():
+    for f, edits in _edits_by_file(fixed).items():
         old = originals[f]
         new = apply_edits(old, edits)
         spans = []            # (new start, new end, old start, old end) of each edit
@@ -63,12 +59,9 @@ def line_maps(fixed, originals: dict) -> dict:
             shift += n - (e.end - e.start)
 
         def back(line, old=old, new=new, spans=spans):
-            x = 0
-            for _ in range(line - 1):
-                nl = new.find(b"\n", x)
-                if nl < 0:
-                    return line
-                x = nl + 1
+            x = line_offset(new, line)
+            if x is None:
+                return line
             total = 0
             for ns, ne, os_, oe in spans:
                 if x < ns:
@@ -105,14 +98,19 @@ def candidates(findings, unsafe: bool):
     return chosen, deferred
 
 
-def edited_sources(fixed, originals: dict) -> dict:
-    """{file: new bytes} for the fixes of ``fixed`` (each edit once)."""
+def _edits_by_file(fixed) -> dict:
+    """{file: {Edit}} of the fixes of ``fixed`` (an edit two findings share, once)."""
     per_file: dict = {}
     for p in fixed:
         for e in p.fix.edits:
             per_file.setdefault(e.file, set()).add(e)
+    return per_file
+
+
+def edited_sources(fixed, originals: dict) -> dict:
+    """{file: new bytes} for the fixes of ``fixed`` (each edit once)."""
     out = {}
-    for f, edits in per_file.items():
+    for f, edits in _edits_by_file(fixed).items():
         if f not in originals:
             with open(f, "rb") as fh:
                 originals[f] = fh.read()
