@@ -451,3 +451,25 @@ def test_repeated_inline_colour_becomes_one_named_material(tmp_path):
         '  <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>\n</robot>\n')
     after = codes(pkg)
     assert "UL504" not in [c for c, _ in after]
+
+
+def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
+    """The property lives in another package of the workspace: linting only the robot's
+    package fixes nothing there (and says why); linting the workspace fixes it."""
+    props = HEAD + '  <xacro:property name="lo" value="1.5"/>\n  <xacro:property name="hi" value="-0.5"/>\n</robot>\n'
+    src = (HEAD + '  <xacro:include filename="$(find common)/urdf/props.xacro"/>\n' + LINKS
+           + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>') + "</robot>\n")
+    ws = tmp_path / "ws" / "src"
+    make_package(ws, "common", {"urdf/props.xacro": props})
+    robot = make_package(ws, "robot", {"urdf/robot.urdf.xacro": src})
+    p = run_cli("check", "robot", "--fix", "--no-cache", "--isolated", "--package-path",
+                f"common={ws / 'common'}", cwd=ws)
+    assert "Fixed 0 findings" in p.stderr, p.stderr
+    assert (ws / "common/urdf/props.xacro").read_text() == props
+    p = run_cli("check", "robot", "--format", "json", "--no-cache", "--isolated",
+                "--package-path", f"common={ws / 'common'}", cwd=ws)
+    assert p.returncode == 1   # the refusal is only known to --fix: the JSON offers the edit
+    p = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=ws)
+    assert "Fixed 1 finding" in p.stderr, p.stderr
+    assert (ws / "common/urdf/props.xacro").read_text() != props
+    assert (robot / "urdf/robot.urdf.xacro").read_text() == src

@@ -75,6 +75,28 @@ def line_maps(fixed, originals: dict) -> dict:
     return out
 
 
+def inside_paths(findings, paths) -> list:
+    """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
+    installed package, a dependency elsewhere in the workspace) refused."""
+    from .fixes import NOT_FIXABLE, Fix
+    from .locations import display_path
+    roots = [os.path.realpath(p) for p in paths]
+
+    def inside(f):
+        real = os.path.realpath(f)
+        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+    out = []
+    for p in findings:
+        fx = p.fix
+        if fx is not None and fx.applicable:
+            outside = [e.file for e in fx.edits if not inside(e.file)]
+            if outside:
+                p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                      f"{display_path(outside[0])} is outside the linted paths"))
+        out.append(p)
+    return out
+
+
 def candidates(findings, unsafe: bool):
     """(chosen, deferred): applicable fixes without overlapping edits, in finding order."""
     chosen, deferred = [], []
@@ -280,6 +302,7 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     from .pipeline import run_check
     before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                               in_process=in_process)
+    before_result.findings = inside_paths(before_result.findings, paths)
     chosen, _ = candidates(before_result.findings, unsafe)
     originals: dict = {}
     if diff_only:
