@@ -468,7 +468,9 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     assert (ws / "common/urdf/props.xacro").read_text() == props
     p = run_cli("check", "robot", "--format", "json", "--no-cache", "--isolated",
                 "--package-path", f"common={ws / 'common'}", cwd=ws)
-    assert p.returncode == 1   # the refusal is only known to --fix: the JSON offers the edit
+    (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
+    assert f["fix"]["refused"] == ("not fixable automatically: common/urdf/props.xacro is "
+                                   "outside the linted paths")
     p = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=ws)
     assert "Fixed 1 finding" in p.stderr, p.stderr
     assert (ws / "common/urdf/props.xacro").read_text() != props

@@ -199,6 +199,8 @@ def cmd_check(args) -> int:
         return check_fix(args, cfg, resolver, affected_by, render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
+    from .fixrun import inside_paths   # a fix offered in JSON / SARIF edits only linted files
+    result.findings = inside_paths(result.findings, args.paths)
     if args.write_baseline:
         from .baseline import write_baseline
         write_baseline(args.write_baseline, result.findings)
