@@ -475,3 +475,29 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     assert "Fixed 1 finding" in p.stderr, p.stderr
     assert (ws / "common/urdf/props.xacro").read_text() != props
     assert (robot / "urdf/robot.urdf.xacro").read_text() == src
+
+
+def test_start_tag_tokeniser_on_raw_bytes():
+    from urdf_lint.sourceedit import Edit, apply_edits, end_tag_of, escape, start_tag_at
+    data = ('<robot>\r\n<!-- <link name="x"> -->\r\n\t<link  name = \'é&amp;"q\'\r\n'
+            '\ttype="a&#x41;\tb"><link name="in"></link><!-- </link> --></link>\r\n'
+            '</robot>\r\n').encode()
+    tag = start_tag_at(data, 3, 2)            # col counts characters, as expat does
+    assert tag.name == "link" and not tag.self_closing
+    assert [(a.name, a.value, a.quote) for a in tag.attrs] == [
+        ("name", 'é&"q', "'"), ("type", "aA b", '"')]
+    end = end_tag_of(data, tag)
+    assert data[end:end + 7] == b"</link>" and data[end - 16:end] == b"<!-- </link> -->"
+    a = tag.attr("name")
+    new = apply_edits(data, [Edit("f", a.value_start, a.value_end, escape("it's", "'"))])
+    assert new == data.replace("é&amp;\"q".encode(), b"it&apos;s")
+
+
+def test_fixes_survive_the_cache(tmp_path):
+    src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
+    pkg = make_package(tmp_path, "cached", {"urdf/robot.urdf.xacro": src})
+    runs = [run_cli("check", ".", "--format", "json", "--isolated", cwd=pkg) for _ in range(2)]
+    cold, warm = (json.loads(r.stdout) for r in runs)
+    assert [m["cached"] for m in warm["models"]] == [True]
+    assert cold["findings"] == warm["findings"]
+    assert any("edits" in f.get("fix", {}) for f in warm["findings"])
