@@ -501,3 +501,19 @@ def test_fixes_survive_the_cache(tmp_path):
     assert [m["cached"] for m in warm["models"]] == [True]
     assert cold["findings"] == warm["findings"]
     assert any("edits" in f.get("fix", {}) for f in warm["findings"])
+
+
+def test_pre_commit_fix_hook_fails_when_it_changed_files(tmp_path):
+    """The urdf-lint-fix hook's entry: exit 1 when it fixed something (as formatters do), then
+    0 once the sources are clean of errors."""
+    import yaml
+    from conftest import REPO
+    hooks = {h["id"]: h for h in yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())}
+    entry = hooks["urdf-lint-fix"]["entry"].split()
+    assert entry[0] == "urdf-lint" and hooks["urdf-lint-fix"]["pass_filenames"] is False
+    src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
+    pkg = make_package(tmp_path, "hook", {"urdf/robot.urdf.xacro": src})
+    first = run_cli(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
+    assert first.returncode == 1 and "Fixed 1 finding" in first.stderr, first.stderr
+    second = run_cli(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
+    assert second.returncode == 0 and "Fixed 0 findings" in second.stderr, second.stderr
