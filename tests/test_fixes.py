@@ -517,3 +517,61 @@ def test_pre_commit_fix_hook_fails_when_it_changed_files(tmp_path):
     assert first.returncode == 1 and "Fixed 1 finding" in first.stderr, first.stderr
     second = run_cli(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
     assert second.returncode == 0 and "Fixed 0 findings" in second.stderr, second.stderr
+
+
+def _sources(kind, element, bad):
+    """(files, the file and text the fix must change) for an element whose value ``bad`` is
+    written: in the element, as a property in another file, as a macro argument, as a YAML
+    scalar, or in an expression."""
+    robot = HEAD + "{inc}" + LINKS + "{body}</robot>\n"
+    if kind == "literal":
+        return {"urdf/robot.urdf.xacro": robot.format(inc="", body=element.format(v=bad))}, \
+            "urdf/robot.urdf.xacro"
+    if kind == "property":
+        return {"urdf/robot.urdf.xacro": robot.format(
+                    inc='  <xacro:include filename="$(find {pkg})/urdf/props.xacro"/>\n',
+                    body=element.format(v="${v}")),
+                "urdf/props.xacro": HEAD + f'  <xacro:property name="v" value="{bad}"/>\n</robot>\n'}, \
+            "urdf/props.xacro"
+    if kind == "macro":
+        return {"urdf/robot.urdf.xacro": robot.format(
+                    inc='  <xacro:include filename="parts.xacro"/>\n', body=f'  <xacro:part v="{bad}"/>\n'),
+                "urdf/parts.xacro": HEAD + '  <xacro:macro name="part" params="v">\n'
+                + element.format(v="${v}") + "  </xacro:macro>\n</robot>\n"}, "urdf/robot.urdf.xacro"
+    if kind == "yaml":
+        return {"urdf/robot.urdf.xacro": robot.format(
+                    inc='  <xacro:property name="cfg" value="${load_yaml(\'cfg.yaml\')}"/>\n',
+                    body=element.format(v="${cfg['v']}")),
+                "urdf/cfg.yaml": f"# values\nv: {bad}  # here\n"}, "urdf/cfg.yaml"
+    return {"urdf/robot.urdf.xacro": robot.format(
+        inc="", body=element.format(v=bad.rsplit(" ", 1)[0] + " ${" + bad.rsplit(" ", 1)[1] + "*1}"))}, None
+
+
+AXIS = ('  <joint name="j" type="continuous"><parent link="a"/><child link="b"/>'
+        '<axis xyz="{v}"/></joint>\n')
+COLOUR = '  <material name="red"><color rgba="{v}"/></material>\n'
+
+
+@pytest.mark.parametrize("kind", ["literal", "property", "macro", "yaml", "expression"])
+@pytest.mark.parametrize("code,element,bad,good", [
+    ("UL307", AXIS, "0 0 2", "0 0 1"), ("UL208", COLOUR, "0 255 0 1", "0 1 0 1")])
+def test_fix_where_the_value_is_written(tmp_path, kind, code, element, bad, good):
+    import difflib
+    files, edited = _sources(kind, element, bad)
+    name = f"p{code.lower()}{kind}"
+    files = {k: v.replace("{pkg}", name) for k, v in files.items()}
+    pkg = make_package(tmp_path, name, files)
+    if edited is None:
+        (f,) = [f for f in findings(pkg) if f["code"] == code]
+        assert f["fix"]["refused"].startswith(
+            "not fixable automatically: the value comes from the expression at "), f
+        assert f["fix"]["refused"].endswith("/urdf/robot.urdf.xacro:4")   # the element's line
+        return
+    old = files[edited]
+    # the one literal changes; a YAML file keeps its comments
+    new = old.replace(f'"{bad}"', f'"{good}"') if edited.endswith(".xacro") else \
+        old.replace(f"v: {bad}", f"v: {good}")
+    assert new != old
+    diff = "".join(difflib.unified_diff(old.splitlines(True), new.splitlines(True),
+                                        f"a/{edited}", f"b/{edited}"))
+    fix_and_check(pkg, code, diff, {edited: new})

@@ -70,7 +70,8 @@ def build_parser():
     c.add_argument("--unsafe-fixes", action="store_true",
                    help="with --fix or --diff: also the fixes that change structure")
     c.add_argument("--diff", action="store_true",
-                   help="print the fixes as a unified diff of the sources instead of writing")
+                   help="print the fixes as a unified diff of the sources instead of writing "
+                   "(as proposed: --fix also re-lints and rolls back the wrong ones)")
     c.add_argument("--add-suppressions", action="store_true",
                    help="write '<!-- urdf-lint: disable-next CODE -->' above each finding's "
                    "source line (adopt the linter in one commit)")
