@@ -13,6 +13,7 @@ CODE = "UL305"
 NAME = "continuous-limits"
 SEVERITY = "warning"
 OPTIONS = {"fix": "drop-limits"}
+OPTION_CHOICES = {"fix": ("drop-limits", "revolute")}
 FAIL = """<robot name="r">
   <link name="a"/><link name="wheel"/>
   <joint name="axle" type="continuous"><parent link="a"/><child link="wheel"/><axis xyz="0 1 0"/>
@@ -30,13 +31,8 @@ PASS = """<robot name="r">
 
 from urdf_lint.fixes import drop_attrs, set_attrs
 
-FIXES = ("drop-limits", "revolute")
-
-
 def check(model, ctx):
     how = ctx.options.get("fix", "drop-limits")
-    if how not in FIXES:
-        raise ValueError(f"UL305 option fix must be one of {', '.join(FIXES)}, not {how!r}")
     for j in model.top_joints():
         lim = j.find("limit")
         if j.get("type") == "continuous" and lim is not None and (

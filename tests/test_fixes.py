@@ -575,3 +575,11 @@ def test_fix_where_the_value_is_written(tmp_path, kind, code, element, bad, good
     diff = "".join(difflib.unified_diff(old.splitlines(True), new.splitlines(True),
                                         f"a/{edited}", f"b/{edited}"))
     fix_and_check(pkg, code, diff, {edited: new})
+
+
+def test_a_bad_fix_option_is_a_config_error(tmp_path):
+    pkg = make_package(tmp_path, "badopt", {"urdf/robot.urdf": CONT,
+                                            "urdf-lint.toml": '[rule-options.UL305]\nfix = "drop"\n'})
+    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    assert p.returncode == 2
+    assert "rule-options.UL305.fix must be one of 'drop-limits', 'revolute', not 'drop'" in p.stderr

@@ -61,11 +61,24 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
                 raise ConfigError(f"unknown option(s) for {code} {r.name}: "
                                   f"{', '.join(sorted(unknown))} (known: "
                                   f"{', '.join(sorted(r.options)) or 'none'})")
+            _check_choices(code, r, o)
             options[code] = o
     return LintSettings(resolver=resolver.to_dict(), selected=tuple(policy.selected_codes(rules)),
                         options=options,
                         env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
                         mesh_cache_dir=cache_dir)
+
+
+def _check_choices(code: str, rule, options: dict) -> None:
+    """An option whose rule lists its allowed values (``OPTION_CHOICES``) must take one."""
+    import importlib
+    from .config import ConfigError
+    choices = getattr(importlib.import_module(rule.module), "OPTION_CHOICES", {}) \
+        if rule.module else {}
+    for key, allowed in choices.items():
+        if key in options and options[key] not in allowed:
+            raise ConfigError(f"rule-options.{code}.{key} must be one of "
+                              f"{', '.join(map(repr, allowed))}, not {options[key]!r}")
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
