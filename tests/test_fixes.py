@@ -583,3 +583,23 @@ def test_a_bad_fix_option_is_a_config_error(tmp_path):
     p = run_cli("check", ".", "--no-cache", cwd=pkg)
     assert p.returncode == 2
     assert "rule-options.UL305.fix must be one of 'drop-limits', 'revolute', not 'drop'" in p.stderr
+
+
+def test_a_macro_literal_that_needs_different_values_per_model_is_not_fixed(tmp_path):
+    """The macro writes lower="2"; robot A passes upper -1, robot B upper -3: the swap needs
+    lower=-1 for A and lower=-3 for B on the same bytes, so nothing is written."""
+    parts = (HEAD + '  <xacro:macro name="hinge" params="upper">\n'
+             '    <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/>\n'
+             '      <axis xyz="0 0 1"/><limit lower="2" upper="${upper}" effort="1" velocity="1"/>\n'
+             '    </joint>\n  </xacro:macro>\n</robot>\n')
+    def robot(up):
+        return (HEAD + '  <xacro:include filename="parts.xacro"/>\n' + LINKS
+                + f'  <xacro:hinge upper="{up}"/>\n</robot>\n')
+    pkg = make_package(tmp_path, "perm", {"urdf/parts.xacro": parts, "urdf/a.urdf.xacro": robot("-1"),
+                                          "urdf/b.urdf.xacro": robot("-3")})
+    snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
+    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "Fixed 0 findings" in f.stderr, f.stderr
+    assert "UL302 fix not applied: the models or macro calls that use urdf/parts.xacro need different values there ('-1' for urdf/a.urdf.xacro, '-3' for urdf/b.urdf.xacro)" in f.stderr, f.stderr
+    assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == snapshot
+    assert [c for c, _ in codes(pkg)].count("UL302") == 2

@@ -10,6 +10,9 @@ from .errors import UsageError
 def _summary(outcome) -> str:
     from .locations import display_path
     lines = []
+    for p, reason in outcome.refused:
+        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
+                     f"{reason}\n")
     for p, reason in outcome.rolled_back:
         lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
                      f"{reason}\n")
@@ -19,7 +22,9 @@ def _summary(outcome) -> str:
     lines.append(f"Fixed {n} finding{'s' if n != 1 else ''} in {files} "
                  f"file{'s' if files != 1 else ''} ({remaining} remaining"
                  + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
-                    else "") + ").\n")
+                    else "")
+                 + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")
+                 + ").\n")
     return "".join(lines)
 
 

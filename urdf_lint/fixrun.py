@@ -31,6 +31,7 @@ class FixOutcome:
     rolled_back: list = field(default_factory=list)  # (Problem, reason)
     changed_files: list = field(default_factory=list)
     diff: str = ""
+    refused: list = field(default_factory=list)      # (Problem, reason): never written
 
 
 def _fkey(p):
@@ -98,26 +99,43 @@ def inside_paths(findings, paths) -> list:
 
 
 def candidates(findings, unsafe: bool):
-    """(chosen, deferred): applicable fixes without overlapping edits, in finding order."""
-    chosen, deferred = [], []
-    taken: dict = {}
+    """(chosen, deferred, refused): applicable fixes without overlapping edits, in finding
+    order; a fix that overlaps an earlier one waits for the next run (deferred), and two fixes
+    that want different text on the same bytes (one macro line, several models or instances
+    that need different values) are both refused, with the reason."""
+    from .locations import display_path
+    chosen, deferred, refused = [], [], []
+    taken: dict = {}      # file -> [(start, end, text, finding)]
     for p in findings:
         fx = p.fix
         if fx is None or not fx.applicable or (not fx.safe and not unsafe):
             continue
-        clash = False
+        clash, rival = False, None
         for e in fx.edits:
-            for (s, t, text) in taken.get(e.file, ()):
-                if e.start < t and s < e.end and not (s == e.start and t == e.end
-                                                      and text == e.text):
+            for (s, t, text, q) in taken.get(e.file, ()):
+                if s == e.start and t == e.end:
+                    if text != e.text:
+                        rival = (q, e, text)
+                elif e.start < t and s < e.end:
                     clash = True
+        if rival is not None:
+            q, e, text = rival
+            line = e.file and f"{display_path(e.file)}"
+            reason = (f"the models or macro calls that use {line} need different values there "
+                      f"({text!r} for {', '.join(q.models) or 'one'}, {e.text!r} for "
+                      f"{', '.join(p.models) or 'another'})")
+            refused.append((p, reason))
+            if q in chosen:
+                chosen.remove(q)
+                refused.append((q, reason))
+            continue
         if clash:
             deferred.append(p)
             continue
         for e in fx.edits:
-            taken.setdefault(e.file, []).append((e.start, e.end, e.text))
+            taken.setdefault(e.file, []).append((e.start, e.end, e.text, p))
         chosen.append(p)
-    return chosen, deferred
+    return chosen, deferred, refused
 
 
 def _edits_by_file(fixed) -> dict:
@@ -303,13 +321,12 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                               in_process=in_process)
     before_result.findings = inside_paths(before_result.findings, paths)
-    chosen, _ = candidates(before_result.findings, unsafe)
+    chosen, _, refused = candidates(before_result.findings, unsafe)
     originals: dict = {}
     if diff_only:
         new = edited_sources(chosen, originals)
-        return FixOutcome(before_result, chosen, [], sorted(f for f in new
-                                                            if new[f] != originals[f]),
-                          unified_diff(new, originals))
+        return FixOutcome(before_result, chosen, [], sorted(
+            f for f in new if new[f] != originals[f]), unified_diff(new, originals), refused)
     before = _snapshot(before_result)
     rolled: list = []
     result = before_result
@@ -348,4 +365,4 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             write_atomic(f, originals[f])
         raise
     changed = sorted(f for f in written if originals.get(f) is not None)
-    return FixOutcome(result, chosen, rolled, changed, "")
+    return FixOutcome(result, chosen, rolled, changed, "", refused)
