@@ -603,3 +603,14 @@ def test_a_macro_literal_that_needs_different_values_per_model_is_not_fixed(tmp_
     assert "UL302 fix not applied: the models or macro calls that use urdf/parts.xacro need different values there ('-1' for urdf/a.urdf.xacro, '-3' for urdf/b.urdf.xacro)" in f.stderr, f.stderr
     assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == snapshot
     assert [c for c, _ in codes(pkg)].count("UL302") == 2
+
+
+def test_symlinked_source_stays_a_link(tmp_path):
+    src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
+    real = make_package(tmp_path, "real", {"urdf/robot.urdf.xacro": src})
+    link = tmp_path / "ws"
+    link.mkdir()
+    (link / "robot.urdf.xacro").symlink_to(real / "urdf/robot.urdf.xacro")
+    f = run_cli("check", str(tmp_path), "--fix", "--no-cache", "--isolated", cwd=tmp_path)
+    assert "Fixed" in f.stderr and (link / "robot.urdf.xacro").is_symlink()
+    assert 'lower="-2.1" upper="2.1"' in (real / "urdf/robot.urdf.xacro").read_text()

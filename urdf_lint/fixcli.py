@@ -38,7 +38,7 @@ def _add_suppressions(args, cfg, resolver) -> int:
         for msg in result.internal:
             sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
         return 2
-    n, files, _ = add_suppressions(result.findings)
+    n, files, _ = add_suppressions(result.findings, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs)
     if result.findings:
         report.write(result, args.format or "text", sys.stdout)

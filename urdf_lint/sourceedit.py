@@ -215,8 +215,9 @@ def apply_edits(data: bytes, edits) -> bytes:
 
 def write_atomic(path: str, data: bytes) -> None:
     """Write through a temporary file in the same folder and rename it over ``path``
-    (the file's mode is kept)."""
-    d = os.path.dirname(os.path.abspath(path))
+    (the file's mode is kept; a symlink is followed, so the link stays a link)."""
+    path = os.path.realpath(path)
+    d = os.path.dirname(path)
     fd, tmp = tempfile.mkstemp(prefix=".urdf-lint-", dir=d)
     try:
         with os.fdopen(fd, "wb") as f:
