@@ -8,10 +8,8 @@ not XML (a YAML file), or for an unused suppression (UL009: remove that comment 
 """
 from __future__ import annotations
 
-import os
-
 from .rules import ul009_unused_suppression as unused_suppression
-from .sourceedit import Edit, apply_edits, line_offset, write_atomic
+from .sourceedit import Edit, apply_edits, inside, line_offset, write_atomic
 
 
 def suppression_edits(findings) -> tuple[dict, list]:
@@ -54,14 +52,10 @@ def suppression_edits(findings) -> tuple[dict, list]:
 def add_suppressions(findings, paths=None) -> tuple[int, list, list]:
     """Write the comments; (comments written, files changed, findings left alone). With
     ``paths``, files outside them (another package, an installed one) are left alone."""
-    if paths is not None:
-        roots = [os.path.realpath(p).rstrip(os.sep) + os.sep for p in paths]
-        inside = [f for f in findings
-                  if any((os.path.realpath(f.file) + os.sep).startswith(r) for r in roots)]
-        outside = [f for f in findings if f not in inside]
-        findings = inside
-    else:
-        outside = []
+    mine, outside = [], []
+    for f in findings:
+        (mine if paths is None or inside(f.file, paths) else outside).append(f)
+    findings = mine
     edits, skipped = suppression_edits(findings)
     skipped += outside
     written = 0

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from .sourceedit import apply_edits, line_offset, write_atomic
+from .sourceedit import apply_edits, inside, line_offset, write_atomic
 
 MAX_ROUNDS = 4
 
@@ -81,16 +81,11 @@ def inside_paths(findings, paths) -> list:
     installed package, a dependency elsewhere in the workspace) refused."""
     from .fixes import NOT_FIXABLE, Fix
     from .locations import display_path
-    roots = [os.path.realpath(p) for p in paths]
-
-    def inside(f):
-        real = os.path.realpath(f)
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
     out = []
     for p in findings:
         fx = p.fix
         if fx is not None and fx.applicable:
-            outside = [e.file for e in fx.edits if not inside(e.file)]
+            outside = [e.file for e in fx.edits if not inside(e.file, paths)]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                       f"{display_path(outside[0])} is outside the linted paths"))

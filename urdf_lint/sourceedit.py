@@ -213,6 +213,13 @@ def apply_edits(data: bytes, edits) -> bytes:
     return b"".join(out)
 
 
+def inside(path: str, paths) -> bool:
+    """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them."""
+    real = os.path.realpath(path)
+    return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep)
+               for r in (os.path.realpath(p) for p in paths))
+
+
 def write_atomic(path: str, data: bytes) -> None:
     """Write through a temporary file in the same folder and rename it over ``path``
     (the file's mode is kept; a symlink is followed, so the link stays a link)."""
