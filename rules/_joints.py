@@ -1,5 +1,5 @@
 """Helpers for the joint-limit rules (not a rule)."""
-from urdf_lint.ruleutil import number
+from urdf_lint.ruleutil import number, reference_fixes
 
 
 def limits(j):
@@ -22,3 +22,17 @@ def ranged(model):
             lim, lo, hi, _, _ = limits(j)
             if lim is not None and lo is not None and hi is not None:
                 yield j, lim, lo, hi
+
+
+def unknown_joint_refs(model, pairs):
+    """(block, joint element, name, fix request or None) for each ``(block, <joint name>)`` of
+    ``pairs`` naming a joint the model does not have (transmission, ros2_control)."""
+    found, taken = [], set()
+    for blk, j in pairs:
+        n = j.get("name")
+        if n and n not in model.joints:
+            found.append((blk, j, n))
+        elif n:
+            taken.add(n)
+    fixes = reference_fixes([(j, "name", n) for _, j, n in found], model.joints, taken)
+    return [(blk, j, n, fixes.get((j, "name"))) for blk, j, n in found]

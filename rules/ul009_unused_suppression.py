@@ -3,6 +3,9 @@
 Why: Stale suppressions hide future problems at that place.
 
 How to fix: Remove the comment, or narrow it to the code that still fires.
+
+Fix: safe, for `disable-next` and `disable-file`: `--fix` deletes the comment (its whole line
+when it is alone there). A `disable` range is left to you, with its `enable`.
 """
 CODE = "UL009"
 NAME = "unused-suppression"

@@ -3,6 +3,9 @@
 Why: Values like `255 0 0 1` (0-255 scale) or three numbers are rejected or clipped by viewers.
 
 How to fix: Write four numbers between 0 and 1 (divide 0-255 values by 255).
+
+Fix: safe, for 0-255 colours (r, g, b all in 0-255, alpha 0-1 or 0-255): `--fix` divides
+them by 255 where `rgba` is written.
 """
 CODE = "UL208"
 NAME = "rgba"
@@ -18,8 +21,20 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+from urdf_lint.fixes import set_attrs
 from urdf_lint.ruleutil import numbers
 from urdf_lint.rules._schema import urdf_iter
+
+
+def _by_255(vals):
+    """The 0-1 colour of a 0-255 one (alpha above 1 is 0-255 too), or None."""
+    rgb, a = vals[:3], vals[3]
+    if not all(float(x).is_integer() and 0 <= x <= 255 for x in rgb) or max(rgb) <= 1:
+        return None
+    if not (0 <= a <= 1 or (float(a).is_integer() and a <= 255)):
+        return None
+    out = [x / 255 for x in rgb] + [a / 255 if a > 1 else a]
+    return " ".join(f"{round(x, 4):g}" for x in out)
 
 
 def check(model, ctx):
@@ -35,4 +50,6 @@ def check(model, ctx):
             yield c, f"<color rgba=\"{v}\"> must be four numbers"
         elif any(x < 0 or x > 1 for x in vals):
             hint = " (0-255 values? divide by 255)" if any(x > 1 for x in vals) else ""
-            yield c, f"<color rgba=\"{v}\"> values must be within [0, 1]{hint}"
+            fixed = _by_255(vals)
+            yield c, f"<color rgba=\"{v}\"> values must be within [0, 1]{hint}", (
+                set_attrs({"rgba": fixed}, "divide the 0-255 colour by 255") if fixed else None)

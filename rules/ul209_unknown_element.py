@@ -7,6 +7,9 @@ blocks (`<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`) and namespac
 
 How to fix: Fix the element's name or move it to where URDF expects it (the message suggests the
 closest known name).
+
+Fix: safe, when there is a single "did you mean" candidate and no sibling of that name: `--fix`
+renames the start and end tag in the source.
 """
 CODE = "UL209"
 NAME = "unknown-element"
@@ -24,7 +27,8 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.fixes import rename_tag
+from urdf_lint.ruleutil import did_you_mean, single_candidate
 from urdf_lint.rules._schema import CHILDREN, checked_elements
 
 
@@ -37,5 +41,7 @@ def check(model, ctx):
             if not isinstance(c.tag, str) or c.tag.startswith("{") or ":" in c.tag:
                 continue
             if c.tag not in allowed:
+                to = single_candidate(c.tag, allowed)
+                clash = to is None or el.find(to) is not None
                 yield c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
-                          + "; URDF parsers ignore it")
+                          + "; URDF parsers ignore it"), (None if clash else rename_tag(c.tag, to))

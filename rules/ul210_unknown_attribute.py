@@ -3,6 +3,9 @@
 Why: Parsers ignore unknown attributes, so the value you meant is silently lost.
 
 How to fix: Fix the attribute's name (the message suggests the closest known one).
+
+Fix: safe, when there is a single "did you mean" candidate that the element does not already
+have: `--fix` renames the attribute in the source.
 """
 CODE = "UL210"
 NAME = "unknown-attribute"
@@ -20,7 +23,8 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.fixes import rename_attr
+from urdf_lint.ruleutil import did_you_mean, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 
 
@@ -33,5 +37,7 @@ def check(model, ctx):
             if a.startswith("{") or ":" in a:
                 continue
             if a not in allowed:
+                to = single_candidate(a, allowed)
                 yield el, (f"unknown attribute '{a}' on <{el.tag}>" + did_you_mean(a, allowed)
-                           + "; URDF parsers ignore it")
+                           + "; URDF parsers ignore it"), (
+                    rename_attr(a, to) if to and to not in el.attrib else None)

@@ -4,6 +4,9 @@ Why: Controllers and planners refuse or clamp every position. Usually the two we
 sign was lost in a mirrored (`reflect`) macro.
 
 How to fix: Swap the two values, or fix the sign.
+
+Fix: safe. `--fix` swaps the two values where they are written (the element, a
+`xacro:property`, a macro call's argument or a YAML scalar).
 """
 CODE = "UL302"
 NAME = "limit-order"
@@ -21,6 +24,7 @@ PASS = """<robot name="r">
     <limit lower="-2.1" upper="2.1" effort="10" velocity="1"/></joint>
 </robot>
 """
+from urdf_lint.fixes import set_attrs
 from urdf_lint.ruleutil import fmt
 from urdf_lint.rules._joints import ranged
 
@@ -29,4 +33,6 @@ def check(model, ctx):
     for j, lim, lo, hi in ranged(model):
         if lo > hi:
             yield lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "
-                        "(swap them?)")
+                        "(swap them?)"), set_attrs({"lower": lim.get("upper", "0"),
+                                                    "upper": lim.get("lower", "0")},
+                                                   "swap lower and upper")

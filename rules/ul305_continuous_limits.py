@@ -3,10 +3,17 @@
 Why: The limits look effective to a reader but no tool applies them.
 
 How to fix: Either make the joint `revolute` (limited), or remove the limits.
+
+Fix: unsafe (`--unsafe-fixes`): removes `lower` and `upper` from the `<limit>`, or, with the
+option `fix = "revolute"`, makes the joint `revolute` where its type is written.
+
+Options: `fix` (default `"drop-limits"`): `"drop-limits"` or `"revolute"`.
 """
 CODE = "UL305"
 NAME = "continuous-limits"
 SEVERITY = "warning"
+OPTIONS = {"fix": "drop-limits"}
+OPTION_CHOICES = {"fix": ("drop-limits", "revolute")}
 FAIL = """<robot name="r">
   <link name="a"/><link name="wheel"/>
   <joint name="axle" type="continuous"><parent link="a"/><child link="wheel"/><axis xyz="0 1 0"/>
@@ -22,10 +29,19 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.fixes import drop_attrs, set_attrs
+
 def check(model, ctx):
+    how = ctx.options.get("fix", "drop-limits")
     for j in model.top_joints():
         lim = j.find("limit")
         if j.get("type") == "continuous" and lim is not None and (
                 lim.get("lower") is not None or lim.get("upper") is not None):
+            if how == "revolute":
+                fix = set_attrs({"type": "revolute"}, "make the joint revolute", safe=False,
+                                on_parent=True)
+            else:
+                fix = drop_attrs([a for a in ("lower", "upper") if lim.get(a) is not None],
+                                 "drop the position limits")
             yield lim, (f"continuous joint '{j.get('name')}' has position limits, which are ignored; "
-                        "make it revolute or drop lower/upper")
+                        "make it revolute or drop lower/upper"), fix

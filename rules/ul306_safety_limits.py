@@ -3,6 +3,9 @@
 Why: The safety controller then lets the joint run into its hard stops.
 
 How to fix: Put the soft limits inside `[lower, upper]`, lower below upper.
+
+Fix: safe, for inverted soft limits: `--fix` swaps `soft_lower_limit` and `soft_upper_limit`
+where they are written.
 """
 CODE = "UL306"
 NAME = "safety-limits"
@@ -22,6 +25,7 @@ PASS = """<robot name="r">
     <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
 </robot>
 """
+from urdf_lint.fixes import set_attrs
 from urdf_lint.ruleutil import fmt, number
 from urdf_lint.rules._joints import limits
 
@@ -37,7 +41,10 @@ def check(model, ctx):
         slo, shi = number(sc.get("soft_lower_limit", "0")), number(sc.get("soft_upper_limit", "0"))
         if slo is not None and shi is not None and slo > shi:
             yield sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} > "
-                       f"soft_upper_limit {fmt(shi)}")
+                       f"soft_upper_limit {fmt(shi)}"), set_attrs(
+                {"soft_lower_limit": sc.get("soft_upper_limit", "0"),
+                 "soft_upper_limit": sc.get("soft_lower_limit", "0")},
+                "swap soft_lower_limit and soft_upper_limit")
         if lim is None or j.get("type") not in ("revolute", "prismatic") or lo is None or hi is None:
             continue
         if slo is not None and slo < lo:

@@ -5,6 +5,8 @@ velocities and limits are scaled differently per tool; a zero axis has no direct
 
 How to fix: Write a unit vector.
 
+Fix: safe, for a non-zero axis: `--fix` writes the normalised vector where `xyz` is written.
+
 Options: `tolerance` (default 0.001): non-unit axes are reported when their length differs from
 1 by more than this.
 """
@@ -25,6 +27,7 @@ PASS = """<robot name="r">
 """
 import math
 
+from urdf_lint.fixes import set_attrs
 from urdf_lint.ruleutil import fmt, numbers
 
 
@@ -45,4 +48,5 @@ def check(model, ctx):
         elif abs(n - 1) > tol:
             unit = " ".join(fmt(round(x / n, 6)) for x in v)
             yield ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has length "
-                       f"{n:.4g}, not 1 (use \"{unit}\")")
+                       f"{n:.4g}, not 1 (use \"{unit}\")"), set_attrs(
+                {"xyz": unit}, "normalise the axis to unit length")

@@ -4,6 +4,9 @@ mimics b mimics a).
 Why: Such a model has no well-defined joint positions; parsers and controllers refuse it.
 
 How to fix: Point the mimic at an existing, different joint and break the cycle.
+
+Fix: safe, when the name has a single close "did you mean" candidate (other than the joint itself), for an unknown mimicked joint: `--fix`
+writes it where the name is written.
 """
 CODE = "UL308"
 NAME = "mimic"
@@ -21,7 +24,7 @@ PASS = """<robot name="r">
   <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1" multiplier="-1"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.ruleutil import did_you_mean, reference_fixes
 
 
 def check(model, ctx):
@@ -37,7 +40,10 @@ def check(model, ctx):
         elif target == name:
             yield m, f"joint '{name}' mimics itself"
         elif target not in model.joints:
-            yield m, f"joint '{name}' mimics unknown joint '{target}'" + did_you_mean(target, [n for n in model.joints if n != name])
+            others = [n for n in model.joints if n != name]
+            fix = reference_fixes([(m, "joint", target)], others).get((m, "joint"))
+            yield m, (f"joint '{name}' mimics unknown joint '{target}'"
+                      + did_you_mean(target, others)), fix
         else:
             follows[name] = (target, m)
     reported = set()

@@ -4,6 +4,9 @@ defined.
 Why: URDF parsers reject the model or draw it untextured.
 
 How to fix: Define the material at the top level, or fix the name.
+
+Fix: safe, when the name has a single close "did you mean" candidate: `--fix`
+writes it where the name is written.
 """
 CODE = "UL502"
 NAME = "material-undefined"
@@ -18,7 +21,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.ruleutil import did_you_mean, reference_fixes
 from urdf_lint.rules._schema import urdf_iter
 
 
@@ -34,4 +37,6 @@ def check(model, ctx):
                 if not n:
                     yield m, "<material> without a name, colour or texture"
                 elif n not in defined:
-                    yield m, f"material '{n}' is used but never defined" + did_you_mean(n, defined)
+                    fix = reference_fixes([(m, "name", n)], defined).get((m, "name"))
+                    yield m, (f"material '{n}' is used but never defined"
+                              + did_you_mean(n, defined)), fix

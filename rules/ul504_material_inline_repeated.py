@@ -6,6 +6,10 @@ teaches named materials for this reason.
 
 How to fix: Define the material once at the top level and refer to it by name.
 
+Fix: unsafe (`--unsafe-fixes`), when every inline colour is a literal written outside macros:
+each becomes `<material name="NAME"/>`, and `NAME` is defined once after the `<robot>` tag
+(the most common inline name, or an existing top-level material of that colour).
+
 Options: `min-repeats` (default 3): reported when one colour appears inline in at least this
 many visuals.
 """
@@ -31,7 +35,26 @@ PASS = """<robot name="r">
   <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>
 </robot>
 """
-from urdf_lint.rules._materials import all_materials
+from collections import Counter
+
+from urdf_lint.fixes import named_material
+from urdf_lint.rules._materials import all_materials, rgba as rgba_of
+
+
+def _fix(model, rgba, items):
+    for name, m in model.materials.items():
+        if rgba_of(m) == rgba:
+            return named_material([el for el, _ in items], name, m.find("color").get("rgba"),
+                                  define=False)
+    named = Counter(nm for _, nm in items if nm)
+    taken = set(model.materials)
+    name = next((nm for nm, _ in named.most_common() if nm not in taken), None)
+    if name is None:
+        name = "rgba_" + "".join(f"{round(x * 255):02x}" for x in rgba)
+    if name in taken:
+        return None
+    return named_material([el for el, _ in items], name, items[0][0].find("color").get("rgba"),
+                          define=True)
 
 
 def check(model, ctx):
@@ -49,4 +72,5 @@ def check(model, ctx):
                 ((", " if named else "") + f"{anon} anonymous" if anon else "")
             yield items[0][0], (f"colour rgba {' '.join(f'{x:g}' for x in rgba)} is written inline in "
                                 f"{len(items)} visuals ({shown}); define one named "
-                                "<material> at the top and refer to it by name")
+                                "<material> at the top and refer to it by name"), \
+                _fix(model, rgba, items)

@@ -5,6 +5,9 @@ and warns or ignores it.
 
 How to fix: Add a massless dummy root (`base_link` → `base_footprint` or `world`) joined to the
 heavy base by a fixed joint.
+
+Fix: unsafe (`--unsafe-fixes`): inserts `<link name="NAME_root"/>` and a fixed joint
+`NAME_root_joint` from it to the link, just before the link where it is written.
 """
 CODE = "UL604"
 NAME = "root-inertial"
@@ -24,6 +27,9 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.fixes import new_root
+
+
 def check(model, ctx):
     children = model.parents_of_links()
     links = model.top_links()
@@ -34,4 +40,5 @@ def check(model, ctx):
         if n and n not in children and lk.find("inertial") is not None \
                 and model.links.get(n) is lk:
             yield lk.find("inertial"), (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
-                                        "massless root link joined by a fixed joint")
+                                        "massless root link joined by a fixed joint"), \
+                new_root("add a massless root link joined by a fixed joint")

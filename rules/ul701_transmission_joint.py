@@ -4,6 +4,9 @@ Why: ros_control / gazebo_ros_control then fail at start-up with a message far f
 Typical after renaming a joint or changing a `prefix`.
 
 How to fix: Fix the joint name in the transmission.
+
+Fix: safe, when the name has a single close "did you mean" candidate that no other transmission names: `--fix`
+writes it where the name is written.
 """
 CODE = "UL701"
 NAME = "transmission-joint"
@@ -26,12 +29,11 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._joints import unknown_joint_refs
 
 
 def check(model, ctx):
-    for t in model.root.iter("transmission"):
-        for j in t.findall("joint"):
-            n = j.get("name")
-            if n and n not in model.joints:
-                yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
-                          + did_you_mean(n, model.joints))
+    pairs = [(t, j) for t in model.root.iter("transmission") for j in t.findall("joint")]
+    for t, j, n, fix in unknown_joint_refs(model, pairs):
+        yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
+                  + did_you_mean(n, model.joints)), fix

@@ -3,6 +3,9 @@
 Why: controller_manager refuses to load the hardware interface.
 
 How to fix: Fix the joint name in the ros2_control block.
+
+Fix: safe, when the name has a single close "did you mean" candidate that no other ros2_control joint names: `--fix`
+writes it where the name is written.
 """
 CODE = "UL702"
 NAME = "ros2-control-joint"
@@ -23,12 +26,11 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.rules._joints import unknown_joint_refs
 
 
 def check(model, ctx):
-    for rc in model.root.iter("ros2_control"):
-        for j in rc.iter("joint"):
-            n = j.get("name")
-            if n and n not in model.joints:
-                yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
-                          + did_you_mean(n, model.joints))
+    pairs = [(rc, j) for rc in model.root.iter("ros2_control") for j in rc.iter("joint")]
+    for rc, j, n, fix in unknown_joint_refs(model, pairs):
+        yield j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"
+                  + did_you_mean(n, model.joints)), fix

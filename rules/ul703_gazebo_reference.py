@@ -4,6 +4,9 @@ Why: Gazebo silently ignores the block, so the friction, colour, sensor or plugi
 never takes effect.
 
 How to fix: Fix the reference to the link or joint it is meant for.
+
+Fix: safe, when the name has a single close "did you mean" candidate that no other `<gazebo>` block names: `--fix`
+writes it where the name is written.
 """
 CODE = "UL703"
 NAME = "gazebo-reference"
@@ -19,14 +22,21 @@ PASS = """<robot name="r">
   <gazebo reference="base_link"><material>Gazebo/Blue</material></gazebo>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.ruleutil import did_you_mean, reference_fixes
 
 
 def check(model, ctx):
     names = set(model.links) | set(model.joints)
+    found, taken = [], set()
     for g in model.root:
         if g.tag != "gazebo":
             continue
         r = g.get("reference")
         if r is not None and r not in names:
-            yield g, f"<gazebo reference=\"{r}\"> names no link or joint" + did_you_mean(r, names)
+            found.append((g, r))
+        elif r is not None:
+            taken.add(r)
+    fixes = reference_fixes([(g, "reference", r) for g, r in found], names, taken)
+    for g, r in found:
+        yield g, (f"<gazebo reference=\"{r}\"> names no link or joint"
+                  + did_you_mean(r, names)), fixes.get((g, "reference"))

@@ -35,4 +35,16 @@ def atomic_write(path, data: str | bytes, encoding: str = "utf-8") -> None:
         fh.write(data)
 
 
-__all__ = ["atomic_path", "atomic_open", "atomic_write"]
+def atomic_rewrite(path, data: bytes) -> None:
+    """Rewrite a source file in place (``check --fix``, ``--add-suppressions``), atomically:
+    a symlink is followed, so the link stays a link and its target gets the new bytes, and
+    the file keeps its mode."""
+    path = os.path.realpath(path)
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            fh.write(data)
+        with contextlib.suppress(OSError):
+            os.chmod(tmp, os.stat(path).st_mode & 0o7777)
+
+
+__all__ = ["atomic_path", "atomic_open", "atomic_write", "atomic_rewrite"]

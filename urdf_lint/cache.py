@@ -37,7 +37,7 @@ from .vcs import repo_root
 
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 # bump when the stored record changes shape
-RECORD_FORMAT = 4
+RECORD_FORMAT = 5  # 5: Problem records carry their fix
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 

@@ -153,6 +153,37 @@ def _add_output(p):
                         "no model uses")
 
 
+def _add_fix(p):
+    """``check --fix`` and friends (issue 14; :mod:`urdf_lint.fixcli`)."""
+    p.add_argument("--fix", action="store_true",
+                   help="apply the safe fixes to the xacro sources, then report what remains "
+                        "(default: off, nothing is written)")
+    p.add_argument("--unsafe-fixes", action="store_true",
+                   help="with --fix or --diff: also the fixes that change structure "
+                        "(default: off)")
+    p.add_argument("--diff", action="store_true",
+                   help="print the fixes as a unified diff of the sources instead of writing "
+                        "(as proposed: --fix also re-lints and rolls back the wrong ones)")
+    p.add_argument("--add-suppressions", action="store_true",
+                   help="write '<!-- urdf-lint: disable-next CODE -->' above each finding's "
+                        "source line (adopt the linter in one commit; default: off)")
+    p.add_argument("--exit-non-zero-on-fix", action="store_true",
+                   help="with --fix: exit 1 when a file was changed (pre-commit; default: off)")
+
+
+def _fix_mode(args) -> bool:
+    """Whether ``check`` writes or proposes fixes; the flags that need each other are checked."""
+    fix, diff = getattr(args, "fix", False), getattr(args, "diff", False)
+    adds = getattr(args, "add_suppressions", False)
+    if getattr(args, "unsafe_fixes", False) and not (fix or diff):
+        raise UsageError("--unsafe-fixes needs --fix or --diff")
+    if getattr(args, "exit_non_zero_on_fix", False) and not fix:
+        raise UsageError("--exit-non-zero-on-fix needs --fix")
+    if adds and (fix or diff):
+        raise UsageError("--add-suppressions cannot be combined with --fix or --diff")
+    return bool(fix or diff or adds)
+
+
 SUBPARSERS: dict = {}
 
 
@@ -182,6 +213,7 @@ def build_parser():
     c.add_argument("--write-baseline", metavar="FILE",
                    help="record the current findings in FILE and exit 0 (default: off)")
     _add_limits(c)
+    _add_fix(c)
 
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
                        formatter_class=raw,
@@ -380,8 +412,13 @@ def cmd_check(args) -> int:
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
     _refuse_symlinked_out(render_dir)
+    if _fix_mode(args):
+        from .fixcli import check_fix
+        return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
+    from .fixrun import inside_paths   # a fix offered in JSON / SARIF edits only linted files
+    result.findings = inside_paths(result.findings, args.paths)
     if out.verbose:
         _list_models(result, out)
     for msg in result.internal:

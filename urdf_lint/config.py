@@ -499,6 +499,13 @@ def option_types(rule) -> dict:
     return out
 
 
+def option_choices(rule) -> dict:
+    """Option name -> the values it may take, from the rule's optional ``OPTION_CHOICES``."""
+    import sys
+    return {k: tuple(v) for k, v in
+            (getattr(sys.modules.get(rule.module), "OPTION_CHOICES", {}) or {}).items()}
+
+
 _TYPE_NAMES = {bool: "true or false", int: "an integer", float: "a number", str: "a string",
                list: "a list"}
 
@@ -517,6 +524,7 @@ def validate_rule_options(cfg: Config, where: str) -> None:
                               f"{did_you_mean(key, list(rules) + list(by_name))} "
                               "(use a rule code like UL307 or its name)")
         types = option_types(rule)
+        choices = option_choices(rule)
         for name, value in opts.items():
             line = _line_of(Path(where), name) if os.path.isfile(where) else ""
             if name not in types:
@@ -534,3 +542,8 @@ def validate_rule_options(cfg: Config, where: str) -> None:
                                   f"{show(rule.options[name])})")
             if float in ok and isinstance(value, int) and not isinstance(value, bool):
                 opts[name] = float(value)
+            allowed = choices.get(name)
+            if allowed is not None and value not in allowed:
+                raise ConfigError(f"{_shown(where)}{line}: invalid value: rule-options.{key}.{name} "
+                                  f"must be one of {', '.join(map(repr, allowed))}, not "
+                                  f"{value!r}{did_you_mean(str(value), allowed)}")

@@ -12,7 +12,12 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
+from typing import TYPE_CHECKING
+
 from .locations import Origin
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .fixes import Fix
 
 SEVERITIES = ("info", "warning", "error")
 SEVERITY_RANK = {s: i for i, s in enumerate(SEVERITIES)}
@@ -28,15 +33,18 @@ class Problem:
     severity: str = ""                      # a rule's choice for this one problem ("" = the
                                             # rule's default); effective once the pipeline ran
     models: tuple[str, ...] = ()            # display labels of the models it was found in
+    fix: "Fix | None" = None                # a source fix (urdf_lint.fixes), if the rule has one
 
     @classmethod
-    def at(cls, code: str, message: str, loc, target=None, severity: str = "") -> "Problem":
+    def at(cls, code: str, message: str, loc, target=None, severity: str = "",
+           fix=None) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
-        ``severity``: set only when the rule chose it for this one problem."""
+        ``severity``: set only when the rule chose it for this one problem; ``fix``: a
+        :class:`urdf_lint.fixes.Fix`."""
         chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
         return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
                    tuple(target) if target else None,
-                   severity=severity if severity in SEVERITIES else "")
+                   severity=severity if severity in SEVERITIES else "", fix=fix)
 
     # -- the origin, flat ----------------------------------------------------------------------
     @property
@@ -64,9 +72,12 @@ class Problem:
     # -- serialisation ---------------------------------------------------------------------------
     def to_dict(self) -> dict:
         """The JSON report's form of a finding (schema in :mod:`urdf_lint.report`)."""
-        return {"code": self.code, "name": self.name, "severity": self.severity,
-                "message": self.message, "file": self.file, "line": self.line, "col": self.col,
-                "chain": [list(c) for c in self.chain], "models": list(self.models)}
+        d = {"code": self.code, "name": self.name, "severity": self.severity,
+             "message": self.message, "file": self.file, "line": self.line, "col": self.col,
+             "chain": [list(c) for c in self.chain], "models": list(self.models)}
+        if self.fix is not None:   # absent when there is no fix: the JSON stays as it was
+            d["fix"] = self.fix.to_dict()
+        return d
 
     def to_record(self) -> dict:
         """Plain data for the cache (everything a worker produced)."""
@@ -76,12 +87,18 @@ class Problem:
             d["target"] = list(self.target)
         if self.severity:
             d["severity"] = self.severity
+        if self.fix is not None:
+            d["fix"] = self.fix.to_record()
         return d
 
     @classmethod
     def from_record(cls, d: dict) -> "Problem":
+        fix = None
+        if d.get("fix"):
+            from .fixes import Fix
+            fix = Fix.from_record(d["fix"])
         return cls.at(d["code"], d["message"], (d["file"], d["line"], d["col"], d.get("chain", ())),
-                      d.get("target"), d.get("severity", ""))
+                      d.get("target"), d.get("severity", ""), fix)
 
 
 def exit_status(severities, internal: bool, fail_on: str) -> int:
@@ -108,7 +125,12 @@ def merge(findings: list[Problem]) -> list[Problem]:
             have = out[k]
             more = tuple(m for m in f.models if m not in have.models)
             if more:
-                out[k] = have.replace(models=have.models + more)
+                have = out[k] = have.replace(models=have.models + more)
+            if have.fix is not None and f.fix is not None and have.fix != f.fix:
+                from .fixes import combine
+                out[k] = have.replace(fix=combine(have.fix, f.fix, have.models[0] if
+                                                  have.models else "", f.models[0] if
+                                                  f.models else ""))
         else:
             out[k] = f
     return sorted(out.values(), key=lambda f: (f.file, f.line, f.col, f.code, f.message))

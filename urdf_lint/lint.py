@@ -236,9 +236,17 @@ def lint_model(job: LintJob, settings: LintSettings):
                                    model.origin(model.root)))
 
     from .registry import run_rules
-    for rule, el, msg, sev in run_rules("model", settings.selected, settings.options, model, ctx,
-                                        out.internal, f" on {job.entry}"):
-        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev))
+    fixer = None
+    for rule, el, msg, sev, req in run_rules("model", settings.selected, settings.options,
+                                             model, ctx, out.internal, f" on {job.entry}",
+                                             with_fix=True):
+        fix = None
+        if req is not None:
+            from .fixes import Fixer
+            fixer = fixer or Fixer(model)
+            fix = fixer.fix(el, req)
+        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev,
+                                   fix=fix))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     _record_reads(out)

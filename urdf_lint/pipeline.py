@@ -86,14 +86,17 @@ def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
 def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
               cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
               render_dir: str | None = None, render_rrd: bool = True,
-              in_process: bool = False) -> CheckResult:
+              in_process: bool = False, keep_models: bool = False) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
     models whose inputs include one of them; files no model uses land in ``unused_files``.
     ``in_process`` lints in this process, without workers and their limits (trusted input
-    only: tests and benchmarks)."""
+    only: tests and benchmarks). ``keep_models`` brings every expanded robot back
+    (``ModelReport.kept_model``; ``--fix`` compares them before and after)."""
     policy = Policy.from_config(cfg)
     jobs = discover(paths, cfg)
     settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
+    if keep_models:
+        settings = dataclasses.replace(settings, keep_model=True)
     if render_dir:
         os.makedirs(render_dir, exist_ok=True)
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
@@ -191,7 +194,9 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     kept, unused, invalid = suppress.apply(
         merged, directives,
         is_selected=lambda c: any(code_matches(c, s, rules[s].name) for s in selected))
-    about_comments = [Problem.at(unused_suppression.CODE, msg, loc) for loc, msg in unused]
+    from .fixes import remove_comment
+    about_comments = [Problem.at(unused_suppression.CODE, msg, loc, fix=remove_comment(loc))
+                      for loc, msg in unused]
     about_comments += [Problem.at(invalid_suppression.CODE, msg, loc) for loc, msg in invalid]
     kept += [p.replace(models=()) for p in _with_policy(about_comments, RUN_LABEL, policy)]
     return kept

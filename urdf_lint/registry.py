@@ -98,11 +98,25 @@ def load_rules() -> dict:
     return _RULES
 
 
-def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = ""):
+def _extras(rest) -> tuple:
+    """(severity or "", fix request or None) from what a rule yields after the message."""
+    sev, req = "", None
+    for x in rest:
+        if isinstance(x, str):
+            sev = x
+        elif x is not None:
+            req = x
+    return sev, req
+
+
+def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
+              with_fix: bool = False):
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
-    then ``options[code]``) in ``ctx.options``. A rule that crashes adds an internal error and
-    the others still run."""
+    then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
+    (:mod:`urdf_lint.fixes`). A rule yields ``(item, message)``, optionally followed by a
+    severity (a string) and/or a fix request, in that order. A rule that crashes adds an
+    internal error and the others still run."""
     import traceback
     rules = load_rules()
     for code in selected:
@@ -112,7 +126,11 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                yield rule, item[0], item[1], (item[2] or "") if len(item) > 2 else ""
+                sev, req = _extras(item[2:])
+                if with_fix:
+                    yield rule, item[0], item[1], sev, req
+                else:
+                    yield rule, item[0], item[1], sev
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 

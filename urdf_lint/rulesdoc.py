@@ -5,6 +5,7 @@ A rule's docstring is, in this order (ruff's rule docs have the same parts):
 * what it finds: the first paragraph (its first sentence is the one-line summary);
 * ``Why:`` why it matters;
 * ``How to fix:`` what to change;
+* ``Fix:`` (when ``--fix`` can fix it) whether the fix is safe or unsafe, and what it edits;
 * ``Options:`` each option in ``OPTIONS`` with its default and meaning (only when it has any).
 
 The example is the rule's ``FAIL`` and ``PASS`` source (``FAIL_AT`` pins where it reports).
@@ -12,8 +13,8 @@ The example is the rule's ``FAIL`` and ``PASS`` source (``FAIL_AT`` pins where i
 """
 from __future__ import annotations
 
-SECTIONS = ("why", "how to fix", "options")
-_PREFIX = {"why": "Why:", "how to fix": "How to fix:", "options": "Options:"}
+SECTIONS = ("why", "how to fix", "fix", "options")
+_PREFIX = {"why": "Why:", "how to fix": "How to fix:", "fix": "Fix:", "options": "Options:"}
 
 
 class DocError(ValueError):
@@ -69,6 +70,8 @@ def markdown(rules: dict) -> str:
             facts.append("loads mesh files")
         lines += ["; ".join(facts) + ".", "", s["what"], "",
                   "**Why.** " + s["why"], "", "**How to fix.** " + s["how to fix"]]
+        if "fix" in s:
+            lines += ["", "**Fix** (`urdf-lint check --fix`). " + s["fix"]]
         if r.options:
             lines += ["", "**Options** (under `[tool.urdf-lint.rule-options." + code + "]`). "
                       + s.get("options", "")]

@@ -37,6 +37,26 @@ def did_you_mean(word, candidates):
     return f" (did you mean '{m[0]}'?)" if m else ""
 
 
+def single_candidate(word, candidates, cutoff=0.6):
+    """The one close match of ``word`` among ``candidates`` (None when there are none or
+    several): what a "did you mean" fix may apply."""
+    m = difflib.get_close_matches(word, list(candidates), n=2, cutoff=cutoff)
+    return m[0] if len(m) == 1 else None
+
+
+def reference_fixes(broken, candidates, taken=()):
+    """{(element, attr): fix request} for broken references ``broken`` (``(element, attr,
+    name)``) that have one close candidate (similarity 0.75) which no other reference of the
+    same kind already names and no other broken reference would take too."""
+    from urdf_lint.fixes import set_attrs
+    guess = {(el, a): single_candidate(n, candidates, 0.75) for el, a, n in broken}
+    counts: dict = {}
+    for g in guess.values():
+        counts[g] = counts.get(g, 0) + 1
+    return {k: set_attrs({k[1]: g}, f"point the reference at '{g}'")
+            for k, g in guess.items() if g and counts[g] == 1 and g not in set(taken)}
+
+
 def fmt(v):
     """Short, readable number."""
     return f"{v:g}"

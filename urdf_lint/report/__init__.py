@@ -13,7 +13,12 @@ JSON schema (``--format json``), version 1::
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
                     "message": str, "file": str (relative to cwd when below it), "line": int,
                     "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
-                    "models": [str, ...]}],
+                    "models": [str, ...],
+                    "fix": {"description": str, "applicability": "safe"|"unsafe",
+                            "edits": [{"file": str, "start": int, "end": int, "text": str}]
+                                     (byte ranges of the source, replaced by text)
+                            | "refused": str (why it is not applied automatically)}
+                           (only when the rule has a fix for this finding)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 

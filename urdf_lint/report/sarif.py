@@ -16,6 +16,21 @@ def _uri(path):
     return rel.replace(os.sep, "/") if not os.path.isabs(rel) else "file://" + rel
 
 
+def _sarif_fix(fix) -> dict:
+    """A SARIF ``fix``: one ``artifactChange`` per file, byte-offset replacements."""
+    by_file: dict = {}
+    for e in fix.edits:
+        by_file.setdefault(e.file, []).append(e)
+    return {"description": {"text": fix.description + ("" if fix.safe else " (unsafe)")},
+            "artifactChanges": [
+                {"artifactLocation": {"uri": _uri(path)},
+                 "replacements": [{"deletedRegion": {"byteOffset": e.start,
+                                                     "byteLength": e.end - e.start},
+                                   "insertedContent": {"text": e.text}}
+                                  for e in sorted(edits, key=lambda e: e.start)]}
+                for path, edits in sorted(by_file.items())]}
+
+
 class SarifFormatter(BaseFormatter):
     name = "sarif"
     help = "SARIF 2.1.0 (GitHub code scanning)"
@@ -51,6 +66,8 @@ class SarifFormatter(BaseFormatter):
                     for i, c in enumerate(reversed(f.chain))]
             if f.models:
                 res["properties"] = {"models": f.models}
+            if f.fix is not None and f.fix.applicable:
+                res["fixes"] = [_sarif_fix(f.fix)]
             results.append(res)
         doc = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
                "runs": [{"tool": {"driver": {"name": "urdf-lint", "version": __version__,

@@ -1,0 +1,69 @@
+"""A `name`, `reference` or `link` attribute holds a literal `{var}` where `var` is a xacro
+property or macro parameter: the `$` of `${var}` was forgotten. Checked in the URDF elements,
+on `<gazebo reference>`, and on the joints of `<transmission>` and `<ros2_control>` blocks (not
+in the SDF inside `<gazebo>`).
+
+Why: xacro copies `{prefix}link` as is, so the robot gets a link literally called
+`{prefix}link`; joints, transmissions and Gazebo blocks that use the intended name no longer
+find it.
+
+How to fix: Write `${var}`.
+
+Fix: safe: `--fix` adds the `$` where the attribute is written.
+"""
+CODE = "UL212"
+NAME = "missing-dollar"
+SEVERITY = "error"
+FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="prefix" value="left_"/>
+  <link name="${prefix}base"/>
+  <link name="{prefix}tool"/>
+  <joint name="${prefix}tool_joint" type="fixed"><parent link="${prefix}base"/><child link="${prefix}tool"/></joint>
+</robot>
+"""
+FAIL_AT = [(4, 3)]
+PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="prefix" value="left_"/>
+  <link name="${prefix}base"/>
+  <link name="${prefix}tool"/>
+  <joint name="${prefix}tool_joint" type="fixed"><parent link="${prefix}base"/><child link="${prefix}tool"/></joint>
+</robot>
+"""
+import re
+
+from urdf_lint.fixes import add_dollar, names_in_scope
+from urdf_lint.rules._schema import checked_elements, urdf_iter
+
+ATTRS = ("name", "reference", "link")
+_BRACED = re.compile(r"(?<![$\w}]){([A-Za-z_]\w*)}")
+
+
+def _elements(model):
+    """The URDF part, the extension blocks' own tags (``<gazebo reference>``), and the joints
+    and links that ``<transmission>`` and ``<ros2_control>`` blocks name (their content is
+    not URDF, but its names are the robot's); SDF inside ``<gazebo>`` is left alone."""
+    yield from checked_elements(model)
+    for tag in ("transmission", "ros2_control"):
+        for block in urdf_iter(model, tag):
+            for el in block.iter():
+                if el is not block and isinstance(el.tag, str):
+                    yield el
+
+
+def check(model, ctx):
+    known = None
+    for el in _elements(model):
+        for a in ATTRS:
+            v = el.get(a)
+            if not v or "{" not in v:
+                continue
+            hits = _BRACED.findall(v)
+            if not hits:
+                continue
+            if known is None:
+                known = names_in_scope(model)
+            names = [h for h in hits if h in known]
+            if names:
+                yield el, (f"{a}=\"{v}\" holds a literal '{{{names[0]}}}', and '{names[0]}' is a "
+                           f"xacro property or parameter: did you mean '${{{names[0]}}}'?"), \
+                    add_dollar(a, names)

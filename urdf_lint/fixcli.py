@@ -1,0 +1,112 @@
+"""The ``check --fix`` / ``--diff`` / ``--add-suppressions`` side of the command line."""
+from __future__ import annotations
+
+import os
+import sys
+
+from .errors import UsageError
+
+
+def _safe(s) -> str:
+    from .report.escape import escape_text
+    return escape_text(str(s))
+
+
+def _summary(outcome) -> str:
+    from .locations import display_path
+    lines = []
+    for p, reason in outcome.refused:
+        lines.append(_safe(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
+                           f"{reason}") + "\n")
+    for p, reason in outcome.rolled_back:
+        lines.append(_safe(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
+                           f"{reason}") + "\n")
+    n = len(outcome.applied)
+    files = len(outcome.changed_files)
+    remaining = len(outcome.result.findings)
+    lines.append(f"Fixed {n} finding{'s' if n != 1 else ''} in {files} "
+                 f"file{'s' if files != 1 else ''} ({remaining} remaining"
+                 + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
+                    else "")
+                 + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")
+                 + ").\n")
+    return "".join(lines)
+
+
+def _internal(result) -> None:
+    for msg in result.internal:
+        sys.stderr.write("urdf-lint: internal error (please report): "
+                         + "\n".join(_safe(line) for line in str(msg).split("\n")) + "\n")
+
+
+def _report(args, cfg, result, out, color_mode) -> None:
+    """The findings that remain, as ``check`` reports them (format, -o, baseline, -q)."""
+    from . import report
+    if cfg.baseline:
+        from .baseline import filter_baseline
+        result.findings = filter_baseline(cfg.baseline, result.findings)
+    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet)
+    if getattr(args, "output", None):
+        from .atomic import atomic_open
+        try:
+            with atomic_open(args.output) as f:
+                report.write(result, fmt, f, color=color_mode == "always", **options)
+        except OSError as e:
+            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
+    elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
+              and not args.statistics):
+        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
+                     **options)
+
+
+def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
+    from .addsuppress import add_suppressions
+    from .locations import display_path
+    from .pipeline import exit_code, run_check
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    if result.internal:
+        _internal(result)
+        return 2
+    n, files, _ = add_suppressions(result.findings, args.paths)
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    _internal(result)
+    if result.findings:
+        _report(args, cfg, result, out, color_mode)
+    sys.stderr.write(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
+                     f"file{'s' if len(files) != 1 else ''}"
+                     + "".join(f"\n  {_safe(display_path(f))}" for f in files) + "\n")
+    return exit_code(result, cfg.fail_on)
+
+
+def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
+    from .fixrun import run_fix
+    from .pipeline import exit_code
+    if render_dir:
+        raise UsageError("--fix/--diff/--add-suppressions cannot be combined with --render")
+    if affected_by is not None:
+        raise UsageError("--fix/--diff/--add-suppressions lint every model (a fix must be right "
+                         "for all of them); drop --changed-since")
+    if args.write_baseline:
+        raise UsageError("--fix/--diff cannot be combined with --write-baseline")
+    if args.add_suppressions:
+        return _add_suppressions(args, cfg, resolver, out, color_mode)
+    outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
+                      unsafe=args.unsafe_fixes, diff_only=args.diff)
+    _internal(outcome.result)
+    if args.diff:
+        sys.stdout.write(outcome.diff)
+        n = len(outcome.applied)
+        sys.stderr.write(f"Would fix {n} finding{'s' if n != 1 else ''} in "
+                         f"{len(outcome.changed_files)} file(s).\n")
+        if outcome.result.internal:
+            return 2
+        return 1 if outcome.diff else 0
+    _report(args, cfg, outcome.result, out, color_mode)
+    sys.stderr.write(_summary(outcome))   # also with -q: what --fix did to the sources
+    if args.exit_zero:
+        return 2 if outcome.result.internal else 0
+    code = exit_code(outcome.result, cfg.fail_on)
+    if code == 0 and getattr(args, "exit_non_zero_on_fix", False) and outcome.changed_files:
+        return 1
+    return code
