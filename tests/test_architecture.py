@@ -274,3 +274,30 @@ def test_settings_are_typed_and_readable_as_the_old_dict():
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.selected = ()
     assert dataclasses.replace(s, keep_model=True).keep_model
+
+
+def test_a_rule_may_choose_the_severity_of_one_problem(monkeypatch):
+    """check() may yield (element, message, severity); configured overrides still win."""
+    import types
+    from lxml import etree
+    from urdf_lint import registry
+    from urdf_lint.findings import Problem
+    from urdf_lint.model import Model
+    from urdf_lint.pipeline import _with_policy
+    from urdf_lint.policy import Policy
+    mod = types.ModuleType("urdf_lint.rules.ul998_fake")
+    mod.__doc__ = "Fake.\n\nWhy: x.\n\nHow to fix: y."
+    mod.CODE, mod.NAME, mod.SEVERITY, mod.FAIL, mod.PASS = "UL998", "fake", "error", "<r/>", "<r/>"
+    mod.check = lambda model, ctx: iter([(model.root, "lowered", "info"), (model.root, "plain")])
+    monkeypatch.setattr(registry, "_RULES", {**registry.load_rules(),
+                                             "UL998": registry.rule_from_module(mod)})
+    model = Model(entry="/r.urdf", args={}, root=etree.fromstring("<robot><link/></robot>"),
+                  origins={}, deps=[])
+    got = [(msg, sev) for _, _, msg, sev in
+           registry.run_rules("model", ["UL998"], {}, model, types.SimpleNamespace(), [])]
+    assert got == [("lowered", "info"), ("plain", "")]
+    probs = [Problem.at("UL998", m, ("/r.urdf", 1, 1), severity=s) for m, s in got]
+    assert Problem.from_record(probs[0].to_record()).severity == "info"
+    assert [p.severity for p in _with_policy(probs, "r", Policy())] == ["info", "error"]
+    assert [p.severity for p in _with_policy(probs, "r", Policy(severity={"UL998": "warning"}))] \
+        == ["warning", "warning"]

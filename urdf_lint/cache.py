@@ -22,7 +22,7 @@ from .vcs import repo_root
 
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 # bump when the stored record changes shape
-RECORD_FORMAT = 3
+RECORD_FORMAT = 4
 
 
 def _stat(path):

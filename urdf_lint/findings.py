@@ -30,16 +30,21 @@ class Problem:
     origin: Origin
     target: tuple[str, str] | None = None   # ("link" | "joint", name) it concerns, for snapshots
     name: str = ""                          # the rule's name (set by the run pipeline)
-    severity: str = ""                      # the effective severity (set by the run pipeline)
+    severity: str = ""                      # a rule's choice for this one problem ("" = the
+                                            # rule's default); effective once the pipeline ran
     models: tuple[str, ...] = ()            # display labels of the models it was found in
     fix: "Fix | None" = None                # a source fix (urdf_lint.fixes), if the rule has one
 
     @classmethod
-    def at(cls, code: str, message: str, loc, target=None, fix=None) -> "Problem":
-        """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple."""
+    def at(cls, code: str, message: str, loc, target=None, severity: str = "",
+           fix=None) -> "Problem":
+        """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
+        ``severity``: set only when the rule chose it for this one problem; ``fix``: a
+        :class:`urdf_lint.fixes.Fix` when the rule has one."""
         chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
         return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
-                   tuple(target) if target else None, fix=fix)
+                   tuple(target) if target else None,
+                   severity=severity if severity in SEVERITIES else "", fix=fix)
 
     # -- the origin, flat ----------------------------------------------------------------------
     @property
@@ -80,6 +85,8 @@ class Problem:
              "col": self.col, "chain": [list(c) for c in self.chain]}
         if self.target:
             d["target"] = list(self.target)
+        if self.severity:
+            d["severity"] = self.severity
         if self.fix is not None:
             d["fix"] = self.fix.to_record()
         return d
@@ -91,7 +98,7 @@ class Problem:
             from .fixes import Fix
             fix = Fix.from_record(d["fix"])
         return cls.at(d["code"], d["message"], (d["file"], d["line"], d["col"], d.get("chain", ())),
-                      d.get("target"), fix)
+                      d.get("target"), d.get("severity", ""), fix)
 
 
 def exit_status(severities, internal: bool, fail_on: str) -> int:

@@ -82,14 +82,15 @@ def _check_choices(code: str, rule, options: dict) -> None:
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
-    """Problems with their rule name, effective severity and model label."""
+    """Problems with their rule name, effective severity (the configured override of the
+    severity the rule chose for it, else of the rule's) and model label."""
     from .registry import load_rules
     rules = load_rules()
     out = []
     for p in problems:
         r = rules.get(p.code)
         name = r.name if r else p.code
-        sev = policy.severity_of(p.code, name, r.severity if r else "error")
+        sev = policy.severity_of(p.code, name, p.severity or (r.severity if r else "error"))
         out.append(p.replace(name=name, severity=sev, models=(label,)))
     return out
 
@@ -182,9 +183,9 @@ def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
     from .registry import run_rules
     run = RunView(models=list(out.models))
-    return [Problem.at(rule.code, msg, loc)
-            for rule, loc, msg in run_rules("run", settings.selected, settings.options, run,
-                                            RunContext({}), out.internal)]
+    return [Problem.at(rule.code, msg, loc, severity=sev)
+            for rule, loc, msg, sev in run_rules("run", settings.selected, settings.options, run,
+                                                 RunContext({}), out.internal)]
 
 
 def _suppress(merged: list[Problem], models, settings: LintSettings,

@@ -7,7 +7,7 @@ A rule module defines:
   ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
   report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
 * ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
-  for one expanded model, or ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
+  (or ``(element, message, severity)`` to raise or lower that one problem, and/or a fix request from ``urdf_lint.fixes``) for one model, or ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
   over every model of a run (e.g. UL106: the same robot name in two files);
 * or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
@@ -99,9 +99,12 @@ def load_rules() -> dict:
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
               with_fix: bool = False):
-    """Yield (rule, first item, message[, fix request with ``with_fix``]) for every selected rule of ``scope`` checking
-    ``subject`` (a Model, or a run), each with its options (defaults, then ``options[code]``) in
-    ``ctx.options``. A rule that crashes adds an internal error and the others still run."""
+    """Yield (rule, first item, message, severity or "") for every problem that a selected rule
+    of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
+    then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request (or
+    None) as a fifth item. After the message a rule's item may carry a severity (a str) and a
+    fix request (:mod:`urdf_lint.fixes`), in either order; None stands for neither. A rule that
+    crashes adds an internal error and the others still run."""
     import traceback
     rules = load_rules()
     for code in selected:
@@ -111,10 +114,16 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                if with_fix:   # (rule, item, message, fix request or None)
-                    yield rule, item[0], item[1], (item[2] if len(item) > 2 else None)
+                sev, req = "", None
+                for extra in item[2:]:
+                    if isinstance(extra, str):
+                        sev = extra
+                    elif extra is not None:
+                        req = extra
+                if with_fix:
+                    yield rule, item[0], item[1], sev, req
                 else:
-                    yield rule, item[0], item[1]
+                    yield rule, item[0], item[1], sev
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 

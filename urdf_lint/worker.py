@@ -71,7 +71,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
         from .render import render_model
         from .registry import load_rules
         rules = load_rules()
-        shown = [p.replace(severity=rules[p.code].severity if p.code in rules else "error")
+        shown = [p.replace(severity=p.severity or (rules[p.code].severity if p.code in rules
+                                                   else "error"))
                  for p in report.problems]
         report.snapshot = render_model(model, ctx, shown, settings.render_dir,
                                        settings.render_base, rrd=settings.render_rrd)
