@@ -40,7 +40,7 @@ class Problem:
            fix=None) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
         ``severity``: set only when the rule chose it for this one problem; ``fix``: a
-        :class:`urdf_lint.fixes.Fix`."""
+        :class:`urdf_lint.fixes.Fix` when the rule has one."""
         chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
         return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
                    tuple(target) if target else None,

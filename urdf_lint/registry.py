@@ -7,8 +7,9 @@ A rule module defines:
   ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
   report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
 * ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
-  (or ``(element, message, severity)`` to raise or lower that one problem) for one model, or
-  ``"run"`` for ``check(run, ctx)`` yielding ``(origin, message)``
+  (or ``(element, message, severity)`` to raise or lower that one problem, and/or a fix
+  request from ``urdf_lint.fixes`` after the message) for one model, or ``"run"`` for
+  ``check(run, ctx)`` yielding ``(origin, message)``
   over every model of a run (e.g. UL106: the same robot name in two files);
 * or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
