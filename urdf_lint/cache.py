@@ -48,7 +48,8 @@ class Cache:
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), settings.cache_key()], sort_keys=True)
+                           job.kind, bool(job.explicit), job.output, job.mesh_base,
+                           settings.cache_key()], sort_keys=True)
         return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> Path:

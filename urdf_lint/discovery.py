@@ -2,7 +2,10 @@
 and which package roots they may read from."""
 from __future__ import annotations
 
+import glob
 import os
+import re
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -55,10 +58,18 @@ def _kind(f: str) -> str:
     return "urdf" if f.endswith(".urdf") else "xacro"
 
 
-def discover(paths, cfg: "Config") -> list[LintJob]:
-    """Every candidate model file under the paths, with the arg sets to expand it with."""
-    configured = {m.path: m.arg_sets for m in cfg.models}
-    jobs, seen = [], set()
+@dataclass
+class Discovery:
+    """What discovery found: the jobs to lint, and the fragments (file -> the linted files
+    that include it) that are linted only through the models including them."""
+    jobs: list
+    fragments: dict
+    graph: "IncludeGraph"
+
+
+def _candidates(paths, cfg):
+    """(file, the path it was found under) for every .urdf/.xacro under the paths."""
+    seen = set()
     for p in paths:
         p = os.path.abspath(p)
         for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
@@ -67,15 +78,177 @@ def discover(paths, cfg: "Config") -> list[LintJob]:
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
             seen.add(f)
-            if f in configured:
-                for args in configured[f]:
-                    jobs.append(LintJob(f, dict(args), _kind(f), explicit=True))
-            else:
-                jobs.append(LintJob(f, {}, _kind(f), explicit=p == f))
-    # configured models inside the linted paths that the walk did not reach
-    for f, arg_sets in configured.items():
-        if f in seen or not any(inside(f, os.path.abspath(p)) for p in paths):
+            yield f, p
+
+
+def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> Discovery:
+    """Every candidate model under the paths, with the arg sets to expand it with.
+
+    ``fragments`` are the xacro files another linted file includes (read from the include
+    graph): the pipeline keeps one as a model of its own only when it is a complete robot by
+    itself (links, and none of the findings a fragment gives: undefined links or names);
+    otherwise it is linted only through the models including it. A file named explicitly or
+    listed in config is always a model."""
+    configured = {m.path: m for m in cfg.models}
+    found = list(_candidates(paths, cfg))
+    graph = include_graph([f for f, _ in found], resolver)
+    by = graph.included_by()
+    linted = {f for f, _ in found}
+    jobs, fragments = [], {}
+    discover_all = getattr(cfg, "discover", True)
+    for f, p in found:
+        if f in configured:
+            jobs.extend(_configured_jobs(configured[f]))
             continue
-        for args in arg_sets:
-            jobs.append(LintJob(f, dict(args), _kind(f), explicit=True))
-    return jobs
+        if not discover_all and p != f:
+            continue
+        includers = [g for g in by.get(f, ()) if g in linted]
+        if includers and p != f:
+            fragments[f] = includers
+        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f))
+    # configured models inside the linted paths that the walk did not reach
+    for f, spec in configured.items():
+        if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
+            continue
+        jobs.extend(_configured_jobs(spec))
+    return Discovery(jobs, fragments, graph)
+
+
+def _configured_jobs(spec) -> list:
+    f = spec.path
+    return [LintJob(f, dict(args), _kind(f), explicit=True,
+                    output=getattr(spec, "output", None), mesh_base=getattr(spec, "mesh_base", None))
+            for args in spec.arg_sets]
+
+
+def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:
+    """The jobs of :func:`discover_models`."""
+    return discover_models(paths, cfg, resolver).jobs
+
+
+# -- the include graph ---------------------------------------------------------------------------
+_XACRO_NS_HINT = "xacro"
+_FIND_RE = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
+
+
+@dataclass
+class IncludeGraph:
+    """Which xacro files include which, read from a quick parse of every candidate.
+
+    ``includes[f]`` are the files ``f`` names in an ``xacro:include`` (anywhere: inside
+    ``xacro:if``/``unless`` and macros too), resolved through the package resolver;
+    ``unresolved[f]`` counts the includes whose file name needs expansion to be known
+    (``${...}``, ``$(arg ...)``, an unknown package): for those the dependencies expansion
+    records are used instead. ``args[f]`` are the ``xacro:arg`` names ``f`` declares."""
+    includes: dict = field(default_factory=dict)
+    unresolved: dict = field(default_factory=dict)
+    args: dict = field(default_factory=dict)
+    only_includes: dict = field(default_factory=dict)
+    _by: dict | None = None
+
+    def included_by(self) -> dict:
+        """file -> the files that include it."""
+        if self._by is None:
+            by: dict = {}
+            for f, inc in self.includes.items():
+                for g in inc:
+                    if g != f:
+                        by.setdefault(g, []).append(f)
+            self._by = by
+        return self._by
+
+    def declared_args(self, f: str, _seen=None) -> set:
+        """The ``xacro:arg`` names of ``f`` and of everything it includes (transitively)."""
+        seen = _seen if _seen is not None else set()
+        if f in seen:
+            return set()
+        seen.add(f)
+        if f not in self.args:
+            self.add(f, None)
+        out = set(self.args.get(f, ()))
+        for g in self.includes.get(f, ()):
+            out |= self.declared_args(g, seen)
+        return out
+
+    def includers(self, f: str) -> list:
+        """Every file that includes ``f``, directly or through other files."""
+        by = self.included_by()
+        out, todo = [], [f]
+        seen = {f}
+        while todo:
+            for g in by.get(todo.pop(), ()):
+                if g not in seen:
+                    seen.add(g)
+                    out.append(g)
+                    todo.append(g)
+        return out
+
+    def add(self, f: str, resolver: "PackageResolver | None"):
+        self._by = None
+        self.includes[f], self.unresolved[f], self.args[f], self.only_includes[f] = \
+            _read_includes(f, resolver)
+        if resolver is not None:
+            self._resolver = resolver
+
+
+def _resolve_include(name: str, base: str, resolver) -> list | None:
+    """The files an include's ``filename`` names, or None when only expansion can tell."""
+    name = name.strip()
+    if resolver is not None:
+        def find(m):
+            return str(resolver.find(m.group(1)))
+        try:
+            name = _FIND_RE.sub(find, name)
+            if name.startswith("package://"):
+                pkg, _, rel = name[len("package://"):].partition("/")
+                name = os.path.join(str(resolver.find(pkg)), rel)
+        except Exception:  # noqa: BLE001 - unknown package: expansion reports it
+            return None
+    if "$" in name or not name:
+        return None
+    if name.startswith("file://"):
+        name = name[len("file://"):]
+    path = os.path.normpath(os.path.join(base, name))
+    if any(c in name for c in "*?["):
+        return sorted(os.path.realpath(p) for p in glob.glob(path))
+    return [os.path.realpath(path)]
+
+
+def _read_includes(f: str, resolver):
+    """(included files, number of unresolvable includes, declared arg names,
+    is the top level made only of includes (and args/properties)?)."""
+    from lxml import etree
+    try:
+        root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
+                                              load_dtd=False)).getroot()
+    except (etree.XMLSyntaxError, OSError):
+        return [], 0, [], False
+    inc, unresolved, args = [], 0, []
+    base = os.path.dirname(f)
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        q = etree.QName(el)
+        if not (q.namespace and _XACRO_NS_HINT in q.namespace):
+            continue
+        if q.localname == "include":
+            got = _resolve_include(el.get("filename", ""), base, resolver)
+            if got is None:
+                unresolved += 1
+            else:
+                inc.extend(got)
+        elif q.localname == "arg" and el.get("name"):
+            args.append(el.get("name"))
+    top = [el for el in root if isinstance(el.tag, str)]
+    only = bool(top) and any(etree.QName(el).localname == "include" for el in top) and all(
+        etree.QName(el).namespace and _XACRO_NS_HINT in etree.QName(el).namespace
+        and etree.QName(el).localname in ("include", "arg", "property") for el in top)
+    return list(dict.fromkeys(inc)), unresolved, args, only
+
+
+def include_graph(files, resolver) -> IncludeGraph:
+    g = IncludeGraph()
+    for f in files:
+        if f.endswith(".xacro"):
+            g.add(f, resolver)
+    return g

@@ -53,21 +53,25 @@ def target_of(el):
 
 
 def classify_xacro(path: str) -> Status | None:
-    """None for a candidate model, LIBRARY (only macro/property/arg/include at top level) or
-    NOT_ROBOT."""
+    """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
+    or NOT_ROBOT."""
     try:
         root = etree.parse(path, _quick_parser()).getroot()
     except (etree.XMLSyntaxError, OSError):
         return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":
         return Status.NOT_ROBOT
+    includes = False
     for el in root:
         if not isinstance(el.tag, str):
             continue
         q = etree.QName(el)
         if not (q.namespace and "xacro" in q.namespace and q.localname in XACRO_DIRECTIVES):
             return None
-    return Status.LIBRARY
+        includes = includes or q.localname == "include"
+    # a file made of includes may be a robot whose included files emit the links: expansion
+    # tells (no link after expansion: a library)
+    return None if includes else Status.LIBRARY
 
 
 def _quick_parser():

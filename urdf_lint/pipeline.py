@@ -11,11 +11,15 @@ import os
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from .discovery import discover
+from .discovery import discover_models
 from .findings import Problem, exit_status, merge
 from .jobs import LintJob, LintSettings, ModelReport, Status
 from .policy import Policy, code_matches
+from .rules import ul002_xacro_error, ul006_not_a_robot, ul103_missing_link
 from .rules import ul009_unused_suppression as unused_suppression
+
+# findings that usually mean "this file is a fragment: the model including it defines the rest"
+FRAGMENT_HINT_CODES = (ul002_xacro_error.CODE, ul006_not_a_robot.CODE, ul103_missing_link.CODE)
 
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
@@ -33,6 +37,7 @@ class CheckResult:
     skipped: list = field(default_factory=list)      # libraries etc.
     internal: list = field(default_factory=list)     # internal errors (exit 2)
     unused_files: list = field(default_factory=list)
+    fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
 
 
 @dataclass
@@ -90,7 +95,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     ``in_process`` lints in this process, without workers and their limits (trusted input
     only: tests and benchmarks)."""
     policy = Policy.from_config(cfg)
-    jobs = discover(paths, cfg)
+    found = discover_models(paths, cfg, resolver)
+    jobs = found.jobs
     settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
     if render_dir:
         os.makedirs(render_dir, exist_ok=True)
@@ -98,7 +104,10 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
                                        render_rrd=render_rrd, render_base=os.getcwd())
     results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
     out = CheckResult(internal=internal)
-    out.models, out.skipped = _split_models(results)
+    out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
+                                            found.fragments)
+    out.fragments = dict(found.fragments)
+    _hint_fragments(out.models, found.graph)
 
     if affected_by is not None:
         from .changes import affected
@@ -145,21 +154,53 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
     return results, internal
 
 
-def _split_models(results: list[ModelReport]):
-    """(models, skipped): a candidate that failed on its own but is included by a model is a
-    library, and so are macro-only files and XML that is not a robot."""
-    used = set()
+def _split_models(results: list[ModelReport], explicit: set = frozenset(),
+                  fragments: dict | None = None):
+    """(models, skipped): macro-only files and XML that is not a robot are skipped. A file
+    other files include (``fragments``, from the include graph, or a file a model's expansion
+    read, for includes only expansion resolves such as ``${prefix}.xacro``) is kept as a model
+    of its own only when it is a complete robot by itself; otherwise it is a fragment, linted
+    through the models that include it. A file named explicitly is always a model."""
+    used = set(fragments or ())
     for r in results:
         if r.status is Status.MODEL:
-            used.update(r.deps[1:])
+            used.update(d for d in r.deps[1:] if d != r.entry)
     models, skipped = [], []
     for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
-        if r.status in (Status.LIBRARY, Status.NOT_ROBOT) or (
-                r.status is Status.FAILED and r.entry in used and not r.args):
+        if r.status in (Status.LIBRARY, Status.NOT_ROBOT):
+            skipped.append(r)
+        elif r.entry in used and not r.args and r.entry not in explicit \
+                and not _complete_robot(r):
+            r.status = Status.FRAGMENT
             skipped.append(r)
         else:
             models.append(r)
     return models, skipped
+
+
+def _complete_robot(r: ModelReport) -> bool:
+    """Does an included file also stand alone as a robot (links, no undefined link or name)?"""
+    return r.status is Status.MODEL and r.links > 0 and not any(
+        p.code in FRAGMENT_HINT_CODES for p in r.problems)
+
+
+def _hint_fragments(models, graph) -> None:
+    """A model whose entry other files include (a fragment linted on its own, because it was
+    named or configured): say which model to lint instead where a finding suggests it."""
+    from .locations import display_path
+    for r in models:
+        if not r.entry.endswith(".xacro"):
+            continue
+        by = graph.includers(r.entry)
+        if not by:
+            continue
+        top = [f for f in by if not graph.included_by().get(f)] or by
+        names = ", ".join(display_path(f) for f in top[:3]) + (" ..." if len(top) > 3 else "")
+        hint = (f" (this file is included by {names}; lint {display_path(top[0])} instead, "
+                "or list it under models)")
+        r.problems = [p.replace(message=p.message + hint)
+                      if p.code in FRAGMENT_HINT_CODES and p.file == r.entry else p
+                      for p in r.problems]
 
 
 def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
