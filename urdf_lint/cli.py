@@ -146,6 +146,37 @@ def _load_cfg(args, paths):
     return cfg
 
 
+def _through_models(args, cfg):
+    """``check FILE`` / ``render FILE`` on fragments or macro libraries: (the repository root
+    to lint, the files whose models to report), or None when every path is a model or a folder.
+    The models that include such a file are linted instead of the file on its own."""
+    from .discovery import build_resolver, discover_models, repository_root
+    from .jobs import Status
+    from .lint import classify_xacro
+    files = [os.path.realpath(p) for p in args.paths]
+    if not files or not all(os.path.isfile(f) for f in files):
+        return None
+    cand = [f for f in files if f.endswith(".xacro") and not any(
+        m.path == f for m in cfg.models)]
+    if not cand:
+        return None
+    root = repository_root(args.paths)
+    resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
+    graph = discover_models([root], cfg, resolver).graph
+    redirect = [f for f in cand if graph.includers(f) or classify_xacro(f) is Status.LIBRARY]
+    if not redirect:
+        return None
+    from .locations import display_path
+    for f in redirect:
+        by = graph.includers(f)
+        if by:
+            sys.stderr.write(f"note: {display_path(f)} is included by "
+                             f"{', '.join(display_path(g) for g in by[:5])}"
+                             f"{' ...' if len(by) > 5 else ''}: linting the models that "
+                             "include it\n")
+    return root, set(files)
+
+
 def cmd_check(args) -> int:
     from .discovery import build_resolver, start_dir
     from .pipeline import exit_code, run_check
@@ -154,12 +185,16 @@ def cmd_check(args) -> int:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
+    affected_by = None
+    if getattr(args, "files", None) is None and not args.changed_since:
+        redirect = _through_models(args, cfg)
+        if redirect is not None:
+            args.paths, affected_by = [redirect[0]], redirect[1]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
         from .cache import Cache
         cache = Cache.for_paths(args.paths, cfg)
-    affected_by = None
     if args.changed_since:
         from .vcs import GitError, changed_files
         try:
@@ -191,15 +226,19 @@ def cmd_check(args) -> int:
         os.replace(args.output + ".tmp", args.output)
     elif not (args.quiet and not result.findings):
         report.write(result, fmt, sys.stdout, statistics=args.statistics)
-    for f in result.unused_files:
-        from .locations import display_path
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
+    _note_unused(result)
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
     if render_dir:
         _report_snapshots(result, render_dir)
     return exit_code(result, cfg.fail_on)
+
+
+def _note_unused(result):
+    from .locations import display_path
+    for f in result.unused_files:
+        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
 
 
 def _report_snapshots(result, out_dir):
@@ -303,9 +342,14 @@ def cmd_render(args) -> int:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
+    redirect = _through_models(args, cfg)
+    affected_by = None
+    if redirect is not None:
+        args.paths, affected_by = [redirect[0]], redirect[1]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     result = run_check(args.paths, cfg, resolver, jobs_n=args.jobs or cfg.jobs,
-                       render_dir=args.out, render_rrd=not args.no_rrd)
+                       render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
+    _note_unused(result)
     _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
@@ -315,7 +359,11 @@ def cmd_render(args) -> int:
                 print(display_path(snap[k]))
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {msg}\n")
-    return 2 if result.internal else 0
+    if result.internal:
+        return 2
+    # a requested model that could not be snapshotted is a failure, not a blank image
+    missed = [m for m in result.models if m.status != "model" or not (m.snapshot or {}).get("png")]
+    return 1 if missed else 0
 
 
 def cmd_diff(args) -> int:

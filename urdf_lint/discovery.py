@@ -28,6 +28,19 @@ def inside(f: str, p: str) -> bool:
     return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
+def repository_root(paths) -> str:
+    """The repository the paths belong to: git's work tree, else the working directory when
+    it holds the paths, else the folder of the first path."""
+    start = start_dir(paths) if paths else os.getcwd()
+    top = git_root(start)
+    if top:
+        return top
+    cwd = os.getcwd()
+    if all(inside(os.path.realpath(p), os.path.realpath(cwd)) for p in paths):
+        return cwd
+    return os.path.abspath(start)
+
+
 def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> PackageResolver:
     scan = [os.path.abspath(p) for p in paths]
     start = start_dir(paths) if paths else os.getcwd()

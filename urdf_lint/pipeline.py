@@ -179,8 +179,9 @@ def _split_models(results: list[ModelReport], explicit: set = frozenset(),
 
 
 def _complete_robot(r: ModelReport) -> bool:
-    """Does an included file also stand alone as a robot (links, no undefined link or name)?"""
-    return r.status is Status.MODEL and r.links > 0 and not any(
+    """Does an included file also stand alone as a robot (a named robot with links, no
+    undefined link or name)?"""
+    return r.status is Status.MODEL and r.links > 0 and bool(r.name) and not any(
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 

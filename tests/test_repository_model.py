@@ -1,0 +1,82 @@
+"""The repository model (issue 10): which files are robots (discovery by include graph),
+``check FILE`` on a fragment, deletions and renames, config entries, workspaces, generated
+outputs and the cache folder. Every case is a fixture repository in the shape of a real one."""
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import CORPUS, run_cli
+from repo_shapes import includes_only_repo
+
+
+def entries(p):
+    return sorted(m["entry"] for m in json.loads(p.stdout)["models"])
+
+
+def git(*args, cwd):
+    subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *args], cwd=cwd,
+                   check=True, capture_output=True)
+
+
+V3 = "v3_description/urdf/"
+
+
+def test_entry_made_only_of_includes_is_the_one_model(tmp_path):
+    includes_only_repo(tmp_path)
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert p.returncode == 0, p.stdout + p.stderr
+    # the fragments (including the conditional-only tool.xacro) are never linted alone
+    assert entries(p) == [V3 + "robot_v3.xacro"]
+    assert json.loads(p.stdout)["findings"] == []
+    # the fragments really are read through the model: break the conditional one
+    tool = tmp_path / V3 / "tool.xacro"
+    tool.write_text(tool.read_text().replace('parent link="arm"', 'parent link="arm2"'))
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 1 and f"{V3}tool.xacro:" in p.stdout and "UL103" in p.stdout, p.stdout
+
+
+def test_check_file_on_fragment_lints_including_models(tmp_path):
+    includes_only_repo(tmp_path)
+    (tmp_path / V3 / "arm.xacro").write_text(
+        (tmp_path / V3 / "arm.xacro").read_text().replace('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>'))
+    p = run_cli("check", V3 + "arm.xacro", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert entries(p) == [V3 + "robot_v3.xacro"], p.stdout + p.stderr
+    assert "is included by v3_description/urdf/robot_v3.xacro" in p.stderr
+    codes = {f["code"] for f in json.loads(p.stdout)["findings"]}
+    assert codes == {"UL307"} and p.returncode == 1
+    # a macro library no model includes: one clear note, no "robot has no <link>"
+    (tmp_path / "lib.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                        '<xacro:macro name="m"/></robot>\n')
+    p = run_cli("check", "lib.xacro", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 0 and "UL006" not in p.stdout and "UL201" not in p.stdout
+    assert p.stderr.count("lib.xacro") == 1 and "not used by any model" in p.stderr
+
+
+def test_fragment_listed_as_model_gets_a_hint(tmp_path):
+    includes_only_repo(tmp_path)
+    (tmp_path / "urdf-lint.toml").write_text(f'[[models]]\npath = "{V3}tool.xacro"\n')
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 1
+    line = next(t for t in p.stdout.splitlines() if "UL002" in t)
+    assert "deg_to_rad" in line and "included by v3_description/urdf/robot_v3.xacro" in line
+    assert "lint v3_description/urdf/robot_v3.xacro instead, or list it under models" in line
+
+
+def test_corpus_fragments_and_include_only_entries(corpus, tmp_path):
+    p = run_cli("check", corpus / "robot_properties_fingers", "--no-cache", "--format", "json",
+                "--isolated", cwd=tmp_path)
+    got = {e.split("robot_properties_fingers/")[-1] for e in entries(p)}
+    # entries of the MANIFEST that only include other files are linted
+    for e in ("trifinger_with_stage.urdf.xacro", "edu/trifingeredu_with_stage.urdf.xacro",
+              "pro/trifingerpro_with_stage.urdf.xacro"):
+        assert "xacro_files/" + e in got
+    # included robots that stand alone stay entries; the MANIFEST's fragments do not
+    assert "xacro_files/trifinger.urdf.xacro" in got and "xacro_files/stage.urdf.xacro" in got
+    assert "xacro_files/trifinger_stage.urdf.xacro" not in got
+    assert "xacro_files/edu/trifingeredu_stage.urdf.xacro" not in got
+    assert not any("base_link' is not defined" in f["message"] and "xacro_files/" in f["file"]
+                   for f in json.loads(p.stdout)["findings"])
