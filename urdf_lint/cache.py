@@ -21,8 +21,8 @@ from .jobs import LintJob, LintSettings, ModelReport
 from .vcs import repo_root
 
 _GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
-# bump when the stored record changes shape
-RECORD_FORMAT = 2
+# bump when the stored record changes shape (3: missing YAML files recorded as missing)
+RECORD_FORMAT = 3
 
 
 def _stat(path):

@@ -236,6 +236,10 @@ def cmd_check(args) -> int:
 
 def _note_unused(result):
     from .locations import display_path
+    for f in result.gone:
+        if f.endswith((".xacro", ".urdf")):
+            sys.stderr.write(f"note: {display_path(f)} was deleted and no remaining model "
+                             "reads it; if it was a model, it is gone\n")
     for f in result.unused_files:
         if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
             sys.stderr.write(f"note: {display_path(f)} is not used by any model\n")
@@ -268,7 +272,14 @@ def cmd_hook(args) -> int:
                             changed_since=None, baseline=None, write_baseline=None, timeout=None,
                             quiet=True, isolated=False, **vars(args))
     ns.command = "check"
-    if not args.files:
+    # pre-commit passes only files that exist: add what the commit deletes or renames away
+    from .vcs import GitError, staged_removals
+    try:
+        removed = staged_removals(os.getcwd())
+    except (GitError, OSError):
+        removed = set()
+    ns.files = list(args.files) + sorted(removed)
+    if not ns.files:
         return 0
     return cmd_check(ns)
 

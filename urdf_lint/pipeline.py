@@ -38,6 +38,7 @@ class CheckResult:
     internal: list = field(default_factory=list)     # internal errors (exit 2)
     unused_files: list = field(default_factory=list)
     fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
+    gone: list = field(default_factory=list)         # deleted files no model reads any more
 
 
 @dataclass
@@ -112,6 +113,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     if affected_by is not None:
         from .changes import affected
         out.models, out.unused_files = affected(out.models, affected_by)
+        # a deleted file no model reads any more: a removed model (or an unused file) is gone
+        out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
     found = []
     for r in out.models:

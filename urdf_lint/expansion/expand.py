@@ -427,7 +427,8 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
             res.error = classify_error(e, st)
-            inner = getattr(e, "exc", None)
+            from .errors import wrapped
+            inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
             if isinstance(inner, OSError) and getattr(inner, "filename", None):
                 res.missing.append(os.path.abspath(str(inner.filename)))
         res.deps = [path] + [d for d in st.deps if d != path]
