@@ -80,3 +80,30 @@ def test_corpus_fragments_and_include_only_entries(corpus, tmp_path):
     assert "xacro_files/edu/trifingeredu_stage.urdf.xacro" not in got
     assert not any("base_link' is not defined" in f["message"] and "xacro_files/" in f["file"]
                    for f in json.loads(p.stdout)["findings"])
+
+
+def test_config_states_entries_exactly(tmp_path):
+    includes_only_repo(tmp_path)
+    (tmp_path / "urdf-lint.toml").write_text(f'[[models]]\npath = "{V3}robot_v3.xacr"\n')
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 2 and p.stdout == ""
+    assert f"model '{V3}robot_v3.xacr' does not exist (did you mean '{V3}robot_v3.xacro'?)" in p.stderr
+    (tmp_path / "urdf-lint.toml").write_text(
+        f'[[models]]\npath = "{V3}robot_v3.xacro"\nargs = [{{with_tol = "false"}}]\n')
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 2
+    assert "arg 'with_tol' is not declared by any xacro:arg" in p.stderr
+    assert "(did you mean 'with_tool'?)" in p.stderr
+    # discover = false: only the listed variants, each once
+    (tmp_path / "other.urdf").write_text("<robot name='x'><link name='a'/></robot>\n")
+    (tmp_path / "urdf-lint.toml").write_text(
+        f'discover = false\n[[models]]\npath = "{V3}robot_v3.xacro"\n'
+        'args = [{with_tool = "false"}, {with_tool = "true"}]\n')
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
+    got = [(m["entry"], m["args"]) for m in json.loads(p.stdout)["models"]]
+    assert got == [(V3 + "robot_v3.xacro", {"with_tool": "false"}),
+                   (V3 + "robot_v3.xacro", {"with_tool": "true"})], p.stdout
+    assert p.returncode == 0
+    (tmp_path / "urdf-lint.toml").write_text('discover = "no"\n')
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    assert p.returncode == 2 and "'discover' must be true or false" in p.stderr

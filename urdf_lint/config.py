@@ -26,7 +26,7 @@ class ConfigError(Exception):
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on",
     "package-paths", "models", "exclude", "env-allow", "timeout", "memory-mb", "rule-options",
-    "jobs", "cache-dir", "format",
+    "jobs", "cache-dir", "format", "discover",
 }
 
 
@@ -34,6 +34,8 @@ KNOWN_KEYS = {
 class ModelSpec:
     path: str                       # absolute
     arg_sets: list                  # list of dicts
+    output: str | None = None       # absolute: the generated URDF written from this xacro
+    mesh_base: str | None = None    # absolute: where relative mesh paths start
 
 
 @dataclass
@@ -56,6 +58,7 @@ class Config:
     jobs: int | None = None
     cache_dir: str | None = None
     format: str | None = None
+    discover: bool = True           # false: lint only the configured models
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
@@ -146,18 +149,43 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
     for m in data.get("models", []):
         if not isinstance(m, dict) or "path" not in m:
             raise ConfigError(f"{path}: each [[tool.urdf-lint.models]] needs a 'path'")
-        extra = set(m) - {"path", "args"}
+        extra = set(m) - {"path", "args", "output", "mesh-base"}
         if extra:
             raise ConfigError(f"{path}: unknown key(s) in a models entry: {', '.join(sorted(extra))}")
         args = m.get("args", [{}])
         if isinstance(args, dict):
             args = [args]
         arg_sets = [{k: str(v) for k, v in a.items()} for a in args]
-        cfg.models.append(ModelSpec(path=str((path.parent / m["path"]).resolve()),
-                                    arg_sets=arg_sets))
+        spec = ModelSpec(path=str((path.parent / m["path"]).resolve()), arg_sets=arg_sets)
+        for key in ("output", "mesh-base"):
+            if key in m:
+                if not isinstance(m[key], str) or not m[key]:
+                    raise ConfigError(f"{path}: '{key}' of model {m['path']} must be a path")
+                setattr(spec, key.replace("-", "_"), str((path.parent / m[key]).resolve()))
+        if not os.path.isfile(spec.path):
+            raise ConfigError(f"{path}: model {m['path']!r} does not exist"
+                              f"{_did_you_mean_file(m['path'], path.parent)}")
+        cfg.models.append(spec)
+    discover = data.get("discover", True)
+    if not isinstance(discover, bool):
+        raise ConfigError(f"{path}: 'discover' must be true or false")
+    cfg.discover = discover
     if known_codes is not None:
         validate_codes(cfg, known_codes, str(path))
     return cfg
+
+
+def _did_you_mean_file(rel: str, root: Path) -> str:
+    """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
+    import difflib
+    from .packages import iter_files
+    files = [os.path.relpath(f, root) for f in iter_files(root, suffixes=(".xacro", ".urdf"))]
+    best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
+        os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
+    if not best:
+        return ""
+    hit = best[0] if best[0] in files else next(f for f in files if os.path.basename(f) == best[0])
+    return f" (did you mean {hit!r}?)"
 
 
 def validate_codes(cfg: Config, known: dict, where: str = "command line"):

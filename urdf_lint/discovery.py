@@ -105,6 +105,8 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     configured = {m.path: m for m in cfg.models}
     found = list(_candidates(paths, cfg))
     graph = include_graph([f for f, _ in found], resolver)
+    for spec in cfg.models:
+        _check_args(spec, graph, cfg)
     by = graph.included_by()
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
@@ -127,6 +129,27 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     return Discovery(jobs, fragments, graph)
 
 
+def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
+    """An arg a configured model sets that no ``xacro:arg`` of the file (or its includes)
+    declares, and that no ``$(arg NAME)`` there reads, is a config error: xacro would ignore
+    it and lint the default variant again."""
+    from .config import ConfigError
+    if not spec.path.endswith(".xacro"):
+        return
+    declared = graph.declared_args(spec.path)
+    if graph.unresolved_below(spec.path):
+        return   # an include only expansion resolves may declare it
+    for args in spec.arg_sets:
+        for name in sorted(set(args) - declared):
+            import difflib
+            close = difflib.get_close_matches(name, sorted(declared), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            known = ", ".join(sorted(declared)) or "none"
+            raise ConfigError(f"{cfg.path}: model {os.path.relpath(spec.path, cfg.root)}: arg "
+                              f"{name!r} is not declared by any xacro:arg (nor read by $(arg ...)) in the "
+                              f"file or its includes{hint} (declared: {known})")
+
+
 def _configured_jobs(spec) -> list:
     f = spec.path
     return [LintJob(f, dict(args), _kind(f), explicit=True,
@@ -141,6 +164,7 @@ def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) ->
 
 # -- the include graph ---------------------------------------------------------------------------
 _XACRO_NS_HINT = "xacro"
+_ARG_RE = re.compile(r"\$\(\s*arg\s+([^)\s]+)\s*\)")
 _FIND_RE = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
 
 
@@ -158,6 +182,7 @@ class IncludeGraph:
     args: dict = field(default_factory=dict)
     only_includes: dict = field(default_factory=dict)
     _by: dict | None = None
+    _resolver: object = None
 
     def included_by(self) -> dict:
         """file -> the files that include it."""
@@ -177,11 +202,24 @@ class IncludeGraph:
             return set()
         seen.add(f)
         if f not in self.args:
-            self.add(f, None)
+            self.add(f, self._resolver)
         out = set(self.args.get(f, ()))
         for g in self.includes.get(f, ()):
             out |= self.declared_args(g, seen)
         return out
+
+    def unresolved_below(self, f: str) -> bool:
+        """Does ``f`` or a file it includes have an include only expansion can resolve?"""
+        todo, seen = [f], set()
+        while todo:
+            g = todo.pop()
+            if g in seen:
+                continue
+            seen.add(g)
+            if self.unresolved.get(g):
+                return True
+            todo.extend(self.includes.get(g, ()))
+        return False
 
     def includers(self, f: str) -> list:
         """Every file that includes ``f``, directly or through other files."""
@@ -200,8 +238,6 @@ class IncludeGraph:
         self._by = None
         self.includes[f], self.unresolved[f], self.args[f], self.only_includes[f] = \
             _read_includes(f, resolver)
-        if resolver is not None:
-            self._resolver = resolver
 
 
 def _resolve_include(name: str, base: str, resolver) -> list | None:
@@ -252,6 +288,12 @@ def _read_includes(f: str, resolver):
                 inc.extend(got)
         elif q.localname == "arg" and el.get("name"):
             args.append(el.get("name"))
+    # an arg used as $(arg NAME) without a declaration is set on xacro's command line
+    for el in root.iter():
+        if isinstance(el.tag, str):
+            for v in [*el.attrib.values(), el.text or ""]:
+                if "$(arg" in v:
+                    args.extend(_ARG_RE.findall(v))
     top = [el for el in root if isinstance(el.tag, str)]
     only = bool(top) and any(etree.QName(el).localname == "include" for el in top) and all(
         etree.QName(el).namespace and _XACRO_NS_HINT in etree.QName(el).namespace
@@ -260,7 +302,7 @@ def _read_includes(f: str, resolver):
 
 
 def include_graph(files, resolver) -> IncludeGraph:
-    g = IncludeGraph()
+    g = IncludeGraph(_resolver=resolver)
     for f in files:
         if f.endswith(".xacro"):
             g.add(f, resolver)

@@ -101,6 +101,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             return None
         assert exp.xml is not None  # expand_file sets xml or error
         model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+        # meshes written relative to the generated URDF (or a configured folder)
+        model.mesh_base = job.mesh_base or (os.path.dirname(job.output) if job.output else None)
         if not model.top_links() and not job.explicit:
             out.status = Status.LIBRARY
             out.problems = []
