@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 from conftest import CORPUS, run_cli
-from repo_shapes import includes_only_repo
+from repo_shapes import colcon_workspace, generated_output_repo, includes_only_repo, write
 
 
 def entries(p):
@@ -107,3 +107,56 @@ def test_config_states_entries_exactly(tmp_path):
     (tmp_path / "urdf-lint.toml").write_text('discover = "no"\n')
     p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
     assert p.returncode == 2 and "'discover' must be true or false" in p.stderr
+
+
+def test_colcon_workspace_of_package_repositories(tmp_path):
+    ws = colcon_workspace(tmp_path / "ws")
+    for d in ("robot_description", "robot_meshes", "gripper_description"):
+        git("init", "-q", cwd=ws / "src" / d)
+    # from inside one package repository: the siblings are found, the ignored copy is not
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=ws / "src/robot_description")
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout + p.stderr
+    assert entries(p) == ["urdf/robot.urdf.xacro"]
+    p = run_cli("expand", "urdf/robot.urdf.xacro", cwd=ws / "src/robot_description")
+    assert p.returncode == 0 and 'name="finger_joint"' in p.stdout and "broken" not in p.stdout
+    # from the workspace root, outside git: one model, no finding
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=ws)
+    assert entries(p) == ["src/robot_description/urdf/robot.urdf.xacro"], p.stdout + p.stderr
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == []
+
+
+def test_install_layout_and_unknown_package_hint(tmp_path):
+    ws = colcon_workspace(tmp_path / "ws", install_meshes=True)
+    desc = ws / "src/robot_description"
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=desc)
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout + p.stderr
+    # share/robot_meshes without a package.xml: unknown, with the folder to pass
+    (ws / "install/share/robot_meshes/package.xml").unlink()
+    p = run_cli("check", ".", "--no-cache", cwd=desc)
+    assert p.returncode == 1 and "unknown package 'robot_meshes'" in p.stdout
+    assert f"pass --package-path robot_meshes={ws / 'install/share/robot_meshes'}" in p.stdout
+    p = run_cli("check", ".", "--no-cache", "--package-path",
+                f"robot_meshes={ws / 'install/share/robot_meshes'}", cwd=desc)
+    assert p.returncode == 0, p.stdout
+
+
+def test_deleted_and_renamed_inputs_with_changed_since(tmp_path):
+    includes_only_repo(tmp_path)
+    git("init", "-q", cwd=tmp_path)
+    git("add", "-A", cwd=tmp_path)
+    git("commit", "-qm", "init", cwd=tmp_path)
+    git("mv", V3 + "head.xacro", V3 + "head2.xacro", cwd=tmp_path)
+    (tmp_path / "v3_description/meshes/arm.stl").unlink()
+    p = run_cli("check", ".", "--changed-since", "HEAD", "--format", "json", cwd=tmp_path)
+    # the model that included the old name (the new name, included by nothing, is linted too)
+    assert V3 + "robot_v3.xacro" in entries(p), p.stdout + p.stderr
+    assert any(f["code"] == "UL003" and f["file"] == V3 + "robot_v3.xacro"
+               and "head.xacro" in f["message"] for f in json.loads(p.stdout)["findings"])
+    git("reset", "-q", "--hard", cwd=tmp_path)
+    (tmp_path / "v3_description/meshes/arm.stl").unlink()
+    p = run_cli("check", ".", "--changed-since", "HEAD", cwd=tmp_path)
+    assert p.returncode == 1 and f"{V3}arm.xacro:" in p.stdout and "UL401" in p.stdout
+    git("reset", "-q", "--hard", cwd=tmp_path)
+    git("rm", "-q", V3 + "robot_v3.xacro", cwd=tmp_path)
+    p = run_cli("check", ".", "--changed-since", "HEAD", cwd=tmp_path)
+    assert p.returncode == 0 and f"{V3}robot_v3.xacro was deleted" in p.stderr, p.stderr

@@ -64,7 +64,20 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
         cwd = os.getcwd()
         if all(inside(os.path.abspath(p), cwd) for p in paths):
             extra_roots.append(cwd)
-    return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots)
+            scan.append(cwd)
+    # the enclosing colcon/catkin workspace (sibling package repositories, install space)
+    from .workspace import index, install_share_packages, workspace_roots
+    found: dict = {}
+    for ws in workspace_roots([*paths, start]):
+        extra_roots.append(ws)
+        for name, d in index(ws).items():
+            found.setdefault(name, d)
+    for d in dict.fromkeys(scan):
+        if os.path.isdir(d):
+            for name, pkg in install_share_packages(d).items():
+                found.setdefault(name, pkg)
+    return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots,
+                                 packages=found)
 
 
 def _kind(f: str) -> str:

@@ -25,11 +25,13 @@ _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 
 
 class PackageNotFound(Exception):
-    def __init__(self, name: str, searched: list[str]):
+    def __init__(self, name: str, searched: list[str], folder: str | None = None):
         self.name = name
         self.searched = searched
         where = "; ".join(searched) if searched else "nowhere (no package.xml found)"
-        super().__init__(f"unknown package '{name}' (searched: {where})")
+        hint = (f"; a folder named '{name}' exists: pass --package-path {name}={folder}"
+                if folder else "")
+        super().__init__(f"unknown package '{name}' (searched: {where}){hint}")
 
 
 class OutsideRoots(Exception):
@@ -61,6 +63,11 @@ def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[st
                 yield Path(dirpath, fn)
 
 
+def _colcon_ignored(folder: Path, top: Path) -> bool:
+    from .workspace import ignored
+    return ignored(folder, top)
+
+
 @dataclass
 class PackageResolver:
     explicit: dict[str, Path] = field(default_factory=dict)
@@ -71,7 +78,8 @@ class PackageResolver:
 
     @classmethod
     def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
-              use_environment: bool = True) -> "PackageResolver":
+              use_environment: bool = True, packages: dict | None = None) -> "PackageResolver":
+        """``packages``: name -> folder found elsewhere (a workspace index), after the scan."""
         res = cls(use_environment=use_environment)
         for name, d in (explicit or {}).items():
             res.explicit[name] = Path(d).resolve()
@@ -83,9 +91,13 @@ class PackageResolver:
             seen.add(d)
             res.scanned_dirs.append(str(d))
             for pxml in iter_files(d, names={"package.xml"}):
+                if _colcon_ignored(pxml.parent, d):
+                    continue
                 name = package_name(pxml)
                 if name and name not in res.scanned:
                     res.scanned[name] = pxml.parent.resolve()
+        for name, d in (packages or {}).items():
+            res.scanned.setdefault(name, Path(d).resolve())
         roots = list(res.explicit.values()) + list(res.scanned.values())
         roots += [Path(r).resolve() for r in extra_roots]
         res.roots = sorted(set(roots), key=str)
@@ -117,7 +129,9 @@ class PackageResolver:
             if found not in self.roots:
                 self.roots.append(found)
             return found
-        raise PackageNotFound(name, self.searched())
+        from .workspace import folder_named
+        raise PackageNotFound(name, self.searched(),
+                              folder_named(name, [str(r) for r in self.roots]))
 
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]

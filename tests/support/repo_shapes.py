@@ -97,3 +97,53 @@ def includes_only_repo(root: Path) -> Path:
             + '</robot>\n',
         f"{pkg}/meshes/arm.stl": stl_box(),
     })
+
+
+def colcon_workspace(ws: Path, install_meshes: bool = False) -> Path:
+    """ws/src/{robot_description, robot_meshes, gripper_description}, each its own package
+    (and, in tests, its own git repository); an ignored copy of gripper_description that must
+    not win. With ``install_meshes`` robot_meshes exists only as an install space
+    (ws/install/share/robot_meshes)."""
+    meshes_root = "install/share/robot_meshes" if install_meshes else "src/robot_meshes"
+    write(ws, {
+        "src/robot_description/package.xml": package_xml("robot_description"),
+        "src/robot_description/urdf/robot.urdf.xacro":
+            f'<?xml version="1.0"?>\n<robot name="wsbot" {XACRO_NS}>\n'
+            '  <xacro:include filename="$(find gripper_description)/urdf/gripper.xacro"/>\n'
+            '  <link name="base_link"/>\n'
+            + link("body", "package://robot_meshes/meshes/body.stl")
+            + '  <joint name="body_joint" type="fixed"><parent link="base_link"/>'
+            '<child link="body"/></joint>\n'
+            '  <xacro:gripper parent="body"/>\n</robot>\n',
+        f"{meshes_root}/package.xml": package_xml("robot_meshes"),
+        f"{meshes_root}/meshes/body.stl": stl_box(),
+        "src/gripper_description/package.xml": package_xml("gripper_description"),
+        "src/gripper_description/urdf/gripper.xacro":
+            f'<?xml version="1.0"?>\n<robot {XACRO_NS}>\n'
+            '  <xacro:macro name="gripper" params="parent">\n'
+            + link("finger") + joint("finger_joint", "${parent}", "finger") +
+            '  </xacro:macro>\n</robot>\n',
+        # an old copy, ignored by colcon: its broken macro must never be used
+        "src/attic/COLCON_IGNORE": "",
+        "src/attic/gripper_description/package.xml": package_xml("gripper_description"),
+        "src/attic/gripper_description/urdf/gripper.xacro":
+            f'<robot {XACRO_NS}><xacro:macro name="gripper" params="parent">'
+            '<joint name="broken"/></xacro:macro></robot>\n',
+    })
+    return ws
+
+
+def generated_output_repo(root: Path) -> Path:
+    """xacro/robot.xacro with the generated robot.urdf checked in one folder up, meshes
+    written relative to the URDF (./meshes/body.STL), and a header naming the xacro."""
+    return write(root, {
+        "gen_description/package.xml": package_xml("gen_description"),
+        "gen_description/xacro/robot.xacro":
+            f'<?xml version="1.0"?>\n<robot name="genbot" {XACRO_NS}>\n'
+            '  <xacro:property name="len" value="0.1"/>\n'
+            '  <link name="base_link"/>\n'
+            + link("body", "./meshes/body.STL") +
+            '  <joint name="body_joint" type="fixed"><parent link="base_link"/>'
+            '<child link="body"/><origin xyz="0 0 ${len}" rpy="0 0 0"/></joint>\n</robot>\n',
+        "gen_description/meshes/body.STL": stl_box(),
+    })
