@@ -160,3 +160,52 @@ def test_deleted_and_renamed_inputs_with_changed_since(tmp_path):
     git("rm", "-q", V3 + "robot_v3.xacro", cwd=tmp_path)
     p = run_cli("check", ".", "--changed-since", "HEAD", cwd=tmp_path)
     assert p.returncode == 0 and f"{V3}robot_v3.xacro was deleted" in p.stderr, p.stderr
+
+
+def test_generated_output_fresh_stale_and_meshes_relative_to_it(tmp_path):
+    generated_output_repo(tmp_path)
+    pkg = tmp_path / "gen_description"
+    (tmp_path / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "gen_description/xacro/robot.xacro"\n'
+        'output = "gen_description/robot.urdf"\n')
+    # not generated yet: one finding at the output, meshes resolve relative to it (no UL401)
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
+    found = json.loads(p.stdout)["findings"]
+    assert [(f["code"], f["file"]) for f in found] == [("UL010", "gen_description/robot.urdf")], found
+    assert "gen_description/xacro/robot.xacro" in found[0]["message"]
+    # generate writes it (exit 1, like a formatter that changed files), then is a no-op
+    p = run_cli("generate", cwd=tmp_path)
+    assert p.returncode == 1 and "regenerated gen_description/robot.urdf" in p.stdout, p.stderr
+    assert 'filename="./meshes/body.STL"' in (pkg / "robot.urdf").read_text()
+    assert run_cli("generate", cwd=tmp_path).returncode == 0
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
+    assert entries(p) == ["gen_description/xacro/robot.xacro"]
+    # without config: the header names the xacro; fresh, then stale after a xacro edit
+    (tmp_path / "urdf-lint.toml").unlink()
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
+    assert entries(p) == ["gen_description/xacro/robot.xacro"]
+    xacro = pkg / "xacro/robot.xacro"
+    xacro.write_text(xacro.read_text().replace('value="0.1"', 'value="0.25"'))
+    p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
+    line = next(i for i, t in enumerate((pkg / "robot.urdf").read_text().splitlines(), 1)
+                if 'xyz="0 0 0.1"' in t)
+    assert p.returncode == 1
+    assert f"gen_description/robot.urdf:{line}:5: UL010 generated file is stale (<origin> differs)" \
+        in p.stdout, p.stdout
+    p = run_cli("generate", "--check", cwd=tmp_path)
+    assert p.returncode == 1 and "would regenerate gen_description/robot.urdf" in p.stdout
+    assert run_cli("generate", cwd=tmp_path).returncode == 1
+    assert 'xyz="0 0 0.25"' in (pkg / "robot.urdf").read_text()
+    assert run_cli("check", ".", "--no-cache", cwd=tmp_path).returncode == 0
+
+
+def test_corpus_generated_outputs_are_fresh(corpus, tmp_path):
+    """robot_properties_fingers checks in upstream's own xacro output for every xacro file:
+    every pair is recognised from its header and found fresh."""
+    p = run_cli("check", corpus / "robot_properties_fingers", "--no-cache", "--format", "json",
+                "--isolated", "--select", "UL010", cwd=tmp_path)
+    assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
+    p = run_cli("generate", corpus / "robot_properties_fingers", "--check", cwd=tmp_path)
+    assert p.returncode == 0 and p.stdout == "", p.stdout + p.stderr

@@ -118,6 +118,13 @@ def build_parser():
     df.add_argument("--render", metavar="DIR", help="write before/after/difference PNGs with "
                     "identical framing and one .rrd holding both revisions per affected model")
     df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
+    g = sub.add_parser("generate", help="rewrite every generated URDF (the 'output' of a "
+                       "models entry, or a .urdf whose header names its xacro) that is stale")
+    g.add_argument("paths", nargs="*", default=["."])
+    g.add_argument("--check", action="store_true",
+                   help="only report stale outputs (exit 1), write nothing")
+    g.add_argument("--package-path", action="append", metavar="NAME=DIR")
+    g.add_argument("--config")
     cl = sub.add_parser("clean", help="remove the cache")
     cl.add_argument("paths", nargs="*", default=["."])
     return p
@@ -401,6 +408,47 @@ def cmd_diff(args) -> int:
     return review.exit_code(result, args.fail_on or "error")
 
 
+def cmd_generate(args) -> int:
+    """Regenerate stale outputs in place (atomically); exit 1 when a file was (or, with
+    --check, would be) rewritten or a xacro did not expand, like a formatter hook."""
+    from .config import DEFAULT_ENV_ALLOW
+    from .discovery import build_resolver, discover_models
+    from .expansion import expand_file
+    from .generated import header_source, stale_at, write_output
+    from .locations import display_path
+    for p in args.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
+    cfg = _load_cfg(args, args.paths)
+    resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    status = 0
+    for job in discover_models(args.paths, cfg, resolver).jobs:
+        if not job.output:
+            continue
+        named = header_source(job.output) if os.path.exists(job.output) else None
+        shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
+        res = expand_file(job.entry, job.args, resolver,
+                          env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
+                          display_name=shown)
+        if res.error is not None:
+            e = res.error
+            sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
+            status = 1
+            continue
+        if stale_at(job.output, res.xml) is None:
+            continue
+        status = 1
+        if named and res.xml:   # keep the header's own name for the source: no churn
+            head, rest = res.xml[:1024], res.xml[1024:]
+            res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
+        if args.check:
+            print(f"would regenerate {display_path(job.output)} from {display_path(job.entry)}")
+        else:
+            write_output(job.output, res.xml)
+            print(f"regenerated {display_path(job.output)} from {display_path(job.entry)}")
+    return status
+
+
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
@@ -410,7 +458,7 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "clean": cmd_clean}
+            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean}
 
 
 def main(argv=None) -> int:

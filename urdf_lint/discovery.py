@@ -86,11 +86,13 @@ def _kind(f: str) -> str:
 
 @dataclass
 class Discovery:
-    """What discovery found: the jobs to lint, and the fragments (file -> the linted files
-    that include it) that are linted only through the models including them."""
+    """What discovery found: the jobs to lint, the fragments (file -> the linted files that
+    include it) that are linted only through the models including them, and the generated
+    URDFs (checked against their xacro, not linted on their own)."""
     jobs: list
     fragments: dict
     graph: "IncludeGraph"
+    generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
 
 
 def _candidates(paths, cfg):
@@ -124,22 +126,45 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
     discover_all = getattr(cfg, "discover", True)
+    outputs = _detected_outputs(found, paths, configured)
+    generated = {o: x for x, o in outputs.items()}
+    generated.update({m.output: m.path for m in cfg.models if m.output})
     for f, p in found:
         if f in configured:
             jobs.extend(_configured_jobs(configured[f]))
             continue
+        if f in generated and p != f:
+            continue   # a generated output: checked against its xacro (UL010), not linted twice
         if not discover_all and p != f:
             continue
         includers = [g for g in by.get(f, ()) if g in linted]
         if includers and p != f:
             fragments[f] = includers
-        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f))
+        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f, output=outputs.get(f)))
     # configured models inside the linted paths that the walk did not reach
     for f, spec in configured.items():
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
         jobs.extend(_configured_jobs(spec))
-    return Discovery(jobs, fragments, graph)
+    return Discovery(jobs, fragments, graph, generated)
+
+
+def _detected_outputs(found, paths, configured) -> dict:
+    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed)."""
+    from .generated import find_source, header_source
+    xacros = [f for f, _ in found if f.endswith(".xacro")]
+    if not xacros:
+        return {}
+    root = os.path.realpath(repository_root(paths))
+    out: dict = {}
+    for f, _ in found:
+        if not f.endswith(".urdf"):
+            continue
+        named = header_source(f)
+        src = find_source(f, named, xacros, root) if named else None
+        if src and src not in out and not (src in configured and configured[src].output):
+            out[src] = f
+    return out
 
 
 def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
@@ -164,10 +189,12 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
 
 
 def _configured_jobs(spec) -> list:
+    """One job per arg set; the output is compared with the first arg set's expansion."""
     f = spec.path
     return [LintJob(f, dict(args), _kind(f), explicit=True,
-                    output=getattr(spec, "output", None), mesh_base=getattr(spec, "mesh_base", None))
-            for args in spec.arg_sets]
+                    output=spec.output if n == 0 else None, mesh_base=spec.mesh_base or (
+                        os.path.dirname(spec.output) if spec.output else None))
+            for n, args in enumerate(spec.arg_sets)]
 
 
 def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:

@@ -78,6 +78,23 @@ def _quick_parser():
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
+def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
+    """UL010 at the checked-in generated file when it differs from today's expansion; the
+    output becomes an input of the model (editing it re-lints the model)."""
+    from .generated import stale_at
+    from .locations import display_path
+    from .rules import ul010_stale_output
+    out.deps.append(job.output) if os.path.exists(job.output) else out.missing.append(job.output)
+    got = stale_at(job.output, xml)
+    if got is not None:
+        line, col, what = got
+        out.problems.append(Problem.at(
+            ul010_stale_output.CODE,
+            f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
+            "expands to today; regenerate it with 'urdf-lint generate'",
+            (job.output, line, col)))
+
+
 def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
     """The Model of the job, or None (``out`` then says why)."""
     from .model import model_from_xml, parse_urdf_bytes, Model
@@ -100,6 +117,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             out.status = Status.FAILED
             return None
         assert exp.xml is not None  # expand_file sets xml or error
+        if job.output:
+            _check_output(job, exp.xml, out)
         model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
         # meshes written relative to the generated URDF (or a configured folder)
         model.mesh_base = job.mesh_base or (os.path.dirname(job.output) if job.output else None)

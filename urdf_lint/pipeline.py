@@ -166,8 +166,8 @@ def _split_models(results: list[ModelReport], explicit: set = frozenset(),
     through the models that include it. A file named explicitly is always a model."""
     used = set(fragments or ())
     for r in results:
-        if r.status is Status.MODEL:
-            used.update(d for d in r.deps[1:] if d != r.entry)
+        if r.status is Status.MODEL:   # (a generated .urdf output is an input, not an include)
+            used.update(d for d in r.deps[1:] if d != r.entry and d.endswith(".xacro"))
     models, skipped = [], []
     for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
         if r.status in (Status.LIBRARY, Status.NOT_ROBOT):

@@ -140,10 +140,10 @@ def generated_output_repo(root: Path) -> Path:
         "gen_description/package.xml": package_xml("gen_description"),
         "gen_description/xacro/robot.xacro":
             f'<?xml version="1.0"?>\n<robot name="genbot" {XACRO_NS}>\n'
-            '  <xacro:property name="len" value="0.1"/>\n'
+            '  <xacro:property name="height" value="0.1"/>\n'
             '  <link name="base_link"/>\n'
             + link("body", "./meshes/body.STL") +
             '  <joint name="body_joint" type="fixed"><parent link="base_link"/>'
-            '<child link="body"/><origin xyz="0 0 ${len}" rpy="0 0 0"/></joint>\n</robot>\n',
+            '<child link="body"/><origin xyz="0 0 ${height}" rpy="0 0 0"/></joint>\n</robot>\n',
         "gen_description/meshes/body.STL": stl_box(),
     })
