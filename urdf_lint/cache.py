@@ -18,9 +18,9 @@ from . import __version__
 from .discovery import start_dir
 from .hashing import file_digest
 from .jobs import LintJob, LintSettings, ModelReport
-from .vcs import repo_root
+from .cachedir import ensure as ensure_cache_dir
+from .vcs import git_root
 
-_GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 # bump when the stored record changes shape (3: missing YAML files recorded as missing)
 RECORD_FORMAT = 3
 
@@ -37,6 +37,7 @@ class Cache:
     def __init__(self, directory: str):
         self.dir = str(directory)
         self._writes = 0
+        self._marked = False
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
@@ -44,7 +45,10 @@ class Cache:
             return cls(os.environ["URDF_LINT_CACHE_DIR"])
         if cfg.cache_dir:
             return cls(os.path.join(cfg.root, cfg.cache_dir))
-        return cls(os.path.join(repo_root(start_dir(paths)), ".urdf_lint_cache"))
+        # at git's work tree root; outside git under the working directory, never inside a
+        # linted folder that is not the working directory
+        top = git_root(start_dir(paths))
+        return cls(os.path.join(top or os.getcwd(), ".urdf_lint_cache"))
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
@@ -96,12 +100,9 @@ class Cache:
             pass
 
     def _ensure(self):
-        d = Path(self.dir)
-        if not d.is_dir():
-            d.mkdir(parents=True, exist_ok=True)
-            (d / ".gitignore").write_text(_GITIGNORE)
-            (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
-                                            "# urdf-lint cache\n")
+        if not self._marked:
+            ensure_cache_dir(self.dir)
+            self._marked = True
 
     def clear(self) -> str | None:
         if os.path.isdir(self.dir):

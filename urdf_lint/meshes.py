@@ -246,6 +246,8 @@ def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
     _memory[digest] = facts
     if cache_file is not None:
         try:
+            from .cachedir import ensure
+            ensure(str(Path(cache_dir)))   # the markers, whoever creates the folder first
             cache_file.parent.mkdir(parents=True, exist_ok=True)
             tmp = cache_file.with_suffix(".tmp%d" % os.getpid())
             tmp.write_text(json.dumps(facts))
