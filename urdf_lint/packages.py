@@ -64,7 +64,7 @@ def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[st
 
 
 def _colcon_ignored(folder: Path, top: Path) -> bool:
-    from .workspace import ignored
+    from .folders import ignored
     return ignored(folder, top)
 
 
@@ -129,9 +129,9 @@ class PackageResolver:
             if found not in self.roots:
                 self.roots.append(found)
             return found
-        from .workspace import folder_named
+        from .folders import folder_named
         raise PackageNotFound(name, self.searched(),
-                              folder_named(name, [str(r) for r in self.roots]))
+                              folder_named(name, [str(r) for r in self.roots], SKIP_DIRS))
 
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]

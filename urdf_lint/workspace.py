@@ -9,26 +9,14 @@ workspace folder is also a confinement root: files may be read from it.
 """
 from __future__ import annotations
 
-import functools
 import os
 from pathlib import Path
 
+from .folders import IGNORE_MARKERS, ignored  # noqa: F401 - ignored: part of this API
 from .packages import SKIP_DIRS, package_name
 
-IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 # how far below a workspace's src/ packages are looked for (src/repo/group/package)
 MAX_DEPTH = 4
-
-
-def ignored(folder, top) -> bool:
-    """Is ``folder`` (at or below ``top``) in a folder marked COLCON_IGNORE/CATKIN_IGNORE?"""
-    folder, top = Path(folder), Path(top)
-    for d in [folder, *folder.parents]:
-        if any((d / m).exists() for m in IGNORE_MARKERS):
-            return True
-        if d == top or len(d.parts) <= len(top.parts):
-            return False
-    return False
 
 
 def find_workspace(path: str) -> str | None:
@@ -124,35 +112,3 @@ def install_share_packages(top: str) -> dict[str, str]:
                 if name and name not in out:
                     out[name] = str(pxml.parent.resolve())
     return out
-
-
-def folder_named(name: str, tops, depth: int = 5) -> str | None:
-    """A folder called ``name`` below ``tops`` (breadth first), for the hint on an unknown
-    package: ``--package-path NAME=DIR``. Asked once per name and roots in a process."""
-    return _folder_named(name, tuple(tops), depth)
-
-
-@functools.lru_cache(maxsize=256)
-def _folder_named(name: str, tops: tuple, depth: int) -> str | None:
-    if not name or "/" in name or name in (".", ".."):
-        return None
-    level = [Path(t) for t in tops if t and os.path.isdir(t)]
-    seen = set()
-    for _ in range(depth):
-        nxt = []
-        for d in level:
-            try:
-                entries = sorted(os.scandir(d), key=lambda e: e.name)
-            except OSError:
-                continue
-            for e in entries:
-                if not e.is_dir(follow_symlinks=False) or e.name.startswith("."):
-                    continue
-                if e.name == name:
-                    return os.path.abspath(e.path)
-                if e.name in SKIP_DIRS - {"install"} or e.path in seen:
-                    continue
-                seen.add(e.path)
-                nxt.append(Path(e.path))
-        level = nxt
-    return None
