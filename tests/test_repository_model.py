@@ -180,12 +180,13 @@ def test_generated_output_fresh_stale_and_meshes_relative_to_it(tmp_path):
     assert run_cli("generate", cwd=tmp_path).returncode == 0
     p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
     assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
-    assert entries(p) == ["gen_description/xacro/robot.xacro"]
+    # the generated URDF is linted too (consumers read it): its meshes resolve next to it
+    assert entries(p) == ["gen_description/robot.urdf", "gen_description/xacro/robot.xacro"]
     # without config: the header names the xacro; fresh, then stale after a xacro edit
     (tmp_path / "urdf-lint.toml").unlink()
     p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=tmp_path)
     assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
-    assert entries(p) == ["gen_description/xacro/robot.xacro"]
+    assert entries(p) == ["gen_description/robot.urdf", "gen_description/xacro/robot.xacro"]
     xacro = pkg / "xacro/robot.xacro"
     xacro.write_text(xacro.read_text().replace('value="0.1"', 'value="0.25"'))
     p = run_cli("check", ".", "--no-cache", cwd=tmp_path)

@@ -88,7 +88,7 @@ def _kind(f: str) -> str:
 class Discovery:
     """What discovery found: the jobs to lint, the fragments (file -> the linted files that
     include it) that are linted only through the models including them, and the generated
-    URDFs (checked against their xacro, not linted on their own)."""
+    URDFs (checked against their xacro by UL010, and linted too: consumers read them)."""
     jobs: list
     fragments: dict
     graph: "IncludeGraph"
@@ -133,8 +133,6 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
         if f in configured:
             jobs.extend(_configured_jobs(configured[f]))
             continue
-        if f in generated and p != f:
-            continue   # a generated output: checked against its xacro (UL010), not linted twice
         if not discover_all and p != f:
             continue
         includers = [g for g in by.get(f, ()) if g in linted]

@@ -39,12 +39,14 @@ class CheckResult:
     unused_files: list = field(default_factory=list)
     fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
     gone: list = field(default_factory=list)         # deleted files no model reads any more
+    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
 
 
 @dataclass
 class RunView:
     """What a run-scope rule's ``check(run, ctx)`` sees: every linted model of the run."""
     models: list                                     # ModelReport
+    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
 
 
 class RunContext:
@@ -108,6 +110,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
                                             found.fragments)
     out.fragments = dict(found.fragments)
+    out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
 
     if affected_by is not None:
@@ -210,7 +213,7 @@ def _hint_fragments(models, graph) -> None:
 def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
     from .registry import run_rules
-    run = RunView(models=list(out.models))
+    run = RunView(models=list(out.models), generated=dict(out.generated))
     return [Problem.at(rule.code, msg, loc)
             for rule, loc, msg in run_rules("run", settings.selected, settings.options, run,
                                             RunContext({}), out.internal)]
