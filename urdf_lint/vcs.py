@@ -34,27 +34,27 @@ def repo_root(start: str) -> str:
     return git_root(start) or os.path.abspath(start)
 
 
-def _name_status(out: str) -> list[str]:
-    """Every path of ``git diff --name-status -z`` output: both sides of a rename or copy, so
-    a deleted or renamed-away file counts as changed too."""
+def _name_status(out: str):
+    """(status letter, paths) per entry of ``git diff --name-status -z`` output: a rename or
+    copy has both the old and the new path."""
     parts = out.split("\0")
-    names, i = [], 0
+    i = 0
     while i < len(parts):
         status = parts[i]
         if not status:
             i += 1
             continue
         n = 2 if status[0] in "RC" else 1
-        names.extend(parts[i + 1:i + 1 + n])
+        yield status[0], parts[i + 1:i + 1 + n]
         i += 1 + n
-    return names
 
 
 def changed_files(ref: str, cwd: str) -> set[str]:
     """Files changed since ``ref`` (committed, staged, unstaged and untracked), absolute;
     deleted files and the old names of renamed files included."""
     top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
-    names = _name_status(_git("diff", "--name-status", "-z", "-M", ref, cwd=cwd))
+    names = [p for _, paths in _name_status(_git("diff", "--name-status", "-z", "-M", ref,
+                                                 cwd=cwd)) for p in paths]
     names += _git("ls-files", "--others", "--exclude-standard", cwd=cwd).splitlines()
     return {_absolute(top, n) for n in names if n}
 
@@ -63,18 +63,8 @@ def staged_removals(cwd: str) -> set[str]:
     """Files the index deletes or renames away (pre-commit passes only files that exist)."""
     top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
     out = _git("diff", "--cached", "--name-status", "-z", "-M", cwd=cwd)
-    parts = out.split("\0")
-    gone, i = set(), 0
-    while i < len(parts):
-        status = parts[i]
-        if not status:
-            i += 1
-            continue
-        n = 2 if status[0] in "RC" else 1
-        if status[0] in "DR":
-            gone.add(_absolute(top, parts[i + 1]))
-        i += 1 + n
-    return gone
+    return {_absolute(top, paths[0]) for status, paths in _name_status(out)
+            if status in "DR" and paths}
 
 
 def _absolute(top: str, name: str) -> str:
