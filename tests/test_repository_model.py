@@ -229,3 +229,17 @@ def test_cache_folder_markers_and_place(tmp_path, monkeypatch):
     assert (tmp_path / "work/.urdf_lint_cache/CACHEDIR.TAG").is_file()
     assert (tmp_path / "work/.urdf_lint_cache/.gitignore").is_file()
     assert not (tmp_path / "work/robots/.urdf_lint_cache").exists()
+
+
+def test_render_fragment_renders_its_model_and_fails_without_snapshot(tmp_path):
+    pytest.importorskip("PIL")
+    repo = tmp_path / "repo"
+    includes_only_repo(repo)
+    out = tmp_path / "snap"
+    p = run_cli("render", V3 + "arm.xacro", "--out", out, "--no-rrd", cwd=repo)
+    assert p.returncode == 0, p.stderr
+    assert [f.name for f in out.glob("*.png")] == ["v3_description__urdf__robot_v3.png"]
+    # a requested model that cannot be snapshotted is a failure, not a blank image
+    (repo / V3 / "main.xacro").unlink()
+    p = run_cli("render", V3 + "robot_v3.xacro", "--out", tmp_path / "snap2", "--no-rrd", cwd=repo)
+    assert p.returncode == 1 and "no snapshot of v3_description/urdf/robot_v3.xacro" in p.stderr
