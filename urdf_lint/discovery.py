@@ -72,7 +72,8 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
         extra_roots.append(ws)
         for name, d in index(ws).items():
             found.setdefault(name, d)
-    for d in dict.fromkeys(scan):
+    # an install layout being linted (share/NAME/package.xml; the package scan skips install/)
+    for d in dict.fromkeys([root, *(os.path.abspath(p) for p in paths)]):
         if os.path.isdir(d):
             for name, pkg in install_share_packages(d).items():
                 found.setdefault(name, pkg)
@@ -109,7 +110,8 @@ def _candidates(paths, cfg):
             yield f, p
 
 
-def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> Discovery:
+def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = None,
+                    cache_dir: str | None = None) -> Discovery:
     """Every candidate model under the paths, with the arg sets to expand it with.
 
     ``fragments`` are the xacro files another linted file includes (read from the include
@@ -119,7 +121,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     listed in config is always a model."""
     configured = {m.path: m for m in cfg.models}
     found = list(_candidates(paths, cfg))
-    graph = include_graph([f for f, _ in found], resolver)
+    graph = include_graph([f for f, _ in found], resolver, cache_dir)
     for spec in cfg.models:
         _check_args(spec, graph, cfg)
     by = graph.included_by()
@@ -218,7 +220,6 @@ class IncludeGraph:
     includes: dict = field(default_factory=dict)
     unresolved: dict = field(default_factory=dict)
     args: dict = field(default_factory=dict)
-    only_includes: dict = field(default_factory=dict)
     _by: dict | None = None
     _resolver: object = None
 
@@ -274,8 +275,7 @@ class IncludeGraph:
 
     def add(self, f: str, resolver: "PackageResolver | None"):
         self._by = None
-        self.includes[f], self.unresolved[f], self.args[f], self.only_includes[f] = \
-            _read_includes(f, resolver)
+        self.includes[f], self.unresolved[f], self.args[f] = _read_includes(f, resolver)
 
 
 def _resolve_include(name: str, base: str, resolver) -> list | None:
@@ -302,14 +302,13 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
 
 
 def _read_includes(f: str, resolver):
-    """(included files, number of unresolvable includes, declared arg names,
-    is the top level made only of includes (and args/properties)?)."""
+    """(included files, number of unresolvable includes, declared or used arg names)."""
     from lxml import etree
     try:
         root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
                                               load_dtd=False)).getroot()
     except (etree.XMLSyntaxError, OSError):
-        return [], 0, [], False
+        return [], 0, []
     inc, unresolved, args = [], 0, []
     base = os.path.dirname(f)
     for el in root.iter():
@@ -332,16 +331,68 @@ def _read_includes(f: str, resolver):
             for v in [*el.attrib.values(), el.text or ""]:
                 if "$(arg" in v:
                     args.extend(_ARG_RE.findall(v))
-    top = [el for el in root if isinstance(el.tag, str)]
-    only = bool(top) and any(etree.QName(el).localname == "include" for el in top) and all(
-        etree.QName(el).namespace and _XACRO_NS_HINT in etree.QName(el).namespace
-        and etree.QName(el).localname in ("include", "arg", "property") for el in top)
-    return list(dict.fromkeys(inc)), unresolved, args, only
+    return list(dict.fromkeys(inc)), unresolved, list(dict.fromkeys(args))
 
 
-def include_graph(files, resolver) -> IncludeGraph:
+def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph:
+    """The include graph of ``files``; with ``cache_dir``, a file whose size and mtime are
+    unchanged since the last run (with the same package map) is not parsed again."""
     g = IncludeGraph(_resolver=resolver)
+    memo_file = _memo_path(cache_dir, resolver)
+    memo = _load_memo(memo_file)
+    fresh, changed = {}, False
     for f in files:
-        if f.endswith(".xacro"):
+        if not f.endswith(".xacro"):
+            continue
+        try:
+            st = os.stat(f)
+            stamp = [st.st_size, st.st_mtime_ns]
+        except OSError:
+            stamp = None
+        hit = memo.get(f)
+        if stamp is not None and hit and hit[0] == stamp:
+            g.includes[f], g.unresolved[f], g.args[f] = list(hit[1]), hit[2], list(hit[3])
+        else:
             g.add(f, resolver)
+            changed = True
+        fresh[f] = [stamp, g.includes[f], g.unresolved[f], g.args[f]]
+    if memo_file and (changed or set(fresh) != set(memo)):
+        _save_memo(memo_file, fresh)
     return g
+
+
+def _memo_path(cache_dir, resolver) -> str | None:
+    if not cache_dir:
+        return None
+    import hashlib
+    import json
+    pkgs = resolver.to_dict() if resolver is not None else {}
+    key = json.dumps([pkgs.get("explicit"), pkgs.get("scanned")], sort_keys=True)
+    return os.path.join(cache_dir, "graph",
+                        hashlib.blake2b(key.encode(), digest_size=10).hexdigest() + ".json")
+
+
+def _load_memo(path) -> dict:
+    if not path:
+        return {}
+    import json
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        return data if isinstance(data, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def _save_memo(path, data) -> None:
+    import json
+    from .cachedir import ensure
+    try:
+        ensure(os.path.dirname(os.path.dirname(path)))
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        tmp = f"{path}.tmp{os.getpid()}"
+        with open(tmp, "w", encoding="utf-8") as f:
+            json.dump(data, f)
+        os.replace(tmp, path)
+    except OSError:
+        pass

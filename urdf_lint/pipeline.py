@@ -98,7 +98,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     ``in_process`` lints in this process, without workers and their limits (trusted input
     only: tests and benchmarks)."""
     policy = Policy.from_config(cfg)
-    found = discover_models(paths, cfg, resolver)
+    found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
     jobs = found.jobs
     settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
     if render_dir:

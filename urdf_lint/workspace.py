@@ -9,6 +9,7 @@ workspace folder is also a confinement root: files may be read from it.
 """
 from __future__ import annotations
 
+import functools
 import os
 from pathlib import Path
 
@@ -33,6 +34,11 @@ def find_workspace(path: str) -> str | None:
         if src.is_dir() and (d == p or _inside(p, src)) and _has_package(src):
             return str(d)
     return None
+
+
+@functools.lru_cache(maxsize=1024)
+def _find_workspace_cached(d: str) -> str | None:
+    return find_workspace(d)
 
 
 def _inside(p: Path, top: Path) -> bool:
@@ -93,8 +99,10 @@ def workspace_roots(paths) -> list[str]:
     """The workspace folders around the linted paths: confinement roots as well as places
     packages are found."""
     out: list[str] = []
-    for p in paths or ["."]:
-        ws = find_workspace(p)
+    dirs = {os.path.abspath(p if os.path.isdir(p) else os.path.dirname(os.path.abspath(p)))
+            for p in paths or ["."]}
+    for p in sorted(dirs):
+        ws = _find_workspace_cached(p)
         if ws and ws not in out:
             out.append(os.path.realpath(ws))
     return out
