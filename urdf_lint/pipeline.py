@@ -119,6 +119,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         # a deleted file no model reads any more: a removed model (or an unused file) is gone
         out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
+    if render_dir:
+        _drop_snapshots([r for r in results if r not in out.models])
     found = []
     for r in out.models:
         found.extend(_with_policy(r.problems, r.label, policy))
@@ -189,6 +191,20 @@ def _complete_robot(r: ModelReport) -> bool:
     undefined link or name)?"""
     return r.status is Status.MODEL and r.links > 0 and bool(r.name) and not any(
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
+
+
+def _drop_snapshots(reports) -> None:
+    """Remove the snapshots the workers wrote for files that turned out not to be reported
+    models (fragments, libraries, models a changed file does not affect)."""
+    for r in reports:
+        for k in ("png", "rrd"):
+            f = (r.snapshot or {}).get(k)
+            if f:
+                try:
+                    os.remove(f)
+                except OSError:
+                    pass
+        r.snapshot = None
 
 
 def _hint_fragments(models, graph) -> None:
