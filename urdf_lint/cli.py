@@ -364,11 +364,11 @@ def _through_models(args, cfg):
     from .discovery import build_resolver, discover_models, repository_root
     from .jobs import Status
     from .lint import classify_xacro
-    files = [os.path.realpath(p) for p in args.paths]
-    if not files or not all(os.path.isfile(f) for f in files):
+    if not args.paths or not all(os.path.isfile(p) for p in args.paths):
         return None
-    cand = [f for f in files if f.endswith(".xacro") and not any(
-        m.path == f for m in cfg.models)]
+    files = [os.path.realpath(p) for p in args.paths]
+    configured = {m.path for m in cfg.models}
+    cand = [f for f in files if f.endswith(".xacro") and f not in configured]
     if not cand:
         return None
     root = repository_root(args.paths)

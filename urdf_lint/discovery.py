@@ -112,6 +112,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
     for spec in cfg.models:
         _check_args(spec, graph, cfg)
+    graph.save()
     by = graph.included_by()
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
@@ -210,6 +211,10 @@ class IncludeGraph:
     args: dict = field(default_factory=dict)
     _by: dict | None = None
     _resolver: "PackageResolver | None" = None
+    _memo_file: str | None = None
+    _memo: dict = field(default_factory=dict)
+    _fresh: dict = field(default_factory=dict)
+    _dirty: bool = False
 
     def included_by(self) -> dict:
         """file -> the files that include it."""
@@ -262,8 +267,27 @@ class IncludeGraph:
         return out
 
     def add(self, f: str, resolver: "PackageResolver | None"):
+        """Read ``f``'s includes and args: from the memo when its size and mtime are those
+        recorded last run, else from a quick parse."""
         self._by = None
-        self.includes[f], self.unresolved[f], self.args[f] = _read_includes(f, resolver)
+        try:
+            st = os.stat(f)
+            stamp = [st.st_size, st.st_mtime_ns]
+        except OSError:
+            stamp = None
+        hit = self._memo.get(f)
+        if stamp is not None and hit and hit[0] == stamp:
+            self.includes[f], self.unresolved[f], self.args[f] = list(hit[1]), hit[2], list(hit[3])
+        else:
+            self.includes[f], self.unresolved[f], self.args[f] = _read_includes(f, resolver)
+            self._dirty = True
+        self._fresh[f] = [stamp, self.includes[f], self.unresolved[f], self.args[f]]
+
+    def save(self) -> None:
+        """Write the memo for the next run (when something was parsed or dropped)."""
+        if self._memo_file and (self._dirty or set(self._fresh) != set(self._memo)):
+            _save_memo(self._memo_file, self._fresh)
+            self._memo, self._dirty = dict(self._fresh), False
 
 
 def _resolve_include(name: str, base: str, resolver) -> list | None:
@@ -324,28 +348,13 @@ def _read_includes(f: str, resolver):
 
 def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph:
     """The include graph of ``files``; with ``cache_dir``, a file whose size and mtime are
-    unchanged since the last run (with the same package map) is not parsed again."""
-    g = IncludeGraph(_resolver=resolver)
+    unchanged since the last run (with the same package map) is not parsed again (call
+    ``save()`` when done: files added later, e.g. for arg checks, are memoised too)."""
     memo_file = _memo_path(cache_dir, resolver)
-    memo = _load_memo(memo_file)
-    fresh, changed = {}, False
+    g = IncludeGraph(_resolver=resolver, _memo_file=memo_file, _memo=_load_memo(memo_file))
     for f in files:
-        if not f.endswith(".xacro"):
-            continue
-        try:
-            st = os.stat(f)
-            stamp = [st.st_size, st.st_mtime_ns]
-        except OSError:
-            stamp = None
-        hit = memo.get(f)
-        if stamp is not None and hit and hit[0] == stamp:
-            g.includes[f], g.unresolved[f], g.args[f] = list(hit[1]), hit[2], list(hit[3])
-        else:
+        if f.endswith(".xacro"):
             g.add(f, resolver)
-            changed = True
-        fresh[f] = [stamp, g.includes[f], g.unresolved[f], g.args[f]]
-    if memo_file and (changed or set(fresh) != set(memo)):
-        _save_memo(memo_file, fresh)
     return g
 
 

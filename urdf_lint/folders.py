@@ -11,13 +11,19 @@ IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 
 def ignored(folder, top) -> bool:
     """Is ``folder`` (at or below ``top``) in a folder marked COLCON_IGNORE/CATKIN_IGNORE?"""
-    folder, top = Path(folder), Path(top)
-    for d in [folder, *folder.parents]:
-        if any((d / m).exists() for m in IGNORE_MARKERS):
+    folder, top = os.path.abspath(folder), os.path.abspath(top)
+    while True:
+        if _marked(folder):
             return True
-        if d == top or len(d.parts) <= len(top.parts):
+        parent = os.path.dirname(folder)
+        if folder == top or parent == folder or len(folder) <= len(top):
             return False
-    return False
+        folder = parent
+
+
+@functools.lru_cache(maxsize=4096)
+def _marked(folder: str) -> bool:
+    return any(os.path.exists(os.path.join(folder, m)) for m in IGNORE_MARKERS)
 
 
 def folder_named(name: str, tops, skip=frozenset(), depth: int = 5) -> str | None:
