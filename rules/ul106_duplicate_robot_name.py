@@ -2,8 +2,8 @@
 
 Why: Tools that key on the robot name (Gazebo spawners, MoveIt configs, robot_state_publisher
 namespaces, dashboards) then mix the two up; it is usually a copy-paste left-over. Arg sets of
-one file may share a name; different entry files should not. This is a run-scope rule: it
-compares every model of the run.
+one file may share a name, and so may a checked-in URDF generated from a xacro; different entry
+files should not. This is a run-scope rule: it compares every model of the run.
 
 How to fix: Give each model file its own robot name.
 """
@@ -26,13 +26,16 @@ EXAMPLE_FILES = {"urdf/other.urdf": '<robot name="visual">\n  <link name="a"/>\n
 def check(run, ctx):
     from urdf_lint.locations import display_path
     by_name: dict = {}
+    generated = getattr(run, "generated", {})   # a generated URDF is the same robot as its xacro
     for m in run.models:
         if m.name and m.name_origin:
-            by_name.setdefault(m.name, {}).setdefault(m.entry, m)
-    for name, entries in by_name.items():
-        if len(entries) < 2:
+            key = generated.get(m.entry, m.entry)
+            by_name.setdefault(m.name, {}).setdefault(key, {}).setdefault(m.entry, m)
+    for name, groups in by_name.items():
+        if len(groups) < 2:
             continue
-        for entry, m in entries.items():
-            rest = [display_path(e) for e in entries if e != entry]
-            others = ", ".join(rest[:3]) + (f" and {len(rest) - 3} more" if len(rest) > 3 else "")
-            yield m.name_origin, f"robot name '{name}' is also used by {others}"
+        for key, members in groups.items():
+            for m in members.values():
+                rest = [display_path(e) for k, g in groups.items() if k != key for e in g]
+                others = ", ".join(rest[:3]) + (f" and {len(rest) - 3} more" if len(rest) > 3 else "")
+                yield m.name_origin, f"robot name '{name}' is also used by {others}"

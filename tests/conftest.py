@@ -57,17 +57,8 @@ def run_cli(*args, cwd=None, env=None, timeout=300, input=None):
 
 def make_package(root: Path, name: str, files: dict) -> Path:
     """Write a ROS-style package: package.xml plus the given files (text or bytes)."""
+    from repo_shapes import package_xml, write
     pkg = root / name
     pkg.mkdir(parents=True, exist_ok=True)
-    (pkg / "package.xml").write_text(
-        f'<?xml version="1.0"?>\n<package format="3"><name>{name}</name><version>0.0.0</version>'
-        f'<description>t</description><maintainer email="a@b.c">t</maintainer>'
-        f'<license>BSD</license></package>\n')
-    for rel, content in files.items():
-        p = pkg / rel
-        p.parent.mkdir(parents=True, exist_ok=True)
-        if isinstance(content, bytes):
-            p.write_bytes(content)
-        else:
-            p.write_text(content)
-    return pkg
+    (pkg / "package.xml").write_text(package_xml(name))
+    return write(pkg, files)

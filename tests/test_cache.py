@@ -68,7 +68,11 @@ def test_invalidation(repo):
     (repo / "urdf-lint.toml").write_text('ignore = ["UL801"]\n')
     assert cached(repo) == [False]
     assert cached(repo) == [True]
-    # an arg
+    # an arg (one the entry declares: an undeclared one is a config error)
+    entry = repo / ENTRY
+    entry.write_text(entry.read_text().replace("<xacro:include", '<xacro:arg name="x" default="0"/>\n  <xacro:include', 1))
+    assert cached(repo) == [False]
+    assert cached(repo) == [True]
     (repo / "urdf-lint.toml").write_text(f'ignore = ["UL801"]\n[[models]]\npath = "{ENTRY}"\nargs = {{ x = "1" }}\n')
     assert cached(repo) == [False]
     assert cached(repo) == [True]

@@ -233,6 +233,9 @@ def test_readme_config_example_is_valid(tmp_path):
     readme = (REPO / "README.md").read_text()
     (example,) = [b for b in re.findall(r"```toml\n(.*?)```", readme, re.S) if "[tool.urdf-lint]" in b]
     (tmp_path / "pyproject.toml").write_text(example.replace("# baseline", "baseline"))
+    for m in re.findall(r'^path = "([^"]+)"', example, re.M):   # models must exist
+        (tmp_path / m).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / m).write_text('<robot name="r"><link name="a"/></robot>\n')
     cfg = load_config(tmp_path / "pyproject.toml", codes_to_names())
     assert cfg.rule_options == {"UL307": {"tolerance": 1e-3}} and cfg.format == "text"
     assert cfg.baseline == str(tmp_path / "urdf-lint-baseline.json")

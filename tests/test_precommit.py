@@ -108,3 +108,51 @@ def test_hook_follows_includes_yaml_and_meshes(hook_repo):
                                            '<xacro:macro name="u"/></robot>\n')
     p = commit(work, env, "unused macro file")
     assert p.returncode == 0, p.stdout + p.stderr
+
+
+def assert_passes(p):
+    """The hook passed (after restoring a file the commit may have nothing left to commit)."""
+    out = p.stdout + p.stderr
+    assert "Failed" not in out and ("Passed" in out or p.returncode == 0), out
+
+
+def test_hook_deletions_and_renames(hook_repo):
+    """pre-commit passes only files that exist; the hook asks git for what the commit deletes
+    or renames away and re-lints the models that read it."""
+    work, env = hook_repo
+    pkg = work / "r2d2_description"
+    assert commit(work, env, "start clean").returncode in (0, 1)   # nothing to commit is fine
+    # 1. deleting the macro file fails at the include in the model
+    macros = pkg / "urdf/r2d2_macros.xacro"
+    saved = macros.read_bytes()
+    macros.unlink()
+    p = commit(work, env, "drop macros")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "(no files to check)" not in out, out
+    assert "r2d2_description/urdf/r2d2.urdf.xacro:8:3: UL003 included file not found" in out, out
+    macros.write_bytes(saved)
+    assert_passes(commit(work, env, "macros back"))
+    # 2. renaming the YAML file fails at the xacro line that loads it; following the rename passes
+    sh("git", "mv", "r2d2_description/config/joint_limits.yaml",
+       "r2d2_description/config/limits.yaml", cwd=work)
+    p = commit(work, env, "rename yaml")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "UL003" in out and "joint_limits.yaml" in out, out
+    assert "r2d2_description/urdf/r2d2.urdf.xacro:44:5: UL003" in out, out
+    replace(pkg / "urdf/r2d2.urdf.xacro", "config/joint_limits.yaml", "config/limits.yaml")
+    p = commit(work, env, "follow the rename")
+    assert p.returncode == 0, p.stdout + p.stderr
+    # 3. deleting a mesh fails where the macro uses it; restoring it passes
+    mesh = pkg / "meshes/l_finger.stl"
+    saved = mesh.read_bytes()
+    mesh.unlink()
+    p = commit(work, env, "drop mesh")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "UL401" in out, out
+    assert "r2d2_description/urdf/r2d2_macros.xacro:116:11: UL401" in out, out
+    mesh.write_bytes(saved)
+    assert_passes(commit(work, env, "mesh back"))
+    # 4. deleting the model itself does not fail the commit (check notes it as gone)
+    (pkg / "urdf/r2d2.urdf.xacro").unlink()
+    p = commit(work, env, "drop the robot")
+    assert p.returncode == 0, p.stdout + p.stderr

@@ -440,16 +440,20 @@ def test_without_git_roots_fail_closed(world, tmp_path):
 
 
 def test_colcon_workspace_is_a_root(tmp_path):
-    ws = tmp_path / "ws"
-    make_package(ws / "src", "other", {"urdf/arm.xacro": f'<robot {X}><xacro:macro name="arm">'
-                                       '<link name="arm"/></xacro:macro></robot>\n'})
-    make_package(ws / "src", "p", {"urdf/r.urdf.xacro": robot(
-        '  <xacro:include filename="$(find other)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
-        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
-    p = run_cli("check", ws / "src" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
+    def two_packages(top):
+        make_package(top, "other", {"urdf/arm.xacro": f'<robot {X}><xacro:macro name="arm">'
+                                    '<link name="arm"/></xacro:macro></robot>\n'})
+        make_package(top, "p", {"urdf/r.urdf.xacro": robot(
+            '  <xacro:include filename="$(find other)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
+            '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
+    # sibling folders that are no workspace: the neighbour is not a root, so not found
+    two_packages(tmp_path / "loose")
+    p = run_cli("check", tmp_path / "loose" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
     assert [f["code"] for f in json.loads(p.stdout)["findings"]] == ["UL004"]
-    (ws / "install").mkdir()
-    p = run_cli("check", ws / "src" / "p", "--no-cache", "--format", "json", cwd=tmp_path)
+    # a colcon workspace (src/ holding packages) holding the linted path is a root
+    two_packages(tmp_path / "ws" / "src")
+    p = run_cli("check", tmp_path / "ws" / "src" / "p", "--no-cache", "--format", "json",
+                cwd=tmp_path)
     assert json.loads(p.stdout)["findings"] == [], p.stdout
 
 

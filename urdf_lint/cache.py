@@ -33,11 +33,12 @@ from .atomic import atomic_write
 from .discovery import start_dir
 from .hashing import file_digest, file_record, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
-from .vcs import repo_root
+from .cachedir import ensure as ensure_cache_dir
+from .vcs import git_root, repo_root
 
-_GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
-# bump when the stored record changes shape
-RECORD_FORMAT = 5  # 5: Problem records carry their fix
+# bump when the stored record changes shape (4: signed, digests of what was read;
+# 5: missing YAML files recorded as missing; 6: problems carry their fix)
+RECORD_FORMAT = 6
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -94,6 +95,7 @@ class Cache:
         self.dir = str(directory)
         self._writes = 0
         self.refused: str | None = None
+        self._marked = False
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -116,11 +118,15 @@ class Cache:
             return cls(os.environ["URDF_LINT_CACHE_DIR"], repo)
         if cfg.cache_dir:
             return cls(os.path.join(cfg.root, cfg.cache_dir), repo)
-        return cls(os.path.join(repo, ".urdf_lint_cache"), repo)
+        # at git's work tree root; outside git under the working directory, never inside a
+        # linted folder that is not the working directory
+        top = git_root(start_dir(paths))
+        return cls(os.path.join(top or os.getcwd(), ".urdf_lint_cache"), repo)
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), settings.cache_key()], sort_keys=True)
+                           job.kind, bool(job.explicit), job.output, job.mesh_base,
+                           settings.cache_key()], sort_keys=True)
         return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> Path:
@@ -184,12 +190,9 @@ class Cache:
             pass
 
     def _ensure(self):
-        d = Path(self.dir)
-        d.mkdir(parents=True, exist_ok=True)  # a worker may have made it for mesh facts
-        if not (d / ".gitignore").is_file():
-            (d / ".gitignore").write_text(_GITIGNORE)
-            (d / "CACHEDIR.TAG").write_text("Signature: 8a477f597d28d172789f06886806bc55\n"
-                                            "# urdf-lint cache\n")
+        if not self._marked:
+            ensure_cache_dir(self.dir)
+            self._marked = True
 
     def clear(self) -> str | None:
         if os.path.isdir(self.dir):

@@ -8,12 +8,21 @@ import os
 from .vcs import GitError, changed_files  # noqa: F401 - the names callers used to import here
 
 
+def _real(f: str) -> str:
+    """realpath of a file that may be gone (its folder resolved)."""
+    if os.path.exists(f):
+        return os.path.realpath(f)
+    return os.path.join(os.path.realpath(os.path.dirname(f)), os.path.basename(f))
+
+
 def affected(models, files: set[str]):
-    """(models whose inputs intersect ``files``, files no model uses)."""
-    files = {os.path.realpath(f) for f in files}
+    """(models whose recorded inputs intersect ``files``, files no model uses). A model's
+    inputs are its entry, every file it read and every file it looked for and did not find,
+    so a deleted or renamed-away include, YAML file or mesh re-lints the models that used it."""
+    files = {_real(f) for f in files}
     hit, used = [], set()
     for m in models:
-        deps = {os.path.realpath(d) for d in m.deps} | {os.path.realpath(m.entry)}
+        deps = {_real(d) for d in [*m.deps, *m.missing, m.entry]}
         inter = deps & files
         if inter:
             hit.append(m)

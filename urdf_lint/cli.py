@@ -283,6 +283,15 @@ def build_parser():
     df.add_argument("--trust-config", action="store_true",
                     help="let each revision's config set env-allow, package-paths outside the "
                          "repository, cache-dir, jobs and looser limits (default: off)")
+    g = sub.add_parser("generate", help="rewrite every stale generated URDF (the 'output' of a "
+                       "models entry, or a .urdf whose header names its xacro)",
+                       description="Rewrite every generated URDF that no longer equals what its "
+                                   "xacro expands to (atomically); exit 1 when one was stale.")
+    g.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                   help="files or folders (default: .)")
+    g.add_argument("--check", action="store_true",
+                   help="only report stale outputs (exit 1), write nothing")
+    _add_inputs(g)
     sub.add_parser("doctor", help="show which protections the worker sandbox has here",
                    description="Show which OS protections the workers get on this machine "
                                "(Landlock, seccomp, parent-death signal) and which are missing.")
@@ -379,6 +388,38 @@ def _color_mode(args) -> str:
 
 
 # -- commands ---------------------------------------------------------------------------------
+
+def _through_models(args, cfg):
+    """``check FILE`` / ``render FILE`` on fragments or macro libraries: (the repository root
+    to lint, the files whose models to report), or None when every path is a model or a folder.
+    The models that include such a file are linted instead of the file on its own."""
+    from .discovery import build_resolver, discover_models, repository_root
+    from .jobs import Status
+    from .lint import classify_xacro
+    if not args.paths or not all(os.path.isfile(p) for p in args.paths):
+        return None
+    files = [os.path.realpath(p) for p in args.paths]
+    configured = {m.path for m in cfg.models}
+    cand = [f for f in files if f.endswith(".xacro") and f not in configured]
+    if not cand:
+        return None
+    root = repository_root(args.paths)
+    resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
+    graph = discover_models([root], cfg, resolver).graph
+    redirect = [f for f in cand if graph.includers(f) or classify_xacro(f) is Status.LIBRARY]
+    if not redirect:
+        return None
+    from .locations import display_path
+    for f in redirect:
+        by = graph.includers(f)
+        if by:
+            sys.stderr.write(f"note: {display_path(f)} is included by "
+                             f"{', '.join(display_path(g) for g in by[:5])}"
+                             f"{' ...' if len(by) > 5 else ''}: linting the models that "
+                             "include it\n")
+    return root, set(files)
+
+
 def cmd_check(args) -> int:
     from .discovery import build_resolver
     from .locations import display_path
@@ -391,6 +432,13 @@ def cmd_check(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
     out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
+    affected_by = None
+    named: set = set()
+    if getattr(args, "files", None) is None and not args.changed_since:
+        redirect = _through_models(args, cfg)
+        if redirect is not None:
+            args.paths, affected_by = [redirect[0]], redirect[1]
+            named = set(affected_by)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
@@ -398,7 +446,6 @@ def cmd_check(args) -> int:
         cache = Cache.for_paths(args.paths, cfg)
         if cache.refused:  # said why on stderr; nothing (mesh facts included) goes there
             cache = None
-    affected_by = None
     if args.changed_since:
         affected_by = _changed_since(args.changed_since, args.paths[0])
     if getattr(args, "files", None) is not None:
@@ -413,6 +460,11 @@ def cmd_check(args) -> int:
     render_dir = getattr(args, "render", None)
     _refuse_symlinked_out(render_dir)
     if _fix_mode(args):
+        if named:
+            raise UsageError(
+                "--fix/--diff/--add-suppressions on a file that models include: run it on "
+                f"the folder ({_safe_text(display_path(args.paths[0]))}), so that every fix "
+                "is checked against every model that uses the file")
         from .fixcli import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
@@ -450,9 +502,7 @@ def cmd_check(args) -> int:
               and not args.statistics):
         report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
                      **options)
-    for f in result.unused_files:
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            out.info(f"note: {_safe_text(display_path(f))} is not used by any model")
+    _note_unused(result, out, named)
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -491,6 +541,21 @@ def _list_models(result, out):
         out.info(f"skipped: {_safe_text(display_path(m.entry))} ({m.status})")
 
 
+def _note_unused(result, out, named=()):
+    """Deleted files no remaining model reads (always said), unused files (under -v, or always
+    when the user named the file)."""
+    from .locations import display_path
+    for f in getattr(result, "gone", ()):
+        if f.endswith((".xacro", ".urdf")):
+            out.note(f"note: {_safe_text(display_path(f))} was deleted and no remaining model "
+                     "reads it; if it was a model, it is gone")
+    named = {os.path.realpath(f) for f in named}
+    for f in result.unused_files:
+        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            say = out.note if os.path.realpath(f) in named else out.info
+            say(f"note: {_safe_text(display_path(f))} is not used by any model")
+
+
 def _report_snapshots(result, out_dir, out=None):
     from .render import write_summary
     from .locations import display_path
@@ -522,7 +587,14 @@ def cmd_hook(args) -> int:
                             write_baseline=None, isolated=False, **vars(args))
     ns.quiet = True if not args.verbose else False
     ns.command = "check"
-    if not args.files:
+    # pre-commit passes only files that exist: add what the commit deletes or renames away
+    from .vcs import GitError, staged_removals
+    try:
+        removed = staged_removals(os.getcwd())
+    except (GitError, OSError):
+        removed = set()
+    ns.files = list(args.files) + sorted(removed)
+    if not ns.files:
         return 0
     return cmd_check(ns)
 
@@ -618,9 +690,14 @@ def cmd_render(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     _refuse_symlinked_out(args.out)
     cfg = _load_cfg(args, args.paths)
+    redirect = _through_models(args, cfg)
+    affected_by = None
+    if redirect is not None:
+        args.paths, affected_by = [redirect[0]], redirect[1]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                       render_dir=args.out, render_rrd=not args.no_rrd)
+                       render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
+    _note_unused(result, _Out(args), affected_by or ())
     _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
@@ -630,7 +707,11 @@ def cmd_render(args) -> int:
                 print(display_path(snap[k]))
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
-    return 2 if result.internal else 0
+    if result.internal:
+        return 2
+    # a requested model that could not be snapshotted is a failure, not a blank image
+    missed = [m for m in result.models if m.status != "model" or not (m.snapshot or {}).get("png")]
+    return 1 if missed else 0
 
 
 def cmd_diff(args) -> int:
@@ -674,6 +755,47 @@ def cmd_doctor(args) -> int:
     return 0
 
 
+def cmd_generate(args) -> int:
+    """Regenerate stale outputs in place (atomically); exit 1 when a file was (or, with
+    --check, would be) rewritten or a xacro did not expand, like a formatter hook."""
+    from .config import DEFAULT_ENV_ALLOW
+    from .discovery import build_resolver, discover_models
+    from .expansion import expand_file
+    from .generated import header_source, stale_at, write_output
+    from .locations import display_path
+    for p in args.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
+    cfg = _load_cfg(args, args.paths)
+    resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    status = 0
+    for job in discover_models(args.paths, cfg, resolver).jobs:
+        if not job.output:
+            continue
+        named = header_source(job.output) if os.path.exists(job.output) else None
+        shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
+        res = expand_file(job.entry, job.args, resolver,
+                          env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
+                          display_name=shown)
+        if res.error is not None:
+            e = res.error
+            sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
+            status = 1
+            continue
+        if stale_at(job.output, res.xml) is None:
+            continue
+        status = 1
+        if named and res.xml:   # keep the header's own name for the source: no churn
+            head, rest = res.xml[:1024], res.xml[1024:]
+            res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
+        if args.check:
+            print(f"would regenerate {display_path(job.output)} from {display_path(job.entry)}")
+        else:
+            write_output(job.output, res.xml)
+            print(f"regenerated {display_path(job.output)} from {display_path(job.entry)}")
+    return status
+
+
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
@@ -683,7 +805,8 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "clean": cmd_clean, "doctor": cmd_doctor}
+            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean,
+            "doctor": cmd_doctor}
 
 
 def main(argv=None) -> int:

@@ -137,6 +137,20 @@ class Number(Type):
             raise _Bad(self.expected) from None
 
 
+class Bool(Type):
+    expected = "true or false"
+
+    def check(self, v):
+        if not isinstance(v, bool):
+            raise _Bad(self.expected)
+        return v
+
+    def from_cli(self, s):
+        if s.lower() in ("true", "false"):
+            return s.lower() == "true"
+        raise _Bad(self.expected)
+
+
 class Table(Type):
     """A table of string keys to values of one type."""
 
@@ -165,10 +179,14 @@ class Models(Type):
         for m in v:
             if not isinstance(m, dict) or not isinstance(m.get("path"), str):
                 raise _Bad("each [[models]] entry to have a string 'path'", m)
-            extra = set(m) - {"path", "args"}
+            fields = ("path", "args", "output", "mesh-base")
+            extra = set(m) - set(fields)
             if extra:
-                raise _Bad("only 'path' and 'args' in a [[models]] entry"
-                           + did_you_mean(sorted(extra)[0], ("path", "args")), m)
+                raise _Bad("only 'path', 'args', 'output' and 'mesh-base' in a [[models]] entry"
+                           + did_you_mean(sorted(extra)[0], fields), m)
+            for k in ("output", "mesh-base"):
+                if k in m and (not isinstance(m[k], str) or not m[k]):
+                    raise _Bad(f"'{k}' to be a path", m)
             args = m.get("args", [{}])
             if isinstance(args, dict):
                 args = [args]
@@ -176,7 +194,8 @@ class Models(Type):
                     isinstance(a, dict) and all(isinstance(x, (str, int, float, bool)) for x in a.values())
                     for a in args):
                 raise _Bad("'args' to be a table (or a list of tables) of xacro arg = value", args)
-            out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args]})
+            out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args],
+                        "output": m.get("output"), "mesh-base": m.get("mesh-base")})
         return out
 
 
@@ -246,6 +265,7 @@ SCHEMA: tuple[Key, ...] = (
     Key("cache-dir", Str(), None, "folder of the result cache"),
     Key("format", Choice(_formats), None, "output format"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file"),
+    Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
 )
 KEYS = {k.name: k for k in SCHEMA}
 KNOWN_KEYS = set(KEYS)
@@ -255,6 +275,8 @@ KNOWN_KEYS = set(KEYS)
 class ModelSpec:
     path: str                       # absolute
     arg_sets: list                  # list of dicts
+    output: str | None = None       # absolute: the generated URDF written from this xacro
+    mesh_base: str | None = None    # absolute: where relative mesh paths start
 
 
 @dataclass
@@ -278,6 +300,7 @@ class Config:
     cache_dir: str | None = None
     format: str | None = None
     baseline: str | None = None     # absolute
+    discover: bool = True           # false: lint only the configured models
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
@@ -388,8 +411,17 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
     if key.name == "package-paths":
         value = {k: str((base / v).resolve()) for k, v in value.items()}
     elif key.name == "models":
-        value = [ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
-                 for m in value]
+        specs = []
+        for m in value:
+            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
+            for k in ("output", "mesh-base"):
+                if m.get(k):
+                    setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
+            if not os.path.isfile(spec.path):
+                raise ConfigError(f"{_shown(cfg.path or base)}: model {m['path']!r} does not exist"
+                                  f"{_did_you_mean_file(m['path'], base)}")
+            specs.append(spec)
+        value = specs
     elif key.name == "baseline" and value is not None:
         value = str((base / value).resolve())
     setattr(cfg, key.attr, value)
@@ -455,6 +487,19 @@ def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config
             value = os.path.abspath(value)
         setattr(cfg, key.attr, value)
     return cfg
+
+
+def _did_you_mean_file(rel: str, root: Path) -> str:
+    """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
+    import difflib
+    from .packages import iter_files
+    files = [os.path.relpath(f, root) for f in iter_files(root, suffixes=(".xacro", ".urdf"))]
+    best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
+        os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
+    if not best:
+        return ""
+    hit = best[0] if best[0] in files else next(f for f in files if os.path.basename(f) == best[0])
+    return f" (did you mean {hit!r}?)"
 
 
 def validate_codes(cfg: Config, known: dict, where: str = "command line"):

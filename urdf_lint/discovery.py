@@ -2,7 +2,10 @@
 and which package roots they may read from."""
 from __future__ import annotations
 
+import glob
 import os
+import re
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -25,6 +28,19 @@ def inside(f: str, p: str) -> bool:
     return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
+def repository_root(paths) -> str:
+    """The repository the paths belong to: git's work tree, else the working directory when
+    it holds the paths, else the folder of the first path."""
+    start = start_dir(paths) if paths else os.getcwd()
+    top = git_root(start)
+    if top:
+        return top
+    cwd = os.getcwd()
+    if all(inside(os.path.realpath(p), os.path.realpath(cwd)) for p in paths):
+        return cwd
+    return os.path.abspath(start)
+
+
 def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> PackageResolver:
     """The package roots of a run (:func:`urdf_lint.packages.discover_roots`): the packages,
     the git repository and the colcon workspace holding the linted paths; never the working
@@ -34,17 +50,43 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
     scan, extra_roots = discover_roots(paths or [start], git_root(start))
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
-    return PackageResolver.build(scan, explicit=explicit, extra_roots=extra_roots)
+    # the enclosing colcon/catkin workspace (sibling package repositories, install space): its
+    # packages are indexed, and the workspace is a root like the repository (never the working
+    # directory by itself: see SECURITY.md)
+    from .workspace import index, install_share_packages, workspace_roots
+    found: dict = {}
+    for ws in workspace_roots([*paths, start]):
+        extra_roots.append(ws)
+        for name, d in index(ws).items():
+            found.setdefault(name, d)
+    # an install layout being linted (share/NAME/package.xml; the package scan skips install/)
+    top = git_root(start)
+    for d in dict.fromkeys([*([top] if top else []), *(os.path.abspath(p) for p in paths)]):
+        if os.path.isdir(d):
+            for name, pkg in install_share_packages(d).items():
+                found.setdefault(name, pkg)
+    return PackageResolver.build(scan, explicit=explicit, extra_roots=list(dict.fromkeys(extra_roots)),
+                                 packages=found)
 
 
 def _kind(f: str) -> str:
     return "urdf" if f.endswith(".urdf") else "xacro"
 
 
-def discover(paths, cfg: "Config") -> list[LintJob]:
-    """Every candidate model file under the paths, with the arg sets to expand it with."""
-    configured = {m.path: m.arg_sets for m in cfg.models}
-    jobs, seen = [], set()
+@dataclass
+class Discovery:
+    """What discovery found: the jobs to lint, the fragments (file -> the linted files that
+    include it) that are linted only through the models including them, and the generated
+    URDFs (checked against their xacro by UL011, and linted too: consumers read them)."""
+    jobs: list
+    fragments: dict
+    graph: "IncludeGraph"
+    generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
+
+
+def _candidates(paths, cfg):
+    """(file, the path it was found under) for every .urdf/.xacro under the paths."""
+    seen = set()
     for p in paths:
         p = os.path.abspath(p)
         for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
@@ -53,15 +95,299 @@ def discover(paths, cfg: "Config") -> list[LintJob]:
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
             seen.add(f)
-            if f in configured:
-                for args in configured[f]:
-                    jobs.append(LintJob(f, dict(args), _kind(f), explicit=True))
-            else:
-                jobs.append(LintJob(f, {}, _kind(f), explicit=p == f))
-    # configured models inside the linted paths that the walk did not reach
-    for f, arg_sets in configured.items():
-        if f in seen or not any(inside(f, os.path.abspath(p)) for p in paths):
+            yield f, p
+
+
+def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = None,
+                    cache_dir: str | None = None) -> Discovery:
+    """Every candidate model under the paths, with the arg sets to expand it with.
+
+    ``fragments`` are the xacro files another linted file includes (read from the include
+    graph): the pipeline keeps one as a model of its own only when it is a complete robot by
+    itself (links, and none of the findings a fragment gives: undefined links or names);
+    otherwise it is linted only through the models including it. A file named explicitly or
+    listed in config is always a model."""
+    configured = {m.path: m for m in cfg.models}
+    found = list(_candidates(paths, cfg))
+    graph = include_graph([f for f, _ in found], resolver, cache_dir)
+    for spec in cfg.models:
+        _check_args(spec, graph, cfg)
+    graph.save()
+    by = graph.included_by()
+    linted = {f for f, _ in found}
+    jobs, fragments = [], {}
+    discover_all = getattr(cfg, "discover", True)
+    outputs = _detected_outputs(found, paths, configured)
+    generated = {o: x for x, o in outputs.items()}
+    generated.update({m.output: m.path for m in cfg.models if m.output})
+    for f, p in found:
+        if f in configured:
+            jobs.extend(_configured_jobs(configured[f]))
             continue
-        for args in arg_sets:
-            jobs.append(LintJob(f, dict(args), _kind(f), explicit=True))
-    return jobs
+        if not discover_all and p != f:
+            continue
+        includers = [g for g in by.get(f, ()) if g in linted]
+        if includers and p != f:
+            fragments[f] = includers
+        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f, output=outputs.get(f)))
+    # configured models inside the linted paths that the walk did not reach
+    for f, spec in configured.items():
+        if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
+            continue
+        jobs.extend(_configured_jobs(spec))
+    return Discovery(jobs, fragments, graph, generated)
+
+
+def _detected_outputs(found, paths, configured) -> dict:
+    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed)."""
+    from .generated import find_source, header_source
+    xacros = [f for f, _ in found if f.endswith(".xacro")]
+    if not xacros:
+        return {}
+    root = os.path.realpath(repository_root(paths))
+    out: dict = {}
+    for f, _ in found:
+        if not f.endswith(".urdf"):
+            continue
+        named = header_source(f)
+        src = find_source(f, named, xacros, root) if named else None
+        if src and src not in out and not (src in configured and configured[src].output):
+            out[src] = f
+    return out
+
+
+def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
+    """An arg a configured model sets that no ``xacro:arg`` of the file (or its includes)
+    declares, and that no ``$(arg NAME)`` there reads, is a config error: xacro would ignore
+    it and lint the default variant again."""
+    from .config import ConfigError
+    if not spec.path.endswith(".xacro"):
+        return
+    declared = graph.declared_args(spec.path)
+    if graph.unresolved_below(spec.path):
+        return   # an include only expansion resolves may declare it
+    for args in spec.arg_sets:
+        for name in sorted(set(args) - declared):
+            import difflib
+            close = difflib.get_close_matches(name, sorted(declared), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            known = ", ".join(sorted(declared)) or "none"
+            raise ConfigError(f"{cfg.path}: model {os.path.relpath(spec.path, cfg.root)}: arg "
+                              f"{name!r} is not declared by any xacro:arg (nor read by $(arg ...)) in the "
+                              f"file or its includes{hint} (declared: {known})")
+
+
+def _configured_jobs(spec) -> list:
+    """One job per arg set; the output is compared with the first arg set's expansion."""
+    f = spec.path
+    return [LintJob(f, dict(args), _kind(f), explicit=True,
+                    output=spec.output if n == 0 else None, mesh_base=spec.mesh_base or (
+                        os.path.dirname(spec.output) if spec.output else None))
+            for n, args in enumerate(spec.arg_sets)]
+
+
+def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:
+    """The jobs of :func:`discover_models`."""
+    return discover_models(paths, cfg, resolver).jobs
+
+
+# -- the include graph ---------------------------------------------------------------------------
+_XACRO_NS_HINT = "xacro"
+_ARG_RE = re.compile(r"\$\(\s*arg\s+([^)\s]+)\s*\)")
+_FIND_RE = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
+
+
+@dataclass
+class IncludeGraph:
+    """Which xacro files include which, read from a quick parse of every candidate.
+
+    ``includes[f]`` are the files ``f`` names in an ``xacro:include`` (anywhere: inside
+    ``xacro:if``/``unless`` and macros too), resolved through the package resolver;
+    ``unresolved[f]`` counts the includes whose file name needs expansion to be known
+    (``${...}``, ``$(arg ...)``, an unknown package): for those the dependencies expansion
+    records are used instead. ``args[f]`` are the ``xacro:arg`` names ``f`` declares."""
+    includes: dict = field(default_factory=dict)
+    unresolved: dict = field(default_factory=dict)
+    args: dict = field(default_factory=dict)
+    _by: dict | None = None
+    _resolver: "PackageResolver | None" = None
+    _memo_file: str | None = None
+    _memo: dict = field(default_factory=dict)
+    _fresh: dict = field(default_factory=dict)
+    _dirty: bool = False
+
+    def included_by(self) -> dict:
+        """file -> the files that include it."""
+        if self._by is None:
+            by: dict = {}
+            for f, inc in self.includes.items():
+                for g in inc:
+                    if g != f:
+                        by.setdefault(g, []).append(f)
+            self._by = by
+        return self._by
+
+    def declared_args(self, f: str, _seen=None) -> set:
+        """The ``xacro:arg`` names of ``f`` and of everything it includes (transitively)."""
+        seen = _seen if _seen is not None else set()
+        if f in seen:
+            return set()
+        seen.add(f)
+        if f not in self.args:
+            self.add(f, self._resolver)
+        out = set(self.args.get(f, ()))
+        for g in self.includes.get(f, ()):
+            out |= self.declared_args(g, seen)
+        return out
+
+    def unresolved_below(self, f: str) -> bool:
+        """Does ``f`` or a file it includes have an include only expansion can resolve?"""
+        todo, seen = [f], set()
+        while todo:
+            g = todo.pop()
+            if g in seen:
+                continue
+            seen.add(g)
+            if self.unresolved.get(g):
+                return True
+            todo.extend(self.includes.get(g, ()))
+        return False
+
+    def includers(self, f: str) -> list:
+        """Every file that includes ``f``, directly or through other files."""
+        by = self.included_by()
+        out, todo = [], [f]
+        seen = {f}
+        while todo:
+            for g in by.get(todo.pop(), ()):
+                if g not in seen:
+                    seen.add(g)
+                    out.append(g)
+                    todo.append(g)
+        return out
+
+    def add(self, f: str, resolver: "PackageResolver | None"):
+        """Read ``f``'s includes and args: from the memo when its size and mtime are those
+        recorded last run, else from a quick parse."""
+        self._by = None
+        try:
+            st = os.stat(f)
+            stamp = [st.st_size, st.st_mtime_ns]
+        except OSError:
+            stamp = None
+        hit = self._memo.get(f)
+        if stamp is not None and hit and hit[0] == stamp:
+            self.includes[f], self.unresolved[f], self.args[f] = list(hit[1]), hit[2], list(hit[3])
+        else:
+            self.includes[f], self.unresolved[f], self.args[f] = _read_includes(f, resolver)
+            self._dirty = True
+        self._fresh[f] = [stamp, self.includes[f], self.unresolved[f], self.args[f]]
+
+    def save(self) -> None:
+        """Write the memo for the next run (when something was parsed or dropped)."""
+        if self._memo_file and (self._dirty or set(self._fresh) != set(self._memo)):
+            _save_memo(self._memo_file, self._fresh)
+            self._memo, self._dirty = dict(self._fresh), False
+
+
+def _resolve_include(name: str, base: str, resolver) -> list | None:
+    """The files an include's ``filename`` names, or None when only expansion can tell."""
+    name = name.strip()
+    if resolver is not None:
+        def find(m):
+            return str(resolver.find(m.group(1)))
+        try:
+            name = _FIND_RE.sub(find, name)
+            if name.startswith("package://"):
+                pkg, _, rel = name[len("package://"):].partition("/")
+                name = os.path.join(str(resolver.find(pkg)), rel)
+        except Exception:  # noqa: BLE001 - unknown package: expansion reports it
+            return None
+    if "$" in name or not name:
+        return None
+    if name.startswith("file://"):
+        name = name[len("file://"):]
+    path = os.path.normpath(os.path.join(base, name))
+    if any(c in name for c in "*?["):
+        return sorted(os.path.realpath(p) for p in glob.glob(path))
+    return [os.path.realpath(path)]
+
+
+def _read_includes(f: str, resolver):
+    """(included files, number of unresolvable includes, declared or used arg names)."""
+    from lxml import etree
+    try:
+        root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
+                                              load_dtd=False)).getroot()
+    except (etree.XMLSyntaxError, OSError):
+        return [], 0, []
+    inc, unresolved, args = [], 0, []
+    base = os.path.dirname(f)
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        q = etree.QName(el)
+        if not (q.namespace and _XACRO_NS_HINT in q.namespace):
+            continue
+        if q.localname == "include":
+            got = _resolve_include(el.get("filename", ""), base, resolver)
+            if got is None:
+                unresolved += 1
+            else:
+                inc.extend(got)
+        elif q.localname == "arg" and el.get("name"):
+            args.append(el.get("name"))
+    # an arg used as $(arg NAME) without a declaration is set on xacro's command line
+    for el in root.iter():
+        if isinstance(el.tag, str):
+            for v in [*el.attrib.values(), el.text or ""]:
+                if "$(arg" in v:
+                    args.extend(_ARG_RE.findall(v))
+    return list(dict.fromkeys(inc)), unresolved, list(dict.fromkeys(args))
+
+
+def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph:
+    """The include graph of ``files``; with ``cache_dir``, a file whose size and mtime are
+    unchanged since the last run (with the same package map) is not parsed again (call
+    ``save()`` when done: files added later, e.g. for arg checks, are memoised too)."""
+    memo_file = _memo_path(cache_dir, resolver)
+    g = IncludeGraph(_resolver=resolver, _memo_file=memo_file, _memo=_load_memo(memo_file))
+    for f in files:
+        if f.endswith(".xacro"):
+            g.add(f, resolver)
+    return g
+
+
+def _memo_path(cache_dir, resolver) -> str | None:
+    if not cache_dir:
+        return None
+    import hashlib
+    import json
+    pkgs = resolver.to_dict() if resolver is not None else {}
+    key = json.dumps([pkgs.get("explicit"), pkgs.get("scanned")], sort_keys=True)
+    return os.path.join(cache_dir, "graph",
+                        hashlib.blake2b(key.encode(), digest_size=10).hexdigest() + ".json")
+
+
+def _load_memo(path) -> dict:
+    if not path:
+        return {}
+    import json
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        return data if isinstance(data, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def _save_memo(path, data) -> None:
+    import json
+    from .cachedir import ensure
+    try:
+        ensure(os.path.dirname(os.path.dirname(path)))
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        from .atomic import atomic_write
+        atomic_write(path, json.dumps(data))
+    except OSError:
+        pass

@@ -22,6 +22,7 @@ class Status(str, enum.Enum):
     FAILED = "failed"          # could not be expanded or parsed (its problems say why)
     LIBRARY = "library"        # a macro library (only macros/properties/args/includes)
     NOT_ROBOT = "not-robot"    # an XML file whose root is not <robot>
+    FRAGMENT = "fragment"      # a file other linted files include: linted through them
 
     def __str__(self) -> str:
         return self.value
@@ -36,6 +37,8 @@ class LintJob:
     explicit: bool = False     # named by the user or the config (never skipped as a library)
     diff_stem: str | None = None   # diff --render: the file name stem of its snapshots
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
+    output: str | None = None      # config: the generated URDF this xacro is written to
+    mesh_base: str | None = None   # config: the folder relative mesh paths start from
 
 
 @dataclass(frozen=True)

@@ -53,8 +53,8 @@ def target_of(el):
 
 
 def classify_xacro(path: str) -> Status | None:
-    """None for a candidate model, LIBRARY (only macro/property/arg/include at top level) or
-    NOT_ROBOT."""
+    """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
+    or NOT_ROBOT."""
     from lxml import etree
     try:
         root = etree.parse(path, _quick_parser()).getroot()
@@ -62,18 +62,40 @@ def classify_xacro(path: str) -> Status | None:
         return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":
         return Status.NOT_ROBOT
+    includes = False
     for el in root:
         if not isinstance(el.tag, str):
             continue
         q = etree.QName(el)
         if not (q.namespace and "xacro" in q.namespace and q.localname in XACRO_DIRECTIVES):
             return None
-    return Status.LIBRARY
+        includes = includes or q.localname == "include"
+    # a file made of includes may be a robot whose included files emit the links: expansion
+    # tells (no link after expansion: a library)
+    return None if includes else Status.LIBRARY
 
 
 def _quick_parser():
     from lxml import etree
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
+
+
+def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
+    """UL011 at the checked-in generated file when it differs from today's expansion; the
+    output becomes an input of the model (editing it re-lints the model)."""
+    from .generated import stale_at
+    from .locations import display_path
+    from .rules import ul011_stale_output
+    output = job.output or ""
+    (out.deps if os.path.exists(output) else out.missing).append(output)
+    got = stale_at(output, xml)
+    if got is not None:
+        line, col, what = got
+        out.problems.append(Problem.at(
+            ul011_stale_output.CODE,
+            f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
+            "expands to today; regenerate it with 'urdf-lint generate'",
+            (job.output, line, col)))
 
 
 def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
@@ -99,12 +121,16 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             out.status = Status.FAILED
             return None
         assert exp.xml is not None  # expand_file sets xml or error
+        if job.output:
+            _check_output(job, exp.xml, out)
         try:
             model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
         except Exception as e:  # noqa: BLE001 - lxml refused what xacro produced
             problems.append(_expanded_xml_error(e, exp, entry))
             out.status = Status.FAILED
             return None
+        # meshes written relative to the generated URDF (or a configured folder)
+        model.mesh_base = job.mesh_base or (os.path.dirname(job.output) if job.output else None)
         if not model.top_links() and not job.explicit:
             out.status = Status.LIBRARY
             out.problems = []

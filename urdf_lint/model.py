@@ -47,6 +47,7 @@ class Model:
     links: dict = field(default_factory=dict)
     joints: dict = field(default_factory=dict)
     materials: dict = field(default_factory=dict)   # top-level <material name=...>
+    mesh_base: str | None = None     # config: where relative mesh paths start (default: entry's)
 
     def __post_init__(self):
         for el in self.root:
@@ -75,7 +76,7 @@ class Model:
 
     @property
     def base_dir(self) -> str:
-        return os.path.dirname(self.entry)
+        return self.mesh_base or os.path.dirname(self.entry)
 
     def iter(self, tag: str):
         return self.root.iter(tag)

@@ -25,11 +25,13 @@ _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 
 
 class PackageNotFound(Exception):
-    def __init__(self, name: str, searched: list[str]):
+    def __init__(self, name: str, searched: list[str], folder: str | None = None):
         self.name = name
         self.searched = searched
         where = "; ".join(searched) if searched else "nowhere (no package.xml found)"
-        super().__init__(f"unknown package '{name}' (searched: {where})")
+        hint = (f"; a folder named '{name}' exists: pass --package-path {name}={folder}"
+                if folder else "")
+        super().__init__(f"unknown package '{name}' (searched: {where}){hint}")
 
 
 class OutsideRoots(Exception):
@@ -61,6 +63,11 @@ def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[st
                 yield Path(dirpath, fn)
 
 
+def _colcon_ignored(folder: Path, top: Path) -> bool:
+    from .folders import ignored
+    return ignored(folder, top)
+
+
 @dataclass
 class PackageResolver:
     explicit: dict[str, Path] = field(default_factory=dict)
@@ -74,7 +81,8 @@ class PackageResolver:
 
     @classmethod
     def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
-              use_environment: bool = True) -> "PackageResolver":
+              use_environment: bool = True, packages: dict | None = None) -> "PackageResolver":
+        """``packages``: name -> folder found elsewhere (a workspace index), after the scan."""
         res = cls(use_environment=use_environment)
         if use_environment:
             res.env_paths = environment_paths()
@@ -88,9 +96,13 @@ class PackageResolver:
             seen.add(d)
             res.scanned_dirs.append(str(d))
             for pxml in iter_files(d, names={"package.xml"}):
+                if _colcon_ignored(pxml.parent, d):
+                    continue
                 found = package_name(pxml)
                 if found and found not in res.scanned:
                     res.scanned[found] = pxml.parent.resolve()
+        for pkg, where in (packages or {}).items():
+            res.scanned.setdefault(pkg, Path(where).resolve())
         roots = list(res.explicit.values()) + list(res.scanned.values())
         roots += [Path(r).resolve() for r in extra_roots]
         res.roots = sorted(set(roots), key=str)
@@ -122,7 +134,9 @@ class PackageResolver:
             if found not in self.roots:
                 self.roots.append(found)
             return found
-        raise PackageNotFound(name, self.searched())
+        from .folders import folder_named
+        raise PackageNotFound(name, self.searched(),
+                              folder_named(name, [str(r) for r in self.roots], SKIP_DIRS))
 
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]

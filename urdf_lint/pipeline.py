@@ -11,12 +11,16 @@ import os
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from .discovery import discover
+from .discovery import discover_models
 from .findings import Problem, exit_status, merge
 from .jobs import LintJob, LintSettings, ModelReport, Status
 from .policy import Policy, code_matches
+from .rules import ul002_xacro_error, ul006_not_a_robot, ul103_missing_link
 from .rules import ul009_unused_suppression as unused_suppression
 from .rules import ul010_invalid_suppression as invalid_suppression
+
+# findings that usually mean "this file is a fragment: the model including it defines the rest"
+FRAGMENT_HINT_CODES = (ul002_xacro_error.CODE, ul006_not_a_robot.CODE, ul103_missing_link.CODE)
 
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
@@ -34,12 +38,16 @@ class CheckResult:
     skipped: list = field(default_factory=list)      # libraries etc.
     internal: list = field(default_factory=list)     # internal errors (exit 2)
     unused_files: list = field(default_factory=list)
+    fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
+    gone: list = field(default_factory=list)         # deleted files no model reads any more
+    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
 
 
 @dataclass
 class RunView:
     """What a run-scope rule's ``check(run, ctx)`` sees: every linted model of the run."""
     models: list                                     # ModelReport
+    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
 
 
 class RunContext:
@@ -93,7 +101,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     only: tests and benchmarks). ``keep_models`` brings every expanded robot back
     (``ModelReport.kept_model``; ``--fix`` compares them before and after)."""
     policy = Policy.from_config(cfg)
-    jobs = discover(paths, cfg)
+    found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
+    jobs = found.jobs
     settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
     if keep_models:
         settings = dataclasses.replace(settings, keep_model=True)
@@ -103,18 +112,26 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
                                        render_rrd=render_rrd, render_base=os.getcwd())
     results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
     out = CheckResult(internal=internal)
-    out.models, out.skipped = _split_models(results)
+    out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
+                                            found.fragments)
+    out.fragments = dict(found.fragments)
+    out.generated = dict(found.generated)
+    _hint_fragments(out.models, found.graph)
 
     if affected_by is not None:
         from .changes import affected
         out.models, out.unused_files = affected(out.models, affected_by)
+        # a deleted file no model reads any more: a removed model (or an unused file) is gone
+        out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
-    found = []
+    if render_dir:
+        _drop_snapshots([r for r in results if r not in out.models])
+    problems: list[Problem] = []
     for r in out.models:
-        found.extend(_with_policy(r.problems, r.label, policy))
+        problems.extend(_with_policy(r.problems, r.label, policy))
     if affected_by is None:
-        found.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
-    kept = _suppress(merge(found), out.models, settings, policy)
+        problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
+    kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
     out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
@@ -150,27 +167,74 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
     return results, internal
 
 
-def _split_models(results: list[ModelReport]):
-    """(models, skipped): a candidate that failed on its own but is included by a model is a
-    library, and so are macro-only files and XML that is not a robot."""
-    used = set()
+def _split_models(results: list[ModelReport], explicit: "set | frozenset" = frozenset(),
+                  fragments: dict | None = None):
+    """(models, skipped): macro-only files and XML that is not a robot are skipped. A file
+    other files include (``fragments``, from the include graph, or a file a model's expansion
+    read, for includes only expansion resolves such as ``${prefix}.xacro``) is kept as a model
+    of its own only when it is a complete robot by itself; otherwise it is a fragment, linted
+    through the models that include it. A file named explicitly is always a model."""
+    used = set(fragments or ())
     for r in results:
-        if r.status is Status.MODEL:
-            used.update(r.deps[1:])
+        if r.status is Status.MODEL:   # (a generated .urdf output is an input, not an include)
+            used.update(d for d in r.deps[1:] if d != r.entry and d.endswith(".xacro"))
     models, skipped = [], []
     for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
-        if r.status in (Status.LIBRARY, Status.NOT_ROBOT) or (
-                r.status is Status.FAILED and r.entry in used and not r.args):
+        if r.status in (Status.LIBRARY, Status.NOT_ROBOT):
+            skipped.append(r)
+        elif r.entry in used and not r.args and r.entry not in explicit \
+                and not _complete_robot(r):
+            r.status = Status.FRAGMENT
             skipped.append(r)
         else:
             models.append(r)
     return models, skipped
 
 
+def _complete_robot(r: ModelReport) -> bool:
+    """Does an included file also stand alone as a robot (a named robot with links, no
+    undefined link or name)?"""
+    return r.status is Status.MODEL and r.links > 0 and bool(r.name) and not any(
+        p.code in FRAGMENT_HINT_CODES for p in r.problems)
+
+
+def _drop_snapshots(reports) -> None:
+    """Remove the snapshots the workers wrote for files that turned out not to be reported
+    models (fragments, libraries, models a changed file does not affect)."""
+    for r in reports:
+        for k in ("png", "rrd"):
+            f = (r.snapshot or {}).get(k)
+            if f:
+                try:
+                    os.remove(f)
+                except OSError:
+                    pass
+        r.snapshot = None
+
+
+def _hint_fragments(models, graph) -> None:
+    """A model whose entry other files include (a fragment linted on its own, because it was
+    named or configured): say which model to lint instead where a finding suggests it."""
+    from .locations import display_path
+    for r in models:
+        if not r.entry.endswith(".xacro"):
+            continue
+        by = graph.includers(r.entry)
+        if not by:
+            continue
+        top = [f for f in by if not graph.included_by().get(f)] or by
+        names = ", ".join(display_path(f) for f in top[:3]) + (" ..." if len(top) > 3 else "")
+        hint = (f" (this file is included by {names}; lint {display_path(top[0])} instead, "
+                "or list it under models)")
+        r.problems = [p.replace(message=p.message + hint)
+                      if p.code in FRAGMENT_HINT_CODES and p.file == r.entry else p
+                      for p in r.problems]
+
+
 def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
     from .registry import run_rules
-    run = RunView(models=list(out.models))
+    run = RunView(models=list(out.models), generated=dict(out.generated))
     return [Problem.at(rule.code, msg, loc, severity=sev)
             for rule, loc, msg, sev in run_rules("run", settings.selected, settings.options, run,
                                                  RunContext({}), out.internal)]

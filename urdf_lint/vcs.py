@@ -40,9 +40,41 @@ def repo_root(start: str) -> str:
     return git_root(start) or os.path.abspath(start)
 
 
+def _name_status(out: str):
+    """(status letter, paths) per entry of ``git diff --name-status -z`` output: a rename or
+    copy has both the old and the new path."""
+    parts = out.split("\0")
+    i = 0
+    while i < len(parts):
+        status = parts[i]
+        if not status:
+            i += 1
+            continue
+        n = 2 if status[0] in "RC" else 1
+        yield status[0], parts[i + 1:i + 1 + n]
+        i += 1 + n
+
+
 def changed_files(ref: str, cwd: str) -> set[str]:
-    """Files changed since ``ref`` (committed, staged, unstaged and untracked), absolute."""
+    """Files changed since ``ref`` (committed, staged, unstaged and untracked), absolute;
+    deleted files and the old names of renamed files included."""
     top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
-    names = _git("diff", "--name-only", "--no-renames", ref, cwd=cwd).splitlines()
+    names = [p for _, paths in _name_status(_git("diff", "--name-status", "-z", "-M", ref,
+                                                 cwd=cwd)) for p in paths]
     names += _git("ls-files", "--others", "--exclude-standard", cwd=cwd).splitlines()
-    return {os.path.realpath(os.path.join(top, n)) for n in names if n}
+    return {_absolute(top, n) for n in names if n}
+
+
+def staged_removals(cwd: str) -> set[str]:
+    """Files the index deletes or renames away (pre-commit passes only files that exist)."""
+    top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
+    out = _git("diff", "--cached", "--name-status", "-z", "-M", cwd=cwd)
+    return {_absolute(top, paths[0]) for status, paths in _name_status(out)
+            if status in "DR" and paths}
+
+
+def _absolute(top: str, name: str) -> str:
+    """The absolute path of a repository-relative name (realpath of its folder: the file
+    itself may be gone)."""
+    p = os.path.join(top, name)
+    return os.path.join(os.path.realpath(os.path.dirname(p)), os.path.basename(p))

@@ -434,8 +434,12 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
             res.error = classify_error(e, st)
-            inner = getattr(e, "exc", None)
-            if isinstance(inner, OSError) and getattr(inner, "filename", None):
+            from .errors import wrapped
+            inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
+            # a file looked for and not there (not e.g. a folder read as a file: that exists,
+            # and a "missing" entry that exists would never let the cache hit)
+            if isinstance(inner, OSError) and getattr(inner, "filename", None) and \
+                    not os.path.exists(str(inner.filename)):
                 res.missing.append(os.path.abspath(str(inner.filename)))
         res.deps = [path] + [d for d in st.deps if d != path]
         res.digests = dict(st.digests)
