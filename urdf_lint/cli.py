@@ -424,7 +424,6 @@ def cmd_check(args) -> int:
     from .discovery import build_resolver
     from .locations import display_path
     from .pipeline import exit_code, run_check
-    from . import report
     out = _Out(args)
     color_mode = _color_mode(args)
     for p in args.paths:
@@ -483,25 +482,8 @@ def cmd_check(args) -> int:
                  f"{display_path(os.path.abspath(args.write_baseline))}; "
                  f"lint with --baseline {args.write_baseline} to report only new ones")
         return 2 if result.internal else 0
-    if cfg.baseline:
-        from .baseline import filter_baseline
-        before = len(result.findings)
-        result.findings = filter_baseline(cfg.baseline, result.findings)
-        out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
-                 f"({display_path(cfg.baseline)})")
-    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
-    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet)
-    if getattr(args, "output", None):
-        from .atomic import atomic_open
-        try:
-            with atomic_open(args.output) as f:
-                report.write(result, fmt, f, color=color_mode == "always", **options)
-        except OSError as e:
-            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
-    elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
-              and not args.statistics):
-        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
-                     **options)
+    from .emit import write_findings
+    write_findings(args, cfg, result, out, color_mode)
     _note_unused(result, out, named)
     if render_dir:
         _report_snapshots(result, render_dir, out)

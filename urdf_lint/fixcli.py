@@ -1,7 +1,6 @@
 """The ``check --fix`` / ``--diff`` / ``--add-suppressions`` side of the command line."""
 from __future__ import annotations
 
-import os
 import sys
 
 from .errors import UsageError
@@ -41,23 +40,8 @@ def _internal(result) -> None:
 
 def _report(args, cfg, result, out, color_mode) -> None:
     """The findings that remain, as ``check`` reports them (format, -o, baseline, -q)."""
-    from . import report
-    if cfg.baseline:
-        from .baseline import filter_baseline
-        result.findings = filter_baseline(cfg.baseline, result.findings)
-    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
-    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet)
-    if getattr(args, "output", None):
-        from .atomic import atomic_open
-        try:
-            with atomic_open(args.output) as f:
-                report.write(result, fmt, f, color=color_mode == "always", **options)
-        except OSError as e:
-            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
-    elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
-              and not args.statistics):
-        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
-                     **options)
+    from .emit import write_findings
+    write_findings(args, cfg, result, out, color_mode)
 
 
 def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
