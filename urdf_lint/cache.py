@@ -37,8 +37,9 @@ from .cachedir import ensure as ensure_cache_dir
 from .vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;
-# 5: missing YAML files recorded as missing; 6: problems carry their fix)
-RECORD_FORMAT = 6
+# 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
+# holding suppression comments, and folders read as files recorded as missing)
+RECORD_FORMAT = 7
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -154,7 +155,7 @@ class Cache:
                 if now != stat and file_digest(path) != digest:
                     return None
             for path in rec.get("missing", []):
-                if os.path.exists(path):
+                if os.path.isfile(path):   # a file looked for (or a folder read as one) appeared
                     return None
             return ModelReport.from_record(job, rec["result"])
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
