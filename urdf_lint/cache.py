@@ -97,6 +97,7 @@ class Cache:
         self._writes = 0
         self.refused: str | None = None
         self._marked = False
+        self._settings_key: tuple | None = None   # (settings, its part of every key)
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -125,9 +126,13 @@ class Cache:
         return cls(os.path.join(top or os.getcwd(), ".urdf_lint_cache"), repo)
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
+        memo = self._settings_key
+        if memo is None or memo[0] is not settings:   # the run's settings, serialised once
+            memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
+                                                              sort_keys=True))
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), job.output, job.mesh_base,
-                           settings.cache_key()], sort_keys=True)
+                           job.kind, bool(job.explicit), job.output, job.mesh_base],
+                          sort_keys=True) + memo[1]
         return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> Path:

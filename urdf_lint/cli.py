@@ -644,6 +644,8 @@ def cmd_expand(args) -> int:
     from .locations import display_path
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
+    from .worker import prestart
+    prestart()   # the worker imports the expansion while the config and packages are read
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")
@@ -653,9 +655,6 @@ def cmd_expand(args) -> int:
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
     # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
     from .worker import run_jobs
-    import xacro  # noqa: F401 - imported once in the parent, shared by the forked worker
-    from . import expansion  # noqa: F401
-    from . import lint  # noqa: F401
     job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
                   display_name=args.file)
     settings = LintSettings(resolver=resolver.to_dict(),
