@@ -323,7 +323,7 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
             zero = np.full_like(gids, -1)
             _outline_edges(colour, np.where(front, gids, zero), np.where(front, zg, np.inf),
                            solid["part"], strength=0.35)
-    if len(g.bones):
+    if len(g.bones) and g.labels:  # the joint tree holds a robot with holes together
         _skeleton(colour, zbuf, g.bones, v)
     img = Image.fromarray(colour, "RGB")
     dr = ImageDraw.Draw(img)
@@ -336,10 +336,19 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
     if len(fr.views) > 1:
         dr.text((6, 2), v.name, fill=(90, 90, 100))
     _triad(dr, v)
+    taken: list = []
     for link, pos in g.labels:
-        X, Y, _ = _project(v, pos[None, :])
+        X, Y, _ = _project(v, np.asarray(pos, dtype=float)[None, :])
         x, y = float(X[0]) / S + 6, float(Y[0]) / S - 6
         box = dr.textbbox((x, y), link)
+        for _ in range(12):  # step down past labels already placed
+            hit = next((b for b in taken if box[0] < b[2] + 3 and b[0] < box[2] + 3
+                        and box[1] < b[3] + 2 and b[1] < box[3] + 2), None)
+            if hit is None:
+                break
+            y += hit[3] + 3 - box[1]
+            box = dr.textbbox((x, y), link)
+        taken.append(box)
         dr.rectangle((box[0] - 2, box[1] - 1, box[2] + 2, box[3] + 1), fill=(255, 255, 255),
                      outline=(150, 150, 160))
         dr.text((x, y), link, fill=(150, 20, 20))
@@ -458,7 +467,7 @@ def _skeleton(colour, zbuf, bones, v: View):
 
 def _triad(dr, v: View):
     """A small x/y/z triad (red/green/blue) in the bottom left corner of a view."""
-    cx, cy, L = 22, v.h - 22, 16
+    cx, cy, L = 26, v.h - 22, 14
     axes = [(np.array([1.0, 0, 0]), (210, 40, 40), "x"), (np.array([0, 1.0, 0]), (30, 150, 40), "y"),
             (np.array([0, 0, 1.0]), (40, 70, 220), "z")]
     # the axis pointing most into the screen is drawn first
