@@ -580,9 +580,7 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
             img = draw(g, fr)
             if side == "after":
                 after_img = img.copy()
-            plain = _strip_annotations(g)
-            masks[side] = _drawing_mask(fr, draw(plain.only(changed_links), fr)) \
-                if changed_links else np.zeros((fr.size[1], fr.size[0]), dtype=bool)
+            masks[side] = link_mask(g, fr, changed_links)
             caption(img, model_caption(g.name, g.links, len(g.placeholders)))
         path = f"{stem}.{side}.png"
         save_png(img, path)
@@ -594,6 +592,13 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
     save_png(diff, f"{stem}.diff.png")
     out["diff"], out["changed_pixels"] = f"{stem}.diff.png", n
     return out
+
+
+def link_mask(g: Geometry, fr: Frame, links) -> np.ndarray:
+    """Where the parts of ``links`` are drawn in ``fr`` (no labels, skeleton or triads)."""
+    if not links:
+        return np.zeros((fr.size[1], fr.size[0]), dtype=bool)
+    return _drawing_mask(fr, draw(_strip_annotations(g).only(links), fr))
 
 
 def _strip_annotations(g: Geometry) -> Geometry:
