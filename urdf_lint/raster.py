@@ -366,10 +366,12 @@ def _raster_ids(solid, which, v: View, Hs, Ws):
         return zbuf, ids
     X, Y, Z = _project(v, solid["T"][idx].reshape(-1, 3))
     X, Y, Z = X.reshape(-1, 3), Y.reshape(-1, 3), Z.reshape(-1, 3)
-    # back faces lose ties with front faces: a tiny depth bias, far below any real gap
+    # back faces lose ties with front faces, and a coincident face of a later part loses to
+    # the earlier one (no z-fighting speckle): tiny depth biases, far below any real gap
     back = solid["n"][idx] @ v.view < 0
     span = float(Z.max() - Z.min()) or 1.0
-    Z = Z + np.where(back, 2e-5 * span, 0.0)[:, None]
+    bias = np.where(back, 2e-5, 0.0) + 1e-8 * np.minimum(solid["part"][idx], 1000)
+    Z = Z + (bias * span)[:, None]
     raster_ids(zbuf, ids, X, Y, Z, idx)
     return zbuf, ids
 
@@ -433,7 +435,11 @@ def _outline_edges(colour, ids, zbuf, part, strength=0.6):
         e = np.swapaxes(edge, 0, axis)
         e[1:] |= d
         e[:-1] |= d
-    edge &= covered  # silhouettes are drawn on the object's side of the border
+    # two supersampled pixels wide (one after anti-aliasing), on the object's side of a
+    # silhouette
+    edge[1:, :] |= edge[:-1, :]
+    edge[:, 1:] |= edge[:, :-1]
+    edge &= covered
     if not edge.any():
         return
     px = colour[edge].astype(float)
