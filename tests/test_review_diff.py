@@ -190,8 +190,10 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     out = tmp_path / "snap"
     out.mkdir()
     (out / "stale.diff.png").write_bytes(b"old")        # an earlier run's file is cleared
-    (out / ".urdf-lint-snapshots.json").write_text('{"files": ["stale.diff.png"]}')
     (out / "notes.diff.png").write_bytes(b"mine")       # a file urdf-lint did not write stays
+    from urdf_lint.render import MANIFEST, _digest
+    (out / MANIFEST).write_text(json.dumps({"files": {      # what the earlier run wrote
+        "stale.diff.png": _digest(out / "stale.diff.png"), "notes.diff.png": "0" * 32}}))
     assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
     capsys.readouterr()
     stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"

@@ -341,6 +341,12 @@ def test_failed_snapshot_exits_1_and_stale_files_go_but_users_stay(tmp_path):
     assert (out / "notes.png").read_bytes() == b"the user's own file"
     assert (out / "two.png").read_bytes() == b"also the user's"
     assert (out / "summary.md").exists()
+    # a manifest planted in the folder (or edited) cannot make urdf-lint delete a file
+    from urdf_lint.render import MANIFEST
+    (out / MANIFEST).write_text(json.dumps({"files": {"notes.png": "0" * 32,
+                                                      "../repo/p/package.xml": "0" * 32}}))
+    run_cli("render", pkg, "--out", out, "--no-rrd", cwd=repo)
+    assert (out / "notes.png").exists() and (pkg / "package.xml").exists()
 
 
 def test_render_time_per_png_on_the_biggest_corpus_meshes(corpus, tmp_path):

@@ -141,35 +141,57 @@ def _remove(path):
 
 # -- files this tool wrote in an output folder -------------------------------------------------
 MANIFEST = ".urdf-lint-snapshots.json"
+_OUTPUT_SUFFIXES = (".png", ".rrd", ".md")
+
+
+def _digest(path) -> str | None:
+    h = hashlib.blake2b(digest_size=16)
+    try:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+    except OSError:
+        return None
+    return h.hexdigest()
 
 
 def clear_stale(out_dir) -> None:
     """Remove what an earlier run wrote in ``out_dir`` (listed in its manifest), so no stale
-    picture survives; a file this tool did not write is never touched."""
+    picture survives. A file is removed only when it is a regular file directly in ``out_dir``
+    with an output suffix and the very bytes that run wrote (the manifest keeps a digest), so
+    a planted or edited manifest cannot make urdf-lint delete anyone's file."""
     import json
     path = os.path.join(out_dir, MANIFEST)
+    if os.path.islink(path) or not os.path.isfile(path):
+        return
     try:
         with open(path, encoding="utf-8") as f:
-            names = json.load(f).get("files", [])
+            files = json.load(f).get("files", {})
     except (OSError, ValueError, AttributeError):
         return
-    for name in names if isinstance(names, list) else ():
-        # a bare file name, written by us: never a path elsewhere, never through a link
-        if not isinstance(name, str) or os.path.basename(name) != name or name in ("", ".", ".."):
+    for name, digest in files.items() if isinstance(files, dict) else ():
+        if not isinstance(name, str) or os.path.basename(name) != name \
+                or not name.endswith(_OUTPUT_SUFFIXES):
             continue
         p = os.path.join(out_dir, name)
-        if os.path.isfile(p) and not os.path.islink(p):
+        if os.path.isfile(p) and not os.path.islink(p) and _digest(p) == digest:
             _remove(p)
     _remove(path)
 
 
 def write_manifest(out_dir, files) -> None:
-    """Record the files this run wrote in ``out_dir`` (the next run removes them first)."""
+    """Record the files this run wrote in ``out_dir`` with their digests (the next run
+    removes them first, if they are unchanged)."""
     import json
     from .atomic import atomic_write
-    names = sorted({os.path.basename(f) for f in files if f and
-                    os.path.dirname(os.path.abspath(f)) == os.path.abspath(out_dir)})
-    atomic_write(os.path.join(out_dir, MANIFEST), json.dumps({"files": names}, indent=1) + "\n")
+    out = {}
+    for f in files:
+        if f and os.path.dirname(os.path.abspath(f)) == os.path.abspath(out_dir):
+            d = _digest(f)
+            if d is not None:
+                out[os.path.basename(f)] = d
+    atomic_write(os.path.join(out_dir, MANIFEST),
+                 json.dumps({"files": dict(sorted(out.items()))}, indent=1) + "\n")
 
 
 def write_summary(result, out_dir):
