@@ -325,7 +325,7 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
             zero = np.full_like(gids, -1)
             _outline_edges(colour, np.where(front, gids, zero), np.where(front, zg, np.inf),
                            solid["part"], strength=0.35)
-    if len(g.bones) and g.labels:  # the joint tree holds a robot with holes together
+    if len(g.bones) and (g.labels or solid is None):  # holds a robot with holes together
         _skeleton(colour, zbuf, g.bones, v)
     img = Image.fromarray(colour, "RGB")
     dr = ImageDraw.Draw(img)
@@ -337,6 +337,13 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
     dr = ImageDraw.Draw(img)
     if len(fr.views) > 1:
         dr.text((6, 2), v.name, fill=(90, 90, 100))
+    if solid is None and not g.wires:   # nothing to draw: say so, and mark the link frames
+        X, Y, _ = _project(v, g.link_pts)
+        for x, y in zip(X / S, Y / S, strict=True):
+            dr.ellipse((x - 3, y - 3, x + 3, y + 3), outline=_SKELETON, width=1)
+        text = "(nothing to draw: no visual geometry)"
+        box = dr.textbbox((0, 0), text)
+        dr.text(((v.w - box[2]) / 2, v.h / 2 + 12), text, fill=(90, 90, 100))
     _triad(dr, v)
     taken: list = []
     for link, pos in g.labels:
