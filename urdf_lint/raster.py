@@ -255,13 +255,14 @@ def frame_for(geoms, size=None, views="single", forward="+x") -> Frame:
 
 
 # -- drawing ---------------------------------------------------------------------------------
-def draw(g: Geometry, fr: Frame):
-    """The anti-aliased image of one geometry through one frame (no caption)."""
+def draw(g: Geometry, fr: Frame, annotate: bool = True):
+    """The anti-aliased image of one geometry through one frame (no caption); without
+    ``annotate``, the parts alone (no view names, triads, labels or skeleton)."""
     from PIL import Image
     img = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
     solid = _prepare(g)
     for v in fr.views:
-        img.paste(_draw_view(g, solid, v, fr), (v.x0, v.y0))
+        img.paste(_draw_view(g, solid, v, fr, annotate), (v.x0, v.y0))
     return img
 
 
@@ -304,7 +305,7 @@ def _project(v: View, p):
     return (v.ox + v.scale * (q @ v.right), v.oy - v.scale * (q @ v.up), q @ v.fwd)
 
 
-def _draw_view(g: Geometry, solid, v: View, fr: Frame):
+def _draw_view(g: Geometry, solid, v: View, fr: Frame, annotate: bool = True):
     from PIL import Image, ImageDraw
     S = _SS
     Ws, Hs = v.w * S, v.h * S
@@ -325,7 +326,7 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
             zero = np.full_like(gids, -1)
             _outline_edges(colour, np.where(front, gids, zero), np.where(front, zg, np.inf),
                            solid["part"], strength=0.35)
-    if len(g.bones) and (g.labels or solid is None):  # holds a robot with holes together
+    if annotate and len(g.bones) and (g.labels or solid is None):  # holds a torn robot together
         _skeleton(colour, zbuf, g.bones, v)
     img = Image.fromarray(colour, "RGB")
     dr = ImageDraw.Draw(img)
@@ -334,6 +335,8 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame):
         for a, b in _BOX_EDGES:
             dr.line([(X[a], Y[a]), (X[b], Y[b])], fill=(220, 30, 30), width=3 * S)
     img = img.resize((v.w, v.h), Image.Resampling.LANCZOS)
+    if not annotate:
+        return img
     dr = ImageDraw.Draw(img)
     if len(fr.views) > 1:
         dr.text((6, 2), v.name, fill=(90, 90, 100))
@@ -564,17 +567,6 @@ def difference_image(after, before_changed, after_changed):
     return Image.fromarray(out.clip(0, 255).astype(np.uint8), "RGB")
 
 
-def _drawing_mask(fr: Frame, img) -> np.ndarray:
-    """Foreground of ``img`` inside the views (not the captions, labels or triads)."""
-    m = _mask(img)
-    keep = np.zeros_like(m)
-    for v in fr.views:
-        top = 16 if len(fr.views) > 1 else 0
-        keep[v.y0 + top:v.y0 + v.h, v.x0 + 44:v.x0 + v.w] = True
-        keep[v.y0 + top:v.y0 + v.h - 44, v.x0:v.x0 + 44] = True
-    return m & keep
-
-
 def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
                 changed_links=frozenset(), views="sheet", forward="+x") -> dict:
     """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
@@ -634,13 +626,7 @@ def link_mask(g: Geometry, fr: Frame, links) -> np.ndarray:
     """Where the parts of ``links`` are drawn in ``fr`` (no labels, skeleton or triads)."""
     if not links:
         return np.zeros((fr.size[1], fr.size[0]), dtype=bool)
-    return _drawing_mask(fr, draw(_strip_annotations(g).only(links), fr))
-
-
-def _strip_annotations(g: Geometry) -> Geometry:
-    """``g`` without labels and skeleton: the highlight masks show the parts only."""
-    import dataclasses
-    return dataclasses.replace(g, labels=[], bones=np.zeros((0, 2, 3)))
+    return _mask(draw(g.only(links), fr, annotate=False))
 
 
 # -- the rasterizer --------------------------------------------------------------------------
