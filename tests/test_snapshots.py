@@ -364,3 +364,30 @@ def test_render_time_per_png_on_the_biggest_corpus_meshes(corpus, tmp_path):
         t0 = time.perf_counter()
         raster.draw(g, raster.frame_for([g]))
         assert time.perf_counter() - t0 < 10, path          # generous: a shared CI machine
+
+
+def test_diff_render_exits_1_when_a_revision_cannot_be_drawn(tmp_path):
+    import subprocess
+    box = ('<robot name="r"><link name="a"><visual><geometry><box size="0.1 0.1 0.1"/>'
+           '</geometry></visual></link></robot>\n')
+    repo = tmp_path / "repo"
+    pkg = make_package(repo, "p", {"urdf/r.urdf": box})
+
+    def git(*a):
+        subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *a], cwd=repo,
+                       check=True, capture_output=True)
+    git("init", "-q")
+    git("add", "-A")
+    git("commit", "-qm", "base")
+    (pkg / "urdf/r.urdf").write_text(box.replace("0.1 0.1 0.1", "0.2 0.1 0.1"))
+    ok = run_cli("diff", "HEAD", "--render", tmp_path / "a", "--no-rrd", "--no-cache",
+                 "--fail-on", "never", cwd=repo)
+    assert ok.returncode == 0, ok.stderr
+    assert len(list((tmp_path / "a").glob("*.png"))) == 3
+    (pkg / "urdf/r.urdf").write_text("<robot name='r'><link name='a'>")     # does not parse
+    bad = run_cli("diff", "HEAD", "--render", tmp_path / "b", "--no-rrd", "--no-cache",
+                  "--fail-on", "never", cwd=repo)
+    assert bad.returncode == 1
+    lines = [ln for ln in bad.stderr.splitlines() if "snapshot incomplete" in ln]
+    assert len(lines) == 1 and lines[0].startswith("p/urdf/r.urdf"), bad.stderr
+    assert "head revision" in lines[0]
