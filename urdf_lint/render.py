@@ -11,8 +11,7 @@ import hashlib
 import os
 import sys
 import threading
-
-import numpy as np
+import zlib
 
 from .raster import (PNG_SIZE, Frame, Geometry, _mask, caption, difference_image, draw,  # noqa: F401
                      frame_for, link_mask, model_caption, rasterize, render_image, render_pair, render_png,
@@ -55,7 +54,8 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
             "image": None, "title": scene.name, "entities": entity_paths(scene)}
     try:
         img, facts = render_image(scene, ctx, views, forward)
-        info["image"] = np.asarray(img)
+        # raw pixels, deflated (a run may hold a hundred of them until its findings are final)
+        info["image"] = (img.height, img.width, zlib.compress(img.tobytes(), 1))
         info.update(facts)
     except Exception as e:  # noqa: BLE001
         info["problems"].append(f"png: {type(e).__name__}: {e}")
@@ -86,20 +86,8 @@ def finish_snapshots(models, findings, out_dir) -> None:
         if not snap:
             continue
         mine = [f for f in findings if m.label in f.models]
-        image = snap.pop("image", None)
-        if snap.get("png") and image is not None:
-            from PIL import Image
-            img = Image.fromarray(np.asarray(image, dtype=np.uint8), "RGB")
-            caption(img, model_caption(snap.get("title"), snap.get("links", m.links),
-                                       snap.get("placeholders", 0), len(mine)))
-            try:
-                save_png(img, snap["png"])
-            except OSError as e:
-                snap["problems"].append(f"png: cannot write: {e.strerror or e}")
-                snap["png"] = None
-        elif snap.get("png"):
-            snap["png"] = None
         snap["findings"] = len(mine)
+        _finish_png(snap, snap.pop("image", None), m, len(mine))
         if snap.get("rrd") and mine:
             paths, joints = snap.get("entities") or ({}, {})
             part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
@@ -111,6 +99,27 @@ def finish_snapshots(models, findings, out_dir) -> None:
                 _remove(part)
                 _remove(snap["rrd"])
                 snap["rrd"] = None
+
+
+def _finish_png(snap, image, m, findings: int) -> None:
+    if not snap.get("png") or image is None:
+        snap["png"] = None
+        return
+    from PIL import Image
+    h, w, data = image
+    raw = zlib.decompressobj().decompress(data, 3 * h * w + 1) if 0 < h * w <= 4096 * 4096 else b""
+    if len(raw) != h * w * 3:
+        snap["problems"].append("png: the worker's picture has the wrong size")
+        snap["png"] = None
+        return
+    img = Image.frombytes("RGB", (w, h), raw)
+    caption(img, model_caption(snap.get("title"), snap.get("links", m.links),
+                               snap.get("placeholders", 0), findings))
+    try:
+        save_png(img, snap["png"])
+    except OSError as e:
+        snap["problems"].append(f"png: cannot write: {e.strerror or e}")
+        snap["png"] = None
 
 
 def merge_rrd(parts, out):
