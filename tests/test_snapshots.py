@@ -6,7 +6,6 @@ renders."""
 from __future__ import annotations
 
 import json
-import warnings
 from collections import Counter
 from pathlib import Path
 
@@ -64,7 +63,8 @@ def _policy_repo(tmp_path):
 
 
 def test_picture_and_recording_show_the_reports_findings(tmp_path):
-    rr = pytest.importorskip("rerun")  # noqa: F841
+    pytest.importorskip("rerun")
+    from test_render import text_logs
     repo, pkg = _policy_repo(tmp_path)
     (repo / ".git").mkdir()
     raw = json.loads(run_cli("check", pkg, "--isolated", "--format", "json", "--no-cache",
@@ -96,24 +96,10 @@ def test_picture_and_recording_show_the_reports_findings(tmp_path):
             exp = strip.copy()
             raster.caption(exp, raster.model_caption("pol", 6, 0, n))
             assert bool((np.asarray(exp) == a[:raster.CAPTION_H]).all()) is same, (n, cmd[0])
-        texts = _text_logs(next(out.glob("*.rrd")))
+        texts = [t for _, t in text_logs(next(out.glob("*.rrd")))]
         got = Counter(t.split()[0] for t in texts)
         assert got == Counter(f["code"] for f in report), (got, cmd[0])
         assert any(t.startswith("UL302") for t in texts)
-
-
-def _text_logs(path):
-    from rerun.chunk import RrdReader
-    texts = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for ch in RrdReader(str(path)).stream():
-            b = ch.to_record_batch()
-            for name in b.schema.names:
-                if name.endswith(":text"):
-                    for v in b.column(name).to_pylist():
-                        texts.append(v[0] if isinstance(v, list) else v)
-    return texts
 
 
 # -- missing meshes ----------------------------------------------------------------------------
