@@ -502,16 +502,10 @@ def caption(img, text):
     ImageDraw.Draw(img).text((8, 6), text, fill=(40, 40, 40))
 
 
-_caption = caption
-
-
 def save_png(img, path):
     from .atomic import atomic_path
     with atomic_path(path, ".png") as tmp:
         img.save(tmp, format="PNG", optimize=False)
-
-
-_save_png = save_png
 
 
 def model_caption(name, links, placeholders, findings=None) -> str:
@@ -530,14 +524,6 @@ def render_image(scene, ctx, views="single", forward="+x"):
     img = draw(g, frame_for([g], views=views, forward=forward))
     return img, {"triangles": int(sum(len(t) for t in g.tris)),
                  "placeholders": len(g.placeholders), "links": len(scene.links)}
-
-
-def render_png(scene, ctx, path, findings_count=None, size=PNG_SIZE, views="single",
-               forward="+x"):
-    img, facts = render_image(scene, ctx, views, forward)
-    caption(img, model_caption(scene.name, facts["links"], facts["placeholders"], findings_count))
-    save_png(img, path)
-    return facts
 
 
 def _mask(img) -> np.ndarray:
@@ -639,18 +625,6 @@ def _write_nearest(zbuf, ids, pix, z, t):
     np.minimum.at(flat_z, pix, z)
     win = z <= flat_z[pix]
     ids.reshape(-1)[pix[win]] = t[win]
-
-
-def rasterize(colour, X, Y, Z, rgb8, pixels_per_batch=1 << 20):
-    """Z-buffer flat-coloured triangles (pixel coordinates X, Y; depth Z, smaller is nearer)
-    into ``colour``; returns the depth buffer."""
-    Hs, Ws = colour.shape[:2]
-    zbuf = np.full((Hs, Ws), np.inf)
-    ids = np.full((Hs, Ws), -1, dtype=np.int64)
-    raster_ids(zbuf, ids, X, Y, Z, np.arange(len(X)), pixels_per_batch)
-    m = ids >= 0
-    colour[m] = np.asarray(rgb8)[ids[m]]
-    return zbuf
 
 
 def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20):

@@ -14,7 +14,7 @@ import threading
 import zlib
 
 from .raster import (PNG_SIZE, Frame, Geometry, _mask, caption, difference_image, draw,  # noqa: F401
-                     frame_for, link_mask, model_caption, rasterize, render_image, render_pair, render_png,
+                     frame_for, link_mask, model_caption, render_image, render_pair,
                      save_png, scene_geometry)
 from .recording import _import_rerun, entity_paths, record_findings, record_rrd  # noqa: F401
 from .scene import Part, Scene, build_scene, kinematic_tree, part_mesh  # noqa: F401
