@@ -639,21 +639,25 @@ def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20):
     x0_, x1_, x2_ = X[:, 0], X[:, 1], X[:, 2]
     y0_, y1_, y2_ = Y[:, 0], Y[:, 1], Y[:, 2]
     den = (x1_ - x0_) * (y2_ - y0_) - (x2_ - x0_) * (y1_ - y0_)
-    ok = np.abs(den) > 1e-12
+    # (elementwise min/max of the three corners: much faster than reductions over axis 1)
+    xmin, xmax = np.minimum(np.minimum(x0_, x1_), x2_), np.maximum(np.maximum(x0_, x1_), x2_)
+    ymin, ymax = np.minimum(np.minimum(y0_, y1_), y2_), np.maximum(np.maximum(y0_, y1_), y2_)
+    first, last = np.ceil(ymin - 0.5), np.floor(ymax - 0.5)
     # triangles that cover no pixel centre (tiny, or outside the view) cost nothing
-    ok &= (X.max(axis=1) >= 0) & (X.min(axis=1) < Ws) & (Y.max(axis=1) >= 0) & (Y.min(axis=1) < Hs)
-    ok &= np.ceil(Y.min(axis=1) - 0.5) <= np.floor(Y.max(axis=1) - 0.5)
+    ok = (np.abs(den) > 1e-12) & (xmax >= 0) & (xmin < Ws) & (ymax >= 0) & (ymin < Hs) \
+        & (first <= last)
     X, Y, Z, den, tri_ids = X[ok], Y[ok], Z[ok], den[ok], np.asarray(tri_ids)[ok]
+    xmin, xmax, first, last = xmin[ok], xmax[ok], first[ok], last[ok]
     dz1, dz2 = Z[:, 1] - Z[:, 0], Z[:, 2] - Z[:, 0]
     dx1, dx2 = X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]
     dy1, dy2 = Y[:, 1] - Y[:, 0], Y[:, 2] - Y[:, 0]
     pa = (dz1 * dy2 - dz2 * dy1) / den
     pb = (dz2 * dx1 - dz1 * dx2) / den
     pc = Z[:, 0] - pa * X[:, 0] - pb * Y[:, 0]
-    ys = np.clip(np.ceil(Y.min(axis=1) - 0.5), 0, Hs).astype(np.int64)       # first row
-    ye = np.clip(np.floor(Y.max(axis=1) - 0.5), -1, Hs - 1).astype(np.int64)  # last row
+    ys = np.clip(first, 0, Hs).astype(np.int64)        # first row
+    ye = np.clip(last, -1, Hs - 1).astype(np.int64)    # last row
     rows = np.maximum(0, ye - ys + 1)
-    width = np.clip(np.ceil(X.max(axis=1)) - np.floor(X.min(axis=1)) + 1, 1, Ws)
+    width = np.clip(np.ceil(xmax) - np.floor(xmin) + 1, 1, Ws)
     cost = np.cumsum(rows * width)
     start = 0
     while start < len(X):
