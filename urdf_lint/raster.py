@@ -312,6 +312,8 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame, annotate: bool = True):
     colour = np.tile(_BACKGROUND.astype(np.uint8), (Hs, Ws, 1))
     zbuf = np.full((Hs, Ws), np.inf)
     if solid is not None:
+        X, Y, Z = _project(v, solid["T"].reshape(-1, 3))   # every corner, once per view
+        solid = dict(solid, X=X.reshape(-1, 3), Y=Y.reshape(-1, 3), Z=Z.reshape(-1, 3))
         opaque = ~solid["ghost"]
         zbuf, ids = _raster_ids(solid, opaque, v, Hs, Ws)
         _shade(colour, ids, solid, v, g)
@@ -374,8 +376,7 @@ def _raster_ids(solid, which, v: View, Hs, Ws):
     ids = np.full((Hs, Ws), -1, dtype=np.int64)
     if not len(idx):
         return zbuf, ids
-    X, Y, Z = _project(v, solid["T"][idx].reshape(-1, 3))
-    X, Y, Z = X.reshape(-1, 3), Y.reshape(-1, 3), Z.reshape(-1, 3)
+    X, Y, Z = solid["X"][idx], solid["Y"][idx], solid["Z"][idx]
     # back faces lose ties with front faces, and a coincident face of a later part loses to
     # the earlier one (no z-fighting speckle): tiny depth biases, far below any real gap
     back = solid["n"][idx] @ v.view < 0
@@ -392,39 +393,40 @@ def _shade(colour, ids, solid, v: View, g: Geometry):
     m = ids >= 0
     if not m.any():
         return
-    t = ids[m]
     light = v.view + 0.3 * v.right + 0.5 * v.up
     light /= np.linalg.norm(light)
     shade = 0.38 + 0.62 * np.abs(solid["n"] @ light)
-    rgb = solid["C"][t].copy()
-    if solid["tex"] is not None:
-        tt = solid["tex"][t]
-        has = tt >= 0
-        if has.any():
-            ys, xs = np.nonzero(m)
-            ys, xs, tri = ys[has] + 0.5, xs[has] + 0.5, t[has]
-            X, Y, _ = _project(v, solid["T"][tri].reshape(-1, 3))
-            X, Y = X.reshape(-1, 3), Y.reshape(-1, 3)
-            dx1, dx2 = X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]
-            dy1, dy2 = Y[:, 1] - Y[:, 0], Y[:, 2] - Y[:, 0]
-            den = dx1 * dy2 - dx2 * dy1
-            den = np.where(np.abs(den) < 1e-12, 1e-12, den)
-            l1 = ((xs - X[:, 0]) * dy2 - (ys - Y[:, 0]) * dx2) / den
-            l2 = ((ys - Y[:, 0]) * dx1 - (xs - X[:, 0]) * dy1) / den
-            l1, l2 = np.clip(l1, 0, 1), np.clip(l2, 0, 1)
-            l0 = np.clip(1 - l1 - l2, 0, 1)
-            uvt = solid["uv"][tri]
-            uv = (uvt[:, 0] * l0[:, None] + uvt[:, 1] * l1[:, None] + uvt[:, 2] * l2[:, None]) % 1.0
-            sampled = np.zeros((len(tri), 3))
-            for i in np.unique(tt[has]):
-                arr = g.texs[int(i)]
-                sel = tt[has] == i
-                h, w = arr.shape[:2]
-                px = np.clip((uv[sel, 0] * w).astype(np.int64), 0, w - 1)
-                py = np.clip(((1.0 - uv[sel, 1]) * h).astype(np.int64), 0, h - 1)
-                sampled[sel] = arr[py, px, :3] / 255.0
-            rgb[has] = sampled
-    colour[m] = (np.clip(rgb * shade[t][:, None], 0, 1) * 255).astype(np.uint8)
+    flat = (np.clip(solid["C"] * shade[:, None], 0, 1) * 255).astype(np.uint8)
+    if solid["tex"] is None:
+        colour[m] = flat[ids[m]]
+        return
+    t = ids[m]
+    out = flat[t]
+    tt = solid["tex"][t]
+    has = tt >= 0
+    if has.any():
+        ys, xs = np.nonzero(m)
+        ys, xs, tri = ys[has] + 0.5, xs[has] + 0.5, t[has]
+        X, Y = solid["X"][tri], solid["Y"][tri]
+        dx1, dx2 = X[:, 1] - X[:, 0], X[:, 2] - X[:, 0]
+        dy1, dy2 = Y[:, 1] - Y[:, 0], Y[:, 2] - Y[:, 0]
+        den = dx1 * dy2 - dx2 * dy1
+        den = np.where(np.abs(den) < 1e-12, 1e-12, den)
+        l1 = np.clip(((xs - X[:, 0]) * dy2 - (ys - Y[:, 0]) * dx2) / den, 0, 1)
+        l2 = np.clip(((ys - Y[:, 0]) * dx1 - (xs - X[:, 0]) * dy1) / den, 0, 1)
+        l0 = np.clip(1 - l1 - l2, 0, 1)
+        uvt = solid["uv"][tri]
+        uv = (uvt[:, 0] * l0[:, None] + uvt[:, 1] * l1[:, None] + uvt[:, 2] * l2[:, None]) % 1.0
+        sampled = np.zeros((len(tri), 3))
+        for i in np.unique(tt[has]):
+            arr = g.texs[int(i)]
+            sel = tt[has] == i
+            h, w = arr.shape[:2]
+            px = np.clip((uv[sel, 0] * w).astype(np.int64), 0, w - 1)
+            py = np.clip(((1.0 - uv[sel, 1]) * h).astype(np.int64), 0, h - 1)
+            sampled[sel] = arr[py, px, :3] / 255.0
+        out[has] = (np.clip(sampled * shade[tri][:, None], 0, 1) * 255).astype(np.uint8)
+    colour[m] = out
 
 
 def _outline_edges(colour, ids, zbuf, part, strength=0.6):

@@ -80,25 +80,36 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
 def finish_snapshots(models, findings, out_dir) -> None:
     """In the parent, after the run's policy and the baseline: caption each model's picture
     with its findings and write it, and merge those findings into its recording. Reads only
-    what the workers handed back, never a model file."""
-    for m in models:
-        snap = m.snapshot
-        if not snap:
-            continue
-        mine = [f for f in findings if m.label in f.models]
-        snap["findings"] = len(mine)
-        _finish_png(snap, snap.pop("image", None), m, len(mine))
-        if snap.get("rrd") and mine:
-            paths, joints = snap.get("entities") or ({}, {})
-            part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
-            try:
-                record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}")
-                merge_rrd([snap["rrd"], part], snap["rrd"])
-            except Exception as e:  # noqa: BLE001
-                snap["problems"].append(f"rrd: findings not recorded: {type(e).__name__}: {e}")
-                _remove(part)
-                _remove(snap["rrd"])
-                snap["rrd"] = None
+    what the workers handed back, never a model file. Models are finished in parallel
+    threads (PNG encoding and ``rerun rrd merge`` subprocesses do not hold the GIL)."""
+    from concurrent.futures import ThreadPoolExecutor
+    todo = [m for m in models if m.snapshot]
+    by_model: dict = {m.label: [] for m in todo}
+    for f in findings:
+        for label in f.models:
+            if label in by_model:
+                by_model[label].append(f)
+    if any(m.snapshot.get("rrd") and by_model[m.label] for m in todo):
+        import rerun  # noqa: F401 - once, before the threads
+    with ThreadPoolExecutor(max_workers=max(1, min(len(todo), os.cpu_count() or 1))) as pool:
+        list(pool.map(lambda m: _finish_one(m, by_model[m.label], out_dir), todo))
+
+
+def _finish_one(m, mine, out_dir) -> None:
+    snap = m.snapshot
+    snap["findings"] = len(mine)
+    _finish_png(snap, snap.pop("image", None), m, len(mine))
+    if snap.get("rrd") and mine:
+        paths, joints = snap.get("entities") or ({}, {})
+        part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
+        try:
+            record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}")
+            merge_rrd([snap["rrd"], part], snap["rrd"])
+        except Exception as e:  # noqa: BLE001
+            snap["problems"].append(f"rrd: findings not recorded: {type(e).__name__}: {e}")
+            _remove(part)
+            _remove(snap["rrd"])
+            snap["rrd"] = None
 
 
 def _finish_png(snap, image, m, findings: int) -> None:
