@@ -204,7 +204,6 @@ def test_sheet_has_four_views_triads_and_crops_tall_robots(tmp_path):
                     or v.name == "top" and ch == 2:
                 continue                                    # that axis points at the camera
             assert pure.sum() >= 3, (v.name, ch)
-    assert not (sheet[:raster.CAPTION_H] != BG).all(axis=2).any() or True
 
 
 def test_forward_axis_turns_the_named_views(tmp_path):
@@ -322,8 +321,7 @@ def test_failed_snapshot_exits_1_and_stale_files_go_but_users_stay(tmp_path):
     p = run_cli("render", pkg, "--out", out, "--no-rrd", cwd=repo)
     assert p.returncode == 1
     lines = [ln for ln in p.stderr.splitlines() if "no snapshot" in ln]
-    assert len(lines) == 1 and lines[0].startswith("p/urdf/one.urdf: ") or \
-        lines[0].split(":")[0].endswith("one.urdf"), p.stderr
+    assert len(lines) == 1 and lines[0].startswith("p/urdf/one.urdf: no snapshot"), p.stderr
     assert not list(out.glob("p__urdf__*.png"))         # last run's pictures are gone
     assert (out / "notes.png").read_bytes() == b"the user's own file"
     assert (out / "two.png").read_bytes() == b"also the user's"
