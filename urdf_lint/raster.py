@@ -488,6 +488,8 @@ def _skeleton(colour, zbuf, bones, v: View):
 def _triad(dr, v: View):
     """A small x/y/z triad (red/green/blue) in the bottom left corner of a view."""
     cx, cy, L = 26, v.h - 22, 14
+    dr.rounded_rectangle((4, cy - L - 10, cx + L + 12, v.h - 2), radius=4, fill=(250, 250, 252),
+                         outline=(205, 207, 212))  # legible over the robot too
     axes = [(np.array([1.0, 0, 0]), (210, 40, 40), "x"), (np.array([0, 1.0, 0]), (30, 150, 40), "y"),
             (np.array([0, 0, 1.0]), (40, 70, 220), "z")]
     # the axis pointing most into the screen is drawn first
