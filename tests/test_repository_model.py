@@ -242,4 +242,4 @@ def test_render_fragment_renders_its_model_and_fails_without_snapshot(tmp_path):
     # a requested model that cannot be snapshotted is a failure, not a blank image
     (repo / V3 / "main.xacro").unlink()
     p = run_cli("render", V3 + "robot_v3.xacro", "--out", tmp_path / "snap2", "--no-rrd", cwd=repo)
-    assert p.returncode == 1 and "no snapshot of v3_description/urdf/robot_v3.xacro" in p.stderr
+    assert p.returncode == 1 and "v3_description/urdf/robot_v3.xacro: no snapshot" in p.stderr

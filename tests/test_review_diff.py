@@ -190,11 +190,16 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     out = tmp_path / "snap"
     out.mkdir()
     (out / "stale.diff.png").write_bytes(b"old")        # an earlier run's file is cleared
+    (out / "notes.diff.png").write_bytes(b"mine")       # a file urdf-lint did not write stays
+    from urdf_lint.render import MANIFEST, _digest
+    (out / MANIFEST).write_text(json.dumps({"files": {      # what the earlier run wrote
+        "stale.diff.png": _digest(out / "stale.diff.png"), "notes.diff.png": "0" * 32}}))
     assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
     capsys.readouterr()
     stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
     before, after, diff = (_img(f"{stem}.{s}.png") for s in ("before", "after", "diff"))
     assert not (out / "stale.diff.png").exists()
+    assert (out / "notes.diff.png").read_bytes() == b"mine"
     assert before.shape == after.shape == diff.shape
     tinted = (diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)   # magenta
     outline = (diff[:, :, 2] > 150) & (diff[:, :, 0] < 80)                        # blue
@@ -228,12 +233,12 @@ def _link_mask(root, links):
 
 def render_frame(masks):
     from urdf_lint import render
-    return render.frame_for([g for g, _ in masks])
+    return render.frame_for([g for g, _ in masks], views="sheet")   # diff's default
 
 
 def render_mask(g, frame, links):
     from urdf_lint import render
-    return render._mask(render.draw(g.only(links), frame))
+    return render.link_mask(g, frame, links)
 
 
 def dilate(m, n):

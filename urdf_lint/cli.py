@@ -121,6 +121,12 @@ def _add_trust(p):
                         "keys are ignored with a note)")
 
 
+def _add_views(p):
+    p.add_argument("--views", metavar="{single,sheet}", help=_key_help("views"))
+    p.add_argument("--forward-axis", metavar="{+x,-x,+y,-y}", help=_key_help(
+        "forward-axis", "the robot's forward axis, for the front/side views"))
+
+
 def _add_limits(p):
     p.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
     p.add_argument("--memory-mb", metavar="MIB", help=_key_help("memory-mb"))
@@ -201,6 +207,7 @@ def _cmd_check(sub, raw):
     c.add_argument("--isolated", action="store_true", help="ignore all config files")
     c.add_argument("--render", metavar="DIR",
                    help="also write snapshots (.rrd, .png) to DIR (default: no snapshots)")
+    _add_views(c)
     c.add_argument("--changed-since", metavar="REF",
                    help="only the models affected by files changed since a git ref, e.g. "
                         "origin/main (default: every model)")
@@ -257,6 +264,7 @@ def _cmd_render(sub, raw):
     _add_inputs(rd)
     _add_limits(rd)
     rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
+    _add_views(rd)
 
 
 def _cmd_diff(sub, raw):
@@ -287,6 +295,7 @@ def _cmd_diff(sub, raw):
                     "identical framing and one .rrd holding both revisions per affected model "
                     "(default: no snapshots)")
     df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
+    _add_views(df)
     df.add_argument("--trust-config", action="store_true",
                     help="let each revision's config set env-allow, package-paths outside the "
                          "repository, cache-dir, jobs and looser limits (default: off)")
@@ -376,7 +385,7 @@ def _load_cfg(args, paths):
 
 
 _CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "timeout", "memory-mb", "jobs",
-             "format", "baseline", "env-allow", "cache-dir")
+             "format", "baseline", "env-allow", "cache-dir", "views", "forward-axis")
 
 
 def _apply_cli(cfg, args):
@@ -522,6 +531,8 @@ def cmd_check(args) -> int:
                 "is checked against every model that uses the file")
         from .fixcli import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
+    if render_dir:
+        _clear_stale(render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     from .fixrun import inside_paths   # a fix offered in JSON / SARIF edits only linted files
@@ -537,6 +548,8 @@ def cmd_check(args) -> int:
         out.note(f"urdf-lint: wrote {n} finding(s) in {files} file(s) to "
                  f"{display_path(os.path.abspath(args.write_baseline))}; "
                  f"lint with --baseline {args.write_baseline} to report only new ones")
+        if render_dir:
+            _report_snapshots(result, render_dir, out)
         return 2 if result.internal else 0
     from .emit import write_findings
     write_findings(args, cfg, result, out, color_mode)
@@ -594,27 +607,45 @@ def _note_unused(result, out, named=()):
             say(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
-def _report_snapshots(result, out_dir, out=None):
-    from .render import write_summary
+def _clear_stale(out_dir):
+    from .render import clear_stale
+    try:
+        clear_stale(out_dir)
+    except OSError as e:
+        raise UsageError(f"cannot clear {out_dir}: {e.strerror or e}") from None
+
+
+def _report_snapshots(result, out_dir, out=None) -> int:
+    """Caption and finish the snapshots with the run's final findings, write summary.md and
+    the manifest, and say (one located line each) which requested snapshot could not be
+    made; returns how many could not."""
+    from .render import finish_snapshots, write_manifest, write_summary
     from .locations import display_path
-    written = 0
+    finish_snapshots(result.models, result.findings, out_dir)
+    written, missed, files = 0, 0, []
     for m in result.models:
         snap = m.snapshot or {}
         for k in ("png", "rrd"):
             if snap.get(k):
                 written += 1
-        for prob in snap.get("problems", []):
-            sys.stderr.write(f"urdf-lint: snapshot of {_safe_text(m.label)}: {_safe_text(prob)}\n")
+                files.append(snap[k])
         if m.status != "model":
-            sys.stderr.write(f"urdf-lint: no snapshot of {_safe_text(m.label)}: it did not expand "
+            sys.stderr.write(f"{_safe_text(m.label)}: no snapshot: the model did not expand "
                              "(see 'urdf-lint check')\n")
+            missed += 1
+        elif snap.get("problems") or not snap.get("png"):
+            why = "; ".join(snap.get("problems") or ["no picture was drawn"])
+            sys.stderr.write(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}\n")
+            missed += 1
     summary = write_summary(result, out_dir)
+    write_manifest(out_dir, files + [summary])
     msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
            f"{display_path(out_dir)}/ (summary: {display_path(summary)})")
     if out is not None:
         out.note(msg)
     else:
         sys.stderr.write(msg + "\n")
+    return missed
 
 
 def cmd_hook(args) -> int:
@@ -732,10 +763,14 @@ def cmd_render(args) -> int:
     if redirect is not None:
         args.paths, affected_by = [redirect[0]], redirect[1]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    _clear_stale(args.out)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
+    if cfg.baseline:   # the pictures and summary.md count what 'check' would report
+        from .baseline import filter_baseline
+        result.findings = filter_baseline(cfg.baseline, result.findings)
     _note_unused(result, _Out(args), affected_by or ())
-    _report_snapshots(result, args.out)
+    missed = _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
         for k in ("png", "rrd"):
@@ -747,7 +782,6 @@ def cmd_render(args) -> int:
     if result.internal:
         return 2
     # a requested model that could not be snapshotted is a failure, not a blank image
-    missed = [m for m in result.models if m.status != "model" or not (m.snapshot or {}).get("png")]
     return 1 if missed else 0
 
 
@@ -759,7 +793,8 @@ def cmd_diff(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only these keys
     cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs,
-                                  trust_config=args.trust_config)
+                                  trust_config=args.trust_config, views=args.views,
+                                  forward_axis=args.forward_axis)
     _refuse_symlinked_out(args.render)
     cfgs = []
 
@@ -778,6 +813,8 @@ def cmd_diff(args) -> int:
         review_report.write_file(result, args.format, args.output, **kw)
     else:
         review_report.write(result, args.format, sys.stdout, **kw)
+    for model, why in result.snapshot_problems:
+        sys.stderr.write(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}\n")
     for msg in result.internal:
         sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))

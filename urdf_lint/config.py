@@ -225,7 +225,8 @@ class Key:
         d = self.default
         if d is None:
             return {"jobs": "all cores", "format": "text, or github on GitHub Actions",
-                    "cache-dir": ".urdf_lint_cache", "baseline": "none"}.get(self.name, "none")
+                    "cache-dir": ".urdf_lint_cache", "baseline": "none",
+                    "views": "single for render, sheet for diff"}.get(self.name, "none")
         if isinstance(d, list):
             return ",".join(d) if d else "none"
         if isinstance(d, float) and d.is_integer():
@@ -266,6 +267,10 @@ SCHEMA: tuple[Key, ...] = (
     Key("format", Choice(_formats), None, "output format"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file"),
     Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
+    Key("views", Choice(("single", "sheet")), None,
+        "snapshot pictures: one 3/4 view, or a 2x2 sheet of front, side, top and 3/4 views"),
+    Key("forward-axis", Choice(("+x", "-x", "+y", "-y")), "+x",
+        "the robot's forward axis in its base frame, for the snapshot views"),
 )
 KEYS = {k.name: k for k in SCHEMA}
 KNOWN_KEYS = set(KEYS)
@@ -301,6 +306,8 @@ class Config:
     format: str | None = None
     baseline: str | None = None     # absolute
     discover: bool = True           # false: lint only the configured models
+    views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
+    forward_axis: str = "+x"        # snapshots: the robot's forward axis
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:

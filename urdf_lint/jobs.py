@@ -53,6 +53,8 @@ class LintSettings:
     render_dir: str | None = None            # set: the worker also writes a snapshot
     render_rrd: bool = True
     render_base: str | None = None
+    render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
+    render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
     diff_render_dir: str | None = None       # diff --render: where the snapshots go
     diff_rrd: bool = True                    # diff --render: also this side's half recording

@@ -109,7 +109,9 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     if render_dir:
         os.makedirs(render_dir, exist_ok=True)
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
-                                       render_rrd=render_rrd, render_base=os.getcwd())
+                                       render_rrd=render_rrd, render_base=os.getcwd(),
+                                       render_views=cfg.views or "single",
+                                       render_forward=cfg.forward_axis)
     results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
     out = CheckResult(internal=internal)
     out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},

@@ -88,7 +88,16 @@ def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix):
             kwargs["vertex_colors"] = (vc * 255).astype(np.uint8)
         log(f"{base}/mesh", rr.Mesh3D(**kwargs), static=True)
         logged += 1
-    # findings, on the entity of the link or joint they concern
+    log_findings(log, findings, paths, joint_paths)
+    rec.flush()
+    rec.disconnect()
+    return {"meshes": logged}
+
+
+def log_findings(log, findings, paths, joint_paths):
+    """Each finding on the entity of the link or joint it concerns (``paths``/``joint_paths``
+    from :func:`entity_paths`)."""
+    import rerun as rr
     levels = {"error": "ERROR", "warning": "WARN", "info": "INFO"}
     for n, fd in enumerate(findings):
         target = fd.target
@@ -99,12 +108,24 @@ def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix):
             ent = joint_paths[target[1]]
         text = f"{fd.code} {fd.message} ({os.path.basename(fd.file)}:{fd.line})"
         log(f"{ent}/findings/{n}", rr.TextLog(text, level=levels.get(fd.severity, "WARN")),
-                static=True)
+            static=True)
         log(f"{ent}/findings/{n}", rr.Points3D([[0, 0, 0]], radii=[0.01], colors=[[230, 30, 30]],
-                                                  labels=[fd.code]), static=True)
-    rec.flush()
-    rec.disconnect()
-    return {"meshes": logged}
+                                              labels=[fd.code]), static=True)
+
+
+def record_findings(findings, paths, joint_paths, path, recording_id, prefix=""):
+    """A recording of ``findings`` alone, with the same entity paths and recording id as the
+    model's (written by the parent once the run's findings are final; merged into the
+    model's recording)."""
+    import rerun as rr
+    from .atomic import atomic_path
+    with atomic_path(path) as tmp:
+        rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
+        rec.save(tmp)
+        log_findings(lambda entity, *a, **kw: rec.log(prefix + entity, *a, **kw), findings,
+                     paths, joint_paths)
+        rec.flush()
+        rec.disconnect()
 
 
 def _import_rerun():

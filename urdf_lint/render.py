@@ -11,10 +11,12 @@ import hashlib
 import os
 import sys
 import threading
+import zlib
 
-from .raster import (PNG_SIZE, Frame, Geometry, _mask, difference_image, draw,  # noqa: F401
-                     frame_for, rasterize, render_pair, render_png, scene_geometry)
-from .recording import _import_rerun, entity_paths, record_rrd  # noqa: F401
+from .raster import (PNG_SIZE, Frame, Geometry, _mask, caption, difference_image, draw,  # noqa: F401
+                     frame_for, link_mask, model_caption, render_image, render_pair,
+                     save_png, scene_geometry)
+from .recording import _import_rerun, entity_paths, record_findings, record_rrd  # noqa: F401
 from .scene import Part, Scene, build_scene, kinematic_tree, part_mesh  # noqa: F401
 
 
@@ -33,8 +35,13 @@ def snapshot_name(entry, args, base):
     return "".join(ch if ch.isalnum() or ch in "_-.@" else "_" for ch in stem)
 
 
-def render_model(model, ctx, findings, out_dir, base, rrd=True):
-    """Write <name>.png (and <name>.rrd); return a summary dict. Never raises for model problems."""
+def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x"):
+    """Draw the picture of ``model`` and write its recording (without findings); return a
+    summary dict. Runs in the worker, the only process that reads meshes and textures. The
+    parent captions the picture and adds the findings to the recording once the run's
+    findings are final (:func:`finish_snapshots`): suppressions, per-file ignores, severities,
+    run-scope rules and the baseline are applied there. ``findings`` is not used (kept for
+    callers that render one model in process). Never raises for model problems."""
     os.makedirs(out_dir, exist_ok=True)
     importer = None
     if rrd and "rerun" not in sys.modules:
@@ -43,9 +50,13 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
         importer.start()
     name = snapshot_name(model.entry, model.args, base)
     scene = build_scene(model, ctx)
-    info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": []}
+    info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": [],
+            "image": None, "title": scene.name, "entities": entity_paths(scene)}
     try:
-        info.update(render_png(scene, ctx, info["png"], findings_count=len(findings)))
+        img, facts = render_image(scene, ctx, views, forward)
+        # raw pixels, deflated (a run may hold a hundred of them until its findings are final)
+        info["image"] = (img.height, img.width, zlib.compress(img.tobytes(), 1))
+        info.update(facts)
     except Exception as e:  # noqa: BLE001
         info["problems"].append(f"png: {type(e).__name__}: {e}")
         info["png"] = None
@@ -59,11 +70,148 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
         else:
             path = os.path.join(out_dir, name + ".rrd")
             try:
-                info.update(record_rrd(scene, ctx, findings, path, recording_id=f"urdf-lint/{name}"))
+                info.update(record_rrd(scene, ctx, [], path, recording_id=f"urdf-lint/{name}"))
                 info["rrd"] = path
             except Exception as e:  # noqa: BLE001
                 info["problems"].append(f"rrd: {type(e).__name__}: {e}")
     return info
+
+
+def finish_snapshots(models, findings, out_dir) -> None:
+    """In the parent, after the run's policy and the baseline: caption each model's picture
+    with its findings and write it, and merge those findings into its recording. Reads only
+    what the workers handed back, never a model file. Models are finished in parallel
+    threads (PNG encoding and ``rerun rrd merge`` subprocesses do not hold the GIL)."""
+    from concurrent.futures import ThreadPoolExecutor
+    todo = [m for m in models if m.snapshot]
+    by_model: dict = {m.label: [] for m in todo}
+    for f in findings:
+        for label in f.models:
+            if label in by_model:
+                by_model[label].append(f)
+    if any(m.snapshot.get("rrd") and by_model[m.label] for m in todo):
+        import rerun  # noqa: F401 - once, before the threads
+    with ThreadPoolExecutor(max_workers=max(1, min(len(todo), os.cpu_count() or 1))) as pool:
+        list(pool.map(lambda m: _finish_one(m, by_model[m.label], out_dir), todo))
+
+
+def _finish_one(m, mine, out_dir) -> None:
+    snap = m.snapshot
+    snap["findings"] = len(mine)
+    _finish_png(snap, snap.pop("image", None), m, len(mine))
+    if snap.get("rrd") and mine:
+        paths, joints = snap.get("entities") or ({}, {})
+        part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
+        try:
+            record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}")
+            merge_rrd([snap["rrd"], part], snap["rrd"])
+        except Exception as e:  # noqa: BLE001
+            snap["problems"].append(f"rrd: findings not recorded: {type(e).__name__}: {e}")
+            _remove(part)
+            _remove(snap["rrd"])
+            snap["rrd"] = None
+
+
+def _finish_png(snap, image, m, findings: int) -> None:
+    if not snap.get("png") or image is None:
+        snap["png"] = None
+        return
+    from PIL import Image
+    h, w, data = image
+    raw = zlib.decompressobj().decompress(data, 3 * h * w + 1) if 0 < h * w <= 4096 * 4096 else b""
+    if len(raw) != h * w * 3:
+        snap["problems"].append("png: the worker's picture has the wrong size")
+        snap["png"] = None
+        return
+    img = Image.frombytes("RGB", (w, h), raw)
+    caption(img, model_caption(snap.get("title"), snap.get("links", m.links),
+                               snap.get("placeholders", 0), findings))
+    try:
+        save_png(img, snap["png"])
+    except OSError as e:
+        snap["problems"].append(f"png: cannot write: {e.strerror or e}")
+        snap["png"] = None
+
+
+def merge_rrd(parts, out):
+    """Merge recordings (``rerun rrd merge``) into ``out`` (which may be one of ``parts``),
+    then remove the other parts."""
+    import shutil
+    import subprocess
+    from .atomic import atomic_path
+    exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
+    with atomic_path(out, ".rrd") as tmp:
+        p = subprocess.run([exe, "rrd", "merge", *parts, "-o", tmp], capture_output=True,
+                           timeout=120, env=dict(os.environ, RERUN_ANALYTICS="off"))
+        if p.returncode != 0:
+            raise RuntimeError("rerun rrd merge failed: "
+                               + p.stderr.decode(errors="replace")[-300:])
+    for h in parts:
+        if os.path.abspath(h) != os.path.abspath(out):
+            _remove(h)
+    return out
+
+
+def _remove(path):
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+
+
+# -- files this tool wrote in an output folder -------------------------------------------------
+MANIFEST = ".urdf-lint-snapshots.json"
+_OUTPUT_SUFFIXES = (".png", ".rrd", ".md")
+
+
+def _digest(path) -> str | None:
+    h = hashlib.blake2b(digest_size=16)
+    try:
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+    except OSError:
+        return None
+    return h.hexdigest()
+
+
+def clear_stale(out_dir) -> None:
+    """Remove what an earlier run wrote in ``out_dir`` (listed in its manifest), so no stale
+    picture survives. A file is removed only when it is a regular file directly in ``out_dir``
+    with an output suffix and the very bytes that run wrote (the manifest keeps a digest), so
+    a planted or edited manifest cannot make urdf-lint delete anyone's file."""
+    import json
+    path = os.path.join(out_dir, MANIFEST)
+    if os.path.islink(path) or not os.path.isfile(path):
+        return
+    try:
+        with open(path, encoding="utf-8") as f:
+            files = json.load(f).get("files", {})
+    except (OSError, ValueError, AttributeError):
+        return
+    for name, digest in files.items() if isinstance(files, dict) else ():
+        if not isinstance(name, str) or os.path.basename(name) != name \
+                or not name.endswith(_OUTPUT_SUFFIXES):
+            continue
+        p = os.path.join(out_dir, name)
+        if os.path.isfile(p) and not os.path.islink(p) and _digest(p) == digest:
+            _remove(p)
+    _remove(path)
+
+
+def write_manifest(out_dir, files) -> None:
+    """Record the files this run wrote in ``out_dir`` with their digests (the next run
+    removes them first, if they are unchanged)."""
+    import json
+    from .atomic import atomic_write
+    out = {}
+    for f in files:
+        if f and os.path.dirname(os.path.abspath(f)) == os.path.abspath(out_dir):
+            d = _digest(f)
+            if d is not None:
+                out[os.path.basename(f)] = d
+    atomic_write(os.path.join(out_dir, MANIFEST),
+                 json.dumps({"files": dict(sorted(out.items()))}, indent=1) + "\n")
 
 
 def write_summary(result, out_dir):

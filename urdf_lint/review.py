@@ -120,6 +120,7 @@ class DiffResult:
     total_models: int = 0
     base_expanded: int = 0
     internal: list = field(default_factory=list)
+    snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
 
 
 def _key(rel_entry: str, args: dict) -> str:
@@ -307,62 +308,61 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         for dk in sorted(deleted):
             result.models.append(_model_diff(dk, head, base, dk, removed=True))
         if render_dir:
+            from .render import write_manifest
+            files = []
             for md in result.models:
                 removed = md.status == "removed"
                 md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
                                         md.model if removed else base_keys.get(md.model),
-                                        render_dir, result)
+                                        render_dir, result, cfg)
+                files += [v for k, v in md.snapshot.items()
+                          if k in ("before", "after", "diff", "rrd") and v]
+            write_manifest(render_dir, files)
     return result
 
 
-_SNAPSHOT_SUFFIXES = (".before.png", ".after.png", ".diff.png", ".rrd", ".base.rrd", ".head.rrd")
-
-
 def _clear_snapshots(render_dir):
-    """Remove what an earlier diff --render wrote here, so no stale picture survives."""
+    """Remove what an earlier diff --render wrote here (its manifest), so no stale picture
+    survives; files this tool did not write stay."""
+    from .render import clear_stale
     os.makedirs(render_dir, exist_ok=True)
     if os.path.islink(render_dir):
         raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
-    for name in os.listdir(render_dir):
-        p = os.path.join(render_dir, name)
-        if name.endswith(_SNAPSHOT_SUFFIXES) and os.path.isfile(p) and not os.path.islink(p):
-            os.remove(p)
+    clear_stale(render_dir)
 
 
-def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result) -> dict:
+def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None) -> dict:
     from . import render
     stem = os.path.join(render_dir, image_stem(key))
     before = base.geometry.get(bk) if bk else None
     after = head.geometry.get(hk) if hk else None
     info: dict = {}
-    if before is None and after is None:
-        result.internal.append(f"diff --render: no snapshot could be made for {key}")
-        return info
     md = next(m for m in result.models if m.model == key)
+    lost = [side for side, g, wanted in (("base", before, md.status != "added"),
+                                         ("head", after, md.status != "removed"))
+            if wanted and g is None]
+    if lost:
+        result.snapshot_problems.append(
+            (key, f"no picture of the {' and '.join(lost)} revision (it did not expand; see "
+                  "'urdf-lint check')"))
+    if before is None and after is None:
+        return info
     changed = {name for name, _, _ in md.moved}
     changed |= {c.name for c in md.changes if c.kind == "link"}
     whole = after if after is not None else before
     if md.status in ("added", "removed") and whole is not None:
         changed |= set(whole.part_links) | set(whole.wire_links)
-    info.update(render.render_pair(before, after, stem, frozenset(changed)))
+    views = (cfg.views if cfg is not None else None) or "sheet"
+    forward = cfg.forward_axis if cfg is not None else "+x"
+    info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
+                                   forward=forward))
     halves = [p for p in (base.rrd.get(bk) if bk else None, head.rrd.get(hk) if hk else None) if p]
     if halves:
-        info["rrd"] = _merge_rrd(halves, stem + ".rrd")
+        try:
+            info["rrd"] = render.merge_rrd(halves, stem + ".rrd")
+        except (RuntimeError, OSError, subprocess.SubprocessError) as e:
+            result.snapshot_problems.append((key, f"no recording: {e}"))
     return info
-
-
-def _merge_rrd(halves, out):
-    """One recording holding both revisions (entity roots /base and /head)."""
-    import shutil
-    import sys
-    exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
-    p = subprocess.run([exe, "rrd", "merge", *halves, "-o", out], capture_output=True,
-                       timeout=120)
-    if p.returncode != 0:
-        raise ReviewError("rerun rrd merge failed: " + p.stderr.decode(errors="replace")[-300:])
-    for h in halves:
-        os.remove(h)
-    return out
 
 
 def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
@@ -414,5 +414,7 @@ def _rebase(c, base_root, head_root):
 
 def exit_code(result: DiffResult, fail_on: str) -> int:
     from .findings import exit_status
-    return exit_status((sev for m in result.models for _, sev in m.findings_introduced),
+    code = exit_status((sev for m in result.models for _, sev in m.findings_introduced),
                        bool(result.internal), fail_on)
+    # a requested snapshot that could not be made fails the run (said on stderr by the CLI)
+    return max(code, 1) if result.snapshot_problems else code

@@ -69,14 +69,13 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     if settings.diff_render_dir and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
+        # drawn here (meshes are read only in the sandbox); captioned and given its findings
+        # by the parent once the run's policy and baseline are applied
         from .render import render_model
-        from .registry import load_rules
-        rules = load_rules()
-        shown = [p.replace(severity=p.severity or (rules[p.code].severity if p.code in rules
-                                                   else "error"))
-                 for p in report.problems]
-        report.snapshot = render_model(model, ctx, shown, settings.render_dir,
-                                       settings.render_base, rrd=settings.render_rrd)
+        report.snapshot = render_model(model, ctx, [], settings.render_dir,
+                                       settings.render_base, rrd=settings.render_rrd,
+                                       views=settings.render_views,
+                                       forward=settings.render_forward)
     return report
 
 
