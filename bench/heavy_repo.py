@@ -83,7 +83,8 @@ def write_dae(path: Path, v, f, texture: str) -> None:
   <library_effects><effect id="eff"><profile_COMMON>
     <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
     <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
-    <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse></phong></technique>
+    <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse>
+    </phong></technique>
   </profile_COMMON></effect></library_effects>
   <library_materials><material id="mat"><instance_effect url="#eff"/></material></library_materials>
   <library_geometries><geometry id="geo"><mesh>
@@ -177,9 +178,11 @@ def generate(root: Path, packages: int = 6, stl_triangles: int = 200_000,
 {_link("${prefix}cover", f"{u}/visual/cover.dae", f"{u}/visual/cover.dae", 0.5)}
     <xacro:if value="${{tool}}">
 {_link("${prefix}tool", f"{u}/visual/tool.obj", f"{u}/visual/tool.obj", 0.2)}
-      <joint name="${{prefix}}tool_joint" type="fixed"><parent link="${{prefix}}cover"/><child link="${{prefix}}tool"/></joint>
+      <joint name="${{prefix}}tool_joint" type="fixed"><parent link="${{prefix}}cover"/>
+        <child link="${{prefix}}tool"/></joint>
     </xacro:if>
-    <joint name="${{prefix}}j1" type="revolute"><parent link="${{prefix}}base"/><child link="${{prefix}}upper"/>
+    <joint name="${{prefix}}j1" type="revolute"><parent link="${{prefix}}base"/>
+      <child link="${{prefix}}upper"/>
       <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="10" velocity="1"/></joint>
     <joint name="${{prefix}}j2" type="fixed"><parent link="${{prefix}}upper"/><child link="${{prefix}}cover"/>
       <origin xyz="0 0 0.2"/></joint>

@@ -354,28 +354,148 @@ def get_mesh(path: str):
 
 def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
     """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
-    content."""
+    content. Measured on the mesh's arrays (:mod:`urdf_lint.meshio`), never on a processed
+    trimesh: a binary STL is streamed in chunks, so its size alone is never an error."""
+    over = _over_limit(path)
+    if over is not None:
+        return over
     return _cached(_memory, f"v{FACTS_VERSION}", path, cache_dir, _measure)
+
+
+def _over_limit(path: str) -> dict | None:
+    """The finding for a mesh file larger than urdf-lint reads (a stat decides it, so it is
+    the same on every run without being stored)."""
+    try:
+        size = os.stat(path).st_size
+    except OSError:
+        return None
+    if size <= MAX_MESH_BYTES:
+        return None
+    return {"ok": False, "error": f"the file is {size / 2**20:.0f} MiB, over the "
+            f"{MAX_MESH_BYTES >> 20} MiB limit of mesh files urdf-lint reads",
+            "vertices": 0, "faces": 0, "finite": True, "bounds": None}
 
 
 def _measure(path: str) -> dict:
     try:
-        m = get_mesh(path)
+        from . import meshio
+        n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
+        if n is not None:
+            return _stl_facts(path, n)
+        v, f, broken = _arrays(path)
         import numpy as np
-        v = np.asarray(m.vertices, dtype=float)
         finite = bool(np.isfinite(v).all()) if len(v) else True
         bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
             if len(v) and finite else None
-        return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(m.faces)),
-                "finite": finite, "bounds": bounds,
-                "broken_refs": list(m.metadata.get("broken_refs", ()))}
+        return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(f)),
+                "finite": finite, "bounds": bounds, "broken_refs": list(broken)}
     except (PermissionError, MemoryError) as e:
         # the environment refused (sandbox, memory limit): a finding now, never cached
-        raise _Uncached({"ok": False, "error": error_text(e)[:300], "vertices": 0,
+        msg = error_text(e)[:300]
+        if isinstance(e, MemoryError):
+            msg = ("ran out of memory while loading it (the worker's memory limit, "
+                   f"memory-mb): {msg}")[:300]
+        raise _Uncached({"ok": False, "error": msg, "vertices": 0,
                          "faces": 0, "finite": True, "bounds": None}) from e
     except Exception as e:  # noqa: BLE001 - any loader failure is a finding
         return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
                 "faces": 0, "finite": True, "bounds": None}
+
+
+def _stl_facts(path: str, n: int) -> dict:
+    """The facts of a binary STL of ``n`` triangles, streamed chunk by chunk."""
+    import numpy as np
+    from . import meshio
+    finite, lo, hi = True, None, None
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK):
+        v = tris.reshape(-1, 3)
+        if finite and not np.isfinite(v).all():
+            finite = False
+        if finite:
+            clo, chi = v.min(axis=0), v.max(axis=0)
+            lo = clo if lo is None else np.minimum(lo, clo)
+            hi = chi if hi is None else np.maximum(hi, chi)
+    bounds = [list(map(float, lo)), list(map(float, hi))] if n and finite and lo is not None \
+        else None
+    return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
+            "bounds": bounds, "broken_refs": []}
+
+
+STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
+_arrays_memo: "OrderedDict[str, tuple]" = OrderedDict()
+MAX_MEMO_VERTICES = 1_000_000     # the arrays kept between the facts and the mass rules
+
+
+def _arrays(path: str):
+    """(vertices float64 (n, 3), faces int64 (m, 3), broken_refs) of a mesh: what
+    ``load_mesh`` gives (scene instances placed and stacked, the COLLADA unit applied), from
+    the loaders' raw arrays. A render run that already holds the loaded mesh uses it."""
+    digest = _digest(path)
+    if digest in _arrays_memo:
+        _arrays_memo.move_to_end(digest)
+        return _arrays_memo[digest]
+    import numpy as np
+    if digest in _loaded:
+        m = _loaded[digest]
+        out = (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
+               list(m.metadata.get("broken_refs", ())))
+    else:
+        out = _read_arrays(path)
+    if len(out[0]) <= MAX_MEMO_VERTICES:
+        _arrays_memo[digest] = out
+        total = sum(len(a[0]) for a in _arrays_memo.values())
+        while total > MAX_MEMO_VERTICES and len(_arrays_memo) > 1:
+            _, old = _arrays_memo.popitem(last=False)
+            total -= len(old[0])
+    return out
+
+
+def _read_arrays(path: str):
+    import numpy as np
+    from . import meshio
+    low = path.lower()
+    if low.endswith(".stl"):
+        n = meshio.binary_stl_triangles(path)
+        if n is not None:
+            tris = np.concatenate(list(meshio.iter_binary_stl(path))) if n else \
+                np.zeros((0, 3, 3), dtype=np.float32)
+            v = tris.reshape(-1, 3).astype(np.float64)
+            return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3), []
+        got = meshio.read_ascii_stl(path)
+        if got is not None:
+            return got[0], got[1], []
+    elif low.endswith(".dae") or low.endswith(".obj"):
+        got = _scene_arrays(path, low.endswith(".dae"))
+        if got is not None:
+            return got
+    m = load_mesh(path)     # anything unusual: trimesh decides, as before
+    return (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
+            list(m.metadata.get("broken_refs", ())))
+
+
+def _scene_arrays(path: str, is_dae: bool):
+    """The arrays of ``load_mesh`` for a COLLADA or OBJ file through ``load_scene``, or None
+    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that)."""
+    _quiet_loggers()
+    import trimesh
+    from . import meshio
+    if not is_dae:
+        return (*meshio.scene_arrays(trimesh.load_scene(path, process=False)), [])
+    try:
+        scene = trimesh.load_scene(path, process=False)
+    except Exception:  # noqa: BLE001 - load_mesh retries without materials, or reports it
+        return None
+    if is_dae:
+        with open(path, "rb") as f:
+            lost = len(scene.graph.nodes_geometry) < f.read().count(b"<instance_geometry")
+        v, f = meshio.scene_arrays(scene)
+        if lost or len(v) == 0:
+            return None
+        unit = dae_unit(path)
+        if unit != 1.0:
+            v = meshio.scale_points(v, unit)
+        return v, f, []
+    return None
 
 
 class _Uncached(Exception):
@@ -447,7 +567,12 @@ def mass_facts(path: str, cache_dir: str | None = None) -> dict:
 
 def _measure_mass(path: str) -> dict:
     try:
-        return _mass_properties(get_mesh(path))
+        from . import meshio
+        n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
+        if n is not None and n > (STL_CHUNK or meshio.STL_CHUNK_TRIANGLES):
+            return _stl_mass_chunked(path, n)
+        v, f, _ = _arrays(path)
+        return _mass_arrays(v, f)
     except (PermissionError, MemoryError) as e:
         raise _Uncached({"ok": False}) from e
     except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
@@ -456,9 +581,13 @@ def _measure_mass(path: str) -> dict:
 
 def _mass_properties(mesh) -> dict:
     import numpy as np
+    return _mass_arrays(np.asarray(mesh.vertices, dtype=float),
+                        np.asarray(mesh.faces, dtype=np.int64))
+
+
+def _mass_arrays(v, f) -> dict:
+    import numpy as np
     from trimesh.triangles import mass_properties
-    v = np.asarray(mesh.vertices, dtype=float)
-    f = np.asarray(mesh.faces, dtype=np.int64)
     if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
         return {"ok": False}
     hull = not _closed(v, f)
@@ -491,7 +620,12 @@ def _closed(v, f) -> bool:
     import numpy as np
     from trimesh.grouping import unique_rows
     _, inv = unique_rows(v, digits=8)      # what trimesh's merge_vertices does
-    ff = np.asarray(inv).reshape(-1)[f]
+    return _closed_faces(np.asarray(inv).reshape(-1)[f])
+
+
+def _closed_faces(ff) -> bool:
+    """``_closed`` on faces already indexing merged vertices."""
+    import numpy as np
     ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
     if len(ff) < 4:
         return False
@@ -503,6 +637,56 @@ def _closed(v, f) -> bool:
     rev = e[:, 1] * n + e[:, 0]
     pos = np.searchsorted(code, rev).clip(0, len(code) - 1)
     return bool((code[pos] == rev).all())
+
+
+MAX_MASS_TRIANGLES = 8_000_000   # above: no mass facts (the inertia rules skip the mesh)
+
+
+def _stl_mass_chunked(path: str, n: int) -> dict:
+    """Mass properties of a binary STL too large to hold as one float64 array: the volume
+    integrals are summed chunk by chunk, closedness is tested on one int64 key per vertex
+    (rounded like ``unique_rows``), and an open surface uses the hull of the chunks' hulls."""
+    import numpy as np
+    from . import meshio
+    if n > MAX_MASS_TRIANGLES:
+        return {"ok": False, "error": f"{n} triangles: over the {MAX_MASS_TRIANGLES} "
+                "urdf-lint measures volumes of"}
+    integ = np.zeros(10)
+    keys, hull_pts = [], []
+    lo = hi = None
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK):
+        t = tris.astype(np.float64)
+        if not np.isfinite(t).all():
+            return {"ok": False}
+        integ += meshio.volume_integrals(t)
+        keys.append(meshio.vertex_keys(t))
+        pts = t.reshape(-1, 3)
+        lo = pts.min(axis=0) if lo is None else np.minimum(lo, pts.min(axis=0))
+        hi = pts.max(axis=0) if hi is None else np.maximum(hi, pts.max(axis=0))
+        try:
+            hull_pts.append(np.asarray(_convex_hull(pts).vertices))
+        except Exception:  # noqa: BLE001 - a flat chunk: its points are kept as they are
+            hull_pts.append(pts)
+    if lo is None:
+        return {"ok": False}
+    _, inv = np.unique(np.concatenate(keys), return_inverse=True)
+    del keys
+    hull = not _closed_faces(inv.reshape(-1, 3))
+    del inv
+    if hull:
+        try:
+            h = _convex_hull(np.concatenate(hull_pts))
+        except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
+            return {"ok": False}
+        tris = np.asarray(h.vertices)[np.asarray(h.faces)]
+        integ = meshio.volume_integrals(tris)
+    vol, first, second = meshio.moments(integ)
+    if not math.isfinite(vol) or abs(vol) < 1e-15:
+        return {"ok": False}
+    sign = 1.0 if vol > 0 else -1.0
+    return {"ok": True, "volume": sign * vol, "first": (sign * first).tolist(),
+            "second": (sign * second).tolist(), "bounds": [lo.tolist(), hi.tolist()],
+            "hull": bool(hull)}
 
 
 def _convex_hull(points):
