@@ -372,7 +372,7 @@ def _over_limit(path: str) -> dict | None:
     if size <= MAX_MESH_BYTES:
         return None
     return {"ok": False, "error": f"the file is {size / 2**20:.0f} MiB, over the "
-            f"{MAX_MESH_BYTES >> 20} MiB limit of mesh files urdf-lint reads",
+            f"{MAX_MESH_BYTES / 2**20:g} MiB limit of mesh files urdf-lint reads",
             "vertices": 0, "faces": 0, "finite": True, "bounds": None}
 
 
@@ -639,20 +639,21 @@ def _closed_faces(ff) -> bool:
     return bool((code[pos] == rev).all())
 
 
-MAX_MASS_TRIANGLES = 8_000_000   # above: no mass facts (the inertia rules skip the mesh)
+MAX_MASS_TRIANGLES = 6_000_000   # above: no mass facts (~15 s, ~1 GB at 5M; the inertia rules skip it)
 
 
 def _stl_mass_chunked(path: str, n: int) -> dict:
     """Mass properties of a binary STL too large to hold as one float64 array: the volume
     integrals are summed chunk by chunk, closedness is tested on one int64 key per vertex
-    (rounded like ``unique_rows``), and an open surface uses the hull of the chunks' hulls."""
+    (rounded like ``unique_rows``), and an open surface (a second pass) uses the hull of the
+    chunks' hulls."""
     import numpy as np
     from . import meshio
     if n > MAX_MASS_TRIANGLES:
         return {"ok": False, "error": f"{n} triangles: over the {MAX_MASS_TRIANGLES} "
                 "urdf-lint measures volumes of"}
     integ = np.zeros(10)
-    keys, hull_pts = [], []
+    keys = []
     lo = hi = None
     for tris in meshio.iter_binary_stl(path, STL_CHUNK):
         t = tris.astype(np.float64)
@@ -663,23 +664,25 @@ def _stl_mass_chunked(path: str, n: int) -> dict:
         pts = t.reshape(-1, 3)
         lo = pts.min(axis=0) if lo is None else np.minimum(lo, pts.min(axis=0))
         hi = pts.max(axis=0) if hi is None else np.maximum(hi, pts.max(axis=0))
-        try:
-            hull_pts.append(np.asarray(_convex_hull(pts).vertices))
-        except Exception:  # noqa: BLE001 - a flat chunk: its points are kept as they are
-            hull_pts.append(pts)
     if lo is None:
         return {"ok": False}
     _, inv = np.unique(np.concatenate(keys), return_inverse=True)
     del keys
-    hull = not _closed_faces(inv.reshape(-1, 3))
+    hull = not _closed_sorted(inv.reshape(-1, 3))
     del inv
     if hull:
         try:
-            h = _convex_hull(np.concatenate(hull_pts))
+            parts = []
+            for tris in meshio.iter_binary_stl(path, STL_CHUNK):
+                pts = tris.reshape(-1, 3).astype(np.float64)
+                try:
+                    parts.append(np.asarray(_convex_hull(pts).vertices))
+                except Exception:  # noqa: BLE001 - a flat chunk: keep its points
+                    parts.append(pts)
+            h = _convex_hull(np.concatenate(parts))
         except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
             return {"ok": False}
-        tris = np.asarray(h.vertices)[np.asarray(h.faces)]
-        integ = meshio.volume_integrals(tris)
+        integ = meshio.volume_integrals(np.asarray(h.vertices)[np.asarray(h.faces)])
     vol, first, second = meshio.moments(integ)
     if not math.isfinite(vol) or abs(vol) < 1e-15:
         return {"ok": False}
@@ -687,6 +690,24 @@ def _stl_mass_chunked(path: str, n: int) -> dict:
     return {"ok": True, "volume": sign * vol, "first": (sign * first).tolist(),
             "second": (sign * second).tolist(), "bounds": [lo.tolist(), hi.tolist()],
             "hull": bool(hull)}
+
+
+def _closed_sorted(ff) -> bool:
+    """``_closed_faces`` for millions of faces: the directed edges are unique and, sorted,
+    equal their reverses sorted (no random-access search over the whole array)."""
+    import numpy as np
+    ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
+    if len(ff) < 4:
+        return False
+    n = np.int64(int(ff.max()) + 1)
+    a, b = ff.reshape(-1), np.roll(ff, -1, axis=1).reshape(-1)
+    code = a * n + b
+    code.sort()
+    if (code[1:] == code[:-1]).any():
+        return False
+    rev = b * n + a
+    rev.sort()
+    return bool(np.array_equal(code, rev))
 
 
 def _convex_hull(points):

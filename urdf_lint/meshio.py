@@ -64,8 +64,11 @@ def read_ascii_stl(path: str):
             or raw.find("solid", end + 8) >= 0:
         return None
     parts = raw[start:end].split("vertex")
-    v = np.fromstring(" ".join(line[: line.find("\n")] for line in parts[1:]), sep=" ",
-                      dtype=np.float64)
+    try:
+        v = np.fromstring(" ".join(line[: line.find("\n")] for line in parts[1:]), sep=" ",
+                          dtype=np.float64)
+    except ValueError:
+        return None     # trimesh says what is wrong
     if len(v) < 3 or len(v) % 3 != 0:
         return None
     v = v.reshape((-1, 3))
