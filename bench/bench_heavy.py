@@ -180,7 +180,7 @@ def main():
             del v, f
             (pkg / "huge.urdf").write_text(
                 '<robot name="huge"><link name="a"/><link name="b"><inertial><mass value="100"/>'
-                '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+                '<inertia ixx="1.6" ixy="0" ixz="0" iyy="1.6" iyz="0" izz="1.6"/></inertial>'
                 '<collision><geometry><mesh filename="package://huge_description/meshes/huge.stl"/>'
                 '</geometry></collision></link><joint name="j" type="revolute"><parent link="a"/>'
                 '<child link="b"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'

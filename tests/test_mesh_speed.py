@@ -224,3 +224,28 @@ def test_memory_error_says_it_is_the_limit_and_is_not_cached(tmp_path, fresh, mo
     got = fresh.mesh_facts(str(p), str(tmp_path / "cache"))
     assert not got["ok"] and "memory limit" in got["error"]
     assert not list((tmp_path / "cache").rglob("*.json")), "an environment failure is not cached"
+
+
+def test_a_model_whose_mesh_hit_the_memory_limit_is_not_cached(tmp_path, fresh, monkeypatch):
+    """The memory limit is the environment's, not the file's: neither the mesh facts nor the
+    model's result are stored, so the next run (with more memory) measures it."""
+    from urdf_lint.cache import Cache
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    v, f = sphere(500)
+    pkg = make_package(tmp_path / "ws", "m_description", {
+        "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
+                       '<mesh filename="package://m_description/m.stl"/>'
+                       '</geometry></visual></link></robot>\n'})
+    binary_stl(pkg / "m.stl", v[f])
+    cache = Cache(str(tmp_path / "cache"))
+    real = fresh._stl_facts
+
+    def boom(path, n):
+        raise MemoryError()
+    monkeypatch.setattr(fresh, "_stl_facts", boom)
+    first = [x.message for x in lint_in_process(pkg, cache) if x.code == "UL404"]
+    assert len(first) == 1 and "memory limit" in first[0]
+    assert not list((tmp_path / "cache").rglob("results/*/*.json"))
+    monkeypatch.setattr(fresh, "_stl_facts", real)
+    assert not [x for x in lint_in_process(pkg, cache) if x.code == "UL404"]
+    assert list((tmp_path / "cache").rglob("results/*/*.json")), "a clean result is cached"

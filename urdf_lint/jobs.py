@@ -101,6 +101,7 @@ class ModelReport:
     diff_rrd: str | None = None                     # diff --render: this side's recording
     digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
     cached: bool = False
+    cacheable: bool = True                          # False: a fact depended on the environment
 
     @classmethod
     def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":

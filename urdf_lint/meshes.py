@@ -498,6 +498,9 @@ def _scene_arrays(path: str, is_dae: bool):
     return None
 
 
+env_failures = 0   # results this process measured that depend on the environment (never cached)
+
+
 class _Uncached(Exception):
     """A result that depends on the environment, not on the file: returned, never cached."""
 
@@ -525,6 +528,8 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     try:
         facts = compute(path)
     except _Uncached as e:
+        global env_failures
+        env_failures += 1     # the model's result must not be cached either
         return e.facts
     memory[digest] = facts
     if cache_file is not None:

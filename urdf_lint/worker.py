@@ -65,7 +65,10 @@ def _install_audit_hook(*writable):
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from .lint import lint_model
+    before = _env_failures()
     report, model, ctx = lint_model(job, settings)
+    if _env_failures() != before:
+        report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
     if settings.diff_render_dir and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
@@ -78,6 +81,11 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
         report.snapshot = render_model(model, ctx, shown, settings.render_dir,
                                        settings.render_base, rrd=settings.render_rrd)
     return report
+
+
+def _env_failures() -> int:
+    meshes = sys.modules.get(f"{__package__}.meshes")   # (not imported by `expand` jobs)
+    return getattr(meshes, "env_failures", 0)
 
 
 def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
