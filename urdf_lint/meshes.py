@@ -649,32 +649,32 @@ MAX_MASS_TRIANGLES = 6_000_000   # above: no mass facts (~15 s, ~1 GB at 5M; the
 
 def _stl_mass_chunked(path: str, n: int) -> dict:
     """Mass properties of a binary STL too large to hold as one float64 array: the volume
-    integrals are summed chunk by chunk, closedness is tested on one int64 key per vertex
-    (rounded like ``unique_rows``), and an open surface (a second pass) uses the hull of the
-    chunks' hulls."""
+    integrals are summed chunk by chunk, closedness is tested on one int64 code per directed
+    edge (from its ends rounded like ``unique_rows``), and an open surface (a second pass)
+    uses the hull of the chunks' hulls."""
     import numpy as np
     from . import meshio
     if n > MAX_MASS_TRIANGLES:
         return {"ok": False, "error": f"{n} triangles: over the {MAX_MASS_TRIANGLES} "
                 "urdf-lint measures volumes of"}
     integ = np.zeros(10)
-    keys = []
+    codes, revs = [], []
     lo = hi = None
     for tris in meshio.iter_binary_stl(path, STL_CHUNK):
         t = tris.astype(np.float64)
         if not np.isfinite(t).all():
             return {"ok": False}
         integ += meshio.volume_integrals(t)
-        keys.append(meshio.vertex_keys(t))
+        code, rev = meshio.edge_codes(t)
+        codes.append(code)
+        revs.append(rev)
         pts = t.reshape(-1, 3)
         lo = pts.min(axis=0) if lo is None else np.minimum(lo, pts.min(axis=0))
         hi = pts.max(axis=0) if hi is None else np.maximum(hi, pts.max(axis=0))
     if lo is None:
         return {"ok": False}
-    _, inv = np.unique(np.concatenate(keys), return_inverse=True)
-    del keys
-    hull = not _closed_sorted(inv.reshape(-1, 3))
-    del inv
+    hull = not _closed_codes(codes, revs)
+    del codes, revs
     if hull:
         try:
             parts = []
@@ -697,20 +697,18 @@ def _stl_mass_chunked(path: str, n: int) -> dict:
             "hull": bool(hull)}
 
 
-def _closed_sorted(ff) -> bool:
-    """``_closed_faces`` for millions of faces: the directed edges are unique and, sorted,
-    equal their reverses sorted (no random-access search over the whole array)."""
+def _closed_codes(codes, revs) -> bool:
+    """``_closed`` for millions of faces, on the chunks' directed edge codes
+    (:func:`meshio.edge_codes`): every code once, and sorted they equal their reverses sorted
+    (no merge of vertices, no random-access search over the whole array)."""
     import numpy as np
-    ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
-    if len(ff) < 4:
+    code = np.concatenate(codes)
+    if len(code) < 12:
         return False
-    n = np.int64(int(ff.max()) + 1)
-    a, b = ff.reshape(-1), np.roll(ff, -1, axis=1).reshape(-1)
-    code = a * n + b
     code.sort()
     if (code[1:] == code[:-1]).any():
         return False
-    rev = b * n + a
+    rev = np.concatenate(revs)
     rev.sort()
     return bool(np.array_equal(code, rev))
 

@@ -158,3 +158,18 @@ def vertex_keys(tris) -> np.ndarray:
         k ^= (k >> np.uint64(29)) + q[:, 1] * np.uint64(0xBF58476D1CE4E5B9)
         k ^= (k >> np.uint64(31)) + q[:, 2] * np.uint64(0x94D049BB133111EB)
     return k.view(np.int64)
+
+
+def edge_codes(tris):
+    """(directed edge codes, their reverses) of the non-degenerate triangles of a (k, 3, 3)
+    chunk: one int64 per edge from the two ends' :func:`vertex_keys`. A closed, consistently
+    wound surface has every code once and the reverses are the same set."""
+    k = vertex_keys(tris).view(np.uint64).reshape(-1, 3)
+    k = k[(k[:, 0] != k[:, 1]) & (k[:, 1] != k[:, 2]) & (k[:, 0] != k[:, 2])]
+    a, b = k.reshape(-1), np.roll(k, -1, axis=1).reshape(-1)
+    with np.errstate(over="ignore"):
+        code = (a * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (b * np.uint64(0x165667B19E3779F9) +
+                                                      np.uint64(0x27D4EB2F165667C5))
+        rev = (b * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (a * np.uint64(0x165667B19E3779F9) +
+                                                     np.uint64(0x27D4EB2F165667C5))
+    return code.view(np.int64), rev.view(np.int64)
