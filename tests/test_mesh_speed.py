@@ -3,6 +3,7 @@ chunks, hashing/listing/texture scans done once, and package-grouped worker sche
 from __future__ import annotations
 
 import json
+import os
 import struct
 from pathlib import Path
 
@@ -68,9 +69,10 @@ def lint_in_process(path, cache=None):
 @pytest.fixture
 def fresh(monkeypatch):
     """The mesh module with empty per-process memories."""
-    from urdf_lint import meshes
-    for name in ("_memory", "_mass_memory", "_digests", "_textures", "_arrays_memo"):
+    from urdf_lint import hashing, meshes
+    for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo"):
         monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
+    monkeypatch.setattr(hashing, "_memo", {})
     monkeypatch.setattr(meshes, "_loaded", type(meshes._loaded)())
     return meshes
 
@@ -249,3 +251,81 @@ def test_a_model_whose_mesh_hit_the_memory_limit_is_not_cached(tmp_path, fresh, 
     monkeypatch.setattr(fresh, "_stl_facts", real)
     assert not [x for x in lint_in_process(pkg, cache) if x.code == "UL404"]
     assert list((tmp_path / "cache").rglob("results/*/*.json")), "a clean result is cached"
+
+
+# -- item 3: models scheduled by package -------------------------------------------------------
+def _settings_for(tmp_path, packages: dict):
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.pipeline import settings_for
+    cfg = load_config(None)
+    for name, files in packages.items():
+        make_package(tmp_path, name, files)
+    return settings_for(cfg, build_resolver([str(tmp_path)], cfg), None)
+
+
+def _robot(mesh=None):
+    geo = f'<mesh filename="{mesh}"/>' if mesh else '<box size="1 1 1"/>'
+    return f'<robot name="r"><link name="a"><visual><geometry>{geo}</geometry></visual></link></robot>\n'
+
+
+def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob
+    settings = _settings_for(tmp_path, {
+        "small_description": {"urdf/a.urdf": _robot(), "urdf/b.urdf": _robot()},
+        "other_description": {"urdf/z.urdf": _robot(), "urdf/y.urdf": _robot()}})
+    jobs = [LintJob(str(tmp_path / p / "urdf" / f)) for p, f in (
+        ("small_description", "b.urdf"), ("other_description", "z.urdf"),
+        ("small_description", "a.urdf"), ("other_description", "y.urdf"))]
+    blocks = worker.package_blocks(jobs, settings)
+    assert sorted([os.path.basename(j.entry) for j in b.jobs] for b in blocks) == \
+        [["a.urdf", "b.urdf"], ["y.urdf", "z.urdf"]]
+    # four small models: one worker (a second process costs more than it saves)
+    assert worker.default_workers(blocks, cores=8) == 1
+    # a package with 60 MB of COLLADA meshes is worth a second worker, never more than the cores
+    mesh_dir = tmp_path / "other_description" / "meshes"
+    mesh_dir.mkdir()
+    with open(mesh_dir / "big.dae", "wb") as f:
+        f.truncate(60 << 20)                     # sparse: only its size is looked at
+    blocks = worker.package_blocks(jobs, settings)
+    assert blocks[0].key.endswith("other_description") and blocks[0].cost > 2
+    assert worker.default_workers(blocks, cores=2) == 2
+    assert worker.default_workers(blocks, cores=1) == 1
+    queues = worker.assign(blocks, 2)
+    assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
+            for q in queues] == [["other_description"], ["small_description"]]
+
+
+def test_an_idle_worker_takes_from_the_far_end_of_another_block():
+    from collections import deque
+    from urdf_lint import worker
+    mine, other = deque(), deque(["m1", "m2", "m3", "m4"])
+    assert worker._next_job(mine, [mine, other]) == "m4"
+    assert worker._next_job(other, [mine, other]) == "m1"
+
+
+def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monkeypatch):
+    """Real forked workers: each package's models land in one process (so the mesh facts it
+    loaded are reused); the worker that runs out steals the last models of the other block."""
+    import time
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob, ModelReport
+    names = [f"m{i}.urdf" for i in range(8)]
+    settings = _settings_for(tmp_path, {"big_description": {f"urdf/{n}": _robot() for n in names},
+                                        "one_description": {"urdf/only.urdf": _robot()}})
+
+    def fake(job, settings):            # inherited by the forked workers
+        time.sleep(0.15)
+        return ModelReport(job.entry, {}, name=str(os.getpid()))
+    monkeypatch.setattr(worker, "process_job", fake)
+    jobs = [LintJob(str(tmp_path / "big_description" / "urdf" / n)) for n in names]
+    jobs.append(LintJob(str(tmp_path / "one_description" / "urdf" / "only.urdf")))
+    got = {os.path.basename(j.entry): r.name for j, r in worker.run_jobs(jobs, settings, jobs_n=2)}
+    assert len(got) == 9
+    big_pid = got["m0.urdf"]
+    assert got["only.urdf"] != big_pid
+    stolen = [n for n in names if got[n] != big_pid]
+    assert stolen, "the idle worker helps with the big package"
+    assert stolen == names[len(names) - len(stolen):], "it takes from the far end"
+    assert len(stolen) < len(names) - 1

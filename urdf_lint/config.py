@@ -224,7 +224,7 @@ class Key:
     def default_text(self) -> str:
         d = self.default
         if d is None:
-            return {"jobs": "all cores", "format": "text, or github on GitHub Actions",
+            return {"jobs": "from the work, at most all cores", "format": "text, or github on GitHub Actions",
                     "cache-dir": ".urdf_lint_cache", "baseline": "none"}.get(self.name, "none")
         if isinstance(d, list):
             return ",".join(d) if d else "none"
