@@ -12,12 +12,13 @@ import math
 import os
 import re
 import stat
+import time
 from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .hashing import file_digest
+from .hashing import memo_digest
 from .packages import PackageNotFound
 
 
@@ -60,9 +61,8 @@ def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | No
         cur = top
     exact = True
     for part in rest:
-        try:
-            names = os.listdir(cur)
-        except OSError:
+        names = _listing(cur)
+        if names is None:
             return False, None
         if part in names:
             cur = cur / part
@@ -73,6 +73,45 @@ def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | No
         exact = False
         cur = cur / low[0]
     return exact, (None if exact else str(cur))
+
+
+_listings: dict = {}     # folder -> (mtime_ns, names in listdir order, set of names)
+MAX_LISTINGS = 20_000
+RACY_NS = 2_000_000_000  # a folder changed this recently may change again within its mtime tick
+
+
+def _listing(folder: Path) -> "_Names | None":
+    """The names in a folder, listed once per version of it in this process (a folder's
+    mtime changes when an entry is added, removed or renamed; one modified in the last two
+    seconds is listed again, like git's racily clean entries)."""
+    key = str(folder)
+    try:
+        mtime = os.stat(key).st_mtime_ns
+    except OSError:
+        return None
+    got = _listings.get(key)
+    if got is not None and got.mtime == mtime and time.time_ns() - mtime > RACY_NS:
+        return got
+    try:
+        names = _Names(mtime, os.listdir(key))
+    except OSError:
+        return None
+    if len(_listings) >= MAX_LISTINGS:
+        _listings.clear()
+    _listings[key] = names
+    return names
+
+
+class _Names(list):
+    """A folder's names in ``os.listdir`` order, with a set for membership tests."""
+
+    def __init__(self, mtime: int, names):
+        super().__init__(names)
+        self.mtime = mtime
+        self._set = frozenset(names)
+
+    def __contains__(self, name) -> bool:
+        return name in self._set
 
 
 def resolve(model, uri: str) -> MeshRef:
@@ -138,11 +177,15 @@ _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)
 _textures: dict = {}
 MAX_MESH_BYTES = 1 << 30
 _confine = None   # set per job to the resolver's is_inside: texture references stay in the roots
+_texture_cache_dir: str | None = None   # set per job: texture scans are cached with the facts
+_scan_memory: dict = {}
+TEXTURE_SCAN_VERSION = 1
 
 
-def set_confinement(inside) -> None:
-    global _confine
+def set_confinement(inside, cache_dir: str | None = None) -> None:
+    global _confine, _texture_cache_dir
     _confine = inside
+    _texture_cache_dir = cache_dir
 
 
 def _readable(path: str) -> bool:
@@ -165,40 +208,56 @@ def _texture_refs(path: str) -> list[str]:
     out: list[str] = []
     base = os.path.dirname(path)
     low = path.lower()
-    if not _readable(path):
+    if not low.endswith((".dae", ".obj")) or not _readable(path):
         return out
     try:
-        if low.endswith(".dae"):
-            with open(path, "rb") as f:
-                data = f.read()
-            for m in _DAE_IMAGE.finditer(data):
-                ref = m.group(1).decode("utf-8", "replace").strip()
-                if ref.startswith("file://"):
-                    ref = ref[7:]
-                if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
-                    out.append(os.path.normpath(os.path.join(base, ref)))
-        elif low.endswith(".obj"):
-            with open(path, "r", errors="replace") as f:
-                for line in f:
-                    if line.startswith("mtllib"):
-                        mtl = os.path.normpath(os.path.join(base, line.split(None, 1)[1].strip()))
-                        out.append(mtl)
-                        if _readable(mtl):
-                            with open(mtl, "r", errors="replace") as mf:
-                                for ref in _MTL_MAP.finditer(mf.read()):
-                                    out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
-                                                                             ref.group(1))))
+        # what the mesh itself names depends on its bytes only: scanned once per content,
+        # cached on disk with the mesh facts (a DAE is not read again on the next run)
+        scan = _cached(_scan_memory, f"tex{TEXTURE_SCAN_VERSION}", path, _texture_cache_dir,
+                       _scan_texture_names)
+    except OSError:
+        return out
+    if low.endswith(".dae"):
+        return [os.path.normpath(os.path.join(base, ref)) for ref in scan.get("refs", [])]
+    try:
+        for name in scan.get("refs", []):
+            mtl = os.path.normpath(os.path.join(base, name))
+            out.append(mtl)
+            if _readable(mtl):   # the MTL is read each time: it may lie outside the roots
+                with open(mtl, "r", errors="replace") as mf:
+                    for ref in _MTL_MAP.finditer(mf.read()):
+                        out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
+                                                                 ref.group(1))))
     except OSError:
         pass
     return out
 
 
+def _scan_texture_names(path: str) -> dict:
+    """{ok, refs}: the image references of a DAE (``<init_from>``, relative as written) or
+    the ``mtllib`` names of an OBJ."""
+    refs: list[str] = []
+    if path.lower().endswith(".dae"):
+        with open(path, "rb") as f:
+            data = f.read()
+        for m in _DAE_IMAGE.finditer(data):
+            ref = m.group(1).decode("utf-8", "replace").strip()
+            if ref.startswith("file://"):
+                ref = ref[7:]
+            if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
+                refs.append(ref)
+    else:
+        with open(path, "r", errors="replace") as f:
+            for line in f:
+                parts = line.split(None, 1)
+                if line.startswith("mtllib") and len(parts) == 2:
+                    refs.append(parts[1].strip())
+    return {"ok": True, "refs": refs}
+
+
 # -- mesh facts (geometry) -------------------------------------------------------------------
 _memory: dict = {}
 FACTS_VERSION = 3  # bump when the loader changes what it measures
-
-
-_digests: dict = {}
 
 
 def _version(path: str):
@@ -207,18 +266,12 @@ def _version(path: str):
 
 
 def _digest(path: str) -> str:
-    """Content hash of a file, computed once per file version in this process."""
-    key = _version(path)
-    if key not in _digests:
-        _digests[key] = _hash_file(path)
-    return _digests[key]
-
-
-def _hash_file(path: str) -> str:
-    digest = file_digest(path)
-    if digest is None:
+    """Content hash of a file, computed once per file version in this process (shared with
+    the worker's record of what a model read, :func:`hashing.memo_digest`)."""
+    got = memo_digest(path)
+    if got is None:
         raise OSError(f"cannot read {path}")
-    return digest
+    return got[1]
 
 
 def _quiet_loggers():
