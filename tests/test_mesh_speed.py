@@ -329,3 +329,75 @@ def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monke
     assert stolen, "the idle worker helps with the big package"
     assert stolen == names[len(names) - len(stolen):], "it takes from the far end"
     assert len(stolen) < len(names) - 1
+
+
+# -- item 5: hash and list once ------------------------------------------------------------------
+def _textured_repo(tmp_path):
+    import sys
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    from heavy_repo import write_dae, write_png
+    v, f = sphere(400)
+    robot = ('<robot name="r"><link name="a"><visual><geometry>'
+             '<mesh filename="package://tex_description/meshes/m.dae"/></geometry></visual></link>'
+             '<link name="b"><visual><geometry><mesh filename="package://tex_description/meshes/M2.dae"/>'
+             '</geometry></visual></link><joint name="j" type="fixed"><parent link="a"/>'
+             '<child link="b"/></joint><link name="c"><visual><geometry>'
+             '<mesh filename="package://tex_description/meshes/m3.dae"/></geometry></visual></link>'
+             '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint></robot>\n')
+    pkg = make_package(tmp_path, "tex_description", {"urdf/r.urdf": robot, "urdf/s.urdf": robot,
+                                                      "urdf/broken.urdf.xacro": "<robot name='x' "})
+    (pkg / "meshes").mkdir()
+    write_png(pkg / "meshes" / "skin.png")
+    write_dae(pkg / "meshes" / "m.dae", v, f, "skin.png")
+    write_dae(pkg / "meshes" / "m2.dae", v, f, "skin.png")      # referred to as M2.dae
+    write_dae(pkg / "meshes" / "m3.dae", v, f, "gone.png")      # a lost texture
+    old = 1_600_000_000
+    for p in [pkg, *pkg.rglob("*")]:
+        os.utime(p, (old, old))              # an old checkout: folder listings can be trusted
+    return pkg
+
+
+def test_folders_are_listed_once_and_the_parent_never_hashes(tmp_path, fresh, monkeypatch):
+    from urdf_lint import cache as cache_mod
+    from urdf_lint.cache import Cache
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    pkg = _textured_repo(tmp_path / "ws")
+    monkeypatch.setattr(fresh, "_listings", {})
+    listed = []
+    real_listdir = os.listdir
+    monkeypatch.setattr(fresh.os, "listdir", lambda p: listed.append(str(p)) or real_listdir(p))
+
+    def no_hash(*a, **k):
+        raise AssertionError("the parent hashed an input again when writing the cache")
+    monkeypatch.setattr(cache_mod, "file_record", no_hash)
+    found = lint_in_process(pkg, Cache(str(tmp_path / "cache")))
+    codes = {x.code for x in found}
+    assert {"UL402", "UL001"} <= codes, codes    # the case mismatch, the broken file
+    assert len(listed) == len(set(listed)), f"a folder was listed twice: {sorted(listed)}"
+    assert list((tmp_path / "cache").rglob("results/*/*.json"))
+
+
+def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, monkeypatch):
+    from urdf_lint import hashing
+    pkg = _textured_repo(tmp_path / "ws")
+    cache = tmp_path / "cache"
+    first = sorted((x.code, x.message) for x in lint_in_process(pkg, None) if x.code == "UL407")
+    monkeypatch.setattr(fresh, "_textures", {})
+    monkeypatch.setattr(fresh, "_scan_memory", {})
+    fresh.set_confinement(None, str(cache))
+    dae = str(pkg / "meshes" / "m.dae")
+    refs = fresh.texture_refs(dae)
+    assert refs == [str(pkg / "meshes" / "skin.png")]
+    assert list(cache.glob("meshes/tex*.json"))
+    # a new run (new process memory): the DAE is not read to find its textures
+    monkeypatch.setattr(fresh, "_textures", {})
+    monkeypatch.setattr(fresh, "_scan_memory", {})
+    import builtins
+    real_open = builtins.open
+    opened = []
+    monkeypatch.setattr(builtins, "open", lambda f, *a, **k: (opened.append(str(f)), real_open(f, *a, **k))[1])
+    assert fresh.texture_refs(dae) == refs
+    monkeypatch.setattr(builtins, "open", real_open)
+    assert dae not in opened
+    assert hashing._memo, "the cache key is the content digest"
+    assert first and all("gone.png" in m for _, m in first)

@@ -71,6 +71,11 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     report, model, ctx = lint_model(job, settings)
     if _env_failures() != before:
         report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
+    if any(d not in report.digests for d in report.deps):
+        # a model that stopped early (an expansion failure) still records what it read, here
+        # in the worker: the parent never hashes inputs again when it writes the cache
+        from .lint import _record_reads
+        _record_reads(report)
     if settings.diff_render_dir and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
