@@ -395,7 +395,10 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
     import builtins
     real_open = builtins.open
     opened = []
-    monkeypatch.setattr(builtins, "open", lambda f, *a, **k: (opened.append(str(f)), real_open(f, *a, **k))[1])
+    def spy(f, *a, **k):
+        opened.append(str(f))
+        return real_open(f, *a, **k)
+    monkeypatch.setattr(builtins, "open", spy)
     assert fresh.texture_refs(dae) == refs
     monkeypatch.setattr(builtins, "open", real_open)
     assert dae not in opened
