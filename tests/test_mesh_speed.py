@@ -404,3 +404,16 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
     assert dae not in opened
     assert hashing._memo, "the cache key is the content digest"
     assert first and all("gone.png" in m for _, m in first)
+
+
+def test_only_a_render_run_keeps_loaded_meshes(tmp_path, fresh, monkeypatch):
+    pkg = _textured_repo(tmp_path / "ws")
+    dae = str(pkg / "meshes" / "m.dae")
+    plain = fresh.mesh_facts(dae)
+    assert fresh._loaded == {}, "plain linting keeps no trimesh in memory"
+    monkeypatch.setattr(fresh, "_memory", {})
+    monkeypatch.setattr(fresh, "_arrays_memo", type(fresh._arrays_memo)())
+    monkeypatch.setattr(fresh, "KEEP_LOADED", True)
+    assert fresh.mesh_facts(dae) == plain
+    assert len(fresh._loaded) == 1
+    assert fresh.get_mesh(dae) is next(iter(fresh._loaded.values())), "the renderer reuses it"

@@ -474,6 +474,7 @@ def _stl_facts(path: str, n: int) -> dict:
             "bounds": bounds, "broken_refs": []}
 
 
+KEEP_LOADED = False   # a render run: measure the trimesh meshes the renderer draws (get_mesh)
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
 _arrays_memo: "OrderedDict[str, tuple]" = OrderedDict()
 MAX_MEMO_VERTICES = 1_000_000     # the arrays kept between the facts and the mass rules
@@ -488,8 +489,8 @@ def _arrays(path: str):
         _arrays_memo.move_to_end(digest)
         return _arrays_memo[digest]
     import numpy as np
-    if digest in _loaded:
-        m = _loaded[digest]
+    if digest in _loaded or KEEP_LOADED:
+        m = get_mesh(path)
         out = (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
                list(m.metadata.get("broken_refs", ())))
     else:

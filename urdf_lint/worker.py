@@ -67,6 +67,10 @@ def _install_audit_hook(*writable):
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from .lint import lint_model
+    if job.kind != "expand":
+        from . import meshes
+        # a render run draws the meshes the rules measured: load them once, keep them
+        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render_dir)
     before = _env_failures()
     report, model, ctx = lint_model(job, settings)
     if _env_failures() != before:
@@ -237,6 +241,29 @@ def assign(blocks: list[Block], n: int) -> list[deque]:
     return queues
 
 
+MESH_MODULES = ("numpy", "PIL.Image", "collada", "manifold3d", "trimesh", "trimesh.exchange.load",
+                "trimesh.exchange.dae", "trimesh.exchange.obj", "trimesh.triangles",
+                "trimesh.grouping")
+
+
+def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
+    """Import the mesh loaders once in the parent before forking several workers, when the
+    selected rules read meshes and the packages hold some: the workers share the imported
+    modules instead of each importing them again."""
+    if not any(b.cost > JOB_COST_S * len(b.jobs) for b in blocks):
+        return
+    from .registry import load_rules
+    rules = load_rules()
+    if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
+        return
+    import importlib
+    for name in MESH_MODULES:
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            pass
+
+
 def _next_job(mine, queues):
     """The next job of a worker: the front of its own queue, else the far end of the longest
     other queue (the models least likely to share meshes with what that worker is on)."""
@@ -291,6 +318,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     cores = os.cpu_count() or 1
     n = max(1, min(jobs_n or default_workers(blocks, cores), len(jobs)))
     queues = assign(blocks, n)
+    if n > 1:
+        _preload_mesh_modules(blocks, settings)
     workers = [_Worker(ctx, settings, memory_mb) for _ in range(n)]
     for w, q in zip(workers, queues, strict=True):
         w.queue = q
