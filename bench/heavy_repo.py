@@ -21,7 +21,7 @@ import numpy as np
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
 
-def sphere(n_tris: int, radius: float = 0.05):
+def sphere(n_tris: int, radius: float = 0.05, center=(0.0, 0.0, 0.0)):
     """(vertices (V, 3), faces (F, 3)) of a closed UV sphere with about ``n_tris`` triangles."""
     n = max(4, int((n_tris / 2) ** 0.5))
     lat = np.linspace(0, np.pi, n + 1)
@@ -37,7 +37,7 @@ def sphere(n_tris: int, radius: float = 0.05):
     c, d = a + n, b + n
     f = np.concatenate([np.stack([a, c, b], -1).reshape(-1, 3),
                         np.stack([b, c, d], -1).reshape(-1, 3)])
-    return v, f
+    return v + np.asarray(center, dtype=float), f
 
 
 def write_binary_stl(path: Path, v, f) -> None:

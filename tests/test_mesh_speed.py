@@ -5,28 +5,16 @@ from __future__ import annotations
 import json
 import os
 import struct
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from conftest import CORPUS, make_package, run_cli
+from conftest import CORPUS, REPO, make_package, run_cli
 
-
-def sphere(n_tris: int, radius: float = 0.05, center=(0.0, 0.0, 0.0)):
-    n = max(4, int((n_tris / 2) ** 0.5))
-    lat = np.linspace(0, np.pi, n + 1)
-    lon = np.linspace(0, 2 * np.pi, n + 1)[:-1]
-    la, lo = np.meshgrid(lat, lon, indexing="ij")
-    v = np.stack([np.sin(la) * np.cos(lo), np.sin(la) * np.sin(lo), np.cos(la)], -1) * radius
-    v = v.reshape(-1, 3)
-    v[:n] = [0, 0, radius]
-    v[-n:] = [0, 0, -radius]
-    i, j = np.arange(n)[:, None] * n, np.arange(n)[None, :]
-    a, b = i + j, i + (j + 1) % n
-    c, d = a + n, b + n
-    f = np.concatenate([np.stack([a, c, b], -1).reshape(-1, 3), np.stack([b, c, d], -1).reshape(-1, 3)])
-    return v + np.asarray(center), f
+sys.path.insert(0, str(REPO / "bench"))
+from heavy_repo import sphere, write_dae, write_obj, write_png  # noqa: E402 - the bench's generator
 
 
 def binary_stl(path: Path, tris) -> Path:
@@ -107,9 +95,6 @@ def test_stl_that_trimesh_reads_otherwise_still_goes_through_trimesh(tmp_path, f
 
 
 def test_dae_unit_and_obj_facts_equal_trimesh(tmp_path, fresh):
-    import sys
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    from heavy_repo import write_dae, write_obj, write_png
     v, f = sphere(800, center=(0.1, -0.2, 0.3))
     write_png(tmp_path / "skin.png")
     write_dae(tmp_path / "m.dae", v, f, "skin.png")
@@ -333,9 +318,6 @@ def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monke
 
 # -- item 5: hash and list once ------------------------------------------------------------------
 def _textured_repo(tmp_path):
-    import sys
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    from heavy_repo import write_dae, write_png
     v, f = sphere(400)
     robot = ('<robot name="r"><link name="a"><visual><geometry>'
              '<mesh filename="package://tex_description/meshes/m.dae"/></geometry></visual></link>'
