@@ -224,7 +224,8 @@ def test_any_value_is_accepted_or_named(tmp_path, key, value):
         return
     got = getattr(cfg, KEYS[key].attr)
     expected_type = {"timeout": float, "memory-mb": int, "jobs": int, "fail-on": str,
-                     "format": str, "cache-dir": str, "baseline": str}.get(key, (list, dict))
+                     "format": str, "cache-dir": str, "baseline": str,
+                     "discover": bool}.get(key, (list, dict))
     assert isinstance(got, expected_type), (key, value, got)
 
 
