@@ -267,7 +267,7 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     assert sorted([os.path.basename(j.entry) for j in b.jobs] for b in blocks) == \
         [["a.urdf", "b.urdf"], ["y.urdf", "z.urdf"]]
     # four small models: one worker (a second process costs more than it saves)
-    assert worker.default_workers(blocks, cores=8) == 1
+    assert worker.default_workers(blocks, cores=8, load=0.0) == 1
     # a package with 60 MB of COLLADA meshes is worth a second worker, never more than the cores
     mesh_dir = tmp_path / "other_description" / "meshes"
     mesh_dir.mkdir()
@@ -275,8 +275,11 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
         f.truncate(60 << 20)                     # sparse: only its size is looked at
     blocks = worker.package_blocks(jobs, settings)
     assert blocks[0].key.endswith("other_description") and blocks[0].cost > 2
-    assert worker.default_workers(blocks, cores=2) == 2
-    assert worker.default_workers(blocks, cores=1) == 1
+    assert worker.default_workers(blocks, cores=2, load=0.0) == 2
+    assert worker.default_workers(blocks, cores=1, load=0.0) == 1
+    # a machine already busy (load 2 on 2 cores): another worker would only add CPU
+    assert worker.default_workers(blocks, cores=2, load=2.0) == 1
+    assert worker.default_workers(blocks, cores=2, load=0.4) == 2
     queues = worker.assign(blocks, 2)
     assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
             for q in queues] == [["other_description"], ["small_description"]]

@@ -221,12 +221,19 @@ def _mesh_cost(root: str) -> float:
     return cost
 
 
-def default_workers(blocks: list[Block], cores: int) -> int:
+def default_workers(blocks: list[Block], cores: int, load: float | None = None) -> int:
     """How many workers the work is worth: one for little work (a second process costs more
-    than it saves), else as many as cores, blocks and the cost allow."""
+    than it saves), else as many as the idle cores (the cores less the load average: on a
+    busy machine another worker only adds CPU), the jobs and the cost allow."""
     total = sum(b.cost for b in blocks)
     jobs = sum(len(b.jobs) for b in blocks)
-    n = min(cores, jobs, max(1, int(total / (2 * WORKER_COST_S))))
+    if load is None:
+        try:
+            load = os.getloadavg()[0]
+        except (OSError, AttributeError):
+            load = 0.0
+    idle = max(1, int(cores - load + 0.5))
+    n = min(cores, idle, jobs, max(1, int(total / (2 * WORKER_COST_S))))
     return max(1, n)
 
 
