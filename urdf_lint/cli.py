@@ -289,7 +289,8 @@ def _cmd_diff(sub, raw):
                          "severity (default: error)")
     df.add_argument("--package-path", action="append", metavar="NAME=DIR",
                     help="where a package lives (default: found from package.xml files)")
-    df.add_argument("-j", "--jobs", metavar="N", help="parallel workers (default: CPU count)")
+    df.add_argument("-j", "--jobs", metavar="N",
+                    help="parallel workers (default: from the work, at most the CPU count)")
     df.add_argument("--no-cache", action="store_true", help="do not read or write the cache")
     df.add_argument("--render", metavar="DIR", help="write before/after/difference PNGs with "
                     "identical framing and one .rrd holding both revisions per affected model "

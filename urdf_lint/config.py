@@ -224,7 +224,8 @@ class Key:
     def default_text(self) -> str:
         d = self.default
         if d is None:
-            return {"jobs": "all cores", "format": "text, or github on GitHub Actions",
+            return {"jobs": "from the work, at most all cores",
+                    "format": "text, or github on GitHub Actions",
                     "cache-dir": ".urdf_lint_cache", "baseline": "none",
                     "views": "single for render, sheet for diff"}.get(self.name, "none")
         if isinstance(d, list):

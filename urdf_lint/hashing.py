@@ -33,6 +33,31 @@ def file_digest(path: str) -> str | None:
     return h.hexdigest()
 
 
+_memo: dict = {}     # (path, dev, ino, size, mtime_ns) -> digest, this process only
+MAX_MEMO = 100_000
+
+
+def memo_digest(path: str) -> tuple[list, str] | None:
+    """([size, mtime_ns], digest) of a file, hashed once per file version in this process
+    (the stat is taken before the read, as in :func:`file_record`). The mesh facts key on
+    it, and a worker records every mesh a model read with it, so a mesh shared by many
+    models is hashed once per worker, not once per model."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    key = (path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+    digest = _memo.get(key)
+    if digest is None:
+        digest = file_digest(path)
+        if digest is None:
+            return None
+        if len(_memo) >= MAX_MEMO:
+            _memo.clear()
+        _memo[key] = digest
+    return [st.st_size, st.st_mtime_ns], digest
+
+
 def stat_key(path) -> list | None:
     try:
         st = os.stat(path)
@@ -44,11 +69,10 @@ def stat_key(path) -> list | None:
 def file_record(path: str, data: bytes | None = None) -> list | None:
     """[stat, digest] of a file as read now: the stat is taken before the bytes are read (or
     passed in as ``data``), so a concurrent edit can only make the record stale, never wrong."""
+    if data is None:
+        got = memo_digest(path)
+        return None if got is None else [got[0], got[1]]
     before = stat_key(path)
     if before is None:
         return None
-    if data is None:
-        digest = file_digest(path)
-    else:
-        digest = hashlib.blake2b(data, digest_size=16).hexdigest()
-    return None if digest is None else [before, digest]
+    return [before, hashlib.blake2b(data, digest_size=16).hexdigest()]

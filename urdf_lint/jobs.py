@@ -104,6 +104,7 @@ class ModelReport:
     digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
     directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
+    cacheable: bool = True                          # False: a fact depended on the environment
 
     @classmethod
     def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":

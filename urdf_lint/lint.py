@@ -255,7 +255,8 @@ def _lint_model(job: LintJob, settings: LintSettings):
         _expand_only(job, settings, resolver, out)
         return out, None, ctx
     from . import meshes
-    meshes.set_confinement(resolver.is_inside)  # texture/MTL references stay in the roots
+    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts
+    meshes.set_confinement(resolver.is_inside, settings.mesh_cache_dir)
     model = _load(job, settings, resolver, out)
     if model is None:
         return out, None, ctx

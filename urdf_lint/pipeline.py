@@ -162,7 +162,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
         for n, (job, res) in enumerate(done, 1):
             internal.extend(res.internal)
             results.append(res)
-            if cache and not res.internal:
+            if cache and not res.internal and res.cacheable:
                 cache.put(job, settings, res)
             if progress:
                 progress(n, len(todo))

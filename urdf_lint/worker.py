@@ -11,6 +11,8 @@ import os
 import signal
 import sys
 import time
+from collections import deque
+from dataclasses import dataclass
 from multiprocessing.connection import wait
 from typing import Any
 
@@ -65,7 +67,19 @@ def _install_audit_hook(*writable):
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from .lint import lint_model
+    if job.kind != "expand":
+        from . import meshes
+        # a render run draws the meshes the rules measured: load them once, keep them
+        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render_dir)
+    before = _env_failures()
     report, model, ctx = lint_model(job, settings)
+    if _env_failures() != before:
+        report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
+    if any(d not in report.digests for d in report.deps):
+        # a model that stopped early (an expansion failure) still records what it read, here
+        # in the worker: the parent never hashes inputs again when it writes the cache
+        from .lint import _record_reads
+        _record_reads(report)
     if settings.diff_render_dir and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
@@ -77,6 +91,11 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
                                        views=settings.render_views,
                                        forward=settings.render_forward)
     return report
+
+
+def _env_failures() -> int:
+    meshes = sys.modules.get(f"{__package__}.meshes")   # (not imported by `expand` jobs)
+    return getattr(meshes, "env_failures", 0)
 
 
 def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
@@ -210,6 +229,122 @@ def _take_prestarted(settings, memory_mb) -> "_Worker | None":
     return w
 
 
+# -- scheduling: the models of one package go to one worker ---------------------------------
+MESH_SUFFIXES = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf")
+JOB_COST_S = 0.04            # expanding and checking one model, meshes aside
+STL_COST_S_PER_MB = 0.006    # numpy reads binary STL
+MESH_COST_S_PER_MB = 0.04    # COLLADA / OBJ go through their parsers
+WORKER_COST_S = 0.35         # a worker's fork, sandbox and the imports it does not share
+MAX_WALK = 20000             # files looked at per package to estimate its meshes
+
+
+@dataclass
+class Block:
+    """The jobs of one package (or of one folder outside any package), with a cost estimate."""
+    key: str
+    jobs: list
+    cost: float = 0.0
+
+
+def package_blocks(jobs: list[LintJob], settings: LintSettings) -> list[Block]:
+    """Jobs grouped by the package holding their entry file (the deepest package root), each
+    block sorted by entry and args so models that share meshes are neighbours; a block's cost
+    is its models plus the mesh bytes of its package (what its first worker will load)."""
+    r = settings.resolver or {}
+    roots = sorted({str(v) for k in ("explicit", "scanned") for v in (r.get(k) or {}).values()},
+                   key=len, reverse=True)
+    blocks: dict[str, Block] = {}
+    for job in jobs:
+        key = next((root for root in roots
+                    if job.entry.startswith(root.rstrip(os.sep) + os.sep)), None)
+        b = blocks.setdefault(key or os.path.dirname(job.entry), Block(key or "", []))
+        b.jobs.append(job)
+    out = []
+    for b in blocks.values():
+        b.jobs.sort(key=lambda j: (j.entry, sorted(j.args.items())))
+        b.cost = JOB_COST_S * len(b.jobs) + (_mesh_cost(b.key) if b.key else 0.0)
+        out.append(b)
+    return sorted(out, key=lambda b: -b.cost)
+
+
+def _mesh_cost(root: str) -> float:
+    """Seconds to measure the meshes under a package root (a first-time estimate)."""
+    cost, seen = 0.0, 0
+    for folder, dirs, files in os.walk(root):
+        dirs[:] = [d for d in dirs if not d.startswith(".")]
+        for f in files:
+            seen += 1
+            low = f.lower()
+            if low.endswith(MESH_SUFFIXES):
+                try:
+                    mb = os.stat(os.path.join(folder, f)).st_size / 2**20
+                except OSError:
+                    continue
+                cost += mb * (STL_COST_S_PER_MB if low.endswith(".stl") else MESH_COST_S_PER_MB)
+        if seen > MAX_WALK:
+            break
+    return cost
+
+
+def default_workers(blocks: list[Block], cores: int, load: float | None = None) -> int:
+    """How many workers the work is worth: one for little work (a second process costs more
+    than it saves), else as many as the idle cores (the cores less the load average: on a
+    busy machine another worker only adds CPU), the jobs and the cost allow."""
+    total = sum(b.cost for b in blocks)
+    jobs = sum(len(b.jobs) for b in blocks)
+    if load is None:
+        try:
+            load = os.getloadavg()[0]
+        except (OSError, AttributeError):
+            load = 0.0
+    idle = max(1, int(cores - load + 0.5))
+    n = min(cores, idle, jobs, max(1, int(total / (2 * WORKER_COST_S))))
+    return max(1, n)
+
+
+def assign(blocks: list[Block], n: int) -> list[deque]:
+    """n queues of jobs: whole blocks, the costliest first, each to the least loaded queue."""
+    queues: list[deque] = [deque() for _ in range(n)]
+    load = [0.0] * n
+    for b in blocks:
+        i = min(range(n), key=lambda k: (load[k], k))
+        queues[i].extend(b.jobs)
+        load[i] += b.cost
+    return queues
+
+
+MESH_MODULES = ("numpy", "PIL.Image", "collada", "manifold3d", "trimesh", "trimesh.exchange.load",
+                "trimesh.exchange.dae", "trimesh.exchange.obj", "trimesh.triangles",
+                "trimesh.grouping")
+
+
+def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
+    """Import the mesh loaders once in the parent before forking several workers, when the
+    selected rules read meshes and the packages hold some: the workers share the imported
+    modules instead of each importing them again."""
+    if not any(b.cost > JOB_COST_S * len(b.jobs) for b in blocks):
+        return
+    from .registry import load_rules
+    rules = load_rules()
+    if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
+        return
+    import importlib
+    for name in MESH_MODULES:
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            pass
+
+
+def _next_job(mine, queues):
+    """The next job of a worker: the front of its own queue, else the far end of the longest
+    other queue (the models least likely to share meshes with what that worker is on)."""
+    if mine:
+        return mine.popleft()
+    other = max(queues, key=len)
+    return other.pop() if other else None
+
+
 class _Worker:
     def __init__(self, ctx, settings, memory_mb):
         self.conn, child = ctx.Pipe()
@@ -231,6 +366,7 @@ class _Worker:
         child.close()
         self.job = None
         self.started = 0.0
+        self.queue: Any = None
 
     def kill(self):
         try:
@@ -253,17 +389,31 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         ctx: Any = mp.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
         ctx = mp.get_context()
-    n = max(1, min(jobs_n or os.cpu_count() or 1, len(jobs)))
-    pending = list(reversed(jobs))
-    pre = _take_prestarted(settings, memory_mb)
+    blocks = package_blocks(jobs, settings)
+    cores = os.cpu_count() or 1
+    n = max(1, min(jobs_n or default_workers(blocks, cores), len(jobs)))
+    queues = assign(blocks, n)
+    pre = _take_prestarted(settings, memory_mb)     # (forked before the mesh modules below)
+    if n > 1:
+        _preload_mesh_modules(blocks, settings)
     workers = [pre] if pre is not None else []
     workers += [_Worker(ctx, settings, memory_mb) for _ in range(n - len(workers))]
+    for w, q in zip(workers, queues, strict=True):
+        w.queue = q
+
+    def pending():
+        return any(queues)
+
+    def replace(old):
+        new = _Worker(ctx, settings, memory_mb)
+        new.queue = old.queue
+        workers.append(new)
     try:
         busy: dict = {}
-        while pending or busy:
+        while pending() or busy:
             for w in workers:
-                if w.job is None and pending:
-                    w.job = pending.pop()
+                if w.job is None and pending():
+                    w.job = _next_job(w.queue, queues)
                     w.started = time.monotonic()
                     w.conn.send(w.job)
                     busy[w.conn] = w
@@ -281,7 +431,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                                            f"{code}); likely the memory limit ({memory_mb} MiB)")
                     workers.remove(w)
                     w.kill()
-                    workers.append(_Worker(ctx, settings, memory_mb))
+                    replace(w)
                 else:
                     w.job = None
                 yield job, result
@@ -292,8 +442,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     job = w.job
                     workers.remove(w)
                     w.kill()
-                    if pending or busy:
-                        workers.append(_Worker(ctx, settings, memory_mb))
+                    if pending() or busy:
+                        replace(w)
                     yield job, _limit_result(job, f"expansion/lint did not finish within the "
                                              f"time limit ({timeout:g} s); a huge expression, "
                                              "loop or recursion?")

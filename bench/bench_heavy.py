@@ -1,0 +1,211 @@
+"""Issue 12 targets, measured side by side in one run: urdf-lint cold vs the stock xacro CLI
+run once per model, on a generated mesh-heavy repository and on the dev corpus.
+
+    .venv/bin/python bench/bench_heavy.py [--packages 6] [--triangles 200000] [--repeat 3]
+                                          [--corpus DIR | --no-corpus] [--huge]
+
+For each side the wall time and the CPU time of the child processes (user + system, from
+``resource.getrusage(RUSAGE_CHILDREN)``, which counts the workers too) are measured; the peak
+memory is the largest max RSS of any process of an ``urdf-lint check -j2`` run (measured in a
+fresh helper process, since ``ru_maxrss`` of the children only ever grows). ``--huge`` also
+lints one valid 5M-triangle binary STL (250 MB) and reports its time and peak memory.
+Prints a table of targets vs measured; the exit code is 0 (a benchmark reports, it does not
+gate).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "tests" / "support"))
+sys.path.insert(0, str(REPO / "bench"))
+LINT = str(REPO / ".venv" / "bin" / "urdf-lint")
+
+
+def _cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def timed(fn):
+    """(wall s, children CPU s, result) of fn()."""
+    c0, t0 = _cpu(), time.perf_counter()
+    out = fn()
+    return time.perf_counter() - t0, _cpu() - c0, out
+
+
+def stock_all(models, pmap):
+    from stock_xacro import stock_xacro
+
+    def go():  # some corpus entries fail in stock xacro too (no ROS): they still count
+        return sum(stock_xacro(str(f), args, pmap)[0] != 0 for f, args in models)
+    return timed(go)
+
+
+def lint(paths, extra=(), env=None, cwd=None):
+    cmd = [LINT, "check", *map(str, paths), "--no-cache", "--format", "json", "--fail-on",
+           "never", *extra]
+
+    def go():
+        p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=cwd)
+        if p.returncode not in (0, 1):
+            raise SystemExit(f"urdf-lint failed ({p.returncode}): {p.stderr[-2000:]}")
+        return json.loads(p.stdout)
+    return timed(go)
+
+
+_PEAK = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL,"
+         " stderr=subprocess.DEVNULL); print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+
+
+def peak_mb(paths, extra=()) -> float:
+    """The largest max RSS (MiB) of any process of one urdf-lint run."""
+    cmd = [sys.executable, "-c", _PEAK, LINT, "check", *map(str, paths), "--no-cache",
+           "--format", "json", "--fail-on", "never", *extra]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+    return int(out.strip()) / 1024
+
+
+def median_runs(fn, repeat):
+    walls, cpus, out = [], [], None
+    for _ in range(repeat):
+        w, c, out = fn()
+        walls.append(w)
+        cpus.append(c)
+    return statistics.median(walls), statistics.median(cpus), out
+
+
+def corpus_models(corpus: Path):
+    out = []
+    for e in json.loads((corpus / "entries.json").read_text()):
+        f = corpus / e["file"]
+        if f.suffix in (".urdf", ".xacro"):
+            out.append((f, {k: v.replace("{CORPUS}", str(corpus)) for k, v in e["args"].items()}))
+    return out
+
+
+def corpus_config(path: Path, models) -> Path:
+    by_file: dict = {}
+    for f, args in models:
+        by_file.setdefault(str(f), []).append(args)
+    lines = []
+    for f, sets in by_file.items():
+        lines += ["[[models]]", f"path = {json.dumps(f)}",
+                  "args = [" + ", ".join("{" + ", ".join(f"{k} = {json.dumps(v)}"
+                                                         for k, v in a.items()) + "}"
+                                         for a in sets) + "]"]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def row(rows, what, target, measured, ok):
+    rows.append((what, target, measured, "yes" if ok else "NO"))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--packages", type=int, default=6)
+    ap.add_argument("--triangles", type=int, default=200_000)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
+    ap.add_argument("--no-corpus", action="store_true")
+    ap.add_argument("--no-heavy", action="store_true")
+    ap.add_argument("--huge", action="store_true", help="also a 5M-triangle (250 MB) STL")
+    ap.add_argument("--keep", action="store_true")
+    a = ap.parse_args()
+    from heavy_repo import generate
+    from urdf_lint.packages import PackageResolver
+    tmp = Path(tempfile.mkdtemp(prefix="urdf-lint-heavy-"))
+    rows: list = []
+    print(f"{os.cpu_count()} cores; median of {a.repeat} runs; CPU = user + system of children")
+    try:
+        if not a.no_heavy:
+            repo = tmp / "ws"
+            models = generate(repo, packages=a.packages, stl_triangles=a.triangles)
+            size = sum(f.stat().st_size for f in repo.rglob("*") if f.is_file()) / 2**20
+            pmap = PackageResolver.build([repo / "src"]).scanned
+            print(f"heavy repository: {len(models)} models, {a.packages + 1} packages, "
+                  f"{size:.0f} MB")
+            sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
+            lw, lc, doc = median_runs(lambda: lint([repo / "src"]), a.repeat)
+            l1w, l1c, doc1 = median_runs(lambda: lint([repo / "src"], ["-j1"]), a.repeat)
+            assert doc1["findings"] == doc["findings"], "-j1 and -j disagree"
+            peak = peak_mb([repo / "src"], ["-j2"])
+            print(f"  stock xacro CLI x{len(models)}: wall {sw:6.2f} s  cpu {sc:6.2f} s")
+            print(f"  urdf-lint cold -j default:  wall {lw:6.2f} s  cpu {lc:6.2f} s  "
+                  f"({len(doc['models'])} models, {len(doc['findings'])} findings)")
+            print(f"  urdf-lint cold -j1:         wall {l1w:6.2f} s  cpu {l1c:6.2f} s")
+            print(f"  peak RSS at -j2:            {peak:6.0f} MiB")
+            row(rows, "heavy: cold wall / stock wall", "<= 0.70", f"{lw / sw:.2f}", lw / sw <= 0.7)
+            row(rows, "heavy: peak memory at -j2", "<= 500 MiB", f"{peak:.0f} MiB", peak <= 500)
+            row(rows, "heavy: -j default CPU / -j1 CPU", "<= 1.15", f"{lc / l1c:.2f}",
+                lc / l1c <= 1.15)
+        if not a.no_corpus and Path(a.corpus, "entries.json").is_file():
+            corpus = Path(a.corpus).resolve()
+            models = corpus_models(corpus)
+            files = sorted({str(f) for f, _ in models})
+            config = corpus_config(tmp / "corpus.toml", models)
+            pmap = PackageResolver.build([corpus], extra_roots=[corpus]).scanned
+            sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
+            lw, lc, doc = median_runs(lambda: lint(files, ["--config", str(config)]), a.repeat)
+            l1w, l1c, doc1 = median_runs(lambda: lint(files, ["--config", str(config), "-j1"]),
+                                         a.repeat)
+            assert doc1["findings"] == doc["findings"], "-j1 and -j disagree"
+            print(f"corpus: {len(models)} entry models")
+            print(f"  stock xacro CLI x{len(models)}: wall {sw:6.2f} s  cpu {sc:6.2f} s")
+            print(f"  urdf-lint cold -j default:  wall {lw:6.2f} s  cpu {lc:6.2f} s  "
+                  f"({len(doc['models'])} models, {len(doc['findings'])} findings)")
+            print(f"  urdf-lint cold -j1:         wall {l1w:6.2f} s  cpu {l1c:6.2f} s")
+            row(rows, "corpus: cold wall / stock wall", "<= 0.35", f"{lw / sw:.2f}", lw / sw <= 0.35)
+            row(rows, "corpus: cold CPU / stock CPU", "<= 0.80", f"{lc / sc:.2f}", lc / sc <= 0.8)
+            row(rows, "corpus: -j default CPU / -j1 CPU", "<= 1.15", f"{lc / l1c:.2f}",
+                lc / l1c <= 1.15)
+        if a.huge:
+            from heavy_repo import package_xml, sphere, write_binary_stl
+            pkg = tmp / "huge" / "huge_description"
+            (pkg / "meshes").mkdir(parents=True)
+            (pkg / "package.xml").write_text(package_xml("huge_description"))
+            v, f = sphere(5_000_000, radius=0.2)
+            write_binary_stl(pkg / "meshes" / "huge.stl", v, f)
+            del v, f
+            (pkg / "huge.urdf").write_text(
+                '<robot name="huge"><link name="a"/><link name="b"><inertial><mass value="100"/>'
+                '<inertia ixx="1.6" ixy="0" ixz="0" iyy="1.6" iyz="0" izz="1.6"/></inertial>'
+                '<collision><geometry><mesh filename="package://huge_description/meshes/huge.stl"/>'
+                '</geometry></collision></link><joint name="j" type="revolute"><parent link="a"/>'
+                '<child link="b"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+                '</robot>\n')
+            mb = (pkg / "meshes" / "huge.stl").stat().st_size / 2**20
+            w, c, doc = lint([pkg], ["-j1"])
+            peak = peak_mb([pkg], ["-j1"])
+            bad = [x for x in doc["findings"] if x["code"] == "UL404"]
+            print(f"huge STL ({mb:.0f} MB, 5M triangles): wall {w:.2f} s  cpu {c:.2f} s  "
+                  f"peak {peak:.0f} MiB  UL404: {[x['message'] for x in bad]}")
+            row(rows, "huge STL: facts, not UL404", "no UL404", f"{len(bad)} UL404", not bad)
+    finally:
+        if not a.keep:
+            shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            print(f"kept {tmp}")
+    if rows:
+        w = [max(len(r[i]) for r in rows + [("target", "target", "measured", "met")])
+             for i in range(4)]
+        print()
+        print(" | ".join(h.ljust(w[i]) for i, h in enumerate(("what", "target", "measured", "met"))))
+        print("-+-".join("-" * x for x in w))
+        for r in rows:
+            print(" | ".join(c.ljust(w[i]) for i, c in enumerate(r)))
+
+
+if __name__ == "__main__":
+    main()

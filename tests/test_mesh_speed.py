@@ -1,0 +1,404 @@
+"""Issue 12: mesh facts from the loaders' arrays (no trimesh processing), big STLs streamed in
+chunks, hashing/listing/texture scans done once, and package-grouped worker scheduling."""
+from __future__ import annotations
+
+import json
+import os
+import struct
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import CORPUS, REPO, make_package, run_cli
+
+sys.path.insert(0, str(REPO / "bench"))
+from heavy_repo import sphere, write_dae, write_obj, write_png  # noqa: E402 - the bench's generator
+
+
+def binary_stl(path: Path, tris) -> Path:
+    rec = np.zeros(len(tris), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    rec["v"] = tris
+    path.write_bytes(b"x" * 80 + struct.pack("<I", len(tris)) + rec.tobytes())
+    return path
+
+
+def ascii_stl(path: Path, tris) -> Path:
+    out = ["solid part"]
+    for t in tris:
+        out += ["facet normal 0 0 1", "outer loop", *(f"vertex {p[0]:.9g} {p[1]:.9g} {p[2]:.9g}" for p in t),
+                "endloop", "endfacet"]
+    path.write_text("\n".join(out + ["endsolid part"]) + "\n")
+    return path
+
+
+def trimesh_facts(path) -> dict:
+    """The facts as urdf-lint measured them before issue 12: on trimesh's concatenated mesh."""
+    from urdf_lint import meshes
+    m = meshes.load_mesh(str(path))
+    v = np.asarray(m.vertices, dtype=float)
+    finite = bool(np.isfinite(v).all()) if len(v) else True
+    return {"ok": True, "error": "", "vertices": len(v), "faces": len(m.faces), "finite": finite,
+            "bounds": [list(map(float, v.min(0))), list(map(float, v.max(0)))]
+            if len(v) and finite else None,
+            "broken_refs": list(m.metadata.get("broken_refs", ()))}
+
+
+def lint_in_process(path, cache=None):
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.pipeline import run_check
+    cfg = load_config(None)
+    return run_check([str(path)], cfg, build_resolver([str(path)], cfg), cache=cache,
+                     in_process=True).findings
+
+
+@pytest.fixture
+def fresh(monkeypatch):
+    """The mesh module with empty per-process memories."""
+    from urdf_lint import hashing, meshes
+    for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo"):
+        monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
+    monkeypatch.setattr(hashing, "_memo", {})
+    monkeypatch.setattr(meshes, "_loaded", type(meshes._loaded)())
+    return meshes
+
+
+# -- item 1: the same facts, without trimesh's processing ------------------------------------
+def test_binary_and_ascii_stl_facts_equal_trimesh(tmp_path, fresh):
+    v, f = sphere(3000)
+    b = binary_stl(tmp_path / "b.stl", v[f])
+    a = ascii_stl(tmp_path / "a.STL", v[f][:200])
+    for p in (b, a):
+        assert fresh.mesh_facts(str(p)) == trimesh_facts(p)
+    assert fresh.mesh_facts(str(b))["faces"] == len(f)
+    assert fresh._loaded == {}, "plain facts must not keep a loaded trimesh"
+
+
+def test_stl_that_trimesh_reads_otherwise_still_goes_through_trimesh(tmp_path, fresh):
+    v, f = sphere(300)
+    p = binary_stl(tmp_path / "short.stl", v[f])
+    p.write_bytes(p.read_bytes()[:-7])            # the header says more than the file holds
+    got = fresh.mesh_facts(str(p))
+    try:
+        want = trimesh_facts(p)
+    except Exception as e:  # noqa: BLE001
+        from urdf_lint.meshes import error_text
+        assert not got["ok"] and got["error"] == error_text(e)[:300]
+    else:
+        assert got == want
+    two = tmp_path / "two.stl"                       # two solids: trimesh stacks them
+    ascii_stl(tmp_path / "one.stl", v[f][:10])
+    two.write_text((tmp_path / "one.stl").read_text() * 2)
+    assert fresh.mesh_facts(str(two)) == trimesh_facts(two)
+
+
+def test_dae_unit_and_obj_facts_equal_trimesh(tmp_path, fresh):
+    v, f = sphere(800, center=(0.1, -0.2, 0.3))
+    write_png(tmp_path / "skin.png")
+    write_dae(tmp_path / "m.dae", v, f, "skin.png")
+    write_obj(tmp_path / "m.obj", v, f, "m.mtl", "skin.png")
+    for name in ("m.dae", "m.obj"):
+        got = fresh.mesh_facts(str(tmp_path / name))
+        assert got == trimesh_facts(tmp_path / name)
+        assert got["ok"] and got["vertices"] > 0
+    # the COLLADA file is in millimetres: the facts are in metres (<unit meter="0.001">)
+    assert fresh.mesh_facts(str(tmp_path / "m.dae"))["bounds"][1][0] == pytest.approx(0.15, abs=2e-3)
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_corpus_mesh_facts_equal_trimesh(fresh):
+    """Every mesh of the real robots: the same counts, bounds and finiteness as trimesh's mesh,
+    and the same mass properties as measured on it."""
+    paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() in (".stl", ".dae", ".obj"))
+    assert len(paths) > 100
+    for p in paths[::3]:
+        try:
+            want = trimesh_facts(p)
+        except Exception:  # noqa: BLE001 - unloadable meshes: checked by the UL404 tests
+            continue
+        assert fresh.mesh_facts(str(p)) == want, p
+        got, want = fresh.mass_facts(str(p)), fresh._mass_properties(fresh.load_mesh(str(p)))
+        # (the convex hull of an open mesh can differ in the last bit between calls)
+        assert got.keys() == want.keys() and got.get("hull") == want.get("hull"), p
+        for k in ("volume", "first", "second", "bounds"):
+            if k in want:
+                assert np.allclose(got[k], want[k], rtol=1e-12, atol=0), (p, k)
+
+
+# -- item 2: big meshes are streamed, not errors ---------------------------------------------
+def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
+    from urdf_lint import meshio
+    v, f = sphere(20_000, radius=0.2, center=(1.0, 2.0, 3.0))
+    p = binary_stl(tmp_path / "big.stl", v[f])
+    want = trimesh_facts(p)
+    want_mass = fresh._mass_properties(fresh.load_mesh(str(p)))
+    seen = []
+    real = meshio.iter_binary_stl
+
+    def spy(path, chunk=None):
+        for c in real(path, chunk):
+            seen.append(len(c))
+            yield c
+    monkeypatch.setattr(meshio, "iter_binary_stl", spy)
+    monkeypatch.setattr(fresh, "STL_CHUNK", 3000)      # ~7 chunks instead of one
+    got = fresh.mesh_facts(str(p))
+    assert got == want
+    assert max(seen) == 3000 and len(seen) >= 6
+    seen.clear()
+    mass = fresh.mass_facts(str(p))
+    assert len(seen) >= 6, "the mass properties are summed over chunks too"
+    assert mass["ok"] and not mass["hull"]
+    assert mass["volume"] == pytest.approx(want_mass["volume"], rel=1e-9)
+    assert np.allclose(mass["first"], want_mass["first"], rtol=1e-9)
+    assert np.allclose(mass["second"], want_mass["second"], rtol=1e-9)
+    assert mass["bounds"] == want_mass["bounds"]
+
+
+def test_chunked_mass_of_an_open_surface_uses_the_hull(tmp_path, fresh, monkeypatch):
+    v, f = sphere(8_000, radius=0.1)
+    p = binary_stl(tmp_path / "open.stl", np.delete(v[f], range(1000, 1040), axis=0))   # a hole
+    want = fresh._mass_properties(fresh.load_mesh(str(p)))
+    monkeypatch.setattr(fresh, "STL_CHUNK", 1000)
+    got = fresh.mass_facts(str(p))
+    assert want["hull"] and got["hull"]
+    assert got["volume"] == pytest.approx(want["volume"], rel=1e-6)
+    assert np.allclose(got["second"], want["second"], rtol=1e-6, atol=1e-12)
+
+
+def test_non_finite_vertex_in_a_later_chunk(tmp_path, fresh, monkeypatch):
+    v, f = sphere(2000)
+    tris = v[f].astype(np.float32)
+    tris[-1, 2, 1] = np.nan
+    p = binary_stl(tmp_path / "nan.stl", tris)
+    monkeypatch.setattr(fresh, "STL_CHUNK", 256)
+    got = fresh.mesh_facts(str(p))
+    assert got["ok"] and not got["finite"] and got["bounds"] is None
+    assert got == trimesh_facts(p)
+
+
+def test_a_mesh_over_the_limit_is_a_clear_finding(tmp_path, monkeypatch):
+    from urdf_lint import meshes
+    v, f = sphere(4000)
+    pkg = make_package(tmp_path, "big_description", {
+        "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
+                       '<mesh filename="package://big_description/meshes/big.stl"/>'
+                       '</geometry></visual></link></robot>\n'})
+    (pkg / "meshes").mkdir()
+    binary_stl(pkg / "meshes" / "big.stl", v[f])
+    # with the real limit, through the CLI: a 200 kB STL gives facts, no finding
+    p = run_cli("check", str(pkg), "--no-cache", "--format", "json")
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert not [x for x in json.loads(p.stdout)["findings"] if x["code"] == "UL404"]
+    # over the limit: one UL404 at the mesh that says so, the same on every run
+    monkeypatch.setattr(meshes, "MAX_MESH_BYTES", 100_000)
+    for _ in range(2):
+        got = [x for x in lint_in_process(pkg) if x.code == "UL404"]
+        assert [x.message for x in got] == [
+            "mesh 'package://big_description/meshes/big.stl' cannot be loaded: the file is 0 MiB, "
+            "over the 0.0953674 MiB limit of mesh files urdf-lint reads"]
+        assert got[0].file.endswith("r.urdf")
+
+
+def test_memory_error_says_it_is_the_limit_and_is_not_cached(tmp_path, fresh, monkeypatch):
+    v, f = sphere(500)
+    p = binary_stl(tmp_path / "m.stl", v[f])
+
+    def boom(path, n):
+        raise MemoryError()
+    monkeypatch.setattr(fresh, "_stl_facts", boom)
+    got = fresh.mesh_facts(str(p), str(tmp_path / "cache"))
+    assert not got["ok"] and "memory limit" in got["error"]
+    assert not list((tmp_path / "cache").rglob("*.json")), "an environment failure is not cached"
+
+
+def test_a_model_whose_mesh_hit_the_memory_limit_is_not_cached(tmp_path, fresh, monkeypatch):
+    """The memory limit is the environment's, not the file's: neither the mesh facts nor the
+    model's result are stored, so the next run (with more memory) measures it."""
+    from urdf_lint.cache import Cache
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    v, f = sphere(500)
+    pkg = make_package(tmp_path / "ws", "m_description", {
+        "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
+                       '<mesh filename="package://m_description/m.stl"/>'
+                       '</geometry></visual></link></robot>\n'})
+    binary_stl(pkg / "m.stl", v[f])
+    cache = Cache(str(tmp_path / "cache"))
+    real = fresh._stl_facts
+
+    def boom(path, n):
+        raise MemoryError()
+    monkeypatch.setattr(fresh, "_stl_facts", boom)
+    first = [x.message for x in lint_in_process(pkg, cache) if x.code == "UL404"]
+    assert len(first) == 1 and "memory limit" in first[0]
+    assert not list((tmp_path / "cache").rglob("results/*/*.json"))
+    monkeypatch.setattr(fresh, "_stl_facts", real)
+    assert not [x for x in lint_in_process(pkg, cache) if x.code == "UL404"]
+    assert list((tmp_path / "cache").rglob("results/*/*.json")), "a clean result is cached"
+
+
+# -- item 3: models scheduled by package -------------------------------------------------------
+def _settings_for(tmp_path, packages: dict):
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.pipeline import settings_for
+    cfg = load_config(None)
+    for name, files in packages.items():
+        make_package(tmp_path, name, files)
+    return settings_for(cfg, build_resolver([str(tmp_path)], cfg), None)
+
+
+def _robot(mesh=None):
+    geo = f'<mesh filename="{mesh}"/>' if mesh else '<box size="1 1 1"/>'
+    return f'<robot name="r"><link name="a"><visual><geometry>{geo}</geometry></visual></link></robot>\n'
+
+
+def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob
+    settings = _settings_for(tmp_path, {
+        "small_description": {"urdf/a.urdf": _robot(), "urdf/b.urdf": _robot()},
+        "other_description": {"urdf/z.urdf": _robot(), "urdf/y.urdf": _robot()}})
+    jobs = [LintJob(str(tmp_path / p / "urdf" / f)) for p, f in (
+        ("small_description", "b.urdf"), ("other_description", "z.urdf"),
+        ("small_description", "a.urdf"), ("other_description", "y.urdf"))]
+    blocks = worker.package_blocks(jobs, settings)
+    assert sorted([os.path.basename(j.entry) for j in b.jobs] for b in blocks) == \
+        [["a.urdf", "b.urdf"], ["y.urdf", "z.urdf"]]
+    # four small models: one worker (a second process costs more than it saves)
+    assert worker.default_workers(blocks, cores=8, load=0.0) == 1
+    # a package with 60 MB of COLLADA meshes is worth a second worker, never more than the cores
+    mesh_dir = tmp_path / "other_description" / "meshes"
+    mesh_dir.mkdir()
+    with open(mesh_dir / "big.dae", "wb") as f:
+        f.truncate(60 << 20)                     # sparse: only its size is looked at
+    blocks = worker.package_blocks(jobs, settings)
+    assert blocks[0].key.endswith("other_description") and blocks[0].cost > 2
+    assert worker.default_workers(blocks, cores=2, load=0.0) == 2
+    assert worker.default_workers(blocks, cores=1, load=0.0) == 1
+    # a machine already busy (load 2 on 2 cores): another worker would only add CPU
+    assert worker.default_workers(blocks, cores=2, load=2.0) == 1
+    assert worker.default_workers(blocks, cores=2, load=0.4) == 2
+    queues = worker.assign(blocks, 2)
+    assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
+            for q in queues] == [["other_description"], ["small_description"]]
+
+
+def test_an_idle_worker_takes_from_the_far_end_of_another_block():
+    from collections import deque
+    from urdf_lint import worker
+    mine, other = deque(), deque(["m1", "m2", "m3", "m4"])
+    assert worker._next_job(mine, [mine, other]) == "m4"
+    assert worker._next_job(other, [mine, other]) == "m1"
+
+
+def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monkeypatch):
+    """Real forked workers: each package's models land in one process (so the mesh facts it
+    loaded are reused); the worker that runs out steals the last models of the other block."""
+    import time
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob, ModelReport
+    names = [f"m{i}.urdf" for i in range(8)]
+    settings = _settings_for(tmp_path, {"big_description": {f"urdf/{n}": _robot() for n in names},
+                                        "one_description": {"urdf/only.urdf": _robot()}})
+
+    def fake(job, settings):            # inherited by the forked workers
+        time.sleep(0.15)
+        return ModelReport(job.entry, {}, name=str(os.getpid()))
+    monkeypatch.setattr(worker, "process_job", fake)
+    jobs = [LintJob(str(tmp_path / "big_description" / "urdf" / n)) for n in names]
+    jobs.append(LintJob(str(tmp_path / "one_description" / "urdf" / "only.urdf")))
+    got = {os.path.basename(j.entry): r.name for j, r in worker.run_jobs(jobs, settings, jobs_n=2)}
+    assert len(got) == 9
+    big_pid = got["m0.urdf"]
+    assert got["only.urdf"] != big_pid
+    stolen = [n for n in names if got[n] != big_pid]
+    assert stolen, "the idle worker helps with the big package"
+    assert stolen == names[len(names) - len(stolen):], "it takes from the far end"
+    assert len(stolen) < len(names) - 1
+
+
+# -- item 5: hash and list once ------------------------------------------------------------------
+def _textured_repo(tmp_path):
+    v, f = sphere(400)
+    robot = ('<robot name="r"><link name="a"><visual><geometry>'
+             '<mesh filename="package://tex_description/meshes/m.dae"/></geometry></visual></link>'
+             '<link name="b"><visual><geometry><mesh filename="package://tex_description/meshes/M2.dae"/>'
+             '</geometry></visual></link><joint name="j" type="fixed"><parent link="a"/>'
+             '<child link="b"/></joint><link name="c"><visual><geometry>'
+             '<mesh filename="package://tex_description/meshes/m3.dae"/></geometry></visual></link>'
+             '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint></robot>\n')
+    pkg = make_package(tmp_path, "tex_description", {"urdf/r.urdf": robot, "urdf/s.urdf": robot,
+                                                      "urdf/broken.urdf.xacro": "<robot name='x' "})
+    (pkg / "meshes").mkdir()
+    write_png(pkg / "meshes" / "skin.png")
+    write_dae(pkg / "meshes" / "m.dae", v, f, "skin.png")
+    write_dae(pkg / "meshes" / "m2.dae", v, f, "skin.png")      # referred to as M2.dae
+    write_dae(pkg / "meshes" / "m3.dae", v, f, "gone.png")      # a lost texture
+    old = 1_600_000_000
+    for p in [pkg, *pkg.rglob("*")]:
+        os.utime(p, (old, old))              # an old checkout: folder listings can be trusted
+    return pkg
+
+
+def test_folders_are_listed_once_and_the_parent_never_hashes(tmp_path, fresh, monkeypatch):
+    from urdf_lint import cache as cache_mod
+    from urdf_lint.cache import Cache
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    pkg = _textured_repo(tmp_path / "ws")
+    monkeypatch.setattr(fresh, "_listings", {})
+    listed = []
+    real_listdir = os.listdir
+    monkeypatch.setattr(fresh.os, "listdir", lambda p: listed.append(str(p)) or real_listdir(p))
+
+    def no_hash(*a, **k):
+        raise AssertionError("the parent hashed an input again when writing the cache")
+    monkeypatch.setattr(cache_mod, "file_record", no_hash)
+    found = lint_in_process(pkg, Cache(str(tmp_path / "cache")))
+    codes = {x.code for x in found}
+    assert {"UL402", "UL001"} <= codes, codes    # the case mismatch, the broken file
+    assert len(listed) == len(set(listed)), f"a folder was listed twice: {sorted(listed)}"
+    assert list((tmp_path / "cache").rglob("results/*/*.json"))
+
+
+def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, monkeypatch):
+    from urdf_lint import hashing
+    pkg = _textured_repo(tmp_path / "ws")
+    cache = tmp_path / "cache"
+    first = sorted((x.code, x.message) for x in lint_in_process(pkg, None) if x.code == "UL407")
+    monkeypatch.setattr(fresh, "_textures", {})
+    monkeypatch.setattr(fresh, "_scan_memory", {})
+    fresh.set_confinement(None, str(cache))
+    dae = str(pkg / "meshes" / "m.dae")
+    refs = fresh.texture_refs(dae)
+    assert refs == [str(pkg / "meshes" / "skin.png")]
+    assert list(cache.glob("meshes/tex*.json"))
+    # a new run (new process memory): the DAE is not read to find its textures
+    monkeypatch.setattr(fresh, "_textures", {})
+    monkeypatch.setattr(fresh, "_scan_memory", {})
+    import builtins
+    real_open = builtins.open
+    opened = []
+    def spy(f, *a, **k):
+        opened.append(str(f))
+        return real_open(f, *a, **k)
+    monkeypatch.setattr(builtins, "open", spy)
+    assert fresh.texture_refs(dae) == refs
+    monkeypatch.setattr(builtins, "open", real_open)
+    assert dae not in opened
+    assert hashing._memo, "the cache key is the content digest"
+    assert first and all("gone.png" in m for _, m in first)
+
+
+def test_only_a_render_run_keeps_loaded_meshes(tmp_path, fresh, monkeypatch):
+    pkg = _textured_repo(tmp_path / "ws")
+    dae = str(pkg / "meshes" / "m.dae")
+    plain = fresh.mesh_facts(dae)
+    assert fresh._loaded == {}, "plain linting keeps no trimesh in memory"
+    monkeypatch.setattr(fresh, "_memory", {})
+    monkeypatch.setattr(fresh, "_arrays_memo", type(fresh._arrays_memo)())
+    monkeypatch.setattr(fresh, "KEEP_LOADED", True)
+    assert fresh.mesh_facts(dae) == plain
+    assert len(fresh._loaded) == 1
+    assert fresh.get_mesh(dae) is next(iter(fresh._loaded.values())), "the renderer reuses it"
