@@ -22,6 +22,9 @@ from .scene import Part, Scene, build_scene, kinematic_tree, part_mesh  # noqa: 
 def snapshot_name(entry, args, base):
     from .locations import display_path
     rel = display_path(entry, base)
+    if os.path.isabs(rel):  # outside the base: no path of this machine in the name
+        from .recording import relative_label
+        rel = relative_label(entry)
     stem = rel.replace(os.sep, "__")
     for ext in (".urdf.xacro", ".xacro", ".urdf"):
         if stem.endswith(ext):
@@ -59,7 +62,8 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
         else:
             path = os.path.join(out_dir, name + ".rrd")
             try:
-                info.update(record_rrd(scene, ctx, findings, path, recording_id=f"urdf-lint/{name}"))
+                info.update(record_rrd(scene, ctx, findings, path, recording_id=f"urdf-lint/{name}",
+                                       model=model, base=base))
                 info["rrd"] = path
             except Exception as e:  # noqa: BLE001
                 info["problems"].append(f"rrd: {type(e).__name__}: {e}")
@@ -69,6 +73,7 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True):
 def write_summary(result, out_dir):
     from collections import Counter
     from .locations import display_path
+    from .recording import relative_label
     from .report.escape import escape_markdown, escape_markdown_code
     lines = ["# urdf-lint snapshots", "",
              "| model | links | joints | meshes | errors | warnings | info |",
@@ -76,16 +81,19 @@ def write_summary(result, out_dir):
     images = []
     for m in result.models:
         c = Counter(f.severity for f in result.findings if m.label in f.models)
-        label = escape_markdown(m.label)  # names are the description's: no HTML, no links
-        lines.append(f"| `{escape_markdown_code(m.label)}` | {m.stats.get('links', '-')} | "
+        shown = m.label
+        if os.path.isabs(display_path(m.entry)):  # outside the working directory
+            shown = relative_label(m.entry) + m.label[len(display_path(m.entry)):]
+        label = escape_markdown(shown)  # names are the description's: no HTML, no links
+        lines.append(f"| `{escape_markdown_code(shown)}` | {m.stats.get('links', '-')} | "
                      f"{m.stats.get('joints', '-')} | "
                      f"{m.stats.get('meshes', '-')} | {c['error']} | {c['warning']} | {c['info']} |")
         snap = m.snapshot or {}
         if snap.get("png"):
             images.append(f"### {label}\n\n![{label}]({os.path.relpath(snap['png'], out_dir)})\n")
             if snap.get("rrd"):
-                images.append(f"Recording: `{os.path.relpath(snap['rrd'], out_dir)}` "
-                              f"(open with `rerun {display_path(snap['rrd'])}`)\n")
+                rel = os.path.relpath(snap['rrd'], out_dir)  # never a path of this machine
+                images.append(f"Recording: `{rel}` (open with `rerun {rel}` in this folder)\n")
     text = "\n".join(lines) + "\n\n" + "\n".join(images)
     path = os.path.join(out_dir, "summary.md")
     from .atomic import atomic_write

@@ -95,7 +95,8 @@ def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
         stem = os.path.join(settings.diff_render_dir or "", job.diff_stem or "")
         rrd = f"{stem}.{settings.diff_side}.rrd"
         render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job.diff_stem}",
-                          prefix=f"{settings.diff_side}/")
+                          prefix=f"{settings.diff_side}/", model=model,
+                          blueprint=("base/", "head/"))
     return geometry, rrd
 
 
