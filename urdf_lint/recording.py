@@ -69,7 +69,7 @@ def blueprint_for(prefixes=("",)):
         name = {"": "robot", "base/": "before (base)", "head/": "after (head)"}.get(p, p)
         views.append(rrb.Spatial3DView(
             name=name, origin="/",
-            contents=[f"+ /{p}robot/**", f"+ /{p}collision/**", f"- /{p}robot/**/findings/**"],
+            contents=[f"+ /{p}robot/**", f"+ /{p}collision/**"],
             overrides={f"/{p}collision": rrb.EntityBehavior(visible=False)}))
     log = rrb.TextLogView(name="findings", origin="/", contents=["+ /**"])
     return rrb.Blueprint(rrb.Horizontal(*views, log, column_shares=[3] * len(views) + [2]),
