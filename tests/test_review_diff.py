@@ -279,3 +279,17 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
             roots.add(str(ch.entity_path).strip("/").split("/")[0])
     assert {"base", "head"} <= roots
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
+    # each revision sweeps its joints, the layout shows both, and no path of this machine
+    from test_recording import _expected_segments, columns, load_model, strings
+    movable = _expected_segments(load_model(repo / "r2d2_description" / "urdf" /
+                                            "r2d2.urdf.xacro", {}))
+    cols = columns(rrd)
+    for side in ("base", "head"):
+        assert len(cols[f"/{side}/sweep"]["joint_sweep"]) == len(movable) > 0
+    reader = RrdReader(str(rrd))
+    assert reader.blueprints()
+    queries = [q for c in columns(rrd, reader.blueprints()[0]).values()
+               for q in c.get("query", [])]
+    assert ["+ /base/robot/**", "+ /base/collision/**"] in queries
+    assert ["+ /head/robot/**", "+ /head/collision/**"] in queries
+    assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
