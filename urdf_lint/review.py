@@ -13,6 +13,7 @@
 """
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
 import tarfile
@@ -127,15 +128,27 @@ def _key(rel_entry: str, args: dict) -> str:
         f"{k}:={v}" for k, v in sorted(args.items())) + "]")
 
 
+@functools.lru_cache(maxsize=65536)
+def _realpath(path):
+    return os.path.realpath(path)
+
+
 def _rel(root, path):
-    return os.path.relpath(os.path.realpath(path), os.path.realpath(root))
+    # memoised: every dependency of every model goes through here (thousands of paths)
+    return os.path.relpath(_realpath(path), _realpath(root))
 
 
-def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
+def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
+               mesh_cache_dir=None):
+    """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
+    the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
+    whole revision (``side.root``), as they do at HEAD, even when only a few entries are
+    linted."""
     from .discovery import build_resolver
     from .pipeline import run_check
-    resolver = build_resolver(paths, cfg, package_paths)
-    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache)
+    resolver = build_resolver([side.root, *paths], cfg, package_paths)
+    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
+                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir)
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -164,7 +177,6 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     import dataclasses
     from .jobs import LintJob
-    from .model import Model, model_from_xml, parse_urdf_bytes
     from .pipeline import settings_for
     from .worker import run_jobs
     jobs, key_of = [], {}
@@ -181,29 +193,34 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
     if render_dir:
         settings = dataclasses.replace(settings, diff_render_dir=os.path.realpath(render_dir),
                                        diff_rrd=rrd, diff_side=side_name)
-    failures = {r.CODE for r in _FAILURE_RULES}
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = key_of[id(job)]
-        kept = res.kept_model
         if res.diff_geometry is not None:
             side.geometry[k] = res.diff_geometry
         if res.diff_rrd:
             side.rrd[k] = res.diff_rrd
-        if kept is None:
-            msgs = [p.message for p in res.problems if p.code in failures]
-            side.robots[k] = None
-            side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
-            continue
-        if kept.xml is not None:
-            side.robots[k] = model_from_xml(job.entry, job.args, kept.xml, kept.origins,
-                                            res.deps, resolver)
-        else:
-            with open(job.entry, "rb") as f:
-                root, origins, _ = parse_urdf_bytes(job.entry, f.read())
-            side.robots[k] = (Model(entry=job.entry, args={}, root=root, origins=origins,
-                                    deps=[job.entry], resolver=resolver)
-                              if root is not None else None)
+        _keep_robot(side, k, job.entry, job.args, res, resolver)
+
+
+def _keep_robot(side: Side, k, entry, args, res, resolver):
+    """The Model of a report that kept its robot (``LintSettings.keep_model``), or why not."""
+    from .model import Model, model_from_xml, parse_urdf_bytes
+    kept = res.kept_model
+    if kept is None:
+        failures = {r.CODE for r in _FAILURE_RULES}
+        msgs = [p.message for p in res.problems if p.code in failures]
+        side.robots[k] = None
+        side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
+        return
+    if kept.xml is not None:
+        side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
+    else:
+        with open(entry, "rb") as f:
+            root, origins, _ = parse_urdf_bytes(entry, f.read())
+        side.robots[k] = (Model(entry=entry, args={}, root=root, origins=origins,
+                                deps=[entry], resolver=resolver)
+                          if root is not None else None)
 
 
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
@@ -239,7 +256,9 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             cache = Cache.for_paths(head_paths, cfg)
             if cache.refused:  # said why on stderr; nothing goes there
                 cache = None
-        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n, cache)
+        # models linted now (not from the cache) bring their robot back: no second expansion
+        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
+                                                cache, keep_models=not render_dir)
         result.internal += head_result.internal
         result.total_models = len(head.models)
 
@@ -282,14 +301,29 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         if base_entries:
             base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
             base_cfg = cfg_loader([base_root])
-            base_resolver, base_result = _lint_side(base, base_paths, base_cfg, package_paths,
-                                                    jobs_n, None)
+            # without pictures the base's robots come from this one expansion
+            # and mesh facts (keyed by content) are shared with the working tree's cache
+            base_resolver, base_result = _lint_side(
+                base, base_paths, base_cfg, package_paths, jobs_n, None,
+                keep_models=not render_dir, mesh_cache_dir=cache.dir if cache else None)
             result.internal += base_result.internal
+            if not render_dir:
+                for k, m in base.models.items():
+                    _keep_robot(base, k, m.entry, m.args, m, base_resolver)
         result.base_expanded = len(base.models)
 
         if render_dir:
             _clear_snapshots(render_dir)
-        _load_robots(head, affected, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
+        again = []
+        for k in affected:
+            m = head.models[k]
+            if m.kept_model is not None and not render_dir:
+                _keep_robot(head, k, m.entry, m.args, m, head_resolver)
+            else:
+                again.append(k)
+        for m in head.models.values():
+            m.kept_model = None  # only the affected robots are needed from here on
+        _load_robots(head, again, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
         base_keys = {}
         for k in affected:
             m = head.models[k]
@@ -298,7 +332,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if bk in base.models:
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
-        if base_resolver is not None:
+        if base_resolver is not None and render_dir:
             _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n,
                          render_dir, "base", rrd)
 
