@@ -100,7 +100,19 @@ def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
     return geometry, rrd
 
 
+# Optional accelerators trimesh probes for when it is imported (~0.4 s per process). urdf-lint
+# uses none of them (its convex hulls come from manifold3d); they arrive with yourdfpy's
+# ``trimesh[easy]`` (the ``render`` extra). A worker runs only urdf-lint's code, so it skips them.
+UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
+
+
+def _skip_unused_imports():
+    for name in UNUSED_TRIMESH_EXTRAS:
+        sys.modules.setdefault(name, None)  # type: ignore[arg-type] - "import fails" marker
+
+
 def _worker_main(conn, settings: LintSettings, memory_mb):
+    _skip_unused_imports()
     try:
         import resource
         limit = int(memory_mb) * 1024 * 1024
