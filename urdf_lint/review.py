@@ -223,6 +223,37 @@ def _keep_robot(side: Side, k, entry, args, res, resolver):
                           if root is not None else None)
 
 
+def _half(jobs_n, cfg) -> int:
+    """Workers for one of two revisions that are linted / drawn at the same time."""
+    return max(1, (jobs_n or cfg.jobs or os.cpu_count() or 2) // 2)
+
+
+class _Background:
+    """``fn(*args)`` in a thread (its workers are processes: the thread only waits on
+    them); :meth:`join` raises what it raised."""
+
+    def __init__(self, fn, *args):
+        import threading
+        self.error = None
+        self.thread = None
+        if args and not args[1]:   # no keys: nothing to do
+            return
+
+        def run():
+            try:
+                fn(*args)
+            except BaseException as e:  # noqa: BLE001 - raised again by join()
+                self.error = e
+        self.thread = threading.Thread(target=run, name="urdf-lint-diff", daemon=True)
+        self.thread.start()
+
+    def join(self):
+        if self.thread is not None:
+            self.thread.join()
+        if self.error is not None:
+            raise self.error
+
+
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
              jobs_n=None, use_cache=True, render_dir: str | None = None,
              rrd: bool = True) -> DiffResult:
@@ -268,6 +299,22 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             inputs.add(_rel(head_root, m.entry))
             if inputs & (changed_head | changed_base):
                 affected.append(k)
+        if render_dir:
+            _clear_snapshots(render_dir)
+        again = []
+        for k in affected:
+            m = head.models[k]
+            if m.kept_model is not None and not render_dir:
+                _keep_robot(head, k, m.entry, m.args, m, head_resolver)
+            else:
+                again.append(k)
+        for m in head.models.values():
+            m.kept_model = None  # only the affected robots are needed from here on
+        # the head's robots (and pictures) are made while the base is materialised and linted
+        head_load = _Background(_load_robots, head, again, head_resolver, cfg,
+                                _half(jobs_n, cfg), render_dir, "head", rrd)
+        # (an exception from here on leaves it: its workers die with this process)
+        base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
         # the base needs only what the affected models can read there: their inputs at HEAD
         # (through renames), every changed path, and the package manifests and configs
         base_files = tracked_files(top, base_sha)
@@ -304,7 +351,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             # without pictures the base's robots come from this one expansion
             # and mesh facts (keyed by content) are shared with the working tree's cache
             base_resolver, base_result = _lint_side(
-                base, base_paths, base_cfg, package_paths, jobs_n, None,
+                base, base_paths, base_cfg, package_paths, base_jobs, None,
                 keep_models=not render_dir, mesh_cache_dir=cache.dir if cache else None)
             result.internal += base_result.internal
             if not render_dir:
@@ -312,18 +359,6 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                     _keep_robot(base, k, m.entry, m.args, m, base_resolver)
         result.base_expanded = len(base.models)
 
-        if render_dir:
-            _clear_snapshots(render_dir)
-        again = []
-        for k in affected:
-            m = head.models[k]
-            if m.kept_model is not None and not render_dir:
-                _keep_robot(head, k, m.entry, m.args, m, head_resolver)
-            else:
-                again.append(k)
-        for m in head.models.values():
-            m.kept_model = None  # only the affected robots are needed from here on
-        _load_robots(head, again, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
         base_keys = {}
         for k in affected:
             m = head.models[k]
@@ -333,8 +368,9 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
         if base_resolver is not None and render_dir:
-            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n,
-                         render_dir, "base", rrd)
+            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg,
+                         base_jobs, render_dir, "base", rrd)
+        head_load.join()
 
         for k in sorted(affected):
             result.models.append(_model_diff(k, head, base, base_keys.get(k)))
