@@ -3,6 +3,7 @@ built here from the seed robots (issue #13)."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -293,3 +294,58 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert ["+ /base/robot/**", "+ /base/collision/**"] in queries
     assert ["+ /head/robot/**", "+ /head/collision/**"] in queries
     assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
+
+
+def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
+    """Without pictures the robot comes back from the lint pass: one expansion per revision
+    of the changed model, none of the unchanged one at the base."""
+    from urdf_lint import worker
+    seen = []
+    real = worker.run_jobs
+
+    def spy(jobs, *a, **kw):
+        jobs = list(jobs)
+        seen.extend(j.entry for j in jobs)
+        return real(jobs, *a, **kw)
+    monkeypatch.setattr(worker, "run_jobs", spy)
+    edit(repo / "r2d2_description" / "urdf" / "r2d2_macros.xacro",
+         '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and [m["status"] for m in doc["models"]] == ["changed"]
+    r2d2 = [e for e in seen if e.endswith("r2d2.urdf.xacro")]
+    pendulum = [e for e in seen if e.endswith("double_pendulum.urdf.xacro")]
+    assert len(r2d2) == 2 and len({os.path.dirname(e) for e in r2d2}) == 2   # head, base
+    assert len(pendulum) == 1                                                # head only
+
+
+def test_base_resolves_packages_it_does_not_lint(tmp_path, capsys, monkeypatch):
+    """The changed model includes a file of another package: at the base, that package is
+    found as it is at HEAD (no 'unknown package' reported as fixed by the change)."""
+    from conftest import make_package
+    r = tmp_path / "ws"
+    make_package(r, "common_description", {"urdf/colours.xacro": """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+</robot>
+"""})
+    make_package(r, "arm_description", {"urdf/arm.urdf.xacro": """<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find common_description)/urdf/colours.xacro"/>
+  <link name="base"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>
+    <material name="grey"/></visual></link>
+  <link name="upper"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""})
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    monkeypatch.chdir(r)
+    edit(r / "arm_description" / "urdf" / "arm.urdf.xacro", 'upper="1"', 'upper="1.5"')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0
+    [m] = doc["models"]
+    assert m["status"] == "changed"
+    assert m["findings_introduced"] == [] and m["findings_fixed"] == [], m
+    assert [c["field"] for c in m["changes"]] == ["limit.upper"]
