@@ -298,7 +298,8 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
 
 def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
     """Without pictures the robot comes back from the lint pass: one expansion per revision
-    of the changed model, none of the unchanged one at the base."""
+    of the changed model; the unchanged one, which the include graph shows the changed macro
+    file cannot reach, is expanded at neither revision yet still counted."""
     from urdf_lint import worker
     seen = []
     real = worker.run_jobs
@@ -315,7 +316,27 @@ def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
     r2d2 = [e for e in seen if e.endswith("r2d2.urdf.xacro")]
     pendulum = [e for e in seen if e.endswith("double_pendulum.urdf.xacro")]
     assert len(r2d2) == 2 and len({os.path.dirname(e) for e in r2d2}) == 2   # head, base
-    assert len(pendulum) == 1                                                # head only
+    assert pendulum == []
+    assert doc["models_total"] == 2
+
+
+def test_a_yaml_change_lints_every_model(repo, capsys, monkeypatch):
+    """A change the include graph cannot follow (YAML read by xacro.load_yaml) lints every
+    model, and the recorded inputs find the one affected."""
+    from urdf_lint import worker
+    seen = []
+    real = worker.run_jobs
+
+    def spy(jobs, *a, **kw):
+        jobs = list(jobs)
+        seen.extend(j.entry for j in jobs)
+        return real(jobs, *a, **kw)
+    monkeypatch.setattr(worker, "run_jobs", spy)
+    (repo / "r2d2_description" / "config" / "inertial.yaml").write_text("head_mass: 2.5\n")
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and [m["model"] for m in doc["models"]] == [
+        "r2d2_description/urdf/r2d2.urdf.xacro"]
+    assert any(e.endswith("double_pendulum.urdf.xacro") for e in seen)
 
 
 def test_base_resolves_packages_it_does_not_lint(tmp_path, capsys, monkeypatch):

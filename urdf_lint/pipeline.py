@@ -95,17 +95,19 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
               cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
               render_dir: str | None = None, render_rrd: bool = True,
               in_process: bool = False, keep_models: bool = False,
-              mesh_cache_dir: str | None = None) -> CheckResult:
+              mesh_cache_dir: str | None = None, select_jobs=None) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
     models whose inputs include one of them; files no model uses land in ``unused_files``.
     ``in_process`` lints in this process, without workers and their limits (trusted input
     only: tests and benchmarks). ``keep_models`` brings every expanded robot back
     (``ModelReport.kept_model``; ``--fix`` compares them before and after).
     ``mesh_cache_dir``: mesh facts (keyed by content) from this cache folder when ``cache``
-    is None (``diff`` lints the base revision with the working tree's mesh facts)."""
+    is None (``diff`` lints the base revision with the working tree's mesh facts).
+    ``select_jobs(jobs, discovery)`` keeps only the jobs worth linting (``diff``: the models
+    a change can reach through the include graph)."""
     policy = Policy.from_config(cfg)
     found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
-    jobs = found.jobs
+    jobs = found.jobs if select_jobs is None else select_jobs(found.jobs, found)
     settings = settings_for(cfg, resolver, cache.dir if cache else mesh_cache_dir, policy)
     if keep_models:
         settings = dataclasses.replace(settings, keep_model=True)

@@ -120,6 +120,7 @@ class DiffResult:
     models: list = field(default_factory=list)      # ModelDiff, affected models only
     total_models: int = 0
     base_expanded: int = 0
+    head_linted: int = 0                             # models linted at HEAD (the rest: unreachable)
     internal: list = field(default_factory=list)
 
 
@@ -138,8 +139,55 @@ def _rel(root, path):
     return os.path.relpath(_realpath(path), _realpath(root))
 
 
+_SOURCE_SUFFIXES = (".xacro", ".urdf")
+
+
+class _Reach:
+    """Which models a change can reach without expanding them: when every changed path is a
+    xacro or URDF file, a model is skipped (not linted at HEAD) when its include closure,
+    read from the include graph, is complete (no include only expansion can resolve) and
+    holds none of them. Any other change (YAML, meshes, manifests, configs) lints every
+    model, whose recorded inputs then say which are affected."""
+
+    def __init__(self, changed_abs):
+        self.changed = {os.path.realpath(p) for p in changed_abs}
+        self.active = bool(self.changed) and all(p.endswith(_SOURCE_SUFFIXES)
+                                                 for p in self.changed)
+        self.skipped = 0   # models not linted (counted in the total)
+
+    def __call__(self, jobs, found):
+        if not self.active:
+            return jobs
+        keep = []
+        for job in jobs:
+            if self._may_reach(job, found):
+                keep.append(job)
+            elif job.entry not in found.fragments:
+                self.skipped += 1
+        return keep
+
+    def _may_reach(self, job, found) -> bool:
+        graph = found.graph
+        if job.entry in found.generated or job.output:
+            return True   # a generated URDF and its xacro are compared (UL011)
+        todo, seen = [job.entry], set()
+        while todo:
+            f = todo.pop()
+            real = os.path.realpath(f)
+            if real in seen:
+                continue
+            seen.add(real)
+            if real in self.changed:
+                return True
+            if f.endswith(".xacro"):
+                if f not in graph.includes or graph.unresolved.get(f):
+                    return True   # not read, or an include only expansion can resolve
+                todo.extend(graph.includes.get(f, ()))
+        return False
+
+
 def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
-               mesh_cache_dir=None):
+               mesh_cache_dir=None, select_jobs=None):
     """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
     the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
@@ -148,7 +196,8 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     from .pipeline import run_check
     resolver = build_resolver([side.root, *paths], cfg, package_paths)
     result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
-                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir)
+                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
+                       select_jobs=select_jobs)
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -288,10 +337,15 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if cache.refused:  # said why on stderr; nothing goes there
                 cache = None
         # models linted now (not from the cache) bring their robot back: no second expansion
+        # models the change cannot reach (include graph) are not even linted
+        reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
+                       [os.path.join(head_root, p) for p in changed_base])
         head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
-                                                cache, keep_models=not render_dir)
+                                                cache, keep_models=not render_dir,
+                                                select_jobs=reach)
         result.internal += head_result.internal
-        result.total_models = len(head.models)
+        result.total_models = len(head.models) + reach.skipped
+        result.head_linted = len(head.models)
 
         affected = []
         for k, m in head.models.items():
