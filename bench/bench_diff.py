@@ -46,14 +46,29 @@ def build_repo(corpus: str, dest: str) -> str:
     return top
 
 
+SRC = None   # --src: run urdf-lint from this source tree (another revision) instead
+
+
 def urdf_lint(top, *args):
     exe = str(REPO / ".venv" / "bin" / "urdf-lint")
     if not os.path.exists(exe):
         exe = shutil.which("urdf-lint") or "urdf-lint"
+    env = dict(os.environ, RERUN_ANALYTICS="off")
+    cmd = [exe]
+    if SRC:
+        cmd = [sys.executable, "-m", "urdf_lint"]
+        env["PYTHONPATH"] = SRC
+    import resource
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    p = subprocess.run([exe, *args], cwd=top, capture_output=True, text=True,
-                       env=dict(os.environ, RERUN_ANALYTICS="off"))
-    return time.perf_counter() - t0, p
+    p = subprocess.run([*cmd, *args], cwd=top, capture_output=True, text=True, env=env)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU.append(r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime)
+    return wall, p
+
+
+CPU: list = []   # CPU seconds (user + sys, the process and its workers) of each run
 
 
 def main():
@@ -61,7 +76,11 @@ def main():
     ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
     ap.add_argument("--runs", type=int, default=3, help="warm runs to take the median of")
     ap.add_argument("--profile", metavar="OUT", help="cProfile one warm run to OUT")
+    ap.add_argument("--src", help="source tree of another revision to run instead (e.g. "
+                    "'git archive main | tar -x -C DIR' and a urdf_lint/rules -> ../rules link)")
     a = ap.parse_args()
+    global SRC
+    SRC = a.src
     with tempfile.TemporaryDirectory(prefix="bench-diff-") as tmp:
         t0 = time.perf_counter()
         top = build_repo(a.corpus, tmp)
@@ -72,18 +91,21 @@ def main():
         for label, extra in (("no render", []), ("render", ["--render", out])):
             shutil.rmtree(cache, ignore_errors=True)
             cold, p = urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)
+            cold_cpu = CPU[-1]
             if p.returncode not in (0, 1):
                 sys.exit(f"diff failed ({p.returncode}): {p.stderr[-2000:]}")
             doc = json.loads(p.stdout)
             changed = [m for m in doc["models"] if m["status"] != "unchanged"]
+            del CPU[:]
             warm = [urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)[0]
                     for _ in range(a.runs)]
-            rows.append((label, cold, statistics.median(warm), len(doc["models"]), len(changed),
-                         doc.get("base_expanded")))
-        for label, cold, warm, n, changed, base_n in rows:
-            print(f"diff HEAD, {label:9}: cold {cold:.2f} s, warm {warm:.2f} s (median of "
-                  f"{a.runs}); {n} affected model(s), {changed} changed, "
-                  f"{base_n} expanded at base")
+            rows.append((label, cold, statistics.median(warm), cold_cpu, statistics.median(CPU),
+                         len(doc["models"]), len(changed), doc.get("base_expanded")))
+        print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+        for label, cold, warm, ccpu, wcpu, n, changed, base_n in rows:
+            print(f"diff HEAD, {label:9}: cold {cold:.2f} s ({ccpu:.2f} s CPU), warm {warm:.2f} s "
+                  f"({wcpu:.2f} s CPU) (median of {a.runs}); {n} affected model(s), {changed} "
+                  f"changed, {base_n} expanded at base")
         if a.profile:
             import cProfile
             os.chdir(top)
