@@ -256,7 +256,7 @@ def test_sweep_timeline_has_one_segment_per_movable_joint(recordings, stem, entr
     assert want, "the model has movable joints"
     starts, texts, moved = _segments_in(rrd)
     assert len(starts) == len(want)
-    for (joint, followers), text, got in zip(want, texts, moved):
+    for (joint, followers), text, got in zip(want, texts, moved, strict=True):
         assert text.startswith(f"sweep {joint}")
         assert got == {joint} | followers, (joint, got)
     # the collision tree moves with the visual one
@@ -344,3 +344,15 @@ def test_no_path_of_the_machine_in_recording_or_summary(tmp_path):
     summary = (out / "summary.md").read_text()
     assert "bot_description/urdf/bot.urdf.xacro" in summary
     assert str(tmp_path) not in summary and "ci-machine-secret-dir" not in summary
+
+
+def test_rerun_verifies_the_recordings(recordings):
+    """rerun's own checker loads every recording (sweep columns and blueprint included)."""
+    import subprocess
+    import sys
+    exe = str(Path(sys.executable).parent / "rerun")
+    rrds = sorted(recordings.glob("*.rrd"))
+    assert len(rrds) >= 2
+    p = subprocess.run([exe, "rrd", "verify", *map(str, rrds)], capture_output=True, text=True,
+                       env=dict(os.environ, RERUN_ANALYTICS="off"), timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
