@@ -296,12 +296,11 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
 
 
-def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
-    """Without pictures the robot comes back from the lint pass: one expansion per revision
-    of the changed model; the unchanged one, which the include graph shows the changed macro
-    file cannot reach, is expanded at neither revision yet still counted."""
+@pytest.fixture()
+def expanded(monkeypatch):
+    """The entry of every job a worker expands, as the run goes."""
     from urdf_lint import worker
-    seen = []
+    seen: list = []
     real = worker.run_jobs
 
     def spy(jobs, *a, **kw):
@@ -309,6 +308,14 @@ def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
         seen.extend(j.entry for j in jobs)
         return real(jobs, *a, **kw)
     monkeypatch.setattr(worker, "run_jobs", spy)
+    return seen
+
+
+def test_each_side_expands_a_changed_model_once(repo, capsys, expanded):
+    """Without pictures the robot comes back from the lint pass: one expansion per revision
+    of the changed model; the unchanged one, which the include graph shows the changed macro
+    file cannot reach, is expanded at neither revision yet still counted."""
+    seen = expanded
     edit(repo / "r2d2_description" / "urdf" / "r2d2_macros.xacro",
          '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
     rc, doc = run_json(capsys, "HEAD")
@@ -320,18 +327,10 @@ def test_each_side_expands_a_changed_model_once(repo, capsys, monkeypatch):
     assert doc["models_total"] == 2
 
 
-def test_a_yaml_change_lints_every_model(repo, capsys, monkeypatch):
+def test_a_yaml_change_lints_every_model(repo, capsys, expanded):
     """A change the include graph cannot follow (YAML read by xacro.load_yaml) lints every
     model, and the recorded inputs find the one affected."""
-    from urdf_lint import worker
-    seen = []
-    real = worker.run_jobs
-
-    def spy(jobs, *a, **kw):
-        jobs = list(jobs)
-        seen.extend(j.entry for j in jobs)
-        return real(jobs, *a, **kw)
-    monkeypatch.setattr(worker, "run_jobs", spy)
+    seen = expanded
     (repo / "r2d2_description" / "config" / "inertial.yaml").write_text("head_mass: 2.5\n")
     rc, doc = run_json(capsys, "HEAD")
     assert rc == 0 and [m["model"] for m in doc["models"]] == [

@@ -106,6 +106,18 @@ def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
 UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
 
 
+def _inherited_data_bytes() -> int:
+    """The data segment (VmData) this freshly forked worker shares with its parent."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmData:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
+
+
 def _skip_unused_imports():
     for name in UNUSED_TRIMESH_EXTRAS:
         sys.modules.setdefault(name, None)  # type: ignore[arg-type] - "import fails" marker
@@ -115,7 +127,9 @@ def _worker_main(conn, settings: LintSettings, memory_mb):
     _skip_unused_imports()
     try:
         import resource
-        limit = int(memory_mb) * 1024 * 1024
+        # memory-mb is what the job may allocate: what the forked worker inherited from its
+        # parent (a test process that imported rerun, a library user's process) is on top
+        limit = int(memory_mb) * 1024 * 1024 + _inherited_data_bytes()
         if (settings.render_dir and settings.render_rrd) or \
                 (settings.diff_render_dir and settings.diff_rrd):
             limit += RERUN_RESERVE_MB * 1024 * 1024
