@@ -120,7 +120,6 @@ class DiffResult:
     models: list = field(default_factory=list)      # ModelDiff, affected models only
     total_models: int = 0
     base_expanded: int = 0
-    head_linted: int = 0                             # models linted at HEAD (the rest: unreachable)
     internal: list = field(default_factory=list)
 
 
@@ -345,7 +344,6 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
                                                 select_jobs=reach)
         result.internal += head_result.internal
         result.total_models = len(head.models) + reach.skipped
-        result.head_linted = len(head.models)
 
         affected = []
         for k, m in head.models.items():
