@@ -13,6 +13,7 @@
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 import os
 import subprocess
@@ -186,17 +187,17 @@ class _Reach:
 
 
 def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
-               mesh_cache_dir=None, select_jobs=None):
+               mesh_cache_dir=None, select_jobs=None, settings_overrides=None):
     """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
     the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
     linted."""
     from .discovery import build_resolver
     from .pipeline import run_check
-    resolver = build_resolver([side.root, *paths], cfg, package_paths)
+    resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
     result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
                        keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
-                       select_jobs=select_jobs)
+                       select_jobs=select_jobs, settings_overrides=settings_overrides)
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -223,7 +224,6 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
                  rrd=True):
     """Expand the given models once more in workers and build the Model of each (and, for
     ``--render``, the geometry of its picture and its half of the shared recording)."""
-    import dataclasses
     from .jobs import LintJob
     from .pipeline import settings_for
     from .worker import run_jobs
@@ -400,15 +400,31 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         if base_entries:
             base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
             base_cfg = cfg_loader([base_root])
-            # without pictures the base's robots come from this one expansion
-            # and mesh facts (keyed by content) are shared with the working tree's cache
+            # the base's robots (and with --render its pictures and half recordings) come
+            # from this one expansion; mesh facts (keyed by content) are shared with the
+            # working tree's cache
+            overrides, stems = None, None
+            if render_dir:
+                overrides = {"diff_render_dir": os.path.realpath(render_dir), "diff_rrd": rrd,
+                             "diff_side": "base"}
+
+                def stems(jobs, _found):
+                    return [dataclasses.replace(j, diff_stem=image_stem(
+                        _key(_rel(base_root, j.entry), j.args))) for j in jobs]
             base_resolver, base_result = _lint_side(
-                base, base_paths, base_cfg, package_paths, base_jobs, None,
-                keep_models=not render_dir, mesh_cache_dir=cache.dir if cache else None)
+                base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
+                mesh_cache_dir=cache.dir if cache else None, select_jobs=stems,
+                settings_overrides=overrides)
             result.internal += base_result.internal
-            if not render_dir:
-                for k, m in base.models.items():
-                    _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+            for k, m in base.models.items():
+                _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+                if m.diff_geometry is not None:
+                    base.geometry[k] = m.diff_geometry
+                if m.diff_rrd:
+                    base.rrd[k] = m.diff_rrd
+            for m in base_result.skipped:   # not a robot: no picture, no half recording
+                if getattr(m, "diff_rrd", None) and os.path.isfile(m.diff_rrd):
+                    os.remove(m.diff_rrd)
         result.base_expanded = len(base.models)
 
         base_keys = {}
@@ -419,9 +435,6 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if bk in base.models:
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
-        if base_resolver is not None and render_dir:
-            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg,
-                         base_jobs, render_dir, "base", rrd)
         head_load.join()
 
         for k in sorted(affected):
