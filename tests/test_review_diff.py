@@ -369,3 +369,40 @@ def test_base_resolves_packages_it_does_not_lint(tmp_path, capsys, monkeypatch):
     assert m["status"] == "changed"
     assert m["findings_introduced"] == [] and m["findings_fixed"] == [], m
     assert [c["field"] for c in m["changes"]] == ["limit.upper"]
+
+
+def test_an_include_only_expansion_resolves_is_followed(tmp_path, capsys, monkeypatch):
+    """A model that includes ``${part}.xacro`` cannot be ruled out from the include graph:
+    it is linted, and the change to that file is found through its recorded inputs."""
+    from conftest import make_package
+    r = tmp_path / "ws"
+    make_package(r, "bot_description", {
+        "urdf/arm_parts.xacro": """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm"><link name="arm"/>
+    <joint name="elbow" type="revolute"><parent link="base"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  </xacro:macro>
+</robot>
+""",
+        "urdf/bot.urdf.xacro": """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="part" value="arm_parts"/>
+  <xacro:include filename="${part}.xacro"/>
+  <link name="base"/>
+  <xacro:arm/>
+</robot>
+""",
+        "urdf/other.urdf.xacro": """<?xml version="1.0"?>
+<robot name="other"><link name="only"/></robot>
+"""})
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    edit(r / "bot_description" / "urdf" / "arm_parts.xacro", 'upper="1"', 'upper="2"')
+    monkeypatch.chdir(r)
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0
+    assert [(m["model"], m["status"]) for m in doc["models"]] == [
+        ("bot_description/urdf/bot.urdf.xacro", "changed")]
+    assert doc["models_total"] == 2
