@@ -113,3 +113,39 @@ def test_clean(repo):
     assert (repo / ".urdf_lint_cache").is_dir()
     p = run_cli("clean", ".", cwd=repo)
     assert p.returncode == 0 and not (repo / ".urdf_lint_cache").exists()
+
+
+def test_folder_read_as_yaml_is_cached_until_a_file_appears(repo):
+    """``load_yaml`` of an arg left empty reads the folder (UR's ``ur.xacro`` without its
+    params): the failure is cached like a missing file, and re-linted once a file is there."""
+    pkg = repo / "r2d2_description"
+    edit(pkg / "urdf/r2d2.urdf.xacro", '<xacro:include filename="r2d2_macros.xacro"/>',
+         '<xacro:include filename="r2d2_macros.xacro"/>\n'
+         '  <xacro:property name="limits" value="${xacro.load_yaml(\'params\')}" lazy_eval="false"/>')
+    (pkg / "urdf" / "params").mkdir()
+    state, doc = run(repo)
+    assert state == {ENTRY: False}
+    assert [f["code"] for f in doc["findings"]] == ["UL003"]
+    assert run(repo)[0] == {ENTRY: True}            # before: never cached, re-expanded each run
+    (pkg / "urdf" / "params").rmdir()
+    (pkg / "urdf" / "params").write_text("a: 1\n")
+    state, doc = run(repo)
+    assert state == {ENTRY: False} and not [f for f in doc["findings"] if f["code"] == "UL003"]
+
+
+def test_suppressions_hold_on_warm_runs(repo):
+    """The worker records which sources hold urdf-lint comments; a warm run reads only those,
+    and suppresses (and reports unused comments) exactly like the cold run."""
+    pkg = repo / "r2d2_description"
+    macros = pkg / "urdf/r2d2_macros.xacro"
+    edit(macros, 'mass="0.05"', 'mass="-0.05"')
+    _, doc = run(repo, "--no-cache")
+    codes = [f["code"] for f in doc["findings"] if f["file"].endswith("r2d2_macros.xacro")]
+    assert codes, "a negative mass in the macro file gives findings to suppress"
+    edit(macros, "<robot", "<!-- urdf-lint: disable-file UL6 -->\n<!-- urdf-lint: disable UL999 -->\n<robot")
+    cold_state, cold = run(repo)
+    warm_state, warm = run(repo)
+    assert cold_state == {ENTRY: False} and warm_state == {ENTRY: True}
+    assert cold["findings"] == warm["findings"]
+    left = [f for f in warm["findings"] if f["file"].endswith("r2d2_macros.xacro")]
+    assert [f["code"] for f in left] == ["UL010"]   # UL999 is not a code; the rest suppressed

@@ -51,3 +51,33 @@ def test_mesh_loading_only_when_a_rule_needs_it(tmp_path):
     assert p.stdout.strip() == "[]", p.stdout + p.stderr
     p = run([])
     assert "trimesh" in p.stdout, p.stdout + p.stderr
+
+
+EXPAND = """
+import sys
+from urdf_lint.cli import main
+rc = main(["expand", "r2d2_description/urdf/r2d2.urdf.xacro", "-o", "out.urdf"])
+print(rc, sorted(m for m in ("urdf_lint.report", "xacro", "urdf_lint.expansion.expand")
+                 if m in sys.modules))
+"""
+
+
+def test_expand_builds_only_its_parser_and_expands_in_the_worker(tmp_path):
+    """`urdf-lint expand` stays a start-up-sized command: the parent builds only the expand
+    parser (no output-format registry) and leaves xacro to the worker it forked first."""
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
+    p = subprocess.run([sys.executable, "-c", EXPAND], cwd=tmp_path, capture_output=True,
+                       text=True, timeout=60)
+    assert p.stdout.strip() == "0 []", p.stdout + p.stderr
+    assert (tmp_path / "out.urdf").read_text().count("<link ") == 17
+
+
+def test_expand_usage_error_after_the_worker_was_forked(tmp_path):
+    """The worker forked ahead of the settings is stopped cleanly when the run ends early: one
+    diagnostic, exit 2, no traceback from the child, no hang waiting for it."""
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
+    p = subprocess.run([sys.executable, "-m", "urdf_lint", "expand",
+                        "r2d2_description/urdf/r2d2.urdf.xacro", "not-a-mapping"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=30)
+    assert p.returncode == 2
+    assert p.stderr == "urdf-lint: error: expected name:=value, got not-a-mapping\n"

@@ -37,8 +37,9 @@ from .cachedir import ensure as ensure_cache_dir
 from .vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;
-# 5: missing YAML files recorded as missing; 6: problems carry their fix)
-RECORD_FORMAT = 6
+# 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
+# holding suppression comments, and folders read as files recorded as missing)
+RECORD_FORMAT = 7
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -96,6 +97,7 @@ class Cache:
         self._writes = 0
         self.refused: str | None = None
         self._marked = False
+        self._settings_key: tuple | None = None   # (settings, its part of every key)
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -124,9 +126,13 @@ class Cache:
         return cls(os.path.join(top or os.getcwd(), ".urdf_lint_cache"), repo)
 
     def _key(self, job: LintJob, settings: LintSettings) -> str:
+        memo = self._settings_key
+        if memo is None or memo[0] is not settings:   # the run's settings, serialised once
+            memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
+                                                              sort_keys=True))
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), job.output, job.mesh_base,
-                           settings.cache_key()], sort_keys=True)
+                           job.kind, bool(job.explicit), job.output, job.mesh_base],
+                          sort_keys=True) + memo[1]
         return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> Path:
@@ -154,7 +160,7 @@ class Cache:
                 if now != stat and file_digest(path) != digest:
                     return None
             for path in rec.get("missing", []):
-                if os.path.exists(path):
+                if os.path.isfile(path):   # a file looked for (or a folder read as one) appeared
                     return None
             return ModelReport.from_record(job, rec["result"])
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):

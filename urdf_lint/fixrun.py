@@ -87,10 +87,11 @@ def inside_paths(findings, paths) -> list:
     from .fixes import NOT_FIXABLE, Fix
     from .locations import display_path
     out = []
+    real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
     for p in findings:
         fx = p.fix
         if fx is not None and fx.applicable:
-            outside = [e.file for e in fx.edits if not inside(e.file, paths)]
+            outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                       f"{display_path(outside[0])} is outside the linted paths"))

@@ -100,6 +100,7 @@ class ModelReport:
     diff_geometry: object = None                    # diff --render: render.Geometry
     diff_rrd: str | None = None                     # diff --render: this side's recording
     digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
+    directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
 
     @classmethod
@@ -128,7 +129,8 @@ class ModelReport:
                 "missing": list(self.missing),
                 "problems": [p.to_record() for p in self.problems],
                 "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
-                "links": self.links, "joints": self.joints, "meshes": self.meshes}
+                "links": self.links, "joints": self.joints, "meshes": self.meshes,
+                "directive_files": self.directive_files}
 
     @classmethod
     def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
@@ -138,4 +140,5 @@ class ModelReport:
                    problems=[Problem.from_record(p) for p in rec["problems"]],
                    name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
                    links=rec.get("links", 0), joints=rec.get("joints", 0),
-                   meshes=rec.get("meshes", 0), cached=True)
+                   meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
+                   cached=True)

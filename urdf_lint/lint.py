@@ -237,6 +237,16 @@ def _record_reads(out: ModelReport) -> None:
 
 def lint_model(job: LintJob, settings: LintSettings):
     """(ModelReport, Model or None, Context) for one job."""
+    report, model, ctx = _lint_model(job, settings)
+    if job.kind != "expand":
+        from .suppress import with_directives
+        # which sources hold suppression comments: the parent parses only those, also when
+        # the result comes from the cache (a warm run reads no source file)
+        report.directive_files = with_directives(report.deps)
+    return report, model, ctx
+
+
+def _lint_model(job: LintJob, settings: LintSettings):
     from .packages import PackageResolver
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)

@@ -257,7 +257,11 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     rules = load_rules()
     files: set[str] = set()
     for r in models:
-        files.update(d for d in r.deps if d.endswith((".xacro", ".urdf", ".xml")))
+        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)]
+        # the worker said which sources hold urdf-lint comments (kept in the cache with the
+        # result, valid while the deps are); otherwise every source is read
+        known = None if r.directive_files is None else set(r.directive_files)
+        files.update(d for d in sources if known is None or d in known)
     from .packages import MAX_SOURCE_BYTES, PackageResolver
     resolver = PackageResolver.from_dict(settings.resolver)
     # the parent reads only what the workers could: inside the roots, regular, bounded

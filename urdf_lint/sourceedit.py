@@ -218,8 +218,9 @@ def apply_edits(data: bytes, edits) -> bytes:
     return b"".join(out)
 
 
-def inside(path: str, paths) -> bool:
-    """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them."""
+def inside(path: str, paths, resolved: bool = False) -> bool:
+    """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
+    (``resolved``: the ``paths`` are already real paths)."""
     real = os.path.realpath(path)
-    return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep)
-               for r in (os.path.realpath(p) for p in paths))
+    roots = paths if resolved else (os.path.realpath(p) for p in paths)
+    return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)

@@ -57,21 +57,35 @@ def _element_spans(data: bytes):
 
 
 MAX_BYTES = 256 << 20
+SOURCE_SUFFIXES = (".xacro", ".urdf", ".xml")   # the files suppression comments are read from
 
 
-def parse_directives(path: str) -> list[Directive]:
+def _read_source(path: str) -> bytes | None:
+    """The bytes of a regular file of bounded size (never a device, FIFO or folder), or None
+    when it holds no urdf-lint comment at all."""
     import os
     import stat
-    try:  # a regular file of bounded size only (never a device, FIFO or folder)
+    try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as f:
             st = os.fstat(f.fileno())
             if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_BYTES:
-                return []
+                return None
             data = f.read(MAX_BYTES + 1)
     except OSError:
-        return []
-    if b"urdf-lint" not in data and b"urdf_lint" not in data:
+        return None
+    return data if b"urdf-lint" in data or b"urdf_lint" in data else None
+
+
+def with_directives(deps) -> list[str]:
+    """The source files among ``deps`` that may hold a suppression comment (worker side: a
+    file without the words ``urdf-lint``/``urdf_lint`` holds none)."""
+    return [d for d in deps if d.endswith(SOURCE_SUFFIXES) and _read_source(d) is not None]
+
+
+def parse_directives(path: str) -> list[Directive]:
+    data = _read_source(path)
+    if data is None:
         return []
     text = data.decode("utf-8", "replace")
     out = []

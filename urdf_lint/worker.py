@@ -123,8 +123,27 @@ def _skip_unused_imports():
         sys.modules.setdefault(name, None)  # type: ignore[arg-type] - "import fails" marker
 
 
-def _worker_main(conn, settings: LintSettings, memory_mb):
+def _worker_main(conn, settings: LintSettings | None, memory_mb):
     _skip_unused_imports()
+    # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if settings is None:
+        # started ahead of its settings (prestart): import the expansion while the parent
+        # reads the config and finds the packages, then wait for what to run with
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            from . import lint  # noqa: F401
+            from .expansion import expand  # noqa: F401
+        except Exception:  # noqa: BLE001 - the job imports them again and reports the failure
+            pass
+        try:
+            first = conn.recv()
+        except (EOFError, OSError):
+            return
+        if first is None:
+            return
+        settings, memory_mb = first
+    assert settings is not None
     try:
         import resource
         # memory-mb is what the job may allocate: what the forked worker inherited from its
@@ -172,21 +191,71 @@ def _limit_result(job: LintJob, message: str) -> ModelReport:
     return ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
 
 
+_prestarted: "_Worker | None" = None
+
+
+def prestart() -> None:
+    """Fork one worker now, before the run's settings are known, so that its imports overlap
+    with the parent's config and package discovery (``urdf-lint expand``: a single small job
+    whose latency is mostly start-up). The next :func:`run_jobs` hands it the settings; it
+    enters the sandbox then, before it reads a job, exactly like a worker started there."""
+    global _prestarted
+    if _prestarted is None:
+        from .sandbox import disabled
+        disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
+        try:
+            _prestarted = _Worker(mp.get_context("fork"), None, None)
+        except (ValueError, OSError):   # no fork here, or no process to spare: start later
+            _prestarted = None
+            return
+        import atexit
+        atexit.register(_drop_prestarted)   # a run that stopped before it needed the worker
+
+
+def _drop_prestarted() -> None:
+    global _prestarted
+    w, _prestarted = _prestarted, None
+    if w is not None:
+        try:
+            w.conn.send(None)
+            w.proc.join(0.5)
+        except (OSError, ValueError):
+            pass
+        if w.proc.is_alive():
+            w.kill()
+
+
+def _take_prestarted(settings, memory_mb) -> "_Worker | None":
+    global _prestarted
+    w, _prestarted = _prestarted, None
+    if w is None:
+        return None
+    try:
+        w.conn.send((settings, memory_mb))
+    except (OSError, ValueError):
+        w.kill()
+        return None
+    return w
+
+
 class _Worker:
     def __init__(self, ctx, settings, memory_mb):
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker_main, args=(child, settings, memory_mb),
                                 daemon=True)
-        # the child ignores Ctrl-C from its first instruction (the parent exits 130 for both)
+        # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
+        # exits 130 for both; its SIGTERM handler must not run in the child)
         try:
             old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+            old_term = signal.signal(signal.SIGTERM, signal.SIG_DFL)
         except ValueError:          # not the main thread: signals are not ours to change
-            old = None
+            old = old_term = None
         try:
             self.proc.start()
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
+                signal.signal(signal.SIGTERM, old_term)
         child.close()
         self.job = None
         self.started = 0.0
@@ -214,7 +283,9 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         ctx = mp.get_context()
     n = max(1, min(jobs_n or os.cpu_count() or 1, len(jobs)))
     pending = list(reversed(jobs))
-    workers = [_Worker(ctx, settings, memory_mb) for _ in range(n)]
+    pre = _take_prestarted(settings, memory_mb)
+    workers = [pre] if pre is not None else []
+    workers += [_Worker(ctx, settings, memory_mb) for _ in range(n - len(workers))]
     try:
         busy: dict = {}
         while pending or busy:

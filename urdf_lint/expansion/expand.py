@@ -436,12 +436,12 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             res.error = classify_error(e, st)
             from .errors import wrapped
             inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
-            # a file looked for and not there (not e.g. a folder read as a file: that exists,
-            # and a "missing" entry that exists would never let the cache hit)
+            # a file looked for and not there, or a folder read as a file: the result holds
+            # until a regular file appears at that path (urdf_lint/cache.py)
             if isinstance(inner, OSError) and getattr(inner, "filename", None) and \
-                    not os.path.exists(str(inner.filename)):
+                    not os.path.isfile(str(inner.filename)):
                 res.missing.append(os.path.abspath(str(inner.filename)))
-        res.deps = [path] + [d for d in st.deps if d != path]
+        res.deps = [path] + [d for d in st.deps if d != path and d not in res.missing]
         res.digests = dict(st.digests)
         res.notes = st.notes
     return res
