@@ -3,6 +3,7 @@ built here from the seed robots (issue #13)."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import subprocess
@@ -284,3 +285,129 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
             roots.add(str(ch.entity_path).strip("/").split("/")[0])
     assert {"base", "head"} <= roots
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
+    # each revision sweeps its joints, the layout shows both, and no path of this machine
+    from test_recording import _expected_segments, columns, load_model, strings
+    movable = _expected_segments(load_model(repo / "r2d2_description" / "urdf" /
+                                            "r2d2.urdf.xacro", {}))
+    cols = columns(rrd)
+    for side in ("base", "head"):
+        assert len(cols[f"/{side}/sweep"]["joint_sweep"]) == len(movable) > 0
+    reader = RrdReader(str(rrd))
+    assert reader.blueprints()
+    queries = [q for c in columns(rrd, reader.blueprints()[0]).values()
+               for q in c.get("query", [])]
+    assert ["+ /base/robot/**", "+ /base/collision/**"] in queries
+    assert ["+ /head/robot/**", "+ /head/collision/**"] in queries
+    assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
+
+
+@pytest.fixture()
+def expanded(monkeypatch):
+    """The entry of every job a worker expands, as the run goes."""
+    from urdf_lint import worker
+    seen: list = []
+    real = worker.run_jobs
+
+    def spy(jobs, *a, **kw):
+        jobs = list(jobs)
+        seen.extend(j.entry for j in jobs)
+        return real(jobs, *a, **kw)
+    monkeypatch.setattr(worker, "run_jobs", spy)
+    return seen
+
+
+def test_each_side_expands_a_changed_model_once(repo, capsys, expanded):
+    """Without pictures the robot comes back from the lint pass: one expansion per revision
+    of the changed model; the unchanged one, which the include graph shows the changed macro
+    file cannot reach, is expanded at neither revision yet still counted."""
+    seen = expanded
+    edit(repo / "r2d2_description" / "urdf" / "r2d2_macros.xacro",
+         '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and [m["status"] for m in doc["models"]] == ["changed"]
+    r2d2 = [e for e in seen if e.endswith("r2d2.urdf.xacro")]
+    pendulum = [e for e in seen if e.endswith("double_pendulum.urdf.xacro")]
+    assert len(r2d2) == 2 and len({os.path.dirname(e) for e in r2d2}) == 2   # head, base
+    assert pendulum == []
+    assert doc["models_total"] == 2
+
+
+def test_a_yaml_change_lints_every_model(repo, capsys, expanded):
+    """A change the include graph cannot follow (YAML read by xacro.load_yaml) lints every
+    model, and the recorded inputs find the one affected."""
+    seen = expanded
+    (repo / "r2d2_description" / "config" / "inertial.yaml").write_text("head_mass: 2.5\n")
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and [m["model"] for m in doc["models"]] == [
+        "r2d2_description/urdf/r2d2.urdf.xacro"]
+    assert any(e.endswith("double_pendulum.urdf.xacro") for e in seen)
+
+
+def test_base_resolves_packages_it_does_not_lint(tmp_path, capsys, monkeypatch):
+    """The changed model includes a file of another package: at the base, that package is
+    found as it is at HEAD (no 'unknown package' reported as fixed by the change)."""
+    from conftest import make_package
+    r = tmp_path / "ws"
+    make_package(r, "common_description", {"urdf/colours.xacro": """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>
+</robot>
+"""})
+    make_package(r, "arm_description", {"urdf/arm.urdf.xacro": """<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find common_description)/urdf/colours.xacro"/>
+  <link name="base"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>
+    <material name="grey"/></visual></link>
+  <link name="upper"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""})
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    monkeypatch.chdir(r)
+    edit(r / "arm_description" / "urdf" / "arm.urdf.xacro", 'upper="1"', 'upper="1.5"')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0
+    [m] = doc["models"]
+    assert m["status"] == "changed"
+    assert m["findings_introduced"] == [] and m["findings_fixed"] == [], m
+    assert [c["field"] for c in m["changes"]] == ["limit.upper"]
+
+
+def test_an_include_only_expansion_resolves_is_followed(tmp_path, capsys, monkeypatch):
+    """A model that includes ``${part}.xacro`` cannot be ruled out from the include graph:
+    it is linted, and the change to that file is found through its recorded inputs."""
+    from conftest import make_package
+    r = tmp_path / "ws"
+    make_package(r, "bot_description", {
+        "urdf/arm_parts.xacro": """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm"><link name="arm"/>
+    <joint name="elbow" type="revolute"><parent link="base"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  </xacro:macro>
+</robot>
+""",
+        "urdf/bot.urdf.xacro": """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="part" value="arm_parts"/>
+  <xacro:include filename="${part}.xacro"/>
+  <link name="base"/>
+  <xacro:arm/>
+</robot>
+""",
+        "urdf/other.urdf.xacro": """<?xml version="1.0"?>
+<robot name="other"><link name="only"/></robot>
+"""})
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    edit(r / "bot_description" / "urdf" / "arm_parts.xacro", 'upper="1"', 'upper="2"')
+    monkeypatch.chdir(r)
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0
+    assert [(m["model"], m["status"]) for m in doc["models"]] == [
+        ("bot_description/urdf/bot.urdf.xacro", "changed")]
+    assert doc["models_total"] == 2

@@ -38,8 +38,9 @@ from .vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
-# holding suppression comments, and folders read as files recorded as missing)
-RECORD_FORMAT = 7
+# holding suppression comments, and folders read as files recorded as missing; 8: results of
+# the stream-read mesh facts, a mesh refused by the memory limit is never cached)
+RECORD_FORMAT = 8
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 

@@ -468,8 +468,8 @@ def _stl_facts(path: str, n: int) -> dict:
             clo, chi = v.min(axis=0), v.max(axis=0)
             lo = clo if lo is None else np.minimum(lo, clo)
             hi = chi if hi is None else np.maximum(hi, chi)
-    bounds = [list(map(float, lo)), list(map(float, hi))] if n and finite and lo is not None \
-        else None
+    bounds = [list(map(float, lo)), list(map(float, hi))] \
+        if n and finite and lo is not None and hi is not None else None
     return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
             "bounds": bounds, "broken_refs": []}
 
@@ -747,7 +747,8 @@ def _stl_mass_chunked(path: str, n: int) -> dict:
         return {"ok": False}
     sign = 1.0 if vol > 0 else -1.0
     return {"ok": True, "volume": sign * vol, "first": (sign * first).tolist(),
-            "second": (sign * second).tolist(), "bounds": [lo.tolist(), hi.tolist()],
+            "second": (sign * second).tolist(),
+            "bounds": [lo.tolist(), hi.tolist()] if lo is not None and hi is not None else None,
             "hull": bool(hull)}
 
 

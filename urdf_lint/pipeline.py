@@ -94,18 +94,27 @@ def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
 def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
               cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
               render_dir: str | None = None, render_rrd: bool = True,
-              in_process: bool = False, keep_models: bool = False) -> CheckResult:
+              in_process: bool = False, keep_models: bool = False,
+              mesh_cache_dir: str | None = None, select_jobs=None,
+              settings_overrides: dict | None = None) -> CheckResult:
     """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
     models whose inputs include one of them; files no model uses land in ``unused_files``.
     ``in_process`` lints in this process, without workers and their limits (trusted input
     only: tests and benchmarks). ``keep_models`` brings every expanded robot back
-    (``ModelReport.kept_model``; ``--fix`` compares them before and after)."""
+    (``ModelReport.kept_model``; ``--fix`` compares them before and after).
+    ``mesh_cache_dir``: mesh facts (keyed by content) from this cache folder when ``cache``
+    is None (``diff`` lints the base revision with the working tree's mesh facts).
+    ``select_jobs(jobs, discovery)`` keeps only the jobs worth linting (``diff``: the models
+    a change can reach through the include graph); ``settings_overrides`` are set on the
+    workers' settings (``diff --render``: the base's pictures come from its lint pass)."""
     policy = Policy.from_config(cfg)
     found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
-    jobs = found.jobs
-    settings = settings_for(cfg, resolver, cache.dir if cache else None, policy)
+    jobs = found.jobs if select_jobs is None else select_jobs(found.jobs, found)
+    settings = settings_for(cfg, resolver, cache.dir if cache else mesh_cache_dir, policy)
     if keep_models:
         settings = dataclasses.replace(settings, keep_model=True)
+    if settings_overrides:
+        settings = dataclasses.replace(settings, **settings_overrides)
     if render_dir:
         os.makedirs(render_dir, exist_ok=True)
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),

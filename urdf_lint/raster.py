@@ -78,7 +78,8 @@ class Geometry:
 def scene_geometry(scene, ctx) -> Geometry:
     """The visual parts of ``scene``; a link whose visual cannot be drawn shows its collision
     geometry (ghosted) instead, or a red wire box when it has none."""
-    visual, collision = {}, {}
+    visual: dict = {}
+    collision: dict = {}
     for part in scene.parts:
         (visual if part.kind == "visual" else collision).setdefault(part.link, []).append(part)
     g = Geometry(scene.name, [], [], [], np.zeros((1, 3)), len(scene.links))
@@ -177,8 +178,8 @@ def _box_corners(c, box):
 
 def view_axes(name: str, forward: str = "+x"):
     """(right, up, towards-camera) of a named view for a robot facing ``forward``."""
-    f = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0)}[forward]
-    f = np.array(f, dtype=float)
+    f = np.array({"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0)}[forward],
+                 dtype=float)
     z = np.array([0, 0, 1.0])
     left = np.cross(z, f)
     if name == "top":
@@ -575,7 +576,8 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
             caption(img, "(no model)")
             masks[side] = np.zeros((fr.size[1], fr.size[0]), dtype=bool)
         else:
-            if side == "after" and before is not None and same_geometry(before, after):
+            if side == "after" and before is not None and after is not None \
+                    and same_geometry(before, after):
                 img, masks[side] = drawn["before"][0].copy(), drawn["before"][1]
             else:
                 img, masks[side] = draw(g, fr), link_mask(g, fr, changed_links)

@@ -24,6 +24,9 @@ from .scene import Part, Scene, build_scene, kinematic_tree, part_mesh  # noqa: 
 def snapshot_name(entry, args, base):
     from .locations import display_path
     rel = display_path(entry, base)
+    if os.path.isabs(rel):  # outside the base: no path of this machine in the name
+        from .recording import relative_label
+        rel = relative_label(entry)
     stem = rel.replace(os.sep, "__")
     for ext in (".urdf.xacro", ".xacro", ".urdf"):
         if stem.endswith(ext):
@@ -70,7 +73,9 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
         else:
             path = os.path.join(out_dir, name + ".rrd")
             try:
-                info.update(record_rrd(scene, ctx, [], path, recording_id=f"urdf-lint/{name}"))
+                # no findings yet: the parent adds the final ones (finish_snapshots)
+                info.update(record_rrd(scene, ctx, [], path, recording_id=f"urdf-lint/{name}",
+                                       model=model, base=base))
                 info["rrd"] = path
             except Exception as e:  # noqa: BLE001
                 info["problems"].append(f"rrd: {type(e).__name__}: {e}")
@@ -103,7 +108,9 @@ def _finish_one(m, mine, out_dir) -> None:
         paths, joints = snap.get("entities") or ({}, {})
         part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
         try:
-            record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}")
+            from .recording import label_base
+            record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}",
+                            base=label_base(m.entry), size=snap.get("robot_size", 1.0))
             merge_rrd([snap["rrd"], part], snap["rrd"])
         except Exception as e:  # noqa: BLE001
             snap["problems"].append(f"rrd: findings not recorded: {type(e).__name__}: {e}")
@@ -217,6 +224,7 @@ def write_manifest(out_dir, files) -> None:
 def write_summary(result, out_dir):
     from collections import Counter
     from .locations import display_path
+    from .recording import relative_label
     from .report.escape import escape_markdown, escape_markdown_code
     lines = ["# urdf-lint snapshots", "",
              "| model | links | joints | meshes | errors | warnings | info |",
@@ -224,16 +232,19 @@ def write_summary(result, out_dir):
     images = []
     for m in result.models:
         c = Counter(f.severity for f in result.findings if m.label in f.models)
-        label = escape_markdown(m.label)  # names are the description's: no HTML, no links
-        lines.append(f"| `{escape_markdown_code(m.label)}` | {m.stats.get('links', '-')} | "
+        shown = m.label
+        if os.path.isabs(display_path(m.entry)):  # outside the working directory
+            shown = relative_label(m.entry) + m.label[len(display_path(m.entry)):]
+        label = escape_markdown(shown)  # names are the description's: no HTML, no links
+        lines.append(f"| `{escape_markdown_code(shown)}` | {m.stats.get('links', '-')} | "
                      f"{m.stats.get('joints', '-')} | "
                      f"{m.stats.get('meshes', '-')} | {c['error']} | {c['warning']} | {c['info']} |")
         snap = m.snapshot or {}
         if snap.get("png"):
             images.append(f"### {label}\n\n![{label}]({os.path.relpath(snap['png'], out_dir)})\n")
             if snap.get("rrd"):
-                images.append(f"Recording: `{os.path.relpath(snap['rrd'], out_dir)}` "
-                              f"(open with `rerun {display_path(snap['rrd'])}`)\n")
+                rel = os.path.relpath(snap['rrd'], out_dir)  # never a path of this machine
+                images.append(f"Recording: `{rel}` (open with `rerun {rel}` in this folder)\n")
     text = "\n".join(lines) + "\n\n" + "\n".join(images)
     path = os.path.join(out_dir, "summary.md")
     from .atomic import atomic_write

@@ -13,6 +13,8 @@
 """
 from __future__ import annotations
 
+import dataclasses
+import functools
 import os
 import subprocess
 import tarfile
@@ -128,15 +130,75 @@ def _key(rel_entry: str, args: dict) -> str:
         f"{k}:={v}" for k, v in sorted(args.items())) + "]")
 
 
+@functools.lru_cache(maxsize=65536)
+def _realpath(path):
+    return os.path.realpath(path)
+
+
 def _rel(root, path):
-    return os.path.relpath(os.path.realpath(path), os.path.realpath(root))
+    # memoised: every dependency of every model goes through here (thousands of paths)
+    return os.path.relpath(_realpath(path), _realpath(root))
 
 
-def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache):
+_SOURCE_SUFFIXES = (".xacro", ".urdf")
+
+
+class _Reach:
+    """Which models a change can reach without expanding them: when every changed path is a
+    xacro or URDF file, a model is skipped (not linted at HEAD) when its include closure,
+    read from the include graph, is complete (no include only expansion can resolve) and
+    holds none of them. Any other change (YAML, meshes, manifests, configs) lints every
+    model, whose recorded inputs then say which are affected."""
+
+    def __init__(self, changed_abs):
+        self.changed = {os.path.realpath(p) for p in changed_abs}
+        self.active = bool(self.changed) and all(p.endswith(_SOURCE_SUFFIXES)
+                                                 for p in self.changed)
+        self.skipped = 0   # models not linted (counted in the total)
+
+    def __call__(self, jobs, found):
+        if not self.active:
+            return jobs
+        keep = []
+        for job in jobs:
+            if self._may_reach(job, found):
+                keep.append(job)
+            elif job.entry not in found.fragments:
+                self.skipped += 1
+        return keep
+
+    def _may_reach(self, job, found) -> bool:
+        graph = found.graph
+        if job.entry in found.generated or job.output:
+            return True   # a generated URDF and its xacro are compared (UL011)
+        todo, seen = [job.entry], set()
+        while todo:
+            f = todo.pop()
+            real = os.path.realpath(f)
+            if real in seen:
+                continue
+            seen.add(real)
+            if real in self.changed:
+                return True
+            if f.endswith(".xacro"):
+                if f not in graph.includes or graph.unresolved.get(f):
+                    return True   # not read, or an include only expansion can resolve
+                todo.extend(graph.includes.get(f, ()))
+        return False
+
+
+def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
+               mesh_cache_dir=None, select_jobs=None, settings_overrides=None):
+    """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
+    the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
+    whole revision (``side.root``), as they do at HEAD, even when only a few entries are
+    linted."""
     from .discovery import build_resolver
     from .pipeline import run_check
-    resolver = build_resolver(paths, cfg, package_paths)
-    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache)
+    resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
+    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
+                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
+                       select_jobs=select_jobs, settings_overrides=settings_overrides)
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -163,9 +225,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
                  rrd=True):
     """Expand the given models once more in workers and build the Model of each (and, for
     ``--render``, the geometry of its picture and its half of the shared recording)."""
-    import dataclasses
     from .jobs import LintJob
-    from .model import Model, model_from_xml, parse_urdf_bytes
     from .pipeline import settings_for
     from .worker import run_jobs
     jobs, key_of = [], {}
@@ -182,29 +242,65 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
     if render_dir:
         settings = dataclasses.replace(settings, diff_render_dir=os.path.realpath(render_dir),
                                        diff_rrd=rrd, diff_side=side_name)
-    failures = {r.CODE for r in _FAILURE_RULES}
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = key_of[id(job)]
-        kept = res.kept_model
         if res.diff_geometry is not None:
             side.geometry[k] = res.diff_geometry
         if res.diff_rrd:
             side.rrd[k] = res.diff_rrd
-        if kept is None:
-            msgs = [p.message for p in res.problems if p.code in failures]
-            side.robots[k] = None
-            side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
-            continue
-        if kept.xml is not None:
-            side.robots[k] = model_from_xml(job.entry, job.args, kept.xml, kept.origins,
-                                            res.deps, resolver)
-        else:
-            with open(job.entry, "rb") as f:
-                root, origins, _ = parse_urdf_bytes(job.entry, f.read())
-            side.robots[k] = (Model(entry=job.entry, args={}, root=root, origins=origins,
-                                    deps=[job.entry], resolver=resolver)
-                              if root is not None else None)
+        _keep_robot(side, k, job.entry, job.args, res, resolver)
+
+
+def _keep_robot(side: Side, k, entry, args, res, resolver):
+    """The Model of a report that kept its robot (``LintSettings.keep_model``), or why not."""
+    from .model import Model, model_from_xml, parse_urdf_bytes
+    kept = res.kept_model
+    if kept is None:
+        failures = {r.CODE for r in _FAILURE_RULES}
+        msgs = [p.message for p in res.problems if p.code in failures]
+        side.robots[k] = None
+        side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
+        return
+    if kept.xml is not None:
+        side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
+    else:
+        with open(entry, "rb") as f:
+            root, origins, _ = parse_urdf_bytes(entry, f.read())
+        side.robots[k] = (Model(entry=entry, args={}, root=root, origins=origins,
+                                deps=[entry], resolver=resolver)
+                          if root is not None else None)
+
+
+def _half(jobs_n, cfg) -> int:
+    """Workers for one of two revisions that are linted / drawn at the same time."""
+    return max(1, (jobs_n or cfg.jobs or os.cpu_count() or 2) // 2)
+
+
+class _Background:
+    """``fn(*args)`` in a thread (its workers are processes: the thread only waits on
+    them); :meth:`join` raises what it raised."""
+
+    def __init__(self, fn, *args):
+        import threading
+        self.error = None
+        self.thread = None
+        if args and not args[1]:   # no keys: nothing to do
+            return
+
+        def run():
+            try:
+                fn(*args)
+            except BaseException as e:  # noqa: BLE001 - raised again by join()
+                self.error = e
+        self.thread = threading.Thread(target=run, name="urdf-lint-diff", daemon=True)
+        self.thread.start()
+
+    def join(self):
+        if self.thread is not None:
+            self.thread.join()
+        if self.error is not None:
+            raise self.error
 
 
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
@@ -240,9 +336,15 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             cache = Cache.for_paths(head_paths, cfg)
             if cache.refused:  # said why on stderr; nothing goes there
                 cache = None
-        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n, cache)
+        # models linted now (not from the cache) bring their robot back: no second expansion
+        # models the change cannot reach (include graph) are not even linted
+        reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
+                       [os.path.join(head_root, p) for p in changed_base])
+        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
+                                                cache, keep_models=not render_dir,
+                                                select_jobs=reach)
         result.internal += head_result.internal
-        result.total_models = len(head.models)
+        result.total_models = len(head.models) + reach.skipped
 
         affected = []
         for k, m in head.models.items():
@@ -250,6 +352,22 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             inputs.add(_rel(head_root, m.entry))
             if inputs & (changed_head | changed_base):
                 affected.append(k)
+        if render_dir:
+            _clear_snapshots(render_dir)
+        again = []
+        for k in affected:
+            m = head.models[k]
+            if m.kept_model is not None and not render_dir:
+                _keep_robot(head, k, m.entry, m.args, m, head_resolver)
+            else:
+                again.append(k)
+        for m in head.models.values():
+            m.kept_model = None  # only the affected robots are needed from here on
+        # the head's robots (and pictures) are made while the base is materialised and linted
+        head_load = _Background(_load_robots, head, again, head_resolver, cfg,
+                                _half(jobs_n, cfg), render_dir, "head", rrd)
+        # (an exception from here on leaves it: its workers die with this process)
+        base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
         # the base needs only what the affected models can read there: their inputs at HEAD
         # (through renames), every changed path, and the package manifests and configs
         base_files = tracked_files(top, base_sha)
@@ -283,14 +401,33 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         if base_entries:
             base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
             base_cfg = cfg_loader([base_root])
-            base_resolver, base_result = _lint_side(base, base_paths, base_cfg, package_paths,
-                                                    jobs_n, None)
+            # the base's robots (and with --render its pictures and half recordings) come
+            # from this one expansion; mesh facts (keyed by content) are shared with the
+            # working tree's cache
+            overrides, stems = None, None
+            if render_dir:
+                overrides = {"diff_render_dir": os.path.realpath(render_dir), "diff_rrd": rrd,
+                             "diff_side": "base"}
+
+                def stems(jobs, _found):
+                    return [dataclasses.replace(j, diff_stem=image_stem(
+                        _key(_rel(base_root, j.entry), j.args))) for j in jobs]
+            base_resolver, base_result = _lint_side(
+                base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
+                mesh_cache_dir=cache.dir if cache else None, select_jobs=stems,
+                settings_overrides=overrides)
             result.internal += base_result.internal
+            for k, m in base.models.items():
+                _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+                if m.diff_geometry is not None:
+                    base.geometry[k] = m.diff_geometry
+                if m.diff_rrd:
+                    base.rrd[k] = m.diff_rrd
+            for m in base_result.skipped:   # not a robot: no picture, no half recording
+                if getattr(m, "diff_rrd", None) and os.path.isfile(m.diff_rrd):
+                    os.remove(m.diff_rrd)
         result.base_expanded = len(base.models)
 
-        if render_dir:
-            _clear_snapshots(render_dir)
-        _load_robots(head, affected, head_resolver, cfg, jobs_n, render_dir, "head", rrd)
         base_keys = {}
         for k in affected:
             m = head.models[k]
@@ -299,9 +436,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             if bk in base.models:
                 base_keys[k] = bk
         deleted = [k for k in base.models if k not in base_keys.values()]
-        if base_resolver is not None:
-            _load_robots(base, list(base_keys.values()) + deleted, base_resolver, cfg, jobs_n,
-                         render_dir, "base", rrd)
+        head_load.join()
 
         for k in sorted(affected):
             result.models.append(_model_diff(k, head, base, base_keys.get(k)))

@@ -113,11 +113,37 @@ def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
         stem = os.path.join(settings.diff_render_dir or "", job.diff_stem or "")
         rrd = f"{stem}.{settings.diff_side}.rrd"
         render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job.diff_stem}",
-                          prefix=f"{settings.diff_side}/")
+                          prefix=f"{settings.diff_side}/", model=model,
+                          blueprint=("base/", "head/"))
     return geometry, rrd
 
 
+# Optional accelerators trimesh probes for when it is imported (~0.4 s per process). urdf-lint
+# uses none of them (its convex hulls come from manifold3d); they arrive with yourdfpy's
+# ``trimesh[easy]`` (the ``render`` extra). A worker runs only urdf-lint's code, so it skips them.
+UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
+
+
+def _inherited_data_bytes() -> int:
+    """The data segment (VmData) this freshly forked worker shares with its parent."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmData:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0
+
+
+def _skip_unused_imports():
+    for name in UNUSED_TRIMESH_EXTRAS:
+        # None in sys.modules: "import fails" (ImportError), so trimesh skips them
+        sys.modules.setdefault(name, None)  # type: ignore[arg-type]
+
+
 def _worker_main(conn, settings: LintSettings | None, memory_mb):
+    _skip_unused_imports()
     # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if settings is None:
@@ -139,7 +165,9 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
     assert settings is not None
     try:
         import resource
-        limit = int(memory_mb) * 1024 * 1024
+        # memory-mb is what the job may allocate: what the forked worker inherited from its
+        # parent (a test process that imported rerun, a library user's process) is on top
+        limit = int(memory_mb) * 1024 * 1024 + _inherited_data_bytes()
         if (settings.render_dir and settings.render_rrd) or \
                 (settings.diff_render_dir and settings.diff_rrd):
             limit += RERUN_RESERVE_MB * 1024 * 1024
