@@ -670,14 +670,14 @@ def cmd_hook(args) -> int:
 
 
 def cmd_expand(args) -> int:
-    from .config import DEFAULT_ENV_ALLOW, find_config, load_config
-    from .discovery import build_resolver
-    from .jobs import LintJob, LintSettings, Status
-    from .locations import display_path
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
     from .worker import prestart
     prestart()   # the worker imports the expansion while the config and packages are read
+    from .config import DEFAULT_ENV_ALLOW, find_config, load_config
+    from .discovery import build_resolver
+    from .jobs import LintJob, LintSettings, Status
+    from .locations import display_path
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")

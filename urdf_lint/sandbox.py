@@ -374,6 +374,17 @@ def enter_worker(conn, settings) -> dict:
     return status
 
 
+def warm() -> None:
+    """A worker forked ahead of its settings: import what :func:`enter` uses and find the
+    runtime's folders while it waits (applies nothing, says nothing)."""
+    if disabled():
+        return
+    if landlock_status()[0]:
+        import landlock.porcelain  # noqa: F401
+    seccomp_status()
+    runtime_read_paths()
+
+
 def prepare() -> None:
     """Parent side, before forking workers: warm the imports and say what is missing, once."""
     global _disabled

@@ -153,6 +153,8 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
         try:
             from . import lint  # noqa: F401
             from .expansion import expand  # noqa: F401
+            from .sandbox import warm
+            warm()
         except Exception:  # noqa: BLE001 - the job imports them again and reports the failure
             pass
         try:
@@ -263,6 +265,7 @@ JOB_COST_S = 0.04            # expanding and checking one model, meshes aside
 STL_COST_S_PER_MB = 0.006    # numpy reads binary STL
 MESH_COST_S_PER_MB = 0.04    # COLLADA / OBJ go through their parsers
 WORKER_COST_S = 0.35         # a worker's fork, sandbox and the imports it does not share
+WARM_WORKER_COST_S = 0.1     # the same when the mesh facts are cached (no trimesh import)
 MAX_WALK = 20000             # files looked at per package to estimate its meshes
 
 
@@ -274,7 +277,8 @@ class Block:
     cost: float = 0.0
 
 
-def package_blocks(jobs: list[LintJob], settings: LintSettings) -> list[Block]:
+def package_blocks(jobs: list[LintJob], settings: LintSettings,
+                   meshes: bool = True) -> list[Block]:
     """Jobs grouped by the package holding their entry file (the deepest package root), each
     block sorted by entry and args so models that share meshes are neighbours; a block's cost
     is its models plus the mesh bytes of its package (what its first worker will load)."""
@@ -290,7 +294,8 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings) -> list[Block]:
     out = []
     for b in blocks.values():
         b.jobs.sort(key=lambda j: (j.entry, sorted(j.args.items())))
-        b.cost = JOB_COST_S * len(b.jobs) + (_mesh_cost(b.key) if b.key else 0.0)
+        # (``meshes=False``: the mesh facts are cached, the packages' meshes cost nothing)
+        b.cost = JOB_COST_S * len(b.jobs) + (_mesh_cost(b.key) if b.key and meshes else 0.0)
         out.append(b)
     return sorted(out, key=lambda b: -b.cost)
 
@@ -314,7 +319,8 @@ def _mesh_cost(root: str) -> float:
     return cost
 
 
-def default_workers(blocks: list[Block], cores: int, load: float | None = None) -> int:
+def default_workers(blocks: list[Block], cores: int, load: float | None = None,
+                    worker_cost: float = WORKER_COST_S) -> int:
     """How many workers the work is worth: one for little work (a second process costs more
     than it saves), else as many as the idle cores (the cores less the load average: on a
     busy machine another worker only adds CPU), the jobs and the cost allow."""
@@ -325,8 +331,8 @@ def default_workers(blocks: list[Block], cores: int, load: float | None = None) 
             load = os.getloadavg()[0]
         except (OSError, AttributeError):
             load = 0.0
-    idle = max(1, int(cores - load + 0.5))
-    n = min(cores, idle, jobs, max(1, int(total / (2 * WORKER_COST_S))))
+    idle = max(1, cores - int(load))   # only cores kept wholly busy count as taken
+    n = min(cores, idle, jobs, max(1, int(total / (2 * worker_cost))))
     return max(1, n)
 
 
@@ -352,6 +358,8 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     modules instead of each importing them again."""
     if not any(b.cost > JOB_COST_S * len(b.jobs) for b in blocks):
         return
+    if _mesh_facts_cached(settings):
+        return   # a run after the first: the workers find the facts and seldom load a mesh
     from .registry import load_rules
     rules = load_rules()
     if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
@@ -362,6 +370,16 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
             importlib.import_module(name)
         except ImportError:
             pass
+
+
+def _mesh_facts_cached(settings: LintSettings) -> bool:
+    """Whether the mesh-facts cache holds entries already (then preloading trimesh in the
+    parent costs ~0.4 s of a re-lint that will probably not need it)."""
+    d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
+    try:
+        return bool(d) and any(True for _ in os.scandir(d))
+    except OSError:
+        return False
 
 
 def _next_job(mine, queues):
@@ -411,18 +429,23 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     jobs = list(jobs)
     if not jobs:
         return
+    # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
+    # the parent probes the protections and plans the pool
+    pre = _take_prestarted(settings, memory_mb)
     from .sandbox import prepare
     prepare()
     try:
         ctx: Any = mp.get_context("fork")
     except ValueError:  # pragma: no cover - no fork on this platform
         ctx = mp.get_context()
-    blocks = package_blocks(jobs, settings)
+    warm_meshes = _mesh_facts_cached(settings)
+    blocks = package_blocks(jobs, settings, meshes=not warm_meshes)
     cores = os.cpu_count() or 1
-    n = max(1, min(jobs_n or default_workers(blocks, cores), len(jobs)))
+    n = max(1, min(jobs_n or default_workers(
+        blocks, cores, worker_cost=WARM_WORKER_COST_S if warm_meshes else WORKER_COST_S),
+        len(jobs)))
     queues = assign(blocks, n)
-    pre = _take_prestarted(settings, memory_mb)     # (forked before the mesh modules below)
-    if n > 1:
+    if n > 1:   # (the prestarted worker was forked before the mesh modules)
         _preload_mesh_modules(blocks, settings)
     workers = [pre] if pre is not None else []
     workers += [_Worker(ctx, settings, memory_mb) for _ in range(n - len(workers))]

@@ -286,7 +286,42 @@ def _hook_load_yaml(filename):
         raise RefusedInput(f"load_yaml('{filename}') resolves outside the package roots and the "
                            "linted repository; it was not read", ul902_outside_roots)
     st.deps[path] = None
-    return _orig["load_yaml"](path)
+    loader = _yaml_loader()
+    if loader is None:
+        return _orig["load_yaml"](path)
+    # what xacro.load_yaml does, with libyaml's parser (3-5x faster than PyYAML's pure-Python
+    # one; UR's descriptions read eight YAML files per model): the same SafeConstructor, the
+    # same unit tags, the same wrapper, include bookkeeping and errors
+    filename = xacro.abs_filename_spec(path)
+    with open(filename) as f:
+        xacro.filestack.append(filename)
+        try:
+            return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
+        finally:
+            xacro.filestack.pop()
+            xacro.all_includes.append(filename)
+
+
+_YAML_LOADER: list = []
+
+
+def _yaml_loader():
+    """A SafeLoader on libyaml (``yaml.CSafeLoader``) with xacro's unit constructors
+    (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml."""
+    if not _YAML_LOADER:
+        import yaml
+        cls = None
+        if getattr(yaml, "__with_libyaml__", False):
+            cls = type("XacroCSafeLoader", (yaml.CSafeLoader,), {})
+            for unit in xacro.ConstructUnits:
+                cls.add_constructor(unit.value.tag, unit.constructor)
+        _YAML_LOADER.append(cls)
+    return _YAML_LOADER[0]
+
+
+def yaml_load(stream, Loader):
+    import yaml
+    return yaml.load(stream, Loader=Loader)  # noqa: S506 - a SafeLoader subclass
 
 
 def _hook_eval_find(pkg):
