@@ -673,7 +673,7 @@ def cmd_expand(args) -> int:
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
     from .worker import prestart
-    prestart()   # the worker imports the expansion while the config and packages are read
+    prestart()   # (done already by main(); here for callers of cmd_expand)
     from .config import DEFAULT_ENV_ALLOW, find_config, load_config
     from .discovery import build_resolver
     from .jobs import LintJob, LintSettings, Status
@@ -894,7 +894,13 @@ def main(argv=None) -> int:
 
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser(_command_of(argv))
+    command = _command_of(argv)
+    if command == "expand" and "-h" not in argv and "--help" not in argv:
+        # the worker imports the expansion while the parent parses, reads the config and
+        # finds the packages (a run that stops early stops it too)
+        from .worker import prestart
+        prestart()
+    parser = build_parser(command)
     try:
         args, extra = parser.parse_known_args(argv)
         if extra:
