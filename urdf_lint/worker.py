@@ -365,11 +365,22 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
         return
     import importlib
-    for name in MESH_MODULES:
-        try:
-            importlib.import_module(name)
-        except ImportError:
-            pass
+    # without trimesh's optional accelerators, like the workers (~0.4 s of scipy & co. the
+    # parent would import for nothing); the markers are removed again afterwards, so the
+    # parent's own later imports are untouched
+    marked = [n for n in UNUSED_TRIMESH_EXTRAS if n not in sys.modules]
+    for n in marked:
+        sys.modules[n] = None  # type: ignore[assignment]
+    try:
+        for name in MESH_MODULES:
+            try:
+                importlib.import_module(name)
+            except ImportError:
+                pass
+    finally:
+        for n in marked:
+            if n in sys.modules and sys.modules[n] is None:
+                del sys.modules[n]
 
 
 def _mesh_facts_cached(settings: LintSettings) -> bool:
