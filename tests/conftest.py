@@ -14,6 +14,8 @@ REPO = Path(__file__).resolve().parents[1]
 SHARED = REPO.parent / "shared"
 CORPUS = SHARED / "corpus"
 DESCRIPTIONS = REPO / "descriptions"
+# the seed robots (descriptions/ also holds the deliberately broken models of the demo)
+SEED_PACKAGES = [DESCRIPTIONS / "r2d2_description", DESCRIPTIONS / "double_pendulum_description"]
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "support"))
 

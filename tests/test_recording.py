@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from lxml import etree
 
-from conftest import CORPUS, DESCRIPTIONS, corpus_entries, make_package, run_cli
+from conftest import CORPUS, DESCRIPTIONS, SEED_PACKAGES, corpus_entries, make_package, run_cli
 
 rr = pytest.importorskip("rerun")
 pytest.importorskip("yourdfpy")
@@ -194,7 +194,7 @@ def _rz(a):
 @pytest.fixture(scope="module")
 def recordings(tmp_path_factory):
     out = tmp_path_factory.mktemp("rec")
-    paths = [str(DESCRIPTIONS)]
+    paths = [str(p) for p in SEED_PACKAGES]
     gripper = CORPUS / "robotiq_description" / "urdf" / "robotiq_2f_85_gripper.urdf.xacro"
     ur5e = CORPUS / "ur_description" / "urdf" / "ur5e.xacro"
     extra = [str(p) for p in (gripper, ur5e) if p.is_file()]

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from conftest import DESCRIPTIONS, make_package, run_cli
+from conftest import DESCRIPTIONS, SEED_PACKAGES, make_package, run_cli
 
 rr = pytest.importorskip("rerun")
 RERUN = str(Path(sys.executable).parent / "rerun")
@@ -49,7 +49,7 @@ def text_logs(path):
 def snaps(tmp_path_factory):
     out = tmp_path_factory.mktemp("snaps")
     for run in ("a", "b"):
-        p = run_cli("render", DESCRIPTIONS, "--out", out / run)
+        p = run_cli("render", *SEED_PACKAGES, "--out", out / run)
         assert p.returncode == 0, p.stderr
     return out
 
