@@ -149,3 +149,33 @@ def test_suppressions_hold_on_warm_runs(repo):
     assert cold["findings"] == warm["findings"]
     left = [f for f in warm["findings"] if f["file"].endswith("r2d2_macros.xacro")]
     assert [f["code"] for f in left] == ["UL010"]   # UL999 is not a code; the rest suppressed
+
+
+def test_a_limit_is_never_cached_and_the_cache_folder_is_still_marked(tmp_path):
+    """A time-limit result depends on the machine and lists no includes (the loop may sit in
+    one): every run tries again. The folder the workers created is marked for git anyway."""
+    from conftest import make_package
+    repo = tmp_path / "repo"
+    make_package(repo, "p", {"urdf/r.urdf.xacro":
+                             '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                             '<link name="${python.sum(python.range(10**13))}"/></robot>\n'})
+    for _ in range(2):
+        p = run_cli("check", ".", "--format", "json", "--timeout", "1", cwd=repo)
+        doc = json.loads(p.stdout)
+        assert [f["code"] for f in doc["findings"]] == ["UL904"], doc["findings"]
+        assert [m["cached"] for m in doc["models"]] == [False]
+    assert (repo / ".urdf_lint_cache" / ".gitignore").is_file()
+    assert (repo / ".urdf_lint_cache" / "CACHEDIR.TAG").is_file()
+
+
+def test_the_values_of_allowed_environment_variables_key_the_cache(repo):
+    """`$(optenv VARIANT)` changes the robot: a run with another value is not served the old
+    result."""
+    entry = repo / ENTRY
+    entry.write_text(entry.read_text().replace(
+        "<xacro:include", '<link name="variant_$(optenv VARIANT none)"/>\n  <xacro:include', 1))
+    for value, hit in (("a", False), ("a", True), ("b", False), ("a", True)):
+        p = run_cli("check", ".", "--format", "json", "--env-allow", "VARIANT", cwd=repo,
+                    env={"VARIANT": value})
+        assert p.returncode in (0, 1), p.stderr
+        assert [m["cached"] for m in json.loads(p.stdout)["models"]] == [hit], value

@@ -6,6 +6,7 @@ the cache stores a ``ModelReport`` with :meth:`ModelReport.to_record`.
 from __future__ import annotations
 
 import enum
+import os
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -71,8 +72,10 @@ class LintSettings:
         return getattr(self, key, default)
 
     def cache_key(self) -> list:
-        """What a cached result depends on (rendering does not change findings)."""
-        return [list(self.selected), self.options, list(self.env_allow), self.resolver]
+        """What a cached result depends on (rendering does not change findings): the values of
+        the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""
+        env = {k: os.environ.get(k) for k in self.env_allow}
+        return [list(self.selected), self.options, env, self.resolver]
 
 
 @dataclass(frozen=True)

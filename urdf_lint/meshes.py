@@ -589,7 +589,7 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     if cache_file is not None:
         try:
             from .cachedir import ensure
-            ensure(str(Path(cache_dir or "")))   # the markers, whoever creates the folder first
+            ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
             cache_file.parent.mkdir(parents=True, exist_ok=True)
             from .atomic import atomic_write
             atomic_write(cache_file, json.dumps(facts))

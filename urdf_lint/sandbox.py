@@ -355,6 +355,14 @@ def enter_worker(conn, settings) -> dict:
     write = []
     # only the mesh-facts part of the cache: result entries are the parent's to write
     facts = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
+    if facts:
+        # the cache folder's markers (.gitignore, CACHEDIR.TAG) now: the sandbox lets the
+        # worker write below meshes/ only, and a folder without them would get committed
+        from .cachedir import ensure
+        try:
+            ensure(settings.mesh_cache_dir)
+        except OSError:
+            pass
     # snapshots: check --render / render --out, and urdf-lint diff --render
     for d in (facts, settings.render_dir, settings.diff_render_dir):
         if d:

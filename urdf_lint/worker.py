@@ -209,7 +209,11 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
 
 
 def _limit_result(job: LintJob, message: str) -> ModelReport:
-    return ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
+    """A limit stopped the job: the finding depends on the machine (its load, its memory) and
+    its deps are unknown (an included file that loops is not in them), so it is never cached."""
+    out = ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
+    out.cacheable = False
+    return out
 
 
 _prestarted: "_Worker | None" = None
