@@ -411,3 +411,25 @@ def test_an_include_only_expansion_resolves_is_followed(tmp_path, capsys, monkey
     assert [(m["model"], m["status"]) for m in doc["models"]] == [
         ("bot_description/urdf/bot.urdf.xacro", "changed")]
     assert doc["models_total"] == 2
+
+
+def test_markdown_links_the_pictures_diff_render_wrote(repo, tmp_path, capsys):
+    """A model linted with xacro args: every image the markdown links is a file that
+    `diff --render` wrote (the link and the file name come from the same key)."""
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    edit(top, 'xmlns:xacro="http://www.ros.org/wiki/xacro">',
+         'xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:arg name="tint" default="blue"/>')
+    (repo / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "r2d2_description/urdf/r2d2.urdf.xacro"\nargs = [{tint = "red"}]\n')
+    git(repo, "add", "-A")
+    git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "args")
+    edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.05}"')
+    out = tmp_path / "snap"
+    assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache", "--format",
+                 "markdown", "--image-base-url", "https://example.invalid/run/1"]) == 0
+    md = capsys.readouterr().out
+    assert "[tint:=red]" in md
+    linked = re.findall(r"https://example\.invalid/run/1/([^)]+\.png)", md)
+    assert len(linked) == 3, md
+    for name in linked:
+        assert (out / name).is_file(), (name, sorted(p.name for p in out.iterdir()))

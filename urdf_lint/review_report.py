@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from .report.escape import escape_markdown_code, escape_text
-from .review import MARKDOWN_LIMIT, DiffResult
+from .review import MARKDOWN_LIMIT, DiffResult, image_stem
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
 _MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
@@ -127,7 +127,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
         if m.error:
             rows += [f"> {md_escape(m.error)}", ""]
         if image_base_url:
-            stem = m.model.replace("/", "_").replace(" ", "_")
+            stem = image_stem(m.model)   # the name the pictures were written under
             base = image_base_url.rstrip("/")
             rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
