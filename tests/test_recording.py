@@ -291,10 +291,11 @@ def test_z_up_blueprint_and_scaled_axes(recordings):
     for stem, entry in (("descriptions__r2d2_description__urdf__r2d2", SEEDS[0][0]),
                         ("descriptions__double_pendulum_description__urdf__double_pendulum",
                          SEEDS[1][0])):
-        from urdf_lint.recording import robot_size
-        from urdf_lint.scene import build_scene
+        from urdf_lint.scene import kinematic_tree
         length = _axis_length(recordings / f"{stem}.rrd")
-        size = robot_size(build_scene(load_model(entry, {}), _Ctx()), [])  # link origins only
+        world, _tree, _roots = kinematic_tree(load_model(entry, {}))
+        origins = np.array([T[:3, 3] for T in world.values()])
+        size = float(np.ptp(origins, axis=0).max())        # the extent of the link origins
         assert 0.03 * size < length < 0.15 * size, (stem, length, size)
 
 

@@ -78,6 +78,11 @@ def test_fail_example_reports_its_pinned_positions(tmp_path, monkeypatch, code):
     lines = rule.fail.splitlines()
     for line, col in rule.fail_at:
         assert 1 <= line <= len(lines) and 1 <= col <= len(lines[line - 1]) + 1, (line, col)
+    # a rule that offers a fix (on its own FAIL example) documents it: safe or unsafe
+    from urdf_lint.rulesdoc import sections
+    doc = sections(rule.doc).get("fix", "")
+    if any(f.fix is not None for f in found):
+        assert doc.startswith(("safe", "unsafe")), f"{code} offers a fix, 'Fix:' says {doc!r}"
 
 
 @pytest.mark.parametrize("code", sorted(RULES))

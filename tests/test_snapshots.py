@@ -214,8 +214,7 @@ def test_sheet_has_four_views_triads_and_crops_tall_robots(tmp_path):
 def test_forward_axis_turns_the_named_views(tmp_path):
     g = _geometry(TALL, tmp_path)
     # the robot turned by 180 degrees, seen with forward = -x, is the same front view
-    turned = _geometry(TALL.replace('<joint name="j" type="fixed">', '<joint name="j" type="fixed">')
-                       .replace('<link name="base">', '<link name="world"/>\n'
+    turned = _geometry(TALL.replace('<link name="base">', '<link name="world"/>\n'
                                 '  <joint name="w" type="fixed"><parent link="world"/>'
                                 '<child link="base"/><origin rpy="0 0 3.14159265358979"/></joint>\n'
                                 '  <link name="base">'), tmp_path, "turned")
@@ -250,11 +249,15 @@ def test_texture_is_sampled_per_pixel(tmp_path):
     red = (cell[:, :, 0] > 120) & (cell[:, :, 2] < 60)
     blue = (cell[:, :, 2] > 120) & (cell[:, :, 0] < 60)
     assert red.sum() > 500 and blue.sum() > 500        # one triangle, both colours
-    # the old per-face colour would give one colour: the centroid's
-    flat = _flat([tri], [[tex[4, 4] / 255.0]])
-    b = _no_triads(np.asarray(raster.draw(flat, fr), dtype=int), fr)[v.y0:v.y0 + v.h,
-                                                                     v.x0:v.x0 + v.w]
-    assert ((b[:, :, 0] > 120) & (b[:, :, 2] < 60)).sum() == 0
+    # the colours follow the UVs pixel by pixel: mirrored UVs swap the two halves
+    mirrored = uv.copy()
+    mirrored[..., 0] = 1.0 - mirrored[..., 0]
+    gm = _flat([tri], [[[1, 1, 1]]], uvs=[mirrored], texs=[tex])
+    b = _no_triads(np.asarray(raster.draw(gm, fr), dtype=int), fr)[v.y0:v.y0 + v.h,
+                                                                   v.x0:v.x0 + v.w]
+    red_m = (b[:, :, 0] > 120) & (b[:, :, 2] < 60)
+    blue_m = (b[:, :, 2] > 120) & (b[:, :, 0] < 60)
+    assert (red & blue_m).sum() > 0.9 * red.sum() and (blue & red_m).sum() > 0.9 * blue.sum()
 
 
 def _box_tris():
@@ -331,12 +334,19 @@ def test_failed_snapshot_exits_1_and_stale_files_go_but_users_stay(tmp_path):
     assert (out / "notes.png").read_bytes() == b"the user's own file"
     assert (out / "two.png").read_bytes() == b"also the user's"
     assert (out / "summary.md").exists()
-    # a manifest planted in the folder (or edited) cannot make urdf-lint delete a file
-    from urdf_lint.render import MANIFEST
-    (out / MANIFEST).write_text(json.dumps({"files": {"notes.png": "0" * 32,
-                                                      "../repo/p/package.xml": "0" * 32}}))
-    run_cli("render", pkg, "--out", out, "--no-rrd", cwd=repo)
+    # a manifest planted in the folder (or edited), even with the files' true digests, cannot
+    # make urdf-lint delete a file outside the folder or one that is not a snapshot output;
+    # a listed output whose bytes changed since is kept too
+    from urdf_lint.render import MANIFEST, _digest
+    (out / "keep.txt").write_text("the user's notes")
+    (out / MANIFEST).write_text(json.dumps({"files": {
+        "notes.png": "0" * 32,
+        "../repo/p/package.xml": _digest(pkg / "package.xml"),
+        "keep.txt": _digest(out / "keep.txt")}}))
+    p = run_cli("render", pkg, "--out", out, "--no-rrd", cwd=repo)
+    assert p.returncode == 1 and "no snapshot" in p.stderr     # one.urdf is still broken
     assert (out / "notes.png").exists() and (pkg / "package.xml").exists()
+    assert (out / "keep.txt").exists()
 
 
 def test_render_time_per_png_on_the_biggest_corpus_meshes(corpus, tmp_path):
