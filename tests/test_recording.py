@@ -314,11 +314,6 @@ def _axis_length(rrd):
     return vals.pop()
 
 
-class _Ctx:
-    def mesh_ref(self, model, uri):
-        return None
-
-
 def test_no_path_of_the_machine_in_recording_or_summary(tmp_path):
     """A robot outside the working directory, with a missing mesh and findings: the tmp dir
     appears in no entity path, label, text log or blueprint string, and not in summary.md."""
