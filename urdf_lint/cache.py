@@ -89,9 +89,6 @@ def _git_tracks(directory: str) -> bool:
     return out.returncode == 0 and bool(out.stdout.strip())
 
 
-_stat = stat_key
-
-
 class Cache:
     def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
@@ -155,7 +152,7 @@ class Cache:
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
             for path, (stat, digest) in rec["deps"].items():
-                now = _stat(path)
+                now = stat_key(path)
                 if now is None:
                     return None
                 if now != stat and file_digest(path) != digest:

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .jobs import LintJob
-from .packages import PackageResolver, iter_files
+from .packages import PackageResolver, inside, iter_files
 from .vcs import git_root
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -21,11 +21,6 @@ def start_dir(paths) -> str:
     """The folder a run starts from: the first path, or its folder when it is a file."""
     first = os.path.abspath(paths[0] if paths else ".")
     return first if os.path.isdir(first) else os.path.dirname(first)
-
-
-def inside(f: str, p: str) -> bool:
-    """Is path ``f`` the folder ``p`` or below it?"""
-    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
 def repository_root(paths) -> str:

@@ -66,13 +66,18 @@ def stat_key(path) -> list | None:
     return [st.st_size, st.st_mtime_ns]
 
 
-def file_record(path: str, data: bytes | None = None) -> list | None:
-    """[stat, digest] of a file as read now: the stat is taken before the bytes are read (or
-    passed in as ``data``), so a concurrent edit can only make the record stale, never wrong."""
-    if data is None:
-        got = memo_digest(path)
-        return None if got is None else [got[0], got[1]]
-    before = stat_key(path)
-    if before is None:
-        return None
-    return [before, hashlib.blake2b(data, digest_size=16).hexdigest()]
+def file_record(path: str) -> list | None:
+    """[stat, digest] of a file as read now: the stat is taken before the bytes are read, so a
+    concurrent edit can only make the record stale, never wrong."""
+    got = memo_digest(path)
+    return None if got is None else [got[0], got[1]]
+
+
+def read_recorded(path: str) -> tuple[bytes, list]:
+    """(the bytes of ``path``, their record [stat before the read, digest of those bytes]):
+    for a caller that needs the bytes themselves (raises OSError)."""
+    before = os.stat(path)
+    with open(path, "rb") as f:
+        data = f.read()
+    return data, [[before.st_size, before.st_mtime_ns],
+                  hashlib.blake2b(data, digest_size=16).hexdigest()]

@@ -138,7 +138,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
         if settings.keep_model:  # urdf-lint diff compares the robots themselves
             out.kept_model = KeptModel(exp.xml, exp.origins)
         return model
-    from .hashing import file_record
+    from .hashing import read_recorded
     from .packages import MAX_SOURCE_BYTES, regular_file
     if not resolver.is_inside(entry):
         problems.append(Problem.at(ul902_outside_roots.CODE,
@@ -154,13 +154,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
         out.status = Status.FAILED
         return None
     try:
-        before = os.stat(entry)
-        with open(entry, "rb") as f:
-            data = f.read()
-        rec = file_record(entry, data)
-        if rec is not None:  # the stat before the read, the digest of the bytes read
-            rec[0] = [before.st_size, before.st_mtime_ns]
-            out.digests = {entry: rec}
+        data, rec = read_recorded(entry)
+        out.digests = {entry: rec}
     except OSError as e:
         problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",
                                    (entry, 1, 1)))
@@ -238,6 +233,9 @@ def _record_reads(out: ModelReport) -> None:
 def lint_model(job: LintJob, settings: LintSettings):
     """(ModelReport, Model or None, Context) for one job."""
     report, model, ctx = _lint_model(job, settings)
+    # the digests of every input not recorded at parse time, here in the worker, on every
+    # return path: the parent never hashes inputs again when it writes the cache
+    _record_reads(report)
     if job.kind != "expand":
         from .suppress import with_directives
         # which sources hold suppression comments: the parent parses only those, also when
@@ -286,7 +284,6 @@ def _lint_model(job: LintJob, settings: LintSettings):
                                    fix=fix))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
-    _record_reads(out)
     out.name = model.name
     o = model.origin(model.root)
     out.name_origin = Origin(o.file, o.line, o.col)

@@ -539,17 +539,15 @@ def _scene_arrays(path: str, is_dae: bool):
         scene = trimesh.load_scene(path, process=False)
     except Exception:  # noqa: BLE001 - load_mesh retries without materials, or reports it
         return None
-    if is_dae:
-        with open(path, "rb") as f:
-            lost = len(scene.graph.nodes_geometry) < f.read().count(b"<instance_geometry")
-        v, f = meshio.scene_arrays(scene)
-        if lost or len(v) == 0:
-            return None
-        unit = dae_unit(path)
-        if unit != 1.0:
-            v = meshio.scale_points(v, unit)
-        return v, f, []
-    return None
+    with open(path, "rb") as fh:
+        lost = len(scene.graph.nodes_geometry) < fh.read().count(b"<instance_geometry")
+    v, f = meshio.scene_arrays(scene)
+    if lost or len(v) == 0:
+        return None
+    unit = dae_unit(path)
+    if unit != 1.0:
+        v = meshio.scale_points(v, unit)
+    return v, f, []
 
 
 env_failures = 0   # results this process measured that depend on the environment (never cached)

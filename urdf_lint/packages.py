@@ -167,8 +167,7 @@ class PackageResolver:
     def is_inside(self, path: str | os.PathLike) -> bool:
         real = os.path.realpath(path)
         # string prefixes of the normalised roots (what Path.relative_to tests, 20x cheaper)
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep)
-                   for r in map(str, self.roots))
+        return any(inside(real, r) for r in map(str, self.roots))
 
     def readable(self, path: str | os.PathLike, cap: int | None = None) -> bool:
         """May urdf-lint read this file? Inside the roots after symlinks, a regular file (not
@@ -237,14 +236,15 @@ def colcon_workspace(start: str) -> str | None:
     for parent in [d, *d.parents]:
         if parent == Path(parent.anchor):
             break
-        if (parent / "src").is_dir() and _inside(str(d), str(parent / "src")) and (
+        if (parent / "src").is_dir() and inside(str(d), str(parent / "src")) and (
                 any((parent / m).is_dir() for m in ("build", "install", "log"))
                 or any((parent / m).is_file() for m in ("colcon.meta", "colcon_defaults.yaml"))):
             return str(parent)
     return None
 
 
-def _inside(f: str, p: str) -> bool:
+def inside(f: str, p: str) -> bool:
+    """Is path ``f`` the folder ``p`` or below it? (strings, as written: resolve first)"""
     return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
@@ -270,7 +270,7 @@ def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
     for p in paths:
         p = os.path.abspath(p)
         ws = colcon_workspace(p if os.path.isdir(p) else os.path.dirname(p))
-        if ws and (git_top is None or _inside(ws, git_top) or _inside(git_top, ws)):
+        if ws and (git_top is None or inside(ws, git_top) or inside(git_top, ws)):
             scan.append(os.path.join(ws, "src"))
     scan = list(dict.fromkeys(scan))
     extra = [p if os.path.isdir(p) else os.path.dirname(p) for p in scan]

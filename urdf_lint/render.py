@@ -13,11 +13,11 @@ import sys
 import threading
 import zlib
 
-from .raster import (PNG_SIZE, Frame, Geometry, _mask, caption, difference_image, draw,  # noqa: F401
-                     frame_for, link_mask, model_caption, render_image, render_pair,
-                     save_png, scene_geometry)
-from .recording import _import_rerun, entity_paths, record_findings, record_rrd  # noqa: F401
-from .scene import Part, Scene, build_scene, kinematic_tree, part_mesh  # noqa: F401
+from .raster import caption, model_caption, render_image, save_png
+from .recording import _import_rerun, entity_paths, record_findings, record_rrd
+from .scene import build_scene
+# what the worker (diff --render) and review.py use through this module
+from .raster import Geometry, frame_for, link_mask, render_pair, scene_geometry  # noqa: F401,E402
 
 
 # -- orchestration -----------------------------------------------------------------------------

@@ -221,6 +221,7 @@ def apply_edits(data: bytes, edits) -> bytes:
 def inside(path: str, paths, resolved: bool = False) -> bool:
     """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
     (``resolved``: the ``paths`` are already real paths)."""
+    from .packages import inside as below
     real = os.path.realpath(path)
     roots = paths if resolved else (os.path.realpath(p) for p in paths)
-    return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+    return any(below(real, r) for r in roots)

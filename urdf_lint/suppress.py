@@ -77,10 +77,27 @@ def _read_source(path: str) -> bytes | None:
     return data if b"urdf-lint" in data or b"urdf_lint" in data else None
 
 
+_marked: dict = {}   # (path, size, mtime) -> holds the words: a shared include is read once
+
+
 def with_directives(deps) -> list[str]:
     """The source files among ``deps`` that may hold a suppression comment (worker side: a
     file without the words ``urdf-lint``/``urdf_lint`` holds none)."""
-    return [d for d in deps if d.endswith(SOURCE_SUFFIXES) and _read_source(d) is not None]
+    import os
+    out = []
+    for d in deps:
+        if not d.endswith(SOURCE_SUFFIXES):
+            continue
+        try:
+            st = os.stat(d)
+        except OSError:
+            continue
+        key = (d, st.st_size, st.st_mtime_ns)
+        if key not in _marked:
+            _marked[key] = _read_source(d) is not None
+        if _marked[key]:
+            out.append(d)
+    return out
 
 
 def parse_directives(path: str) -> list[Directive]:

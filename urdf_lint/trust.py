@@ -18,14 +18,14 @@ from __future__ import annotations
 import os
 
 from .config import Config
+from .packages import inside
 
 LOOSENING = ("env-allow", "package-paths", "cache-dir", "timeout", "memory-mb", "jobs")
 CLAMP = {"timeout": (0.5, 600.0), "memory-mb": (128, 65536), "jobs": (1, 64)}
 
 
 def _inside(f: str, p: str) -> bool:
-    f, p = os.path.realpath(f), os.path.realpath(p)
-    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+    return inside(os.path.realpath(f), os.path.realpath(p))
 
 
 def _clamp(value, key):

@@ -75,11 +75,6 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     report, model, ctx = lint_model(job, settings)
     if _env_failures() != before:
         report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
-    if any(d not in report.digests for d in report.deps):
-        # a model that stopped early (an expansion failure) still records what it read, here
-        # in the worker: the parent never hashes inputs again when it writes the cache
-        from .lint import _record_reads
-        _record_reads(report)
     if settings.diff_render_dir and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
     if settings.render_dir and model is not None:
@@ -144,7 +139,11 @@ def _skip_unused_imports():
 
 def _worker_main(conn, settings: LintSettings | None, memory_mb):
     _skip_unused_imports()
-    # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it
+    # what the fork shares with the parent, measured before this worker imports anything (a
+    # prestarted worker's own imports count against its limit like any job's allocations)
+    inherited = _inherited_data_bytes()
+    # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it (also when
+    # it was forked from a thread, where _Worker could not set the signals around the fork)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if settings is None:
         # started ahead of its settings (prestart): import the expansion while the parent
@@ -169,7 +168,7 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
         import resource
         # memory-mb is what the job may allocate: what the forked worker inherited from its
         # parent (a test process that imported rerun, a library user's process) is on top
-        limit = int(memory_mb) * 1024 * 1024 + _inherited_data_bytes()
+        limit = int(memory_mb) * 1024 * 1024 + inherited
         if (settings.render_dir and settings.render_rrd) or \
                 (settings.diff_render_dir and settings.diff_rrd):
             limit += RERUN_RESERVE_MB * 1024 * 1024

@@ -35,6 +35,7 @@ from ..config import DEFAULT_ENV_ALLOW
 from ..findings import Problem
 from ..packages import PackageResolver
 from .. import safe_eval
+from ..hashing import read_recorded
 from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
 from . import splice
 from .errors import RefusedInput, XmlSyntaxError, problem_for
@@ -177,18 +178,13 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", ul902_outside_roots)
         try:
-            before = os.stat(path)
-            with open(path, "rb") as f:
-                data = f.read()
+            data, record = read_recorded(path)
         except (IOError, OSError) as e:
             xacro.filestack.pop()
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
         if st is not None:
             st.deps[absolute] = None
-            # what was read, for the cache: the stat before the read, the digest of the bytes
-            import hashlib
-            st.digests[absolute] = [[before.st_size, before.st_mtime_ns],
-                                    hashlib.blake2b(data, digest_size=16).hexdigest()]
+            st.digests[absolute] = record   # what was read, for the cache
         return parse_bytes(data, absolute, chain)
     if isinstance(inp, str):
         return parse_bytes(inp.encode("utf-8"), "<string>")
