@@ -243,3 +243,24 @@ def test_render_fragment_renders_its_model_and_fails_without_snapshot(tmp_path):
     (repo / V3 / "main.xacro").unlink()
     p = run_cli("render", V3 + "robot_v3.xacro", "--out", tmp_path / "snap2", "--no-rrd", cwd=repo)
     assert p.returncode == 1 and "v3_description/urdf/robot_v3.xacro: no snapshot" in p.stderr
+
+
+def test_a_file_new_under_a_glob_include_is_a_fragment_on_the_next_run(tmp_path):
+    """The include graph is memoised by file stamps; an include of `parts/*.xacro` matches a
+    new file without its includer changing, so such an includer is read again every run."""
+    NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    pkg = tmp_path / "robot_description"
+    write(pkg, {"package.xml": "<package format='3'><name>robot_description</name></package>"})
+    write(pkg, {"urdf/robot.urdf.xacro": f'<robot name="r" {NS}>\n  <link name="base"/>\n'
+          '  <xacro:include filename="parts/*.xacro"/>\n</robot>\n'})
+    write(pkg, {"urdf/parts/arm.xacro": f'<robot {NS}>\n  <link name="arm"/>\n'
+          '  <joint name="a" type="fixed"><parent link="base"/><child link="arm"/></joint>\n</robot>\n'})
+
+    def models():
+        p = run_cli("check", ".", "--format", "json", cwd=tmp_path)
+        assert p.returncode == 0, p.stdout + p.stderr
+        return sorted(m["entry"].rsplit("/", 1)[-1] for m in json.loads(p.stdout)["models"])
+    assert models() == ["robot.urdf.xacro"]
+    write(pkg, {"urdf/parts/tool.xacro": f'<robot {NS}>\n  <link name="tool"/>\n'
+          '  <joint name="t" type="fixed"><parent link="arm"/><child link="tool"/></joint>\n</robot>\n'})
+    assert models() == ["robot.urdf.xacro"]      # not linted alone ("parent link 'arm'...")

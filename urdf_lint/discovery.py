@@ -274,8 +274,11 @@ class IncludeGraph:
         if stamp is not None and hit and hit[0] == stamp:
             self.includes[f], self.unresolved[f], self.args[f] = list(hit[1]), hit[2], list(hit[3])
         else:
-            self.includes[f], self.unresolved[f], self.args[f] = _read_includes(f, resolver)
+            self.includes[f], self.unresolved[f], self.args[f], glob_used = \
+                _read_includes(f, resolver)
             self._dirty = True
+            if glob_used:
+                stamp = None   # what a glob matches changes without this file: never memoised
         self._fresh[f] = [stamp, self.includes[f], self.unresolved[f], self.args[f]]
 
     def save(self) -> None:
@@ -309,14 +312,15 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
 
 
 def _read_includes(f: str, resolver):
-    """(included files, number of unresolvable includes, declared or used arg names)."""
+    """(included files, number of unresolvable includes, declared or used arg names, whether
+    an include is a glob)."""
     from lxml import etree
     try:
         root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
                                               load_dtd=False)).getroot()
     except (etree.XMLSyntaxError, OSError):
-        return [], 0, []
-    inc, unresolved, args = [], 0, []
+        return [], 0, [], False
+    inc, unresolved, args, glob_used = [], 0, [], False
     base = os.path.dirname(f)
     for el in root.iter():
         if not isinstance(el.tag, str):
@@ -325,6 +329,7 @@ def _read_includes(f: str, resolver):
         if not (q.namespace and _XACRO_NS_HINT in q.namespace):
             continue
         if q.localname == "include":
+            glob_used = glob_used or any(c in el.get("filename", "") for c in "*?[")
             got = _resolve_include(el.get("filename", ""), base, resolver)
             if got is None:
                 unresolved += 1
@@ -338,12 +343,12 @@ def _read_includes(f: str, resolver):
             for v in [*el.attrib.values(), el.text or ""]:
                 if "$(arg" in v:
                     args.extend(_ARG_RE.findall(v))
-    return list(dict.fromkeys(inc)), unresolved, list(dict.fromkeys(args))
+    return list(dict.fromkeys(inc)), unresolved, list(dict.fromkeys(args)), glob_used
 
 
 def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph:
     """The include graph of ``files``; with ``cache_dir``, a file whose size and mtime are
-    unchanged since the last run (with the same package map) is not parsed again (call
+    unchanged since the last run (with the same resolver) is not parsed again (call
     ``save()`` when done: files added later, e.g. for arg checks, are memoised too)."""
     memo_file = _memo_path(cache_dir, resolver)
     g = IncludeGraph(_resolver=resolver, _memo_file=memo_file, _memo=_load_memo(memo_file))
@@ -358,8 +363,9 @@ def _memo_path(cache_dir, resolver) -> str | None:
         return None
     import hashlib
     import json
-    pkgs = resolver.to_dict() if resolver is not None else {}
-    key = json.dumps([pkgs.get("explicit"), pkgs.get("scanned")], sort_keys=True)
+    # everything an include's resolution depends on: the package maps, the roots and the
+    # environment's search paths
+    key = json.dumps(resolver.to_dict() if resolver is not None else {}, sort_keys=True)
     return os.path.join(cache_dir, "graph",
                         hashlib.blake2b(key.encode(), digest_size=10).hexdigest() + ".json")
 
