@@ -150,7 +150,14 @@ def build_scene(model, ctx) -> Scene:
 
 # -- triangles -------------------------------------------------------------------------------
 def part_mesh(part, ctx):
-    """(vertices in the part frame, faces, per-face rgb or None) or None when unavailable."""
+    """(vertices in the part frame, faces, per-face rgb or None) or None when unavailable.
+    Prepared once per part: the picture and the recording of a render draw the same parts."""
+    if "arrays" not in part.params:
+        part.params["arrays"] = _part_mesh(part, ctx)
+    return part.params["arrays"]
+
+
+def _part_mesh(part, ctx):
     import trimesh
     if part.shape == "box" and all(s > 0 for s in part.params["size"]):
         m = trimesh.creation.box(extents=part.params["size"])
