@@ -96,6 +96,7 @@ class Cache:
         self.refused: str | None = None
         self._marked = False
         self._settings_key: tuple | None = None   # (settings, its part of every key)
+        self._resolver: tuple | None = None       # (settings, its PackageResolver)
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -169,10 +170,7 @@ class Cache:
             return
         deps = {}
         read = result.digests or {}
-        roots = None
-        if settings.resolver:
-            from .packages import PackageResolver
-            roots = PackageResolver.from_dict(settings.resolver)
+        roots = self._roots(settings)
         for d in result.deps:
             if roots is not None and not roots.is_inside(d):
                 return  # a worker reporting a file outside the roots: cache nothing
@@ -192,6 +190,17 @@ class Cache:
             self._writes += 1
         except OSError:
             pass
+
+    def _roots(self, settings: LintSettings):
+        """The run's resolver (for the roots check), built once per settings."""
+        memo = self._resolver
+        if memo is None or memo[0] is not settings:
+            resolver = None
+            if settings.resolver:
+                from .packages import PackageResolver
+                resolver = PackageResolver.from_dict(settings.resolver)
+            memo = self._resolver = (settings, resolver)
+        return memo[1]
 
     def _ensure(self):
         if not self._marked:

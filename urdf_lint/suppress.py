@@ -15,6 +15,7 @@ import xml.parsers.expat
 from dataclasses import dataclass, field
 
 from .locations import Origin
+from .packages import MAX_SOURCE_BYTES as MAX_BYTES   # the parent's cap on any XML source
 from .policy import code_matches
 
 _DIRECTIVE = re.compile(r"<!--\s*urdf[-_]lint\s*:\s*([A-Za-z_-]*)(.*?)-->", re.S)
@@ -56,7 +57,6 @@ def _element_spans(data: bytes):
     return spans
 
 
-MAX_BYTES = 256 << 20
 SOURCE_SUFFIXES = (".xacro", ".urdf", ".xml")   # the files suppression comments are read from
 
 
