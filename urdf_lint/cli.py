@@ -418,10 +418,6 @@ def _safe_text(s) -> str:
     return escape_text(str(s))
 
 
-def _safe_lines(s) -> str:
-    return "\n".join(_safe_text(line) for line in str(s).split("\n"))
-
-
 def _refuse_symlinked_out(d):
     """Snapshots are written where the user said, never through a link a repository planted."""
     if d and os.path.islink(d.rstrip(os.sep) or d):
@@ -540,8 +536,8 @@ def cmd_check(args) -> int:
     result.findings = inside_paths(result.findings, args.paths)
     if out.verbose:
         _list_models(result, out)
-    for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
+    from .emit import report_internal
+    report_internal(result.internal)
     if args.write_baseline:
         from .baseline import write_baseline
         n = write_baseline(args.write_baseline, result.findings)
@@ -694,8 +690,8 @@ def cmd_expand(args) -> int:
     results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
                                       memory_mb=cfg.memory_mb)]
     res = results[-1]
-    for msg in res.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
+    from .emit import report_internal
+    if report_internal(res.internal):
         return 2
     for n in res.problems:
         sys.stderr.write(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
@@ -778,9 +774,8 @@ def cmd_render(args) -> int:
             if snap.get(k):
                 from .locations import display_path
                 print(display_path(snap[k]))
-    for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
-    if result.internal:
+    from .emit import report_internal
+    if report_internal(result.internal):
         return 2
     # a requested model that could not be snapshotted is a failure, not a blank image
     return 1 if missed else 0
@@ -816,8 +811,8 @@ def cmd_diff(args) -> int:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
         sys.stderr.write(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}\n")
-    for msg in result.internal:
-        sys.stderr.write(f"urdf-lint: internal error (please report): {_safe_lines(msg)}\n")
+    from .emit import report_internal
+    report_internal(result.internal)
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
 
 

@@ -8,6 +8,19 @@ import sys
 from .errors import UsageError
 
 
+def safe_lines(s) -> str:
+    """Text from a model or a traceback, each line escaped for the terminal."""
+    from .report.escape import escape_text
+    return "\n".join(escape_text(line) for line in str(s).split("\n"))
+
+
+def report_internal(messages) -> bool:
+    """Each internal error on stderr (they make the exit code 2); whether there was one."""
+    for msg in messages:
+        sys.stderr.write(f"urdf-lint: internal error (please report): {safe_lines(msg)}\n")
+    return bool(messages)
+
+
 def write_findings(args, cfg, result, out, color_mode) -> None:
     """The findings of a run as ``check`` reports them: baseline, format, ``-o`` (atomic), ``-q``.
     ``check --fix`` reports what remains through the same function."""

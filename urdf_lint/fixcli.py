@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import sys
 
+from .emit import report_internal, write_findings
 from .errors import UsageError
 
 
@@ -32,16 +33,6 @@ def _summary(outcome) -> str:
     return "".join(lines)
 
 
-def _internal(result) -> None:
-    for msg in result.internal:
-        sys.stderr.write("urdf-lint: internal error (please report): "
-                         + "\n".join(_safe(line) for line in str(msg).split("\n")) + "\n")
-
-
-def _report(args, cfg, result, out, color_mode) -> None:
-    """The findings that remain, as ``check`` reports them (format, -o, baseline, -q)."""
-    from .emit import write_findings
-    write_findings(args, cfg, result, out, color_mode)
 
 
 def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
@@ -50,13 +41,13 @@ def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
     from .pipeline import exit_code, run_check
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
     if result.internal:
-        _internal(result)
+        report_internal(result.internal)
         return 2
     n, files, _ = add_suppressions(result.findings, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
-    _internal(result)
+    report_internal(result.internal)
     if result.findings:
-        _report(args, cfg, result, out, color_mode)
+        write_findings(args, cfg, result, out, color_mode)
     sys.stderr.write(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
                      f"file{'s' if len(files) != 1 else ''}"
                      + "".join(f"\n  {_safe(display_path(f))}" for f in files) + "\n")
@@ -77,7 +68,7 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         return _add_suppressions(args, cfg, resolver, out, color_mode)
     outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                       unsafe=args.unsafe_fixes, diff_only=args.diff)
-    _internal(outcome.result)
+    report_internal(outcome.result.internal)
     if args.diff:
         sys.stdout.write(outcome.diff)
         n = len(outcome.applied)
@@ -86,7 +77,7 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         if outcome.result.internal:
             return 2
         return 1 if outcome.diff else 0
-    _report(args, cfg, outcome.result, out, color_mode)
+    write_findings(args, cfg, outcome.result, out, color_mode)
     sys.stderr.write(_summary(outcome))   # also with -q: what --fix did to the sources
     if args.exit_zero:
         return 2 if outcome.result.internal else 0

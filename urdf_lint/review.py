@@ -174,7 +174,7 @@ class _Reach:
         todo, seen = [job.entry], set()
         while todo:
             f = todo.pop()
-            real = os.path.realpath(f)
+            real = _realpath(f)
             if real in seen:
                 continue
             seen.add(real)
