@@ -705,3 +705,31 @@ def test_diff_reports_escape_names():
     md = review_report.to_markdown(r)
     assert "\x1b" not in md and "\u202e" not in md and "<img" not in md
     assert not any(ln.startswith("::") for ln in md.splitlines()), md
+
+
+def test_case_check_lists_no_folder_outside_the_roots(tmp_path, monkeypatch):
+    """The case-mismatch check (UL402) walks folders to find the real spelling: only folders
+    inside the package roots are ever listed, also for a reference that points outside them
+    (issue 15: it listed the names of folders outside the roots)."""
+    from types import SimpleNamespace
+    from urdf_lint import meshes
+    from urdf_lint.packages import PackageResolver
+    outside = tmp_path / "Private" / "Keys"
+    outside.mkdir(parents=True)
+    (outside / "id.stl").write_text("solid x\nendsolid x\n")
+    pkg = make_package(tmp_path / "repo", "p", {"meshes/Part.STL": "solid x\nendsolid x\n"})
+    model = SimpleNamespace(resolver=PackageResolver.build([pkg]), base_dir=str(pkg / "urdf"))
+    listed = []
+    real = os.listdir
+    monkeypatch.setattr(meshes.os, "listdir", lambda p: listed.append(os.path.realpath(p)) or real(p))
+    monkeypatch.setattr(meshes, "_listings", {})
+    inside = meshes.resolve(model, "package://p/meshes/part.stl")
+    assert inside.status is meshes.MeshStatus.CASE_MISMATCH, inside
+    for uri in (f"file://{tmp_path}/private/keys/ID.stl", f"file://{outside}/ID.stl",
+                "package://p/../../../Private/keys/id.stl"):
+        ref = meshes.resolve(model, uri)
+        assert ref.status is not meshes.MeshStatus.OK and ref.status is not \
+            meshes.MeshStatus.CASE_MISMATCH, (uri, ref)
+    assert listed, "the inside reference was checked by listing its folders"
+    root = os.path.realpath(pkg)
+    assert all(p == root or p.startswith(root + os.sep) for p in listed), listed
