@@ -28,9 +28,7 @@ except ImportError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 
-# environment variables $(env)/$(optenv) may read without configuration
-DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
-                     "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
+from .jobs import DEFAULT_ENV_ALLOW  # noqa: E402,F401 - a run's setting; config shows it
 
 TABLE = "tool.urdf-lint"
 SEVERITY_NAMES = ("error", "warning", "info")

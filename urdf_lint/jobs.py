@@ -42,6 +42,12 @@ class LintJob:
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
 
 
+# environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:
+# the expansion reads it in a worker that never needs the config schema)
+DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
+                     "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
+
+
 @dataclass(frozen=True)
 class LintSettings:
     """Everything a worker needs besides the job; the same for every model of a run."""

@@ -31,7 +31,7 @@ from xml.dom import expatbuilder
 import xacro
 import xacro.substitution_args as _subst
 
-from ..config import DEFAULT_ENV_ALLOW
+from ..jobs import DEFAULT_ENV_ALLOW
 from ..findings import Problem
 from ..packages import PackageResolver
 from .. import safe_eval
