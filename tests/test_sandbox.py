@@ -192,12 +192,12 @@ worker.process_job = slow
 r = PackageResolver.build([{repo!r}], extra_roots=[{repo!r}])
 settings = LintSettings(resolver=r.to_dict())
 jobs = [LintJob("slow", kind="urdf"), LintJob("quick", kind="urdf")]
-import multiprocessing as mp
+from urdf_lint import forked
 gen = run_jobs(jobs, settings, jobs_n=2, timeout=300)  # one busy worker, one idle
 import threading
 def report():
     time.sleep(1.0)
-    print(" ".join(str(p.pid) for p in mp.active_children()), flush=True)
+    print(" ".join(str(p.pid) for p in forked.active_children()), flush=True)
 threading.Thread(target=report, daemon=True).start()
 for _ in gen:
     pass

@@ -887,6 +887,31 @@ def main(argv=None) -> int:
         return 130
 
 
+def entry() -> None:
+    """The ``urdf-lint`` command (and ``python -m urdf_lint``): :func:`main`, then leave."""
+    exit_now(main())
+
+
+def exit_now(code: int) -> None:
+    """End the process without tearing the interpreter down: freeing every module and object
+    one by one takes ~20 ms after a run (a tenth of ``urdf-lint expand``), and the OS frees
+    them anyway. Exit handlers still run and the output streams are flushed; when a thread
+    that is not a daemon is still running, exit the usual way (it is waited for)."""
+    threading = sys.modules.get("threading")
+    if threading is not None and any(
+            t.is_alive() and not t.daemon and t is not threading.main_thread()
+            for t in threading.enumerate()):
+        sys.exit(code)
+    import atexit
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):   # the reader is gone (`| head`): nothing more to say
+            pass
+    os._exit(code)
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)

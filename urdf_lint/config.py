@@ -208,6 +208,7 @@ class RuleOptions(Type):
 
 @dataclass(frozen=True)
 class Key:
+    """One configuration key: its name, type, default and help."""
     name: str
     type: Type
     default: Any
@@ -277,6 +278,7 @@ KNOWN_KEYS = set(KEYS)
 
 @dataclass
 class ModelSpec:
+    """A ``[[models]]`` entry: the file, its argument sets, and where its output and meshes are."""
     path: str                       # absolute
     arg_sets: list                  # list of dicts
     output: str | None = None       # absolute: the generated URDF written from this xacro
@@ -285,6 +287,7 @@ class ModelSpec:
 
 @dataclass
 class Config:
+    """The settings of a run, from the config file and the command line."""
     path: str | None = None         # the file it came from
     root: str = "."                 # folder paths are relative to
     select: list = field(default_factory=lambda: ["UL"])

@@ -25,6 +25,8 @@ SEVERITY_RANK = {s: i for i, s in enumerate(SEVERITIES)}
 
 @dataclass(frozen=True)
 class Problem:
+    """One finding: a rule code, its message and severity, where it is (and the macro chain
+    that led there), and the fix that would remove it."""
     code: str
     message: str
     origin: Origin

@@ -70,6 +70,8 @@ def _colcon_ignored(folder: Path, top: Path) -> bool:
 
 @dataclass
 class PackageResolver:
+    """Where each ROS package lives (named with ``--package-path``, or found by ``package.xml``)
+    and which folders a run may read."""
     explicit: dict[str, Path] = field(default_factory=dict)
     scanned: dict[str, Path] = field(default_factory=dict)
     roots: list[Path] = field(default_factory=list)

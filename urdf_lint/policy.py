@@ -28,6 +28,8 @@ def specificity(patterns: Iterable[str], code: str, name: str = "") -> int:
 
 @dataclass(frozen=True)
 class Policy:
+    """Which findings a run reports and at what severity: select, ignore, per-file ignores and
+    severity overrides."""
     select: tuple[str, ...] = ("UL",)
     ignore: tuple[str, ...] = ()
     per_file_ignores: dict = field(default_factory=dict)   # glob -> [patterns]

@@ -24,7 +24,6 @@ cost and for debugging only; ``urdf-lint doctor`` shows it).
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import errno
 import os
 import sys
@@ -70,11 +69,34 @@ def _libc():
         return None
 
 
+def _import_landlock():
+    """``landlock`` imports ``platform`` (~1.5 ms) to word an error message, and its ``Ruleset``
+    is a dataclass without a docstring, for which ``dataclasses`` would import ``inspect``
+    (~7 ms) to write one: a worker needs neither."""
+    if "landlock" in sys.modules:
+        return sys.modules["landlock"]
+    import dataclasses
+    from .lazy import defer
+    defer("platform")
+
+    class _NoSignature:
+        @staticmethod
+        def signature(obj):
+            raise ValueError("not needed")   # dataclasses then names the class only
+    saved = dataclasses.inspect  # type: ignore[attr-defined]
+    dataclasses.inspect = _NoSignature  # type: ignore[attr-defined]
+    try:
+        import landlock
+    finally:
+        dataclasses.inspect = saved  # type: ignore[attr-defined]
+    return landlock
+
+
 def landlock_status() -> tuple[bool, str]:
     if not sys.platform.startswith("linux"):
         return False, f"not available on {sys.platform} (Landlock is Linux-only)"
     try:
-        import landlock
+        landlock = _import_landlock()
     except ImportError:
         return False, "the 'landlock' package is not installed"
     try:
@@ -86,15 +108,17 @@ def landlock_status() -> tuple[bool, str]:
 
 
 def _import_pyseccomp():
-    """pyseccomp looks its libraries up with ``ctypes.util.find_library``, which runs
-    ``ldconfig`` (~15 ms); try the usual sonames first and fall back to the lookup."""
+    """pyseccomp imports ``ctypes.util`` (~7 ms: shutil, subprocess, tempfile) to call its
+    ``find_library``, which runs ``ldconfig`` (~15 ms). It gets a stand-in that tries the usual
+    sonames; the real lookup is imported only when one of them cannot be loaded."""
     if "pyseccomp" in sys.modules:
         return sys.modules["pyseccomp"]
-    import ctypes.util
-    orig = ctypes.util.find_library
+    import types
     known = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
+    real = sys.modules.get("ctypes.util")
 
-    def fast(name):
+    def find_library(name):
+        nonlocal real
         so = known.get(name)
         if so:
             try:
@@ -102,12 +126,25 @@ def _import_pyseccomp():
                 return so
             except OSError:
                 pass
-        return orig(name)
-    ctypes.util.find_library = fast
+        if real is None:
+            sys.modules.pop("ctypes.util", None)
+            import importlib
+            real = importlib.import_module("ctypes.util")
+        return real.find_library(name)
+    stand_in = types.ModuleType("ctypes.util")
+    stand_in.find_library = find_library  # type: ignore[attr-defined]
+    sys.modules["ctypes.util"] = stand_in
+    ctypes.util = stand_in  # type: ignore[attr-defined]
     try:
         import pyseccomp
     finally:
-        ctypes.util.find_library = orig
+        if real is not None:
+            sys.modules["ctypes.util"] = ctypes.util = real  # type: ignore[attr-defined]
+        else:
+            if sys.modules.get("ctypes.util") is stand_in:
+                del sys.modules["ctypes.util"]
+            if getattr(ctypes, "util", None) is stand_in:
+                del ctypes.util  # type: ignore[attr-defined]
     return pyseccomp
 
 
@@ -199,20 +236,12 @@ def close_inherited_fds(keep) -> None:
                 os.closerange(lo, k)
             lo = k + 1
         return
-    import fcntl
-    import stat
     for fd in fds:
-        if fd in keep:
-            continue
-        try:
-            # the write end of a pipe is how multiprocessing tells the parent this worker
-            # ended (its "sentinel"): keep it, or join() would think the worker is gone
-            if stat.S_ISFIFO(os.fstat(fd).st_mode) and \
-                    fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE == os.O_WRONLY:
-                continue
-            os.close(fd)
-        except OSError:
-            pass
+        if fd not in keep:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
 
 
 _runtime_paths: list[str] | None = None
@@ -343,13 +372,12 @@ def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
 def enter_worker(conn, settings) -> dict:
     """The one call a worker makes at start-up, before it reads its first job (``settings`` is
     the run's :class:`urdf_lint.jobs.LintSettings`)."""
-    import multiprocessing as mp
     import signal
+    from . import forked
     # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it (a Python
     # handler would never run while a C-level loop holds the interpreter)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    parent = mp.parent_process()
-    parent_pid = parent.pid if parent is not None and parent.pid else os.getppid()
+    parent_pid = forked.parent_pid or os.getppid()
     from .packages import PackageResolver
     read = PackageResolver.from_dict(settings.resolver).read_paths() if settings.resolver else []
     write = []
@@ -371,9 +399,7 @@ def enter_worker(conn, settings) -> dict:
                 write.append(d)
             except OSError:
                 pass
-    keep = [conn.fileno()]
-    if parent is not None and getattr(parent, "sentinel", None) is not None:
-        keep.append(parent.sentinel)
+    keep = list(getattr(conn, "fds", None) or (conn.fileno(),))
     status = enter(parent_pid, read, write, keep_fds=keep)
     bad = {k: v for k, v in status.items() if v.startswith("failed")}
     if bad:  # the parent's probe said it would work: say why it did not
@@ -388,7 +414,7 @@ def warm() -> None:
     if disabled():
         return
     if landlock_status()[0]:
-        import landlock.porcelain  # noqa: F401
+        _import_landlock()
     seccomp_status()
     runtime_read_paths()
 
@@ -400,7 +426,7 @@ def prepare() -> None:
     if disabled():
         return
     if landlock_status()[0]:
-        import landlock.porcelain  # noqa: F401 - imported once, shared by the forked workers
+        _import_landlock()   # imported once, shared by the forked workers
     seccomp_status()
     runtime_read_paths()
     note_missing()

@@ -6,16 +6,15 @@ replaced), and its job becomes a ``UL904`` finding. Other models keep going.
 """
 from __future__ import annotations
 
-import multiprocessing as mp
 import os
 import signal
 import sys
 import time
 from collections import deque
 from dataclasses import dataclass
-from multiprocessing.connection import wait
 from typing import Any
 
+from . import forked
 from .findings import Problem
 from .jobs import LintJob, LintSettings, ModelReport
 from .rules import ul904_resource_limit as resource_limit
@@ -228,8 +227,8 @@ def prestart() -> None:
         from .sandbox import disabled
         disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
         try:
-            _prestarted = _Worker(mp.get_context("fork"), None, None)
-        except (ValueError, OSError):   # no fork here, or no process to spare: start later
+            _prestarted = _Worker(None, None)
+        except OSError:   # no fork here, or no process to spare: start later
             _prestarted = None
             return
         import atexit
@@ -406,10 +405,7 @@ def _next_job(mine, queues):
 
 
 class _Worker:
-    def __init__(self, ctx, settings, memory_mb):
-        self.conn, child = ctx.Pipe()
-        self.proc = ctx.Process(target=_worker_main, args=(child, settings, memory_mb),
-                                daemon=True)
+    def __init__(self, settings, memory_mb):
         # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
         # exits 130 for both; its SIGTERM handler must not run in the child)
         try:
@@ -418,12 +414,11 @@ class _Worker:
         except ValueError:          # not the main thread: signals are not ours to change
             old = old_term = None
         try:
-            self.proc.start()
+            self.conn, self.proc = forked.start(_worker_main, (settings, memory_mb))
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
                 signal.signal(signal.SIGTERM, old_term)
-        child.close()
         self.job = None
         self.started = 0.0
         self.queue: Any = None
@@ -448,10 +443,6 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     pre = _take_prestarted(settings, memory_mb)
     from .sandbox import prepare
     prepare()
-    try:
-        ctx: Any = mp.get_context("fork")
-    except ValueError:  # pragma: no cover - no fork on this platform
-        ctx = mp.get_context()
     warm_meshes = _mesh_facts_cached(settings)
     blocks = package_blocks(jobs, settings, meshes=not warm_meshes)
     cores = os.cpu_count() or 1
@@ -462,7 +453,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     if n > 1:   # (the prestarted worker was forked before the mesh modules)
         _preload_mesh_modules(blocks, settings)
     workers = [pre] if pre is not None else []
-    workers += [_Worker(ctx, settings, memory_mb) for _ in range(n - len(workers))]
+    workers += [_Worker(settings, memory_mb) for _ in range(n - len(workers))]
     for w, q in zip(workers, queues, strict=True):
         w.queue = q
 
@@ -470,7 +461,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         return any(queues)
 
     def replace(old):
-        new = _Worker(ctx, settings, memory_mb)
+        new = _Worker(settings, memory_mb)
         new.queue = old.queue
         workers.append(new)
     try:
@@ -484,7 +475,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     busy[w.conn] = w
             now = time.monotonic()
             next_deadline = min(w.started + timeout for w in busy.values())
-            ready = wait(list(busy), timeout=max(0.0, next_deadline - now))
+            ready = forked.wait(list(busy), timeout=max(0.0, next_deadline - now))
             for conn in ready:
                 w = busy.pop(conn)
                 job = w.job

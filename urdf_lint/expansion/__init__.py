@@ -9,7 +9,11 @@ first use: a cached run, and code that only needs the source-map type, never pay
 """
 from __future__ import annotations
 
+from .. import lazy
 from .sourcemap import SourceMap
+
+# before xacro is imported (by .expand or .errors): PyYAML loads when a model first reads YAML
+lazy.defer("yaml")
 
 __all__ = ["Expansion", "SourceMap", "expand_file"]
 

@@ -60,6 +60,7 @@ class RefusedInput(xacro.XacroException):
 
 @dataclass(frozen=True)
 class ErrorRow:
+    """How one kind of xacro failure becomes a finding: what it catches and the rule it names."""
     catches: type | tuple
     rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
     message: Callable[..., str]

@@ -1,0 +1,215 @@
+"""Forked worker processes and the pipes to them, without :mod:`multiprocessing`.
+
+A worker is ``os.fork()`` plus two pipes carrying length-prefixed pickles. ``multiprocessing``
+does the same through a fork context, but importing it (connection, reduction, socket,
+tempfile, subprocess) costs ~22 ms before the first fork, on the critical path of every run
+that starts a worker, ``urdf-lint expand`` of one small file above all. The worker needs none
+of it: only ``pickle`` and the job modules.
+
+Where ``os.fork`` does not exist (Windows), :func:`start` falls back to ``multiprocessing``'s
+default context, which offers the same ``send``/``recv``/``fileno`` and process methods.
+"""
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import struct
+import sys
+import time
+
+_HEADER = struct.Struct("!Q")
+_live: set = set()
+# in a forked child: the pid of the process that forked it (read before the fork, so a parent
+# that dies at once is still known by its pid: the sandbox checks it after PR_SET_PDEATHSIG)
+parent_pid: int | None = None
+
+
+class Conn:
+    """One end of a duplex channel: reads from ``rfd``, writes to ``wfd``."""
+
+    def __init__(self, rfd: int, wfd: int):
+        self.rfd, self.wfd = rfd, wfd
+
+    def fileno(self) -> int:
+        return self.rfd
+
+    @property
+    def fds(self) -> tuple[int, int]:
+        return self.rfd, self.wfd
+
+    def send(self, obj) -> None:
+        data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+        view = memoryview(_HEADER.pack(len(data)) + data)
+        while view:
+            view = view[os.write(self.wfd, view):]
+
+    def _read(self, n: int) -> bytearray:
+        buf = bytearray(n)
+        view = memoryview(buf)
+        got = 0
+        while got < n:
+            k = os.readv(self.rfd, [view[got:]])
+            if k == 0:
+                raise EOFError("the other end closed the channel")
+            got += k
+        return buf
+
+    def recv(self):
+        (n,) = _HEADER.unpack(self._read(_HEADER.size))
+        return pickle.loads(self._read(n))
+
+    def poll(self, timeout: float = 0.0) -> bool:
+        return bool(wait([self], timeout))
+
+    def close(self) -> None:
+        for fd in (self.rfd, self.wfd):
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+        self.rfd = self.wfd = -1
+
+
+def pipe() -> tuple[Conn, Conn]:
+    """Two connected ends (parent's, child's)."""
+    r1, w1 = os.pipe()   # parent -> child
+    r2, w2 = os.pipe()   # child -> parent
+    return Conn(r2, w1), Conn(r1, w2)
+
+
+class Process:
+    """A forked child running ``target(*args)``; the subset of ``multiprocessing.Process``
+    the worker pool uses (pid, exitcode, is_alive, join, kill, terminate)."""
+
+    def __init__(self, target, args=(), close_in_child=()):
+        self.pid = 0
+        self._status: int | None = None
+        self._target, self._args = target, args
+        self._close_in_child = close_in_child
+
+    def start(self) -> None:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        me = os.getpid()
+        pid = os.fork()
+        if pid == 0:   # the child: never returns
+            global parent_pid
+            parent_pid = me
+            code = 1
+            try:
+                for c in self._close_in_child:
+                    c.close()
+                _live.clear()
+                _quiet_stdin()
+                self._target(*self._args)
+                code = 0
+            except SystemExit as e:
+                code = e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
+            except BaseException:   # noqa: BLE001 - a worker's crash is shown, then it exits
+                import traceback
+                traceback.print_exc()
+            finally:
+                try:
+                    sys.stdout.flush()
+                    sys.stderr.flush()
+                finally:
+                    os._exit(code)
+        self.pid = pid
+        _live.add(self)
+
+    def _reap(self, flags: int) -> bool:
+        if self._status is not None:
+            return True
+        try:
+            pid, status = os.waitpid(self.pid, flags)
+        except ChildProcessError:
+            self._status = 255   # reaped elsewhere: gone, cause unknown
+        else:
+            if pid == 0:
+                return False
+            self._status = os.waitstatus_to_exitcode(status)
+        _live.discard(self)
+        return True
+
+    @property
+    def exitcode(self) -> int | None:
+        """None while running; the exit status, or ``-signal`` when a signal ended it."""
+        return self._status if self.pid and self._reap(os.WNOHANG) else None
+
+    def is_alive(self) -> bool:
+        return bool(self.pid) and not self._reap(os.WNOHANG)
+
+    def join(self, timeout: float | None = None) -> None:
+        if not self.pid:
+            return
+        if timeout is None:
+            self._reap(0)
+            return
+        deadline = time.monotonic() + timeout
+        pause = 0.0005
+        while not self._reap(os.WNOHANG) and time.monotonic() < deadline:
+            time.sleep(min(pause, max(0.0, deadline - time.monotonic())))
+            pause = min(pause * 2, 0.02)
+
+    def _signal(self, sig) -> None:
+        if self.pid and self._status is None:
+            try:
+                os.kill(self.pid, sig)
+            except ProcessLookupError:
+                pass
+
+    def kill(self) -> None:
+        self._signal(signal.SIGKILL)
+
+    def terminate(self) -> None:
+        self._signal(signal.SIGTERM)
+
+
+def _quiet_stdin() -> None:
+    """The child must not read the parent's stdin (as multiprocessing does)."""
+    try:
+        sys.stdin.close()
+        sys.stdin = open(os.devnull)   # noqa: SIM115 - lives as long as the process
+    except (OSError, ValueError):
+        pass
+
+
+def start(target, args=()):
+    """Fork a child running ``target(conn, *args)``; returns (parent's conn, process)."""
+    if not hasattr(os, "fork"):   # pragma: no cover - Windows
+        import multiprocessing as mp
+        parent, child = mp.Pipe()
+        proc = mp.get_context().Process(target=target, args=(child, *args), daemon=True)
+        proc.start()
+        child.close()
+        return parent, proc
+    parent, child = pipe()
+    proc = Process(target, (child, *args), close_in_child=(parent,))
+    try:
+        proc.start()
+    finally:
+        child.close()
+    return parent, proc
+
+
+def active_children() -> list[Process]:
+    """The forked children still running (reaps those that ended)."""
+    return [p for p in list(_live) if p.is_alive()]
+
+
+def wait(conns, timeout: float | None = None) -> list:
+    """The conns with data (or end of file) to read, after at most ``timeout`` seconds."""
+    import select
+    if not hasattr(os, "fork"):   # pragma: no cover - Windows: multiprocessing's connections
+        from multiprocessing.connection import wait as mp_wait
+        return mp_wait(conns, timeout)
+    by_fd = {c.fileno(): c for c in conns}
+    if hasattr(select, "poll"):
+        poller = select.poll()
+        for fd in by_fd:
+            poller.register(fd, select.POLLIN)
+        ms = None if timeout is None else max(0, int(timeout * 1000 + 0.999))
+        return [by_fd[fd] for fd, _ in poller.poll(ms)]
+    ready, _, _ = select.select(list(by_fd), [], [], timeout)   # pragma: no cover
+    return [by_fd[fd] for fd in ready]

@@ -1,0 +1,58 @@
+"""Modules imported at start-up by code we do not own but used by few runs, loaded on first use.
+
+* xacro's ``substitution_args`` imports PyYAML at module level for ``load_yaml`` and
+  ``$(arg)`` of type yaml: ~24 ms (its reader compiles a large character-class regex), a
+  sixth of ``urdf-lint expand`` on a small model that reads no YAML.
+* ``landlock`` imports ``platform`` (~2.5 ms) to word an error message.
+
+:func:`defer` puts a placeholder module under the name. ``import NAME`` binds the placeholder
+(the import system reads only its ``__spec__``); the first other attribute looked up on it
+imports the real module, and the placeholder takes on its namespace, so code holding either
+object sees the same functions and classes.
+"""
+from __future__ import annotations
+
+import sys
+import types
+
+
+class _Deferred(types.ModuleType):
+    def __getattr__(self, attr: str):
+        # called only for names not (yet) in the placeholder's namespace
+        if attr.startswith("__") and attr.endswith("__"):
+            raise AttributeError(attr)
+        real = _load(self)
+        return getattr(real, attr)
+
+
+def _load(placeholder: types.ModuleType) -> types.ModuleType:
+    name = placeholder.__name__
+    if sys.modules.get(name) is placeholder:
+        del sys.modules[name]
+    import importlib
+    try:
+        real = importlib.import_module(name)
+    except BaseException:
+        sys.modules.setdefault(name, placeholder)
+        raise
+    placeholder.__dict__.update(real.__dict__)
+    return real
+
+
+def defer(name: str) -> None:
+    """Bind ``name`` to a placeholder, unless it is imported already or cannot be found."""
+    if name in sys.modules:
+        return
+    import importlib.util
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        return
+    if spec is None:
+        return
+    placeholder = _Deferred(name)
+    placeholder.__spec__ = spec
+    placeholder.__file__ = spec.origin
+    if spec.submodule_search_locations is not None:
+        placeholder.__path__ = list(spec.submodule_search_locations)
+    sys.modules[name] = placeholder
