@@ -167,11 +167,13 @@ class Process:
 
 
 def _quiet_stdin() -> None:
-    """The child must not read the parent's stdin (as multiprocessing does)."""
+    """The child must not read the parent's stdin: descriptor 0 becomes /dev/null."""
     try:
-        sys.stdin.close()
-        sys.stdin = open(os.devnull)   # noqa: SIM115 - lives as long as the process
-    except (OSError, ValueError):
+        fd = os.open(os.devnull, os.O_RDONLY)
+        if fd != 0:
+            os.dup2(fd, 0)
+            os.close(fd)
+    except OSError:
         pass
 
 

@@ -1,0 +1,240 @@
+"""The worker plumbing without multiprocessing (urdf_lint.forked), modules loaded on first use
+(urdf_lint.lazy), and the console script's quick exit."""
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import DESCRIPTIONS, REPO
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="needs os.fork")
+
+LINT = [sys.executable, "-m", "urdf_lint"]
+
+
+def _echo(conn):
+    while True:
+        msg = conn.recv()
+        if msg is None:
+            return
+        conn.send(msg)
+
+
+def _die(conn, how):
+    conn.recv()
+    if how == "kill":
+        os.kill(os.getpid(), signal.SIGKILL)
+    if how == "exit3":
+        sys.exit(3)
+    raise RuntimeError("a worker crash")
+
+
+def _fds(conn):
+    conn.recv()
+    open_fds = []
+    for fd in range(256):
+        try:
+            os.fstat(fd)
+        except OSError:
+            continue
+        open_fds.append(fd)
+    conn.send(open_fds)
+
+
+def test_messages_of_any_size_round_trip():
+    conn, proc = forked_start(_echo)
+    try:
+        big = {"blob": os.urandom(3 << 20), "nested": [list(range(1000))] * 3}  # > pipe buffer
+        for msg in ("small", big, ("tuple", None, 1.5)):
+            conn.send(msg)
+            assert forked_wait([conn], 10) == [conn]
+            assert conn.recv() == msg
+        conn.send(None)
+        proc.join(5)
+        assert proc.exitcode == 0 and not proc.is_alive()
+    finally:
+        proc.kill()
+        conn.close()
+
+
+@pytest.mark.parametrize("how,code", [("kill", -signal.SIGKILL), ("exit3", 3), ("raise", 1)])
+def test_a_dead_child_reads_as_end_of_file_with_its_exit_code(how, code, capfd):
+    conn, proc = forked_start(_die, how)
+    try:
+        conn.send("go")
+        assert forked_wait([conn], 10) == [conn]
+        with pytest.raises(EOFError):
+            conn.recv()
+        proc.join(5)
+        assert proc.exitcode == code
+        assert proc not in forked_active()
+    finally:
+        conn.close()
+    if how == "raise":
+        assert "RuntimeError: a worker crash" in capfd.readouterr().err
+
+
+def test_join_with_a_timeout_returns_and_kill_ends_the_child():
+    conn, proc = forked_start(_echo)
+    try:
+        t0 = time.monotonic()
+        proc.join(0.2)
+        assert 0.15 < time.monotonic() - t0 < 2 and proc.is_alive()
+        assert proc in forked_active()
+        assert forked_wait([conn], 0.05) == []   # nothing to read yet
+        proc.kill()
+        proc.join(5)
+        assert proc.exitcode == -signal.SIGKILL
+    finally:
+        conn.close()
+
+
+def _pipe_ends(conn):
+    conn.recv()
+    import fcntl
+    ends = []
+    for fd in range(256):
+        try:
+            ino = os.fstat(fd).st_ino
+            ends.append((ino, fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE))
+        except OSError:
+            continue
+    conn.send(ends)
+
+
+def _ends_of(conn):
+    import fcntl
+    return {(os.fstat(fd).st_ino, fcntl.fcntl(fd, fcntl.F_GETFL) & os.O_ACCMODE)
+            for fd in conn.fds}
+
+
+def test_a_child_does_not_hold_the_parents_ends_of_its_channel():
+    """The child's copies of the parent's ends are closed at the fork: otherwise the child
+    would never see end of file when the parent goes, and could read its own results."""
+    conn, proc = forked_start(_pipe_ends)
+    try:
+        conn.send("go")
+        child_ends = set(conn.recv())
+        assert not (_ends_of(conn) & child_ends), (_ends_of(conn), child_ends)
+    finally:
+        proc.kill()
+        proc.join(5)
+        conn.close()
+
+
+def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob, LintSettings
+    from urdf_lint.packages import PackageResolver
+
+    def probe(job, settings):
+        return [fd for fd in range(256) if _is_open(fd)]
+    monkeypatch.setattr(worker, "process_job", probe)
+    resolver = PackageResolver.build([str(DESCRIPTIONS)], extra_roots=[str(DESCRIPTIONS)])
+    jobs = [LintJob(f"m{i}.urdf", kind="urdf") for i in range(4)]
+    results = [r for _, r in worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()),
+                                             jobs_n=2, timeout=30)]
+    assert len(results) == 4
+    for fds in results:
+        # stdin, stdout, stderr and the worker's own two pipe ends: nothing of its sibling
+        assert len(fds) == 5 and fds[:3] == [0, 1, 2], fds
+
+
+def _is_open(fd):
+    try:
+        os.fstat(fd)
+        return True
+    except OSError:
+        return False
+
+
+def forked_start(target, *args):
+    from urdf_lint import forked
+    return forked.start(target, args)
+
+
+def forked_wait(conns, timeout):
+    from urdf_lint import forked
+    return forked.wait(conns, timeout)
+
+
+def forked_active():
+    from urdf_lint import forked
+    return forked.active_children()
+
+
+# -- urdf_lint.lazy ---------------------------------------------------------------------------
+LAZY = """
+import sys
+from urdf_lint import lazy
+lazy.defer("json")
+import json                                    # binds the placeholder, loads nothing
+placeholder = json
+print(type(sys.modules["json"]).__name__, "json.decoder" in sys.modules)
+print(json.dumps({"a": 1}), "json.decoder" in sys.modules)   # first use loads it
+import json as again
+print(again.loads("[2]"), placeholder.JSONDecodeError is again.JSONDecodeError)
+lazy.defer("no_such_module_anywhere")
+print("no_such_module_anywhere" in sys.modules)
+"""
+
+
+def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
+    p = subprocess.run([sys.executable, "-c", LAZY], capture_output=True, text=True, cwd=REPO)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.split("\n")[:4] == ["_Deferred False", '{"a": 1} True', "[2] True", "False"]
+
+
+EXPAND_MODULES = """
+import os, sys
+from urdf_lint import worker
+from urdf_lint.cli import main
+NAMES = ("multiprocessing", "yaml", "inspect", "_hashlib", "platform", "ctypes.util")
+
+
+def loaded():
+    return sorted(m for m in NAMES if m in sys.modules
+                  and type(sys.modules[m]).__name__ != "_Deferred")
+
+
+real = worker.process_job
+def spy(job, settings):   # runs in the (forked, sandboxed) worker
+    report = real(job, settings)
+    os.write(2, ("worker loaded " + repr(loaded()) + "\\n").encode())
+    return report
+worker.process_job = spy
+rc = main(["expand", sys.argv[1], "-o", sys.argv[2]])
+print(rc, loaded())
+"""
+
+
+def test_expand_without_yaml_loads_no_yaml_and_no_multiprocessing(tmp_path):
+    pend = DESCRIPTIONS / "double_pendulum_description" / "urdf" / "double_pendulum.urdf.xacro"
+    assert "load_yaml" not in pend.read_text()
+    p = subprocess.run([sys.executable, "-c", EXPAND_MODULES, str(pend), str(tmp_path / "o.urdf")],
+                       capture_output=True, text=True, cwd=tmp_path)
+    assert p.stdout.strip() == "0 []", p.stdout + p.stderr   # the parent
+    assert "worker loaded []" in p.stderr, p.stderr
+    assert "<robot" in (tmp_path / "o.urdf").read_text()
+
+
+# -- the console script ------------------------------------------------------------------------
+def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
+    """The quick exit skips the interpreter's teardown, not the output: a large JSON report
+    through a pipe is complete, and a run with findings still exits 1."""
+    broken = DESCRIPTIONS / "broken"
+    p = subprocess.run([*LINT, "check", str(broken), "--format", "json", "--no-cache"],
+                       capture_output=True, text=True, cwd=tmp_path)
+    assert p.returncode == 1, p.stderr
+    doc = json.loads(p.stdout)
+    assert len(doc["findings"]) > 50 and len(p.stdout) > 30000
+    # a reader that leaves early (`| head -1`) is no error
+    sh = subprocess.run(f"{' '.join(LINT)} check {broken} --no-cache | head -1",
+                        shell=True, capture_output=True, text=True, cwd=tmp_path)
+    assert sh.stdout.count("\n") == 1 and "Traceback" not in sh.stderr, sh.stderr
