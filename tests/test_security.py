@@ -506,11 +506,11 @@ def test_forged_or_foreign_cache_entry_is_ignored(world, tmp_path):
     assert p.returncode == 1
     [entry] = _entries(repo)
     # forge "clean" into the entry, as a committed cache would
-    env = json.loads(entry.read_text())
-    rec = json.loads(env["entry"])
-    rec["result"]["findings"] = []
-    env["entry"] = json.dumps(rec)
-    entry.write_text(json.dumps(env))
+    mac, blob = entry.read_text().split("\n", 1)
+    rec = json.loads(blob)
+    assert rec["result"]["problems"]
+    rec["result"]["problems"] = []
+    entry.write_text(mac + "\n" + json.dumps(rec))
     p = run_cli("check", ".", "--format", "json", cwd=repo, env=key_a)
     assert p.returncode == 1 and json.loads(p.stdout)["models"][0]["cached"] is False
     # an entry signed with another key (another machine, a fresh clone) is ignored too

@@ -31,7 +31,7 @@ from pathlib import Path
 from . import __version__
 from .atomic import atomic_write
 from .discovery import start_dir
-from .hashing import file_digest, file_record, stat_key
+from .hashing import blake2b, file_digest, file_record, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
 from .cachedir import ensure as ensure_cache_dir
 from .vcs import git_root, repo_root
@@ -40,7 +40,7 @@ from .vcs import git_root, repo_root
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached)
-RECORD_FORMAT = 8
+RECORD_FORMAT = 9
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -89,6 +89,22 @@ def _git_tracks(directory: str) -> bool:
     return out.returncode == 0 and bool(out.stdout.strip())
 
 
+MAX_ENTRY_BYTES = 64 << 20
+
+
+def _read_entry(p) -> bytes | None:
+    """The bytes of a cache entry: a regular file (no symlink, device or FIFO), bounded."""
+    try:
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+    except OSError:
+        return None
+    with os.fdopen(fd, "rb") as f:
+        st = os.fstat(fd)
+        if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_ENTRY_BYTES:
+            return None
+        return f.read(MAX_ENTRY_BYTES + 1)
+
+
 class Cache:
     def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
@@ -108,10 +124,6 @@ class Cache:
         if self.refused:
             sys.stderr.write(f"urdf-lint: note: not using the cache: {self.refused}\n")
 
-    def _mac(self, blob: str) -> str:
-        assert self._secret is not None
-        return hmac.new(self._secret, blob.encode("utf-8"), hashlib.sha256).hexdigest()
-
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
         repo = repo_root(start_dir(paths))
@@ -130,40 +142,58 @@ class Cache:
             memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
                                                               sort_keys=True))
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), job.output, job.mesh_base],
-                          sort_keys=True) + memo[1]
-        return hashlib.blake2b(blob.encode(), digest_size=20).hexdigest()
+                           job.kind, bool(job.explicit), job.output, job.mesh_base]) + memo[1]
+        return blake2b(blob.encode(), digest_size=20).hexdigest()
 
-    def _path(self, key) -> Path:
-        return Path(self.dir, "results", key[:2], key + ".json")
+    def _path(self, key) -> str:
+        return os.path.join(self.dir, "results", key[:2], key + ".json")
 
-    def get(self, job: LintJob, settings: LintSettings) -> ModelReport | None:
+    def get(self, job: LintJob, settings: LintSettings,
+            seen: dict | None = None) -> ModelReport | None:
+        """The cached report of ``job``, if every input it read is unchanged. ``seen`` (path ->
+        stat) lets one pass over many jobs stat each shared input once (:meth:`get_many`)."""
         if self.refused:
             return None
+        seen = {} if seen is None else seen
         p = self._path(self._key(job, settings))
         try:
-            if p.is_symlink() or not p.is_file() or p.stat().st_size > (64 << 20):
+            data = _read_entry(p)
+            if data is None:
                 return None
-            env = json.loads(p.read_text(encoding="utf-8"))
-            blob = env.get("entry")
-            if not isinstance(blob, str) or not isinstance(env.get("mac"), str) or \
-                    not hmac.compare_digest(env["mac"], self._mac(blob)):
+            mac, _, blob = data.partition(b"\n")
+            if not hmac.compare_digest(mac, self._mac_bytes(blob)):
                 return None  # not written by this user's urdf-lint
             rec = json.loads(blob)
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
             for path, (stat, digest) in rec["deps"].items():
-                now = stat_key(path)
+                now = seen.get(path, False)
+                if now is False:
+                    now = seen[path] = stat_key(path)
                 if now is None:
                     return None
                 if now != stat and file_digest(path) != digest:
                     return None
             for path in rec.get("missing", []):
-                if os.path.isfile(path):   # a file looked for (or a folder read as one) appeared
+                key = ("missing", path)
+                appeared = seen.get(key)
+                if appeared is None:
+                    appeared = seen[key] = os.path.isfile(path)
+                if appeared:   # a file looked for (or a folder read as one) appeared
                     return None
             return ModelReport.from_record(job, rec["result"])
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
+
+    def get_many(self, jobs, settings: LintSettings) -> list:
+        """:meth:`get` for each job, in one pass: an input shared by many models (a macro
+        file, a mesh) is looked at once. The inputs must not change during the pass."""
+        seen: dict = {}
+        return [self.get(job, settings, seen) for job in jobs]
+
+    def _mac_bytes(self, blob: bytes) -> bytes:
+        assert self._secret is not None
+        return hmac.new(self._secret, blob, hashlib.sha256).hexdigest().encode("ascii")
 
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
         if self.refused:
@@ -184,9 +214,10 @@ class Cache:
         p = self._path(self._key(job, settings))
         try:
             self._ensure()
-            p.parent.mkdir(parents=True, exist_ok=True)
-            blob = json.dumps(rec)
-            atomic_write(p, json.dumps({"entry": blob, "mac": self._mac(blob)}))
+            os.makedirs(os.path.dirname(p), exist_ok=True)
+            blob = json.dumps(rec).encode("utf-8")
+            # the signature, then the signed record: read back with one JSON parse
+            atomic_write(p, self._mac_bytes(blob) + b"\n" + blob)
             self._writes += 1
         except OSError:
             pass

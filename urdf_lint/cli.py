@@ -532,7 +532,7 @@ def cmd_check(args) -> int:
         _clear_stale(render_dir)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
-    from .fixrun import inside_paths   # a fix offered in JSON / SARIF edits only linted files
+    from .fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
     result.findings = inside_paths(result.findings, args.paths)
     if out.verbose:
         _list_models(result, out)

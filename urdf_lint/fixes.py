@@ -23,7 +23,7 @@ import os
 import re
 from dataclasses import dataclass, field
 
-from .sourceedit import Attr, Edit, escape, iter_start_tags, line_col, start_tag_at
+from .sourceedit import Attr, Edit, escape, inside, iter_start_tags, line_col, start_tag_at
 
 _REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
 _YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|\d+)\s*\]"
@@ -442,6 +442,7 @@ def _property(src, name, file, data, a, depth):
 
 @dataclass(frozen=True)
 class YamlScalar:
+    """A scalar value in a YAML file, with its span in the text and its quoting style."""
     value: str
     value_start: int
     value_end: int
@@ -567,3 +568,20 @@ def remove_comment(loc) -> Fix | None:
         start, end = line_start, line_end        # alone on its line: the whole line goes
     return Fix("remove the unused suppression comment", True, (Edit(loc[0], start, end, ""),),
                "", (("none", 0, "", ""),))
+
+
+def inside_paths(findings, paths) -> list:
+    """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
+    installed package, a dependency elsewhere in the workspace) refused."""
+    from .locations import display_path
+    out = []
+    real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
+    for p in findings:
+        fx = p.fix
+        if fx is not None and fx.applicable:
+            outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
+            if outside:
+                p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                      f"{display_path(outside[0])} is outside the linted paths"))
+        out.append(p)
+    return out

@@ -21,7 +21,8 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from .atomic import atomic_rewrite
-from .sourceedit import apply_edits, inside, line_offset
+from .fixes import inside_paths
+from .sourceedit import apply_edits, line_offset
 
 if TYPE_CHECKING:  # pragma: no cover
     from .pipeline import CheckResult
@@ -31,6 +32,7 @@ MAX_ROUNDS = 4
 
 @dataclass
 class FixOutcome:
+    """What ``--fix`` did: the fixes written, those rolled back or refused, and the run after."""
     result: "CheckResult"                            # the CheckResult after fixing
     applied: list = field(default_factory=list)      # Problems whose fix was written
     rolled_back: list = field(default_factory=list)  # (Problem, reason)
@@ -78,24 +80,6 @@ def line_maps(fixed, originals: dict) -> dict:
             o = x - total
             return old.count(b"\n", 0, o) + 1
         out[f] = back
-    return out
-
-
-def inside_paths(findings, paths) -> list:
-    """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
-    installed package, a dependency elsewhere in the workspace) refused."""
-    from .fixes import NOT_FIXABLE, Fix
-    from .locations import display_path
-    out = []
-    real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
-    for p in findings:
-        fx = p.fix
-        if fx is not None and fx.applicable:
-            outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
-            if outside:
-                p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
-                                      f"{display_path(outside[0])} is outside the linted paths"))
-        out.append(p)
     return out
 
 

@@ -39,13 +39,24 @@ class Origin(NamedTuple):
             f"{display_path(c[0], base)}:{c[1]}" for c in reversed(self.chain))
 
 
+_displayed: dict = {}
+
+
 def display_path(path: str, base: str | None = None) -> str:
-    """A path relative to ``base`` (default: the working directory) when it lies below it."""
+    """A path relative to ``base`` (default: the working directory) when it lies below it.
+    Remembered per (path, base): a report names the same few files thousands of times."""
     if not path:
         return "<unknown>"
     base = base or os.getcwd()
-    try:
-        rel = os.path.relpath(path, base)
-    except ValueError:
-        return path
-    return path if rel.startswith("..") else rel
+    key = (path, base)
+    shown = _displayed.get(key)
+    if shown is None:
+        try:
+            rel = os.path.relpath(path, base)
+        except ValueError:
+            rel = ".."
+        shown = path if rel.startswith("..") else rel
+        if len(_displayed) > 50000:
+            _displayed.clear()
+        _displayed[key] = shown
+    return shown

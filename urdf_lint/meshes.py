@@ -33,6 +33,7 @@ class MeshStatus(enum.Enum):
 
 @dataclass
 class MeshRef:
+    """A mesh reference of the model: its URI, the resolved file, and whether it loads."""
     uri: str
     path: str | None          # resolved absolute path (None when it cannot be resolved)
     status: MeshStatus

@@ -38,6 +38,8 @@ def _refuse_entities(*_):
 
 @dataclass
 class Model:
+    """One expanded robot: the lxml tree, the source origin of every element, the files read,
+    and indexes of its links and joints."""
     entry: str                       # the entry file (absolute)
     args: dict
     root: etree._Element             # <robot>

@@ -33,6 +33,8 @@ RUN_LABEL = ""
 
 @dataclass
 class CheckResult:
+    """The outcome of a check run: findings after merging and policy, the linted models,
+    the files skipped, and internal errors."""
     findings: list = field(default_factory=list)     # merged Problems, after policy
     models: list = field(default_factory=list)       # ModelReport of linted models
     skipped: list = field(default_factory=list)      # libraries etc.
@@ -58,13 +60,15 @@ class RunContext:
 def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | None,
                  policy: Policy | None = None) -> LintSettings:
     from .config import DEFAULT_ENV_ALLOW, ConfigError
-    from .registry import load_rules
-    rules = load_rules()
+    from .registry import catalogue, load_rule
+    rules = catalogue()
     policy = policy or Policy.from_config(cfg)
     options = {}
-    for code, r in rules.items():
-        o = cfg.options_for(code, r.name)
+    for code, e in rules.items():
+        o = cfg.options_for(code, e.name)
         if o:
+            r = load_rule(code)
+            assert r is not None
             unknown = set(o) - set(r.options)
             if unknown:
                 raise ConfigError(f"unknown option(s) for {code} {r.name}: "
@@ -80,8 +84,8 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
     """Problems with their rule name, effective severity (the configured override of the
     severity the rule chose for it, else of the rule's) and model label."""
-    from .registry import load_rules
-    rules = load_rules()
+    from .registry import catalogue
+    rules = catalogue()
     out = []
     for p in problems:
         r = rules.get(p.code)
@@ -154,9 +158,10 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
     """A ModelReport for every job: from the cache, or linted by the workers."""
     results: list[ModelReport] = []
     todo = []
-    for job in jobs:
-        # snapshots need the model itself, so a render pass expands everything once
-        hit = cache.get(job, settings) if cache and not settings.render_dir else None
+    # snapshots need the model itself, so a render pass expands everything once
+    hits = cache.get_many(jobs, settings) if cache and not settings.render_dir else \
+        [None] * len(jobs)
+    for job, hit in zip(jobs, hits, strict=True):
         if hit is not None:
             results.append(hit)
         else:
@@ -255,8 +260,8 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
               policy: Policy) -> list[Problem]:
     """Drop what inline comments suppress; add a finding for each unused suppression."""
     from . import suppress
-    from .registry import load_rules
-    rules = load_rules()
+    from .registry import catalogue
+    rules = catalogue()
     files: set[str] = set()
     for r in models:
         sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)]

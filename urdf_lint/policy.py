@@ -50,6 +50,8 @@ class Policy:
         return [c for c, r in rules.items() if self.is_selected(c, r.name)]
 
     def ignored_for_file(self, code: str, name: str, file: str) -> bool:
+        if not self.per_file_ignores:
+            return False
         try:
             rel = os.path.relpath(file, self.root)
         except ValueError:

@@ -144,6 +144,7 @@ def scene_geometry(scene, ctx) -> Geometry:
 # -- framing ---------------------------------------------------------------------------------
 @dataclass
 class View:
+    """A camera for one snapshot view: its axes, centre and scale."""
     name: str
     center: np.ndarray
     right: np.ndarray

@@ -104,6 +104,7 @@ def name_status(top: str, base: str, head: str | None) -> list[tuple[str, str, s
 
 @dataclass
 class Side:
+    """One revision of a ``diff`` run: its models, findings, robots and pictures."""
     root: str
     models: dict = field(default_factory=dict)      # key -> ModelResult
     findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
@@ -116,6 +117,7 @@ class Side:
 
 @dataclass
 class DiffResult:
+    """The outcome of ``urdf-lint diff``: the models a change affected, and what it did to each."""
     base: str
     head: str
     models: list = field(default_factory=list)      # ModelDiff, affected models only

@@ -47,6 +47,8 @@ class Change:
 
 @dataclass
 class ModelDiff:
+    """What changed in one model between two revisions: changes, moved links, and the
+    findings introduced and fixed."""
     model: str                     # display label of the model
     status: str                    # changed | unchanged | added | removed | failed
     changes: list = field(default_factory=list)

@@ -39,6 +39,7 @@ def origin_matrix(el):
 
 @dataclass
 class Part:
+    """One visual or collision geometry of a link, placed in the world at the zero configuration."""
     link: str
     kind: str                  # "visual" | "collision"
     index: int
@@ -52,6 +53,7 @@ class Part:
 
 @dataclass
 class Scene:
+    """A robot ready to draw: link transforms, the kinematic tree, and its geometry parts."""
     name: str
     links: dict                # link -> world transform
     tree: list                 # (parent_link, joint_element, child_link) in DFS order

@@ -24,6 +24,7 @@ KINDS = ("disable-next", "disable-file", "disable", "enable")
 
 @dataclass
 class Directive:
+    """An inline ``urdf-lint: disable...`` comment: its kind, codes and the lines it covers."""
     kind: str
     codes: list
     file: str
@@ -150,8 +151,8 @@ def _did_you_mean(word, candidates):
 
 def _code_problems(codes) -> list[str]:
     """Messages for codes that name no rule, no code prefix and no rule name."""
-    from .registry import load_rules
-    rules = load_rules()
+    from .registry import catalogue
+    rules = catalogue()
     names = {r.name for r in rules.values()}
     out = []
     for c in codes:

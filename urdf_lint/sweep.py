@@ -51,6 +51,7 @@ def link_poses(urdf) -> dict:
 
 @dataclass
 class Segment:
+    """One joint moving through its range on the joint_sweep timeline, with its mimic followers."""
     joint: str
     followers: list            # the mimic joints that move with it
     start: int                 # first step on the timeline
@@ -60,6 +61,7 @@ class Segment:
 
 @dataclass
 class Sweep:
+    """The joint_sweep timeline: segments, and the joint transforms at each step."""
     segments: list = field(default_factory=list)
     # step -> {joint name: 4x4 transform parent link -> child link}; step 0 holds every
     # movable and mimic joint at rest, later steps only the joints whose transform changed

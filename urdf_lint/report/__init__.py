@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import importlib
 import os
-import pkgutil
 import sys
 
 from .base import BaseFormatter, ReportOptions
@@ -42,11 +41,12 @@ def formats() -> dict:
     """name -> formatter class, for every format module in this package."""
     global _FORMATS
     if _FORMATS is None:
+        from ..registry import submodule_names
         found = {}
-        for info in sorted(pkgutil.iter_modules(__path__), key=lambda i: i.name):
-            if info.name.startswith("_") or info.name == "base":
+        for name in submodule_names(__path__):
+            if name == "base":
                 continue
-            mod = importlib.import_module(f"{__name__}.{info.name}")
+            mod = importlib.import_module(f"{__name__}.{name}")
             for obj in vars(mod).values():
                 if (isinstance(obj, type) and issubclass(obj, BaseFormatter)
                         and obj is not BaseFormatter and obj.__module__ == mod.__name__

@@ -14,6 +14,7 @@ MODELS_SHOWN = 3
 
 @dataclass
 class ReportOptions:
+    """How a report is written: colour, source frames, quiet, model lists."""
     color: bool = False
     show_source: bool = False
     quiet: bool = False            # findings only: no summary line
