@@ -179,3 +179,108 @@ def test_the_values_of_allowed_environment_variables_key_the_cache(repo):
                     env={"VARIANT": value})
         assert p.returncode in (0, 1), p.stderr
         assert [m["cached"] for m in json.loads(p.stdout)["models"]] == [hit], value
+
+
+# -- the run memo (urdf_lint/runcache.py): a whole unchanged run reused, every change seen ------
+def _age(root, seconds=60):
+    """Make every file and folder look edited a minute ago (the memo ignores inputs that
+    changed in the last seconds: a coarse clock could hide a later edit)."""
+    t = time.time() - seconds
+    for d, dirs, files in os.walk(root):
+        for n in dirs + files:
+            os.utime(os.path.join(d, n), (t, t), follow_symlinks=False)
+    os.utime(root, (t, t))
+
+
+def _reused(repo, *extra):
+    p = run_cli("check", ".", "--format", "json", "-v", *extra, cwd=repo)
+    assert p.returncode in (0, 1), p.stderr
+    return "nothing changed since the last identical run" in p.stderr, json.loads(p.stdout)
+
+
+def _settle(repo, *extra):
+    """Age the tree, run once (the memo is written), and check the next run reuses it."""
+    _age(repo)
+    run(repo, *extra)
+    reused, doc = _reused(repo, *extra)
+    assert reused, "an unchanged run should reuse the last result"
+    return doc
+
+
+def _codes(doc, code):
+    return sorted((f["file"], f["line"]) for f in doc["findings"] if f["code"] == code)
+
+
+def test_run_memo_reuses_an_unchanged_run_and_sees_every_change(repo):
+    pkg = repo / "r2d2_description"
+    run(repo)                                   # creates the cache folder
+    before = _settle(repo)
+    _, fresh = run(repo, "--no-cache")
+    assert before["findings"] == fresh["findings"] and before["summary"] == fresh["summary"]
+    assert len(list((repo / ".urdf_lint_cache" / "runs").glob("*.json"))) == 1
+
+    # an included file's content
+    edit(pkg / "urdf/r2d2_macros.xacro", 'mass="0.05"', 'mass="-0.05"')
+    reused, doc = _reused(repo)
+    assert not reused and doc["findings"] != before["findings"]
+    assert doc["findings"] == run(repo, "--no-cache")[1]["findings"]
+
+    # a new model in a folder discovery walks
+    _settle(repo)
+    (pkg / "urdf" / "extra.urdf").write_text(
+        '<robot name="extra"><link name="a"/><link name="b"/></robot>\n')
+    reused, doc = _reused(repo)
+    assert not reused and any(m["entry"].endswith("extra.urdf") for m in doc["models"])
+
+    # a mesh deleted
+    _settle(repo)
+    assert not _codes(run(repo)[1], "UL401")
+    (pkg / "meshes" / "l_finger_tip.stl").unlink()
+    reused, doc = _reused(repo)
+    assert not reused and _codes(doc, "UL401")
+
+    # a file a model looked for, and did not find, appears
+    (pkg / "urdf" / "wants.urdf.xacro").write_text(
+        '<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="later.xacro"/>\n  <link name="a"/>\n</robot>\n')
+    doc = _settle(repo)
+    assert [f for f in doc["findings"] if f["code"] == "UL003" and "wants" in f["file"]]
+    (pkg / "urdf" / "later.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>\n')
+    _age(pkg / "urdf" / "later.xacro")            # even with an old time stamp
+    reused, doc = _reused(repo)
+    assert not reused
+    assert not [f for f in doc["findings"] if f["code"] == "UL003" and "wants" in f["file"]]
+
+    # the configuration (and the command line) are part of what a memo is for
+    _settle(repo)
+    (repo / "pyproject.toml").write_text('[tool.urdf-lint]\nignore = ["UL401"]\n')
+    _age(repo / "pyproject.toml")
+    reused, doc = _reused(repo)
+    assert not reused and not _codes(doc, "UL401")
+    reused, doc = _reused(repo, "--select", "UL1")
+    assert not reused and {f["code"][:3] for f in doc["findings"]} <= {"UL1", "UL0"}
+
+
+def test_run_memo_is_not_written_for_inputs_edited_just_now(repo):
+    run(repo)
+    run(repo)          # every file is seconds old: no memo
+    assert not (repo / ".urdf_lint_cache" / "runs").exists() or \
+        not list((repo / ".urdf_lint_cache" / "runs").glob("*.json"))
+    assert not _reused(repo)[0]
+
+
+def test_forged_run_memo_is_ignored(repo):
+    pkg = repo / "r2d2_description"
+    run(repo)
+    _settle(repo)
+    edit(pkg / "urdf/r2d2_macros.xacro", 'mass="0.05"', 'mass="-0.05"')
+    _settle(repo)
+    [memo] = (repo / ".urdf_lint_cache" / "runs").glob("*.json")
+    mac, head, body = memo.read_text().split("\n")
+    rec = json.loads(body)
+    assert rec["findings"]
+    rec["findings"] = []
+    memo.write_text(mac + "\n" + head + "\n" + json.dumps(rec))
+    reused, doc = _reused(repo)
+    assert not reused and doc["findings"]

@@ -238,3 +238,71 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
     sh = subprocess.run(f"{' '.join(LINT)} check {broken} --no-cache | head -1",
                         shell=True, capture_output=True, text=True, cwd=tmp_path)
     assert sh.stdout.count("\n") == 1 and "Traceback" not in sh.stderr, sh.stderr
+
+
+# -- what a cached run loads ---------------------------------------------------------------------
+def test_the_catalogue_read_from_sources_matches_the_loaded_rules():
+    """The rule catalogue (no imports) says what importing every rule module says."""
+    import urdf_lint.registry as registry
+    saved = registry._RULES, registry._CATALOGUE
+    try:
+        registry._RULES = registry._CATALOGUE = None
+        read = registry.catalogue()
+        loaded = registry.load_rules()
+        assert list(read) == list(loaded) and len(read) >= 60
+        for code, r in loaded.items():
+            assert read[code] == registry.Entry(r.code, r.name, r.severity, r.scope, r.origin,
+                                                r.module), code
+    finally:
+        registry._RULES, registry._CATALOGUE = saved
+
+
+def test_every_dataclass_has_a_docstring():
+    """dataclasses imports ``inspect`` (~7 ms, deferred by urdf_lint.lazy) only to write a
+    docstring for a class that has none."""
+    import dataclasses
+    import importlib
+    import pkgutil
+    import urdf_lint
+    missing = []
+    for m in pkgutil.walk_packages(urdf_lint.__path__, "urdf_lint."):
+        if m.name.endswith("__main__"):
+            continue
+        try:
+            mod = importlib.import_module(m.name)
+        except ImportError:   # an optional dependency (rerun, yourdfpy) that is not installed
+            continue
+        for obj in vars(mod).values():
+            if isinstance(obj, type) and dataclasses.is_dataclass(obj) \
+                    and obj.__module__ == mod.__name__ \
+                    and (not obj.__doc__ or obj.__doc__.startswith(obj.__name__ + "(")):
+                missing.append(f"{mod.__name__}.{obj.__qualname__}")
+    assert not missing, missing
+
+
+WARM = """
+import json, os, sys
+from urdf_lint.cli import main
+sys.stdout = open(os.devnull, "w")
+rc = main(["check", ".", "--format", "json"])
+sys.stdout = sys.__stdout__
+loaded = lambda m: m in sys.modules and type(sys.modules[m]).__name__ != "_Deferred"
+print(rc, sorted(m for m in ("inspect", "lxml", "yaml", "xacro", "multiprocessing", "pkgutil")
+                 if loaded(m)),
+      len([m for m in sys.modules if m.startswith("urdf_lint.rules.ul")]))
+"""
+
+
+def test_a_cached_run_loads_no_rule_module_inspect_lxml_or_yaml(tmp_path):
+    import shutil
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
+    run = lambda: subprocess.run([sys.executable, "-c", WARM], cwd=tmp_path,  # noqa: E731
+                                 capture_output=True, text=True)
+    cold = run()
+    assert cold.returncode == 0, cold.stderr
+    warm = run()
+    rc, rest = warm.stdout.split(" ", 1)
+    assert rc == "0", warm.stdout + warm.stderr
+    loaded, rules = rest.rsplit(" ", 1)
+    assert loaded == "[]", warm.stdout
+    assert int(rules) < 10, warm.stdout   # engine codes only, not the 65 rule modules

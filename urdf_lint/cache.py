@@ -166,14 +166,17 @@ class Cache:
             rec = json.loads(blob)
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
-            for path, (stat, digest) in rec["deps"].items():
+            deps = rec["deps"]
+            for path, (stat, digest) in list(deps.items()):
                 now = seen.get(path, False)
                 if now is False:
                     now = seen[path] = stat_key(path)
                 if now is None:
                     return None
-                if now != stat and file_digest(path) != digest:
-                    return None
+                if now != stat:   # touched (a checkout, a copy): the same bytes will do
+                    if file_digest(path) != digest:
+                        return None
+                    deps[path] = [now, digest]   # stat taken before the bytes were hashed
             for path in rec.get("missing", []):
                 key = ("missing", path)
                 appeared = seen.get(key)
@@ -181,7 +184,9 @@ class Cache:
                     appeared = seen[key] = os.path.isfile(path)
                 if appeared:   # a file looked for (or a folder read as one) appeared
                     return None
-            return ModelReport.from_record(job, rec["result"])
+            report = ModelReport.from_record(job, rec["result"])
+            report.digests = deps   # what it read, as it is now (the run memo keeps it)
+            return report
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 

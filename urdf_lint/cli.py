@@ -534,6 +534,8 @@ def cmd_check(args) -> int:
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     from .fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
     result.findings = inside_paths(result.findings, args.paths)
+    if result.reused:
+        out.info("nothing changed since the last identical run: showing its result")
     if out.verbose:
         _list_models(result, out)
     from .emit import report_internal

@@ -77,14 +77,16 @@ class Discovery:
     fragments: dict
     graph: "IncludeGraph"
     generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
+    folders: list = field(default_factory=list)     # every folder the walk looked into
 
 
-def _candidates(paths, cfg):
-    """(file, the path it was found under) for every .urdf/.xacro under the paths."""
+def _candidates(paths, cfg, folders: list | None = None):
+    """(file, the path it was found under) for every .urdf/.xacro under the paths; the
+    folders walked are added to ``folders``."""
     seen = set()
     for p in paths:
         p = os.path.abspath(p)
-        for f in iter_files(Path(p), suffixes=(".urdf", ".xacro")):
+        for f in iter_files(Path(p), suffixes=(".urdf", ".xacro"), folders=folders):
             f = os.path.realpath(f) if not os.path.islink(f) else os.path.abspath(f)
             # an exclude does not apply below a path that is itself excluded and named explicitly
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
@@ -103,7 +105,8 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     otherwise it is linted only through the models including it. A file named explicitly or
     listed in config is always a model."""
     configured = {m.path: m for m in cfg.models}
-    found = list(_candidates(paths, cfg))
+    folders: list = []
+    found = list(_candidates(paths, cfg, folders))
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
     for spec in cfg.models:
         _check_args(spec, graph, cfg)
@@ -130,7 +133,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
         jobs.extend(_configured_jobs(spec))
-    return Discovery(jobs, fragments, graph, generated)
+    return Discovery(jobs, fragments, graph, generated, folders)
 
 
 def _detected_outputs(found, paths, configured) -> dict:

@@ -39,6 +39,13 @@ def _load(placeholder: types.ModuleType) -> types.ModuleType:
     return real
 
 
+def load(name: str) -> None:
+    """Import a deferred module now (a parent about to fork workers that will all use it)."""
+    module = sys.modules.get(name)
+    if isinstance(module, _Deferred):
+        _load(module)
+
+
 def defer(name: str) -> None:
     """Bind ``name`` to a placeholder, unless it is imported already or cannot be found."""
     if name in sys.modules:

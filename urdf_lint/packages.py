@@ -50,13 +50,17 @@ def package_name(package_xml: Path) -> str | None:
     return m.group(1).decode("utf-8", "replace") if m else None
 
 
-def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[str] | None = None):
-    """Walk ``top`` (skipping build/VCS/venv folders), yielding files that match."""
+def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[str] | None = None,
+               folders: list | None = None):
+    """Walk ``top`` (skipping build/VCS/venv folders), yielding files that match; each folder
+    looked into is added to ``folders`` when given."""
     top = Path(top)
     if top.is_file():
         yield top
         return
     for dirpath, dirnames, filenames in os.walk(top):
+        if folders is not None:
+            folders.append(dirpath)
         dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS and not d.startswith("."))
         for fn in sorted(filenames):
             if (names and fn in names) or (suffixes and fn.endswith(suffixes)):

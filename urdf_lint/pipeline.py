@@ -43,6 +43,7 @@ class CheckResult:
     fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
     gone: list = field(default_factory=list)         # deleted files no model reads any more
     generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
+    reused: bool = False                             # the last identical run's result (runcache)
 
 
 @dataclass
@@ -112,9 +113,18 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     a change can reach through the include graph); ``settings_overrides`` are set on the
     workers' settings (``diff --render``: the base's pictures come from its lint pass)."""
     policy = Policy.from_config(cfg)
+    settings = settings_for(cfg, resolver, cache.dir if cache else mesh_cache_dir, policy)
+    memo = None
+    if cache is not None and affected_by is None and not render_dir and select_jobs is None \
+            and not keep_models and not settings_overrides and not in_process:
+        # a plain run: the whole result of the last identical run, if nothing it read changed
+        from .runcache import RunMemo
+        memo = RunMemo(cache, paths, cfg, resolver, settings)
+        hit = memo.load()
+        if hit is not None:
+            return CheckResult(reused=True, **hit)
     found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
     jobs = found.jobs if select_jobs is None else select_jobs(found.jobs, found)
-    settings = settings_for(cfg, resolver, cache.dir if cache else mesh_cache_dir, policy)
     if keep_models:
         settings = dataclasses.replace(settings, keep_model=True)
     if settings_overrides:
@@ -150,6 +160,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
     out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    if memo is not None:
+        memo.store(out, results, found.folders)
     return out
 
 
@@ -168,9 +180,8 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
             todo.append(job)
     internal: list[str] = []
     if todo:
-        from .worker import process_job, run_jobs
-        import xacro  # noqa: F401 - import once in the parent, shared by the forked workers
-        from . import expansion  # noqa: F401
+        from .worker import preload, process_job, run_jobs
+        preload()   # what every job uses, imported once here and shared by the forked workers
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
             run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
         for n, (job, res) in enumerate(done, 1):

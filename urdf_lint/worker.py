@@ -214,6 +214,17 @@ def _limit_result(job: LintJob, message: str) -> ModelReport:
     return out
 
 
+def preload() -> None:
+    """Import in the parent what every lint job uses (the expansion, xacro with PyYAML, the
+    rules, lxml), so that forked workers share it instead of each importing it again (~80 ms
+    per worker; a run from the cache never gets here)."""
+    from . import lazy, lint, model  # noqa: F401
+    from .expansion import expand  # noqa: F401
+    from .registry import load_rules
+    load_rules()
+    lazy.load("yaml")
+
+
 _prestarted: "_Worker | None" = None
 
 

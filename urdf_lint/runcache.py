@@ -1,0 +1,167 @@
+"""The last result of a whole ``check`` run, reused when nothing it depends on changed.
+
+A warm run of a description repository finds every model unchanged: without this, it still
+walks the folders, looks up one cache entry per model, merges, suppresses and applies the
+policy again (~80 ms on the corpus). The run memo keeps the run's final result, and checks:
+
+* the key: urdf-lint's version, the working directory (messages name paths relative to it),
+  the paths, the whole configuration after the command line, the package roots and the
+  settings the workers would get (selected rules, options, ``env-allow`` values);
+* every input any model read (the stat the worker took before reading it), every file a
+  model looked for and did not find, and every folder discovery walked (a file added or
+  removed changes its folder's mtime).
+
+A run whose inputs or folders changed within the last seconds is not remembered (a coarse
+file-system clock could hide an edit made in the same tick), nor one with internal errors or
+results that depended on the machine (limits). The memo is signed like the cache entries.
+Plain ``check`` runs only: ``--changed-since``, the hook, ``--fix``, ``--render`` and ``diff``
+take the usual path.
+"""
+from __future__ import annotations
+
+import json
+import os
+import time
+from typing import TYPE_CHECKING
+
+from .findings import Problem
+from .hashing import blake2b, file_record, stat_key
+from .jobs import LintJob, ModelReport
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .cache import Cache
+
+FORMAT = 1
+RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
+
+
+class RunMemo:
+    def __init__(self, cache: "Cache", paths, cfg, resolver, settings):
+        from . import __version__
+        blob = json.dumps([__version__, FORMAT, os.getcwd(), [os.path.abspath(p) for p in paths],
+                           repr(cfg), resolver.to_dict(), settings.cache_key()],
+                          sort_keys=True, default=str)
+        key = blake2b(blob.encode(), digest_size=20).hexdigest()
+        self.cache = cache
+        self.path = os.path.join(cache.dir, "runs", key + ".json")
+
+    def load(self) -> dict | None:
+        """The fields of the last identical run's ``CheckResult``, or None."""
+        from .cache import _read_entry
+        if self.cache.refused:
+            return None
+        try:
+            data = _read_entry(self.path)
+            if data is None:
+                return None
+            mac, _, blob = data.partition(b"\n")
+            import hmac
+            if not hmac.compare_digest(mac, self.cache._mac_bytes(blob)):
+                return None
+            # what the result depends on first: a changed input stops before the result is read
+            head, _, body = blob.partition(b"\n")
+            rec = json.loads(head)
+            if rec.get("format") != FORMAT:
+                return None
+            for path, stat in rec["inputs"]:
+                if stat_key(path) != stat:
+                    return None
+            for path in rec["missing"]:
+                if os.path.isfile(path):   # (as the cache: a folder read as a file stays missing)
+                    return None
+            for path, mtime in rec["folders"]:
+                if _mtime(path) != mtime:
+                    return None
+            rec = json.loads(body)
+            return {"models": [_report(m) for m in rec["models"]],
+                    "skipped": [_report(m) for m in rec["skipped"]],
+                    "findings": [_problem(d) for d in rec["findings"]],
+                    "fragments": dict(rec["fragments"]), "generated": dict(rec["generated"])}
+        except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
+            return None
+
+    def store(self, out, results: list, folders: list) -> None:
+        """Remember ``out`` (a ``pipeline.CheckResult``) with what its ``results`` read."""
+        if self.cache.refused or out.internal or \
+                any(r.internal or not r.cacheable for r in results):
+            return
+        inputs: dict = {}
+        missing: set = set()
+        for r in results:
+            for d in r.deps:
+                if d not in inputs:
+                    rec = r.digests.get(d) or file_record(d)
+                    if rec is None:
+                        return   # an input vanished during the run
+                    inputs[d] = rec[0]
+            missing.update(r.missing)
+        seen = []
+        for f in folders:
+            m = _mtime(f)
+            if m is None:
+                return
+            seen.append((f, m))
+        now_ns = time.time_ns()
+        racy = int(RACY_S * 1e9)
+        if any(now_ns - stat[1] < racy for stat in inputs.values()) or \
+                any(now_ns - m < racy for _, m in seen):
+            return
+        _prune(os.path.dirname(self.path))
+        head = {"format": FORMAT, "inputs": sorted(inputs.items()), "missing": sorted(missing),
+                "folders": seen}
+        body = {"models": [_report_record(r) for r in out.models],
+                "skipped": [_report_record(r) for r in out.skipped],
+                "findings": [_problem_record(p) for p in out.findings],
+                "fragments": out.fragments, "generated": out.generated}
+        # two lines of JSON (json.dumps writes no raw newline), signed together
+        blob = (json.dumps(head) + "\n" + json.dumps(body)).encode("utf-8")
+        try:
+            self.cache._ensure()
+            os.makedirs(os.path.dirname(self.path), exist_ok=True)
+            from .atomic import atomic_write
+            atomic_write(self.path, self.cache._mac_bytes(blob) + b"\n" + blob)
+        except OSError:
+            pass
+
+
+KEEP = 8   # memos kept (one per distinct command line and config); the oldest go
+
+
+def _prune(folder: str) -> None:
+    try:
+        entries = sorted(os.scandir(folder), key=lambda e: e.stat().st_mtime_ns)
+    except OSError:
+        return
+    for e in entries[:max(0, len(entries) - KEEP + 1)]:
+        try:
+            os.remove(e.path)
+        except OSError:
+            pass
+
+
+def _mtime(path: str) -> int | None:
+    try:
+        return os.stat(path).st_mtime_ns
+    except OSError:
+        return None
+
+
+def _report_record(r: ModelReport) -> dict:
+    return {"entry": r.entry, "args": r.args, "record": r.to_record()}
+
+
+def _report(d: dict) -> ModelReport:
+    r = ModelReport.from_record(LintJob(d["entry"], dict(d["args"])), d["record"])
+    r.cached = True
+    return r
+
+
+def _problem_record(p: Problem) -> dict:
+    d = p.to_record()
+    d.update(name=p.name, severity=p.severity, models=list(p.models))
+    return d
+
+
+def _problem(d: dict) -> Problem:
+    p = Problem.from_record(d)
+    return p.replace(name=d["name"], severity=d["severity"], models=tuple(d["models"]))
