@@ -182,13 +182,17 @@ import json as again
 print(again.loads("[2]"), placeholder.JSONDecodeError is again.JSONDecodeError)
 lazy.defer("no_such_module_anywhere")
 print("no_such_module_anywhere" in sys.modules)
+lazy.defer("zipfile")                          # a dunder attribute loads it too (as PyYAML's
+import zipfile                                 # __with_libyaml__ must)
+print(getattr(zipfile, "__all__", None) is not None, type(sys.modules["zipfile"]).__name__)
 """
 
 
 def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
     p = subprocess.run([sys.executable, "-c", LAZY], capture_output=True, text=True, cwd=REPO)
     assert p.returncode == 0, p.stderr
-    assert p.stdout.split("\n")[:4] == ["_Deferred False", '{"a": 1} True', "[2] True", "False"]
+    assert p.stdout.split("\n")[:5] == ["_Deferred False", '{"a": 1} True', "[2] True", "False",
+                                         "True module"]
 
 
 EXPAND_MODULES = """

@@ -18,8 +18,11 @@ import types
 
 class _Deferred(types.ModuleType):
     def __getattr__(self, attr: str):
-        # called only for names not (yet) in the placeholder's namespace
-        if attr.startswith("__") and attr.endswith("__"):
+        # called only for names not (yet) in the placeholder's namespace; ``__path__`` is what
+        # ``from NAME import x`` probes on a module that is not a package (it has none: the
+        # placeholder of a package has its own). Any other name loads the module, dunders too
+        # (``yaml.__with_libyaml__`` must say what the real module says).
+        if attr == "__path__":
             raise AttributeError(attr)
         real = _load(self)
         return getattr(real, attr)
