@@ -115,12 +115,14 @@ def corpus_config(path: Path, models) -> Path:
 
 
 def ab(label, models, pmap, paths, extra, base, repeat, findings_dir):
-    """Stock, this tree and ``base`` interleaved: (min, median) wall ratio to stock of each."""
+    """Stock, this tree and ``base`` interleaved (which tree goes first alternates): the min and
+    median wall ratio to stock of each."""
     ratios: dict = {"this": [], "base": []}
     docs: dict = {}
-    for _ in range(repeat):
+    for i in range(repeat):
         sw, _, _ = stock_all(models, pmap)
-        for side, exe in (("this", LINT), ("base", base)):
+        sides = (("this", LINT), ("base", base))
+        for side, exe in sides if i % 2 == 0 else sides[::-1]:   # no side always goes first
             w, _, docs[side] = lint(paths, extra, exe=exe)
             ratios[side].append(w / sw)
     same = docs["this"]["findings"] == docs["base"]["findings"]
