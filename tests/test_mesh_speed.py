@@ -285,6 +285,24 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
             for q in queues] == [["other_description"], ["small_description"]]
 
 
+def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
+    from urdf_lint import worker
+    if worker._procs_running() is None:
+        pytest.skip("no /proc/stat here")
+    # the 1-minute load average says 1.6 cores are busy (the previous command of a script)
+    monkeypatch.setattr(os, "getloadavg", lambda: (1.6, 1.0, 0.5))
+    monkeypatch.setattr(worker, "_procs_running", lambda: 1)          # only this process now
+    assert worker.busy_cores() == 0
+    monkeypatch.setattr(worker, "_procs_running", lambda: 2)          # one other running now
+    assert worker.busy_cores() == 1
+    monkeypatch.setattr(worker, "_procs_running", lambda: 9)          # a short spike: the average
+    assert worker.busy_cores() == 1.6
+    monkeypatch.setattr(worker, "_procs_running", lambda: None)       # no /proc: the average
+    assert worker.busy_cores() == 1.6
+    monkeypatch.undo()
+    assert worker._procs_running() >= 1                               # this test is running
+
+
 def test_an_idle_worker_takes_from_the_far_end_of_another_block():
     from collections import deque
     from urdf_lint import worker

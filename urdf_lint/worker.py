@@ -329,13 +329,35 @@ def default_workers(blocks: list[Block], cores: int, load: float | None = None,
     total = sum(b.cost for b in blocks)
     jobs = sum(len(b.jobs) for b in blocks)
     if load is None:
-        try:
-            load = os.getloadavg()[0]
-        except (OSError, AttributeError):
-            load = 0.0
+        load = busy_cores()
     idle = max(1, cores - int(load))   # only cores kept wholly busy count as taken
     n = min(cores, idle, jobs, max(1, int(total / (2 * worker_cost))))
     return max(1, n)
+
+
+def busy_cores() -> float:
+    """Cores other processes keep busy: the 1-minute load average, but no more than the
+    processes running right now (less this one). The average alone still counts a burst that
+    just ended (a build step, the previous command of a script) for a minute after it, and
+    made a run on an idle machine use one worker."""
+    try:
+        load = os.getloadavg()[0]
+    except (OSError, AttributeError):
+        return 0.0
+    running = _procs_running()
+    return load if running is None else min(load, max(0, running - 1))
+
+
+def _procs_running() -> int | None:
+    """Processes running or runnable now, this one included (Linux), else None."""
+    try:
+        with open("/proc/stat", "rb") as f:
+            for line in f:
+                if line.startswith(b"procs_running "):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
 
 
 def assign(blocks: list[Block], n: int) -> list[deque]:
