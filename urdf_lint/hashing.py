@@ -62,6 +62,34 @@ def memo_digest(path: str) -> tuple[list, str] | None:
     return [st.st_size, st.st_mtime_ns], digest
 
 
+def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:
+    """(digest, bytes) of a file hashed for the first time in this process and at most
+    ``max_bytes`` long: it is read once, for the hash and for the caller (a mesh reader), and
+    the digest is remembered like :func:`memo_digest`'s. A file hashed before, or a larger
+    one: (digest, None). None when it cannot be read."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    key = (path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+    digest = _memo.get(key)
+    if digest is None and _st.S_ISREG(st.st_mode) and st.st_size <= max_bytes:
+        try:
+            fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+            with os.fdopen(fd, "rb") as f:
+                data = f.read(max_bytes + 1)
+        except OSError:
+            return None
+        if len(data) == st.st_size:   # else it changed while read: hashed again below
+            digest = blake2b(data, digest_size=16).hexdigest()
+            if len(_memo) >= MAX_MEMO:
+                _memo.clear()
+            _memo[key] = digest
+            return digest, data
+    got = memo_digest(path)
+    return None if got is None else (got[1], None)
+
+
 def stat_key(path) -> list | None:
     try:
         st = os.stat(path)

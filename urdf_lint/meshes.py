@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .hashing import memo_digest
+from .hashing import memo_read
 from .packages import PackageNotFound
 
 
@@ -239,8 +239,7 @@ def _scan_texture_names(path: str) -> dict:
     the ``mtllib`` names of an OBJ."""
     refs: list[str] = []
     if path.lower().endswith(".dae"):
-        with open(path, "rb") as f:
-            data = f.read()
+        data = _file_bytes(path)
         for m in _DAE_IMAGE.finditer(data):
             ref = m.group(1).decode("utf-8", "replace").strip()
             if ref.startswith("file://"):
@@ -268,11 +267,34 @@ def _version(path: str):
 
 def _digest(path: str) -> str:
     """Content hash of a file, computed once per file version in this process (shared with
-    the worker's record of what a model read, :func:`hashing.memo_digest`)."""
-    got = memo_digest(path)
+    the worker's record of what a model read, :func:`hashing.memo_digest`). A mesh up to
+    ``READ_WHOLE_BYTES`` hashed for the first time is read once: its bytes are kept for the
+    readers and scans that follow (:func:`_file_bytes`)."""
+    got = memo_read(path, READ_WHOLE_BYTES)
     if got is None:
         raise OSError(f"cannot read {path}")
-    return got[1]
+    digest, data = got
+    if data is not None:
+        _kept_bytes[digest] = data
+        _kept_bytes.move_to_end(digest)
+        total = sum(map(len, _kept_bytes.values()))
+        while total > MAX_KEPT_BYTES and len(_kept_bytes) > 1:
+            total -= len(_kept_bytes.popitem(last=False)[1])
+    return digest
+
+
+READ_WHOLE_BYTES = 32 << 20       # meshes up to this size: hashed and parsed from one read
+MAX_KEPT_BYTES = 64 << 20         # the bytes kept between the hash, the facts and the scans
+_kept_bytes: "OrderedDict[str, bytes]" = OrderedDict()
+
+
+def _file_bytes(path: str) -> bytes:
+    """The bytes of a mesh file: those read for its hash when still kept, else read now."""
+    data = _kept_bytes.get(_digest(path))
+    if data is not None:
+        return data
+    with open(path, "rb") as f:
+        return f.read()
 
 
 def _quiet_loggers():
@@ -378,12 +400,19 @@ def dae_unit(path: str) -> float:
     """The metres-per-unit a COLLADA file declares in its <asset> (1.0 when absent)."""
     try:
         with open(path, "rb") as f:
-            head = f.read(8192)
-        m = _DAE_UNIT.search(head)
-        v = float(m.group(1)) if m else 1.0
-        return v if math.isfinite(v) and v > 0 else 1.0
-    except (OSError, ValueError):
+            return _unit_of(f.read(8192))
+    except OSError:
         return 1.0
+
+
+def _unit_of(data: bytes) -> float:
+    """:func:`dae_unit` of a COLLADA document's bytes (its first 8 KiB)."""
+    m = _DAE_UNIT.search(data[:8192])
+    try:
+        v = float(m.group(1)) if m else 1.0
+    except ValueError:
+        return 1.0
+    return v if math.isfinite(v) and v > 0 else 1.0
 
 
 _loaded: "OrderedDict[str, Any]" = OrderedDict()
@@ -528,12 +557,21 @@ def _read_arrays(path: str):
             list(m.metadata.get("broken_refs", ())))
 
 
-def _scene_arrays(path: str, is_dae: bool):
+def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
     """The arrays of ``load_mesh`` for a COLLADA or OBJ file through ``load_scene``, or None
-    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that)."""
+    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that).
+    A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
+    numbers, without trimesh)."""
+    from . import meshio
+    if is_dae and lean:
+        data = _file_bytes(path)
+        got = meshio.collada_arrays(data)   # the same numbers without trimesh, when it can
+        if got is not None:
+            unit = _unit_of(data)
+            v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
+            return v, got[1], []
     _quiet_loggers()
     import trimesh
-    from . import meshio
     if not is_dae:
         return (*meshio.scene_arrays(trimesh.load_scene(path, process=False)), [])
     try:

@@ -106,10 +106,12 @@ def scene_arrays(scene):
 
 
 def scale_points(v, unit: float):
-    """``Trimesh.apply_scale(unit)`` on vertices (the same arithmetic)."""
-    from trimesh import transformations
-    return transformations.transform_points(v, matrix=transformations.scale_and_translate(
-        scale=unit))
+    """``Trimesh.apply_scale(unit)`` on vertices: :func:`transform_points` by
+    ``trimesh.transformations.scale_and_translate(scale=unit)`` (the same arithmetic)."""
+    m = np.eye(4)
+    if np.any(unit != 1):
+        m[:3, :3] *= unit
+    return transform_points(v, m)
 
 
 # -- mass properties over chunks ---------------------------------------------------------------
@@ -173,3 +175,186 @@ def edge_codes(tris):
         rev = (b * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (a * np.uint64(0x165667B19E3779F9) +
                                                      np.uint64(0x27D4EB2F165667C5))
     return code.view(np.int64), rev.view(np.int64)
+
+
+# -- COLLADA without trimesh -------------------------------------------------------------------
+_EYE4 = np.eye(4)
+_EYE3 = np.eye(3)
+MERGE_DIGITS = 8        # trimesh's tol.merge (1e-8) as decimal digits
+NORMAL_DIGITS = 2       # trimesh.grouping.merge_vertices' digits_norm
+UV_DIGITS = 4           # ... and digits_uv
+
+
+def collada_arrays(data: bytes):
+    """(vertices float64 (n, 3), faces int64 (m, 3)) of a COLLADA document before its unit:
+    the numbers ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without
+    importing trimesh, decoding textures or building materials.
+
+    The document is read by pycollada (trimesh's parser, with the errors trimesh ignores) and
+    assembled as ``trimesh.exchange.dae`` assembles it: every triangle set (a polylist
+    fanned) of every ``<instance_geometry>`` is one mesh with three vertices per triangle,
+    placed by the product of its nodes' matrices. Each mesh is then processed like the
+    ``Trimesh`` trimesh builds for it (``load_scene`` does not pass ``process=False`` on to
+    the meshes of a scene): vertices equal to 8 decimals, with their UV (4 decimals, when the
+    set has a bound material) and normal (2 decimals), merged into the first of them.
+
+    None whenever trimesh might do otherwise: a geometry lost to a broken reference (fewer
+    sets than ``<instance_geometry>`` elements), an empty set, a non-finite vertex, vertex
+    colours, a material trimesh cannot convert, an index out of range, any error. The caller
+    then loads the file through trimesh, as before."""
+    import io
+    import collada
+    from collada import common
+    ignore = [common.DaeError, common.DaeIncompleteError, common.DaeMalformedError,
+              common.DaeBrokenRefError, common.DaeUnsupportedError]
+    try:
+        c = collada.Collada(io.BytesIO(data), ignore=ignore)
+        if c.scene is None or not all(_plain_effect(m.effect) for m in c.materials):
+            return None
+        materials = {m.id for m in c.materials}
+        parts: list = []
+        for node in c.scene.nodes:
+            if not _collada_node(node, _EYE4, parts, materials):
+                return None
+        if not parts or len(parts) < data.count(b"<instance_geometry"):
+            return None
+        verts, faces, offset = [], [], 0
+        for (v, f), matrix in parts:
+            matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
+            if matrix is None:
+                return None
+            if not _allclose(matrix, _EYE4, 1e-8):
+                v = transform_points(v, matrix)
+                if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
+                        np.linalg.det(matrix[:3, :3]) < 0.0:
+                    f = np.fliplr(f)
+            verts.append(v)
+            faces.append(f + offset)
+            offset += len(v)
+    except Exception:  # noqa: BLE001 - trimesh decides (and says what is wrong)
+        return None
+    return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
+
+
+def _plain_effect(effect) -> bool:
+    """Whether trimesh turns this effect into a material without failing (colours of four
+    components; a texture it cannot load is only logged)."""
+    from collada.material import Map
+    for value in (effect.diffuse, effect.transparent):
+        if value is not None and not isinstance(value, Map) and len(value) != 4:
+            return False
+    return effect.emission is None or isinstance(effect.emission, Map) or \
+        len(effect.emission) >= 3
+
+
+def _collada_node(node, parent, parts, materials) -> bool:
+    """``trimesh.exchange.dae._parse_node`` for the geometry: ((vertices, faces) merged, matrix)
+    of each triangle set under ``node`` appended to ``parts``; False when trimesh might fail
+    or differ."""
+    from collada import polylist, scene, triangleset
+    if isinstance(node, scene.GeometryNode):
+        symbols = set()
+        for mn in node.materials:
+            if mn.target is None or mn.target.id not in materials:
+                return False    # trimesh would convert the material itself
+            symbols.add(mn.symbol)
+        for prim in node.geometry.primitives:
+            if isinstance(prim, polylist.Polylist):
+                prim = prim.triangleset()
+            if not isinstance(prim, triangleset.TriangleSet):
+                continue
+            vertex = prim.vertex
+            if vertex is None:
+                continue
+            index = prim.vertex_index
+            if not len(index) or np.ndim(vertex) != 2 or np.shape(vertex)[1] != 3 \
+                    or not _in_range(index, len(vertex)):
+                return False
+            if "COLOR" in prim.sources and len(prim.sources["COLOR"]) > 0:
+                return False    # vertex colours: trimesh checks their shape
+            n = len(index) * 3
+            normals = uv = None
+            if prim.normal is not None:
+                if np.ndim(prim.normal) != 2 or np.shape(prim.normal)[1] != 3 or \
+                        not _in_range(prim.normal_index, len(prim.normal)):
+                    return False
+                normals = prim.normal[prim.normal_index].reshape(-1, 3)
+            if prim.material in symbols and len(prim.texcoordset) > 0:
+                tc, ti = prim.texcoordset[0], prim.texcoord_indexset[0]
+                if np.ndim(tc) != 2 or np.shape(tc)[1] != 2 or not _in_range(ti, len(tc)):
+                    return False
+                uv = tc[ti].reshape(-1, 2)
+            merged = _merge(vertex[index].reshape(n, 3), normals, uv)
+            if merged is None:
+                return False
+            parts.append((merged, parent))
+    elif isinstance(node, scene.Node):
+        if node.children is not None:
+            for child in node.children:
+                if not _collada_node(child, np.dot(parent, node.matrix), parts, materials):
+                    return False
+    return True
+
+
+def _merge(vertices, normals, uv):
+    """(vertices, faces) of the triangle soup ``vertices`` after ``Trimesh.process()``: rows
+    equal to trimesh's digits (position, then UV and normal when given for every vertex)
+    merged into their first occurrence, faces renumbered (``grouping.merge_vertices`` and
+    ``unique_ordered``; the grouping does not depend on how a row is encoded for sorting).
+    None for a non-finite vertex (trimesh would drop faces first)."""
+    v = np.asarray(vertices, dtype=np.float64)
+    if not np.isfinite(v).all():
+        return None
+    stacked = [v * (10 ** MERGE_DIGITS)]
+    if uv is not None and len(uv) == len(v):
+        stacked.append(np.asarray(uv, dtype=np.float64) * (10 ** UV_DIGITS))
+    if normals is not None:
+        normals = np.asarray(normals, dtype=np.float64)
+        if normals.shape == v.shape:
+            stacked.append(normals * (10 ** NORMAL_DIGITS))
+    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
+    rows = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
+    _, index, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    order = index.argsort()
+    faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
+    return v[index[order]], faces
+
+
+def _fix_rigid(matrix, max_deviance: float = 1e-5):
+    """What trimesh's scene graph returns for a node's matrix (``SceneGraph.get`` with its
+    default ``repair_rigid``: ``transformations.fix_rigid``, a rotation off by accumulated
+    rounding restored by SVD); None where trimesh's own check would fail."""
+    check = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - _EYE3).max()
+    if 1e-13 < check < max_deviance:
+        u, _, vt = np.linalg.svd(matrix[:3, :3])
+        repaired = np.eye(4)
+        repaired[:3, :3] = np.dot(u, vt)
+        repaired[:3, 3] = matrix[:3, 3]
+        return repaired if np.allclose(repaired, matrix, atol=max_deviance) else None
+    return matrix
+
+
+def _in_range(index, n: int) -> bool:
+    index = np.asarray(index)
+    return index.size == 0 or (int(index.min()) >= -n and int(index.max()) < n)
+
+
+def _allclose(a, b, atol: float) -> bool:
+    """``trimesh.util.allclose`` (the peak-to-peak of the difference)."""
+    return bool(float(np.ptp(a - b)) < atol)
+
+
+_IDENTITY = np.eye(4)
+
+
+def transform_points(points, matrix):
+    """``trimesh.transformations.transform_points`` (the same arithmetic, without trimesh)."""
+    points = np.asanyarray(points, dtype=np.float64)
+    if len(points) == 0 or matrix is None:
+        return points.copy()
+    matrix = np.asanyarray(matrix, dtype=np.float64)
+    count, dim = points.shape
+    if np.abs(matrix - _IDENTITY[: dim + 1, : dim + 1]).max() < 1e-8:
+        return np.ascontiguousarray(points.copy())
+    stack = np.column_stack((points, np.ones(count)))
+    return np.dot(matrix, stack.T).T[:, :dim]
