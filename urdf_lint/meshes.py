@@ -467,9 +467,9 @@ def _measure(path: str) -> dict:
             return _stl_facts(path, n)
         v, f, broken = _arrays(path)
         import numpy as np
-        finite = bool(np.isfinite(v).all()) if len(v) else True
-        bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
-            if len(v) and finite else None
+        lo, hi = meshio.bounds(v) if len(v) else (None, None)
+        finite = bool(np.isfinite(lo).all() and np.isfinite(hi).all()) if len(v) else True
+        bounds = [list(map(float, lo)), list(map(float, hi))] if len(v) and finite else None
         return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(f)),
                 "finite": finite, "bounds": bounds, "broken_refs": list(broken)}
     except (PermissionError, MemoryError) as e:
@@ -490,14 +490,14 @@ def _stl_facts(path: str, n: int) -> dict:
     import numpy as np
     from . import meshio
     finite, lo, hi = True, None, None
-    for tris in meshio.iter_binary_stl(path, STL_CHUNK):
-        v = tris.reshape(-1, 3)
-        if finite and not np.isfinite(v).all():
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK, _kept_bytes.get(_digest(path))):
+        # a NaN makes its column's minimum NaN, an infinity a minimum or maximum infinite
+        clo, chi = meshio.bounds(tris.reshape(-1, 3))
+        if not (np.isfinite(clo).all() and np.isfinite(chi).all()):
             finite = False
-        if finite:
-            clo, chi = v.min(axis=0), v.max(axis=0)
-            lo = clo if lo is None else np.minimum(lo, clo)
-            hi = chi if hi is None else np.maximum(hi, chi)
+            break
+        lo = clo if lo is None else np.minimum(lo, clo)
+        hi = chi if hi is None else np.maximum(hi, chi)
     bounds = [list(map(float, lo)), list(map(float, hi))] \
         if n and finite and lo is not None and hi is not None else None
     return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
@@ -541,7 +541,8 @@ def _read_arrays(path: str):
     if low.endswith(".stl"):
         n = meshio.binary_stl_triangles(path)
         if n is not None:
-            tris = np.concatenate(list(meshio.iter_binary_stl(path))) if n else \
+            tris = np.concatenate(list(meshio.iter_binary_stl(
+                path, data=_kept_bytes.get(_digest(path))))) if n else \
                 np.zeros((0, 3, 3), dtype=np.float32)
             v = tris.reshape(-1, 3).astype(np.float64)
             return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3), []
