@@ -684,7 +684,7 @@ def _mass_properties(mesh) -> dict:
 
 def _mass_arrays(v, f) -> dict:
     import numpy as np
-    from trimesh.triangles import mass_properties
+    from .meshio import mass_properties
     if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
         return {"ok": False}
     hull = not _closed(v, f)
@@ -696,14 +696,15 @@ def _mass_arrays(v, f) -> dict:
         tris = np.asarray(h.vertices)[np.asarray(h.faces)]
     else:
         tris = v[f]
-    props = mass_properties(tris, density=1.0)
-    vol = float(props["volume"])
+    with np.errstate(divide="ignore", invalid="ignore"):   # (no volume: judged below)
+        volume, com, inertia = mass_properties(tris)
+    vol = float(volume)
     if not math.isfinite(vol) or abs(vol) < 1e-15:
         return {"ok": False}
     sign = 1.0 if vol > 0 else -1.0      # inside-out winding: every moment flips sign
     vol *= sign
-    com = np.asarray(props["center_mass"], dtype=float)
-    inertia = sign * np.asarray(props["inertia"], dtype=float)   # about com, density 1
+    com = np.asarray(com, dtype=float)
+    inertia = sign * np.asarray(inertia, dtype=float)   # about com, density 1
     s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
     second = s_com + vol * np.outer(com, com)
     return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
@@ -714,10 +715,8 @@ def _closed(v, f) -> bool:
     """Whether the triangles bound a volume: with coincident vertices merged, every directed
     edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
     building a processed trimesh.Trimesh for it."""
-    import numpy as np
-    from trimesh.grouping import unique_rows
-    _, inv = unique_rows(v, digits=8)      # what trimesh's merge_vertices does
-    return _closed_faces(np.asarray(inv).reshape(-1)[f])
+    from .meshio import merged_ids
+    return _closed_faces(merged_ids(v)[f])     # vertices merged as trimesh's unique_rows does
 
 
 def _closed_faces(ff) -> bool:
@@ -807,14 +806,15 @@ def _closed_codes(codes, revs) -> bool:
 
 
 def _convex_hull(points):
-    """The convex hull of points as a trimesh.Trimesh, with manifold3d (a 4 MB wheel that
-    imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to import)."""
+    """The convex hull of points (``.vertices``, ``.faces``), with manifold3d (a 4 MB wheel
+    that imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to
+    import)."""
+    import types
     import manifold3d
     import numpy as np
-    import trimesh
     m = manifold3d.Manifold.hull_points(np.ascontiguousarray(points, dtype=np.float64)).to_mesh()
     verts = np.asarray(m.vert_properties, dtype=float)[:, :3]
     faces = np.asarray(m.tri_verts, dtype=np.int64)
     if len(faces) < 4:
         raise ValueError("degenerate hull")
-    return trimesh.Trimesh(verts, faces, process=False)
+    return types.SimpleNamespace(vertices=verts, faces=faces)

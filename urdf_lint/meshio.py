@@ -155,6 +155,55 @@ def volume_integrals(tris) -> np.ndarray:
     return out / _DIVISORS
 
 
+def mass_properties(triangles):
+    """(volume, center of mass, inertia about it) of closed triangles at density 1:
+    ``trimesh.triangles.mass_properties`` to the last bit (the same operations in the same
+    order, its cross product of (p1 - p0) and (p2 - p1) included), without importing trimesh."""
+    t = np.asanyarray(triangles, dtype=np.float64)
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError("Triangles must be (n, 3, 3)!")
+    vectors = t[:, 1:, :] - t[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    p0, p1, p2 = t[:, 0, :], t[:, 1, :], t[:, 2, :]
+    f1 = p0 + p1 + p2
+    f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
+    f3 = (p0 ** 3) + (p0 ** 2) * p1 + p0 * (p1 ** 2) + (p1 ** 3) + (p2 * f2)
+    g0 = f2 + (p0 + f1) * p0
+    g1 = f2 + (p1 + f1) * p1
+    g2 = f2 + (p2 + f1) * p2
+    integral = np.zeros((10, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integral[4:7] = (crosses * f3).T
+    for i in range(3):
+        j = np.mod(i + 1, 3)
+        integral[i + 7] = crosses[:, i] * ((t[:, 0, j] * g0[:, i]) + (t[:, 1, j] * g1[:, i])
+                                           + (t[:, 2, j] * g2[:, i]))
+    integrated = integral.sum(axis=1) / _DIVISORS
+    volume = integrated[0]
+    com = integrated[1:4] / volume
+    inertia = np.zeros((3, 3))
+    inertia[0, 0] = integrated[5] + integrated[6] - (volume * (com[[1, 2]] ** 2).sum())
+    inertia[1, 1] = integrated[4] + integrated[6] - (volume * (com[[0, 2]] ** 2).sum())
+    inertia[2, 2] = integrated[4] + integrated[5] - (volume * (com[[0, 1]] ** 2).sum())
+    inertia[0, 1] = -(integrated[7] - (volume * np.prod(com[[0, 1]])))
+    inertia[1, 2] = -(integrated[8] - (volume * np.prod(com[[1, 2]])))
+    inertia[0, 2] = -(integrated[9] - (volume * np.prod(com[[0, 2]])))
+    inertia[2, 0] = inertia[0, 2]
+    inertia[2, 1] = inertia[1, 2]
+    inertia[1, 0] = inertia[0, 1]
+    return volume, com, inertia * 1.0
+
+
+def merged_ids(points) -> np.ndarray:
+    """One id per point, equal for points equal to 8 decimals (the grouping of
+    ``trimesh.grouping.unique_rows(points, digits=8)``: its rounding, any injective row key)."""
+    q = np.ascontiguousarray(np.round((np.asarray(points, dtype=np.float64) * 10 ** 8) - 1e-6)
+                             .astype(np.int64))
+    rows = q.view(np.dtype((np.void, q.dtype.itemsize * q.shape[1]))).reshape(-1)
+    return np.unique(rows, return_inverse=True)[1].reshape(-1)
+
+
 def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
     """(volume, first moment ∫r dV, second moment ∫r rᵀ dV) from summed integrals."""
     vol = float(integrated[0])
