@@ -13,10 +13,11 @@ lints one valid 5M-triangle binary STL (250 MB) and reports its time and peak me
 Prints a table of targets vs measured; the exit code is 0 (a benchmark reports, it does not
 gate).
 
-``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``) measures one
-change: stock, this tree and the other tree are run interleaved (stock, this, base, stock,
-...), and the wall ratios to stock of both are printed (min and median), with whether their
-findings are identical. ``--findings DIR`` keeps each side's findings there as JSON.
+``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
+measures changes: stock, this tree and the other trees are run interleaved (stock, then the
+trees in an order that rotates with each repeat), and the wall ratio to stock of each is
+printed (min and median), with whether its findings are this tree's. ``--findings DIR`` keeps
+each side's findings there as JSON.
 """
 from __future__ import annotations
 
@@ -114,27 +115,34 @@ def corpus_config(path: Path, models) -> Path:
     return path
 
 
-def ab(label, models, pmap, paths, extra, base, repeat, findings_dir):
-    """Stock, this tree and ``base`` interleaved (which tree goes first alternates): the min and
-    median wall ratio to stock of each."""
-    ratios: dict = {"this": [], "base": []}
+def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
+    """Stock, this tree and each of ``bases`` interleaved (the order of the trees rotates from
+    one repeat to the next): the min and median wall ratio to stock of each."""
+    sides = [("this", LINT)] + [(_side_name(b), b) for b in bases]
+    ratios: dict = {name: [] for name, _ in sides}
     docs: dict = {}
     for i in range(repeat):
         sw, _, _ = stock_all(models, pmap)
-        sides = (("this", LINT), ("base", base))
-        for side, exe in sides if i % 2 == 0 else sides[::-1]:   # no side always goes first
+        k = i % len(sides)
+        for side, exe in sides[k:] + sides[:k]:   # no tree always goes first
             w, _, docs[side] = lint(paths, extra, exe=exe)
             ratios[side].append(w / sw)
-    same = docs["this"]["findings"] == docs["base"]["findings"]
-    for side in ("this", "base"):
+    for side, _ in sides:
         r = ratios[side]
-        print(f"  {label} {side:4s}: wall / stock min {min(r):.2f} median "
-              f"{statistics.median(r):.2f}  ({len(docs[side]['findings'])} findings)")
+        same = docs[side]["findings"] == docs["this"]["findings"]
+        print(f"  {label} {side:>14s}: wall / stock min {min(r):.2f} median "
+              f"{statistics.median(r):.2f}  ({len(docs[side]['findings'])} findings"
+              f"{'' if same else ', NOT the same as this tree'})")
         if findings_dir:
             Path(findings_dir).mkdir(parents=True, exist_ok=True)
             Path(findings_dir, f"{label}-{side}.json").write_text(
                 json.dumps(docs[side]["findings"], indent=1))
-    print(f"  {label}: findings identical: {same}")
+
+
+def _side_name(exe: str) -> str:
+    """A tree's name: the folder holding ``.venv/bin/urdf-lint`` (or the script)."""
+    p = Path(exe).resolve()
+    return (p.parents[2] if p.parent.name == "bin" else p.parent).name
 
 
 def row(rows, what, target, measured, ok):
@@ -151,7 +159,8 @@ def main():
     ap.add_argument("--no-heavy", action="store_true")
     ap.add_argument("--huge", action="store_true", help="also a 5M-triangle (250 MB) STL")
     ap.add_argument("--keep", action="store_true")
-    ap.add_argument("--base", help="another tree's urdf-lint: an interleaved A/B of one change")
+    ap.add_argument("--base", action="append", default=[],
+                    help="another tree's urdf-lint (repeatable): an interleaved A/B of changes")
     ap.add_argument("--findings", help="keep the findings of each side here (JSON)")
     a = ap.parse_args()
     from heavy_repo import generate
