@@ -298,6 +298,24 @@ def test_stl_and_collada_facts_import_no_trimesh(tmp_path):
     assert json.loads(out.stdout) == ["collada"]
 
 
+def test_a_collada_file_is_read_once_for_hash_facts_volume_and_textures(tmp_path, fresh,
+                                                                          monkeypatch):
+    import builtins
+    dae = str(_generated_daes(tmp_path)["nested.dae"])
+    fresh.set_confinement(None, None)
+    opened = []
+    real_open, real_os_open = builtins.open, os.open
+    monkeypatch.setattr(builtins, "open", lambda f, *a, **k: (opened.append(str(f)),
+                                                              real_open(f, *a, **k))[1])
+    monkeypatch.setattr(os, "open", lambda f, *a, **k: (opened.append(str(f)),
+                                                        real_os_open(f, *a, **k))[1])
+    facts, mass = fresh.mesh_facts(dae), fresh.mass_facts(dae)
+    refs = fresh.texture_refs(dae)
+    monkeypatch.undo()
+    assert facts["ok"] and mass["ok"] and refs == [str(tmp_path / "skin.png")]
+    assert opened.count(dae) == 1, opened
+
+
 def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
     from urdf_lint import worker
     lean = [worker.Block("a", [], 1.0, frozenset({".stl", ".dae"}))]
