@@ -141,16 +141,18 @@ def _geometry(gid, v, polys, with_uv=True, kind="triangles", material="m"):
     ins = "".join(f'<input semantic="{s}" source="{src}" offset="{k}"{tc_set if s == "TEXCOORD" else ""}/>'
                   for k, (s, src) in enumerate(inputs))
     vc = f"<vcount>{' '.join(str(len(q)) for q in polys)}</vcount>" if kind == "polylist" else ""
-    return f"""<geometry id="{gid}"><mesh>
-  <source id="{gid}-p"><float_array id="{gid}-pa" count="{v.size}">{fl(v)}</float_array><technique_common>
-    <accessor source="#{gid}-pa" count="{len(v)}" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
-  <source id="{gid}-n"><float_array id="{gid}-na" count="{nrm.size}">{fl(nrm)}</float_array><technique_common>
-    <accessor source="#{gid}-na" count="{len(v)}" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
-  <source id="{gid}-uv"><float_array id="{gid}-uva" count="{uv.size}">{fl(uv)}</float_array><technique_common>
-    <accessor source="#{gid}-uva" count="{len(v)}" stride="2"><param name="S" type="float"/><param name="T" type="float"/></accessor></technique_common></source>
-  <vertices id="{gid}-v"><input semantic="POSITION" source="#{gid}-p"/></vertices>
-  <{kind} material="{material}" count="{len(polys)}">{ins}{vc}<p>{p}</p></{kind}>
-</mesh></geometry>"""
+    xyz = '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>'
+    st = '<param name="S" type="float"/><param name="T" type="float"/>'
+
+    def source(sid, a, stride, params):
+        return (f'<source id="{sid}"><float_array id="{sid}a" count="{a.size}">{fl(a)}</float_array>'
+                f'<technique_common><accessor source="#{sid}a" count="{len(a)}" stride="{stride}">'
+                f"{params}</accessor></technique_common></source>")
+    return (f'<geometry id="{gid}"><mesh>{source(gid + "-p", v, 3, xyz)}'
+            f'{source(gid + "-n", nrm, 3, xyz)}{source(gid + "-uv", uv, 2, st)}'
+            f'<vertices id="{gid}-v"><input semantic="POSITION" source="#{gid}-p"/></vertices>'
+            f'<{kind} material="{material}" count="{len(polys)}">{ins}{vc}<p>{p}</p></{kind}>'
+            "</mesh></geometry>")
 
 
 def _dae(path: Path, geometries: str, nodes: str, unit="0.001", extra="") -> Path:
@@ -161,7 +163,8 @@ def _dae(path: Path, geometries: str, nodes: str, unit="0.001", extra="") -> Pat
   <library_effects><effect id="eff"><profile_COMMON>
     <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
     <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
-    <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse></phong></technique>
+    <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse>
+    </phong></technique>
   </profile_COMMON></effect>{extra}</library_effects>
   <library_materials><material id="mat"><instance_effect url="#eff"/></material></library_materials>
   <library_geometries>{geometries}</library_geometries>
@@ -277,7 +280,7 @@ def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     ids = meshio.merged_ids(v)
     _, inv = unique_rows(v, digits=8)
     assert len(set(ids)) == len(set(inv)) < len(v)
-    pairs = set(zip(ids.tolist(), np.asarray(inv).tolist()))
+    pairs = set(zip(ids.tolist(), np.asarray(inv).tolist(), strict=True))
     assert len(pairs) == len(set(ids))
 
 

@@ -467,9 +467,11 @@ def _measure(path: str) -> dict:
             return _stl_facts(path, n)
         v, f, broken = _arrays(path)
         import numpy as np
-        lo, hi = meshio.bounds(v) if len(v) else (None, None)
-        finite = bool(np.isfinite(lo).all() and np.isfinite(hi).all()) if len(v) else True
-        bounds = [list(map(float, lo)), list(map(float, hi))] if len(v) and finite else None
+        finite, bounds = True, None
+        if len(v):
+            lo, hi = meshio.bounds(v)
+            finite = bool(np.isfinite(lo).all() and np.isfinite(hi).all())
+            bounds = [list(map(float, lo)), list(map(float, hi))] if finite else None
         return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(f)),
                 "finite": finite, "bounds": bounds, "broken_refs": list(broken)}
     except (PermissionError, MemoryError) as e:

@@ -4,9 +4,14 @@ vertex and face arrays, without building a processed ``trimesh.Trimesh``.
 * Binary STL is read with numpy straight from its 50-byte records, in chunks of
   ``STL_CHUNK_TRIANGLES`` (so a 5M-triangle file never needs gigabytes); ASCII STL with one
   solid is parsed like trimesh parses it (``np.fromstring`` of the ``vertex`` lines).
-* Every other format (COLLADA, OBJ, ...) is loaded by ``trimesh.load_scene(process=False)`` and
-  its instances are placed and stacked with numpy, which is what ``Scene.to_mesh`` computes
-  without the copies, visual merging and array hashing it pays for.
+* COLLADA is read by pycollada and assembled, placed and merged exactly as trimesh's loader
+  and scene would (:func:`collada_arrays`), without importing trimesh or decoding textures.
+* Every other format (OBJ, ...) and any COLLADA file the reader cannot vouch for is loaded by
+  ``trimesh.load_scene(process=False)`` and its instances are placed and stacked with numpy,
+  which is what ``Scene.to_mesh`` computes without the copies, visual merging and array
+  hashing it pays for.
+* Mass properties and closedness use trimesh's formulas and grouping, copied to the bit
+  (:func:`mass_properties`, :func:`merged_ids`), so STL and COLLADA facts need no trimesh.
 
 Anything these fast paths do not recognise exactly (a binary STL whose length does not match
 its header, an ASCII file with several solids) goes through trimesh as before, so the facts
