@@ -3,6 +3,7 @@ run once per model, on a generated mesh-heavy repository and on the dev corpus.
 
     .venv/bin/python bench/bench_heavy.py [--packages 6] [--triangles 200000] [--repeat 3]
                                           [--corpus DIR | --no-corpus] [--huge]
+                                          [--base OTHER/urdf-lint] [--findings DIR]
 
 For each side the wall time and the CPU time of the child processes (user + system, from
 ``resource.getrusage(RUSAGE_CHILDREN)``, which counts the workers too) are measured; the peak
@@ -11,6 +12,12 @@ fresh helper process, since ``ru_maxrss`` of the children only ever grows). ``--
 lints one valid 5M-triangle binary STL (250 MB) and reports its time and peak memory.
 Prints a table of targets vs measured; the exit code is 0 (a benchmark reports, it does not
 gate).
+
+``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
+measures changes: stock, this tree and the other trees are run interleaved (stock, then the
+trees in an order that rotates with each repeat), and the wall ratio to stock of each is
+printed (min and median), with whether its findings are this tree's. ``--findings DIR`` keeps
+each side's findings there as JSON.
 """
 from __future__ import annotations
 
@@ -52,8 +59,8 @@ def stock_all(models, pmap):
     return timed(go)
 
 
-def lint(paths, extra=(), env=None, cwd=None):
-    cmd = [LINT, "check", *map(str, paths), "--no-cache", "--format", "json", "--fail-on",
+def lint(paths, extra=(), env=None, cwd=None, exe=None):
+    cmd = [exe or LINT, "check", *map(str, paths), "--no-cache", "--format", "json", "--fail-on",
            "never", *extra]
 
     def go():
@@ -108,6 +115,36 @@ def corpus_config(path: Path, models) -> Path:
     return path
 
 
+def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
+    """Stock, this tree and each of ``bases`` interleaved (the order of the trees rotates from
+    one repeat to the next): the min and median wall ratio to stock of each."""
+    sides = [("this", LINT)] + [(_side_name(b), b) for b in bases]
+    ratios: dict = {name: [] for name, _ in sides}
+    docs: dict = {}
+    for i in range(repeat):
+        sw, _, _ = stock_all(models, pmap)
+        k = i % len(sides)
+        for side, exe in sides[k:] + sides[:k]:   # no tree always goes first
+            w, _, docs[side] = lint(paths, extra, exe=exe)
+            ratios[side].append(w / sw)
+    for side, _ in sides:
+        r = ratios[side]
+        same = docs[side]["findings"] == docs["this"]["findings"]
+        print(f"  {label} {side:>14s}: wall / stock min {min(r):.2f} median "
+              f"{statistics.median(r):.2f}  ({len(docs[side]['findings'])} findings"
+              f"{'' if same else ', NOT the same as this tree'})")
+        if findings_dir:
+            Path(findings_dir).mkdir(parents=True, exist_ok=True)
+            Path(findings_dir, f"{label}-{side}.json").write_text(
+                json.dumps(docs[side]["findings"], indent=1))
+
+
+def _side_name(exe: str) -> str:
+    """A tree's name: the folder holding ``.venv/bin/urdf-lint`` (or the script)."""
+    p = Path(exe).resolve()
+    return (p.parents[2] if p.parent.name == "bin" else p.parent).name
+
+
 def row(rows, what, target, measured, ok):
     rows.append((what, target, measured, "yes" if ok else "NO"))
 
@@ -122,6 +159,9 @@ def main():
     ap.add_argument("--no-heavy", action="store_true")
     ap.add_argument("--huge", action="store_true", help="also a 5M-triangle (250 MB) STL")
     ap.add_argument("--keep", action="store_true")
+    ap.add_argument("--base", action="append", default=[],
+                    help="another tree's urdf-lint (repeatable): an interleaved A/B of changes")
+    ap.add_argument("--findings", help="keep the findings of each side here (JSON)")
     a = ap.parse_args()
     from heavy_repo import generate
     from urdf_lint.packages import PackageResolver
@@ -136,6 +176,9 @@ def main():
             pmap = PackageResolver.build([repo / "src"]).scanned
             print(f"heavy repository: {len(models)} models, {a.packages + 1} packages, "
                   f"{size:.0f} MB")
+        if not a.no_heavy and a.base:
+            ab("heavy", models, pmap, [repo / "src"], [], a.base, a.repeat, a.findings)
+        elif not a.no_heavy:
             sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
             lw, lc, doc = median_runs(lambda: lint([repo / "src"]), a.repeat)
             l1w, l1c, doc1 = median_runs(lambda: lint([repo / "src"], ["-j1"]), a.repeat)
@@ -156,6 +199,10 @@ def main():
             files = sorted({str(f) for f, _ in models})
             config = corpus_config(tmp / "corpus.toml", models)
             pmap = PackageResolver.build([corpus], extra_roots=[corpus]).scanned
+        if not a.no_corpus and a.base and Path(a.corpus, "entries.json").is_file():
+            ab("corpus", models, pmap, files, ["--config", str(config)], a.base, a.repeat,
+               a.findings)
+        elif not a.no_corpus and Path(a.corpus, "entries.json").is_file():
             sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
             lw, lc, doc = median_runs(lambda: lint(files, ["--config", str(config)]), a.repeat)
             l1w, l1c, doc1 = median_runs(lambda: lint(files, ["--config", str(config), "-j1"]),

@@ -58,7 +58,7 @@ def lint_in_process(path, cache=None):
 def fresh(monkeypatch):
     """The mesh module with empty per-process memories."""
     from urdf_lint import hashing, meshes
-    for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo"):
+    for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo", "_kept_bytes"):
         monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
     monkeypatch.setattr(hashing, "_memo", {})
     monkeypatch.setattr(meshes, "_loaded", type(meshes._loaded)())
@@ -127,6 +127,208 @@ def test_corpus_mesh_facts_equal_trimesh(fresh):
                 assert np.allclose(got[k], want[k], rtol=1e-12, atol=0), (p, k)
 
 
+# -- COLLADA without trimesh: pycollada's scene assembled like trimesh's loader ----------------
+def _geometry(gid, v, polys, with_uv=True, kind="triangles", material="m"):
+    """A <geometry> of positions ``v`` and polygons (lists of vertex indices), with normals
+    and UVs, as a <triangles> or a <polylist>."""
+    uv = (v[:, :2] - v[:, :2].min(0)) / max(float(np.ptp(v[:, :2])), 1e-9)
+    nrm = v / np.linalg.norm(v, axis=1, keepdims=True).clip(1e-9)
+    fl = lambda a: " ".join(f"{x:.6f}" for x in a.ravel())  # noqa: E731
+    inputs = [("VERTEX", f"#{gid}-v"), ("NORMAL", f"#{gid}-n")] + \
+        ([("TEXCOORD", f"#{gid}-uv")] if with_uv else [])
+    p = " ".join(" ".join(str(i) for _ in inputs) for poly in polys for i in poly)
+    tc_set = ' set="0"'
+    ins = "".join(f'<input semantic="{s}" source="{src}" offset="{k}"{tc_set if s == "TEXCOORD" else ""}/>'
+                  for k, (s, src) in enumerate(inputs))
+    vc = f"<vcount>{' '.join(str(len(q)) for q in polys)}</vcount>" if kind == "polylist" else ""
+    xyz = '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>'
+    st = '<param name="S" type="float"/><param name="T" type="float"/>'
+
+    def source(sid, a, stride, params):
+        return (f'<source id="{sid}"><float_array id="{sid}a" count="{a.size}">{fl(a)}</float_array>'
+                f'<technique_common><accessor source="#{sid}a" count="{len(a)}" stride="{stride}">'
+                f"{params}</accessor></technique_common></source>")
+    return (f'<geometry id="{gid}"><mesh>{source(gid + "-p", v, 3, xyz)}'
+            f'{source(gid + "-n", nrm, 3, xyz)}{source(gid + "-uv", uv, 2, st)}'
+            f'<vertices id="{gid}-v"><input semantic="POSITION" source="#{gid}-p"/></vertices>'
+            f'<{kind} material="{material}" count="{len(polys)}">{ins}{vc}<p>{p}</p></{kind}>'
+            "</mesh></geometry>")
+
+
+def _dae(path: Path, geometries: str, nodes: str, unit="0.001", extra="") -> Path:
+    path.write_text(f"""<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="u" meter="{unit}"/><up_axis>Z_UP</up_axis></asset>
+  <library_images><image id="img"><init_from>skin.png</init_from></image></library_images>
+  <library_effects><effect id="eff"><profile_COMMON>
+    <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
+    <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
+    <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse>
+    </phong></technique>
+  </profile_COMMON></effect>{extra}</library_effects>
+  <library_materials><material id="mat"><instance_effect url="#eff"/></material></library_materials>
+  <library_geometries>{geometries}</library_geometries>
+  <library_visual_scenes><visual_scene id="scene">{nodes}</visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+""")
+    return path
+
+
+def _inst(gid, target="#mat"):
+    return (f'<instance_geometry url="#{gid}"><bind_material><technique_common>'
+            f'<instance_material symbol="m" target="{target}"/></technique_common></bind_material>'
+            '</instance_geometry>')
+
+
+def _generated_daes(tmp_path):
+    """COLLADA files in the shapes exporters write: nested nodes with every transform kind, a
+    mirrored node, a float32 rotation matrix (repaired by trimesh's scene graph), a polylist of
+    quads and pentagons, an instanced geometry, metres and millimetres, a broken material
+    reference and a lines-only geometry (both left to trimesh)."""
+    write_png(tmp_path / "skin.png")
+    v, f = sphere(600, radius=40.0, center=(5.0, -3.0, 12.0))
+    v2 = np.vstack([v, v[:1] * 0.5])       # a vertex no face uses
+    quads = [[i, i + 1, i + 2, i + 3] for i in range(0, len(v) - 4, 3)] + \
+        [[0, 2, 4, 6, 8], [1, 3, 5, 7, 9]]
+    tri = _geometry("tri", v2, f.tolist())
+    poly = _geometry("poly", v, quads, kind="polylist", with_uv=False)
+    c, s = 0.7071068, 0.7071067        # float32 digits: not quite a rotation
+    nested = f"""<node id="a"><translate>1 2 3</translate><rotate>0 0 1 30</rotate><scale>1 1 2</scale>
+      {_inst("tri")}
+      <node id="b"><matrix>{c} -{s} 0 0.1 {s} {c} 0 0.2 0 0 1 0.3 0 0 0 1</matrix>{_inst("poly")}
+        <node id="mirror"><scale>-1 1 1</scale>{_inst("tri")}</node></node></node>"""
+    out = {
+        "nested.dae": _dae(tmp_path / "nested.dae", tri + poly, nested),
+        "metres.dae": _dae(tmp_path / "metres.dae", tri, f"<node>{_inst('tri')}</node>", unit="1"),
+        "broken.dae": _dae(tmp_path / "broken.dae", tri + poly,
+                           f"<node>{_inst('tri', '#nothing')}{_inst('poly')}</node>"),
+        "lines.dae": _dae(tmp_path / "lines.dae", tri + _geometry("ln", v, [[0, 1], [1, 2]], kind="lines"),
+                          f"<node>{_inst('tri')}{_inst('ln')}</node>"),
+    }
+    return out
+
+
+def _trimesh_arrays(meshes, path):
+    """The arrays of the trimesh path (``load_scene`` and ``scene_arrays``, or ``load_mesh``)."""
+    got = meshes._scene_arrays(str(path), True, lean=False)
+    if got is None:
+        m = meshes.load_mesh(str(path))
+        got = (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64), [])
+    return got
+
+
+def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
+    from urdf_lint import meshio
+    daes = _generated_daes(tmp_path)
+    lean = {}
+    for name, p in daes.items():
+        data = p.read_bytes()
+        lean[name] = meshio.collada_arrays(data)
+        want = _trimesh_arrays(fresh, p)
+        if lean[name] is not None:
+            unit = fresh._unit_of(data)
+            v = meshio.scale_points(lean[name][0], unit) if unit != 1.0 else lean[name][0]
+            assert np.array_equal(v, want[0]) and np.array_equal(lean[name][1], want[1]), name
+        # whichever path reads it: the facts and mass properties of trimesh's mesh
+        assert fresh.mesh_facts(str(p)) == trimesh_facts(p), name
+        assert fresh.mass_facts(str(p)) == fresh._mass_properties(fresh.load_mesh(str(p))), name
+    # read without trimesh where it can be, left to trimesh where a geometry is lost
+    assert lean["nested.dae"] is not None and lean["metres.dae"] is not None
+    assert lean["broken.dae"] is None and lean["lines.dae"] is None
+    assert fresh.mesh_facts(str(daes["broken.dae"]))["broken_refs"]
+    # the triangle set twice (the mirrored node too), the polylist fanned (quads: 2 triangles,
+    # the two pentagons: 3 each)
+    sv, sf = sphere(600)
+    quads = len(range(0, len(sv) - 4, 3))
+    assert len(lean["nested.dae"][1]) == 2 * len(sf) + 2 * quads + 6
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_corpus_collada_read_without_trimesh_gives_the_same_arrays(fresh):
+    from urdf_lint import meshio
+    paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() == ".dae")
+    assert len(paths) > 30
+    lean_read = 0
+    for p in paths:
+        data = p.read_bytes()
+        got = meshio.collada_arrays(data)
+        if got is None:
+            continue
+        lean_read += 1
+        unit = fresh._unit_of(data)
+        want = _trimesh_arrays(fresh, p)
+        v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
+        assert np.array_equal(v, want[0]) and np.array_equal(got[1], want[1]), p
+    assert lean_read >= len(paths) - 2    # (turtlebot3's r200.dae loses a geometry: trimesh)
+
+
+def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
+    from trimesh.grouping import unique_rows
+    from trimesh.triangles import mass_properties
+    from urdf_lint import meshio
+    v, f = sphere(5000, radius=0.3, center=(1.0, 2.0, -0.5))
+    rng = np.random.default_rng(1)
+    v = v + rng.normal(scale=1e-3, size=v.shape)
+    tris = v[f]
+    want = mass_properties(tris, density=1.0)
+    vol, com, inertia = meshio.mass_properties(tris)
+    assert vol == want["volume"]
+    assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"])
+    # repeated vertices (and ones equal to 8 decimals): grouped like unique_rows(digits=8)
+    v = np.vstack([v, v[:50], v[50:60] + 1e-12])
+    ids = meshio.merged_ids(v)
+    _, inv = unique_rows(v, digits=8)
+    assert len(set(ids)) == len(set(inv)) < len(v)
+    pairs = set(zip(ids.tolist(), np.asarray(inv).tolist(), strict=True))
+    assert len(pairs) == len(set(ids))
+
+
+def test_stl_and_collada_facts_import_no_trimesh(tmp_path):
+    """A worker measuring STL and COLLADA meshes (facts, volumes, texture scans) never imports
+    trimesh (~0.35 s per process)."""
+    v, f = sphere(2000, radius=0.05)
+    binary_stl(tmp_path / "b.stl", v[f])
+    ascii_stl(tmp_path / "a.stl", v[f][:100])
+    daes = _generated_daes(tmp_path)
+    code = ("import sys, json; from urdf_lint import meshes\n"
+            f"for p in {[str(tmp_path / 'b.stl'), str(tmp_path / 'a.stl'), str(daes['nested.dae'])]!r}:\n"
+            "    assert meshes.mesh_facts(p)['ok'] and meshes.mass_facts(p)['ok']\n"
+            "    meshes.texture_refs(p)\n"
+            "print(json.dumps(sorted(m for m in ('trimesh', 'collada', 'scipy') if m in sys.modules)))")
+    import subprocess
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == ["collada"]
+
+
+def test_a_collada_file_is_read_once_for_hash_facts_volume_and_textures(tmp_path, fresh,
+                                                                          monkeypatch):
+    import builtins
+    dae = str(_generated_daes(tmp_path)["nested.dae"])
+    fresh.set_confinement(None, None)
+    opened = []
+    real_open, real_os_open = builtins.open, os.open
+    monkeypatch.setattr(builtins, "open", lambda f, *a, **k: (opened.append(str(f)),
+                                                              real_open(f, *a, **k))[1])
+    monkeypatch.setattr(os, "open", lambda f, *a, **k: (opened.append(str(f)),
+                                                        real_os_open(f, *a, **k))[1])
+    facts, mass = fresh.mesh_facts(dae), fresh.mass_facts(dae)
+    refs = fresh.texture_refs(dae)
+    monkeypatch.undo()
+    assert facts["ok"] and mass["ok"] and refs == [str(tmp_path / "skin.png")]
+    assert opened.count(dae) == 1, opened
+
+
+def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
+    from urdf_lint import worker
+    lean = [worker.Block("a", [], 1.0, frozenset({".stl", ".dae"}))]
+    assert "trimesh" not in worker._mesh_modules(lean) and "collada" in worker._mesh_modules(lean)
+    stl = [worker.Block("a", [], 1.0, frozenset({".stl"}))]
+    assert "collada" not in worker._mesh_modules(stl)
+    obj = lean + [worker.Block("b", [], 1.0, frozenset({".obj"}))]
+    assert "trimesh" in worker._mesh_modules(obj)
+
+
 # -- item 2: big meshes are streamed, not errors ---------------------------------------------
 def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
     from urdf_lint import meshio
@@ -137,8 +339,8 @@ def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
     seen = []
     real = meshio.iter_binary_stl
 
-    def spy(path, chunk=None):
-        for c in real(path, chunk):
+    def spy(path, chunk=None, data=None):
+        for c in real(path, chunk, data):
             seen.append(len(c))
             yield c
     monkeypatch.setattr(meshio, "iter_binary_stl", spy)
@@ -283,6 +485,24 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     queues = worker.assign(blocks, 2)
     assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
             for q in queues] == [["other_description"], ["small_description"]]
+
+
+def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
+    from urdf_lint import worker
+    if worker._procs_running() is None:
+        pytest.skip("no /proc/stat here")
+    # the 1-minute load average says 1.6 cores are busy (the previous command of a script)
+    monkeypatch.setattr(os, "getloadavg", lambda: (1.6, 1.0, 0.5))
+    monkeypatch.setattr(worker, "_procs_running", lambda: 1)          # only this process now
+    assert worker.busy_cores() == 0
+    monkeypatch.setattr(worker, "_procs_running", lambda: 2)          # one other running now
+    assert worker.busy_cores() == 1
+    monkeypatch.setattr(worker, "_procs_running", lambda: 9)          # a short spike: the average
+    assert worker.busy_cores() == 1.6
+    monkeypatch.setattr(worker, "_procs_running", lambda: None)       # no /proc: the average
+    assert worker.busy_cores() == 1.6
+    monkeypatch.undo()
+    assert worker._procs_running() >= 1                               # this test is running
 
 
 def test_an_idle_worker_takes_from_the_far_end_of_another_block():

@@ -41,25 +41,58 @@ _memo: dict = {}     # (path, dev, ino, size, mtime_ns) -> digest, this process 
 MAX_MEMO = 100_000
 
 
+def _memo_key(path: str):
+    """(stat, memo key) of a file now; raises OSError."""
+    st = os.stat(path)
+    return st, (path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _remember(key, digest: str) -> None:
+    if len(_memo) >= MAX_MEMO:
+        _memo.clear()
+    _memo[key] = digest
+
+
 def memo_digest(path: str) -> tuple[list, str] | None:
     """([size, mtime_ns], digest) of a file, hashed once per file version in this process
     (the stat is taken before the read, as in :func:`file_record`). The mesh facts key on
     it, and a worker records every mesh a model read with it, so a mesh shared by many
     models is hashed once per worker, not once per model."""
     try:
-        st = os.stat(path)
+        st, key = _memo_key(path)
     except OSError:
         return None
-    key = (path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
     digest = _memo.get(key)
     if digest is None:
         digest = file_digest(path)
         if digest is None:
             return None
-        if len(_memo) >= MAX_MEMO:
-            _memo.clear()
-        _memo[key] = digest
+        _remember(key, digest)
     return [st.st_size, st.st_mtime_ns], digest
+
+
+def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:
+    """(digest, bytes) of a file hashed for the first time in this process and at most
+    ``max_bytes`` long: it is read once, for the hash and for the caller (a mesh reader), and
+    the digest is remembered like :func:`memo_digest`'s. A file hashed before, or a larger
+    one: (digest, None). None when it cannot be read."""
+    try:
+        st, key = _memo_key(path)
+    except OSError:
+        return None
+    if key not in _memo and _st.S_ISREG(st.st_mode) and st.st_size <= max_bytes:
+        try:
+            fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+            with os.fdopen(fd, "rb") as f:
+                data = f.read(max_bytes + 1)
+        except OSError:
+            return None
+        if len(data) == st.st_size:   # else it changed while read: hashed again below
+            digest = blake2b(data, digest_size=16).hexdigest()
+            _remember(key, digest)
+            return digest, data
+    got = memo_digest(path)
+    return None if got is None else (got[1], None)
 
 
 def stat_key(path) -> list | None:

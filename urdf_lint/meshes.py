@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .hashing import memo_digest
+from .hashing import memo_read
 from .packages import PackageNotFound
 
 
@@ -158,17 +158,17 @@ def resolve(model, uri: str) -> MeshRef:
 
 
 def _root_of(resolver, p: Path) -> Path | None:
-    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    """The deepest root that holds ``p`` as written (before symlinks), or None. (String
+    prefixes of the normalised paths: what ``Path.relative_to`` tests, without building a
+    Path per root; of two roots that both hold ``p`` the deeper is the longer string.)"""
+    from .packages import inside
+    s = str(p)
     best = None
     for r in resolver.roots:
-        r = Path(r)
-        try:
-            p.relative_to(r)
-        except ValueError:
-            continue
-        if best is None or len(r.parts) > len(best.parts):
-            best = r
-    return best
+        rs = str(r)
+        if inside(s, rs) and (best is None or len(rs) > len(best)):
+            best = rs
+    return None if best is None else Path(best)
 
 
 _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
@@ -239,8 +239,7 @@ def _scan_texture_names(path: str) -> dict:
     the ``mtllib`` names of an OBJ."""
     refs: list[str] = []
     if path.lower().endswith(".dae"):
-        with open(path, "rb") as f:
-            data = f.read()
+        data = _file_bytes(path)
         for m in _DAE_IMAGE.finditer(data):
             ref = m.group(1).decode("utf-8", "replace").strip()
             if ref.startswith("file://"):
@@ -268,11 +267,34 @@ def _version(path: str):
 
 def _digest(path: str) -> str:
     """Content hash of a file, computed once per file version in this process (shared with
-    the worker's record of what a model read, :func:`hashing.memo_digest`)."""
-    got = memo_digest(path)
+    the worker's record of what a model read, :func:`hashing.memo_digest`). A mesh up to
+    ``READ_WHOLE_BYTES`` hashed for the first time is read once: its bytes are kept for the
+    readers and scans that follow (:func:`_file_bytes`)."""
+    got = memo_read(path, READ_WHOLE_BYTES)
     if got is None:
         raise OSError(f"cannot read {path}")
-    return got[1]
+    digest, data = got
+    if data is not None:
+        _kept_bytes[digest] = data
+        _kept_bytes.move_to_end(digest)
+        total = sum(map(len, _kept_bytes.values()))
+        while total > MAX_KEPT_BYTES and len(_kept_bytes) > 1:
+            total -= len(_kept_bytes.popitem(last=False)[1])
+    return digest
+
+
+READ_WHOLE_BYTES = 32 << 20       # meshes up to this size: hashed and parsed from one read
+MAX_KEPT_BYTES = 64 << 20         # the bytes kept between the hash, the facts and the scans
+_kept_bytes: "OrderedDict[str, bytes]" = OrderedDict()
+
+
+def _file_bytes(path: str) -> bytes:
+    """The bytes of a mesh file: those read for its hash when still kept, else read now."""
+    data = _kept_bytes.get(_digest(path))
+    if data is not None:
+        return data
+    with open(path, "rb") as f:
+        return f.read()
 
 
 def _quiet_loggers():
@@ -378,12 +400,19 @@ def dae_unit(path: str) -> float:
     """The metres-per-unit a COLLADA file declares in its <asset> (1.0 when absent)."""
     try:
         with open(path, "rb") as f:
-            head = f.read(8192)
-        m = _DAE_UNIT.search(head)
-        v = float(m.group(1)) if m else 1.0
-        return v if math.isfinite(v) and v > 0 else 1.0
-    except (OSError, ValueError):
+            return _unit_of(f.read(8192))
+    except OSError:
         return 1.0
+
+
+def _unit_of(data: bytes) -> float:
+    """:func:`dae_unit` of a COLLADA document's bytes (its first 8 KiB)."""
+    m = _DAE_UNIT.search(data[:8192])
+    try:
+        v = float(m.group(1)) if m else 1.0
+    except ValueError:
+        return 1.0
+    return v if math.isfinite(v) and v > 0 else 1.0
 
 
 _loaded: "OrderedDict[str, Any]" = OrderedDict()
@@ -438,9 +467,11 @@ def _measure(path: str) -> dict:
             return _stl_facts(path, n)
         v, f, broken = _arrays(path)
         import numpy as np
-        finite = bool(np.isfinite(v).all()) if len(v) else True
-        bounds = [list(map(float, v.min(axis=0))), list(map(float, v.max(axis=0)))] \
-            if len(v) and finite else None
+        finite, bounds = True, None
+        if len(v):
+            lo, hi = meshio.bounds(v)
+            finite = bool(np.isfinite(lo).all() and np.isfinite(hi).all())
+            bounds = [list(map(float, lo)), list(map(float, hi))] if finite else None
         return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(f)),
                 "finite": finite, "bounds": bounds, "broken_refs": list(broken)}
     except (PermissionError, MemoryError) as e:
@@ -461,14 +492,14 @@ def _stl_facts(path: str, n: int) -> dict:
     import numpy as np
     from . import meshio
     finite, lo, hi = True, None, None
-    for tris in meshio.iter_binary_stl(path, STL_CHUNK):
-        v = tris.reshape(-1, 3)
-        if finite and not np.isfinite(v).all():
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK, _kept_bytes.get(_digest(path))):
+        # a NaN makes its column's minimum NaN, an infinity a minimum or maximum infinite
+        clo, chi = meshio.bounds(tris.reshape(-1, 3))
+        if not (np.isfinite(clo).all() and np.isfinite(chi).all()):
             finite = False
-        if finite:
-            clo, chi = v.min(axis=0), v.max(axis=0)
-            lo = clo if lo is None else np.minimum(lo, clo)
-            hi = chi if hi is None else np.maximum(hi, chi)
+            break
+        lo = clo if lo is None else np.minimum(lo, clo)
+        hi = chi if hi is None else np.maximum(hi, chi)
     bounds = [list(map(float, lo)), list(map(float, hi))] \
         if n and finite and lo is not None and hi is not None else None
     return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
@@ -512,7 +543,8 @@ def _read_arrays(path: str):
     if low.endswith(".stl"):
         n = meshio.binary_stl_triangles(path)
         if n is not None:
-            tris = np.concatenate(list(meshio.iter_binary_stl(path))) if n else \
+            tris = np.concatenate(list(meshio.iter_binary_stl(
+                path, data=_kept_bytes.get(_digest(path))))) if n else \
                 np.zeros((0, 3, 3), dtype=np.float32)
             v = tris.reshape(-1, 3).astype(np.float64)
             return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3), []
@@ -528,12 +560,21 @@ def _read_arrays(path: str):
             list(m.metadata.get("broken_refs", ())))
 
 
-def _scene_arrays(path: str, is_dae: bool):
+def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
     """The arrays of ``load_mesh`` for a COLLADA or OBJ file through ``load_scene``, or None
-    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that)."""
+    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that).
+    A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
+    numbers, without trimesh)."""
+    from . import meshio
+    if is_dae and lean:
+        data = _file_bytes(path)
+        got = meshio.collada_arrays(data)   # the same numbers without trimesh, when it can
+        if got is not None:
+            unit = _unit_of(data)
+            v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
+            return v, got[1], []
     _quiet_loggers()
     import trimesh
-    from . import meshio
     if not is_dae:
         return (*meshio.scene_arrays(trimesh.load_scene(path, process=False)), [])
     try:
@@ -645,7 +686,7 @@ def _mass_properties(mesh) -> dict:
 
 def _mass_arrays(v, f) -> dict:
     import numpy as np
-    from trimesh.triangles import mass_properties
+    from .meshio import mass_properties
     if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
         return {"ok": False}
     hull = not _closed(v, f)
@@ -657,14 +698,15 @@ def _mass_arrays(v, f) -> dict:
         tris = np.asarray(h.vertices)[np.asarray(h.faces)]
     else:
         tris = v[f]
-    props = mass_properties(tris, density=1.0)
-    vol = float(props["volume"])
+    with np.errstate(divide="ignore", invalid="ignore"):   # (no volume: judged below)
+        volume, com, inertia = mass_properties(tris)
+    vol = float(volume)
     if not math.isfinite(vol) or abs(vol) < 1e-15:
         return {"ok": False}
     sign = 1.0 if vol > 0 else -1.0      # inside-out winding: every moment flips sign
     vol *= sign
-    com = np.asarray(props["center_mass"], dtype=float)
-    inertia = sign * np.asarray(props["inertia"], dtype=float)   # about com, density 1
+    com = np.asarray(com, dtype=float)
+    inertia = sign * np.asarray(inertia, dtype=float)   # about com, density 1
     s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
     second = s_com + vol * np.outer(com, com)
     return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
@@ -675,10 +717,8 @@ def _closed(v, f) -> bool:
     """Whether the triangles bound a volume: with coincident vertices merged, every directed
     edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
     building a processed trimesh.Trimesh for it."""
-    import numpy as np
-    from trimesh.grouping import unique_rows
-    _, inv = unique_rows(v, digits=8)      # what trimesh's merge_vertices does
-    return _closed_faces(np.asarray(inv).reshape(-1)[f])
+    from .meshio import merged_ids
+    return _closed_faces(merged_ids(v)[f])     # vertices merged as trimesh's unique_rows does
 
 
 def _closed_faces(ff) -> bool:
@@ -768,14 +808,15 @@ def _closed_codes(codes, revs) -> bool:
 
 
 def _convex_hull(points):
-    """The convex hull of points as a trimesh.Trimesh, with manifold3d (a 4 MB wheel that
-    imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to import)."""
+    """The convex hull of points (``.vertices``, ``.faces``), with manifold3d (a 4 MB wheel
+    that imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to
+    import)."""
+    import types
     import manifold3d
     import numpy as np
-    import trimesh
     m = manifold3d.Manifold.hull_points(np.ascontiguousarray(points, dtype=np.float64)).to_mesh()
     verts = np.asarray(m.vert_properties, dtype=float)[:, :3]
     faces = np.asarray(m.tri_verts, dtype=np.int64)
     if len(faces) < 4:
         raise ValueError("degenerate hull")
-    return trimesh.Trimesh(verts, faces, process=False)
+    return types.SimpleNamespace(vertices=verts, faces=faces)

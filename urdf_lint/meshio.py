@@ -4,9 +4,14 @@ vertex and face arrays, without building a processed ``trimesh.Trimesh``.
 * Binary STL is read with numpy straight from its 50-byte records, in chunks of
   ``STL_CHUNK_TRIANGLES`` (so a 5M-triangle file never needs gigabytes); ASCII STL with one
   solid is parsed like trimesh parses it (``np.fromstring`` of the ``vertex`` lines).
-* Every other format (COLLADA, OBJ, ...) is loaded by ``trimesh.load_scene(process=False)`` and
-  its instances are placed and stacked with numpy, which is what ``Scene.to_mesh`` computes
-  without the copies, visual merging and array hashing it pays for.
+* COLLADA is read by pycollada and assembled, placed and merged exactly as trimesh's loader
+  and scene would (:func:`collada_arrays`), without importing trimesh or decoding textures.
+* Every other format (OBJ, ...) and any COLLADA file the reader cannot vouch for is loaded by
+  ``trimesh.load_scene(process=False)`` and its instances are placed and stacked with numpy,
+  which is what ``Scene.to_mesh`` computes without the copies, visual merging and array
+  hashing it pays for.
+* Mass properties and closedness use trimesh's formulas and grouping, copied to the bit
+  (:func:`mass_properties`, :func:`merged_ids`), so STL and COLLADA facts need no trimesh.
 
 Anything these fast paths do not recognise exactly (a binary STL whose length does not match
 its header, an ASCII file with several solids) goes through trimesh as before, so the facts
@@ -38,9 +43,17 @@ def binary_stl_triangles(path: str) -> int | None:
     return n if size - 84 == n * STL_RECORD.itemsize else None
 
 
-def iter_binary_stl(path: str, chunk: int | None = None) -> Iterator[np.ndarray]:
-    """The triangles of a binary STL as float32 arrays of shape (k, 3, 3), ``chunk`` at a time."""
+def iter_binary_stl(path: str, chunk: int | None = None,
+                    data: bytes | None = None) -> Iterator[np.ndarray]:
+    """The triangles of a binary STL as float32 arrays of shape (k, 3, 3), ``chunk`` at a time
+    (from ``data``, the file's bytes, when the caller holds them)."""
     chunk = chunk or STL_CHUNK_TRIANGLES
+    if data is not None:
+        rec = np.frombuffer(data, dtype=STL_RECORD, offset=84,
+                            count=(len(data) - 84) // STL_RECORD.itemsize)
+        for i in range(0, len(rec), chunk):
+            yield rec["v"][i:i + chunk]
+        return
     with open(path, "rb") as f:
         f.seek(84)
         while True:
@@ -48,6 +61,14 @@ def iter_binary_stl(path: str, chunk: int | None = None) -> Iterator[np.ndarray]
             if not len(rec):
                 return
             yield rec["v"]
+
+
+def bounds(points):
+    """(min, max) per column of (n, 3) points: NaN where a column holds a NaN, like
+    ``points.min(axis=0)``, but on a transposed copy (a reduction along the long axis: 20x
+    faster than along the first axis of three columns)."""
+    t = np.asarray(points).T.copy()
+    return t.min(axis=1), t.max(axis=1)
 
 
 def read_ascii_stl(path: str):
@@ -106,10 +127,12 @@ def scene_arrays(scene):
 
 
 def scale_points(v, unit: float):
-    """``Trimesh.apply_scale(unit)`` on vertices (the same arithmetic)."""
-    from trimesh import transformations
-    return transformations.transform_points(v, matrix=transformations.scale_and_translate(
-        scale=unit))
+    """``Trimesh.apply_scale(unit)`` on vertices: :func:`transform_points` by
+    ``trimesh.transformations.scale_and_translate(scale=unit)`` (the same arithmetic)."""
+    m = np.eye(4)
+    if np.any(unit != 1):
+        m[:3, :3] *= unit
+    return transform_points(v, m)
 
 
 # -- mass properties over chunks ---------------------------------------------------------------
@@ -135,6 +158,55 @@ def volume_integrals(tris) -> np.ndarray:
         out[i + 7] = (crosses[:, i] * (p0[:, j] * g0[:, i] + p1[:, j] * g1[:, i]
                                        + p2[:, j] * g2[:, i])).sum()
     return out / _DIVISORS
+
+
+def mass_properties(triangles):
+    """(volume, center of mass, inertia about it) of closed triangles at density 1:
+    ``trimesh.triangles.mass_properties`` to the last bit (the same operations in the same
+    order, its cross product of (p1 - p0) and (p2 - p1) included), without importing trimesh."""
+    t = np.asanyarray(triangles, dtype=np.float64)
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError("Triangles must be (n, 3, 3)!")
+    vectors = t[:, 1:, :] - t[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    p0, p1, p2 = t[:, 0, :], t[:, 1, :], t[:, 2, :]
+    f1 = p0 + p1 + p2
+    f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
+    f3 = (p0 ** 3) + (p0 ** 2) * p1 + p0 * (p1 ** 2) + (p1 ** 3) + (p2 * f2)
+    g0 = f2 + (p0 + f1) * p0
+    g1 = f2 + (p1 + f1) * p1
+    g2 = f2 + (p2 + f1) * p2
+    integral = np.zeros((10, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integral[4:7] = (crosses * f3).T
+    for i in range(3):
+        j = np.mod(i + 1, 3)
+        integral[i + 7] = crosses[:, i] * ((t[:, 0, j] * g0[:, i]) + (t[:, 1, j] * g1[:, i])
+                                           + (t[:, 2, j] * g2[:, i]))
+    integrated = integral.sum(axis=1) / _DIVISORS
+    volume = integrated[0]
+    com = integrated[1:4] / volume
+    inertia = np.zeros((3, 3))
+    inertia[0, 0] = integrated[5] + integrated[6] - (volume * (com[[1, 2]] ** 2).sum())
+    inertia[1, 1] = integrated[4] + integrated[6] - (volume * (com[[0, 2]] ** 2).sum())
+    inertia[2, 2] = integrated[4] + integrated[5] - (volume * (com[[0, 1]] ** 2).sum())
+    inertia[0, 1] = -(integrated[7] - (volume * np.prod(com[[0, 1]])))
+    inertia[1, 2] = -(integrated[8] - (volume * np.prod(com[[1, 2]])))
+    inertia[0, 2] = -(integrated[9] - (volume * np.prod(com[[0, 2]])))
+    inertia[2, 0] = inertia[0, 2]
+    inertia[2, 1] = inertia[1, 2]
+    inertia[1, 0] = inertia[0, 1]
+    return volume, com, inertia * 1.0
+
+
+def merged_ids(points) -> np.ndarray:
+    """One id per point, equal for points equal to 8 decimals (the grouping of
+    ``trimesh.grouping.unique_rows(points, digits=8)``: its rounding, any injective row key)."""
+    q = np.ascontiguousarray(np.round((np.asarray(points, dtype=np.float64) * 10 ** 8) - 1e-6)
+                             .astype(np.int64))
+    rows = q.view(np.dtype((np.void, q.dtype.itemsize * q.shape[1]))).reshape(-1)
+    return np.unique(rows, return_inverse=True)[1].reshape(-1)
 
 
 def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
@@ -173,3 +245,186 @@ def edge_codes(tris):
         rev = (b * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (a * np.uint64(0x165667B19E3779F9) +
                                                      np.uint64(0x27D4EB2F165667C5))
     return code.view(np.int64), rev.view(np.int64)
+
+
+# -- COLLADA without trimesh -------------------------------------------------------------------
+_EYE4 = np.eye(4)
+_EYE3 = np.eye(3)
+MERGE_DIGITS = 8        # trimesh's tol.merge (1e-8) as decimal digits
+NORMAL_DIGITS = 2       # trimesh.grouping.merge_vertices' digits_norm
+UV_DIGITS = 4           # ... and digits_uv
+
+
+def collada_arrays(data: bytes):
+    """(vertices float64 (n, 3), faces int64 (m, 3)) of a COLLADA document before its unit:
+    the numbers ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without
+    importing trimesh, decoding textures or building materials.
+
+    The document is read by pycollada (trimesh's parser, with the errors trimesh ignores) and
+    assembled as ``trimesh.exchange.dae`` assembles it: every triangle set (a polylist
+    fanned) of every ``<instance_geometry>`` is one mesh with three vertices per triangle,
+    placed by the product of its nodes' matrices. Each mesh is then processed like the
+    ``Trimesh`` trimesh builds for it (``load_scene`` does not pass ``process=False`` on to
+    the meshes of a scene): vertices equal to 8 decimals, with their UV (4 decimals, when the
+    set has a bound material) and normal (2 decimals), merged into the first of them.
+
+    None whenever trimesh might do otherwise: a geometry lost to a broken reference (fewer
+    sets than ``<instance_geometry>`` elements), an empty set, a non-finite vertex, vertex
+    colours, a material trimesh cannot convert, an index out of range, any error. The caller
+    then loads the file through trimesh, as before."""
+    import io
+    import collada
+    from collada import common
+    ignore = [common.DaeError, common.DaeIncompleteError, common.DaeMalformedError,
+              common.DaeBrokenRefError, common.DaeUnsupportedError]
+    try:
+        c = collada.Collada(io.BytesIO(data), ignore=ignore)
+        if c.scene is None or not all(_plain_effect(m.effect) for m in c.materials):
+            return None
+        materials = {m.id for m in c.materials}
+        parts: list = []
+        for node in c.scene.nodes:
+            if not _collada_node(node, _EYE4, parts, materials):
+                return None
+        if not parts or len(parts) < data.count(b"<instance_geometry"):
+            return None
+        verts, faces, offset = [], [], 0
+        for (v, f), matrix in parts:
+            matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
+            if matrix is None:
+                return None
+            if not _allclose(matrix, _EYE4, 1e-8):
+                v = transform_points(v, matrix)
+                if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
+                        np.linalg.det(matrix[:3, :3]) < 0.0:
+                    f = np.fliplr(f)
+            verts.append(v)
+            faces.append(f + offset)
+            offset += len(v)
+    except Exception:  # noqa: BLE001 - trimesh decides (and says what is wrong)
+        return None
+    return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
+
+
+def _plain_effect(effect) -> bool:
+    """Whether trimesh turns this effect into a material without failing (colours of four
+    components; a texture it cannot load is only logged)."""
+    from collada.material import Map
+    for value in (effect.diffuse, effect.transparent):
+        if value is not None and not isinstance(value, Map) and len(value) != 4:
+            return False
+    return effect.emission is None or isinstance(effect.emission, Map) or \
+        len(effect.emission) >= 3
+
+
+def _collada_node(node, parent, parts, materials) -> bool:
+    """``trimesh.exchange.dae._parse_node`` for the geometry: ((vertices, faces) merged, matrix)
+    of each triangle set under ``node`` appended to ``parts``; False when trimesh might fail
+    or differ."""
+    from collada import polylist, scene, triangleset
+    if isinstance(node, scene.GeometryNode):
+        symbols = set()
+        for mn in node.materials:
+            if mn.target is None or mn.target.id not in materials:
+                return False    # trimesh would convert the material itself
+            symbols.add(mn.symbol)
+        for prim in node.geometry.primitives:
+            if isinstance(prim, polylist.Polylist):
+                prim = prim.triangleset()
+            if not isinstance(prim, triangleset.TriangleSet):
+                continue
+            vertex = prim.vertex
+            if vertex is None:
+                continue
+            index = prim.vertex_index
+            if not len(index) or np.ndim(vertex) != 2 or np.shape(vertex)[1] != 3 \
+                    or not _in_range(index, len(vertex)):
+                return False
+            if "COLOR" in prim.sources and len(prim.sources["COLOR"]) > 0:
+                return False    # vertex colours: trimesh checks their shape
+            n = len(index) * 3
+            normals = uv = None
+            if prim.normal is not None:
+                if np.ndim(prim.normal) != 2 or np.shape(prim.normal)[1] != 3 or \
+                        not _in_range(prim.normal_index, len(prim.normal)):
+                    return False
+                normals = prim.normal[prim.normal_index].reshape(-1, 3)
+            if prim.material in symbols and len(prim.texcoordset) > 0:
+                tc, ti = prim.texcoordset[0], prim.texcoord_indexset[0]
+                if np.ndim(tc) != 2 or np.shape(tc)[1] != 2 or not _in_range(ti, len(tc)):
+                    return False
+                uv = tc[ti].reshape(-1, 2)
+            merged = _merge(vertex[index].reshape(n, 3), normals, uv)
+            if merged is None:
+                return False
+            parts.append((merged, parent))
+    elif isinstance(node, scene.Node):
+        if node.children is not None:
+            for child in node.children:
+                if not _collada_node(child, np.dot(parent, node.matrix), parts, materials):
+                    return False
+    return True
+
+
+def _merge(vertices, normals, uv):
+    """(vertices, faces) of the triangle soup ``vertices`` after ``Trimesh.process()``: rows
+    equal to trimesh's digits (position, then UV and normal when given for every vertex)
+    merged into their first occurrence, faces renumbered (``grouping.merge_vertices`` and
+    ``unique_ordered``; the grouping does not depend on how a row is encoded for sorting).
+    None for a non-finite vertex (trimesh would drop faces first)."""
+    v = np.asarray(vertices, dtype=np.float64)
+    if not np.isfinite(v).all():
+        return None
+    stacked = [v * (10 ** MERGE_DIGITS)]
+    if uv is not None and len(uv) == len(v):
+        stacked.append(np.asarray(uv, dtype=np.float64) * (10 ** UV_DIGITS))
+    if normals is not None:
+        normals = np.asarray(normals, dtype=np.float64)
+        if normals.shape == v.shape:
+            stacked.append(normals * (10 ** NORMAL_DIGITS))
+    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
+    rows = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
+    _, index, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    order = index.argsort()
+    faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
+    return v[index[order]], faces
+
+
+def _fix_rigid(matrix, max_deviance: float = 1e-5):
+    """What trimesh's scene graph returns for a node's matrix (``SceneGraph.get`` with its
+    default ``repair_rigid``: ``transformations.fix_rigid``, a rotation off by accumulated
+    rounding restored by SVD); None where trimesh's own check would fail."""
+    check = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - _EYE3).max()
+    if 1e-13 < check < max_deviance:
+        u, _, vt = np.linalg.svd(matrix[:3, :3])
+        repaired = np.eye(4)
+        repaired[:3, :3] = np.dot(u, vt)
+        repaired[:3, 3] = matrix[:3, 3]
+        return repaired if np.allclose(repaired, matrix, atol=max_deviance) else None
+    return matrix
+
+
+def _in_range(index, n: int) -> bool:
+    index = np.asarray(index)
+    return index.size == 0 or (int(index.min()) >= -n and int(index.max()) < n)
+
+
+def _allclose(a, b, atol: float) -> bool:
+    """``trimesh.util.allclose`` (the peak-to-peak of the difference)."""
+    return bool(float(np.ptp(a - b)) < atol)
+
+
+_IDENTITY = np.eye(4)
+
+
+def transform_points(points, matrix):
+    """``trimesh.transformations.transform_points`` (the same arithmetic, without trimesh)."""
+    points = np.asanyarray(points, dtype=np.float64)
+    if len(points) == 0 or matrix is None:
+        return points.copy()
+    matrix = np.asanyarray(matrix, dtype=np.float64)
+    count, dim = points.shape
+    if np.abs(matrix - _IDENTITY[: dim + 1, : dim + 1]).max() < 1e-8:
+        return np.ascontiguousarray(points.copy())
+    stack = np.column_stack((points, np.ones(count)))
+    return np.dot(matrix, stack.T).T[:, :dim]

@@ -288,6 +288,7 @@ class Block:
     key: str
     jobs: list
     cost: float = 0.0
+    formats: frozenset = frozenset()   # the mesh suffixes found in the package
 
 
 def package_blocks(jobs: list[LintJob], settings: LintSettings,
@@ -308,14 +309,16 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
     for b in blocks.values():
         b.jobs.sort(key=lambda j: (j.entry, sorted(j.args.items())))
         # (``meshes=False``: the mesh facts are cached, the packages' meshes cost nothing)
-        b.cost = JOB_COST_S * len(b.jobs) + (_mesh_cost(b.key) if b.key and meshes else 0.0)
+        mesh_cost, b.formats = _mesh_cost(b.key) if b.key and meshes else (0.0, frozenset())
+        b.cost = JOB_COST_S * len(b.jobs) + mesh_cost
         out.append(b)
     return sorted(out, key=lambda b: -b.cost)
 
 
-def _mesh_cost(root: str) -> float:
-    """Seconds to measure the meshes under a package root (a first-time estimate)."""
-    cost, seen = 0.0, 0
+def _mesh_cost(root: str) -> tuple[float, frozenset]:
+    """(seconds to measure the meshes under a package root (a first-time estimate), the mesh
+    suffixes found)."""
+    cost, seen, formats = 0.0, 0, set()
     for folder, dirs, files in os.walk(root):
         dirs[:] = [d for d in dirs if not d.startswith(".")]
         for f in files:
@@ -326,10 +329,11 @@ def _mesh_cost(root: str) -> float:
                     mb = os.stat(os.path.join(folder, f)).st_size / 2**20
                 except OSError:
                     continue
+                formats.add(os.path.splitext(low)[1])
                 cost += mb * (STL_COST_S_PER_MB if low.endswith(".stl") else MESH_COST_S_PER_MB)
         if seen > MAX_WALK:
             break
-    return cost
+    return cost, frozenset(formats)
 
 
 def default_workers(blocks: list[Block], cores: int, load: float | None = None,
@@ -340,13 +344,35 @@ def default_workers(blocks: list[Block], cores: int, load: float | None = None,
     total = sum(b.cost for b in blocks)
     jobs = sum(len(b.jobs) for b in blocks)
     if load is None:
-        try:
-            load = os.getloadavg()[0]
-        except (OSError, AttributeError):
-            load = 0.0
+        load = busy_cores()
     idle = max(1, cores - int(load))   # only cores kept wholly busy count as taken
     n = min(cores, idle, jobs, max(1, int(total / (2 * worker_cost))))
     return max(1, n)
+
+
+def busy_cores() -> float:
+    """Cores other processes keep busy: the 1-minute load average, but no more than the
+    processes running right now (less this one). The average alone still counts a burst that
+    just ended (a build step, the previous command of a script) for a minute after it, and
+    made a run on an idle machine use one worker."""
+    try:
+        load = os.getloadavg()[0]
+    except (OSError, AttributeError):
+        return 0.0
+    running = _procs_running()
+    return load if running is None else min(load, max(0, running - 1))
+
+
+def _procs_running() -> int | None:
+    """Processes running or runnable now, this one included (Linux), else None."""
+    try:
+        with open("/proc/stat", "rb") as f:
+            for line in f:
+                if line.startswith(b"procs_running "):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
 
 
 def assign(blocks: list[Block], n: int) -> list[deque]:
@@ -360,9 +386,19 @@ def assign(blocks: list[Block], n: int) -> list[deque]:
     return queues
 
 
-MESH_MODULES = ("numpy", "PIL.Image", "collada", "manifold3d", "trimesh", "trimesh.exchange.load",
-                "trimesh.exchange.dae", "trimesh.exchange.obj", "trimesh.triangles",
-                "trimesh.grouping")
+MESH_MODULES = ("numpy", "manifold3d")      # STL facts, volumes and hulls
+DAE_MODULES = ("collada",)                   # COLLADA facts (meshio.collada_arrays)
+TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
+                   "trimesh.exchange.dae", "trimesh.exchange.obj")   # any other format
+LEAN_FORMATS = (".stl", ".dae")              # read without trimesh (unusual files aside)
+
+
+def _mesh_modules(blocks: list[Block]) -> tuple:
+    """The loaders the packages' meshes need: trimesh (~0.35 s to import) only for formats
+    urdf-lint does not read itself."""
+    formats = set().union(*(b.formats for b in blocks)) if blocks else set()
+    out = MESH_MODULES + (DAE_MODULES if ".dae" in formats else ())
+    return out + (TRIMESH_MODULES if formats - set(LEAN_FORMATS) else ())
 
 
 def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
@@ -385,7 +421,7 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     for n in marked:
         sys.modules[n] = None  # type: ignore[assignment]
     try:
-        for name in MESH_MODULES:
+        for name in _mesh_modules(blocks):
             try:
                 importlib.import_module(name)
             except ImportError:
