@@ -171,9 +171,9 @@ class _Reach:
 
     def _may_reach(self, job, found) -> bool:
         graph = found.graph
-        if job.entry in found.generated or job.output:
-            return True   # a generated URDF and its xacro are compared (UL011)
-        todo, seen = [job.entry], set()
+        # a xacro with a generated output reads that file too (UL011 compares them); a
+        # generated URDF is a model of its own, whose only source is itself
+        todo, seen = [job.entry] + ([job.output] if job.output else []), set()
         while todo:
             f = todo.pop()
             real = _realpath(f)
