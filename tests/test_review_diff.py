@@ -299,6 +299,53 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
 
 
+def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, monkeypatch):
+    """The workers hand back plain plans; one recorder process, forked before them with rerun
+    imported, writes both revisions into one recording (no half files, no merge)."""
+    pytest.importorskip("rerun")
+    import sys
+    import warnings
+    from rerun.chunk import RrdReader
+    from urdf_lint import review
+    from urdf_lint.recording import Plan
+    real = review._start_recorder
+    started = []
+
+    def start():
+        rec = real()
+        started.append(rec)
+        monkeypatch.setitem(sys.modules, "rerun", None)   # any later `import rerun` fails
+        return rec
+    monkeypatch.setattr(review, "_start_recorder", start)
+    plans = []
+    from urdf_lint import worker
+    real_jobs = worker.run_jobs
+
+    def spy(*a, **kw):
+        for job, res in real_jobs(*a, **kw):
+            plans.append(res.diff_rrd)
+            yield job, res
+    monkeypatch.setattr(worker, "run_jobs", spy)
+    edit(repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro", '<box size="0.08 0.08 0.08"/>',
+         '<box size="0.1 0.08 0.08"/>')
+    out = tmp_path / "snap"
+    assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
+    assert "snapshot incomplete" not in capsys.readouterr().err
+    assert len(started) == 1 and not started[0].proc.is_alive()
+    assert sum(isinstance(p, Plan) for p in plans) == 2      # one per revision
+    monkeypatch.delitem(sys.modules, "rerun")
+    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    assert sorted(p.name for p in out.iterdir()) == [".urdf-lint-snapshots.json"] + sorted(
+        f"r2d2_description_urdf_r2d2.urdf.xacro.{x}" for x in ("before.png", "after.png",
+                                                               "diff.png", "rrd"))
+    roots = set()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for ch in RrdReader(str(rrd)).stream():
+            roots.add(str(ch.entity_path).strip("/").split("/")[0])
+    assert {"base", "head"} <= roots
+
+
 @pytest.fixture()
 def expanded(monkeypatch):
     """The entry of every job a worker expands, as the run goes."""
