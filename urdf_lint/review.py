@@ -511,17 +511,17 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
         changed |= set(whole.part_links) | set(whole.wire_links)
     views = (cfg.views if cfg is not None else None) or "sheet"
     forward = cfg.forward_axis if cfg is not None else "+x"
-    info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
-                                   forward=forward))
     plans = [(prefix, p) for prefix, p in (("base/", base.rrd.get(bk) if bk else None),
                                            ("head/", head.rrd.get(hk) if hk else None)) if p]
     if plans and recordings is not None:
-        # both revisions in one recording, written by the recorder while the next pictures
-        # are drawn (collected by _finish_recordings)
+        # both revisions in one recording, written by the recorder while the pictures are
+        # drawn (collected by _finish_recordings)
         path, rid = stem + ".rrd", f"urdf-lint-diff/{image_stem(key)}"
         recordings[path] = (key, info, rid, plans)
         if recorder is not None:
             recorder.write(path, rid, plans, blueprint=("base/", "head/"))
+    info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
+                                   forward=forward))
     return info
 
 
