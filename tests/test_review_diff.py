@@ -218,11 +218,11 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     assert marked.sum() > 500 and not (marked & ~near).any()      # nothing else is marked
 
 
-def test_pictures_drawn_in_two_processes_are_those_drawn_in_one(repo, tmp_path):
-    """diff --render shares the views of the before/after pictures and highlight masks out
-    between the parent and a forked process: the PNGs are byte for byte those drawn in one
-    process, each picture is draw() of its revision through the shared frame, and an
-    unchanged robot is encoded once into two identical files."""
+def test_pictures_drawn_in_two_threads_are_those_drawn_in_one(repo, tmp_path):
+    """diff --render draws the views of the before/after pictures and highlight masks in two
+    threads: the PNGs are byte for byte those drawn in one thread, each picture is draw() of
+    its revision through the shared frame, and an unchanged robot is encoded once into two
+    identical files."""
     from PIL import Image
     from urdf_lint import raster
     top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
@@ -234,7 +234,7 @@ def test_pictures_drawn_in_two_processes_are_those_drawn_in_one(repo, tmp_path):
     for n in (1, 2):
         d = tmp_path / str(n)
         d.mkdir()
-        info = raster.render_pair(base_geom, head_geom, str(d / "r"), changed, processes=n)
+        info = raster.render_pair(base_geom, head_geom, str(d / "r"), changed, threads=n)
         files[n] = {s: Path(info[s]).read_bytes() for s in ("before", "after", "diff")}
         assert info["changed_pixels"] > 500
     assert files[1] == files[2]
@@ -244,7 +244,7 @@ def test_pictures_drawn_in_two_processes_are_those_drawn_in_one(repo, tmp_path):
         want = np.asarray(raster.draw(g, frame))
         top_strip = raster.CAPTION_H    # the caption is written over the strip above the views
         assert (got[top_strip:] == want[top_strip:]).all()
-    info = raster.render_pair(head_geom, head_geom, str(tmp_path / "same"), changed, processes=2)
+    info = raster.render_pair(head_geom, head_geom, str(tmp_path / "same"), changed, threads=2)
     assert Path(info["before"]).read_bytes() == Path(info["after"]).read_bytes()
     assert info["changed_pixels"] > 500
 

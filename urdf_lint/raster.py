@@ -561,10 +561,10 @@ def difference_image(after, before_changed, after_changed):
 
 
 def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
-                changed_links=frozenset(), views="sheet", forward="+x", processes=None) -> dict:
+                changed_links=frozenset(), views="sheet", forward="+x", threads=None) -> dict:
     """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
     nothing changed), and ``stem.diff.png`` highlighting ``changed_links``. The views are
-    drawn by ``processes`` processes (default: two on a machine with two cores or more)."""
+    drawn by ``threads`` threads (:func:`draw_many`)."""
     from PIL import Image
     geoms = [g for g in (before, after) if g is not None]
     fr = frame_for(geoms, views=views, forward=forward)
@@ -577,7 +577,7 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
             wanted[side] = (g, True)
             if changed_links:   # where the changed links are drawn (no labels, skeleton, triads)
                 wanted[side + ".mask"] = (g.only(changed_links), False)
-    drawn = draw_many(wanted, fr, processes)
+    drawn = draw_many(wanted, fr, threads)
     if same:
         drawn["after"] = drawn["before"]
         if changed_links:
@@ -631,37 +631,27 @@ def _save_pngs(pngs: dict, same: bool) -> None:
             f.result()
 
 
-def draw_many(items: dict, fr: Frame, processes=None) -> dict:
+def draw_many(items: dict, fr: Frame, threads=None) -> dict:
     """name -> the image :func:`draw` gives, for ``items`` (name -> (geometry, annotate)).
-    Every view is drawn on its own, so the views can be shared out between this process and
-    a forked one (it gets the geometry by the fork and sends back pixels): the pixels are
-    the same either way."""
+    Every view is drawn on its own, by ``threads`` threads (default: two on a machine with
+    two cores or more; numpy lets go of the GIL in the rasterizer's array operations), and
+    pasted where :func:`draw` pastes it: the pixels are the same."""
     from PIL import Image
+    solids = {name: _prepare(g) for name, (g, _annotate) in items.items()}
     tasks = [(name, i) for name in items for i in range(len(fr.views))]
-    if processes is None:
-        processes = 2 if (os.cpu_count() or 1) > 1 else 1
-    mine, theirs, child = tasks, [], None
-    if processes > 1 and len(tasks) > 1 and hasattr(os, "fork"):
-        mine, theirs = tasks[::2], tasks[1::2]   # both get a share of every picture
-        try:
-            from . import forked
-            child = forked.start(_draw_child, (items, fr, theirs))
-        except OSError:   # no process to spare: all here
-            mine, theirs = tasks, []
-    views = _draw_tasks(items, fr, mine)
-    if child is not None:
-        conn, proc = child
-        try:
-            got = conn.recv()
-        except (EOFError, OSError):
-            got = None
-        conn.close()
-        proc.join(5)
-        if got is None or set(got) != set(theirs):   # it failed: draw its share here
-            views.update(_draw_tasks(items, fr, theirs))
-        else:
-            views.update({t: Image.frombytes("RGB", (w, h), data)
-                          for t, (h, w, data) in got.items()})
+
+    def one(task):
+        name, i = task
+        g, annotate = items[name]
+        return _draw_view(g, solids[name], fr.views[i], fr, annotate)
+    if threads is None:
+        threads = 2 if (os.cpu_count() or 1) > 1 else 1
+    if threads > 1 and len(tasks) > 1:
+        from concurrent.futures import ThreadPoolExecutor
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            views = dict(zip(tasks, pool.map(one, tasks), strict=True))
+    else:
+        views = {t: one(t) for t in tasks}
     out = {}
     for name in items:
         img = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
@@ -669,24 +659,6 @@ def draw_many(items: dict, fr: Frame, processes=None) -> dict:
             img.paste(views[(name, i)], (v.x0, v.y0))
         out[name] = img
     return out
-
-
-def _draw_tasks(items: dict, fr: Frame, tasks) -> dict:
-    solids: dict = {}
-    out = {}
-    for name, i in tasks:
-        g, annotate = items[name]
-        if name not in solids:
-            solids[name] = _prepare(g)
-        out[(name, i)] = _draw_view(g, solids[name], fr.views[i], fr, annotate)
-    return out
-
-
-def _draw_child(conn, items, fr, tasks):
-    import signal
-    signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent answers Ctrl-C
-    views = _draw_tasks(items, fr, tasks)
-    conn.send({t: (im.height, im.width, im.tobytes()) for t, im in views.items()})
 
 
 def same_geometry(a: Geometry, b: Geometry) -> bool:
