@@ -300,7 +300,6 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
 
 def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     pytest.importorskip("rerun")
-    import warnings
     from rerun.chunk import RrdReader
     edit(repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro", '<box size="0.08 0.08 0.08"/>',
          '<box size="0.1 0.08 0.08"/>')
@@ -308,12 +307,7 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
     capsys.readouterr()
     rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
-    roots = set()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for ch in RrdReader(str(rrd)).stream():
-            roots.add(str(ch.entity_path).strip("/").split("/")[0])
-    assert {"base", "head"} <= roots
+    assert {"base", "head"} <= recording_roots(rrd)
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
     # each revision sweeps its joints, the layout shows both, and no path of this machine
     from test_recording import _expected_segments, columns, load_model, strings
@@ -331,13 +325,23 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
 
 
+def recording_roots(rrd) -> set:
+    """The top entity of every chunk of a recording (read with rerun's own reader)."""
+    import warnings
+    from rerun.chunk import RrdReader
+    roots = set()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for ch in RrdReader(str(rrd)).stream():
+            roots.add(str(ch.entity_path).strip("/").split("/")[0])
+    return roots
+
+
 def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, monkeypatch):
     """The workers hand back plain plans; one recorder process, forked before them with rerun
     imported, writes both revisions into one recording (no half files, no merge)."""
-    pytest.importorskip("rerun")
+    rerun = pytest.importorskip("rerun")
     import sys
-    import warnings
-    from rerun.chunk import RrdReader
     from urdf_lint import review
     from urdf_lint.recording import Plan
     real = review._start_recorder
@@ -365,17 +369,12 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
     assert "snapshot incomplete" not in capsys.readouterr().err
     assert len(started) == 1 and not started[0].proc.is_alive()
     assert sum(isinstance(p, Plan) for p in plans) == 2      # one per revision
-    monkeypatch.delitem(sys.modules, "rerun")
+    monkeypatch.setitem(sys.modules, "rerun", rerun)   # this process reads the recording
     rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
     assert sorted(p.name for p in out.iterdir()) == [".urdf-lint-snapshots.json"] + sorted(
         f"r2d2_description_urdf_r2d2.urdf.xacro.{x}" for x in ("before.png", "after.png",
                                                                "diff.png", "rrd"))
-    roots = set()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for ch in RrdReader(str(rrd)).stream():
-            roots.add(str(ch.entity_path).strip("/").split("/")[0])
-    assert {"base", "head"} <= roots
+    assert {"base", "head"} <= recording_roots(rrd)
 
 
 @pytest.fixture()
