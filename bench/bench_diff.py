@@ -13,9 +13,10 @@ macro file that exactly one model includes (``m10ia7l_macro.xacro``), and times
 Target (issue 13): under 2 s without rendering, under 2 s per changed model with rendering.
 ``--profile`` writes a cProfile of one warm run without rendering, in process.
 
-``--compare TREE [TREE ...] --runs N`` times cold runs only (no render, then render), the trees
-interleaved N times (``.`` is this tree; another is a source tree as for ``--src``), and prints
-the min and median of each: on a shared machine only runs taken side by side compare.
+``--compare TREE [TREE ...] --runs N`` times cold runs only (no render, then render; with
+``--warm``, warm runs, each after an untimed one), the trees interleaved N times (``.`` is this
+tree; another is a source tree as for ``--src``), and prints the min and median of each: on a
+shared machine only runs taken side by side compare.
 """
 from __future__ import annotations
 
@@ -84,6 +85,7 @@ def main():
                     "'git archive main | tar -x -C DIR' and a urdf_lint/rules -> ../rules link)")
     ap.add_argument("--compare", nargs="+", metavar="TREE",
                     help="cold runs only, these source trees interleaved (see above)")
+    ap.add_argument("--warm", action="store_true", help="with --compare: warm runs instead")
     a = ap.parse_args()
     global SRC
     SRC = a.src
@@ -136,13 +138,16 @@ def compare(a):
             for name, tree in zip(a.compare, trees, strict=True):
                 SRC = tree
                 for label, extra in (("no render", []), ("render", ["--render", out])):
-                    shutil.rmtree(cache, ignore_errors=True)
+                    if a.warm:   # the cache of a run just before (not timed)
+                        urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)
+                    else:
+                        shutil.rmtree(cache, ignore_errors=True)
                     wall, p = urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)
                     if p.returncode not in (0, 1):
                         sys.exit(f"{name}: diff failed ({p.returncode}): {p.stderr[-2000:]}")
                     times.setdefault((name, label), []).append(wall)
     print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; "
-          f"cold runs, {a.runs} per tree, interleaved")
+          f"{'warm' if a.warm else 'cold'} runs, {a.runs} per tree, interleaved")
     for (name, label), ts in times.items():
         print(f"{name:30} {label:9}: min {min(ts):.2f} s, median {statistics.median(ts):.2f} s "
               f"({' '.join(f'{t:.2f}' for t in ts)})")

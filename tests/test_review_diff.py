@@ -544,3 +544,27 @@ def test_markdown_links_the_pictures_diff_render_wrote(repo, tmp_path, capsys):
     assert len(linked) == 3, md
     for name in linked:
         assert (out / name).is_file(), (name, sorted(p.name for p in out.iterdir()))
+
+
+def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
+    """A diff --render worker sends its picture's geometry and its recording plan back through
+    the pipe: the sandbox gives it no write access to the snapshot folder (only to the
+    mesh facts), unlike a render worker, which writes its own files."""
+    import dataclasses
+    from urdf_lint import forked, sandbox
+    from urdf_lint.jobs import LintSettings
+    got = []
+    monkeypatch.setattr(sandbox, "enter", lambda pid, read, write, keep_fds=(): got.append(
+        list(write)) or {})
+    cache, snaps = tmp_path / "cache", tmp_path / "snaps"
+    conn, other = forked.pipe()
+    try:
+        for extra in ({"diff_render_dir": str(snaps)}, {"render_dir": str(snaps)}):
+            sandbox.enter_worker(conn, dataclasses.replace(
+                LintSettings(resolver={}), mesh_cache_dir=str(cache), **extra))
+    finally:
+        conn.close()
+        other.close()
+    diff_worker, render_worker = got
+    assert diff_worker == [str(cache / "meshes")]
+    assert render_worker == [str(cache / "meshes"), str(snaps)]

@@ -175,7 +175,7 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir, settings.diff_render_dir)
+    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     while True:
         try:
