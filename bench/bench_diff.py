@@ -12,6 +12,11 @@ macro file that exactly one model includes (``m10ia7l_macro.xacro``), and times
 
 Target (issue 13): under 2 s without rendering, under 2 s per changed model with rendering.
 ``--profile`` writes a cProfile of one warm run without rendering, in process.
+
+``--compare TREE [TREE ...] --runs N`` times cold runs only (no render, then render; with
+``--warm``, warm runs, each after an untimed one), the trees interleaved N times (``.`` is this
+tree; another is a source tree as for ``--src``), and prints the min and median of each: on a
+shared machine only runs taken side by side compare.
 """
 from __future__ import annotations
 
@@ -78,9 +83,14 @@ def main():
     ap.add_argument("--profile", metavar="OUT", help="cProfile one warm run to OUT")
     ap.add_argument("--src", help="source tree of another revision to run instead (e.g. "
                     "'git archive main | tar -x -C DIR' and a urdf_lint/rules -> ../rules link)")
+    ap.add_argument("--compare", nargs="+", metavar="TREE",
+                    help="cold runs only, these source trees interleaved (see above)")
+    ap.add_argument("--warm", action="store_true", help="with --compare: warm runs instead")
     a = ap.parse_args()
     global SRC
     SRC = a.src
+    if a.compare:
+        return compare(a)
     with tempfile.TemporaryDirectory(prefix="bench-diff-") as tmp:
         t0 = time.perf_counter()
         top = build_repo(a.corpus, tmp)
@@ -114,6 +124,33 @@ def main():
             cProfile.runctx("cli_main(sys.argv[1:])", globals(), {"cli_main": cli_main,
                                                                     "sys": sys}, a.profile)
             print(f"profile written to {a.profile}")
+
+
+def compare(a):
+    global SRC
+    trees = [None if t == "." else os.path.abspath(t) for t in a.compare]
+    times: dict = {}
+    with tempfile.TemporaryDirectory(prefix="bench-diff-") as tmp:
+        top = build_repo(a.corpus, tmp)
+        cache = os.path.join(top, ".urdf_lint_cache")
+        out = os.path.join(tmp, "snaps")
+        for _ in range(a.runs):
+            for name, tree in zip(a.compare, trees, strict=True):
+                SRC = tree
+                for label, extra in (("no render", []), ("render", ["--render", out])):
+                    if a.warm:   # the cache of a run just before (not timed)
+                        urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)
+                    else:
+                        shutil.rmtree(cache, ignore_errors=True)
+                    wall, p = urdf_lint(top, "diff", "HEAD", "--format", "json", *extra)
+                    if p.returncode not in (0, 1):
+                        sys.exit(f"{name}: diff failed ({p.returncode}): {p.stderr[-2000:]}")
+                    times.setdefault((name, label), []).append(wall)
+    print(f"load average (1 min) {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; "
+          f"{'warm' if a.warm else 'cold'} runs, {a.runs} per tree, interleaved")
+    for (name, label), ts in times.items():
+        print(f"{name:30} {label:9}: min {min(ts):.2f} s, median {statistics.median(ts):.2f} s "
+              f"({' '.join(f'{t:.2f}' for t in ts)})")
 
 
 if __name__ == "__main__":

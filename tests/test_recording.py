@@ -352,3 +352,58 @@ def test_rerun_verifies_the_recordings(recordings):
     p = subprocess.run([exe, "rrd", "verify", *map(str, rrds)], capture_output=True, text=True,
                        env=dict(os.environ, RERUN_ANALYTICS="off"), timeout=120)
     assert p.returncode == 0, p.stdout + p.stderr
+
+
+def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
+    """A plan made from a model (what a diff worker sends) and written by the recorder process
+    gives the recording record_rrd writes in one process; a recording that cannot be written
+    comes back as a reason, and a dead recorder is an error, never a hang."""
+    import subprocess
+    import sys
+    from urdf_lint.recording import Recorder, label_base, plan_rrd, record_rrd
+    from urdf_lint.scene import build_scene
+    entry = DESCRIPTIONS / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.jobs import LintJob
+    from urdf_lint.lint import lint_model
+    from urdf_lint.pipeline import settings_for
+    cfg = load_config(None)
+    settings = dataclasses.replace(settings_for(cfg, build_resolver([str(entry)], cfg), None),
+                                   keep_model=True)
+    _report, model, ctx = lint_model(LintJob(str(entry), {}, "xacro", explicit=True), settings)
+    scene = build_scene(model, ctx)
+    here = tmp_path / "here.rrd"
+    record_rrd(scene, ctx, [], str(here), recording_id="r", prefix="head/", model=model)
+    plan = plan_rrd(build_scene(model, ctx), ctx, model, label_base(model.entry))
+    rec = Recorder()
+    try:
+        there = tmp_path / "there.rrd"
+        rec.write(str(there), "r", [("head/", plan)])
+        rec.write(str(tmp_path / "no" / "such" / "folder" / "x.rrd"), "r", [("head/", plan)])
+        done = rec.results()
+    finally:
+        rec.close()
+    assert done[str(there)] is None
+    assert done[str(tmp_path / "no" / "such" / "folder" / "x.rrd")]     # a reason
+    assert not (tmp_path / "no").exists()
+    rerun_exe = str(Path(sys.executable).parent / "rerun")
+    same = subprocess.run([rerun_exe, "rrd", "compare", "--unordered", str(here), str(there)],
+                          capture_output=True, text=True, env=dict(os.environ,
+                                                                   RERUN_ANALYTICS="off"))
+    assert same.returncode == 0, same.stdout + same.stderr
+    for when in ("before", "after"):   # it dies before it is given the plan, or while writing
+        dead = Recorder()
+        try:
+            if when == "before":
+                dead.proc.kill()
+                dead.proc.join(5)
+            else:   # frozen: the plan waits in the pipe until the recorder is killed
+                import signal
+                os.kill(dead.proc.pid, signal.SIGSTOP)
+            dead.write(str(tmp_path / "y.rrd"), "r", [("head/", plan)])
+            if when == "after":
+                dead.proc.kill()
+            assert "recorder died" in dead.results(timeout=10)[str(tmp_path / "y.rrd")]
+        finally:
+            dead.close()

@@ -9,6 +9,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from conftest import DESCRIPTIONS
@@ -185,7 +186,6 @@ def _img(path):
 
 
 def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
-    import numpy as np
     top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
     edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.05}"')
     out = tmp_path / "snap"
@@ -218,6 +218,37 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     assert marked.sum() > 500 and not (marked & ~near).any()      # nothing else is marked
 
 
+def test_pictures_drawn_in_two_threads_are_those_drawn_in_one(repo, tmp_path):
+    """diff --render draws the views of the before/after pictures and highlight masks in two
+    threads: the PNGs are byte for byte those drawn in one thread, each picture is draw() of
+    its revision through the shared frame, and an unchanged robot is encoded once into two
+    identical files."""
+    from PIL import Image
+    from urdf_lint import raster
+    top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
+    base_geom, _ = _link_mask(repo, ())
+    edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.05}"')
+    head_geom, _ = _link_mask(repo, ())
+    changed = frozenset({"head", "box"})
+    files = {}
+    for n in (1, 2):
+        d = tmp_path / str(n)
+        d.mkdir()
+        info = raster.render_pair(base_geom, head_geom, str(d / "r"), changed, threads=n)
+        files[n] = {s: Path(info[s]).read_bytes() for s in ("before", "after", "diff")}
+        assert info["changed_pixels"] > 500
+    assert files[1] == files[2]
+    frame = raster.frame_for([base_geom, head_geom], views="sheet")
+    for side, g in (("before", base_geom), ("after", head_geom)):
+        got = np.asarray(Image.open(tmp_path / "2" / f"r.{side}.png").convert("RGB"))
+        want = np.asarray(raster.draw(g, frame))
+        top_strip = raster.CAPTION_H    # the caption is written over the strip above the views
+        assert (got[top_strip:] == want[top_strip:]).all()
+    info = raster.render_pair(head_geom, head_geom, str(tmp_path / "same"), changed, threads=2)
+    assert Path(info["before"]).read_bytes() == Path(info["after"]).read_bytes()
+    assert info["changed_pixels"] > 500
+
+
 def _link_mask(root, links):
     from urdf_lint.expansion import expand_file
     from urdf_lint.lint import Context
@@ -243,7 +274,6 @@ def render_mask(g, frame, links):
 
 
 def dilate(m, n):
-    import numpy as np
     out = m.copy()
     for _ in range(n):
         grown = out.copy()
@@ -270,7 +300,6 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
 
 def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     pytest.importorskip("rerun")
-    import warnings
     from rerun.chunk import RrdReader
     edit(repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro", '<box size="0.08 0.08 0.08"/>',
          '<box size="0.1 0.08 0.08"/>')
@@ -278,12 +307,7 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
     capsys.readouterr()
     rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
-    roots = set()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        for ch in RrdReader(str(rrd)).stream():
-            roots.add(str(ch.entity_path).strip("/").split("/")[0])
-    assert {"base", "head"} <= roots
+    assert {"base", "head"} <= recording_roots(rrd)
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
     # each revision sweeps its joints, the layout shows both, and no path of this machine
     from test_recording import _expected_segments, columns, load_model, strings
@@ -299,6 +323,58 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     assert ["+ /base/robot/**", "+ /base/collision/**"] in queries
     assert ["+ /head/robot/**", "+ /head/collision/**"] in queries
     assert not [t for t in strings(rrd) if str(tmp_path) in t or str(repo) in t]
+
+
+def recording_roots(rrd) -> set:
+    """The top entity of every chunk of a recording (read with rerun's own reader)."""
+    import warnings
+    from rerun.chunk import RrdReader
+    roots = set()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for ch in RrdReader(str(rrd)).stream():
+            roots.add(str(ch.entity_path).strip("/").split("/")[0])
+    return roots
+
+
+def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, monkeypatch):
+    """The workers hand back plain plans; one recorder process, forked before them with rerun
+    imported, writes both revisions into one recording (no half files, no merge)."""
+    rerun = pytest.importorskip("rerun")
+    import sys
+    from urdf_lint import review
+    from urdf_lint.recording import Plan
+    real = review._start_recorder
+    started = []
+
+    def start():
+        rec = real()
+        started.append(rec)
+        monkeypatch.setitem(sys.modules, "rerun", None)   # any later `import rerun` fails
+        return rec
+    monkeypatch.setattr(review, "_start_recorder", start)
+    plans = []
+    from urdf_lint import worker
+    real_jobs = worker.run_jobs
+
+    def spy(*a, **kw):
+        for job, res in real_jobs(*a, **kw):
+            plans.append(res.diff_rrd)
+            yield job, res
+    monkeypatch.setattr(worker, "run_jobs", spy)
+    edit(repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro", '<box size="0.08 0.08 0.08"/>',
+         '<box size="0.1 0.08 0.08"/>')
+    out = tmp_path / "snap"
+    assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
+    assert "snapshot incomplete" not in capsys.readouterr().err
+    assert len(started) == 1 and not started[0].proc.is_alive()
+    assert sum(isinstance(p, Plan) for p in plans) == 2      # one per revision
+    monkeypatch.setitem(sys.modules, "rerun", rerun)   # this process reads the recording
+    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    assert sorted(p.name for p in out.iterdir()) == [".urdf-lint-snapshots.json"] + sorted(
+        f"r2d2_description_urdf_r2d2.urdf.xacro.{x}" for x in ("before.png", "after.png",
+                                                               "diff.png", "rrd"))
+    assert {"base", "head"} <= recording_roots(rrd)
 
 
 @pytest.fixture()
@@ -330,6 +406,41 @@ def test_each_side_expands_a_changed_model_once(repo, capsys, expanded):
     assert len(r2d2) == 2 and len({os.path.dirname(e) for e in r2d2}) == 2   # head, base
     assert pendulum == []
     assert doc["models_total"] == 2
+
+
+def test_a_generated_pair_is_linted_only_when_the_change_reaches_it(repo, capsys, expanded):
+    """A checked-in URDF generated from a xacro (UL011 compares them) is linted, with its
+    xacro, only when the change reaches one of them: a change to another robot's macros
+    expands neither; hand-editing the generated file lints its xacro, which reports it stale."""
+    pend = repo / "double_pendulum_description" / "urdf"
+    out = pend / "double_pendulum.urdf"
+    out.write_text("<?xml version=\"1.0\"?>\n<!-- autogenerated by xacro from "
+                   "urdf/double_pendulum.urdf.xacro -->\n<robot name=\"x\"/>\n")
+    assert main(["generate", str(repo)]) == 1 and "<link" in out.read_text()
+    git(repo, "add", "-A")
+    git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "generated")
+    capsys.readouterr()
+    edit(repo / "r2d2_description" / "urdf" / "r2d2_macros.xacro",
+         '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 0 and [m["model"] for m in doc["models"]] == [
+        "r2d2_description/urdf/r2d2.urdf.xacro"]
+    assert not [e for e in expanded if "double_pendulum" in e], expanded
+    assert doc["models_total"] == 3
+
+    git(repo, "checkout", "--", ".")
+    expanded.clear()
+    edit(out, "<robot ", "<!-- by hand -->\n<robot ")
+    edit(out, 'type="continuous"', 'type="revolute"')
+    rc, doc = run_json(capsys, "HEAD")
+    assert rc == 1, doc
+    assert {e[len(str(repo)) + 1:] if e.startswith(str(repo)) else os.path.basename(e)
+            for e in expanded} >= {"double_pendulum_description/urdf/double_pendulum.urdf.xacro",
+                                   "double_pendulum_description/urdf/double_pendulum.urdf"}
+    assert not [e for e in expanded if "r2d2" in e], expanded
+    by_model = {m["model"]: m for m in doc["models"]}
+    xacro = by_model["double_pendulum_description/urdf/double_pendulum.urdf.xacro"]
+    assert [f["code"] for f in xacro["findings_introduced"]] == ["UL011"], xacro
 
 
 def test_a_yaml_change_lints_every_model(repo, capsys, expanded):
@@ -433,3 +544,27 @@ def test_markdown_links_the_pictures_diff_render_wrote(repo, tmp_path, capsys):
     assert len(linked) == 3, md
     for name in linked:
         assert (out / name).is_file(), (name, sorted(p.name for p in out.iterdir()))
+
+
+def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
+    """A diff --render worker sends its picture's geometry and its recording plan back through
+    the pipe: the sandbox gives it no write access to the snapshot folder (only to the
+    mesh facts), unlike a render worker, which writes its own files."""
+    import dataclasses
+    from urdf_lint import forked, sandbox
+    from urdf_lint.jobs import LintSettings
+    got = []
+    monkeypatch.setattr(sandbox, "enter", lambda pid, read, write, keep_fds=(): got.append(
+        list(write)) or {})
+    cache, snaps = tmp_path / "cache", tmp_path / "snaps"
+    conn, other = forked.pipe()
+    try:
+        for extra in ({"diff_render_dir": str(snaps)}, {"render_dir": str(snaps)}):
+            sandbox.enter_worker(conn, dataclasses.replace(
+                LintSettings(resolver={}), mesh_cache_dir=str(cache), **extra))
+    finally:
+        conn.close()
+        other.close()
+    diff_worker, render_worker = got
+    assert diff_worker == [str(cache / "meshes")]
+    assert render_worker == [str(cache / "meshes"), str(snaps)]

@@ -64,7 +64,7 @@ class LintSettings:
     render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
     diff_render_dir: str | None = None       # diff --render: where the snapshots go
-    diff_rrd: bool = True                    # diff --render: also this side's half recording
+    diff_rrd: bool = True                    # diff --render: also the plan of its recording
     diff_side: str = "head"                  # diff --render: "base" or "head"
 
     # read-only dict-style access, for worker start-up code written against the old dict
@@ -109,7 +109,7 @@ class ModelReport:
     snapshot: dict | None = None                    # what the renderer wrote (render runs only)
     kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
     diff_geometry: object = None                    # diff --render: render.Geometry
-    diff_rrd: str | None = None                     # diff --render: this side's recording
+    diff_rrd: object = None                         # diff --render: recording.Plan of this side
     digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
     directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
     cached: bool = False

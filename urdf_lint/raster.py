@@ -12,6 +12,7 @@ and labelled with the link name; a thin skeleton joins the link origins.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -560,41 +561,103 @@ def difference_image(after, before_changed, after_changed):
 
 
 def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
-                changed_links=frozenset(), views="sheet", forward="+x") -> dict:
+                changed_links=frozenset(), views="sheet", forward="+x", threads=None) -> dict:
     """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
-    nothing changed), and ``stem.diff.png`` highlighting ``changed_links``."""
+    nothing changed), and ``stem.diff.png`` highlighting ``changed_links``. The views are
+    drawn by ``threads`` threads (:func:`draw_many`)."""
     from PIL import Image
     geoms = [g for g in (before, after) if g is not None]
     fr = frame_for(geoms, views=views, forward=forward)
     out: dict = {}
     blank = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
+    same = before is not None and after is not None and same_geometry(before, after)
+    wanted: dict = {}
+    for side, g in (("before", before), ("after", None if same else after)):
+        if g is not None:
+            wanted[side] = (g, True)
+            if changed_links:   # where the changed links are drawn (no labels, skeleton, triads)
+                wanted[side + ".mask"] = (g.only(changed_links), False)
+    drawn = draw_many(wanted, fr, threads)
+    if same:
+        drawn["after"] = drawn["before"]
+        if changed_links:
+            drawn["after.mask"] = drawn["before.mask"]
     masks: dict = {}
     after_img = blank
-    drawn: dict = {}
+    pngs: dict = {}
     for side, g in (("before", before), ("after", after)):
         if g is None:
             img = blank.copy()
             caption(img, "(no model)")
             masks[side] = np.zeros((fr.size[1], fr.size[0]), dtype=bool)
         else:
-            if side == "after" and before is not None and after is not None \
-                    and same_geometry(before, after):
-                img, masks[side] = drawn["before"][0].copy(), drawn["before"][1]
-            else:
-                img, masks[side] = draw(g, fr), link_mask(g, fr, changed_links)
-                drawn[side] = (img.copy(), masks[side])
+            img = drawn[side].copy()
+            masks[side] = _mask(drawn[side + ".mask"]) if changed_links else \
+                np.zeros((fr.size[1], fr.size[0]), dtype=bool)
             if side == "after":
-                after_img = img.copy()
+                after_img = drawn[side]
             caption(img, model_caption(g.name, g.links, len(g.placeholders)))
-        path = f"{stem}.{side}.png"
-        save_png(img, path)
-        out[side] = path
-    diff = difference_image(after_img, masks["before"], masks["after"])
-    n = int((masks["before"] | masks["after"]).sum())
-    caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
-            + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else ""))
-    save_png(diff, f"{stem}.diff.png")
+        out[side] = f"{stem}.{side}.png"
+        pngs[out[side]] = img
+    from concurrent.futures import ThreadPoolExecutor
+    # PNG encoding lets go of the GIL: the two pictures are encoded while the difference
+    # image is made (the same picture twice is encoded once)
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        saving = [pool.submit(_save_pngs, pngs, same)]
+        diff = difference_image(after_img, masks["before"], masks["after"])
+        n = int((masks["before"] | masks["after"]).sum())
+        caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
+                + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else ""))
+        save_png(diff, f"{stem}.diff.png")
+        for f in saving:
+            f.result()
     out["diff"], out["changed_pixels"] = f"{stem}.diff.png", n
+    return out
+
+
+def _save_pngs(pngs: dict, same: bool) -> None:
+    """Save path -> image; with ``same``, the images are equal: encoded once."""
+    if same:
+        import io
+        from .atomic import atomic_write
+        buf = io.BytesIO()
+        next(iter(pngs.values())).save(buf, format="PNG", optimize=False)
+        for path in pngs:
+            atomic_write(path, buf.getvalue())
+        return
+    from concurrent.futures import ThreadPoolExecutor
+    with ThreadPoolExecutor(max_workers=len(pngs)) as pool:
+        for f in [pool.submit(save_png, img, path) for path, img in pngs.items()]:
+            f.result()
+
+
+def draw_many(items: dict, fr: Frame, threads=None) -> dict:
+    """name -> the image :func:`draw` gives, for ``items`` (name -> (geometry, annotate)).
+    Every view is drawn on its own, by ``threads`` threads (default: two on a machine with
+    two cores or more; numpy lets go of the GIL in the rasterizer's array operations), and
+    pasted where :func:`draw` pastes it: the pixels are the same."""
+    from PIL import Image
+    solids = {name: _prepare(g) for name, (g, _annotate) in items.items()}
+    tasks = [(name, i) for name in items for i in range(len(fr.views))]
+
+    def one(task):
+        name, i = task
+        g, annotate = items[name]
+        return _draw_view(g, solids[name], fr.views[i], fr, annotate)
+    if threads is None:
+        threads = 2 if (os.cpu_count() or 1) > 1 else 1
+    if threads > 1 and len(tasks) > 1:
+        from concurrent.futures import ThreadPoolExecutor
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            views = dict(zip(tasks, pool.map(one, tasks), strict=True))
+    else:
+        views = {t: one(t) for t in tasks}
+    out = {}
+    for name in items:
+        img = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
+        for i, v in enumerate(fr.views):
+            img.paste(views[(name, i)], (v.x0, v.y0))
+        out[name] = img
     return out
 
 

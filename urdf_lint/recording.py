@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -113,57 +114,72 @@ def relative_label(path: str) -> str:
 
 def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix, model=None, base=None,
                 blueprint=True):
-    import rerun as rr
     if model is not None:
         base = label_base(model.entry)
-    rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
-    rec.save(tmp)
-    if blueprint:
-        prefixes = (prefix,) if blueprint is True else tuple(blueprint)
-        rec.send_blueprint(blueprint_for(prefixes), make_active=True, make_default=True)
+    plan = plan_rrd(scene, ctx, model, base)
+    write_rrd(tmp, recording_id, [(prefix, plan)], blueprint, findings, base)
+    return plan_facts(plan)
 
-    def log(entity, *a, **kw):
-        rec.log(prefix + entity, *a, **kw)
-    rec.log("/", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+
+@dataclass
+class Plan:
+    """What a recording logs for one robot, as plain data (entity paths, numpy arrays,
+    strings), in logging order: made where the meshes may be read (a worker), written where
+    rerun is imported (:func:`write_rrd`, possibly another process, with other revisions)."""
+    ops: list
+    paths: dict                # link -> entity path
+    joint_paths: dict          # joint -> entity path
+    size: float                # the robot's extent (m): axes and markers scale with it
+    meshes: int                # meshes logged
+    sweep_segments: int | None = None
+
+
+def plan_facts(plan: Plan) -> dict:
+    out = {"meshes": plan.meshes, "robot_size": plan.size}
+    if plan.sweep_segments is not None:
+        out["sweep_segments"] = plan.sweep_segments
+    return out
+
+
+def plan_rrd(scene, ctx, model=None, base=None) -> Plan:
+    """The :class:`Plan` of ``scene``: the kinematic tree twice, /robot (frames, axes,
+    visuals) and /collision (collision geometry only, so that it toggles as one subtree);
+    with ``model``, the ``joint_sweep`` timeline; ``base`` is what file names in labels are
+    relative to."""
     paths, joint_paths = entity_paths(scene)
     meshes = [(part, part_mesh(part, ctx) if part.shape != "missing" else None)
               for part in scene.parts]
     size = robot_size(scene, meshes)
     sweep = _sweep(model) if model is not None else None
     moving = sweep.joints if sweep is not None else set()
-    # the kinematic tree twice: /robot (frames, axes, visuals, findings) and /collision
-    # (collision geometry only, so that it toggles as one subtree). Joints the sweep moves get
-    # their transform on the joint_sweep timeline instead (static data would hide it).
+    ops: list = []
+    # joints the sweep moves get their transform on the joint_sweep timeline instead (static
+    # data would hide it)
     for root in ("robot", "collision"):
         for _parent, j, _child in scene.tree:
             if j.get("name") in moving:
                 continue
             T = origin_matrix(j)
-            jp = root + joint_paths[j.get("name")][len("robot"):]
-            log(jp, rr.Transform3D(translation=T[:3, 3], mat3x3=T[:3, :3]), static=True)
+            ops.append(("transform", root + joint_paths[j.get("name")][len("robot"):],
+                        T[:3, 3].copy(), T[:3, :3].copy()))
     if sweep is not None:
-        _log_sweep(rec, rr, prefix, sweep, joint_paths)
+        ops.extend(_sweep_ops(sweep, joint_paths))
     for _parent, j, child in scene.tree:
         if j.get("type") not in ("fixed", None):
             ax = j.find("axis")
             axis = numbers(ax.get("xyz") if ax is not None else "1 0 0", 3) or [1, 0, 0]
-            log(f"{paths[child]}/joint_axis",
-                rr.Arrows3D(origins=[[0, 0, 0]], vectors=[np.asarray(axis) * 0.15 * size],
-                            colors=[[250, 200, 0]], labels=[j.get("name") or ""]), static=True)
+            ops.append(("axis", f"{paths[child]}/joint_axis", np.asarray(axis) * 0.15 * size,
+                        j.get("name") or ""))
     for _link, p in paths.items():
-        log(p, rr.TransformAxes3D(0.06 * size), static=True)
+        ops.append(("axes", p, 0.06 * size))
     logged = 0
     for part, got in meshes:
         root = "robot" if part.kind == "visual" else "collision"
         base_ent = f"{root}{paths[part.link][len('robot'):]}/{part.kind}/{part.index}"
-        log(base_ent, rr.Transform3D(translation=part.local[:3, 3], mat3x3=part.local[:3, :3]),
-            static=True)
+        ops.append(("transform", base_ent, part.local[:3, 3].copy(), part.local[:3, :3].copy()))
         if got is None:
-            h = 0.02 * size
-            log(f"{base_ent}/missing",
-                rr.Boxes3D(half_sizes=[[h, h, h]], colors=[[230, 30, 30]],
-                           labels=[relative_text(part.problem, base) or "missing geometry"]),
-                static=True)
+            ops.append(("missing", f"{base_ent}/missing", 0.02 * size,
+                        relative_text(part.problem, base) or "missing geometry"))
             continue
         v, f, fc = got
         rgba = [int(255 * x) for x in part.rgba]
@@ -180,15 +196,58 @@ def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix, model=None, bas
             vc = np.zeros((len(v), 3))
             vc[f.reshape(-1)] = np.repeat(fc, 3, axis=0)
             kwargs["vertex_colors"] = (vc * 255).astype(np.uint8)
-        log(f"{base_ent}/mesh", rr.Mesh3D(**kwargs), static=True)
+        ops.append(("mesh", f"{base_ent}/mesh", kwargs))
         logged += 1
-    log_findings(log, findings, paths, joint_paths, base, size)
+    return Plan(ops, paths, joint_paths, size, logged,
+                len(sweep.segments) if sweep is not None else None)
+
+
+def write_rrd(path, recording_id, plans, blueprint=True, findings=(), base=None) -> None:
+    """Write ``plans`` (``(prefix, Plan)`` pairs: one per revision, ``"base/"`` and
+    ``"head/"``, or ``("", plan)``) to ``path`` as one recording; ``findings`` go on the
+    last plan's entities. ``blueprint``: True for the plans' own roots, or the prefixes a
+    recording merged later will hold."""
+    import rerun as rr
+    rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
+    rec.save(path)
+    if blueprint:
+        prefixes = tuple(p for p, _ in plans) if blueprint is True else tuple(blueprint)
+        rec.send_blueprint(blueprint_for(prefixes), make_active=True, make_default=True)
+    rec.log("/", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+    for prefix, plan in plans:
+        _log_plan(rec, rr, prefix, plan)
+    if plans:
+        prefix, plan = plans[-1]
+        log_findings(lambda entity, *a, **kw: rec.log(prefix + entity, *a, **kw), findings,
+                     plan.paths, plan.joint_paths, base, plan.size)
     rec.flush()
     rec.disconnect()
-    out = {"meshes": logged, "robot_size": size}
-    if sweep is not None:
-        out["sweep_segments"] = len(sweep.segments)
-    return out
+
+
+def _log_plan(rec, rr, prefix, plan: Plan) -> None:
+    for op in plan.ops:
+        kind, entity = op[0], prefix + op[1]
+        if kind == "transform":
+            rec.log(entity, rr.Transform3D(translation=op[2], mat3x3=op[3]), static=True)
+        elif kind == "columns":
+            rec.send_columns(entity, indexes=[rr.TimeColumn(op[2], sequence=op[3])],
+                             columns=rr.Transform3D.columns(translation=op[4], mat3x3=op[5]))
+        elif kind == "textlog_columns":
+            rec.send_columns(entity, indexes=[rr.TimeColumn(op[2], sequence=op[3])],
+                             columns=rr.TextLog.columns(text=op[4], level=op[5]))
+        elif kind == "axis":
+            rec.log(entity, rr.Arrows3D(origins=[[0, 0, 0]], vectors=[op[2]],
+                                        colors=[[250, 200, 0]], labels=[op[3]]), static=True)
+        elif kind == "axes":
+            rec.log(entity, rr.TransformAxes3D(op[2]), static=True)
+        elif kind == "missing":
+            h = op[2]
+            rec.log(entity, rr.Boxes3D(half_sizes=[[h, h, h]], colors=[[230, 30, 30]],
+                                       labels=[op[3]]), static=True)
+        elif kind == "mesh":
+            rec.log(entity, rr.Mesh3D(**op[2]), static=True)
+        else:  # pragma: no cover - a plan only holds the kinds above
+            raise ValueError(f"unknown recording op {kind!r}")
 
 
 def log_findings(log, findings, paths, joint_paths, base=None, size=1.0):
@@ -242,11 +301,12 @@ def _sweep(model):
     return plan(urdf) if urdf is not None else None
 
 
-def _log_sweep(rec, rr, prefix, sweep, joint_paths):
+def _sweep_ops(sweep, joint_paths) -> list:
     """Per moving joint, its transform at every step it changes, as columns on the
     ``joint_sweep`` timeline (in both the /robot and the /collision tree); the joint each
     segment moves as a text log on /sweep."""
     from .sweep import TIMELINE
+    ops: list = []
     per_joint: dict = {}
     for step in sorted(sweep.frames):
         for name, T in sweep.frames[step].items():
@@ -258,17 +318,13 @@ def _log_sweep(rec, rr, prefix, sweep, joint_paths):
         Ts = np.asarray([T for _, T in rows], dtype=float)
         for root in ("robot", "collision"):
             jp = root + joint_paths[name][len("robot"):]
-            rec.send_columns(prefix + jp, indexes=[rr.TimeColumn(TIMELINE, sequence=steps)],
-                             columns=rr.Transform3D.columns(translation=Ts[:, :3, 3],
-                                                            mat3x3=Ts[:, :3, :3]))
+            ops.append(("columns", jp, TIMELINE, steps, Ts[:, :3, 3], Ts[:, :3, :3]))
     if sweep.segments:
         seg = sweep.segments
-        rec.send_columns(prefix + "sweep",
-                         indexes=[rr.TimeColumn(TIMELINE, sequence=[s.start for s in seg])],
-                         columns=rr.TextLog.columns(
-                             text=[f"sweep {s.joint}" + (f" (+ {', '.join(s.followers)})"
-                                                         if s.followers else "") for s in seg],
-                             level=["INFO"] * len(seg)))
+        ops.append(("textlog_columns", "sweep", TIMELINE, [s.start for s in seg],
+                    [f"sweep {s.joint}" + (f" (+ {', '.join(s.followers)})" if s.followers else "")
+                     for s in seg], ["INFO"] * len(seg)))
+    return ops
 
 
 def _import_rerun():
@@ -276,3 +332,118 @@ def _import_rerun():
         import rerun  # noqa: F401
     except Exception:  # noqa: BLE001 - reported by render_model when it imports again
         pass
+
+
+# -- a process that writes recordings ----------------------------------------------------------
+class Recorder:
+    """A child process that imports rerun at once (~0.4 s, while the run discovers and lints)
+    and then writes recordings from :class:`Plan` s: ``urdf-lint diff --render`` writes both
+    revisions of a model into one .rrd there, so no worker imports rerun and no half
+    recording is merged. It reads no file: it gets plain data and writes where it is told
+    (the snapshot folder), like the parent it was forked from. Forked before any worker or
+    thread of the run, so no import or lock is half-held in it."""
+
+    def __init__(self):
+        from . import forked
+        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(),))
+        self.pending: list = []
+        self.failed: dict = {}
+        self._sender = None
+
+    def write(self, path, recording_id, plans, blueprint=True) -> None:
+        """Queue a recording (:func:`write_rrd`) to ``path``; :meth:`results` says how it went.
+        Returns at once: a thread sends it (a plan is larger than the pipe, and the recorder
+        may still be importing rerun or writing the previous one)."""
+        import threading
+        previous = self._sender
+
+        def send():
+            if previous is not None:
+                previous.join()     # in order
+            try:
+                self.conn.send((path, recording_id, plans, blueprint))
+            except OSError:
+                self.failed[path] = "gone"
+        self.pending.append(path)
+        self._sender = threading.Thread(target=send, name="urdf-lint-recorder", daemon=True)
+        self._sender.start()
+
+    def _gone(self) -> str:
+        self.proc.join(0.5)
+        return f"the recorder died (exit code {self.proc.exitcode})"
+
+    def results(self, timeout=120.0) -> dict:
+        """path -> None (written) or why not ("rerun-sdk is not installed", an error), for
+        every queued recording."""
+        from . import forked
+        if self._sender is not None:
+            self._sender.join(timeout)
+        for path in self.failed:
+            self.pending.remove(path)
+        out = {path: self._gone() for path in self.failed}
+        while self.pending:
+            if not forked.wait([self.conn], timeout):
+                why = f"the recorder did not answer within {timeout:g} s"
+                break
+            try:
+                path, why = self.conn.recv()
+            except (EOFError, OSError):
+                why = self._gone()
+                break
+            out[path] = why
+            self.pending.remove(path)
+        else:
+            return out
+        out.update((p, why) for p in self.pending)   # the recorder is stuck or gone
+        self.pending = []
+        return out
+
+    def close(self) -> None:
+        if self._sender is not None and self._sender.is_alive():
+            self.proc.kill()   # stuck reading a plan: no end message through a half-sent one
+        else:
+            try:
+                self.conn.send(None)
+                self.proc.join(2)
+            except (OSError, ValueError):
+                pass
+        if self.proc.is_alive():
+            self.proc.kill()
+            self.proc.join(1)
+        self.conn.close()
+
+
+NO_RERUN = "rerun-sdk is not installed (pip install 'urdf-lint[render]')"
+
+
+def _recorder_main(conn, parent_pid):
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)    # the parent stops it
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    try:
+        from .sandbox import set_parent_death_signal
+        set_parent_death_signal(parent_pid)
+    except Exception:  # noqa: BLE001 - it also ends when the parent's end of the pipe closes
+        pass
+    try:
+        import rerun  # noqa: F401
+        missing = None
+    except ImportError:
+        missing = NO_RERUN
+    from .atomic import atomic_path
+    while True:
+        try:
+            msg = conn.recv()
+        except (EOFError, OSError):
+            return
+        if msg is None:
+            return
+        path, recording_id, plans, blueprint = msg
+        why = missing
+        if why is None:
+            try:
+                with atomic_path(path, ".rrd") as tmp:
+                    write_rrd(tmp, recording_id, plans, blueprint)
+            except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
+                why = f"{type(e).__name__}: {e}"
+        conn.send((path, why))

@@ -111,7 +111,7 @@ class Side:
     severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
     robots: dict = field(default_factory=dict)      # key -> Model | None
     geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
-    rrd: dict = field(default_factory=dict)         # key -> this revision's half recording
+    rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
     errors: dict = field(default_factory=dict)      # key -> message
 
 
@@ -171,9 +171,9 @@ class _Reach:
 
     def _may_reach(self, job, found) -> bool:
         graph = found.graph
-        if job.entry in found.generated or job.output:
-            return True   # a generated URDF and its xacro are compared (UL011)
-        todo, seen = [job.entry], set()
+        # a xacro with a generated output reads that file too (UL011 compares them); a
+        # generated URDF is a model of its own, whose only source is itself
+        todo, seen = [job.entry] + ([job.output] if job.output else []), set()
         while todo:
             f = todo.pop()
             real = _realpath(f)
@@ -315,146 +315,165 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
         raise ReviewError("diff compares git revisions: run it inside a git repository")
     base_sha = verify_rev(top, base_rev)
     head_sha = verify_rev(top, head_rev) if head_rev else None
+    result = DiffResult(base=base_rev, head=head_rev or "working tree")
+    # the recordings' writer imports rerun while the revisions are linted (forked now, before
+    # any worker or thread)
+    recorder = _start_recorder() if render_dir and rrd else None
+    try:
+        with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
+            return _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
+                             jobs_n, use_cache, render_dir, rrd, recorder, tmp)
+    finally:
+        if recorder is not None:
+            recorder.close()
+
+
+def _start_recorder():
+    from .recording import Recorder
+    try:
+        return Recorder()
+    except OSError:   # no process to spare: the recordings are written here
+        return None
+
+
+def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths, jobs_n,
+              use_cache, render_dir, rrd, recorder, tmp) -> DiffResult:
     changes = name_status(top, base_sha, head_sha)
     changed_head = {new for st, _, new in changes if st != "D"}
     changed_base = {old for st, old, _ in changes if st != "A"}
     renamed = {new: old for st, old, new in changes if st == "R"}
-    result = DiffResult(base=base_rev, head=head_rev or "working tree")
-    with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
-        head_root = top
-        if head_sha:
-            head_root = os.path.join(tmp, "head")
-            materialize(top, head_sha, head_root)
-        base_root = os.path.join(tmp, "base")
-        rel_paths = [os.path.relpath(os.path.abspath(p), top) for p in (paths or ["."])]
+    head_root = top
+    if head_sha:
+        head_root = os.path.join(tmp, "head")
+        materialize(top, head_sha, head_root)
+    base_root = os.path.join(tmp, "base")
+    rel_paths = [os.path.relpath(os.path.abspath(p), top) for p in (paths or ["."])]
 
-        head = Side(head_root)
-        head_paths = [os.path.normpath(os.path.join(head_root, p)) for p in rel_paths]
-        head_paths = [p for p in head_paths if os.path.exists(p)] or [head_root]
-        cfg = cfg_loader(head_paths)
-        cache = None
-        if use_cache and head_sha is None:
-            from .cache import Cache
-            cache = Cache.for_paths(head_paths, cfg)
-            if cache.refused:  # said why on stderr; nothing goes there
-                cache = None
-        # models linted now (not from the cache) bring their robot back: no second expansion
-        # models the change cannot reach (include graph) are not even linted
-        reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
-                       [os.path.join(head_root, p) for p in changed_base])
-        head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
-                                                cache, keep_models=not render_dir,
-                                                select_jobs=reach)
-        result.internal += head_result.internal
-        result.total_models = len(head.models) + reach.skipped
+    head = Side(head_root)
+    head_paths = [os.path.normpath(os.path.join(head_root, p)) for p in rel_paths]
+    head_paths = [p for p in head_paths if os.path.exists(p)] or [head_root]
+    cfg = cfg_loader(head_paths)
+    cache = None
+    if use_cache and head_sha is None:
+        from .cache import Cache
+        cache = Cache.for_paths(head_paths, cfg)
+        if cache.refused:  # said why on stderr; nothing goes there
+            cache = None
+    # models linted now (not from the cache) bring their robot back: no second expansion
+    # models the change cannot reach (include graph) are not even linted
+    reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
+                   [os.path.join(head_root, p) for p in changed_base])
+    head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
+                                            cache, keep_models=not render_dir,
+                                            select_jobs=reach)
+    result.internal += head_result.internal
+    result.total_models = len(head.models) + reach.skipped
 
-        affected = []
-        for k, m in head.models.items():
-            inputs = {_rel(head_root, d) for d in list(m.deps) + list(getattr(m, "missing", []))}
-            inputs.add(_rel(head_root, m.entry))
-            if inputs & (changed_head | changed_base):
-                affected.append(k)
+    affected = []
+    for k, m in head.models.items():
+        inputs = {_rel(head_root, d) for d in list(m.deps) + list(getattr(m, "missing", []))}
+        inputs.add(_rel(head_root, m.entry))
+        if inputs & (changed_head | changed_base):
+            affected.append(k)
+    if render_dir:
+        _clear_snapshots(render_dir)
+    again = []
+    for k in affected:
+        m = head.models[k]
+        if m.kept_model is not None and not render_dir:
+            _keep_robot(head, k, m.entry, m.args, m, head_resolver)
+        else:
+            again.append(k)
+    for m in head.models.values():
+        m.kept_model = None  # only the affected robots are needed from here on
+    # the head's robots (and pictures) are made while the base is materialised and linted
+    head_load = _Background(_load_robots, head, again, head_resolver, cfg,
+                            _half(jobs_n, cfg), render_dir, "head", rrd)
+    # (an exception from here on leaves it: its workers die with this process)
+    base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
+    # the base needs only what the affected models can read there: their inputs at HEAD
+    # (through renames), every changed path, and the package manifests and configs
+    base_files = tracked_files(top, base_sha)
+    need = set(changed_base)
+    for k in affected:
+        m = head.models[k]
+        for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]:
+            rel = _rel(head_root, d)
+            need.add(renamed.get(rel, rel))
+    need |= {f for f in base_files if os.path.basename(f) in
+             ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
+              "CATKIN_IGNORE")}
+    materialize(top, base_sha, base_root, only=need & base_files)
+    # base entries: the affected models (through renames) and deleted model files
+    base_entries = set()
+    for k in affected:
+        rel = _rel(head_root, head.models[k].entry)
+        rel = renamed.get(rel, rel)
+        if os.path.exists(os.path.join(base_root, rel)):
+            base_entries.add(rel)
+    from .lint import classify_xacro
+    for st, old, _new in changes:
+        if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
+                any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
+                    for p in rel_paths):
+            f = os.path.join(base_root, old)
+            if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
+                base_entries.add(old)
+    base = Side(base_root)
+    base_resolver = None
+    if base_entries:
+        base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
+        base_cfg = cfg_loader([base_root])
+        # the base's robots (and with --render its pictures and half recordings) come
+        # from this one expansion; mesh facts (keyed by content) are shared with the
+        # working tree's cache
+        overrides, stems = None, None
         if render_dir:
-            _clear_snapshots(render_dir)
-        again = []
-        for k in affected:
-            m = head.models[k]
-            if m.kept_model is not None and not render_dir:
-                _keep_robot(head, k, m.entry, m.args, m, head_resolver)
-            else:
-                again.append(k)
-        for m in head.models.values():
-            m.kept_model = None  # only the affected robots are needed from here on
-        # the head's robots (and pictures) are made while the base is materialised and linted
-        head_load = _Background(_load_robots, head, again, head_resolver, cfg,
-                                _half(jobs_n, cfg), render_dir, "head", rrd)
-        # (an exception from here on leaves it: its workers die with this process)
-        base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
-        # the base needs only what the affected models can read there: their inputs at HEAD
-        # (through renames), every changed path, and the package manifests and configs
-        base_files = tracked_files(top, base_sha)
-        need = set(changed_base)
-        for k in affected:
-            m = head.models[k]
-            for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]:
-                rel = _rel(head_root, d)
-                need.add(renamed.get(rel, rel))
-        need |= {f for f in base_files if os.path.basename(f) in
-                 ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
-                  "CATKIN_IGNORE")}
-        materialize(top, base_sha, base_root, only=need & base_files)
-        # base entries: the affected models (through renames) and deleted model files
-        base_entries = set()
-        for k in affected:
-            rel = _rel(head_root, head.models[k].entry)
-            rel = renamed.get(rel, rel)
-            if os.path.exists(os.path.join(base_root, rel)):
-                base_entries.add(rel)
-        from .lint import classify_xacro
-        for st, old, _new in changes:
-            if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
-                    any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
-                        for p in rel_paths):
-                f = os.path.join(base_root, old)
-                if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
-                    base_entries.add(old)
-        base = Side(base_root)
-        base_resolver = None
-        if base_entries:
-            base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
-            base_cfg = cfg_loader([base_root])
-            # the base's robots (and with --render its pictures and half recordings) come
-            # from this one expansion; mesh facts (keyed by content) are shared with the
-            # working tree's cache
-            overrides, stems = None, None
-            if render_dir:
-                overrides = {"diff_render_dir": os.path.realpath(render_dir), "diff_rrd": rrd,
-                             "diff_side": "base"}
+            overrides = {"diff_render_dir": os.path.realpath(render_dir), "diff_rrd": rrd,
+                         "diff_side": "base"}
 
-                def stems(jobs, _found):
-                    return [dataclasses.replace(j, diff_stem=image_stem(
-                        _key(_rel(base_root, j.entry), j.args))) for j in jobs]
-            base_resolver, base_result = _lint_side(
-                base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
-                mesh_cache_dir=cache.dir if cache else None, select_jobs=stems,
-                settings_overrides=overrides)
-            result.internal += base_result.internal
-            for k, m in base.models.items():
-                _keep_robot(base, k, m.entry, m.args, m, base_resolver)
-                if m.diff_geometry is not None:
-                    base.geometry[k] = m.diff_geometry
-                if m.diff_rrd:
-                    base.rrd[k] = m.diff_rrd
-            for m in base_result.skipped:   # not a robot: no picture, no half recording
-                if getattr(m, "diff_rrd", None) and os.path.isfile(m.diff_rrd):
-                    os.remove(m.diff_rrd)
-        result.base_expanded = len(base.models)
+            def stems(jobs, _found):
+                return [dataclasses.replace(j, diff_stem=image_stem(
+                    _key(_rel(base_root, j.entry), j.args))) for j in jobs]
+        base_resolver, base_result = _lint_side(
+            base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
+            mesh_cache_dir=cache.dir if cache else None, select_jobs=stems,
+            settings_overrides=overrides)
+        result.internal += base_result.internal
+        for k, m in base.models.items():
+            _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+            if m.diff_geometry is not None:
+                base.geometry[k] = m.diff_geometry
+            if m.diff_rrd:
+                base.rrd[k] = m.diff_rrd
+    result.base_expanded = len(base.models)
 
-        base_keys = {}
-        for k in affected:
-            m = head.models[k]
-            rel = _rel(head_root, m.entry)
-            bk = _key(renamed.get(rel, rel), m.args)
-            if bk in base.models:
-                base_keys[k] = bk
-        deleted = [k for k in base.models if k not in base_keys.values()]
-        head_load.join()
+    base_keys = {}
+    for k in affected:
+        m = head.models[k]
+        rel = _rel(head_root, m.entry)
+        bk = _key(renamed.get(rel, rel), m.args)
+        if bk in base.models:
+            base_keys[k] = bk
+    deleted = [k for k in base.models if k not in base_keys.values()]
+    head_load.join()
 
-        for k in sorted(affected):
-            result.models.append(_model_diff(k, head, base, base_keys.get(k)))
-        for dk in sorted(deleted):
-            result.models.append(_model_diff(dk, head, base, dk, removed=True))
-        if render_dir:
-            from .render import write_manifest
-            files = []
-            for md in result.models:
-                removed = md.status == "removed"
-                md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
-                                        md.model if removed else base_keys.get(md.model),
-                                        render_dir, result, cfg)
-                files += [v for k, v in md.snapshot.items()
-                          if k in ("before", "after", "diff", "rrd") and v]
-            write_manifest(render_dir, files)
+    for k in sorted(affected):
+        result.models.append(_model_diff(k, head, base, base_keys.get(k)))
+    for dk in sorted(deleted):
+        result.models.append(_model_diff(dk, head, base, dk, removed=True))
+    if render_dir:
+        from .render import write_manifest
+        recordings: dict = {}
+        for md in result.models:
+            removed = md.status == "removed"
+            md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
+                                    md.model if removed else base_keys.get(md.model),
+                                    render_dir, result, cfg, recorder, recordings)
+        _finish_recordings(result, recorder, recordings)
+        files = [v for md in result.models for k, v in md.snapshot.items()
+                 if k in ("before", "after", "diff", "rrd") and v]
+        write_manifest(render_dir, files)
     return result
 
 
@@ -468,7 +487,8 @@ def _clear_snapshots(render_dir):
     clear_stale(render_dir)
 
 
-def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None) -> dict:
+def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
+              recorder=None, recordings=None) -> dict:
     from . import render
     stem = os.path.join(render_dir, image_stem(key))
     before = base.geometry.get(bk) if bk else None
@@ -491,15 +511,53 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None)
         changed |= set(whole.part_links) | set(whole.wire_links)
     views = (cfg.views if cfg is not None else None) or "sheet"
     forward = cfg.forward_axis if cfg is not None else "+x"
+    plans = [(prefix, p) for prefix, p in (("base/", base.rrd.get(bk) if bk else None),
+                                           ("head/", head.rrd.get(hk) if hk else None)) if p]
+    if plans and recordings is not None:
+        # both revisions in one recording, written by the recorder while the pictures are
+        # drawn (collected by _finish_recordings)
+        path, rid = stem + ".rrd", f"urdf-lint-diff/{image_stem(key)}"
+        recordings[path] = (key, info, rid, plans)
+        if recorder is not None:
+            recorder.write(path, rid, plans, blueprint=("base/", "head/"))
     info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
                                    forward=forward))
-    halves = [p for p in (base.rrd.get(bk) if bk else None, head.rrd.get(hk) if hk else None) if p]
-    if halves:
-        try:
-            info["rrd"] = render.merge_rrd(halves, stem + ".rrd")
-        except (RuntimeError, OSError, subprocess.SubprocessError) as e:
-            result.snapshot_problems.append((key, f"no recording: {e}"))
     return info
+
+
+def _finish_recordings(result, recorder, recordings) -> None:
+    """Wait for the recorder (or write here without one); a recording that could not be
+    written is a snapshot problem, except when rerun is not installed (no .rrd then, as
+    ``--no-rrd``)."""
+    from .recording import NO_RERUN
+    if not recordings:
+        return
+    if recorder is not None:
+        done = recorder.results()
+    else:
+        done = {path: _write_here(path, rid, plans)
+                for path, (_k, _i, rid, plans) in recordings.items()}
+    for path, (key, info, _rid, _plans) in recordings.items():
+        why = done.get(path, "not written")
+        if why is None:
+            info["rrd"] = path
+        elif why != NO_RERUN:
+            result.snapshot_problems.append((key, f"no recording: {why}"))
+
+
+def _write_here(path, recording_id, plans) -> str | None:
+    from .atomic import atomic_path
+    from .recording import NO_RERUN, write_rrd
+    try:
+        import rerun  # noqa: F401
+    except ImportError:
+        return NO_RERUN
+    try:
+        with atomic_path(path, ".rrd") as tmp:
+            write_rrd(tmp, recording_id, plans, blueprint=("base/", "head/"))
+    except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
+        return f"{type(e).__name__}: {e}"
+    return None
 
 
 def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:

@@ -391,8 +391,9 @@ def enter_worker(conn, settings) -> dict:
             ensure(settings.mesh_cache_dir)
         except OSError:
             pass
-    # snapshots: check --render / render --out, and urdf-lint diff --render
-    for d in (facts, settings.render_dir, settings.diff_render_dir):
+    # snapshots: check --render / render --out (a diff --render worker writes nothing: its
+    # pictures and recording plan go back through the pipe)
+    for d in (facts, settings.render_dir):
         if d:
             try:
                 os.makedirs(d, exist_ok=True)

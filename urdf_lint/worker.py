@@ -94,22 +94,16 @@ def _env_failures() -> int:
 
 def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
     """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
-    revision's framing) and this revision's half of the shared recording."""
+    revision's framing) and the plan of this revision's part of the shared recording
+    (written with the other revision's by the parent's recorder: no rerun import here)."""
     from . import render
     scene = render.build_scene(model, ctx)
     geometry = render.scene_geometry(scene, ctx)
-    rrd = None
+    plan = None
     if settings.diff_rrd:
-        try:
-            import rerun  # noqa: F401
-        except ImportError:
-            return geometry, None
-        stem = os.path.join(settings.diff_render_dir or "", job.diff_stem or "")
-        rrd = f"{stem}.{settings.diff_side}.rrd"
-        render.record_rrd(scene, ctx, [], rrd, recording_id=f"urdf-lint-diff/{job.diff_stem}",
-                          prefix=f"{settings.diff_side}/", model=model,
-                          blueprint=("base/", "head/"))
-    return geometry, rrd
+        from .recording import label_base, plan_rrd
+        plan = plan_rrd(scene, ctx, model, label_base(model.entry))
+    return geometry, plan
 
 
 # Optional accelerators trimesh probes for when it is imported (~0.4 s per process). urdf-lint
@@ -168,8 +162,7 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
         # memory-mb is what the job may allocate: what the forked worker inherited from its
         # parent (a test process that imported rerun, a library user's process) is on top
         limit = int(memory_mb) * 1024 * 1024 + inherited
-        if (settings.render_dir and settings.render_rrd) or \
-                (settings.diff_render_dir and settings.diff_rrd):
+        if settings.render_dir and settings.render_rrd:   # (diff --render: the parent's recorder)
             limit += RERUN_RESERVE_MB * 1024 * 1024
         # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
         # RLIMIT_AS would also count the address space that native thread arenas only reserve.
@@ -182,7 +175,7 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir, settings.diff_render_dir)
+    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     while True:
         try:
