@@ -286,3 +286,42 @@ def test_missing_kernel_features_are_said_once_and_the_run_goes_on(attack_world,
     err = capsys.readouterr().err
     assert err.count("without landlock: not on this test kernel") == 1, err
     assert err.count("without seccomp: no libseccomp here") == 1, err
+
+
+class _Evil:
+    """What code that escaped the evaluator could send back instead of a lint result: a
+    pickle that calls a function (here ``os.mkdir``) while the parent reads it."""
+
+    def __init__(self, path):
+        self.path = path
+
+    def __reduce__(self):
+        return (os.mkdir, (self.path,))
+
+
+def _send_evil(conn, path):
+    conn.send(_Evil(path))
+
+
+def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, monkeypatch):
+    from urdf_lint import forked, worker
+    from urdf_lint.jobs import LintJob, LintSettings
+    from urdf_lint.packages import PackageResolver
+    marker = tmp_path / "pwned"
+    monkeypatch.setattr(worker, "process_job", lambda job, settings: _Evil(str(marker)))
+    resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
+    jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
+    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=1,
+                                    timeout=30))
+    assert not marker.exists()
+    assert r.internal and "not a lint result" in r.internal[0] and "mkdir" in r.internal[0], r
+    assert not r.cacheable
+    # the same message read by an end that accepts anything does run: the test measures the
+    # restriction, not something else that happens to fail
+    conn, proc = forked.start(_send_evil, (str(marker),))
+    try:
+        conn.recv()
+    finally:
+        proc.join(5)
+        conn.close()
+    assert marker.is_dir()

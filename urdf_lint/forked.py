@@ -25,11 +25,28 @@ _live: set = set()
 parent_pid: int | None = None
 
 
-class Conn:
-    """One end of a duplex channel: reads from ``rfd``, writes to ``wfd``."""
+class Refused(pickle.UnpicklingError):
+    """A message named a class or function the receiving end does not accept."""
 
-    def __init__(self, rfd: int, wfd: int):
+
+class _Restricted(pickle.Unpickler):
+    allowed: frozenset = frozenset()
+
+    def find_class(self, module, name):
+        if (module, name) in self.allowed:
+            return super().find_class(module, name)
+        raise Refused(f"{module}.{name}")
+
+
+class Conn:
+    """One end of a duplex channel: reads from ``rfd``, writes to ``wfd``. With ``allowed``
+    (``(module, name)`` pairs), a message may name only those classes and functions: a pickle
+    can call any importable function while it is read (``os.system``), so an end that reads
+    what an untrusted process wrote must not accept anything else."""
+
+    def __init__(self, rfd: int, wfd: int, allowed: frozenset | None = None):
         self.rfd, self.wfd = rfd, wfd
+        self.allowed = allowed
 
     def fileno(self) -> int:
         return self.rfd
@@ -56,8 +73,15 @@ class Conn:
         return buf
 
     def recv(self):
+        """The next message (:class:`Refused` when it names what ``allowed`` does not hold)."""
         (n,) = _HEADER.unpack(self._read(_HEADER.size))
-        return pickle.loads(self._read(n))
+        data = self._read(n)
+        if self.allowed is None:
+            return pickle.loads(data)
+        import io
+        reader = _Restricted(io.BytesIO(data))
+        reader.allowed = self.allowed
+        return reader.load()
 
     def poll(self, timeout: float = 0.0) -> bool:
         return bool(wait([self], timeout))
@@ -71,11 +95,11 @@ class Conn:
         self.rfd = self.wfd = -1
 
 
-def pipe() -> tuple[Conn, Conn]:
-    """Two connected ends (parent's, child's)."""
+def pipe(allowed: frozenset | None = None) -> tuple[Conn, Conn]:
+    """Two connected ends (parent's, child's); the parent's accepts only ``allowed``."""
     r1, w1 = os.pipe()   # parent -> child
     r2, w2 = os.pipe()   # child -> parent
-    return Conn(r2, w1), Conn(r1, w2)
+    return Conn(r2, w1, allowed), Conn(r1, w2)
 
 
 class Process:
@@ -177,16 +201,18 @@ def _quiet_stdin() -> None:
         pass
 
 
-def start(target, args=()):
-    """Fork a child running ``target(conn, *args)``; returns (parent's conn, process)."""
-    if not hasattr(os, "fork"):   # pragma: no cover - Windows
+def start(target, args=(), allowed: frozenset | None = None):
+    """Fork a child running ``target(conn, *args)``; returns (parent's conn, process). With
+    ``allowed``, the parent's end reads only messages made of those classes (a child that
+    runs untrusted code)."""
+    if not hasattr(os, "fork"):   # pragma: no cover - Windows (no OS sandbox there either)
         import multiprocessing as mp
-        parent, child = mp.Pipe()
-        proc = mp.get_context().Process(target=target, args=(child, *args), daemon=True)
-        proc.start()
-        child.close()
-        return parent, proc
-    parent, child = pipe()
+        mp_parent, mp_child = mp.Pipe()
+        mp_proc = mp.get_context().Process(target=target, args=(mp_child, *args), daemon=True)
+        mp_proc.start()
+        mp_child.close()
+        return mp_parent, mp_proc
+    parent, child = pipe(allowed)
     proc = Process(target, (child, *args), close_in_child=(parent,))
     try:
         proc.start()

@@ -207,6 +207,24 @@ def _limit_result(job: LintJob, message: str) -> ModelReport:
     return out
 
 
+# What a worker's result may be made of (with plain data: str, numbers, lists, dicts, tuples,
+# sets, bytes): the parent reads nothing else from a worker. Were code to escape the evaluator
+# and the sandbox, a pickle naming any other function would run it in the parent, which holds
+# the secrets (test_sandbox.py::test_a_worker_cannot_run_code_in_the_parent_through_its_result).
+RESULT_CLASSES = frozenset({
+    ("urdf_lint.jobs", "ModelReport"), ("urdf_lint.jobs", "Status"),
+    ("urdf_lint.jobs", "KeptModel"), ("urdf_lint.findings", "Problem"),
+    ("urdf_lint.locations", "Origin"), ("urdf_lint.locations", "Loc"),
+    ("urdf_lint.fixes", "Fix"), ("urdf_lint.sourceedit", "Edit"),
+    ("urdf_lint.expansion.sourcemap", "SourceMap"), ("urdf_lint.raster", "Geometry"),
+    ("urdf_lint.recording", "Plan"),
+    # numpy arrays (numpy 1 and 2 name their reconstructors differently)
+    ("numpy", "ndarray"), ("numpy", "dtype"),
+    ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "_reconstruct"),
+    ("numpy.core.numeric", "_frombuffer"), ("numpy._core.numeric", "_frombuffer"),
+})
+
+
 def preload() -> None:
     """Import in the parent what every lint job uses (the expansion, xacro with PyYAML, the
     rules, lxml), so that forked workers share it instead of each importing it again (~80 ms
@@ -454,7 +472,8 @@ class _Worker:
         except ValueError:          # not the main thread: signals are not ours to change
             old = old_term = None
         try:
-            self.conn, self.proc = forked.start(_worker_main, (settings, memory_mb))
+            self.conn, self.proc = forked.start(_worker_main, (settings, memory_mb),
+                                                allowed=RESULT_CLASSES)
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
@@ -521,6 +540,15 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 job = w.job
                 try:
                     result = w.conn.recv()
+                except forked.Refused as e:
+                    # not a lint result: the worker ran something that is not urdf-lint's
+                    result = ModelReport.failed(job, internal=[
+                        f"the worker linting this model sent back something that is not a lint "
+                        f"result (it names {e}); it was not read, and the worker was stopped"])
+                    result.cacheable = False
+                    workers.remove(w)
+                    w.kill()
+                    replace(w)
                 except (EOFError, OSError):
                     code = w.proc.exitcode
                     result = _limit_result(job, "the expansion worker died (exit code "
