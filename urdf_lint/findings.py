@@ -101,13 +101,28 @@ class Problem:
         return d
 
     @classmethod
-    def from_record(cls, d: dict) -> "Problem":
+    def from_record(cls, d: dict, **final) -> "Problem":
+        """The problem of :meth:`to_record`; ``final`` sets what the run pipeline fills in
+        (``name``, ``severity``, ``models``: a whole run's findings read back at once)."""
         fix = None
         if d.get("fix"):
             from .fixes import Fix
             fix = Fix.from_record(d["fix"])
-        return cls.at(d["code"], d["message"], (d["file"], d["line"], d["col"], d.get("chain", ())),
-                      d.get("target"), d.get("severity", ""), fix)
+        target = d.get("target")
+        severity = d.get("severity", "")
+        # built directly: thousands per cached run, and every field is known here
+        new = object.__new__(cls)
+        new.__dict__.update(
+            code=d["code"], message=d["message"],
+            origin=Origin(d["file"], int(d["line"]), int(d["col"]),
+                          tuple(tuple(c) for c in d.get("chain", ()))),
+            target=tuple(target) if target else None, name="",
+            severity=severity if severity in SEVERITIES else "", models=(), fix=fix)
+        if final:
+            if not final.keys() <= _FIELDS:
+                raise TypeError(f"Problem has no field(s) {sorted(set(final) - _FIELDS)}")
+            new.__dict__.update(final)
+        return new
 
 
 _FIELDS = frozenset(f.name for f in dataclasses.fields(Problem))

@@ -27,11 +27,12 @@ from typing import TYPE_CHECKING
 from .findings import Problem
 from .hashing import blake2b, file_record, stat_key
 from .jobs import LintJob, ModelReport
+from .locations import Origin
 
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
 
-FORMAT = 1
+FORMAT = 3
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
@@ -147,7 +148,11 @@ def _mtime(path: str) -> int | None:
 
 
 def _report_record(r: ModelReport) -> dict:
-    return {"entry": r.entry, "args": r.args, "record": r.to_record()}
+    # a reused run's models carry no raw problems: what they found is in the run's findings
+    # (merged, suppressed, with the policy applied), which is all a plain check reports
+    rec = r.to_record()
+    rec["problems"] = []
+    return {"entry": r.entry, "args": r.args, "record": rec}
 
 
 def _report(d: dict) -> ModelReport:
@@ -156,12 +161,21 @@ def _report(d: dict) -> ModelReport:
     return r
 
 
-def _problem_record(p: Problem) -> dict:
-    d = p.to_record()
-    d.update(name=p.name, severity=p.severity, models=list(p.models))
-    return d
+def _problem_record(p: Problem) -> list:
+    # a list, not a dict: a run's findings are read back thousands at a time
+    return [p.code, p.message, p.file, p.line, p.col, [list(c) for c in p.chain],
+            list(p.target) if p.target else None, p.name, p.severity, list(p.models),
+            p.fix.to_record() if p.fix is not None else None]
 
 
-def _problem(d: dict) -> Problem:
-    p = Problem.from_record(d)
-    return p.replace(name=d["name"], severity=d["severity"], models=tuple(d["models"]))
+def _problem(r: list) -> Problem:
+    code, message, file, line, col, chain, target, name, severity, models, fix = r
+    if fix is not None:
+        from .fixes import Fix
+        fix = Fix.from_record(fix)
+    new = object.__new__(Problem)
+    new.__dict__.update(code=code, message=message,
+                        origin=Origin(file, line, col, tuple(tuple(c) for c in chain)),
+                        target=tuple(target) if target else None, name=name,
+                        severity=severity, models=tuple(models), fix=fix)
+    return new
