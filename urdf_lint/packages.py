@@ -265,17 +265,19 @@ def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
     scan = [os.path.abspath(p) for p in paths]
     if git_top:
         scan.append(git_top)
-    for p in list(scan):
-        d = Path(p if os.path.isdir(p) else os.path.dirname(p)).resolve()
+    # (each folder once: a run may name hundreds of files from a few folders)
+    folders = list(dict.fromkeys(p if os.path.isdir(p) else os.path.dirname(p) for p in scan))
+    for folder in folders:
+        d = Path(folder).resolve()
         for parent in [d, *d.parents]:
             if (parent / "package.xml").is_file():  # the package a path belongs to
                 scan.append(str(parent))
                 break
             if (git_top is not None and str(parent) == git_top) or parent == Path(parent.anchor):
                 break
-    for p in paths:
-        p = os.path.abspath(p)
-        ws = colcon_workspace(p if os.path.isdir(p) else os.path.dirname(p))
+    for folder in dict.fromkeys(os.path.dirname(p) if not os.path.isdir(p) else p
+                                for p in map(os.path.abspath, paths)):
+        ws = colcon_workspace(folder)
         if ws and (git_top is None or inside(ws, git_top) or inside(git_top, ws)):
             scan.append(os.path.join(ws, "src"))
     scan = list(dict.fromkeys(scan))
