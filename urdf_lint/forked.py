@@ -221,6 +221,32 @@ def start(target, args=(), allowed: frozenset | None = None):
     return parent, proc
 
 
+def messages(conn):
+    """A child's messages from its parent, until the parent sends ``None`` or goes away."""
+    while True:
+        try:
+            msg = conn.recv()
+        except (EOFError, OSError):
+            return
+        if msg is None:
+            return
+        yield msg
+
+
+def stop(conn, proc, wait: float) -> None:
+    """Ask a child to end (a ``None`` message), give it ``wait`` seconds, then kill it; the
+    channel is closed either way."""
+    try:
+        conn.send(None)
+        proc.join(wait)
+    except (OSError, ValueError):
+        pass
+    if proc.is_alive():
+        proc.kill()
+        proc.join(1)
+    conn.close()
+
+
 def active_children() -> list[Process]:
     """The forked children still running (reaps those that ended)."""
     return [p for p in list(_live) if p.is_alive()]

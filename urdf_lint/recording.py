@@ -399,18 +399,13 @@ class Recorder:
         return out
 
     def close(self) -> None:
+        from . import forked
         if self._sender is not None and self._sender.is_alive():
             self.proc.kill()   # stuck reading a plan: no end message through a half-sent one
-        else:
-            try:
-                self.conn.send(None)
-                self.proc.join(2)
-            except (OSError, ValueError):
-                pass
-        if self.proc.is_alive():
-            self.proc.kill()
             self.proc.join(1)
-        self.conn.close()
+            self.conn.close()
+        else:
+            forked.stop(self.conn, self.proc, 2)
 
 
 NO_RERUN = "rerun-sdk is not installed (pip install 'urdf-lint[render]')"
@@ -431,13 +426,8 @@ def _recorder_main(conn, parent_pid):
     except ImportError:
         missing = NO_RERUN
     from .atomic import atomic_path
-    while True:
-        try:
-            msg = conn.recv()
-        except (EOFError, OSError):
-            return
-        if msg is None:
-            return
+    from . import forked
+    for msg in forked.messages(conn):
         path, recording_id, plans, blueprint = msg
         why = missing
         if why is None:

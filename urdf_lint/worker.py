@@ -177,13 +177,7 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
     sys.dont_write_bytecode = True
     _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    while True:
-        try:
-            job = conn.recv()
-        except (EOFError, OSError):
-            return
-        if job is None:
-            return
+    for job in forked.messages(conn):
         try:
             result = process_job(job, settings)
         except MemoryError:
@@ -261,13 +255,7 @@ def _drop_prestarted() -> None:
     global _prestarted
     w, _prestarted = _prestarted, None
     if w is not None:
-        try:
-            w.conn.send(None)
-            w.proc.join(0.5)
-        except (OSError, ValueError):
-            pass
-        if w.proc.is_alive():
-            w.kill()
+        forked.stop(w.conn, w.proc, 0.5)
 
 
 def _take_prestarted(settings, memory_mb) -> "_Worker | None":
