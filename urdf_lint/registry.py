@@ -128,17 +128,21 @@ class Entry(NamedTuple):
 
 
 _CATALOGUE: dict | None = None
+_CATALOGUE_OF: dict | None = None   # the loaded rules it was made from (None: the sources)
 _ASSIGNED = re.compile(r"""^(CODE|NAME|SEVERITY|SCOPE|ORIGIN) = ["']([^"'\n]*)["'][ \t]*$""", re.M)
 
 
 def catalogue() -> dict:
     """code -> :class:`Entry` for every rule, read from the rule sources (or from the loaded
     rules when they are loaded already)."""
-    global _CATALOGUE
-    if _CATALOGUE is not None:
+    global _CATALOGUE, _CATALOGUE_OF
+    if _RULES is not None:   # loaded (or replaced, in a test): they are the truth
+        if _CATALOGUE_OF is not _RULES:
+            _CATALOGUE = {c: _entry(r) for c, r in _RULES.items()}
+            _CATALOGUE_OF = _RULES
+        assert _CATALOGUE is not None
         return _CATALOGUE
-    if _RULES is not None:
-        _CATALOGUE = {c: _entry(r) for c, r in _RULES.items()}
+    if _CATALOGUE is not None and _CATALOGUE_OF is None:
         return _CATALOGUE
     import os
     import urdf_lint.rules as pkg
@@ -163,7 +167,7 @@ def catalogue() -> dict:
                 raise RuntimeError(f"duplicate rule code {e.code} in {module} and "
                                    f"{out[e.code].module}")
             out[e.code] = e
-    _CATALOGUE = dict(sorted(out.items()))
+    _CATALOGUE, _CATALOGUE_OF = dict(sorted(out.items())), None
     return _CATALOGUE
 
 
