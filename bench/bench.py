@@ -37,7 +37,15 @@ def entries(corpus: Path):
     return out
 
 
-def write_config(path: Path, ents):
+def corpus_parser(repeat: int) -> argparse.ArgumentParser:
+    """The options every benchmark has: the corpus folder and how many runs."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
+    ap.add_argument("--repeat", type=int, default=repeat)
+    return ap
+
+
+def write_config(path: Path, ents) -> Path:
     by_file: dict = {}
     for f, args in ents:
         by_file.setdefault(str(f), []).append(args)
@@ -49,6 +57,7 @@ def write_config(path: Path, ents):
                          for a in arg_sets)
         lines.append(f"args = [{sets}]")
     path.write_text("\n".join(lines) + "\n")
+    return path
 
 
 def run(cmd, env=None, cwd=None):
@@ -63,9 +72,7 @@ def lint_cmd(files, config):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
-    ap.add_argument("--repeat", type=int, default=3)
+    ap = corpus_parser(repeat=3)
     ap.add_argument("--profile", action="store_true")
     a = ap.parse_args()
     corpus = Path(a.corpus).resolve()

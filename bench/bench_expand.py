@@ -9,7 +9,6 @@
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import subprocess
@@ -43,14 +42,10 @@ print(best)
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
-    ap.add_argument("--repeat", type=int, default=3)
-    a = ap.parse_args()
+    from bench import corpus_parser, entries
+    a = corpus_parser(repeat=3).parse_args()
     corpus = Path(a.corpus).resolve()
-    entries = [(str(corpus / e["file"]), {k: v.replace("{CORPUS}", str(corpus)) for k, v in e["args"].items()})
-               for e in json.loads((corpus / "entries.json").read_text())]
-    xacro_entries = [(f, args) for f, args in entries if f.endswith(".xacro")]
+    xacro_entries = [(str(f), args) for f, args in entries(corpus) if f.suffix == ".xacro"]
 
     from stock_xacro import _shim_dir
     from urdf_lint.packages import PackageResolver

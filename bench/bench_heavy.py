@@ -36,6 +36,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "tests" / "support"))
 sys.path.insert(0, str(REPO / "bench"))
+from bench import entries, write_config  # noqa: E402
 LINT = str(REPO / ".venv" / "bin" / "urdf-lint")
 
 
@@ -90,29 +91,6 @@ def median_runs(fn, repeat):
         walls.append(w)
         cpus.append(c)
     return statistics.median(walls), statistics.median(cpus), out
-
-
-def corpus_models(corpus: Path):
-    out = []
-    for e in json.loads((corpus / "entries.json").read_text()):
-        f = corpus / e["file"]
-        if f.suffix in (".urdf", ".xacro"):
-            out.append((f, {k: v.replace("{CORPUS}", str(corpus)) for k, v in e["args"].items()}))
-    return out
-
-
-def corpus_config(path: Path, models) -> Path:
-    by_file: dict = {}
-    for f, args in models:
-        by_file.setdefault(str(f), []).append(args)
-    lines = []
-    for f, sets in by_file.items():
-        lines += ["[[models]]", f"path = {json.dumps(f)}",
-                  "args = [" + ", ".join("{" + ", ".join(f"{k} = {json.dumps(v)}"
-                                                         for k, v in a.items()) + "}"
-                                         for a in sets) + "]"]
-    path.write_text("\n".join(lines) + "\n")
-    return path
 
 
 def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
@@ -195,9 +173,9 @@ def main():
                 lc / l1c <= 1.15)
         if not a.no_corpus and Path(a.corpus, "entries.json").is_file():
             corpus = Path(a.corpus).resolve()
-            models = corpus_models(corpus)
+            models = entries(corpus)
             files = sorted({str(f) for f, _ in models})
-            config = corpus_config(tmp / "corpus.toml", models)
+            config = write_config(tmp / "corpus.toml", models)
             pmap = PackageResolver.build([corpus], extra_roots=[corpus]).scanned
         if not a.no_corpus and a.base and Path(a.corpus, "entries.json").is_file():
             ab("corpus", models, pmap, files, ["--config", str(config)], a.base, a.repeat,

@@ -14,7 +14,6 @@ least disturbed by other processes) and the median. Bytecode is written and used
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import shutil
@@ -38,16 +37,13 @@ def timed(cmd, env, cwd=None):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--corpus", default=str(REPO.parent / "shared" / "corpus"))
-    ap.add_argument("--repeat", type=int, default=10)
-    a = ap.parse_args()
+    from bench import corpus_parser, entries, write_config
+    a = corpus_parser(repeat=10).parse_args()
     corpus = Path(a.corpus).resolve()
     tmp = Path(tempfile.mkdtemp(prefix="urdf-lint-startup-"))
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     env.pop("URDF_LINT_CACHE_DIR", None)
 
-    from bench import entries, write_config
     ents = entries(corpus)
     files = sorted({str(f) for f, _ in ents})
     config = tmp / "urdf-lint.toml"

@@ -108,7 +108,6 @@ def _read_entry(p) -> bytes | None:
 class Cache:
     def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
-        self._writes = 0
         self.refused: str | None = None
         self._marked = False
         self._settings_key: tuple | None = None   # (settings, its part of every key)
@@ -157,12 +156,9 @@ class Cache:
         seen = {} if seen is None else seen
         p = self._path(self._key(job, settings))
         try:
-            data = _read_entry(p)
-            if data is None:
-                return None
-            mac, _, blob = data.partition(b"\n")
-            if not hmac.compare_digest(mac, self._mac_bytes(blob)):
-                return None  # not written by this user's urdf-lint
+            blob = self.read_signed(p)
+            if blob is None:
+                return None  # absent, or not written by this user's urdf-lint
             rec = json.loads(blob)
             if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
                 return None
@@ -216,16 +212,27 @@ class Cache:
             deps[d] = rec
         rec = {"version": __version__, "deps": deps, "missing": list(result.missing),
                "result": result.to_record()}
-        p = self._path(self._key(job, settings))
+        self.write_signed(self._path(self._key(job, settings)), json.dumps(rec).encode("utf-8"))
+
+    def read_signed(self, path: str) -> bytes | None:
+        """What :meth:`write_signed` wrote at ``path``, if this user's key signed it (a regular
+        file, bounded); None otherwise."""
+        data = _read_entry(path)
+        if data is None:
+            return None
+        mac, _, blob = data.partition(b"\n")
+        return blob if hmac.compare_digest(mac, self._mac_bytes(blob)) else None
+
+    def write_signed(self, path: str, blob: bytes) -> bool:
+        """Write ``blob`` under the cache folder, signed: the signature's line, then the bytes
+        (read back with one parse). False when it could not be written."""
         try:
             self._ensure()
-            os.makedirs(os.path.dirname(p), exist_ok=True)
-            blob = json.dumps(rec).encode("utf-8")
-            # the signature, then the signed record: read back with one JSON parse
-            atomic_write(p, self._mac_bytes(blob) + b"\n" + blob)
-            self._writes += 1
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            atomic_write(path, self._mac_bytes(blob) + b"\n" + blob)
+            return True
         except OSError:
-            pass
+            return False
 
     def _roots(self, settings: LintSettings):
         """The run's resolver (for the roots check), built once per settings."""

@@ -101,27 +101,38 @@ class Problem:
         return d
 
     @classmethod
-    def from_record(cls, d: dict, **final) -> "Problem":
-        """The problem of :meth:`to_record`; ``final`` sets what the run pipeline fills in
-        (``name``, ``severity``, ``models``: a whole run's findings read back at once)."""
-        fix = None
-        if d.get("fix"):
+    def from_record(cls, d: dict) -> "Problem":
+        return cls._build(d["code"], d["message"], d["file"], d["line"], d["col"],
+                          d.get("chain", ()), d.get("target"), "", d.get("severity", ""), (),
+                          d.get("fix"))
+
+    def to_row(self) -> list:
+        """Everything, the run pipeline's fields too, as one list: the run memo
+        (:mod:`urdf_lint.runcache`) writes and reads a run's findings thousands at a time."""
+        return [self.code, self.message, self.file, self.line, self.col,
+                [list(c) for c in self.chain], list(self.target) if self.target else None,
+                self.name, self.severity, list(self.models),
+                self.fix.to_record() if self.fix is not None else None]
+
+    @classmethod
+    def from_row(cls, row: list) -> "Problem":
+        return cls._build(*row)
+
+    @classmethod
+    def _build(cls, code, message, file, line, col, chain, target, name, severity, models,
+               fix) -> "Problem":
+        """From plain data (a record or a row): built directly, without the dataclass init,
+        since every field is known here."""
+        if fix:
             from .fixes import Fix
-            fix = Fix.from_record(d["fix"])
-        target = d.get("target")
-        severity = d.get("severity", "")
-        # built directly: thousands per cached run, and every field is known here
+            fix = Fix.from_record(fix)
         new = object.__new__(cls)
         new.__dict__.update(
-            code=d["code"], message=d["message"],
-            origin=Origin(d["file"], int(d["line"]), int(d["col"]),
-                          tuple(tuple(c) for c in d.get("chain", ()))),
-            target=tuple(target) if target else None, name="",
-            severity=severity if severity in SEVERITIES else "", models=(), fix=fix)
-        if final:
-            if not final.keys() <= _FIELDS:
-                raise TypeError(f"Problem has no field(s) {sorted(set(final) - _FIELDS)}")
-            new.__dict__.update(final)
+            code=code, message=message,
+            origin=Origin(file, int(line), int(col), tuple(tuple(c) for c in chain)),
+            target=tuple(target) if target else None, name=name,
+            severity=severity if severity in SEVERITIES else "", models=tuple(models),
+            fix=fix or None)
         return new
 
 

@@ -83,9 +83,6 @@ class Conn:
         reader.allowed = self.allowed
         return reader.load()
 
-    def poll(self, timeout: float = 0.0) -> bool:
-        return bool(wait([self], timeout))
-
     def close(self) -> None:
         for fd in (self.rfd, self.wfd):
             try:
@@ -104,7 +101,7 @@ def pipe(allowed: frozenset | None = None) -> tuple[Conn, Conn]:
 
 class Process:
     """A forked child running ``target(*args)``; the subset of ``multiprocessing.Process``
-    the worker pool uses (pid, exitcode, is_alive, join, kill, terminate)."""
+    the worker pool uses (pid, exitcode, is_alive, join, kill)."""
 
     def __init__(self, target, args=(), close_in_child=()):
         self.pid = 0
@@ -176,18 +173,12 @@ class Process:
             time.sleep(min(pause, max(0.0, deadline - time.monotonic())))
             pause = min(pause * 2, 0.02)
 
-    def _signal(self, sig) -> None:
+    def kill(self) -> None:
         if self.pid and self._status is None:
             try:
-                os.kill(self.pid, sig)
+                os.kill(self.pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
-
-    def kill(self) -> None:
-        self._signal(signal.SIGKILL)
-
-    def terminate(self) -> None:
-        self._signal(signal.SIGTERM)
 
 
 def _quiet_stdin() -> None:

@@ -180,8 +180,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
             todo.append(job)
     internal: list[str] = []
     if todo:
-        from .worker import preload, process_job, run_jobs
-        preload()   # what every job uses, imported once here and shared by the forked workers
+        from .worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
             run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
         for n, (job, res) in enumerate(done, 1):

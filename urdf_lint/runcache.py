@@ -27,7 +27,6 @@ from typing import TYPE_CHECKING
 from .findings import Problem
 from .hashing import blake2b, file_record, stat_key
 from .jobs import LintJob, ModelReport
-from .locations import Origin
 
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
@@ -48,16 +47,11 @@ class RunMemo:
 
     def load(self) -> dict | None:
         """The fields of the last identical run's ``CheckResult``, or None."""
-        from .cache import _read_entry
         if self.cache.refused:
             return None
         try:
-            data = _read_entry(self.path)
-            if data is None:
-                return None
-            mac, _, blob = data.partition(b"\n")
-            import hmac
-            if not hmac.compare_digest(mac, self.cache._mac_bytes(blob)):
+            blob = self.cache.read_signed(self.path)
+            if blob is None:
                 return None
             # what the result depends on first: a changed input stops before the result is read
             head, _, body = blob.partition(b"\n")
@@ -76,7 +70,7 @@ class RunMemo:
             rec = json.loads(body)
             return {"models": [_report(m) for m in rec["models"]],
                     "skipped": [_report(m) for m in rec["skipped"]],
-                    "findings": [_problem(d) for d in rec["findings"]],
+                    "findings": [Problem.from_row(r) for r in rec["findings"]],
                     "fragments": dict(rec["fragments"]), "generated": dict(rec["generated"])}
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
@@ -112,17 +106,11 @@ class RunMemo:
                 "folders": seen}
         body = {"models": [_report_record(r) for r in out.models],
                 "skipped": [_report_record(r) for r in out.skipped],
-                "findings": [_problem_record(p) for p in out.findings],
+                "findings": [p.to_row() for p in out.findings],
                 "fragments": out.fragments, "generated": out.generated}
         # two lines of JSON (json.dumps writes no raw newline), signed together
         blob = (json.dumps(head) + "\n" + json.dumps(body)).encode("utf-8")
-        try:
-            self.cache._ensure()
-            os.makedirs(os.path.dirname(self.path), exist_ok=True)
-            from .atomic import atomic_write
-            atomic_write(self.path, self.cache._mac_bytes(blob) + b"\n" + blob)
-        except OSError:
-            pass
+        self.cache.write_signed(self.path, blob)
 
 
 KEEP = 8   # memos kept (one per distinct command line and config); the oldest go
@@ -159,23 +147,3 @@ def _report(d: dict) -> ModelReport:
     r = ModelReport.from_record(LintJob(d["entry"], dict(d["args"])), d["record"])
     r.cached = True
     return r
-
-
-def _problem_record(p: Problem) -> list:
-    # a list, not a dict: a run's findings are read back thousands at a time
-    return [p.code, p.message, p.file, p.line, p.col, [list(c) for c in p.chain],
-            list(p.target) if p.target else None, p.name, p.severity, list(p.models),
-            p.fix.to_record() if p.fix is not None else None]
-
-
-def _problem(r: list) -> Problem:
-    code, message, file, line, col, chain, target, name, severity, models, fix = r
-    if fix is not None:
-        from .fixes import Fix
-        fix = Fix.from_record(fix)
-    new = object.__new__(Problem)
-    new.__dict__.update(code=code, message=message,
-                        origin=Origin(file, line, col, tuple(tuple(c) for c in chain)),
-                        target=tuple(target) if target else None, name=name,
-                        severity=severity, models=tuple(models), fix=fix)
-    return new

@@ -221,8 +221,8 @@ RESULT_CLASSES = frozenset({
 
 def preload() -> None:
     """Import in the parent what every lint job uses (the expansion, xacro with PyYAML, the
-    rules, lxml), so that forked workers share it instead of each importing it again (~80 ms
-    per worker; a run from the cache never gets here)."""
+    rules, lxml) before it forks workers, so that they share it instead of each importing it
+    again (~80 ms per worker). Not for ``expand``'s worker, forked before the parent knew."""
     from . import lazy, lint, model  # noqa: F401
     from .expansion import expand  # noqa: F401
     from .registry import load_rules
@@ -497,6 +497,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         blocks, cores, worker_cost=WARM_WORKER_COST_S if warm_meshes else WORKER_COST_S),
         len(jobs)))
     queues = assign(blocks, n)
+    if pre is None or n > 1:   # workers forked from here on share what the parent imports
+        preload()
     if n > 1:   # (the prestarted worker was forked before the mesh modules)
         _preload_mesh_modules(blocks, settings)
     workers = [pre] if pre is not None else []
