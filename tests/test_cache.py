@@ -284,3 +284,25 @@ def test_forged_run_memo_is_ignored(repo):
     memo.write_text(mac + "\n" + head + "\n" + json.dumps(rec))
     reused, doc = _reused(repo)
     assert not reused and doc["findings"]
+
+
+def test_a_file_has_one_digest_whichever_way_it_is_read(tmp_path, monkeypatch):
+    """Sources are hashed with BLAKE2b, files from 1 MiB on (meshes) with SHA-256: the choice
+    follows the content's length, so the worker's read-once hash of a mesh, the parent's
+    streamed hash and a reader's hash of the same bytes agree."""
+    import hashlib
+    from urdf_lint import hashing
+    monkeypatch.setattr(hashing, "_memo", {})
+    small = tmp_path / "a.xacro"
+    small.write_bytes(b"<robot/>" * 1000)
+    big = tmp_path / "b.stl"
+    big.write_bytes(os.urandom(hashing.SHA_FROM_BYTES + 5))
+    for p, algo in ((small, hashlib.blake2b(digest_size=16)), (big, hashlib.sha256())):
+        data = p.read_bytes()
+        algo.update(data)
+        want = algo.hexdigest()[:32]
+        assert hashing.file_digest(str(p)) == hashing.content_digest(data) == want
+        assert hashing.read_recorded(str(p))[1][1] == want
+        hashing._memo.clear()
+        assert hashing.memo_read(str(p), 1 << 30) == (want, data)
+        assert hashing.memo_digest(str(p))[1] == want

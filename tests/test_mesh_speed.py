@@ -263,6 +263,120 @@ def test_corpus_collada_read_without_trimesh_gives_the_same_arrays(fresh):
     assert lean_read >= len(paths) - 2    # (turtlebot3's r200.dae loses a geometry: trimesh)
 
 
+# -- OBJ without trimesh: trimesh's loader, grouping and unmerging, for plain files -------------
+def _obj_text(v, faces, form="v", materials=None, normals=False, extra="", crlf=False):
+    """An OBJ of positions ``v`` and ``faces`` (rows of 3 or 4 zero-based indices) written in
+    ``form``, the faces spread over ``materials`` (a list: the material of each face)."""
+    n = len(v)
+    lines = ["# generated", "mtllib m.mtl", "o part"] + [f"v {a:.6f} {b:.6f} {c:.6f}" for a, b, c in v]
+    lines += [f"vt {(i % 7) / 7:.4f} {(i % 5) / 5:.4f}" for i in range(n)]
+    if normals:
+        lines += ["vn 0 0 1", "vn 0 1 0", "vn 1 0 0"]
+    current = object()
+    for k, face in enumerate(faces):
+        if materials is not None and materials[k] != current:
+            current = materials[k]
+            lines.append(f"usemtl {current}")
+        refs = []
+        for j, i in enumerate(face):
+            t, nn = (i * 3 + j) % n + 1, (i + k) % 3 + 1
+            refs.append({"v": f"{i + 1}", "v/t": f"{i + 1}/{t}", "v//n": f"{i + 1}//{nn}",
+                         "v/t/n": f"{i + 1}/{t}/{nn}"}[form])
+        lines.append("f " + " ".join(refs))
+    text = "\n".join(lines) + "\n" + extra
+    return text.replace("\n", "\r\n") if crlf else text
+
+
+def _generated_objs(tmp_path):
+    v, f = sphere(600, radius=0.2, center=(0.3, -0.1, 0.05))
+    quads = np.column_stack([f[:-1:2, 0], f[:-1:2, 1], f[1::2, 2], f[:-1:2, 2]])
+    k = len(f)
+    mats = [("red", "blue", "red", "green")[(i // 50) % 4] for i in range(k)]
+    specs = {
+        "plain.obj": dict(faces=f),
+        "uv.obj": dict(faces=f, form="v/t"),
+        "normals.obj": dict(faces=f, form="v//n", normals=True),
+        "normal_refs_without_vn.obj": dict(faces=f, form="v//n"),
+        "full.obj": dict(faces=f, form="v/t/n", normals=True),
+        "materials.obj": dict(faces=f, form="v/t", materials=mats),
+        "quads.obj": dict(faces=quads, form="v/t/n", normals=True, materials=mats[:len(quads)]),
+        "crlf.obj": dict(faces=f, form="v/t", crlf=True),
+        # not plain: trimesh reads them (the lean reader declines)
+        "negative.obj": dict(faces=f, extra="f -1 -2 -3\n"),
+        "out_of_range.obj": dict(faces=f, extra=f"f 1 2 {len(v) + 5}\n"),
+        "mixed.obj": dict(faces=f, extra="f 1/1 2/2 3/3\n"),
+        "polygon.obj": dict(faces=f, extra="f 1 2 3 4 5\n"),
+        "comment_usemtl.obj": dict(faces=f, extra="# usemtl hidden\nf 1 2 3\n"),
+    }
+    out = {}
+    for name, kw in specs.items():
+        p = tmp_path / name
+        p.write_bytes(_obj_text(v, **kw).encode())
+        out[name] = p
+    (tmp_path / "m.mtl").write_text("newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n")
+    return out
+
+
+def _trimesh_obj_arrays(path):
+    import trimesh
+    from urdf_lint import meshio
+    return meshio.scene_arrays(trimesh.load_scene(str(path), process=False))
+
+
+def test_obj_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
+    from urdf_lint import meshio
+    objs = _generated_objs(tmp_path)
+    lean = {}
+    for name, p in objs.items():
+        lean[name] = meshio.obj_arrays(p.read_bytes())
+        if lean[name] is not None:
+            want = _trimesh_obj_arrays(p)
+            assert np.array_equal(lean[name][0], want[0]), name
+            assert np.array_equal(lean[name][1], want[1]) and lean[name][1].dtype == want[1].dtype, name
+        # whichever path reads it: the facts and mass properties of trimesh's mesh, or its error
+        got = fresh.mesh_facts(str(p))
+        try:
+            want = trimesh_facts(p)
+        except Exception as e:  # noqa: BLE001
+            assert not got["ok"] and got["error"] == fresh.error_text(e)[:300], name
+            continue
+        assert got == want, name
+        assert fresh.mass_facts(str(p)) == fresh._mass_properties(fresh.load_mesh(str(p))), name
+    assert [n for n, got in lean.items() if got is None] == [
+        "negative.obj", "out_of_range.obj", "mixed.obj", "polygon.obj", "comment_usemtl.obj"]
+    # one mesh per material (three here), texture and normal references unmerged: more
+    # vertices than positions, every triangle the same
+    v, f = sphere(600, radius=0.2, center=(0.3, -0.1, 0.05))
+    assert len(lean["uv.obj"][0]) > len(lean["plain.obj"][0]) == len(np.unique(f))
+    assert len(lean["materials.obj"][1]) == len(f)
+    assert len(lean["quads.obj"][1]) == 2 * (len(f) // 2)
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_corpus_obj_read_without_trimesh_gives_the_same_arrays():
+    from urdf_lint import meshio
+    paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() == ".obj")
+    assert len(paths) > 20
+    for p in paths:
+        got = meshio.obj_arrays(p.read_bytes())
+        assert got is not None, p            # every OBJ of the real robots is plain
+        want = _trimesh_obj_arrays(p)
+        assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), p
+
+
+def test_obj_facts_import_no_trimesh(tmp_path):
+    """A worker measuring an OBJ (facts, volume, texture scan) does not import trimesh."""
+    p = _generated_objs(tmp_path)["quads.obj"]
+    code = ("import sys; from urdf_lint import meshes\n"
+            f"p = {str(p)!r}\n"
+            "assert meshes.mesh_facts(p)['ok'] and meshes.mass_facts(p)['ok']\n"
+            "meshes.texture_refs(p)\n"
+            "print('trimesh' in sys.modules)")
+    import subprocess
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
 def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     from trimesh.grouping import unique_rows
     from trimesh.triangles import mass_properties
@@ -326,7 +440,9 @@ def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
     stl = [worker.Block("a", [], 1.0, frozenset({".stl"}))]
     assert "collada" not in worker._mesh_modules(stl)
     obj = lean + [worker.Block("b", [], 1.0, frozenset({".obj"}))]
-    assert "trimesh" in worker._mesh_modules(obj)
+    assert "trimesh" not in worker._mesh_modules(obj)
+    ply = lean + [worker.Block("b", [], 1.0, frozenset({".ply"}))]
+    assert "trimesh" in worker._mesh_modules(ply)
 
 
 # -- item 2: big meshes are streamed, not errors ---------------------------------------------
@@ -476,7 +592,7 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     with open(mesh_dir / "big.dae", "wb") as f:
         f.truncate(60 << 20)                     # sparse: only its size is looked at
     blocks = worker.package_blocks(jobs, settings)
-    assert blocks[0].key.endswith("other_description") and blocks[0].cost > 2
+    assert blocks[0].key.endswith("other_description") and blocks[0].cost > 1
     assert worker.default_workers(blocks, cores=2, load=0.0) == 2
     assert worker.default_workers(blocks, cores=1, load=0.0) == 1
     # a machine already busy (load 2 on 2 cores): another worker would only add CPU
@@ -485,6 +601,32 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     queues = worker.assign(blocks, 2)
     assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
             for q in queues] == [["other_description"], ["small_description"]]
+
+
+def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
+    """A 200-link robot written as 200 macro calls costs more than a small model with meshes
+    to measure: it starts first, so it does not run alone at the end while workers idle."""
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob
+    calls = "\n".join(f'  <xacro:seg i="{i}"/>' for i in range(200))
+    snake = ('<robot name="s" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+             '  <xacro:macro name="seg" params="i"><link name="l${i}"/></xacro:macro>\n'
+             f'{calls}\n</robot>\n')
+    settings = _settings_for(tmp_path, {
+        "arm_description": {"urdf/arm.urdf": _robot("package://arm_description/meshes/a.stl"),
+                            "urdf/arm2.urdf": _robot()},
+        "snake_description": {"urdf/snake.urdf.xacro": snake}})
+    mesh_dir = tmp_path / "arm_description" / "meshes"
+    mesh_dir.mkdir()
+    with open(mesh_dir / "a.stl", "wb") as f:
+        f.truncate(30 << 20)                     # 30 MB of binary STL (sparse)
+    jobs = [LintJob(str(tmp_path / "arm_description" / "urdf" / n)) for n in ("arm.urdf", "arm2.urdf")]
+    jobs.append(LintJob(str(tmp_path / "snake_description" / "urdf" / "snake.urdf.xacro")))
+    assert worker.job_cost(jobs[2]) > 5 * worker.job_cost(jobs[0])
+    blocks = worker.package_blocks(jobs, settings)
+    assert [b.key.rsplit(os.sep, 1)[1] for b in blocks] == ["snake_description", "arm_description"]
+    queues = worker.assign(blocks, 2)
+    assert [j.entry.endswith("snake.urdf.xacro") for j in queues[0]] == [True]
 
 
 def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):

@@ -11,6 +11,7 @@ default context, which offers the same ``send``/``recv``/``fileno`` and process 
 """
 from __future__ import annotations
 
+import gc
 import os
 import pickle
 import signal
@@ -113,7 +114,15 @@ class Process:
         sys.stdout.flush()
         sys.stderr.flush()
         me = os.getpid()
-        pid = os.fork()
+        # the child's garbage collector leaves what it inherits alone (the preloaded modules:
+        # ~100k objects a full collection would walk, and write to, page by page); the
+        # parent's collects its own objects again once the child is forked
+        gc.freeze()
+        try:
+            pid = os.fork()
+        finally:
+            if os.getpid() == me:
+                gc.unfreeze()
         if pid == 0:   # the child: never returns
             global parent_pid
             parent_pid = me

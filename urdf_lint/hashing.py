@@ -3,26 +3,54 @@ from __future__ import annotations
 
 import os
 import stat as _st
+from typing import Any
 
-try:   # BLAKE2 is built into CPython; hashlib would also load OpenSSL (~5 ms) for nothing
+try:   # BLAKE2 is built into CPython (keys of small blobs: no OpenSSL to load for them)
     from _blake2 import blake2b
 except ImportError:   # pragma: no cover - another interpreter
     from hashlib import blake2b
 
 MAX_HASHED_BYTES = 2 << 30
+SHA_FROM_BYTES = 1 << 20
+_sha256: Any = None
+
+
+def content_hash(size: int):
+    """A new hash for ``size`` bytes of file content. From 1 MiB on (meshes, most of what a
+    cold run hashes) OpenSSL's SHA-256, which the CPU computes (SHA-NI) at twice BLAKE2b's
+    speed (12 vs 23 ms per 20 MB); below, BLAKE2b, built in, so that a run hashing only
+    sources never loads OpenSSL (~3 ms). The choice depends on the content alone (its
+    length), so a file always gets the same digest."""
+    global _sha256
+    if size < SHA_FROM_BYTES:
+        return blake2b(digest_size=16)
+    if _sha256 is None:
+        try:
+            from _hashlib import openssl_sha256 as _sha256
+        except ImportError:   # pragma: no cover - a Python built without OpenSSL
+            from hashlib import sha256 as _sha256
+    return _sha256()
+
+
+def content_digest(data: bytes) -> str:
+    """The 128-bit hex digest of bytes, as :func:`file_digest` gives it for a file holding
+    them."""
+    h = content_hash(len(data))
+    h.update(data)
+    return h.hexdigest()[:32]
 
 
 def file_digest(path: str) -> str | None:
-    """A 128-bit BLAKE2b hex digest of a regular file's bytes (None when it cannot be read, or
-    for a device, FIFO, folder, or above 2 GiB: a symlink to /dev/zero must not hang the run
-    or grow it without end)."""
-    h = blake2b(digest_size=16)
+    """:func:`content_digest` of a regular file's bytes (None when it cannot be read or
+    changes size while read, or for a device, FIFO, folder, or above 2 GiB: a symlink to
+    /dev/zero must not hang the run or grow it without end)."""
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
         with os.fdopen(fd, "rb") as f:
             st = os.fstat(f.fileno())
             if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_HASHED_BYTES:
                 return None
+            h = content_hash(st.st_size)
             left = st.st_size + 1
             while True:
                 chunk = f.read(min(1 << 20, left))
@@ -32,9 +60,11 @@ def file_digest(path: str) -> str | None:
                 left -= len(chunk)
                 if left <= 0:
                     return None  # grew while read
+            if left != 1:
+                return None  # shrank while read
     except OSError:
         return None
-    return h.hexdigest()
+    return h.hexdigest()[:32]
 
 
 _memo: dict = {}     # (path, dev, ino, size, mtime_ns) -> digest, this process only
@@ -88,7 +118,7 @@ def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:
         except OSError:
             return None
         if len(data) == st.st_size:   # else it changed while read: hashed again below
-            digest = blake2b(data, digest_size=16).hexdigest()
+            digest = content_digest(data)
             _remember(key, digest)
             return digest, data
     got = memo_digest(path)
@@ -116,5 +146,4 @@ def read_recorded(path: str) -> tuple[bytes, list]:
     before = os.stat(path)
     with open(path, "rb") as f:
         data = f.read()
-    return data, [[before.st_size, before.st_mtime_ns],
-                  blake2b(data, digest_size=16).hexdigest()]
+    return data, [[before.st_size, before.st_mtime_ns], content_digest(data)]

@@ -196,6 +196,8 @@ def _readable(path: str) -> bool:
 
 def texture_refs(path: str) -> list[str]:
     """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths (memoized per version)."""
+    if not path.lower().endswith((".dae", ".obj")):
+        return []      # (asked for every mesh of every link: no stat for formats without any)
     try:
         key = _version(path)
     except OSError:
@@ -551,8 +553,13 @@ def _read_arrays(path: str):
         got = meshio.read_ascii_stl(path)
         if got is not None:
             return got[0], got[1], []
-    elif low.endswith(".dae") or low.endswith(".obj"):
-        got = _scene_arrays(path, low.endswith(".dae"))
+    elif low.endswith(".obj"):
+        got = meshio.obj_arrays(_file_bytes(path))   # the same numbers without trimesh
+        if got is not None:
+            return got[0], got[1], []
+        return _scene_arrays(path, False)
+    elif low.endswith(".dae"):
+        got = _scene_arrays(path, True)
         if got is not None:
             return got
     m = load_mesh(path)     # anything unusual: trimesh decides, as before

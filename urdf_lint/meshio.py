@@ -20,6 +20,7 @@ are the same numbers trimesh gives.
 from __future__ import annotations
 
 import os
+import re
 from typing import Iterator
 
 import numpy as np
@@ -306,6 +307,143 @@ def collada_arrays(data: bytes):
     return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
 
 
+# -- Wavefront OBJ without trimesh ------------------------------------------------------------
+_OBJ_FACE_REF = {"v": r"\d+", "v/t": r"\d+/\d+", "v//n": r"\d+//\d+", "v/t/n": r"\d+/\d+/\d+"}
+
+
+def _obj_form(ref: str) -> str | None:
+    parts = ref.split("/")
+    if not all(p.isdigit() for p in parts if p) or not parts[0]:
+        return None
+    if len(parts) == 1:
+        return "v"
+    if len(parts) == 2:
+        return "v/t" if parts[1] else None
+    if len(parts) == 3 and parts[2]:
+        return "v/t/n" if parts[1] else "v//n"
+    return None
+
+
+def _obj_line_check(form: str, refs: int) -> re.Pattern:
+    """A line no plain OBJ of one face form holds (searched after each newline)."""
+    num = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+    face = " ".join([_OBJ_FACE_REF[form]] * refs)
+    ok = (rf"#[^\n]*|v {num} {num} {num}|vt {num} {num}(?: {num})?|vn {num} {num} {num}"
+          rf"|f {face}|usemtl [^\s#][^\n]*|mtllib [^\n]*|[ogs] [^\n]*|")
+    return re.compile(rf"\n(?!(?:{ok})(?:\n|\Z))")
+
+
+_OBJ_ROWS = re.compile(r"\nv ([^\n]*)")
+_OBJ_FACES = re.compile(r"\nf ([^\n]*)")
+
+
+def obj_arrays(data: bytes):
+    """(vertices float64 (n, 3), faces int64 (m, 3)) of a Wavefront OBJ file: the numbers
+    ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without trimesh.
+
+    trimesh (``exchange.obj.load_obj``, default arguments) groups the faces by ``usemtl``
+    material, in order of first use, and builds one mesh per material, the last used first.
+    Each mesh keeps one vertex per distinct (position, texture, normal) reference of its faces
+    (``visual.texture.unmerge_faces``: rows ordered by their packed key, then by position
+    index) or, for faces with neither, the positions its faces use; quads are split into
+    (0, 1, 2) then, after all of them, (2, 3, 0).
+
+    Only plain files are read here: ``v``/``vt``/``vn`` rows of 3 (2-3) numbers, faces of one
+    form (``v``, ``v/t``, ``v//n``, ``v/t/n``) with 3 or 4 positive references that are in
+    range, ``usemtl``, ``mtllib``, ``o``, ``g``, ``s`` and comments, UTF-8, ``\n`` or ``\r\n``
+    line ends. Anything else (negative or out-of-range indices, mixed face forms, polygons,
+    vertex colours, line continuations, no face) gives None: the caller loads the file through
+    trimesh, which decides what it means."""
+    import warnings
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    text = "\n{}\n".format(text.strip().replace("\r\n", "\n"))
+    if "\\\n" in text or "\r" in text or "+e" in text or "-e" in text:
+        return None
+    first = text.find("\nf ")
+    if first < 0:
+        return None
+    sample = text[first + 3:text.find("\n", first + 3)].split()
+    forms = {_obj_form(ref) for ref in sample}
+    form = forms.pop() if len(forms) == 1 else None
+    if form is None or len(sample) not in (3, 4):
+        return None
+    refs = len(sample)
+    if _obj_line_check(form, refs).search(text) or text.count("usemtl ") != \
+            text.count("\nusemtl "):
+        return None
+    rows = _OBJ_ROWS.findall(text)
+    has_normals = "\nvn " in text
+    groups: dict = {}
+    for k, part in enumerate(text.split("\nusemtl ")):
+        name, body = ("", part) if k == 0 else part.split("\n", 1)
+        found = _OBJ_FACES.findall("\n" + body)
+        if found:
+            groups.setdefault(None if k == 0 else name.strip(), []).extend(found)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        v = np.fromstring(" ".join(rows), sep=" ", dtype=np.float64)
+    if not rows or len(v) != 3 * len(rows):
+        return None
+    v = v.reshape((-1, 3))
+    per_ref = len(form.replace("//", "/").split("/"))
+    verts, faces, offset = [], [], 0
+    for face_lines in reversed(list(groups.values())):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            array = np.fromstring(" ".join(face_lines).replace("/", " "), sep=" ",
+                                  dtype=np.int64)
+        if len(array) != len(face_lines) * refs * per_ref or (array < 1).any():
+            return None
+        array = array.reshape((-1, refs * per_ref)) - 1
+        index = np.arange(refs) * per_ref
+        f = array[:, index]
+        if int(f.max()) >= len(v):
+            return None
+        others = []
+        if form in ("v/t", "v/t/n"):
+            others.append(array[:, index + 1])
+        if form == "v/t/n" or (form == "v//n" and has_normals):
+            others.append(array[:, index + (2 if form == "v/t/n" else 1)])
+        if others:
+            new_faces, mask_v = _unmerge(f, others)
+        else:
+            mask_v = np.zeros(len(v), dtype=bool)
+            mask_v[f] = True
+            inverse = np.zeros(len(v), dtype=np.int64)
+            inverse[mask_v] = np.arange(mask_v.sum())
+            new_faces = inverse[f]
+        if refs == 4:
+            new_faces = np.vstack((new_faces[:, [0, 1, 2]], new_faces[:, [2, 3, 0]]))
+        verts.append(v[mask_v])
+        faces.append(new_faces + offset)
+        offset += len(verts[-1])
+    return np.vstack(verts), np.vstack(faces).astype(np.int64)
+
+
+def _unmerge(faces, others):
+    """(new faces, position index of each new vertex): ``unmerge_faces`` of trimesh, one
+    vertex per distinct row of (position, *others) references."""
+    stack = np.column_stack([faces.reshape(-1)] + [o.reshape(-1) for o in others])
+    precision = 64 // stack.shape[1]
+    threshold = (2 ** (precision - 1)) - 1
+    if stack.max() < threshold and stack.min() > -threshold:
+        rows = np.zeros(len(stack), dtype=np.uint64)
+        for k, column in enumerate((stack.T + (threshold + 1)).astype(np.uint64)):
+            np.bitwise_xor(rows, column << np.uint64(k * precision), out=rows)
+    else:
+        rows = np.ascontiguousarray(stack).view(
+            np.dtype((np.void, stack.dtype.itemsize * stack.shape[1]))).reshape(-1)
+    _, unique, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    pairs = stack[unique]
+    order = pairs[:, 0].argsort()
+    remap = np.zeros(len(order), dtype=np.int64)
+    remap[order] = np.arange(len(order))
+    return remap[inverse].reshape((-1, faces.shape[1])), pairs[order][:, 0]
+
+
 def _plain_effect(effect) -> bool:
     """Whether trimesh turns this effect into a material without failing (colours of four
     components; a texture it cannot load is only logged)."""
@@ -383,11 +521,35 @@ def _merge(vertices, normals, uv):
         if normals.shape == v.shape:
             stacked.append(normals * (10 ** NORMAL_DIGITS))
     rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
-    rows = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
-    _, index, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    index, inverse = _first_of_equal_rows(rows)
     order = index.argsort()
     faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
     return v[index[order]], faces
+
+
+_MIX = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
+        0x165667B19E3779F9, 0x27D4EB2F165667C5, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD)
+
+
+def _first_of_equal_rows(rows):
+    """(index of the first occurrence of each distinct row, the distinct row of every row) of
+    an (n, k) int64 array, as ``np.unique(return_index, return_inverse)`` gives them for the
+    rows (distinct rows in another order, which the caller sorts by first occurrence).
+    Grouped on one 64-bit mix per row, several times faster than comparing the rows as
+    bytes; every group is checked to hold one row only, else the rows are compared whole."""
+    u = rows.view(np.uint64)
+    h = np.zeros(len(rows), dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for c in range(rows.shape[1]):
+            h ^= h >> np.uint64(29)
+            h += u[:, c] * np.uint64(_MIX[c % len(_MIX)])
+    _, index, inverse = np.unique(h, return_index=True, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
+        whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
+        _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+    return index, inverse
 
 
 def _fix_rigid(matrix, max_deviance: float = 1e-5):
