@@ -227,14 +227,15 @@ RESULT_CLASSES = frozenset({
 
 
 def preload() -> None:
-    """Import in the parent what every lint job uses (the expansion, xacro with PyYAML, the
-    rules, lxml) before it forks workers, so that they share it instead of each importing it
-    again (~80 ms per worker). Not for ``expand``'s worker, forked before the parent knew."""
-    from . import lazy, lint, model, suppress  # noqa: F401
+    """Import in the parent what every lint job uses (the expansion, xacro, the rules, lxml)
+    before it forks workers, so that they share it instead of each importing it again (~60 ms
+    per worker). Not PyYAML (~20 ms): only models that load YAML files need it, and a worker
+    imports it for the first of them. Not for ``expand``'s worker, forked before the parent
+    knew."""
+    from . import lint, model, suppress  # noqa: F401
     from .expansion import expand  # noqa: F401
     from .registry import load_rules
     load_rules()
-    lazy.load("yaml")
 
 
 _prestarted: "_Worker | None" = None
@@ -280,7 +281,7 @@ def _take_prestarted(settings, memory_mb) -> "_Worker | None":
 
 # -- scheduling: the models of one package go to one worker ---------------------------------
 MESH_SUFFIXES = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf")
-JOB_COST_S = 0.03            # expanding and checking a small model, meshes aside
+JOB_COST_S = 0.04            # expanding and checking a small model, meshes aside
 XACRO_ELEMENT_COST_S = 0.001 # each xacro element of the entry file (a macro call: links, joints)
 STL_COST_S_PER_MB = 0.003    # numpy reads binary STL (hash, bounds, volume)
 MESH_COST_S_PER_MB = 0.025   # COLLADA / OBJ go through their parsers
