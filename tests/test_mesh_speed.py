@@ -655,6 +655,22 @@ def test_an_idle_worker_takes_from_the_far_end_of_another_block():
     assert worker._next_job(other, [mine, other]) == "m1"
 
 
+def test_an_idle_worker_takes_a_whole_package_nobody_started():
+    """Its meshes are then loaded by one worker: the idle one takes the last block of the
+    other queue whole (in its order), unless a worker is already on that block."""
+    from collections import deque
+    from urdf_lint import worker
+    b1, b2, c1, c2, c3 = "b1", "b2", "c1", "c2", "c3"
+    block_of = {id(b1): 0, id(b2): 0, id(c1): 1, id(c2): 1, id(c3): 1}
+    mine, other = deque(), deque([b1, b2, c1, c2, c3])
+    assert worker._next_job(mine, [mine, other], block_of, running={0}) == c1
+    assert list(mine) == [c2, c3] and list(other) == [b1, b2]
+    # the last block is being linted: only its last job moves
+    mine, other = deque(), deque([c2, c3])
+    assert worker._next_job(mine, [mine, other], block_of, running={1}) == c3
+    assert list(mine) == [] and list(other) == [c2]
+
+
 def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monkeypatch):
     """Real forked workers: each package's models land in one process (so the mesh facts it
     loaded are reused); the worker that runs out steals the last models of the other block."""

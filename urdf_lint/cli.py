@@ -891,6 +891,9 @@ def main(argv=None) -> int:
 
 def entry() -> None:
     """The ``urdf-lint`` command (and ``python -m urdf_lint``): :func:`main`, then leave."""
+    # numpy's BLAS starts a thread per core when loaded (~15 ms); the matrices urdf-lint
+    # multiplies are 3x3 (a command setting, unless the user chose: not for library users)
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     exit_now(main())
 
 

@@ -25,6 +25,12 @@ from typing import Iterator
 
 import numpy as np
 
+from . import lazy
+
+# pycollada imports Pillow (~14 ms) at start-up for the images of a document, which urdf-lint
+# never decodes (the texture scan reads their names): loaded on first use, if ever
+lazy.defer("PIL.Image")
+
 STL_RECORD = np.dtype([("n", "<f4", (3,)), ("v", "<f4", (3, 3)), ("a", "<u2")])
 STL_CHUNK_TRIANGLES = 1 << 20        # 50 MB of records per chunk
 

@@ -25,7 +25,7 @@ from .rules import ul904_resource_limit as resource_limit
 RERUN_RESERVE_MB = 1536
 
 _KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHONHASHSEED",
-             "SYSTEMROOT"}
+             "SYSTEMROOT", "OPENBLAS_NUM_THREADS"}   # (the last: set by the command, cli.entry)
 
 
 def _scrub_environment(allow):
@@ -467,13 +467,26 @@ def _mesh_facts_cached(settings: LintSettings) -> bool:
         return False
 
 
-def _next_job(mine, queues):
-    """The next job of a worker: the front of its own queue, else the far end of the longest
-    other queue (the models least likely to share meshes with what that worker is on)."""
+def _next_job(mine, queues, block_of=None, running=()):
+    """The next job of a worker: the front of its own queue, else from the far end of the
+    longest other queue (the models least likely to share meshes with what that worker is
+    on): the whole last package block there when no worker has started it (its meshes are
+    then loaded by one worker only), else its last job. ``block_of`` maps ``id(job)`` to its
+    block, ``running`` holds the blocks of the jobs being linted."""
     if mine:
         return mine.popleft()
     other = max(queues, key=len)
-    return other.pop() if other else None
+    if not other:
+        return None
+    block_of = block_of or {}
+    block = block_of.get(id(other[-1]))
+    if block is None or block in running:
+        return other.pop()
+    taken = []
+    while other and block_of.get(id(other[-1])) == block:
+        taken.append(other.pop())
+    mine.extend(reversed(taken[:-1]))      # (the block's own order: neighbours share meshes)
+    return taken[-1]
 
 
 class _Worker:
@@ -523,6 +536,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         blocks, cores, worker_cost=WARM_WORKER_COST_S if warm_meshes else WORKER_COST_S),
         len(jobs)))
     queues = assign(blocks, n)
+    block_of = {id(j): k for k, b in enumerate(blocks) for j in b.jobs}
     if pre is None or n > 1:   # workers forked from here on share what the parent imports
         preload()
     if n > 1:   # (the prestarted worker was forked before the mesh modules)
@@ -544,7 +558,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         while pending() or busy:
             for w in workers:
                 if w.job is None and pending():
-                    w.job = _next_job(w.queue, queues)
+                    w.job = _next_job(w.queue, queues, block_of,
+                                      {block_of.get(id(o.job)) for o in workers if o.job})
                     w.started = time.monotonic()
                     w.conn.send(w.job)
                     busy[w.conn] = w
