@@ -84,13 +84,30 @@ def peak_mb(paths, extra=()) -> float:
     return int(out.strip()) / 1024
 
 
-def median_runs(fn, repeat):
-    walls, cpus, out = [], [], None
-    for _ in range(repeat):
-        w, c, out = fn()
-        walls.append(w)
-        cpus.append(c)
-    return statistics.median(walls), statistics.median(cpus), out
+def interleaved(sides: dict, repeat: int) -> dict:
+    """Each side's (wall, cpu, result) per repeat, the sides run one after the other within a
+    repeat (in an order that rotates), so a machine that gets busier or quieter during the
+    benchmark weighs on all of them alike."""
+    names = list(sides)
+    out: dict = {n: [] for n in names}
+    for i in range(repeat):
+        k = i % len(names)
+        for n in names[k:] + names[:k]:
+            out[n].append(sides[n]())
+    return out
+
+
+def median_of(runs, what: int) -> float:
+    return statistics.median(r[what] for r in runs)
+
+
+def median_ratio(a, b, what: int, show: str = "") -> float:
+    """The median over the repeats of a's wall (0) or CPU (1) over b's in the same repeat
+    (with ``show``, each repeat's ratio is printed under that name)."""
+    ratios = [x[what] / y[what] for x, y in zip(a, b, strict=True)]
+    if show:
+        print(f"  {show} per repeat: " + " ".join(f"{r:.2f}" for r in ratios))
+    return statistics.median(ratios)
 
 
 def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
@@ -123,6 +140,15 @@ def _side_name(exe: str) -> str:
     return (p.parents[2] if p.parent.name == "bin" else p.parent).name
 
 
+def report_sides(runs: dict, n_models: int, doc) -> None:
+    for name, label in (("stock", f"stock xacro CLI x{n_models}:"),
+                        ("lint", "urdf-lint cold -j default: "), ("lint1", "urdf-lint cold -j1:        ")):
+        r = runs[name]
+        extra = f"  ({len(doc['models'])} models, {len(doc['findings'])} findings)" \
+            if name == "lint" else ""
+        print(f"  {label} wall {median_of(r, 0):6.2f} s  cpu {median_of(r, 1):6.2f} s{extra}")
+
+
 def row(rows, what, target, measured, ok):
     rows.append((what, target, measured, "yes" if ok else "NO"))
 
@@ -145,7 +171,8 @@ def main():
     from urdf_lint.packages import PackageResolver
     tmp = Path(tempfile.mkdtemp(prefix="urdf-lint-heavy-"))
     rows: list = []
-    print(f"{os.cpu_count()} cores; median of {a.repeat} runs; CPU = user + system of children")
+    print(f"{os.cpu_count()} cores; {a.repeat} repeats, the sides interleaved in each; ratios are "
+          "the median of the repeats' ratios; CPU = user + system of children")
     try:
         if not a.no_heavy:
             repo = tmp / "ws"
@@ -157,20 +184,19 @@ def main():
         if not a.no_heavy and a.base:
             ab("heavy", models, pmap, [repo / "src"], [], a.base, a.repeat, a.findings)
         elif not a.no_heavy:
-            sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
-            lw, lc, doc = median_runs(lambda: lint([repo / "src"]), a.repeat)
-            l1w, l1c, doc1 = median_runs(lambda: lint([repo / "src"], ["-j1"]), a.repeat)
+            runs = interleaved({"stock": lambda: stock_all(models, pmap),
+                                "lint": lambda: lint([repo / "src"]),
+                                "lint1": lambda: lint([repo / "src"], ["-j1"])}, a.repeat)
+            doc, doc1 = runs["lint"][-1][2], runs["lint1"][-1][2]
             assert doc1["findings"] == doc["findings"], "-j1 and -j disagree"
             peak = peak_mb([repo / "src"], ["-j2"])
-            print(f"  stock xacro CLI x{len(models)}: wall {sw:6.2f} s  cpu {sc:6.2f} s")
-            print(f"  urdf-lint cold -j default:  wall {lw:6.2f} s  cpu {lc:6.2f} s  "
-                  f"({len(doc['models'])} models, {len(doc['findings'])} findings)")
-            print(f"  urdf-lint cold -j1:         wall {l1w:6.2f} s  cpu {l1c:6.2f} s")
+            report_sides(runs, len(models), doc)
             print(f"  peak RSS at -j2:            {peak:6.0f} MiB")
-            row(rows, "heavy: cold wall / stock wall", "<= 0.70", f"{lw / sw:.2f}", lw / sw <= 0.7)
+            wall = median_ratio(runs["lint"], runs["stock"], 0, "wall / stock")
+            jcpu = median_ratio(runs["lint"], runs["lint1"], 1, "-j CPU / -j1 CPU")
+            row(rows, "heavy: cold wall / stock wall", "<= 0.70", f"{wall:.2f}", wall <= 0.7)
             row(rows, "heavy: peak memory at -j2", "<= 500 MiB", f"{peak:.0f} MiB", peak <= 500)
-            row(rows, "heavy: -j default CPU / -j1 CPU", "<= 1.15", f"{lc / l1c:.2f}",
-                lc / l1c <= 1.15)
+            row(rows, "heavy: -j default CPU / -j1 CPU", "<= 1.15", f"{jcpu:.2f}", jcpu <= 1.15)
         if not a.no_corpus and Path(a.corpus, "entries.json").is_file():
             corpus = Path(a.corpus).resolve()
             models = entries(corpus)
@@ -181,20 +207,20 @@ def main():
             ab("corpus", models, pmap, files, ["--config", str(config)], a.base, a.repeat,
                a.findings)
         elif not a.no_corpus and Path(a.corpus, "entries.json").is_file():
-            sw, sc, _ = median_runs(lambda: stock_all(models, pmap), a.repeat)
-            lw, lc, doc = median_runs(lambda: lint(files, ["--config", str(config)]), a.repeat)
-            l1w, l1c, doc1 = median_runs(lambda: lint(files, ["--config", str(config), "-j1"]),
-                                         a.repeat)
+            runs = interleaved({"stock": lambda: stock_all(models, pmap),
+                                "lint": lambda: lint(files, ["--config", str(config)]),
+                                "lint1": lambda: lint(files, ["--config", str(config), "-j1"])},
+                               a.repeat)
+            doc, doc1 = runs["lint"][-1][2], runs["lint1"][-1][2]
             assert doc1["findings"] == doc["findings"], "-j1 and -j disagree"
             print(f"corpus: {len(models)} entry models")
-            print(f"  stock xacro CLI x{len(models)}: wall {sw:6.2f} s  cpu {sc:6.2f} s")
-            print(f"  urdf-lint cold -j default:  wall {lw:6.2f} s  cpu {lc:6.2f} s  "
-                  f"({len(doc['models'])} models, {len(doc['findings'])} findings)")
-            print(f"  urdf-lint cold -j1:         wall {l1w:6.2f} s  cpu {l1c:6.2f} s")
-            row(rows, "corpus: cold wall / stock wall", "<= 0.35", f"{lw / sw:.2f}", lw / sw <= 0.35)
-            row(rows, "corpus: cold CPU / stock CPU", "<= 0.80", f"{lc / sc:.2f}", lc / sc <= 0.8)
-            row(rows, "corpus: -j default CPU / -j1 CPU", "<= 1.15", f"{lc / l1c:.2f}",
-                lc / l1c <= 1.15)
+            report_sides(runs, len(models), doc)
+            wall = median_ratio(runs["lint"], runs["stock"], 0, "wall / stock")
+            cpu = median_ratio(runs["lint"], runs["stock"], 1)
+            jcpu = median_ratio(runs["lint"], runs["lint1"], 1, "-j CPU / -j1 CPU")
+            row(rows, "corpus: cold wall / stock wall", "<= 0.35", f"{wall:.2f}", wall <= 0.35)
+            row(rows, "corpus: cold CPU / stock CPU", "<= 0.80", f"{cpu:.2f}", cpu <= 0.8)
+            row(rows, "corpus: -j default CPU / -j1 CPU", "<= 1.15", f"{jcpu:.2f}", jcpu <= 1.15)
         if a.huge:
             from heavy_repo import package_xml, sphere, write_binary_stl
             pkg = tmp / "huge" / "huge_description"
