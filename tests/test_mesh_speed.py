@@ -669,6 +669,9 @@ def test_an_idle_worker_takes_a_whole_package_nobody_started():
     mine, other = deque(), deque([c2, c3])
     assert worker._next_job(mine, [mine, other], block_of, running={1}) == c3
     assert list(mine) == [] and list(other) == [c2]
+    # ... but not the only one left: its worker takes it next, with the meshes loaded
+    assert worker._next_job(mine, [mine, other], block_of, running={1}) is None
+    assert list(other) == [c2]
 
 
 def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monkeypatch):

@@ -471,7 +471,9 @@ def _next_job(mine, queues, block_of=None, running=()):
     """The next job of a worker: the front of its own queue, else from the far end of the
     longest other queue (the models least likely to share meshes with what that worker is
     on): the whole last package block there when no worker has started it (its meshes are
-    then loaded by one worker only), else its last job. ``block_of`` maps ``id(job)`` to its
+    then loaded by one worker only), else its last job, but not the only job left of a block
+    being linted (its worker has its meshes loaded and takes it next: another worker would
+    load them again for nothing). None: nothing to take. ``block_of`` maps ``id(job)`` to its
     block, ``running`` holds the blocks of the jobs being linted."""
     if mine:
         return mine.popleft()
@@ -480,8 +482,10 @@ def _next_job(mine, queues, block_of=None, running=()):
         return None
     block_of = block_of or {}
     block = block_of.get(id(other[-1]))
-    if block is None or block in running:
+    if block is None:
         return other.pop()
+    if block in running:
+        return other.pop() if len(other) > 1 else None
     taken = []
     while other and block_of.get(id(other[-1])) == block:
         taken.append(other.pop())
@@ -560,6 +564,8 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 if w.job is None and pending():
                     w.job = _next_job(w.queue, queues, block_of,
                                       {block_of.get(id(o.job)) for o in workers if o.job})
+                    if w.job is None:
+                        continue
                     w.started = time.monotonic()
                     w.conn.send(w.job)
                     busy[w.conn] = w
