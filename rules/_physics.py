@@ -122,7 +122,6 @@ def link_geometry(model, ctx, lk, np, kind=None):
     """The link's Geometry (its collision, else visual, pieces; or those of ``kind``), or None
     when any piece cannot be measured (a missing or broken mesh, a bad value): no guess is
     better than a wrong one."""
-    from urdf_lint import meshes
     kind = kind or ("collision" if lk.findall("collision") else "visual")
     pieces = lk.findall(kind)
     if not pieces:
@@ -141,7 +140,7 @@ def link_geometry(model, ctx, lk, np, kind=None):
             ref = ctx.mesh_ref(model, uri) if uri else None
             if ref is None or ref.problem is not None or not ref.path:
                 return None
-            f = meshes.mass_facts(ref.path, ctx.mesh_cache_dir)
+            f = ctx.mass_facts(ref.path)
             scale = numbers(shape.get("scale", "1 1 1"), 3)
             if not f.get("ok") or not scale or any(s == 0 for s in scale):
                 return None
