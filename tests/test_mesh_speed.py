@@ -364,19 +364,6 @@ def test_corpus_obj_read_without_trimesh_gives_the_same_arrays():
         assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), p
 
 
-def test_obj_facts_import_no_trimesh(tmp_path):
-    """A worker measuring an OBJ (facts, volume, texture scan) does not import trimesh."""
-    p = _generated_objs(tmp_path)["quads.obj"]
-    code = ("import sys; from urdf_lint import meshes\n"
-            f"p = {str(p)!r}\n"
-            "assert meshes.mesh_facts(p)['ok'] and meshes.mass_facts(p)['ok']\n"
-            "meshes.texture_refs(p)\n"
-            "print('trimesh' in sys.modules)")
-    import subprocess
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "False"
-
-
 def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     from trimesh.grouping import unique_rows
     from trimesh.triangles import mass_properties
@@ -398,15 +385,17 @@ def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     assert len(pairs) == len(set(ids))
 
 
-def test_stl_and_collada_facts_import_no_trimesh(tmp_path):
-    """A worker measuring STL and COLLADA meshes (facts, volumes, texture scans) never imports
-    trimesh (~0.35 s per process)."""
+def test_stl_collada_and_obj_facts_import_no_trimesh(tmp_path):
+    """A worker measuring STL, COLLADA and OBJ meshes (facts, volumes, texture scans) never
+    imports trimesh (~0.35 s per process)."""
     v, f = sphere(2000, radius=0.05)
     binary_stl(tmp_path / "b.stl", v[f])
     ascii_stl(tmp_path / "a.stl", v[f][:100])
     daes = _generated_daes(tmp_path)
+    obj = _generated_objs(tmp_path)["quads.obj"]
+    paths = [str(p) for p in (tmp_path / "b.stl", tmp_path / "a.stl", daes["nested.dae"], obj)]
     code = ("import sys, json; from urdf_lint import meshes\n"
-            f"for p in {[str(tmp_path / 'b.stl'), str(tmp_path / 'a.stl'), str(daes['nested.dae'])]!r}:\n"
+            f"for p in {paths!r}:\n"
             "    assert meshes.mesh_facts(p)['ok'] and meshes.mass_facts(p)['ok']\n"
             "    meshes.texture_refs(p)\n"
             "print(json.dumps(sorted(m for m in ('trimesh', 'collada', 'scipy') if m in sys.modules)))")
