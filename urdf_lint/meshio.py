@@ -6,16 +6,19 @@ vertex and face arrays, without building a processed ``trimesh.Trimesh``.
   solid is parsed like trimesh parses it (``np.fromstring`` of the ``vertex`` lines).
 * COLLADA is read by pycollada and assembled, placed and merged exactly as trimesh's loader
   and scene would (:func:`collada_arrays`), without importing trimesh or decoding textures.
-* Every other format (OBJ, ...) and any COLLADA file the reader cannot vouch for is loaded by
+* A plain Wavefront OBJ is split by material, unmerged by texture and normal references and
+  its quads split exactly as trimesh's loader does (:func:`obj_arrays`), without trimesh.
+* Every other format and any COLLADA or OBJ file the readers cannot vouch for is loaded by
   ``trimesh.load_scene(process=False)`` and its instances are placed and stacked with numpy,
   which is what ``Scene.to_mesh`` computes without the copies, visual merging and array
   hashing it pays for.
 * Mass properties and closedness use trimesh's formulas and grouping, copied to the bit
-  (:func:`mass_properties`, :func:`merged_ids`), so STL and COLLADA facts need no trimesh.
+  (:func:`mass_properties`, :func:`merged_ids`), so STL, COLLADA and OBJ facts need no
+  trimesh.
 
 Anything these fast paths do not recognise exactly (a binary STL whose length does not match
-its header, an ASCII file with several solids) goes through trimesh as before, so the facts
-are the same numbers trimesh gives.
+its header, an ASCII file with several solids, an OBJ with negative indices) goes through
+trimesh as before, so the facts are the same numbers trimesh gives.
 """
 from __future__ import annotations
 

@@ -415,7 +415,7 @@ MESH_MODULES = ("numpy", "manifold3d", "_hashlib",    # STL facts, volumes, hull
 DAE_MODULES = ("collada",)                   # COLLADA facts (meshio.collada_arrays)
 TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
                    "trimesh.exchange.dae", "trimesh.exchange.obj")   # any other format
-LEAN_FORMATS = (".stl", ".dae", ".obj")            # read without trimesh (unusual files aside)
+LEAN_FORMATS = (".stl", ".dae", ".obj")      # read without trimesh (unusual files aside)
 
 
 def _mesh_modules(blocks: list[Block]) -> tuple:
@@ -446,9 +446,11 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     for n in marked:
         sys.modules[n] = None  # type: ignore[assignment]
     try:
+        from . import lazy
         for name in _mesh_modules(blocks):
             try:
                 importlib.import_module(name)
+                lazy.load(name)    # (Pillow, deferred by meshio: trimesh's formats use it)
             except ImportError:
                 pass
     finally:
