@@ -612,6 +612,9 @@ def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
     jobs = [LintJob(str(tmp_path / "arm_description" / "urdf" / n)) for n in ("arm.urdf", "arm2.urdf")]
     jobs.append(LintJob(str(tmp_path / "snake_description" / "urdf" / "snake.urdf.xacro")))
     assert worker.job_cost(jobs[2]) > 5 * worker.job_cost(jobs[0])
+    if hasattr(os, "mkfifo"):   # a FIFO named as a model: costed without being read (no hang)
+        os.mkfifo(tmp_path / "pipe.urdf.xacro")
+        assert worker.job_cost(LintJob(str(tmp_path / "pipe.urdf.xacro"))) == worker.JOB_COST_S
     blocks = worker.package_blocks(jobs, settings)
     assert [b.key.rsplit(os.sep, 1)[1] for b in blocks] == ["snake_description", "arm_description"]
     queues = worker.assign(blocks, 2)

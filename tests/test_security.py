@@ -179,6 +179,20 @@ def test_no_hangs(world, payload, code):
     assert took < 20
 
 
+def test_a_crafted_obj_cannot_stall_the_mesh_reader(world):
+    """An OBJ number of 200,000 digits followed by a wrong character: a number pattern that
+    could match it in several ways (``\\d+\\.?\\d*``) tried every split, minutes of work for
+    one line. The reader declines the file at once and trimesh says what is wrong."""
+    repo, _, _ = world
+    make_package(repo, "p", {
+        "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
+                       '<mesh filename="package://p/meshes/m.obj"/></geometry></visual></link></robot>',
+        "meshes/m.obj": "v " + "1" * 200_000 + "x 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"})
+    findings, took = lint(repo, "--timeout", "20")
+    assert not [f for f in findings if f["code"] == "UL904"], findings
+    assert took < 20
+
+
 def test_time_limit_kills_and_others_still_lint(world):
     repo, _, _ = world
     make_package(repo, "p", {"urdf/r.urdf.xacro": robot('  <link name="${python.sum(python.range(10**13))}"/>'),

@@ -335,7 +335,7 @@ def _obj_form(ref: str) -> str | None:
 
 def _obj_line_check(form: str, refs: int) -> re.Pattern:
     """A line no plain OBJ of one face form holds (searched after each newline)."""
-    num = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+    num = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"   # (one way to match: linear)
     face = " ".join([_OBJ_FACE_REF[form]] * refs)
     ok = (rf"#[^\n]*|v {num} {num} {num}|vt {num} {num}(?: {num})?|vn {num} {num} {num}"
           rf"|f {face}|usemtl [^\s#][^\n]*|mtllib [^\n]*|[ogs] [^\n]*|")

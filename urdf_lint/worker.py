@@ -328,8 +328,12 @@ def job_cost(job: LintJob) -> float:
     xacro element of its entry file adds to it (a 200-link robot written as 200 macro calls
     takes ~0.25 s, a model of a few includes ~0.03 s). Scheduled costliest first, such a
     model does not start last and leave the other workers idle."""
-    try:
-        with open(job.entry, "rb") as f:
+    import stat
+    try:   # (never blocks: a FIFO or device named as a model is not read here)
+        fd = os.open(job.entry, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                return JOB_COST_S
             head = f.read(MAX_ENTRY_READ)
     except OSError:
         return JOB_COST_S
