@@ -385,6 +385,26 @@ def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     assert len(pairs) == len(set(ids))
 
 
+def test_rows_are_grouped_exactly_even_when_their_mixes_collide(monkeypatch):
+    """first_of_equal_rows (the COLLADA merge, merged_ids) groups on a 64-bit mix per row and
+    checks each group: rows whose mixes collide are still told apart."""
+    from urdf_lint import meshio
+    rng = np.random.default_rng(3)
+    rows = rng.integers(-5, 5, size=(400, 5)).astype(np.int64)
+    rows = np.vstack([rows, rows[::7]])
+
+    def grouping(index, inverse):   # the partition of the rows, whatever the numbering
+        return sorted(map(tuple, (np.flatnonzero(inverse == g) for g in range(len(index)))))
+    _, want_index, want_inverse = np.unique(
+        rows.view(np.dtype((np.void, 40))).reshape(-1), return_index=True, return_inverse=True)
+    want = grouping(want_index, want_inverse.reshape(-1))
+    got = meshio.first_of_equal_rows(rows)
+    assert grouping(*got) == want and sorted(got[0]) == sorted(want_index)
+    monkeypatch.setattr(meshio, "row_mix", lambda r: np.zeros(len(r), dtype=np.uint64))
+    got = meshio.first_of_equal_rows(rows)                  # every mix the same
+    assert grouping(*got) == want and sorted(got[0]) == sorted(want_index)
+
+
 def test_stl_collada_and_obj_facts_import_no_trimesh(tmp_path):
     """A worker measuring STL, COLLADA and OBJ meshes (facts, volumes, texture scans) never
     imports trimesh (~0.35 s per process)."""

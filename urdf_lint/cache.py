@@ -31,7 +31,7 @@ from pathlib import Path
 from . import __version__
 from .atomic import atomic_write
 from .discovery import start_dir
-from .hashing import blake2b, file_digest, file_record, stat_key
+from .hashing import blake2b, file_digest, file_record, read_regular, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
 from .cachedir import ensure as ensure_cache_dir
 from .vcs import git_root, repo_root
@@ -94,15 +94,7 @@ MAX_ENTRY_BYTES = 64 << 20
 
 def _read_entry(p) -> bytes | None:
     """The bytes of a cache entry: a regular file (no symlink, device or FIFO), bounded."""
-    try:
-        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
-    except OSError:
-        return None
-    with os.fdopen(fd, "rb") as f:
-        st = os.fstat(fd)
-        if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_ENTRY_BYTES:
-            return None
-        return f.read(MAX_ENTRY_BYTES + 1)
+    return read_regular(p, MAX_ENTRY_BYTES, nofollow=True)
 
 
 class Cache:

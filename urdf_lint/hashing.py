@@ -32,6 +32,24 @@ def content_hash(size: int):
     return _sha256()
 
 
+def read_regular(path, max_bytes: int, nofollow: bool = False) -> bytes | None:
+    """The bytes of a regular file of at most ``max_bytes`` (after symlinks, unless
+    ``nofollow``), or None: it cannot be read, is larger, or is a device, FIFO or folder (it
+    is opened without blocking, so a FIFO named as a file never hangs the run)."""
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | \
+        (getattr(os, "O_NOFOLLOW", 0) if nofollow else 0)
+    try:
+        fd = os.open(path, flags)
+        with os.fdopen(fd, "rb") as f:
+            st = os.fstat(f.fileno())
+            if not _st.S_ISREG(st.st_mode) or st.st_size > max_bytes:
+                return None
+            data = f.read(max_bytes + 1)
+    except OSError:
+        return None
+    return data if len(data) <= max_bytes else None
+
+
 def content_digest(data: bytes) -> str:
     """The 128-bit hex digest of bytes, as :func:`file_digest` gives it for a file holding
     them."""
@@ -111,13 +129,8 @@ def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:
     except OSError:
         return None
     if key not in _memo and _st.S_ISREG(st.st_mode) and st.st_size <= max_bytes:
-        try:
-            fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-            with os.fdopen(fd, "rb") as f:
-                data = f.read(max_bytes + 1)
-        except OSError:
-            return None
-        if len(data) == st.st_size:   # else it changed while read: hashed again below
+        data = read_regular(path, max_bytes)
+        if data is not None and len(data) == st.st_size:   # else changed: hashed again below
             digest = content_digest(data)
             _remember(key, digest)
             return digest, data

@@ -149,34 +149,10 @@ def scale_points(v, unit: float):
 _DIVISORS = np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
 
 
-def volume_integrals(tris) -> np.ndarray:
-    """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of a closed surface's
-    triangles (trimesh.triangles.mass_properties' formulas); additive over chunks."""
-    tris = np.asarray(tris, dtype=np.float64)
-    crosses = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
-    p0, p1, p2 = tris[:, 0, :], tris[:, 1, :], tris[:, 2, :]
-    f1 = p0 + p1 + p2
-    f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
-    f3 = p0 ** 3 + p0 ** 2 * p1 + p0 * p1 ** 2 + p1 ** 3 + p2 * f2
-    g0, g1, g2 = f2 + (p0 + f1) * p0, f2 + (p1 + f1) * p1, f2 + (p2 + f1) * p2
-    out = np.zeros(10)
-    out[0] = (crosses[:, 0] * f1[:, 0]).sum()
-    out[1:4] = (crosses * f2).sum(axis=0)
-    out[4:7] = (crosses * f3).sum(axis=0)
-    for i in range(3):
-        j = (i + 1) % 3
-        out[i + 7] = (crosses[:, i] * (p0[:, j] * g0[:, i] + p1[:, j] * g1[:, i]
-                                       + p2[:, j] * g2[:, i])).sum()
-    return out / _DIVISORS
-
-
-def mass_properties(triangles):
-    """(volume, center of mass, inertia about it) of closed triangles at density 1:
-    ``trimesh.triangles.mass_properties`` to the last bit (the same operations in the same
-    order, its cross product of (p1 - p0) and (p2 - p1) included), without importing trimesh."""
-    t = np.asanyarray(triangles, dtype=np.float64)
-    if t.ndim != 3 or t.shape[1:] != (3, 3):
-        raise ValueError("Triangles must be (n, 3, 3)!")
+def _integrals(t) -> np.ndarray:
+    """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of each of (n, 3, 3)
+    float64 triangles, shape (10, n): ``trimesh.triangles.mass_properties``' formulas, in its
+    order of operations (its cross product of (p1 - p0) and (p2 - p1) included)."""
     vectors = t[:, 1:, :] - t[:, :2, :]
     crosses = np.cross(vectors[:, 0], vectors[:, 1])
     p0, p1, p2 = t[:, 0, :], t[:, 1, :], t[:, 2, :]
@@ -194,7 +170,22 @@ def mass_properties(triangles):
         j = np.mod(i + 1, 3)
         integral[i + 7] = crosses[:, i] * ((t[:, 0, j] * g0[:, i]) + (t[:, 1, j] * g1[:, i])
                                            + (t[:, 2, j] * g2[:, i]))
-    integrated = integral.sum(axis=1) / _DIVISORS
+    return integral
+
+
+def volume_integrals(tris) -> np.ndarray:
+    """The 10 volume integrals of a closed surface's triangles, summed: additive over chunks
+    (:func:`moments` turns their sum into volume and moments)."""
+    return _integrals(np.asarray(tris, dtype=np.float64)).sum(axis=1) / _DIVISORS
+
+
+def mass_properties(triangles):
+    """(volume, center of mass, inertia about it) of closed triangles at density 1:
+    ``trimesh.triangles.mass_properties`` to the last bit, without importing trimesh."""
+    t = np.asanyarray(triangles, dtype=np.float64)
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError("Triangles must be (n, 3, 3)!")
+    integrated = _integrals(t).sum(axis=1) / _DIVISORS
     volume = integrated[0]
     com = integrated[1:4] / volume
     inertia = np.zeros((3, 3))
@@ -215,8 +206,7 @@ def merged_ids(points) -> np.ndarray:
     ``trimesh.grouping.unique_rows(points, digits=8)``: its rounding, any injective row key)."""
     q = np.ascontiguousarray(np.round((np.asarray(points, dtype=np.float64) * 10 ** 8) - 1e-6)
                              .astype(np.int64))
-    rows = q.view(np.dtype((np.void, q.dtype.itemsize * q.shape[1]))).reshape(-1)
-    return np.unique(rows, return_inverse=True)[1].reshape(-1)
+    return first_of_equal_rows(q)[1]
 
 
 def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
@@ -228,18 +218,44 @@ def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
     return vol, first, second
 
 
+_MIX = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
+        0x165667B19E3779F9, 0x27D4EB2F165667C5, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD)
+
+
+def row_mix(rows) -> np.ndarray:
+    """One 64-bit mix (uint64) per row of an (n, k) int64 array: equal rows, equal mixes."""
+    u = np.ascontiguousarray(rows, dtype=np.int64).view(np.uint64)
+    h = np.zeros(len(u), dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for c in range(u.shape[1]):
+            h ^= h >> np.uint64(29)
+            h += u[:, c] * np.uint64(_MIX[c % len(_MIX)])
+    return h
+
+
+def first_of_equal_rows(rows):
+    """(index of the first occurrence of each distinct row, the distinct row of every row) of
+    an (n, k) int64 array, as ``np.unique(return_index, return_inverse)`` gives them for the
+    rows (distinct rows in another order: callers sort by first occurrence, or only compare).
+    Grouped on :func:`row_mix`, several times faster than comparing the rows as bytes; every
+    group is checked to hold one row only, else the rows are compared whole."""
+    _, index, inverse = np.unique(row_mix(rows), return_index=True, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
+        whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
+        _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+    return index, inverse
+
+
 def vertex_keys(tris) -> np.ndarray:
     """One int64 per vertex of (k, 3, 3) triangles: the vertex rounded to 8 decimals (what
-    ``trimesh.grouping.unique_rows(digits=8)`` merges), packed by a 64-bit mix. Used to test
+    ``trimesh.grouping.unique_rows(digits=8)`` merges), packed by :func:`row_mix`. Used to test
     closedness of meshes too large for ``unique_rows``."""
     q = np.round(np.asarray(tris, dtype=np.float64).reshape(-1, 3) * 1e8)
     q = np.nan_to_num(q, nan=0.0, posinf=0.0, neginf=0.0)
-    q = np.clip(q, -(2.0 ** 62), 2.0 ** 62).astype(np.int64).view(np.uint64)
-    with np.errstate(over="ignore"):
-        k = q[:, 0] * np.uint64(0x9E3779B97F4A7C15)
-        k ^= (k >> np.uint64(29)) + q[:, 1] * np.uint64(0xBF58476D1CE4E5B9)
-        k ^= (k >> np.uint64(31)) + q[:, 2] * np.uint64(0x94D049BB133111EB)
-    return k.view(np.int64)
+    q = np.clip(q, -(2.0 ** 62), 2.0 ** 62).astype(np.int64)
+    return row_mix(q).view(np.int64)
 
 
 def edge_codes(tris):
@@ -317,26 +333,15 @@ def collada_arrays(data: bytes):
 
 
 # -- Wavefront OBJ without trimesh ------------------------------------------------------------
-_OBJ_FACE_REF = {"v": r"\d+", "v/t": r"\d+/\d+", "v//n": r"\d+//\d+", "v/t/n": r"\d+/\d+/\d+"}
-
-
-def _obj_form(ref: str) -> str | None:
-    parts = ref.split("/")
-    if not all(p.isdigit() for p in parts if p) or not parts[0]:
-        return None
-    if len(parts) == 1:
-        return "v"
-    if len(parts) == 2:
-        return "v/t" if parts[1] else None
-    if len(parts) == 3 and parts[2]:
-        return "v/t/n" if parts[1] else "v//n"
-    return None
+# a face reference's forms: (pattern, numbers per reference)
+_OBJ_FORMS = {"v": (r"\d+", 1), "v/t": (r"\d+/\d+", 2), "v//n": (r"\d+//\d+", 2),
+              "v/t/n": (r"\d+/\d+/\d+", 3)}
 
 
 def _obj_line_check(form: str, refs: int) -> re.Pattern:
     """A line no plain OBJ of one face form holds (searched after each newline)."""
     num = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"   # (one way to match: linear)
-    face = " ".join([_OBJ_FACE_REF[form]] * refs)
+    face = " ".join([_OBJ_FORMS[form][0]] * refs)
     ok = (rf"#[^\n]*|v {num} {num} {num}|vt {num} {num}(?: {num})?|vn {num} {num} {num}"
           rf"|f {face}|usemtl [^\s#][^\n]*|mtllib [^\n]*|[ogs] [^\n]*|")
     return re.compile(rf"\n(?!(?:{ok})(?:\n|\Z))")
@@ -363,7 +368,6 @@ def obj_arrays(data: bytes):
     line ends. Anything else (negative or out-of-range indices, mixed face forms, polygons,
     vertex colours, line continuations, no face) gives None: the caller loads the file through
     trimesh, which decides what it means."""
-    import warnings
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
@@ -375,11 +379,11 @@ def obj_arrays(data: bytes):
     if first < 0:
         return None
     sample = text[first + 3:text.find("\n", first + 3)].split()
-    forms = {_obj_form(ref) for ref in sample}
-    form = forms.pop() if len(forms) == 1 else None
+    form = next((name for name, (pattern, _) in _OBJ_FORMS.items()
+                 if all(re.fullmatch(pattern, ref) for ref in sample)), None)
     if form is None or len(sample) not in (3, 4):
         return None
-    refs = len(sample)
+    refs, per_ref = len(sample), _OBJ_FORMS[form][1]
     if _obj_line_check(form, refs).search(text) or text.count("usemtl ") != \
             text.count("\nusemtl "):
         return None
@@ -391,21 +395,15 @@ def obj_arrays(data: bytes):
         found = _OBJ_FACES.findall("\n" + body)
         if found:
             groups.setdefault(None if k == 0 else name.strip(), []).extend(found)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        v = np.fromstring(" ".join(rows), sep=" ", dtype=np.float64)
-    if not rows or len(v) != 3 * len(rows):
+    if not rows:
         return None
-    v = v.reshape((-1, 3))
-    per_ref = len(form.replace("//", "/").split("/"))
+    # (every number was matched by the pattern above: the parse reads them all)
+    v = np.fromstring(" ".join(rows), sep=" ", dtype=np.float64).reshape((-1, 3))
     verts, faces, offset = [], [], 0
     for face_lines in reversed(list(groups.values())):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            array = np.fromstring(" ".join(face_lines).replace("/", " "), sep=" ",
-                                  dtype=np.int64)
-        if len(array) != len(face_lines) * refs * per_ref or (array < 1).any():
-            return None
+        array = np.fromstring(" ".join(face_lines).replace("/", " "), sep=" ", dtype=np.int64)
+        if (array < 1).any():
+            return None       # 0 is no OBJ index (trimesh would read it as the first vertex)
         array = array.reshape((-1, refs * per_ref)) - 1
         index = np.arange(refs) * per_ref
         f = array[:, index]
@@ -530,35 +528,10 @@ def _merge(vertices, normals, uv):
         if normals.shape == v.shape:
             stacked.append(normals * (10 ** NORMAL_DIGITS))
     rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
-    index, inverse = _first_of_equal_rows(rows)
+    index, inverse = first_of_equal_rows(rows)
     order = index.argsort()
     faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
     return v[index[order]], faces
-
-
-_MIX = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
-        0x165667B19E3779F9, 0x27D4EB2F165667C5, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD)
-
-
-def _first_of_equal_rows(rows):
-    """(index of the first occurrence of each distinct row, the distinct row of every row) of
-    an (n, k) int64 array, as ``np.unique(return_index, return_inverse)`` gives them for the
-    rows (distinct rows in another order, which the caller sorts by first occurrence).
-    Grouped on one 64-bit mix per row, several times faster than comparing the rows as
-    bytes; every group is checked to hold one row only, else the rows are compared whole."""
-    u = rows.view(np.uint64)
-    h = np.zeros(len(rows), dtype=np.uint64)
-    with np.errstate(over="ignore"):
-        for c in range(rows.shape[1]):
-            h ^= h >> np.uint64(29)
-            h += u[:, c] * np.uint64(_MIX[c % len(_MIX)])
-    _, index, inverse = np.unique(h, return_index=True, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
-        whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
-        _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
-        inverse = inverse.reshape(-1)
-    return index, inverse
 
 
 def _fix_rigid(matrix, max_deviance: float = 1e-5):

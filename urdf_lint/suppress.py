@@ -64,18 +64,9 @@ SOURCE_SUFFIXES = (".xacro", ".urdf", ".xml")   # the files suppression comments
 def _read_source(path: str) -> bytes | None:
     """The bytes of a regular file of bounded size (never a device, FIFO or folder), or None
     when it holds no urdf-lint comment at all."""
-    import os
-    import stat
-    try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with os.fdopen(fd, "rb") as f:
-            st = os.fstat(f.fileno())
-            if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_BYTES:
-                return None
-            data = f.read(MAX_BYTES + 1)
-    except OSError:
-        return None
-    return data if b"urdf-lint" in data or b"urdf_lint" in data else None
+    from .hashing import read_regular
+    data = read_regular(path, MAX_BYTES)
+    return data if data is not None and (b"urdf-lint" in data or b"urdf_lint" in data) else None
 
 
 _marked: dict = {}   # (path, size, mtime) -> holds the words: a shared include is read once

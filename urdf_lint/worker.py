@@ -286,7 +286,7 @@ XACRO_ELEMENT_COST_S = 0.001 # each xacro element of the entry file (a macro cal
 STL_COST_S_PER_MB = 0.003    # numpy reads binary STL (hash, bounds, volume)
 MESH_COST_S_PER_MB = 0.025   # COLLADA / OBJ go through their parsers
 WORKER_COST_S = 0.15         # a worker's fork and sandbox (it shares what the parent preloaded)
-WARM_WORKER_COST_S = 0.1     # the same when the mesh facts are cached (no trimesh import)
+WARM_WORKER_COST_S = 0.1     # the same when the mesh facts are cached (few meshes are read)
 MAX_WALK = 20000             # files looked at per package to estimate its meshes
 
 
@@ -328,19 +328,12 @@ def job_cost(job: LintJob) -> float:
     xacro element of its entry file adds to it (a 200-link robot written as 200 macro calls
     takes ~0.25 s, a model of a few includes ~0.03 s). Scheduled costliest first, such a
     model does not start last and leave the other workers idle."""
-    import stat
-    try:   # (never blocks: a FIFO or device named as a model is not read here)
-        fd = os.open(job.entry, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with os.fdopen(fd, "rb") as f:
-            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
-                return JOB_COST_S
-            head = f.read(MAX_ENTRY_READ)
-    except OSError:
-        return JOB_COST_S
-    return JOB_COST_S + XACRO_ELEMENT_COST_S * head.count(b"<xacro:")
+    from .hashing import read_regular
+    text = read_regular(job.entry, MAX_ENTRY_READ)    # (a FIFO named as a model: not read)
+    return JOB_COST_S + (XACRO_ELEMENT_COST_S * text.count(b"<xacro:") if text else 0.0)
 
 
-MAX_ENTRY_READ = 1 << 20
+MAX_ENTRY_READ = 4 << 20
 
 
 def _mesh_cost(root: str) -> tuple[float, frozenset]:
@@ -464,8 +457,8 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
 
 
 def _mesh_facts_cached(settings: LintSettings) -> bool:
-    """Whether the mesh-facts cache holds entries already (then preloading trimesh in the
-    parent costs ~0.4 s of a re-lint that will probably not need it)."""
+    """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
+    the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
     try:
         return bool(d) and any(True for _ in os.scandir(d))
