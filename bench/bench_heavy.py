@@ -16,7 +16,9 @@ gate).
 ``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
 measures changes: stock, this tree and the other trees are run interleaved (stock, then the
 trees in an order that rotates with each repeat), and the wall ratio to stock of each is
-printed (min and median), with whether its findings are this tree's. ``--findings DIR`` keeps
+printed (min and median), with whether its findings are this tree's. A tree without a
+virtualenv of its own is run by a wrapper script doing ``PYTHONPATH=TREE python -P -m urdf_lint``:
+without ``-P``, ``python -m`` imports the ``urdf_lint`` of the working directory (this one). ``--findings DIR`` keeps
 each side's findings there as JSON.
 """
 from __future__ import annotations
@@ -111,27 +113,22 @@ def median_ratio(a, b, what: int, show: str = "") -> float:
 
 
 def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
-    """Stock, this tree and each of ``bases`` interleaved (the order of the trees rotates from
-    one repeat to the next): the min and median wall ratio to stock of each."""
-    sides = [("this", LINT)] + [(_side_name(b), b) for b in bases]
-    ratios: dict = {name: [] for name, _ in sides}
-    docs: dict = {}
-    for i in range(repeat):
-        sw, _, _ = stock_all(models, pmap)
-        k = i % len(sides)
-        for side, exe in sides[k:] + sides[:k]:   # no tree always goes first
-            w, _, docs[side] = lint(paths, extra, exe=exe)
-            ratios[side].append(w / sw)
-    for side, _ in sides:
-        r = ratios[side]
-        same = docs[side]["findings"] == docs["this"]["findings"]
+    """Stock, this tree and each of ``bases`` :func:`interleaved`: the min and median wall
+    ratio to stock of each tree."""
+    trees = {"this": LINT, **{_side_name(b): b for b in bases}}
+    sides = {"stock": lambda: stock_all(models, pmap)}
+    sides.update({name: (lambda exe=exe: lint(paths, extra, exe=exe)) for name, exe in trees.items()})
+    runs = interleaved(sides, repeat)
+    mine = runs["this"][-1][2]["findings"]
+    for side in trees:
+        r = [x[0] / y[0] for x, y in zip(runs[side], runs["stock"], strict=True)]
+        found = runs[side][-1][2]["findings"]
         print(f"  {label} {side:>14s}: wall / stock min {min(r):.2f} median "
-              f"{statistics.median(r):.2f}  ({len(docs[side]['findings'])} findings"
-              f"{'' if same else ', NOT the same as this tree'})")
+              f"{statistics.median(r):.2f}  ({len(found)} findings"
+              f"{'' if found == mine else ', NOT the same as this tree'})")
         if findings_dir:
             Path(findings_dir).mkdir(parents=True, exist_ok=True)
-            Path(findings_dir, f"{label}-{side}.json").write_text(
-                json.dumps(docs[side]["findings"], indent=1))
+            Path(findings_dir, f"{label}-{side}.json").write_text(json.dumps(found, indent=1))
 
 
 def _side_name(exe: str) -> str:
