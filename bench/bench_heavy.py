@@ -14,12 +14,12 @@ Prints a table of targets vs measured; the exit code is 0 (a benchmark reports, 
 gate).
 
 ``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
-measures changes: stock, this tree and the other trees are run interleaved (stock, then the
-trees in an order that rotates with each repeat), and the wall ratio to stock of each is
-printed (min and median), with whether its findings are this tree's. A tree without a
-virtualenv of its own is run by a wrapper script doing ``PYTHONPATH=TREE python -P -m urdf_lint``:
-without ``-P``, ``python -m`` imports the ``urdf_lint`` of the working directory (this one). ``--findings DIR`` keeps
-each side's findings there as JSON.
+measures changes: stock, this tree and the other trees run interleaved (in an order that
+rotates with each repeat), and the wall ratio to stock of each is printed (min and median),
+with whether its findings are this tree's. A tree without a virtualenv of its own is run by a
+wrapper script doing ``PYTHONPATH=TREE python -P -m urdf_lint``: without ``-P``, ``python -m``
+imports the ``urdf_lint`` of the working directory (this one). ``--findings DIR`` keeps each
+side's findings there as JSON.
 """
 from __future__ import annotations
 
