@@ -374,8 +374,10 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
     _report, model, ctx = lint_model(LintJob(str(entry), {}, "xacro", explicit=True), settings)
     scene = build_scene(model, ctx)
     here = tmp_path / "here.rrd"
-    record_rrd(scene, ctx, [], str(here), recording_id="r", prefix="head/", model=model)
+    facts = record_rrd(scene, ctx, str(here), recording_id="r", prefix="head/", model=model)
     plan = plan_rrd(build_scene(model, ctx), ctx, model, label_base(model.entry))
+    # the plan a diff worker pickles holds the robot's meshes, as the recording written here
+    assert plan.meshes == facts["meshes"] > 0 and len(plan.paths) > 1
     rec = Recorder()
     try:
         there = tmp_path / "there.rrd"

@@ -559,7 +559,7 @@ def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
     cache, snaps = tmp_path / "cache", tmp_path / "snaps"
     conn, other = forked.pipe()
     try:
-        for extra in ({"diff_render_dir": str(snaps)}, {"render_dir": str(snaps)}):
+        for extra in ({"diff_render": True}, {"render_dir": str(snaps)}):
             sandbox.enter_worker(conn, dataclasses.replace(
                 LintSettings(resolver={}), mesh_cache_dir=str(cache), **extra))
     finally:

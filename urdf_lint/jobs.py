@@ -36,7 +36,6 @@ class LintJob:
     args: dict = field(default_factory=dict)
     kind: str = "xacro"        # "xacro" | "urdf" | "expand" (urdf-lint expand, in a worker too)
     explicit: bool = False     # named by the user or the config (never skipped as a library)
-    diff_stem: str | None = None   # diff --render: the file name stem of its snapshots
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
@@ -63,9 +62,8 @@ class LintSettings:
     render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
     render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
-    diff_render_dir: str | None = None       # diff --render: where the snapshots go
+    diff_render: bool = False                # diff --render: the geometry of its picture too
     diff_rrd: bool = True                    # diff --render: also the plan of its recording
-    diff_side: str = "head"                  # diff --render: "base" or "head"
 
     # read-only dict-style access, for worker start-up code written against the old dict
     def __getitem__(self, key: str):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -30,17 +31,18 @@ def _safe(s):
     return "".join(ch if ch.isalnum() or ch in "_-." else "_" for ch in str(s)) or "_"
 
 
-def record_rrd(scene, ctx, findings, path, recording_id, prefix="", model=None, base=None,
-               blueprint=True):
-    """Log ``scene`` to ``path``; ``prefix`` (e.g. ``"head/"``) puts every entity under one
-    root, so that two revisions can share a recording. With ``model`` the recording gets the
-    ``joint_sweep`` timeline; ``base`` is what file names in labels are relative to;
-    ``blueprint`` sends the viewer layout: True for this recording's own root, or the prefixes
-    of every revision a merged recording will hold (``("base/", "head/")``)."""
+def record_rrd(scene, ctx, path, recording_id, prefix="", model=None, base=None):
+    """Log ``scene`` to ``path`` (its findings are added by the parent later,
+    :func:`record_findings`); ``prefix`` (e.g. ``"head/"``) puts every entity under one root.
+    With ``model`` the recording gets the ``joint_sweep`` timeline; ``base`` is what file
+    names in labels are relative to."""
     from .atomic import atomic_path
+    if model is not None:
+        base = label_base(model.entry)
+    plan = plan_rrd(scene, ctx, model, base)
     with atomic_path(path) as tmp:
-        return _record_rrd(scene, ctx, findings, tmp, recording_id, prefix, model, base,
-                           blueprint)
+        write_rrd(tmp, recording_id, [(prefix, plan)])
+    return plan_facts(plan)
 
 
 def robot_size(scene, meshes) -> float:
@@ -110,15 +112,6 @@ def label_base(entry: str) -> str:
 def relative_label(path: str) -> str:
     """``path`` relative to :func:`label_base` of itself (for summary.md and labels)."""
     return os.path.relpath(path, label_base(path))
-
-
-def _record_rrd(scene, ctx, findings, tmp, recording_id, prefix, model=None, base=None,
-                blueprint=True):
-    if model is not None:
-        base = label_base(model.entry)
-    plan = plan_rrd(scene, ctx, model, base)
-    write_rrd(tmp, recording_id, [(prefix, plan)], blueprint, findings, base)
-    return plan_facts(plan)
 
 
 @dataclass
@@ -202,11 +195,11 @@ def plan_rrd(scene, ctx, model=None, base=None) -> Plan:
                 len(sweep.segments) if sweep is not None else None)
 
 
-def write_rrd(path, recording_id, plans, blueprint=True, findings=(), base=None) -> None:
+def write_rrd(path, recording_id, plans, blueprint=True) -> None:
     """Write ``plans`` (``(prefix, Plan)`` pairs: one per revision, ``"base/"`` and
-    ``"head/"``, or ``("", plan)``) to ``path`` as one recording; ``findings`` go on the
-    last plan's entities. ``blueprint``: True for the plans' own roots, or the prefixes a
-    recording merged later will hold."""
+    ``"head/"``, or ``("", plan)``) to ``path`` as one recording. ``blueprint``: True for a
+    view of each plan's root, or the prefixes to give a view each (``("base/", "head/")``:
+    a model added or removed by the change still shows its empty side)."""
     import rerun as rr
     rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
     rec.save(path)
@@ -216,10 +209,6 @@ def write_rrd(path, recording_id, plans, blueprint=True, findings=(), base=None)
     rec.log("/", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     for prefix, plan in plans:
         _log_plan(rec, rr, prefix, plan)
-    if plans:
-        prefix, plan = plans[-1]
-        log_findings(lambda entity, *a, **kw: rec.log(prefix + entity, *a, **kw), findings,
-                     plan.paths, plan.joint_paths, base, plan.size)
     rec.flush()
     rec.disconnect()
 
@@ -347,26 +336,30 @@ class Recorder:
         from . import forked
         self.conn, self.proc = forked.start(_recorder_main, (os.getpid(),))
         self.pending: list = []
-        self.failed: dict = {}
-        self._sender = None
+        self.failed: list = []      # recordings that could not be sent (the recorder is gone)
+        self._queue: Any = None
+        self._sender: Any = None
 
     def write(self, path, recording_id, plans, blueprint=True) -> None:
         """Queue a recording (:func:`write_rrd`) to ``path``; :meth:`results` says how it went.
-        Returns at once: a thread sends it (a plan is larger than the pipe, and the recorder
-        may still be importing rerun or writing the previous one)."""
-        import threading
-        previous = self._sender
-
-        def send():
-            if previous is not None:
-                previous.join()     # in order
-            try:
-                self.conn.send((path, recording_id, plans, blueprint))
-            except OSError:
-                self.failed[path] = "gone"
+        Returns at once: one thread sends the plans in order (a plan is larger than the pipe,
+        and the recorder may still be importing rerun or writing the previous one)."""
+        if self._sender is None:
+            import queue
+            import threading
+            self._queue = queue.SimpleQueue()
+            self._sender = threading.Thread(target=self._send_all, name="urdf-lint-recorder",
+                                            daemon=True)
+            self._sender.start()
         self.pending.append(path)
-        self._sender = threading.Thread(target=send, name="urdf-lint-recorder", daemon=True)
-        self._sender.start()
+        self._queue.put((path, recording_id, plans, blueprint))
+
+    def _send_all(self) -> None:
+        while (msg := self._queue.get()) is not None:
+            try:
+                self.conn.send(msg)
+            except OSError:
+                self.failed.append(msg[0])
 
     def _gone(self) -> str:
         self.proc.join(0.5)
@@ -377,10 +370,17 @@ class Recorder:
         every queued recording."""
         from . import forked
         if self._sender is not None:
+            self._queue.put(None)          # every plan queued so far, then the thread ends
             self._sender.join(timeout)
-        for path in self.failed:
-            self.pending.remove(path)
+            if self._sender.is_alive():    # stuck sending: the recorder reads nothing
+                out = {p: f"the recorder did not answer within {timeout:g} s"
+                       for p in self.pending}
+                self.pending = []
+                return out
+            self._sender = None
         out = {path: self._gone() for path in self.failed}
+        self.pending = [p for p in self.pending if p not in out]
+        self.failed = []
         while self.pending:
             if not forked.wait([self.conn], timeout):
                 why = f"the recorder did not answer within {timeout:g} s"
@@ -411,6 +411,22 @@ class Recorder:
 NO_RERUN = "rerun-sdk is not installed (pip install 'urdf-lint[render]')"
 
 
+def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
+    """:func:`write_rrd` to ``path`` (atomically): None when written, else why not
+    (:data:`NO_RERUN`, or the error)."""
+    try:
+        import rerun  # noqa: F401
+    except ImportError:
+        return NO_RERUN
+    from .atomic import atomic_path
+    try:
+        with atomic_path(path, ".rrd") as tmp:
+            write_rrd(tmp, recording_id, plans, blueprint)
+    except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
+        return f"{type(e).__name__}: {e}"
+    return None
+
+
 def _recorder_main(conn, parent_pid):
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)    # the parent stops it
@@ -421,19 +437,9 @@ def _recorder_main(conn, parent_pid):
     except Exception:  # noqa: BLE001 - it also ends when the parent's end of the pipe closes
         pass
     try:
-        import rerun  # noqa: F401
-        missing = None
+        import rerun  # noqa: F401 - while the first plan is made
     except ImportError:
-        missing = NO_RERUN
-    from .atomic import atomic_path
+        pass
     from . import forked
-    for msg in forked.messages(conn):
-        path, recording_id, plans, blueprint = msg
-        why = missing
-        if why is None:
-            try:
-                with atomic_path(path, ".rrd") as tmp:
-                    write_rrd(tmp, recording_id, plans, blueprint)
-            except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
-                why = f"{type(e).__name__}: {e}"
-        conn.send((path, why))
+    for path, recording_id, plans, blueprint in forked.messages(conn):
+        conn.send((path, write_recording(path, recording_id, plans, blueprint)))

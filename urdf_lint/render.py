@@ -69,12 +69,13 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
         try:
             import rerun  # noqa: F401
         except ImportError:
-            info["problems"].append("rrd: rerun-sdk is not installed (pip install 'urdf-lint[render]')")
+            from .recording import NO_RERUN
+            info["problems"].append(f"rrd: {NO_RERUN}")
         else:
             path = os.path.join(out_dir, name + ".rrd")
             try:
                 # no findings yet: the parent adds the final ones (finish_snapshots)
-                info.update(record_rrd(scene, ctx, [], path, recording_id=f"urdf-lint/{name}",
+                info.update(record_rrd(scene, ctx, path, recording_id=f"urdf-lint/{name}",
                                        model=model, base=base))
                 info["rrd"] = path
             except Exception as e:  # noqa: BLE001

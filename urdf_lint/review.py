@@ -223,8 +223,7 @@ def image_stem(key: str) -> str:
     return "".join(c if c.isalnum() or c in "._-" else "_" for c in key)
 
 
-def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_name="head",
-                 rrd=True):
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
     """Expand the given models once more in workers and build the Model of each (and, for
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     from .jobs import LintJob
@@ -236,14 +235,13 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render_dir=None, side_
         if m is None:
             continue
         kind = "urdf" if m.entry.endswith(".urdf") else "xacro"
-        job = LintJob(m.entry, dict(m.args), kind, explicit=True, diff_stem=image_stem(k))
+        job = LintJob(m.entry, dict(m.args), kind, explicit=True)
         jobs.append(job)
         key_of[id(job)] = k
     settings = dataclasses.replace(settings_for(cfg, resolver, None), selected=(),
                                    keep_model=True)
-    if render_dir:
-        settings = dataclasses.replace(settings, diff_render_dir=os.path.realpath(render_dir),
-                                       diff_rrd=rrd, diff_side=side_name)
+    if render:
+        settings = dataclasses.replace(settings, diff_render=True, diff_rrd=rrd)
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
                              memory_mb=cfg.memory_mb):
         k = key_of[id(job)]
@@ -388,7 +386,7 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
         m.kept_model = None  # only the affected robots are needed from here on
     # the head's robots (and pictures) are made while the base is materialised and linted
     head_load = _Background(_load_robots, head, again, head_resolver, cfg,
-                            _half(jobs_n, cfg), render_dir, "head", rrd)
+                            _half(jobs_n, cfg), bool(render_dir), rrd)
     # (an exception from here on leaves it: its workers die with this process)
     base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
     # the base needs only what the affected models can read there: their inputs at HEAD
@@ -427,18 +425,10 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
         # the base's robots (and with --render its pictures and half recordings) come
         # from this one expansion; mesh facts (keyed by content) are shared with the
         # working tree's cache
-        overrides, stems = None, None
-        if render_dir:
-            overrides = {"diff_render_dir": os.path.realpath(render_dir), "diff_rrd": rrd,
-                         "diff_side": "base"}
-
-            def stems(jobs, _found):
-                return [dataclasses.replace(j, diff_stem=image_stem(
-                    _key(_rel(base_root, j.entry), j.args))) for j in jobs]
+        overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
         base_resolver, base_result = _lint_side(
             base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
-            mesh_cache_dir=cache.dir if cache else None, select_jobs=stems,
-            settings_overrides=overrides)
+            mesh_cache_dir=cache.dir if cache else None, settings_overrides=overrides)
         result.internal += base_result.internal
         for k, m in base.models.items():
             _keep_robot(base, k, m.entry, m.args, m, base_resolver)
@@ -529,13 +519,13 @@ def _finish_recordings(result, recorder, recordings) -> None:
     """Wait for the recorder (or write here without one); a recording that could not be
     written is a snapshot problem, except when rerun is not installed (no .rrd then, as
     ``--no-rrd``)."""
-    from .recording import NO_RERUN
+    from .recording import NO_RERUN, write_recording
     if not recordings:
         return
     if recorder is not None:
         done = recorder.results()
     else:
-        done = {path: _write_here(path, rid, plans)
+        done = {path: write_recording(path, rid, plans, blueprint=("base/", "head/"))
                 for path, (_k, _i, rid, plans) in recordings.items()}
     for path, (key, info, _rid, _plans) in recordings.items():
         why = done.get(path, "not written")
@@ -543,21 +533,6 @@ def _finish_recordings(result, recorder, recordings) -> None:
             info["rrd"] = path
         elif why != NO_RERUN:
             result.snapshot_problems.append((key, f"no recording: {why}"))
-
-
-def _write_here(path, recording_id, plans) -> str | None:
-    from .atomic import atomic_path
-    from .recording import NO_RERUN, write_rrd
-    try:
-        import rerun  # noqa: F401
-    except ImportError:
-        return NO_RERUN
-    try:
-        with atomic_path(path, ".rrd") as tmp:
-            write_rrd(tmp, recording_id, plans, blueprint=("base/", "head/"))
-    except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
-        return f"{type(e).__name__}: {e}"
-    return None
 
 
 def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:

@@ -70,13 +70,13 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     if job.kind != "expand":
         from . import meshes
         # a render run draws the meshes the rules measured: load them once, keep them
-        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render_dir)
+        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render)
     before = _env_failures()
     report, model, ctx = lint_model(job, settings)
     if _env_failures() != before:
         report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
-    if settings.diff_render_dir and model is not None and report.kept_model is not None:
-        report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, job, settings)
+    if settings.diff_render and model is not None and report.kept_model is not None:
+        report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
     if settings.render_dir and model is not None:
         # drawn here (meshes are read only in the sandbox); captioned and given its findings
         # by the parent once the run's policy and baseline are applied
@@ -93,7 +93,7 @@ def _env_failures() -> int:
     return getattr(meshes, "env_failures", 0)
 
 
-def _diff_snapshot(model, ctx, job: LintJob, settings: LintSettings):
+def _diff_snapshot(model, ctx, settings: LintSettings):
     """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
     revision's framing) and the plan of this revision's part of the shared recording
     (written with the other revision's by the parent's recorder: no rerun import here)."""
