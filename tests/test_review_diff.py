@@ -269,8 +269,9 @@ def render_frame(masks):
 
 
 def render_mask(g, frame, links):
-    from urdf_lint import render
-    return render.link_mask(g, frame, links)
+    """Where the parts of ``links`` are drawn in ``frame`` (no labels, skeleton or triads)."""
+    from urdf_lint import raster
+    return raster._mask(raster.draw(g.only(links), frame, annotate=False))
 
 
 def dilate(m, n):

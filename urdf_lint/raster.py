@@ -261,12 +261,7 @@ def frame_for(geoms, size=None, views="single", forward="+x") -> Frame:
 def draw(g: Geometry, fr: Frame, annotate: bool = True):
     """The anti-aliased image of one geometry through one frame (no caption); without
     ``annotate``, the parts alone (no view names, triads, labels or skeleton)."""
-    from PIL import Image
-    img = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
-    solid = _prepare(g)
-    for v in fr.views:
-        img.paste(_draw_view(g, solid, v, fr, annotate), (v.x0, v.y0))
-    return img
+    return draw_many({0: (g, annotate)}, fr, threads=1)[0]
 
 
 def _prepare(g: Geometry):
@@ -603,32 +598,27 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
     # PNG encoding lets go of the GIL: the two pictures are encoded while the difference
     # image is made (the same picture twice is encoded once)
     with ThreadPoolExecutor(max_workers=2) as pool:
-        saving = [pool.submit(_save_pngs, pngs, same)]
+        saving = [pool.submit(_save_same, pngs)] if same else \
+            [pool.submit(save_png, img, path) for path, img in pngs.items()]
         diff = difference_image(after_img, masks["before"], masks["after"])
         n = int((masks["before"] | masks["after"]).sum())
         caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
                 + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else ""))
-        save_png(diff, f"{stem}.diff.png")
+        saving.append(pool.submit(save_png, diff, f"{stem}.diff.png"))
         for f in saving:
             f.result()
     out["diff"], out["changed_pixels"] = f"{stem}.diff.png", n
     return out
 
 
-def _save_pngs(pngs: dict, same: bool) -> None:
-    """Save path -> image; with ``same``, the images are equal: encoded once."""
-    if same:
-        import io
-        from .atomic import atomic_write
-        buf = io.BytesIO()
-        next(iter(pngs.values())).save(buf, format="PNG", optimize=False)
-        for path in pngs:
-            atomic_write(path, buf.getvalue())
-        return
-    from concurrent.futures import ThreadPoolExecutor
-    with ThreadPoolExecutor(max_workers=len(pngs)) as pool:
-        for f in [pool.submit(save_png, img, path) for path, img in pngs.items()]:
-            f.result()
+def _save_same(pngs: dict) -> None:
+    """Save path -> image for equal images: encoded once, written to every path."""
+    import io
+    from .atomic import atomic_write
+    buf = io.BytesIO()
+    next(iter(pngs.values())).save(buf, format="PNG", optimize=False)
+    for path in pngs:
+        atomic_write(path, buf.getvalue())
 
 
 def draw_many(items: dict, fr: Frame, threads=None) -> dict:
@@ -676,13 +666,6 @@ def same_geometry(a: Geometry, b: Geometry) -> bool:
             if (x is None) != (y is None) or (x is not None and not np.array_equal(x, y)):
                 return False
     return True
-
-
-def link_mask(g: Geometry, fr: Frame, links) -> np.ndarray:
-    """Where the parts of ``links`` are drawn in ``fr`` (no labels, skeleton or triads)."""
-    if not links:
-        return np.zeros((fr.size[1], fr.size[0]), dtype=bool)
-    return _mask(draw(g.only(links), fr, annotate=False))
 
 
 # -- the rasterizer --------------------------------------------------------------------------

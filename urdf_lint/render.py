@@ -17,7 +17,7 @@ from .raster import caption, model_caption, render_image, save_png
 from .recording import _import_rerun, entity_paths, record_findings, record_rrd
 from .scene import build_scene
 # what the worker (diff --render) and review.py use through this module
-from .raster import Geometry, frame_for, link_mask, render_pair, scene_geometry  # noqa: F401,E402
+from .raster import Geometry, frame_for, render_pair, scene_geometry  # noqa: F401,E402
 
 
 # -- orchestration -----------------------------------------------------------------------------
