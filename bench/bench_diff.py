@@ -8,7 +8,7 @@ macro file that exactly one model includes (``m10ia7l_macro.xacro``), and times
 
 * cold: empty cache; warm: the cache of the previous run is there (the usual pre-commit / CI
   with a restored cache);
-* without rendering, then with ``--render DIR`` (before/after/difference PNGs + merged .rrd).
+* without rendering, then with ``--render DIR`` (before/after/difference PNGs + one .rrd with both revisions).
 
 Target (issue 13): under 2 s without rendering, under 2 s per changed model with rendering.
 ``--profile`` writes a cProfile of one warm run without rendering, in process.
@@ -61,7 +61,7 @@ def urdf_lint(top, *args):
     env = dict(os.environ, RERUN_ANALYTICS="off")
     cmd = [exe]
     if SRC:
-        cmd = [sys.executable, "-m", "urdf_lint"]
+        cmd = [sys.executable, "-P", "-m", "urdf_lint"]   # (-P: not the cwd's urdf_lint)
         env["PYTHONPATH"] = SRC
     import resource
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -128,7 +128,9 @@ def main():
 
 def compare(a):
     global SRC
-    trees = [None if t == "." else os.path.abspath(t) for t in a.compare]
+    # every tree, this one too, runs the same way (python -m with PYTHONPATH): the console
+    # script's start-up differs, and start-up is part of what is compared
+    trees = [str(REPO) if t == "." else os.path.abspath(t) for t in a.compare]
     times: dict = {}
     with tempfile.TemporaryDirectory(prefix="bench-diff-") as tmp:
         top = build_repo(a.corpus, tmp)
