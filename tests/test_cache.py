@@ -270,6 +270,39 @@ def test_run_memo_is_not_written_for_inputs_edited_just_now(repo):
     assert not _reused(repo)[0]
 
 
+def test_run_memo_is_not_written_when_a_folder_changes_during_the_run(repo, monkeypatch):
+    """A model file added to a listed folder while the run goes on (a long run: it began
+    10 s ago, the file came 5 s ago) was not linted: the run is not remembered, and the next
+    one lints the new model."""
+    import io
+    from contextlib import redirect_stdout
+    from urdf_lint import cli, runcache
+    run(repo)          # (the cache folder exists: the repository's folder is settled)
+    _age(repo)
+    late = repo / "r2d2_description" / "urdf" / "late.urdf"
+    real_init, real_store = runcache.RunMemo.__init__, runcache.RunMemo.store
+
+    def init(self, *a, **k):
+        real_init(self, *a, **k)
+        self.started = time.time_ns() - 10 * 10 ** 9
+
+    def store(self, out, results, folders):
+        late.write_text('<robot name="late"><link name="a"/></robot>\n')
+        t = time.time() - 5
+        os.utime(late, (t, t))
+        os.utime(late.parent, (t, t))
+        real_store(self, out, results, folders)
+    monkeypatch.setattr(runcache.RunMemo, "__init__", init)
+    monkeypatch.setattr(runcache.RunMemo, "store", store)
+    monkeypatch.chdir(repo)
+    with redirect_stdout(io.StringIO()) as out:
+        assert cli.main(["check", ".", "--format", "json"]) in (0, 1)
+    assert not any("late.urdf" in m["entry"] for m in json.loads(out.getvalue())["models"])
+    monkeypatch.undo()
+    reused, doc = _reused(repo)
+    assert not reused and any(m["entry"].endswith("late.urdf") for m in doc["models"])
+
+
 def test_forged_run_memo_is_ignored(repo):
     pkg = repo / "r2d2_description"
     run(repo)

@@ -44,6 +44,7 @@ class RunMemo:
         key = blake2b(blob.encode(), digest_size=20).hexdigest()
         self.cache = cache
         self.path = os.path.join(cache.dir, "runs", key + ".json")
+        self.started = time.time_ns()   # (before discovery: what changes later is not trusted)
 
     def load(self) -> dict | None:
         """The fields of the last identical run's ``CheckResult``, or None."""
@@ -96,10 +97,10 @@ class RunMemo:
             if m is None:
                 return
             seen.append((f, m))
-        now_ns = time.time_ns()
-        racy = int(RACY_S * 1e9)
-        if any(now_ns - stat[1] < racy for stat in inputs.values()) or \
-                any(now_ns - m < racy for _, m in seen):
+        # an input or folder changed since shortly before the run began may have changed
+        # after it was read or listed (a file added while the run went on): not remembered
+        limit = self.started - int(RACY_S * 1e9)
+        if any(stat[1] >= limit for stat in inputs.values()) or any(m >= limit for _, m in seen):
             return
         _prune(os.path.dirname(self.path))
         head = {"format": FORMAT, "inputs": sorted(inputs.items()), "missing": sorted(missing),
