@@ -57,6 +57,21 @@ def run_cli(*args, cwd=None, env=None, timeout=300, input=None):
     return p
 
 
+def carried(job, data):
+    """What a test's replacement of ``worker.process_job`` reports from inside the worker
+    (JSON ``data``), sent back inside a lint result: the parent accepts nothing else."""
+    from urdf_lint.jobs import ModelReport
+    return ModelReport(job.entry, {}, name=json.dumps(data))
+
+
+def carried_data(report):
+    """The ``data`` of :func:`carried` (a report the run made itself, e.g. a limit: as is)."""
+    try:
+        return json.loads(report.name)
+    except (TypeError, ValueError):
+        return report
+
+
 def make_package(root: Path, name: str, files: dict) -> Path:
     """Write a ROS-style package: package.xml plus the given files (text or bytes)."""
     from repo_shapes import package_xml, write

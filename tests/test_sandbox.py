@@ -20,7 +20,7 @@ import time
 
 import pytest
 
-from conftest import REPO, make_package, run_cli
+from conftest import REPO, carried, carried_data, make_package, run_cli
 
 from urdf_lint import sandbox
 
@@ -118,7 +118,7 @@ def _run_in_worker(monkeypatch, paths, port, env=None, mild=False, parent_fd=-1)
     from urdf_lint.jobs import LintSettings
     from urdf_lint.packages import PackageResolver
     from urdf_lint.worker import run_jobs
-    monkeypatch.setattr(worker, "process_job", _attacks)
+    monkeypatch.setattr(worker, "process_job", lambda job, s: carried(job, _attacks(job, s)))
     for k, v in (env or {}).items():
         monkeypatch.setenv(k, v)
     resolver = PackageResolver.build([paths["repo"]], extra_roots=[paths["repo"]])
@@ -127,7 +127,7 @@ def _run_in_worker(monkeypatch, paths, port, env=None, mild=False, parent_fd=-1)
                     port=port, mild=mild, parent_fd=parent_fd)
     results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=30)]
     assert len(results) == 1
-    return results[0]
+    return carried_data(results[0])
 
 
 @pytest.mark.skipif(not (LANDLOCK and SECCOMP), reason="needs Landlock and seccomp (Linux)")
@@ -185,9 +185,10 @@ from urdf_lint.jobs import LintJob, LintSettings
 from urdf_lint.packages import PackageResolver
 from urdf_lint.worker import run_jobs
 def slow(job, settings):
+    from urdf_lint.jobs import ModelReport
     if job.entry == "slow":
         time.sleep(120)
-    return {{"entry": job.entry}}
+    return ModelReport(job.entry, {{}})
 worker.process_job = slow
 r = PackageResolver.build([{repo!r}], extra_roots=[{repo!r}])
 settings = LintSettings(resolver=r.to_dict())
@@ -301,6 +302,78 @@ class _Evil:
 
 def _send_evil(conn, path):
     conn.send(_Evil(path))
+
+
+class _BadCall:
+    """A pickle that calls an allowed class the wrong way."""
+
+    def __reduce__(self):
+        from urdf_lint.jobs import ModelReport
+        return (ModelReport, ())
+
+
+def _raw_reply(header_size: int, body: bytes, stall: float):
+    """A Conn.send for the worker's side that writes a header saying ``header_size`` bytes,
+    then ``body``, then waits ``stall`` seconds (the parent's messages go through as usual)."""
+    import time
+    from urdf_lint import forked
+    real = forked.Conn.send
+
+    def send(self, obj):
+        from urdf_lint.jobs import ModelReport
+        if not isinstance(obj, ModelReport):
+            return real(self, obj)
+        os.write(self.wfd, forked._HEADER.pack(header_size) + body)
+        time.sleep(stall)
+    return send
+
+
+@pytest.mark.parametrize("case", ["bad call", "not a report", "oversized", "stalled"])
+def test_a_worker_result_the_parent_cannot_trust_fails_its_model_only(tmp_path, monkeypatch,
+                                                                     case):
+    """Whatever a worker sends back instead of a whole lint result (an allowed class called
+    wrongly, another allowed object, a length of more than a gigabyte, a message that never
+    ends) fails its model with an internal error: never the run, never a hang."""
+    import time
+    from urdf_lint import forked, worker
+    from urdf_lint.jobs import LintJob, LintSettings, Status
+    from urdf_lint.packages import PackageResolver
+    if case == "bad call":
+        monkeypatch.setattr(worker, "process_job", lambda job, settings: _BadCall())
+    elif case == "not a report":
+        monkeypatch.setattr(worker, "process_job", lambda job, settings: Status.MODEL)
+    else:
+        oversized = case == "oversized"
+        monkeypatch.setattr(forked.Conn, "send", _raw_reply(
+            forked.MAX_MESSAGE + 1 if oversized else 100, b"" if oversized else b"x" * 10, 60))
+    resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
+    jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
+    t0 = time.monotonic()
+    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=1,
+                                    timeout=3))
+    assert time.monotonic() - t0 < 20
+    assert r.internal and "not a lint result" in r.internal[0] and not r.cacheable, r
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="needs /proc/self/fd")
+def test_runs_leave_no_descriptor_behind(tmp_path):
+    """``--fix`` and ``diff`` run several passes in one process: the channels of workers that
+    ended are closed, not left to the garbage collector."""
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob, LintSettings
+    from urdf_lint.packages import PackageResolver
+    (tmp_path / "m.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    settings = LintSettings(resolver=PackageResolver.build(
+        [str(tmp_path)], extra_roots=[str(tmp_path)]).to_dict())
+    jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")] * 2
+
+    def open_fds():
+        return len(os.listdir("/proc/self/fd"))
+    list(worker.run_jobs(jobs, settings, jobs_n=2))
+    before = open_fds()
+    for _ in range(5):
+        list(worker.run_jobs(jobs, settings, jobs_n=2))
+    assert open_fds() == before
 
 
 def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, monkeypatch):

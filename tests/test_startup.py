@@ -11,7 +11,7 @@ import time
 
 import pytest
 
-from conftest import DESCRIPTIONS, REPO
+from conftest import DESCRIPTIONS, REPO, carried, carried_data
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="needs os.fork")
 
@@ -134,12 +134,12 @@ def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
     from urdf_lint.packages import PackageResolver
 
     def probe(job, settings):
-        return [fd for fd in range(256) if _is_open(fd)]
+        return carried(job, [fd for fd in range(256) if _is_open(fd)])
     monkeypatch.setattr(worker, "process_job", probe)
     resolver = PackageResolver.build([str(DESCRIPTIONS)], extra_roots=[str(DESCRIPTIONS)])
     jobs = [LintJob(f"m{i}.urdf", kind="urdf") for i in range(4)]
-    results = [r for _, r in worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()),
-                                             jobs_n=2, timeout=30)]
+    results = [carried_data(r) for _, r in worker.run_jobs(
+        jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=2, timeout=30)]
     assert len(results) == 4
     for fds in results:
         # stdin, stdout, stderr and the worker's own two pipe ends: nothing of its sibling

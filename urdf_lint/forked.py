@@ -27,7 +27,18 @@ parent_pid: int | None = None
 
 
 class Refused(pickle.UnpicklingError):
-    """A message named a class or function the receiving end does not accept."""
+    """A message the receiving end does not accept: it names a class or function not allowed,
+    is too large, unreadable, or unfinished in time."""
+
+
+MAX_MESSAGE = 1 << 30    # bytes of one message from an untrusted end
+
+
+def _readable(fd: int, timeout: float) -> bool:
+    import select
+    p = select.poll()
+    p.register(fd, select.POLLIN | select.POLLHUP | select.POLLERR)
+    return bool(p.poll(max(0.0, timeout) * 1000))
 
 
 class _Restricted(pickle.Unpickler):
@@ -62,27 +73,39 @@ class Conn:
         while view:
             view = view[os.write(self.wfd, view):]
 
-    def _read(self, n: int) -> bytearray:
+    def _read(self, n: int, deadline: float | None = None) -> bytearray:
         buf = bytearray(n)
         view = memoryview(buf)
         got = 0
         while got < n:
+            if deadline is not None and not _readable(self.rfd, deadline - time.monotonic()):
+                raise Refused(f"a message not finished in time ({got} of {n} bytes)")
             k = os.readv(self.rfd, [view[got:]])
             if k == 0:
                 raise EOFError("the other end closed the channel")
             got += k
         return buf
 
-    def recv(self):
-        """The next message (:class:`Refused` when it names what ``allowed`` does not hold)."""
-        (n,) = _HEADER.unpack(self._read(_HEADER.size))
-        data = self._read(n)
+    def recv(self, timeout: float | None = None):
+        """The next message. On an end with ``allowed``, anything but a whole, readable
+        message of at most ``MAX_MESSAGE`` bytes made of those classes, within ``timeout``
+        seconds, is :class:`Refused`: the other end is not trusted to keep to the protocol."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        (n,) = _HEADER.unpack(self._read(_HEADER.size, deadline))
         if self.allowed is None:
-            return pickle.loads(data)
+            return pickle.loads(self._read(n))
+        if n > MAX_MESSAGE:
+            raise Refused(f"a message of {n} bytes")
+        data = self._read(n, deadline)
         import io
         reader = _Restricted(io.BytesIO(data))
         reader.allowed = self.allowed
-        return reader.load()
+        try:
+            return reader.load()
+        except Refused:
+            raise
+        except Exception as e:  # noqa: BLE001 - a truncated pickle, a bad call, no memory
+            raise Refused(f"an unreadable message ({type(e).__name__})") from e
 
     def close(self) -> None:
         for fd in (self.rfd, self.wfd):
@@ -216,6 +239,9 @@ def start(target, args=(), allowed: frozenset | None = None):
     proc = Process(target, (child, *args), close_in_child=(parent,))
     try:
         proc.start()
+    except BaseException:
+        parent.close()
+        raise
     finally:
         child.close()
     return parent, proc

@@ -575,12 +575,14 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 w = busy.pop(conn)
                 job = w.job
                 try:
-                    result = w.conn.recv()
+                    result = w.conn.recv(timeout=max(1.0, w.started + timeout - time.monotonic()))
+                    if not isinstance(result, ModelReport):
+                        raise forked.Refused(f"a {type(result).__name__}")
                 except forked.Refused as e:
                     # not a lint result: the worker ran something that is not urdf-lint's
                     result = ModelReport.failed(job, internal=[
                         f"the worker linting this model sent back something that is not a lint "
-                        f"result (it names {e}); it was not read, and the worker was stopped"])
+                        f"result ({e}); it was not read, and the worker was stopped"])
                     result.cacheable = False
                     workers.remove(w)
                     w.kill()
@@ -617,3 +619,5 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
             w.proc.join(0.5)
             if w.proc.is_alive():
                 w.kill()
+            else:
+                w.conn.close()
