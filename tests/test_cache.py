@@ -339,3 +339,44 @@ def test_a_file_has_one_digest_whichever_way_it_is_read(tmp_path, monkeypatch):
         hashing._memo.clear()
         assert hashing.memo_read(str(p), 1 << 30) == (want, data)
         assert hashing.memo_digest(str(p))[1] == want
+
+
+def test_a_result_the_cache_refuses_is_not_remembered_by_the_run_memo(tmp_path):
+    """A worker that reports reading a file outside the package roots: the cache stores
+    nothing, and says so on the result, so the run memo does not keep the run either."""
+    import types
+    from urdf_lint.cache import Cache
+    from urdf_lint.config import load_config
+    from urdf_lint.discovery import build_resolver
+    from urdf_lint.jobs import LintJob, ModelReport
+    from urdf_lint.pipeline import settings_for
+    from urdf_lint.runcache import RunMemo
+    repo = tmp_path / "repo"
+    entry = repo / "p" / "urdf" / "r.urdf"
+    entry.parent.mkdir(parents=True)
+    entry.write_text('<robot name="r"><link name="a"/></robot>\n')
+    (repo / "p" / "package.xml").write_text("<package><name>p</name></package>\n")
+    outside = tmp_path / "secret.txt"
+    outside.write_text("x")
+    t = time.time() - 60
+    for f in (entry, outside, entry.parent, repo):
+        os.utime(f, (t, t))
+    cfg = load_config(None)
+    resolver = build_resolver([str(repo)], cfg)
+    settings = settings_for(cfg, resolver, None)
+    cache = Cache(str(tmp_path / "cache"))
+    job = LintJob(str(entry), kind="urdf")
+    memo = RunMemo(cache, [str(repo)], cfg, resolver, settings)
+    memo.started = time.time_ns()
+    good = ModelReport(str(entry), {}, deps=[str(entry)])
+    cache.put(job, settings, good)
+    assert good.cacheable and str(entry) in good.digests
+    bad = ModelReport(str(entry), {}, deps=[str(entry), str(outside)])
+    cache.put(job, settings, bad)
+    assert not bad.cacheable
+    empty = types.SimpleNamespace(internal=[], models=[], skipped=[], findings=[], fragments={},
+                                  generated={})
+    memo.store(empty, [good, bad], [])
+    assert not os.path.exists(memo.path)
+    memo.store(empty, [good], [])              # (the same run without it is remembered)
+    assert os.path.exists(memo.path)

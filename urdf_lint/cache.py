@@ -31,7 +31,7 @@ from pathlib import Path
 from . import __version__
 from .atomic import atomic_write
 from .discovery import start_dir
-from .hashing import blake2b, file_digest, file_record, read_regular, stat_key
+from .hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
 from .cachedir import ensure as ensure_cache_dir
 from .vcs import git_root, repo_root
@@ -162,9 +162,10 @@ class Cache:
                 if now is None:
                     return None
                 if now != stat:   # touched (a checkout, a copy): the same bytes will do
-                    if file_digest(path) != digest:
+                    got = memo_digest(path)      # (hashed once for all the models sharing it)
+                    if got is None or got[1] != digest:
                         return None
-                    deps[path] = [now, digest]   # stat taken before the bytes were hashed
+                    deps[path] = [got[0], digest]   # stat taken before the bytes were hashed
             for path in rec.get("missing", []):
                 key = ("missing", path)
                 appeared = seen.get(key)
@@ -189,19 +190,22 @@ class Cache:
         return hmac.new(self._secret, blob, hashlib.sha256).hexdigest().encode("ascii")
 
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
+        """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
+        memo keeps), or ``result.cacheable`` turns False when it is not stored."""
         if self.refused:
             return
         deps = {}
         read = result.digests or {}
         roots = self._roots(settings)
         for d in result.deps:
-            if roots is not None and not roots.is_inside(d):
-                return  # a worker reporting a file outside the roots: cache nothing
             # the worker's record of what it read; a file it did not record is read here
-            rec = read.get(d) or file_record(d)
-            if rec is None:
-                return  # an input vanished: nothing trustworthy to cache
+            inside = roots is None or roots.is_inside(d)
+            rec = (read.get(d) or file_record(d)) if inside else None
+            if rec is None:   # a worker reporting a file outside the roots, or an input
+                result.cacheable = False   # that vanished: nothing trustworthy to keep
+                return
             deps[d] = rec
+        result.digests = deps
         rec = {"version": __version__, "deps": deps, "missing": list(result.missing),
                "result": result.to_record()}
         self.write_signed(self._path(self._key(job, settings)), json.dumps(rec).encode("utf-8"))

@@ -25,7 +25,7 @@ import time
 from typing import TYPE_CHECKING
 
 from .findings import Problem
-from .hashing import blake2b, file_record, stat_key
+from .hashing import blake2b, stat_key
 from .jobs import LintJob, ModelReport
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -86,9 +86,9 @@ class RunMemo:
         for r in results:
             for d in r.deps:
                 if d not in inputs:
-                    rec = r.digests.get(d) or file_record(d)
+                    rec = r.digests.get(d)   # (the cache filled them in, or refused the result)
                     if rec is None:
-                        return   # an input vanished during the run
+                        return
                     inputs[d] = rec[0]
             missing.update(r.missing)
         seen = []
