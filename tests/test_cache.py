@@ -380,3 +380,16 @@ def test_a_result_the_cache_refuses_is_not_remembered_by_the_run_memo(tmp_path):
     assert not os.path.exists(memo.path)
     memo.store(empty, [good], [])              # (the same run without it is remembered)
     assert os.path.exists(memo.path)
+
+
+def test_a_signed_entry_copied_under_another_key_is_refused(tmp_path):
+    """The signature covers the entry's key (its file name): the memo of another command line
+    (an --ignore of everything, say) copied over this one's is not read."""
+    from urdf_lint.cache import Cache
+    cache = Cache(str(tmp_path / "cache"))
+    here, there = (os.path.join(cache.dir, "runs", f"{k * 40}.json") for k in "ab")
+    assert cache.write_signed(here, b'{"findings": []}')
+    assert cache.read_signed(here) == b'{"findings": []}'
+    os.makedirs(os.path.dirname(there), exist_ok=True)
+    shutil.copy(here, there)
+    assert cache.read_signed(there) is None

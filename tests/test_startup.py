@@ -245,6 +245,13 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
 
 
 # -- what a cached run loads ---------------------------------------------------------------------
+def test_no_rule_modules_is_an_error_not_a_clean_run(tmp_path):
+    import urdf_lint.registry as registry
+    (tmp_path / "ul001_x.pyc").write_bytes(b"")     # compiled only: no source to list
+    with pytest.raises(RuntimeError, match="without its sources"):
+        registry.submodule_names([str(tmp_path)])
+
+
 def test_the_catalogue_read_from_sources_matches_the_loaded_rules():
     """The rule catalogue (no imports) says what importing every rule module says."""
     import urdf_lint.registry as registry

@@ -185,9 +185,12 @@ class Cache:
         seen: dict = {}
         return [self.get(job, settings, seen) for job in jobs]
 
-    def _mac_bytes(self, blob: bytes) -> bytes:
+    def _mac_bytes(self, path: str, blob: bytes) -> bytes:
+        """The signature of ``blob`` stored under ``path``: its file name (the entry's key) is
+        signed too, so an entry copied under another key is no entry there."""
         assert self._secret is not None
-        return hmac.new(self._secret, blob, hashlib.sha256).hexdigest().encode("ascii")
+        signed = os.path.basename(path).encode() + b"\0" + blob
+        return hmac.new(self._secret, signed, hashlib.sha256).hexdigest().encode("ascii")
 
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
         """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
@@ -217,7 +220,7 @@ class Cache:
         if data is None:
             return None
         mac, _, blob = data.partition(b"\n")
-        return blob if hmac.compare_digest(mac, self._mac_bytes(blob)) else None
+        return blob if hmac.compare_digest(mac, self._mac_bytes(path, blob)) else None
 
     def write_signed(self, path: str, blob: bytes) -> bool:
         """Write ``blob`` under the cache folder, signed: the signature's line, then the bytes
@@ -225,7 +228,7 @@ class Cache:
         try:
             self._ensure()
             os.makedirs(os.path.dirname(path), exist_ok=True)
-            atomic_write(path, self._mac_bytes(blob) + b"\n" + blob)
+            atomic_write(path, self._mac_bytes(path, blob) + b"\n" + blob)
             return True
         except OSError:
             return False

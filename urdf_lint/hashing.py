@@ -18,8 +18,9 @@ _sha256: Any = None
 def content_hash(size: int):
     """A new hash for ``size`` bytes of file content. From 1 MiB on (meshes, most of what a
     cold run hashes) OpenSSL's SHA-256, which the CPU computes (SHA-NI) at twice BLAKE2b's
-    speed (12 vs 23 ms per 20 MB); below, BLAKE2b, built in, so that a run hashing only
-    sources never loads OpenSSL (~3 ms). The choice depends on the content alone (its
+    speed (12 vs 23 ms per 20 MB); below, BLAKE2b, built in, so that a worker hashing only
+    sources never loads OpenSSL (~3 ms; ``expand``'s worker, tested: the parent of a cached
+    run loads it anyway, to sign the cache). The choice depends on the content alone (its
     length), so a file always gets the same digest."""
     global _sha256
     if size < SHA_FROM_BYTES:

@@ -64,8 +64,10 @@ _RULES: dict | None = None
 
 def submodule_names(paths) -> list[str]:
     """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
-    (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.)"""
+    (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
+    an error: an install without its sources must not lint with no rules, or report nothing."""
     import os
+    paths = list(paths)
     names: set[str] = set()
     for folder in paths:
         try:
@@ -73,6 +75,9 @@ def submodule_names(paths) -> list[str]:
                          if fn.endswith(".py") and not fn.startswith("_"))
         except OSError:
             continue
+    if not names:
+        raise RuntimeError(f"no modules in {', '.join(map(str, paths))}: urdf-lint is "
+                           "installed without its sources (.py files)")
     return sorted(names)
 
 
