@@ -301,3 +301,75 @@ def test_a_rule_may_choose_the_severity_of_one_problem(monkeypatch):
     assert [p.severity for p in _with_policy(probs, "r", Policy())] == ["info", "error"]
     assert [p.severity for p in _with_policy(probs, "r", Policy(severity={"UL998": "warning"}))] \
         == ["warning", "warning"]
+
+
+def _module_aliases(tree):
+    """Names bound to imported modules at any level of ``tree`` (``import x``, ``import x as
+    y``, ``from . import x``)."""
+    names = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module in (
+                "os", "sys", "importlib"):
+            names |= {a.asname or a.name for a in node.names}
+    return names
+
+
+def test_no_module_of_ours_rebinds_another_modules_names():
+    """Issue 22: the sandbox swapped a stub into ``dataclasses``' view of ``inspect`` while
+    importing ``landlock``, which crashed every Python but 3.11. Assigning to an attribute of
+    an imported module (``dataclasses.inspect = ...``, ``setattr(mod, ...)``) changes another
+    module's behaviour for everyone in the process: not allowed anywhere in the product."""
+    # (module, target prefix): why it is not a patch of another module's behaviour
+    allowed = {
+        # the pinned xacro (pyproject: xacro==2.1.1) is hooked by design, inside one expansion
+        ("urdf_lint.expansion.expand", "xacro."): "xacro is pinned to be hooked",
+        ("urdf_lint.expansion.expand", "_subst."): "xacro's substitution_args, likewise",
+        ("urdf_lint.expansion.splice", "xacro."): "likewise",
+        # xacro prints to the streams: captured for one expansion, then restored
+        ("urdf_lint.expansion.expand", "sys.stdout"): "capture, restored",
+        ("urdf_lint.expansion.expand", "sys.stderr"): "capture, restored",
+        # a worker process's own interpreter setting (the worker is ours alone)
+        ("urdf_lint.worker", "sys.dont_write_bytecode"): "the worker's own process",
+    }
+    found = []
+    for name, path in _modules().items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        aliases = _module_aliases(tree)
+        for node in ast.walk(tree):
+            targets = []
+            if isinstance(node, (ast.Assign, ast.AugAssign, ast.AnnAssign)):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                    and node.func.id in ("setattr", "delattr") and node.args \
+                    and isinstance(node.args[0], ast.Name) and node.args[0].id in aliases:
+                found.append(f"{name}:{node.lineno} {node.func.id}({node.args[0].id}, ...)")
+            for t in targets:
+                if isinstance(t, ast.Attribute) and isinstance(t.value, ast.Name) \
+                        and t.value.id in aliases and t.value.id != "self" \
+                        and not any(name == m and ast.unparse(t).startswith(prefix)
+                                    for m, prefix in allowed):
+                    found.append(f"{name}:{node.lineno} {ast.unparse(t)} = ...")
+    assert not found, "a module of ours rebinds another module's names:\n" + "\n".join(found)
+
+
+def test_the_standard_library_is_untouched_by_the_sandbox_probe():
+    """The sandbox probe (``landlock`` imported, as ``check`` and ``doctor`` do) leaves
+    ``dataclasses`` and ``inspect`` as the standard library has them: a dataclass defined after
+    it still gets its generated docstring with the signature."""
+    import subprocess
+    import sys
+    code = (
+        "import sys, dataclasses, urdf_lint, urdf_lint.sandbox as s\n"
+        "s.landlock_status()\n"
+        "import inspect\n"
+        "assert type(sys.modules['inspect']).__name__ == 'module', type(sys.modules['inspect'])\n"
+        "assert dataclasses.inspect is inspect\n"
+        "@dataclasses.dataclass\n"
+        "class P:\n"
+        "    x: int = 1\n"
+        "print(P.__doc__)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "P(x: int = 1)", p.stdout

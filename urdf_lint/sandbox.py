@@ -70,25 +70,10 @@ def _libc():
 
 
 def _import_landlock():
-    """``landlock`` imports ``platform`` (~1.5 ms) to word an error message, and its ``Ruleset``
-    is a dataclass without a docstring, for which ``dataclasses`` would import ``inspect``
-    (~7 ms) to write one: a worker needs neither."""
-    if "landlock" in sys.modules:
-        return sys.modules["landlock"]
-    import dataclasses
-    from .lazy import defer
-    defer("platform")
-
-    class _NoSignature:
-        @staticmethod
-        def signature(obj):
-            raise ValueError("not needed")   # dataclasses then names the class only
-    saved = dataclasses.inspect  # type: ignore[attr-defined]
-    dataclasses.inspect = _NoSignature  # type: ignore[attr-defined]
-    try:
-        import landlock
-    finally:
-        dataclasses.inspect = saved  # type: ignore[attr-defined]
+    """The ``landlock`` package, imported as it is: nothing of the standard library or of
+    another package is swapped around the import (a stub for ``dataclasses``' view of
+    ``inspect`` crashed every Python but 3.11)."""
+    import landlock
     return landlock
 
 
@@ -108,43 +93,9 @@ def landlock_status() -> tuple[bool, str]:
 
 
 def _import_pyseccomp():
-    """pyseccomp imports ``ctypes.util`` (~7 ms: shutil, subprocess, tempfile) to call its
-    ``find_library``, which runs ``ldconfig`` (~15 ms). It gets a stand-in that tries the usual
-    sonames; the real lookup is imported only when one of them cannot be loaded."""
-    if "pyseccomp" in sys.modules:
-        return sys.modules["pyseccomp"]
-    import types
-    known = {"c": "libc.so.6", "seccomp": "libseccomp.so.2"}
-    real = sys.modules.get("ctypes.util")
-
-    def find_library(name):
-        nonlocal real
-        so = known.get(name)
-        if so:
-            try:
-                ctypes.CDLL(so)
-                return so
-            except OSError:
-                pass
-        if real is None:
-            sys.modules.pop("ctypes.util", None)
-            import importlib
-            real = importlib.import_module("ctypes.util")
-        return real.find_library(name)
-    stand_in = types.ModuleType("ctypes.util")
-    stand_in.find_library = find_library  # type: ignore[attr-defined]
-    sys.modules["ctypes.util"] = stand_in
-    ctypes.util = stand_in  # type: ignore[attr-defined]
-    try:
-        import pyseccomp
-    finally:
-        if real is not None:
-            sys.modules["ctypes.util"] = ctypes.util = real  # type: ignore[attr-defined]
-        else:
-            if sys.modules.get("ctypes.util") is stand_in:
-                del sys.modules["ctypes.util"]
-            if getattr(ctypes, "util", None) is stand_in:
-                del ctypes.util  # type: ignore[attr-defined]
+    """The ``pyseccomp`` package, imported as it is (it looks libseccomp up with the standard
+    library's ``ctypes.util``; no stand-in is swapped into the standard library)."""
+    import pyseccomp
     return pyseccomp
 
 
