@@ -251,21 +251,32 @@ def test_ctrl_c_during_a_real_run_exits_130(corpus, tmp_path):
     assert "Traceback" not in err and "interrupted" in err
 
 
-def readme_precommit_config() -> str:
+def readme_precommit_config(kind: str = "remote") -> str:
+    """The README's ``.pre-commit-config.yaml`` of ``kind``: "local" (a repository where
+    urdf-lint is installed) or "remote" (pre-commit installs it from its repository)."""
     text = (REPO / "README.md").read_text()
     blocks = re.findall(r"```yaml\n(.*?)```", text, re.S)
     found = [b for b in blocks if b.startswith("repos:")]
-    assert len(found) == 1, blocks
-    return found[0]
+    assert len(found) == 2, blocks
+    local = [b for b in found if yaml.safe_load(b)["repos"][0]["repo"] == "local"]
+    assert len(local) == 1, found
+    return local[0] if kind == "local" else next(b for b in found if b is not local[0])
 
 
-def test_readme_precommit_snippet_is_a_complete_config():
-    doc = yaml.safe_load(readme_precommit_config())
+def test_readme_precommit_snippets_are_complete_configs():
+    hooks = {h["id"]: h for h in yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())}
+    doc = yaml.safe_load(readme_precommit_config("remote"))
     assert list(doc) == ["repos"]
     (repo,) = doc["repos"]
     assert repo["repo"].endswith("/urdf-lint") and repo["rev"] == "v0.1.0"
-    hooks = {h["id"] for h in yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())}
     assert [h["id"] for h in repo["hooks"]] == ["urdf-lint"] and "urdf-lint" in hooks
+    # the local form runs the same hook as the published one
+    (local,) = yaml.safe_load(readme_precommit_config("local"))["repos"]
+    (hook,) = local["hooks"]
+    published = hooks["urdf-lint"]
+    for key in ("entry", "files", "always_run", "require_serial"):
+        assert hook.get(key) == published.get(key), key
+    assert hook["language"] == "system"
 
 
 def test_output_file_is_written_atomically_and_never_half(pkg, capsys, monkeypatch):

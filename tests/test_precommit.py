@@ -156,3 +156,30 @@ def test_hook_deletions_and_renames(hook_repo):
     (pkg / "urdf/r2d2.urdf.xacro").unlink()
     p = commit(work, env, "drop the robot")
     assert p.returncode == 0, p.stdout + p.stderr
+
+
+def test_readme_local_hook_works_as_pasted(tmp_path):
+    """The README's ``repo: local`` snippet, pasted unchanged into a repository where urdf-lint
+    is installed (on PATH, as `pip install` puts it): a clean commit passes, a broken joint
+    fails at its xacro line."""
+    from test_cli_conventions import readme_precommit_config
+    work = tmp_path / "robots"
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
+    (work / ".pre-commit-config.yaml").write_text(readme_precommit_config("local"))
+    (work / ".gitignore").write_text(".urdf_lint_cache/\n")
+    sh("git", "init", "-q", cwd=work)
+    sh("git", "config", "user.email", "t@example.invalid", cwd=work)
+    sh("git", "config", "user.name", "t", cwd=work)
+    env = {"PRE_COMMIT_HOME": str(tmp_path / "pre-commit-home"),
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    sh(sys.executable, "-m", "pre_commit", "install", cwd=work, env=env)
+    p = commit(work, env, "initial")
+    assert p.returncode == 0 and "urdf-lint" in p.stdout + p.stderr, p.stdout + p.stderr
+    macros = work / "r2d2_description/urdf/r2d2_macros.xacro"
+    replace(macros, '<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>')
+    line = next(i for i, t in enumerate(macros.read_text().splitlines(), 1)
+                if '<axis xyz="0 0 0"/>' in t)
+    p = commit(work, env, "break wheels")
+    out = p.stdout + p.stderr
+    assert p.returncode != 0 and "Failed" in out, out
+    assert f"r2d2_description/urdf/r2d2_macros.xacro:{line}:7: UL307" in out, out
