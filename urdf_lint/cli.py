@@ -917,9 +917,30 @@ def exit_now(code: int) -> None:
     os._exit(code)
 
 
+def _hook_arguments(argv) -> tuple[list, list]:
+    """``urdf-lint hook``: (the arguments to parse, the file names). pre-commit appends the
+    names of the commit's files to the hook's arguments, and a committed file may be named
+    like an option (``--env-allow=TOKEN,x.yaml``). Everything after the first ``--`` is a file
+    name, and so is, before it, an argument starting with ``-`` that names an existing path
+    (pre-commit passes only existing files): neither is ever parsed as an option."""
+    i = argv.index("hook")
+    rest, files = argv[i + 1:], []
+    if "--" in rest:
+        k = rest.index("--")
+        rest, files = rest[:k], rest[k + 1:]
+    taken = [a for a in rest if a.startswith("-") and len(a) > 1 and os.path.lexists(a)]
+    for a in taken:
+        sys.stderr.write(f"urdf-lint: note: {_safe_text(a)} is a file, not an option (end "
+                         "the hook's args with --)\n")
+    return argv[:i + 1] + [a for a in rest if a not in taken], taken + files
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)
+    hook_files: list = []
+    if command == "hook":
+        argv, hook_files = _hook_arguments(argv)
     if command == "expand" and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
@@ -933,6 +954,8 @@ def _main(argv) -> int:
                 f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as e:
         return 2 if e.code else 0
+    if command == "hook":
+        args.files = list(args.files) + hook_files
     if args.version:
         from . import __version__
         from .sandbox import summary_line
