@@ -13,8 +13,11 @@ after fork, before the worker reads any job, and applies, each where the platfor
   snapshot folders, and invisible everywhere else (``/proc`` included, so neither the
   parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read);
 * **seccomp** (PyPI ``pyseccomp`` over ``libseccomp.so.2``): ``execve``/``execveat``, socket
-  creation and connection, ``ptrace``, cross-process memory access, ``io_uring`` and signals
-  to other processes fail with ``EPERM``.
+  creation and connection, ``ptrace``, cross-process memory access, ``io_uring``, signals
+  to any other process (``kill``, ``tkill``, ``tgkill``, ``rt_sigqueueinfo``,
+  ``rt_tgsigqueueinfo``) and new processes (``fork``, ``vfork``, ``clone`` without
+  ``CLONE_THREAD``; ``clone3`` says ``ENOSYS`` so libc starts threads with ``clone``) fail
+  with ``EPERM``: a worker has threads but never a child that could outlive it.
 
 Filters are inherited by any thread the worker starts and cannot be lifted afterwards. A
 protection the kernel lacks is reported once by the parent (:func:`note_missing`) and the run
@@ -42,6 +45,10 @@ DENIED_SYSCALLS = (
     "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key", "request_key",
     "pidfd_open", "pidfd_getfd", "pidfd_send_signal",
 )
+# calls that signal the process or thread their first argument names: allowed only with the
+# worker's own pid there
+SIGNAL_SYSCALLS = ("kill", "tkill", "tgkill", "rt_sigqueueinfo", "rt_tgsigqueueinfo")
+_CLONE_THREAD = 0x00010000
 # read-only system folders the runtime may load shared libraries and data from
 _SYSTEM_READ = ("/usr/lib", "/usr/lib64", "/usr/local/lib", "/lib", "/lib64", "/usr/share/zoneinfo",
                 "/etc/ld.so.cache", "/etc/localtime", "/dev/urandom", "/dev/random",
@@ -283,12 +290,29 @@ def apply_seccomp() -> None:
         except Exception:  # noqa: BLE001 - a syscall this architecture does not have
             continue
     me = os.getpid()
-    # signals only to itself (its own threads included)
-    for name in ("kill", "tgkill"):
+    # signals only to itself (its own threads included): every call that names a target
+    # process or thread by its first argument (a thread of the worker is reached through
+    # tgkill(me, tid), which glibc's pthread_kill and raise use)
+    for name in SIGNAL_SYSCALLS:
         try:
             f.add_rule(sc.ERRNO(errno.EPERM), name, sc.Arg(0, sc.NE, me))
-        except Exception:  # noqa: BLE001
+        except Exception:  # noqa: BLE001 - a syscall this architecture does not have
             continue
+    # no child process: fork/vfork, and clone without CLONE_THREAD, fail (a thread shares the
+    # worker's life: it dies with it). clone3 passes its flags in memory a filter cannot
+    # read: it says ENOSYS, and libc falls back to clone, which is filtered
+    for name in ("fork", "vfork"):
+        try:
+            f.add_rule(sc.ERRNO(errno.EPERM), name)
+        except Exception:  # noqa: BLE001 - aarch64 has neither
+            continue
+    # clone(flags, ...): the flags are the first argument everywhere but s390 (the second)
+    flags_arg = 1 if os.uname().machine.startswith("s390") else 0
+    f.add_rule(sc.ERRNO(errno.EPERM), "clone", sc.Arg(flags_arg, sc.MASKED_EQ, _CLONE_THREAD, 0))
+    try:
+        f.add_rule(sc.ERRNO(errno.ENOSYS), "clone3")
+    except Exception:  # noqa: BLE001 - a libseccomp that predates clone3 (the kernel's
+        pass           # filter then allows it: no worse than before)
     f.load()
 
 
