@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from .report.escape import escape_markdown_code, escape_text
+from .report.escape import escape_html, escape_markdown, escape_markdown_code, escape_text
 from .review import MARKDOWN_LIMIT, DiffResult, image_stem
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
@@ -93,16 +93,18 @@ def to_json(r: DiffResult) -> str:
     return json.dumps(doc, indent=2) + "\n"
 
 
-def md_escape(s: str) -> str:
-    """Text safe inside a GFM table cell: no HTML, no pipes, no line breaks, no code spans, no
-    control or bidi characters (the shared helper, :mod:`urdf_lint.report.escape`)."""
-    s = str(s).replace("\r", " ").replace("\n", " ")
-    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    return escape_markdown_code(s)
+def md_escape(s) -> str:
+    """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
+    renders as that text only: no HTML, link, image, mention, table break or line break
+    (the shared helper, :mod:`urdf_lint.report.escape`)."""
+    return escape_markdown(str(s).replace("\r", " ").replace("\n", " "))
 
 
 def _code(s) -> str:
-    return f"`{md_escape(s)}`"
+    """A code span: shown literally (no link, HTML or mention is made inside one)."""
+    s = str(s).replace("\r", " ").replace("\n", " ")
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return f"`{escape_markdown_code(s)}`"
 
 
 def to_markdown(r: DiffResult, image_base_url: str | None = None,
@@ -122,7 +124,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
                      f"{'+' + str(fi) if fi else '0'} new / {ff} fixed |")
     sections = []
     for m in r.models:
-        rows = [f"<details><summary><b>{md_escape(m.model)}</b>: {m.status}, "
+        rows = [f"<details><summary><b>{escape_html(m.model)}</b>: {m.status}, "
                 f"{len(m.changes)} change(s)</summary>", ""]
         if m.error:
             rows += [f"> {md_escape(m.error)}", ""]

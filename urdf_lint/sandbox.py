@@ -155,13 +155,12 @@ def note_missing(stream=None) -> None:
     if _noted:
         return
     _noted = True
-    stream = stream or sys.stderr
+    from .emit import say
     p = protections()
     for k in ("landlock", "seccomp"):
         ok, why = p[k]
         if not ok:
-            stream.write(f"urdf-lint: note: worker sandbox without {k}: {why}; "
-                         "see SECURITY.md\n")
+            say(f"urdf-lint: note: worker sandbox without {k}: {why}; see SECURITY.md", stream)
 
 
 # -- applying (worker side) --------------------------------------------------------------------
