@@ -202,3 +202,80 @@ def test_every_message_goes_through_the_escaper():
                 found.append(f"{path.relative_to(REPO)}:{line} in {func}()")
     assert not found, "write through urdf_lint.emit.say:\n" + "\n".join(found)
     assert used == set(ALLOWED_WRITES), f"stale allow-list entries: {set(ALLOWED_WRITES) - used}"
+
+
+# -- item 15 (and issue 24 item 19, issue 22): picture names ------------------------------------
+def _robot(name: str, links: int) -> str:
+    body = "".join(f'<link name="l{i}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
+                   f'</visual></link>' for i in range(links))
+    joints = "".join(f'<joint name="j{i}" type="fixed"><parent link="l0"/><child link="l{i}"/>'
+                     f'<origin xyz="{0.2 * i} 0 0"/></joint>' for i in range(1, links))
+    return f'<robot name="{name}">{body}{joints}</robot>\n'
+
+
+def _lookalike_repo(root: Path) -> Path:
+    """Four models whose readable picture names the old naming confused: p/urdf/arm.urdf and
+    p/urdf_arm.urdf (diff and render), X.xacro and X.urdf (render)."""
+    make_package(root, "p", {
+        "urdf/arm.urdf": _robot("arm", 2), "urdf_arm.urdf": _robot("decoy", 3),
+        "urdf/X.xacro": _robot("x_xacro", 4).replace("<robot ", f"<robot {X} "),
+        "urdf/X.urdf": _robot("x_urdf", 5)})
+    _git("init", "-q", cwd=root)
+    _git("add", "-A", cwd=root)
+    _git("commit", "-q", "-m", "base", cwd=root)
+    return root
+
+
+MODELS = ("p/urdf/arm.urdf", "p/urdf_arm.urdf", "p/urdf/X.xacro", "p/urdf/X.urdf")
+
+
+def test_picture_names_never_collide_and_render_and_diff_agree(tmp_path):
+    pytest.importorskip("PIL")
+    from PIL import Image
+    from urdf_lint.locations import picture_name
+    repo = _lookalike_repo(tmp_path / "repo")
+    want = {m: picture_name(m) for m in MODELS}
+    assert len(set(want.values())) == 4, want
+    snaps = tmp_path / "snaps"
+    p = run_cli("render", ".", "--out", snaps, "--no-rrd", cwd=repo)
+    assert p.returncode == 0, p.stderr
+    pngs = {Path(ln).name for ln in p.stdout.splitlines()}
+    assert pngs == {f"{n}.png" for n in want.values()}, (pngs, want)
+    # each picture is its own robot: four different images
+    assert len({Image.open(snaps / f).tobytes() for f in pngs}) == 4
+    # diff --render names the same robots' pictures the same way
+    for m in MODELS:
+        f = repo / m
+        f.write_text(f.read_text().replace('xyz="0.2 0 0"', 'xyz="0.3 0 0"'))
+    out = tmp_path / "diff"
+    p = run_cli("diff", "HEAD", "--format", "json", "--render", out, "--no-rrd", "--no-cache",
+                cwd=repo)
+    assert p.returncode == 0, p.stderr
+    got = {m["model"]: m["picture"] for m in json.loads(p.stdout)["models"]}
+    assert got == want, got
+    after = {f.name for f in out.glob("*.after.png")}
+    assert after == {f"{n}.after.png" for n in want.values()}, after
+
+
+def test_a_picture_name_two_models_share_is_drawn_for_neither(tmp_path, monkeypatch, capsys):
+    """The names of a run are checked before anything is written: should two models get the
+    same name (a hash collision, which a repository could grind for), neither picture is
+    drawn and each says why, in render and in diff --render."""
+    pytest.importorskip("PIL")
+    from urdf_lint import locations
+    from urdf_lint.cli import main
+    repo = _lookalike_repo(tmp_path / "repo")
+    monkeypatch.chdir(repo)
+    monkeypatch.setattr(locations, "picture_name", lambda rel, args=None, key=None: "same")
+    snaps = tmp_path / "snaps"
+    assert main(["render", ".", "--out", str(snaps), "--no-rrd"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("has the picture name same: neither is drawn") == 4, err
+    assert not list(snaps.glob("same*")), list(snaps.iterdir())
+    for m in MODELS:
+        (repo / m).write_text((repo / m).read_text() + "<!-- changed -->\n")
+    out = tmp_path / "diff"
+    main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"])
+    err = capsys.readouterr().err
+    assert err.count("has the picture name same: neither is drawn") == 4, err
+    assert not list(out.glob("same*")), list(out.iterdir())

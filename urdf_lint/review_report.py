@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from .report.escape import escape_html, escape_markdown, escape_markdown_code, escape_text
-from .review import MARKDOWN_LIMIT, DiffResult, image_stem
+from .review import MARKDOWN_LIMIT, DiffResult
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
 _MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
@@ -83,7 +83,7 @@ def to_json(r: DiffResult) -> str:
            "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
         models.append({
-            "model": m.model, "status": m.status, "error": m.error,
+            "model": m.model, "status": m.status, "error": m.error, "picture": m.picture,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],
             "findings_introduced": [{"code": fk[0], "file": fk[1], "message": fk[2],
@@ -129,7 +129,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
         if m.error:
             rows += [f"> {md_escape(m.error)}", ""]
         if image_base_url:
-            stem = image_stem(m.model)   # the name the pictures were written under
+            stem = m.picture   # the name the pictures were written under
             base = image_base_url.rstrip("/")
             rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
