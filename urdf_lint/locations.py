@@ -62,6 +62,26 @@ def display_path(path: str, base: str | None = None) -> str:
     return shown
 
 
+def label_base(entry: str) -> str:
+    """What file names in a recording's labels are relative to: the folder holding the
+    entry's package (so labels read ``ur_description/urdf/ur5e.xacro``), else the entry's
+    folder; never a path of the machine that made it."""
+    d = os.path.dirname(os.path.abspath(entry))
+    probe = d
+    while True:
+        if os.path.isfile(os.path.join(probe, "package.xml")):
+            return os.path.dirname(probe)
+        up = os.path.dirname(probe)
+        if up == probe:
+            return d
+        probe = up
+
+
+def relative_label(path: str) -> str:
+    """``path`` relative to :func:`label_base` of itself (for summary.md and labels)."""
+    return os.path.relpath(path, label_base(path))
+
+
 _PICTURE_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
 
 
@@ -91,7 +111,6 @@ def snapshot_name(entry: str, args: dict | None, base: str) -> str:
     its whole path (no path of this machine in the name)."""
     rel = os.path.relpath(entry, base)
     if rel.startswith(".."):
-        from .recording import relative_label
         return picture_name(relative_label(entry), args, key=os.path.abspath(entry))
     return picture_name(rel, args)
 
