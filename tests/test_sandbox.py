@@ -500,3 +500,36 @@ def test_a_worker_cannot_signal_another_process_or_leave_a_child(tmp_path, monke
     for k in ("tkill_self", "tgkill_self", "rt_sigqueueinfo_self", "rt_tgsigqueueinfo_self",
               "kill_self", "thread"):
         assert r[k] == "ok", (k, r)
+
+
+def _signals_only(job, settings):
+    import errno as E
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.syscall.restype = ctypes.c_long
+    parent, me = job["parent"], os.getpid()
+
+    def res(rc):
+        return "ok" if rc >= 0 else E.errorcode.get(ctypes.get_errno(), str(ctypes.get_errno()))
+    return {"kill_parent": res(libc.kill(parent, 0)),
+            "tkill_parent": res(libc.syscall(_NR["tkill"], parent, 0)),
+            "kill_self": res(libc.kill(me, 0))}
+
+
+@pytest.mark.skipif(not LANDLOCK or not _NR, reason="needs Landlock (x86_64 or aarch64 Linux)")
+def test_landlock_scopes_a_workers_signals_even_without_seccomp(tmp_path, monkeypatch):
+    """The second layer: where Landlock has scopes (ABI >= 6), a worker whose seccomp filter
+    is missing still cannot signal its parent (the kernel refuses a signal leaving the
+    worker's Landlock domain)."""
+    from landlock import landlock_abi_version
+    if landlock_abi_version() < 6:
+        pytest.skip("Landlock ABI < 6: no scopes on this kernel")
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintSettings
+    from urdf_lint.worker import run_jobs
+    pkg = make_package(tmp_path / "repo", "p", {"urdf/r.urdf": '<robot name="r"/>\n'})
+    monkeypatch.setattr(sandbox, "seccomp_status", lambda: (False, "left out by the test"))
+    monkeypatch.setattr(worker, "process_job", lambda job, s: carried(job, _signals_only(job, s)))
+    job = AttackJob(entry=str(pkg / "urdf/r.urdf"), kind="urdf", parent=os.getpid())
+    [(_, report)] = list(run_jobs([job], LintSettings(resolver={}), jobs_n=1, timeout=30))
+    r = carried_data(report)
+    assert r == {"kill_parent": "EPERM", "tkill_parent": "EPERM", "kill_self": "ok"}, r

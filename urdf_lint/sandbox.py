@@ -11,7 +11,8 @@ after fork, before the worker reads any job, and applies, each where the platfor
 * **Landlock** (Linux >= 5.13, PyPI ``landlock``): the filesystem is read-only below the
   package roots, the repository and the Python runtime, writable only below the cache and
   snapshot folders, and invisible everywhere else (``/proc`` included, so neither the
-  parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read);
+  parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read); where
+  the kernel has Landlock's scopes (ABI >= 6), no signal leaves the worker either;
 * **seccomp** (PyPI ``pyseccomp`` over ``libseccomp.so.2``): ``execve``/``execveat``, socket
   creation and connection, ``ptrace``, cross-process memory access, ``io_uring``, signals
   to any other process (``kill``, ``tkill``, ``tgkill``, ``rt_sigqueueinfo``,
@@ -32,6 +33,7 @@ import os
 import sys
 
 _PR_SET_PDEATHSIG = 1
+_PR_SET_NO_NEW_PRIVS = 38
 
 # syscalls a worker never needs; each fails with EPERM. socketpair() stays allowed: it makes
 # an already-connected pair inside the process (rerun's runtime uses one for signals) and
@@ -280,6 +282,36 @@ def apply_landlock(read_paths, write_paths) -> None:
             pass
 
 
+# Landlock's scopes (ABI >= 6): a domain that may not signal a process outside itself
+_LANDLOCK_SCOPE_SIGNAL = 1 << 1
+_SYS_LANDLOCK_CREATE_RULESET, _SYS_LANDLOCK_RESTRICT_SELF = 444, 446   # every architecture
+
+
+def apply_signal_scope() -> bool:
+    """Landlock ABI >= 6: no signal leaves the worker's domain (the kernel's own check, under
+    seccomp's argument filter). False when the kernel's ABI has no scopes."""
+    from landlock import landlock_abi_version
+    if landlock_abi_version() < 6:
+        return False
+    libc = _libc()
+    if libc is None:
+        return False
+    libc.syscall.restype = ctypes.c_long
+    attr = (ctypes.c_uint64 * 3)(0, 0, _LANDLOCK_SCOPE_SIGNAL)   # fs, net, scoped
+    fd = libc.syscall(_SYS_LANDLOCK_CREATE_RULESET, ctypes.byref(attr),
+                      ctypes.c_size_t(ctypes.sizeof(attr)), ctypes.c_uint32(0))
+    if fd < 0:
+        raise OSError(ctypes.get_errno(), "landlock_create_ruleset (signal scope)")
+    try:
+        if libc.prctl(_PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_SET_NO_NEW_PRIVS)")
+        if libc.syscall(_SYS_LANDLOCK_RESTRICT_SELF, ctypes.c_int(fd), ctypes.c_uint32(0)) != 0:
+            raise OSError(ctypes.get_errno(), "landlock_restrict_self (signal scope)")
+    finally:
+        os.close(fd)
+    return True
+
+
 def apply_seccomp() -> None:
     sc = _import_pyseccomp()
     f = sc.SyscallFilter(defaction=sc.ALLOW)
@@ -330,6 +362,10 @@ def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
             status["landlock"] = "on"
         except Exception as e:  # noqa: BLE001 - report and go on with what remains
             status["landlock"] = f"failed: {e}"
+        try:
+            status["signal-scope"] = "on" if apply_signal_scope() else "unavailable (ABI < 6)"
+        except Exception as e:  # noqa: BLE001
+            status["signal-scope"] = f"failed: {e}"
     else:
         status["landlock"] = "unavailable"
     if seccomp_status()[0]:
