@@ -274,7 +274,7 @@ def test_readme_precommit_snippets_are_complete_configs():
     (local,) = yaml.safe_load(readme_precommit_config("local"))["repos"]
     (hook,) = local["hooks"]
     published = hooks["urdf-lint"]
-    for key in ("entry", "files", "always_run", "require_serial"):
+    for key in ("entry", "args", "files", "always_run", "require_serial"):
         assert hook.get(key) == published.get(key), key
     assert hook["language"] == "system"
 

@@ -14,6 +14,10 @@ import pytest
 
 from conftest import DESCRIPTIONS
 from urdf_lint.cli import main
+from urdf_lint.locations import picture_name
+
+# the name both `diff --render` and `render` give the pictures of the seed robot
+R2D2 = picture_name("r2d2_description/urdf/r2d2.urdf.xacro")
 
 
 def git(repo, *args):
@@ -162,7 +166,7 @@ def test_markdown_is_valid_gfm_and_escapes_names(repo, capsys):
     assert "<table>" in html and "<details>" in md
     assert "<b>" not in re.sub(r"<summary><b>[^<]*</b>", "", md.replace("<b>r2d2", "")), md
     assert "to|box&lt;b&gt;" in html                 # the pipe did not split the cell
-    assert "https://example.invalid/run/1/r2d2_description_urdf_r2d2.urdf.xacro.after.png" in md
+    assert f"https://example.invalid/run/1/{R2D2}.after.png" in md
 
 
 def test_markdown_stays_under_the_limit():
@@ -197,7 +201,7 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
         "stale.diff.png": _digest(out / "stale.diff.png"), "notes.diff.png": "0" * 32}}))
     assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
     capsys.readouterr()
-    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    stem = out / R2D2
     before, after, diff = (_img(f"{stem}.{s}.png") for s in ("before", "after", "diff"))
     assert not (out / "stale.diff.png").exists()
     assert (out / "notes.diff.png").read_bytes() == b"mine"
@@ -293,7 +297,7 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert [m["status"] for m in doc["models"]] == ["unchanged"]
-    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    stem = out / R2D2
     assert Path(f"{stem}.before.png").read_bytes() == Path(f"{stem}.after.png").read_bytes()
     diff = _img(f"{stem}.diff.png")
     assert not ((diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)).any()
@@ -307,7 +311,7 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     out = tmp_path / "snap"
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
     capsys.readouterr()
-    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    rrd = out / f"{R2D2}.rrd"
     assert {"base", "head"} <= recording_roots(rrd)
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
     # each revision sweeps its joints, the layout shows both, and no path of this machine
@@ -371,10 +375,9 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
     assert len(started) == 1 and not started[0].proc.is_alive()
     assert sum(isinstance(p, Plan) for p in plans) == 2      # one per revision
     monkeypatch.setitem(sys.modules, "rerun", rerun)   # this process reads the recording
-    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    rrd = out / f"{R2D2}.rrd"
     assert sorted(p.name for p in out.iterdir()) == [".urdf-lint-snapshots.json"] + sorted(
-        f"r2d2_description_urdf_r2d2.urdf.xacro.{x}" for x in ("before.png", "after.png",
-                                                               "diff.png", "rrd"))
+        f"{R2D2}.{x}" for x in ("before.png", "after.png", "diff.png", "rrd"))
     assert {"base", "head"} <= recording_roots(rrd)
 
 

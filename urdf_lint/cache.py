@@ -25,7 +25,6 @@ import os
 import shutil
 import stat as _st
 import subprocess
-import sys
 from pathlib import Path
 
 from . import __version__
@@ -113,7 +112,8 @@ class Cache:
         elif os.path.isdir(self.dir) and _git_tracks(self.dir):
             self.refused = f"{self.dir} holds files tracked by git"
         if self.refused:
-            sys.stderr.write(f"urdf-lint: note: not using the cache: {self.refused}\n")
+            from .emit import say
+            say(f"urdf-lint: note: not using the cache: {self.refused}")
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":

@@ -14,7 +14,7 @@ import os
 import re
 import sys
 
-
+from .emit import say, tell
 from .errors import UsageError
 
 
@@ -410,7 +410,7 @@ def _trust(cfg, args, paths):
     for n in trust.apply(cfg, repo_root(start_dir(paths)),
                          trusted=getattr(args, "trust_config", False)):
         if not getattr(args, "quiet", False):
-            sys.stderr.write(f"urdf-lint: {_safe_text(n)}\n")
+            say(f"urdf-lint: {n}")
 
 
 def _safe_text(s) -> str:
@@ -433,11 +433,11 @@ class _Out:
 
     def note(self, text):
         if not self.quiet:
-            sys.stderr.write(text + "\n")
+            say(text)
 
     def info(self, text):
         if self.verbose:
-            sys.stderr.write(text + "\n")
+            say(text)
 
 
 def _color_mode(args) -> str:
@@ -475,10 +475,9 @@ def _through_models(args, cfg):
     for f in redirect:
         by = graph.includers(f)
         if by:
-            sys.stderr.write(f"note: {display_path(f)} is included by "
-                             f"{', '.join(display_path(g) for g in by[:5])}"
-                             f"{' ...' if len(by) > 5 else ''}: linting the models that "
-                             "include it\n")
+            say(f"note: {_safe_text(display_path(f))} is included by "
+                f"{', '.join(_safe_text(display_path(g)) for g in by[:5])}"
+                f"{' ...' if len(by) > 5 else ''}: linting the models that include it")
     return root, set(files)
 
 
@@ -602,8 +601,8 @@ def _note_unused(result, out, named=()):
     named = {os.path.realpath(f) for f in named}
     for f in result.unused_files:
         if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            say = out.note if os.path.realpath(f) in named else out.info
-            say(f"note: {_safe_text(display_path(f))} is not used by any model")
+            shown = out.note if os.path.realpath(f) in named else out.info
+            shown(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
 def _clear_stale(out_dir):
@@ -629,12 +628,11 @@ def _report_snapshots(result, out_dir, out=None) -> int:
                 written += 1
                 files.append(snap[k])
         if m.status != "model":
-            sys.stderr.write(f"{_safe_text(m.label)}: no snapshot: the model did not expand "
-                             "(see 'urdf-lint check')\n")
+            say(f"{m.label}: no snapshot: the model did not expand (see 'urdf-lint check')")
             missed += 1
         elif snap.get("problems") or not snap.get("png"):
             why = "; ".join(snap.get("problems") or ["no picture was drawn"])
-            sys.stderr.write(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}\n")
+            say(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}")
             missed += 1
     summary = write_summary(result, out_dir)
     write_manifest(out_dir, files + [summary])
@@ -643,7 +641,7 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     if out is not None:
         out.note(msg)
     else:
-        sys.stderr.write(msg + "\n")
+        say(msg)
     return missed
 
 
@@ -696,14 +694,13 @@ def cmd_expand(args) -> int:
     if report_internal(res.internal):
         return 2
     for n in res.problems:
-        sys.stderr.write(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
-                         f"{_safe_text(n.message)}\n")
+        say(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
+            f"{_safe_text(n.message)}")
     xml = res.kept_model.xml if res.kept_model is not None else None
     if res.status is Status.FAILED or xml is None:
         if not res.problems:
             from .rules import ul002_xacro_error
-            sys.stderr.write(f"{_safe_text(display_path(job.entry))}:1:1: "
-                             f"{ul002_xacro_error.CODE} expansion failed\n")
+            say(f"{display_path(job.entry)}:1:1: {ul002_xacro_error.CODE} expansion failed")
         return 1
     if args.output:
         from .atomic import atomic_write
@@ -775,7 +772,7 @@ def cmd_render(args) -> int:
         for k in ("png", "rrd"):
             if snap.get(k):
                 from .locations import display_path
-                print(display_path(snap[k]))
+                tell(display_path(snap[k]))
     from .emit import report_internal
     if report_internal(result.internal):
         return 2
@@ -812,7 +809,7 @@ def cmd_diff(args) -> int:
     else:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
-        sys.stderr.write(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}\n")
+        say(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}")
     from .emit import report_internal
     report_internal(result.internal)
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
@@ -851,7 +848,8 @@ def cmd_generate(args) -> int:
                           display_name=shown)
         if res.error is not None:
             e = res.error
-            sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
+            say(f"{_safe_text(display_path(e.file))}:{e.line}:{e.col}: {e.code} "
+                f"{_safe_text(e.message)}")
             status = 1
             continue
         if stale_at(job.output, res.xml) is None:
@@ -861,10 +859,12 @@ def cmd_generate(args) -> int:
             head, rest = res.xml[:1024], res.xml[1024:]
             res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
         if args.check:
-            print(f"would regenerate {display_path(job.output)} from {display_path(job.entry)}")
+            tell(f"would regenerate {_safe_text(display_path(job.output))} from "
+                 f"{_safe_text(display_path(job.entry))}")
         else:
             write_output(job.output, res.xml)
-            print(f"regenerated {display_path(job.output)} from {display_path(job.entry)}")
+            tell(f"regenerated {_safe_text(display_path(job.output))} from "
+                 f"{_safe_text(display_path(job.entry))}")
     return status
 
 
@@ -872,7 +872,7 @@ def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
     removed = Cache.for_paths(args.paths, load_config(None)).clear()
-    print(f"removed {removed}" if removed else "no cache to remove")
+    tell(f"removed {removed}" if removed else "no cache to remove")
     return 0
 
 
@@ -917,9 +917,29 @@ def exit_now(code: int) -> None:
     os._exit(code)
 
 
+def _hook_arguments(argv) -> tuple[list, list]:
+    """``urdf-lint hook``: (the arguments to parse, the file names). pre-commit appends the
+    names of the commit's files to the hook's arguments, and a committed file may be named
+    like an option (``--env-allow=TOKEN,x.yaml``). Everything after the first ``--`` is a file
+    name, and so is, before it, an argument starting with ``-`` that names an existing path
+    (pre-commit passes only existing files): neither is ever parsed as an option."""
+    i = argv.index("hook")
+    rest, files = argv[i + 1:], []
+    if "--" in rest:
+        k = rest.index("--")
+        rest, files = rest[:k], rest[k + 1:]
+    taken = [a for a in rest if a.startswith("-") and len(a) > 1 and os.path.lexists(a)]
+    for a in taken:
+        say(f"urdf-lint: note: {a} is a file, not an option (end the hook's args with --)")
+    return argv[:i + 1] + [a for a in rest if a not in taken], taken + files
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)
+    hook_files: list = []
+    if command == "hook":
+        argv, hook_files = _hook_arguments(argv)
     if command == "expand" and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
@@ -933,6 +953,8 @@ def _main(argv) -> int:
                 f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as e:
         return 2 if e.code else 0
+    if command == "hook":
+        args.files = list(args.files) + hook_files
     if args.version:
         from . import __version__
         from .sandbox import summary_line
@@ -954,7 +976,7 @@ def _main(argv) -> int:
     try:
         return COMMANDS[args.command](args)
     except (UsageError, ConfigError, BaselineError) as e:
-        sys.stderr.write(f"urdf-lint: error: {e}\n")
+        say(f"urdf-lint: error: {e}")
         return 2
     except KeyboardInterrupt:
         raise
@@ -962,7 +984,7 @@ def _main(argv) -> int:
         return 0
     except Exception as e:  # noqa: BLE001
         import traceback
-        sys.stderr.write(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}\n")
+        say(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}")
         if os.environ.get("URDF_LINT_DEBUG"):
             traceback.print_exc()
         return 2

@@ -147,13 +147,14 @@ def edited_sources(fixed, originals: dict) -> dict:
 
 def unified_diff(new: dict, originals: dict) -> str:
     from .locations import display_path
+    from .report.escape import escape_text
     out: list[str] = []
     for f in sorted(new):
         if new[f] == originals[f]:
             continue
         a = originals[f].decode("utf-8", "replace").splitlines(keepends=True)
         b = new[f].decode("utf-8", "replace").splitlines(keepends=True)
-        name = display_path(f)
+        name = escape_text(display_path(f))   # one line: no name adds a line to the patch
         out.extend(difflib.unified_diff(a, b, f"a/{name}", f"b/{name}"))
     return "".join(x if x.endswith("\n") else x + "\n\\ No newline at end of file\n"
                    for x in out)

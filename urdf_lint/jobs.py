@@ -58,7 +58,8 @@ class LintSettings:
     expr_policy: object = None
     render_dir: str | None = None            # set: the worker also writes a snapshot
     render_rrd: bool = True
-    render_base: str | None = None
+    render_base: str | None = None          # picture names are relative to it (the repository)
+    render_refused: tuple = ()               # picture names two models of the run would share
     render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
     render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)

@@ -60,3 +60,65 @@ def display_path(path: str, base: str | None = None) -> str:
             _displayed.clear()
         _displayed[key] = shown
     return shown
+
+
+def label_base(entry: str) -> str:
+    """What file names in a recording's labels are relative to: the folder holding the
+    entry's package (so labels read ``ur_description/urdf/ur5e.xacro``), else the entry's
+    folder; never a path of the machine that made it."""
+    d = os.path.dirname(os.path.abspath(entry))
+    probe = d
+    while True:
+        if os.path.isfile(os.path.join(probe, "package.xml")):
+            return os.path.dirname(probe)
+        up = os.path.dirname(probe)
+        if up == probe:
+            return d
+        probe = up
+
+
+def relative_label(path: str) -> str:
+    """``path`` relative to :func:`label_base` of itself (for summary.md and labels)."""
+    return os.path.relpath(path, label_base(path))
+
+
+_PICTURE_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
+
+
+def picture_name(rel_entry: str, args: dict | None = None, key: str | None = None) -> str:
+    """The file name stem of a model's pictures and recording, the same for ``render`` and
+    ``diff``: readable (the entry's path relative to the repository, folders joined by
+    ``__``, no suffix, then its args) and unique: a short hash of the model's key (that path
+    as is, suffix included, or ``key``, and every arg) tells apart the models the readable
+    part confuses (``p/urdf/arm.urdf`` and ``p/urdf_arm.urdf``; ``X.xacro`` and ``X.urdf``).
+    The callers still check a run's names for a collision before writing."""
+    import hashlib
+    import json
+    rel = rel_entry.replace(os.sep, "/")
+    ident = json.dumps([key or rel, sorted((str(k), str(v)) for k, v in (args or {}).items())])
+    digest = hashlib.blake2b(ident.encode("utf-8", "surrogatepass"), digest_size=5).hexdigest()
+    stem = next((rel[: -len(s)] for s in _PICTURE_SUFFIXES if rel.endswith(s)), rel)
+    stem = stem.replace("/", "__")
+    if args:
+        stem += "__" + "_".join(f"{k}-{v}" for k, v in sorted(args.items()))
+    stem = "".join(c if c.isascii() and (c.isalnum() or c in "_-.@") else "_" for c in stem)
+    return f"{stem[:120]}-{digest}"
+
+
+def snapshot_name(entry: str, args: dict | None, base: str) -> str:
+    """:func:`picture_name` of the model ``entry`` (absolute) with ``args``, named relative
+    to ``base`` (the repository); outside it relative to its package's folder, hashed with
+    its whole path (no path of this machine in the name)."""
+    rel = os.path.relpath(entry, base)
+    if rel.startswith(".."):
+        return picture_name(relative_label(entry), args, key=os.path.abspath(entry))
+    return picture_name(rel, args)
+
+
+def clashing_names(named: dict) -> dict:
+    """{name: sorted models} of every name that two different models would get (``named``:
+    model -> name), so that neither is written under it."""
+    by: dict = {}
+    for model, name in named.items():
+        by.setdefault(name, set()).add(model)
+    return {n: sorted(ms) for n, ms in by.items() if len(ms) > 1}

@@ -131,8 +131,15 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         settings = dataclasses.replace(settings, **settings_overrides)
     if render_dir:
         os.makedirs(render_dir, exist_ok=True)
+        # every picture's name is known here: one two models would share is drawn for neither
+        from .discovery import repository_root
+        from .locations import clashing_names, snapshot_name
+        base = repository_root(paths)
+        clash = clashing_names({(j.entry, tuple(sorted(j.args.items()))):
+                                snapshot_name(j.entry, j.args, base) for j in jobs})
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
-                                       render_rrd=render_rrd, render_base=os.getcwd(),
+                                       render_rrd=render_rrd, render_base=base,
+                                       render_refused=tuple(sorted(clash)),
                                        render_views=cfg.views or "single",
                                        render_forward=cfg.forward_axis)
     results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .locations import label_base, relative_label  # noqa: F401 - (where they are used from)
 from .ruleutil import numbers
 from .scene import origin_matrix, part_mesh
 
@@ -92,26 +93,6 @@ def relative_text(text: str, base: str | None) -> str:
         rel = display_path(p, base) if base else p
         return (os.path.basename(p.rstrip("/")) or p) if os.path.isabs(rel) else rel
     return _ABS.sub(sub, text or "")
-
-
-def label_base(entry: str) -> str:
-    """What file names in a recording's labels are relative to: the folder holding the
-    entry's package (so labels read ``ur_description/urdf/ur5e.xacro``), else the entry's
-    folder; never a path of the machine that made it."""
-    d = os.path.dirname(os.path.abspath(entry))
-    probe = d
-    while True:
-        if os.path.isfile(os.path.join(probe, "package.xml")):
-            return os.path.dirname(probe)
-        up = os.path.dirname(probe)
-        if up == probe:
-            return d
-        probe = up
-
-
-def relative_label(path: str) -> str:
-    """``path`` relative to :func:`label_base` of itself (for summary.md and labels)."""
-    return os.path.relpath(path, label_base(path))
 
 
 @dataclass

@@ -21,37 +21,27 @@ from .raster import Geometry, frame_for, render_pair, scene_geometry  # noqa: F4
 
 
 # -- orchestration -----------------------------------------------------------------------------
-def snapshot_name(entry, args, base):
-    from .locations import display_path
-    rel = display_path(entry, base)
-    if os.path.isabs(rel):  # outside the base: no path of this machine in the name
-        from .recording import relative_label
-        rel = relative_label(entry)
-    stem = rel.replace(os.sep, "__")
-    for ext in (".urdf.xacro", ".xacro", ".urdf"):
-        if stem.endswith(ext):
-            stem = stem[: -len(ext)]
-    if args:
-        stem += "__" + "_".join(f"{k}-{v}" for k, v in sorted(args.items()))
-        digest = hashlib.blake2b(repr(sorted(args.items())).encode(), digest_size=4).hexdigest()
-        stem = stem[:150] + "_" + digest
-    return "".join(ch if ch.isalnum() or ch in "_-.@" else "_" for ch in stem)
-
-
-def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x"):
+def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x",
+                 refused=()):
     """Draw the picture of ``model`` and write its recording (without findings); return a
     summary dict. Runs in the worker, the only process that reads meshes and textures. The
     parent captions the picture and adds the findings to the recording once the run's
     findings are final (:func:`finish_snapshots`): suppressions, per-file ignores, severities,
     run-scope rules and the baseline are applied there. ``findings`` is not used (kept for
-    callers that render one model in process). Never raises for model problems."""
+    callers that render one model in process). Never raises for model problems. A name in
+    ``refused`` (the parent found another model of the run with the same one) is not
+    written."""
+    from .locations import snapshot_name
+    name = snapshot_name(model.entry, model.args, base)
+    if name in refused:
+        return {"name": name, "png": None, "rrd": None, "image": None, "problems": [
+            f"another model of this run has the picture name {name}: neither is drawn"]}
     os.makedirs(out_dir, exist_ok=True)
     importer = None
     if rrd and "rerun" not in sys.modules:
         # rerun's import (~0.5 s) overlaps with the PNG rasterization
         importer = threading.Thread(target=_import_rerun, daemon=True)
         importer.start()
-    name = snapshot_name(model.entry, model.args, base)
     scene = build_scene(model, ctx)
     info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": [],
             "image": None, "title": scene.name, "entities": entity_paths(scene)}

@@ -113,6 +113,7 @@ class Side:
     geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
     rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
     errors: dict = field(default_factory=dict)      # key -> message
+    pictures: dict = field(default_factory=dict)    # key -> its pictures' name (as `render`'s)
 
 
 @dataclass
@@ -196,6 +197,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
     linted."""
     from .discovery import build_resolver
+    from .locations import picture_name
     from .pipeline import run_check
     resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
     result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
@@ -205,6 +207,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
         side.models[k] = m
+        side.pictures[k] = picture_name(_rel(side.root, m.entry), m.args)
         labels[m.label] = k
         side.findings[k] = Counter()
     real_root = os.path.realpath(side.root)
@@ -216,11 +219,6 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
             if label in labels:
                 side.findings[labels[label]][fk] += 1
     return resolver, result
-
-
-def image_stem(key: str) -> str:
-    """The file name stem of a model's diff snapshots (the markdown links to it)."""
-    return "".join(c if c.isalnum() or c in "._-" else "_" for c in key)
 
 
 def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
@@ -453,9 +451,18 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     for dk in sorted(deleted):
         result.models.append(_model_diff(dk, head, base, dk, removed=True))
     if render_dir:
+        from .locations import clashing_names
         from .render import write_manifest
         recordings: dict = {}
+        clash = clashing_names({md.model: md.picture for md in result.models})
+        for name, models in clash.items():
+            result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
+                                             f"has the picture name {name}: neither is drawn")
+                                         for k in models]
         for md in result.models:
+            if md.picture in clash:
+                md.snapshot = {}
+                continue
             removed = md.status == "removed"
             md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
                                     md.model if removed else base_keys.get(md.model),
@@ -480,11 +487,11 @@ def _clear_snapshots(render_dir):
 def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
               recorder=None, recordings=None) -> dict:
     from . import render
-    stem = os.path.join(render_dir, image_stem(key))
+    md = next(m for m in result.models if m.model == key)
+    stem = os.path.join(render_dir, md.picture)
     before = base.geometry.get(bk) if bk else None
     after = head.geometry.get(hk) if hk else None
     info: dict = {}
-    md = next(m for m in result.models if m.model == key)
     lost = [side for side, g, wanted in (("base", before, md.status != "added"),
                                          ("head", after, md.status != "removed"))
             if wanted and g is None]
@@ -506,7 +513,7 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
     if plans and recordings is not None:
         # both revisions in one recording, written by the recorder while the pictures are
         # drawn (collected by _finish_recordings)
-        path, rid = stem + ".rrd", f"urdf-lint-diff/{image_stem(key)}"
+        path, rid = stem + ".rrd", f"urdf-lint-diff/{md.picture}"
         recordings[path] = (key, info, rid, plans)
         if recorder is not None:
             recorder.write(path, rid, plans, blueprint=("base/", "head/"))
@@ -544,7 +551,8 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
         status = "added"
     else:
         status = "changed"
-    md = ModelDiff(model=k, status=status)
+    md = ModelDiff(model=k, status=status,
+                   picture=base.pictures.get(bk, "") if removed else head.pictures.get(k, ""))
     if not removed and hm is None:
         md.status, md.error = "failed", head.errors.get(k, "")
     elif bk is not None and bm is None and not removed:

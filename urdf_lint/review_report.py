@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 
-from .report.escape import escape_markdown_code, escape_text
-from .review import MARKDOWN_LIMIT, DiffResult, image_stem
+from .report.escape import escape_html, escape_markdown, escape_markdown_code, escape_text
+from .review import MARKDOWN_LIMIT, DiffResult
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
 _MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
@@ -83,7 +83,7 @@ def to_json(r: DiffResult) -> str:
            "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
         models.append({
-            "model": m.model, "status": m.status, "error": m.error,
+            "model": m.model, "status": m.status, "error": m.error, "picture": m.picture,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],
             "findings_introduced": [{"code": fk[0], "file": fk[1], "message": fk[2],
@@ -93,16 +93,18 @@ def to_json(r: DiffResult) -> str:
     return json.dumps(doc, indent=2) + "\n"
 
 
-def md_escape(s: str) -> str:
-    """Text safe inside a GFM table cell: no HTML, no pipes, no line breaks, no code spans, no
-    control or bidi characters (the shared helper, :mod:`urdf_lint.report.escape`)."""
-    s = str(s).replace("\r", " ").replace("\n", " ")
-    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    return escape_markdown_code(s)
+def md_escape(s) -> str:
+    """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
+    renders as that text only: no HTML, link, image, mention, table break or line break
+    (the shared helper, :mod:`urdf_lint.report.escape`)."""
+    return escape_markdown(str(s).replace("\r", " ").replace("\n", " "))
 
 
 def _code(s) -> str:
-    return f"`{md_escape(s)}`"
+    """A code span: shown literally (no link, HTML or mention is made inside one)."""
+    s = str(s).replace("\r", " ").replace("\n", " ")
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return f"`{escape_markdown_code(s)}`"
 
 
 def to_markdown(r: DiffResult, image_base_url: str | None = None,
@@ -122,12 +124,12 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
                      f"{'+' + str(fi) if fi else '0'} new / {ff} fixed |")
     sections = []
     for m in r.models:
-        rows = [f"<details><summary><b>{md_escape(m.model)}</b>: {m.status}, "
+        rows = [f"<details><summary><b>{escape_html(m.model)}</b>: {m.status}, "
                 f"{len(m.changes)} change(s)</summary>", ""]
         if m.error:
             rows += [f"> {md_escape(m.error)}", ""]
         if image_base_url:
-            stem = image_stem(m.model)   # the name the pictures were written under
+            stem = m.picture   # the name the pictures were written under
             base = image_base_url.rstrip("/")
             rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"

@@ -57,6 +57,7 @@ class ModelDiff:
     findings_fixed: list = field(default_factory=list)
     error: str = ""
     snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
+    picture: str = ""              # the file name stem of its pictures (locations.picture_name)
 
 
 def _jsonable(v):

@@ -84,7 +84,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
         report.snapshot = render_model(model, ctx, [], settings.render_dir,
                                        settings.render_base, rrd=settings.render_rrd,
                                        views=settings.render_views,
-                                       forward=settings.render_forward)
+                                       forward=settings.render_forward,
+                                       refused=settings.render_refused)
     return report
 
 
