@@ -295,7 +295,7 @@ def test_special_files_never_block_discovery_or_header_detection(attack, kind):
 
 
 # item 9
-def test_include_globs_are_not_expanded_in_the_parent(attack):
+def test_include_globs_are_bounded_in_the_parent(attack):
     repo, outside = attack
     d = repo / "p" / "urdf"
     for n in range(5):
@@ -310,14 +310,35 @@ def test_include_globs_are_not_expanded_in_the_parent(attack):
     assert [f for f in json.loads(p.stdout)["findings"] if f["file"] == "p/urdf/g.urdf.xacro"]
 
 
-def test_unresolved_include_globs_count_as_unresolved(tmp_path):
+def test_unbounded_include_globs_count_as_unresolved(tmp_path):
+    """A glob the parent can match within its bound is resolved as xacro would (the include
+    graph needs it); one that would look at too many entries counts as unresolved."""
     from urdf_lint.discovery import _read_includes
     f = tmp_path / "a.xacro"
     (tmp_path / "b.xacro").write_text(f'<robot {X}/>')
+    for n in range(5):
+        os.symlink(".", tmp_path / f"l{n}")
     f.write_text(f'<robot {X}><xacro:include filename="*.xacro"/>'
-                 f'<xacro:include filename="b.xacro"/></robot>')
+                 f'<xacro:include filename="{"*/" * 30}b.xacro"/></robot>')
+    t0 = time.monotonic()
     inc, unresolved, _, _ = _read_includes(str(f), None)
-    assert inc == [str((tmp_path / "b.xacro").resolve())] and unresolved == 1
+    assert time.monotonic() - t0 < 5
+    assert inc == [str(f.resolve()), str((tmp_path / "b.xacro").resolve())] and unresolved == 1
+
+
+@pytest.mark.parametrize("pattern", ["*.xacro", "sub/*.xacro", "*/x?.xacro", "[ab].xacro",
+                                     "nothing*", "*/*", ".h*", "*"])
+def test_bounded_glob_matches_what_glob_matches(tmp_path, pattern, monkeypatch):
+    import glob
+    from urdf_lint.fsbound import bounded_glob
+    for rel in ("a.xacro", "b.xacro", "sub/x1.xacro", "sub/y.xacro", ".hidden.xacro",
+                "sub2/x2.xacro"):
+        (tmp_path / rel).parent.mkdir(exist_ok=True)
+        (tmp_path / rel).write_text("")
+    os.symlink("sub", tmp_path / "lnk")
+    for base in (str(tmp_path) + os.sep, ""):
+        monkeypatch.chdir(tmp_path)
+        assert sorted(bounded_glob(base + pattern)) == sorted(glob.glob(base + pattern))
 
 
 # item 12

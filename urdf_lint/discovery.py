@@ -308,9 +308,14 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
         return None
     if name.startswith("file://"):
         name = name[len("file://"):]
+    path = os.path.normpath(os.path.join(base, name))
     if any(c in name for c in "*?["):
-        return None   # a glob: expansion (in the sandboxed worker, with its limits) resolves it
-    return [os.path.realpath(os.path.normpath(os.path.join(base, name)))]
+        # as xacro globs it, but bounded: a pattern that would look at too many entries is
+        # left to expansion (in the sandboxed worker, with its time limit)
+        from . import fsbound
+        got = fsbound.bounded_glob(path)
+        return None if got is None else sorted(os.path.realpath(p) for p in got)
+    return [os.path.realpath(path)]
 
 
 def _read_includes(f: str, resolver):

@@ -197,6 +197,53 @@ def walk_files(top, suffixes: tuple[str, ...] | None = None, names: set | None =
                 yield os.path.join(dirpath, fn)
 
 
+MAX_GLOB_ENTRIES = 20_000
+
+
+def bounded_glob(pattern: str, limit: int = MAX_GLOB_ENTRIES) -> list[str] | None:
+    """What ``glob.glob(pattern)`` gives (no ``**`` recursion; names starting with ``.``
+    only for a pattern part starting with ``.``), or None when matching it would look at
+    more than ``limit`` folder entries or candidate paths: a pattern from a repository
+    (``*/*/*/...`` through ``l -> .`` symlinks) can never make the run walk without end."""
+    import fnmatch
+    import re
+    magic = re.compile(r"[*?[]")
+    pattern = os.path.normpath(pattern)
+    parts = pattern.split(os.sep)
+    paths = [os.sep if pattern.startswith(os.sep) else ""]
+    if paths[0]:
+        parts = parts[1:]
+    seen = 0
+    for i, part in enumerate(parts):
+        last = i == len(parts) - 1
+        nxt = []
+        if not magic.search(part):
+            for p in paths:
+                q = os.path.join(p, part) if p else part
+                if (os.path.lexists(q) if last else os.path.isdir(q)):
+                    nxt.append(q)
+        else:
+            for p in paths:
+                try:
+                    names = os.listdir(p or os.curdir)
+                except OSError:
+                    continue
+                seen += len(names)
+                if seen > limit:
+                    return None
+                for n in names:
+                    if (n.startswith(".") and not part.startswith(".")) or \
+                            not fnmatch.fnmatchcase(n, part):
+                        continue
+                    q = os.path.join(p, n) if p else n
+                    if last or os.path.isdir(q):
+                        nxt.append(q)
+        if len(nxt) > limit:
+            return None
+        paths = nxt
+    return paths
+
+
 def glob_paths(root, pattern: str) -> list:
     """``Path(root).glob(pattern)`` for the user's own install layouts (``*/share``), sorted;
     patterns here are the code's own, never a repository's."""
@@ -284,12 +331,11 @@ def _temp_in(path, base, make_dirs: bool, suffix: str = ""):
     down has been opened without following a symlink; on success the temp is renamed over
     the target (a symlink there is replaced, never followed), else removed. Full paths are
     used after the check, so a worker's audit hook sees what is written where."""
-    import secrets
     b, comps = _parts(path, base)
     os.close(_open_dirs(b, comps[:-1], make_dirs))
     folder = os.path.join(b, *comps[:-1])
     target = os.path.join(folder, comps[-1])
-    tmp = os.path.join(folder, f".{comps[-1][:80]}.{secrets.token_hex(8)}.tmp{suffix}")
+    tmp = os.path.join(folder, f".{comps[-1][:80]}.{os.urandom(8).hex()}.tmp{suffix}")
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | _NOFOLLOW |
                  getattr(os, "O_CLOEXEC", 0), 0o666)
     try:
