@@ -863,6 +863,7 @@ def cmd_generate(args) -> int:
     from .locations import display_path
     from .discovery import start_dir
     from .vcs import repo_root
+    from . import trust
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -893,7 +894,8 @@ def cmd_generate(args) -> int:
         else:
             try:   # inside the repository only (anywhere the user trusts with --trust-config)
                 write_output(job.output, res.xml, _write_base(job.output, args.paths)
-                             if getattr(args, 'trust_config', False) else repo_root(start_dir(args.paths)))
+                             if getattr(args, "trust_config", False) else
+                             trust.config_root(cfg, repo_root(start_dir(args.paths))))
             except OSError as e:
                 sys.stderr.write(f"urdf-lint: error: cannot write {_safe_text(display_path(job.output))}"
                                  f": {_safe_text(getattr(e, 'why', None) or e.strerror or e)}\n")

@@ -23,13 +23,14 @@ def report_internal(messages) -> bool:
 
 def write_base(target, paths) -> str:
     """The folder a write to ``target`` (named on the command line) is checked from
-    (:func:`urdf_lint.fsbound.output_base`): the repository of the linted paths or of the
-    working directory when ``target`` is in one, else the nearest existing folder above it."""
+    (:func:`urdf_lint.fsbound.output_base`): the repository of the linted paths (their
+    folder outside git) or the git work tree of the working directory when ``target`` is in
+    one, else the nearest existing folder above it (the user's own, as named)."""
     from . import fsbound
     from .discovery import start_dir
-    from .vcs import repo_root
-    repos = [repo_root(start_dir(paths))] if paths else []
-    repos.append(repo_root(os.getcwd()))
+    from .vcs import git_root, repo_root
+    repos: list[str | None] = [repo_root(start_dir(paths))] if paths else []
+    repos.append(git_root(os.getcwd()))
     return fsbound.output_base(target, repos)
 
 

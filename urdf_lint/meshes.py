@@ -639,7 +639,8 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
             from .cachedir import ensure
             ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
             from . import fsbound
-            fsbound.make_dirs(str(cache_file.parent), cache_dir or "")
+            # the worker's sandbox may write (and read) only below meshes/, not the cache folder
+            fsbound.make_own_dirs(str(cache_file.parent))
             fsbound.write_text(str(cache_file), json.dumps(facts), str(cache_file.parent))
         except OSError:
             pass

@@ -53,6 +53,15 @@ def _symlinked_component(path: str, top: str) -> str | None:
     return None
 
 
+def config_root(cfg: Config, repo: str) -> str:
+    """The folder the paths of ``cfg`` must stay in: the repository, or the config's own
+    folder when the config lies above it (no git: the linted folder is the repository, and a
+    config above it is not the repository's own)."""
+    top = os.path.realpath(repo)
+    folder = os.path.dirname(os.path.realpath(cfg.path)) if cfg.path else top
+    return top if inside(folder, top) else folder
+
+
 def confine_paths(cfg: Config, repo: str, given: set) -> None:
     """Raise a located :class:`ConfigError` when a path key of the repository's own config
     (``output``, ``mesh-base``, ``baseline``) leaves the repository or goes through a
@@ -63,11 +72,7 @@ def confine_paths(cfg: Config, repo: str, given: set) -> None:
     if not cfg.path:
         return
     folder = os.path.dirname(os.path.realpath(cfg.path))
-    top = os.path.realpath(repo)
-    if not inside(folder, top):
-        # a config above the repository (no git: the linted folder is the repository) is not
-        # the repository's own; its paths still stay in its folder
-        top = folder
+    top = config_root(cfg, repo)
     found: list = []
     if "baseline" not in given and isinstance(raw.get("baseline"), str):
         found.append(("baseline", raw["baseline"]))
