@@ -422,3 +422,25 @@ def test_config_paths_must_stay_in_the_repository_without_symlinks(attack, entry
     assert ("goes through the symlink 'gen'" in p.stderr) or "outside the repository" in p.stderr
     # the user may trust the config
     attempt(repo, outside, "check", ".", "--no-cache", "--trust-config", codes=(0, 1, 2))
+
+
+def test_the_parent_writes_no_path_a_worker_sent_outside_the_output_folder(tmp_path):
+    """A worker's reply is data: a snapshot path pointing elsewhere (a compromised worker,
+    a forged result) is not written by the parent, which holds the secrets."""
+    import types
+    import zlib
+    from urdf_lint.render import finish_snapshots
+    out, elsewhere = tmp_path / "snaps", tmp_path / "elsewhere"
+    out.mkdir()
+    elsewhere.mkdir()
+    image = (2, 2, zlib.compress(b"\x00" * 12))
+    evil = types.SimpleNamespace(label="m", entry=str(tmp_path / "m.urdf"), links=1, snapshot={
+        "name": "../elsewhere/x", "png": str(elsewhere / "x.png"), "rrd": None, "problems": [],
+        "image": image, "title": "m"})
+    good = types.SimpleNamespace(label="g", entry=str(tmp_path / "g.urdf"), links=1, snapshot={
+        "name": "g", "png": str(out / "g.png"), "rrd": None, "problems": [],
+        "image": image, "title": "g"})
+    finish_snapshots([evil, good], [], str(out))
+    assert list(elsewhere.iterdir()) == []
+    assert evil.snapshot["png"] is None and "not in the output folder" in evil.snapshot["problems"][0]
+    assert (out / "g.png").is_file()

@@ -102,8 +102,22 @@ def finish_snapshots(models, findings, out_dir) -> None:
         list(pool.map(lambda m: _finish_one(m, by_model[m.label], out_dir), todo))
 
 
+def _in_folder(path, out_dir) -> bool:
+    """Is ``path`` (sent back by a worker) a file directly in the output folder?"""
+    return isinstance(path, str) and os.path.basename(path) not in ("", ".", "..") and \
+        os.path.dirname(os.path.abspath(path)) == os.path.realpath(out_dir)
+
+
 def _finish_one(m, mine, out_dir) -> None:
     snap = m.snapshot
+    # a worker's reply is data: the parent writes only files directly in the output folder
+    name = snap.get("name")
+    for k in ("png", "rrd"):
+        if snap.get(k) is not None and not _in_folder(snap[k], out_dir):
+            snap.setdefault("problems", []).append(f"{k}: not in the output folder; not written")
+            snap[k] = None
+    if not isinstance(name, str) or not _in_folder(os.path.join(out_dir, name), out_dir):
+        snap["rrd"] = None
     snap["findings"] = len(mine)
     _finish_png(snap, snap.pop("image", None), m, len(mine))
     if snap.get("rrd") and mine:
