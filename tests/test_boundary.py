@@ -444,3 +444,14 @@ def test_the_parent_writes_no_path_a_worker_sent_outside_the_output_folder(tmp_p
     assert list(elsewhere.iterdir()) == []
     assert evil.snapshot["png"] is None and "not in the output folder" in evil.snapshot["problems"][0]
     assert (out / "g.png").is_file()
+
+
+def test_config_paths_inside_the_repository_are_kept(attack):
+    repo, outside = attack
+    config(repo, 'baseline = "base.json"\n[[models]]\npath = "p/urdf/r.urdf.xacro"\n'
+                 'mesh-base = "."\noutput = "p/urdf/gen/r.urdf"\n')
+    attempt(repo, outside, "check", ".", "--no-cache", "--write-baseline", "base.json",
+            codes=(0,))
+    attempt(repo, outside, "generate", ".", codes=(1,))   # written: it was stale
+    assert (repo / "p" / "urdf" / "gen" / "r.urdf").is_file()
+    attempt(repo, outside, "generate", ".", codes=(0,))

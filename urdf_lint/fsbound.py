@@ -308,18 +308,30 @@ def _open_dirs(base: str, comps: list[str], make: bool) -> int:
     return fd
 
 
-def check_no_symlink(path, base) -> None:
-    """Raise :class:`BoundaryError` when a component of ``path`` below ``base`` (the last one
-    included) is a symlink or not a folder; missing components are fine (they will be made)."""
+def _components(path, base) -> Iterator[tuple[str, os.stat_result]]:
+    """(path, lstat) of each existing component of ``path`` below ``base``, down to the
+    first missing one."""
     b, comps = _parts(path, base) if os.path.abspath(path) != os.path.abspath(base) \
         else (os.path.abspath(base), [])
     cur = b
     for c in comps:
         cur = os.path.join(cur, c)
         try:
-            st = os.lstat(cur)
+            yield cur, os.lstat(cur)
         except FileNotFoundError:
             return
+
+
+def first_symlink(path, base) -> str | None:
+    """The first component of ``path`` below ``base`` (the last one included) that is a
+    symlink, or None."""
+    return next((p for p, st in _components(path, base) if _st.S_ISLNK(st.st_mode)), None)
+
+
+def check_no_symlink(path, base) -> None:
+    """Raise :class:`BoundaryError` when a component of ``path`` below ``base`` (the last one
+    included) is a symlink or not a folder; missing components are fine (they will be made)."""
+    for cur, st in _components(path, base):
         if _st.S_ISLNK(st.st_mode) or not _st.S_ISDIR(st.st_mode):
             raise BoundaryError(cur, "is a symlink or not a folder; refusing to write "
                                 "through it", errno.ELOOP)

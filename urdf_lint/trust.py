@@ -39,20 +39,6 @@ def _clamp(value, key):
     return min(max(value, lo), hi)
 
 
-def _symlinked_component(path: str, top: str) -> str | None:
-    """The first component of ``path`` below ``top`` (both without symlinks above ``top``)
-    that is a symlink, or None."""
-    rel = os.path.relpath(path, top)
-    cur = top
-    for c in rel.split(os.sep):
-        cur = os.path.join(cur, c)
-        if os.path.islink(cur):
-            return cur
-        if not os.path.lexists(cur):
-            return None
-    return None
-
-
 def config_root(cfg: Config, repo: str) -> str:
     """The folder the paths of ``cfg`` must stay in: the repository, or the config's own
     folder when the config lies above it (no git: the linted folder is the repository, and a
@@ -82,10 +68,11 @@ def confine_paths(cfg: Config, repo: str, given: set) -> None:
     for key, value in found:
         p = os.path.normpath(os.path.join(folder, os.path.expanduser(value)))
         why = None
-        if not inside(p, top) or p == top:
+        if not inside(p, top):
             why = "is outside the repository"
         else:
-            link = _symlinked_component(p, top)
+            from .fsbound import first_symlink
+            link = first_symlink(p, top)
             if link is not None:
                 why = f"goes through the symlink {os.path.relpath(link, top)!r}"
         if why:
