@@ -295,10 +295,11 @@ def test_output_file_is_written_atomically_and_never_half(pkg, capsys, monkeypat
 
 
 def test_one_atomic_write_helper():
-    """No module writes a temporary file and renames it by itself: they use urdf_lint.atomic."""
+    """No module writes a temporary file and renames it by itself: they use urdf_lint.fsbound
+    (the file-system boundary; it replaced urdf_lint.atomic)."""
     offenders = []
     for path in sorted((REPO / "urdf_lint").rglob("*.py")):
-        if path.name == "atomic.py":
+        if path.name == "fsbound.py":
             continue
         text = path.read_text()
         if "os.replace(" in text or "os.rename(" in text or ".tmp" in text:

@@ -9,7 +9,7 @@ import json
 import os
 from collections import Counter
 
-from .atomic import atomic_write
+from . import fsbound
 from .errors import UsageError
 from .locations import display_path
 
@@ -22,29 +22,39 @@ def _key(f, base):
     return (f.code, os.path.relpath(f.file, base), f.message)
 
 
-def write_baseline(path, findings) -> int:
-    """Record ``findings`` in ``path``; returns how many were recorded."""
+def write_baseline(path, findings, write_base=None) -> int:
+    """Record ``findings`` in ``path`` (written below ``write_base``, by default its own
+    folder: :func:`urdf_lint.fsbound.write_bytes`); returns how many were recorded."""
     base = os.path.dirname(os.path.abspath(path))
     items = [{"code": c, "file": fl, "message": m} for c, fl, m in sorted(_key(f, base) for f in findings)]
     try:
-        atomic_write(path, json.dumps({"version": 1, "findings": items}, indent=1))
+        fsbound.write_text(path, json.dumps({"version": 1, "findings": items}, indent=1),
+                           write_base or base)
     except OSError as e:
-        raise BaselineError(f"cannot write baseline {path}: {e.strerror or e}") from None
+        raise BaselineError(f"cannot write baseline {_shown(path)}: {_why(e)}") from None
     return len(items)
+
+
+def _shown(path) -> str:
+    from .report.escape import escape_text
+    return escape_text(display_path(path))
+
+
+def _why(e: OSError) -> str:
+    from .report.escape import escape_text
+    return escape_text(str(getattr(e, "why", None) or e.strerror or e))
 
 
 def filter_baseline(path, findings):
     base = os.path.dirname(os.path.abspath(path))
-    try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
+    try:   # a regular file (never a device or FIFO), bounded
+        data = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES))
         known = Counter((i["code"], i["file"], i["message"]) for i in data["findings"])
     except OSError as e:
-        raise BaselineError(f"cannot read baseline {display_path(path)}: "
-                            f"{e.strerror or e}") from None
-    except (ValueError, KeyError, TypeError) as e:
-        raise BaselineError(f"{display_path(path)} is not a urdf-lint baseline ({e}); "
-                            "make one with --write-baseline") from None
+        raise BaselineError(f"cannot read baseline {_shown(path)}: {_why(e)}") from None
+    except (ValueError, KeyError, TypeError, RecursionError) as e:
+        raise BaselineError(f"{_shown(path)} is not a urdf-lint baseline "
+                            f"({type(e).__name__}); make one with --write-baseline") from None
     out = []
     for f in findings:
         k = _key(f, base)

@@ -22,13 +22,12 @@ import hashlib
 import hmac
 import json
 import os
-import shutil
 import stat as _st
 import subprocess
 from pathlib import Path
 
 from . import __version__
-from .atomic import atomic_write
+from . import fsbound
 from .discovery import start_dir
 from .hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
@@ -227,8 +226,8 @@ class Cache:
         (read back with one parse). False when it could not be written."""
         try:
             self._ensure()
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            atomic_write(path, self._mac_bytes(path, blob) + b"\n" + blob)
+            fsbound.write_bytes(path, self._mac_bytes(path, blob) + b"\n" + blob, self.dir,
+                                make_dirs=True)
             return True
         except OSError:
             return False
@@ -251,6 +250,6 @@ class Cache:
 
     def clear(self) -> str | None:
         if os.path.isdir(self.dir):
-            shutil.rmtree(self.dir, ignore_errors=True)
+            fsbound.remove_tree(self.dir)
             return self.dir
         return None

@@ -407,8 +407,9 @@ def _trust(cfg, args, paths):
     from .discovery import start_dir
     from .vcs import repo_root
     from . import trust
+    given = {k for k in _CLI_KEYS if getattr(args, k.replace("-", "_"), None)}
     for n in trust.apply(cfg, repo_root(start_dir(paths)),
-                         trusted=getattr(args, "trust_config", False)):
+                         trusted=getattr(args, "trust_config", False), given=given):
         if not getattr(args, "quiet", False):
             say(f"urdf-lint: {n}")
 
@@ -418,10 +419,28 @@ def _safe_text(s) -> str:
     return escape_text(str(s))
 
 
-def _refuse_symlinked_out(d):
-    """Snapshots are written where the user said, never through a link a repository planted."""
-    if d and os.path.islink(d.rstrip(os.sep) or d):
-        raise UsageError(f"output folder {d} is a symlink; refusing to write through it")
+def _write_base(target, paths) -> str:
+    from .emit import write_base
+    return write_base(target, paths)
+
+
+def _refuse_symlinked_out(d, paths=()):
+    """Snapshots are written where the user said, never through a link a repository planted:
+    no component of the folder from the repository down (the folder itself included) may be
+    a symlink."""
+    if not d:
+        return
+    from . import fsbound
+    base = _write_base(d, paths)
+    try:
+        if os.path.abspath(d) != os.path.abspath(base):
+            fsbound.check_no_symlink(d, base)
+            fsbound.make_dirs(d, base)
+        elif os.path.islink(d.rstrip(os.sep) or d):
+            raise fsbound.BoundaryError(d, "is a symlink; refusing to write through it")
+    except OSError as e:
+        raise UsageError(f"output folder {_safe_text(d)}: "
+                         f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
 class _Out:
@@ -518,7 +537,7 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
-    _refuse_symlinked_out(render_dir)
+    _refuse_symlinked_out(render_dir, args.paths)
     if _fix_mode(args):
         if named:
             raise UsageError(
@@ -528,7 +547,7 @@ def cmd_check(args) -> int:
         from .fixcli import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
-        _clear_stale(render_dir)
+        _clear_stale(render_dir, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     from .fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
@@ -541,7 +560,8 @@ def cmd_check(args) -> int:
     report_internal(result.internal)
     if args.write_baseline:
         from .baseline import write_baseline
-        n = write_baseline(args.write_baseline, result.findings)
+        n = write_baseline(args.write_baseline, result.findings,
+                           _write_base(args.write_baseline, args.paths))
         files = len({f.file for f in result.findings})
         out.note(f"urdf-lint: wrote {n} finding(s) in {files} file(s) to "
                  f"{display_path(os.path.abspath(args.write_baseline))}; "
@@ -550,7 +570,7 @@ def cmd_check(args) -> int:
             _report_snapshots(result, render_dir, out)
         return 2 if result.internal else 0
     from .emit import write_findings
-    write_findings(args, cfg, result, out, color_mode)
+    write_findings(args, cfg, result, out, color_mode, resolver.roots)
     _note_unused(result, out, named)
     if render_dir:
         _report_snapshots(result, render_dir, out)
@@ -605,12 +625,13 @@ def _note_unused(result, out, named=()):
             shown(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
-def _clear_stale(out_dir):
+def _clear_stale(out_dir, paths):
     from .render import clear_stale
     try:
-        clear_stale(out_dir)
+        clear_stale(out_dir, _write_base(out_dir, paths))
     except OSError as e:
-        raise UsageError(f"cannot clear {out_dir}: {e.strerror or e}") from None
+        raise UsageError(f"cannot clear {_safe_text(out_dir)}: "
+                         f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
 def _report_snapshots(result, out_dir, out=None) -> int:
@@ -703,13 +724,13 @@ def cmd_expand(args) -> int:
             say(f"{display_path(job.entry)}:1:1: {ul002_xacro_error.CODE} expansion failed")
         return 1
     if args.output:
-        from .atomic import atomic_write
-        d = os.path.dirname(os.path.abspath(args.output))
+        from . import fsbound
         try:
-            os.makedirs(d, exist_ok=True)
-            atomic_write(args.output, xml)
+            fsbound.write_text(args.output, xml, _write_base(args.output, [args.file]),
+                               make_dirs=True)
         except OSError as e:
-            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
+            raise UsageError(f"cannot write {_safe_text(args.output)}: "
+                             f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
         sys.stdout.write(xml)
     return 0
@@ -752,14 +773,14 @@ def cmd_render(args) -> int:
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
-    _refuse_symlinked_out(args.out)
+    _refuse_symlinked_out(args.out, args.paths)
     cfg = _load_cfg(args, args.paths)
     redirect = _through_models(args, cfg)
     affected_by = None
     if redirect is not None:
         args.paths, affected_by = [redirect[0]], redirect[1]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
-    _clear_stale(args.out)
+    _clear_stale(args.out, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
@@ -790,7 +811,7 @@ def cmd_diff(args) -> int:
     cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs,
                                   trust_config=args.trust_config, views=args.views,
                                   forward_axis=args.forward_axis)
-    _refuse_symlinked_out(args.render)
+    _refuse_symlinked_out(args.render, paths)
     cfgs = []
 
     def load(ps):
@@ -805,7 +826,12 @@ def cmd_diff(args) -> int:
         raise UsageError(str(e)) from None
     kw = {"image_base_url": args.image_base_url} if args.format == "markdown" else {}
     if args.output:
-        review_report.write_file(result, args.format, args.output, **kw)
+        try:
+            review_report.write_file(result, args.format, args.output,
+                                     _write_base(args.output, paths), **kw)
+        except OSError as e:
+            raise UsageError(f"cannot write {_safe_text(args.output)}: "
+                             f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
@@ -832,6 +858,9 @@ def cmd_generate(args) -> int:
     from .expansion import expand_file
     from .generated import header_source, stale_at, write_output
     from .locations import display_path
+    from .discovery import start_dir
+    from .vcs import repo_root
+    from . import trust
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -841,7 +870,7 @@ def cmd_generate(args) -> int:
     for job in discover_models(args.paths, cfg, resolver).jobs:
         if not job.output:
             continue
-        named = header_source(job.output) if os.path.exists(job.output) else None
+        named = header_source(job.output, resolver.roots) if os.path.exists(job.output) else None
         shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
         res = expand_file(job.entry, job.args, resolver,
                           env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
@@ -862,7 +891,15 @@ def cmd_generate(args) -> int:
             tell(f"would regenerate {_safe_text(display_path(job.output))} from "
                  f"{_safe_text(display_path(job.entry))}")
         else:
-            write_output(job.output, res.xml)
+            try:   # inside the repository only (anywhere the user trusts with --trust-config)
+                write_output(job.output, res.xml, _write_base(job.output, args.paths)
+                             if getattr(args, "trust_config", False) else
+                             trust.config_root(cfg, repo_root(start_dir(args.paths))))
+            except OSError as e:
+                say(f"urdf-lint: error: cannot write {display_path(job.output)}: "
+                    f"{getattr(e, 'why', None) or e.strerror or e}")
+                status = 2
+                continue
             tell(f"regenerated {_safe_text(display_path(job.output))} from "
                  f"{_safe_text(display_path(job.entry))}")
     return status

@@ -328,13 +328,25 @@ class Config:
 
 
 # -- reading files ----------------------------------------------------------------------------
+def _read_config(path: Path) -> str:
+    """The text of a config file: a regular file (never a FIFO or device), bounded."""
+    from . import fsbound
+    return fsbound.read_text(path, max_bytes=fsbound.MAX_CONFIG_BYTES)
+
+
 def _parse_toml(path: Path) -> dict:
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
+        text = _read_config(path)
+    except UnicodeDecodeError as e:
         raise ConfigError(f"{_shown(path)}: cannot read config: {e}") from None
+    except OSError as e:
+        from .report.escape import escape_text
+        why = getattr(e, "why", None) or e.strerror or e
+        raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
     try:
         return tomllib.loads(text)
+    except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
+        raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
     except tomllib.TOMLDecodeError as e:
         msg = str(e)
         m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
@@ -399,8 +411,8 @@ def _shown(path) -> str:
 def _line_of(path: Path, key: str) -> str:
     """``:LINE`` of the first ``key = ...`` in the file, when it can be found."""
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError:
+        lines = _read_config(path).splitlines()
+    except (OSError, UnicodeDecodeError):
         return ""
     pat = re.compile(r'^\s*(?:"|\')?' + re.escape(key) + r'(?:"|\')?\s*=')
     header = re.compile(r'^\s*\[[^\]]*[."\']' + re.escape(key) + r'["\']?\s*\]')
@@ -501,8 +513,10 @@ def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config
 def _did_you_mean_file(rel: str, root: Path) -> str:
     """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
     import difflib
-    from .packages import iter_files
-    files = [os.path.relpath(f, root) for f in iter_files(root, suffixes=(".xacro", ".urdf"))]
+    from . import fsbound
+    from .packages import SKIP_DIRS
+    files = [os.path.relpath(f, root) for f in fsbound.walk_files(
+        root, suffixes=(".xacro", ".urdf"), skip=lambda d: d in SKIP_DIRS or d.startswith("."))]
     best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
         os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
     if not best:

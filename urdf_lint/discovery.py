@@ -2,7 +2,6 @@
 and which package roots they may read from."""
 from __future__ import annotations
 
-import glob
 import os
 import re
 from dataclasses import dataclass, field
@@ -115,7 +114,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
     discover_all = getattr(cfg, "discover", True)
-    outputs = _detected_outputs(found, paths, configured)
+    outputs = _detected_outputs(found, paths, configured, resolver)
     generated = {o: x for x, o in outputs.items()}
     generated.update({m.output: m.path for m in cfg.models if m.output})
     for f, p in found:
@@ -136,8 +135,9 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     return Discovery(jobs, fragments, graph, generated, folders)
 
 
-def _detected_outputs(found, paths, configured) -> dict:
-    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed)."""
+def _detected_outputs(found, paths, configured, resolver=None) -> dict:
+    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed);
+    headers are read from regular files inside the roots only."""
     from .generated import find_source, header_source
     xacros = [f for f, _ in found if f.endswith(".xacro")]
     if not xacros:
@@ -147,7 +147,7 @@ def _detected_outputs(found, paths, configured) -> dict:
     for f, _ in found:
         if not f.endswith(".urdf"):
             continue
-        named = header_source(f)
+        named = header_source(f, resolver.roots if resolver is not None else None)
         src = find_source(f, named, xacros, root) if named else None
         if src and src not in out and not (src in configured and configured[src].output):
             out[src] = f
@@ -310,7 +310,11 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
         name = name[len("file://"):]
     path = os.path.normpath(os.path.join(base, name))
     if any(c in name for c in "*?["):
-        return sorted(os.path.realpath(p) for p in glob.glob(path))
+        # as xacro globs it, but bounded: a pattern that would look at too many entries is
+        # left to expansion (in the sandboxed worker, with its time limit)
+        from . import fsbound
+        got = fsbound.bounded_glob(path)
+        return None if got is None else sorted(os.path.realpath(p) for p in got)
     return [os.path.realpath(path)]
 
 
@@ -318,9 +322,11 @@ def _read_includes(f: str, resolver):
     """(included files, number of unresolvable includes, declared or used arg names, whether
     an include is a glob)."""
     from lxml import etree
-    try:
-        root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
-                                              load_dtd=False)).getroot()
+    from . import fsbound
+    try:   # a regular file inside the roots, bounded (never a FIFO or /dev/stdout)
+        root = fsbound.parse_xml(f, etree.XMLParser(resolve_entities=False, no_network=True,
+                                                    load_dtd=False),
+                                 resolver.roots if resolver is not None else None)
     except (etree.XMLSyntaxError, OSError):
         return [], 0, [], False
     inc, unresolved, args, glob_used = [], 0, [], False
@@ -377,11 +383,11 @@ def _load_memo(path) -> dict:
     if not path:
         return {}
     import json
+    from . import fsbound
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
+        data = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES))
         return data if isinstance(data, dict) else {}
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return {}
 
 
@@ -389,9 +395,9 @@ def _save_memo(path, data) -> None:
     import json
     from .cachedir import ensure
     try:
-        ensure(os.path.dirname(os.path.dirname(path)))
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        from .atomic import atomic_write
-        atomic_write(path, json.dumps(data))
+        cache_dir = os.path.dirname(os.path.dirname(path))
+        ensure(cache_dir)
+        from . import fsbound
+        fsbound.write_text(path, json.dumps(data), cache_dir, make_dirs=True)
     except OSError:
         pass

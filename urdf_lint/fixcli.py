@@ -41,7 +41,7 @@ def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
     report_internal(result.internal)
     if result.findings:
-        write_findings(args, cfg, result, out, color_mode)
+        write_findings(args, cfg, result, out, color_mode, resolver.roots)
     say(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
         f"file{'s' if len(files) != 1 else ''}")
     for f in files:
@@ -72,7 +72,7 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         if outcome.result.internal:
             return 2
         return 1 if outcome.diff else 0
-    write_findings(args, cfg, outcome.result, out, color_mode)
+    write_findings(args, cfg, outcome.result, out, color_mode, resolver.roots)
     for line in _summary(outcome):   # also with -q: what --fix did to the sources
         say(line)
     if args.exit_zero:

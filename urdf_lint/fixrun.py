@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from .atomic import atomic_rewrite
+from . import fsbound
 from .fixes import inside_paths
 from .sourceedit import apply_edits, line_offset
 
@@ -139,8 +139,7 @@ def edited_sources(fixed, originals: dict) -> dict:
     out = {}
     for f, edits in _edits_by_file(fixed).items():
         if f not in originals:
-            with open(f, "rb") as fh:
-                originals[f] = fh.read()
+            originals[f] = fsbound.read_bytes(f)
         out[f] = apply_edits(originals[f], edits)
     return out
 
@@ -169,8 +168,7 @@ def _tree(report, xml_or_none):
                              load_dtd=False, remove_comments=True)
     try:
         if xml is None:
-            with open(report.entry, "rb") as f:
-                return etree.fromstring(f.read(), parser)
+            return etree.fromstring(fsbound.read_bytes(report.entry), parser)
         return etree.fromstring(xml.encode("utf-8"), parser)
     except (OSError, etree.XMLSyntaxError):
         return None
@@ -326,10 +324,10 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             new = edited_sources(chosen, originals)
             for f in set(originals) - set(new):      # a file whose fixes were all rolled back
                 if f in written:
-                    atomic_rewrite(f, originals[f])
+                    fsbound.rewrite(f, originals[f], paths)
                     written.discard(f)
             for f, data in new.items():
-                atomic_rewrite(f, data)
+                fsbound.rewrite(f, data, paths)
                 written.add(f)
             result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                                in_process=in_process)
@@ -344,13 +342,13 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             chosen = []
         if not chosen:
             for f in written:
-                atomic_rewrite(f, originals[f])
+                fsbound.rewrite(f, originals[f], paths)
             written = set()
             if rolled:
                 result = run_check(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
     except BaseException:
         for f in written:     # never leave half-fixed sources behind
-            atomic_rewrite(f, originals[f])
+            fsbound.rewrite(f, originals[f], paths)
         raise
     changed = sorted(f for f in written if originals.get(f) is not None)
     return FixOutcome(result, chosen, rolled, changed, "", refused)

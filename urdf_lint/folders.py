@@ -41,11 +41,8 @@ def _folder_named(name: str, tops: tuple, skip: frozenset, depth: int) -> str | 
     for _ in range(depth):
         nxt = []
         for d in level:
-            try:
-                entries = sorted(os.scandir(d), key=lambda e: e.name)
-            except OSError:
-                continue
-            for e in entries:
+            from . import fsbound
+            for e in fsbound.scan_dir(d):
                 if not e.is_dir(follow_symlinks=False) or e.name.startswith("."):
                     continue
                 if e.name == name:

@@ -70,8 +70,9 @@ def classify_xacro(path: str) -> Status | None:
     """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
     or NOT_ROBOT."""
     from lxml import etree
-    try:
-        root = etree.parse(path, _quick_parser()).getroot()
+    from . import fsbound
+    try:   # a regular file, bounded (a FIFO named as a file never blocks)
+        root = fsbound.parse_xml(path, _quick_parser())
     except (etree.XMLSyntaxError, OSError):
         return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":

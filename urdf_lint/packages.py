@@ -42,8 +42,9 @@ class OutsideRoots(Exception):
 
 
 def package_name(package_xml: Path) -> str | None:
-    try:
-        data = package_xml.read_bytes()[:65536]
+    from . import fsbound
+    try:   # a regular file (never a FIFO or device), its first 64 KiB
+        data = fsbound.read_head(package_xml, 65536)
     except OSError:
         return None
     m = _NAME_RE.search(data)
@@ -54,17 +55,10 @@ def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[st
                folders: list | None = None):
     """Walk ``top`` (skipping build/VCS/venv folders), yielding files that match; each folder
     looked into is added to ``folders`` when given."""
-    top = Path(top)
-    if top.is_file():
-        yield top
-        return
-    for dirpath, dirnames, filenames in os.walk(top):
-        if folders is not None:
-            folders.append(dirpath)
-        dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS and not d.startswith("."))
-        for fn in sorted(filenames):
-            if (names and fn in names) or (suffixes and fn.endswith(suffixes)):
-                yield Path(dirpath, fn)
+    from . import fsbound
+    for f in fsbound.walk_files(top, suffixes, names, folders=folders,
+                                skip=lambda d: d in SKIP_DIRS or d.startswith(".")):
+        yield Path(f)
 
 
 def _colcon_ignored(folder: Path, top: Path) -> bool:

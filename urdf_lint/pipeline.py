@@ -130,7 +130,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     if settings_overrides:
         settings = dataclasses.replace(settings, **settings_overrides)
     if render_dir:
-        os.makedirs(render_dir, exist_ok=True)
+        from . import fsbound
+        fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
         # every picture's name is known here: one two models would share is drawn for neither
         from .discovery import repository_root
         from .locations import clashing_names, snapshot_name
@@ -157,7 +158,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
     if render_dir:
-        _drop_snapshots([r for r in results if r not in out.models])
+        _drop_snapshots([r for r in results if r not in out.models], render_dir)
     problems: list[Problem] = []
     for r in out.models:
         problems.extend(_with_policy(r.problems, r.label, policy))
@@ -231,17 +232,17 @@ def _complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
-def _drop_snapshots(reports) -> None:
+def _drop_snapshots(reports, render_dir) -> None:
     """Remove the snapshots the workers wrote for files that turned out not to be reported
-    models (fragments, libraries, models a changed file does not affect)."""
+    models (fragments, libraries, models a changed file does not affect): regular files in
+    the output folder only, whatever path a worker sent back."""
+    from . import fsbound
     for r in reports:
         for k in ("png", "rrd"):
             f = (r.snapshot or {}).get(k)
-            if f:
-                try:
-                    os.remove(f)
-                except OSError:
-                    pass
+            if isinstance(f, str) and os.path.dirname(os.path.abspath(f)) == \
+                    os.path.realpath(render_dir):
+                fsbound.remove(f, os.path.realpath(render_dir))
         r.snapshot = None
 
 

@@ -505,8 +505,8 @@ def caption(img, text):
 
 
 def save_png(img, path):
-    from .atomic import atomic_path
-    with atomic_path(path, ".png") as tmp:
+    from . import fsbound   # the snapshot folder, checked by the CLI (and Landlock here)
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".png") as tmp:
         img.save(tmp, format="PNG", optimize=False)
 
 
@@ -614,11 +614,11 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
 def _save_same(pngs: dict) -> None:
     """Save path -> image for equal images: encoded once, written to every path."""
     import io
-    from .atomic import atomic_write
+    from . import fsbound
     buf = io.BytesIO()
     next(iter(pngs.values())).save(buf, format="PNG", optimize=False)
     for path in pngs:
-        atomic_write(path, buf.getvalue())
+        fsbound.write_bytes(path, buf.getvalue(), os.path.dirname(os.path.abspath(path)))
 
 
 def draw_many(items: dict, fr: Frame, threads=None) -> dict:

@@ -37,11 +37,11 @@ def record_rrd(scene, ctx, path, recording_id, prefix="", model=None, base=None)
     :func:`record_findings`); ``prefix`` (e.g. ``"head/"``) puts every entity under one root.
     With ``model`` the recording gets the ``joint_sweep`` timeline; ``base`` is what file
     names in labels are relative to."""
-    from .atomic import atomic_path
+    from . import fsbound   # the snapshot folder, checked by the CLI (and Landlock here)
     if model is not None:
         base = label_base(model.entry)
     plan = plan_rrd(scene, ctx, model, base)
-    with atomic_path(path) as tmp:
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path))) as tmp:
         write_rrd(tmp, recording_id, [(prefix, plan)])
     return plan_facts(plan)
 
@@ -247,8 +247,8 @@ def record_findings(findings, paths, joint_paths, path, recording_id, prefix="",
     model's (written by the parent once the run's findings are final; merged into the
     model's recording)."""
     import rerun as rr
-    from .atomic import atomic_path
-    with atomic_path(path) as tmp:
+    from . import fsbound
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path))) as tmp:
         rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
         rec.save(tmp)
         log_findings(lambda entity, *a, **kw: rec.log(prefix + entity, *a, **kw), findings,
@@ -399,9 +399,9 @@ def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
         import rerun  # noqa: F401
     except ImportError:
         return NO_RERUN
-    from .atomic import atomic_path
+    from . import fsbound
     try:
-        with atomic_path(path, ".rrd") as tmp:
+        with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".rrd") as tmp:
             write_rrd(tmp, recording_id, plans, blueprint)
     except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
         return f"{type(e).__name__}: {e}"

@@ -66,12 +66,12 @@ def submodule_names(paths) -> list[str]:
     """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
     (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
     an error: an install without its sources must not lint with no rules, or report nothing."""
-    import os
+    from . import fsbound
     paths = list(paths)
     names: set[str] = set()
     for folder in paths:
         try:
-            names.update(fn[:-3] for fn in os.listdir(folder)
+            names.update(fn[:-3] for fn in fsbound.list_dir(folder)
                          if fn.endswith(".py") and not fn.startswith("_"))
         except OSError:
             continue
@@ -151,13 +151,13 @@ def catalogue() -> dict:
         return _CATALOGUE
     import os
     import urdf_lint.rules as pkg
+    from . import fsbound
     out: dict[str, Entry] = {}
     for folder in pkg.__path__:
         for name in submodule_names([folder]):
             module = f"urdf_lint.rules.{name}"
             try:
-                with open(os.path.join(folder, name + ".py"), encoding="utf-8") as f:
-                    found = dict(_ASSIGNED.findall(f.read()))
+                found = dict(_ASSIGNED.findall(fsbound.read_text(os.path.join(folder, name + ".py"))))
             except (OSError, UnicodeDecodeError):
                 found = {}
             if {"CODE", "NAME", "SEVERITY"} <= set(found):

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import io
 import os
 import subprocess
 import tarfile
@@ -58,8 +59,8 @@ def verify_rev(top: str, rev: str) -> str:
 def materialize(top: str, rev: str, dest: str, only=None) -> None:
     """The tracked files of ``rev`` (or just ``only``, paths relative to the top) under
     ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
-    os.makedirs(dest, exist_ok=True)
-    archive = os.path.join(os.path.dirname(dest), os.path.basename(dest) + ".tar")
+    from . import fsbound
+    fsbound.make_own_dirs(dest)   # a temporary folder of this run
     batches: list[list[str]]
     if only is None:
         batches = [[]]
@@ -70,12 +71,19 @@ def materialize(top: str, rev: str, dest: str, only=None) -> None:
         if only is not None and not batch:
             continue
         spec = ["--"] + [":(literal)" + p for p in batch] if batch else []
-        with open(archive, "wb") as f:
-            f.write(_git(top, "archive", "--format=tar", rev, *spec, binary=True))
-        with tarfile.open(archive) as tf:
-            tf.extractall(dest, filter="data")
-    if os.path.exists(archive):
-        os.remove(archive)
+        data = _git(top, "archive", "--format=tar", rev, *spec, binary=True)
+        with tarfile.open(fileobj=io.BytesIO(data)) as tf:
+            tf.extractall(dest, filter=_data_or_skip)
+
+
+def _data_or_skip(member, path):
+    """tarfile's ``data`` filter, but a member it refuses (an absolute symlink, a link out of
+    the tree, a device) is left out instead of ending the run: what reads it later finds it
+    missing, as the linted tree would not hold it either (inside the roots)."""
+    try:
+        return tarfile.data_filter(member, path)
+    except tarfile.FilterError:
+        return None
 
 
 def tracked_files(top: str, rev: str) -> set[str]:
@@ -263,8 +271,12 @@ def _keep_robot(side: Side, k, entry, args, res, resolver):
     if kept.xml is not None:
         side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
     else:
-        with open(entry, "rb") as f:
-            root, origins, _ = parse_urdf_bytes(entry, f.read())
+        from . import fsbound
+        try:
+            data = fsbound.read_bytes(entry, resolver.roots if resolver is not None else None)
+        except OSError:
+            data = b""
+        root, origins, _ = parse_urdf_bytes(entry, data)
         side.robots[k] = (Model(entry=entry, args={}, root=root, origins=origins,
                                 deps=[entry], resolver=resolver)
                           if root is not None else None)
@@ -478,7 +490,8 @@ def _clear_snapshots(render_dir):
     """Remove what an earlier diff --render wrote here (its manifest), so no stale picture
     survives; files this tool did not write stay."""
     from .render import clear_stale
-    os.makedirs(render_dir, exist_ok=True)
+    from . import fsbound
+    fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
     if os.path.islink(render_dir):
         raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
     clear_stale(render_dir)

@@ -3,6 +3,7 @@ markdown for a job summary or a pull-request comment (always under 60,000 charac
 from __future__ import annotations
 
 import json
+import os
 
 from .report.escape import escape_html, escape_markdown, escape_markdown_code, escape_text
 from .review import MARKDOWN_LIMIT, DiffResult
@@ -183,7 +184,8 @@ def write(r: DiffResult, fmt: str, stream, **kw) -> None:
     stream.write(fn(r, **kw) if fmt == "markdown" else fn(r))
 
 
-def write_file(r: DiffResult, fmt: str, path: str, **kw) -> None:
-    from .atomic import atomic_open
-    with atomic_open(path) as f:
+def write_file(r: DiffResult, fmt: str, path: str, base: str | None = None, **kw) -> None:
+    """The report in ``path``, atomically, written below ``base`` (by default its folder)."""
+    from . import fsbound
+    with fsbound.open_write(path, base or os.path.dirname(os.path.abspath(path))) as f:
         write(r, fmt, f, **kw)

@@ -117,11 +117,10 @@ def _mesh_digest(model, uri, cache):
         try:
             ref = meshes.resolve(model, uri)
             if ref.path and ref.problem is None and os.path.isfile(ref.path):
-                h = hashlib.sha256()
-                with open(ref.path, "rb") as f:
-                    for chunk in iter(lambda: f.read(1 << 20), b""):
-                        h.update(chunk)
-                digest = h.hexdigest()[:12]
+                from . import fsbound
+                from .meshes import MAX_MESH_BYTES
+                digest = hashlib.sha256(fsbound.read_bytes(
+                    ref.path, model.resolver.roots, MAX_MESH_BYTES)).hexdigest()[:12]
         except Exception:  # noqa: BLE001 - an unreadable mesh has no digest; rules report it
             digest = None
         cache[key] = digest

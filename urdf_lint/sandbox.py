@@ -406,7 +406,8 @@ def enter_worker(conn, settings) -> dict:
     for d in (facts, settings.render_dir):
         if d:
             try:
-                os.makedirs(d, exist_ok=True)
+                from . import fsbound
+                fsbound.make_own_dirs(d)   # the snapshot and mesh-facts folders
                 write.append(d)
             except OSError:
                 pass

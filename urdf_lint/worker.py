@@ -341,8 +341,8 @@ def _mesh_cost(root: str) -> tuple[float, frozenset]:
     """(seconds to measure the meshes under a package root (a first-time estimate), the mesh
     suffixes found)."""
     cost, seen, formats = 0.0, 0, set()
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = [d for d in dirs if not d.startswith(".")]
+    from . import fsbound
+    for folder, files in fsbound.walk(root, skip=lambda d: d.startswith(".")):
         for f in files:
             seen += 1
             low = f.lower()
@@ -461,10 +461,8 @@ def _mesh_facts_cached(settings: LintSettings) -> bool:
     """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
-    try:
-        return bool(d) and any(True for _ in os.scandir(d))
-    except OSError:
-        return False
+    from . import fsbound
+    return bool(d) and fsbound.has_entries(d)
 
 
 def _next_job(mine, queues, block_of=None, running=()):

@@ -35,7 +35,7 @@ from typing import Any, Callable
 import xacro
 import xacro.substitution_args as _subst
 
-from .. import safe_eval
+from .. import fsbound, safe_eval
 from ..findings import Problem
 from ..packages import OutsideRoots, PackageNotFound
 from ..rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
@@ -82,8 +82,7 @@ def _arg_declared_later(name: str, deps) -> str | None:
     decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + q + r"[\"']")
     for f in deps:
         try:
-            with open(f, encoding="utf-8", errors="replace") as fh:
-                text = fh.read()
+            text = fsbound.read_text(f, errors="replace")
         except OSError:
             continue
         m = decl.search(text) or decl2.search(text)

@@ -31,6 +31,7 @@ from xml.dom import expatbuilder
 import xacro
 import xacro.substitution_args as _subst
 
+from .. import fsbound
 from ..jobs import DEFAULT_ENV_ALLOW
 from ..findings import Problem
 from ..packages import PackageResolver
@@ -289,13 +290,16 @@ def _hook_load_yaml(filename):
     # one; UR's descriptions read eight YAML files per model): the same SafeConstructor, the
     # same unit tags, the same wrapper, include bookkeeping and errors
     filename = xacro.abs_filename_spec(path)
-    with open(filename) as f:
-        xacro.filestack.append(filename)
-        try:
-            return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
-        finally:
-            xacro.filestack.pop()
-            xacro.all_includes.append(filename)
+    # read through the boundary: a regular file, bounded (a FIFO never blocks); the stream
+    # keeps the file's name for YAML's error marks, and open()'s newline translation
+    f = io.StringIO(fsbound.read_text(filename), newline=None)
+    f.name = filename   # type: ignore[misc]
+    xacro.filestack.append(filename)
+    try:
+        return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
+    finally:
+        xacro.filestack.pop()
+        xacro.all_includes.append(filename)
 
 
 _YAML_LOADER: list = []
@@ -434,12 +438,16 @@ def _macro_context():
     return names
 
 
-def classify_error(e: BaseException, st: _State) -> Problem:
-    """Turn an exception from xacro into one located problem (see :mod:`.errors`)."""
+def classify_error(e: BaseException, st: _State, entry: str = "",
+                   before: bool = False) -> Problem:
+    """Turn an exception from xacro into one located problem (see :mod:`.errors`); one with
+    no element to point at is at line 1 of the file on top of xacro's stack, else (nothing
+    there, or it happened ``before`` xacro started: the stack is the last job's) of
+    ``entry``."""
     here = origin_of(st.current_node()) if st.current_node() is not None else None
     if here is None:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
-        here = (top, 1, 1, ())
+        here = ((entry if before else top or entry), 1, 1, ())
     return problem_for(e, here, _macro_context(), deps=list(st.deps))
 
 
@@ -454,17 +462,19 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
         resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
     st = _State(resolver, env_allow, expr_policy)
     with _session(st):
+        before = True   # until xacro opens the entry
         try:
             if not resolver.is_inside(path):
                 raise RefusedInput(f"'{path}' is outside the package roots", ul902_outside_roots)
             with safe_eval.policy(expr_policy):
+                before = False
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
             res.xml = doc.toprettyxml(indent="  ")
             res.origins = SourceMap.from_stamps(_elements(doc, []))
         except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
-            res.error = classify_error(e, st)
+            res.error = classify_error(e, st, path, before)
             from .errors import wrapped
             inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
             # a file looked for and not there, or a folder read as a file: the result holds

@@ -17,6 +17,7 @@ class ReportOptions:
     """How a report is written: colour, source frames, quiet, model lists."""
     color: bool = False
     show_source: bool = False
+    roots: tuple | None = None      # --show-source reads sources only inside these (fsbound)
     quiet: bool = False            # findings only: no summary line
     show_models: bool = True
 

@@ -59,9 +59,10 @@ class TextFormatter(BaseFormatter):
 
     def _source(self, path):
         if path not in self._lines:
-            try:
-                with open(path, encoding="utf-8", errors="replace") as fh:
-                    self._lines[path] = fh.read().splitlines()
+            from .. import fsbound
+            try:   # what a worker could read: inside the roots, a regular file, bounded
+                self._lines[path] = fsbound.read_text(
+                    path, self.options.roots, errors="replace").splitlines()
             except OSError:
                 self._lines[path] = []
         return self._lines[path]
