@@ -767,7 +767,7 @@ def cmd_render(args) -> int:
                        render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from .baseline import filter_baseline
-        result.findings = filter_baseline(cfg.baseline, result.findings)
+        result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)
     _note_unused(result, _Out(args), affected_by or ())
     missed = _report_snapshots(result, args.out)
     for m in result.models:

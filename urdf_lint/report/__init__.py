@@ -11,7 +11,7 @@ JSON schema (``--format json``), version 1::
                   "cached": bool (result reused from .urdf_lint_cache),
                   "links": int, "joints": int, "meshes": int}],
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
-                    "message": str, "file": str (relative to cwd when below it), "line": int,
+                    "message": str, "file": str (relative to cwd; ``..`` inside its repository or workspace), "line": int,
                     "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
                     "models": [str, ...],
                     "fix": {"description": str, "applicability": "safe"|"unsafe",
