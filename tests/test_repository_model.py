@@ -4,6 +4,7 @@ outputs and the cache folder. Every case is a fixture repository in the shape of
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 
@@ -134,7 +135,9 @@ def test_install_layout_and_unknown_package_hint(tmp_path):
     (ws / "install/share/robot_meshes/package.xml").unlink()
     p = run_cli("check", ".", "--no-cache", cwd=desc)
     assert p.returncode == 1 and "unknown package 'robot_meshes'" in p.stdout
-    assert f"pass --package-path robot_meshes={ws / 'install/share/robot_meshes'}" in p.stdout
+    # the hint's folder is shown as every path is: relative, inside the workspace (issue 22)
+    hint = os.path.relpath(ws / "install/share/robot_meshes", desc)
+    assert hint.startswith("..") and f"pass --package-path robot_meshes={hint}" in p.stdout
     p = run_cli("check", ".", "--no-cache", "--package-path",
                 f"robot_meshes={ws / 'install/share/robot_meshes'}", cwd=desc)
     assert p.returncode == 0, p.stdout

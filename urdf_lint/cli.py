@@ -13,6 +13,7 @@ import difflib
 import os
 import re
 import sys
+from pathlib import Path
 
 
 from .errors import UsageError
@@ -451,35 +452,62 @@ def _color_mode(args) -> str:
 
 # -- commands ---------------------------------------------------------------------------------
 
+MODEL_SUFFIXES = (".urdf", ".xacro")
+
+
 def _through_models(args, cfg):
-    """``check FILE`` / ``render FILE`` on fragments or macro libraries: (the repository root
-    to lint, the files whose models to report), or None when every path is a model or a folder.
-    The models that include such a file are linted instead of the file on its own."""
+    """Files that are not models themselves, linted through the models that use them, as the
+    hook does: a fragment or macro library that models include, and any other file (a YAML
+    file, a mesh, a texture: ``check $(git diff --name-only)``). Returns (the repository root
+    to lint, the files whose models to report, the files the user named), or None when every
+    path is a model or a folder. Folders named beside such files are linted whole (their
+    model files join the files to report)."""
     from .discovery import build_resolver, discover_models, repository_root
     from .jobs import Status
     from .lint import classify_xacro
-    if not args.paths or not all(os.path.isfile(p) for p in args.paths):
-        return None
-    files = [os.path.realpath(p) for p in args.paths]
+    files = [os.path.realpath(p) for p in args.paths if os.path.isfile(p)]
     configured = {m.path for m in cfg.models}
+    inputs = [f for f in files if not f.endswith(MODEL_SUFFIXES) and f not in configured]
     cand = [f for f in files if f.endswith(".xacro") and f not in configured]
-    if not cand:
+    if not inputs and not cand:
         return None
     root = repository_root(args.paths)
-    resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
-    graph = discover_models([root], cfg, resolver).graph
-    redirect = [f for f in cand if graph.includers(f) or classify_xacro(f) is Status.LIBRARY]
+    redirect = list(inputs)
+    by: dict = {}
+    if cand:
+        resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
+        graph = discover_models([root], cfg, resolver).graph
+        by = {f: graph.includers(f) for f in cand}
+        redirect += [f for f in cand if by[f] or classify_xacro(f) is Status.LIBRARY]
     if not redirect:
         return None
     from .locations import display_path
-    for f in redirect:
-        by = graph.includers(f)
-        if by:
-            sys.stderr.write(f"note: {display_path(f)} is included by "
-                             f"{', '.join(display_path(g) for g in by[:5])}"
-                             f"{' ...' if len(by) > 5 else ''}: linting the models that "
+    from .packages import iter_files
+    for f in cand:
+        if by.get(f) and not getattr(args, "quiet", False):
+            inc = by[f]
+            sys.stderr.write(f"note: {_safe_text(display_path(f))} is included by "
+                             f"{', '.join(_safe_text(display_path(g)) for g in inc[:5])}"
+                             f"{' ...' if len(inc) > 5 else ''}: linting the models that "
                              "include it\n")
-    return root, set(files)
+    report = set(files)
+    for d in args.paths:
+        if os.path.isdir(d):
+            report.update(os.path.realpath(f) for f in iter_files(Path(d), MODEL_SUFFIXES))
+    return root, report, set(files)
+
+
+def _no_models_warning(paths, result, out) -> None:
+    """A folder the user named that holds no robot model: said, like ruff's "No Python files
+    found" (the run still exits 0: nothing failed)."""
+    entries = [os.path.realpath(m.entry) for m in [*result.models, *result.skipped]]
+    for p in paths:
+        if not os.path.isdir(p):
+            continue
+        top = os.path.realpath(p)
+        if not any(e == top or e.startswith(top.rstrip(os.sep) + os.sep) for e in entries):
+            out.note(f"warning: no robot models found in {_safe_text(p)} (no .urdf file and no "
+                     ".xacro file that expands to a robot)")
 
 
 def cmd_check(args) -> int:
@@ -495,11 +523,11 @@ def cmd_check(args) -> int:
     out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
     affected_by = None
     named: set = set()
+    given = list(args.paths)
     if getattr(args, "files", None) is None and not args.changed_since:
         redirect = _through_models(args, cfg)
         if redirect is not None:
-            args.paths, affected_by = [redirect[0]], redirect[1]
-            named = set(affected_by)
+            args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
@@ -553,6 +581,8 @@ def cmd_check(args) -> int:
     from .emit import write_findings
     write_findings(args, cfg, result, out, color_mode)
     _note_unused(result, out, named)
+    if getattr(args, "files", None) is None and not args.changed_since:
+        _no_models_warning(given, result, out)
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -601,9 +631,10 @@ def _note_unused(result, out, named=()):
                      "reads it; if it was a model, it is gone")
     named = {os.path.realpath(f) for f in named}
     for f in result.unused_files:
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            say = out.note if os.path.realpath(f) in named else out.info
-            say(f"note: {_safe_text(display_path(f))} is not used by any model")
+        if os.path.realpath(f) in named:   # the user named it: always said
+            out.note(f"note: {_safe_text(display_path(f))} is not used by any model")
+        elif f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            out.info(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
 def _clear_stale(out_dir):
@@ -757,10 +788,11 @@ def cmd_render(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     _refuse_symlinked_out(args.out)
     cfg = _load_cfg(args, args.paths)
+    given = list(args.paths)
     redirect = _through_models(args, cfg)
-    affected_by = None
+    affected_by, named = None, set()
     if redirect is not None:
-        args.paths, affected_by = [redirect[0]], redirect[1]
+        args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     _clear_stale(args.out)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
@@ -768,7 +800,8 @@ def cmd_render(args) -> int:
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from .baseline import filter_baseline
         result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)
-    _note_unused(result, _Out(args), affected_by or ())
+    _note_unused(result, _Out(args), named)
+    _no_models_warning(given, result, _Out(args))
     missed = _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
