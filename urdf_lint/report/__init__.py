@@ -12,7 +12,8 @@ JSON schema (``--format json``), version 1::
                   "links": int, "joints": int, "meshes": int}],
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
                     "message": str, "file": str (relative to cwd; ``..`` inside its repository
-                    or workspace), "line": int, "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
+                    or workspace), "line": int, "col": int,
+                    "chain": [[file, line, col], ...]  (macro call sites, outermost first),
                     "models": [str, ...],
                     "fix": {"description": str, "applicability": "safe"|"unsafe",
                             "edits": [{"file": str, "start": int, "end": int, "text": str}]
