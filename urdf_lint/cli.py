@@ -580,6 +580,8 @@ def cmd_check(args) -> int:
         return 2 if result.internal else 0
     from .emit import write_findings
     write_findings(args, cfg, result, out, color_mode)
+    if getattr(args, "hook_summary", False):
+        _hook_summary(result, args.files)
     _note_unused(result, out, named)
     if getattr(args, "files", None) is None and not args.changed_since:
         _no_models_warning(given, result, out)
@@ -685,6 +687,7 @@ def cmd_hook(args) -> int:
     ns = argparse.Namespace(paths=[root], output=None, render=None, changed_since=None,
                             write_baseline=None, isolated=False, **vars(args))
     ns.quiet = True if not args.verbose else False
+    ns.hook_summary = not args.quiet   # the one line said even when the hook passes
     ns.command = "check"
     # pre-commit passes only files that exist: add what the commit deletes or renames away
     from .vcs import GitError, staged_removals
@@ -694,8 +697,25 @@ def cmd_hook(args) -> int:
         removed = set()
     ns.files = list(args.files) + sorted(removed)
     if not ns.files:
+        if ns.hook_summary:
+            sys.stderr.write("urdf-lint: no robot description file in this commit\n")
         return 0
     return cmd_check(ns)
+
+
+def _hook_summary(result, files) -> None:
+    """``hook``: one line on every run, passed or failed, with the warnings and infos that do
+    not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
+    from collections import Counter
+    named = {os.path.realpath(f) for f in files}
+    sev = Counter(f.severity for f in result.findings)
+    mine = sum(1 for f in result.findings if os.path.realpath(f.file) in named)
+    n = len(result.models)
+    line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {sev['error']} error(s), "
+            f"{sev['warning']} warning(s), {sev['info']} info")
+    if result.findings:
+        line += f" ({mine} in the committed files)"
+    sys.stderr.write(line + "\n")
 
 
 def cmd_expand(args) -> int:
