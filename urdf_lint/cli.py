@@ -54,7 +54,8 @@ def first_sentence(doc: str) -> str:
 
 # -- the parser -------------------------------------------------------------------------------
 class _Parser(argparse.ArgumentParser):
-    """An unknown flag gets this (sub)command's usage and the closest known flag."""
+    """A command-line mistake is one line: what is wrong, the closest known flag or command,
+    and where the usage is (like ruff; the whole usage buried the suggestion)."""
 
     def error(self, message):
         m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
@@ -66,15 +67,16 @@ class _Parser(argparse.ArgumentParser):
         m = re.match(r"unrecognized arguments: (.*)", message)
         if m:
             hints = []
-            for arg in m.group(1).split():
-                if arg.startswith("-"):
-                    close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
-                                                      cutoff=0.6)
-                    if close:
-                        hints.append(f"{arg}: did you mean {close[0]}?")
+            args = [a for a in m.group(1).split() if a.startswith("-")]
+            for arg in args:
+                close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
+                                                  cutoff=0.6)
+                if close:
+                    hints.append(f"did you mean {close[0]}?" if len(args) == 1
+                                 else f"{arg}: did you mean {close[0]}?")
             if hints:
                 message += " (" + "; ".join(hints) + ")"
-        super().error(message)
+        self.exit(2, f"{self.prog}: error: {message}; see '{self.prog} --help'\n")
 
     def flags(self) -> list:
         return [s for a in self._actions for s in a.option_strings]
@@ -653,10 +655,15 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     made; returns how many could not."""
     from .render import finish_snapshots, write_manifest, write_summary
     from .locations import display_path
+    from .recording import NO_RERUN
     finish_snapshots(result.models, result.findings, out_dir)
     written, missed, files = 0, 0, []
+    no_rerun = False
     for m in result.models:
         snap = m.snapshot or {}
+        if f"rrd: {NO_RERUN}" in snap.get("problems", ()):   # optional: said once, below
+            snap["problems"] = [p for p in snap["problems"] if p != f"rrd: {NO_RERUN}"]
+            no_rerun = True
         for k in ("png", "rrd"):
             if snap.get(k):
                 written += 1
@@ -669,6 +676,8 @@ def _report_snapshots(result, out_dir, out=None) -> int:
             why = "; ".join(snap.get("problems") or ["no picture was drawn"])
             sys.stderr.write(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}\n")
             missed += 1
+    if no_rerun:
+        _no_recordings_note(NO_RERUN)
     summary = write_summary(result, out_dir)
     write_manifest(out_dir, files + [summary])
     msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
@@ -678,6 +687,14 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     else:
         sys.stderr.write(msg + "\n")
     return missed
+
+
+def _no_recordings_note(why) -> None:
+    """The .rrd recordings are optional (rerun-sdk, the ``render`` extra): without them the
+    pictures are still made and the run does not fail; said once (``render`` and
+    ``diff --render`` alike)."""
+    sys.stderr.write(f"note: no .rrd recordings: {_safe_text(why)}; the PNG pictures are "
+                     "written (--no-rrd: no recordings, no note)\n")
 
 
 def cmd_hook(args) -> int:
@@ -866,6 +883,8 @@ def cmd_diff(args) -> int:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
         sys.stderr.write(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}\n")
+    if result.no_recordings:
+        _no_recordings_note(result.no_recordings)
     from .emit import report_internal
     report_internal(result.internal)
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
