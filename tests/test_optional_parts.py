@@ -71,3 +71,23 @@ def test_unknown_flag_is_one_line_with_the_suggestion():
     p = run_cli("chek", ".")
     assert p.returncode == 2 and len(p.stderr.splitlines()) == 1, p.stderr
     assert "did you mean check?" in p.stderr
+
+
+def test_generate_check_says_what_it_checked(tmp_path):
+    from repo_shapes import generated_output_repo
+    generated_output_repo(tmp_path)
+    (tmp_path / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "gen_description/xacro/robot.xacro"\n'
+        'output = "gen_description/robot.urdf"\n')
+    p = run_cli("generate", "--check", cwd=tmp_path)
+    assert p.returncode == 1
+    assert p.stdout.splitlines()[-1] == ("urdf-lint generate: 1 generated URDF(s) checked, "
+                                         "1 would be regenerated."), p.stdout
+    assert run_cli("generate", cwd=tmp_path).returncode == 1
+    p = run_cli("generate", "--check", cwd=tmp_path)
+    assert p.returncode == 0
+    assert p.stdout == "urdf-lint generate: 1 generated URDF(s) checked, all up to date.\n"
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    p = run_cli("generate", "--check", cwd=empty)
+    assert p.returncode == 0 and p.stdout.startswith("urdf-lint generate: no generated URDF")

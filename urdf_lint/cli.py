@@ -913,9 +913,11 @@ def cmd_generate(args) -> int:
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     status = 0
+    outputs = stale = failed = 0
     for job in discover_models(args.paths, cfg, resolver).jobs:
         if not job.output:
             continue
+        outputs += 1
         named = header_source(job.output) if os.path.exists(job.output) else None
         shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
         res = expand_file(job.entry, job.args, resolver,
@@ -925,10 +927,12 @@ def cmd_generate(args) -> int:
             e = res.error
             sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
             status = 1
+            failed += 1
             continue
         if stale_at(job.output, res.xml) is None:
             continue
         status = 1
+        stale += 1
         if named and res.xml:   # keep the header's own name for the source: no churn
             head, rest = res.xml[:1024], res.xml[1024:]
             res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
@@ -937,7 +941,21 @@ def cmd_generate(args) -> int:
         else:
             write_output(job.output, res.xml)
             print(f"regenerated {display_path(job.output)} from {display_path(job.entry)}")
+    print(_generate_summary(outputs, stale, failed, args.check))
     return status
+
+
+def _generate_summary(outputs, stale, failed, check) -> str:
+    """``generate``: one line, also when everything was up to date."""
+    if not outputs:
+        return ("urdf-lint generate: no generated URDF found (a models entry with 'output', or a "
+                ".urdf whose header names its xacro)")
+    done = "would be regenerated" if check else "regenerated"
+    parts = [f"{stale} {done}" if stale else "all up to date" if not failed else ""]
+    if failed:
+        parts.append(f"{failed} xacro(s) did not expand")
+    return (f"urdf-lint generate: {outputs} generated URDF(s) checked, "
+            + ", ".join(p for p in parts if p) + ".")
 
 
 def cmd_clean(args) -> int:
