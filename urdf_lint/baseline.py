@@ -18,6 +18,7 @@ says how to rewrite them.
 """
 from __future__ import annotations
 
+import bisect
 import hashlib
 import json
 import os
@@ -53,15 +54,14 @@ class _Elements:
         self._files: dict = {}
 
     def identity(self, path: str, line: int, col: int) -> str:
-        starts = self._files.get(path)
-        if starts is None:
-            starts = self._files[path] = _element_starts(path)
-        best = ""
-        for pos, ident in starts:      # in document order: the last start at or before (line, col)
-            if pos > (line, col):
-                break
-            best = ident
-        return best
+        got = self._files.get(path)
+        if got is None:
+            starts = _element_starts(path)
+            got = self._files[path] = ([pos for pos, _ in starts], [i for _, i in starts])
+        positions, idents = got
+        # the last element that starts at or before (line, col)
+        k = bisect.bisect_right(positions, (line, col))
+        return idents[k - 1] if k else ""
 
 
 def _element_starts(path: str) -> list:
@@ -106,9 +106,11 @@ def _element_starts(path: str) -> list:
 
 def _entries(findings, base):
     elements = _Elements()
+    real = os.path.realpath(base)
     for f in findings:
         yield {"code": f.code,
-               "file": os.path.relpath(os.path.abspath(f.file), base) if f.file else "",
+               # both sides real: a checkout under a symlinked folder gives the same key
+               "file": os.path.relpath(os.path.realpath(f.file), real) if f.file else "",
                "element": elements.identity(f.file, f.line, f.col) if f.file else "",
                "fingerprint": fingerprint(f.message, base),
                "message": portable(f.message, base)}
