@@ -83,7 +83,9 @@ def test_diff_formats_are_free_of_the_checkout_path(ws_repo, tmp_path):
     shutil.copytree(ws_repo.parents[1], repo, symlinks=True)
     repo = repo / "src" / "robot"
     (repo / "urdf/robot.urdf.xacro").write_text(
-        ROBOT.replace("gone.stl", "gone_too.stl").replace('name="fix"', 'name="fixed_joint"'))
+        ROBOT.replace("gone.stl", "gone_too.stl")   # a change, and a removal (base side)
+        .replace('  <joint name="fix" type="fixed"><parent link="base"/><child link="a"/></joint>\n',
+                 ""))
     for fmt in FORMATS:
         p = run_cli("diff", "HEAD", "--format", fmt, "--no-cache", cwd=repo)
         assert p.returncode in (0, 1), (fmt, p.stderr)
