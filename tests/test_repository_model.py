@@ -212,7 +212,9 @@ def test_corpus_generated_outputs_are_fresh(corpus, tmp_path):
                 "--isolated", "--select", "UL011", cwd=tmp_path)
     assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
     p = run_cli("generate", corpus / "robot_properties_fingers", "--check", cwd=tmp_path)
-    assert p.returncode == 0 and p.stdout == "", p.stdout + p.stderr
+    # nothing stale: one summary line (issue 22: it printed nothing on success)
+    assert p.returncode == 0 and p.stdout == \
+        "urdf-lint generate: 14 generated URDF(s) checked, all up to date.\n", p.stdout + p.stderr
 
 
 def test_cache_folder_markers_and_place(tmp_path, monkeypatch):
