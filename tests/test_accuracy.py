@@ -460,3 +460,28 @@ def test_dae_losing_only_some_instances_is_loaded_whole(tmp_path):
     facts = meshes.mesh_facts(str(p))
     assert facts["vertices"] == 8 and facts["bounds"][1][0] == pytest.approx(0.6)
     assert facts["broken_refs"]
+
+
+def test_readme_numbers_are_the_demos():
+    """The README's numbers about the demo (models linted, rules that fire, the summary line)
+    are those of a real run of the command it shows, so they cannot go stale (issue 22)."""
+    import re
+    from conftest import REPO
+    from urdf_lint.registry import load_rules
+    readme = (REPO / "README.md").read_text()
+    p = run_cli("check", "descriptions/", "--no-cache", cwd=REPO)
+    assert p.returncode == 1, p.stderr
+    summary = p.stdout.splitlines()[-1]
+    assert re.fullmatch(r"Found \d+ problem\(s\) \(\d+ error, \d+ warning, \d+ info\) in \d+ "
+                        r"model\(s\)\.", summary), summary
+    assert f"`{summary}`" in readme.replace("\n", " "), \
+        f"README.md's demo summary is stale; the demo now ends with: {summary}"
+    models = int(re.search(r"in (\d+) model", summary).group(1))
+    fired = {m.group(1) for m in re.finditer(r"^\S+:\d+:\d+: (UL\d{3}) ", p.stdout, re.M)}
+    rules = load_rules()
+    said = re.search(r"It lints (\d+) models: .*?\s+make (\d+) of the (\d+) rules fire",
+                     readme, re.S)
+    assert said, "README.md no longer says how many models the demo lints and rules fire"
+    assert tuple(int(x) for x in said.groups()) == (models, len(fired), len(rules)), \
+        (f"README.md says {said.group(0)!r}; the demo lints {models} models and "
+         f"{len(fired)} of the {len(rules)} rules fire")

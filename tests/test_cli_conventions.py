@@ -165,13 +165,16 @@ def test_help_lists_every_registered_format(capsys):
     assert report.names() == ("text", "concise", "json", "sarif", "github", "junit")
 
 
-def test_flag_typo_gets_the_subcommand_usage_and_did_you_mean(pkg, capsys):
+def test_flag_typo_gets_one_line_with_did_you_mean(pkg, capsys):
+    # one line naming the subcommand and the closest flag (issue 22: the whole usage came
+    # first and buried the suggestion)
     rc, out, err = run(capsys, "check", ".", "--selct", "UL1")
     assert rc == 2
-    assert err.startswith("usage: urdf-lint check"), err
-    assert "--selct: did you mean --select?" in err
+    assert err == ("urdf-lint check: error: unrecognized arguments: --selct UL1 (did you mean "
+                   "--select?); see 'urdf-lint check --help'\n"), err
     rc, _, err = run(capsys, "hook", "--extnd-select", "UL1")
-    assert rc == 2 and err.startswith("usage: urdf-lint hook") and "did you mean --extend-select?" in err
+    assert rc == 2 and err.startswith("urdf-lint hook: error:") and "did you mean --extend-select?" in err
+    assert len(err.splitlines()) == 1
 
 
 def git(*args, cwd):
@@ -274,7 +277,7 @@ def test_readme_precommit_snippets_are_complete_configs():
     (local,) = yaml.safe_load(readme_precommit_config("local"))["repos"]
     (hook,) = local["hooks"]
     published = hooks["urdf-lint"]
-    for key in ("entry", "args", "files", "always_run", "require_serial"):
+    for key in ("entry", "args", "files", "always_run", "require_serial", "verbose"):
         assert hook.get(key) == published.get(key), key
     assert hook["language"] == "system"
 

@@ -13,6 +13,7 @@ import difflib
 import os
 import re
 import sys
+from pathlib import Path
 
 from .emit import say, tell
 from .errors import UsageError
@@ -53,7 +54,8 @@ def first_sentence(doc: str) -> str:
 
 # -- the parser -------------------------------------------------------------------------------
 class _Parser(argparse.ArgumentParser):
-    """An unknown flag gets this (sub)command's usage and the closest known flag."""
+    """A command-line mistake is one line: what is wrong, the closest known flag or command,
+    and where the usage is (like ruff; the whole usage buried the suggestion)."""
 
     def error(self, message):
         m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
@@ -65,15 +67,16 @@ class _Parser(argparse.ArgumentParser):
         m = re.match(r"unrecognized arguments: (.*)", message)
         if m:
             hints = []
-            for arg in m.group(1).split():
-                if arg.startswith("-"):
-                    close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
-                                                      cutoff=0.6)
-                    if close:
-                        hints.append(f"{arg}: did you mean {close[0]}?")
+            args = [a for a in m.group(1).split() if a.startswith("-")]
+            for arg in args:
+                close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
+                                                  cutoff=0.6)
+                if close:
+                    hints.append(f"did you mean {close[0]}?" if len(args) == 1
+                                 else f"{arg}: did you mean {close[0]}?")
             if hints:
                 message += " (" + "; ".join(hints) + ")"
-        super().error(message)
+        self.exit(2, f"{self.prog}: error: {message}; see '{self.prog} --help'\n")
 
     def flags(self) -> list:
         return [s for a in self._actions for s in a.option_strings]
@@ -470,34 +473,61 @@ def _color_mode(args) -> str:
 
 # -- commands ---------------------------------------------------------------------------------
 
+MODEL_SUFFIXES = (".urdf", ".xacro")
+
+
 def _through_models(args, cfg):
-    """``check FILE`` / ``render FILE`` on fragments or macro libraries: (the repository root
-    to lint, the files whose models to report), or None when every path is a model or a folder.
-    The models that include such a file are linted instead of the file on its own."""
+    """Files that are not models themselves, linted through the models that use them, as the
+    hook does: a fragment or macro library that models include, and any other file (a YAML
+    file, a mesh, a texture: ``check $(git diff --name-only)``). Returns (the repository root
+    to lint, the files whose models to report, the files the user named), or None when every
+    path is a model or a folder. Folders named beside such files are linted whole (their
+    model files join the files to report)."""
     from .discovery import build_resolver, discover_models, repository_root
     from .jobs import Status
     from .lint import classify_xacro
-    if not args.paths or not all(os.path.isfile(p) for p in args.paths):
-        return None
-    files = [os.path.realpath(p) for p in args.paths]
+    files = [os.path.realpath(p) for p in args.paths if os.path.isfile(p)]
     configured = {m.path for m in cfg.models}
+    inputs = [f for f in files if not f.endswith(MODEL_SUFFIXES) and f not in configured]
     cand = [f for f in files if f.endswith(".xacro") and f not in configured]
-    if not cand:
+    if not inputs and not cand:
         return None
     root = repository_root(args.paths)
-    resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
-    graph = discover_models([root], cfg, resolver).graph
-    redirect = [f for f in cand if graph.includers(f) or classify_xacro(f) is Status.LIBRARY]
+    redirect = list(inputs)
+    by: dict = {}
+    if cand:
+        resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
+        graph = discover_models([root], cfg, resolver).graph
+        by = {f: graph.includers(f) for f in cand}
+        redirect += [f for f in cand if by[f] or classify_xacro(f) is Status.LIBRARY]
     if not redirect:
         return None
     from .locations import display_path
-    for f in redirect:
-        by = graph.includers(f)
-        if by:
+    from .packages import iter_files
+    for f in cand:
+        if by.get(f) and not getattr(args, "quiet", False):
+            inc = by[f]
             say(f"note: {_safe_text(display_path(f))} is included by "
-                f"{', '.join(_safe_text(display_path(g)) for g in by[:5])}"
-                f"{' ...' if len(by) > 5 else ''}: linting the models that include it")
-    return root, set(files)
+                f"{', '.join(_safe_text(display_path(g)) for g in inc[:5])}"
+                f"{' ...' if len(inc) > 5 else ''}: linting the models that include it")
+    report = set(files)
+    for d in args.paths:
+        if os.path.isdir(d):
+            report.update(os.path.realpath(f) for f in iter_files(Path(d), MODEL_SUFFIXES))
+    return root, report, set(files)
+
+
+def _no_models_warning(paths, result, out) -> None:
+    """A folder the user named that holds no robot model: said, like ruff's "No Python files
+    found" (the run still exits 0: nothing failed)."""
+    entries = [os.path.realpath(m.entry) for m in [*result.models, *result.skipped]]
+    for p in paths:
+        if not os.path.isdir(p):
+            continue
+        top = os.path.realpath(p)
+        if not any(e == top or e.startswith(top.rstrip(os.sep) + os.sep) for e in entries):
+            out.note(f"warning: no robot models found in {_safe_text(p)} (no .urdf file and no "
+                     ".xacro file that expands to a robot)")
 
 
 def cmd_check(args) -> int:
@@ -513,11 +543,11 @@ def cmd_check(args) -> int:
     out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
     affected_by = None
     named: set = set()
+    given = list(args.paths)
     if getattr(args, "files", None) is None and not args.changed_since:
         redirect = _through_models(args, cfg)
         if redirect is not None:
-            args.paths, affected_by = [redirect[0]], redirect[1]
-            named = set(affected_by)
+            args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
@@ -571,7 +601,11 @@ def cmd_check(args) -> int:
         return 2 if result.internal else 0
     from .emit import write_findings
     write_findings(args, cfg, result, out, color_mode, resolver.roots)
+    if getattr(args, "hook_summary", False):
+        _hook_summary(result, args.files)
     _note_unused(result, out, named)
+    if getattr(args, "files", None) is None and not args.changed_since:
+        _no_models_warning(given, result, out)
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -620,9 +654,10 @@ def _note_unused(result, out, named=()):
                      "reads it; if it was a model, it is gone")
     named = {os.path.realpath(f) for f in named}
     for f in result.unused_files:
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            shown = out.note if os.path.realpath(f) in named else out.info
-            shown(f"note: {_safe_text(display_path(f))} is not used by any model")
+        if os.path.realpath(f) in named:   # the user named it: always said
+            out.note(f"note: {_safe_text(display_path(f))} is not used by any model")
+        elif f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            out.info(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
 def _clear_stale(out_dir, paths):
@@ -640,10 +675,15 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     made; returns how many could not."""
     from .render import finish_snapshots, write_manifest, write_summary
     from .locations import display_path
+    from .recording import NO_RERUN
     finish_snapshots(result.models, result.findings, out_dir)
     written, missed, files = 0, 0, []
+    no_rerun = False
     for m in result.models:
         snap = m.snapshot or {}
+        if f"rrd: {NO_RERUN}" in snap.get("problems", ()):   # optional: said once, below
+            snap["problems"] = [p for p in snap["problems"] if p != f"rrd: {NO_RERUN}"]
+            no_rerun = True
         for k in ("png", "rrd"):
             if snap.get(k):
                 written += 1
@@ -655,6 +695,8 @@ def _report_snapshots(result, out_dir, out=None) -> int:
             why = "; ".join(snap.get("problems") or ["no picture was drawn"])
             say(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}")
             missed += 1
+    if no_rerun:
+        _no_recordings_note(NO_RERUN)
     summary = write_summary(result, out_dir)
     write_manifest(out_dir, files + [summary])
     msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
@@ -666,6 +708,14 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     return missed
 
 
+def _no_recordings_note(why) -> None:
+    """The .rrd recordings are optional (rerun-sdk, the ``render`` extra): without them the
+    pictures are still made and the run does not fail; said once (``render`` and
+    ``diff --render`` alike)."""
+    say(f"note: no .rrd recordings: {_safe_text(why)}; the PNG pictures are written "
+        "(--no-rrd: no recordings, no note)")
+
+
 def cmd_hook(args) -> int:
     """Lint the whole repository (cached) and report the models that the files affect."""
     from .vcs import repo_root
@@ -673,6 +723,7 @@ def cmd_hook(args) -> int:
     ns = argparse.Namespace(paths=[root], output=None, render=None, changed_since=None,
                             write_baseline=None, isolated=False, **vars(args))
     ns.quiet = True if not args.verbose else False
+    ns.hook_summary = not args.quiet   # the one line said even when the hook passes
     ns.command = "check"
     # pre-commit passes only files that exist: add what the commit deletes or renames away
     from .vcs import GitError, staged_removals
@@ -682,8 +733,25 @@ def cmd_hook(args) -> int:
         removed = set()
     ns.files = list(args.files) + sorted(removed)
     if not ns.files:
+        if ns.hook_summary:
+            say("urdf-lint: no robot description file in this commit")
         return 0
     return cmd_check(ns)
+
+
+def _hook_summary(result, files) -> None:
+    """``hook``: one line on every run, passed or failed, with the warnings and infos that do
+    not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
+    from collections import Counter
+    named = {os.path.realpath(f) for f in files}
+    sev = Counter(f.severity for f in result.findings)
+    mine = sum(1 for f in result.findings if os.path.realpath(f.file) in named)
+    n = len(result.models)
+    line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {sev['error']} error(s), "
+            f"{sev['warning']} warning(s), {sev['info']} info")
+    if result.findings:
+        line += f" ({mine} in the committed files)"
+    say(line)
 
 
 def cmd_expand(args) -> int:
@@ -775,18 +843,20 @@ def cmd_render(args) -> int:
             raise UsageError(f"no such file or directory: {p}")
     _refuse_symlinked_out(args.out, args.paths)
     cfg = _load_cfg(args, args.paths)
+    given = list(args.paths)
     redirect = _through_models(args, cfg)
-    affected_by = None
+    affected_by, named = None, set()
     if redirect is not None:
-        args.paths, affected_by = [redirect[0]], redirect[1]
+        args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     _clear_stale(args.out, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from .baseline import filter_baseline
-        result.findings = filter_baseline(cfg.baseline, result.findings)
-    _note_unused(result, _Out(args), affected_by or ())
+        result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)
+    _note_unused(result, _Out(args), named)
+    _no_models_warning(given, result, _Out(args))
     missed = _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
@@ -836,6 +906,8 @@ def cmd_diff(args) -> int:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
         say(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}")
+    if result.no_recordings:
+        _no_recordings_note(result.no_recordings)
     from .emit import report_internal
     report_internal(result.internal)
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
@@ -867,9 +939,11 @@ def cmd_generate(args) -> int:
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     status = 0
+    outputs = stale = failed = 0
     for job in discover_models(args.paths, cfg, resolver).jobs:
         if not job.output:
             continue
+        outputs += 1
         named = header_source(job.output, resolver.roots) if os.path.exists(job.output) else None
         shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
         res = expand_file(job.entry, job.args, resolver,
@@ -880,10 +954,12 @@ def cmd_generate(args) -> int:
             say(f"{_safe_text(display_path(e.file))}:{e.line}:{e.col}: {e.code} "
                 f"{_safe_text(e.message)}")
             status = 1
+            failed += 1
             continue
         if stale_at(job.output, res.xml) is None:
             continue
         status = 1
+        stale += 1
         if named and res.xml:   # keep the header's own name for the source: no churn
             head, rest = res.xml[:1024], res.xml[1024:]
             res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
@@ -902,7 +978,21 @@ def cmd_generate(args) -> int:
                 continue
             tell(f"regenerated {_safe_text(display_path(job.output))} from "
                  f"{_safe_text(display_path(job.entry))}")
+    tell(_generate_summary(outputs, stale, failed, args.check))
     return status
+
+
+def _generate_summary(outputs, stale, failed, check) -> str:
+    """``generate``: one line, also when everything was up to date."""
+    if not outputs:
+        return ("urdf-lint generate: no generated URDF found (a models entry with 'output', or a "
+                ".urdf whose header names its xacro)")
+    done = "would be regenerated" if check else "regenerated"
+    parts = [f"{stale} {done}" if stale else "all up to date" if not failed else ""]
+    if failed:
+        parts.append(f"{failed} xacro(s) did not expand")
+    return (f"urdf-lint generate: {outputs} generated URDF(s) checked, "
+            + ", ".join(p for p in parts if p) + ".")
 
 
 def cmd_clean(args) -> int:

@@ -57,7 +57,7 @@ def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
     if cfg.baseline:
         from .baseline import filter_baseline
         before = len(result.findings)
-        result.findings = filter_baseline(cfg.baseline, result.findings)
+        result.findings = filter_baseline(cfg.baseline, result.findings, out.note)
         out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
                  f"({display_path(cfg.baseline)})")
     fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")

@@ -61,8 +61,14 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         raise UsageError("--fix/--diff cannot be combined with --write-baseline")
     if args.add_suppressions:
         return _add_suppressions(args, cfg, resolver, out, color_mode)
+    memo = None
+    if not getattr(args, "no_cache", False):
+        from .cache import Cache
+        from .fixmemo import FixMemo
+        cache = Cache.for_paths(args.paths, cfg)
+        memo = FixMemo(cache) if not cache.refused else None
     outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                      unsafe=args.unsafe_fixes, diff_only=args.diff)
+                      unsafe=args.unsafe_fixes, diff_only=args.diff, memo=memo)
     report_internal(outcome.result.internal)
     if args.diff:
         sys.stdout.write(outcome.diff)

@@ -302,12 +302,22 @@ def _expected(tree, rep, fixed_keys):
 
 
 def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
-            in_process: bool = False) -> FixOutcome:
+            in_process: bool = False, memo=None) -> FixOutcome:
+    """``memo`` (a :class:`urdf_lint.fixmemo.FixMemo`): the fixes earlier runs rolled back,
+    not tried again while nothing they depend on changed; this run's rollbacks are added."""
     from .pipeline import run_check
     before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                               in_process=in_process)
     before_result.findings = inside_paths(before_result.findings, paths)
     chosen, _, refused = candidates(before_result.findings, unsafe)
+    keys: dict = {}
+    if memo is not None:
+        from .fixmemo import fix_key
+        keys = {_fkey(p): fix_key(p, before_result.models) for p in chosen}
+        earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
+        refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
+                        "it depends on changes") for p, why in earlier if why]
+        chosen = [p for p, why in earlier if not why]
     originals: dict = {}
     if diff_only:
         new = edited_sources(chosen, originals)
@@ -350,5 +360,9 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
         for f in written:     # never leave half-fixed sources behind
             fsbound.rewrite(f, originals[f], paths)
         raise
+    if memo is not None:
+        for p, why in rolled:
+            memo.remember(keys.get(_fkey(p)), why)
+        memo.save()
     changed = sorted(f for f in written if originals.get(f) is not None)
     return FixOutcome(result, chosen, rolled, changed, "", refused)

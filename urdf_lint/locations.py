@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import re
 from typing import NamedTuple
 
 
@@ -43,7 +44,11 @@ _displayed: dict = {}
 
 
 def display_path(path: str, base: str | None = None) -> str:
-    """A path relative to ``base`` (default: the working directory) when it lies below it.
+    """A path as reports show it: relative to ``base`` (default: the working directory) when
+    it lies below it; with ``..`` when it lies elsewhere in the git repository or colcon
+    workspace that holds ``base`` (a sibling package, a mesh folder above): the same text on
+    every checkout, so baselines and CI logs do not depend on where the repository is. Only
+    a file outside all of them (``/opt/ros/...``) keeps its absolute path.
     Remembered per (path, base): a report names the same few files thousands of times."""
     if not path:
         return "<unknown>"
@@ -55,7 +60,10 @@ def display_path(path: str, base: str | None = None) -> str:
             rel = os.path.relpath(path, base)
         except ValueError:
             rel = ".."
-        shown = path if rel.startswith("..") else rel
+        if rel.startswith("..") and not _inside(os.path.abspath(path), project_root(base)):
+            shown = path
+        else:
+            shown = rel
         if len(_displayed) > 50000:
             _displayed.clear()
         _displayed[key] = shown
@@ -122,3 +130,63 @@ def clashing_names(named: dict) -> dict:
     for model, name in named.items():
         by.setdefault(name, set()).add(model)
     return {n: sorted(ms) for n, ms in by.items() if len(ms) > 1}
+
+
+def _inside(path: str, top: str) -> bool:
+    return path == top or path.startswith(top.rstrip(os.sep) + os.sep)
+
+
+_roots: dict = {}
+
+
+def project_root(base: str) -> str:
+    """The widest folder whose files are shown relative to ``base``: the colcon workspace
+    holding ``base``, else the top of its git work tree, else ``base``. Found by looking at
+    the folders above (no git call: workers, in their sandbox, show paths too)."""
+    base = os.path.abspath(base)
+    top = _roots.get(base)
+    if top is None:
+        top = base
+        for d in [base, *_parents(base)]:
+            if os.path.lexists(os.path.join(d, ".git")):
+                top = d
+                break
+        try:
+            from .workspace import _find_workspace_cached
+            ws = _find_workspace_cached(base)
+        except (OSError, ValueError):   # a folder the sandbox may not list
+            ws = None
+        if ws and _inside(top, ws):
+            top = ws
+        _roots[base] = top
+    return top
+
+
+def _parents(d: str):
+    while True:
+        up = os.path.dirname(d)
+        if up == d:
+            return
+        yield up
+        d = up
+
+
+# an absolute path inside a message ("looked for /home/.../meshes/x.stl"), up to the first
+# character that ends a path in the messages' wording
+_PATH_TAIL = r"(?=[/\s'\"(),;:\]]|$)[^\s'\"(),;:\]]*"
+
+
+def portable(text: str, base: str | None = None) -> str:
+    """``text`` (a finding's message) with every absolute path below the project root of
+    ``base`` (default: the working directory) shown as :func:`display_path` shows it."""
+    if not text or os.sep not in text:
+        return text
+    base = base or os.getcwd()
+    top = project_root(base)
+    if len(top) <= 1:
+        return text
+    for root in {top, os.path.realpath(top)}:
+        if root in text:
+            text = re.sub(re.escape(root) + _PATH_TAIL,
+                          lambda m: display_path(m.group(0), base), text)
+    return text

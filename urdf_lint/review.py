@@ -134,6 +134,7 @@ class DiffResult:
     base_expanded: int = 0
     internal: list = field(default_factory=list)
     snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
+    no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
 
 
 def _key(rel_entry: str, args: dict) -> str:
@@ -538,7 +539,7 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
 def _finish_recordings(result, recorder, recordings) -> None:
     """Wait for the recorder (or write here without one); a recording that could not be
     written is a snapshot problem, except when rerun is not installed (no .rrd then, as
-    ``--no-rrd``)."""
+    ``--no-rrd``, and ``result.no_recordings`` says why once)."""
     from .recording import NO_RERUN, write_recording
     if not recordings:
         return
@@ -551,7 +552,9 @@ def _finish_recordings(result, recorder, recordings) -> None:
         why = done.get(path, "not written")
         if why is None:
             info["rrd"] = path
-        elif why != NO_RERUN:
+        elif why == NO_RERUN:   # an optional part: the pictures are made, said once
+            result.no_recordings = why
+        else:
             result.snapshot_problems.append((key, f"no recording: {why}"))
 
 

@@ -11,8 +11,9 @@ JSON schema (``--format json``), version 1::
                   "cached": bool (result reused from .urdf_lint_cache),
                   "links": int, "joints": int, "meshes": int}],
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
-                    "message": str, "file": str (relative to cwd when below it), "line": int,
-                    "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
+                    "message": str, "file": str (relative to cwd; ``..`` inside its repository
+                    or workspace), "line": int, "col": int,
+                    "chain": [[file, line, col], ...]  (macro call sites, outermost first),
                     "models": [str, ...],
                     "fix": {"description": str, "applicability": "safe"|"unsafe",
                             "edits": [{"file": str, "start": int, "end": int, "text": str}]

@@ -4,7 +4,7 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
-from ..locations import Origin, display_path
+from ..locations import Origin, display_path, portable
 from .escape import escape_text
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
@@ -92,6 +92,13 @@ def fold(items, shown: int = MODELS_SHOWN) -> str:
     items = [escape_text(i) for i in items]
     head = ", ".join(items[:shown])
     return head + (f" and {len(items) - shown} more" if len(items) > shown else "")
+
+
+def message(f) -> str:
+    """A finding's message as every format shows it: a path in it (``looked for
+    /home/.../meshes/x.stl``) is shown as the locations are, relative (see
+    :func:`urdf_lint.locations.portable`)."""
+    return portable(f.message)
 
 
 def location(f) -> str:

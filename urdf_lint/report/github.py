@@ -3,7 +3,7 @@ request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
 from __future__ import annotations
 
 from ..locations import display_path
-from .base import BaseFormatter, chain_text
+from .base import BaseFormatter, chain_text, message
 from .escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
@@ -22,7 +22,7 @@ class GithubFormatter(BaseFormatter):
     help = "GitHub Actions annotations (default when GITHUB_ACTIONS is set)"
 
     def handle(self, f):
-        msg = f.message
+        msg = message(f)
         ch = chain_text(f)
         if ch:
             msg += f" ({ch})"

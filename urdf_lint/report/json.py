@@ -5,7 +5,7 @@ import json
 
 from .. import __version__
 from ..locations import display_path
-from .base import BaseFormatter, counts, summary
+from .base import BaseFormatter, counts, message, summary
 
 
 class JsonFormatter(BaseFormatter):
@@ -19,7 +19,7 @@ class JsonFormatter(BaseFormatter):
                            "name": m.stats.get("name", ""), "links": m.stats.get("links", 0),
                            "joints": m.stats.get("joints", 0), "meshes": m.stats.get("meshes", 0)}
                           for m in result.models],
-               "findings": [dict(f.to_dict(), file=display_path(f.file),
+               "findings": [dict(f.to_dict(), file=display_path(f.file), message=message(f),
                                  chain=[[display_path(c[0]), c[1], c[2]] for c in f.chain])
                             for f in result.findings],
                "summary": summary(result)}

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from ..locations import display_path
-from .base import BaseFormatter, chain_text
+from .base import BaseFormatter, chain_text, message
 from .escape import escape_xml
 
 
@@ -18,11 +18,11 @@ class JunitFormatter(BaseFormatter):
         cases = []
         for f in result.findings:
             name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
-            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}") \
+            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {message(f)}") \
                 + "\n" + escape(chain_text(f))
             tag = "failure"
             cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'
-                         f'<{tag} type={quoteattr(f.severity)} message={quoteattr(f.message)}>'
+                         f'<{tag} type={quoteattr(f.severity)} message={quoteattr(message(f))}>'
                          f'{body}</{tag}></testcase>')
         for m in result.models:
             if not any(m.label in f.models for f in result.findings):

@@ -6,7 +6,7 @@ import os
 
 from .. import __version__
 from ..locations import display_path
-from .base import BaseFormatter
+from .base import BaseFormatter, message
 
 _SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
@@ -53,7 +53,7 @@ class SarifFormatter(BaseFormatter):
         results = []
         for f in result.findings:
             res = {"ruleId": f.code, "ruleIndex": index[f.code], "level": _SARIF_LEVEL[f.severity],
-                   "message": {"text": f.message},
+                   "message": {"text": message(f)},
                    "locations": [{"physicalLocation": {
                        "artifactLocation": {"uri": _uri(f.file)},
                        "region": {"startLine": max(1, f.line), "startColumn": max(1, f.col)}}}]}

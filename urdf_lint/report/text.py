@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..locations import display_path
 from .escape import escape_text
-from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location
+from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location, message
 
 
 class TextFormatter(BaseFormatter):
@@ -25,7 +25,7 @@ class TextFormatter(BaseFormatter):
             self._current = path
         code = self.paint(f.code, self.severity_color(f.severity))
         name = self.paint(f"[{f.name}]", DIM)
-        w(f"{location(f)}: {code} {escape_text(f.message)} {name}\n")
+        w(f"{location(f)}: {code} {escape_text(message(f))} {name}\n")
         if self.options.show_source:
             w(self.code_frame(f))
         ch = chain_text(f)
