@@ -1,4 +1,4 @@
-"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|clean|doctor.
+"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|generate|format|clean|doctor.
 
 Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error, 130 Ctrl-C.
 Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
@@ -314,6 +314,11 @@ def _cmd_generate(sub, raw):
     _add_inputs(g)
 
 
+def _cmd_format(sub, raw):
+    from .formatrun import add_parser
+    add_parser(sub, raw, _add_inputs)
+
+
 def _cmd_doctor(sub, raw):
     sub.add_parser("doctor", help="show which protections the worker sandbox has here",
                    description="Show which OS protections the workers get on this machine "
@@ -336,6 +341,7 @@ _COMMAND_PARSERS = {
     "render": _cmd_render,
     "diff": _cmd_diff,
     "generate": _cmd_generate,
+    "format": _cmd_format,
     "doctor": _cmd_doctor,
     "clean": _cmd_clean,
 }
@@ -868,6 +874,11 @@ def cmd_generate(args) -> int:
     return status
 
 
+def cmd_format(args) -> int:
+    from .formatrun import cmd_format as run
+    return run(args, _load_cfg, _parse_package_paths)
+
+
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
@@ -877,7 +888,8 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean,
+            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "format": cmd_format,
+            "clean": cmd_clean,
             "doctor": cmd_doctor}
 
 
