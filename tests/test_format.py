@@ -100,6 +100,15 @@ def test_text_mixed_content_cdata_pi_and_xml_space_are_kept():
         assert piece in out
 
 
+def test_doctype_with_an_internal_subset_is_kept():
+    src = ('<?xml version="1.0"?>\n<!DOCTYPE robot [\n  <!ENTITY w "0.1"> <!-- a > b -->\n]>\n'
+           '<robot name="r"><link name="a"><e>&w;</e></link></robot>')
+    out = fmt(src)
+    assert out.startswith('<?xml version="1.0"?>\n<!DOCTYPE robot [\n  <!ENTITY w "0.1"> '
+                          '<!-- a > b -->\n]>\n<robot name="r">\n  <link name="a">\n'
+                          '    <e>&w;</e>\n')
+
+
 def test_comments_stay_where_they_are():
     src = ('<?xml version="1.0"?>\n<!-- head -->\n<robot name="r"> <!-- on the robot line -->\n'
            '<link name="a"/>   <!-- after a -->\n<!-- own line\n   two -->\n<link name="b"/>\n'
@@ -203,12 +212,15 @@ def test_config_table_isolated_and_exclude(pkg):
     assert p.returncode == 2 and "--line-length" in p.stderr
 
 
+NS_MACRO = (f'<robot {X}>\n<xacro:macro name="ns"><gazebo><plugin name="p" filename="x.so">'
+            '<robotNamespace><xacro:if value="1">/arm</xacro:if></robotNamespace>'
+            '</plugin></gazebo></xacro:macro>\n</robot>\n')
+
+
 def test_a_layout_that_would_change_the_robot_is_refused(pkg):
     # the text of <robotNamespace> comes from an xacro:if inside it: laying the xacro:if out on
     # its own line would put the new whitespace into the expanded robot's text
-    inc = (f'<robot {X}>\n<xacro:macro name="ns"><gazebo><plugin name="p" filename="x.so">'
-           '<robotNamespace><xacro:if value="1">/arm</xacro:if></robotNamespace>'
-           '</plugin></gazebo></xacro:macro>\n</robot>\n')
+    inc = NS_MACRO
     (pkg / "urdf" / "ns.xacro").write_text(inc)
     main = UGLY.replace("</robot>", '<xacro:include filename="ns.xacro"/><xacro:ns/>\n</robot>')
     (pkg / "urdf" / "r.urdf.xacro").write_text(main)
@@ -296,3 +308,17 @@ def test_precommit_hook_entry_formats_the_files_it_is_given(pkg):
     p = run_cli(*hook["entry"].split()[1:], "urdf/r.urdf.xacro", cwd=pkg)   # as pre-commit runs it
     assert p.returncode == 0 and "1 file(s) reformatted" in p.stderr, p.stderr
     assert other.read_text() == '<robot name="o"><link name="a"/></robot>'   # not given: untouched
+
+
+def test_the_proof_sees_models_the_config_excludes(pkg):
+    (pkg / "urdf" / "ns.xacro").write_text(NS_MACRO)
+    (pkg / "test").mkdir()
+    (pkg / "test" / "t.urdf.xacro").write_text(
+        f'<robot name="t" {X}><xacro:include filename="$(find fmt_pkg)/urdf/ns.xacro"/>'
+        '<link name="a"/><xacro:ns/></robot>')
+    (pkg / "urdf" / "r.urdf.xacro").write_text(UGLY.replace("<robot ", "<robot ", 1))
+    (pkg / "pyproject.toml").write_text('[tool.urdf-lint]\nexclude = ["test/*"]\n')
+    p = run_cli("format", "urdf/ns.xacro", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    assert (pkg / "urdf" / "ns.xacro").read_text() == NS_MACRO
+    assert "left alone: formatting would change the robot test/t.urdf.xacro" in p.stderr, p.stderr

@@ -6,7 +6,8 @@ and prove that no robot changes.
    and laid out; the guard of :func:`urdf_lint.formatter.check_same` runs on each result.
 2. **The proof.** The models of the repository that read a file that would change (the
    include graph of :mod:`urdf_lint.discovery`, plus the models whose includes only expansion
-   resolves, kept when their recorded inputs meet a changed file) are expanded in the
+   resolves, kept when their recorded inputs meet a changed file; ``exclude`` and
+   ``discover = false`` do not hide a model from the proof) are expanded in the
    sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
    new layouts in place of the files (``LintSettings.overlay``: nothing is written while it
    is proved). The two robots are compared as canonical XML (comments, layout whitespace and
@@ -178,7 +179,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
     root = repository_root(paths)
     scan = [root] + [p for p in paths if not inside(os.path.realpath(p), os.path.realpath(root))]
     resolver = build_resolver(scan, cfg, package_paths)
-    disc = discover_models(scan, cfg, resolver)
+    # every model that may read a changed file, also those the config leaves out of linting
+    every = dataclasses.replace(cfg, exclude=[], discover=True)
+    disc = discover_models(scan, every, resolver)
     graph = disc.graph
 
     def reach(entry):
