@@ -168,6 +168,10 @@ def test_schema_is_complete_and_documented():
                f"| {key.help} |")
         assert row in readme, f"README's key table is out of date for {key.name}: {row}"
     assert set(KEYS) == {k.name for k in SCHEMA}
+    from urdf_lint.config import FORMAT_SCHEMA   # [tool.urdf-lint.format]
+    for key in FORMAT_SCHEMA:
+        row = (f"| `{key.name}` | {key.type.expected} | {key.default_text} | {key.help} |")
+        assert row in readme, f"README's [format] table is out of date for {key.name}: {row}"
 
 
 def test_baseline_key_is_relative_to_the_config(pkg, capsys):

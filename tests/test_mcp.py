@@ -12,8 +12,6 @@ import pytest
 
 from conftest import DESCRIPTIONS
 
-pytest.importorskip("mcp")
-
 
 def _git(cwd, *args):
     subprocess.run(["git", *args], cwd=cwd, check=True, capture_output=True)
@@ -42,6 +40,7 @@ def _payload(result) -> dict:
 
 
 def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
+    pytest.importorskip("mcp")
     import anyio
     from mcp import ClientSession, StdioServerParameters
     from mcp.client.stdio import stdio_client
@@ -94,3 +93,28 @@ def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
     assert pngs and all(p.startswith(str(repo)) and p.endswith(".png") for p in pngs), seen["render"]
     assert open(pngs[0], "rb").read(8) == b"\x89PNG\r\n\x1a\n"
     assert _is_error(seen["outside"]) and "outside the server's root" in str(seen["outside"].content)
+
+
+def test_without_the_extra_it_says_how_to_install_it(monkeypatch, capsys, tmp_path):
+    monkeypatch.setitem(sys.modules, "mcp", None)     # as if urdf-lint[mcp] were not installed
+    for name in [m for m in sys.modules if m.startswith("mcp.")]:
+        monkeypatch.setitem(sys.modules, name, None)
+    from urdf_lint.cli import main
+    assert main(["mcp", "--root", str(tmp_path)]) == 2
+    assert "pip install 'urdf-lint[mcp]'" in capsys.readouterr().err
+
+
+def test_paths_outside_the_root_are_refused_before_anything_runs(tmp_path):
+    from urdf_lint.mcp_server import OutsideRoot, Tools
+    root = tmp_path / "root"
+    (root / "sub").mkdir(parents=True)
+    (root / "link").symlink_to(tmp_path)              # a symlink out of the root
+    tools = Tools(str(root))
+    assert tools.paths(["sub", "."]) == ["sub", "."]
+    for bad in ["..", str(tmp_path), "link", "sub/../../x"]:
+        with pytest.raises(OutsideRoot):
+            tools.paths([bad])
+    with pytest.raises(OutsideRoot):
+        tools.expand("../r.xacro")
+    with pytest.raises(ValueError):
+        tools.diff("--output=/tmp/x")
