@@ -34,7 +34,6 @@ SUFFIXES = (".urdf", ".xacro")
 
 def add_parser(sub, raw, add_inputs) -> None:
     p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
-                       formatter_class=raw,
                        description="Format xacro and URDF files: one element per line, "
                                    "children indented, long tags wrapped; comments, text and "
                                    "${...} kept byte for byte. Every model that reads a "
