@@ -160,6 +160,7 @@ ALLOWED_WRITES = {
     ("cli.py", "_main"): "--version: urdf-lint's own text",
     ("fixcli.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
                                 "every other line starts with ' ', '+', '-' or '@'",
+    ("formatrun.py", "cmd_format"): "format --diff: the same patch, from fixrun.unified_diff",
     ("sandbox.py", "enter_worker"): "a worker's own note: the kernel's reasons",
 }
 

@@ -1,4 +1,5 @@
-"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|clean|doctor.
+"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|generate|format|mcp|clean|
+doctor.
 
 Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error, 130 Ctrl-C.
 Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
@@ -317,6 +318,16 @@ def _cmd_generate(sub, raw):
     _add_inputs(g)
 
 
+def _cmd_format(sub, raw):
+    from .formatrun import add_parser
+    add_parser(sub, raw, _add_inputs)
+
+
+def _cmd_mcp(sub, raw):
+    from .mcp_server import add_parser
+    add_parser(sub, raw)
+
+
 def _cmd_doctor(sub, raw):
     sub.add_parser("doctor", help="show which protections the worker sandbox has here",
                    description="Show which OS protections the workers get on this machine "
@@ -339,6 +350,8 @@ _COMMAND_PARSERS = {
     "render": _cmd_render,
     "diff": _cmd_diff,
     "generate": _cmd_generate,
+    "format": _cmd_format,
+    "mcp": _cmd_mcp,
     "doctor": _cmd_doctor,
     "clean": _cmd_clean,
 }
@@ -995,6 +1008,16 @@ def _generate_summary(outputs, stale, failed, check) -> str:
             + ", ".join(p for p in parts if p) + ".")
 
 
+def cmd_format(args) -> int:
+    from .formatrun import cmd_format as run
+    return run(args, _load_cfg, _parse_package_paths)
+
+
+def cmd_mcp(args) -> int:
+    from .mcp_server import cmd_mcp as run
+    return run(args)
+
+
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
@@ -1004,7 +1027,8 @@ def cmd_clean(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean,
+            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "format": cmd_format,
+            "mcp": cmd_mcp, "clean": cmd_clean,
             "doctor": cmd_doctor}
 
 

@@ -206,6 +206,37 @@ class RuleOptions(Type):
         return {k: dict(x) for k, x in v.items()}
 
 
+class FormatKey(Type):
+    """``format``: the output format (a string), or the table ``[format]`` of
+    ``urdf-lint format`` (its keys in :data:`FORMAT_SCHEMA`)."""
+
+    def __init__(self, output: Choice):
+        self.output = output
+
+    @property
+    def expected(self):
+        return (f"{self.output.expected}; or a table [format] of "
+                f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
+
+    def check(self, v):
+        if not isinstance(v, dict):
+            return self.output.check(v)
+        out = {}
+        for k, x in v.items():
+            key = FORMAT_KEYS.get(k)
+            if key is None:
+                raise _Bad(f"one of {', '.join(FORMAT_KEYS)} in [format]"
+                           f"{did_you_mean(str(k), FORMAT_KEYS)}", x, k)
+            try:
+                out[k] = key.type.check(x)
+            except _Bad as e:
+                raise _Bad(e.expected, x, k) from None
+        return out
+
+    def from_cli(self, s):
+        return self.output.from_cli(s)
+
+
 @dataclass(frozen=True)
 class Key:
     """One configuration key: its name, type, default and help."""
@@ -264,7 +295,8 @@ SCHEMA: tuple[Key, ...] = (
     Key("rule-options", RuleOptions(), {}, "options of single rules"),
     Key("jobs", Number(int, 0), None, "parallel workers"),
     Key("cache-dir", Str(), None, "folder of the result cache"),
-    Key("format", Choice(_formats), None, "output format"),
+    Key("format", FormatKey(Choice(_formats)), None,
+        "output format; as a table [format], the settings of urdf-lint format"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file"),
     Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
     Key("views", Choice(("single", "sheet")), None,
@@ -274,6 +306,17 @@ SCHEMA: tuple[Key, ...] = (
 )
 KEYS = {k.name: k for k in SCHEMA}
 KNOWN_KEYS = set(KEYS)
+
+# [tool.urdf-lint.format]: the settings of `urdf-lint format` (urdf_lint/formatter.py)
+FORMAT_SCHEMA: tuple[Key, ...] = (
+    Key("indent", Number(int, 0, "spaces"), 2, "spaces per level of nesting"),
+    Key("line-length", Number(int, 0, "characters"), 100,
+        "a start tag longer than this gets one attribute per line"),
+    Key("attribute-order", Choice(("keep", "canonical")), "keep",
+        "keep: attributes as written; canonical: name first, then the URDF/xacro schema order"),
+    Key("exclude", StrList("globs"), [], "paths (globs) not to format, on top of exclude"),
+)
+FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
 
 
 @dataclass
@@ -310,6 +353,7 @@ class Config:
     discover: bool = True           # false: lint only the configured models
     views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
     forward_axis: str = "+x"        # snapshots: the robot's forward axis
+    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
@@ -445,6 +489,9 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = specs
     elif key.name == "baseline" and value is not None:
         value = str((base / value).resolve())
+    elif key.name == "format" and isinstance(value, dict):
+        cfg.format_options = value
+        return
     setattr(cfg, key.attr, value)
 
 
@@ -508,6 +555,16 @@ def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config
             value = os.path.abspath(value)
         setattr(cfg, key.attr, value)
     return cfg
+
+
+def format_option(name: str, s: str):
+    """The value of a command-line flag of ``urdf-lint format`` (``--line-length``), checked
+    by the key's type like the same key under [format]."""
+    key = FORMAT_KEYS[name]
+    try:
+        return key.type.check(key.type.from_cli(s))
+    except _Bad as e:
+        raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
 
 
 def _did_you_mean_file(rel: str, root: Path) -> str:

@@ -65,6 +65,9 @@ class LintSettings:
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
     diff_render: bool = False                # diff --render: the geometry of its picture too
     diff_rrd: bool = True                    # diff --render: also the plan of its recording
+    # urdf-lint format: real path -> the bytes expansion reads instead of the file's (the
+    # layout being proved; nothing is written while it is)
+    overlay: dict = field(default_factory=dict)
 
     # read-only dict-style access, for worker start-up code written against the old dict
     def __getitem__(self, key: str):

@@ -198,7 +198,8 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelRepor
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from .expansion import expand_file
     exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
-                      display_name=job.display_name, expr_policy=settings.expr_policy)
+                      display_name=job.display_name, expr_policy=settings.expr_policy,
+                      overlay=settings.overlay)
     out.deps = list(exp.deps)
     out.problems.extend(exp.notes)
     if exp.error is not None:

@@ -96,6 +96,24 @@ def parse_directives(path: str) -> list[Directive]:
     data = _read_source(path)
     if data is None:
         return []
+    return directives_in(data, path)
+
+
+def coverage(data: bytes, path: str = "") -> list[tuple[int, str, frozenset]]:
+    """(line, "kind codes", the ordinals of the elements it covers) for every directive in
+    ``data``: what ``urdf-lint format`` must keep when it moves lines."""
+    spans = _element_spans(data)
+    out = []
+    for d in directives_in(data, path):
+        if d.kind in KINDS:
+            what = f"{d.kind} {' '.join(d.codes)}".strip()
+            out.append((d.line, what, frozenset(i for i, s in enumerate(spans)
+                                                if _covers(d, path, *s[0]))))
+    return out
+
+
+def directives_in(data: bytes, path: str) -> list[Directive]:
+    """The directives in the bytes of the source ``path``."""
     text = data.decode("utf-8", "replace")
     out = []
     spans = None
