@@ -1,7 +1,9 @@
 """A joint `<limit>` lacks `effort` or `velocity`, or one of them is not positive.
 
-Why: URDF parsers require both on revolute and prismatic joints; a velocity of 0 means the
-joint can never move under control (controllers clamp to it). `effort="0"` is different: it is
+Why: URDF parsers require both on revolute and prismatic joints. A velocity of 0 loads in
+every consumer measured (urdfdom 6.0.0, MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, Drake
+1.51.1, the Python parsers: /work/shared/notes/consumer-facts.md), often as a placeholder, but
+the joint can never move under ros2_control or MoveIt (they clamp to it): a warning. `effort="0"` is different: it is
 the ROS-Industrial convention for position-controlled industrial arms, whose drives are not
 torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on purpose). It is
 reported as a warning naming that convention, because it still breaks effort-based controllers
@@ -56,5 +58,8 @@ def check(model, ctx):
                 yield lim, f"joint '{j.get('name')}': limit {a}={v!r} is not a number"
             elif n == 0 and a == "effort" and required:
                 yield lim, f"joint '{j.get('name')}': limit effort=0 is {ZERO_EFFORT}", zero_effort
+            elif n == 0 and a == "velocity" and required:
+                yield lim, (f"joint '{j.get('name')}': limit velocity=0: every consumer loads it, "
+                            "but ros2_control and MoveIt can never move the joint"), "warning"
             elif n <= 0 and required:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v} must be positive"

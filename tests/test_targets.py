@@ -1,0 +1,212 @@
+"""Consumer targets (issue 25): the config key ``targets`` / ``--target``, per-target severities
+declared by the rules, findings that name the target that makes them errors, and the severity
+corrections measured against real consumers (/work/shared/notes/consumer-facts.md)."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from conftest import make_package, run_cli
+
+LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+
+
+def lint(pkg, *extra):
+    p = run_cli("check", ".", "--no-cache", "--format", "json", "--fail-on", "never", *extra,
+                cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)["findings"]
+
+
+def of(fs, code):
+    return [(f["severity"], f.get("severity_from", [])) for f in fs if f["code"] == code]
+
+
+def pkg_with(tmp_path, body, name="urdf/r.urdf"):
+    return make_package(tmp_path, "p", {name: body})
+
+
+def inertial(mass, t="ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\""):
+    return f'<inertial><mass value="{mass}"/><inertia {t}/></inertial>'
+
+
+MOVING_NO_INERTIAL = f"""<robot name="r">
+  <link name="base"/><link name="arm"/>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+</robot>
+"""
+
+
+# -- the key and the flag ----------------------------------------------------------------------
+def test_targets_key_is_validated(tmp_path):
+    pkg = pkg_with(tmp_path, MOVING_NO_INERTIAL)
+    (pkg / "urdf-lint.toml").write_text('targets = ["mujocoo"]\n')
+    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    assert p.returncode == 2 and "urdf-lint.toml:1: invalid value for targets" in p.stderr, p.stderr
+    assert 'did you mean "mujoco"' in p.stderr, p.stderr
+    (pkg / "urdf-lint.toml").write_text('targets = []\n')
+    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    assert p.returncode == 2 and "not empty" in p.stderr, p.stderr
+    (pkg / "urdf-lint.toml").unlink()
+    p = run_cli("check", ".", "--no-cache", "--target", "gazeboo", cwd=pkg)
+    assert p.returncode == 2 and "--targets: invalid value" in p.stderr, p.stderr
+
+
+def test_default_target_is_ros_and_mujoco_raises_ul601(tmp_path):
+    pkg = pkg_with(tmp_path, MOVING_NO_INERTIAL)
+    assert of(lint(pkg), "UL601") == [("warning", [])]
+    assert of(lint(pkg, "--target", "mujoco"), "UL601") == [("error", ["mujoco"])]
+    # several targets: the highest wins, and the target that makes it an error is named
+    assert of(lint(pkg, "--target", "ros,gazebo", "--target", "mujoco"), "UL601") == \
+        [("error", ["mujoco"])]
+    assert of(lint(pkg, "--target", "gazebo"), "UL601") == [("warning", [])]
+    (pkg / "urdf-lint.toml").write_text('targets = ["ros", "mujoco"]\n')
+    assert of(lint(pkg), "UL601") == [("error", ["mujoco"])]
+    # a severity override still wins
+    (pkg / "urdf-lint.toml").write_text('targets = ["mujoco"]\nseverity = { UL601 = "info" }\n')
+    assert of(lint(pkg), "UL601") == [("info", [])]
+
+
+def test_text_and_exit_code_name_the_target(tmp_path):
+    pkg = pkg_with(tmp_path, MOVING_NO_INERTIAL)
+    p = run_cli("check", ".", "--no-cache", "--select", "UL601", cwd=pkg)
+    assert p.returncode == 0 and "[missing-inertial]\n" in p.stdout, p.stdout
+    p = run_cli("check", ".", "--no-cache", "--select", "UL601", "--target", "mujoco", cwd=pkg)
+    assert p.returncode == 1 and "[missing-inertial] [mujoco]\n" in p.stdout, p.stdout
+    p = run_cli("check", ".", "--no-cache", "--select", "UL601", "--target", "mujoco",
+                "--format", "sarif", cwd=pkg)
+    (res,) = json.loads(p.stdout)["runs"][0]["results"]
+    assert res["level"] == "error" and res["properties"]["severityFrom"] == ["mujoco"]
+
+
+def test_rules_page_shows_the_targets_table():
+    p = run_cli("rules", "--format", "markdown")
+    assert p.returncode == 0, p.stderr
+    assert "## Consumer targets" in p.stdout
+    assert "| Code | ros | gazebo | mujoco | drake | pinocchio | pybullet | isaac | python |" \
+        in p.stdout
+    assert "| [UL601](#ul601-missing-inertial) | warn | warn | error | warn | warn | warn | warn " \
+           "| warn |" in p.stdout
+    p = run_cli("rule", "UL601")
+    assert "Per consumer target (config 'targets'): mujoco error, gazebo warning" in p.stdout
+
+
+def test_a_rule_table_is_checked():
+    import types
+    from urdf_lint.registry import rule_from_module
+    mod = types.ModuleType("urdf_lint.rules.ul997_fake")
+    mod.CODE, mod.NAME, mod.SEVERITY, mod.check = "UL997", "fake", "error", lambda m, c: iter(())
+    mod.TARGETS = {"mojuco": "error"}
+    with pytest.raises(RuntimeError, match="unknown target 'mojuco'"):
+        rule_from_module(mod)
+    mod.TARGETS = {"mujoco": "fatal"}
+    with pytest.raises(RuntimeError, match="must be one of"):
+        rule_from_module(mod)
+
+
+def test_resolve():
+    from urdf_lint.targets import resolve
+    assert resolve({"mujoco": "error"}, "warning", ["ros"]) == ("warning", ())
+    assert resolve({"mujoco": "error"}, "warning", ["ros", "mujoco"]) == ("error", ("mujoco",))
+    assert resolve({"*": "off", "mujoco": "warning"}, "warning", ["ros"]) == (None, ())
+    assert resolve({"*": "off", "mujoco": "warning"}, "warning", ["mujoco", "drake"]) == \
+        ("warning", ("mujoco",))
+    assert resolve({"drake": "error", "python": "error"}, "warning",
+                   ["drake", "python", "ros"]) == ("error", ("drake", "python"))
+
+
+# -- severity corrections ----------------------------------------------------------------------
+def test_ul602_zero_mass_between_joints_is_an_error_for_mujoco_only(tmp_path):
+    body = f"""<robot name="r">
+  <link name="base"/>
+  <link name="cross">{inertial(0)}</link>
+  <link name="leg">{inertial(3)}</link>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="cross"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+  <joint name="roll" type="revolute"><parent link="cross"/><child link="leg"/><axis xyz="1 0 0"/>{LIMIT}</joint>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    assert of(lint(pkg), "UL602") == [("warning", [])]
+    assert of(lint(pkg, "--target", "mujoco"), "UL602") == [("error", ["mujoco"])]
+
+
+def test_ul602_tiny_mass_on_a_fixed_frame_is_a_placeholder(tmp_path):
+    body = f"""<robot name="r">
+  <link name="base">{inertial(1)}</link>
+  <link name="arm">{inertial(1)}</link>
+  <link name="tool0">{inertial("1e-9")}</link>
+  <link name="finger">{inertial("1e-9")}</link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+  <joint name="t" type="fixed"><parent link="arm"/><child link="tool0"/></joint>
+  <joint name="f" type="revolute"><parent link="arm"/><child link="finger"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+</robot>
+"""
+    fs = [f for f in lint(pkg_with(tmp_path, body)) if f["code"] == "UL602"]
+    assert [f["message"] for f in fs] == [
+        "link 'finger': mass 1e-09 kg is implausibly small (grams?); Gazebo drops links below "
+        "1e-6 kg"]
+
+
+def _tensor_robot(t, mass="0.01", extra=""):
+    return f"""<robot name="r">
+  <link name="base"/>
+  <link name="a"><inertial><mass value="{mass}"/><inertia {t}/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+{extra}</robot>
+"""
+
+
+def test_ul603_principal_moments(tmp_path):
+    # the issue's hand tensor: the diagonal passes, the principal moments do not
+    t = 'ixx="4.70e-6" ixy="0" ixz="2.5e-6" iyy="3.65e-6" iyz="0" izz="4.70e-6"'
+    pkg = pkg_with(tmp_path, _tensor_robot(t))
+    fs = lint(pkg)
+    assert of(fs, "UL603") == [("warning", [])]
+    assert "principal moments 2.2e-06, 3.65e-06, 7.2e-06 break the triangle inequality" in \
+        [f for f in fs if f["code"] == "UL603"][0]["message"]
+    assert of(lint(pkg, "--target", "mujoco"), "UL603") == [("error", ["mujoco"])]
+    # a written diagonal that fails stays an error for every target
+    t = 'ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.5"'
+    assert of(lint(pkg_with(tmp_path / "d", _tensor_robot(t))), "UL603") == [("error", [])]
+
+
+def test_ul603_float_noise_is_treated_like_zero(tmp_path):
+    body_noise = _tensor_robot('ixx="1e-20" ixy="1e-21" ixz="0" iyy="1e-20" iyz="0" izz="0"',
+                               mass="0")
+    body_zero = _tensor_robot('ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"', mass="0")
+    assert of(lint(pkg_with(tmp_path / "n", body_noise)), "UL603") == []
+    assert of(lint(pkg_with(tmp_path / "z", body_zero)), "UL603") == []
+    # noise in the products of a real tensor is not a defect either
+    t = 'ixx="0.01" ixy="1e-19" ixz="-3e-20" iyy="0.01" iyz="0" izz="0.005"'
+    assert of(lint(pkg_with(tmp_path / "p", _tensor_robot(t))), "UL603") == []
+    # with mass, both twins are the same finding (a body that spins freely)
+    for sub, t in (("mn", 'ixx="1e-20" ixy="0" ixz="0" iyy="1e-20" iyz="0" izz="1e-20"'),
+                   ("mz", 'ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"')):
+        fs = [f for f in lint(pkg_with(tmp_path / sub, _tensor_robot(t, mass="1")))
+              if f["code"] == "UL603"]
+        assert len(fs) == 1 and "all-zero inertia tensor" in fs[0]["message"], (sub, fs)
+
+
+def test_ul603_all_equal_placeholder_on_a_dummy_link(tmp_path):
+    t = 'ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"'
+    assert of(lint(pkg_with(tmp_path / "d", _tensor_robot(t, mass="1e-6"))), "UL603") == []
+    # the same tensor on a real mass is not a placeholder
+    assert of(lint(pkg_with(tmp_path / "r", _tensor_robot(t, mass="2"))), "UL603") == \
+        [("error", [])]
+
+
+def test_axis_material_velocity_are_warnings(tmp_path):
+    body = """<robot name="r">
+  <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="nope"/></visual></link>
+  <link name="b"/><link name="c"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 2"/>
+    <limit lower="-1" upper="1" effort="1" velocity="0"/></joint>
+  <joint name="k" type="revolute"><parent link="a"/><child link="c"/><axis xyz="0 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="-1"/></joint>
+</robot>
+"""
+    fs = lint(pkg_with(tmp_path, body))
+    assert sorted(of(fs, "UL307")) == [("error", []), ("warning", [])]
+    assert of(fs, "UL502") == [("warning", [])]
+    assert sorted(of(fs, "UL304")) == [("error", []), ("warning", [])]
