@@ -181,9 +181,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                                    "DOCTYPE/ENTITY declaration in a robot description; remove it "
                                    "(URDF needs none, and urdf-lint never loads DTDs)",
                                    (entry, line, 1)))
-    root, origins, error = parse_urdf_bytes(entry, data)
-    if error:
-        problems.append(error)
+    root, origins, errors = parse_urdf_bytes(entry, data)
+    problems.extend(errors or ())
     if root is None:
         out.status = Status.FAILED
         return None
