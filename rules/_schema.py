@@ -56,6 +56,46 @@ def is_foreign(el):
     return False
 
 
+# xacro directives: written without their prefix, xacro copies them into the URDF as they are
+XACRO_WORDS = {"macro", "property", "arg", "include", "insert_block", "if", "unless", "call",
+               "element", "attribute", "eval-comments"}
+# children URDF reads once (the first): a second one is ignored
+SINGLE = {
+    "link": {"inertial"},
+    "inertial": {"origin", "mass", "inertia"},
+    "visual": {"origin", "geometry", "material"},
+    "collision": {"origin", "geometry"},
+    "joint": {"origin", "parent", "child", "axis", "calibration", "dynamics", "limit", "mimic",
+              "safety_controller"},
+}
+_MACRO_DEF = None
+
+
+def macro_names(model) -> set:
+    """The names of the xacro macros defined in the files the model was expanded from (read
+    again here, as xacro read them; an empty set for a plain URDF)."""
+    cached = getattr(model, "_macro_names", None)
+    if cached is not None:
+        return cached
+    global _MACRO_DEF
+    import re
+    _MACRO_DEF = _MACRO_DEF or re.compile(rb"<[A-Za-z_][\w.-]*:macro\s[^>]*?name\s*=\s*[\"']([^\"'$]+)")
+    names: set = set()
+    for f in [model.entry, *model.deps]:
+        if not str(f).endswith(".xacro"):
+            continue
+        try:
+            with open(f, "rb") as fh:
+                names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(fh.read()))
+        except OSError:
+            continue
+    try:
+        model._macro_names = names
+    except AttributeError:
+        pass
+    return names
+
+
 def checked_elements(model):
     """Elements of the URDF schema (not namespaced, not inside extension blocks)."""
     for el in model.root.iter():

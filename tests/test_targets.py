@@ -122,8 +122,10 @@ def test_ul602_zero_mass_between_joints_is_an_error_for_mujoco_only(tmp_path):
   <link name="base"/>
   <link name="cross">{inertial(0)}</link>
   <link name="leg">{inertial(3)}</link>
-  <joint name="yaw" type="revolute"><parent link="base"/><child link="cross"/><axis xyz="0 0 1"/>{LIMIT}</joint>
-  <joint name="roll" type="revolute"><parent link="cross"/><child link="leg"/><axis xyz="1 0 0"/>{LIMIT}</joint>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="cross"/>
+    <axis xyz="0 0 1"/>{LIMIT}</joint>
+  <joint name="roll" type="revolute"><parent link="cross"/><child link="leg"/>
+    <axis xyz="1 0 0"/>{LIMIT}</joint>
 </robot>
 """
     pkg = pkg_with(tmp_path, body)
@@ -210,3 +212,97 @@ def test_axis_material_velocity_are_warnings(tmp_path):
     assert sorted(of(fs, "UL307")) == [("error", []), ("warning", [])]
     assert of(fs, "UL502") == [("warning", [])]
     assert sorted(of(fs, "UL304")) == [("error", []), ("warning", [])]
+
+
+# -- new rules and UL001 -----------------------------------------------------------------------
+TRANSMISSIONS = """<robot name="r">
+  <link name="a"/><link name="b"/><link name="c"/>
+  <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <joint name="j2" type="fixed"><parent link="a"/><child link="c"/><mimic joint="j1"/></joint>
+  <transmission name="t"><joint name="j1"/><actuator name="m1"/></transmission>
+  <transmission name="t"><joint name="j2"/><actuator name="m2"/></transmission>
+  <transmission name="u"><joint name="j2"/><actuator name="m1"/></transmission>
+</robot>
+"""
+
+
+def test_duplicate_transmissions_and_mimic_on_fixed_per_target(tmp_path):
+    pkg = pkg_with(tmp_path, TRANSMISSIONS)
+    fs = lint(pkg)
+    assert of(fs, "UL704") == [("warning", []), ("warning", [])]
+    assert of(fs, "UL309") == [("warning", [])]
+    fs = lint(pkg, "--target", "ros,drake,python")
+    assert of(fs, "UL704") == [("error", ["drake", "python"])] * 2
+    assert of(fs, "UL309") == [("error", ["drake"])]
+    assert of(lint(pkg, "--target", "python"), "UL309") == [("warning", [])]
+
+
+def test_ul001_namespace_and_declaration_are_reported_and_the_rest_linted(tmp_path):
+    body = """<?xml verison="1.0"?>
+<robot name="r">
+  <link name="a"><drake:proximity_properties><drake:mu value="1"/></drake:proximity_properties></link>
+  <link name="b"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    fs = lint(pkg)
+    got = [(f["line"], f["col"], f["severity"]) for f in fs if f["code"] == "UL001"]
+    assert got == [(1, 7, "warning"), (3, 45, "warning")], fs
+    assert "the Python parsers (urdf_parser_py, urchin) reject it" in fs[0]["message"]
+    # every other rule ran, at the real lines
+    assert [(f["line"], f["col"]) for f in fs if f["code"] == "UL307"] == [(5, 70)]
+    assert of(lint(pkg, "--target", "python"), "UL001") == [("error", ["python"])] * 2
+    # a file that is not well-formed still stops at the syntax error
+    (pkg / "urdf/r.urdf").write_text('<robot name="r">\n  <link name="a">\n</robot>\n')
+    fs = lint(pkg)
+    assert [(f["code"], f["severity"]) for f in fs] == [("UL001", "error")]
+
+
+# -- issue 24, items 15 and 16: a lost xacro prefix, misspelled kinematics, the lower triangle --
+X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+LOST = f"""<?xml version="1.0"?>
+<robot name="r" {X}>
+  <xacro:macro name="solid_cuboid_inertia" params="m">
+    <mass value="${{m}}"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
+  </xacro:macro>
+  <xacro:macro name="marker"><link name="marker"/></xacro:macro>
+  <link name="a"/>
+  <link name="b"><inertial><solid_cuboid_inertia m="1"/></inertial>
+    <visual><insert_block name="origin"/><geometry><box size="1 1 1"/></geometry></visual></link>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/><orgin xyz="0 0 1"/></joint>
+  <marker/>
+  <link name="c"><inertial><mass value="1"/><mass value="2"/>
+    <inertia ixx="1" ixy="0.1" ixz="0" iyy="1" iyz="0" izz="1" iyx="0.1" izy="0.2"/></inertial></link>
+  <joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>
+"""
+
+
+def test_lost_xacro_prefix_and_misspelled_origin(tmp_path):
+    fs = [f for f in lint(pkg_with(tmp_path, LOST, "urdf/r.urdf.xacro")) if f["code"] == "UL209"]
+    by_line = {f["line"]: (f["severity"], f["message"]) for f in fs}
+    sev, msg = by_line[8]
+    assert sev == "error" and "a call of the macro 'solid_cuboid_inertia' without its 'xacro:' " \
+        "prefix" in msg and "this <inertial> loses what it was meant to write" in msg
+    sev, msg = by_line[9]
+    assert sev == "error" and "the xacro directive <xacro:insert_block> without" in msg
+    sev, msg = by_line[10]
+    assert sev == "error" and "(did you mean 'origin'?)" in msg and "has no <origin>" in msg
+    sev, msg = by_line[11]   # at the top level: nothing is lost in a link or joint
+    assert sev == "warning" and "a call of the macro 'marker'" in msg
+    sev, msg = by_line[12]
+    assert sev == "warning" and msg.startswith("a second <mass> in <inertial>: URDF parsers read "
+                                               "the first one")
+
+
+def test_lower_triangle_of_the_inertia(tmp_path):
+    fs = [f for f in lint(pkg_with(tmp_path, LOST, "urdf/r.urdf.xacro")) if f["code"] == "UL210"]
+    assert [(f["severity"], f["message"]) for f in fs] == [
+        ("info", "'iyx' on <inertia>: URDF reads only the upper triangle of the symmetric tensor "
+                 "(ixy, ixz, iyz), so 'iyx' is ignored"),
+        ("warning", "'izy' on <inertia>: URDF reads only the upper triangle of the symmetric "
+                    "tensor (ixy, ixz, iyz), so 'izy' is ignored, and it differs from iyz=0: iyz "
+                    "is the value used")]
+    assert not [f for f in fs if "did you mean" in f["message"]]
