@@ -18,7 +18,7 @@ ATTRIBUTES = {
     "robot": {"name", "version"},
     "link": {"name", "type"},
     "joint": {"name", "type"},
-    "origin": {"xyz", "rpy"},
+    "origin": {"xyz", "rpy", "quat_xyzw"},                  # quat_xyzw: URDF 1.1
     "mass": {"value"},
     "inertia": {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"},
     "visual": {"name"},
@@ -37,7 +37,8 @@ ATTRIBUTES = {
     "axis": {"xyz"},
     "calibration": {"rising", "falling", "reference_position"},
     "dynamics": {"damping", "friction"},
-    "limit": {"lower", "upper", "effort", "velocity"},
+    "limit": {"lower", "upper", "effort", "velocity",
+              "acceleration", "deceleration", "jerk"},                  # the last three: URDF 1.2
     "mimic": {"joint", "multiplier", "offset"},
     "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
 }

@@ -3,7 +3,7 @@
 Why: An empty geometry, two shapes in one geometry, or an unknown shape is rejected by URDF
 parsers (or silently drops the shape).
 
-How to fix: Keep exactly one of box, cylinder, sphere or mesh in each geometry; split two shapes
+How to fix: Keep exactly one of box, cylinder, sphere, mesh or capsule (URDF 1.1) in each geometry; split two shapes
 into two visuals or collisions.
 """
 CODE = "UL204"
@@ -24,7 +24,7 @@ PASS = """<robot name="r">
 """
 from urdf_lint.ruleutil import did_you_mean
 
-SHAPES = ("box", "cylinder", "sphere", "mesh")
+SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 
 
 def check(model, ctx):

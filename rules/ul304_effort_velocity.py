@@ -9,6 +9,9 @@ torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on pu
 reported as a warning naming that convention, because it still breaks effort-based controllers
 and simulators.
 
+URDF 1.2's `acceleration`, `deceleration` and `jerk` must be numbers of at least 0: urdfdom
+6.0.0 rejects a negative or non-numeric one (measured through Pinocchio 4.1.0); 0 is a warning.
+
 How to fix: Set both to the actuator's real maxima (N or Nm, m/s or rad/s).
 
 Options: `zero-effort` (`"warning"`, the default, or `"error"`) is the severity of
@@ -63,3 +66,14 @@ def check(model, ctx):
                             "but ros2_control and MoveIt can never move the joint"), "warning"
             elif n <= 0 and required:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v} must be positive"
+        for a in ("acceleration", "deceleration", "jerk"):   # URDF 1.2
+            v = lim.get(a)
+            if v is None:
+                continue
+            n = number(v)
+            if n is None or n < 0:
+                yield lim, (f"joint '{j.get('name')}': limit {a}={v!r} must be a positive number "
+                            "(urdfdom 6 rejects the model)")
+            elif n == 0:
+                yield lim, (f"joint '{j.get('name')}': limit {a}=0: the joint could never "
+                            "accelerate under a planner that reads it"), "warning"

@@ -306,3 +306,62 @@ def test_lower_triangle_of_the_inertia(tmp_path):
                     "tensor (ixy, ixz, iyz), so 'izy' is ignored, and it differs from iyz=0: iyz "
                     "is the value used")]
     assert not [f for f in fs if "did you mean" in f["message"]]
+
+
+# -- URDF 1.1 and 1.2 --------------------------------------------------------------------------
+V12 = """<?xml version="1.0"?>
+<robot name="v12" version="1.2">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <visual><origin xyz="0 0 0.25" quat_xyzw="0 0 0 1"/>
+      <geometry><capsule radius="0.05" length="0.4"/></geometry></visual>
+    <collision><geometry><capsule radius="0.05" length="0.4"/></geometry></collision>
+  </link>
+  <joint name="j" type="revolute"><origin xyz="0 0 0.1" quat_xyzw="0 0 0.7071068 0.7071068"/>
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1" acceleration="2" deceleration="3" jerk="20"/></joint>
+</robot>
+"""
+
+
+def test_urdf_1_2_robot_passes_for_ros_and_mujoco_says_what_it_does_not_read(tmp_path):
+    pkg = pkg_with(tmp_path, V12)
+    p = run_cli("check", ".", "--no-cache", "--select", "ALL", cwd=pkg)
+    assert p.returncode == 0 and p.stdout == "All checks passed: 1 model(s).\n", p.stdout
+    fs = lint(pkg, "--select", "ALL", "--target", "mujoco")
+    assert [(f["code"], f["line"], f["severity"], f["severity_from"]) for f in fs] == [
+        ("UL213", 6, "warning", ["mujoco"]), ("UL213", 10, "warning", ["mujoco"]),
+        ("UL213", 12, "info", ["mujoco"]), ("UL213", 12, "info", ["mujoco"]),
+        ("UL213", 12, "info", ["mujoco"])]
+    assert [f["message"].split(" is URDF")[0] for f in fs] == [
+        "quat_xyzw on <origin>", "quat_xyzw on <origin>", "acceleration on <limit>",
+        "deceleration on <limit>", "jerk on <limit>"]
+    assert "MuJoCo 4.0.0, PyBullet 3.2.7 and urdf_parser_py ignore it" in fs[0]["message"]
+    # pinocchio reads all of it (measured: tests/test_consumers.py)
+    assert lint(pkg, "--select", "ALL", "--target", "pinocchio") == []
+
+
+def test_urdf_1_1_elements_need_the_declared_version(tmp_path):
+    pkg = pkg_with(tmp_path, V12.replace(' version="1.2"', ""))
+    fs = [f for f in lint(pkg) if f["code"] == "UL213"]
+    assert len(fs) == 7 and {f["severity"] for f in fs} == {"warning"}
+    assert "but the robot declares version 1.0: urdfdom 6 (ROS, Pinocchio) ignores it there" \
+        in fs[0]["message"]
+    pkg = pkg_with(tmp_path / "v11", V12.replace('version="1.2"', 'version="1.1"'))
+    fs = [f for f in lint(pkg) if f["code"] == "UL213"]
+    assert [f["message"].split(" is URDF")[0] for f in fs] == [
+        "acceleration on <limit>", "deceleration on <limit>", "jerk on <limit>"]
+
+
+def test_urdf_1_1_values_are_validated(tmp_path):
+    body = V12.replace('quat_xyzw="0 0 0 1"', 'quat_xyzw="0 0 1 1"').replace(
+        'quat_xyzw="0 0 0.7071068 0.7071068"', 'quat_xyzw="0 0 0.7071068 0.7071068" rpy="0 0 1"'
+    ).replace('acceleration="2"', 'acceleration="-2"').replace('jerk="20"', 'jerk="0"').replace(
+        'length="0.4"/></geometry></collision>', 'length="0"/></geometry></collision>')
+    fs = lint(pkg_with(tmp_path, body))
+    got = sorted((f["code"], f["line"], f["severity"]) for f in fs)
+    assert got == [("UL205", 8, "error"), ("UL207", 6, "warning"), ("UL207", 10, "error"),
+                   ("UL304", 12, "error"), ("UL304", 12, "warning")], fs
+    assert of(lint(pkg_with(tmp_path / "v", V12.replace('"1.2"', '"1.3"'))), "UL211") == \
+        [("error", [])]

@@ -55,6 +55,7 @@ class Rule:
     origin: str = "rule"               # who raises it: a rule's check, expansion or the engine
     fail_at: tuple = ()                # ((line, col), ...) the FAIL example must report
     targets: dict = field(default_factory=dict)   # target -> severity | "off" (urdf_lint.targets)
+    example_targets: tuple = ("ros",)  # the targets its FAIL and PASS examples are linted with
 
     @property
     def summary(self) -> str:
@@ -107,7 +108,8 @@ def rule_from_module(mod) -> Rule:
                 options=dict(getattr(mod, "OPTIONS", {})), needs=needs,
                 example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
                 module=mod.__name__, scope=scope, origin=origin,
-                fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())))
+                fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())),
+                example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))))
 
 
 def load_rules() -> dict:
