@@ -2,7 +2,8 @@
 is not a unit quaternion of four numbers, or is written together with `rpy`.
 
 Why: Two or four numbers, stray characters (`"0 0 1 }"`) or `nan` make URDF parsers fail or
-produce NaN transforms. urdfdom 6.0.0 (through Pinocchio 4.1.0, measured) rejects `quat_xyzw`
+produce NaN transforms (`nan` is rejected by urdfdom and Pinocchio; MuJoCo 4.0.0 and PyBullet
+3.2.7 load it: a warning for `mujoco` and `pybullet`). urdfdom 6.0.0 (through Pinocchio 4.1.0, measured) rejects `quat_xyzw`
 together with `rpy` (MuJoCo 4.0.0 and PyBullet 3.2.7 then use the `rpy`), and normalises a
 quaternion that is not of unit length: a warning, since `0 0 1 1` is usually a typo.
 
@@ -31,6 +32,11 @@ PASS = """<robot name="r">
 """
 import math
 
+NOT_FINITE = ("nan", "inf", "infinity")
+# a NaN or infinite value: urdfdom 6.0.0 (Pinocchio 4.1.0) rejects it, MuJoCo 4.0.0 and PyBullet
+# 3.2.7 load it (measured by tests/test_consumers.py)
+LOADS_NAN = {"mujoco": "warning", "pybullet": "warning"}
+
 from urdf_lint.ruleutil import numbers
 from urdf_lint.rules._schema import urdf_iter
 
@@ -41,7 +47,10 @@ def check(model, ctx):
             for a in attrs:
                 v = e.get(a)
                 if v is not None and numbers(v, 3) is None:
-                    yield e, f"<{tag} {a}=\"{v}\"> must be three finite numbers"
+                    nan = len(v.split()) == 3 and any(x.lower().lstrip("+-") in NOT_FINITE
+                                                      for x in v.split())
+                    yield e, f"<{tag} {a}=\"{v}\"> must be three finite numbers", \
+                        (LOADS_NAN if nan else None)
     for e in urdf_iter(model, "origin"):
         v = e.get("quat_xyzw")
         if v is None:

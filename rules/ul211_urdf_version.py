@@ -3,13 +3,14 @@
 Why: urdfdom 6.0.0 supports 1.0, 1.1 (`quat_xyzw`, `<capsule>`) and 1.2 (`acceleration`,
 `deceleration`, `jerk` on `<limit>`), and refuses `version="1"`, `"1.3"`, `"2.0"` or `"foo"`
 (Pinocchio 4.1.0, which parses with it, rejects `version="1.3"`: measured). MuJoCo 4.0.0 and
-PyBullet 3.2.7 load any version; what each consumer reads of 1.1 and 1.2 is UL213's.
+PyBullet 3.2.7 load any version (a warning for `mujoco` and `pybullet`); what each consumer reads of 1.1 and 1.2 is UL213's.
 
 How to fix: Write `1.0`, `1.1` or `1.2`, or omit the attribute for 1.0.
 """
 CODE = "UL211"
 NAME = "urdf-version"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pybullet": "warning"}
 FAIL = """<robot name="r" version="1">
   <link name="a"/>
 </robot>

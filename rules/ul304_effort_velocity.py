@@ -9,6 +9,9 @@ torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on pu
 reported as a warning naming that convention, because it still breaks effort-based controllers
 and simulators.
 
+A missing `effort` is rejected by urdfdom, Pinocchio and the Python parsers; MuJoCo 4.0.0 and
+PyBullet 3.2.7 load it (a warning for `mujoco` and `pybullet`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+
 URDF 1.2's `acceleration`, `deceleration` and `jerk` must be numbers of at least 0: urdfdom
 6.0.0 rejects a negative or non-numeric one (measured through Pinocchio 4.1.0); 0 is a warning.
 
@@ -54,7 +57,8 @@ def check(model, ctx):
             v = lim.get(a)
             if v is None:
                 if required:
-                    yield lim, f"joint '{j.get('name')}': <limit> has no {a}"
+                    yield lim, f"joint '{j.get('name')}': <limit> has no {a}", \
+                        ({"mujoco": "warning", "pybullet": "warning"} if a == "effort" else None)
                 continue
             n = number(v)
             if n is None:

@@ -2,7 +2,7 @@
 
 Why: a zero axis has no direction at all: MuJoCo 4.0.0 and Drake 1.51.1 reject the model,
 Pinocchio 4.1.0 and PyBullet 3.2.7 load it with NaN joint motion (measured, see
-/work/shared/notes/consumer-facts.md). It is an error for every target. A non-unit axis is
+/work/shared/notes/consumer-facts.md). It is an error, but a warning for `pinocchio` and `pybullet`, which load it. A non-unit axis is
 normalised by every consumer measured (urdfdom 6.0.0, MuJoCo, Pinocchio, PyBullet, Drake, the
 Python parsers): a warning, since a hand-written `0 0 2` usually hides another mistake.
 
@@ -47,7 +47,8 @@ def check(model, ctx):
             continue  # UL207 reports the format
         n = math.sqrt(sum(x * x for x in v))
         if n == 0:
-            yield ax, f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"
+            yield ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"), \
+                {"pinocchio": "warning", "pybullet": "warning"}
             continue
         elif abs(n - 1) > tol:
             unit = " ".join(fmt(round(x / n, 6)) for x in v)

@@ -4,7 +4,8 @@ Why: Gazebo's URDF to SDF conversion drops links without inertia silently, toget
 everything attached to them (gazebosim/sdformat#199; Gazebo could not be run here), so the joint
 does nothing in simulation: a warning for `gazebo`. MuJoCo 4.0.0 rejects the model ("mass and
 inertia of moving bodies must be larger than mjMINVAL", measured on 16 real models): an error
-for `mujoco`. urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
+for `mujoco` when nothing the link carries has mass either (MuJoCo 4.0.0 loads a link without
+`<inertial>` whose children have mass: a warning then, (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7)). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
 (/work/shared/notes/consumer-facts.md): a warning for the others. A link is "moving" when it
 is the child of a non-fixed joint.
 
@@ -29,11 +30,19 @@ PASS = """<robot name="r">
 
 
 def check(model, ctx):
+    from urdf_lint.rules._inertial import Bodies
+    bodies = None
     for j in model.top_joints():
         if j.get("type") in (None, "fixed"):
             continue
         c = j.find("child")
         lk = model.links.get(c.get("link")) if c is not None else None
         if lk is not None and lk.find("inertial") is None:
+            bodies = bodies or Bodies(model)
+            if bodies.subtree_mass(lk.get("name")) > 0:   # MuJoCo takes the children's mass
+                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                           "<inertial>; Gazebo drops the link (MuJoCo accepts it because the "
+                           "links it carries have mass)"), {"mujoco": "warning"}
+                continue
             yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
                        "<inertial>; MuJoCo rejects the model, Gazebo drops the link")

@@ -14,6 +14,9 @@ grams or millimetre-based units were written as kilograms; on a frame attached b
 joint a tiny mass (1e-9 kg) is a common placeholder that every consumer measured loads
 (/work/shared/notes/consumer-facts.md) and is left alone.
 
+A negative mass is an error, but a warning for `pinocchio` and `pybullet`, which load it
+(measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+
 How to fix: Write the mass in kilograms; give a moving body its real mass.
 
 Options: `min-mass` (default 1e-06): masses below this many kilograms are reported as
@@ -56,7 +59,9 @@ def check(model, ctx):
             continue  # UL206
         name = lk.get("name")
         if v < 0:
-            yield m, f"link '{name}': mass {v:g} must not be negative"
+            yield m, (f"link '{name}': mass {v:g} must not be negative (MuJoCo rejects it; "
+                      "Pinocchio and PyBullet load it with a wrong dynamics)"), \
+                {"pinocchio": "warning", "pybullet": "warning"}
         elif v == 0:
             bodies = bodies or Bodies(model)
             body = bodies.moving_body(name)

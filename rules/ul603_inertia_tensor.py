@@ -14,7 +14,8 @@ can still break the inequality once its products of inertia are taken into accou
 below 1e-9 of the tensor's largest (or all below 1e-15 kg m^2, float noise of a lumped body) are
 taken as zero, so a 1e-20 tensor is treated like its exact-zero twin; all six entries equal and
 at most 1e-6 on a dummy link of at most 1e-6 kg is a placeholder. Per target: a tensor whose
-written diagonal already fails is an error for every target (as before); one that only its
+written diagonal already fails is an error (as before) but a warning for `pinocchio` and
+`pybullet`, which load it (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7); one that only its
 principal moments show is an error for `mujoco` (MuJoCo 4.0.0 rejects it: "use
 'balanceinertia'") and a warning for the others (urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7
 load it silently, Drake 1.51.1 with a warning: /work/shared/notes/consumer-facts.md).
@@ -24,7 +25,7 @@ How to fix: Recompute the tensor from the part's geometry and mass (CAD tools ex
 CODE = "UL603"
 NAME = "inertia-tensor"
 SEVERITY = "error"
-TARGETS = {"mujoco": "error"}
+TARGETS = {"mujoco": "error", "pinocchio": "warning", "pybullet": "warning"}
 FAIL = """<robot name="r">
   <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.5"/></inertial></link>
   <link name="b"><inertial><mass value="0.01"/><inertia ixx="4.7e-6" ixy="0" ixz="2.5e-6" iyy="3.65e-6" iyz="0" izz="4.7e-6"/></inertial></link>
