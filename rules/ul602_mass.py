@@ -14,7 +14,9 @@ grams or millimetre-based units were written as kilograms; on a frame attached b
 joint a tiny mass (1e-9 kg) is a common placeholder that every consumer measured loads
 (/work/shared/notes/consumer-facts.md) and is left alone.
 
-A negative mass is an error, but a warning for `pinocchio` and `pybullet`, which load it
+A tiny mass on a moving link is an error (a unit mistake), but a warning for `mujoco`,
+`pinocchio` and `pybullet`, which load 1e-9 kg as it is. A negative mass is an error, but a
+warning for `pinocchio` and `pybullet`, which load it
 (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Write the mass in kilograms; give a moving body its real mass.
@@ -88,4 +90,5 @@ def check(model, ctx):
             if root != name or j is None:
                 continue  # a frame fixed to its parent (or the root): a placeholder mass
             yield m, (f"link '{name}': mass {v:g} kg is implausibly small (grams?)"
-                      + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else ""))
+                      + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else "")), \
+                {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"}

@@ -76,6 +76,7 @@ DEFECTS = {
     "no <inertial> on a moving leaf link": ("UL601", [(TOOL, '<link name="tool"/>')]),
     "zero mass on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="0"/>')]),
     "negative mass": ("UL602", [('<mass value="0.5"/>', '<mass value="-0.5"/>')]),
+    "1e-9 kg on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="1e-9"/>')]),
     "inertia not positive definite": ("UL603", [(LOWER_INERTIAL, LOWER_INERTIAL.replace(
         'ixy="0"', 'ixy="0.01"'))]),
     "principal moments break A+B>=C": ("UL603", [(LOWER_INERTIAL, (
