@@ -38,7 +38,7 @@ PASS = """<robot name="r">
   <link name="dummy"><inertial><mass value="1e-6"/><inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/></inertial></link>
 </robot>
 """
-import numpy as np
+import math
 
 from urdf_lint.ruleutil import fmt, number
 from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
@@ -70,6 +70,25 @@ def _placeholder(lk, v) -> bool:
     m = mass(lk)
     return m is not None and 0 <= m <= 1e-6 and len(set(v.values())) == 1 and \
         0 < v["ixx"] <= 1e-6
+
+
+def principal_moments(xx, yy, zz, xy, xz, yz) -> list[float]:
+    """The eigenvalues of the symmetric tensor, ascending (closed form, Smith 1961: no numpy in
+    a worker that lints a model without meshes)."""
+    p1 = xy * xy + xz * xz + yz * yz
+    if p1 == 0:
+        return sorted((xx, yy, zz))
+    q = (xx + yy + zz) / 3
+    p = math.sqrt(((xx - q) ** 2 + (yy - q) ** 2 + (zz - q) ** 2 + 2 * p1) / 6)
+    b = [[(xx - q) / p, xy / p, xz / p], [xy / p, (yy - q) / p, yz / p],
+         [xz / p, yz / p, (zz - q) / p]]
+    r = (b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1])
+         - b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0])
+         + b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0])) / 2
+    phi = math.acos(max(-1.0, min(1.0, r))) / 3
+    big = q + 2 * p * math.cos(phi)
+    small = q + 2 * p * math.cos(phi + 2 * math.pi / 3)
+    return sorted((small, 3 * q - big - small, big))
 
 
 def _diagonal_test(a, b, c, xy, xz, yz) -> bool:
@@ -108,10 +127,8 @@ def check(model, ctx):
         scale = max(abs(x) for x in v.values())
         tol = RELATIVE * scale
         clean = {k: (0.0 if abs(x) <= tol else x) for k, x in v.items()}
-        m = np.array([[clean["ixx"], clean["ixy"], clean["ixz"]],
-                      [clean["ixy"], clean["iyy"], clean["iyz"]],
-                      [clean["ixz"], clean["iyz"], clean["izz"]]])
-        e1, e2, e3 = sorted(float(x) for x in np.linalg.eigvalsh(m))
+        e1, e2, e3 = principal_moments(clean["ixx"], clean["iyy"], clean["izz"], clean["ixy"],
+                                       clean["ixz"], clean["iyz"])
         table = None if _diagonal_test(a, b, c, xy, xz, yz) else PRINCIPAL_ONLY
         written = (f"ixx={fmt(a)} iyy={fmt(b)} izz={fmt(c)} ixy={fmt(xy)} ixz={fmt(xz)} "
                    f"iyz={fmt(yz)}")

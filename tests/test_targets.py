@@ -365,3 +365,15 @@ def test_urdf_1_1_values_are_validated(tmp_path):
                    ("UL304", 12, "error"), ("UL304", 12, "warning")], fs
     assert of(lint(pkg_with(tmp_path / "v", V12.replace('"1.2"', '"1.3"'))), "UL211") == \
         [("error", [])]
+
+
+def test_principal_moments_match_numpy():
+    import numpy as np
+    from urdf_lint.rules.ul603_inertia_tensor import principal_moments
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        a = rng.normal(size=(3, 3)) * 10.0 ** rng.integers(-8, 2)
+        m = a @ a.T if rng.random() < 0.7 else (a + a.T) / 2
+        got = principal_moments(m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2])
+        want = np.linalg.eigvalsh(m)
+        assert np.allclose(got, want, rtol=1e-9, atol=1e-12 * np.abs(m).max()), (m, got, want)

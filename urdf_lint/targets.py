@@ -36,7 +36,6 @@ KNOWN: dict[str, str] = {
     "python": "the Python parsers (urdf_parser_py, urchin, yourdfpy)",
 }
 NAMES = tuple(KNOWN)
-DEFAULT = ["ros"]
 OFF = "off"
 LEVELS = SEVERITIES + (OFF,)
 
