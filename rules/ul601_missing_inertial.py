@@ -4,8 +4,9 @@ Why: Gazebo's URDF to SDF conversion drops links without inertia silently, toget
 everything attached to them (gazebosim/sdformat#199; Gazebo could not be run here), so the joint
 does nothing in simulation: a warning for `gazebo`. MuJoCo 4.0.0 rejects the model ("mass and
 inertia of moving bodies must be larger than mjMINVAL", measured on 16 real models): an error
-for `mujoco` when nothing the link carries has mass either (MuJoCo 4.0.0 loads a link without
-`<inertial>` whose children have mass: a warning then, (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7)). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
+for `mujoco` when the link has no collision geometry and nothing it carries has mass either.
+MuJoCo 4.0.0 computes a missing inertial from the collision geometry (visuals are discarded),
+and loads a link without `<inertial>` whose children have mass: a warning then, (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7)). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
 (/work/shared/notes/consumer-facts.md): a warning for the others. A link is "moving" when it
 is the child of a non-fixed joint.
 
@@ -39,6 +40,11 @@ def check(model, ctx):
         lk = model.links.get(c.get("link")) if c is not None else None
         if lk is not None and lk.find("inertial") is None:
             bodies = bodies or Bodies(model)
+            if lk.find("collision/geometry") is not None:   # MuJoCo: inertia from the geometry
+                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                           "<inertial>; Gazebo drops the link, MuJoCo computes one from its "
+                           "collision geometry"), {"mujoco": "warning"}
+                continue
             if bodies.subtree_mass(lk.get("name")) > 0:   # MuJoCo takes the children's mass
                 yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
                            "<inertial>; Gazebo drops the link (MuJoCo accepts it because the "

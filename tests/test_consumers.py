@@ -74,6 +74,12 @@ TOOL = '<link name="tool">' + INERTIAL.format(m=0.1, i=0.0001, z=0.0001) + '</li
 DEFECTS = {
     "no <inertial> on a moving link": ("UL601", [(LOWER_MASS + LOWER_INERTIAL, "")]),
     "no <inertial> on a moving leaf link": ("UL601", [(TOOL, '<link name="tool"/>')]),
+    "no <inertial>, a collision box": ("UL601", [(TOOL, (
+        '<link name="tool"><collision><geometry><box size="0.05 0.05 0.05"/></geometry>'
+        '</collision></link>'))]),
+    "no <inertial>, a visual box only": ("UL601", [(TOOL, (
+        '<link name="tool"><visual><geometry><box size="0.05 0.05 0.05"/></geometry>'
+        '</visual></link>'))]),
     "zero mass on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="0"/>')]),
     "negative mass": ("UL602", [('<mass value="0.5"/>', '<mass value="-0.5"/>')]),
     "1e-9 kg on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="1e-9"/>')]),
