@@ -156,8 +156,10 @@ EFFORT0 = """<robot name="r">
   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
     <limit lower="-1" upper="1" effort="0" velocity="1"/></joint>
   <joint name="j2" type="revolute"><parent link="a"/><child link="c"/><axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="1" velocity="0"/></joint>
+    <limit lower="-1" upper="1" effort="1" velocity="-1"/></joint>
 </robot>"""
+# (j2 had velocity="0", an error until issue 25 made it a warning: every consumer loads it;
+# tests/test_targets.py covers it. A negative velocity is still an error.)
 
 
 def test_zero_effort_is_a_warning(tmp_path):
@@ -407,6 +409,18 @@ def test_broken_demo_shows_every_class():
         {"cover_truncated.stl"}
     assert not [f for f in only(fs, "UL502") if "materials.urdf.xacro" in f["file"]
                 and f["line"] > 20]
+    # the README's demo paragraph says what this run shows
+    import re
+    readme = (DESCRIPTIONS.parent / "README.md").read_text()
+    s = doc["summary"]
+    fired = len(set(load_rules()) - set(missing))
+    said = re.search(r"It lints (\d+) models: .*?\smake (\d+) of the (\d+) rules fire .*?"
+                     r"`Found (\d+) problem\(s\) \((\d+) error, (\d+) warning, (\d+) info\)"
+                     r"\s+in (\d+) model\(s\)\.`", readme, re.S)
+    assert said, "README's demo paragraph not found"
+    assert [int(x) for x in said.groups()] == [
+        len(doc["models"]), fired, len(load_rules()), len(fs), s["errors"], s["warnings"],
+        s["info"], s["models"]], said.group(0)
 
 
 def test_geometry_moments_follow_scale_rotation_and_offset(tmp_path):

@@ -97,8 +97,17 @@ def _add_selection(p):
     p.add_argument("--ignore", metavar="CODES", help=_key_help(
         "ignore", "comma-separated codes or prefixes to disable"))
     p.add_argument("--fail-on", metavar="{error,warning,info,never}", help=_key_help("fail-on"))
+    _add_target(p)
     p.add_argument("--exit-zero", action="store_true",
                    help="exit 0 even when there are findings (still 2 on errors)")
+
+
+def _add_target(p):
+    from .targets import NAMES
+    p.add_argument("--target", action="append", metavar="TARGET", dest="targets",
+                   help=_key_help("targets", "a consumer the descriptions are for ("
+                                  + ", ".join(NAMES) + "); repeatable or comma-separated, "
+                                  "replaces the config's"))
 
 
 def _add_inputs(p, config=True):
@@ -269,6 +278,7 @@ def _cmd_render(sub, raw):
     _add_limits(rd)
     rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
     _add_views(rd)
+    _add_target(rd)
 
 
 def _cmd_diff(sub, raw):
@@ -291,6 +301,7 @@ def _cmd_diff(sub, raw):
     df.add_argument("--fail-on", choices=["error", "warning", "info", "never"],
                     help="exit 1 when the change introduces findings at or above this "
                          "severity (default: error)")
+    _add_target(df)
     df.add_argument("--package-path", action="append", metavar="NAME=DIR",
                     help="where a package lives (default: found from package.xml files)")
     df.add_argument("-j", "--jobs", metavar="N",
@@ -401,7 +412,8 @@ def _load_cfg(args, paths):
     return cfg
 
 
-_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "timeout", "memory-mb", "jobs",
+_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "targets", "timeout", "memory-mb",
+             "jobs",
              "format", "baseline", "env-allow", "cache-dir", "views", "forward-axis")
 
 
@@ -410,8 +422,9 @@ def _apply_cli(cfg, args):
     from .config import apply_cli
     from . import trust
     values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
-    if values["env-allow"] and not isinstance(values["env-allow"], str):
-        values["env-allow"] = ",".join(values["env-allow"])  # --env-allow A --env-allow B
+    for k in ("env-allow", "targets"):   # --env-allow A --env-allow B
+        if values[k] and not isinstance(values[k], str):
+            values[k] = ",".join(values[k])
     if values["cache-dir"]:
         values["cache-dir"] = os.path.abspath(values["cache-dir"])
     apply_cli(cfg, values)
@@ -838,6 +851,9 @@ def cmd_rule(args) -> int:
         hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
         raise UsageError(f"unknown rule {args.code!r}{hint} (see 'urdf-lint rules')")
     print(f"{r.code} {r.name} (default severity: {r.severity})\n")
+    if r.targets:
+        print("Per consumer target (config 'targets'): "
+              + ", ".join(f"{t} {s}" for t, s in r.targets.items()) + "\n")
     print(plain(r.doc))
     if r.options:
         print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
@@ -891,7 +907,7 @@ def cmd_diff(args) -> int:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only these keys
-    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs,
+    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs, targets=args.targets,
                                   trust_config=args.trust_config, views=args.views,
                                   forward_axis=args.forward_axis)
     _refuse_symlinked_out(args.render, paths)

@@ -111,6 +111,26 @@ class Choice(Type):
         return v
 
 
+class ChoiceList(StrList):
+    """A non-empty list of values from ``choices`` (each as :class:`Choice` checks it)."""
+
+    def __init__(self, choices: tuple, what: str):
+        super().__init__(what)
+        self.choice = Choice(choices)
+        self.expected = f"a list of {what} ({', '.join(choices)})"
+
+    def check(self, v):
+        v = super().check(v)
+        if not v:
+            raise _Bad(f"{self.expected}, not empty")
+        for x in v:
+            try:
+                self.choice.check(x)
+            except _Bad as e:
+                raise _Bad(f"{self.expected}: {show(x)} is not {e.expected}") from None
+        return list(dict.fromkeys(v))
+
+
 class Number(Type):
     """A number (int or float; booleans are not numbers) above ``minimum``."""
 
@@ -265,6 +285,11 @@ class Key:
         return str(d) if not isinstance(d, dict) else "none"
 
 
+def _targets() -> tuple:
+    from .targets import NAMES
+    return NAMES
+
+
 def _formats() -> tuple:
     from .report import names
     return names()
@@ -284,6 +309,9 @@ SCHEMA: tuple[Key, ...] = (
         "override default severities"),
     Key("fail-on", Choice(FAIL_ON), "error",
         "lowest severity that makes the exit code 1"),
+    Key("targets", ChoiceList(_targets(), "consumer targets"), ["ros"],
+        "the programs the descriptions are for; a finding takes the highest severity any of "
+        "them gives it (see 'urdf-lint rules')"),
     Key("package-paths", Table(Str(), 'a table of package = "folder"'), {},
         "where packages that have no package.xml under the linted paths are"),
     Key("models", Models(), [], "entry models and the xacro args to expand them with"),
@@ -339,6 +367,7 @@ class Config:
     per_file_ignores: dict = field(default_factory=dict)
     severity: dict = field(default_factory=dict)
     fail_on: str = "error"
+    targets: list = field(default_factory=lambda: ["ros"])
     package_paths: dict = field(default_factory=dict)
     models: list = field(default_factory=list)
     exclude: list = field(default_factory=list)

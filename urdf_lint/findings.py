@@ -36,17 +36,23 @@ class Problem:
                                             # rule's default); effective once the pipeline ran
     models: tuple[str, ...] = ()            # display labels of the models it was found in
     fix: "Fix | None" = None                # a source fix (urdf_lint.fixes), if the rule has one
+    consumers: tuple | None = None          # ((target, severity | "off"), ...) the rule chose
+                                            # for this one problem (None: the rule's TARGETS)
+    severity_from: tuple[str, ...] = ()     # the selected targets that make it this severe
+                                            # (set by the pipeline; urdf_lint.targets)
 
     @classmethod
     def at(cls, code: str, message: str, loc, target=None, severity: str = "",
-           fix=None) -> "Problem":
+           fix=None, consumers: dict | None = None) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
         ``severity``: set only when the rule chose it for this one problem; ``fix``: a
-        :class:`urdf_lint.fixes.Fix` when the rule has one."""
+        :class:`urdf_lint.fixes.Fix` when the rule has one; ``consumers``: the target table
+        the rule chose for this one problem (:mod:`urdf_lint.targets`)."""
         chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
         return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
                    tuple(target) if target else None,
-                   severity=severity if severity in SEVERITIES else "", fix=fix)
+                   severity=severity if severity in SEVERITIES else "", fix=fix,
+                   consumers=tuple(sorted(consumers.items())) if consumers else None)
 
     # -- the origin, flat ----------------------------------------------------------------------
     @property
@@ -86,6 +92,8 @@ class Problem:
              "chain": [list(c) for c in self.chain], "models": list(self.models)}
         if self.fix is not None:   # absent when there is no fix: the JSON stays as it was
             d["fix"] = self.fix.to_dict()
+        if self.severity_from:     # only when a selected target raised it
+            d["severity_from"] = list(self.severity_from)
         return d
 
     def to_record(self) -> dict:
@@ -98,13 +106,15 @@ class Problem:
             d["severity"] = self.severity
         if self.fix is not None:
             d["fix"] = self.fix.to_record()
+        if self.consumers is not None:
+            d["consumers"] = [list(c) for c in self.consumers]
         return d
 
     @classmethod
     def from_record(cls, d: dict) -> "Problem":
         return cls._build(d["code"], d["message"], d["file"], d["line"], d["col"],
                           d.get("chain", ()), d.get("target"), "", d.get("severity", ""), (),
-                          d.get("fix"))
+                          d.get("fix"), d.get("consumers"))
 
     def to_row(self) -> list:
         """Everything, the run pipeline's fields too, as one list: the run memo
@@ -112,7 +122,9 @@ class Problem:
         return [self.code, self.message, self.file, self.line, self.col,
                 [list(c) for c in self.chain], list(self.target) if self.target else None,
                 self.name, self.severity, list(self.models),
-                self.fix.to_record() if self.fix is not None else None]
+                self.fix.to_record() if self.fix is not None else None,
+                [list(c) for c in self.consumers] if self.consumers is not None else None,
+                list(self.severity_from)]
 
     @classmethod
     def from_row(cls, row: list) -> "Problem":
@@ -120,7 +132,7 @@ class Problem:
 
     @classmethod
     def _build(cls, code, message, file, line, col, chain, target, name, severity, models,
-               fix) -> "Problem":
+               fix, consumers=None, severity_from=()) -> "Problem":
         """From plain data (a record or a row): built directly, without the dataclass init,
         since every field is known here."""
         if fix:
@@ -132,7 +144,9 @@ class Problem:
             origin=Origin(file, int(line), int(col), tuple(tuple(c) for c in chain)),
             target=tuple(target) if target else None, name=name,
             severity=severity if severity in SEVERITIES else "", models=tuple(models),
-            fix=fix or None)
+            fix=fix or None,
+            consumers=tuple(tuple(c) for c in consumers) if consumers is not None else None,
+            severity_from=tuple(severity_from))
         return new
 
 

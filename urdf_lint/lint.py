@@ -182,9 +182,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                                    "DOCTYPE/ENTITY declaration in a robot description; remove it "
                                    "(URDF needs none, and urdf-lint never loads DTDs)",
                                    (entry, line, 1)))
-    root, origins, error = parse_urdf_bytes(entry, data)
-    if error:
-        problems.append(error)
+    root, origins, errors = parse_urdf_bytes(entry, data)
+    problems.extend(errors or ())
     if root is None:
         out.status = Status.FAILED
         return None
@@ -288,16 +287,17 @@ def _lint_model(job: LintJob, settings: LintSettings):
 
     from .registry import run_rules
     fixer = None
-    for rule, el, msg, sev, req in run_rules("model", settings.selected, settings.options,
-                                             model, ctx, out.internal, f" on {job.entry}",
-                                             with_fix=True):
+    for rule, el, msg, sev, req, table in run_rules("model", settings.selected,
+                                                    settings.options, model, ctx, out.internal,
+                                                    f" on {job.entry}", with_fix=True,
+                                                    with_table=True):
         fix = None
         if req is not None:
             from .fixes import Fixer
             fixer = fixer or Fixer(model)
             fix = fixer.fix(el, req)
         problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev,
-                                   fix=fix))
+                                   fix=fix, consumers=table))
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

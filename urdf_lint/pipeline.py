@@ -83,16 +83,26 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
-    """Problems with their rule name, effective severity (the configured override of the
-    severity the rule chose for it, else of the rule's) and model label."""
+    """Problems with their rule name, effective severity and model label. The severity is the
+    configured override, else the highest the selected targets give (:mod:`urdf_lint.targets`:
+    the finding's own target table, else the rule's ``TARGETS``, over the severity the rule
+    chose for it, else the rule's); a finding no selected target keeps is dropped."""
     from .registry import catalogue
+    from .targets import resolve
     rules = catalogue()
     out = []
     for p in problems:
         r = rules.get(p.code)
         name = r.name if r else p.code
-        sev = policy.severity_of(p.code, name, p.severity or (r.severity if r else "error"))
-        out.append(p.replace(name=name, severity=sev, models=(label,)))
+        base = p.severity or (r.severity if r else "error")
+        table = dict(p.consumers) if p.consumers is not None else (r.targets if r else {})
+        sev, by = resolve(table, base, policy.targets) if table else (base, ())
+        if sev is None:
+            continue
+        over = policy.override_of(p.code, name)
+        if over is not None:
+            sev, by = over, ()
+        out.append(p.replace(name=name, severity=sev, models=(label,), severity_from=by))
     return out
 
 
@@ -269,9 +279,10 @@ def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
     from .registry import run_rules
     run = RunView(models=list(out.models), generated=dict(out.generated))
-    return [Problem.at(rule.code, msg, loc, severity=sev)
-            for rule, loc, msg, sev in run_rules("run", settings.selected, settings.options, run,
-                                                 RunContext({}), out.internal)]
+    return [Problem.at(rule.code, msg, loc, severity=sev, consumers=table)
+            for rule, loc, msg, sev, table in run_rules("run", settings.selected,
+                                                        settings.options, run, RunContext({}),
+                                                        out.internal, with_table=True)]
 
 
 def _suppress(merged: list[Problem], models, settings: LintSettings,

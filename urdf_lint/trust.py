@@ -11,7 +11,9 @@ the *user* asked for:
 * ``timeout`` and ``memory-mb`` may only tighten the defaults;
 
 each with a note on stderr, unless the same setting is given on the command line or the user
-passes ``--trust-config``. Numeric limits are always clamped to sane ranges, trusted or not.
+passes ``--trust-config``. Keys that only choose what is reported and how severely (``select``,
+``ignore``, ``severity``, ``targets``) are the repository's to set: they widen nothing a
+description may read or a run may take. Numeric limits are always clamped to sane ranges, trusted or not.
 
 The paths a run writes or reads as data -- a models entry's ``output`` and ``mesh-base``, and
 ``baseline`` -- must, from the repository's own config, resolve inside the repository with no

@@ -19,7 +19,9 @@ JSON schema (``--format json``), version 1::
                             "edits": [{"file": str, "start": int, "end": int, "text": str}]
                                      (byte ranges of the source, replaced by text)
                             | "refused": str (why it is not applied automatically)}
-                           (only when the rule has a fix for this finding)}],
+                           (only when the rule has a fix for this finding),
+                    "severity_from": [str, ...] (the selected consumer targets that make it
+                           this severe, urdf_lint.targets; only when one raised it)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 

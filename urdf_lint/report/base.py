@@ -82,6 +82,11 @@ def summary(result) -> dict:
             "info": c["info"]}
 
 
+def targets_tag(f) -> str:
+    """`` [mujoco, drake]``: the selected targets that make a finding this severe, or ""."""
+    return f" [{', '.join(f.severity_from)}]" if getattr(f, "severity_from", ()) else ""
+
+
 def chain_text(f) -> str:
     """The macro call chain, one visible line (names are the description's)."""
     return escape_text(Origin(f.file, f.line, f.col, f.chain).format_chain()) if f.chain else ""

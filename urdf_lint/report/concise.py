@@ -2,7 +2,7 @@
 macro call chain folded into the line, for editors' problem matchers and grep."""
 from __future__ import annotations
 
-from .base import DIM, BaseFormatter, chain_text, location, message
+from .base import DIM, BaseFormatter, chain_text, location, message, targets_tag
 from .escape import escape_text
 
 
@@ -14,8 +14,8 @@ class ConciseFormatter(BaseFormatter):
         code = self.paint(f.code, self.severity_color(f.severity))
         ch = chain_text(f)
         tail = f" ({ch})" if ch else ""
-        self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {self.paint(f'[{f.name}]', DIM)}"
-                          f"{tail}\n")
+        name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
+        self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {name}{tail}\n")
 
     def finish(self, result):
         if not self.options.quiet:

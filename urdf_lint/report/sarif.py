@@ -66,6 +66,8 @@ class SarifFormatter(BaseFormatter):
                     for i, c in enumerate(reversed(f.chain))]
             if f.models:
                 res["properties"] = {"models": f.models}
+            if f.severity_from:
+                res.setdefault("properties", {})["severityFrom"] = list(f.severity_from)
             if f.fix is not None and f.fix.applicable:
                 res["fixes"] = [_sarif_fix(f.fix)]
             results.append(res)

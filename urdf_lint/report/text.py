@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from ..locations import display_path
 from .escape import escape_text
-from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location, message
+from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location, message, targets_tag
 
 
 class TextFormatter(BaseFormatter):
@@ -24,7 +24,7 @@ class TextFormatter(BaseFormatter):
             w(f"{BOLD}{path}{RESET}\n")
             self._current = path
         code = self.paint(f.code, self.severity_color(f.severity))
-        name = self.paint(f"[{f.name}]", DIM)
+        name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
         w(f"{location(f)}: {code} {escape_text(message(f))} {name}\n")
         if self.options.show_source:
             w(self.code_frame(f))
