@@ -170,8 +170,9 @@ print("loaded")
 def verdict(path: Path, consumer: str) -> str:
     """R (rejects), C (crashes or hangs) or . (loads)."""
     try:
+        # in the model's folder: MuJoCo writes MUJOCO_LOG.TXT into the working directory
         r = subprocess.run([sys.executable, "-c", LOADER, str(path), consumer],
-                           capture_output=True, text=True, timeout=60)
+                           capture_output=True, text=True, timeout=60, cwd=path.parent)
     except subprocess.TimeoutExpired:
         return "C"
     if r.returncode == 0 and "loaded" in r.stdout:
