@@ -85,11 +85,13 @@ def macro_names(model) -> set:
     for f in [model.entry, *model.deps]:
         if not str(f).endswith(".xacro"):
             continue
-        try:
-            with open(f, "rb") as fh:
-                names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(fh.read()))
+        from urdf_lint import fsbound
+        try:   # a regular file of bounded size, through the boundary
+            data = fsbound.read_regular(f, fsbound.MAX_SOURCE_BYTES)
         except OSError:
             continue
+        if data:
+            names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(data))
     try:
         model._macro_names = names
     except AttributeError:
