@@ -40,7 +40,7 @@ from .vcs import git_root, repo_root
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached)
-RECORD_FORMAT = 10
+RECORD_FORMAT = 11
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 

@@ -405,7 +405,19 @@ def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
                     return _trace(src, cfile, cdata, p, chain[:-1], depth + 1)
         return _property(src, name, file, data, a, depth)
     m = _YAML_REF.fullmatch(v.strip())
-    if m and not chain:
+    while m and chain:   # ${cfg['lower']} in a macro whose call passes cfg="${yaml['arm']}"
+        cfile, cline, ccol = chain[-1][:3]
+        cdata = src.get(cfile)
+        call = start_tag_at(cdata, cline, ccol)
+        p = call.attr(m.group(1)) if call is not None else None
+        if p is None:    # not passed by the call: a property (as for ${name} above)
+            break
+        inner = re.fullmatch(r"\$\{(.*)\}", p.value.strip(), re.S)
+        if inner is None:
+            raise _expression(file, data, a.value_start)
+        m = _YAML_REF.fullmatch("${" + inner.group(1).strip() + m.group(2) + "}")
+        file, data, a, chain = cfile, cdata, p, chain[:-1]
+    if m:
         return _yaml_scalar(src, m, file, data, a)
     raise _expression(file, data, a.value_start)
 
@@ -524,6 +536,37 @@ class Fixer:
             from lxml import etree
             self._index = {e: i for i, e in enumerate(self.model.root.iter(tag=etree.Element))}
         return self._index[el]
+
+    def value_from(self, el, attrs=()) -> tuple:
+        """``(file, line, col)`` of where the value of ``el`` comes from when that is not the
+        element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
+        macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
+        traced, else every attribute written with ``$``; the first that leads elsewhere wins.
+        ``()`` when the value is written at the element or cannot be traced."""
+        origin = self.model.origins.get(el)
+        if origin is None:
+            return ()
+        try:
+            data = self.src.get(origin.file)
+            tag = start_tag_at(data, origin.line, origin.col)
+            if tag is None:
+                return ()
+            written = [a for a in tag.attrs if "$" in a.value] if not attrs else \
+                [a for a in (tag.attr(n) for n in attrs) if a is not None and "$" in a.value]
+            for a in written:
+                try:
+                    file, lit = _trace(self.src, origin.file, data, a, tuple(origin.chain), 0)
+                except _Refuse:
+                    continue
+                fdata = self.src.get(file)
+                line, col = line_col(fdata, lit.value_start)
+                here = {(origin.file, origin.line)} | {(c[0], c[1]) for c in origin.chain}
+                if isinstance(lit, Attr) and (file, line) in here:
+                    continue   # written at the element or at a macro call the chain shows
+                return (file, line, col)
+        except (_Refuse, OSError, UnicodeDecodeError, ValueError):
+            return ()
+        return ()
 
     def fix(self, el, req: Request) -> Fix:
         f = resolve(self.model, el, req, self.src)

@@ -286,16 +286,21 @@ def _lint_model(job: LintJob, settings: LintSettings):
 
     from .registry import run_rules
     fixer = None
-    for rule, el, msg, sev, req in run_rules("model", settings.selected, settings.options,
-                                             model, ctx, out.internal, f" on {job.entry}",
-                                             with_fix=True):
+    for rule, el, msg, sev, req, cause in run_rules(
+            "model", settings.selected, settings.options, model, ctx, out.internal,
+            f" on {job.entry}", with_fix=True):
         fix = None
+        from .fixes import Fixer
+        fixer = fixer or Fixer(model)
         if req is not None:
-            from .fixes import Fixer
-            fixer = fixer or Fixer(model)
             fix = fixer.fix(el, req)
-        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev,
-                                   fix=fix))
+        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
+                                      if req is not None and req.kind == "set" else ())
+        p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
+                       value_from=value_from)
+        if cause is not None:   # one finding per root cause, this problem one instance of it
+            p = p.replace(code=cause.code, message=cause.message, detail=msg, group=cause.key)
+        problems.append(p)
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

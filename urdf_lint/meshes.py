@@ -38,6 +38,8 @@ class MeshRef:
     path: str | None          # resolved absolute path (None when it cannot be resolved)
     status: MeshStatus
     message: str = ""
+    package: str = ""         # the unknown package (UNKNOWN_PACKAGE)
+    cause: str = ""           # why it is unknown (the searched places), for the root cause
 
     @property
     def problem(self) -> MeshStatus | None:
@@ -120,7 +122,8 @@ def resolve(model, uri: str) -> MeshRef:
     try:
         p = resolver.resolve_uri(uri, model.base_dir)
     except PackageNotFound as e:
-        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}")
+        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}", e.name,
+                       str(e))
     p = Path(os.path.abspath(p))
     top = _root_of(resolver, p)
     if top is None and resolver.is_inside(p):  # written outside, resolves inside (a symlink)

@@ -197,14 +197,18 @@ _LOADED: dict = {}
 
 
 def _extras(rest) -> tuple:
-    """(severity or "", fix request or None) from what a rule yields after the message."""
-    sev, req = "", None
+    """(severity or "", fix request or None, root cause or None) from what a rule yields after
+    the message."""
+    from .findings import Cause
+    sev, req, cause = "", None, None
     for x in rest:
-        if isinstance(x, str):
+        if isinstance(x, Cause):
+            cause = x
+        elif isinstance(x, str):
             sev = x
         elif x is not None:
             req = x
-    return sev, req
+    return sev, req, cause
 
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
@@ -212,8 +216,9 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
-    (:mod:`urdf_lint.fixes`). A rule yields ``(item, message)``, optionally followed by a
-    severity (a string) and/or a fix request, in that order. A rule that crashes adds an
+    (:mod:`urdf_lint.fixes`) and the root cause or None. A rule yields ``(item, message)``,
+    optionally followed by a severity (a string), a fix request and/or a
+    :class:`urdf_lint.findings.Cause`, in that order. A rule that crashes adds an
     internal error and the others still run."""
     import traceback
     entries = catalogue()
@@ -227,9 +232,9 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                sev, req = _extras(item[2:])
+                sev, req, cause = _extras(item[2:])
                 if with_fix:
-                    yield rule, item[0], item[1], sev, req
+                    yield rule, item[0], item[1], sev, req, cause
                 else:
                     yield rule, item[0], item[1], sev
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others

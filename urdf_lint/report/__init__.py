@@ -18,7 +18,14 @@ JSON schema (``--format json``), version 1::
                             "edits": [{"file": str, "start": int, "end": int, "text": str}]
                                      (byte ranges of the source, replaced by text)
                             | "refused": str (why it is not applied automatically)}
-                           (only when the rule has a fix for this finding)}],
+                           (only when the rule has a fix for this finding),
+                    "detail": str (what this instance is about, when the message is a root
+                               cause's, e.g. the mesh URI of an unknown package; optional),
+                    "value_from": [file, line, col] (where the value came from: a YAML scalar,
+                                  a property defined elsewhere; optional),
+                    "count": int, "instances": [{finding fields, "target": [kind, name]}, ...]
+                             (when several elements, models or places are one finding: one per
+                              source location and rule, or per root cause)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 
