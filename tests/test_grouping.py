@@ -121,3 +121,24 @@ def test_refused_fix_reason_is_in_text(tmp_path):
     text = check(pkg).stdout
     assert (f"not fixable automatically: the value comes from the expression at "
             f"urdf/hand.urdf.xacro:{LIMIT_LINE}") in text, text
+
+
+def test_diff_shows_the_yaml_line_that_changed(tmp_path):
+    import subprocess
+
+    def git(*a):
+        subprocess.run(["git", *a], cwd=pkg, check=True, capture_output=True)
+    good = LIMITS_YAML.replace("lower: 1.5", "lower: -1.5").replace("upper: -1.5", "upper: 1.5")
+    pkg = make_package(tmp_path, "hand", {"urdf/hand.urdf.xacro": HAND,
+                                          "urdf/joint_limits.yaml": good})
+    git("init", "-q")
+    git("add", "-A")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    (pkg / "urdf/joint_limits.yaml").write_text(good.replace("upper: 1.5", "upper: 1.2"))
+    doc = json.loads(run_cli("diff", "HEAD", "--format", "json", "--no-cache", cwd=pkg).stdout)
+    changes = [c for m in doc["models"] for c in m["changes"] if c["field"] == "limit.upper"]
+    assert len(changes) == 5, doc
+    assert all(c["value_from"][:2] == ["urdf/joint_limits.yaml", 4] for c in changes), changes
+    assert all(c["head"]["line"] == LIMIT_LINE for c in changes)
+    text = run_cli("diff", "HEAD", "--no-cache", cwd=pkg).stdout
+    assert "value from urdf/joint_limits.yaml:4" in text, text
