@@ -252,7 +252,7 @@ def _add_dollar(origin, tag, req) -> tuple:
     a = _written(tag, attr, origin)
     raw = a.raw
     for n in names.split(","):
-        raw, k = re.subn(r"(?<![$\w}]){" + re.escape(n) + "}", "${" + n + "}", raw)
+        raw, k = re.subn(r"(?<![$}]){" + re.escape(n) + "}", "${" + n + "}", raw)
         if not k:
             raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
                           f"{_where(origin.file, origin.line)}")
