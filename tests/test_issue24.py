@@ -65,3 +65,70 @@ def test_mimic_fix_is_safe_only_with_one_candidate(tmp_path):
     assert "fix" not in f, f
     d = run_cli("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
     assert "left_finger_joint" not in d.stdout
+
+
+ROOT_INERTIAL = f"""<?xml version="1.0"?>
+<robot name="r" {X}>
+  <link name="base"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def generated_pkg(tmp_path, name="gen"):
+    """A xacro and the URDF generated from it, checked in and named as its output."""
+    pkg = make_package(tmp_path, name, {"urdf/robot.urdf.xacro": ROOT_INERTIAL})
+    p = run_cli("expand", "urdf/robot.urdf.xacro", "-o", "urdf/robot.urdf", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    (pkg / "urdf-lint.toml").write_text('[[models]]\npath = "urdf/robot.urdf.xacro"\n'
+                                        'output = "urdf/robot.urdf"\n')
+    return pkg
+
+
+def test_unsafe_fixes_never_rewrite_a_generated_urdf(tmp_path):
+    """Item 21: the root-inertial fix (unsafe) of a stale generated URDF is refused: fixes go
+    to sources only."""
+    pkg = generated_pkg(tmp_path)
+    xacro = pkg / "urdf/robot.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('<mass value="1"/>', '<mass value="2"/>', 1))
+    urdf = (pkg / "urdf/robot.urdf").read_bytes()
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL604" and f["file"] == "urdf/robot.urdf"]
+    assert f["fix"]["refused"] == ("not fixable automatically: urdf/robot.urdf is generated from "
+                                   "urdf/robot.urdf.xacro; fix the source and run urdf-lint "
+                                   "generate"), f
+    p = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    assert (pkg / "urdf/robot.urdf").read_bytes() == urdf, p.stderr
+
+
+def test_current_generated_urdf_is_not_linted_again(tmp_path):
+    """Item 4: a generated URDF identical to today's expansion has no findings of its own
+    (they are the xacro's); a stale one is linted (and UL011)."""
+    pkg = generated_pkg(tmp_path)
+    doc, _ = check_json(pkg)
+    assert {f["file"] for f in doc["findings"]} == {"urdf/robot.urdf.xacro"}, doc["findings"]
+    assert len(doc["models"]) == 2
+    xacro = pkg / "urdf/robot.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('<mass value="1"/>', '<mass value="2"/>', 1))
+    doc, _ = check_json(pkg)
+    assert {(f["code"], f["file"]) for f in doc["findings"]} >= {
+        ("UL011", "urdf/robot.urdf"), ("UL604", "urdf/robot.urdf")}
+
+
+def test_every_generated_urdf_of_a_xacro_is_checked(tmp_path):
+    """Item 14: two URDFs whose headers name one xacro (and a [[models]] entry for it): both
+    stale ones are UL011, not only the first in path order; one generated with other args (other
+    links) is not compared."""
+    pkg = generated_pkg(tmp_path)
+    urdf = (pkg / "urdf/robot.urdf").read_text()
+    (pkg / "urdf/a_copy.urdf").write_text(urdf)
+    (pkg / "urdf/variant.urdf").write_text(urdf.replace('"arm"', '"other_arm"'))
+    xacro = pkg / "urdf/robot.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('<mass value="1"/>', '<mass value="2"/>', 1))
+    doc, _ = check_json(pkg)
+    stale = sorted(f["file"] for f in doc["findings"] if f["code"] == "UL011")
+    assert stale == ["urdf/a_copy.urdf", "urdf/robot.urdf"], doc["findings"]

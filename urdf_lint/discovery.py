@@ -115,29 +115,33 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
     discover_all = getattr(cfg, "discover", True)
-    outputs = _detected_outputs(found, paths, configured)
-    generated = {o: x for x, o in outputs.items()}
+    detected = _detected_outputs(found, paths)
+    generated = {o: x for x, os_ in detected.items() for o in os_}
     generated.update({m.output: m.path for m in cfg.models if m.output})
     for f, p in found:
         if f in configured:
-            jobs.extend(_configured_jobs(configured[f]))
+            jobs.extend(_configured_jobs(configured[f], detected.get(f, ())))
             continue
         if not discover_all and p != f:
             continue
         includers = [g for g in by.get(f, ()) if g in linted]
         if includers and p != f:
             fragments[f] = includers
-        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f, output=outputs.get(f)))
+        outs = detected.get(f, ())
+        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f,
+                            output=outs[0] if outs else None, outputs=tuple(outs[1:])))
     # configured models inside the linted paths that the walk did not reach
     for f, spec in configured.items():
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
-        jobs.extend(_configured_jobs(spec))
+        jobs.extend(_configured_jobs(spec, detected.get(f, ())))
     return Discovery(jobs, fragments, graph, generated, folders)
 
 
-def _detected_outputs(found, paths, configured) -> dict:
-    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed)."""
+def _detected_outputs(found, paths) -> dict:
+    """xacro -> the checked-in ``.urdf`` files whose generator header names it (no config
+    needed), the one named after the xacro first (``robot.urdf`` for ``robot.urdf.xacro``),
+    then in path order: every one is compared with today's expansion (UL011)."""
     from .generated import find_source, header_source
     xacros = [f for f, _ in found if f.endswith(".xacro")]
     if not xacros:
@@ -149,8 +153,12 @@ def _detected_outputs(found, paths, configured) -> dict:
             continue
         named = header_source(f)
         src = find_source(f, named, xacros, root) if named else None
-        if src and src not in out and not (src in configured and configured[src].output):
-            out[src] = f
+        if src:
+            out.setdefault(src, []).append(f)
+    for src, fs in out.items():
+        stem = os.path.basename(src)[:-len(".xacro")]
+        stem = stem[:-len(".urdf")] if stem.endswith(".urdf") else stem
+        fs.sort(key=lambda f: (os.path.basename(f) != stem + ".urdf", f))
     return out
 
 
@@ -175,11 +183,17 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
                               f"file or its includes{hint} (declared: {known})")
 
 
-def _configured_jobs(spec) -> list:
-    """One job per arg set; the output is compared with the first arg set's expansion."""
+def _configured_jobs(spec, detected=()) -> list:
+    """One job per arg set; the output (the configured one, else the first whose header
+    names the xacro) and the other detected outputs are compared with the first arg set's
+    expansion."""
     f = spec.path
+    outs = [o for o in ([spec.output] if spec.output else []) + list(detected)]
+    outs = list(dict.fromkeys(outs))
     return [LintJob(f, dict(args), _kind(f), explicit=True,
-                    output=spec.output if n == 0 else None, mesh_base=spec.mesh_base or (
+                    output=(outs[0] if outs else None) if n == 0 else None,
+                    outputs=tuple(outs[1:]) if n == 0 else (),
+                    mesh_base=spec.mesh_base or (
                         os.path.dirname(spec.output) if spec.output else None))
             for n, args in enumerate(spec.arg_sets)]
 

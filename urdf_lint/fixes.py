@@ -613,18 +613,41 @@ def remove_comment(loc) -> Fix | None:
                "", (("none", 0, "", ""),))
 
 
-def inside_paths(findings, paths) -> list:
+def inside_paths(findings, paths, generated: dict | None = None) -> list:
     """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
-    installed package, a dependency elsewhere in the workspace) refused."""
+    installed package, a dependency elsewhere in the workspace) refused, and those that would
+    edit a generated URDF (:func:`not_in_generated`)."""
     from .locations import display_path
     out = []
     real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
-    for p in findings:
+    for p in not_in_generated(findings, generated or {}):
         fx = p.fix
         if fx is not None and fx.applicable:
             outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                       f"{display_path(outside[0])} is outside the linted paths"))
+        out.append(p)
+    return out
+
+
+def not_in_generated(findings, generated: dict) -> list:
+    """The findings, with the fixes that would edit a generated URDF (``generated``: output ->
+    the xacro it comes from) refused: fixes go to sources only, safe or unsafe."""
+    if not generated:
+        return list(findings)
+    from .locations import display_path
+    outputs = {os.path.realpath(k): v for k, v in generated.items()}
+    out = []
+    for p in findings:
+        fx = p.fix
+        made = [e.file for e in fx.edits if os.path.realpath(e.file) in outputs] \
+            if fx is not None and fx.applicable else []
+        if made:
+            src = outputs[os.path.realpath(made[0])]
+            p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                  f"{display_path(made[0])} is generated from "
+                                  f"{display_path(src)}; fix the source and run "
+                                  "urdf-lint generate"))
         out.append(p)
     return out

@@ -142,6 +142,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     out.fragments = dict(found.fragments)
     out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
+    _drop_current_outputs(out.models)
 
     if affected_by is not None:
         from .changes import affected
@@ -159,7 +160,9 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
-    out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    from .fixes import not_in_generated
+    out.findings = sorted(not_in_generated(final, out.generated),
+                          key=lambda f: (f.file, f.line, f.col, f.code))
     if memo is not None:
         memo.store(out, results, found.folders)
     return out
@@ -224,6 +227,16 @@ def _complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
+def _drop_current_outputs(models) -> None:
+    """A generated URDF identical (as XML) to today's expansion of its xacro is not linted
+    again: its findings are the xacro's, reported at the xacro lines (a repository that checks
+    in robot.urdf next to robot.urdf.xacro got every finding twice). It stays a model."""
+    current = {o for r in models for o in r.current_outputs}
+    for r in models:
+        if r.entry in current and not r.args:
+            r.problems = []
+
+
 def _drop_snapshots(reports) -> None:
     """Remove the snapshots the workers wrote for files that turned out not to be reported
     models (fragments, libraries, models a changed file does not affect)."""
@@ -273,8 +286,12 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     from .registry import catalogue
     rules = catalogue()
     files: set[str] = set()
+    # a generated URDF that is today's expansion is not linted: the comments xacro copied
+    # into it suppress nothing there (they are the xacro's)
+    current = {o for r in models for o in r.current_outputs}
     for r in models:
-        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)]
+        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)
+                   and d not in current]
         # the worker said which sources hold urdf-lint comments (kept in the cache with the
         # result, valid while the deps are); otherwise every source is read
         known = None if r.directive_files is None else set(r.directive_files)
