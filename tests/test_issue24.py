@@ -132,3 +132,27 @@ def test_every_generated_urdf_of_a_xacro_is_checked(tmp_path):
     doc, _ = check_json(pkg)
     stale = sorted(f["file"] for f in doc["findings"] if f["code"] == "UL011")
     assert stale == ["urdf/a_copy.urdf", "urdf/robot.urdf"], doc["findings"]
+
+
+OTHER = '<robot name="o"><link name="a"/></robot>'
+
+
+def test_undeclared_arg_is_a_located_warning(tmp_path):
+    """Item 12: a launch file's arg no xacro:arg declares (xacro accepts it) is a UL008
+    warning at the config line, and the other models are still linted (it was exit 2)."""
+    src = f"""<robot name="r" {X}>
+  <xacro:arg name="use_gripper" default="false"/>
+  <link name="base"/>
+</robot>
+"""
+    pkg = make_package(tmp_path, "launchargs", {"urdf/r.urdf.xacro": src,
+                                                "urdf/other.urdf": OTHER})
+    (pkg / "urdf-lint.toml").write_text('[[models]]\npath = "urdf/r.urdf.xacro"\n'
+                                        'args = [{ use_gripper = "true", sim_mode = "false" }]\n')
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg)   # the config's
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL008"]
+    assert (f["file"], f["line"], f["severity"]) == ("urdf-lint.toml", 3, "warning")
+    assert "arg 'sim_mode' is not declared" in f["message"]
+    assert len(doc["models"]) == 2

@@ -78,6 +78,7 @@ class Discovery:
     graph: "IncludeGraph"
     generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
     folders: list = field(default_factory=list)     # every folder the walk looked into
+    problems: list = field(default_factory=list)    # located findings about the config (UL008)
 
 
 def _candidates(paths, cfg, folders: list | None = None):
@@ -108,8 +109,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     folders: list = []
     found = list(_candidates(paths, cfg, folders))
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
-    for spec in cfg.models:
-        _check_args(spec, graph, cfg)
+    problems = [p for spec in cfg.models for p in _check_args(spec, graph, cfg)]
     graph.save()
     by = graph.included_by()
     linted = {f for f, _ in found}
@@ -135,7 +135,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
         jobs.extend(_configured_jobs(spec, detected.get(f, ())))
-    return Discovery(jobs, fragments, graph, generated, folders)
+    return Discovery(jobs, fragments, graph, generated, folders, problems)
 
 
 def _detected_outputs(found, paths) -> dict:
@@ -162,25 +162,46 @@ def _detected_outputs(found, paths) -> dict:
     return out
 
 
-def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
-    """An arg a configured model sets that no ``xacro:arg`` of the file (or its includes)
-    declares, and that no ``$(arg NAME)`` there reads, is a config error: xacro would ignore
-    it and lint the default variant again."""
-    from .config import ConfigError
+def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
+    """A ``UL008`` warning, at the config line that sets it, for an arg a configured model
+    sets that no ``xacro:arg`` of the file (or its includes) declares and no ``$(arg NAME)``
+    there reads: xacro accepts and ignores it (a launch file's args often hold more), so the
+    model is linted as its default variant for that arg."""
+    from .findings import Problem
+    from .rules import ul008_xacro_warning
     if not spec.path.endswith(".xacro"):
-        return
+        return []
     declared = graph.declared_args(spec.path)
     if graph.unresolved_below(spec.path):
-        return   # an include only expansion resolves may declare it
+        return []   # an include only expansion resolves may declare it
+    out = []
     for args in spec.arg_sets:
         for name in sorted(set(args) - declared):
             import difflib
             close = difflib.get_close_matches(name, sorted(declared), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             known = ", ".join(sorted(declared)) or "none"
-            raise ConfigError(f"{cfg.path}: model {os.path.relpath(spec.path, cfg.root)}: arg "
-                              f"{name!r} is not declared by any xacro:arg (nor read by $(arg ...)) in the "
-                              f"file or its includes{hint} (declared: {known})")
+            where = (cfg.path, *_config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
+            out.append(Problem.at(
+                ul008_xacro_warning.CODE,
+                f"model {os.path.relpath(spec.path, cfg.root)}: arg {name!r} is not declared "
+                f"by any xacro:arg (nor read by $(arg ...)) in the file or its includes{hint} "
+                f"(declared: {known}); xacro ignores it", where))
+    return list({p.key(): p for p in out}.values())
+
+
+def _config_line(path: str, name: str) -> tuple[int, int]:
+    """(line, col) of the first ``name =`` in the config file (an arg in ``args``), else (1, 1)."""
+    pat = re.compile(r"""(?:^|[\s{,])["']?""" + re.escape(name) + r"""["']?\s*=""")
+    try:
+        with open(path, encoding="utf-8") as f:
+            for i, line in enumerate(f, 1):
+                m = pat.search(line)
+                if m:
+                    return i, m.start() + 1 + (line[m.start()] in " \t{,")
+    except OSError:
+        pass
+    return 1, 1
 
 
 def _configured_jobs(spec, detected=()) -> list:

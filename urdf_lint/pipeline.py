@@ -157,6 +157,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         problems.extend(_with_policy(r.problems, r.label, policy))
     if affected_by is None:
         problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
+    problems.extend(_with_policy(found.problems, RUN_LABEL, policy))
     kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
