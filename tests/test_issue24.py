@@ -156,3 +156,21 @@ def test_undeclared_arg_is_a_located_warning(tmp_path):
     assert (f["file"], f["line"], f["severity"]) == ("urdf-lint.toml", 3, "warning")
     assert "arg 'sim_mode' is not declared" in f["message"]
     assert len(doc["models"]) == 2
+
+
+def test_missing_include_built_from_empty_args_names_them(tmp_path):
+    """Item 10: `arms/$(arg arm)/$(arg dof)/urdf/$(arg arm)_macro.xacro` with arm and dof
+    left empty: UL003 names the empty args and how to set them."""
+    src = f"""<robot name="r" {X}>
+  <xacro:arg name="arm" default=""/>
+  <xacro:arg name="dof" default=""/>
+  <xacro:include filename="$(find emptyargs)/arms/$(arg arm)/$(arg dof)/urdf/$(arg arm)_macro.xacro"/>
+  <link name="base"/>
+</robot>
+"""
+    pkg = make_package(tmp_path, "emptyargs", {"urdf/r.urdf.xacro": src})
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL003"]
+    assert "arms///urdf/_macro.xacro" in f["message"]
+    assert "args left empty: arm, dof" in f["message"] and "[[tool.urdf-lint.models]] args" in \
+        f["message"], f
