@@ -3,6 +3,9 @@ on real description repositories."""
 from __future__ import annotations
 
 import json
+import os
+
+import pytest
 
 from conftest import make_package, run_cli
 
@@ -174,3 +177,38 @@ def test_missing_include_built_from_empty_args_names_them(tmp_path):
     assert "arms///urdf/_macro.xacro" in f["message"]
     assert "args left empty: arm, dof" in f["message"] and "[[tool.urdf-lint.models]] args" in \
         f["message"], f
+
+
+def _sleeper(job, settings):
+    """A model that takes 2.5 s of wall-clock time and no CPU (a loaded machine, slow I/O);
+    one named spin.urdf burns 30 s of CPU."""
+    import time
+
+    from conftest import carried
+    if job.entry.endswith("spin.urdf"):
+        t0 = time.process_time()
+        while time.process_time() - t0 < 30:
+            pass
+    else:
+        time.sleep(2.5)
+    return carried(job, {"slept": True})
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/stat"), reason="needs /proc (CPU time)")
+def test_time_limit_counts_cpu_time(tmp_path, monkeypatch):
+    """Item 11: a job that waits (no CPU) longer than the limit is not killed; one that burns
+    CPU past it is UL904."""
+    from conftest import carried_data
+    from urdf_lint import worker
+    from urdf_lint.jobs import LintJob, LintSettings
+    from urdf_lint.packages import PackageResolver
+    monkeypatch.setattr(worker, "process_job", _sleeper)
+    resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
+    jobs = [LintJob(str(tmp_path / "wait.urdf"), kind="urdf"),
+            LintJob(str(tmp_path / "spin.urdf"), kind="urdf")]
+    got = {os.path.basename(j.entry): r for j, r in worker.run_jobs(
+        jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=2, timeout=1.0)}
+    assert carried_data(got["wait.urdf"]) == {"slept": True}
+    spin = got["spin.urdf"]
+    assert [p.code for p in spin.problems] == ["UL904"], spin
+    assert "1 s of CPU time" in spin.problems[0].message
