@@ -212,3 +212,22 @@ def test_time_limit_counts_cpu_time(tmp_path, monkeypatch):
     spin = got["spin.urdf"]
     assert [p.code for p in spin.problems] == ["UL904"], spin
     assert "1 s of CPU time" in spin.problems[0].message
+
+
+def test_libraries_do_not_write_to_our_stderr(tmp_path):
+    """Item 25: rendering a robot whose joint mimics itself (UL308) printed yourdfpy's
+    "Joint 'spinner' is supposed to mimic 'spinner'" once per sweep step; only urdf-lint's own
+    located lines reach the user."""
+    pytest.importorskip("rerun")
+    src = f"""<robot name="r" {X}>
+  <link name="base"/><link name="wheel"/><link name="arm"/>
+  <joint name="drive" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="spinner" type="continuous"><parent link="base"/><child link="wheel"/>
+    <axis xyz="0 0 1"/><mimic joint="spinner"/></joint>
+</robot>
+"""
+    pkg = make_package(tmp_path, "spin", {"urdf/r.urdf.xacro": src})
+    p = run_cli("render", "urdf/r.urdf.xacro", "--out", tmp_path / "snap", cwd=pkg)
+    assert list((tmp_path / "snap").glob("*.rrd")), p.stderr
+    assert "supposed to mimic" not in p.stderr + p.stdout, p.stderr
