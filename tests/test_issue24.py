@@ -231,3 +231,41 @@ def test_libraries_do_not_write_to_our_stderr(tmp_path):
     p = run_cli("render", "urdf/r.urdf.xacro", "--out", tmp_path / "snap", cwd=pkg)
     assert list((tmp_path / "snap").glob("*.rrd")), p.stderr
     assert "supposed to mimic" not in p.stderr + p.stdout, p.stderr
+
+
+def _ghost_mesh_robot(uri):
+    return f"""<robot name="r" {X}>
+  <link name="base"><visual><geometry><mesh filename="{uri}"/></geometry></visual></link>
+</robot>
+"""
+
+
+def test_unknown_package_search_list(tmp_path):
+    """Item 22: linting one file does not list "package.xml under <the .xacro>"; a
+    workspace's src/ is listed; package:/// says it names no package."""
+    from repo_shapes import colcon_workspace
+    ws = colcon_workspace(tmp_path / "ws")
+    entry = ws / "src/robot_description/urdf/robot.urdf.xacro"
+    entry.write_text(entry.read_text().replace("package://robot_meshes/", "package://no_meshes/"))
+    p = run_cli("check", str(entry), "--no-cache", "--isolated", "--format", "json", cwd=tmp_path)
+    (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL004"]
+    assert ".xacro;" not in f["message"] and not f["message"].count(".xacro)"), f["message"]
+    assert f"package.xml under {ws.resolve()}/src" in f["message"], f["message"]
+    pkg = make_package(tmp_path, "slashes", {"urdf/r.urdf.xacro":
+                                             _ghost_mesh_robot("package:///meshes/a.stl")})
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] in ("UL004", "UL401")]
+    assert "unknown package ''" not in f["message"] and "names no package" in f["message"], f
+
+
+def test_sibling_package_outside_git_gets_a_package_path_hint(tmp_path):
+    """Item 24: outside git, a package beside the linted path (under the working directory)
+    is not a root (README says so now), and UL004 says how to name it."""
+    make_package(tmp_path, "robot_description", {"urdf/r.urdf.xacro": _ghost_mesh_robot(
+        "package://robot_meshes/meshes/body.stl")})
+    make_package(tmp_path / "assets", "robot_meshes", {"meshes/body.stl": "solid x\nendsolid x\n"})
+    p = run_cli("check", "robot_description", "--no-cache", "--isolated", "--format", "json",
+                cwd=tmp_path)
+    (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL004"]
+    want = f"--package-path robot_meshes={(tmp_path / 'assets/robot_meshes').resolve()}"
+    assert f["message"].endswith(want), f["message"]

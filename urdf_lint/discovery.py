@@ -60,8 +60,13 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
         if os.path.isdir(d):
             for name, pkg in install_share_packages(d).items():
                 found.setdefault(name, pkg)
-    return PackageResolver.build(scan, explicit=explicit, extra_roots=list(dict.fromkeys(extra_roots)),
-                                 packages=found)
+    res = PackageResolver.build(scan, explicit=explicit,
+                                extra_roots=list(dict.fromkeys(extra_roots)), packages=found)
+    for ws in workspace_roots([*paths, start]):   # searched too: name it in UL004's list
+        src = os.path.join(ws, "src")
+        if os.path.isdir(src) and src not in res.scanned_dirs:
+            res.scanned_dirs.append(src)
+    return res
 
 
 def _kind(f: str) -> str:

@@ -143,6 +143,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
     _drop_current_outputs(out.models)
+    _hint_packages(out.models, paths)
 
     if affected_by is not None:
         from .changes import affected
@@ -226,6 +227,34 @@ def _complete_robot(r: ModelReport) -> bool:
     undefined link or name)?"""
     return r.status is Status.MODEL and r.links > 0 and bool(r.name) and not any(
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
+
+
+def _hint_packages(models, paths) -> None:
+    """An unknown package whose ``package.xml`` is in a folder beside the linted paths (a
+    sibling package under the working directory, outside git): its UL004 says
+    ``--package-path NAME=DIR``. Looked for here, in the parent: the workers may not list
+    folders outside the roots, and such a folder is never a root by itself."""
+    import re
+    from .locations import display_path
+    from .rules import ul004_unknown_package
+    from .workspace import beside
+    found: dict = {}
+    for r in models:
+        new = []
+        for p in r.problems:
+            m = re.search(r"unknown package '([^']+)'", p.message) \
+                if p.code == ul004_unknown_package.CODE and "pass --package-path" not in p.message \
+                else None
+            if m:
+                name = m.group(1)
+                if name not in found:
+                    found[name] = beside(name, paths or ["."])
+                if found[name]:
+                    p = p.replace(message=f"{p.message}; {display_path(found[name])}/package.xml "
+                                          f"beside the linted paths declares it: pass "
+                                          f"--package-path {name}={found[name]}")
+            new.append(p)
+        r.problems = new
 
 
 def _drop_current_outputs(models) -> None:
