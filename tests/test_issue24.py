@@ -269,3 +269,29 @@ def test_sibling_package_outside_git_gets_a_package_path_hint(tmp_path):
     (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL004"]
     want = f"--package-path robot_meshes={(tmp_path / 'assets/robot_meshes').resolve()}"
     assert f["message"].endswith(want), f["message"]
+
+
+def test_mirrored_wheels_share_one_tensor(tmp_path):
+    """Item 8: four identical wheels with mirrored meshes (wheel_left.stl / wheel_right.stl)
+    rightly share one tensor: no UL608."""
+    from urdf_lint.rules._meshes import TETRA_STL
+    wheels = "".join(
+        f"""  <link name="{n}_wheel"><inertial><mass value="2"/>
+    <inertia ixx="0.01" iyy="0.02" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="package://cart/meshes/wheel_{side}.stl"/></geometry>
+    </collision></link>
+  <joint name="{n}_joint" type="continuous"><parent link="base"/><child link="{n}_wheel"/>
+    <axis xyz="0 1 0"/></joint>
+""" for n, side in (("fl", "left"), ("fr", "right"), ("rl", "left"), ("rr", "right")))
+    src = f'<robot name="cart" {X}>\n  <link name="base"/>\n{wheels}</robot>\n'
+    pkg = make_package(tmp_path, "cart", {"urdf/cart.urdf.xacro": src,
+                                          "meshes/wheel_left.stl": TETRA_STL,
+                                          "meshes/wheel_right.stl": TETRA_STL})
+    doc, _ = check_json(pkg, "--select", "UL608")
+    assert doc["findings"] == []
+    # different parts (a wheel and a different mesh) with one tensor are still flagged
+    (pkg / "meshes/arm.stl").write_text(TETRA_STL)
+    f = pkg / "urdf/cart.urdf.xacro"
+    f.write_text(f.read_text().replace("wheel_right.stl", "arm.stl", 1))
+    doc, _ = check_json(pkg, "--select", "UL608")
+    assert [x["code"] for x in doc["findings"]] == ["UL608"]
