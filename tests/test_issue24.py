@@ -295,3 +295,33 @@ def test_mirrored_wheels_share_one_tensor(tmp_path):
     f.write_text(f.read_text().replace("wheel_right.stl", "arm.stl", 1))
     doc, _ = check_json(pkg, "--select", "UL608")
     assert [x["code"] for x in doc["findings"]] == ["UL608"]
+
+
+def test_undeclared_dependency_of_an_include(tmp_path):
+    """Item 17: a macro included through $(find arm_description) from a package whose
+    package.xml does not declare arm_description is UL012; declaring it (exec_depend) clears it."""
+    arm = make_package(tmp_path, "arm_description", {"urdf/arm.xacro": f"""<robot {X}>
+  <xacro:macro name="arm" params="parent">
+    <link name="arm"/>
+    <joint name="arm_joint" type="fixed"><parent link="${{parent}}"/><child link="arm"/></joint>
+  </xacro:macro>
+</robot>
+"""})
+    assert arm.is_dir()
+    robot = make_package(tmp_path, "robot_description", {"urdf/robot.urdf.xacro": f"""<robot name="r" {X}>
+  <xacro:include filename="$(find arm_description)/urdf/arm.xacro"/>
+  <link name="base"/>
+  <xacro:arm parent="base"/>
+</robot>
+"""})
+    p = run_cli("check", ".", "--no-cache", "--isolated", "--format", "json", "--select", "UL012",
+                cwd=tmp_path)
+    (f,) = json.loads(p.stdout)["findings"]
+    assert "package 'arm_description' is used but robot_description/package.xml does not " \
+        "declare it" in f["message"], f
+    pxml = robot / "package.xml"
+    pxml.write_text(pxml.read_text().replace("</package>",
+                                             "<exec_depend>arm_description</exec_depend></package>"))
+    p = run_cli("check", ".", "--no-cache", "--isolated", "--format", "json", "--select", "UL012",
+                cwd=tmp_path)
+    assert json.loads(p.stdout)["findings"] == []
