@@ -325,3 +325,47 @@ def test_undeclared_dependency_of_an_include(tmp_path):
     p = run_cli("check", ".", "--no-cache", "--isolated", "--format", "json", "--select", "UL012",
                 cwd=tmp_path)
     assert json.loads(p.stdout)["findings"] == []
+
+
+def _leg(collision: str, visual: str = "") -> str:
+    return f"""<robot name="r" {X}>
+  <link name="base"/>
+  <link name="foot">
+    <inertial><mass value="0.5"/>
+      <inertia ixx="0.0005" iyy="0.0005" izz="0.0005" ixy="0" ixz="0" iyz="0"/></inertial>
+    {visual}
+    {collision}
+  </link>
+  <joint name="ankle" type="revolute"><parent link="base"/><child link="foot"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_physics_rules_skip_proxy_collision_shapes(tmp_path):
+    """Item 7: four 5 mm contact spheres or a collision cylinder around only the motor are not
+    the body: UL605-607 judge the link by its visual geometry, and say so, or skip it."""
+    codes = "UL605,UL606,UL607"
+    spheres = "".join(f'<collision><origin xyz="{x} {y} 0"/><geometry><sphere radius="0.005"/>'
+                      '</geometry></collision>' for x in (-0.05, 0.05) for y in (-0.03, 0.03))
+    # spheres and no visual: nothing to judge by (it was "implied density 2.4e+05 kg/m³")
+    pkg = make_package(tmp_path, "contacts", {"urdf/r.urdf.xacro": _leg(spheres)})
+    doc, _ = check_json(pkg, "--select", codes)
+    assert doc["findings"] == [], doc["findings"]
+    # spheres and a box visual that fits the declared inertia: judged against the visual
+    body = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    pkg = make_package(tmp_path, "contacts2", {"urdf/r.urdf.xacro": _leg(spheres, body)})
+    doc, _ = check_json(pkg, "--select", codes)
+    assert doc["findings"] == [], doc["findings"]
+    # a cylinder around only the motor, and a visual body with a wrong (10 kg·m²) inertia:
+    # reported against the visual, saying why
+    motor = ('<collision><geometry><cylinder radius="0.01" length="0.02"/></geometry>'
+             '</collision>')
+    src = _leg(motor, body).replace('ixx="0.0005" iyy="0.0005" izz="0.0005"',
+                                    'ixx="0.5" iyy="0.5" izz="0.5"')
+    pkg = make_package(tmp_path, "motor", {"urdf/r.urdf.xacro": src})
+    doc, _ = check_json(pkg, "--select", codes)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL605"]
+    assert "its visual geometry" in f["message"]
+    assert "judged against the visual geometry: the collision shape covers only part of the " \
+        "link" in f["message"], f["message"]
