@@ -369,3 +369,29 @@ def test_physics_rules_skip_proxy_collision_shapes(tmp_path):
     assert "its visual geometry" in f["message"]
     assert "judged against the visual geometry: the collision shape covers only part of the " \
         "link" in f["message"], f["message"]
+
+
+def test_args_left_at_defaults_that_select_variants_get_one_note(tmp_path):
+    """Item 18: a robot whose args select variants (a gripper switch, an arm type in an include
+    path), linted only with defaults: one info line naming the args and [[models]] args."""
+    src = f"""<robot name="r" {X}>
+  <xacro:arg name="use_gripper" default="false"/>
+  <xacro:arg name="arm_type" default="small"/>
+  <xacro:arg name="prefix" default=""/>
+  <xacro:include filename="$(arg arm_type)_arm.xacro"/>
+  <link name="$(arg prefix)base"/>
+  <xacro:if value="$(arg use_gripper)"><link name="gripper"/></xacro:if>
+</robot>
+"""
+    arm = f'<robot {X}><link name="arm"/></robot>\n'
+    pkg = make_package(tmp_path, "variants", {"urdf/r.urdf.xacro": src,
+                                              "urdf/small_arm.xacro": arm})
+    p = run_cli("check", ".", "--no-cache", "--isolated", cwd=pkg)
+    notes = [ln for ln in p.stderr.splitlines() if "select variants" in ln]
+    assert len(notes) == 1, p.stderr
+    assert "(use_gripper, arm_type)" in notes[0] and "prefix" not in notes[0]
+    assert "[[tool.urdf-lint.models]]" in notes[0]
+    (pkg / "urdf-lint.toml").write_text('[[models]]\npath = "urdf/r.urdf.xacro"\n'
+                                        'args = [{use_gripper = "true"}]\n')
+    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    assert "select variants" not in p.stderr, p.stderr

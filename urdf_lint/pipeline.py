@@ -343,5 +343,46 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     return kept
 
 
+_VARIANT_USE = None
+_BOOL_ARG = None
+
+
+def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
+    """{entry: [arg, ...]} for the models linted with every arg at its default although args
+    select variants there (an arg with a true/false default, or one read in a condition,
+    ``if=``/``unless=``/``<xacro:if value=...>``, or an include's ``filename``: a hand, a
+    simulation mode, an arm type), and no ``[[models]]`` entry lists the file."""
+    import re
+    from .packages import MAX_SOURCE_BYTES
+    global _VARIANT_USE, _BOOL_ARG
+    if _VARIANT_USE is None:
+        _VARIANT_USE = re.compile(rb"""\b(?:if|unless|filename|value)\s*=\s*(["'])[^"']*?"""
+                                  rb"""\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)""")
+        _BOOL_ARG = re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
+                               rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
+    configured = {m.path for m in cfg.models}
+    out: dict = {}
+    for r in models:
+        if r.args or r.entry in configured or not r.entry.endswith(".xacro"):
+            continue
+        names: dict = {}
+        for f in r.deps:
+            if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
+                try:
+                    with open(f, "rb") as fh:
+                        data = fh.read()
+                except OSError:
+                    continue
+                for m in _BOOL_ARG.finditer(data):
+                    names[m.group(1).decode("utf-8", "replace")] = None
+                for m in _VARIANT_USE.finditer(data):
+                    if not data.startswith(b"value", m.start()) or re.search(
+                            rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
+                        names[m.group(2).decode("utf-8", "replace")] = None
+        if names:
+            out[r.entry] = list(names)
+    return out
+
+
 def exit_code(result: CheckResult, fail_on: str) -> int:
     return exit_status((f.severity for f in result.findings), bool(result.internal), fail_on)
