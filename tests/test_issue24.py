@@ -395,3 +395,30 @@ def test_args_left_at_defaults_that_select_variants_get_one_note(tmp_path):
                                         'args = [{use_gripper = "true"}]\n')
     p = run_cli("check", ".", "--no-cache", cwd=pkg)
     assert "select variants" not in p.stderr, p.stderr
+
+
+def test_diff_picture_marks_only_visible_changes_and_has_a_legend(tmp_path):
+    """Item 23: a link drawn alike before and after (its mesh missing on both sides) is not
+    marked changed; the difference image has a legend."""
+    import numpy as np
+    from PIL import Image
+
+    from urdf_lint import raster
+
+    def geom(z):
+        tri = np.array([[[0, 0, 0], [0.2, 0, 0], [0, 0.2, z]]], float)
+        wire = np.array([[x, y, w] for x in (0.5, 0.6) for y in (0, 0.1) for w in (0, 0.1)],
+                        float)   # link b: a placeholder box (its mesh missing)
+        return raster.Geometry("r", [tri], [np.full((1, 3), 0.7)], [wire],
+                               np.zeros((2, 3)), 2, ["a"], ["b"])
+    before, after = geom(0.0), geom(0.1)
+    info = raster.render_pair(before, after, str(tmp_path / "x"), frozenset({"a", "b"}),
+                              views="single")
+    assert info["changed_pixels"] > 0                       # a moved
+    same = raster.render_pair(before, before, str(tmp_path / "y"), frozenset({"b"}),
+                              views="single")
+    assert same["changed_pixels"] == 0
+    img = np.asarray(Image.open(same["diff"]).convert("RGB")).astype(int)
+    corner = img[-16:, 8:19]
+    assert ((corner[..., 0] > 200) & (corner[..., 1] < 40) & (corner[..., 2] > 130)).any(), \
+        "the legend's magenta swatch"
