@@ -419,6 +419,6 @@ def test_diff_picture_marks_only_visible_changes_and_has_a_legend(tmp_path):
                               views="single")
     assert same["changed_pixels"] == 0
     img = np.asarray(Image.open(same["diff"]).convert("RGB")).astype(int)
-    corner = img[-16:, 8:19]
+    corner = img[-raster.LEGEND_H:, 8:19]
     assert ((corner[..., 0] > 200) & (corner[..., 1] < 40) & (corner[..., 2] > 130)).any(), \
         "the legend's magenta swatch"

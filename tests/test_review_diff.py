@@ -204,6 +204,8 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     assert before.shape == after.shape == diff.shape
     tinted = (diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)   # magenta
     outline = (diff[:, :, 2] > 150) & (diff[:, :, 0] < 80)                        # blue
+    from urdf_lint.raster import LEGEND_H
+    tinted[-LEGEND_H:] = outline[-LEGEND_H:] = False   # the legend's swatches
     marked = tinted | outline
     # where the moved links are, computed here from both revisions with the same framing
     base_copy = tmp_path / "base"
@@ -296,7 +298,8 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
     assert [m["status"] for m in doc["models"]] == ["unchanged"]
     stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
     assert Path(f"{stem}.before.png").read_bytes() == Path(f"{stem}.after.png").read_bytes()
-    diff = _img(f"{stem}.diff.png")
+    from urdf_lint.raster import LEGEND_H
+    diff = _img(f"{stem}.diff.png")[:-LEGEND_H]   # (the legend's swatches below)
     assert not ((diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)).any()
 
 

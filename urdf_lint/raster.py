@@ -504,11 +504,14 @@ def caption(img, text):
     ImageDraw.Draw(img).text((8, 6), text, fill=(40, 40, 40))
 
 
+LEGEND_H = 18   # the strip at the bottom of the difference image that holds the legend
+
+
 def legend(img):
-    """The difference image's legend, in the bottom-left corner."""
+    """The difference image's legend, in the bottom-left corner (``LEGEND_H`` rows)."""
     from PIL import ImageDraw
     d = ImageDraw.Draw(img)
-    y = img.size[1] - 16
+    y = img.size[1] - LEGEND_H + 2
     d.rectangle((8, y + 2, 18, y + 12), fill=(230, 0, 160))
     d.rectangle((150, y + 2, 160, y + 12), outline=(30, 60, 200), width=2)
     d.text((22, y), "changed, now", fill=(40, 40, 40))
