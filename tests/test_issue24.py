@@ -422,3 +422,27 @@ def test_diff_picture_marks_only_visible_changes_and_has_a_legend(tmp_path):
     corner = img[-raster.LEGEND_H:, 8:19]
     assert ((corner[..., 0] > 200) & (corner[..., 1] < 40) & (corner[..., 2] > 130)).any(), \
         "the legend's magenta swatch"
+
+
+def test_fragment_included_through_a_param_built_path_is_not_linted_alone(tmp_path):
+    """Item 9: `${side}_arm.transmissions.urdf.xacro` included in a macro whose robot fails
+    for lack of an arg: the fragment (which reads the macro's `name`) is not linted alone
+    (it was UL002 "name 'name' is not defined" inside it)."""
+    robot = f"""<robot name="$(arg robot_name)" {X}>
+  <xacro:macro name="arm" params="side name">
+    <link name="${{name}}_link"/>
+    <xacro:include filename="${{side}}_arm.transmissions.urdf.xacro"/>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:arm side="left" name="l"/>
+</robot>
+"""
+    trans = f"""<robot {X}>
+  <transmission name="${{name}}_trans"><joint name="${{name}}_joint"/></transmission>
+</robot>
+"""
+    pkg = make_package(tmp_path, "arms", {"urdf/robot.urdf.xacro": robot,
+                                          "urdf/left_arm.transmissions.urdf.xacro": trans})
+    doc, _ = check_json(pkg)
+    assert [f["code"] for f in doc["findings"]] == ["UL005"], doc["findings"]
+    assert [m["entry"] for m in doc["models"]] == ["urdf/robot.urdf.xacro"]

@@ -354,6 +354,27 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
     return [os.path.realpath(path)]
 
 
+_EXPR = re.compile(r"\$\{[^}]*\}|\$\((?!find\s)[^)]*\)")
+
+
+def _maybe_included(name: str, base: str, resolver) -> list:
+    """The files an include whose ``filename`` is built from a macro parameter or an arg
+    (``${side}_arm.transmissions.urdf.xacro``) may name: the expressions read as ``*``, when
+    what is left names enough (at least 4 characters besides the extension), so that such
+    a fragment is linted through its includers, not alone (where it lacks their params)."""
+    pattern = _EXPR.sub("*", name.strip())
+    if "$" in pattern.replace("$(find", "") or "*" not in pattern:
+        return []
+    literal = os.path.basename(pattern).replace("*", "")
+    for ext in (".urdf.xacro", ".xacro", ".urdf"):
+        if literal.endswith(ext):
+            literal = literal[:-len(ext)]
+            break
+    if len(literal.strip("._-")) < 4:
+        return []
+    return _resolve_include(pattern, base, resolver) or []
+
+
 def _read_includes(f: str, resolver):
     """(included files, number of unresolvable includes, declared or used arg names, whether
     an include is a glob)."""
@@ -376,6 +397,10 @@ def _read_includes(f: str, resolver):
             got = _resolve_include(el.get("filename", ""), base, resolver)
             if got is None:
                 unresolved += 1
+                maybe = _maybe_included(el.get("filename", ""), base, resolver)
+                if maybe:   # ${side}_arm.transmissions.urdf.xacro: left_ and right_ are included
+                    inc.extend(maybe)
+                    glob_used = True
             else:
                 inc.extend(got)
         elif q.localname == "arg" and el.get("name"):
