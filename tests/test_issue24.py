@@ -446,3 +446,29 @@ def test_fragment_included_through_a_param_built_path_is_not_linted_alone(tmp_pa
     doc, _ = check_json(pkg)
     assert [f["code"] for f in doc["findings"]] == ["UL005"], doc["findings"]
     assert [m["entry"] for m in doc["models"]] == ["urdf/robot.urdf.xacro"]
+
+
+def test_mesh_paths_of_a_fragment_start_where_its_includers_do(tmp_path):
+    """Item 5: xacro/robot.xacro includes xacro/body.xacro (a complete robot by itself); the
+    generated urdf/robot.urdf (header naming xacro/robot.xacro) has its meshes next to it
+    (urdf/meshes/...). body.xacro linted on its own starts its relative mesh paths there too
+    (it was UL401 "looked for .../xacro/meshes/...")."""
+    from urdf_lint.rules._meshes import TETRA_STL
+    body = f"""<robot name="body" {X}>
+  <link name="base"/>
+  <link name="shell"><visual><geometry><mesh filename="meshes/shell.stl"/></geometry></visual>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="shell_joint" type="fixed"><parent link="base"/><child link="shell"/></joint>
+</robot>
+"""
+    robot = f"""<robot name="robot" {X}>
+  <xacro:include filename="body.xacro"/>
+</robot>
+"""
+    pkg = make_package(tmp_path, "meshy", {"xacro/robot.xacro": robot, "xacro/body.xacro": body,
+                                           "urdf/meshes/shell.stl": TETRA_STL})
+    p = run_cli("expand", "xacro/robot.xacro", "-o", "urdf/robot.urdf", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    doc, _ = check_json(pkg)
+    assert "xacro/body.xacro" in [m["entry"] for m in doc["models"]]
+    assert not [f for f in doc["findings"] if f["code"] in ("UL401", "UL004")], doc["findings"]

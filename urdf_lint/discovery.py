@@ -140,7 +140,29 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
         jobs.extend(_configured_jobs(spec, detected.get(f, ())))
+    jobs = _inherit_mesh_base(jobs, graph)
     return Discovery(jobs, fragments, graph, generated, folders, problems)
+
+
+def _inherit_mesh_base(jobs: list, graph: "IncludeGraph") -> list:
+    """A file included by models that set where relative mesh paths start (a ``mesh-base``,
+    or the folder of their generated URDF) starts them there too when it is linted on its own
+    (a complete robot that is also a fragment): its meshes sit next to those URDFs, not next
+    to the xacro. Only when the models including it agree on one folder."""
+    import dataclasses
+    base: dict = {}
+    for j in jobs:
+        b = j.mesh_base or (os.path.dirname(j.output) if j.output else None)
+        if b:
+            base.setdefault(j.entry, b)
+    out = []
+    for j in jobs:
+        if j.kind == "xacro" and not (j.mesh_base or j.output):
+            got = {base[g] for g in graph.includers(j.entry) if g in base}
+            if len(got) == 1:
+                j = dataclasses.replace(j, mesh_base=got.pop())
+        out.append(j)
+    return out
 
 
 def _detected_outputs(found, paths) -> dict:
