@@ -472,3 +472,23 @@ def test_mesh_paths_of_a_fragment_start_where_its_includers_do(tmp_path):
     doc, _ = check_json(pkg)
     assert "xacro/body.xacro" in [m["entry"] for m in doc["models"]]
     assert not [f for f in doc["findings"] if f["code"] in ("UL401", "UL004")], doc["findings"]
+
+
+def test_mesh_base_above_a_file_linted_alone(tmp_path):
+    """Item 5: a [[models]] mesh-base above the linted package (outside git): linting that one
+    file finds the meshes there, not every mesh outside the roots (UL403)."""
+    from urdf_lint.rules._meshes import TETRA_STL
+    src = f"""<robot name="r" {X}>
+  <link name="base"><visual><geometry><mesh filename="meshes/part.stl"/></geometry></visual>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+</robot>
+"""
+    make_package(tmp_path / "robots", "arm", {"urdf/arm.urdf.xacro": src})
+    (tmp_path / "assets/meshes").mkdir(parents=True)
+    (tmp_path / "assets/meshes/part.stl").write_text(TETRA_STL)
+    (tmp_path / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "robots/arm/urdf/arm.urdf.xacro"\nmesh-base = "assets"\n')
+    p = run_cli("check", "robots/arm/urdf/arm.urdf.xacro", "--no-cache", "--format", "json",
+                cwd=tmp_path)
+    doc = json.loads(p.stdout)
+    assert not [f for f in doc["findings"] if f["code"].startswith("UL40")], doc["findings"]

@@ -45,6 +45,12 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
     scan, extra_roots = discover_roots(paths or [start], git_root(start))
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
+    # a [[models]] mesh-base is where that model's meshes are: a root like the package, when it
+    # lies inside the config's folder (a file linted alone, outside git, no longer sees every
+    # mesh of a mesh-base above it as outside the roots, UL403)
+    top_cfg = os.path.realpath(cfg.root) if cfg.path else None
+    extra_roots += [m.mesh_base for m in cfg.models if m.mesh_base and top_cfg
+                    and inside(os.path.realpath(m.mesh_base), top_cfg)]
     # the enclosing colcon/catkin workspace (sibling package repositories, install space): its
     # packages are indexed, and the workspace is a root like the repository (never the working
     # directory by itself: see SECURITY.md)
