@@ -38,7 +38,7 @@ from .vcs import git_root, repo_root
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached)
-RECORD_FORMAT = 11
+RECORD_FORMAT = 13
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -132,7 +132,8 @@ class Cache:
             memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
                                                               sort_keys=True))
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), job.output, job.mesh_base]) + memo[1]
+                           job.kind, bool(job.explicit), job.output, job.mesh_base,
+                           list(job.outputs)]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> str:

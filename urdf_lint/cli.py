@@ -632,6 +632,7 @@ def cmd_check(args) -> int:
     _note_unused(result, out, named)
     if getattr(args, "files", None) is None and not args.changed_since:
         _no_models_warning(given, result, out)
+    _note_variants(result, cfg, resolver, out)
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -668,6 +669,23 @@ def _list_models(result, out):
             out.info(f"    {_safe_text(display_path(d))}")
     for m in result.skipped:
         out.info(f"skipped: {_safe_text(display_path(m.entry))} ({m.status})")
+
+
+def _note_variants(result, cfg, resolver, out) -> None:
+    """One info line: the models linted with args left at defaults that select variants, and
+    how to lint the variants (``[[models]] args``)."""
+    from .locations import display_path
+    from .pipeline import variant_args
+    found = variant_args(result.models, cfg, resolver)
+    if not found:
+        return
+    entry, names = next(iter(found.items()))
+    shown = ", ".join(names[:4]) + (" ..." if len(names) > 4 else "")
+    more = f" and {len(found) - 1} more model(s)" if len(found) > 1 else ""
+    out.note(f"note: {_safe_text(display_path(entry))}{more} linted with args at their defaults "
+             f"that select variants ({_safe_text(shown)}); to lint the variants, list them: "
+             f"[[tool.urdf-lint.models]] path = \"{_safe_text(display_path(entry))}\" "
+             f"args = [{{{_safe_text(names[0])} = \"...\"}}, ...]")
 
 
 def _note_unused(result, out, named=()):

@@ -308,7 +308,8 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     from .pipeline import run_check
     before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                               in_process=in_process)
-    before_result.findings = inside_paths(before_result.findings, paths)
+    before_result.findings = inside_paths(before_result.findings, paths,
+                                          before_result.generated)
     chosen, _, refused = candidates(before_result.findings, unsafe)
     keys: dict = {}
     if memo is not None:

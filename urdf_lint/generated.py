@@ -80,6 +80,24 @@ def stale_at(output: str, expanded_xml: str) -> tuple[int, int, str] | None:
 _NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
 
 
+def same_variant(output: str, expanded_xml: str) -> bool:
+    """Does ``output`` describe the same variant of the robot as ``expanded_xml`` (the same
+    robot name and the same link names), so that a difference is staleness, not args?"""
+    from lxml import etree
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             remove_comments=True)
+    from . import fsbound
+    try:   # a regular file of bounded size (the boundary)
+        have = etree.fromstring(fsbound.read_bytes(output), parser)
+        want = etree.fromstring(expanded_xml.encode("utf-8"), parser)
+    except (OSError, etree.XMLSyntaxError):
+        return False
+
+    def names(root):
+        return root.get("name"), sorted(e.get("name") or "" for e in root if e.tag == "link")
+    return names(have) == names(want)
+
+
 def _stale_line(output: str, expanded_xml: str) -> tuple[int, str] | None:
     from lxml import etree
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,

@@ -39,6 +39,8 @@ class LintJob:
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
+    outputs: tuple = ()            # more checked-in URDFs whose header names this xacro
+                                   # (compared when they are the same variant as ``output``)
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:
@@ -116,6 +118,8 @@ class ModelReport:
     directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
     cacheable: bool = True                          # False: a fact depended on the environment
+    current_outputs: list = field(default_factory=list)   # generated URDFs that are today's
+                                                    # expansion of this model (not linted again)
 
     @classmethod
     def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":
@@ -144,7 +148,8 @@ class ModelReport:
                 "problems": [p.to_record() for p in self.problems],
                 "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
                 "links": self.links, "joints": self.joints, "meshes": self.meshes,
-                "directive_files": self.directive_files}
+                "directive_files": self.directive_files,
+                "current_outputs": list(self.current_outputs)}
 
     @classmethod
     def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
@@ -155,4 +160,4 @@ class ModelReport:
                    name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
                    links=rec.get("links", 0), joints=rec.get("joints", 0),
                    meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
-                   cached=True)
+                   cached=True, current_outputs=list(rec.get("current_outputs", ())))

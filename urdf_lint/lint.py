@@ -96,21 +96,28 @@ def _quick_parser():
 
 
 def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
-    """UL011 at the checked-in generated file when it differs from today's expansion; the
-    output becomes an input of the model (editing it re-lints the model)."""
-    from .generated import stale_at
+    """UL011 at each checked-in generated file that differs from today's expansion; the
+    outputs become inputs of the model (editing one re-lints the model). The outputs after
+    the first (more URDFs whose header names this xacro) are compared only when they are the
+    same variant (robot name and links): another is generated with args urdf-lint does not
+    know."""
+    from .generated import same_variant, stale_at
     from .locations import display_path
     from .rules import ul011_stale_output
-    output = job.output or ""
-    (out.deps if os.path.exists(output) else out.missing).append(output)
-    got = stale_at(output, xml)
-    if got is not None:
-        line, col, what = got
-        out.problems.append(Problem.at(
-            ul011_stale_output.CODE,
-            f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
-            "expands to today; regenerate it with 'urdf-lint generate'",
-            (job.output, line, col)))
+    for n, output in enumerate((job.output or "",) + tuple(job.outputs)):
+        (out.deps if os.path.exists(output) else out.missing).append(output)
+        if n and not same_variant(output, xml):
+            continue
+        got = stale_at(output, xml)
+        if got is None and os.path.exists(output):
+            out.current_outputs.append(output)
+        if got is not None:
+            line, col, what = got
+            out.problems.append(Problem.at(
+                ul011_stale_output.CODE,
+                f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
+                "expands to today; regenerate it with 'urdf-lint generate'",
+                (output, line, col)))
 
 
 def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
@@ -136,7 +143,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             out.status = Status.FAILED
             return None
         assert exp.xml is not None  # expand_file sets xml or error
-        if job.output:
+        if job.output or job.outputs:
             _check_output(job, exp.xml, out)
         try:
             model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
@@ -287,17 +294,21 @@ def _lint_model(job: LintJob, settings: LintSettings):
 
     from .registry import run_rules
     fixer = None
-    for rule, el, msg, sev, req, table in run_rules("model", settings.selected,
-                                                    settings.options, model, ctx, out.internal,
-                                                    f" on {job.entry}", with_fix=True,
-                                                    with_table=True):
+    for rule, el, msg, sev, req, cause, table in run_rules(
+            "model", settings.selected, settings.options, model, ctx, out.internal,
+            f" on {job.entry}", with_fix=True, with_table=True):
         fix = None
+        from .fixes import Fixer
+        fixer = fixer or Fixer(model)
         if req is not None:
-            from .fixes import Fixer
-            fixer = fixer or Fixer(model)
             fix = fixer.fix(el, req)
-        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev,
-                                   fix=fix, consumers=table))
+        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
+                                      if req is not None and req.kind == "set" else ())
+        p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
+                       consumers=table, value_from=value_from)
+        if cause is not None:   # one finding per root cause, this problem one instance of it
+            p = p.replace(code=cause.code, message=cause.message, detail=msg, group=cause.key)
+        problems.append(p)
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

@@ -31,6 +31,10 @@ class PackageNotFound(Exception):
         where = "; ".join(searched) if searched else "nowhere (no package.xml found)"
         hint = (f"; a folder named '{name}' exists: pass --package-path {name}={folder}"
                 if folder else "")
+        if not name:   # package:///x or $(find ): a slash too many, or an empty name
+            super().__init__("the package URI names no package ('package:///...' has one slash "
+                             "too many: write package://NAME/path)")
+            return
         super().__init__(f"unknown package '{name}' (searched: {where}){hint}")
 
 
@@ -94,7 +98,8 @@ class PackageResolver:
             if d in seen or not d.exists():
                 continue
             seen.add(d)
-            res.scanned_dirs.append(str(d))
+            if d.is_dir():   # (a linted file holds no package.xml: not a place to name)
+                res.scanned_dirs.append(str(d))
             for pxml in iter_files(d, names={"package.xml"}):
                 if _colcon_ignored(pxml.parent, d):
                     continue
@@ -135,6 +140,8 @@ class PackageResolver:
                 self.roots.append(found)
             return found
         from .folders import folder_named
+        if not name:
+            raise PackageNotFound("", [])
         raise PackageNotFound(name, self.searched(),
                               folder_named(name, [str(r) for r in self.roots], SKIP_DIRS))
 

@@ -160,6 +160,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     out.fragments = dict(found.fragments)
     out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
+    _drop_current_outputs(out.models)
+    _hint_packages(out.models, paths)
 
     if affected_by is not None:
         from .changes import affected
@@ -174,10 +176,13 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         problems.extend(_with_policy(r.problems, r.label, policy))
     if affected_by is None:
         problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
+    problems.extend(_with_policy(found.problems, RUN_LABEL, policy))
     kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
-    out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    from .fixes import not_in_generated
+    out.findings = sorted(not_in_generated(final, out.generated),
+                          key=lambda f: (f.file, f.line, f.col, f.code))
     if memo is not None:
         memo.store(out, results, found.folders)
     return out
@@ -242,6 +247,44 @@ def _complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
+def _hint_packages(models, paths) -> None:
+    """An unknown package whose ``package.xml`` is in a folder beside the linted paths (a
+    sibling package under the working directory, outside git): its UL004 says
+    ``--package-path NAME=DIR``. Looked for here, in the parent: the workers may not list
+    folders outside the roots, and such a folder is never a root by itself."""
+    import re
+    from .locations import display_path
+    from .rules import ul004_unknown_package
+    from .workspace import beside
+    found: dict = {}
+    for r in models:
+        new = []
+        for p in r.problems:
+            m = re.search(r"unknown package '([^']+)'", p.message) \
+                if p.code == ul004_unknown_package.CODE and "pass --package-path" not in p.message \
+                else None
+            if m:
+                name = m.group(1)
+                if name not in found:
+                    found[name] = beside(name, paths or ["."])
+                if found[name]:
+                    p = p.replace(message=f"{p.message}; {display_path(found[name])}/package.xml "
+                                          f"beside the linted paths declares it: pass "
+                                          f"--package-path {name}={found[name]}")
+            new.append(p)
+        r.problems = new
+
+
+def _drop_current_outputs(models) -> None:
+    """A generated URDF identical (as XML) to today's expansion of its xacro is not linted
+    again: its findings are the xacro's, reported at the xacro lines (a repository that checks
+    in robot.urdf next to robot.urdf.xacro got every finding twice). It stays a model."""
+    current = {o for r in models for o in r.current_outputs}
+    for r in models:
+        if r.entry in current and not r.args:
+            r.problems = []
+
+
 def _drop_snapshots(reports, render_dir) -> None:
     """Remove the snapshots the workers wrote for files that turned out not to be reported
     models (fragments, libraries, models a changed file does not affect): regular files in
@@ -292,8 +335,12 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     from .registry import catalogue
     rules = catalogue()
     files: set[str] = set()
+    # a generated URDF that is today's expansion is not linted: the comments xacro copied
+    # into it suppress nothing there (they are the xacro's)
+    current = {o for r in models for o in r.current_outputs}
     for r in models:
-        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)]
+        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)
+                   and d not in current]
         # the worker said which sources hold urdf-lint comments (kept in the cache with the
         # result, valid while the deps are); otherwise every source is read
         known = None if r.directive_files is None else set(r.directive_files)
@@ -313,6 +360,47 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     about_comments += [Problem.at(invalid_suppression.CODE, msg, loc) for loc, msg in invalid]
     kept += [p.replace(models=()) for p in _with_policy(about_comments, RUN_LABEL, policy)]
     return kept
+
+
+_VARIANT_USE = None
+_BOOL_ARG = None
+
+
+def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
+    """{entry: [arg, ...]} for the models linted with every arg at its default although args
+    select variants there (an arg with a true/false default, or one read in a condition,
+    ``if=``/``unless=``/``<xacro:if value=...>``, or an include's ``filename``: a hand, a
+    simulation mode, an arm type), and no ``[[models]]`` entry lists the file."""
+    import re
+    from .packages import MAX_SOURCE_BYTES
+    global _VARIANT_USE, _BOOL_ARG
+    if _VARIANT_USE is None:
+        _VARIANT_USE = re.compile(rb"""\b(?:if|unless|filename|value)\s*=\s*(["'])[^"']*?"""
+                                  rb"""\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)""")
+        _BOOL_ARG = re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
+                               rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
+    configured = {m.path for m in cfg.models}
+    out: dict = {}
+    for r in models:
+        if r.args or r.entry in configured or not r.entry.endswith(".xacro"):
+            continue
+        names: dict = {}
+        for f in r.deps:
+            if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
+                try:
+                    with open(f, "rb") as fh:
+                        data = fh.read()
+                except OSError:
+                    continue
+                for m in _BOOL_ARG.finditer(data):
+                    names[m.group(1).decode("utf-8", "replace")] = None
+                for m in _VARIANT_USE.finditer(data):
+                    if not data.startswith(b"value", m.start()) or re.search(
+                            rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
+                        names[m.group(2).decode("utf-8", "replace")] = None
+        if names:
+            out[r.entry] = list(names)
+    return out
 
 
 def exit_code(result: CheckResult, fail_on: str) -> int:

@@ -226,17 +226,20 @@ _LOADED: dict = {}
 
 
 def _extras(rest) -> tuple:
-    """(severity or "", fix request or None, target table or None) from what a rule yields
-    after the message."""
-    sev, req, table = "", None, None
+    """(severity or "", fix request or None, target table or None, root cause or None) from
+    what a rule yields after the message."""
+    from .findings import Cause
+    sev, req, table, cause = "", None, None, None
     for x in rest:
-        if isinstance(x, str):
+        if isinstance(x, Cause):
+            cause = x
+        elif isinstance(x, str):
             sev = x
         elif isinstance(x, dict):
             table = x
         elif x is not None:
             req = x
-    return sev, req, table
+    return sev, req, table, cause
 
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
@@ -244,9 +247,10 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
-    (:mod:`urdf_lint.fixes`), with ``with_table`` then the target table or None. A rule
-    yields ``(item, message)``, optionally followed by a severity (a string), a target table
-    (a dict, :mod:`urdf_lint.targets`) and/or a fix request. A rule that crashes adds an
+    (:mod:`urdf_lint.fixes`) and the root cause or None, with ``with_table`` then the target
+    table or None. A rule yields ``(item, message)``, optionally followed by a severity (a
+    string), a target table (a dict, :mod:`urdf_lint.targets`), a fix request and/or a
+    :class:`urdf_lint.findings.Cause`. A rule that crashes adds an
     internal error and the others still run."""
     import traceback
     entries = catalogue()
@@ -260,11 +264,11 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                sev, req, table = _extras(item[2:])
+                sev, req, table, cause = _extras(item[2:])
                 if table is not None:
                     from .targets import check_table
                     table = check_table(table, f"rule {code}")
-                yield ((rule, item[0], item[1], sev) + ((req,) if with_fix else ())
+                yield ((rule, item[0], item[1], sev) + ((req, cause) if with_fix else ())
                        + ((table,) if with_table else ()))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")

@@ -29,6 +29,12 @@ def _loc(o, root=None) -> str:
     return f"{display_path(o.file, root)}:{o.line}"
 
 
+def _vloc(v, root=None) -> str:
+    """``config/joint_limits.yaml:28``: where a changed value is written."""
+    from .locations import display_path
+    return f"{display_path(v[0], root)}:{v[1]}"
+
+
 def _chain(o, root=None) -> str:
     return o.format_chain(root) if o is not None and o.chain else ""
 
@@ -64,6 +70,8 @@ def to_text(r: DiffResult) -> str:
             ch = _chain(c.head or c.base)
             if ch:
                 out.append(f"      {ch}")
+            if c.value_from:
+                out.append(f"      value from {_vloc(c.value_from)}")
         if m.moved:
             out.append(f"  moved at zero configuration: {_moved(m, 5)}")
         for fk, sev in m.findings_introduced:
@@ -139,7 +147,9 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
             rows += ["| | element | field | before | after | source |", "|---|---|---|---|---|---|"]
             for c in m.changes:
                 o = c.head or c.base
-                src = _code(_loc(o)) + (f" <sub>{md_escape(_chain(o))}</sub>" if _chain(o) else "")
+                src = (_code(_vloc(c.value_from)) + " <sub>value from; used at "
+                       + md_escape(_loc(o)) + "</sub>") if c.value_from else \
+                    _code(_loc(o)) + (f" <sub>{md_escape(_chain(o))}</sub>" if _chain(o) else "")
                 rows.append(f"| {_MD_ICON[c.change]} | {c.kind} {_code(c.name)} | "
                             f"{md_escape(c.field or c.change)} | {md_escape(_fmt(c.before))} | "
                             f"{md_escape(_fmt(c.after))} | {src} |")

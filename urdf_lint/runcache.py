@@ -31,7 +31,7 @@ from .jobs import LintJob, ModelReport
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
 
-FORMAT = 4
+FORMAT = 6
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 

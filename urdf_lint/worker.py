@@ -509,6 +509,7 @@ class _Worker:
                 signal.signal(signal.SIGTERM, old_term)
         self.job = None
         self.started = 0.0
+        self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
 
     def kill(self):
@@ -520,9 +521,36 @@ class _Worker:
         self.conn.close()
 
 
+WALL_FACTOR = 4      # the wall-clock limit of a job: this many times its CPU-time limit
+POLL_S = 0.25        # how often the parent looks at the CPU time of busy workers
+
+
+def _cpu_seconds(pid: int) -> float | None:
+    """The CPU time (user + system) process ``pid`` has used, from ``/proc`` (None where
+    there is none: the time limit is then wall-clock time)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            stat = f.read()
+        fields = stat[stat.rindex(b")") + 2:].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _used(w) -> float | None:
+    """CPU seconds worker ``w`` spent on its current job (None: not measurable)."""
+    now = _cpu_seconds(w.proc.pid)
+    return None if now is None or w.cpu0 is None else now - w.cpu0
+
+
 def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
              memory_mb=2048):
-    """Yield (job, ModelReport) for every job; results arrive in completion order."""
+    """Yield (job, ModelReport) for every job; results arrive in completion order.
+
+    ``timeout`` limits the CPU time a job uses (a loaded CI machine does not make a model that
+    lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job waiting on
+    I/O); where CPU time cannot be measured, ``timeout`` is wall-clock time."""
+    wall = timeout * WALL_FACTOR
     jobs = list(jobs)
     if not jobs:
         return
@@ -565,16 +593,21 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     if w.job is None:
                         continue
                     w.started = time.monotonic()
+                    w.cpu0 = _cpu_seconds(w.proc.pid)
                     w.conn.send(w.job)
                     busy[w.conn] = w
             now = time.monotonic()
-            next_deadline = min(w.started + timeout for w in busy.values())
+            next_deadline = min(w.started + (wall if w.cpu0 is not None else timeout)
+                                for w in busy.values())
+            if any(w.cpu0 is not None for w in busy.values()):
+                next_deadline = min(next_deadline, now + POLL_S)
             ready = forked.wait(list(busy), timeout=max(0.0, next_deadline - now))
             for conn in ready:
                 w = busy.pop(conn)
                 job = w.job
                 try:
-                    result = w.conn.recv(timeout=max(1.0, w.started + timeout - time.monotonic()))
+                    limit = wall if w.cpu0 is not None else timeout
+                    result = w.conn.recv(timeout=max(1.0, w.started + limit - time.monotonic()))
                     if not isinstance(result, ModelReport):
                         raise forked.Refused(f"a {type(result).__name__}")
                 except forked.Refused as e:
@@ -598,16 +631,23 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 yield job, result
             now = time.monotonic()
             for conn, w in list(busy.items()):
-                if now - w.started >= timeout:
+                if w.cpu0 is not None:
+                    cpu = _used(w)
+                    over = (cpu is not None and cpu >= timeout) or now - w.started >= wall
+                    what = (f"the time limit ({timeout:g} s of CPU time, {wall:g} s of "
+                            "wall-clock time)")
+                else:
+                    over = now - w.started >= timeout
+                    what = f"the time limit ({timeout:g} s)"
+                if over:
                     busy.pop(conn)
                     job = w.job
                     workers.remove(w)
                     w.kill()
                     if pending() or busy:
                         replace(w)
-                    yield job, _limit_result(job, f"expansion/lint did not finish within the "
-                                             f"time limit ({timeout:g} s); a huge expression, "
-                                             "loop or recursion?")
+                    yield job, _limit_result(job, f"expansion/lint did not finish within "
+                                             f"{what}; a huge expression, loop or recursion?")
     finally:
         for w in workers:
             try:

@@ -122,3 +122,20 @@ def install_share_packages(top: str) -> dict[str, str]:
                 if name and name not in out:
                     out[name] = str(pxml.parent.resolve())
     return out
+
+
+def beside(name: str, paths, depth: int = 2) -> str | None:
+    """The folder holding the ``package.xml`` of package ``name`` beside the linted ``paths``
+    (in their parent folders, ``depth`` levels down), for a ``--package-path`` hint: such a
+    folder is not a root by itself (outside git and a workspace, the working directory is not
+    searched), but the user can name it."""
+    seen = set()
+    for p in paths:
+        top = os.path.dirname(os.path.abspath(p if os.path.isdir(p) else os.path.dirname(p)))
+        if top in seen:
+            continue
+        seen.add(top)
+        for pxml in _walk_packages(Path(top), depth):
+            if package_name(pxml) == name:
+                return str(pxml.parent)
+    return None

@@ -27,6 +27,7 @@ anything else                       UL002   xacro's message
 from __future__ import annotations
 
 import os
+import re
 
 from dataclasses import dataclass
 from types import ModuleType
@@ -104,7 +105,23 @@ def _missing_arg(e, deps=()) -> str:
 def _missing_file(e, deps=()) -> str:
     # load_yaml records its file before opening it; an include is recorded only once read
     yaml = os.path.abspath(str(e.filename)) in set(deps)
-    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}"
+    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}" + \
+        _empty_args_hint(str(e.filename))
+
+
+_HOLE = re.compile(r"//|/_|_/|__|_\.|/\.(?!\.?/)|-/|/-")
+
+
+def _empty_args_hint(path: str) -> str:
+    """When the path has a hole (``arms//dof/urdf/_macro.xacro``) and args of the model are
+    empty: which ones, and how to set them."""
+    empty = sorted(k for k, v in (xacro.substitution_args_context.get("arg") or {}).items()
+                   if str(v) == "")
+    if not empty or not _HOLE.search(path.replace(os.sep, "/")):
+        return ""
+    shown = ", ".join(empty[:6]) + (f" and {len(empty) - 6} more" if len(empty) > 6 else "")
+    return (f" (the path was built from args left empty: {shown}; set them with NAME:=VALUE or "
+            "[[tool.urdf-lint.models]] args)")
 
 
 def _generic(e) -> str:

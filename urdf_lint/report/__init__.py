@@ -22,6 +22,13 @@ JSON schema (``--format json``), version 1::
                            (only when the rule has a fix for this finding),
                     "severity_from": [str, ...] (the selected consumer targets that make it
                            this severe, urdf_lint.targets; only when one raised it)}],
+                    "detail": str (what this instance is about, when the message is a root
+                               cause's, e.g. the mesh URI of an unknown package; optional),
+                    "value_from": [file, line, col] (where the value came from: a YAML scalar,
+                                  a property defined elsewhere; optional),
+                    "count": int, "instances": [{finding fields, "target": [kind, name]}, ...]
+                             (when several elements, models or places are one finding: one per
+                              source location and rule, or per root cause)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 
