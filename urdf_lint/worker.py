@@ -134,6 +134,39 @@ def _skip_unused_imports():
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
+def limit_memory(memory_mb, inherited: int, rerun: bool = False) -> None:
+    """The memory limit of a worker (or the recorder): memory-mb is what the job may allocate;
+    what the forked process inherited from its parent (a test process that imported rerun, a
+    library user's process) is on top, and so is rerun's reserve when it writes recordings."""
+    try:
+        import resource
+        limit = int(memory_mb) * 1024 * 1024 + inherited
+        if rerun:
+            limit += RERUN_RESERVE_MB * 1024 * 1024
+        # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
+        # RLIMIT_AS would also count the address space that native thread arenas only reserve.
+        which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
+        resource.setrlimit(which, (limit, limit))
+    except (ImportError, ValueError, OSError):
+        pass
+
+
+def confine_writer(write_dir: str) -> dict:
+    """The worker hardening for a process that reads nothing and writes only below
+    ``write_dir`` (the ``diff --render`` recorder): Landlock (the Python runtime readable,
+    nothing of the repository or the home folder; writable only ``write_dir``), seccomp and
+    the audit hook. Its inherited descriptors were closed when it started (those open now are
+    its own, rerun's among them). Returns what :func:`sandbox.enter` did."""
+    from .sandbox import enter
+    try:
+        keep = [int(n) for n in os.listdir("/proc/self/fd")]
+    except OSError:
+        keep = list(range(os.sysconf("SC_OPEN_MAX")))
+    status = enter(forked.parent_pid or os.getppid(), [], [write_dir], keep_fds=keep)
+    _install_audit_hook(write_dir)
+    return status
+
+
 def _worker_main(conn, settings: LintSettings | None, memory_mb):
     _skip_unused_imports()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
@@ -164,19 +197,8 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
             return
         settings, memory_mb = first
     assert settings is not None
-    try:
-        import resource
-        # memory-mb is what the job may allocate: what the forked worker inherited from its
-        # parent (a test process that imported rerun, a library user's process) is on top
-        limit = int(memory_mb) * 1024 * 1024 + inherited
-        if settings.render_dir and settings.render_rrd:   # (diff --render: the parent's recorder)
-            limit += RERUN_RESERVE_MB * 1024 * 1024
-        # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
-        # RLIMIT_AS would also count the address space that native thread arenas only reserve.
-        which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
-        resource.setrlimit(which, (limit, limit))
-    except (ImportError, ValueError, OSError):
-        pass
+    # (render --out / check --render: the worker writes recordings itself)
+    limit_memory(memory_mb, inherited, bool(settings.render_dir and settings.render_rrd))
     _scrub_environment(set(settings.env_allow))
     from .sandbox import enter_worker
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
