@@ -440,12 +440,12 @@ def _recorder_main(conn, parent_pid, out_dir, memory_mb):
         set_parent_death_signal(parent_pid)
     except Exception:  # noqa: BLE001 - it also ends when the parent's end of the pipe closes
         pass
+    from .hardening import confine_writer, inherited_data_bytes, limit_memory, scrub_environment
     from .sandbox import close_inherited_fds, warm
-    from .worker import _inherited_data_bytes, _scrub_environment, confine_writer, limit_memory
     close_inherited_fds(getattr(conn, "fds", None) or (conn.fileno(),))
-    limit_memory(memory_mb, _inherited_data_bytes(), rerun=True)
+    limit_memory(memory_mb, inherited_data_bytes(), rerun=True)
     warm()   # (the sandbox's own imports, before the environment is scrubbed)
-    _scrub_environment(set())
+    scrub_environment(set())
     try:
         import rerun  # noqa: F401 - while the first plan is made
     except ImportError:
