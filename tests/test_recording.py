@@ -382,7 +382,7 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
     plan = plan_rrd(build_scene(model, ctx), ctx, model, label_base(model.entry))
     # the plan a diff worker pickles holds the robot's meshes, as the recording written here
     assert plan.meshes == facts["meshes"] > 0 and len(plan.paths) > 1
-    rec = Recorder()
+    rec = Recorder(str(tmp_path))
     try:
         there = tmp_path / "there.rrd"
         rec.write(str(there), "r", [("head/", plan)])
@@ -399,7 +399,7 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
                                                                    RERUN_ANALYTICS="off"))
     assert same.returncode == 0, same.stdout + same.stderr
     for when in ("before", "after"):   # it dies before it is given the plan, or while writing
-        dead = Recorder()
+        dead = Recorder(str(tmp_path))
         try:
             if when == "before":
                 dead.proc.kill()

@@ -20,7 +20,7 @@ import time
 
 import pytest
 
-from conftest import REPO, carried, carried_data, make_package, run_cli
+from conftest import REPO, carried, carried_data, make_package, run_cli, terminated
 
 from urdf_lint import sandbox
 
@@ -232,17 +232,8 @@ def test_sigterm_is_handled_like_ctrl_c(tmp_path):
     make_package(repo, "p", {"urdf/r.urdf.xacro":
                              '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
                              '<link name="${python.sum(python.range(10**13))}"/></robot>\n'})
-    p = subprocess.Popen([sys.executable, "-m", "urdf_lint", "check", ".", "--no-cache"],
-                         cwd=repo, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        time.sleep(1.5)
-        p.send_signal(signal.SIGTERM)
-        out, err = p.communicate(timeout=10)
-    finally:
-        if p.poll() is None:
-            p.kill()
-            p.wait()
-    assert p.returncode == 130, (out, err)  # like Ctrl-C (main: 130 when interrupted)
+    rc, out, err = terminated("check", ".", "--no-cache", cwd=repo, after=1.5)
+    assert rc == 130, (out, err)  # like Ctrl-C (main: 130 when interrupted)
     assert "interrupted" in err and "Traceback" not in err
     assert "All checks passed" not in out
 

@@ -803,9 +803,9 @@ def cmd_expand(args) -> int:
         raise UsageError(f"no such file: {args.file}")
     from .worker import prestart
     prestart()   # (done already by main(); here for callers of cmd_expand)
-    from .config import DEFAULT_ENV_ALLOW, find_config, load_config
+    from .config import find_config, load_config
     from .discovery import build_resolver
-    from .jobs import LintJob, LintSettings, Status
+    from .jobs import LintJob, Status
     from .locations import display_path
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
@@ -815,14 +815,9 @@ def cmd_expand(args) -> int:
     _apply_cli(cfg, args)
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
     # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
-    from .worker import run_jobs
     job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
                   display_name=args.file)
-    settings = LintSettings(resolver=resolver.to_dict(),
-                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
-    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
-                                      memory_mb=cfg.memory_mb)]
-    res = results[-1]
+    res = _expand_in_workers([job], resolver, cfg)[0]
     from .emit import report_internal
     if report_internal(res.internal):
         return 2
@@ -971,51 +966,57 @@ def cmd_doctor(args) -> int:
 
 def cmd_generate(args) -> int:
     """Regenerate stale outputs in place (atomically); exit 1 when a file was (or, with
-    --check, would be) rewritten or a xacro did not expand, like a formatter hook."""
-    from .config import DEFAULT_ENV_ALLOW
-    from .discovery import build_resolver, discover_models
-    from .expansion import expand_file
-    from .generated import header_source, stale_at, write_output
-    from .locations import display_path
-    from .discovery import start_dir
-    from .vcs import repo_root
+    --check, would be) rewritten or a xacro did not expand, like a formatter hook. Each xacro
+    is expanded in a sandboxed worker with the run's limits, like ``check`` and ``expand``:
+    the worker returns the XML, the parent compares and writes it (inside the repository
+    only, anywhere the user trusts with --trust-config)."""
+    import dataclasses
+
     from . import trust
+    from .discovery import build_resolver, discover_models, start_dir
+    from .emit import report_internal
+    from .generated import header_source, stale_at, write_output
+    from .jobs import Status
+    from .locations import display_path
+    from .vcs import repo_root
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    # (what the header names: xacro opens this path)
+    jobs = [dataclasses.replace(job, kind="expand", display_name=os.path.relpath(job.entry))
+            for job in discover_models(args.paths, cfg, resolver).jobs if job.output]
     status = 0
-    outputs = stale = failed = 0
-    for job in discover_models(args.paths, cfg, resolver).jobs:
-        if not job.output:
+    stale = failed = 0
+    for job, res in zip(jobs, _expand_in_workers(jobs, resolver, cfg), strict=True):
+        assert job.output is not None and job.display_name is not None
+        if report_internal(res.internal):
+            status = 2
             continue
-        outputs += 1
-        named = header_source(job.output, resolver.roots) if os.path.exists(job.output) else None
-        shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
-        res = expand_file(job.entry, job.args, resolver,
-                          env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
-                          display_name=shown)
-        if res.error is not None:
-            e = res.error
-            say(f"{_safe_text(display_path(e.file))}:{e.line}:{e.col}: {e.code} "
-                f"{_safe_text(e.message)}")
-            status = 1
+        shown = job.display_name
+        xml = res.kept_model.xml if res.kept_model is not None else None
+        if res.status is Status.FAILED or xml is None:
+            for e in res.problems[-1:]:   # (before it: the expansion's notes)
+                say(f"{_safe_text(display_path(e.file))}:{e.line}:{e.col}: {e.code} "
+                    f"{_safe_text(e.message)}")
+            status = max(status, 1)
             failed += 1
             continue
-        if stale_at(job.output, res.xml) is None:
+        if stale_at(job.output, xml) is None:
             continue
-        status = 1
+        status = max(status, 1)
         stale += 1
-        if named and res.xml:   # keep the header's own name for the source: no churn
-            head, rest = res.xml[:1024], res.xml[1024:]
-            res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
+        named = header_source(job.output, resolver.roots) if os.path.exists(job.output) else None
+        if named and xml:   # keep the header's own name for the source: no churn
+            head, rest = xml[:1024], xml[1024:]
+            xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
         if args.check:
             tell(f"would regenerate {_safe_text(display_path(job.output))} from "
                  f"{_safe_text(display_path(job.entry))}")
         else:
             try:   # inside the repository only (anywhere the user trusts with --trust-config)
-                write_output(job.output, res.xml, _write_base(job.output, args.paths)
+                write_output(job.output, xml, _write_base(job.output, args.paths)
                              if getattr(args, "trust_config", False) else
                              trust.config_root(cfg, repo_root(start_dir(args.paths))))
             except OSError as e:
@@ -1025,7 +1026,7 @@ def cmd_generate(args) -> int:
                 continue
             tell(f"regenerated {_safe_text(display_path(job.output))} from "
                  f"{_safe_text(display_path(job.entry))}")
-    tell(_generate_summary(outputs, stale, failed, args.check))
+    tell(_generate_summary(len(jobs), stale, failed, args.check))
     return status
 
 
@@ -1050,6 +1051,20 @@ def cmd_format(args) -> int:
 def cmd_mcp(args) -> int:
     from .mcp_server import cmd_mcp as run
     return run(args)
+
+
+def _expand_in_workers(jobs: list, resolver, cfg) -> list:
+    """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
+    workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
+    one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
+    from .config import DEFAULT_ENV_ALLOW
+    from .jobs import LintSettings
+    from .worker import run_jobs
+    settings = LintSettings(resolver=resolver.to_dict(),
+                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
+    done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
+                                                  timeout=cfg.timeout, memory_mb=cfg.memory_mb)}
+    return [done[id(job)] for job in jobs]
 
 
 def cmd_clean(args) -> int:
@@ -1125,7 +1140,7 @@ def _main(argv) -> int:
     hook_files: list = []
     if command == "hook":
         argv, hook_files = _hook_arguments(argv)
-    if command == "expand" and "-h" not in argv and "--help" not in argv:
+    if command in ("expand", "generate") and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
         from .worker import prestart

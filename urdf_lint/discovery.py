@@ -67,10 +67,11 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
                 found.setdefault(name, pkg)
     res = PackageResolver.build(scan, explicit=explicit,
                                 extra_roots=list(dict.fromkeys(extra_roots)), packages=found)
-    for ws in workspace_roots([*paths, start]):   # searched too: name it in UL004's list
-        src = os.path.join(ws, "src")
-        if os.path.isdir(src) and src not in res.scanned_dirs:
-            res.scanned_dirs.append(src)
+    searched = [os.path.join(ws, "src") for ws in workspace_roots([*paths, start])]
+    searched = [s for s in searched if os.path.isdir(s) and s not in res.scanned_dirs]
+    if searched:   # searched too: named in UL004's list (a new snapshot: the resolver is frozen)
+        import dataclasses
+        res = dataclasses.replace(res, scanned_dirs=(*res.scanned_dirs, *searched))
     return res
 
 

@@ -594,10 +594,8 @@ def remove_comment(loc) -> Fix | None:
     col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
     its ``enable`` would dangle)."""
     from .sourceedit import offset_of
-    from . import fsbound
-    try:
-        data = fsbound.read_bytes(loc[0])
-    except OSError:
+    data = _source_bytes(loc[0])
+    if data is None:
         return None
     off = offset_of(data, loc[1], loc[2])
     m = _REMOVABLE.match(data, off) if off is not None else None
@@ -613,6 +611,22 @@ def remove_comment(loc) -> Fix | None:
                "", (("none", 0, "", ""),))
 
 
+_SOURCE: list = [None, None]   # ((path, size, mtime), its bytes): one read for all its comments
+
+
+def _source_bytes(path: str) -> bytes | None:
+    """The bytes of ``path``, read once for all the unused comments of one file."""
+    try:
+        st = os.stat(path)
+        key = (path, st.st_size, st.st_mtime_ns)
+        if _SOURCE[0] != key:
+            from . import fsbound   # a regular file of bounded size (the boundary)
+            _SOURCE[:] = [key, fsbound.read_bytes(path)]
+    except OSError:
+        return None
+    return _SOURCE[1]
+
+
 def inside_paths(findings, paths, generated: dict | None = None) -> list:
     """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
     installed package, a dependency elsewhere in the workspace) refused, and those that would
@@ -620,10 +634,14 @@ def inside_paths(findings, paths, generated: dict | None = None) -> list:
     from .locations import display_path
     out = []
     real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
+    known: dict = {}   # file -> inside? (once per file, not once per fix)
     for p in not_in_generated(findings, generated or {}):
         fx = p.fix
         if fx is not None and fx.applicable:
-            outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
+            for e in fx.edits:
+                if e.file not in known:
+                    known[e.file] = inside(e.file, real_paths, resolved=True)
+            outside = [e.file for e in fx.edits if not known[e.file]]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                       f"{display_path(outside[0])} is outside the linted paths"))

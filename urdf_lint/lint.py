@@ -267,10 +267,10 @@ def lint_model(job: LintJob, settings: LintSettings):
 
 
 def _lint_model(job: LintJob, settings: LintSettings):
-    from .packages import PackageResolver
+    from .packages import from_settings
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
-    resolver = PackageResolver.from_dict(settings.resolver)
+    resolver = from_settings(settings.resolver)
     if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)
         return out, None, ctx

@@ -162,16 +162,8 @@ def resolve(model, uri: str) -> MeshRef:
 
 
 def _root_of(resolver, p: Path) -> Path | None:
-    """The deepest root that holds ``p`` as written (before symlinks), or None. (String
-    prefixes of the normalised paths: what ``Path.relative_to`` tests, without building a
-    Path per root; of two roots that both hold ``p`` the deeper is the longer string.)"""
-    from .packages import inside
-    s = str(p)
-    best = None
-    for r in resolver.roots:
-        rs = str(r)
-        if inside(s, rs) and (best is None or len(rs) > len(best)):
-            best = rs
+    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    best = resolver.root_of(p)
     return None if best is None else Path(best)
 
 

@@ -313,9 +313,10 @@ class Recorder:
     (the snapshot folder), like the parent it was forked from. Forked before any worker or
     thread of the run, so no import or lock is half-held in it."""
 
-    def __init__(self):
+    def __init__(self, out_dir: str, memory_mb: int = 2048):
         from . import forked
-        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(),))
+        self.out_dir = os.path.realpath(out_dir)
+        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb))
         self.pending: list = []
         self.failed: list = []      # recordings that could not be sent (the recorder is gone)
         self._queue: Any = None
@@ -408,7 +409,10 @@ def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
     return None
 
 
-def _recorder_main(conn, parent_pid):
+def _recorder_main(conn, parent_pid, out_dir, memory_mb):
+    """The recorder: hardened like a worker (memory limit, scrubbed environment, then
+    Landlock, seccomp and the audit hook: it reads no file of the repository and writes only
+    into ``out_dir``, the folder the user named)."""
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)    # the parent stops it
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -417,10 +421,23 @@ def _recorder_main(conn, parent_pid):
         set_parent_death_signal(parent_pid)
     except Exception:  # noqa: BLE001 - it also ends when the parent's end of the pipe closes
         pass
+    from .hardening import confine_writer, inherited_data_bytes, limit_memory, scrub_environment
+    from .sandbox import close_inherited_fds, warm
+    close_inherited_fds(getattr(conn, "fds", None) or (conn.fileno(),))
+    limit_memory(memory_mb, inherited_data_bytes(), rerun=True)
+    warm()   # (the sandbox's own imports, before the environment is scrubbed)
+    scrub_environment(set())
     try:
         import rerun  # noqa: F401 - while the first plan is made
     except ImportError:
         pass
     from . import forked
+    confined = False
     for path, recording_id, plans, blueprint in forked.messages(conn):
+        if os.path.dirname(os.path.realpath(path)) != out_dir:
+            conn.send((path, "not in the output folder; not written"))
+            continue
+        if not confined:   # (the folder exists once the run has cleared it for its pictures)
+            confine_writer(out_dir)
+            confined = True
         conn.send((path, write_recording(path, recording_id, plans, blueprint)))

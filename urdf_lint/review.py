@@ -327,7 +327,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
     result = DiffResult(base=base_rev, head=head_rev or "working tree")
     # the recordings' writer imports rerun while the revisions are linted (forked now, before
     # any worker or thread)
-    recorder = _start_recorder() if render_dir and rrd else None
+    recorder = _start_recorder(render_dir) if render_dir and rrd else None
     try:
         with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
             return _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
@@ -337,10 +337,10 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             recorder.close()
 
 
-def _start_recorder():
+def _start_recorder(render_dir: str):
     from .recording import Recorder
     try:
-        return Recorder()
+        return Recorder(render_dir)
     except OSError:   # no process to spare: the recordings are written here
         return None
 

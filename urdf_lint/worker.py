@@ -17,52 +17,12 @@ from typing import Any
 
 from . import forked
 from .findings import Problem
+from .hardening import limit_memory
+from .hardening import inherited_data_bytes as _inherited_data_bytes
+from .hardening import install_audit_hook as _install_audit_hook
+from .hardening import scrub_environment as _scrub_environment
 from .jobs import LintJob, LintSettings, ModelReport
 from .rules import ul904_resource_limit as resource_limit
-
-# importing rerun reserves ~1.2 GB of writable address space (its Rust runtime) before any
-# data is logged; workers that write recordings get this on top of the memory limit
-RERUN_RESERVE_MB = 1536
-
-_KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHONHASHSEED",
-             "SYSTEMROOT", "OPENBLAS_NUM_THREADS"}   # (the last: set by the command, cli.entry)
-
-
-def _scrub_environment(allow):
-    for k in list(os.environ):
-        if k in _KEEP_ENV or k.startswith("LC_") or k in allow:
-            continue
-        del os.environ[k]
-
-
-_DENIED_EVENTS = {"os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", "os.spawn",
-                  "os.fork", "os.forkpty", "pty.spawn", "socket.connect", "socket.bind",
-                  "os.kill", "webbrowser.open", "shutil.rmtree", "os.remove",
-                  "os.rename", "os.rmdir", "os.chmod", "os.chown", "os.symlink", "os.link"}
-
-
-def _install_audit_hook(*writable):
-    """Second line of defence: even if an expression escaped the evaluator, the worker may not
-    start processes, open sockets or write files outside the cache and snapshot folders."""
-    dirs = tuple(os.path.realpath(d) + os.sep for d in writable if d)
-
-    def ok(path):
-        return bool(dirs) and os.path.realpath(os.fsdecode(path)).startswith(dirs)
-    flags_w = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
-
-    def hook(event, args):
-        if event in _DENIED_EVENTS:
-            if event in ("os.rename", "os.remove") and args and ok(args[0]):
-                return  # atomic cache / snapshot writes
-            raise PermissionError(f"urdf-lint worker: {event} is not allowed")
-        if event == "open" and len(args) >= 3:
-            path, mode, flags = args[0], args[1], args[2]
-            writing = (isinstance(mode, str) and any(c in mode for c in "wax+")) or \
-                (isinstance(flags, int) and flags & flags_w)
-            if writing and isinstance(path, (str, bytes, os.PathLike)) and not ok(path):
-                raise PermissionError(f"urdf-lint worker: writing {os.fsdecode(path)} is not allowed")
-    sys.addaudithook(hook)
-
 
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
@@ -114,18 +74,6 @@ def _diff_snapshot(model, ctx, settings: LintSettings):
 UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
 
 
-def _inherited_data_bytes() -> int:
-    """The data segment (VmData) this freshly forked worker shares with its parent."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmData:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
-    return 0
-
-
 def _skip_unused_imports():
     for name in UNUSED_TRIMESH_EXTRAS:
         # None in sys.modules: "import fails" (ImportError), so trimesh skips them
@@ -165,19 +113,8 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
             return
         settings, memory_mb = first
     assert settings is not None
-    try:
-        import resource
-        # memory-mb is what the job may allocate: what the forked worker inherited from its
-        # parent (a test process that imported rerun, a library user's process) is on top
-        limit = int(memory_mb) * 1024 * 1024 + inherited
-        if settings.render_dir and settings.render_rrd:   # (diff --render: the parent's recorder)
-            limit += RERUN_RESERVE_MB * 1024 * 1024
-        # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
-        # RLIMIT_AS would also count the address space that native thread arenas only reserve.
-        which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
-        resource.setrlimit(which, (limit, limit))
-    except (ImportError, ValueError, OSError):
-        pass
+    # (render --out / check --render: the worker writes recordings itself)
+    limit_memory(memory_mb, inherited, bool(settings.render_dir and settings.render_rrd))
     _scrub_environment(set(settings.env_allow))
     from .sandbox import enter_worker
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
