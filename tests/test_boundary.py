@@ -471,3 +471,15 @@ def test_config_paths_inside_the_repository_are_kept(attack):
     attempt(repo, outside, "generate", ".", codes=(1,))   # written: it was stale
     assert (repo / "p" / "urdf" / "gen" / "r.urdf").is_file()
     attempt(repo, outside, "generate", ".", codes=(0,))
+
+
+def test_a_deeply_nested_planted_manifest_is_ignored(attack):
+    """The snapshot folder's manifest may be committed: 50,000 nested arrays in it are not
+    an internal error (nothing it names is removed)."""
+    repo, outside = attack
+    snaps = repo / "snapshots"
+    snaps.mkdir()
+    (snaps / ".urdf-lint-snapshots.json").write_text("[" * 50_000 + "]" * 50_000)
+    (snaps / "keep.png").write_bytes(b"theirs")
+    attempt(repo, outside, "render", ".", "--out", "snapshots", "--no-rrd", codes=(0, 1))
+    assert (snaps / "keep.png").read_bytes() == b"theirs"
