@@ -20,9 +20,11 @@ MODULE_CALLS = {
     "os": {"open", "walk", "fwalk", "scandir", "listdir", "remove", "unlink", "rename",
            "replace", "rmdir", "removedirs", "makedirs", "mkdir", "symlink", "link",
            "truncate"},
-    "io": {"open"}, "codecs": {"open"},
+    "io": {"open", "FileIO"}, "codecs": {"open"},
     "glob": "*", "shutil": "*",
     "etree": {"parse", "iterparse", "XMLSchema", "DTD"},
+    "ET": {"parse", "iterparse"}, "ElementTree": {"parse", "iterparse"}, "minidom": {"parse"},
+    "np": {"fromfile", "load", "save", "loadtxt", "savetxt", "genfromtxt", "memmap"},
     "tarfile": {"open"}, "zipfile": {"ZipFile"},
     "trimesh": {"load", "load_scene", "load_mesh"},
     "collada": {"Collada"},
@@ -30,7 +32,9 @@ MODULE_CALLS = {
 # a method of these names, whatever the receiver (pathlib.Path's file methods; ``.open``
 # is Path.open, Image.open, tarfile.open, ...)
 METHODS = {"read_text", "read_bytes", "write_text", "write_bytes", "open", "glob", "rglob",
-           "iterdir", "mkdir", "touch", "unlink", "rmdir", "symlink_to", "hardlink_to"}
+           "iterdir", "mkdir", "touch", "unlink", "rmdir", "symlink_to", "hardlink_to",
+           "tofile"}
+SAVE = "save"      # img.save(path), rec.save(path): a method given a path (graph.save() is not)
 BUILTINS = {"open"}
 MODULES = {"glob", "shutil"}          # importing them at all
 
@@ -60,6 +64,15 @@ ALLOWED = {
         "as trimesh.load: sandboxed worker, path checked by meshes._readable",
     ("urdf_lint/meshes.py", "collada.Collada"):
         "as trimesh.load: sandboxed worker, path checked by meshes._readable",
+    ("urdf_lint/meshio.py", "np.fromfile"):
+        "reads binary STL records in chunks from the file object fsbound.open_regular "
+        "opened (regular, non-blocking), not from a path",
+    ("urdf_lint/raster.py", ".save"):
+        "Pillow encodes into the exclusive temporary file fsbound.temp_path made in the "
+        "checked snapshot folder (or into an in-memory buffer)",
+    ("urdf_lint/recording.py", ".save"):
+        "rerun writes a recording into the exclusive temporary file fsbound.temp_path made "
+        "in the checked snapshot folder",
 }
 
 
@@ -117,7 +130,8 @@ def file_system_calls(source: str) -> list[tuple[int, str]]:
                     continue
                 if fns is not None and (fns == "*" or f.attr in fns):
                     found.append((node.lineno, f"{mod}.{f.attr}"))
-                elif f.attr in METHODS and mod not in MODULE_CALLS:
+                elif (f.attr in METHODS or f.attr == SAVE and node.args) and \
+                        mod not in MODULE_CALLS:
                     found.append((node.lineno, f".{f.attr}"))
     return found
 
@@ -150,17 +164,19 @@ def f(p):
     Path(p).open(); Path(p).glob("*"); Path(p).rglob("*"); Path(p).iterdir(); Path(p).mkdir()
     etree.parse(p); glob.glob(p); os.walk(p); os.scandir(p); os.listdir(p); shutil.rmtree(p)
     os.open(p, 0); os.remove(p); os.replace(p, p); os.makedirs(p)
-    trimesh.load(p)
+    trimesh.load(p); np.fromfile(p); img.save(p); minidom.parse(p); ET.parse(p)
 """
     whats = [w for _, w in file_system_calls(src)]
     for expected in ["import glob", "import shutil", "from os import walk", "open",
                      ".read_text", ".read_bytes", ".write_text", ".write_bytes", ".open",
                      ".glob", ".rglob", ".iterdir", ".mkdir", "etree.parse", "glob.glob",
                      "os.walk", "os.scandir", "os.listdir", "shutil.rmtree", "os.open",
-                     "os.remove", "os.replace", "os.makedirs", "trimesh.load"]:
+                     "os.remove", "os.replace", "os.makedirs", "trimesh.load", "np.fromfile",
+                     ".save", "minidom.parse", "ET.parse"]:
         assert expected in whats, expected
     assert file_system_calls("x = s.replace('a', 'b'); fsbound.read_bytes(p)\n"
-                             "tarfile.open(fileobj=b); collada.Collada(io.BytesIO(d))\n") == []
+                             "tarfile.open(fileobj=b); collada.Collada(io.BytesIO(d))\n"
+                             "graph.save()\n") == []
 
 
 def test_the_allow_list_is_short_and_says_why():
@@ -455,3 +471,15 @@ def test_config_paths_inside_the_repository_are_kept(attack):
     attempt(repo, outside, "generate", ".", codes=(1,))   # written: it was stale
     assert (repo / "p" / "urdf" / "gen" / "r.urdf").is_file()
     attempt(repo, outside, "generate", ".", codes=(0,))
+
+
+def test_a_deeply_nested_planted_manifest_is_ignored(attack):
+    """The snapshot folder's manifest may be committed: 50,000 nested arrays in it are not
+    an internal error (nothing it names is removed)."""
+    repo, outside = attack
+    snaps = repo / "snapshots"
+    snaps.mkdir()
+    (snaps / ".urdf-lint-snapshots.json").write_text("[" * 50_000 + "]" * 50_000)
+    (snaps / "keep.png").write_bytes(b"theirs")
+    attempt(repo, outside, "render", ".", "--out", "snapshots", "--no-rrd", codes=(0, 1))
+    assert (snaps / "keep.png").read_bytes() == b"theirs"

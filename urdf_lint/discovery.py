@@ -185,7 +185,8 @@ def _detected_outputs(found, paths, resolver=None) -> dict:
     for f, _ in found:
         if not f.endswith(".urdf"):
             continue
-        named = header_source(f, resolver.roots if resolver is not None else None)
+        named = header_source(f, resolver.roots if resolver is not None else None,
+                              resolved=True)   # a discovered file: a real path (or a link)
         src = find_source(f, named, xacros, root) if named else None
         if src:
             out.setdefault(src, []).append(f)
@@ -414,9 +415,11 @@ def _read_includes(f: str, resolver):
     from lxml import etree
     from . import fsbound
     try:   # a regular file inside the roots, bounded (never a FIFO or /dev/stdout)
+        # (f is a real path: a discovered file, or an include resolved by realpath)
         root = fsbound.parse_xml(f, etree.XMLParser(resolve_entities=False, no_network=True,
                                                     load_dtd=False),
-                                 resolver.roots if resolver is not None else None)
+                                 resolver.roots if resolver is not None else None,
+                                 resolved=True)
     except (etree.XMLSyntaxError, OSError):
         return [], 0, [], False
     inc, unresolved, args, glob_used = [], 0, [], False

@@ -56,17 +56,21 @@ def inside(f: str, p: str) -> bool:
     return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
-def within(path, roots: Iterable) -> bool:
-    """Does ``path`` resolve (after symlinks) inside one of ``roots``?"""
-    real = os.path.realpath(path)
+def within(path, roots: Iterable, resolved: bool = False) -> bool:
+    """Does ``path`` resolve (after symlinks) inside one of ``roots``? ``resolved``: the
+    caller made ``path`` with ``os.path.realpath`` (only its last component may be a
+    symlink since, e.g. a discovered file that is a link): one ``lstat`` instead of one per
+    component (discovery asks for every file)."""
+    path = os.fspath(path)
+    real = os.path.realpath(path) if not resolved or os.path.islink(path) else path
     return any(inside(real, os.fspath(r)) for r in roots)
 
 
 # -- reads ------------------------------------------------------------------------------------
-def _open_regular(path, roots, nofollow: bool):
+def _open_regular(path, roots, nofollow: bool, resolved: bool = False):
     """(a file object of a regular file, its stat); raises BoundaryError / OSError."""
     path = os.fspath(path)
-    if roots is not None and not within(path, roots):
+    if roots is not None and not within(path, roots, resolved):
         raise BoundaryError(path, "resolves outside the package roots and the linted "
                             "repository; it was not read")
     fd = os.open(path, _RD | (_NOFOLLOW if nofollow else 0))
@@ -92,10 +96,11 @@ def open_regular(path, roots=None, nofollow: bool = False):
 
 
 def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
-               nofollow: bool = False) -> bytes:
+               nofollow: bool = False, resolved: bool = False) -> bytes:
     """The bytes of a regular file of at most ``max_bytes`` (inside ``roots`` after symlinks
-    when given); raises :class:`BoundaryError` (or the ``OSError`` of the open)."""
-    f, st = _open_regular(path, roots, nofollow)
+    when given; ``resolved`` as for :func:`within`); raises :class:`BoundaryError` (or the
+    ``OSError`` of the open)."""
+    f, st = _open_regular(path, roots, nofollow, resolved)
     with f:
         if st.st_size > max_bytes:
             raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
@@ -113,9 +118,10 @@ def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
     return data
 
 
-def read_head(path, n: int, roots=None) -> bytes:
-    """At most the first ``n`` bytes of a regular file (inside ``roots`` when given)."""
-    f, _ = _open_regular(path, roots, False)
+def read_head(path, n: int, roots=None, resolved: bool = False) -> bytes:
+    """At most the first ``n`` bytes of a regular file (inside ``roots`` when given;
+    ``resolved`` as for :func:`within`)."""
+    f, _ = _open_regular(path, roots, False, resolved)
     with f:
         return f.read(n)
 
@@ -134,11 +140,12 @@ def read_regular(path, max_bytes: int, roots=None, nofollow: bool = False) -> by
         return None
 
 
-def parse_xml(path, parser, roots=None, max_bytes: int = MAX_SOURCE_BYTES):
+def parse_xml(path, parser, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+              resolved: bool = False):
     """The lxml root element of a file read by :func:`read_bytes` (never lxml's own open,
     which would follow a FIFO or a device); lxml's errors are raised as they are."""
     from lxml import etree
-    data = read_bytes(path, roots, max_bytes)
+    data = read_bytes(path, roots, max_bytes, resolved=resolved)
     return etree.fromstring(data, parser, base_url=os.fspath(path))
 
 

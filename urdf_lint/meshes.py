@@ -628,7 +628,7 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
             if isinstance(facts, dict) and "ok" in facts:
                 memory[digest] = facts
                 return facts
-        except (OSError, ValueError):
+        except (OSError, ValueError, RecursionError):   # (unsigned: any bytes may be there)
             pass
     try:
         facts = compute(path)

@@ -200,7 +200,7 @@ def clear_stale(out_dir, base=None) -> None:
     try:
         files = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_CONFIG_BYTES,
                                               nofollow=True)).get("files", {})
-    except (OSError, ValueError, AttributeError):
+    except (OSError, ValueError, AttributeError, RecursionError):   # a planted manifest
         return
     for name, digest in files.items() if isinstance(files, dict) else ():
         if not isinstance(name, str) or os.path.basename(name) != name \
