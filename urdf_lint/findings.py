@@ -265,13 +265,14 @@ _VARYING = None
 
 
 def _template(message: str) -> str:
-    """A message with what varies between the instances of one problem (quoted names,
+    """A message with what varies between the instances of one problem (quoted names, paths,
     numbers) blanked: two different problems a rule finds on one element ("effort=0",
     "velocity=0") stay two findings, the same problem on 42 fingers is one."""
     global _VARYING
     if _VARYING is None:
         import re
-        _VARYING = re.compile(r"'[^']*'|\"[^\"]*\"|[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+        _VARYING = re.compile(r"'[^']*'|\"[^\"]*\"|[^\s'\"()]*/[^\s'\"()]*"
+                              r"|[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
     return _VARYING.sub("#", message)
 
 
