@@ -90,10 +90,11 @@ def carried_data(report):
         return report
 
 
-def make_package(root: Path, name: str, files: dict) -> Path:
-    """Write a ROS-style package: package.xml plus the given files (text or bytes)."""
+def make_package(root: Path, name: str, files: dict, depends=()) -> Path:
+    """Write a ROS-style package: package.xml (declaring ``depends``) plus the given files
+    (text or bytes)."""
     from repo_shapes import package_xml, write
     pkg = root / name
     pkg.mkdir(parents=True, exist_ok=True)
-    (pkg / "package.xml").write_text(package_xml(name))
+    (pkg / "package.xml").write_text(package_xml(name, depends))
     return write(pkg, files)

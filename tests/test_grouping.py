@@ -142,3 +142,15 @@ def test_diff_shows_the_yaml_line_that_changed(tmp_path):
     assert all(c["head"]["line"] == LIMIT_LINE for c in changes)
     text = run_cli("diff", "HEAD", "--no-cache", cwd=pkg).stdout
     assert "value from urdf/joint_limits.yaml:4" in text, text
+
+
+def test_two_problems_of_one_rule_on_one_element_stay_two(tmp_path):
+    """Grouping merges the same problem on many elements, not two problems a rule finds on
+    one element (effort=0 is a warning, velocity=0 an error: UL304 at one <limit>)."""
+    src = HAND.replace('effort="1" velocity="1"', 'effort="0" velocity="0"')
+    pkg = make_package(tmp_path, "zeros", {"urdf/hand.urdf.xacro": src,
+                                          "urdf/joint_limits.yaml": LIMITS_YAML})
+    doc = json.loads(check(pkg, "--format", "json").stdout)
+    limits = [f for f in doc["findings"] if f["code"] == "UL304"]
+    assert sorted(f["severity"] for f in limits) == ["error", "warning"], limits
+    assert all(f["count"] == 5 for f in limits)

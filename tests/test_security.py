@@ -459,7 +459,8 @@ def test_colcon_workspace_is_a_root(tmp_path):
                                     '<link name="arm"/></xacro:macro></robot>\n'})
         make_package(top, "p", {"urdf/r.urdf.xacro": robot(
             '  <xacro:include filename="$(find other)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
-            '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
+            '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')},
+            depends=("other",))
     # sibling folders that are no workspace: the neighbour is not a root, so not found
     two_packages(tmp_path / "loose")
     p = run_cli("check", tmp_path / "loose" / "p", "--no-cache", "--format", "json", cwd=tmp_path)

@@ -241,14 +241,16 @@ def merge(findings: list[Problem]) -> list[Problem]:
 
 def group(findings) -> list[Problem]:
     """One finding per source location and rule, and one per root cause: the problems of one
-    macro line used by 42 fingers (messages differing only by the finger's name) are one
-    finding with 42 instances; the problems naming one root cause (``Problem.group``, e.g. an
-    unknown package) are one finding wherever they are, at its first location. A grouped
+    macro line used by 42 fingers (messages differing only by the finger's name or values, at
+    one severity) are one finding with 42 instances; the problems naming one root cause
+    (``Problem.group``, e.g. an unknown package) are one finding wherever they are, at its
+    first location. A grouped
     finding is the first instance with its ``instances`` set, the highest severity, every model,
     the YAML/property source its instances share, and one fix for all (``fixes.combine``)."""
     groups: dict = {}
     for f in findings:
-        k = ("", f.code, f.group, 0, 0) if f.group else (f.file, f.code, "", f.line, f.col)
+        k = ("", f.code, f.group, 0, 0, "", "") if f.group else \
+            (f.file, f.code, "", f.line, f.col, f.severity, _template(f.message))
         groups.setdefault(k, []).append(f)
     out = []
     for fs in groups.values():
@@ -271,6 +273,21 @@ def group(findings) -> list[Problem]:
         out.append(head.replace(severity=sev, models=models, fix=fix, instances=tuple(fs),
                                 value_from=head.value_from if len(froms) == 1 else ()))
     return sorted(out, key=lambda f: (f.file, f.line, f.col, f.code, f.message))
+
+
+_VARYING = None
+
+
+def _template(message: str) -> str:
+    """A message with what varies between the instances of one problem (quoted names, paths,
+    numbers) blanked: two different problems a rule finds on one element ("effort=0",
+    "velocity=0") stay two findings, the same problem on 42 fingers is one."""
+    global _VARYING
+    if _VARYING is None:
+        import re
+        _VARYING = re.compile(r"'[^']*'|\"[^\"]*\"|[^\s'\"()]*/[^\s'\"()]*"
+                              r"|[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?")
+    return _VARYING.sub("#", message)
 
 
 def instance_label(f: Problem, by_place: bool) -> str:
