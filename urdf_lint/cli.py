@@ -326,6 +326,14 @@ def _cmd_clean(sub, raw):
                     help="find the cache from here (default: .)")
 
 
+def _cmd_server(sub, raw):
+    sub.add_parser("server", help="a language server for editors (LSP over stdio; needs the "
+                   "'server' extra)",
+                   description="Run the urdf-lint language server on stdin/stdout: diagnostics "
+                               "from the real expansion, fixes, navigation, hover, completion. "
+                               "Editors start it; see the README for the set-up.")
+
+
 # the subcommands in the order of `urdf-lint --help`; each builds its own parser
 _COMMAND_PARSERS = {
     "check": _cmd_check,
@@ -338,6 +346,7 @@ _COMMAND_PARSERS = {
     "generate": _cmd_generate,
     "doctor": _cmd_doctor,
     "clean": _cmd_clean,
+    "server": _cmd_server,
 }
 
 
@@ -876,9 +885,18 @@ def cmd_clean(args) -> int:
     return 0
 
 
+def cmd_server(args) -> int:
+    try:
+        from .lsp.server import main as serve
+    except ImportError as e:
+        raise UsageError(f"the language server needs the 'server' extra ({e.name} is not "
+                         "installed): pip install 'urdf-lint[server]'") from None
+    return serve()
+
+
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
             "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean,
-            "doctor": cmd_doctor}
+            "doctor": cmd_doctor, "server": cmd_server}
 
 
 def main(argv=None) -> int:

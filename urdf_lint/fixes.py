@@ -175,8 +175,8 @@ class _Sources:
         if real not in self.allowed:
             raise _Refuse(f"{NOT_FIXABLE}: {_where(path)} was not read by the model")
         if real not in self.data:
-            with open(real, "rb") as f:
-                self.data[real] = f.read()
+            from . import overlay   # (an unsaved editor buffer: the edits are its offsets)
+            self.data[real] = overlay.read(real)
         return self.data[real]
 
     def xacro_files(self):
@@ -551,9 +551,9 @@ def remove_comment(loc) -> Fix | None:
     col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
     its ``enable`` would dangle)."""
     from .sourceedit import offset_of
+    from . import overlay
     try:
-        with open(loc[0], "rb") as f:
-            data = f.read()
+        data = overlay.read(loc[0])
     except OSError:
         return None
     off = offset_of(data, loc[1], loc[2])

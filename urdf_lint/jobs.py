@@ -39,6 +39,9 @@ class LintJob:
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
+    # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
+    # files by this job's expansion and lint (urdf_lint/overlay.py); such a result is not cached
+    overlay: tuple = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

@@ -70,8 +70,11 @@ def classify_xacro(path: str) -> Status | None:
     """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
     or NOT_ROBOT."""
     from lxml import etree
+    from . import overlay
+    buffer = overlay.get(path)   # an unsaved editor buffer (urdf-lint server)
     try:
-        root = etree.parse(path, _quick_parser()).getroot()
+        root = etree.fromstring(buffer, _quick_parser()) if buffer is not None else \
+            etree.parse(path, _quick_parser()).getroot()
     except (etree.XMLSyntaxError, OSError):
         return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":
@@ -167,8 +170,11 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                                    (entry, 1, 1)))
         out.status = Status.FAILED
         return None
+    from . import overlay
     try:
-        data, rec = read_recorded(entry)
+        buffer = overlay.get(entry)   # an unsaved editor buffer (urdf-lint server)
+        data, rec = (buffer, overlay.record(buffer)) if buffer is not None else \
+            read_recorded(entry)
         out.digests = {entry: rec}
     except OSError as e:
         problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",

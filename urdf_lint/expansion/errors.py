@@ -82,8 +82,8 @@ def _arg_declared_later(name: str, deps) -> str | None:
     decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + q + r"[\"']")
     for f in deps:
         try:
-            with open(f, encoding="utf-8", errors="replace") as fh:
-                text = fh.read()
+            from .. import overlay
+            text = overlay.read(f).decode("utf-8", "replace")
         except OSError:
             continue
         m = decl.search(text) or decl2.search(text)

@@ -34,7 +34,7 @@ import xacro.substitution_args as _subst
 from ..jobs import DEFAULT_ENV_ALLOW
 from ..findings import Problem
 from ..packages import PackageResolver
-from .. import safe_eval
+from .. import overlay, safe_eval
 from ..hashing import read_recorded
 from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
 from . import splice
@@ -178,7 +178,9 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", ul902_outside_roots)
         try:
-            data, record = read_recorded(path)
+            buffer = overlay.get(absolute)   # an unsaved editor buffer (urdf-lint server)
+            data, record = (buffer, overlay.record(buffer)) if buffer is not None else \
+                read_recorded(path)
         except (IOError, OSError) as e:
             xacro.filestack.pop()
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
@@ -283,13 +285,16 @@ def _hook_load_yaml(filename):
                            "linted repository; it was not read", ul902_outside_roots)
     st.deps[path] = None
     loader = _yaml_loader()
-    if loader is None:
+    buffer = overlay.get(path)   # an unsaved editor buffer (urdf-lint server)
+    if loader is None and buffer is None:
         return _orig["load_yaml"](path)
+    if loader is None:
+        loader = _yaml_loader(pure=True)
     # what xacro.load_yaml does, with libyaml's parser (3-5x faster than PyYAML's pure-Python
     # one; UR's descriptions read eight YAML files per model): the same SafeConstructor, the
     # same unit tags, the same wrapper, include bookkeeping and errors
     filename = xacro.abs_filename_spec(path)
-    with open(filename) as f:
+    with (io.StringIO(buffer.decode("utf-8")) if buffer is not None else open(filename)) as f:
         xacro.filestack.append(filename)
         try:
             return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
@@ -301,9 +306,16 @@ def _hook_load_yaml(filename):
 _YAML_LOADER: list = []
 
 
-def _yaml_loader():
+def _yaml_loader(pure: bool = False):
     """A SafeLoader on libyaml (``yaml.CSafeLoader``) with xacro's unit constructors
-    (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml."""
+    (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml
+    (``pure``: then PyYAML's own SafeLoader with them, for a buffer xacro cannot open)."""
+    if pure:
+        import yaml
+        cls: Any = type("XacroSafeLoader", (yaml.SafeLoader,), {})
+        for unit in xacro.ConstructUnits:
+            cls.add_constructor(unit.value.tag, unit.constructor)
+        return cls
     if not _YAML_LOADER:
         import yaml
         cls = None

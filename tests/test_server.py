@@ -1,0 +1,161 @@
+"""`urdf-lint server` end to end: a real LSP client (pytest-lsp) talks to the server over
+stdio, on a copy of the corpus UR description, and checks positions and contents."""
+from __future__ import annotations
+
+import asyncio
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pygls")
+pytest_lsp = pytest.importorskip("pytest_lsp")
+from lsprotocol import types  # noqa: E402
+from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
+
+from conftest import CORPUS  # noqa: E402
+
+# (a worktree beside the checkout: URDF_LINT_CORPUS names the corpus)
+UR = Path(os.environ.get("URDF_LINT_CORPUS") or CORPUS) / "ur_description"
+pytestmark = [pytest.mark.asyncio(loop_scope="function"),
+              pytest.mark.skipif(not (UR / "package.xml").is_file(),
+                                 reason="the corpus UR description is not present")]
+
+
+@pytest.fixture
+def ur(tmp_path) -> Path:
+    dst = tmp_path / "ur_description"
+    shutil.copytree(UR, dst)
+    return dst
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
+async def client(lsp_client: LanguageClient, ur):
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=types.ClientCapabilities(), root_uri=ur.as_uri(),
+        workspace_folders=[types.WorkspaceFolder(uri=ur.as_uri(), name="ur")]))
+    yield
+    await lsp_client.shutdown_session()
+
+
+def open_doc(client: LanguageClient, path: Path, text: str | None = None) -> str:
+    uri = path.as_uri()
+    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=1, text=path.read_text() if text is None else text)))
+    return uri
+
+
+async def diagnostics_for(client: LanguageClient, uri: str, want=lambda ds: True,
+                          timeout: float = 60.0) -> list:
+    """The diagnostics of ``uri`` once ``want`` holds for them."""
+    async def wait():
+        while True:
+            got = client.diagnostics.get(uri)
+            if got is not None and want(got):
+                return got
+            await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    return await asyncio.wait_for(wait(), timeout)
+
+
+def change(client: LanguageClient, uri: str, text: str, version: int) -> None:
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+        content_changes=[types.TextDocumentContentChangeWholeDocument(text=text)]))
+
+
+def pos(d):
+    return (d.range.start.line, d.range.start.character)
+
+
+async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client, ur):
+    """ur_macro.xacro is a macro library: it shows the findings of the robots including it
+    (the missing visual meshes of ur10), at its own lines, with each call site as related
+    information."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    uri = open_doc(client, macro)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    base = [d for d in ds if d.code == "UL401" and "ur10/visual/base.dae" in d.message]
+    assert len(base) == 1
+    d = base[0]
+    assert pos(d) == (83, 10)                     # line 84, col 11: the <mesh> in the macro
+    assert d.range.end == types.Position(83, 15)  # "<mesh"
+    assert d.severity == types.DiagnosticSeverity.Error and d.source == "urdf-lint"
+    assert "(in ur10)" in d.message
+    rel = [(r.location.uri.rsplit("/", 1)[-1], r.location.range.start.line,
+            r.location.range.start.character) for r in d.related_information]
+    assert rel == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)]
+
+
+async def test_diagnostics_follow_the_unsaved_buffer_and_reach_every_robot(client, ur):
+    """An unsaved edit of the shared macro (a joint axis of length 2) is linted from the
+    buffer, not the file, and lands for all nine robots at the edited line; undoing it in the
+    buffer clears it. The file on disk is never written."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    disk = macro.read_text()
+    uri = open_doc(client, macro)
+    await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    lines = disk.split("\n")
+    assert lines[236].strip() == '<axis xyz="0 0 1" />'
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    change(client, uri, "\n".join(lines), 2)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL307" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL307"]
+    assert pos(d) == (236, 6)
+    for robot in ("ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30"):
+        assert robot in d.message.split("(in ")[-1] or d.message.endswith("...)")
+    assert macro.read_text() == disk
+    change(client, uri, disk, 3)
+    await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
+
+
+async def test_a_config_mistake_is_one_diagnostic_at_its_line(client, ur, tmp_path):
+    """A bad key in [tool.urdf-lint] of pyproject.toml: one diagnostic on that line."""
+    pp = ur / "pyproject.toml"
+    pp.write_text('[project]\nname = "x"\n\n[tool.urdf-lint]\nselect = ["UL4"]\nfail_onn = 1\n')
+    uri = open_doc(client, pp)
+    client.text_document_did_save(types.DidSaveTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=uri)))
+    ds = await diagnostics_for(client, uri, lambda ds: len(ds) > 0)
+    assert len(ds) == 1
+    assert pos(ds[0]) == (5, 0) and ds[0].range.end.character == len("fail_onn = 1")
+    assert "unknown key 'fail_onn'" in ds[0].message
+
+
+async def test_quick_fix_and_suppressions_as_code_actions(client, ur):
+    """The UL307 fix is a workspace edit of the buffer's "0 0 2" to "0 0 1"; the suppression
+    actions insert the comment above the element and at the top of the file."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    uri = open_doc(client, macro, "\n".join(lines))
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL307" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL307"]
+    acts = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=d.range,
+        context=types.CodeActionContext(diagnostics=[d])))
+    by = {a.title: a for a in acts}
+    fix = next(a for t, a in by.items() if t.startswith("UL307:"))
+    assert fix.kind == types.CodeActionKind.QuickFix and fix.is_preferred
+    (edit,) = fix.edit.changes[uri]
+    assert edit.new_text in ("0 0 1", '"0 0 1"', "0.0 0.0 1.0")
+    assert edit.range.start.line == 236
+    assert lines[236][edit.range.start.character:edit.range.end.character] in ("0 0 2", '"0 0 2"')
+    nxt = by["Disable UL307 for the next element"].edit.changes[uri][0]
+    assert nxt.range.start == types.Position(236, 0)
+    assert nxt.new_text == "      <!-- urdf-lint: disable-next UL307 -->\n"
+    whole = by["Disable UL307 for this file"].edit.changes[uri][0]
+    assert whole.range.start == types.Position(1, 0)
+    assert whole.new_text == "<!-- urdf-lint: disable-file UL307 -->\n"
+    allsafe = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=d.range,
+        context=types.CodeActionContext(diagnostics=[], only=[types.CodeActionKind.SourceFixAll])))
+    (a,) = allsafe
+    assert a.title == "urdf-lint: fix all safe"
+    assert [e.range.start.line for e in a.edit.changes[uri]] == [236]
+    # the suppression, typed into the buffer, silences the finding
+    lines.insert(236, "      <!-- urdf-lint: disable-next UL307 -->")
+    change(client, uri, "\n".join(lines), 2)
+    await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
