@@ -159,3 +159,124 @@ async def test_quick_fix_and_suppressions_as_code_actions(client, ur):
     lines.insert(236, "      <!-- urdf-lint: disable-next UL307 -->")
     change(client, uri, "\n".join(lines), 2)
     await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
+
+
+async def linted(client, ur) -> str:
+    """Open the shared macro file and wait until every robot including it is linted."""
+    uri = open_doc(client, ur / "urdf" / "inc" / "ur_macro.xacro")
+    await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    return uri
+
+
+def where(locs):
+    return [(loc.uri.rsplit("/", 1)[-1], loc.range.start.line, loc.range.start.character)
+            for loc in locs]
+
+
+async def definition(client, uri, line, char):
+    return await client.text_document_definition_async(types.DefinitionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(line, char)))
+
+
+async def test_go_to_definition(client, ur):
+    """A macro call to its xacro:macro; ${prefix} to the parameter of the macro it is in;
+    $(find pkg)/... to the file; $(arg x) to its xacro:arg; a parent link written as
+    ${prefix}base_link to the <link> that defines it, through the expanded robots' maps."""
+    macro_uri = await linted(client, ur)
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    uri = open_doc(client, ur5e)
+    lines = ur5e.read_text().split("\n")
+    call = lines[20].index("ur5e_robot")
+    assert where(await definition(client, uri, 20, call + 2)) == [("ur5e_macro.xacro", 22, 2)]
+    inc = lines[19].index("inc/ur5e_macro")
+    got = await definition(client, uri, 19, inc + 3)
+    assert got[0].uri == (ur / "urdf" / "inc" / "ur5e_macro.xacro").as_uri()
+    # in the shared macro: <parent link="${prefix}base_link" /> (line 224)
+    macro_lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    assert macro_lines[223].strip() == '<parent link="${prefix}base_link" />'
+    col = macro_lines[223].index("base_link")
+    assert where(await definition(client, macro_uri, 223, col + 1)) == \
+        [("ur_macro.xacro", 78, 4)]                           # <link name="${prefix}base_link">
+    col = macro_lines[223].index("prefix")
+    assert where(await definition(client, macro_uri, 223, col + 1)) == \
+        [("ur_macro.xacro", 56, 2)]                           # <xacro:macro name="ur_robot" ...
+    ur_x = ur / "urdf" / "ur.xacro"
+    ur_lines = ur_x.read_text().split("\n")
+    uri = open_doc(client, ur_x)
+    col = ur_lines[24].index("joint_limit_params")
+    assert where(await definition(client, uri, 24, col + 2)) == [("ur.xacro", 7, 3)]
+
+
+async def test_references_of_a_macro_and_a_link(client, ur):
+    """Every call of ur_robot (one per robot's macro file, and ur.xacro's), and every element naming
+    base_link_inertia (its definition, the joint's child, the next joint's parent)."""
+    macro_uri = await linted(client, ur)
+    lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    refs = await client.text_document_references_async(types.ReferenceParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(56, lines[56].index("ur_robot") + 1),
+        context=types.ReferenceContext(include_declaration=False)))
+    files = sorted(r[0] for r in where(refs))
+    assert files == sorted([f"{m}_macro.xacro" for m in (
+        "ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30")] + ["ur.xacro"])
+    refs = await client.text_document_references_async(types.ReferenceParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(79, lines[79].index("base_link_inertia") + 2),
+        context=types.ReferenceContext(include_declaration=True)))
+    assert sorted(where(refs)) == [("ur_macro.xacro", 79, 4), ("ur_macro.xacro", 224, 6),
+                                   ("ur_macro.xacro", 233, 6)]
+
+
+async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(client, ur):
+    macro_uri = await linted(client, ur)
+    lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    assert '<origin xyz="0 0 ${shoulder_offset}"' in lines[121]
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(121, lines[121].index("shoulder_offset") + 3)))
+    text = h.contents.value
+    assert "`0 0 0.138` in ur5e" in text and "`0 0 0.220941` in ur10" in text
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    uri = open_doc(client, ur5e)
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(20, 10)))
+    assert h.contents.value.startswith("**macro ur5e_robot** (ur5e_macro.xacro:23)")
+    assert "- `prefix` (required)" in h.contents.value
+    assert "- `safety_pos_margin` = `0.15`" in h.contents.value
+    text = ur5e.read_text().replace("<robot ", "<!-- urdf-lint: disable-next UL307 -->\n<robot ", 1)
+    change(client, uri, text, 2)
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(1, text.split("\n")[1].index("UL307") + 2)))
+    assert h.contents.value.startswith("**UL307 joint-axis** (error)")
+
+
+async def test_completion_of_macros_parameters_and_rule_codes(client, ur):
+    await linted(client, ur)
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    lines = ur5e.read_text().split("\n")
+    lines.insert(21, "  <xacro:")
+    uri = open_doc(client, ur5e, "\n".join(lines))
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 9)))
+    by = {i.label: i for i in got.items}
+    assert by["ur5e_robot"].insert_text == 'ur5e_robot prefix="${1}"/>'
+    assert "ur_robot" in by and "ur10_robot" in by
+    lines[21] = "  <!-- urdf-lint: disable-next UL3"
+    change(client, uri, "\n".join(lines), 2)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 34)))
+    by = {i.label: i for i in got.items}
+    assert by["UL307"].detail == "joint-axis"
+
+
+async def test_document_symbols(client, ur):
+    macro_uri = await linted(client, ur)
+    syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri)))
+    by = {(s.detail, s.name): (s.range.start.line, s.range.start.character) for s in syms}
+    assert by[("macro", "ur_robot")] == (56, 2)
+    assert by[("link", "${prefix}base_link")] == (78, 4)
+    assert by[("joint", "${prefix}shoulder_pan_joint")] == (232, 4)

@@ -95,8 +95,8 @@ class UrdfLintServer(LanguageServer):
             return
         for f in sorted(set(files) | self.published):
             diags = self.diagnostics(f)
-            if not diags and f not in self.published:
-                continue
+            if not diags and f not in self.published and f not in ws.buffers:
+                continue   # (an open file always gets its diagnostics, none included)
             self.text_document_publish_diagnostics(
                 types.PublishDiagnosticsParams(uri=path_uri(f), diagnostics=diags))
             (self.published.add if diags else self.published.discard)(f)

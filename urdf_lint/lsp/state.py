@@ -72,12 +72,15 @@ class Workspace:
             self.policy = Policy.from_config(cfg)
             self.settings = settings_for(cfg, resolver, None, self.policy)
         self.cfg, self.resolver = cfg, resolver
-        self.cache = _cache_for(self.root, cfg)
-        if self.cache is not None:
-            import dataclasses
-            self.settings = dataclasses.replace(self.settings, mesh_cache_dir=self.cache.dir)
-        found = discover_models([self.root], cfg, resolver,
-                                self.cache.dir if self.cache else None)
+        # the workers send each robot back (navigation and hover read it through its source
+        # map): results are kept in memory, not taken from check's cache (it holds no robot);
+        # its mesh facts are used
+        import dataclasses
+        cache = _cache_for(self.root, cfg)
+        self.settings = dataclasses.replace(self.settings, keep_model=True,
+                                            mesh_cache_dir=cache.dir if cache else None)
+        self.cache = None
+        found = discover_models([self.root], cfg, resolver, cache.dir if cache else None)
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
@@ -100,8 +103,11 @@ class Workspace:
         out = []
         for job in self.jobs:
             r = self.reports.get(job_key(job))
-            if job.entry == path or job.entry in includers or r is None or \
-                    path in r.deps or path in r.missing:
+            if job.entry == path or r is None:
+                out.append(job)
+            elif r.status in (Status.LIBRARY, Status.NOT_ROBOT):
+                continue   # decided by its own text alone
+            elif job.entry in includers or path in r.deps or path in r.missing:
                 out.append(job)
         return out
 
