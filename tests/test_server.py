@@ -280,3 +280,58 @@ async def test_document_symbols(client, ur):
     assert by[("macro", "ur_robot")] == (56, 2)
     assert by[("link", "${prefix}base_link")] == (78, 4)
     assert by[("joint", "${prefix}shoulder_pan_joint")] == (232, 4)
+
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.skipif(not shutil.which("nvim"), reason="nvim is not installed (apt: neovim)")
+def test_neovim_receives_the_diagnostics(ur, tmp_path):
+    """Neovim's own LSP client (headless, editors/neovim/urdf_lint.lua) starts the server on
+    the shared macro file with a planted defect (a joint axis of length 2 at line 237) and
+    holds the finding at that line and column, from urdf-lint."""
+    import json
+    import subprocess
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    macro.write_text("\n".join(lines))
+    out = tmp_path / "diagnostics.json"
+    env = dict(os.environ, URDF_LINT_NVIM_OUT=str(out), URDF_LINT_NVIM_WANT="UL307",
+               URDF_LINT_PY=sys.executable,
+               URDF_LINT_NVIM_PLUGIN=str(REPO / "editors" / "neovim" / "urdf_lint.lua"))
+    subprocess.run(["nvim", "--headless", "-u", "NONE", "-i", "NONE", "-n", str(macro),
+                    "-c", f"luafile {REPO / 'tests' / 'support' / 'nvim_lsp_probe.lua'}"],
+                   cwd=ur, env=env, timeout=120, stdin=subprocess.DEVNULL,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    got = json.loads(out.read_text())
+    (axis,) = [d for d in got if d["code"] == "UL307"]
+    assert (axis["lnum"], axis["col"]) == (236, 6)
+    assert axis["source"] == "urdf-lint" and axis["severity"] == 1   # vim.diagnostic ERROR
+    assert "axis" in axis["message"]
+    assert any(d["code"] == "UL401" and d["lnum"] == 83 and d["col"] == 10 for d in got)
+
+
+@pytest.mark.skipif(not shutil.which("npm"), reason="npm is not installed")
+def test_the_vscode_client_builds(tmp_path):
+    """editors/vscode compiles with its locked dependencies (vscode-languageclient) into an
+    extension that starts `urdf-lint server`."""
+    import json
+    import subprocess
+    src = REPO / "editors" / "vscode"
+    dst = tmp_path / "vscode"
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("node_modules", "out"))
+    r = subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=dst, capture_output=True,
+                       text=True, timeout=300)
+    if r.returncode and any(s in r.stderr for s in ("ENOTFOUND", "EAI_AGAIN", "ECONNREFUSED",
+                                                     "ETIMEDOUT")):
+        pytest.skip("the npm registry is not reachable")
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = subprocess.run(["npm", "run", "compile"], cwd=dst, capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    js = (dst / "out" / "extension.js").read_text()
+    assert 'require("vscode-languageclient/node")' in js
+    assert '"urdf-lint", "server"' in js
+    manifest = json.loads((dst / "package.json").read_text())
+    assert manifest["main"] == "./out/extension.js"

@@ -86,19 +86,33 @@ class UrdfLintServer(LanguageServer):
             return
         jobs = ws.affected(path)
         loop = asyncio.get_running_loop()
+        versions = self.versions()   # what the lint reads: its diagnostics carry these
         files = await loop.run_in_executor(self.executor, ws.lint, jobs)
-        self.publish(files | {path} | set(ws.buffers))
+        self.publish(files | {path} | set(ws.buffers), versions)
+        rest = ws.unlinted()
+        if rest:   # then the models this file does not reach, to have them warm
+            versions = self.versions()
+            files = await loop.run_in_executor(self.executor, ws.lint, rest)
+            self.publish(files | set(ws.buffers), versions)
 
-    def publish(self, files) -> None:
+    def versions(self) -> dict:
+        """path -> the version of each open document."""
+        out = {}
+        for uri, doc in list(self.workspace.text_documents.items()):
+            out[uri_path(uri)] = doc.version
+        return out
+
+    def publish(self, files, versions: dict | None = None) -> None:
         ws = self.ws
         if ws is None:
             return
+        versions = versions or {}
         for f in sorted(set(files) | self.published):
             diags = self.diagnostics(f)
             if not diags and f not in self.published and f not in ws.buffers:
                 continue   # (an open file always gets its diagnostics, none included)
-            self.text_document_publish_diagnostics(
-                types.PublishDiagnosticsParams(uri=path_uri(f), diagnostics=diags))
+            self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
+                uri=path_uri(f), diagnostics=diags, version=versions.get(f)))
             (self.published.add if diags else self.published.discard)(f)
 
     def diagnostics(self, path: str) -> list[types.Diagnostic]:

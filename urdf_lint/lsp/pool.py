@@ -21,6 +21,7 @@ class Pool:
         self.settings, self.size = settings, max(1, size)
         self.timeout, self.memory_mb = timeout, memory_mb
         self.workers: list[_Worker] = []
+        self.closing = False   # set from another thread: hand out no further job
 
     def _spawn(self) -> _Worker:
         w = _Worker(self.settings, self.memory_mb)
@@ -42,9 +43,9 @@ class Pool:
         todo = list(jobs)
         out: list = []
         busy: dict = {}
-        while todo or busy:
+        while (todo and not self.closing) or busy:
             for w in list(self.workers):
-                if todo and w.conn not in busy:
+                if todo and w.conn not in busy and not self.closing:
                     w.job, w.started = todo.pop(0), time.monotonic()
                     try:
                         w.conn.send(w.job)
@@ -85,6 +86,7 @@ class Pool:
         w.kill()
 
     def close(self) -> None:
+        self.closing = True
         for w in self.workers:
             forked.stop(w.conn, w.proc, 0.5)
         self.workers = []

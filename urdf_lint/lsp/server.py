@@ -62,9 +62,10 @@ def _did_close(ls: UrdfLintServer, params: types.DidCloseTextDocumentParams) -> 
 
 
 @server.feature(types.SHUTDOWN)
-def _shutdown(ls: UrdfLintServer, params) -> None:
+async def _shutdown(ls: UrdfLintServer, params) -> None:
     if ls.ws is not None:
-        ls.ws.close()
+        ls.ws.pool.closing = True   # the lint under way ends with the jobs it has started
+        await asyncio.get_running_loop().run_in_executor(ls.executor, ls.ws.close)
 
 
 actions.register(server)

@@ -78,7 +78,8 @@ class Workspace:
         import dataclasses
         cache = _cache_for(self.root, cfg)
         self.settings = dataclasses.replace(self.settings, keep_model=True,
-                                            mesh_cache_dir=cache.dir if cache else None)
+                                            mesh_cache_dir=cache.dir if cache else
+                                            _own_mesh_cache(self.root))
         self.cache = None
         found = discover_models([self.root], cfg, resolver, cache.dir if cache else None)
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
@@ -99,17 +100,27 @@ class Workspace:
     def affected(self, path: str) -> list[LintJob]:
         """The jobs whose result a change to ``path`` can change."""
         path = os.path.realpath(path)
-        includers = set(self.graph.includers(path)) if path.endswith(".xacro") else set()
+        # a xacro file the include graph knows: a model not linted yet reaches it only through
+        # the graph (or an include only expansion resolves); anything else (a YAML file): any
+        known = path.endswith(".xacro") and path in self.graph.includes
+        includers = set(self.graph.includers(path)) if known else set()
         out = []
         for job in self.jobs:
             r = self.reports.get(job_key(job))
-            if job.entry == path or r is None:
+            if job.entry == path:
                 out.append(job)
+            elif r is None:
+                if not known or job.entry in includers or \
+                        self.graph.unresolved_below(job.entry):
+                    out.append(job)
             elif r.status in (Status.LIBRARY, Status.NOT_ROBOT):
                 continue   # decided by its own text alone
             elif job.entry in includers or path in r.deps or path in r.missing:
                 out.append(job)
         return out
+
+    def unlinted(self) -> list[LintJob]:
+        return [j for j in self.jobs if job_key(j) not in self.reports]
 
     # -- linting -------------------------------------------------------------------------------
     def lint(self, jobs: list[LintJob] | None = None) -> set:
@@ -201,6 +212,20 @@ def _cache_for(root: str, cfg):
     except OSError:
         return None
     return None if c.refused else c
+
+
+def _own_mesh_cache(root: str) -> str | None:
+    """Outside git without a configured cache: the mesh facts (keyed by content) in a folder
+    of the user's cache for this workspace alone (the workers write there, so no two
+    workspaces share one), so that reopening the editor does not measure every mesh again."""
+    from ..cache import key_path
+    from ..hashing import content_digest
+    d = os.path.join(str(key_path().parent), "server", content_digest(root.encode()))
+    try:
+        os.makedirs(d, mode=0o700, exist_ok=True)
+    except OSError:
+        return None
+    return d
 
 
 _AT_LINE = re.compile(r"^(?P<file>[^\n]*?):(?P<line>\d+): ")
