@@ -19,9 +19,9 @@ from conftest import CORPUS  # noqa: E402
 
 # (a worktree beside the checkout: URDF_LINT_CORPUS names the corpus)
 UR = Path(os.environ.get("URDF_LINT_CORPUS") or CORPUS) / "ur_description"
-pytestmark = [pytest.mark.asyncio(loop_scope="function"),
-              pytest.mark.skipif(not (UR / "package.xml").is_file(),
-                                 reason="the corpus UR description is not present")]
+pytestmark = pytest.mark.skipif(not (UR / "package.xml").is_file(),
+                                reason="the corpus UR description is not present")
+aio = pytest.mark.asyncio(loop_scope="function")
 
 
 @pytest.fixture
@@ -70,6 +70,7 @@ def pos(d):
     return (d.range.start.line, d.range.start.character)
 
 
+@aio
 async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client, ur):
     """ur_macro.xacro is a macro library: it shows the findings of the robots including it
     (the missing visual meshes of ur10), at its own lines, with each call site as related
@@ -89,6 +90,7 @@ async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client,
     assert rel == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)]
 
 
+@aio
 async def test_diagnostics_follow_the_unsaved_buffer_and_reach_every_robot(client, ur):
     """An unsaved edit of the shared macro (a joint axis of length 2) is linted from the
     buffer, not the file, and lands for all nine robots at the edited line; undoing it in the
@@ -111,6 +113,7 @@ async def test_diagnostics_follow_the_unsaved_buffer_and_reach_every_robot(clien
     await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
 
 
+@aio
 async def test_a_config_mistake_is_one_diagnostic_at_its_line(client, ur, tmp_path):
     """A bad key in [tool.urdf-lint] of pyproject.toml: one diagnostic on that line."""
     pp = ur / "pyproject.toml"
@@ -124,6 +127,7 @@ async def test_a_config_mistake_is_one_diagnostic_at_its_line(client, ur, tmp_pa
     assert "unknown key 'fail_onn'" in ds[0].message
 
 
+@aio
 async def test_quick_fix_and_suppressions_as_code_actions(client, ur):
     """The UL307 fix is a workspace edit of the buffer's "0 0 2" to "0 0 1"; the suppression
     actions insert the comment above the element and at the top of the file."""
@@ -179,6 +183,7 @@ async def definition(client, uri, line, char):
         position=types.Position(line, char)))
 
 
+@aio
 async def test_go_to_definition(client, ur):
     """A macro call to its xacro:macro; ${prefix} to the parameter of the macro it is in;
     $(find pkg)/... to the file; $(arg x) to its xacro:arg; a parent link written as
@@ -208,6 +213,7 @@ async def test_go_to_definition(client, ur):
     assert where(await definition(client, uri, 24, col + 2)) == [("ur.xacro", 7, 3)]
 
 
+@aio
 async def test_references_of_a_macro_and_a_link(client, ur):
     """Every call of ur_robot (one per robot's macro file, and ur.xacro's), and every element naming
     base_link_inertia (its definition, the joint's child, the next joint's parent)."""
@@ -228,6 +234,7 @@ async def test_references_of_a_macro_and_a_link(client, ur):
                                    ("ur_macro.xacro", 233, 6)]
 
 
+@aio
 async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(client, ur):
     macro_uri = await linted(client, ur)
     lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
@@ -253,6 +260,7 @@ async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(
     assert h.contents.value.startswith("**UL307 joint-axis** (error)")
 
 
+@aio
 async def test_completion_of_macros_parameters_and_rule_codes(client, ur):
     await linted(client, ur)
     ur5e = ur / "urdf" / "ur5e.xacro"
@@ -272,6 +280,7 @@ async def test_completion_of_macros_parameters_and_rule_codes(client, ur):
     assert by["UL307"].detail == "joint-axis"
 
 
+@aio
 async def test_document_symbols(client, ur):
     macro_uri = await linted(client, ur)
     syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
@@ -335,3 +344,49 @@ def test_the_vscode_client_builds(tmp_path):
     assert '"urdf-lint", "server"' in js
     manifest = json.loads((dst / "package.json").read_text())
     assert manifest["main"] == "./out/extension.js"
+
+
+@aio
+async def test_an_unsaved_yaml_file_reaches_the_models_that_load_it(client, ur):
+    """ur10's visual meshes are named in config/ur10/visual_parameters.yaml (read with
+    xacro.load_yaml in the sandboxed workers): pointing its base at a mesh that exists, in
+    the unsaved buffer only, clears that finding in the macro file."""
+    macro_uri = await linted(client, ur)
+    yml = ur / "config" / "ur10" / "visual_parameters.yaml"
+    text = yml.read_text()
+    assert "package://ur_description/meshes/ur10/visual/base.dae" in text
+    uri = open_doc(client, yml, text)
+    edited = text.replace("meshes/ur10/visual/base.dae", "meshes/ur5e/visual/base.dae")
+    change(client, uri, edited, 2)
+    ds = await diagnostics_for(client, macro_uri, lambda ds: not any(
+        "ur10/visual/base.dae" in d.message for d in ds))
+    assert any("ur10/visual/shoulder.dae" in d.message for d in ds)   # the rest stays
+    assert yml.read_text() == text
+
+
+def test_a_buffer_outside_the_roots_is_never_read(tmp_path):
+    """An include outside the package roots stays refused (UL902) even when the editor holds
+    a buffer for that path: the overlay replaces a file's bytes only where the file itself
+    could be read."""
+    pytest.importorskip("pygls")
+    from urdf_lint.lsp.state import Workspace
+    pkg = tmp_path / "ws" / "bot"
+    pkg.mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>bot</name></package>")
+    outside = tmp_path / "outside.xacro"
+    outside.write_text('<robot xmlns:xacro="http://wiki.ros.org/xacro"/>')
+    model = pkg / "bot.xacro"
+    model.write_text(f'<robot name="b" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+                     f'  <xacro:include filename="{outside}"/>\n  <link name="a"/>\n</robot>\n')
+    ws = Workspace(str(pkg), pool_size=1)
+    try:
+        ws.buffers[str(outside)] = b'<robot xmlns:xacro="http://wiki.ros.org/xacro">' \
+            b'<link name="from_the_buffer"/></robot>'
+        ws.buffers[str(model)] = model.read_bytes()
+        ws.lint()
+        (f,) = [f for f in ws.findings if f.code == "UL902"]
+        assert (f.file, f.line, f.col) == (str(model), 2, 3)
+        rep = next(iter(r for r in ws.reports.values() if r.entry == str(model)))
+        assert str(outside) not in rep.deps
+    finally:
+        ws.close()
