@@ -272,8 +272,23 @@ async def test_completion_of_macros_parameters_and_rule_codes(client, ur):
     by = {i.label: i for i in got.items}
     assert by["ur5e_robot"].insert_text == 'ur5e_robot prefix="${1}"/>'
     assert "ur_robot" in by and "ur10_robot" in by
-    lines[21] = "  <!-- urdf-lint: disable-next UL3"
+    # parameter names inside the call, those not written yet
+    lines[21] = '  <xacro:ur5e_robot prefix="a_" '
     change(client, uri, "\n".join(lines), 2)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 31)))
+    by = {i.label: i for i in got.items}
+    assert "prefix" not in by and by["safety_limits"].detail == "default false"
+    assert by["joint_limits_parameters_file"].insert_text == 'joint_limits_parameters_file="${1}"'
+    # mesh files below a package
+    lines[21] = '  <mesh filename="package://ur_description/meshes/ur5e/vi'
+    change(client, uri, "\n".join(lines), 3)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(21, len(lines[21]))))
+    assert sorted(i.label for i in got.items) == ["collision/", "visual/"]
+    lines[21] = "  <!-- urdf-lint: disable-next UL3"
+    change(client, uri, "\n".join(lines), 4)
     got = await client.text_document_completion_async(types.CompletionParams(
         text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 34)))
     by = {i.label: i for i in got.items}

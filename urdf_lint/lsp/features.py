@@ -410,6 +410,34 @@ def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types
                 detail=f"macro ({os.path.basename(d.file)}:{d.line})",
                 insert_text=snippet, insert_text_format=types.InsertTextFormat.Snippet)
         return list(items.values())
+    pm = re.search(r"package://([\w-]+)/([^\"'\s]*)$", before)
+    if pm:
+        return _package_files(ls, pm.group(1), pm.group(2))
+    if at.in_tag and at.value is None and at.tag and at.tag.startswith("xacro:") and \
+            not re.search(r"<[\w:.-]*$", before):
+        # parameter names inside a macro call (those not written yet)
+        name = at.tag.split(":", 1)[1]
+        start = at.doc.text.rfind("<", 0, at.off)
+        written = set(re.findall(r"([\w-]+)\s*=", at.doc.text[start:at.off]))
+        for d in INDEX.decls(ls, path, "macro", name)[:1]:
+            for n, default in macro_params(d.attrs.get("params", "")):
+                if not n.startswith("*") and n not in written:
+                    items[n] = types.CompletionItem(
+                        label=n, kind=types.CompletionItemKind.Property,
+                        detail="required" if default is None else f"default {default}",
+                        insert_text=f'{n}="${{1}}"',
+                        insert_text_format=types.InsertTextFormat.Snippet)
+        return list(items.values())
+    if at.in_tag and at.value is None and at.tag and not at.tag.startswith("xacro:"):
+        attrs = URDF_ATTRIBUTES.get(at.tag.split(":")[-1])
+        if attrs and not re.search(r"<[\w:.-]*$", before):
+            return [types.CompletionItem(label=a, kind=types.CompletionItemKind.Property,
+                                         insert_text=f'{a}="${{1}}"',
+                                         insert_text_format=types.InsertTextFormat.Snippet)
+                    for a in attrs]
+    if re.search(r"<[\w-]*$", before) and not at.comment:
+        return [types.CompletionItem(label=e, kind=types.CompletionItemKind.Keyword)
+                for e in URDF_ATTRIBUTES]
     if re.search(r"\$\(arg\s+[\w-]*$", before):
         for d in INDEX.decls(ls, path, "arg"):
             items.setdefault(d.name, types.CompletionItem(
@@ -446,6 +474,52 @@ def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types
                         detail=f"{k} in {view.name}"))
         return list(items.values())
     return []
+
+
+# the URDF schema's elements and their attributes (urdfdom, plus the common ROS extensions)
+URDF_ATTRIBUTES = {
+    "robot": ["name", "version"], "link": ["name", "type"], "joint": ["name", "type"],
+    "parent": ["link"], "child": ["link"], "origin": ["xyz", "rpy"], "axis": ["xyz"],
+    "limit": ["lower", "upper", "effort", "velocity"], "dynamics": ["damping", "friction"],
+    "mimic": ["joint", "multiplier", "offset"], "calibration": ["rising", "falling"],
+    "safety_controller": ["soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"],
+    "inertial": [], "mass": ["value"],
+    "inertia": ["ixx", "ixy", "ixz", "iyy", "iyz", "izz"], "visual": ["name"],
+    "collision": ["name"], "geometry": [], "box": ["size"], "cylinder": ["radius", "length"],
+    "sphere": ["radius"], "mesh": ["filename", "scale"], "material": ["name"],
+    "color": ["rgba"], "texture": ["filename"], "transmission": ["name"],
+    "gazebo": ["reference"], "ros2_control": ["name", "type"],
+}
+MAX_LISTED = 200
+
+
+def _package_files(ls: UrdfLintServer, package: str, partial: str) -> list:
+    """Files and folders below a package for ``package://pkg/partial`` (inside the roots)."""
+    ws = ls.ws
+    if ws is None:
+        return []
+    try:
+        base = os.path.realpath(str(ws.resolver.find(package)))
+    except Exception:  # noqa: BLE001 - an unknown package: nothing to list
+        return []
+    if not base:
+        return []
+    folder = os.path.realpath(os.path.join(base, os.path.dirname(partial)))
+    if not (folder == base or folder.startswith(base + os.sep)) or not ws.resolver.is_inside(folder):
+        return []
+    out = []
+    try:
+        names = sorted(os.listdir(folder))[:MAX_LISTED]
+    except OSError:
+        return []
+    for n in names:
+        if n.startswith("."):
+            continue
+        is_dir = os.path.isdir(os.path.join(folder, n))
+        out.append(types.CompletionItem(
+            label=n + ("/" if is_dir else ""),
+            kind=types.CompletionItemKind.Folder if is_dir else types.CompletionItemKind.File))
+    return out
 
 
 def _model_files(v: ModelView) -> set:
