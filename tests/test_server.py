@@ -244,6 +244,16 @@ async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(
         position=types.Position(121, lines[121].index("shoulder_offset") + 3)))
     text = h.contents.value
     assert "`0 0 0.138` in ur5e" in text and "`0 0 0.220941` in ur10" in text
+    # a joint: its type, parent, child, limits and world pose at the zero configuration
+    assert lines[232].strip().startswith('<joint name="${prefix}shoulder_pan_joint"')
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(232, lines[232].index("shoulder_pan") + 2)))
+    row = next(r for r in h.contents.value.split("\n") if r.startswith("- **ur5e**"))
+    assert row.startswith("- **ur5e**: `shoulder_pan_joint` revolute; parent `base_link_inertia`, "
+                          "child `shoulder_link`; limits lower -6.283185307179586, upper "
+                          "6.283185307179586, effort 150.0, velocity 3.141592653589793")
+    assert row.endswith("world pose at zero: xyz 0.0 0.0 0.1625, rpy 0.0 0.0 3.1416")
     ur5e = ur / "urdf" / "ur5e.xacro"
     uri = open_doc(client, ur5e)
     h = await client.text_document_hover_async(types.HoverParams(
@@ -405,3 +415,18 @@ def test_a_buffer_outside_the_roots_is_never_read(tmp_path):
         assert str(outside) not in rep.deps
     finally:
         ws.close()
+
+
+@aio
+async def test_a_file_changed_outside_the_editor_relints_what_it_reaches(client, ur):
+    """A watched-file notification for a YAML file rewritten on disk (a checkout) re-lints
+    the models that load it; the open macro file's diagnostics follow."""
+    macro_uri = await linted(client, ur)
+    yml = ur / "config" / "ur10" / "visual_parameters.yaml"
+    yml.write_text(yml.read_text().replace("meshes/ur10/visual/base.dae",
+                                           "meshes/ur5e/visual/base.dae"))
+    client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
+        types.FileEvent(uri=yml.as_uri(), type=types.FileChangeType.Changed)]))
+    ds = await diagnostics_for(client, macro_uri, lambda ds: not any(
+        "ur10/visual/base.dae" in d.message for d in ds))
+    assert any("ur10/visual/shoulder.dae" in d.message for d in ds)

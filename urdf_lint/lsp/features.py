@@ -360,7 +360,7 @@ def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | N
     if at.tag in ("link", "joint") and at.attr == "name":
         rows = []
         for v, el in _targets(ls, path, at):
-            rows.append(f"- **{v.name}**: " + _describe(el))
+            rows.append(f"- **{v.name}**: " + _describe(el) + _pose_text(v, el))
         if rows:
             return _md(f"**{at.tag}**\n\n" + "\n".join(dict.fromkeys(rows)))
     return None
@@ -380,6 +380,67 @@ def _describe(el) -> str:
         return "; ".join(parts)
     m = el.find("inertial/mass")
     return f"`{el.get('name')}`" + (f"; mass {m.get('value')}" if m is not None else "")
+
+
+def _frame(el):
+    """The 4x4 transform of an element's <origin> (URDF: R = Rz(yaw) Ry(pitch) Rx(roll))."""
+    import math
+    import numpy as np
+    o = el.find("origin")
+
+    def nums(attr):
+        try:
+            got = [float(x) for x in (o.get(attr) or "0 0 0").split()] if o is not None \
+                else [0.0] * 3
+        except ValueError:
+            got = [0.0] * 3
+        return (got + [0.0] * 3)[:3]
+    (x, y, z), (r, p, w) = nums("xyz"), nums("rpy")
+    cr, sr, cp, sp, cw, sw = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
+                              math.cos(w), math.sin(w))
+    m = np.eye(4)
+    m[:3, :3] = [[cw * cp, cw * sp * sr - sw * cr, cw * sp * cr + sw * sr],
+                 [sw * cp, sw * sp * sr + cw * cr, sw * sp * cr - cw * sr],
+                 [-sp, cp * sr, cp * cr]]
+    m[:3, 3] = [x, y, z]
+    return m
+
+
+def world_pose(v: "ModelView", el):
+    """(xyz, rpy) of a link's or joint's frame at the zero configuration, or None (a loop)."""
+    import math
+    import numpy as np
+    by_child = {}
+    for j in v.root.findall("joint"):
+        c = j.find("child")
+        if c is not None:
+            by_child[c.get("link")] = j
+    chain = [el] if el.tag == "joint" else []
+    link = el.find("parent").get("link") if el.tag == "joint" and el.find("parent") is not None \
+        else el.get("name")
+    seen = set()
+    while link in by_child:
+        if link in seen:
+            return None
+        seen.add(link)
+        j = by_child[link]
+        chain.append(j)
+        p = j.find("parent")
+        link = p.get("link") if p is not None else None
+    m = np.eye(4)
+    for j in reversed(chain):
+        m = m @ _frame(j)
+    rpy = (math.atan2(m[2, 1], m[2, 2]), math.asin(max(-1.0, min(1.0, -m[2, 0]))),
+           math.atan2(m[1, 0], m[0, 0]))
+    return [round(float(x), 4) + 0.0 for x in m[:3, 3]], [round(r, 4) + 0.0 for r in rpy]
+
+
+def _pose_text(v, el) -> str:
+    got = world_pose(v, el)
+    if got is None:
+        return ""
+    xyz, rpy = got
+    return f"; world pose at zero: xyz {' '.join(map(str, xyz))}, rpy {' '.join(map(str, rpy))}"
 
 
 def _md(text: str) -> types.Hover:
