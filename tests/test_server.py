@@ -243,7 +243,8 @@ async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(
         text_document=types.TextDocumentIdentifier(uri=macro_uri),
         position=types.Position(121, lines[121].index("shoulder_offset") + 3)))
     text = h.contents.value
-    assert "`0 0 0.138` in ur5e" in text and "`0 0 0.220941` in ur10" in text
+    assert "`0 0 0.138` in ur5e (config/ur5e/physical_parameters.yaml:12)" in text
+    assert "`0 0 0.220941` in ur10 (config/ur10/physical_parameters.yaml:12)" in text
     # a joint: its type, parent, child, limits and world pose at the zero configuration
     assert lines[232].strip().startswith('<joint name="${prefix}shoulder_pan_joint"')
     h = await client.text_document_hover_async(types.HoverParams(

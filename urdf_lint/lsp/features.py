@@ -350,10 +350,14 @@ def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | N
                               for n, v in params)
             text = f"**macro {name}** ({os.path.basename(d.file)}:{d.line})\n\n{plist}"
             return _md(text + (f"\n\n{d.doc}" if d.doc else ""))
-    if at.expr() is not None and at.attr:
+    expr = at.expr()
+    if expr is not None and at.attr:
         vals: dict = {}
+        keys = _yaml_keys(ls, path, expr)
         for v, el in _targets(ls, path, at):
-            vals.setdefault(el.get(at.attr), []).append(v.name)
+            val = el.get(at.attr)
+            src = _yaml_source(ls, v, keys, val)
+            vals.setdefault(val, []).append(v.name + (f" ({src})" if src else ""))
         if vals:
             return _md(f"`{at.attr}` = " + "; ".join(
                 f"`{val}` in {', '.join(sorted(set(ms)))}" for val, ms in vals.items()))
@@ -364,6 +368,44 @@ def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | N
         if rows:
             return _md(f"**{at.tag}**\n\n" + "\n".join(dict.fromkeys(rows)))
     return None
+
+
+def _yaml_keys(ls, path, expr: str) -> set:
+    """Names an expression's value may be stored under in a YAML file: its identifiers and
+    quoted subscripts, and those of the properties it names (one level down)."""
+    def names(text):
+        return set(re.findall(r"[A-Za-z_]\w*", text)) | set(re.findall(r"\[\s*['\"](\w+)['\"]", text))
+    keys = names(expr)
+    for k in list(keys):
+        for d in INDEX.decls(ls, path, "property", k)[:1]:
+            keys |= names(d.attrs.get("value", ""))
+    return keys
+
+
+def _yaml_source(ls, v: "ModelView", keys: set, value: str | None) -> str:
+    """``file:line`` of the YAML scalar a value came from (a key the expression names, holding
+    a number of the value), among the YAML files the model read; "" when none is found."""
+    if not value or not keys:
+        return ""
+    try:
+        numbers = {float(x) for x in value.split()}
+    except ValueError:
+        return ""
+    ws = ls.ws
+    report = next((r for r in ws.models() if r.label == v.label), None) if ws else None
+    for f in (report.deps if report else ()):
+        if not f.endswith((".yaml", ".yml")):
+            continue
+        for n, line in enumerate(ls.doc(f).lines, 1):
+            m = re.match(r"\s*(\w+)\s*:\s*([-+0-9.eE]+)\s*(#.*)?$", line)
+            if m and m.group(1) in keys:
+                try:
+                    if float(m.group(2)) in numbers:
+                        from ..locations import display_path
+                        return f"{os.path.relpath(f, ws.root) if ws else display_path(f)}:{n}"
+                except ValueError:
+                    continue
+    return ""
 
 
 def _describe(el) -> str:
