@@ -431,3 +431,58 @@ async def test_a_file_changed_outside_the_editor_relints_what_it_reaches(client,
     ds = await diagnostics_for(client, macro_uri, lambda ds: not any(
         "ur10/visual/base.dae" in d.message for d in ds))
     assert any("ur10/visual/shoulder.dae" in d.message for d in ds)
+
+
+@pytest.fixture
+def hanging(tmp_path) -> Path:
+    """A package whose one model never finishes (a sum over 10**13 numbers), with the time
+    limit lowered in its own config (a repository may lower it, never raise it)."""
+    pkg = tmp_path / "hang"
+    (pkg / "urdf").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>hang</name></package>")
+    (pkg / "pyproject.toml").write_text("[tool.urdf-lint]\ntimeout = 2\n")
+    (pkg / "urdf" / "slow.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+        '  <link name="${python.sum(python.range(10**13))}"/>\n</robot>\n')
+    (pkg / "urdf" / "ok.urdf.xacro").write_text(
+        '<robot name="ok" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+        '  <xacro:property name="w" value="0.5"/>\n'
+        '  <link name="a"/>\n  <link name="b"/>\n'
+        '  <joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        '<origin xyz="${w} 0 0"/></joint>\n</robot>\n')
+    return pkg
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
+async def hang_client(lsp_client: LanguageClient, hanging):
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=types.ClientCapabilities(), root_uri=hanging.as_uri()))
+    yield
+    await lsp_client.shutdown_session()
+
+
+@aio
+async def test_a_model_that_hangs_costs_its_worker_not_the_editor(hang_client, hanging):
+    """The hanging model gets UL904 from the time limit of its worker (killed, replaced);
+    while it runs, the editor's requests are answered, and the next lint works."""
+    import time
+    client = hang_client
+    slow = open_doc(client, hanging / "urdf" / "slow.urdf.xacro")
+    ok = hanging / "urdf" / "ok.urdf.xacro"
+    ok_uri = open_doc(client, ok)
+    await asyncio.sleep(0.3)   # the slow model's lint is under way
+    t0 = time.perf_counter()
+    syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
+        text_document=types.TextDocumentIdentifier(uri=ok_uri)))
+    assert time.perf_counter() - t0 < 1.5
+    assert [(s.detail, s.name) for s in syms] == [("property", "w"), ("link", "a"),
+                                                 ("link", "b"), ("joint", "j")]
+    ds = await diagnostics_for(client, slow, lambda ds: any(d.code == "UL904" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL904"]
+    assert "within the time limit (2 s)" in d.message and pos(d) == (0, 0)
+    # a worker took the hanging job's place: a change to the good model is linted
+    text = ok.read_text().replace('<origin xyz="${w} 0 0"/>', '<axis xyz="0 0 0"/>') \
+        .replace('type="fixed"', 'type="continuous"')
+    change(client, ok_uri, text, 2)
+    await diagnostics_for(client, ok_uri, lambda ds: any(d.code == "UL307" for d in ds))
