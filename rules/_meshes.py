@@ -1,5 +1,7 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
+from urdf_lint.findings import Cause
 from urdf_lint.meshes import MeshStatus
+from urdf_lint.rules import ul004_unknown_package as unknown_package
 from urdf_lint.rules._schema import urdf_iter
 
 # the resolution statuses that mean "there is no such file" (UL401, and UL407 for textures)
@@ -112,13 +114,19 @@ def scaled(factor):
 
 def resolution_problems(model, ctx, statuses, tag="mesh"):
     """(element, message) for every ``<tag filename>`` in the URDF part of the document whose
-    resolution ended in one of ``statuses`` (:class:`urdf_lint.meshes.MeshStatus`)."""
+    resolution ended in one of ``statuses`` (:class:`urdf_lint.meshes.MeshStatus`). A
+    reference to an unknown package is an instance of that package's root cause (one
+    ``UL004`` with every reference listed under it), not a finding of its own."""
     for m in urdf_iter(model, tag):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
             if ref.status in statuses:
-                yield m, ref.message
+                if ref.status is MeshStatus.UNKNOWN_PACKAGE and ref.package:
+                    yield m, f"{tag} '{uri}'", Cause(unknown_package.CODE,
+                                                     f"package:{ref.package}", ref.cause)
+                else:
+                    yield m, ref.message
 
 
 def resolved_meshes(model, ctx):

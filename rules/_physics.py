@@ -1,7 +1,9 @@
 """Helpers for the physical plausibility rules UL605-UL607 (not a rule).
 
 For each moving link (the child of a non-fixed joint) with a declared mass and inertia, the
-link's collision geometry (its visual geometry when it has no collision) is filled uniformly
+link's collision geometry (its visual geometry when it has no collision, or when the collision
+shape is clearly a proxy: :func:`proxy_reason`; nothing when it is a proxy and there is no
+measurable visual) is filled uniformly
 and summed in the link frame: boxes, cylinders and spheres exactly, capsules and meshes through
 trimesh (imported only when a link has one). Mesh volume facts are cached by file content like
 every mesh fact, so a mesh is measured once per change. An open (non-watertight) mesh has no
@@ -30,6 +32,7 @@ class Geometry:
         self.hi = np.full(3, -np.inf)
         self.hull = []          # uris of open meshes measured through their convex hull
         self.source = "collision"
+        self.note = ""          # how it was chosen, when not simply the collision geometry
 
     def add(self, vol, first, second, corners, rot, t):
         """Add a piece given in its own frame, placed by rotation ``rot`` and offset ``t``."""
@@ -199,10 +202,48 @@ def measured_links(model, ctx):
         if np is None:
             import numpy as np
         g = link_geometry(model, ctx, lk, np)
+        if g is not None and g.source == "collision":
+            why = proxy_reason(model, ctx, lk, g, np)
+            if why:   # judge the body by its visual geometry, or not at all
+                g = link_geometry(model, ctx, lk, np, kind="visual") \
+                    if lk.findall("visual") else None
+                if g is not None:
+                    g.note = f"; judged against the visual geometry: the collision shape {why}"
         if g is not None:
             out.append((lk, m, t, inr, g))
     cache[key] = out
     return out
+
+
+PROXY_SPHERE_M = 0.01     # collision spheres this small are contact points or placeholders
+PROXY_FRACTION = 1 / 8    # a collision box this much smaller than the visual one is partial
+
+
+def _box_volume(g):
+    return float(max(0.0, g.hi[0] - g.lo[0]) * max(0.0, g.hi[1] - g.lo[1])
+                 * max(0.0, g.hi[2] - g.lo[2]))
+
+
+def proxy_reason(model, ctx, lk, g, np) -> str:
+    """Why the link's collision geometry ``g`` is clearly a proxy, not the body (``""`` when
+    it is not): only spheres of at most 1 cm (contact spheres, a placeholder), or a bounding
+    box under an eighth of the visual geometry's (a cylinder around only the motor of a hip)."""
+    shapes = [s for c in lk.findall("collision") for gm in c.findall("geometry") for s in gm
+              if isinstance(s.tag, str)]
+    if shapes and all(s.tag == "sphere" and (number(s.get("radius")) or 0) <= PROXY_SPHERE_M
+                      for s in shapes):
+        return (f"is {len(shapes)} sphere(s) of at most {PROXY_SPHERE_M * 1000:g} mm "
+                "(contact points or a placeholder)")
+    if not lk.findall("visual"):
+        return ""
+    vis = link_geometry(model, ctx, lk, np, kind="visual")
+    if vis is None:
+        return ""
+    cv, vv = _box_volume(g), _box_volume(vis)
+    if vv > 0 and cv < vv * PROXY_FRACTION:
+        return (f"covers only part of the link (its bounding box is {cv / vv:.0%} of the "
+                "visual geometry's)")
+    return ""
 
 
 def declared_matrix(t, inr, np):
@@ -215,10 +256,13 @@ def declared_matrix(t, inr, np):
 
 
 def hull_note(g):
+    """What the rules' messages add about how the geometry was measured: a proxy collision
+    shape replaced by the visual geometry, open meshes measured by their convex hull."""
+    note = getattr(g, "note", "")
     if not g.hull:
-        return ""
-    return (f"; '{g.hull[0]}' is not watertight, so its convex hull was measured"
-            + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
+        return note
+    return note + (f"; '{g.hull[0]}' is not watertight, so its convex hull was measured"
+                   + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
 
 
 def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1"):

@@ -18,7 +18,7 @@ ATTRIBUTES = {
     "robot": {"name", "version"},
     "link": {"name", "type"},
     "joint": {"name", "type"},
-    "origin": {"xyz", "rpy"},
+    "origin": {"xyz", "rpy", "quat_xyzw"},                  # quat_xyzw: URDF 1.1
     "mass": {"value"},
     "inertia": {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"},
     "visual": {"name"},
@@ -37,7 +37,8 @@ ATTRIBUTES = {
     "axis": {"xyz"},
     "calibration": {"rising", "falling", "reference_position"},
     "dynamics": {"damping", "friction"},
-    "limit": {"lower", "upper", "effort", "velocity"},
+    "limit": {"lower", "upper", "effort", "velocity",
+              "acceleration", "deceleration", "jerk"},                  # the last three: URDF 1.2
     "mimic": {"joint", "multiplier", "offset"},
     "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
 }
@@ -54,6 +55,48 @@ def is_foreign(el):
             return True
         p = p.getparent()
     return False
+
+
+# xacro directives: written without their prefix, xacro copies them into the URDF as they are
+XACRO_WORDS = {"macro", "property", "arg", "include", "insert_block", "if", "unless", "call",
+               "element", "attribute", "eval-comments"}
+# children URDF reads once (the first): a second one is ignored
+SINGLE = {
+    "link": {"inertial"},
+    "inertial": {"origin", "mass", "inertia"},
+    "visual": {"origin", "geometry", "material"},
+    "collision": {"origin", "geometry"},
+    "joint": {"origin", "parent", "child", "axis", "calibration", "dynamics", "limit", "mimic",
+              "safety_controller"},
+}
+_MACRO_DEF = None
+
+
+def macro_names(model) -> set:
+    """The names of the xacro macros defined in the files the model was expanded from (read
+    again here, as xacro read them; an empty set for a plain URDF)."""
+    cached = getattr(model, "_macro_names", None)
+    if cached is not None:
+        return cached
+    global _MACRO_DEF
+    import re
+    _MACRO_DEF = _MACRO_DEF or re.compile(rb"<[A-Za-z_][\w.-]*:macro\s[^>]*?name\s*=\s*[\"']([^\"'$]+)")
+    names: set = set()
+    for f in [model.entry, *model.deps]:
+        if not str(f).endswith(".xacro"):
+            continue
+        from urdf_lint import fsbound
+        try:   # a regular file of bounded size, through the boundary
+            data = fsbound.read_regular(f, fsbound.MAX_SOURCE_BYTES)
+        except OSError:
+            continue
+        if data:
+            names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(data))
+    try:
+        model._macro_names = names
+    except AttributeError:
+        pass
+    return names
 
 
 def checked_elements(model):

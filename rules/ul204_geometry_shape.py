@@ -1,9 +1,11 @@
 """A `<visual>` or `<collision>` needs one `<geometry>` holding exactly one shape.
 
 Why: An empty geometry, two shapes in one geometry, or an unknown shape is rejected by URDF
-parsers (or silently drops the shape).
+parsers (or silently drops the shape). An empty `<geometry/>` is rejected by MuJoCo 4.0.0 and
+PyBullet 3.2.7 (iDynTree segfaults); Pinocchio 4.1.0 loads it without the shape (a warning for
+`pinocchio`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
-How to fix: Keep exactly one of box, cylinder, sphere or mesh in each geometry; split two shapes
+How to fix: Keep exactly one of box, cylinder, sphere, mesh or capsule (URDF 1.1) in each geometry; split two shapes
 into two visuals or collisions.
 """
 CODE = "UL204"
@@ -24,7 +26,7 @@ PASS = """<robot name="r">
 """
 from urdf_lint.ruleutil import did_you_mean
 
-SHAPES = ("box", "cylinder", "sphere", "mesh")
+SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 
 
 def check(model, ctx):
@@ -41,7 +43,8 @@ def check(model, ctx):
             g = geoms[0]
             shapes = [c for c in g if isinstance(c.tag, str)]
             if not shapes:
-                yield g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>"
+                yield g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>", \
+                    {"pinocchio": "warning"}
             for s in shapes:
                 if s.tag not in SHAPES:
                     yield s, (f"link '{lk.get('name')}': unknown shape <{s.tag}>"

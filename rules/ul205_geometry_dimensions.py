@@ -1,13 +1,16 @@
 """Shape dimensions are invalid: a box `size` that is not three positive numbers, a cylinder
 `radius`/`length` or sphere `radius` that is not a positive number, a mesh without `filename`.
 
-Why: Parsers reject such shapes, or draw and collide with nothing.
+Why: Parsers reject such shapes, or draw and collide with nothing. MuJoCo 4.0.0 rejects a
+negative box size or a zero radius; Pinocchio 4.1.0 and PyBullet 3.2.7 load them (a warning for
+`pinocchio` and `pybullet`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Write the dimensions in metres as positive numbers.
 """
 CODE = "UL205"
 NAME = "geometry-dimensions"
 SEVERITY = "error"
+TARGETS = {"pinocchio": "warning", "pybullet": "warning"}
 FAIL = """<robot name="r">
   <link name="a">
     <visual><geometry><box size="1 1"/></geometry></visual>

@@ -5,6 +5,16 @@ Why: URDF parsers skip unknown elements silently, so the value you meant is lost
 blocks (`<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`) and namespaced elements
 (`drake:...`) are not checked.
 
+Three cases say more, because a consumer silently loses data there (none of them warns but
+urdf_parser_py: /work/shared/notes/consumer-facts.md): a misspelled element that changes the
+kinematics or the dynamics (`<orgin>`, `<axsi>`, `<mas>` in a joint, inertial, visual or
+collision: the origin, axis or mass is silently dropped) is an error; a xacro directive or a
+macro call that lost its `xacro:` prefix (`<insert_block name="origin"/>`, `<sensor_d435 .../>`)
+is named as such, an error where it was meant to produce an origin, geometry or inertia (in a
+joint, inertial, visual, collision or geometry), else a warning; a second `<mass>`, `<origin>`,
+`<inertia>` ... where URDF reads only one is reported: the parsers read the first and ignore the
+rest.
+
 How to fix: Fix the element's name or move it to where URDF expects it (the message suggests the
 closest known name).
 
@@ -29,7 +39,27 @@ PASS = """<robot name="r">
 """
 from urdf_lint.fixes import rename_tag
 from urdf_lint.ruleutil import did_you_mean, single_candidate
-from urdf_lint.rules._schema import CHILDREN, checked_elements
+from urdf_lint.rules._schema import CHILDREN, SINGLE, XACRO_WORDS, checked_elements, macro_names
+
+# a misspelling of one of these, where it is, changes the robot's kinematics or dynamics
+DROPS_DATA = {"origin", "axis", "parent", "child", "mass", "inertia", "geometry", "limit",
+              "mimic"}
+# a lost xacro directive or macro call here was meant to write an origin, geometry or inertia
+PRODUCES = {"joint", "inertial", "visual", "collision", "geometry"}
+
+
+def _lost_prefix(model, el, c):
+    """(message, severity) when ``c`` is a xacro directive or a macro call without its prefix."""
+    macro = c.tag in macro_names(model)
+    if c.tag not in XACRO_WORDS and not macro:
+        return None
+    what = f"a call of the macro '{c.tag}'" if macro else f"the xacro directive <xacro:{c.tag}>"
+    block = c.get("name", "") if c.tag == "insert_block" else ""
+    lost = el.tag in PRODUCES or any(w in block for w in ("origin", "geometry", "inertia"))
+    return (f"<{c.tag}> in <{el.tag}> is {what} without its 'xacro:' prefix: xacro copied it "
+            "into the URDF as it is, and URDF parsers ignore it"
+            + (f", so this <{el.tag}> loses what it was meant to write" if lost else "")
+            + f"; write <xacro:{c.tag}>"), ("error" if lost else "warning")
 
 
 def check(model, ctx):
@@ -37,11 +67,28 @@ def check(model, ctx):
         allowed = CHILDREN.get(el.tag)
         if allowed is None:
             continue
+        once: set = set()
         for c in el:
             if not isinstance(c.tag, str) or c.tag.startswith("{") or ":" in c.tag:
                 continue
+            if c.tag in SINGLE.get(el.tag, ()):
+                if c.tag in once:
+                    yield c, (f"a second <{c.tag}> in <{el.tag}>: URDF parsers read the first one "
+                              "and ignore this one")
+                once.add(c.tag)
             if c.tag not in allowed:
+                lost = _lost_prefix(model, el, c)
+                if lost is not None:
+                    yield c, lost[0], lost[1]
+                    continue
                 to = single_candidate(c.tag, allowed)
                 clash = to is None or el.find(to) is not None
+                if to in DROPS_DATA and el.tag in ("joint", "inertial", "visual", "collision") \
+                        and el.find(to) is None:
+                    yield c, (f"unknown element <{c.tag}> in <{el.tag}> (did you mean '{to}'?): "
+                              f"every URDF parser ignores it silently, so this <{el.tag}> has no "
+                              f"<{to}> and its default is used instead"), "error", \
+                        (None if clash else rename_tag(c.tag, to))
+                    continue
                 yield c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
                           + "; URDF parsers ignore it"), (None if clash else rename_tag(c.tag, to))

@@ -2,6 +2,10 @@
 
 Why: Parsers ignore unknown attributes, so the value you meant is silently lost.
 
+A full symmetric inertia tensor (`iyx`, `izx`, `izy` written out) is told apart from a typo:
+URDF reads only the upper triangle, so the lower entries are ignored (an info when they equal
+their twins, a warning when they differ: the upper one is used).
+
 How to fix: Fix the attribute's name (the message suggests the closest known one).
 
 Fix: safe, when there is a single "did you mean" candidate that the element does not already
@@ -24,8 +28,12 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.fixes import rename_attr
-from urdf_lint.ruleutil import did_you_mean, single_candidate
+from urdf_lint.ruleutil import did_you_mean, number, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
+
+
+# the lower triangle of a symmetric tensor, and the upper-triangle entry URDF reads instead
+LOWER = {"iyx": "ixy", "izx": "ixz", "izy": "iyz"}
 
 
 def check(model, ctx):
@@ -35,6 +43,15 @@ def check(model, ctx):
             continue
         for a in el.attrib:
             if a.startswith("{") or ":" in a:
+                continue
+            if el.tag == "inertia" and a in LOWER:
+                up = LOWER[a]
+                mine, theirs = number(el.get(a)), number(el.get(up, "0"))
+                same = mine is not None and theirs is not None and mine == theirs
+                yield el, (f"'{a}' on <inertia>: URDF reads only the upper triangle of the "
+                           f"symmetric tensor (ixy, ixz, iyz), so '{a}' is ignored"
+                           + ("" if same else f", and it differs from {up}={el.get(up, '0')}: "
+                              f"{up} is the value used")), ("info" if same else "warning")
                 continue
             if a not in allowed:
                 to = single_candidate(a, allowed)

@@ -1,12 +1,16 @@
 """`<robot version=...>` is not `major.minor`, or is a version the URDF parsers do not support.
 
-Why: urdfdom supports 1.0 and 1.1 and refuses `version="1"`, `"2"` or `"foo"`.
+Why: urdfdom 6.0.0 supports 1.0, 1.1 (`quat_xyzw`, `<capsule>`) and 1.2 (`acceleration`,
+`deceleration`, `jerk` on `<limit>`), and refuses `version="1"`, `"1.3"`, `"2.0"` or `"foo"`
+(Pinocchio 4.1.0, which parses with it, rejects `version="1.3"`: measured). MuJoCo 4.0.0 and
+PyBullet 3.2.7 load any version (a warning for `mujoco` and `pybullet`); what each consumer reads of 1.1 and 1.2 is UL213's.
 
-How to fix: Write `1.0` or `1.1`, or omit the attribute for 1.0.
+How to fix: Write `1.0`, `1.1` or `1.2`, or omit the attribute for 1.0.
 """
 CODE = "UL211"
 NAME = "urdf-version"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pybullet": "warning"}
 FAIL = """<robot name="r" version="1">
   <link name="a"/>
 </robot>
@@ -26,5 +30,6 @@ def check(model, ctx):
     m = re.fullmatch(r"(\d+)\.(\d+)", v)
     if not m:
         yield model.root, f"robot version '{v}' must be 'major.minor' (e.g. 1.0)"
-    elif int(m.group(1)) != 1 or int(m.group(2)) > 1:
-        yield model.root, f"robot version '{v}' is not supported (URDF parsers know 1.0 and 1.1)"
+    elif int(m.group(1)) != 1 or int(m.group(2)) > 2:
+        yield model.root, (f"robot version '{v}' is not supported (urdfdom 6 knows 1.0, 1.1 and "
+                           "1.2)")

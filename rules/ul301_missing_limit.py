@@ -1,13 +1,15 @@
 """A revolute or prismatic joint has no `<limit>`.
 
 Why: URDF requires `<limit effort=... velocity=...>` (and usually `lower`/`upper`) on these
-joints; urdfdom refuses the model without it.
+joints; urdfdom, Pinocchio and PyBullet refuse the model without it. MuJoCo 4.0.0 loads it as
+an unlimited joint: a warning for `mujoco` (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Add the limit. If the joint really has no position limits, make it `continuous`.
 """
 CODE = "UL301"
 NAME = "missing-limit"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>

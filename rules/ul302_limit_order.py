@@ -1,6 +1,8 @@
 """A joint's lower limit is above its upper limit, so no position is allowed.
 
-Why: Controllers and planners refuse or clamp every position. Usually the two were swapped, or a
+Why: Controllers and planners refuse or clamp every position (Drake 1.51.1 rejects the model;
+MuJoCo 4.0.0, Pinocchio 4.1.0 and PyBullet 3.2.7 load it with an empty range: a warning for
+`mujoco`, `pinocchio` and `pybullet`, measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7). Usually the two were swapped, or a
 sign was lost in a mirrored (`reflect`) macro.
 
 How to fix: Swap the two values, or fix the sign.
@@ -11,6 +13,7 @@ Fix: safe. `--fix` swaps the two values where they are written (the element, a
 CODE = "UL302"
 NAME = "limit-order"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>

@@ -1,11 +1,19 @@
 """A joint `<limit>` lacks `effort` or `velocity`, or one of them is not positive.
 
-Why: URDF parsers require both on revolute and prismatic joints; a velocity of 0 means the
-joint can never move under control (controllers clamp to it). `effort="0"` is different: it is
+Why: URDF parsers require both on revolute and prismatic joints. A velocity of 0 loads in
+every consumer measured (urdfdom 6.0.0, MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, Drake
+1.51.1, the Python parsers: /work/shared/notes/consumer-facts.md), often as a placeholder, but
+the joint can never move under ros2_control or MoveIt (they clamp to it): a warning. `effort="0"` is different: it is
 the ROS-Industrial convention for position-controlled industrial arms, whose drives are not
 torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on purpose). It is
 reported as a warning naming that convention, because it still breaks effort-based controllers
 and simulators.
+
+A missing `effort` is rejected by urdfdom, Pinocchio and the Python parsers; MuJoCo 4.0.0 and
+PyBullet 3.2.7 load it (a warning for `mujoco` and `pybullet`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+
+URDF 1.2's `acceleration`, `deceleration` and `jerk` must be numbers of at least 0: urdfdom
+6.0.0 rejects a negative or non-numeric one (measured through Pinocchio 4.1.0); 0 is a warning.
 
 How to fix: Set both to the actuator's real maxima (N or Nm, m/s or rad/s).
 
@@ -49,12 +57,27 @@ def check(model, ctx):
             v = lim.get(a)
             if v is None:
                 if required:
-                    yield lim, f"joint '{j.get('name')}': <limit> has no {a}"
+                    yield lim, f"joint '{j.get('name')}': <limit> has no {a}", \
+                        ({"mujoco": "warning", "pybullet": "warning"} if a == "effort" else None)
                 continue
             n = number(v)
             if n is None:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v!r} is not a number"
             elif n == 0 and a == "effort" and required:
                 yield lim, f"joint '{j.get('name')}': limit effort=0 is {ZERO_EFFORT}", zero_effort
+            elif n == 0 and a == "velocity" and required:
+                yield lim, (f"joint '{j.get('name')}': limit velocity=0: every consumer loads it, "
+                            "but ros2_control and MoveIt can never move the joint"), "warning"
             elif n <= 0 and required:
                 yield lim, f"joint '{j.get('name')}': limit {a}={v} must be positive"
+        for a in ("acceleration", "deceleration", "jerk"):   # URDF 1.2
+            v = lim.get(a)
+            if v is None:
+                continue
+            n = number(v)
+            if n is None or n < 0:
+                yield lim, (f"joint '{j.get('name')}': limit {a}={v!r} must be a positive number "
+                            "(urdfdom 6 rejects the model)")
+            elif n == 0:
+                yield lim, (f"joint '{j.get('name')}': limit {a}=0: the joint could never "
+                            "accelerate under a planner that reads it"), "warning"

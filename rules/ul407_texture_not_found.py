@@ -30,5 +30,5 @@ def check(model, ctx):
         for t in texture_refs(path):
             if not os.path.exists(t):
                 yield m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist"
-    for t, message in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):
-        yield t, message.replace("mesh", "texture", 1)
+    for t, message, *cause in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):
+        yield (t, message.replace("mesh", "texture", 1), *cause)

@@ -1,14 +1,21 @@
 """A moving link has no `<inertial>`.
 
-Why: Gazebo (and most physics engines) drop links without inertia, together with everything
-attached to them; the joint then does nothing in simulation. A link is "moving" when it is the
-child of a non-fixed joint.
+Why: Gazebo's URDF to SDF conversion drops links without inertia silently, together with
+everything attached to them (gazebosim/sdformat#199; Gazebo could not be run here), so the joint
+does nothing in simulation: a warning for `gazebo`. MuJoCo 4.0.0 rejects the model ("mass and
+inertia of moving bodies must be larger than mjMINVAL", measured on 16 real models): an error
+for `mujoco` when the link has no collision geometry and nothing it carries has mass either.
+MuJoCo 4.0.0 computes a missing inertial from the collision geometry (visuals are discarded),
+and loads a link without `<inertial>` whose children have mass: a warning then, (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7)). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
+(/work/shared/notes/consumer-facts.md): a warning for the others. A link is "moving" when it
+is the child of a non-fixed joint.
 
 How to fix: Add an inertial. For kinematics-only models, ignore this rule.
 """
 CODE = "UL601"
 NAME = "missing-inertial"
 SEVERITY = "warning"
+TARGETS = {"mujoco": "error", "gazebo": "warning"}
 FAIL = """<robot name="r">
   <link name="base"/><link name="arm"/>
   <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
@@ -24,11 +31,24 @@ PASS = """<robot name="r">
 
 
 def check(model, ctx):
+    from urdf_lint.rules._inertial import Bodies
+    bodies = None
     for j in model.top_joints():
         if j.get("type") in (None, "fixed"):
             continue
         c = j.find("child")
         lk = model.links.get(c.get("link")) if c is not None else None
         if lk is not None and lk.find("inertial") is None:
+            bodies = bodies or Bodies(model)
+            if lk.find("collision/geometry") is not None:   # MuJoCo: inertia from the geometry
+                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                           "<inertial>; Gazebo drops the link, MuJoCo computes one from its "
+                           "collision geometry"), {"mujoco": "warning"}
+                continue
+            if bodies.subtree_mass(lk.get("name")) > 0:   # MuJoCo takes the children's mass
+                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                           "<inertial>; Gazebo drops the link (MuJoCo accepts it because the "
+                           "links it carries have mass)"), {"mujoco": "warning"}
+                continue
             yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
-                       "<inertial>; simulators drop it")
+                       "<inertial>; MuJoCo rejects the model, Gazebo drops the link")

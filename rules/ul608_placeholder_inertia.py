@@ -1,7 +1,7 @@
 """A moving link carries a placeholder inertia: the identity tensor (`ixx=iyy=izz=1`, no
 products), or the very same tensor as every other moving link of the robot although those
 links differ in shape or mass (identical parts, like the four wheels of a cart, rightly share
-one tensor).
+one tensor, also when their meshes are mirrored: `wheel_left.stl` / `wheel_right.stl`).
 
 Why: Both come from templates and copy-paste, not from the part: 1 kg·m² is the inertia of a
 1 m, 12 kg bar, and no two different links share a tensor to the last digit. Simulated joints
@@ -21,15 +21,31 @@ from urdf_lint.rules._physics import example, is_identity, moving_links
 FAIL = example(1, 1, 1, 1)
 FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
+import re
+
 from urdf_lint.ruleutil import fmt
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 
+_SIDE = re.compile(r"(?i)(?<![a-z0-9])(left|right|l|r|lh|rh|lft|rgt)(?![a-z0-9])")
+
+
+def _unmirrored(name: str, value: str) -> str:
+    """A geometry attribute as the same part mirrored would have it: the side in a mesh file
+    name (``wheel_left.stl`` / ``wheel_right.stl``) and the sign of a scale do not count."""
+    if name == "filename":
+        return _SIDE.sub("SIDE", value)
+    if name == "scale":
+        return " ".join(v.lstrip("-") for v in value.split())
+    return value
+
+
 def _shape(lk):
     """What the link looks like (its collision, else visual, geometry without placement):
-    identical parts, like the four wheels of a cart, rightly share one tensor."""
+    identical parts, like the four wheels of a cart, rightly share one tensor, also when
+    their meshes are mirrored."""
     pieces = lk.findall("collision") or lk.findall("visual")
-    return tuple(sorted((s.tag, tuple(sorted(s.attrib.items())))
+    return tuple(sorted((s.tag, tuple(sorted((k, _unmirrored(k, v)) for k, v in s.attrib.items())))
                         for p in pieces for g in p.findall("geometry") for s in g
                         if isinstance(s.tag, str)))
 

@@ -22,6 +22,7 @@ PASS = """<robot name="r">
   <gazebo reference="base_link"><material>Gazebo/Blue</material></gazebo>
 </robot>
 """
+from urdf_lint.rules.ul212_missing_dollar import literal_names
 from urdf_lint.ruleutil import did_you_mean, reference_fixes
 
 
@@ -38,5 +39,10 @@ def check(model, ctx):
             taken.add(r)
     fixes = reference_fixes([(g, "reference", r) for g, r in found], names, taken)
     for g, r in found:
+        braced = literal_names(model, r)
+        if braced:   # a forgotten '$' (UL212), not a misspelt name: no wrong suggestion
+            yield g, (f"<gazebo reference=\"{r}\"> names no link or joint: it holds a literal "
+                      f"'{{{braced[0]}}}' (did you mean '${{{braced[0]}}}'? see UL212)")
+            continue
         yield g, (f"<gazebo reference=\"{r}\"> names no link or joint"
                   + did_you_mean(r, names)), fixes.get((g, "reference"))

@@ -57,6 +57,24 @@ def run_cli(*args, cwd=None, env=None, timeout=300, input=None):
     return p
 
 
+def terminated(*args, cwd, after: float):
+    """Run ``urdf-lint ARGS``, send it SIGTERM ``after`` seconds, and return (exit code,
+    stdout, stderr); it must end within 10 s of the signal."""
+    import signal
+    import time
+    p = subprocess.Popen([sys.executable, "-m", "urdf_lint", *map(str, args)], cwd=cwd,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        time.sleep(after)
+        p.send_signal(signal.SIGTERM)
+        out, err = p.communicate(timeout=10)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    return p.returncode, out, err
+
+
 def carried(job, data):
     """What a test's replacement of ``worker.process_job`` reports from inside the worker
     (JSON ``data``), sent back inside a lint result: the parent accepts nothing else."""

@@ -156,8 +156,10 @@ EFFORT0 = """<robot name="r">
   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
     <limit lower="-1" upper="1" effort="0" velocity="1"/></joint>
   <joint name="j2" type="revolute"><parent link="a"/><child link="c"/><axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="1" velocity="0"/></joint>
+    <limit lower="-1" upper="1" effort="1" velocity="-1"/></joint>
 </robot>"""
+# (j2 had velocity="0", an error until issue 25 made it a warning: every consumer loads it;
+# tests/test_targets.py covers it. A negative velocity is still an error.)
 
 
 def test_zero_effort_is_a_warning(tmp_path):
@@ -407,6 +409,18 @@ def test_broken_demo_shows_every_class():
         {"cover_truncated.stl"}
     assert not [f for f in only(fs, "UL502") if "materials.urdf.xacro" in f["file"]
                 and f["line"] > 20]
+    # the README's demo paragraph says what this run shows
+    import re
+    readme = (DESCRIPTIONS.parent / "README.md").read_text()
+    s = doc["summary"]
+    fired = len(set(load_rules()) - set(missing))
+    said = re.search(r"It lints (\d+) models: .*?\smake (\d+) of the (\d+) rules fire .*?"
+                     r"`Found (\d+) problem\(s\) \((\d+) error, (\d+) warning, (\d+) info\)"
+                     r"\s+in (\d+) model\(s\)\.`", readme, re.S)
+    assert said, "README's demo paragraph not found"
+    assert [int(x) for x in said.groups()] == [
+        len(doc["models"]), fired, len(load_rules()), len(fs), s["errors"], s["warnings"],
+        s["info"], s["models"]], said.group(0)
 
 
 def test_geometry_moments_follow_scale_rotation_and_offset(tmp_path):
@@ -460,3 +474,28 @@ def test_dae_losing_only_some_instances_is_loaded_whole(tmp_path):
     facts = meshes.mesh_facts(str(p))
     assert facts["vertices"] == 8 and facts["bounds"][1][0] == pytest.approx(0.6)
     assert facts["broken_refs"]
+
+
+def test_readme_numbers_are_the_demos():
+    """The README's numbers about the demo (models linted, rules that fire, the summary line)
+    are those of a real run of the command it shows, so they cannot go stale (issue 22)."""
+    import re
+    from conftest import REPO
+    from urdf_lint.registry import load_rules
+    readme = (REPO / "README.md").read_text()
+    p = run_cli("check", "descriptions/", "--no-cache", cwd=REPO)
+    assert p.returncode == 1, p.stderr
+    summary = p.stdout.splitlines()[-1]
+    assert re.fullmatch(r"Found \d+ problem\(s\) \(\d+ error, \d+ warning, \d+ info\) in \d+ "
+                        r"model\(s\)\.", summary), summary
+    assert f"`{summary}`" in readme.replace("\n", " "), \
+        f"README.md's demo summary is stale; the demo now ends with: {summary}"
+    models = int(re.search(r"in (\d+) model", summary).group(1))
+    fired = {m.group(1) for m in re.finditer(r"^\S+:\d+:\d+: (UL\d{3}) ", p.stdout, re.M)}
+    rules = load_rules()
+    said = re.search(r"It lints (\d+) models: .*?\s+make (\d+) of the (\d+) rules fire",
+                     readme, re.S)
+    assert said, "README.md no longer says how many models the demo lints and rules fire"
+    assert tuple(int(x) for x in said.groups()) == (models, len(fired), len(rules)), \
+        (f"README.md says {said.group(0)!r}; the demo lints {models} models and "
+         f"{len(fired)} of the {len(rules)} rules fire")

@@ -165,13 +165,16 @@ def test_help_lists_every_registered_format(capsys):
     assert report.names() == ("text", "concise", "json", "sarif", "github", "junit")
 
 
-def test_flag_typo_gets_the_subcommand_usage_and_did_you_mean(pkg, capsys):
+def test_flag_typo_gets_one_line_with_did_you_mean(pkg, capsys):
+    # one line naming the subcommand and the closest flag (issue 22: the whole usage came
+    # first and buried the suggestion)
     rc, out, err = run(capsys, "check", ".", "--selct", "UL1")
     assert rc == 2
-    assert err.startswith("usage: urdf-lint check"), err
-    assert "--selct: did you mean --select?" in err
+    assert err == ("urdf-lint check: error: unrecognized arguments: --selct UL1 (did you mean "
+                   "--select?); see 'urdf-lint check --help'\n"), err
     rc, _, err = run(capsys, "hook", "--extnd-select", "UL1")
-    assert rc == 2 and err.startswith("usage: urdf-lint hook") and "did you mean --extend-select?" in err
+    assert rc == 2 and err.startswith("urdf-lint hook: error:") and "did you mean --extend-select?" in err
+    assert len(err.splitlines()) == 1
 
 
 def git(*args, cwd):
@@ -274,7 +277,7 @@ def test_readme_precommit_snippets_are_complete_configs():
     (local,) = yaml.safe_load(readme_precommit_config("local"))["repos"]
     (hook,) = local["hooks"]
     published = hooks["urdf-lint"]
-    for key in ("entry", "files", "always_run", "require_serial"):
+    for key in ("entry", "args", "files", "always_run", "require_serial", "verbose"):
         assert hook.get(key) == published.get(key), key
     assert hook["language"] == "system"
 
@@ -295,10 +298,11 @@ def test_output_file_is_written_atomically_and_never_half(pkg, capsys, monkeypat
 
 
 def test_one_atomic_write_helper():
-    """No module writes a temporary file and renames it by itself: they use urdf_lint.atomic."""
+    """No module writes a temporary file and renames it by itself: they use urdf_lint.fsbound
+    (the file-system boundary; it replaced urdf_lint.atomic)."""
     offenders = []
     for path in sorted((REPO / "urdf_lint").rglob("*.py")):
-        if path.name == "atomic.py":
+        if path.name == "fsbound.py":
             continue
         text = path.read_text()
         if "os.replace(" in text or "os.rename(" in text or ".tmp" in text:

@@ -586,7 +586,9 @@ def test_a_macro_literal_that_needs_different_values_per_model_is_not_fixed(tmp_
     assert "Fixed 0 findings" in f.stderr, f.stderr
     assert "UL302 fix not applied: the models or macro calls that use urdf/parts.xacro need different values there ('-1' for urdf/a.urdf.xacro, '-3' for urdf/b.urdf.xacro)" in f.stderr, f.stderr
     assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == snapshot
-    assert [c for c, _ in codes(pkg)].count("UL302") == 2
+    # the two robots' findings at the macro line are one finding with two instances
+    (both,) = [f for f in findings(pkg) if f["code"] == "UL302"]
+    assert both["count"] == 2 and len({i["message"] for i in both["instances"]}) == 2
 
 
 def test_symlinked_source_stays_a_link(tmp_path):
@@ -598,3 +600,32 @@ def test_symlinked_source_stays_a_link(tmp_path):
     f = run_cli("check", str(tmp_path), "--fix", "--no-cache", "--isolated", cwd=tmp_path)
     assert "Fixed" in f.stderr and (link / "robot.urdf.xacro").is_symlink()
     assert 'lower="-2.1" upper="2.1"' in (real / "urdf/robot.urdf.xacro").read_text()
+
+
+def test_a_rolled_back_fix_is_not_retried_until_its_inputs_change(tmp_path):
+    """--fix remembers a rollback (issue 22): the next run reports it without rewriting the
+    sources; an edit to a file the models read makes it try again."""
+    import os
+    common = HEAD + '  <xacro:property name="lo" value="1"/>\n</robot>\n'
+
+    def robot(hi, extra=""):
+        return (HEAD + extra + '  <xacro:include filename="common.xacro"/>\n'
+                f'  <xacro:property name="hi" value="{hi}"/>\n' + LINKS
+                + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "shared", {"urdf/common.xacro": common,
+                                            "urdf/a.urdf.xacro": robot("-1"),
+                                            "urdf/b.urdf.xacro": robot("3")})
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    assert "UL302 fix rolled back: the edited source is also used by urdf/b.urdf.xacro" in f.stderr
+    stamp = os.stat(pkg / "urdf/common.xacro").st_mtime_ns
+    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    assert "fix rolled back" not in f.stderr, f.stderr
+    assert ("UL302 fix not applied: rolled back on an earlier run (the edited source is also "
+            "used by urdf/b.urdf.xacro") in f.stderr, f.stderr
+    assert "not tried again until a file it depends on changes" in f.stderr
+    assert os.stat(pkg / "urdf/common.xacro").st_mtime_ns == stamp   # not rewritten
+    # an input of the models changes: tried (and rolled back) again
+    (pkg / "urdf/b.urdf.xacro").write_text(robot("3", "  <!-- edited -->\n"))
+    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    assert "UL302 fix rolled back: the edited source is also used by" in f.stderr, f.stderr

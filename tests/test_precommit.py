@@ -158,6 +158,87 @@ def test_hook_deletions_and_renames(hook_repo):
     assert p.returncode == 0, p.stdout + p.stderr
 
 
+# -- issue 21 item 6: a committed file named like an option is only a file -------------------
+HOOK_SECRET = "hunter2-token-of-the-ci-job"
+OPTION_NAMED = "--env-allow=TOKEN,x.yaml"
+X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+LEAKING_XACRO = f"""<robot name="r" {X}>
+  <xacro:property name="lim" value="${{xacro.load_yaml('$(find p)/../{OPTION_NAMED}')}}"/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="${{lim['lower']}}" upper="${{lim['upper']}}" effort="1" velocity="1"/>
+  </joint>
+  <joint name="k" type="fixed"><parent link="arm"/><child link="$(optenv TOKEN nobody)"/></joint>
+</robot>
+"""
+
+
+def test_a_file_named_like_an_option_is_only_a_file(tmp_path):
+    """pre-commit appends the commit's file names to the hook's arguments: a committed
+    `--env-allow=TOKEN,x.yaml` became an option and the model printed the CI job's token.
+    With the shipped hook (and with a user's own `args:` that lack the final `--`) the name
+    is a file: the YAML it names is linted through the model that reads it, no secret."""
+    head = sh("git", "rev-parse", "HEAD", cwd=REPO).stdout.strip()
+    dirty = sh("git", "status", "--porcelain", "--untracked-files=no", "--", "urdf_lint",
+               "pyproject.toml", ".pre-commit-hooks.yaml", cwd=REPO).stdout.strip()
+    if dirty and not os.environ.get("CI"):
+        pytest.skip("the pre-commit test installs the hook from HEAD: commit first")
+    from test_cli_conventions import readme_precommit_config
+    snippet = readme_precommit_config()
+    repo_url = re.search(r"repo: (\S+)", snippet).group(1)
+    config = snippet.replace(repo_url, str(REPO)).replace("rev: v0.1.0", f"rev: {head}")
+    work = tmp_path / "robots"
+    pkg = work / "p"
+    (pkg / "urdf").mkdir(parents=True)
+    (pkg / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>p</name><version>0.0.0</version>'
+        '<description>t</description><maintainer email="a@b.c">t</maintainer>'
+        '<license>BSD</license></package>\n')
+    (pkg / "urdf" / "r.urdf.xacro").write_text(LEAKING_XACRO)
+    yaml_file = work / OPTION_NAMED
+    yaml_file.write_text("lower: -1.0\nupper: 1.0\n")
+    (work / ".pre-commit-config.yaml").write_text(config)
+    (work / ".gitignore").write_text(".urdf_lint_cache/\n")
+    sh("git", "init", "-q", cwd=work)
+    sh("git", "config", "user.email", "t@example.invalid", cwd=work)
+    sh("git", "config", "user.name", "t", cwd=work)
+    sh("git", "add", "-A", cwd=work)
+    sh("git", "commit", "-q", "-n", "-m", "initial", cwd=work)
+    home = Path(tempfile.gettempdir(), "urdf-lint-pre-commit-home")
+    env = {"PRE_COMMIT_HOME": str(home), "TOKEN": HOOK_SECRET,
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+
+    def run_hook():
+        sh("git", "add", "-A", cwd=work)
+        p = sh(sys.executable, "-m", "pre_commit", "run", "urdf-lint", cwd=work, env=env,
+               check=False)
+        sh("git", "commit", "-q", "-n", "-m", "step", cwd=work, check=False)
+        return p.returncode, p.stdout + p.stderr
+
+    # 1. the xacro and the option-named YAML change together: the token stays out (the env
+    #    read is refused, UL901) and the YAML's bad limits are reported
+    (pkg / "urdf" / "r.urdf.xacro").write_text(LEAKING_XACRO + "<!-- touched -->\n")
+    yaml_file.write_text("lower: 1.0\nupper: -1.0\n")
+    code, out = run_hook()
+    assert HOOK_SECRET not in out, out
+    assert code != 0 and "UL901" in out and "UL302" in out, out
+    # 2. only the YAML changes: it reaches the hook as a file, so its model is linted
+    yaml_file.write_text("lower: 2.0\nupper: -2.0\n")
+    code, out = run_hook()
+    assert code != 0 and "UL302" in out and "2 > upper -2" in out, out
+    # 3. a user's own args without the final `--`: still a file, said so, no token
+    (work / ".pre-commit-config.yaml").write_text(config.replace(
+        "# args: [--baseline, urdf-lint-baseline.json, --]", "args: [--fail-on, error]"))
+    assert "args: [--fail-on, error]" in (work / ".pre-commit-config.yaml").read_text()
+    (pkg / "urdf" / "r.urdf.xacro").write_text(LEAKING_XACRO + "<!-- again -->\n")
+    yaml_file.write_text("lower: 3.0\nupper: -3.0\n")
+    code, out = run_hook()
+    assert HOOK_SECRET not in out, out
+    assert code != 0 and "3 > upper -3" in out and "UL901" in out, out
+    assert f"{OPTION_NAMED} is a file, not an option" in out, out
+
+
 def test_readme_local_hook_works_as_pasted(tmp_path):
     """The README's ``repo: local`` snippet, pasted unchanged into a repository where urdf-lint
     is installed (on PATH, as `pip install` puts it): a clean commit passes, a broken joint
@@ -183,3 +264,27 @@ def test_readme_local_hook_works_as_pasted(tmp_path):
     out = p.stdout + p.stderr
     assert p.returncode != 0 and "Failed" in out, out
     assert f"r2d2_description/urdf/r2d2_macros.xacro:{line}:7: UL307" in out, out
+
+
+def test_warnings_are_seen_when_the_hook_passes(hook_repo):
+    """A warning (a misspelt <orgin>, which URDF parsers drop) does not fail the commit, and
+    pre-commit hides a passing hook's output: the hook is verbose, so the finding and the
+    one-line summary are shown on the passing commit (issue 22)."""
+    work, env = hook_repo
+    assert commit(work, env, "start clean").returncode in (0, 1)   # nothing to commit is fine
+    typo = work / "typo_description" / "urdf" / "typo.urdf"
+    typo.parent.mkdir(parents=True)
+    typo.write_text('<robot name="typo">\n  <link name="a"/>\n  <link name="b"/>\n'
+                    '  <joint name="j" type="fixed">\n    <parent link="a"/>\n'
+                    '    <child link="b"/>\n    <orgin xyz="0 0 1"/>\n  </joint>\n</robot>\n')
+    p = commit(work, env, "a typo")
+    out = p.stdout + p.stderr
+    assert p.returncode == 0 and "Passed" in out, out
+    assert "typo_description/urdf/typo.urdf:7:5: UL209 unknown element <orgin>" in out, out
+    assert re.search(r"urdf-lint: 1 model\(s\) affected by 1 file\(s\): 0 error\(s\), "
+                     r"\d+ warning\(s\), \d+ info \(\d+ in the committed files\)", out), out
+    # a commit with no robot file says so in one line
+    (work / "README.txt").write_text("notes\n")
+    p = commit(work, env, "notes")
+    out = p.stdout + p.stderr
+    assert p.returncode == 0 and "urdf-lint: no robot description file in this commit" in out, out

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from lxml import etree
 
-from conftest import CORPUS, DESCRIPTIONS, SEED_PACKAGES, corpus_entries, make_package, run_cli
+from conftest import (CORPUS, DESCRIPTIONS, REPO, SEED_PACKAGES, corpus_entries, make_package,
+                      run_cli)
 
 rr = pytest.importorskip("rerun")
 pytest.importorskip("yourdfpy")
@@ -191,13 +192,21 @@ def _rz(a):
 
 
 # -- the recording -------------------------------------------------------------------------
+def _stem(entry) -> str:
+    """The name `render` gives the pictures of ``entry``, run from the checkout (REPO)."""
+    from urdf_lint.locations import snapshot_name
+    return snapshot_name(str(entry), {}, str(REPO))
+
+
+GRIPPER = CORPUS / "robotiq_description" / "urdf" / "robotiq_2f_85_gripper.urdf.xacro"
+UR5E = CORPUS / "ur_description" / "urdf" / "ur5e.xacro"
+
+
 @pytest.fixture(scope="module")
 def recordings(tmp_path_factory):
     out = tmp_path_factory.mktemp("rec")
     paths = [str(p) for p in SEED_PACKAGES]
-    gripper = CORPUS / "robotiq_description" / "urdf" / "robotiq_2f_85_gripper.urdf.xacro"
-    ur5e = CORPUS / "ur_description" / "urdf" / "ur5e.xacro"
-    extra = [str(p) for p in (gripper, ur5e) if p.is_file()]
+    extra = [str(p) for p in (GRIPPER, UR5E) if p.is_file()]
     p = run_cli("render", *paths, *extra, "--out", out)
     assert p.returncode in (0, 1), p.stderr
     return out
@@ -242,14 +251,10 @@ def _segments_in(rrd):
     return starts, texts, moved
 
 
-@pytest.mark.parametrize("stem,entry", [
-    ("descriptions__r2d2_description__urdf__r2d2", SEEDS[0][0]),
-    ("descriptions__double_pendulum_description__urdf__double_pendulum", SEEDS[1][0]),
-    ("robotiq_description__urdf__robotiq_2f_85_gripper",
-     CORPUS / "robotiq_description" / "urdf" / "robotiq_2f_85_gripper.urdf.xacro"),
-    ("ur_description__urdf__ur5e", CORPUS / "ur_description" / "urdf" / "ur5e.xacro")])
-def test_sweep_timeline_has_one_segment_per_movable_joint(recordings, stem, entry):
-    rrd = recordings / f"{stem}.rrd"
+@pytest.mark.parametrize("entry", [
+    SEEDS[0][0], SEEDS[1][0], GRIPPER, UR5E], ids=lambda e: e.name)
+def test_sweep_timeline_has_one_segment_per_movable_joint(recordings, entry):
+    rrd = recordings / f"{_stem(entry)}.rrd"
     if not entry.is_file():
         pytest.skip("../shared/corpus is not present")
     want = _expected_segments(load_model(entry, {}))
@@ -266,7 +271,7 @@ def test_sweep_timeline_has_one_segment_per_movable_joint(recordings, stem, entr
 
 
 def test_robotiq_mimic_joints_follow(recordings):
-    rrd = recordings / "robotiq_description__urdf__robotiq_2f_85_gripper.rrd"
+    rrd = recordings / f"{_stem(GRIPPER)}.rrd"
     if not rrd.is_file():
         pytest.skip("../shared/corpus is not present")
     _starts, _texts, moved = _segments_in(rrd)
@@ -275,7 +280,7 @@ def test_robotiq_mimic_joints_follow(recordings):
 
 def test_z_up_blueprint_and_scaled_axes(recordings):
     from rerun.chunk import RrdReader
-    r2d2 = recordings / "descriptions__r2d2_description__urdf__r2d2.rrd"
+    r2d2 = recordings / f"{_stem(SEEDS[0][0])}.rrd"
     cols = columns(r2d2)
     zup = rr.ViewCoordinates.RIGHT_HAND_Z_UP.as_component_batches()[0].as_arrow_array()
     assert cols["/"]["xyz"] == zup.to_pylist()             # ViewCoordinates at the root
@@ -288,10 +293,9 @@ def test_z_up_blueprint_and_scaled_axes(recordings):
     queries = [q for c in bcols.values() for q in c.get("query", [])]
     assert ["+ /robot/**", "+ /collision/**"] in queries
     # axes scale with the robot: a few percent of its extent (link origins and geometry)
-    for stem, entry in (("descriptions__r2d2_description__urdf__r2d2", SEEDS[0][0]),
-                        ("descriptions__double_pendulum_description__urdf__double_pendulum",
-                         SEEDS[1][0])):
+    for entry in (SEEDS[0][0], SEEDS[1][0]):
         from urdf_lint.scene import kinematic_tree
+        stem = _stem(entry)
         length = _axis_length(recordings / f"{stem}.rrd")
         world, _tree, _roots = kinematic_tree(load_model(entry, {}))
         origins = np.array([T[:3, 3] for T in world.values()])
@@ -300,8 +304,8 @@ def test_z_up_blueprint_and_scaled_axes(recordings):
 
 
 def test_axes_of_an_arm_and_a_gripper_differ_by_their_size(recordings):
-    arm = recordings / "ur_description__urdf__ur5e.rrd"
-    gripper = recordings / "robotiq_description__urdf__robotiq_2f_85_gripper.rrd"
+    arm = recordings / f"{_stem(UR5E)}.rrd"
+    gripper = recordings / f"{_stem(GRIPPER)}.rrd"
     if not arm.is_file() or not gripper.is_file():
         pytest.skip("../shared/corpus is not present")
     assert _axis_length(arm) > 4 * _axis_length(gripper)
@@ -378,7 +382,7 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
     plan = plan_rrd(build_scene(model, ctx), ctx, model, label_base(model.entry))
     # the plan a diff worker pickles holds the robot's meshes, as the recording written here
     assert plan.meshes == facts["meshes"] > 0 and len(plan.paths) > 1
-    rec = Recorder()
+    rec = Recorder(str(tmp_path))
     try:
         there = tmp_path / "there.rrd"
         rec.write(str(there), "r", [("head/", plan)])
@@ -395,7 +399,7 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
                                                                    RERUN_ANALYTICS="off"))
     assert same.returncode == 0, same.stdout + same.stderr
     for when in ("before", "after"):   # it dies before it is given the plan, or while writing
-        dead = Recorder()
+        dead = Recorder(str(tmp_path))
         try:
             if when == "before":
                 dead.proc.kill()

@@ -14,6 +14,11 @@ import pytest
 from PIL import Image
 
 from conftest import DESCRIPTIONS, SEED_PACKAGES, make_package, run_cli
+from urdf_lint.locations import picture_name
+
+# picture names of the seed robots, rendered from the checkout's root (the repository)
+R2D2 = picture_name("descriptions/r2d2_description/urdf/r2d2.urdf.xacro")
+PENDULUM = picture_name("descriptions/double_pendulum_description/urdf/double_pendulum.urdf.xacro")
 
 rr = pytest.importorskip("rerun")
 RERUN = str(Path(sys.executable).parent / "rerun")
@@ -55,7 +60,7 @@ def snaps(tmp_path_factory):
 
 
 def test_recording_follows_the_kinematic_tree(snaps):
-    rrd = snaps / "a" / "descriptions__r2d2_description__urdf__r2d2.rrd"
+    rrd = snaps / "a" / f"{R2D2}.rrd"
     ents = entity_data(rrd)
     links = ["base_footprint", "base_link", "head", "box", "left_leg", "left_base", "left_front_wheel",
              "gripper_pole", "left_gripper", "left_tip", "right_tip"]
@@ -72,13 +77,13 @@ def test_recording_follows_the_kinematic_tree(snaps):
 
 
 def test_two_runs_compare_equal_and_compare_can_fail(snaps):
-    a = snaps / "a" / "descriptions__r2d2_description__urdf__r2d2.rrd"
-    b = snaps / "b" / "descriptions__r2d2_description__urdf__r2d2.rrd"
+    a = snaps / "a" / f"{R2D2}.rrd"
+    b = snaps / "b" / f"{R2D2}.rrd"
     env = dict(os.environ, RERUN_ANALYTICS="off")
     same = subprocess.run([RERUN, "rrd", "compare", "--unordered", str(a), str(b)],
                           capture_output=True, text=True, env=env)
     assert same.returncode == 0, same.stdout + same.stderr
-    other = snaps / "a" / "descriptions__double_pendulum_description__urdf__double_pendulum.rrd"
+    other = snaps / "a" / f"{PENDULUM}.rrd"
     diff = subprocess.run([RERUN, "rrd", "compare", "--unordered", str(a), str(other)],
                           capture_output=True, text=True, env=env)
     assert diff.returncode != 0
@@ -96,18 +101,18 @@ def foreground_share(png):
 
 
 def test_png_frames_the_model_and_is_deterministic(snaps):
-    for name in ("descriptions__r2d2_description__urdf__r2d2.png",
-                 "descriptions__double_pendulum_description__urdf__double_pendulum.png"):
+    for name in (f"{R2D2}.png",
+                 f"{PENDULUM}.png"):
         span, fill, img = foreground_share(snaps / "a" / name)
         assert span > 0.7, (name, span)      # auto-framed: the model spans the frame
         assert fill > 0.03, (name, fill)     # and is not a few stray pixels
         assert (snaps / "a" / name).read_bytes() == (snaps / "b" / name).read_bytes()
-    _, _, img = foreground_share(snaps / "a" / "descriptions__r2d2_description__urdf__r2d2.png")
+    _, _, img = foreground_share(snaps / "a" / f"{R2D2}.png")
     blue = ((img[:, :, 2] > 150) & (img[:, :, 0] < 60)).mean()
     assert blue > 0.02  # the model's own colours (R2D2's blue body)
     summary = (snaps / "a" / "summary.md").read_text()
     assert "| `descriptions/r2d2_description/urdf/r2d2.urdf.xacro` | 17 | 16 | 8 | 0 | 0 | 0 |" in summary
-    assert "![descriptions/r2d2_description/urdf/r2d2.urdf.xacro](descriptions__r2d2_description__urdf__r2d2.png)" in summary
+    assert rf"![descriptions/r2d2\_description/urdf/r2d2.urdf.xacro]({R2D2}.png)" in summary
 
 
 def test_broken_model_renders_safely_with_findings(tmp_path):
@@ -156,7 +161,7 @@ def test_corpus_robots_render_with_textures(corpus, tmp_path):
     for png in pngs:
         span, fill, _ = foreground_share(png)
         assert span > 0.6 and fill > 0.03, png.name
-    ents = entity_data(out / "urdf_tutorial__urdf__08-macroed.rrd")
+    ents = entity_data(out / f"{picture_name('urdf_tutorial/urdf/08-macroed.urdf.xacro')}.rrd")
     textured = [p for p, c in ents.items() if "vertex_texcoords" in c and "albedo_texture_buffer" in c]
     assert len(textured) == 4  # the gripper fingers' DAE textures
     panda = entity_data(next(out.glob("franka*.rrd")))

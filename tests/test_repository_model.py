@@ -4,6 +4,7 @@ outputs and the cache folder. Every case is a fixture repository in the shape of
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 
@@ -91,9 +92,11 @@ def test_config_states_entries_exactly(tmp_path):
     (tmp_path / "urdf-lint.toml").write_text(
         f'[[models]]\npath = "{V3}robot_v3.xacro"\nargs = [{{with_tol = "false"}}]\n')
     p = run_cli("check", ".", "--no-cache", cwd=tmp_path)
-    assert p.returncode == 2
-    assert "arg 'with_tol' is not declared by any xacro:arg" in p.stderr
-    assert "(did you mean 'with_tool'?)" in p.stderr
+    # xacro accepts an undeclared arg: a located warning at the config line, not exit 2
+    assert p.returncode in (0, 1), p.stderr
+    assert "urdf-lint.toml:3:" in p.stdout and "UL008" in p.stdout
+    assert "arg 'with_tol' is not declared by any xacro:arg" in p.stdout
+    assert "(did you mean 'with_tool'?)" in p.stdout
     # discover = false: only the listed variants, each once
     (tmp_path / "other.urdf").write_text("<robot name='x'><link name='a'/></robot>\n")
     (tmp_path / "urdf-lint.toml").write_text(
@@ -134,7 +137,9 @@ def test_install_layout_and_unknown_package_hint(tmp_path):
     (ws / "install/share/robot_meshes/package.xml").unlink()
     p = run_cli("check", ".", "--no-cache", cwd=desc)
     assert p.returncode == 1 and "unknown package 'robot_meshes'" in p.stdout
-    assert f"pass --package-path robot_meshes={ws / 'install/share/robot_meshes'}" in p.stdout
+    # the hint's folder is shown as every path is: relative, inside the workspace (issue 22)
+    hint = os.path.relpath(ws / "install/share/robot_meshes", desc)
+    assert hint.startswith("..") and f"pass --package-path robot_meshes={hint}" in p.stdout
     p = run_cli("check", ".", "--no-cache", "--package-path",
                 f"robot_meshes={ws / 'install/share/robot_meshes'}", cwd=desc)
     assert p.returncode == 0, p.stdout
@@ -209,7 +214,9 @@ def test_corpus_generated_outputs_are_fresh(corpus, tmp_path):
                 "--isolated", "--select", "UL011", cwd=tmp_path)
     assert p.returncode == 0 and json.loads(p.stdout)["findings"] == [], p.stdout
     p = run_cli("generate", corpus / "robot_properties_fingers", "--check", cwd=tmp_path)
-    assert p.returncode == 0 and p.stdout == "", p.stdout + p.stderr
+    # nothing stale: one summary line (issue 22: it printed nothing on success)
+    assert p.returncode == 0 and p.stdout == \
+        "urdf-lint generate: 14 generated URDF(s) checked, all up to date.\n", p.stdout + p.stderr
 
 
 def test_cache_folder_markers_and_place(tmp_path, monkeypatch):

@@ -14,6 +14,10 @@ import pytest
 
 from conftest import DESCRIPTIONS
 from urdf_lint.cli import main
+from urdf_lint.locations import picture_name
+
+# the name both `diff --render` and `render` give the pictures of the seed robot
+R2D2 = picture_name("r2d2_description/urdf/r2d2.urdf.xacro")
 
 
 def git(repo, *args):
@@ -162,7 +166,7 @@ def test_markdown_is_valid_gfm_and_escapes_names(repo, capsys):
     assert "<table>" in html and "<details>" in md
     assert "<b>" not in re.sub(r"<summary><b>[^<]*</b>", "", md.replace("<b>r2d2", "")), md
     assert "to|box&lt;b&gt;" in html                 # the pipe did not split the cell
-    assert "https://example.invalid/run/1/r2d2_description_urdf_r2d2.urdf.xacro.after.png" in md
+    assert f"https://example.invalid/run/1/{R2D2}.after.png" in md
 
 
 def test_markdown_stays_under_the_limit():
@@ -197,13 +201,15 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
         "stale.diff.png": _digest(out / "stale.diff.png"), "notes.diff.png": "0" * 32}}))
     assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
     capsys.readouterr()
-    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    stem = out / R2D2
     before, after, diff = (_img(f"{stem}.{s}.png") for s in ("before", "after", "diff"))
     assert not (out / "stale.diff.png").exists()
     assert (out / "notes.diff.png").read_bytes() == b"mine"
     assert before.shape == after.shape == diff.shape
     tinted = (diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)   # magenta
     outline = (diff[:, :, 2] > 150) & (diff[:, :, 0] < 80)                        # blue
+    from urdf_lint.raster import LEGEND_H
+    tinted[-LEGEND_H:] = outline[-LEGEND_H:] = False   # the legend's swatches
     marked = tinted | outline
     # where the moved links are, computed here from both revisions with the same framing
     base_copy = tmp_path / "base"
@@ -246,7 +252,8 @@ def test_pictures_drawn_in_two_threads_are_those_drawn_in_one(repo, tmp_path):
         assert (got[top_strip:] == want[top_strip:]).all()
     info = raster.render_pair(head_geom, head_geom, str(tmp_path / "same"), changed, threads=2)
     assert Path(info["before"]).read_bytes() == Path(info["after"]).read_bytes()
-    assert info["changed_pixels"] > 500
+    # the same robot on both sides: nothing is marked changed (issue 24, item 23)
+    assert info["changed_pixels"] == 0
 
 
 def _link_mask(root, links):
@@ -293,9 +300,10 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache", "--format", "json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert [m["status"] for m in doc["models"]] == ["unchanged"]
-    stem = out / "r2d2_description_urdf_r2d2.urdf.xacro"
+    stem = out / R2D2
     assert Path(f"{stem}.before.png").read_bytes() == Path(f"{stem}.after.png").read_bytes()
-    diff = _img(f"{stem}.diff.png")
+    from urdf_lint.raster import LEGEND_H
+    diff = _img(f"{stem}.diff.png")[:-LEGEND_H]   # (the legend's swatches below)
     assert not ((diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)).any()
 
 
@@ -307,7 +315,7 @@ def test_render_recording_holds_both_revisions(repo, tmp_path, capsys):
     out = tmp_path / "snap"
     assert main(["diff", "HEAD", "--render", str(out), "--no-cache"]) == 0
     capsys.readouterr()
-    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    rrd = out / f"{R2D2}.rrd"
     assert {"base", "head"} <= recording_roots(rrd)
     assert not list(out.glob("*.base.rrd")) and not list(out.glob("*.head.rrd"))
     # each revision sweeps its joints, the layout shows both, and no path of this machine
@@ -348,8 +356,8 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
     real = review._start_recorder
     started = []
 
-    def start():
-        rec = real()
+    def start(render_dir):
+        rec = real(render_dir)
         started.append(rec)
         monkeypatch.setitem(sys.modules, "rerun", None)   # any later `import rerun` fails
         return rec
@@ -371,10 +379,9 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
     assert len(started) == 1 and not started[0].proc.is_alive()
     assert sum(isinstance(p, Plan) for p in plans) == 2      # one per revision
     monkeypatch.setitem(sys.modules, "rerun", rerun)   # this process reads the recording
-    rrd = out / "r2d2_description_urdf_r2d2.urdf.xacro.rrd"
+    rrd = out / f"{R2D2}.rrd"
     assert sorted(p.name for p in out.iterdir()) == [".urdf-lint-snapshots.json"] + sorted(
-        f"r2d2_description_urdf_r2d2.urdf.xacro.{x}" for x in ("before.png", "after.png",
-                                                               "diff.png", "rrd"))
+        f"{R2D2}.{x}" for x in ("before.png", "after.png", "diff.png", "rrd"))
     assert {"base", "head"} <= recording_roots(rrd)
 
 
@@ -421,6 +428,7 @@ def test_a_generated_pair_is_linted_only_when_the_change_reaches_it(repo, capsys
     git(repo, "add", "-A")
     git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "generated")
     capsys.readouterr()
+    expanded.clear()   # (generate expands in the workers too; what follows is about diff)
     edit(repo / "r2d2_description" / "urdf" / "r2d2_macros.xacro",
          '<limit effort="100" velocity="10"/>', '<limit effort="120" velocity="10"/>')
     rc, doc = run_json(capsys, "HEAD")

@@ -22,7 +22,8 @@ def _write_example(tmp_path, rule, text):
 
 def _codes(pkg, code):
     p = run_cli("check", ".", "--no-cache", "--select", f"{code},UL009" if code != "UL009" else "UL",
-                "--format", "json", "--fail-on", "never", cwd=pkg,
+                "--format", "json", "--fail-on", "never", "--target",
+                ",".join(RULES[code].example_targets), cwd=pkg,
                 env={"URDF_LINT_EXAMPLE_SECRET": "s3cr3t-value"})
     assert p.returncode == 0, p.stderr
     return json.loads(p.stdout)["findings"]
@@ -62,6 +63,7 @@ def _in_process(tmp_path, monkeypatch, rule, text):
     monkeypatch.setenv("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
     cfg = load_config(None)
     cfg.select = [rule.code, "UL009"] if rule.code != "UL009" else ["UL"]
+    cfg.targets = list(rule.example_targets)   # EXAMPLE_TARGETS (default: ros)
     res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
     assert not res.internal, res.internal
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"

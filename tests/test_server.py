@@ -342,7 +342,7 @@ def test_neovim_receives_the_diagnostics(ur, tmp_path):
     got = json.loads(out.read_text())
     (axis,) = [d for d in got if d["code"] == "UL307"]
     assert (axis["lnum"], axis["col"]) == (236, 6)
-    assert axis["source"] == "urdf-lint" and axis["severity"] == 1   # vim.diagnostic ERROR
+    assert axis["source"] == "urdf-lint" and axis["severity"] == 2   # vim.diagnostic WARN
     assert "axis" in axis["message"]
     assert any(d["code"] == "UL401" and d["lnum"] == 83 and d["col"] == 10 for d in got)
 

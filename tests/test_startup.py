@@ -265,7 +265,7 @@ def test_the_catalogue_read_from_sources_matches_the_loaded_rules():
         assert list(read) == list(loaded) and len(read) >= 60
         for code, r in loaded.items():
             assert read[code] == registry.Entry(r.code, r.name, r.severity, r.scope, r.origin,
-                                                r.module), code
+                                                r.module, r.targets), code
     finally:
         registry._RULES, registry._CATALOGUE = saved
 

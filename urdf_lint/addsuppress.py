@@ -8,7 +8,7 @@ not XML (a YAML file), or for an unused suppression (UL009: remove that comment 
 """
 from __future__ import annotations
 
-from .atomic import atomic_rewrite
+from . import fsbound
 from .rules import ul009_unused_suppression as unused_suppression
 from .sourceedit import Edit, apply_edits, inside, line_offset
 
@@ -26,9 +26,8 @@ def suppression_edits(findings) -> tuple[dict, list]:
     cache: dict = {}
     for (file, line), fs in sorted(by_line.items()):
         if file not in cache:
-            from . import overlay   # (urdf-lint server: the comment goes into the buffer)
             try:
-                cache[file] = overlay.read(file)
+                cache[file] = fsbound.read_bytes(file)
             except OSError:
                 skipped.extend(fs)
                 continue
@@ -62,8 +61,7 @@ def add_suppressions(findings, paths=None) -> tuple[int, list, list]:
     skipped += outside
     written = 0
     for file, es in sorted(edits.items()):
-        with open(file, "rb") as fh:
-            data = fh.read()
-        atomic_rewrite(file, apply_edits(data, es))
+        data = fsbound.read_bytes(file)
+        fsbound.rewrite(file, apply_edits(data, es), paths if paths is not None else [file])
         written += len(es)
     return written, sorted(edits), skipped

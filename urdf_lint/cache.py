@@ -22,14 +22,12 @@ import hashlib
 import hmac
 import json
 import os
-import shutil
 import stat as _st
 import subprocess
-import sys
 from pathlib import Path
 
 from . import __version__
-from .atomic import atomic_write
+from . import fsbound
 from .discovery import start_dir
 from .hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from .jobs import LintJob, LintSettings, ModelReport
@@ -40,7 +38,7 @@ from .vcs import git_root, repo_root
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached)
-RECORD_FORMAT = 10
+RECORD_FORMAT = 13
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -113,7 +111,8 @@ class Cache:
         elif os.path.isdir(self.dir) and _git_tracks(self.dir):
             self.refused = f"{self.dir} holds files tracked by git"
         if self.refused:
-            sys.stderr.write(f"urdf-lint: note: not using the cache: {self.refused}\n")
+            from .emit import say
+            say(f"urdf-lint: note: not using the cache: {self.refused}")
 
     @classmethod
     def for_paths(cls, paths, cfg) -> "Cache":
@@ -133,7 +132,8 @@ class Cache:
             memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
                                                               sort_keys=True))
         blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
-                           job.kind, bool(job.explicit), job.output, job.mesh_base]) + memo[1]
+                           job.kind, bool(job.explicit), job.output, job.mesh_base,
+                           list(job.outputs)]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> str:
@@ -227,8 +227,8 @@ class Cache:
         (read back with one parse). False when it could not be written."""
         try:
             self._ensure()
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            atomic_write(path, self._mac_bytes(path, blob) + b"\n" + blob)
+            fsbound.write_bytes(path, self._mac_bytes(path, blob) + b"\n" + blob, self.dir,
+                                make_dirs=True)
             return True
         except OSError:
             return False
@@ -251,6 +251,6 @@ class Cache:
 
     def clear(self) -> str | None:
         if os.path.isdir(self.dir):
-            shutil.rmtree(self.dir, ignore_errors=True)
+            fsbound.remove_tree(self.dir)
             return self.dir
         return None

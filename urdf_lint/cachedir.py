@@ -17,12 +17,13 @@ def ensure(directory: str) -> None:
     if directory in _done and os.path.isdir(directory):
         return
     _done.add(directory)
-    os.makedirs(directory, exist_ok=True)
+    from . import fsbound
+    fsbound.make_own_dirs(directory)
     for name, text in ((".gitignore", GITIGNORE), ("CACHEDIR.TAG", CACHEDIR_TAG)):
         p = os.path.join(directory, name)
         if not os.path.exists(p):
-            from .atomic import atomic_write
+            from . import fsbound
             try:
-                atomic_write(p, text)
+                fsbound.write_text(p, text, directory)
             except OSError:
                 pass

@@ -1,4 +1,5 @@
-"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|clean|doctor.
+"""Command line: urdf-lint check|hook|expand|rules|rule|render|diff|generate|format|mcp|clean|
+doctor.
 
 Exit codes: 0 clean, 1 findings at or above --fail-on, 2 usage or internal error, 130 Ctrl-C.
 Heavy modules (xacro, trimesh, rerun) are imported only by the commands that need them.
@@ -13,8 +14,9 @@ import difflib
 import os
 import re
 import sys
+from pathlib import Path
 
-
+from .emit import say, tell
 from .errors import UsageError
 
 
@@ -53,7 +55,8 @@ def first_sentence(doc: str) -> str:
 
 # -- the parser -------------------------------------------------------------------------------
 class _Parser(argparse.ArgumentParser):
-    """An unknown flag gets this (sub)command's usage and the closest known flag."""
+    """A command-line mistake is one line: what is wrong, the closest known flag or command,
+    and where the usage is (like ruff; the whole usage buried the suggestion)."""
 
     def error(self, message):
         m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
@@ -65,15 +68,16 @@ class _Parser(argparse.ArgumentParser):
         m = re.match(r"unrecognized arguments: (.*)", message)
         if m:
             hints = []
-            for arg in m.group(1).split():
-                if arg.startswith("-"):
-                    close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
-                                                      cutoff=0.6)
-                    if close:
-                        hints.append(f"{arg}: did you mean {close[0]}?")
+            args = [a for a in m.group(1).split() if a.startswith("-")]
+            for arg in args:
+                close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
+                                                  cutoff=0.6)
+                if close:
+                    hints.append(f"did you mean {close[0]}?" if len(args) == 1
+                                 else f"{arg}: did you mean {close[0]}?")
             if hints:
                 message += " (" + "; ".join(hints) + ")"
-        super().error(message)
+        self.exit(2, f"{self.prog}: error: {message}; see '{self.prog} --help'\n")
 
     def flags(self) -> list:
         return [s for a in self._actions for s in a.option_strings]
@@ -93,8 +97,17 @@ def _add_selection(p):
     p.add_argument("--ignore", metavar="CODES", help=_key_help(
         "ignore", "comma-separated codes or prefixes to disable"))
     p.add_argument("--fail-on", metavar="{error,warning,info,never}", help=_key_help("fail-on"))
+    _add_target(p)
     p.add_argument("--exit-zero", action="store_true",
                    help="exit 0 even when there are findings (still 2 on errors)")
+
+
+def _add_target(p):
+    from .targets import NAMES
+    p.add_argument("--target", action="append", metavar="TARGET", dest="targets",
+                   help=_key_help("targets", "a consumer the descriptions are for ("
+                                  + ", ".join(NAMES) + "); repeatable or comma-separated, "
+                                  "replaces the config's"))
 
 
 def _add_inputs(p, config=True):
@@ -265,6 +278,7 @@ def _cmd_render(sub, raw):
     _add_limits(rd)
     rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
     _add_views(rd)
+    _add_target(rd)
 
 
 def _cmd_diff(sub, raw):
@@ -287,6 +301,7 @@ def _cmd_diff(sub, raw):
     df.add_argument("--fail-on", choices=["error", "warning", "info", "never"],
                     help="exit 1 when the change introduces findings at or above this "
                          "severity (default: error)")
+    _add_target(df)
     df.add_argument("--package-path", action="append", metavar="NAME=DIR",
                     help="where a package lives (default: found from package.xml files)")
     df.add_argument("-j", "--jobs", metavar="N",
@@ -312,6 +327,16 @@ def _cmd_generate(sub, raw):
     g.add_argument("--check", action="store_true",
                    help="only report stale outputs (exit 1), write nothing")
     _add_inputs(g)
+
+
+def _cmd_format(sub, raw):
+    from .formatrun import add_parser
+    add_parser(sub, raw, _add_inputs)
+
+
+def _cmd_mcp(sub, raw):
+    from .mcp_server import add_parser
+    add_parser(sub, raw)
 
 
 def _cmd_doctor(sub, raw):
@@ -344,6 +369,8 @@ _COMMAND_PARSERS = {
     "render": _cmd_render,
     "diff": _cmd_diff,
     "generate": _cmd_generate,
+    "format": _cmd_format,
+    "mcp": _cmd_mcp,
     "doctor": _cmd_doctor,
     "clean": _cmd_clean,
     "server": _cmd_server,
@@ -394,7 +421,8 @@ def _load_cfg(args, paths):
     return cfg
 
 
-_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "timeout", "memory-mb", "jobs",
+_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "targets", "timeout", "memory-mb",
+             "jobs",
              "format", "baseline", "env-allow", "cache-dir", "views", "forward-axis")
 
 
@@ -403,8 +431,9 @@ def _apply_cli(cfg, args):
     from .config import apply_cli
     from . import trust
     values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
-    if values["env-allow"] and not isinstance(values["env-allow"], str):
-        values["env-allow"] = ",".join(values["env-allow"])  # --env-allow A --env-allow B
+    for k in ("env-allow", "targets"):   # --env-allow A --env-allow B
+        if values[k] and not isinstance(values[k], str):
+            values[k] = ",".join(values[k])
     if values["cache-dir"]:
         values["cache-dir"] = os.path.abspath(values["cache-dir"])
     apply_cli(cfg, values)
@@ -416,10 +445,11 @@ def _trust(cfg, args, paths):
     from .discovery import start_dir
     from .vcs import repo_root
     from . import trust
+    given = {k for k in _CLI_KEYS if getattr(args, k.replace("-", "_"), None)}
     for n in trust.apply(cfg, repo_root(start_dir(paths)),
-                         trusted=getattr(args, "trust_config", False)):
+                         trusted=getattr(args, "trust_config", False), given=given):
         if not getattr(args, "quiet", False):
-            sys.stderr.write(f"urdf-lint: {_safe_text(n)}\n")
+            say(f"urdf-lint: {n}")
 
 
 def _safe_text(s) -> str:
@@ -427,10 +457,28 @@ def _safe_text(s) -> str:
     return escape_text(str(s))
 
 
-def _refuse_symlinked_out(d):
-    """Snapshots are written where the user said, never through a link a repository planted."""
-    if d and os.path.islink(d.rstrip(os.sep) or d):
-        raise UsageError(f"output folder {d} is a symlink; refusing to write through it")
+def _write_base(target, paths) -> str:
+    from .emit import write_base
+    return write_base(target, paths)
+
+
+def _refuse_symlinked_out(d, paths=()):
+    """Snapshots are written where the user said, never through a link a repository planted:
+    no component of the folder from the repository down (the folder itself included) may be
+    a symlink."""
+    if not d:
+        return
+    from . import fsbound
+    base = _write_base(d, paths)
+    try:
+        if os.path.abspath(d) != os.path.abspath(base):
+            fsbound.check_no_symlink(d, base)
+            fsbound.make_dirs(d, base)
+        elif os.path.islink(d.rstrip(os.sep) or d):
+            raise fsbound.BoundaryError(d, "is a symlink; refusing to write through it")
+    except OSError as e:
+        raise UsageError(f"output folder {_safe_text(d)}: "
+                         f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
 class _Out:
@@ -442,11 +490,11 @@ class _Out:
 
     def note(self, text):
         if not self.quiet:
-            sys.stderr.write(text + "\n")
+            say(text)
 
     def info(self, text):
         if self.verbose:
-            sys.stderr.write(text + "\n")
+            say(text)
 
 
 def _color_mode(args) -> str:
@@ -460,35 +508,61 @@ def _color_mode(args) -> str:
 
 # -- commands ---------------------------------------------------------------------------------
 
+MODEL_SUFFIXES = (".urdf", ".xacro")
+
+
 def _through_models(args, cfg):
-    """``check FILE`` / ``render FILE`` on fragments or macro libraries: (the repository root
-    to lint, the files whose models to report), or None when every path is a model or a folder.
-    The models that include such a file are linted instead of the file on its own."""
+    """Files that are not models themselves, linted through the models that use them, as the
+    hook does: a fragment or macro library that models include, and any other file (a YAML
+    file, a mesh, a texture: ``check $(git diff --name-only)``). Returns (the repository root
+    to lint, the files whose models to report, the files the user named), or None when every
+    path is a model or a folder. Folders named beside such files are linted whole (their
+    model files join the files to report)."""
     from .discovery import build_resolver, discover_models, repository_root
     from .jobs import Status
     from .lint import classify_xacro
-    if not args.paths or not all(os.path.isfile(p) for p in args.paths):
-        return None
-    files = [os.path.realpath(p) for p in args.paths]
+    files = [os.path.realpath(p) for p in args.paths if os.path.isfile(p)]
     configured = {m.path for m in cfg.models}
+    inputs = [f for f in files if not f.endswith(MODEL_SUFFIXES) and f not in configured]
     cand = [f for f in files if f.endswith(".xacro") and f not in configured]
-    if not cand:
+    if not inputs and not cand:
         return None
     root = repository_root(args.paths)
-    resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
-    graph = discover_models([root], cfg, resolver).graph
-    redirect = [f for f in cand if graph.includers(f) or classify_xacro(f) is Status.LIBRARY]
+    redirect = list(inputs)
+    by: dict = {}
+    if cand:
+        resolver = build_resolver([root], cfg, _parse_package_paths(args.package_path))
+        graph = discover_models([root], cfg, resolver).graph
+        by = {f: graph.includers(f) for f in cand}
+        redirect += [f for f in cand if by[f] or classify_xacro(f) is Status.LIBRARY]
     if not redirect:
         return None
     from .locations import display_path
-    for f in redirect:
-        by = graph.includers(f)
-        if by:
-            sys.stderr.write(f"note: {display_path(f)} is included by "
-                             f"{', '.join(display_path(g) for g in by[:5])}"
-                             f"{' ...' if len(by) > 5 else ''}: linting the models that "
-                             "include it\n")
-    return root, set(files)
+    from .packages import iter_files
+    for f in cand:
+        if by.get(f) and not getattr(args, "quiet", False):
+            inc = by[f]
+            say(f"note: {_safe_text(display_path(f))} is included by "
+                f"{', '.join(_safe_text(display_path(g)) for g in inc[:5])}"
+                f"{' ...' if len(inc) > 5 else ''}: linting the models that include it")
+    report = set(files)
+    for d in args.paths:
+        if os.path.isdir(d):
+            report.update(os.path.realpath(f) for f in iter_files(Path(d), MODEL_SUFFIXES))
+    return root, report, set(files)
+
+
+def _no_models_warning(paths, result, out) -> None:
+    """A folder the user named that holds no robot model: said, like ruff's "No Python files
+    found" (the run still exits 0: nothing failed)."""
+    entries = [os.path.realpath(m.entry) for m in [*result.models, *result.skipped]]
+    for p in paths:
+        if not os.path.isdir(p):
+            continue
+        top = os.path.realpath(p)
+        if not any(e == top or e.startswith(top.rstrip(os.sep) + os.sep) for e in entries):
+            out.note(f"warning: no robot models found in {_safe_text(p)} (no .urdf file and no "
+                     ".xacro file that expands to a robot)")
 
 
 def cmd_check(args) -> int:
@@ -504,11 +578,11 @@ def cmd_check(args) -> int:
     out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
     affected_by = None
     named: set = set()
+    given = list(args.paths)
     if getattr(args, "files", None) is None and not args.changed_since:
         redirect = _through_models(args, cfg)
         if redirect is not None:
-            args.paths, affected_by = [redirect[0]], redirect[1]
-            named = set(affected_by)
+            args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     cache = None
     if not args.no_cache:
@@ -528,7 +602,7 @@ def cmd_check(args) -> int:
                 sys.stderr.write("\r" + " " * 40 + "\r")
             sys.stderr.flush()
     render_dir = getattr(args, "render", None)
-    _refuse_symlinked_out(render_dir)
+    _refuse_symlinked_out(render_dir, args.paths)
     if _fix_mode(args):
         if named:
             raise UsageError(
@@ -538,7 +612,7 @@ def cmd_check(args) -> int:
         from .fixcli import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
-        _clear_stale(render_dir)
+        _clear_stale(render_dir, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                        progress=progress, affected_by=affected_by, render_dir=render_dir)
     from .fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
@@ -551,7 +625,8 @@ def cmd_check(args) -> int:
     report_internal(result.internal)
     if args.write_baseline:
         from .baseline import write_baseline
-        n = write_baseline(args.write_baseline, result.findings)
+        n = write_baseline(args.write_baseline, result.findings,
+                           _write_base(args.write_baseline, args.paths))
         files = len({f.file for f in result.findings})
         out.note(f"urdf-lint: wrote {n} finding(s) in {files} file(s) to "
                  f"{display_path(os.path.abspath(args.write_baseline))}; "
@@ -560,8 +635,13 @@ def cmd_check(args) -> int:
             _report_snapshots(result, render_dir, out)
         return 2 if result.internal else 0
     from .emit import write_findings
-    write_findings(args, cfg, result, out, color_mode)
+    write_findings(args, cfg, result, out, color_mode, resolver.roots)
+    if getattr(args, "hook_summary", False):
+        _hook_summary(result, args.files)
     _note_unused(result, out, named)
+    if getattr(args, "files", None) is None and not args.changed_since:
+        _no_models_warning(given, result, out)
+    _note_variants(result, cfg, resolver, out)
     if render_dir:
         _report_snapshots(result, render_dir, out)
     if args.exit_zero:
@@ -600,6 +680,23 @@ def _list_models(result, out):
         out.info(f"skipped: {_safe_text(display_path(m.entry))} ({m.status})")
 
 
+def _note_variants(result, cfg, resolver, out) -> None:
+    """One info line: the models linted with args left at defaults that select variants, and
+    how to lint the variants (``[[models]] args``)."""
+    from .locations import display_path
+    from .pipeline import variant_args
+    found = variant_args(result.models, cfg, resolver)
+    if not found:
+        return
+    entry, names = next(iter(found.items()))
+    shown = ", ".join(names[:4]) + (" ..." if len(names) > 4 else "")
+    more = f" and {len(found) - 1} more model(s)" if len(found) > 1 else ""
+    out.note(f"note: {_safe_text(display_path(entry))}{more} linted with args at their defaults "
+             f"that select variants ({_safe_text(shown)}); to lint the variants, list them: "
+             f"[[tool.urdf-lint.models]] path = \"{_safe_text(display_path(entry))}\" "
+             f"args = [{{{_safe_text(names[0])} = \"...\"}}, ...]")
+
+
 def _note_unused(result, out, named=()):
     """Deleted files no remaining model reads (always said), unused files (under -v, or always
     when the user named the file)."""
@@ -610,17 +707,19 @@ def _note_unused(result, out, named=()):
                      "reads it; if it was a model, it is gone")
     named = {os.path.realpath(f) for f in named}
     for f in result.unused_files:
-        if f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
-            say = out.note if os.path.realpath(f) in named else out.info
-            say(f"note: {_safe_text(display_path(f))} is not used by any model")
+        if os.path.realpath(f) in named:   # the user named it: always said
+            out.note(f"note: {_safe_text(display_path(f))} is not used by any model")
+        elif f.endswith((".xacro", ".urdf", ".yaml", ".yml", ".stl", ".dae", ".obj")):
+            out.info(f"note: {_safe_text(display_path(f))} is not used by any model")
 
 
-def _clear_stale(out_dir):
+def _clear_stale(out_dir, paths):
     from .render import clear_stale
     try:
-        clear_stale(out_dir)
+        clear_stale(out_dir, _write_base(out_dir, paths))
     except OSError as e:
-        raise UsageError(f"cannot clear {out_dir}: {e.strerror or e}") from None
+        raise UsageError(f"cannot clear {_safe_text(out_dir)}: "
+                         f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
 def _report_snapshots(result, out_dir, out=None) -> int:
@@ -629,22 +728,28 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     made; returns how many could not."""
     from .render import finish_snapshots, write_manifest, write_summary
     from .locations import display_path
+    from .recording import NO_RERUN
     finish_snapshots(result.models, result.findings, out_dir)
     written, missed, files = 0, 0, []
+    no_rerun = False
     for m in result.models:
         snap = m.snapshot or {}
+        if f"rrd: {NO_RERUN}" in snap.get("problems", ()):   # optional: said once, below
+            snap["problems"] = [p for p in snap["problems"] if p != f"rrd: {NO_RERUN}"]
+            no_rerun = True
         for k in ("png", "rrd"):
             if snap.get(k):
                 written += 1
                 files.append(snap[k])
         if m.status != "model":
-            sys.stderr.write(f"{_safe_text(m.label)}: no snapshot: the model did not expand "
-                             "(see 'urdf-lint check')\n")
+            say(f"{m.label}: no snapshot: the model did not expand (see 'urdf-lint check')")
             missed += 1
         elif snap.get("problems") or not snap.get("png"):
             why = "; ".join(snap.get("problems") or ["no picture was drawn"])
-            sys.stderr.write(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}\n")
+            say(f"{_safe_text(m.label)}: snapshot incomplete: {_safe_text(why)}")
             missed += 1
+    if no_rerun:
+        _no_recordings_note(NO_RERUN)
     summary = write_summary(result, out_dir)
     write_manifest(out_dir, files + [summary])
     msg = (f"snapshots: {written} files for {len(result.models)} model(s) in "
@@ -652,8 +757,16 @@ def _report_snapshots(result, out_dir, out=None) -> int:
     if out is not None:
         out.note(msg)
     else:
-        sys.stderr.write(msg + "\n")
+        say(msg)
     return missed
+
+
+def _no_recordings_note(why) -> None:
+    """The .rrd recordings are optional (rerun-sdk, the ``render`` extra): without them the
+    pictures are still made and the run does not fail; said once (``render`` and
+    ``diff --render`` alike)."""
+    say(f"note: no .rrd recordings: {_safe_text(why)}; the PNG pictures are written "
+        "(--no-rrd: no recordings, no note)")
 
 
 def cmd_hook(args) -> int:
@@ -663,6 +776,7 @@ def cmd_hook(args) -> int:
     ns = argparse.Namespace(paths=[root], output=None, render=None, changed_since=None,
                             write_baseline=None, isolated=False, **vars(args))
     ns.quiet = True if not args.verbose else False
+    ns.hook_summary = not args.quiet   # the one line said even when the hook passes
     ns.command = "check"
     # pre-commit passes only files that exist: add what the commit deletes or renames away
     from .vcs import GitError, staged_removals
@@ -672,8 +786,25 @@ def cmd_hook(args) -> int:
         removed = set()
     ns.files = list(args.files) + sorted(removed)
     if not ns.files:
+        if ns.hook_summary:
+            say("urdf-lint: no robot description file in this commit")
         return 0
     return cmd_check(ns)
+
+
+def _hook_summary(result, files) -> None:
+    """``hook``: one line on every run, passed or failed, with the warnings and infos that do
+    not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
+    from collections import Counter
+    named = {os.path.realpath(f) for f in files}
+    sev = Counter(f.severity for f in result.findings)
+    mine = sum(1 for f in result.findings if os.path.realpath(f.file) in named)
+    n = len(result.models)
+    line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {sev['error']} error(s), "
+            f"{sev['warning']} warning(s), {sev['info']} info")
+    if result.findings:
+        line += f" ({mine} in the committed files)"
+    say(line)
 
 
 def cmd_expand(args) -> int:
@@ -681,9 +812,9 @@ def cmd_expand(args) -> int:
         raise UsageError(f"no such file: {args.file}")
     from .worker import prestart
     prestart()   # (done already by main(); here for callers of cmd_expand)
-    from .config import DEFAULT_ENV_ALLOW, find_config, load_config
+    from .config import find_config, load_config
     from .discovery import build_resolver
-    from .jobs import LintJob, LintSettings, Status
+    from .jobs import LintJob, Status
     from .locations import display_path
     mappings, rest = _parse_mappings(args.mappings)
     if rest:
@@ -693,35 +824,29 @@ def cmd_expand(args) -> int:
     _apply_cli(cfg, args)
     resolver = build_resolver([args.file], cfg, _parse_package_paths(args.package_path))
     # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
-    from .worker import run_jobs
     job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
                   display_name=args.file)
-    settings = LintSettings(resolver=resolver.to_dict(),
-                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
-    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=cfg.timeout,
-                                      memory_mb=cfg.memory_mb)]
-    res = results[-1]
+    res = _expand_in_workers([job], resolver, cfg)[0]
     from .emit import report_internal
     if report_internal(res.internal):
         return 2
     for n in res.problems:
-        sys.stderr.write(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
-                         f"{_safe_text(n.message)}\n")
+        say(f"{_safe_text(display_path(n.file))}:{n.line}:{n.col}: {n.code} "
+            f"{_safe_text(n.message)}")
     xml = res.kept_model.xml if res.kept_model is not None else None
     if res.status is Status.FAILED or xml is None:
         if not res.problems:
             from .rules import ul002_xacro_error
-            sys.stderr.write(f"{_safe_text(display_path(job.entry))}:1:1: "
-                             f"{ul002_xacro_error.CODE} expansion failed\n")
+            say(f"{display_path(job.entry)}:1:1: {ul002_xacro_error.CODE} expansion failed")
         return 1
     if args.output:
-        from .atomic import atomic_write
-        d = os.path.dirname(os.path.abspath(args.output))
+        from . import fsbound
         try:
-            os.makedirs(d, exist_ok=True)
-            atomic_write(args.output, xml)
+            fsbound.write_text(args.output, xml, _write_base(args.output, [args.file]),
+                               make_dirs=True)
         except OSError as e:
-            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
+            raise UsageError(f"cannot write {_safe_text(args.output)}: "
+                             f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
         sys.stdout.write(xml)
     return 0
@@ -748,6 +873,9 @@ def cmd_rule(args) -> int:
         hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
         raise UsageError(f"unknown rule {args.code!r}{hint} (see 'urdf-lint rules')")
     print(f"{r.code} {r.name} (default severity: {r.severity})\n")
+    if r.targets:
+        print("Per consumer target (config 'targets'): "
+              + ", ".join(f"{t} {s}" for t, s in r.targets.items()) + "\n")
     print(plain(r.doc))
     if r.options:
         print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
@@ -764,27 +892,29 @@ def cmd_render(args) -> int:
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
-    _refuse_symlinked_out(args.out)
+    _refuse_symlinked_out(args.out, args.paths)
     cfg = _load_cfg(args, args.paths)
+    given = list(args.paths)
     redirect = _through_models(args, cfg)
-    affected_by = None
+    affected_by, named = None, set()
     if redirect is not None:
-        args.paths, affected_by = [redirect[0]], redirect[1]
+        args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
-    _clear_stale(args.out)
+    _clear_stale(args.out, args.paths)
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
                        render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from .baseline import filter_baseline
-        result.findings = filter_baseline(cfg.baseline, result.findings)
-    _note_unused(result, _Out(args), affected_by or ())
+        result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)
+    _note_unused(result, _Out(args), named)
+    _no_models_warning(given, result, _Out(args))
     missed = _report_snapshots(result, args.out)
     for m in result.models:
         snap = m.snapshot or {}
         for k in ("png", "rrd"):
             if snap.get(k):
                 from .locations import display_path
-                print(display_path(snap[k]))
+                tell(display_path(snap[k]))
     from .emit import report_internal
     if report_internal(result.internal):
         return 2
@@ -799,10 +929,10 @@ def cmd_diff(args) -> int:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only these keys
-    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs,
+    cfg_args = argparse.Namespace(fail_on=args.fail_on, jobs=args.jobs, targets=args.targets,
                                   trust_config=args.trust_config, views=args.views,
                                   forward_axis=args.forward_axis)
-    _refuse_symlinked_out(args.render)
+    _refuse_symlinked_out(args.render, paths)
     cfgs = []
 
     def load(ps):
@@ -817,11 +947,18 @@ def cmd_diff(args) -> int:
         raise UsageError(str(e)) from None
     kw = {"image_base_url": args.image_base_url} if args.format == "markdown" else {}
     if args.output:
-        review_report.write_file(result, args.format, args.output, **kw)
+        try:
+            review_report.write_file(result, args.format, args.output,
+                                     _write_base(args.output, paths), **kw)
+        except OSError as e:
+            raise UsageError(f"cannot write {_safe_text(args.output)}: "
+                             f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
         review_report.write(result, args.format, sys.stdout, **kw)
     for model, why in result.snapshot_problems:
-        sys.stderr.write(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}\n")
+        say(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}")
+    if result.no_recordings:
+        _no_recordings_note(result.no_recordings)
     from .emit import report_internal
     report_internal(result.internal)
     return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
@@ -838,50 +975,112 @@ def cmd_doctor(args) -> int:
 
 def cmd_generate(args) -> int:
     """Regenerate stale outputs in place (atomically); exit 1 when a file was (or, with
-    --check, would be) rewritten or a xacro did not expand, like a formatter hook."""
-    from .config import DEFAULT_ENV_ALLOW
-    from .discovery import build_resolver, discover_models
-    from .expansion import expand_file
+    --check, would be) rewritten or a xacro did not expand, like a formatter hook. Each xacro
+    is expanded in a sandboxed worker with the run's limits, like ``check`` and ``expand``:
+    the worker returns the XML, the parent compares and writes it (inside the repository
+    only, anywhere the user trusts with --trust-config)."""
+    import dataclasses
+
+    from . import trust
+    from .discovery import build_resolver, discover_models, start_dir
+    from .emit import report_internal
     from .generated import header_source, stale_at, write_output
+    from .jobs import Status
     from .locations import display_path
+    from .vcs import repo_root
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     cfg = _load_cfg(args, args.paths)
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
+    # (what the header names: xacro opens this path)
+    jobs = [dataclasses.replace(job, kind="expand", display_name=os.path.relpath(job.entry))
+            for job in discover_models(args.paths, cfg, resolver).jobs if job.output]
     status = 0
-    for job in discover_models(args.paths, cfg, resolver).jobs:
-        if not job.output:
+    stale = failed = 0
+    for job, res in zip(jobs, _expand_in_workers(jobs, resolver, cfg), strict=True):
+        assert job.output is not None and job.display_name is not None
+        if report_internal(res.internal):
+            status = 2
             continue
-        named = header_source(job.output) if os.path.exists(job.output) else None
-        shown = os.path.relpath(job.entry)   # what the header names (xacro opens this path)
-        res = expand_file(job.entry, job.args, resolver,
-                          env_allow=tuple(DEFAULT_ENV_ALLOW) + tuple(cfg.env_allow),
-                          display_name=shown)
-        if res.error is not None:
-            e = res.error
-            sys.stderr.write(f"{display_path(e.file)}:{e.line}:{e.col}: {e.code} {e.message}\n")
-            status = 1
+        shown = job.display_name
+        xml = res.kept_model.xml if res.kept_model is not None else None
+        if res.status is Status.FAILED or xml is None:
+            for e in res.problems[-1:]:   # (before it: the expansion's notes)
+                say(f"{_safe_text(display_path(e.file))}:{e.line}:{e.col}: {e.code} "
+                    f"{_safe_text(e.message)}")
+            status = max(status, 1)
+            failed += 1
             continue
-        if stale_at(job.output, res.xml) is None:
+        if stale_at(job.output, xml) is None:
             continue
-        status = 1
-        if named and res.xml:   # keep the header's own name for the source: no churn
-            head, rest = res.xml[:1024], res.xml[1024:]
-            res.xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
+        status = max(status, 1)
+        stale += 1
+        named = header_source(job.output, resolver.roots) if os.path.exists(job.output) else None
+        if named and xml:   # keep the header's own name for the source: no churn
+            head, rest = xml[:1024], xml[1024:]
+            xml = head.replace(f"from {shown} ", f"from {named} ", 1) + rest
         if args.check:
-            print(f"would regenerate {display_path(job.output)} from {display_path(job.entry)}")
+            tell(f"would regenerate {_safe_text(display_path(job.output))} from "
+                 f"{_safe_text(display_path(job.entry))}")
         else:
-            write_output(job.output, res.xml)
-            print(f"regenerated {display_path(job.output)} from {display_path(job.entry)}")
+            try:   # inside the repository only (anywhere the user trusts with --trust-config)
+                write_output(job.output, xml, _write_base(job.output, args.paths)
+                             if getattr(args, "trust_config", False) else
+                             trust.config_root(cfg, repo_root(start_dir(args.paths))))
+            except OSError as e:
+                say(f"urdf-lint: error: cannot write {display_path(job.output)}: "
+                    f"{getattr(e, 'why', None) or e.strerror or e}")
+                status = 2
+                continue
+            tell(f"regenerated {_safe_text(display_path(job.output))} from "
+                 f"{_safe_text(display_path(job.entry))}")
+    tell(_generate_summary(len(jobs), stale, failed, args.check))
     return status
+
+
+def _generate_summary(outputs, stale, failed, check) -> str:
+    """``generate``: one line, also when everything was up to date."""
+    if not outputs:
+        return ("urdf-lint generate: no generated URDF found (a models entry with 'output', or a "
+                ".urdf whose header names its xacro)")
+    done = "would be regenerated" if check else "regenerated"
+    parts = [f"{stale} {done}" if stale else "all up to date" if not failed else ""]
+    if failed:
+        parts.append(f"{failed} xacro(s) did not expand")
+    return (f"urdf-lint generate: {outputs} generated URDF(s) checked, "
+            + ", ".join(p for p in parts if p) + ".")
+
+
+def cmd_format(args) -> int:
+    from .formatrun import cmd_format as run
+    return run(args, _load_cfg, _parse_package_paths)
+
+
+def cmd_mcp(args) -> int:
+    from .mcp_server import cmd_mcp as run
+    return run(args)
+
+
+def _expand_in_workers(jobs: list, resolver, cfg) -> list:
+    """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
+    workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
+    one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
+    from .config import DEFAULT_ENV_ALLOW
+    from .jobs import LintSettings
+    from .worker import run_jobs
+    settings = LintSettings(resolver=resolver.to_dict(),
+                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
+    done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
+                                                  timeout=cfg.timeout, memory_mb=cfg.memory_mb)}
+    return [done[id(job)] for job in jobs]
 
 
 def cmd_clean(args) -> int:
     from .cache import Cache
     from .config import load_config
     removed = Cache.for_paths(args.paths, load_config(None)).clear()
-    print(f"removed {removed}" if removed else "no cache to remove")
+    tell(f"removed {removed}" if removed else "no cache to remove")
     return 0
 
 
@@ -895,7 +1094,8 @@ def cmd_server(args) -> int:
 
 
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
-            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "clean": cmd_clean,
+            "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "format": cmd_format,
+            "mcp": cmd_mcp, "clean": cmd_clean,
             "doctor": cmd_doctor, "server": cmd_server}
 
 
@@ -935,10 +1135,30 @@ def exit_now(code: int) -> None:
     os._exit(code)
 
 
+def _hook_arguments(argv) -> tuple[list, list]:
+    """``urdf-lint hook``: (the arguments to parse, the file names). pre-commit appends the
+    names of the commit's files to the hook's arguments, and a committed file may be named
+    like an option (``--env-allow=TOKEN,x.yaml``). Everything after the first ``--`` is a file
+    name, and so is, before it, an argument starting with ``-`` that names an existing path
+    (pre-commit passes only existing files): neither is ever parsed as an option."""
+    i = argv.index("hook")
+    rest, files = argv[i + 1:], []
+    if "--" in rest:
+        k = rest.index("--")
+        rest, files = rest[:k], rest[k + 1:]
+    taken = [a for a in rest if a.startswith("-") and len(a) > 1 and os.path.lexists(a)]
+    for a in taken:
+        say(f"urdf-lint: note: {a} is a file, not an option (end the hook's args with --)")
+    return argv[:i + 1] + [a for a in rest if a not in taken], taken + files
+
+
 def _main(argv) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)
-    if command == "expand" and "-h" not in argv and "--help" not in argv:
+    hook_files: list = []
+    if command == "hook":
+        argv, hook_files = _hook_arguments(argv)
+    if command in ("expand", "generate") and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
         from .worker import prestart
@@ -951,6 +1171,8 @@ def _main(argv) -> int:
                 f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as e:
         return 2 if e.code else 0
+    if command == "hook":
+        args.files = list(args.files) + hook_files
     if args.version:
         from . import __version__
         from .sandbox import summary_line
@@ -972,7 +1194,7 @@ def _main(argv) -> int:
     try:
         return COMMANDS[args.command](args)
     except (UsageError, ConfigError, BaselineError) as e:
-        sys.stderr.write(f"urdf-lint: error: {e}\n")
+        say(f"urdf-lint: error: {e}")
         return 2
     except KeyboardInterrupt:
         raise
@@ -980,7 +1202,7 @@ def _main(argv) -> int:
         return 0
     except Exception as e:  # noqa: BLE001
         import traceback
-        sys.stderr.write(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}\n")
+        say(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}")
         if os.environ.get("URDF_LINT_DEBUG"):
             traceback.print_exc()
         return 2

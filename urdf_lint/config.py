@@ -111,6 +111,26 @@ class Choice(Type):
         return v
 
 
+class ChoiceList(StrList):
+    """A non-empty list of values from ``choices`` (each as :class:`Choice` checks it)."""
+
+    def __init__(self, choices: tuple, what: str):
+        super().__init__(what)
+        self.choice = Choice(choices)
+        self.expected = f"a list of {what} ({', '.join(choices)})"
+
+    def check(self, v):
+        v = super().check(v)
+        if not v:
+            raise _Bad(f"{self.expected}, not empty")
+        for x in v:
+            try:
+                self.choice.check(x)
+            except _Bad as e:
+                raise _Bad(f"{self.expected}: {show(x)} is not {e.expected}") from None
+        return list(dict.fromkeys(v))
+
+
 class Number(Type):
     """A number (int or float; booleans are not numbers) above ``minimum``."""
 
@@ -206,6 +226,37 @@ class RuleOptions(Type):
         return {k: dict(x) for k, x in v.items()}
 
 
+class FormatKey(Type):
+    """``format``: the output format (a string), or the table ``[format]`` of
+    ``urdf-lint format`` (its keys in :data:`FORMAT_SCHEMA`)."""
+
+    def __init__(self, output: Choice):
+        self.output = output
+
+    @property
+    def expected(self):
+        return (f"{self.output.expected}; or a table [format] of "
+                f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
+
+    def check(self, v):
+        if not isinstance(v, dict):
+            return self.output.check(v)
+        out = {}
+        for k, x in v.items():
+            key = FORMAT_KEYS.get(k)
+            if key is None:
+                raise _Bad(f"one of {', '.join(FORMAT_KEYS)} in [format]"
+                           f"{did_you_mean(str(k), FORMAT_KEYS)}", x, k)
+            try:
+                out[k] = key.type.check(x)
+            except _Bad as e:
+                raise _Bad(e.expected, x, k) from None
+        return out
+
+    def from_cli(self, s):
+        return self.output.from_cli(s)
+
+
 @dataclass(frozen=True)
 class Key:
     """One configuration key: its name, type, default and help."""
@@ -234,6 +285,11 @@ class Key:
         return str(d) if not isinstance(d, dict) else "none"
 
 
+def _targets() -> tuple:
+    from .targets import NAMES
+    return NAMES
+
+
 def _formats() -> tuple:
     from .report import names
     return names()
@@ -253,6 +309,9 @@ SCHEMA: tuple[Key, ...] = (
         "override default severities"),
     Key("fail-on", Choice(FAIL_ON), "error",
         "lowest severity that makes the exit code 1"),
+    Key("targets", ChoiceList(_targets(), "consumer targets"), ["ros"],
+        "the programs the descriptions are for; a finding takes the highest severity any of "
+        "them gives it (see 'urdf-lint rules')"),
     Key("package-paths", Table(Str(), 'a table of package = "folder"'), {},
         "where packages that have no package.xml under the linted paths are"),
     Key("models", Models(), [], "entry models and the xacro args to expand them with"),
@@ -264,7 +323,8 @@ SCHEMA: tuple[Key, ...] = (
     Key("rule-options", RuleOptions(), {}, "options of single rules"),
     Key("jobs", Number(int, 0), None, "parallel workers"),
     Key("cache-dir", Str(), None, "folder of the result cache"),
-    Key("format", Choice(_formats), None, "output format"),
+    Key("format", FormatKey(Choice(_formats)), None,
+        "output format; as a table [format], the settings of urdf-lint format"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file"),
     Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
     Key("views", Choice(("single", "sheet")), None,
@@ -274,6 +334,17 @@ SCHEMA: tuple[Key, ...] = (
 )
 KEYS = {k.name: k for k in SCHEMA}
 KNOWN_KEYS = set(KEYS)
+
+# [tool.urdf-lint.format]: the settings of `urdf-lint format` (urdf_lint/formatter.py)
+FORMAT_SCHEMA: tuple[Key, ...] = (
+    Key("indent", Number(int, 0, "spaces"), 2, "spaces per level of nesting"),
+    Key("line-length", Number(int, 0, "characters"), 100,
+        "a start tag longer than this gets one attribute per line"),
+    Key("attribute-order", Choice(("keep", "canonical")), "keep",
+        "keep: attributes as written; canonical: name first, then the URDF/xacro schema order"),
+    Key("exclude", StrList("globs"), [], "paths (globs) not to format, on top of exclude"),
+)
+FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
 
 
 @dataclass
@@ -296,6 +367,7 @@ class Config:
     per_file_ignores: dict = field(default_factory=dict)
     severity: dict = field(default_factory=dict)
     fail_on: str = "error"
+    targets: list = field(default_factory=lambda: ["ros"])
     package_paths: dict = field(default_factory=dict)
     models: list = field(default_factory=list)
     exclude: list = field(default_factory=list)
@@ -310,6 +382,7 @@ class Config:
     discover: bool = True           # false: lint only the configured models
     views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
     forward_axis: str = "+x"        # snapshots: the robot's forward axis
+    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
     raw: dict = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
@@ -328,13 +401,25 @@ class Config:
 
 
 # -- reading files ----------------------------------------------------------------------------
+def _read_config(path: Path) -> str:
+    """The text of a config file: a regular file (never a FIFO or device), bounded."""
+    from . import fsbound
+    return fsbound.read_text(path, max_bytes=fsbound.MAX_CONFIG_BYTES)
+
+
 def _parse_toml(path: Path) -> dict:
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
+        text = _read_config(path)
+    except UnicodeDecodeError as e:
         raise ConfigError(f"{_shown(path)}: cannot read config: {e}") from None
+    except OSError as e:
+        from .report.escape import escape_text
+        why = getattr(e, "why", None) or e.strerror or e
+        raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
     try:
         return tomllib.loads(text)
+    except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
+        raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
     except tomllib.TOMLDecodeError as e:
         msg = str(e)
         m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
@@ -399,8 +484,8 @@ def _shown(path) -> str:
 def _line_of(path: Path, key: str) -> str:
     """``:LINE`` of the first ``key = ...`` in the file, when it can be found."""
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError:
+        lines = _read_config(path).splitlines()
+    except (OSError, UnicodeDecodeError):
         return ""
     pat = re.compile(r'^\s*(?:"|\')?' + re.escape(key) + r'(?:"|\')?\s*=')
     header = re.compile(r'^\s*\[[^\]]*[."\']' + re.escape(key) + r'["\']?\s*\]')
@@ -433,6 +518,9 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = specs
     elif key.name == "baseline" and value is not None:
         value = str((base / value).resolve())
+    elif key.name == "format" and isinstance(value, dict):
+        cfg.format_options = value
+        return
     setattr(cfg, key.attr, value)
 
 
@@ -498,11 +586,23 @@ def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config
     return cfg
 
 
+def format_option(name: str, s: str):
+    """The value of a command-line flag of ``urdf-lint format`` (``--line-length``), checked
+    by the key's type like the same key under [format]."""
+    key = FORMAT_KEYS[name]
+    try:
+        return key.type.check(key.type.from_cli(s))
+    except _Bad as e:
+        raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
+
+
 def _did_you_mean_file(rel: str, root: Path) -> str:
     """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
     import difflib
-    from .packages import iter_files
-    files = [os.path.relpath(f, root) for f in iter_files(root, suffixes=(".xacro", ".urdf"))]
+    from . import fsbound
+    from .packages import SKIP_DIRS
+    files = [os.path.relpath(f, root) for f in fsbound.walk_files(
+        root, suffixes=(".xacro", ".urdf"), skip=lambda d: d in SKIP_DIRS or d.startswith("."))]
     best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
         os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
     if not best:

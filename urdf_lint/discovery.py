@@ -2,7 +2,6 @@
 and which package roots they may read from."""
 from __future__ import annotations
 
-import glob
 import os
 import re
 from dataclasses import dataclass, field
@@ -45,6 +44,12 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
     scan, extra_roots = discover_roots(paths or [start], git_root(start))
     explicit = dict(cfg.package_paths)
     explicit.update(cli_packages or {})
+    # a [[models]] mesh-base is where that model's meshes are: a root like the package, when it
+    # lies inside the config's folder (a file linted alone, outside git, no longer sees every
+    # mesh of a mesh-base above it as outside the roots, UL403)
+    top_cfg = os.path.realpath(cfg.root) if cfg.path else None
+    extra_roots += [m.mesh_base for m in cfg.models if m.mesh_base and top_cfg
+                    and inside(os.path.realpath(m.mesh_base), top_cfg)]
     # the enclosing colcon/catkin workspace (sibling package repositories, install space): its
     # packages are indexed, and the workspace is a root like the repository (never the working
     # directory by itself: see SECURITY.md)
@@ -60,8 +65,14 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
         if os.path.isdir(d):
             for name, pkg in install_share_packages(d).items():
                 found.setdefault(name, pkg)
-    return PackageResolver.build(scan, explicit=explicit, extra_roots=list(dict.fromkeys(extra_roots)),
-                                 packages=found)
+    res = PackageResolver.build(scan, explicit=explicit,
+                                extra_roots=list(dict.fromkeys(extra_roots)), packages=found)
+    searched = [os.path.join(ws, "src") for ws in workspace_roots([*paths, start])]
+    searched = [s for s in searched if os.path.isdir(s) and s not in res.scanned_dirs]
+    if searched:   # searched too: named in UL004's list (a new snapshot: the resolver is frozen)
+        import dataclasses
+        res = dataclasses.replace(res, scanned_dirs=(*res.scanned_dirs, *searched))
+    return res
 
 
 def _kind(f: str) -> str:
@@ -78,6 +89,7 @@ class Discovery:
     graph: "IncludeGraph"
     generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
     folders: list = field(default_factory=list)     # every folder the walk looked into
+    problems: list = field(default_factory=list)    # located findings about the config (UL008)
 
 
 def _candidates(paths, cfg, folders: list | None = None):
@@ -108,36 +120,62 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     folders: list = []
     found = list(_candidates(paths, cfg, folders))
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
-    for spec in cfg.models:
-        _check_args(spec, graph, cfg)
+    problems = [p for spec in cfg.models for p in _check_args(spec, graph, cfg)]
     graph.save()
     by = graph.included_by()
     linted = {f for f, _ in found}
     jobs, fragments = [], {}
     discover_all = getattr(cfg, "discover", True)
-    outputs = _detected_outputs(found, paths, configured)
-    generated = {o: x for x, o in outputs.items()}
+    detected = _detected_outputs(found, paths, resolver)
+    generated = {o: x for x, os_ in detected.items() for o in os_}
     generated.update({m.output: m.path for m in cfg.models if m.output})
     for f, p in found:
         if f in configured:
-            jobs.extend(_configured_jobs(configured[f]))
+            jobs.extend(_configured_jobs(configured[f], detected.get(f, ())))
             continue
         if not discover_all and p != f:
             continue
         includers = [g for g in by.get(f, ()) if g in linted]
         if includers and p != f:
             fragments[f] = includers
-        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f, output=outputs.get(f)))
+        outs = detected.get(f, ())
+        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f,
+                            output=outs[0] if outs else None, outputs=tuple(outs[1:])))
     # configured models inside the linted paths that the walk did not reach
     for f, spec in configured.items():
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
-        jobs.extend(_configured_jobs(spec))
-    return Discovery(jobs, fragments, graph, generated, folders)
+        jobs.extend(_configured_jobs(spec, detected.get(f, ())))
+    jobs = _inherit_mesh_base(jobs, graph)
+    return Discovery(jobs, fragments, graph, generated, folders, problems)
 
 
-def _detected_outputs(found, paths, configured) -> dict:
-    """xacro -> the checked-in ``.urdf`` whose generator header names it (no config needed)."""
+def _inherit_mesh_base(jobs: list, graph: "IncludeGraph") -> list:
+    """A file included by models that set where relative mesh paths start (a ``mesh-base``,
+    or the folder of their generated URDF) starts them there too when it is linted on its own
+    (a complete robot that is also a fragment): its meshes sit next to those URDFs, not next
+    to the xacro. Only when the models including it agree on one folder."""
+    import dataclasses
+    base: dict = {}
+    for j in jobs:
+        b = j.mesh_base or (os.path.dirname(j.output) if j.output else None)
+        if b:
+            base.setdefault(j.entry, b)
+    out = []
+    for j in jobs:
+        if j.kind == "xacro" and not (j.mesh_base or j.output):
+            got = {base[g] for g in graph.includers(j.entry) if g in base}
+            if len(got) == 1:
+                j = dataclasses.replace(j, mesh_base=got.pop())
+        out.append(j)
+    return out
+
+
+def _detected_outputs(found, paths, resolver=None) -> dict:
+    """xacro -> the checked-in ``.urdf`` files whose generator header names it (no config
+    needed), the one named after the xacro first (``robot.urdf`` for ``robot.urdf.xacro``),
+    then in path order: every one is compared with today's expansion (UL011). Headers are
+    read from regular files inside the roots only."""
     from .generated import find_source, header_source
     xacros = [f for f, _ in found if f.endswith(".xacro")]
     if not xacros:
@@ -147,39 +185,71 @@ def _detected_outputs(found, paths, configured) -> dict:
     for f, _ in found:
         if not f.endswith(".urdf"):
             continue
-        named = header_source(f)
+        named = header_source(f, resolver.roots if resolver is not None else None,
+                              resolved=True)   # a discovered file: a real path (or a link)
         src = find_source(f, named, xacros, root) if named else None
-        if src and src not in out and not (src in configured and configured[src].output):
-            out[src] = f
+        if src:
+            out.setdefault(src, []).append(f)
+    for src, fs in out.items():
+        stem = os.path.basename(src)[:-len(".xacro")]
+        stem = stem[:-len(".urdf")] if stem.endswith(".urdf") else stem
+        fs.sort(key=lambda f: (os.path.basename(f) != stem + ".urdf", f))
     return out
 
 
-def _check_args(spec, graph: "IncludeGraph", cfg) -> None:
-    """An arg a configured model sets that no ``xacro:arg`` of the file (or its includes)
-    declares, and that no ``$(arg NAME)`` there reads, is a config error: xacro would ignore
-    it and lint the default variant again."""
-    from .config import ConfigError
+def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
+    """A ``UL008`` warning, at the config line that sets it, for an arg a configured model
+    sets that no ``xacro:arg`` of the file (or its includes) declares and no ``$(arg NAME)``
+    there reads: xacro accepts and ignores it (a launch file's args often hold more), so the
+    model is linted as its default variant for that arg."""
+    from .findings import Problem
+    from .rules import ul008_xacro_warning
     if not spec.path.endswith(".xacro"):
-        return
+        return []
     declared = graph.declared_args(spec.path)
     if graph.unresolved_below(spec.path):
-        return   # an include only expansion resolves may declare it
+        return []   # an include only expansion resolves may declare it
+    out = []
     for args in spec.arg_sets:
         for name in sorted(set(args) - declared):
             import difflib
             close = difflib.get_close_matches(name, sorted(declared), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             known = ", ".join(sorted(declared)) or "none"
-            raise ConfigError(f"{cfg.path}: model {os.path.relpath(spec.path, cfg.root)}: arg "
-                              f"{name!r} is not declared by any xacro:arg (nor read by $(arg ...)) in the "
-                              f"file or its includes{hint} (declared: {known})")
+            where = (cfg.path, *_config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
+            out.append(Problem.at(
+                ul008_xacro_warning.CODE,
+                f"model {os.path.relpath(spec.path, cfg.root)}: arg {name!r} is not declared "
+                f"by any xacro:arg (nor read by $(arg ...)) in the file or its includes{hint} "
+                f"(declared: {known}); xacro ignores it", where))
+    return list({p.key(): p for p in out}.values())
 
 
-def _configured_jobs(spec) -> list:
-    """One job per arg set; the output is compared with the first arg set's expansion."""
+def _config_line(path: str, name: str) -> tuple[int, int]:
+    """(line, col) of the first ``name =`` in the config file (an arg in ``args``), else (1, 1)."""
+    pat = re.compile(r"""(?:^|[\s{,])["']?""" + re.escape(name) + r"""["']?\s*=""")
+    try:
+        with open(path, encoding="utf-8") as f:
+            for i, line in enumerate(f, 1):
+                m = pat.search(line)
+                if m:
+                    return i, m.start() + 1 + (line[m.start()] in " \t{,")
+    except OSError:
+        pass
+    return 1, 1
+
+
+def _configured_jobs(spec, detected=()) -> list:
+    """One job per arg set; the output (the configured one, else the first whose header
+    names the xacro) and the other detected outputs are compared with the first arg set's
+    expansion."""
     f = spec.path
+    outs = [o for o in ([spec.output] if spec.output else []) + list(detected)]
+    outs = list(dict.fromkeys(outs))
     return [LintJob(f, dict(args), _kind(f), explicit=True,
-                    output=spec.output if n == 0 else None, mesh_base=spec.mesh_base or (
+                    output=(outs[0] if outs else None) if n == 0 else None,
+                    outputs=tuple(outs[1:]) if n == 0 else (),
+                    mesh_base=spec.mesh_base or (
                         os.path.dirname(spec.output) if spec.output else None))
             for n, args in enumerate(spec.arg_sets)]
 
@@ -310,17 +380,46 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
         name = name[len("file://"):]
     path = os.path.normpath(os.path.join(base, name))
     if any(c in name for c in "*?["):
-        return sorted(os.path.realpath(p) for p in glob.glob(path))
+        # as xacro globs it, but bounded: a pattern that would look at too many entries is
+        # left to expansion (in the sandboxed worker, with its time limit)
+        from . import fsbound
+        got = fsbound.bounded_glob(path)
+        return None if got is None else sorted(os.path.realpath(p) for p in got)
     return [os.path.realpath(path)]
+
+
+_EXPR = re.compile(r"\$\{[^}]*\}|\$\((?!find\s)[^)]*\)")
+
+
+def _maybe_included(name: str, base: str, resolver) -> list:
+    """The files an include whose ``filename`` is built from a macro parameter or an arg
+    (``${side}_arm.transmissions.urdf.xacro``) may name: the expressions read as ``*``, when
+    what is left names enough (at least 4 characters besides the extension), so that such
+    a fragment is linted through its includers, not alone (where it lacks their params)."""
+    pattern = _EXPR.sub("*", name.strip())
+    if "$" in pattern.replace("$(find", "") or "*" not in pattern:
+        return []
+    literal = os.path.basename(pattern).replace("*", "")
+    for ext in (".urdf.xacro", ".xacro", ".urdf"):
+        if literal.endswith(ext):
+            literal = literal[:-len(ext)]
+            break
+    if len(literal.strip("._-")) < 4:
+        return []
+    return _resolve_include(pattern, base, resolver) or []
 
 
 def _read_includes(f: str, resolver):
     """(included files, number of unresolvable includes, declared or used arg names, whether
     an include is a glob)."""
     from lxml import etree
-    try:
-        root = etree.parse(f, etree.XMLParser(resolve_entities=False, no_network=True,
-                                              load_dtd=False)).getroot()
+    from . import fsbound
+    try:   # a regular file inside the roots, bounded (never a FIFO or /dev/stdout)
+        # (f is a real path: a discovered file, or an include resolved by realpath)
+        root = fsbound.parse_xml(f, etree.XMLParser(resolve_entities=False, no_network=True,
+                                                    load_dtd=False),
+                                 resolver.roots if resolver is not None else None,
+                                 resolved=True)
     except (etree.XMLSyntaxError, OSError):
         return [], 0, [], False
     inc, unresolved, args, glob_used = [], 0, [], False
@@ -336,6 +435,10 @@ def _read_includes(f: str, resolver):
             got = _resolve_include(el.get("filename", ""), base, resolver)
             if got is None:
                 unresolved += 1
+                maybe = _maybe_included(el.get("filename", ""), base, resolver)
+                if maybe:   # ${side}_arm.transmissions.urdf.xacro: left_ and right_ are included
+                    inc.extend(maybe)
+                    glob_used = True
             else:
                 inc.extend(got)
         elif q.localname == "arg" and el.get("name"):
@@ -377,11 +480,11 @@ def _load_memo(path) -> dict:
     if not path:
         return {}
     import json
+    from . import fsbound
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
+        data = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES))
         return data if isinstance(data, dict) else {}
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return {}
 
 
@@ -389,9 +492,9 @@ def _save_memo(path, data) -> None:
     import json
     from .cachedir import ensure
     try:
-        ensure(os.path.dirname(os.path.dirname(path)))
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        from .atomic import atomic_write
-        atomic_write(path, json.dumps(data))
+        cache_dir = os.path.dirname(os.path.dirname(path))
+        ensure(cache_dir)
+        from . import fsbound
+        fsbound.write_text(path, json.dumps(data), cache_dir, make_dirs=True)
     except OSError:
         pass

@@ -8,10 +8,25 @@ import sys
 from .errors import UsageError
 
 
-def safe_lines(s) -> str:
-    """Text from a model or a traceback, each line escaped for the terminal."""
+def say(text, stream=None) -> None:
+    """One message of urdf-lint's own on stderr (or ``stream``) as ONE visible line: every
+    command's messages go through here (or through an output format), so a file, link or
+    package name in them cannot start another line, forge a CI workflow command (``::error``)
+    or send a terminal escape (the one escaper: :mod:`urdf_lint.report.escape`)."""
     from .report.escape import escape_text
-    return "\n".join(escape_text(line) for line in str(s).split("\n"))
+    (stream or sys.stderr).write(escape_text(text) + "\n")
+
+
+def tell(text) -> None:
+    """:func:`say` on standard output (what a command prints as its result)."""
+    say(text, sys.stdout)
+
+
+def safe_lines(s) -> str:
+    """Text from a model or a traceback, each line escaped for the terminal and every line
+    after the first indented, so that none can start a CI workflow command."""
+    from .report.escape import escape_text
+    return "\n    ".join(escape_text(line) for line in str(s).split("\n"))
 
 
 def report_internal(messages) -> bool:
@@ -21,7 +36,20 @@ def report_internal(messages) -> bool:
     return bool(messages)
 
 
-def write_findings(args, cfg, result, out, color_mode) -> None:
+def write_base(target, paths) -> str:
+    """The folder a write to ``target`` (named on the command line) is checked from
+    (:func:`urdf_lint.fsbound.output_base`): the repository of the linted paths (their
+    folder outside git) or the git work tree of the working directory when ``target`` is in
+    one, else the nearest existing folder above it (the user's own, as named)."""
+    from . import fsbound
+    from .discovery import start_dir
+    from .vcs import git_root, repo_root
+    repos: list[str | None] = [repo_root(start_dir(paths))] if paths else []
+    repos.append(git_root(os.getcwd()))
+    return fsbound.output_base(target, repos)
+
+
+def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
     """The findings of a run as ``check`` reports them: baseline, format, ``-o`` (atomic), ``-q``.
     ``check --fix`` reports what remains through the same function."""
     from . import report
@@ -29,18 +57,20 @@ def write_findings(args, cfg, result, out, color_mode) -> None:
     if cfg.baseline:
         from .baseline import filter_baseline
         before = len(result.findings)
-        result.findings = filter_baseline(cfg.baseline, result.findings)
+        result.findings = filter_baseline(cfg.baseline, result.findings, out.note)
         out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
                  f"({display_path(cfg.baseline)})")
     fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
-    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet)
+    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet,
+                   roots=None if roots is None else tuple(str(r) for r in roots))
     if getattr(args, "output", None):
-        from .atomic import atomic_open
+        from . import fsbound
         try:
-            with atomic_open(args.output) as f:
+            with fsbound.open_write(args.output, write_base(args.output, args.paths)) as f:
                 report.write(result, fmt, f, color=color_mode == "always", **options)
         except OSError as e:
-            raise UsageError(f"cannot write {args.output}: {e.strerror or e}") from None
+            why = getattr(e, "why", None) or e.strerror or e
+            raise UsageError(f"cannot write {safe_lines(args.output)}: {safe_lines(why)}") from None
     elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
               and not args.statistics):
         report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),

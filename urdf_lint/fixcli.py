@@ -3,24 +3,20 @@ from __future__ import annotations
 
 import sys
 
-from .emit import report_internal, write_findings
+from .emit import report_internal, say, write_findings
 from .errors import UsageError
 
 
-def _safe(s) -> str:
-    from .report.escape import escape_text
-    return escape_text(str(s))
-
-
-def _summary(outcome) -> str:
+def _summary(outcome) -> list[str]:
+    """What ``--fix`` did, one message per line (each written through :func:`say`)."""
     from .locations import display_path
     lines = []
     for p, reason in outcome.refused:
-        lines.append(_safe(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
-                           f"{reason}") + "\n")
+        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
+                     f"{reason}")
     for p, reason in outcome.rolled_back:
-        lines.append(_safe(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
-                           f"{reason}") + "\n")
+        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
+                     f"{reason}")
     n = len(outcome.applied)
     files = len(outcome.changed_files)
     remaining = len(outcome.result.findings)
@@ -29,10 +25,8 @@ def _summary(outcome) -> str:
                  + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
                     else "")
                  + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")
-                 + ").\n")
-    return "".join(lines)
-
-
+                 + ").")
+    return lines
 
 
 def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
@@ -47,10 +41,11 @@ def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
     result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
     report_internal(result.internal)
     if result.findings:
-        write_findings(args, cfg, result, out, color_mode)
-    sys.stderr.write(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
-                     f"file{'s' if len(files) != 1 else ''}"
-                     + "".join(f"\n  {_safe(display_path(f))}" for f in files) + "\n")
+        write_findings(args, cfg, result, out, color_mode, resolver.roots)
+    say(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
+        f"file{'s' if len(files) != 1 else ''}")
+    for f in files:
+        say(f"  {display_path(f)}")
     return exit_code(result, cfg.fail_on)
 
 
@@ -66,19 +61,26 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         raise UsageError("--fix/--diff cannot be combined with --write-baseline")
     if args.add_suppressions:
         return _add_suppressions(args, cfg, resolver, out, color_mode)
+    memo = None
+    if not getattr(args, "no_cache", False):
+        from .cache import Cache
+        from .fixmemo import FixMemo
+        cache = Cache.for_paths(args.paths, cfg)
+        memo = FixMemo(cache) if not cache.refused else None
     outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                      unsafe=args.unsafe_fixes, diff_only=args.diff)
+                      unsafe=args.unsafe_fixes, diff_only=args.diff, memo=memo)
     report_internal(outcome.result.internal)
     if args.diff:
         sys.stdout.write(outcome.diff)
         n = len(outcome.applied)
-        sys.stderr.write(f"Would fix {n} finding{'s' if n != 1 else ''} in "
-                         f"{len(outcome.changed_files)} file(s).\n")
+        say(f"Would fix {n} finding{'s' if n != 1 else ''} in "
+            f"{len(outcome.changed_files)} file(s).")
         if outcome.result.internal:
             return 2
         return 1 if outcome.diff else 0
-    write_findings(args, cfg, outcome.result, out, color_mode)
-    sys.stderr.write(_summary(outcome))   # also with -q: what --fix did to the sources
+    write_findings(args, cfg, outcome.result, out, color_mode, resolver.roots)
+    for line in _summary(outcome):   # also with -q: what --fix did to the sources
+        say(line)
     if args.exit_zero:
         return 2 if outcome.result.internal else 0
     code = exit_code(outcome.result, cfg.fail_on)

@@ -175,8 +175,8 @@ class _Sources:
         if real not in self.allowed:
             raise _Refuse(f"{NOT_FIXABLE}: {_where(path)} was not read by the model")
         if real not in self.data:
-            from . import overlay   # (an unsaved editor buffer: the edits are its offsets)
-            self.data[real] = overlay.read(real)
+            from . import fsbound
+            self.data[real] = fsbound.read_bytes(real)
         return self.data[real]
 
     def xacro_files(self):
@@ -252,7 +252,7 @@ def _add_dollar(origin, tag, req) -> tuple:
     a = _written(tag, attr, origin)
     raw = a.raw
     for n in names.split(","):
-        raw, k = re.subn(r"(?<![$\w}]){" + re.escape(n) + "}", "${" + n + "}", raw)
+        raw, k = re.subn(r"(?<![$}]){" + re.escape(n) + "}", "${" + n + "}", raw)
         if not k:
             raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
                           f"{_where(origin.file, origin.line)}")
@@ -405,7 +405,19 @@ def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
                     return _trace(src, cfile, cdata, p, chain[:-1], depth + 1)
         return _property(src, name, file, data, a, depth)
     m = _YAML_REF.fullmatch(v.strip())
-    if m and not chain:
+    while m and chain:   # ${cfg['lower']} in a macro whose call passes cfg="${yaml['arm']}"
+        cfile, cline, ccol = chain[-1][:3]
+        cdata = src.get(cfile)
+        call = start_tag_at(cdata, cline, ccol)
+        p = call.attr(m.group(1)) if call is not None else None
+        if p is None:    # not passed by the call: a property (as for ${name} above)
+            break
+        inner = re.fullmatch(r"\$\{(.*)\}", p.value.strip(), re.S)
+        if inner is None:
+            raise _expression(file, data, a.value_start)
+        m = _YAML_REF.fullmatch("${" + inner.group(1).strip() + m.group(2) + "}")
+        file, data, a, chain = cfile, cdata, p, chain[:-1]
+    if m:
         return _yaml_scalar(src, m, file, data, a)
     raise _expression(file, data, a.value_start)
 
@@ -525,6 +537,37 @@ class Fixer:
             self._index = {e: i for i, e in enumerate(self.model.root.iter(tag=etree.Element))}
         return self._index[el]
 
+    def value_from(self, el, attrs=()) -> tuple:
+        """``(file, line, col)`` of where the value of ``el`` comes from when that is not the
+        element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
+        macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
+        traced, else every attribute written with ``$``; the first that leads elsewhere wins.
+        ``()`` when the value is written at the element or cannot be traced."""
+        origin = self.model.origins.get(el)
+        if origin is None:
+            return ()
+        try:
+            data = self.src.get(origin.file)
+            tag = start_tag_at(data, origin.line, origin.col)
+            if tag is None:
+                return ()
+            written = [a for a in tag.attrs if "$" in a.value] if not attrs else \
+                [a for a in (tag.attr(n) for n in attrs) if a is not None and "$" in a.value]
+            for a in written:
+                try:
+                    file, lit = _trace(self.src, origin.file, data, a, tuple(origin.chain), 0)
+                except _Refuse:
+                    continue
+                fdata = self.src.get(file)
+                line, col = line_col(fdata, lit.value_start)
+                here = {(origin.file, origin.line)} | {(c[0], c[1]) for c in origin.chain}
+                if isinstance(lit, Attr) and (file, line) in here:
+                    continue   # written at the element or at a macro call the chain shows
+                return (file, line, col)
+        except (_Refuse, OSError, UnicodeDecodeError, ValueError):
+            return ()
+        return ()
+
     def fix(self, el, req: Request) -> Fix:
         f = resolve(self.model, el, req, self.src)
         if f.refused:
@@ -551,10 +594,8 @@ def remove_comment(loc) -> Fix | None:
     col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
     its ``enable`` would dangle)."""
     from .sourceedit import offset_of
-    from . import overlay
-    try:
-        data = overlay.read(loc[0])
-    except OSError:
+    data = _source_bytes(loc[0])
+    if data is None:
         return None
     off = offset_of(data, loc[1], loc[2])
     m = _REMOVABLE.match(data, off) if off is not None else None
@@ -570,18 +611,61 @@ def remove_comment(loc) -> Fix | None:
                "", (("none", 0, "", ""),))
 
 
-def inside_paths(findings, paths) -> list:
+_SOURCE: list = [None, None]   # ((path, size, mtime), its bytes): one read for all its comments
+
+
+def _source_bytes(path: str) -> bytes | None:
+    """The bytes of ``path``, read once for all the unused comments of one file."""
+    try:
+        st = os.stat(path)
+        key = (path, st.st_size, st.st_mtime_ns)
+        if _SOURCE[0] != key:
+            from . import fsbound   # a regular file of bounded size (the boundary)
+            _SOURCE[:] = [key, fsbound.read_bytes(path)]
+    except OSError:
+        return None
+    return _SOURCE[1]
+
+
+def inside_paths(findings, paths, generated: dict | None = None) -> list:
     """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
-    installed package, a dependency elsewhere in the workspace) refused."""
+    installed package, a dependency elsewhere in the workspace) refused, and those that would
+    edit a generated URDF (:func:`not_in_generated`)."""
     from .locations import display_path
     out = []
     real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
-    for p in findings:
+    known: dict = {}   # file -> inside? (once per file, not once per fix)
+    for p in not_in_generated(findings, generated or {}):
         fx = p.fix
         if fx is not None and fx.applicable:
-            outside = [e.file for e in fx.edits if not inside(e.file, real_paths, resolved=True)]
+            for e in fx.edits:
+                if e.file not in known:
+                    known[e.file] = inside(e.file, real_paths, resolved=True)
+            outside = [e.file for e in fx.edits if not known[e.file]]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                       f"{display_path(outside[0])} is outside the linted paths"))
+        out.append(p)
+    return out
+
+
+def not_in_generated(findings, generated: dict) -> list:
+    """The findings, with the fixes that would edit a generated URDF (``generated``: output ->
+    the xacro it comes from) refused: fixes go to sources only, safe or unsafe."""
+    if not generated:
+        return list(findings)
+    from .locations import display_path
+    outputs = {os.path.realpath(k): v for k, v in generated.items()}
+    out = []
+    for p in findings:
+        fx = p.fix
+        made = [e.file for e in fx.edits if os.path.realpath(e.file) in outputs] \
+            if fx is not None and fx.applicable else []
+        if made:
+            src = outputs[os.path.realpath(made[0])]
+            p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                  f"{display_path(made[0])} is generated from "
+                                  f"{display_path(src)}; fix the source and run "
+                                  "urdf-lint generate"))
         out.append(p)
     return out

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 from lxml import etree
 
-from .atomic import atomic_rewrite
+from . import fsbound
 from .fixes import inside_paths
 from .sourceedit import apply_edits, line_offset
 
@@ -139,21 +139,21 @@ def edited_sources(fixed, originals: dict) -> dict:
     out = {}
     for f, edits in _edits_by_file(fixed).items():
         if f not in originals:
-            with open(f, "rb") as fh:
-                originals[f] = fh.read()
+            originals[f] = fsbound.read_bytes(f)
         out[f] = apply_edits(originals[f], edits)
     return out
 
 
 def unified_diff(new: dict, originals: dict) -> str:
     from .locations import display_path
+    from .report.escape import escape_text
     out: list[str] = []
     for f in sorted(new):
         if new[f] == originals[f]:
             continue
         a = originals[f].decode("utf-8", "replace").splitlines(keepends=True)
         b = new[f].decode("utf-8", "replace").splitlines(keepends=True)
-        name = display_path(f)
+        name = escape_text(display_path(f))   # one line: no name adds a line to the patch
         out.extend(difflib.unified_diff(a, b, f"a/{name}", f"b/{name}"))
     return "".join(x if x.endswith("\n") else x + "\n\\ No newline at end of file\n"
                    for x in out)
@@ -168,8 +168,7 @@ def _tree(report, xml_or_none):
                              load_dtd=False, remove_comments=True)
     try:
         if xml is None:
-            with open(report.entry, "rb") as f:
-                return etree.fromstring(f.read(), parser)
+            return etree.fromstring(fsbound.read_bytes(report.entry), parser)
         return etree.fromstring(xml.encode("utf-8"), parser)
     except (OSError, etree.XMLSyntaxError):
         return None
@@ -303,12 +302,23 @@ def _expected(tree, rep, fixed_keys):
 
 
 def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
-            in_process: bool = False) -> FixOutcome:
+            in_process: bool = False, memo=None) -> FixOutcome:
+    """``memo`` (a :class:`urdf_lint.fixmemo.FixMemo`): the fixes earlier runs rolled back,
+    not tried again while nothing they depend on changed; this run's rollbacks are added."""
     from .pipeline import run_check
     before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                               in_process=in_process)
-    before_result.findings = inside_paths(before_result.findings, paths)
+    before_result.findings = inside_paths(before_result.findings, paths,
+                                          before_result.generated)
     chosen, _, refused = candidates(before_result.findings, unsafe)
+    keys: dict = {}
+    if memo is not None:
+        from .fixmemo import fix_key
+        keys = {_fkey(p): fix_key(p, before_result.models) for p in chosen}
+        earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
+        refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
+                        "it depends on changes") for p, why in earlier if why]
+        chosen = [p for p, why in earlier if not why]
     originals: dict = {}
     if diff_only:
         new = edited_sources(chosen, originals)
@@ -325,10 +335,10 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             new = edited_sources(chosen, originals)
             for f in set(originals) - set(new):      # a file whose fixes were all rolled back
                 if f in written:
-                    atomic_rewrite(f, originals[f])
+                    fsbound.rewrite(f, originals[f], paths)
                     written.discard(f)
             for f, data in new.items():
-                atomic_rewrite(f, data)
+                fsbound.rewrite(f, data, paths)
                 written.add(f)
             result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
                                in_process=in_process)
@@ -343,13 +353,17 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             chosen = []
         if not chosen:
             for f in written:
-                atomic_rewrite(f, originals[f])
+                fsbound.rewrite(f, originals[f], paths)
             written = set()
             if rolled:
                 result = run_check(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
     except BaseException:
         for f in written:     # never leave half-fixed sources behind
-            atomic_rewrite(f, originals[f])
+            fsbound.rewrite(f, originals[f], paths)
         raise
+    if memo is not None:
+        for p, why in rolled:
+            memo.remember(keys.get(_fkey(p)), why)
+        memo.save()
     changed = sorted(f for f in written if originals.get(f) is not None)
     return FixOutcome(result, chosen, rolled, changed, "", refused)

@@ -27,32 +27,32 @@ def _marked(folder: str) -> bool:
 
 
 def folder_named(name: str, tops, skip=frozenset(), depth: int = 5) -> str | None:
-    """A folder called ``name`` below ``tops`` (breadth first), for the hint on an unknown
-    package: ``--package-path NAME=DIR``. Asked once per name and roots in a process."""
-    return _folder_named(name, tuple(tops), frozenset(skip), depth)
-
-
-@functools.lru_cache(maxsize=256)
-def _folder_named(name: str, tops: tuple, skip: frozenset, depth: int) -> str | None:
+    """A folder called ``name`` below ``tops`` (breadth first, the first in sorted order), for
+    the hint on an unknown package: ``--package-path NAME=DIR``. The folders are listed once
+    per roots in a process (one index), so each further name is a lookup."""
     if not name or "/" in name or name in (".", ".."):
         return None
+    return _folder_index(tuple(tops), frozenset(skip), depth).get(name)
+
+
+@functools.lru_cache(maxsize=8)
+def _folder_index(tops: tuple, skip: frozenset, depth: int) -> dict:
+    """name -> the first folder of that name, breadth first below ``tops`` (hidden folders
+    are neither named nor entered, ``skip`` ones are named but not entered)."""
+    index: dict = {}
     level = [Path(t) for t in tops if t and os.path.isdir(t)]
     seen = set()
     for _ in range(depth):
         nxt = []
         for d in level:
-            try:
-                entries = sorted(os.scandir(d), key=lambda e: e.name)
-            except OSError:
-                continue
-            for e in entries:
+            from . import fsbound
+            for e in fsbound.scan_dir(d):
                 if not e.is_dir(follow_symlinks=False) or e.name.startswith("."):
                     continue
-                if e.name == name:
-                    return os.path.abspath(e.path)
+                index.setdefault(e.name, os.path.abspath(e.path))
                 if e.name in skip - {"install"} or e.path in seen:
                     continue
                 seen.add(e.path)
                 nxt.append(Path(e.path))
         level = nxt
-    return None
+    return index

@@ -37,18 +37,8 @@ def read_regular(path, max_bytes: int, nofollow: bool = False) -> bytes | None:
     """The bytes of a regular file of at most ``max_bytes`` (after symlinks, unless
     ``nofollow``), or None: it cannot be read, is larger, or is a device, FIFO or folder (it
     is opened without blocking, so a FIFO named as a file never hangs the run)."""
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | \
-        (getattr(os, "O_NOFOLLOW", 0) if nofollow else 0)
-    try:
-        fd = os.open(path, flags)
-        with os.fdopen(fd, "rb") as f:
-            st = os.fstat(f.fileno())
-            if not _st.S_ISREG(st.st_mode) or st.st_size > max_bytes:
-                return None
-            data = f.read(max_bytes + 1)
-    except OSError:
-        return None
-    return data if len(data) <= max_bytes else None
+    from . import fsbound
+    return fsbound.read_regular(path, max_bytes, nofollow=nofollow)
 
 
 def content_digest(data: bytes) -> str:
@@ -63,11 +53,10 @@ def file_digest(path: str) -> str | None:
     """:func:`content_digest` of a regular file's bytes (None when it cannot be read or
     changes size while read, or for a device, FIFO, folder, or above 2 GiB: a symlink to
     /dev/zero must not hang the run or grow it without end)."""
+    from . import fsbound
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with os.fdopen(fd, "rb") as f:
-            st = os.fstat(f.fileno())
-            if not _st.S_ISREG(st.st_mode) or st.st_size > MAX_HASHED_BYTES:
+        with fsbound.open_regular(path) as (f, st):
+            if st.st_size > MAX_HASHED_BYTES:
                 return None
             h = content_hash(st.st_size)
             left = st.st_size + 1
@@ -157,7 +146,7 @@ def file_record(path: str) -> list | None:
 def read_recorded(path: str) -> tuple[bytes, list]:
     """(the bytes of ``path``, their record [stat before the read, digest of those bytes]):
     for a caller that needs the bytes themselves (raises OSError)."""
+    from . import fsbound
     before = os.stat(path)
-    with open(path, "rb") as f:
-        data = f.read()
+    data = fsbound.read_bytes(path, max_bytes=MAX_HASHED_BYTES)
     return data, [[before.st_size, before.st_mtime_ns], content_digest(data)]

@@ -39,6 +39,8 @@ class LintJob:
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
+    outputs: tuple = ()            # more checked-in URDFs whose header names this xacro
+                                   # (compared when they are the same variant as ``output``)
     # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
     # files by this job's expansion and lint (urdf_lint/overlay.py); such a result is not cached
     overlay: tuple = ()
@@ -61,12 +63,16 @@ class LintSettings:
     expr_policy: object = None
     render_dir: str | None = None            # set: the worker also writes a snapshot
     render_rrd: bool = True
-    render_base: str | None = None
+    render_base: str | None = None          # picture names are relative to it (the repository)
+    render_refused: tuple = ()               # picture names two models of the run would share
     render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
     render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
     diff_render: bool = False                # diff --render: the geometry of its picture too
     diff_rrd: bool = True                    # diff --render: also the plan of its recording
+    # urdf-lint format: real path -> the bytes expansion reads instead of the file's (the
+    # layout being proved; nothing is written while it is)
+    overlay: dict = field(default_factory=dict)
 
     # read-only dict-style access, for worker start-up code written against the old dict
     def __getitem__(self, key: str):
@@ -115,6 +121,8 @@ class ModelReport:
     directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
     cacheable: bool = True                          # False: a fact depended on the environment
+    current_outputs: list = field(default_factory=list)   # generated URDFs that are today's
+                                                    # expansion of this model (not linted again)
 
     @classmethod
     def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":
@@ -143,7 +151,8 @@ class ModelReport:
                 "problems": [p.to_record() for p in self.problems],
                 "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
                 "links": self.links, "joints": self.joints, "meshes": self.meshes,
-                "directive_files": self.directive_files}
+                "directive_files": self.directive_files,
+                "current_outputs": list(self.current_outputs)}
 
     @classmethod
     def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
@@ -154,4 +163,4 @@ class ModelReport:
                    name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
                    links=rec.get("links", 0), joints=rec.get("joints", 0),
                    meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
-                   cached=True)
+                   cached=True, current_outputs=list(rec.get("current_outputs", ())))

@@ -70,11 +70,9 @@ def classify_xacro(path: str) -> Status | None:
     """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
     or NOT_ROBOT."""
     from lxml import etree
-    from . import overlay
-    buffer = overlay.get(path)   # an unsaved editor buffer (urdf-lint server)
-    try:
-        root = etree.fromstring(buffer, _quick_parser()) if buffer is not None else \
-            etree.parse(path, _quick_parser()).getroot()
+    from . import fsbound
+    try:   # a regular file, bounded (a FIFO named as a file never blocks)
+        root = fsbound.parse_xml(path, _quick_parser())
     except (etree.XMLSyntaxError, OSError):
         return None  # let expansion report the problem with its location
     if etree.QName(root).localname != "robot":
@@ -98,21 +96,28 @@ def _quick_parser():
 
 
 def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
-    """UL011 at the checked-in generated file when it differs from today's expansion; the
-    output becomes an input of the model (editing it re-lints the model)."""
-    from .generated import stale_at
+    """UL011 at each checked-in generated file that differs from today's expansion; the
+    outputs become inputs of the model (editing one re-lints the model). The outputs after
+    the first (more URDFs whose header names this xacro) are compared only when they are the
+    same variant (robot name and links): another is generated with args urdf-lint does not
+    know."""
+    from .generated import same_variant, stale_at
     from .locations import display_path
     from .rules import ul011_stale_output
-    output = job.output or ""
-    (out.deps if os.path.exists(output) else out.missing).append(output)
-    got = stale_at(output, xml)
-    if got is not None:
-        line, col, what = got
-        out.problems.append(Problem.at(
-            ul011_stale_output.CODE,
-            f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
-            "expands to today; regenerate it with 'urdf-lint generate'",
-            (job.output, line, col)))
+    for n, output in enumerate((job.output or "",) + tuple(job.outputs)):
+        (out.deps if os.path.exists(output) else out.missing).append(output)
+        if n and not same_variant(output, xml):
+            continue
+        got = stale_at(output, xml)
+        if got is None and os.path.exists(output):
+            out.current_outputs.append(output)
+        if got is not None:
+            line, col, what = got
+            out.problems.append(Problem.at(
+                ul011_stale_output.CODE,
+                f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
+                "expands to today; regenerate it with 'urdf-lint generate'",
+                (output, line, col)))
 
 
 def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
@@ -138,7 +143,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
             out.status = Status.FAILED
             return None
         assert exp.xml is not None  # expand_file sets xml or error
-        if job.output:
+        if job.output or job.outputs:
             _check_output(job, exp.xml, out)
         try:
             model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
@@ -170,11 +175,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                                    (entry, 1, 1)))
         out.status = Status.FAILED
         return None
-    from . import overlay
     try:
-        buffer = overlay.get(entry)   # an unsaved editor buffer (urdf-lint server)
-        data, rec = (buffer, overlay.record(buffer)) if buffer is not None else \
-            read_recorded(entry)
+        data, rec = read_recorded(entry)
         out.digests = {entry: rec}
     except OSError as e:
         problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",
@@ -187,9 +189,8 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
                                    "DOCTYPE/ENTITY declaration in a robot description; remove it "
                                    "(URDF needs none, and urdf-lint never loads DTDs)",
                                    (entry, line, 1)))
-    root, origins, error = parse_urdf_bytes(entry, data)
-    if error:
-        problems.append(error)
+    root, origins, errors = parse_urdf_bytes(entry, data)
+    problems.extend(errors or ())
     if root is None:
         out.status = Status.FAILED
         return None
@@ -203,7 +204,8 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelRepor
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from .expansion import expand_file
     exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
-                      display_name=job.display_name, expr_policy=settings.expr_policy)
+                      display_name=job.display_name, expr_policy=settings.expr_policy,
+                      overlay=settings.overlay)
     out.deps = list(exp.deps)
     out.problems.extend(exp.notes)
     if exp.error is not None:
@@ -265,10 +267,10 @@ def lint_model(job: LintJob, settings: LintSettings):
 
 
 def _lint_model(job: LintJob, settings: LintSettings):
-    from .packages import PackageResolver
+    from .packages import from_settings
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
-    resolver = PackageResolver.from_dict(settings.resolver)
+    resolver = from_settings(settings.resolver)
     if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)
         return out, None, ctx
@@ -292,16 +294,21 @@ def _lint_model(job: LintJob, settings: LintSettings):
 
     from .registry import run_rules
     fixer = None
-    for rule, el, msg, sev, req in run_rules("model", settings.selected, settings.options,
-                                             model, ctx, out.internal, f" on {job.entry}",
-                                             with_fix=True):
+    for rule, el, msg, sev, req, cause, table in run_rules(
+            "model", settings.selected, settings.options, model, ctx, out.internal,
+            f" on {job.entry}", with_fix=True, with_table=True):
         fix = None
+        from .fixes import Fixer
+        fixer = fixer or Fixer(model)
         if req is not None:
-            from .fixes import Fixer
-            fixer = fixer or Fixer(model)
             fix = fixer.fix(el, req)
-        problems.append(Problem.at(rule.code, msg, model.origin(el), target_of(el), sev,
-                                   fix=fix))
+        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
+                                      if req is not None and req.kind == "set" else ())
+        p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
+                       consumers=table, value_from=value_from)
+        if cause is not None:   # one finding per root cause, this problem one instance of it
+            p = p.replace(code=cause.code, message=cause.message, detail=msg, group=cause.key)
+        problems.append(p)
 
     out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
     out.name = model.name

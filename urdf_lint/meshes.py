@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from . import fsbound
 from .hashing import memo_read
 from .packages import PackageNotFound
 
@@ -38,6 +39,8 @@ class MeshRef:
     path: str | None          # resolved absolute path (None when it cannot be resolved)
     status: MeshStatus
     message: str = ""
+    package: str = ""         # the unknown package (UNKNOWN_PACKAGE)
+    cause: str = ""           # why it is unknown (the searched places), for the root cause
 
     @property
     def problem(self) -> MeshStatus | None:
@@ -94,7 +97,7 @@ def _listing(folder: Path) -> "_Names | None":
     if got is not None and got.mtime == mtime and time.time_ns() - mtime > RACY_NS:
         return got
     try:
-        names = _Names(mtime, os.listdir(key))
+        names = _Names(mtime, fsbound.list_dir(key))
     except OSError:
         return None
     if len(_listings) >= MAX_LISTINGS:
@@ -120,7 +123,8 @@ def resolve(model, uri: str) -> MeshRef:
     try:
         p = resolver.resolve_uri(uri, model.base_dir)
     except PackageNotFound as e:
-        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}")
+        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}", e.name,
+                       str(e))
     p = Path(os.path.abspath(p))
     top = _root_of(resolver, p)
     if top is None and resolver.is_inside(p):  # written outside, resolves inside (a symlink)
@@ -158,16 +162,8 @@ def resolve(model, uri: str) -> MeshRef:
 
 
 def _root_of(resolver, p: Path) -> Path | None:
-    """The deepest root that holds ``p`` as written (before symlinks), or None. (String
-    prefixes of the normalised paths: what ``Path.relative_to`` tests, without building a
-    Path per root; of two roots that both hold ``p`` the deeper is the longer string.)"""
-    from .packages import inside
-    s = str(p)
-    best = None
-    for r in resolver.roots:
-        rs = str(r)
-        if inside(s, rs) and (best is None or len(rs) > len(best)):
-            best = rs
+    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    best = resolver.root_of(p)
     return None if best is None else Path(best)
 
 
@@ -227,10 +223,10 @@ def _texture_refs(path: str) -> list[str]:
             mtl = os.path.normpath(os.path.join(base, name))
             out.append(mtl)
             if _readable(mtl):   # the MTL is read each time: it may lie outside the roots
-                with open(mtl, "r", errors="replace") as mf:
-                    for ref in _MTL_MAP.finditer(mf.read()):
-                        out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
-                                                                 ref.group(1))))
+                text = fsbound.read_text(mtl, max_bytes=MAX_MESH_BYTES, errors="replace")
+                for ref in _MTL_MAP.finditer(text):
+                    out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
+                                                             ref.group(1))))
     except OSError:
         pass
     return out
@@ -249,11 +245,12 @@ def _scan_texture_names(path: str) -> dict:
             if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
                 refs.append(ref)
     else:
-        with open(path, "r", errors="replace") as f:
-            for line in f:
-                parts = line.split(None, 1)
-                if line.startswith("mtllib") and len(parts) == 2:
-                    refs.append(parts[1].strip())
+        text = fsbound.read_text(path, max_bytes=MAX_MESH_BYTES, errors="replace")
+        # the lines open() in text mode gives (universal newlines: \r\n and \r become \n)
+        for line in text.replace("\r\n", "\n").replace("\r", "\n").split("\n"):
+            parts = line.split(None, 1)
+            if line.startswith("mtllib") and len(parts) == 2:
+                refs.append(parts[1].strip())
     return {"ok": True, "refs": refs}
 
 
@@ -295,16 +292,23 @@ def _file_bytes(path: str) -> bytes:
     data = _kept_bytes.get(_digest(path))
     if data is not None:
         return data
-    with open(path, "rb") as f:
-        return f.read()
+    return fsbound.read_bytes(path, max_bytes=MAX_MESH_BYTES)
 
 
-def _quiet_loggers():
+# the libraries that read a model or its meshes: what they log about a model (yourdfpy's
+# "Joint 'spinner' is supposed to mimic 'spinner'", 53 times on the broken demo) is the rules'
+# job, reported as located findings; it never reaches the user's terminal
+LIBRARY_LOGGERS = ("trimesh", "collada", "PIL", "yourdfpy")
+
+
+def quiet_libraries():
     import logging
-    for name in ("trimesh", "collada", "PIL"):
+    for name in LIBRARY_LOGGERS:
         lg = logging.getLogger(name)
         lg.setLevel(logging.CRITICAL + 1)
         lg.propagate = False
+
+
 
 
 def load_mesh(path: str):
@@ -314,7 +318,7 @@ def load_mesh(path: str):
     effect or material that points at nothing makes pycollada drop the whole
     ``<instance_geometry>``) is loaded again without its materials, so a valid mesh is never
     reported empty; the broken references are kept in ``metadata["broken_refs"]``."""
-    _quiet_loggers()
+    quiet_libraries()
     import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
     is_dae = path.lower().endswith(".dae")
     if not is_dae:
@@ -325,8 +329,8 @@ def load_mesh(path: str):
             scene = trimesh.load_scene(path, process=False)   # what force="mesh" does
             m = scene.to_mesh()
             # every <instance_geometry> that loads gives at least one geometry node
-            with open(path, "rb") as f:
-                lost = len(scene.graph.nodes_geometry) < f.read().count(b"<instance_geometry")
+            lost = len(scene.graph.nodes_geometry) < \
+                _file_bytes(path).count(b"<instance_geometry")
         except Exception as e:  # noqa: BLE001 - retried without materials below
             failure = e
         broken = dae_broken_refs(path) if lost or m is None or len(m.vertices) == 0 else []
@@ -375,7 +379,7 @@ def _load_dae_without_materials(path: str):
     from lxml import etree
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              huge_tree=True)
-    root = etree.parse(path, parser).getroot()
+    root = fsbound.parse_xml(path, parser, max_bytes=MAX_MESH_BYTES)
     drop = {"bind_material", "library_effects", "library_materials", "library_images"}
     for el in [e for e in root.iter() if isinstance(e.tag, str)
                and etree.QName(e).localname in drop]:
@@ -401,8 +405,7 @@ _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 def dae_unit(path: str) -> float:
     """The metres-per-unit a COLLADA file declares in its <asset> (1.0 when absent)."""
     try:
-        with open(path, "rb") as f:
-            return _unit_of(f.read(8192))
+        return _unit_of(fsbound.read_head(path, 8192))
     except OSError:
         return 1.0
 
@@ -580,7 +583,7 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
             unit = _unit_of(data)
             v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
             return v, got[1], []
-    _quiet_loggers()
+    quiet_libraries()
     import trimesh
     if not is_dae:
         return (*meshio.scene_arrays(trimesh.load_scene(path, process=False)), [])
@@ -588,8 +591,7 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
         scene = trimesh.load_scene(path, process=False)
     except Exception:  # noqa: BLE001 - load_mesh retries without materials, or reports it
         return None
-    with open(path, "rb") as fh:
-        lost = len(scene.graph.nodes_geometry) < fh.read().count(b"<instance_geometry")
+    lost = len(scene.graph.nodes_geometry) < _file_bytes(path).count(b"<instance_geometry")
     v, f = meshio.scene_arrays(scene)
     if lost or len(v) == 0:
         return None
@@ -620,11 +622,13 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     if cache_dir:
         cache_file = Path(cache_dir, "meshes", f"{prefix}-{digest}.json")
         try:
-            facts = json.loads(cache_file.read_text())
+            from . import fsbound
+            facts = json.loads(fsbound.read_bytes(str(cache_file), max_bytes=1 << 20,
+                                                  nofollow=True))
             if isinstance(facts, dict) and "ok" in facts:
                 memory[digest] = facts
                 return facts
-        except (OSError, ValueError):
+        except (OSError, ValueError, RecursionError):   # (unsigned: any bytes may be there)
             pass
     try:
         facts = compute(path)
@@ -637,9 +641,10 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
         try:
             from .cachedir import ensure
             ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
-            cache_file.parent.mkdir(parents=True, exist_ok=True)
-            from .atomic import atomic_write
-            atomic_write(cache_file, json.dumps(facts))
+            from . import fsbound
+            # the worker's sandbox may write (and read) only below meshes/, not the cache folder
+            fsbound.make_own_dirs(str(cache_file.parent))
+            fsbound.write_text(str(cache_file), json.dumps(facts), str(cache_file.parent))
         except OSError:
             pass
     return facts

@@ -22,13 +22,12 @@ trimesh as before, so the facts are the same numbers trimesh gives.
 """
 from __future__ import annotations
 
-import os
 import re
 from typing import Iterator
 
 import numpy as np
 
-from . import lazy
+from . import fsbound, lazy
 
 # pycollada imports Pillow (~14 ms) at start-up for the images of a document, which urdf-lint
 # never decodes (the texture scan reads their names): loaded on first use, if ever
@@ -36,15 +35,16 @@ lazy.defer("PIL.Image")
 
 STL_RECORD = np.dtype([("n", "<f4", (3,)), ("v", "<f4", (3, 3)), ("a", "<u2")])
 STL_CHUNK_TRIANGLES = 1 << 20        # 50 MB of records per chunk
+MAX_MESH_READ = 1 << 30              # a mesh read whole (meshes.MAX_MESH_BYTES)
 
 
 def binary_stl_triangles(path: str) -> int | None:
     """The triangle count of a well-formed binary STL (its size matches its header), else None
     (ASCII, or a file trimesh would try to read as ASCII)."""
     try:
-        with open(path, "rb") as f:
+        with fsbound.open_regular(path) as (f, st):
             head = f.read(84)
-            size = os.fstat(f.fileno()).st_size
+            size = st.st_size
     except OSError:
         return None
     if len(head) < 84:
@@ -64,7 +64,7 @@ def iter_binary_stl(path: str, chunk: int | None = None,
         for i in range(0, len(rec), chunk):
             yield rec["v"][i:i + chunk]
         return
-    with open(path, "rb") as f:
+    with fsbound.open_regular(path) as (f, _):
         f.seek(84)
         while True:
             rec = np.fromfile(f, dtype=STL_RECORD, count=chunk)
@@ -84,8 +84,7 @@ def bounds(points):
 def read_ascii_stl(path: str):
     """(vertices float64 (n, 3), faces) of an ASCII STL holding exactly one solid, parsed as
     trimesh parses it; None for anything else (the caller lets trimesh decide)."""
-    with open(path, "rb") as f:
-        data = f.read()
+    data = fsbound.read_bytes(path, max_bytes=MAX_MESH_READ)
     try:
         raw = data.decode("utf-8").strip().lower()
     except UnicodeDecodeError:

@@ -114,32 +114,67 @@ def model_from_xml(entry: str, args: dict, xml_text: str, origins, deps: list,
     return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver)
 
 
-def parse_urdf_bytes(entry: str, data: bytes):
-    """Parse a plain URDF. Returns (root or None, origins dict, Problem or None).
+# the XML problems tinyxml-based consumers (urdfdom, MuJoCo, Pinocchio, PyBullet, Drake) load
+# and the strict Python parsers reject (measured: /work/shared/notes/consumer-facts.md)
+LENIENT = {"*": "warning", "python": "error"}
+LENIENT_WHY = ("; urdfdom and the C++ consumers load it, the Python parsers (urdf_parser_py, "
+               "urchin) reject it; the rest of the file is still linted")
 
-    A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) is
-    reported, then read with recovery so that the rest of the model is still linted.
+
+def _blank_declaration(data: bytes) -> bytes | None:
+    """``data`` with its XML declaration blanked out (lines and columns kept), or None when it
+    has none."""
+    head = data.lstrip()
+    if not head.startswith(b"<?xml"):
+        return None
+    start = data.find(b"<?xml")
+    end = data.find(b"?>", start)
+    if end < 0:
+        return None
+    decl = data[start:end + 2]
+    return data[:start] + bytes(b if b in b"\r\n" else 32 for b in decl) + data[end + 2:]
+
+
+def parse_urdf_bytes(entry: str, data: bytes):
+    """Parse a plain URDF. Returns (root or None, origins dict, [Problem] or None).
+
+    A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) or has
+    a malformed XML declaration (``<?xml verison=``) is reported (each problem once: an error
+    for the Python parsers, a warning for the consumers that load it, :data:`LENIENT`), then
+    read with recovery so that the rest of the model is still linted.
     """
-    error = None
-    try:
-        root = etree.fromstring(data, safe_parser())
-    except etree.XMLSyntaxError as e:
-        line, col = (e.position if e.position else (1, 1))
-        error = Problem.at(xml_syntax.CODE, f"XML syntax error: {' '.join(e.msg.split())}",
-                           (entry, line, max(col, 1)))
+    errors: list[Problem] = []
+    root = None
+    text = data
+    for _ in range(3):
         try:
-            root = etree.fromstring(data, safe_parser(recover=True))
-        except etree.XMLSyntaxError:
-            root = None
-        recoverable = ("namespace", "prefix", "declaration")
-        if root is not None and not any(w in e.msg.lower() for w in recoverable):
-            root = None  # only recover from namespace/declaration problems; others stop here
+            root = etree.fromstring(text, safe_parser())
+            break
+        except etree.XMLSyntaxError as e:
+            line, col = (e.position if e.position else (1, 1))
+            msg = " ".join(e.msg.split())
+            low = msg.lower()
+            blanked = _blank_declaration(text) if "declaration" in low else None
+            lenient = blanked is not None or "namespace" in low or "prefix" in low
+            errors.append(Problem.at(xml_syntax.CODE, f"XML syntax error: {msg}"
+                                     + (LENIENT_WHY if lenient else ""),
+                                     (entry, line, max(col, 1)),
+                                     consumers=LENIENT if lenient else None))
+            if blanked is not None:
+                text = blanked      # then look for a further problem past the declaration
+                continue
+            if lenient:
+                try:
+                    root = etree.fromstring(text, safe_parser(recover=True))
+                except etree.XMLSyntaxError:
+                    root = None
+            break   # only recover from namespace/declaration problems; others stop here
     origins = {}
     if root is not None:
-        positions = element_positions(data)
+        positions = element_positions(text)
         # expat stops at the first error (a recovered document, a refused entity declaration),
         # so the positions may cover only a prefix of the elements: those keep theirs, the rest
         # fall back to their parent's origin (Model.origin)
         for el, (line, col) in zip(root.iter(tag=etree.Element), positions, strict=False):
             origins[el] = Origin(entry, line, col, ())
-    return root, origins, error
+    return root, origins, (errors or None)

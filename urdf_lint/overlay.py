@@ -4,9 +4,11 @@ The language server lints what the user sees, not what was last saved. The buffe
 with the job (``LintJob.overlay``: ``(path, bytes)`` pairs) to the sandboxed worker, which
 installs them here for the job's duration (:func:`using`); every read of a source file the
 expansion, the lint and the fixes make (includes, ``xacro.load_yaml``, the entry, suppression
-comments, fix sources) asks :func:`get` first. The confinement checks run before the lookup,
-on the same path, so a buffer is only ever read where the file it stands for could be: the
-overlay never widens what a worker may read, and no temporary file is written anywhere.
+comments, fix sources) goes through ``fsbound.read_bytes``, which asks :func:`get` first,
+after the same roots check (and the expansion's own confinement check before it), so a
+buffer is only ever read where the file it stands for could be: the overlay never widens what
+a worker may read, and no temporary file is written anywhere. (``LintSettings.overlay``, the
+formatter's layouts being proved, is read by the expansion's parse hook alone.)
 """
 from __future__ import annotations
 
@@ -44,19 +46,3 @@ def get(path) -> bytes | None:
     if not _files:
         return None
     return _files.get(_key(os.fspath(path)))
-
-
-def read(path) -> bytes:
-    """The buffer for ``path`` or the file's bytes (raises OSError like ``open``)."""
-    got = get(path)
-    if got is not None:
-        return got
-    with open(path, "rb") as f:
-        return f.read()
-
-
-def record(data: bytes) -> list:
-    """The cache record of a buffer (no stat: it was never written; such a result is not
-    cached)."""
-    from .hashing import content_digest
-    return [[len(data), -1], content_digest(data)]

@@ -9,29 +9,66 @@ checks and rendering. It looks, in this order, at:
 4. ``ROS_PACKAGE_PATH``.
 
 It also knows the *roots* that files may be read from: every package directory it found plus
-the linted repository. Anything resolving (after symlinks) outside the roots is refused.
+the linted repository, and the packages of the environment's search path. Anything resolving
+(after symlinks) outside the roots is refused.
+
+A resolver is an immutable snapshot, built once per run (``build``) and handed as is to every
+pass and worker: looking a package up never adds a root (SECURITY.md, "Roots"). A package
+name is a name, never a path (:func:`valid_package_name`).
 """
 from __future__ import annotations
 
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
 
 SKIP_DIRS = {".git", ".hg", ".svn", "node_modules", ".venv", "venv", "__pycache__", "build",
              "install", "log", ".urdf_lint_cache", ".tox", ".mypy_cache", ".pytest_cache"}
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+# REP 144 (lower case letters, digits and underscores, starting with a letter), leniently:
+# upper case, dashes and a leading digit or underscore, which catkin tolerates; never a path
+# separator, a dot (so never '.' or '..'), a leading dash or anything absolute
+_PACKAGE_NAME_RE = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_-]{0,199}")
+
+
+def valid_package_name(name: str) -> bool:
+    """Is ``name`` a ROS package name (not a path: ``$(find /abs)``, ``$(find ../x)``)?"""
+    return isinstance(name, str) and _PACKAGE_NAME_RE.fullmatch(name) is not None
 
 
 class PackageNotFound(Exception):
     def __init__(self, name: str, searched: list[str], folder: str | None = None):
         self.name = name
         self.searched = searched
+        self.folder = folder
         where = "; ".join(searched) if searched else "nowhere (no package.xml found)"
         hint = (f"; a folder named '{name}' exists: pass --package-path {name}={folder}"
                 if folder else "")
+        if not name:   # package:///x or $(find ): a slash too many, or an empty name
+            super().__init__("the package URI names no package ('package:///...' has one slash "
+                             "too many: write package://NAME/path)")
+            return
         super().__init__(f"unknown package '{name}' (searched: {where}){hint}")
+
+    def again(self) -> "PackageNotFound":
+        """The same miss, raised afresh (a memoised lookup)."""
+        return PackageNotFound(self.name, self.searched, self.folder)
+
+
+class InvalidPackageName(PackageNotFound):
+    """A name that is no ROS package name (a path, ``..``): it resolves to nothing."""
+    def __init__(self, name: str):
+        shown = name if len(name) <= 80 else name[:80] + "..."
+        Exception.__init__(self, f"'{shown}' is not a ROS package name (letters, digits, '_' "
+                                 "and '-'; never a path): it names no package")
+        self.name, self.searched, self.folder = name, [], None
+
+    def again(self) -> "PackageNotFound":
+        return InvalidPackageName(self.name)
 
 
 class OutsideRoots(Exception):
@@ -42,8 +79,9 @@ class OutsideRoots(Exception):
 
 
 def package_name(package_xml: Path) -> str | None:
-    try:
-        data = package_xml.read_bytes()[:65536]
+    from . import fsbound
+    try:   # a regular file (never a FIFO or device), its first 64 KiB
+        data = fsbound.read_head(package_xml, 65536)
     except OSError:
         return None
     m = _NAME_RE.search(data)
@@ -54,17 +92,10 @@ def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[st
                folders: list | None = None):
     """Walk ``top`` (skipping build/VCS/venv folders), yielding files that match; each folder
     looked into is added to ``folders`` when given."""
-    top = Path(top)
-    if top.is_file():
-        yield top
-        return
-    for dirpath, dirnames, filenames in os.walk(top):
-        if folders is not None:
-            folders.append(dirpath)
-        dirnames[:] = sorted(d for d in dirnames if d not in SKIP_DIRS and not d.startswith("."))
-        for fn in sorted(filenames):
-            if (names and fn in names) or (suffixes and fn.endswith(suffixes)):
-                yield Path(dirpath, fn)
+    from . import fsbound
+    for f in fsbound.walk_files(top, suffixes, names, folders=folders,
+                                skip=lambda d: d in SKIP_DIRS or d.startswith(".")):
+        yield Path(f)
 
 
 def _colcon_ignored(folder: Path, top: Path) -> bool:
@@ -72,77 +103,133 @@ def _colcon_ignored(folder: Path, top: Path) -> bool:
     return ignored(folder, top)
 
 
-@dataclass
+@dataclass(frozen=True)
 class PackageResolver:
     """Where each ROS package lives (named with ``--package-path``, or found by ``package.xml``)
-    and which folders a run may read."""
-    explicit: dict[str, Path] = field(default_factory=dict)
-    scanned: dict[str, Path] = field(default_factory=dict)
-    roots: list[Path] = field(default_factory=list)
-    scanned_dirs: list[str] = field(default_factory=list)
+    and which folders a run may read.
+
+    Immutable (a frozen snapshot of one run's roots): the maps are read-only and the roots a
+    tuple, so no lookup, pass or worker can widen what the others may read. The roots are
+    ``roots`` plus the packages of ``AMENT_PREFIX_PATH`` and ``ROS_PACKAGE_PATH`` (as the
+    parent saw them: workers run with a scrubbed environment, so the search path travels with
+    the resolver); lookups, hits and misses alike, are memoised in ``_memo``, which only ever
+    caches what the fields above already determine."""
+    explicit: Mapping[str, Path] = field(default_factory=dict)
+    scanned: Mapping[str, Path] = field(default_factory=dict)
+    roots: tuple[Path, ...] = ()
+    scanned_dirs: tuple[str, ...] = ()
     use_environment: bool = True
-    # AMENT_PREFIX_PATH / ROS_PACKAGE_PATH as the parent saw them: workers run with a scrubbed
-    # environment, so the search path travels with the resolver
-    env_paths: dict = field(default_factory=dict)
+    env_paths: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    _memo: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def __post_init__(self):
+        fixed = {"explicit": MappingProxyType({k: Path(v) for k, v in self.explicit.items()}),
+                 "scanned": MappingProxyType({k: Path(v) for k, v in self.scanned.items()}),
+                 "roots": tuple(Path(r) for r in self.roots),
+                 "scanned_dirs": tuple(self.scanned_dirs),
+                 "env_paths": MappingProxyType({k: tuple(v) for k, v in self.env_paths.items()})}
+        for k, v in fixed.items():
+            object.__setattr__(self, k, v)
+
+    def __reduce__(self):   # (the read-only maps do not pickle as such)
+        return (PackageResolver.from_dict, (self.to_dict(),))
 
     @classmethod
     def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
               use_environment: bool = True, packages: dict | None = None) -> "PackageResolver":
         """``packages``: name -> folder found elsewhere (a workspace index), after the scan."""
-        res = cls(use_environment=use_environment)
-        if use_environment:
-            res.env_paths = environment_paths()
-        for name, where in (explicit or {}).items():
-            res.explicit[name] = Path(where).resolve()
+        env_paths = environment_paths() if use_environment else {}
+        explicit_paths = {name: Path(where).resolve() for name, where in (explicit or {}).items()}
+        scanned: dict[str, Path] = {}
+        scanned_dirs: list[str] = []
         seen = set()
         for d0 in scan_dirs:
             d = Path(d0).resolve()
             if d in seen or not d.exists():
                 continue
             seen.add(d)
-            res.scanned_dirs.append(str(d))
+            if d.is_dir():   # (a linted file holds no package.xml: not a place to name)
+                scanned_dirs.append(str(d))
             for pxml in iter_files(d, names={"package.xml"}):
                 if _colcon_ignored(pxml.parent, d):
                     continue
                 found = package_name(pxml)
-                if found and found not in res.scanned:
-                    res.scanned[found] = pxml.parent.resolve()
+                if found and found not in scanned:
+                    scanned[found] = pxml.parent.resolve()
         for pkg, where in (packages or {}).items():
-            res.scanned.setdefault(pkg, Path(where).resolve())
-        roots = list(res.explicit.values()) + list(res.scanned.values())
+            scanned.setdefault(pkg, Path(where).resolve())
+        roots = list(explicit_paths.values()) + list(scanned.values())
         roots += [Path(r).resolve() for r in extra_roots]
-        res.roots = sorted(set(roots), key=str)
-        return res
+        return cls(explicit=explicit_paths, scanned=scanned, roots=tuple(sorted(set(roots), key=str)),
+                   scanned_dirs=tuple(scanned_dirs), use_environment=use_environment,
+                   env_paths=env_paths)
 
     # -- lookup ------------------------------------------------------------------------------
     def _from_environment(self, name: str) -> Path | None:
         if not self.use_environment:
             return None
         for prefix in self.env_paths.get("AMENT_PREFIX_PATH", ()):
-            marker = Path(prefix, "share", "ament_index", "resource_index", "packages", name)
-            if marker.exists():
-                share = Path(prefix, "share", name)
-                if share.is_dir():
-                    return share.resolve()
-        for d in self.env_paths.get("ROS_PACKAGE_PATH", ()):
-            for pxml in iter_files(Path(d), names={"package.xml"}):
-                if package_name(pxml) == name:
-                    return pxml.parent.resolve()
-        return None
+            found = self._ament_share(prefix, name)
+            if found is not None:
+                return found
+        return self._ros_packages()[0].get(name)
+
+    def _ament_share(self, prefix: str, name: str) -> Path | None:
+        """``prefix/share/NAME`` when the ament index of ``prefix`` lists ``NAME`` and the folder
+        really is that child of the prefix (no symlink leading anywhere else)."""
+        key = ("ament", prefix, name)
+        if key not in self._memo:
+            found = None
+            share = self._real_share(prefix)
+            if share is not None and valid_package_name(name):
+                marker = os.path.join(prefix, "share", "ament_index", "resource_index",
+                                      "packages", name)
+                folder = os.path.join(prefix, "share", name)
+                if os.path.lexists(marker) and os.path.isdir(folder) and \
+                        os.path.realpath(folder) == os.path.join(share, name):
+                    found = Path(share, name)
+            self._memo[key] = found
+        return self._memo[key]
+
+    def _real_share(self, prefix: str) -> str | None:
+        """The real ``share`` folder of an ament prefix, when it is inside the prefix."""
+        key = ("share", prefix)
+        if key not in self._memo:
+            share = os.path.realpath(os.path.join(prefix, "share"))
+            self._memo[key] = share if inside(share, os.path.realpath(prefix)) else None
+        return self._memo[key]
+
+    def _ros_packages(self) -> tuple[dict, frozenset]:
+        """(name -> folder, the set of folders) of every package under ``ROS_PACKAGE_PATH``:
+        one walk per run (shared by the processes forked after it), however many lookups."""
+        if "ros" not in self._memo:
+            self._memo["ros"] = ros_package_index(self.env_paths.get("ROS_PACKAGE_PATH", ()))
+        return self._memo["ros"]
 
     def find(self, name: str) -> Path:
+        key = ("find", name)
+        hit = self._memo.get(key)
+        if hit is None:
+            hit = self._memo[key] = self._lookup(name)
+        if isinstance(hit, PackageNotFound):
+            raise hit.again()
+        return hit
+
+    def _lookup(self, name: str) -> "Path | PackageNotFound":
+        if not valid_package_name(name):
+            return InvalidPackageName(str(name))
         if name in self.explicit:
             return self.explicit[name]
         if name in self.scanned:
             return self.scanned[name]
         found = self._from_environment(name)
         if found is not None:
-            if found not in self.roots:
-                self.roots.append(found)
             return found
         from .folders import folder_named
-        raise PackageNotFound(name, self.searched(),
-                              folder_named(name, [str(r) for r in self.roots], SKIP_DIRS))
+        if not name:
+            return PackageNotFound("", [])
+        return PackageNotFound(name, self.searched(),
+                               folder_named(name, [str(r) for r in self.roots], SKIP_DIRS))
 
     def searched(self) -> list[str]:
         out = [f"--package-path/package-paths ({', '.join(sorted(self.explicit)) or 'none'})"]
@@ -173,7 +260,46 @@ class PackageResolver:
     def is_inside(self, path: str | os.PathLike) -> bool:
         real = os.path.realpath(path)
         # string prefixes of the normalised roots (what Path.relative_to tests, 20x cheaper)
-        return any(inside(real, r) for r in map(str, self.roots))
+        return any(inside(real, r) for r in map(str, self.roots)) or \
+            self._environment_root(real) is not None
+
+    def root_of(self, path: str | os.PathLike) -> str | None:
+        """The deepest root holding ``path`` as written (a normalised absolute path, before
+        symlinks), or None. (Of two roots that both hold it the deeper is the longer string.)"""
+        s = str(path)
+        best = None
+        for r in map(str, self.roots):
+            if inside(s, r) and (best is None or len(r) > len(best)):
+                best = r
+        env = self._environment_root(s)
+        if env is not None and (best is None or len(env) > len(best)):
+            best = env
+        return best
+
+    def _environment_root(self, path: str) -> str | None:
+        """The package of the environment's search path holding ``path`` (normalised), if any:
+        ``prefix/share/NAME`` of an ament prefix, or a package under ``ROS_PACKAGE_PATH``."""
+        if not self.use_environment or not self.env_paths:
+            return None
+        for prefix in self.env_paths.get("AMENT_PREFIX_PATH", ()):
+            share = self._real_share(prefix)
+            if share is None or not path.startswith(share.rstrip(os.sep) + os.sep):
+                continue
+            name = path[len(share.rstrip(os.sep)) + 1:].split(os.sep, 1)[0]
+            found = self._ament_share(prefix, name)
+            if found is not None:
+                return str(found)
+        if "ROS_PACKAGE_PATH" in self.env_paths:
+            folders = self._ros_packages()[1]
+            d = path
+            while True:
+                if d in folders:
+                    return d
+                parent = os.path.dirname(d)
+                if parent == d:
+                    return None
+                d = parent
+        return None
 
     def readable(self, path: str | os.PathLike, cap: int | None = None) -> bool:
         """May urdf-lint read this file? Inside the roots after symlinks, a regular file (not
@@ -189,7 +315,7 @@ class PackageResolver:
         return {"explicit": {k: str(v) for k, v in self.explicit.items()},
                 "scanned": {k: str(v) for k, v in self.scanned.items()},
                 "roots": [str(r) for r in self.roots],
-                "scanned_dirs": self.scanned_dirs,
+                "scanned_dirs": list(self.scanned_dirs),
                 "use_environment": self.use_environment,
                 "env_paths": {k: list(v) for k, v in self.env_paths.items()}}
 
@@ -197,18 +323,55 @@ class PackageResolver:
     def from_dict(cls, d: dict) -> "PackageResolver":
         return cls(explicit={k: Path(v) for k, v in d["explicit"].items()},
                    scanned={k: Path(v) for k, v in d["scanned"].items()},
-                   roots=[Path(r) for r in d["roots"]], scanned_dirs=list(d["scanned_dirs"]),
+                   roots=tuple(Path(r) for r in d["roots"]), scanned_dirs=tuple(d["scanned_dirs"]),
                    use_environment=d["use_environment"],
-                   env_paths={k: list(v) for k, v in d.get("env_paths", {}).items()})
+                   env_paths={k: tuple(v) for k, v in d.get("env_paths", {}).items()})
 
     def read_paths(self) -> list[str]:
         """Every folder a worker may read below: the roots and the environment's package
-        search path (packages found there become roots when a description uses them)."""
+        search path (its packages are roots too)."""
         out = [str(r) for r in self.roots] + [str(p) for p in self.explicit.values()] + \
             [str(p) for p in self.scanned.values()]
         out += [os.path.join(p, "share") for p in self.env_paths.get("AMENT_PREFIX_PATH", ())]
         out += list(self.env_paths.get("ROS_PACKAGE_PATH", ()))
         return out
+
+
+_LAST: list = [None, None]   # (a settings' resolver dict, the resolver made from it)
+
+
+def from_settings(d: dict) -> PackageResolver:
+    """The resolver of a run's settings (``LintSettings.resolver``), made once for the same
+    dict: a worker lints its jobs with one snapshot, and so shares its lookups (it is
+    immutable, so sharing it cannot widen a job's roots)."""
+    if _LAST[0] is not d:
+        _LAST[:] = [d, PackageResolver.from_dict(d)]
+    return _LAST[1]
+
+
+_ROS_INDEX: dict = {}   # ROS_PACKAGE_PATH (folders and their mtimes) -> its package index
+
+
+def ros_package_index(dirs) -> tuple[dict, frozenset]:
+    """(name -> folder, the set of folders) of the packages under ``dirs`` (``package.xml``
+    files, the first of a name wins, in the order a lookup walked them before). Built once per
+    search path and process: forked workers inherit the parent's."""
+    def stamp(d):
+        try:
+            return os.stat(d).st_mtime_ns
+        except OSError:
+            return None
+    key = tuple((d, stamp(d)) for d in dirs)
+    hit = _ROS_INDEX.get(key)
+    if hit is None:
+        names: dict = {}
+        for d in dirs:
+            for pxml in iter_files(Path(d), names={"package.xml"}):
+                name = package_name(pxml)
+                if name and valid_package_name(name) and name not in names:
+                    names[name] = pxml.parent.resolve()
+        hit = _ROS_INDEX[key] = (names, frozenset(str(p) for p in names.values()))
+    return hit
 
 
 MAX_SOURCE_BYTES = 256 << 20   # an XML source file urdf-lint reads in the parent

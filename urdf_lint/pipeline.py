@@ -83,16 +83,26 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
-    """Problems with their rule name, effective severity (the configured override of the
-    severity the rule chose for it, else of the rule's) and model label."""
+    """Problems with their rule name, effective severity and model label. The severity is the
+    configured override, else the highest the selected targets give (:mod:`urdf_lint.targets`:
+    the finding's own target table, else the rule's ``TARGETS``, over the severity the rule
+    chose for it, else the rule's); a finding no selected target keeps is dropped."""
     from .registry import catalogue
+    from .targets import resolve
     rules = catalogue()
     out = []
     for p in problems:
         r = rules.get(p.code)
         name = r.name if r else p.code
-        sev = policy.severity_of(p.code, name, p.severity or (r.severity if r else "error"))
-        out.append(p.replace(name=name, severity=sev, models=(label,)))
+        base = p.severity or (r.severity if r else "error")
+        table = dict(p.consumers) if p.consumers is not None else (r.targets if r else {})
+        sev, by = resolve(table, base, policy.targets) if table else (base, ())
+        if sev is None:
+            continue
+        over = policy.override_of(p.code, name)
+        if over is not None:
+            sev, by = over, ()
+        out.append(p.replace(name=name, severity=sev, models=(label,), severity_from=by))
     return out
 
 
@@ -130,9 +140,17 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     if settings_overrides:
         settings = dataclasses.replace(settings, **settings_overrides)
     if render_dir:
-        os.makedirs(render_dir, exist_ok=True)
+        from . import fsbound
+        fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
+        # every picture's name is known here: one two models would share is drawn for neither
+        from .discovery import repository_root
+        from .locations import clashing_names, snapshot_name
+        base = repository_root(paths)
+        clash = clashing_names({(j.entry, tuple(sorted(j.args.items()))):
+                                snapshot_name(j.entry, j.args, base) for j in jobs})
         settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
-                                       render_rrd=render_rrd, render_base=os.getcwd(),
+                                       render_rrd=render_rrd, render_base=base,
+                                       render_refused=tuple(sorted(clash)),
                                        render_views=cfg.views or "single",
                                        render_forward=cfg.forward_axis)
     results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
@@ -142,6 +160,8 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     out.fragments = dict(found.fragments)
     out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
+    _drop_current_outputs(out.models)
+    _hint_packages(out.models, paths)
 
     if affected_by is not None:
         from .changes import affected
@@ -150,16 +170,19 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
         out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
     if render_dir:
-        _drop_snapshots([r for r in results if r not in out.models])
+        _drop_snapshots([r for r in results if r not in out.models], render_dir)
     problems: list[Problem] = []
     for r in out.models:
         problems.extend(_with_policy(r.problems, r.label, policy))
     if affected_by is None:
         problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
+    problems.extend(_with_policy(found.problems, RUN_LABEL, policy))
     kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
-    out.findings = sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+    from .fixes import not_in_generated
+    out.findings = sorted(not_in_generated(final, out.generated),
+                          key=lambda f: (f.file, f.line, f.col, f.code))
     if memo is not None:
         memo.store(out, results, found.folders)
     return out
@@ -224,17 +247,55 @@ def _complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
-def _drop_snapshots(reports) -> None:
+def _hint_packages(models, paths) -> None:
+    """An unknown package whose ``package.xml`` is in a folder beside the linted paths (a
+    sibling package under the working directory, outside git): its UL004 says
+    ``--package-path NAME=DIR``. Looked for here, in the parent: the workers may not list
+    folders outside the roots, and such a folder is never a root by itself."""
+    import re
+    from .locations import display_path
+    from .rules import ul004_unknown_package
+    from .workspace import beside
+    found: dict = {}
+    for r in models:
+        new = []
+        for p in r.problems:
+            m = re.search(r"unknown package '([^']+)'", p.message) \
+                if p.code == ul004_unknown_package.CODE and "pass --package-path" not in p.message \
+                else None
+            if m:
+                name = m.group(1)
+                if name not in found:
+                    found[name] = beside(name, paths or ["."])
+                if found[name]:
+                    p = p.replace(message=f"{p.message}; {display_path(found[name])}/package.xml "
+                                          f"beside the linted paths declares it: pass "
+                                          f"--package-path {name}={found[name]}")
+            new.append(p)
+        r.problems = new
+
+
+def _drop_current_outputs(models) -> None:
+    """A generated URDF identical (as XML) to today's expansion of its xacro is not linted
+    again: its findings are the xacro's, reported at the xacro lines (a repository that checks
+    in robot.urdf next to robot.urdf.xacro got every finding twice). It stays a model."""
+    current = {o for r in models for o in r.current_outputs}
+    for r in models:
+        if r.entry in current and not r.args:
+            r.problems = []
+
+
+def _drop_snapshots(reports, render_dir) -> None:
     """Remove the snapshots the workers wrote for files that turned out not to be reported
-    models (fragments, libraries, models a changed file does not affect)."""
+    models (fragments, libraries, models a changed file does not affect): regular files in
+    the output folder only, whatever path a worker sent back."""
+    from . import fsbound
     for r in reports:
         for k in ("png", "rrd"):
             f = (r.snapshot or {}).get(k)
-            if f:
-                try:
-                    os.remove(f)
-                except OSError:
-                    pass
+            if isinstance(f, str) and os.path.dirname(os.path.abspath(f)) == \
+                    os.path.realpath(render_dir):
+                fsbound.remove(f, os.path.realpath(render_dir))
         r.snapshot = None
 
 
@@ -261,9 +322,10 @@ def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model."""
     from .registry import run_rules
     run = RunView(models=list(out.models), generated=dict(out.generated))
-    return [Problem.at(rule.code, msg, loc, severity=sev)
-            for rule, loc, msg, sev in run_rules("run", settings.selected, settings.options, run,
-                                                 RunContext({}), out.internal)]
+    return [Problem.at(rule.code, msg, loc, severity=sev, consumers=table)
+            for rule, loc, msg, sev, table in run_rules("run", settings.selected,
+                                                        settings.options, run, RunContext({}),
+                                                        out.internal, with_table=True)]
 
 
 def _suppress(merged: list[Problem], models, settings: LintSettings,
@@ -273,8 +335,12 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     from .registry import catalogue
     rules = catalogue()
     files: set[str] = set()
+    # a generated URDF that is today's expansion is not linted: the comments xacro copied
+    # into it suppress nothing there (they are the xacro's)
+    current = {o for r in models for o in r.current_outputs}
     for r in models:
-        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)]
+        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)
+                   and d not in current]
         # the worker said which sources hold urdf-lint comments (kept in the cache with the
         # result, valid while the deps are); otherwise every source is read
         known = None if r.directive_files is None else set(r.directive_files)
@@ -294,6 +360,47 @@ def _suppress(merged: list[Problem], models, settings: LintSettings,
     about_comments += [Problem.at(invalid_suppression.CODE, msg, loc) for loc, msg in invalid]
     kept += [p.replace(models=()) for p in _with_policy(about_comments, RUN_LABEL, policy)]
     return kept
+
+
+_VARIANT_USE = None
+_BOOL_ARG = None
+
+
+def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
+    """{entry: [arg, ...]} for the models linted with every arg at its default although args
+    select variants there (an arg with a true/false default, or one read in a condition,
+    ``if=``/``unless=``/``<xacro:if value=...>``, or an include's ``filename``: a hand, a
+    simulation mode, an arm type), and no ``[[models]]`` entry lists the file."""
+    import re
+    from .packages import MAX_SOURCE_BYTES
+    global _VARIANT_USE, _BOOL_ARG
+    if _VARIANT_USE is None:
+        _VARIANT_USE = re.compile(rb"""\b(?:if|unless|filename|value)\s*=\s*(["'])[^"']*?"""
+                                  rb"""\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)""")
+        _BOOL_ARG = re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
+                               rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
+    configured = {m.path for m in cfg.models}
+    out: dict = {}
+    for r in models:
+        if r.args or r.entry in configured or not r.entry.endswith(".xacro"):
+            continue
+        names: dict = {}
+        for f in r.deps:
+            if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
+                try:
+                    with open(f, "rb") as fh:
+                        data = fh.read()
+                except OSError:
+                    continue
+                for m in _BOOL_ARG.finditer(data):
+                    names[m.group(1).decode("utf-8", "replace")] = None
+                for m in _VARIANT_USE.finditer(data):
+                    if not data.startswith(b"value", m.start()) or re.search(
+                            rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
+                        names[m.group(2).decode("utf-8", "replace")] = None
+        if names:
+            out[r.entry] = list(names)
+    return out
 
 
 def exit_code(result: CheckResult, fail_on: str) -> int:

@@ -35,19 +35,25 @@ class Policy:
     per_file_ignores: dict = field(default_factory=dict)   # glob -> [patterns]
     severity: dict = field(default_factory=dict)           # pattern -> severity
     root: str = "."                                        # per-file globs are relative to it
+    targets: tuple[str, ...] = ("ros",)                    # consumer targets (urdf_lint.targets)
 
     @classmethod
     def from_config(cls, cfg: "Config") -> "Policy":
         return cls(select=tuple(cfg.select) + tuple(cfg.extend_select), ignore=tuple(cfg.ignore),
                    per_file_ignores={k: list(v) for k, v in cfg.per_file_ignores.items()},
-                   severity=dict(cfg.severity), root=cfg.root)
+                   severity=dict(cfg.severity), root=cfg.root, targets=tuple(cfg.targets))
 
     def is_selected(self, code: str, name: str = "") -> bool:
         s = specificity(self.select, code, name)
         return s >= 0 and s > specificity(self.ignore, code, name)
 
     def selected_codes(self, rules: dict) -> list[str]:
-        return [c for c, r in rules.items() if self.is_selected(c, r.name)]
+        """The codes selected and applying to at least one selected target (a rule whose
+        ``TARGETS`` turns it off for all of them does not run)."""
+        from .targets import applies
+        return [c for c, r in rules.items() if self.is_selected(c, r.name)
+                and (not getattr(r, "targets", None) or applies(r.targets, r.severity,
+                                                                 self.targets))]
 
     def ignored_for_file(self, code: str, name: str, file: str) -> bool:
         if not self.per_file_ignores:
@@ -64,7 +70,12 @@ class Policy:
 
     def severity_of(self, code: str, name: str, default: str) -> str:
         """The configured severity of a rule (the most specific override wins)."""
-        best, sev = -1, default
+        over = self.override_of(code, name)
+        return default if over is None else over
+
+    def override_of(self, code: str, name: str) -> str | None:
+        """The severity the config sets for a rule (the most specific pattern), or None."""
+        best, sev = -1, None
         for pattern, s in self.severity.items():
             if code_matches(pattern, code, name) and len(pattern) > best:
                 best, sev = len(pattern), s

@@ -504,9 +504,37 @@ def caption(img, text):
     ImageDraw.Draw(img).text((8, 6), text, fill=(40, 40, 40))
 
 
+LEGEND_H = 18   # the strip at the bottom of the difference image that holds the legend
+
+
+def legend(img):
+    """The difference image's legend, in the bottom-left corner (``LEGEND_H`` rows)."""
+    from PIL import ImageDraw
+    d = ImageDraw.Draw(img)
+    y = img.size[1] - LEGEND_H + 2
+    d.rectangle((8, y + 2, 18, y + 12), fill=(230, 0, 160))
+    d.rectangle((150, y + 2, 160, y + 12), outline=(30, 60, 200), width=2)
+    d.text((22, y), "changed, now", fill=(40, 40, 40))
+    d.text((164, y), "where it was", fill=(40, 40, 40))
+
+
+def drawn_alike(a: "Geometry", b: "Geometry", link: str) -> bool:
+    """Is ``link`` drawn the same in ``a`` and ``b`` (the same parts and placeholders)?"""
+    def parts(g):
+        return ([g.tris[i] for i, lk in enumerate(g.part_links) if lk == link],
+                [g.cols[i] for i, lk in enumerate(g.part_links) if lk == link],
+                [g.wires[i] for i, lk in enumerate(g.wire_links) if lk == link])
+    for xs, ys in zip(parts(a), parts(b), strict=True):
+        if len(xs) != len(ys) or not all(
+                (x is None) == (y is None) and (x is None or np.array_equal(x, y))
+                for x, y in zip(xs, ys, strict=True)):
+            return False
+    return True
+
+
 def save_png(img, path):
-    from .atomic import atomic_path
-    with atomic_path(path, ".png") as tmp:
+    from . import fsbound   # the snapshot folder, checked by the CLI (and Landlock here)
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".png") as tmp:
         img.save(tmp, format="PNG", optimize=False)
 
 
@@ -563,6 +591,11 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
     from PIL import Image
     geoms = [g for g in (before, after) if g is not None]
     fr = frame_for(geoms, views=views, forward=forward)
+    asked = frozenset(changed_links)
+    if before is not None and after is not None:
+        # a link drawn alike on both sides (its mesh missing on both, a change no picture
+        # shows) is not marked changed
+        changed_links = frozenset(lk for lk in asked if not drawn_alike(before, after, lk))
     out: dict = {}
     blank = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
     same = before is not None and after is not None and same_geometry(before, after)
@@ -603,7 +636,9 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
         diff = difference_image(after_img, masks["before"], masks["after"])
         n = int((masks["before"] | masks["after"]).sum())
         caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
-                + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else ""))
+                + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else "")
+                + (" (no visible change)" if asked and not changed_links else ""))
+        legend(diff)
         saving.append(pool.submit(save_png, diff, f"{stem}.diff.png"))
         for f in saving:
             f.result()
@@ -614,11 +649,11 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
 def _save_same(pngs: dict) -> None:
     """Save path -> image for equal images: encoded once, written to every path."""
     import io
-    from .atomic import atomic_write
+    from . import fsbound
     buf = io.BytesIO()
     next(iter(pngs.values())).save(buf, format="PNG", optimize=False)
     for path in pngs:
-        atomic_write(path, buf.getvalue())
+        fsbound.write_bytes(path, buf.getvalue(), os.path.dirname(os.path.abspath(path)))
 
 
 def draw_many(items: dict, fr: Frame, threads=None) -> dict:

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from .locations import label_base, relative_label  # noqa: F401 - (where they are used from)
 from .ruleutil import numbers
 from .scene import origin_matrix, part_mesh
 
@@ -36,11 +37,11 @@ def record_rrd(scene, ctx, path, recording_id, prefix="", model=None, base=None)
     :func:`record_findings`); ``prefix`` (e.g. ``"head/"``) puts every entity under one root.
     With ``model`` the recording gets the ``joint_sweep`` timeline; ``base`` is what file
     names in labels are relative to."""
-    from .atomic import atomic_path
+    from . import fsbound   # the snapshot folder, checked by the CLI (and Landlock here)
     if model is not None:
         base = label_base(model.entry)
     plan = plan_rrd(scene, ctx, model, base)
-    with atomic_path(path) as tmp:
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path))) as tmp:
         write_rrd(tmp, recording_id, [(prefix, plan)])
     return plan_facts(plan)
 
@@ -92,26 +93,6 @@ def relative_text(text: str, base: str | None) -> str:
         rel = display_path(p, base) if base else p
         return (os.path.basename(p.rstrip("/")) or p) if os.path.isabs(rel) else rel
     return _ABS.sub(sub, text or "")
-
-
-def label_base(entry: str) -> str:
-    """What file names in a recording's labels are relative to: the folder holding the
-    entry's package (so labels read ``ur_description/urdf/ur5e.xacro``), else the entry's
-    folder; never a path of the machine that made it."""
-    d = os.path.dirname(os.path.abspath(entry))
-    probe = d
-    while True:
-        if os.path.isfile(os.path.join(probe, "package.xml")):
-            return os.path.dirname(probe)
-        up = os.path.dirname(probe)
-        if up == probe:
-            return d
-        probe = up
-
-
-def relative_label(path: str) -> str:
-    """``path`` relative to :func:`label_base` of itself (for summary.md and labels)."""
-    return os.path.relpath(path, label_base(path))
 
 
 @dataclass
@@ -266,8 +247,8 @@ def record_findings(findings, paths, joint_paths, path, recording_id, prefix="",
     model's (written by the parent once the run's findings are final; merged into the
     model's recording)."""
     import rerun as rr
-    from .atomic import atomic_path
-    with atomic_path(path) as tmp:
+    from . import fsbound
+    with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path))) as tmp:
         rec = rr.RecordingStream("urdf-lint", recording_id=recording_id, send_properties=False)
         rec.save(tmp)
         log_findings(lambda entity, *a, **kw: rec.log(prefix + entity, *a, **kw), findings,
@@ -332,9 +313,10 @@ class Recorder:
     (the snapshot folder), like the parent it was forked from. Forked before any worker or
     thread of the run, so no import or lock is half-held in it."""
 
-    def __init__(self):
+    def __init__(self, out_dir: str, memory_mb: int = 2048):
         from . import forked
-        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(),))
+        self.out_dir = os.path.realpath(out_dir)
+        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb))
         self.pending: list = []
         self.failed: list = []      # recordings that could not be sent (the recorder is gone)
         self._queue: Any = None
@@ -418,16 +400,19 @@ def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
         import rerun  # noqa: F401
     except ImportError:
         return NO_RERUN
-    from .atomic import atomic_path
+    from . import fsbound
     try:
-        with atomic_path(path, ".rrd") as tmp:
+        with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".rrd") as tmp:
             write_rrd(tmp, recording_id, plans, blueprint)
     except Exception as e:  # noqa: BLE001 - said in the snapshot's problems
         return f"{type(e).__name__}: {e}"
     return None
 
 
-def _recorder_main(conn, parent_pid):
+def _recorder_main(conn, parent_pid, out_dir, memory_mb):
+    """The recorder: hardened like a worker (memory limit, scrubbed environment, then
+    Landlock, seccomp and the audit hook: it reads no file of the repository and writes only
+    into ``out_dir``, the folder the user named)."""
     import signal
     signal.signal(signal.SIGINT, signal.SIG_IGN)    # the parent stops it
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -436,10 +421,23 @@ def _recorder_main(conn, parent_pid):
         set_parent_death_signal(parent_pid)
     except Exception:  # noqa: BLE001 - it also ends when the parent's end of the pipe closes
         pass
+    from .hardening import confine_writer, inherited_data_bytes, limit_memory, scrub_environment
+    from .sandbox import close_inherited_fds, warm
+    close_inherited_fds(getattr(conn, "fds", None) or (conn.fileno(),))
+    limit_memory(memory_mb, inherited_data_bytes(), rerun=True)
+    warm()   # (the sandbox's own imports, before the environment is scrubbed)
+    scrub_environment(set())
     try:
         import rerun  # noqa: F401 - while the first plan is made
     except ImportError:
         pass
     from . import forked
+    confined = False
     for path, recording_id, plans, blueprint in forked.messages(conn):
+        if os.path.dirname(os.path.realpath(path)) != out_dir:
+            conn.send((path, "not in the output folder; not written"))
+            continue
+        if not confined:   # (the folder exists once the run has cleared it for its pictures)
+            confine_writer(out_dir)
+            confined = True
         conn.send((path, write_recording(path, recording_id, plans, blueprint)))

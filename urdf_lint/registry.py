@@ -15,7 +15,10 @@ A rule module defines:
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
   table, :mod:`urdf_lint.expansion.errors`) or ``"engine"`` (the lint and run pipeline);
 * optional ``NEEDS = {"meshes"}``: the rule loads mesh geometry (slow on a cold cache; shown in
-  the rules page so that users know what ``ignore`` saves).
+  the rules page so that users know what ``ignore`` saves);
+* optional ``TARGETS = {"mujoco": "error", ...}``: the severity (or ``"off"``) per consumer
+  target (:mod:`urdf_lint.targets`); a literal dict of strings, read like the assignments
+  above. A check may yield such a dict after the message for one finding.
 
 ``CODE``, ``NAME``, ``SEVERITY``, ``SCOPE`` and ``ORIGIN`` are plain string assignments at the
 start of a line: :func:`catalogue` reads them from the sources without importing the 65
@@ -51,6 +54,8 @@ class Rule:
     scope: str = "model"
     origin: str = "rule"               # who raises it: a rule's check, expansion or the engine
     fail_at: tuple = ()                # ((line, col), ...) the FAIL example must report
+    targets: dict = field(default_factory=dict)   # target -> severity | "off" (urdf_lint.targets)
+    example_targets: tuple = ("ros",)  # the targets its FAIL and PASS examples are linted with
 
     @property
     def summary(self) -> str:
@@ -66,12 +71,12 @@ def submodule_names(paths) -> list[str]:
     """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
     (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
     an error: an install without its sources must not lint with no rules, or report nothing."""
-    import os
+    from . import fsbound
     paths = list(paths)
     names: set[str] = set()
     for folder in paths:
         try:
-            names.update(fn[:-3] for fn in os.listdir(folder)
+            names.update(fn[:-3] for fn in fsbound.list_dir(folder)
                          if fn.endswith(".py") and not fn.startswith("_"))
         except OSError:
             continue
@@ -95,13 +100,16 @@ def rule_from_module(mod) -> Rule:
         raise RuntimeError(f"{where}: a rule has either check() or ORIGIN = 'expansion'/'engine'")
     if needs - KNOWN_NEEDS:
         raise RuntimeError(f"{where}: unknown NEEDS {sorted(needs - KNOWN_NEEDS)}")
-    return Rule(code=mod.CODE, name=mod.NAME, severity=mod.SEVERITY,
+    from .targets import check_table
+    targets = check_table(getattr(mod, "TARGETS", {}), where)
+    return Rule(code=mod.CODE, name=mod.NAME, severity=mod.SEVERITY, targets=targets,
                 doc=(mod.__doc__ or "").strip(), check=check,
                 fail=getattr(mod, "FAIL", ""), passing=getattr(mod, "PASS", ""),
                 options=dict(getattr(mod, "OPTIONS", {})), needs=needs,
                 example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
                 module=mod.__name__, scope=scope, origin=origin,
-                fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())))
+                fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())),
+                example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))))
 
 
 def load_rules() -> dict:
@@ -130,11 +138,29 @@ class Entry(NamedTuple):
     scope: str
     origin: str
     module: str
+    targets: dict = {}
 
 
 _CATALOGUE: dict | None = None
 _CATALOGUE_OF: dict | None = None   # the loaded rules it was made from (None: the sources)
 _ASSIGNED = re.compile(r"""^(CODE|NAME|SEVERITY|SCOPE|ORIGIN) = ["']([^"'\n]*)["'][ \t]*$""", re.M)
+_TARGETS = re.compile(r"^TARGETS = (\{[^{}]*\})[ \t]*$", re.M)
+
+
+def _targets_of(source: str, where: str) -> dict | None:
+    """The ``TARGETS`` literal of a rule's source ({} when it has none; None when it has one
+    that is not a plain literal: the module is imported instead)."""
+    if "\nTARGETS" not in source:
+        return {}
+    m = _TARGETS.search(source)
+    if m is None:
+        return None
+    import ast
+    from .targets import check_table
+    try:
+        return check_table(ast.literal_eval(m.group(1)), where)
+    except (ValueError, SyntaxError):
+        return None
 
 
 def catalogue() -> dict:
@@ -151,18 +177,21 @@ def catalogue() -> dict:
         return _CATALOGUE
     import os
     import urdf_lint.rules as pkg
+    from . import fsbound
     out: dict[str, Entry] = {}
     for folder in pkg.__path__:
         for name in submodule_names([folder]):
             module = f"urdf_lint.rules.{name}"
             try:
-                with open(os.path.join(folder, name + ".py"), encoding="utf-8") as f:
-                    found = dict(_ASSIGNED.findall(f.read()))
+                source = fsbound.read_text(os.path.join(folder, name + ".py"))
+                found = dict(_ASSIGNED.findall(source))
+                targets = _targets_of(source, module)
             except (OSError, UnicodeDecodeError):
-                found = {}
-            if {"CODE", "NAME", "SEVERITY"} <= set(found):
+                found, targets = {}, None
+            if {"CODE", "NAME", "SEVERITY"} <= set(found) and targets is not None:
                 e = Entry(found["CODE"], found["NAME"], found["SEVERITY"],
-                          found.get("SCOPE", "model"), found.get("ORIGIN", "rule"), module)
+                          found.get("SCOPE", "model"), found.get("ORIGIN", "rule"), module,
+                          targets)
             else:   # not plain assignments: ask the module itself
                 mod = importlib.import_module(module)
                 if getattr(mod, "CODE", None) is None:
@@ -177,7 +206,7 @@ def catalogue() -> dict:
 
 
 def _entry(r: Rule) -> Entry:
-    return Entry(r.code, r.name, r.severity, r.scope, r.origin, r.module)
+    return Entry(r.code, r.name, r.severity, r.scope, r.origin, r.module, r.targets)
 
 
 def load_rule(code: str) -> Rule | None:
@@ -197,23 +226,31 @@ _LOADED: dict = {}
 
 
 def _extras(rest) -> tuple:
-    """(severity or "", fix request or None) from what a rule yields after the message."""
-    sev, req = "", None
+    """(severity or "", fix request or None, target table or None, root cause or None) from
+    what a rule yields after the message."""
+    from .findings import Cause
+    sev, req, table, cause = "", None, None, None
     for x in rest:
-        if isinstance(x, str):
+        if isinstance(x, Cause):
+            cause = x
+        elif isinstance(x, str):
             sev = x
+        elif isinstance(x, dict):
+            table = x
         elif x is not None:
             req = x
-    return sev, req
+    return sev, req, table, cause
 
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
-              with_fix: bool = False):
+              with_fix: bool = False, with_table: bool = False):
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
-    (:mod:`urdf_lint.fixes`). A rule yields ``(item, message)``, optionally followed by a
-    severity (a string) and/or a fix request, in that order. A rule that crashes adds an
+    (:mod:`urdf_lint.fixes`) and the root cause or None, with ``with_table`` then the target
+    table or None. A rule yields ``(item, message)``, optionally followed by a severity (a
+    string), a target table (a dict, :mod:`urdf_lint.targets`), a fix request and/or a
+    :class:`urdf_lint.findings.Cause`. A rule that crashes adds an
     internal error and the others still run."""
     import traceback
     entries = catalogue()
@@ -227,11 +264,12 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                sev, req = _extras(item[2:])
-                if with_fix:
-                    yield rule, item[0], item[1], sev, req
-                else:
-                    yield rule, item[0], item[1], sev
+                sev, req, table, cause = _extras(item[2:])
+                if table is not None:
+                    from .targets import check_table
+                    table = check_table(table, f"rule {code}")
+                yield ((rule, item[0], item[1], sev) + ((req, cause) if with_fix else ())
+                       + ((table,) if with_table else ()))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 

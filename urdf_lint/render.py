@@ -21,37 +21,28 @@ from .raster import Geometry, frame_for, render_pair, scene_geometry  # noqa: F4
 
 
 # -- orchestration -----------------------------------------------------------------------------
-def snapshot_name(entry, args, base):
-    from .locations import display_path
-    rel = display_path(entry, base)
-    if os.path.isabs(rel):  # outside the base: no path of this machine in the name
-        from .recording import relative_label
-        rel = relative_label(entry)
-    stem = rel.replace(os.sep, "__")
-    for ext in (".urdf.xacro", ".xacro", ".urdf"):
-        if stem.endswith(ext):
-            stem = stem[: -len(ext)]
-    if args:
-        stem += "__" + "_".join(f"{k}-{v}" for k, v in sorted(args.items()))
-        digest = hashlib.blake2b(repr(sorted(args.items())).encode(), digest_size=4).hexdigest()
-        stem = stem[:150] + "_" + digest
-    return "".join(ch if ch.isalnum() or ch in "_-.@" else "_" for ch in stem)
-
-
-def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x"):
+def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x",
+                 refused=()):
     """Draw the picture of ``model`` and write its recording (without findings); return a
     summary dict. Runs in the worker, the only process that reads meshes and textures. The
     parent captions the picture and adds the findings to the recording once the run's
     findings are final (:func:`finish_snapshots`): suppressions, per-file ignores, severities,
     run-scope rules and the baseline are applied there. ``findings`` is not used (kept for
-    callers that render one model in process). Never raises for model problems."""
-    os.makedirs(out_dir, exist_ok=True)
+    callers that render one model in process). Never raises for model problems. A name in
+    ``refused`` (the parent found another model of the run with the same one) is not
+    written."""
+    from .locations import snapshot_name
+    name = snapshot_name(model.entry, model.args, base)
+    if name in refused:
+        return {"name": name, "png": None, "rrd": None, "image": None, "problems": [
+            f"another model of this run has the picture name {name}: neither is drawn"]}
+    from . import fsbound
+    fsbound.make_own_dirs(out_dir)   # the snapshot folder the CLI checked
     importer = None
     if rrd and "rerun" not in sys.modules:
         # rerun's import (~0.5 s) overlaps with the PNG rasterization
         importer = threading.Thread(target=_import_rerun, daemon=True)
         importer.start()
-    name = snapshot_name(model.entry, model.args, base)
     scene = build_scene(model, ctx)
     info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": [],
             "image": None, "title": scene.name, "entities": entity_paths(scene)}
@@ -101,8 +92,22 @@ def finish_snapshots(models, findings, out_dir) -> None:
         list(pool.map(lambda m: _finish_one(m, by_model[m.label], out_dir), todo))
 
 
+def _in_folder(path, out_dir) -> bool:
+    """Is ``path`` (sent back by a worker) a file directly in the output folder?"""
+    return isinstance(path, str) and os.path.basename(path) not in ("", ".", "..") and \
+        os.path.dirname(os.path.abspath(path)) == os.path.realpath(out_dir)
+
+
 def _finish_one(m, mine, out_dir) -> None:
     snap = m.snapshot
+    # a worker's reply is data: the parent writes only files directly in the output folder
+    name = snap.get("name")
+    for k in ("png", "rrd"):
+        if snap.get(k) is not None and not _in_folder(snap[k], out_dir):
+            snap.setdefault("problems", []).append(f"{k}: not in the output folder; not written")
+            snap[k] = None
+    if not isinstance(name, str) or not _in_folder(os.path.join(out_dir, name), out_dir):
+        snap["rrd"] = None
     snap["findings"] = len(mine)
     _finish_png(snap, snap.pop("image", None), m, len(mine))
     if snap.get("rrd") and mine:
@@ -146,9 +151,9 @@ def merge_rrd(parts, out):
     then remove the other parts."""
     import shutil
     import subprocess
-    from .atomic import atomic_path
+    from . import fsbound
     exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
-    with atomic_path(out, ".rrd") as tmp:
+    with fsbound.temp_path(out, os.path.dirname(os.path.abspath(out)), ".rrd") as tmp:
         p = subprocess.run([exe, "rrd", "merge", *parts, "-o", tmp], capture_output=True,
                            timeout=120, env=dict(os.environ, RERUN_ANALYTICS="off"))
         if p.returncode != 0:
@@ -161,10 +166,9 @@ def merge_rrd(parts, out):
 
 
 def _remove(path):
-    try:
-        os.remove(path)
-    except OSError:
-        pass
+    """Remove a file this run wrote in its output folder (a regular file, not a link)."""
+    from . import fsbound
+    fsbound.remove(path, os.path.dirname(os.path.abspath(path)))
 
 
 # -- files this tool wrote in an output folder -------------------------------------------------
@@ -173,29 +177,30 @@ _OUTPUT_SUFFIXES = (".png", ".rrd", ".md")
 
 
 def _digest(path) -> str | None:
-    h = hashlib.blake2b(digest_size=16)
-    try:
-        with open(path, "rb") as f:
-            for block in iter(lambda: f.read(1 << 20), b""):
-                h.update(block)
+    from . import fsbound
+    try:   # a snapshot: a regular file, not a link, bounded
+        data = fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES * 4, nofollow=True)
     except OSError:
         return None
-    return h.hexdigest()
+    return hashlib.blake2b(data, digest_size=16).hexdigest()
 
 
-def clear_stale(out_dir) -> None:
+def clear_stale(out_dir, base=None) -> None:
     """Remove what an earlier run wrote in ``out_dir`` (listed in its manifest), so no stale
     picture survives. A file is removed only when it is a regular file directly in ``out_dir``
     with an output suffix and the very bytes that run wrote (the manifest keeps a digest), so
-    a planted or edited manifest cannot make urdf-lint delete anyone's file."""
+    a planted or edited manifest cannot make urdf-lint delete anyone's file. With ``base``
+    (the repository, when ``out_dir`` is in it), a symlinked folder anywhere from ``base``
+    down to ``out_dir`` is refused (:class:`urdf_lint.fsbound.BoundaryError`)."""
     import json
+    from . import fsbound
+    if base is not None:
+        fsbound.check_no_symlink(out_dir, base)
     path = os.path.join(out_dir, MANIFEST)
-    if os.path.islink(path) or not os.path.isfile(path):
-        return
     try:
-        with open(path, encoding="utf-8") as f:
-            files = json.load(f).get("files", {})
-    except (OSError, ValueError, AttributeError):
+        files = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_CONFIG_BYTES,
+                                              nofollow=True)).get("files", {})
+    except (OSError, ValueError, AttributeError, RecursionError):   # a planted manifest
         return
     for name, digest in files.items() if isinstance(files, dict) else ():
         if not isinstance(name, str) or os.path.basename(name) != name \
@@ -211,15 +216,15 @@ def write_manifest(out_dir, files) -> None:
     """Record the files this run wrote in ``out_dir`` with their digests (the next run
     removes them first, if they are unchanged)."""
     import json
-    from .atomic import atomic_write
+    from . import fsbound
     out = {}
     for f in files:
         if f and os.path.dirname(os.path.abspath(f)) == os.path.abspath(out_dir):
             d = _digest(f)
             if d is not None:
                 out[os.path.basename(f)] = d
-    atomic_write(os.path.join(out_dir, MANIFEST),
-                 json.dumps({"files": dict(sorted(out.items()))}, indent=1) + "\n")
+    fsbound.write_text(os.path.join(out_dir, MANIFEST),
+                       json.dumps({"files": dict(sorted(out.items()))}, indent=1) + "\n", out_dir)
 
 
 def write_summary(result, out_dir):
@@ -248,6 +253,6 @@ def write_summary(result, out_dir):
                 images.append(f"Recording: `{rel}` (open with `rerun {rel}` in this folder)\n")
     text = "\n".join(lines) + "\n\n" + "\n".join(images)
     path = os.path.join(out_dir, "summary.md")
-    from .atomic import atomic_write
-    atomic_write(path, text)
+    from . import fsbound
+    fsbound.write_text(path, text, out_dir)
     return path

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import io
 import os
 import subprocess
 import tarfile
@@ -58,8 +59,8 @@ def verify_rev(top: str, rev: str) -> str:
 def materialize(top: str, rev: str, dest: str, only=None) -> None:
     """The tracked files of ``rev`` (or just ``only``, paths relative to the top) under
     ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
-    os.makedirs(dest, exist_ok=True)
-    archive = os.path.join(os.path.dirname(dest), os.path.basename(dest) + ".tar")
+    from . import fsbound
+    fsbound.make_own_dirs(dest)   # a temporary folder of this run
     batches: list[list[str]]
     if only is None:
         batches = [[]]
@@ -70,12 +71,19 @@ def materialize(top: str, rev: str, dest: str, only=None) -> None:
         if only is not None and not batch:
             continue
         spec = ["--"] + [":(literal)" + p for p in batch] if batch else []
-        with open(archive, "wb") as f:
-            f.write(_git(top, "archive", "--format=tar", rev, *spec, binary=True))
-        with tarfile.open(archive) as tf:
-            tf.extractall(dest, filter="data")
-    if os.path.exists(archive):
-        os.remove(archive)
+        data = _git(top, "archive", "--format=tar", rev, *spec, binary=True)
+        with tarfile.open(fileobj=io.BytesIO(data)) as tf:
+            tf.extractall(dest, filter=_data_or_skip)
+
+
+def _data_or_skip(member, path):
+    """tarfile's ``data`` filter, but a member it refuses (an absolute symlink, a link out of
+    the tree, a device) is left out instead of ending the run: what reads it later finds it
+    missing, as the linted tree would not hold it either (inside the roots)."""
+    try:
+        return tarfile.data_filter(member, path)
+    except tarfile.FilterError:
+        return None
 
 
 def tracked_files(top: str, rev: str) -> set[str]:
@@ -113,6 +121,7 @@ class Side:
     geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
     rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
     errors: dict = field(default_factory=dict)      # key -> message
+    pictures: dict = field(default_factory=dict)    # key -> its pictures' name (as `render`'s)
 
 
 @dataclass
@@ -125,6 +134,7 @@ class DiffResult:
     base_expanded: int = 0
     internal: list = field(default_factory=list)
     snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
+    no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
 
 
 def _key(rel_entry: str, args: dict) -> str:
@@ -196,6 +206,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
     linted."""
     from .discovery import build_resolver
+    from .locations import picture_name
     from .pipeline import run_check
     resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
     result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
@@ -205,6 +216,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
         side.models[k] = m
+        side.pictures[k] = picture_name(_rel(side.root, m.entry), m.args)
         labels[m.label] = k
         side.findings[k] = Counter()
     real_root = os.path.realpath(side.root)
@@ -216,11 +228,6 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
             if label in labels:
                 side.findings[labels[label]][fk] += 1
     return resolver, result
-
-
-def image_stem(key: str) -> str:
-    """The file name stem of a model's diff snapshots (the markdown links to it)."""
-    return "".join(c if c.isalnum() or c in "._-" else "_" for c in key)
 
 
 def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
@@ -265,8 +272,12 @@ def _keep_robot(side: Side, k, entry, args, res, resolver):
     if kept.xml is not None:
         side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
     else:
-        with open(entry, "rb") as f:
-            root, origins, _ = parse_urdf_bytes(entry, f.read())
+        from . import fsbound
+        try:
+            data = fsbound.read_bytes(entry, resolver.roots if resolver is not None else None)
+        except OSError:
+            data = b""
+        root, origins, _ = parse_urdf_bytes(entry, data)
         side.robots[k] = (Model(entry=entry, args={}, root=root, origins=origins,
                                 deps=[entry], resolver=resolver)
                           if root is not None else None)
@@ -316,7 +327,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
     result = DiffResult(base=base_rev, head=head_rev or "working tree")
     # the recordings' writer imports rerun while the revisions are linted (forked now, before
     # any worker or thread)
-    recorder = _start_recorder() if render_dir and rrd else None
+    recorder = _start_recorder(render_dir) if render_dir and rrd else None
     try:
         with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
             return _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
@@ -326,10 +337,10 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             recorder.close()
 
 
-def _start_recorder():
+def _start_recorder(render_dir: str):
     from .recording import Recorder
     try:
-        return Recorder()
+        return Recorder(render_dir)
     except OSError:   # no process to spare: the recordings are written here
         return None
 
@@ -453,9 +464,18 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     for dk in sorted(deleted):
         result.models.append(_model_diff(dk, head, base, dk, removed=True))
     if render_dir:
+        from .locations import clashing_names
         from .render import write_manifest
         recordings: dict = {}
+        clash = clashing_names({md.model: md.picture for md in result.models})
+        for name, models in clash.items():
+            result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
+                                             f"has the picture name {name}: neither is drawn")
+                                         for k in models]
         for md in result.models:
+            if md.picture in clash:
+                md.snapshot = {}
+                continue
             removed = md.status == "removed"
             md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
                                     md.model if removed else base_keys.get(md.model),
@@ -471,7 +491,8 @@ def _clear_snapshots(render_dir):
     """Remove what an earlier diff --render wrote here (its manifest), so no stale picture
     survives; files this tool did not write stay."""
     from .render import clear_stale
-    os.makedirs(render_dir, exist_ok=True)
+    from . import fsbound
+    fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
     if os.path.islink(render_dir):
         raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
     clear_stale(render_dir)
@@ -480,11 +501,11 @@ def _clear_snapshots(render_dir):
 def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
               recorder=None, recordings=None) -> dict:
     from . import render
-    stem = os.path.join(render_dir, image_stem(key))
+    md = next(m for m in result.models if m.model == key)
+    stem = os.path.join(render_dir, md.picture)
     before = base.geometry.get(bk) if bk else None
     after = head.geometry.get(hk) if hk else None
     info: dict = {}
-    md = next(m for m in result.models if m.model == key)
     lost = [side for side, g, wanted in (("base", before, md.status != "added"),
                                          ("head", after, md.status != "removed"))
             if wanted and g is None]
@@ -506,7 +527,7 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
     if plans and recordings is not None:
         # both revisions in one recording, written by the recorder while the pictures are
         # drawn (collected by _finish_recordings)
-        path, rid = stem + ".rrd", f"urdf-lint-diff/{image_stem(key)}"
+        path, rid = stem + ".rrd", f"urdf-lint-diff/{md.picture}"
         recordings[path] = (key, info, rid, plans)
         if recorder is not None:
             recorder.write(path, rid, plans, blueprint=("base/", "head/"))
@@ -518,7 +539,7 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
 def _finish_recordings(result, recorder, recordings) -> None:
     """Wait for the recorder (or write here without one); a recording that could not be
     written is a snapshot problem, except when rerun is not installed (no .rrd then, as
-    ``--no-rrd``)."""
+    ``--no-rrd``, and ``result.no_recordings`` says why once)."""
     from .recording import NO_RERUN, write_recording
     if not recordings:
         return
@@ -531,7 +552,9 @@ def _finish_recordings(result, recorder, recordings) -> None:
         why = done.get(path, "not written")
         if why is None:
             info["rrd"] = path
-        elif why != NO_RERUN:
+        elif why == NO_RERUN:   # an optional part: the pictures are made, said once
+            result.no_recordings = why
+        else:
             result.snapshot_problems.append((key, f"no recording: {why}"))
 
 
@@ -544,7 +567,8 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
         status = "added"
     else:
         status = "changed"
-    md = ModelDiff(model=k, status=status)
+    md = ModelDiff(model=k, status=status,
+                   picture=base.pictures.get(bk, "") if removed else head.pictures.get(k, ""))
     if not removed and hm is None:
         md.status, md.error = "failed", head.errors.get(k, "")
     elif bk is not None and bm is None and not removed:

@@ -3,9 +3,10 @@ markdown for a job summary or a pull-request comment (always under 60,000 charac
 from __future__ import annotations
 
 import json
+import os
 
-from .report.escape import escape_markdown_code, escape_text
-from .review import MARKDOWN_LIMIT, DiffResult, image_stem
+from .report.escape import escape_html, escape_markdown, escape_markdown_code, escape_text
+from .review import MARKDOWN_LIMIT, DiffResult
 
 _ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
 _MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
@@ -26,6 +27,12 @@ def _loc(o, root=None) -> str:
         return ""
     from .locations import display_path
     return f"{display_path(o.file, root)}:{o.line}"
+
+
+def _vloc(v, root=None) -> str:
+    """``config/joint_limits.yaml:28``: where a changed value is written."""
+    from .locations import display_path
+    return f"{display_path(v[0], root)}:{v[1]}"
 
 
 def _chain(o, root=None) -> str:
@@ -63,6 +70,8 @@ def to_text(r: DiffResult) -> str:
             ch = _chain(c.head or c.base)
             if ch:
                 out.append(f"      {ch}")
+            if c.value_from:
+                out.append(f"      value from {_vloc(c.value_from)}")
         if m.moved:
             out.append(f"  moved at zero configuration: {_moved(m, 5)}")
         for fk, sev in m.findings_introduced:
@@ -83,7 +92,7 @@ def to_json(r: DiffResult) -> str:
            "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
         models.append({
-            "model": m.model, "status": m.status, "error": m.error,
+            "model": m.model, "status": m.status, "error": m.error, "picture": m.picture,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],
             "findings_introduced": [{"code": fk[0], "file": fk[1], "message": fk[2],
@@ -93,16 +102,18 @@ def to_json(r: DiffResult) -> str:
     return json.dumps(doc, indent=2) + "\n"
 
 
-def md_escape(s: str) -> str:
-    """Text safe inside a GFM table cell: no HTML, no pipes, no line breaks, no code spans, no
-    control or bidi characters (the shared helper, :mod:`urdf_lint.report.escape`)."""
-    s = str(s).replace("\r", " ").replace("\n", " ")
-    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    return escape_markdown_code(s)
+def md_escape(s) -> str:
+    """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
+    renders as that text only: no HTML, link, image, mention, table break or line break
+    (the shared helper, :mod:`urdf_lint.report.escape`)."""
+    return escape_markdown(str(s).replace("\r", " ").replace("\n", " "))
 
 
 def _code(s) -> str:
-    return f"`{md_escape(s)}`"
+    """A code span: shown literally (no link, HTML or mention is made inside one)."""
+    s = str(s).replace("\r", " ").replace("\n", " ")
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return f"`{escape_markdown_code(s)}`"
 
 
 def to_markdown(r: DiffResult, image_base_url: str | None = None,
@@ -122,12 +133,12 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
                      f"{'+' + str(fi) if fi else '0'} new / {ff} fixed |")
     sections = []
     for m in r.models:
-        rows = [f"<details><summary><b>{md_escape(m.model)}</b>: {m.status}, "
+        rows = [f"<details><summary><b>{escape_html(m.model)}</b>: {m.status}, "
                 f"{len(m.changes)} change(s)</summary>", ""]
         if m.error:
             rows += [f"> {md_escape(m.error)}", ""]
         if image_base_url:
-            stem = image_stem(m.model)   # the name the pictures were written under
+            stem = m.picture   # the name the pictures were written under
             base = image_base_url.rstrip("/")
             rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
@@ -136,7 +147,9 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
             rows += ["| | element | field | before | after | source |", "|---|---|---|---|---|---|"]
             for c in m.changes:
                 o = c.head or c.base
-                src = _code(_loc(o)) + (f" <sub>{md_escape(_chain(o))}</sub>" if _chain(o) else "")
+                src = (_code(_vloc(c.value_from)) + " <sub>value from; used at "
+                       + md_escape(_loc(o)) + "</sub>") if c.value_from else \
+                    _code(_loc(o)) + (f" <sub>{md_escape(_chain(o))}</sub>" if _chain(o) else "")
                 rows.append(f"| {_MD_ICON[c.change]} | {c.kind} {_code(c.name)} | "
                             f"{md_escape(c.field or c.change)} | {md_escape(_fmt(c.before))} | "
                             f"{md_escape(_fmt(c.after))} | {src} |")
@@ -181,7 +194,8 @@ def write(r: DiffResult, fmt: str, stream, **kw) -> None:
     stream.write(fn(r, **kw) if fmt == "markdown" else fn(r))
 
 
-def write_file(r: DiffResult, fmt: str, path: str, **kw) -> None:
-    from .atomic import atomic_open
-    with atomic_open(path) as f:
+def write_file(r: DiffResult, fmt: str, path: str, base: str | None = None, **kw) -> None:
+    """The report in ``path``, atomically, written below ``base`` (by default its folder)."""
+    from . import fsbound
+    with fsbound.open_write(path, base or os.path.dirname(os.path.abspath(path))) as f:
         write(r, fmt, f, **kw)

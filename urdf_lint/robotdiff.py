@@ -34,6 +34,8 @@ class Change:
     after: object = None
     head: Origin | None = None     # where HEAD writes it (None when removed)
     base: Origin | None = None     # where BASE wrote it (None when added)
+    value_from: tuple = ()         # (file, line, col) HEAD's value comes from (a YAML scalar,
+                                   # a property elsewhere), () when written at ``head``
 
     def to_dict(self, rel=None) -> dict:
         rel = rel or (lambda p: p)
@@ -42,7 +44,9 @@ class Change:
                                            "chain": [[rel(c[0]), c[1], c[2]] for c in o.chain]}
         return {"kind": self.kind, "name": self.name, "change": self.change, "field": self.field,
                 "before": _jsonable(self.before), "after": _jsonable(self.after),
-                "head": loc(self.head), "base": loc(self.base)}
+                "head": loc(self.head), "base": loc(self.base),
+                **({"value_from": [rel(self.value_from[0]), *self.value_from[1:]]}
+                   if self.value_from else {})}
 
 
 @dataclass
@@ -57,6 +61,7 @@ class ModelDiff:
     findings_fixed: list = field(default_factory=list)
     error: str = ""
     snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
+    picture: str = ""              # the file name stem of its pictures (locations.picture_name)
 
 
 def _jsonable(v):
@@ -116,11 +121,10 @@ def _mesh_digest(model, uri, cache):
         try:
             ref = meshes.resolve(model, uri)
             if ref.path and ref.problem is None and os.path.isfile(ref.path):
-                h = hashlib.sha256()
-                with open(ref.path, "rb") as f:
-                    for chunk in iter(lambda: f.read(1 << 20), b""):
-                        h.update(chunk)
-                digest = h.hexdigest()[:12]
+                from . import fsbound
+                from .meshes import MAX_MESH_BYTES
+                digest = hashlib.sha256(fsbound.read_bytes(
+                    ref.path, model.resolver.roots, MAX_MESH_BYTES)).hexdigest()[:12]
         except Exception:  # noqa: BLE001 - an unreadable mesh has no digest; rules report it
             digest = None
         cache[key] = digest
@@ -302,6 +306,7 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
     changes: list[Change] = []
     hloc = head_model.origin if head_model is not None else (lambda el: None)
     bloc = base_model.origin if base_model is not None else (lambda el: None)
+    value_from = _value_source(head_model)
 
     renames: dict = {}   # (kind, old) -> new
     for kind in ("link", "joint", "material"):
@@ -356,7 +361,8 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
                 continue
             changes.append(Change(hkey[0], hkey[1], "changed", k, bv, hv,
                                   head=hloc(h.el) if h else hloc(hel),
-                                  base=bloc(b.el) if b else bloc(bel)))
+                                  base=bloc(b.el) if b else bloc(bel),
+                                  value_from=value_from(h, k)))
 
     bp, hp = world_poses(base), world_poses(head)
     link_map = {o: n for (k, o), n in renames.items() if k == "link"}
@@ -372,6 +378,24 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
             moved.append((new, dist, ang))
     moved.sort(key=lambda m: (-m[1], -m[2], m[0]))
     return changes, moved
+
+
+def _value_source(model):
+    """``(fact, field) -> (file, line, col) | ()``: where HEAD's value of ``field`` comes from
+    when not from the element's own line (the YAML line a person edits, a property elsewhere):
+    :meth:`urdf_lint.fixes.Fixer.value_from` on the attribute the field names
+    (``limit.upper`` -> ``upper``)."""
+    if model is None or not hasattr(model, "origins"):
+        return lambda fact, field: ()
+    from .fixes import Fixer
+    fixer = Fixer(model)
+
+    def source(fact, field: str) -> tuple:
+        attr = field.rsplit(".", 1)[-1]
+        if fact is None or fact.el is None or fact.el.get(attr) is None:
+            return ()
+        return fixer.value_from(fact.el, (attr,))
+    return source
 
 
 def diff_models(base_model, head_model) -> tuple[list, list]:

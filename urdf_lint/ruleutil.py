@@ -37,11 +37,23 @@ def did_you_mean(word, candidates):
     return f" (did you mean '{m[0]}'?)" if m else ""
 
 
+CLEAR_MARGIN = 0.15
+
+
 def single_candidate(word, candidates, cutoff=0.6):
     """The one close match of ``word`` among ``candidates`` (None when there are none or
-    several): what a "did you mean" fix may apply."""
-    m = difflib.get_close_matches(word, list(candidates), n=2, cutoff=cutoff)
-    return m[0] if len(m) == 1 else None
+    several): what a "did you mean" fix may apply. With a ``cutoff`` above 0.6 (references),
+    a second candidate a "did you mean" would consider (similarity 0.6) within
+    ``CLEAR_MARGIN`` of the first makes two: 'left_finger'
+    (0.79 to left_finger_joint, 0.67 to left_inner_joint) is not fixed, 'bse_link' (0.94 to
+    base_link, 0.63 to arm_link) is."""
+    m = difflib.get_close_matches(word, list(candidates), n=2, cutoff=min(cutoff, 0.6))
+    if not m:
+        return None
+    r = [difflib.SequenceMatcher(None, word, c).ratio() for c in m]
+    if r[0] < cutoff or (len(m) == 2 and (cutoff <= 0.6 or r[1] > r[0] - CLEAR_MARGIN)):
+        return None
+    return m[0]
 
 
 def reference_fixes(broken, candidates, taken=()):

@@ -31,7 +31,7 @@ from .jobs import LintJob, ModelReport
 if TYPE_CHECKING:  # pragma: no cover
     from .cache import Cache
 
-FORMAT = 3
+FORMAT = 6
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
@@ -118,15 +118,14 @@ KEEP = 8   # memos kept (one per distinct command line and config); the oldest g
 
 
 def _prune(folder: str) -> None:
+    from . import fsbound
     try:
-        entries = sorted(os.scandir(folder), key=lambda e: e.stat().st_mtime_ns)
+        entries = sorted(fsbound.scan_dir(folder),
+                         key=lambda e: e.stat(follow_symlinks=False).st_mtime_ns)
     except OSError:
         return
     for e in entries[:max(0, len(entries) - KEEP + 1)]:
-        try:
-            os.remove(e.path)
-        except OSError:
-            pass
+        fsbound.remove(e.path, folder)
 
 
 def _mtime(path: str) -> int | None:

@@ -11,10 +11,14 @@ after fork, before the worker reads any job, and applies, each where the platfor
 * **Landlock** (Linux >= 5.13, PyPI ``landlock``): the filesystem is read-only below the
   package roots, the repository and the Python runtime, writable only below the cache and
   snapshot folders, and invisible everywhere else (``/proc`` included, so neither the
-  parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read);
+  parent's ``/proc/<pid>/environ`` nor the worker's own inherited one can be read); where
+  the kernel has Landlock's scopes (ABI >= 6), no signal leaves the worker either;
 * **seccomp** (PyPI ``pyseccomp`` over ``libseccomp.so.2``): ``execve``/``execveat``, socket
-  creation and connection, ``ptrace``, cross-process memory access, ``io_uring`` and signals
-  to other processes fail with ``EPERM``.
+  creation and connection, ``ptrace``, cross-process memory access, ``io_uring``, signals
+  to any other process (``kill``, ``tkill``, ``tgkill``, ``rt_sigqueueinfo``,
+  ``rt_tgsigqueueinfo``) and new processes (``fork``, ``vfork``, ``clone`` without
+  ``CLONE_THREAD``; ``clone3`` says ``ENOSYS`` so libc starts threads with ``clone``) fail
+  with ``EPERM``: a worker has threads but never a child that could outlive it.
 
 Filters are inherited by any thread the worker starts and cannot be lifted afterwards. A
 protection the kernel lacks is reported once by the parent (:func:`note_missing`) and the run
@@ -29,6 +33,7 @@ import os
 import sys
 
 _PR_SET_PDEATHSIG = 1
+_PR_SET_NO_NEW_PRIVS = 38
 
 # syscalls a worker never needs; each fails with EPERM. socketpair() stays allowed: it makes
 # an already-connected pair inside the process (rerun's runtime uses one for signals) and
@@ -42,6 +47,10 @@ DENIED_SYSCALLS = (
     "bpf", "perf_event_open", "userfaultfd", "keyctl", "add_key", "request_key",
     "pidfd_open", "pidfd_getfd", "pidfd_send_signal",
 )
+# calls that signal the process or thread their first argument names: allowed only with the
+# worker's own pid there
+SIGNAL_SYSCALLS = ("kill", "tkill", "tgkill", "rt_sigqueueinfo", "rt_tgsigqueueinfo")
+_CLONE_THREAD = 0x00010000
 # read-only system folders the runtime may load shared libraries and data from
 _SYSTEM_READ = ("/usr/lib", "/usr/lib64", "/usr/local/lib", "/lib", "/lib64", "/usr/share/zoneinfo",
                 "/etc/ld.so.cache", "/etc/localtime", "/dev/urandom", "/dev/random",
@@ -148,13 +157,12 @@ def note_missing(stream=None) -> None:
     if _noted:
         return
     _noted = True
-    stream = stream or sys.stderr
+    from .emit import say
     p = protections()
     for k in ("landlock", "seccomp"):
         ok, why = p[k]
         if not ok:
-            stream.write(f"urdf-lint: note: worker sandbox without {k}: {why}; "
-                         "see SECURITY.md\n")
+            say(f"urdf-lint: note: worker sandbox without {k}: {why}; see SECURITY.md", stream)
 
 
 # -- applying (worker side) --------------------------------------------------------------------
@@ -274,6 +282,36 @@ def apply_landlock(read_paths, write_paths) -> None:
             pass
 
 
+# Landlock's scopes (ABI >= 6): a domain that may not signal a process outside itself
+_LANDLOCK_SCOPE_SIGNAL = 1 << 1
+_SYS_LANDLOCK_CREATE_RULESET, _SYS_LANDLOCK_RESTRICT_SELF = 444, 446   # every architecture
+
+
+def apply_signal_scope() -> bool:
+    """Landlock ABI >= 6: no signal leaves the worker's domain (the kernel's own check, under
+    seccomp's argument filter). False when the kernel's ABI has no scopes."""
+    from landlock import landlock_abi_version
+    if landlock_abi_version() < 6:
+        return False
+    libc = _libc()
+    if libc is None:
+        return False
+    libc.syscall.restype = ctypes.c_long
+    attr = (ctypes.c_uint64 * 3)(0, 0, _LANDLOCK_SCOPE_SIGNAL)   # fs, net, scoped
+    fd = libc.syscall(_SYS_LANDLOCK_CREATE_RULESET, ctypes.byref(attr),
+                      ctypes.c_size_t(ctypes.sizeof(attr)), ctypes.c_uint32(0))
+    if fd < 0:
+        raise OSError(ctypes.get_errno(), "landlock_create_ruleset (signal scope)")
+    try:
+        if libc.prctl(_PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_SET_NO_NEW_PRIVS)")
+        if libc.syscall(_SYS_LANDLOCK_RESTRICT_SELF, ctypes.c_int(fd), ctypes.c_uint32(0)) != 0:
+            raise OSError(ctypes.get_errno(), "landlock_restrict_self (signal scope)")
+    finally:
+        os.close(fd)
+    return True
+
+
 def apply_seccomp() -> None:
     sc = _import_pyseccomp()
     f = sc.SyscallFilter(defaction=sc.ALLOW)
@@ -283,12 +321,29 @@ def apply_seccomp() -> None:
         except Exception:  # noqa: BLE001 - a syscall this architecture does not have
             continue
     me = os.getpid()
-    # signals only to itself (its own threads included)
-    for name in ("kill", "tgkill"):
+    # signals only to itself (its own threads included): every call that names a target
+    # process or thread by its first argument (a thread of the worker is reached through
+    # tgkill(me, tid), which glibc's pthread_kill and raise use)
+    for name in SIGNAL_SYSCALLS:
         try:
             f.add_rule(sc.ERRNO(errno.EPERM), name, sc.Arg(0, sc.NE, me))
-        except Exception:  # noqa: BLE001
+        except Exception:  # noqa: BLE001 - a syscall this architecture does not have
             continue
+    # no child process: fork/vfork, and clone without CLONE_THREAD, fail (a thread shares the
+    # worker's life: it dies with it). clone3 passes its flags in memory a filter cannot
+    # read: it says ENOSYS, and libc falls back to clone, which is filtered
+    for name in ("fork", "vfork"):
+        try:
+            f.add_rule(sc.ERRNO(errno.EPERM), name)
+        except Exception:  # noqa: BLE001 - aarch64 has neither
+            continue
+    # clone(flags, ...): the flags are the first argument everywhere but s390 (the second)
+    flags_arg = 1 if os.uname().machine.startswith("s390") else 0
+    f.add_rule(sc.ERRNO(errno.EPERM), "clone", sc.Arg(flags_arg, sc.MASKED_EQ, _CLONE_THREAD, 0))
+    try:
+        f.add_rule(sc.ERRNO(errno.ENOSYS), "clone3")
+    except Exception:  # noqa: BLE001 - a libseccomp that predates clone3 (the kernel's
+        pass           # filter then allows it: no worse than before)
     f.load()
 
 
@@ -307,6 +362,10 @@ def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
             status["landlock"] = "on"
         except Exception as e:  # noqa: BLE001 - report and go on with what remains
             status["landlock"] = f"failed: {e}"
+        try:
+            status["signal-scope"] = "on" if apply_signal_scope() else "unavailable (ABI < 6)"
+        except Exception as e:  # noqa: BLE001
+            status["signal-scope"] = f"failed: {e}"
     else:
         status["landlock"] = "unavailable"
     if seccomp_status()[0]:
@@ -347,7 +406,8 @@ def enter_worker(conn, settings) -> dict:
     for d in (facts, settings.render_dir):
         if d:
             try:
-                os.makedirs(d, exist_ok=True)
+                from . import fsbound
+                fsbound.make_own_dirs(d)   # the snapshot and mesh-facts folders
                 write.append(d)
             except OSError:
                 pass

@@ -69,15 +69,17 @@ def escape(value: str, quote: str) -> str:
     return out.replace('"', "&quot;") if quote == '"' else out.replace("'", "&apos;")
 
 
+_LINE_STARTS: list = [None, []]   # (the bytes, the offset of each of its lines)
+
+
 def line_offset(data: bytes, line: int) -> int | None:
-    """Byte offset of the start of 1-based ``line`` (None past the end)."""
-    pos = 0
-    for _ in range(line - 1):
-        nl = data.find(b"\n", pos)
-        if nl < 0:
-            return None
-        pos = nl + 1
-    return pos
+    """Byte offset of the start of 1-based ``line`` (None past the end). The line table of
+    the last ``data`` asked about is kept: asking for every line of a file is linear, not
+    quadratic (one unused suppression comment per line of a large file)."""
+    if _LINE_STARTS[0] is not data:
+        _LINE_STARTS[:] = [data, [0] + [m.end() for m in re.finditer(b"\n", data)]]
+    starts = _LINE_STARTS[1]
+    return starts[line - 1] if 1 <= line <= len(starts) else (0 if line < 1 else None)
 
 
 def offset_of(data: bytes, line: int, col: int) -> int | None:

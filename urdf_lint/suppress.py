@@ -10,6 +10,7 @@ directive (``disabel-next``) or code (``UL999``) as ``UL010 invalid-suppression`
 """
 from __future__ import annotations
 
+import bisect
 import re
 import xml.parsers.expat
 from dataclasses import dataclass, field
@@ -65,10 +66,7 @@ def _read_source(path: str) -> bytes | None:
     """The bytes of a regular file of bounded size (never a device, FIFO or folder), or None
     when it holds no urdf-lint comment at all."""
     from .hashing import read_regular
-    from . import overlay
-    data = overlay.get(path)   # an unsaved editor buffer (urdf-lint server)
-    if data is None:
-        data = read_regular(path, MAX_BYTES)
+    data = read_regular(path, MAX_BYTES)   # (an unsaved editor buffer: urdf_lint/overlay.py)
     return data if data is not None and (b"urdf-lint" in data or b"urdf_lint" in data) else None
 
 
@@ -100,34 +98,97 @@ def with_directives(deps) -> list[str]:
     return out
 
 
+_HEAD = re.compile(r"<!--\s*urdf[-_]lint\s*:\s*([A-Za-z_-]*)")
+
+
+def _comments(text: str):
+    """(start, end, kind, rest) of every ``<!-- urdf-lint: KIND REST -->`` in ``text``, what
+    ``_DIRECTIVE.finditer`` yields, in one linear pass: each comment's end is the first
+    ``-->`` after its kind, found once (the pattern's lazy search for it from every unclosed
+    opening made a file of unclosed comments quadratic), and once no ``-->`` follows, no
+    later opening can close either."""
+    pos = 0
+    while (m := _HEAD.search(text, pos)) is not None:
+        close = text.find("-->", m.end(1))
+        if close >= 0:
+            kind, rest = m.group(1), text[m.end(1):close]
+        else:   # only a '-->' ending the kind itself ('disable-->'): the pattern backtracks
+            close = text.find("-->", m.start(1))
+            if close < 0:
+                return
+            kind, rest = text[m.start(1):close], ""
+        yield m.start(), close + 3, kind, rest
+        pos = close + 3
+
+
+class _Lines:
+    """Line and column of increasing offsets in ``text``, counted incrementally (linear in
+    the text however many offsets are asked for)."""
+
+    def __init__(self, text: str):
+        self.text, self.pos, self.line, self.line_start = text, 0, 1, 0
+
+    def at(self, offset: int) -> tuple[int, int]:
+        assert offset >= self.pos
+        n = self.text.count("\n", self.pos, offset)
+        if n:
+            self.line += n
+            self.line_start = self.text.rfind("\n", self.pos, offset) + 1
+        self.pos = offset
+        return self.line, offset - self.line_start + 1
+
+
+MAX_HINTS = 200   # "did you mean" for this many unknown words of a file (each costs ~0.5 ms)
+
+
 def parse_directives(path: str) -> list[Directive]:
     data = _read_source(path)
     if data is None:
         return []
+    return directives_in(data, path)
+
+
+def coverage(data: bytes, path: str = "") -> list[tuple[int, str, frozenset]]:
+    """(line, "kind codes", the ordinals of the elements it covers) for every directive in
+    ``data``: what ``urdf-lint format`` must keep when it moves lines."""
+    spans = _element_spans(data)
+    out = []
+    for d in directives_in(data, path):
+        if d.kind in KINDS:
+            what = f"{d.kind} {' '.join(d.codes)}".strip()
+            out.append((d.line, what, frozenset(i for i, s in enumerate(spans)
+                                                if _covers(d, path, *s[0]))))
+    return out
+
+
+def directives_in(data: bytes, path: str) -> list[Directive]:
+    """The directives in the bytes of the source ``path``."""
     text = data.decode("utf-8", "replace")
     out = []
-    spans = None
+    spans: list | None = None
+    starts: list = []
     open_ranges: dict = {}
     nlines = text.count("\n") + 1
-    for m in _DIRECTIVE.finditer(text):
-        kind = m.group(1)
-        codes = [c for c in re.split(r"[\s,]+", m.group(2).strip()) if c]
-        line = text.count("\n", 0, m.start()) + 1
-        col = m.start() - (text.rfind("\n", 0, m.start()) + 1) + 1
-        end_line = text.count("\n", 0, m.end()) + 1
-        end_col = m.end() - (text.rfind("\n", 0, m.end()) + 1) + 1
+    lines = _Lines(text)
+    hints: dict = {}
+    for start, end, kind, rest in _comments(text):
+        codes = [c for c in re.split(r"[\s,]+", rest.strip()) if c]
+        line, col = lines.at(start)
+        end_line, end_col = lines.at(end)
         d = Directive(kind, codes, path, line, col)
         if kind not in KINDS:
-            d.problems.append(f"unknown suppression directive '{kind or m.group(2).strip()}'"
-                              + _did_you_mean(kind, KINDS) + "; it suppresses nothing")
+            d.problems.append(f"unknown suppression directive '{kind or rest.strip()}'"
+                              + _hint(kind, KINDS, hints) + "; it suppresses nothing")
             d.used = True   # reported as invalid, not also as unused
             out.append(d)
             continue
-        d.problems.extend(_code_problems(codes))
+        d.problems.extend(_code_problems(codes, hints))
         if kind == "disable-next":
             if spans is None:
                 spans = _element_spans(data)
-            nxt = next((s for s in spans if s[0] >= (end_line, end_col)), None)
+                starts = [s[0] for s in spans]   # in document order
+            i = bisect.bisect_left(starts, (end_line, end_col))
+            nxt = spans[i] if i < len(spans) else None
             d.span = (nxt[0], nxt[1] or nxt[0][0]) if nxt else ((line, col), line)
         elif kind == "disable":
             d.span = ((line, col), nlines)
@@ -148,18 +209,37 @@ def _did_you_mean(word, candidates):
     return did_you_mean(word, candidates)
 
 
-def _code_problems(codes) -> list[str]:
-    """Messages for codes that name no rule, no code prefix and no rule name."""
+def _hint(word, candidates, hints: dict) -> str:
+    """:func:`_did_you_mean`, once per word and for at most :data:`MAX_HINTS` words."""
+    key = ("hint", word)
+    if key not in hints:
+        hints[key] = _did_you_mean(word, candidates) if hints.get("hinted", 0) < MAX_HINTS else ""
+        hints["hinted"] = hints.get("hinted", 0) + 1
+    return hints[key]
+
+
+def _code_problems(codes, hints: dict | None = None) -> list[str]:
+    """Messages for codes that name no rule, no code prefix and no rule name (each code judged
+    once per ``hints``, the memo of one file's scan)."""
+    memo = {} if hints is None else hints
+    out = []
+    for c in codes:
+        key = ("code", c)
+        if key not in memo:
+            memo[key] = _code_problem(c, memo)
+        if memo[key]:
+            out.append(memo[key])
+    return out
+
+
+def _code_problem(c: str, hints: dict) -> str | None:
     from .registry import catalogue
     rules = catalogue()
     names = {r.name for r in rules.values()}
-    out = []
-    for c in codes:
-        if c.upper() == "ALL" or c in names or any(k.startswith(c) for k in rules):
-            continue
-        out.append(f"unknown code '{c}' in a suppression comment"
-                   + _did_you_mean(c, list(rules) + sorted(names)) + "; it suppresses nothing")
-    return out
+    if c.upper() == "ALL" or c in names or any(k.startswith(c) for k in rules):
+        return None
+    return (f"unknown code '{c}' in a suppression comment"
+            + _hint(c, list(rules) + sorted(names), hints) + "; it suppresses nothing")
 
 
 def _covers(d: Directive, file, line, col) -> bool:

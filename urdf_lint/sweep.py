@@ -7,7 +7,6 @@ with the confined package resolver (SECURITY.md). Imported only when a recording
 """
 from __future__ import annotations
 
-import logging
 import math
 from dataclasses import dataclass, field
 
@@ -27,9 +26,9 @@ def build_urdf(root):
     """A yourdfpy URDF of the expanded ``<robot>`` element (a scene graph, no geometry read),
     or None when yourdfpy cannot take the model (a malformed joint, for example)."""
     import yourdfpy
-    log = logging.getLogger("yourdfpy")
-    level = log.level
-    log.setLevel(logging.ERROR)  # "link not connected" and friends: the lint rules say that
+
+    from .meshes import quiet_libraries
+    quiet_libraries()   # "link not connected", a mimic of itself: the lint rules say that
     try:
         robot = yourdfpy.URDF._parse_robot(xml_element=root)
         return yourdfpy.URDF(robot=robot, build_scene_graph=True,
@@ -39,8 +38,6 @@ def build_urdf(root):
         raise
     except Exception:  # noqa: BLE001 - no sweep for a model yourdfpy cannot read
         return None
-    finally:
-        log.setLevel(level)
 
 
 def link_poses(urdf) -> dict:

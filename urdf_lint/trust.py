@@ -11,7 +11,15 @@ the *user* asked for:
 * ``timeout`` and ``memory-mb`` may only tighten the defaults;
 
 each with a note on stderr, unless the same setting is given on the command line or the user
-passes ``--trust-config``. Numeric limits are always clamped to sane ranges, trusted or not.
+passes ``--trust-config``. Keys that only choose what is reported and how severely (``select``,
+``ignore``, ``severity``, ``targets``) are the repository's to set: they widen nothing a
+description may read or a run may take. Numeric limits are always clamped to sane ranges, trusted or not.
+
+The paths a run writes or reads as data -- a models entry's ``output`` and ``mesh-base``, and
+``baseline`` -- must, from the repository's own config, resolve inside the repository with no
+symlinked component (:func:`confine_paths`): otherwise the run stops with a config error
+naming the key and the file:line, unless the setting is given on the command line or the user
+passes ``--trust-config``.
 """
 from __future__ import annotations
 
@@ -33,10 +41,57 @@ def _clamp(value, key):
     return min(max(value, lo), hi)
 
 
-def apply(cfg: Config, repo: str, trusted: bool = False) -> list[str]:
+def config_root(cfg: Config, repo: str) -> str:
+    """The folder the paths of ``cfg`` must stay in: the repository, or the config's own
+    folder when the config lies above it (no git: the linted folder is the repository, and a
+    config above it is not the repository's own)."""
+    top = os.path.realpath(repo)
+    folder = os.path.dirname(os.path.realpath(cfg.path)) if cfg.path else top
+    return top if inside(folder, top) else folder
+
+
+def confine_paths(cfg: Config, repo: str, given: set) -> None:
+    """Raise a located :class:`ConfigError` when a path key of the repository's own config
+    (``output``, ``mesh-base``, ``baseline``) leaves the repository or goes through a
+    symlink; keys in ``given`` (set on the command line) are the user's and not checked."""
+    from .config import ConfigError, _line_of, _shown
+    from pathlib import Path
+    raw = cfg.raw or {}
+    if not cfg.path:
+        return
+    folder = os.path.dirname(os.path.realpath(cfg.path))
+    top = config_root(cfg, repo)
+    found: list = []
+    if "baseline" not in given and isinstance(raw.get("baseline"), str):
+        found.append(("baseline", raw["baseline"]))
+    for m in raw.get("models") or ():
+        if isinstance(m, dict):
+            found += [(k, m[k]) for k in ("output", "mesh-base") if isinstance(m.get(k), str)]
+    for key, value in found:
+        p = os.path.normpath(os.path.join(folder, os.path.expanduser(value)))
+        why = None
+        if not inside(p, top):
+            why = "is outside the repository"
+        else:
+            from .fsbound import first_symlink
+            link = first_symlink(p, top)
+            if link is not None:
+                why = f"goes through the symlink {os.path.relpath(link, top)!r}"
+        if why:
+            from .report.escape import escape_text
+            raise ConfigError(
+                f"{_shown(cfg.path)}{_line_of(Path(cfg.path), key)}: {key} = "
+                f"{escape_text(repr(value))} {why} (a repository's own config may name only "
+                f"paths inside it: pass it on the command line or use --trust-config)")
+
+
+def apply(cfg: Config, repo: str, trusted: bool = False, given: frozenset | set = frozenset()) -> list[str]:
     """Make ``cfg`` safe to use; return the notes to show. Run it before the command line's
-    settings are applied on top (they are the user's, not the repository's)."""
+    settings are applied on top (they are the user's, not the repository's); ``given`` are
+    the keys set on the command line."""
     notes: list[str] = []
+    if not trusted:
+        confine_paths(cfg, repo, set(given))
     raw = cfg.raw or {}
     where = os.path.basename(cfg.path) if cfg.path else "the config"
     default = Config()

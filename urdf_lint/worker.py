@@ -17,52 +17,12 @@ from typing import Any
 
 from . import forked
 from .findings import Problem
+from .hardening import limit_memory
+from .hardening import inherited_data_bytes as _inherited_data_bytes
+from .hardening import install_audit_hook as _install_audit_hook
+from .hardening import scrub_environment as _scrub_environment
 from .jobs import LintJob, LintSettings, ModelReport
 from .rules import ul904_resource_limit as resource_limit
-
-# importing rerun reserves ~1.2 GB of writable address space (its Rust runtime) before any
-# data is logged; workers that write recordings get this on top of the memory limit
-RERUN_RESERVE_MB = 1536
-
-_KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHONHASHSEED",
-             "SYSTEMROOT", "OPENBLAS_NUM_THREADS"}   # (the last: set by the command, cli.entry)
-
-
-def _scrub_environment(allow):
-    for k in list(os.environ):
-        if k in _KEEP_ENV or k.startswith("LC_") or k in allow:
-            continue
-        del os.environ[k]
-
-
-_DENIED_EVENTS = {"os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", "os.spawn",
-                  "os.fork", "os.forkpty", "pty.spawn", "socket.connect", "socket.bind",
-                  "os.kill", "webbrowser.open", "shutil.rmtree", "os.remove",
-                  "os.rename", "os.rmdir", "os.chmod", "os.chown", "os.symlink", "os.link"}
-
-
-def _install_audit_hook(*writable):
-    """Second line of defence: even if an expression escaped the evaluator, the worker may not
-    start processes, open sockets or write files outside the cache and snapshot folders."""
-    dirs = tuple(os.path.realpath(d) + os.sep for d in writable if d)
-
-    def ok(path):
-        return bool(dirs) and os.path.realpath(os.fsdecode(path)).startswith(dirs)
-    flags_w = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
-
-    def hook(event, args):
-        if event in _DENIED_EVENTS:
-            if event in ("os.rename", "os.remove") and args and ok(args[0]):
-                return  # atomic cache / snapshot writes
-            raise PermissionError(f"urdf-lint worker: {event} is not allowed")
-        if event == "open" and len(args) >= 3:
-            path, mode, flags = args[0], args[1], args[2]
-            writing = (isinstance(mode, str) and any(c in mode for c in "wax+")) or \
-                (isinstance(flags, int) and flags & flags_w)
-            if writing and isinstance(path, (str, bytes, os.PathLike)) and not ok(path):
-                raise PermissionError(f"urdf-lint worker: writing {os.fsdecode(path)} is not allowed")
-    sys.addaudithook(hook)
-
 
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
@@ -87,7 +47,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
         report.snapshot = render_model(model, ctx, [], settings.render_dir,
                                        settings.render_base, rrd=settings.render_rrd,
                                        views=settings.render_views,
-                                       forward=settings.render_forward)
+                                       forward=settings.render_forward,
+                                       refused=settings.render_refused)
     return report
 
 
@@ -114,18 +75,6 @@ def _diff_snapshot(model, ctx, settings: LintSettings):
 # uses none of them (its convex hulls come from manifold3d); they arrive with yourdfpy's
 # ``trimesh[easy]`` (the ``render`` extra). A worker runs only urdf-lint's code, so it skips them.
 UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
-
-
-def _inherited_data_bytes() -> int:
-    """The data segment (VmData) this freshly forked worker shares with its parent."""
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmData:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
-    return 0
 
 
 def _skip_unused_imports():
@@ -167,19 +116,8 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
             return
         settings, memory_mb = first
     assert settings is not None
-    try:
-        import resource
-        # memory-mb is what the job may allocate: what the forked worker inherited from its
-        # parent (a test process that imported rerun, a library user's process) is on top
-        limit = int(memory_mb) * 1024 * 1024 + inherited
-        if settings.render_dir and settings.render_rrd:   # (diff --render: the parent's recorder)
-            limit += RERUN_RESERVE_MB * 1024 * 1024
-        # RLIMIT_DATA counts memory a process can actually write (heap and private mappings);
-        # RLIMIT_AS would also count the address space that native thread arenas only reserve.
-        which = getattr(resource, "RLIMIT_DATA", resource.RLIMIT_AS)
-        resource.setrlimit(which, (limit, limit))
-    except (ImportError, ValueError, OSError):
-        pass
+    # (render --out / check --render: the worker writes recordings itself)
+    limit_memory(memory_mb, inherited, bool(settings.render_dir and settings.render_rrd))
     _scrub_environment(set(settings.env_allow))
     from .sandbox import enter_worker
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
@@ -343,8 +281,8 @@ def _mesh_cost(root: str) -> tuple[float, frozenset]:
     """(seconds to measure the meshes under a package root (a first-time estimate), the mesh
     suffixes found)."""
     cost, seen, formats = 0.0, 0, set()
-    for folder, dirs, files in os.walk(root):
-        dirs[:] = [d for d in dirs if not d.startswith(".")]
+    from . import fsbound
+    for folder, files in fsbound.walk(root, skip=lambda d: d.startswith(".")):
         for f in files:
             seen += 1
             low = f.lower()
@@ -463,10 +401,8 @@ def _mesh_facts_cached(settings: LintSettings) -> bool:
     """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
-    try:
-        return bool(d) and any(True for _ in os.scandir(d))
-    except OSError:
-        return False
+    from . import fsbound
+    return bool(d) and fsbound.has_entries(d)
 
 
 def _next_job(mine, queues, block_of=None, running=()):
@@ -513,6 +449,7 @@ class _Worker:
                 signal.signal(signal.SIGTERM, old_term)
         self.job = None
         self.started = 0.0
+        self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
 
     def kill(self):
@@ -524,9 +461,36 @@ class _Worker:
         self.conn.close()
 
 
+WALL_FACTOR = 4      # the wall-clock limit of a job: this many times its CPU-time limit
+POLL_S = 0.25        # how often the parent looks at the CPU time of busy workers
+
+
+def _cpu_seconds(pid: int) -> float | None:
+    """The CPU time (user + system) process ``pid`` has used, from ``/proc`` (None where
+    there is none: the time limit is then wall-clock time)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            stat = f.read()
+        fields = stat[stat.rindex(b")") + 2:].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _used(w) -> float | None:
+    """CPU seconds worker ``w`` spent on its current job (None: not measurable)."""
+    now = _cpu_seconds(w.proc.pid)
+    return None if now is None or w.cpu0 is None else now - w.cpu0
+
+
 def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
              memory_mb=2048):
-    """Yield (job, ModelReport) for every job; results arrive in completion order."""
+    """Yield (job, ModelReport) for every job; results arrive in completion order.
+
+    ``timeout`` limits the CPU time a job uses (a loaded CI machine does not make a model that
+    lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job waiting on
+    I/O); where CPU time cannot be measured, ``timeout`` is wall-clock time."""
+    wall = timeout * WALL_FACTOR
     jobs = list(jobs)
     if not jobs:
         return
@@ -569,16 +533,21 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     if w.job is None:
                         continue
                     w.started = time.monotonic()
+                    w.cpu0 = _cpu_seconds(w.proc.pid)
                     w.conn.send(w.job)
                     busy[w.conn] = w
             now = time.monotonic()
-            next_deadline = min(w.started + timeout for w in busy.values())
+            next_deadline = min(w.started + (wall if w.cpu0 is not None else timeout)
+                                for w in busy.values())
+            if any(w.cpu0 is not None for w in busy.values()):
+                next_deadline = min(next_deadline, now + POLL_S)
             ready = forked.wait(list(busy), timeout=max(0.0, next_deadline - now))
             for conn in ready:
                 w = busy.pop(conn)
                 job = w.job
                 try:
-                    result = w.conn.recv(timeout=max(1.0, w.started + timeout - time.monotonic()))
+                    limit = wall if w.cpu0 is not None else timeout
+                    result = w.conn.recv(timeout=max(1.0, w.started + limit - time.monotonic()))
                     if not isinstance(result, ModelReport):
                         raise forked.Refused(f"a {type(result).__name__}")
                 except forked.Refused as e:
@@ -602,16 +571,23 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                 yield job, result
             now = time.monotonic()
             for conn, w in list(busy.items()):
-                if now - w.started >= timeout:
+                if w.cpu0 is not None:
+                    cpu = _used(w)
+                    over = (cpu is not None and cpu >= timeout) or now - w.started >= wall
+                    what = (f"the time limit ({timeout:g} s of CPU time, {wall:g} s of "
+                            "wall-clock time)")
+                else:
+                    over = now - w.started >= timeout
+                    what = f"the time limit ({timeout:g} s)"
+                if over:
                     busy.pop(conn)
                     job = w.job
                     workers.remove(w)
                     w.kill()
                     if pending() or busy:
                         replace(w)
-                    yield job, _limit_result(job, f"expansion/lint did not finish within the "
-                                             f"time limit ({timeout:g} s); a huge expression, "
-                                             "loop or recursion?")
+                    yield job, _limit_result(job, f"expansion/lint did not finish within "
+                                             f"{what}; a huge expression, loop or recursion?")
     finally:
         for w in workers:
             try:

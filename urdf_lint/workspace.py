@@ -57,8 +57,9 @@ def _has_package(src: Path) -> bool:
 
 def _walk_packages(top: Path, depth: int):
     """Every ``package.xml`` under ``top`` (not below a package, not in ignored folders)."""
+    from . import fsbound
     try:
-        names = os.listdir(top)
+        names = fsbound.list_dir(top)
     except OSError:
         return
     if any(m in names for m in IGNORE_MARKERS):
@@ -78,10 +79,10 @@ def _walk_packages(top: Path, depth: int):
 
 def _install_packages(install: Path):
     """``share/NAME/package.xml`` of a merged or isolated install space."""
-    for share in [install / "share", *sorted(install.glob("*/share"))]:
+    from . import fsbound
+    for share in [install / "share", *fsbound.glob_paths(install, "*/share")]:
         if share.is_dir():
-            for pxml in sorted(share.glob("*/package.xml")):
-                yield pxml
+            yield from fsbound.glob_paths(share, "*/package.xml")
 
 
 def index(workspace: str) -> dict[str, str]:
@@ -113,10 +114,28 @@ def install_share_packages(top: str) -> dict[str, str]:
     package scan skips (it never walks into install/ folders)."""
     out: dict[str, str] = {}
     t = Path(top)
-    for share in [t / "share", t / "install" / "share", *sorted(t.glob("install/*/share"))]:
+    from . import fsbound
+    for share in [t / "share", t / "install" / "share", *fsbound.glob_paths(t, "install/*/share")]:
         if share.is_dir():
-            for pxml in sorted(share.glob("*/package.xml")):
+            for pxml in fsbound.glob_paths(share, "*/package.xml"):
                 name = package_name(pxml)
                 if name and name not in out:
                     out[name] = str(pxml.parent.resolve())
     return out
+
+
+def beside(name: str, paths, depth: int = 2) -> str | None:
+    """The folder holding the ``package.xml`` of package ``name`` beside the linted ``paths``
+    (in their parent folders, ``depth`` levels down), for a ``--package-path`` hint: such a
+    folder is not a root by itself (outside git and a workspace, the working directory is not
+    searched), but the user can name it."""
+    seen = set()
+    for p in paths:
+        top = os.path.dirname(os.path.abspath(p if os.path.isdir(p) else os.path.dirname(p)))
+        if top in seen:
+            continue
+        seen.add(top)
+        for pxml in _walk_packages(Path(top), depth):
+            if package_name(pxml) == name:
+                return str(pxml.parent)
+    return None

@@ -10,10 +10,11 @@ from pathlib import Path
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
 
-def package_xml(name: str) -> str:
+def package_xml(name: str, depends=()) -> str:
+    deps = "".join(f"<exec_depend>{d}</exec_depend>" for d in depends)
     return (f'<?xml version="1.0"?>\n<package format="3"><name>{name}</name>'
             f'<version>0.0.0</version><description>t</description>'
-            f'<maintainer email="a@b.c">t</maintainer><license>BSD</license></package>\n')
+            f'<maintainer email="a@b.c">t</maintainer><license>BSD</license>{deps}</package>\n')
 
 
 def stl_box(size: float = 0.1) -> bytes:
@@ -106,7 +107,8 @@ def colcon_workspace(ws: Path, install_meshes: bool = False) -> Path:
     (ws/install/share/robot_meshes)."""
     meshes_root = "install/share/robot_meshes" if install_meshes else "src/robot_meshes"
     write(ws, {
-        "src/robot_description/package.xml": package_xml("robot_description"),
+        "src/robot_description/package.xml": package_xml(
+            "robot_description", ("robot_meshes", "gripper_description")),
         "src/robot_description/urdf/robot.urdf.xacro":
             f'<?xml version="1.0"?>\n<robot name="wsbot" {XACRO_NS}>\n'
             '  <xacro:include filename="$(find gripper_description)/urdf/gripper.xacro"/>\n'

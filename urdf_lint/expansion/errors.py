@@ -27,6 +27,7 @@ anything else                       UL002   xacro's message
 from __future__ import annotations
 
 import os
+import re
 
 from dataclasses import dataclass
 from types import ModuleType
@@ -35,7 +36,7 @@ from typing import Any, Callable
 import xacro
 import xacro.substitution_args as _subst
 
-from .. import safe_eval
+from .. import fsbound, safe_eval
 from ..findings import Problem
 from ..packages import OutsideRoots, PackageNotFound
 from ..rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
@@ -82,8 +83,7 @@ def _arg_declared_later(name: str, deps) -> str | None:
     decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + q + r"[\"']")
     for f in deps:
         try:
-            from .. import overlay
-            text = overlay.read(f).decode("utf-8", "replace")
+            text = fsbound.read_text(f, errors="replace")
         except OSError:
             continue
         m = decl.search(text) or decl2.search(text)
@@ -105,7 +105,23 @@ def _missing_arg(e, deps=()) -> str:
 def _missing_file(e, deps=()) -> str:
     # load_yaml records its file before opening it; an include is recorded only once read
     yaml = os.path.abspath(str(e.filename)) in set(deps)
-    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}"
+    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}" + \
+        _empty_args_hint(str(e.filename))
+
+
+_HOLE = re.compile(r"//|/_|_/|__|_\.|/\.(?!\.?/)|-/|/-")
+
+
+def _empty_args_hint(path: str) -> str:
+    """When the path has a hole (``arms//dof/urdf/_macro.xacro``) and args of the model are
+    empty: which ones, and how to set them."""
+    empty = sorted(k for k, v in (xacro.substitution_args_context.get("arg") or {}).items()
+                   if str(v) == "")
+    if not empty or not _HOLE.search(path.replace(os.sep, "/")):
+        return ""
+    shown = ", ".join(empty[:6]) + (f" and {len(empty) - 6} more" if len(empty) > 6 else "")
+    return (f" (the path was built from args left empty: {shown}; set them with NAME:=VALUE or "
+            "[[tool.urdf-lint.models]] args)")
 
 
 def _generic(e) -> str:

@@ -31,10 +31,11 @@ from xml.dom import expatbuilder
 import xacro
 import xacro.substitution_args as _subst
 
+from .. import fsbound
 from ..jobs import DEFAULT_ENV_ALLOW
 from ..findings import Problem
 from ..packages import PackageResolver
-from .. import overlay, safe_eval
+from .. import safe_eval
 from ..hashing import read_recorded
 from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
 from . import splice
@@ -70,6 +71,7 @@ class _State:
         self.pending_chain = ()        # chain to give to the macro body being cloned
         self.include_chain = ()        # chain of the include element being processed
         self.expr_policy = expr_policy
+        self.overlay: dict = {}         # real path -> bytes read instead (urdf-lint format)
 
     def current_node(self):
         if self.touched is not None:
@@ -178,9 +180,7 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", ul902_outside_roots)
         try:
-            buffer = overlay.get(absolute)   # an unsaved editor buffer (urdf-lint server)
-            data, record = (buffer, overlay.record(buffer)) if buffer is not None else \
-                read_recorded(path)
+            data, record = _overlaid(st, path) or read_recorded(path)
         except (IOError, OSError) as e:
             xacro.filestack.pop()
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
@@ -194,6 +194,14 @@ def _hook_parse(inp, filename=None):
         data = inp.read()
         return parse_bytes(data.encode("utf-8") if isinstance(data, str) else data, "<stream>")
     return inp
+
+
+def _overlaid(st, path):
+    """(bytes, record) of ``path`` from the state's overlay, or None."""
+    if st is None or not st.overlay:
+        return None
+    data = st.overlay.get(os.path.realpath(path))
+    return None if data is None else (data, [[len(data), 0], ""])
 
 
 def _hook_abs_filename_spec(filename_spec):
@@ -285,37 +293,30 @@ def _hook_load_yaml(filename):
                            "linted repository; it was not read", ul902_outside_roots)
     st.deps[path] = None
     loader = _yaml_loader()
-    buffer = overlay.get(path)   # an unsaved editor buffer (urdf-lint server)
-    if loader is None and buffer is None:
-        return _orig["load_yaml"](path)
     if loader is None:
-        loader = _yaml_loader(pure=True)
+        return _orig["load_yaml"](path)
     # what xacro.load_yaml does, with libyaml's parser (3-5x faster than PyYAML's pure-Python
     # one; UR's descriptions read eight YAML files per model): the same SafeConstructor, the
     # same unit tags, the same wrapper, include bookkeeping and errors
     filename = xacro.abs_filename_spec(path)
-    with (io.StringIO(buffer.decode("utf-8")) if buffer is not None else open(filename)) as f:
-        xacro.filestack.append(filename)
-        try:
-            return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
-        finally:
-            xacro.filestack.pop()
-            xacro.all_includes.append(filename)
+    # read through the boundary: a regular file, bounded (a FIFO never blocks); the stream
+    # keeps the file's name for YAML's error marks, and open()'s newline translation
+    f = io.StringIO(fsbound.read_text(filename), newline=None)
+    f.name = filename   # type: ignore[misc]
+    xacro.filestack.append(filename)
+    try:
+        return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
+    finally:
+        xacro.filestack.pop()
+        xacro.all_includes.append(filename)
 
 
 _YAML_LOADER: list = []
 
 
-def _yaml_loader(pure: bool = False):
+def _yaml_loader():
     """A SafeLoader on libyaml (``yaml.CSafeLoader``) with xacro's unit constructors
-    (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml
-    (``pure``: then PyYAML's own SafeLoader with them, for a buffer xacro cannot open)."""
-    if pure:
-        import yaml
-        cls: Any = type("XacroSafeLoader", (yaml.SafeLoader,), {})
-        for unit in xacro.ConstructUnits:
-            cls.add_constructor(unit.value.tag, unit.constructor)
-        return cls
+    (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml."""
     if not _YAML_LOADER:
         import yaml
         cls = None
@@ -446,37 +447,45 @@ def _macro_context():
     return names
 
 
-def classify_error(e: BaseException, st: _State) -> Problem:
-    """Turn an exception from xacro into one located problem (see :mod:`.errors`)."""
+def classify_error(e: BaseException, st: _State, entry: str = "",
+                   before: bool = False) -> Problem:
+    """Turn an exception from xacro into one located problem (see :mod:`.errors`); one with
+    no element to point at is at line 1 of the file on top of xacro's stack, else (nothing
+    there, or it happened ``before`` xacro started: the stack is the last job's) of
+    ``entry``."""
     here = origin_of(st.current_node()) if st.current_node() is not None else None
     if here is None:
         top = os.path.abspath(xacro.filestack[0]) if xacro.filestack and xacro.filestack[0] else ""
-        here = (top, 1, 1, ())
+        here = ((entry if before else top or entry), 1, 1, ())
     return problem_for(e, here, _macro_context(), deps=list(st.deps))
 
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
                 env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
-                expr_policy=None) -> Expansion:
-    """Expand one xacro (or URDF) file in process. Never raises for bad input."""
+                expr_policy=None, overlay: dict | None = None) -> Expansion:
+    """Expand one xacro (or URDF) file in process. Never raises for bad input. ``overlay``
+    maps real paths to the bytes to read instead of the file's (``urdf-lint format``)."""
     path = os.path.abspath(path)
     args = dict(args or {})
     res = Expansion(entry=path, args=dict(args))
     if resolver is None:
         resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
     st = _State(resolver, env_allow, expr_policy)
+    st.overlay = dict(overlay or {})
     with _session(st):
+        before = True   # until xacro opens the entry
         try:
             if not resolver.is_inside(path):
                 raise RefusedInput(f"'{path}' is outside the package roots", ul902_outside_roots)
             with safe_eval.policy(expr_policy):
+                before = False
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
             res.xml = doc.toprettyxml(indent="  ")
             res.origins = SourceMap.from_stamps(_elements(doc, []))
         except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
-            res.error = classify_error(e, st)
+            res.error = classify_error(e, st, path, before)
             from .errors import wrapped
             inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
             # a file looked for and not there, or a folder read as a file: the result holds

@@ -55,9 +55,9 @@ class UrdfLintServer(LanguageServer):
         ws = self.ws
         if ws is not None and path in ws.buffers:
             return Doc(ws.buffers[path])
-        from .. import overlay
+        from .. import fsbound
         try:
-            return Doc(overlay.read(path))
+            return Doc(fsbound.read_bytes(path))
         except OSError:
             return Doc(b"")
 

@@ -612,7 +612,8 @@ def _package_files(ls: UrdfLintServer, package: str, partial: str) -> list:
         return []
     out = []
     try:
-        names = sorted(os.listdir(folder))[:MAX_LISTED]
+        from .. import fsbound
+        names = sorted(fsbound.list_dir(folder))[:MAX_LISTED]
     except OSError:
         return []
     for n in names:

@@ -221,8 +221,9 @@ def _own_mesh_cache(root: str) -> str | None:
     from ..cache import key_path
     from ..hashing import content_digest
     d = os.path.join(str(key_path().parent), "server", content_digest(root.encode()))
+    from .. import fsbound
     try:
-        os.makedirs(d, mode=0o700, exist_ok=True)
+        fsbound.make_own_dirs(d)
     except OSError:
         return None
     return d

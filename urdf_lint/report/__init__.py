@@ -11,14 +11,24 @@ JSON schema (``--format json``), version 1::
                   "cached": bool (result reused from .urdf_lint_cache),
                   "links": int, "joints": int, "meshes": int}],
       "findings": [{"code": "UL302", "name": "limit-order", "severity": "error"|"warning"|"info",
-                    "message": str, "file": str (relative to cwd when below it), "line": int,
-                    "col": int, "chain": [[file, line, col], ...]  (macro call sites, outermost first),
+                    "message": str, "file": str (relative to cwd; ``..`` inside its repository
+                    or workspace), "line": int, "col": int,
+                    "chain": [[file, line, col], ...]  (macro call sites, outermost first),
                     "models": [str, ...],
                     "fix": {"description": str, "applicability": "safe"|"unsafe",
                             "edits": [{"file": str, "start": int, "end": int, "text": str}]
                                      (byte ranges of the source, replaced by text)
                             | "refused": str (why it is not applied automatically)}
-                           (only when the rule has a fix for this finding)}],
+                           (only when the rule has a fix for this finding),
+                    "severity_from": [str, ...] (the selected consumer targets that make it
+                           this severe, urdf_lint.targets; only when one raised it)}],
+                    "detail": str (what this instance is about, when the message is a root
+                               cause's, e.g. the mesh URI of an unknown package; optional),
+                    "value_from": [file, line, col] (where the value came from: a YAML scalar,
+                                  a property defined elsewhere; optional),
+                    "count": int, "instances": [{finding fields, "target": [kind, name]}, ...]
+                             (when several elements, models or places are one finding: one per
+                              source location and rule, or per root cause)}],
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
-from ..locations import Origin, display_path
+from ..locations import Origin, display_path, portable
 from .escape import escape_text
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
@@ -17,6 +17,7 @@ class ReportOptions:
     """How a report is written: colour, source frames, quiet, model lists."""
     color: bool = False
     show_source: bool = False
+    roots: tuple | None = None      # --show-source reads sources only inside these (fsbound)
     quiet: bool = False            # findings only: no summary line
     show_models: bool = True
 
@@ -33,6 +34,7 @@ class BaseFormatter:
         self.options = options or ReportOptions()
 
     def write(self, result) -> None:
+        result = grouped(result)
         self.start(result)
         for f in result.findings:
             self.handle(f)
@@ -49,6 +51,7 @@ class BaseFormatter:
 
     def statistics(self, result) -> None:
         """``--statistics``: only the count per rule, most frequent first."""
+        result = grouped(result)
         for (code, name, sev), n in counts(result):
             self.stream.write(f"{n:5d}  {code}  {name:<28} {sev}\n")
 
@@ -81,6 +84,11 @@ def summary(result) -> dict:
             "info": c["info"]}
 
 
+def targets_tag(f) -> str:
+    """`` [mujoco, drake]``: the selected targets that make a finding this severe, or ""."""
+    return f" [{', '.join(f.severity_from)}]" if getattr(f, "severity_from", ()) else ""
+
+
 def chain_text(f) -> str:
     """The macro call chain, one visible line (names are the description's)."""
     return escape_text(Origin(f.file, f.line, f.col, f.chain).format_chain()) if f.chain else ""
@@ -91,6 +99,57 @@ def fold(items, shown: int = MODELS_SHOWN) -> str:
     items = [escape_text(i) for i in items]
     head = ", ".join(items[:shown])
     return head + (f" and {len(items) - shown} more" if len(items) > shown else "")
+
+
+def message(f) -> str:
+    """A finding's message as every format shows it: a path in it (``looked for
+    /home/.../meshes/x.stl``) is shown as the locations are, relative (see
+    :func:`urdf_lint.locations.portable`)."""
+    return portable(f.message)
+
+
+def grouped(result):
+    """``result`` with its findings grouped (:func:`urdf_lint.findings.group`): every format
+    counts and shows one finding per source location and rule (and per root cause)."""
+    import copy
+    from ..findings import group
+    if getattr(result, "_grouped", False):
+        return result
+    out = copy.copy(result)
+    out.findings = group(result.findings)
+    out._grouped = True
+    return out
+
+
+INSTANCES_SHOWN = 3
+
+
+def fold_instances(f, shown: int = INSTANCES_SHOWN) -> str:
+    """``in 42 links: a, b, c, ... (+39)`` for a grouped finding, "" for a single one."""
+    if not f.instances:
+        return ""
+    from ..findings import instances_summary
+    noun, labels = instances_summary(f)
+    if len(labels) < 2:
+        return ""
+    head = ", ".join(escape_text(i) for i in labels[:shown])
+    more = f", ... (+{len(labels) - shown})" if len(labels) > shown else ""
+    return f"in {len(labels)} {noun}: {head}{more}"
+
+
+def value_from_text(f) -> str:
+    """``value from config/joint_limits.yaml:28`` when the value came from elsewhere."""
+    if not f.value_from:
+        return ""
+    return f"value from {escape_text(display_path(f.value_from[0]))}:{f.value_from[1]}"
+
+
+def refused_text(f) -> str:
+    """Why the finding's fix is not applied automatically when that names the expression the
+    value comes from (``... the value comes from the expression at FILE:LINE``), or ""."""
+    if f.fix is None or "comes from" not in f.fix.refused:
+        return ""
+    return escape_text(f.fix.refused)
 
 
 def location(f) -> str:

@@ -2,7 +2,8 @@
 macro call chain folded into the line, for editors' problem matchers and grep."""
 from __future__ import annotations
 
-from .base import DIM, BaseFormatter, chain_text, location
+from .base import (DIM, BaseFormatter, chain_text, fold_instances, location, message,
+                   targets_tag, value_from_text)
 from .escape import escape_text
 
 
@@ -12,10 +13,11 @@ class ConciseFormatter(BaseFormatter):
 
     def handle(self, f):
         code = self.paint(f.code, self.severity_color(f.severity))
-        ch = chain_text(f)
-        tail = f" ({ch})" if ch else ""
-        self.stream.write(f"{location(f)}: {code} {escape_text(f.message)} {self.paint(f'[{f.name}]', DIM)}"
-                          f"{tail}\n")
+        parts = [p for p in (f.detail if not f.instances else "", chain_text(f),
+                             value_from_text(f), fold_instances(f)) if p]
+        tail = f" ({'; '.join(escape_text(p) for p in parts)})" if parts else ""
+        name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
+        self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {name}{tail}\n")
 
     def finish(self, result):
         if not self.options.quiet:

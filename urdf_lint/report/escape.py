@@ -8,7 +8,10 @@ link, joint, macro names; messages quoting them) can forge output.
   a GitHub workflow command in a CI log.
 * :func:`escape_xml` also drops what XML 1.0 cannot hold, then escapes ``&<>"``: JUnit stays
   well-formed whatever the names are.
-* :func:`escape_markdown` also escapes HTML and Markdown syntax (for ``summary.md``).
+* :func:`escape_markdown` also escapes HTML and every Markdown construct, and defuses what
+  GitHub links by itself (@mentions, #references, bare URLs): ``summary.md`` and
+  ``urdf-lint diff --format markdown`` (a pull-request comment). :func:`escape_html` is the
+  same for text inside the HTML such a comment may hold.
 
 JSON and SARIF need none of this: ``json.dump`` escapes control characters itself.
 """
@@ -41,14 +44,41 @@ def escape_xml(s) -> str:
     return escape_text(s).translate(_XML)
 
 
-_MD = re.compile(r"([\\`*\[\]|])")
+# what GitHub links in rendered text itself, after Markdown: @mentions, #123 references,
+# bare URLs and e-mail addresses. A word joiner (U+2060, invisible) after the @ or # and inside
+# "://" and "www." breaks each pattern while the visible text stays the same
+_GITHUB_LINKS = re.compile(r"([@#])|(:)(?=//)|(?<![\w.])(www)(?=\.)", re.I)
+_JOINER = "\u2060"
+
+
+def _defuse(s: str) -> str:
+    return _GITHUB_LINKS.sub(lambda m: m.group(0) + _JOINER, s)
+
+
+def escape_html(s) -> str:
+    """Text inside HTML that GitHub renders (a ``<summary>``): one line, ``&<>"`` as entities,
+    no mention, reference or autolink."""
+    s = escape_text(s).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;") \
+        .replace('"', "&quot;")
+    return _defuse(s)
+
+
+# every ASCII character that starts Markdown syntax inline: code, emphasis, links and images,
+# tables, strikethrough, math, headings (CommonMark lets any of them be backslash-escaped)
+_MD = re.compile(r"([\\`*_\[\]()!|~$#])")
+_BLOCK_START = re.compile(r"^([-+=]|\d+(?=[.)]))")
 
 
 def escape_markdown(s) -> str:
-    """Inline Markdown text: no HTML, no links or images, no code spans, no table breaks
-    (``_`` is left alone: paths are full of it and it only ever makes emphasis)."""
-    s = escape_text(s).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    return _MD.sub(r"\\\1", s)
+    """Untrusted text placed in Markdown (a pull-request comment, ``summary.md``): it renders
+    as the same visible text and nothing else: no HTML, no link or image, no code span,
+    emphasis, strikethrough or math, no table cell break, no list or heading at the start,
+    no @mention, #reference or autolinked URL."""
+    s = escape_html(s).replace(_JOINER, "")
+    s = _MD.sub(r"\\\1", s)
+    s = _BLOCK_START.sub(lambda m: "\\" + m.group(0) if not m.group(0)[0].isdigit()
+                         else m.group(0) + "\\", s)
+    return _defuse(s)
 
 
 def escape_markdown_code(s) -> str:

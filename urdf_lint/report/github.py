@@ -3,7 +3,7 @@ request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
 from __future__ import annotations
 
 from ..locations import display_path
-from .base import BaseFormatter, chain_text
+from .base import BaseFormatter, chain_text, fold_instances, message, value_from_text
 from .escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
@@ -22,10 +22,11 @@ class GithubFormatter(BaseFormatter):
     help = "GitHub Actions annotations (default when GITHUB_ACTIONS is set)"
 
     def handle(self, f):
-        msg = f.message
-        ch = chain_text(f)
-        if ch:
-            msg += f" ({ch})"
+        msg = message(f)
+        for extra in (f.detail if not f.instances else "", chain_text(f), value_from_text(f),
+                      fold_instances(f)):
+            if extra:
+                msg += f" ({extra})"
         self.stream.write(f"::{_LEVEL[f.severity]} file={_gh_escape(display_path(f.file), True)},"
                           f"line={f.line},col={f.col},title={_gh_escape(f.code + ' ' + f.name, True)}"
                           f"::{_gh_escape(msg)}\n")

@@ -5,7 +5,20 @@ import json
 
 from .. import __version__
 from ..locations import display_path
-from .base import BaseFormatter, counts, summary
+from ..locations import portable
+from .base import BaseFormatter, counts, grouped, summary
+
+
+def _shown(d: dict) -> dict:
+    """A finding's dict with its paths as the report shows them (relative to cwd, in the message too)."""
+    d["file"] = display_path(d["file"])
+    d["message"] = portable(d["message"])
+    d["chain"] = [[display_path(c[0]), c[1], c[2]] for c in d["chain"]]
+    if "value_from" in d:
+        d["value_from"] = [display_path(d["value_from"][0])] + d["value_from"][1:]
+    if "instances" in d:
+        d["instances"] = [_shown(i) for i in d["instances"]]
+    return d
 
 
 class JsonFormatter(BaseFormatter):
@@ -13,20 +26,20 @@ class JsonFormatter(BaseFormatter):
     help = "one JSON document (schema version 1)"
 
     def write(self, result):
+        result = grouped(result)
         doc = {"version": 1, "tool": "urdf-lint", "tool_version": __version__,
                "models": [{"entry": display_path(m.entry), "args": m.args, "status": m.status,
                            "cached": m.cached,
                            "name": m.stats.get("name", ""), "links": m.stats.get("links", 0),
                            "joints": m.stats.get("joints", 0), "meshes": m.stats.get("meshes", 0)}
                           for m in result.models],
-               "findings": [dict(f.to_dict(), file=display_path(f.file),
-                                 chain=[[display_path(c[0]), c[1], c[2]] for c in f.chain])
-                            for f in result.findings],
+               "findings": [_shown(f.to_dict()) for f in result.findings],
                "summary": summary(result)}
         json.dump(doc, self.stream, indent=2)
         self.stream.write("\n")
 
     def statistics(self, result):
+        result = grouped(result)
         json.dump([{"code": code, "name": name, "severity": sev, "count": n}
                    for (code, name, sev), n in counts(result)], self.stream, indent=2)
         self.stream.write("\n")

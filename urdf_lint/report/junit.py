@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from ..locations import display_path
-from .base import BaseFormatter, chain_text
+from .base import BaseFormatter, chain_text, fold_instances, grouped, message, value_from_text
 from .escape import escape_xml
 
 
@@ -11,6 +11,7 @@ class JunitFormatter(BaseFormatter):
     help = "JUnit XML for CI test reports"
 
     def write(self, result):
+        result = grouped(result)
         def quoteattr(s):
             return '"' + escape_xml(s) + '"'
 
@@ -18,11 +19,12 @@ class JunitFormatter(BaseFormatter):
         cases = []
         for f in result.findings:
             name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
-            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {f.message}") \
-                + "\n" + escape(chain_text(f))
+            body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {message(f)}") \
+                + "".join("\n" + escape(x) for x in (chain_text(f), value_from_text(f),
+                                                      fold_instances(f)) if x)
             tag = "failure"
             cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'
-                         f'<{tag} type={quoteattr(f.severity)} message={quoteattr(f.message)}>'
+                         f'<{tag} type={quoteattr(f.severity)} message={quoteattr(message(f))}>'
                          f'{body}</{tag}></testcase>')
         for m in result.models:
             if not any(m.label in f.models for f in result.findings):

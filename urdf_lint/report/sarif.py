@@ -6,7 +6,7 @@ import os
 
 from .. import __version__
 from ..locations import display_path
-from .base import BaseFormatter
+from .base import BaseFormatter, grouped, message
 
 _SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
@@ -36,6 +36,7 @@ class SarifFormatter(BaseFormatter):
     help = "SARIF 2.1.0 (GitHub code scanning)"
 
     def write(self, result):
+        result = grouped(result)
         from ..registry import load_rules
         rules = load_rules()
         used = sorted({f.code for f in result.findings})
@@ -53,19 +54,43 @@ class SarifFormatter(BaseFormatter):
         results = []
         for f in result.findings:
             res = {"ruleId": f.code, "ruleIndex": index[f.code], "level": _SARIF_LEVEL[f.severity],
-                   "message": {"text": f.message},
+                   "message": {"text": message(f)},
                    "locations": [{"physicalLocation": {
                        "artifactLocation": {"uri": _uri(f.file)},
                        "region": {"startLine": max(1, f.line), "startColumn": max(1, f.col)}}}]}
-            if f.chain:
+            related = [("macro called here", c) for c in reversed(f.chain)]
+            if f.value_from:
+                related.append(("value from here", f.value_from))
+            places = list(dict.fromkeys((i.file, i.line, i.col) for i in f.instances))
+            related += [(i.detail or i.message, (i.file, i.line, i.col)) for i in
+                        {(i.file, i.line, i.col): i for i in f.instances}.values()
+                        if (i.file, i.line, i.col) != (f.file, f.line, f.col)] \
+                if len(places) > 1 else []
+            related += [("value from here", i.value_from) for i in f.instances
+                        if i.value_from and i.value_from != f.value_from]
+            if related:
                 res["relatedLocations"] = [
-                    {"id": i, "message": {"text": "macro called here"},
+                    {"id": i, "message": {"text": text},
                      "physicalLocation": {"artifactLocation": {"uri": _uri(c[0])},
                                           "region": {"startLine": max(1, c[1]),
                                                      "startColumn": max(1, c[2])}}}
-                    for i, c in enumerate(reversed(f.chain))]
+                    for i, (text, c) in enumerate(related)]
+            props: dict = {}
             if f.models:
-                res["properties"] = {"models": f.models}
+                props["models"] = f.models
+            if f.detail and not f.instances:
+                props["detail"] = f.detail
+            if f.instances:
+                props["count"] = len(f.instances)
+                props["instances"] = [
+                    {"message": i.message, "file": display_path(i.file), "line": i.line,
+                     "col": i.col, **({"detail": i.detail} if i.detail else {}),
+                     **({"target": list(i.target)} if i.target else {}),
+                     "models": list(i.models)} for i in f.instances]
+            if f.severity_from:
+                props["severityFrom"] = list(f.severity_from)
+            if props:
+                res["properties"] = props
             if f.fix is not None and f.fix.applicable:
                 res["fixes"] = [_sarif_fix(f.fix)]
             results.append(res)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from ..locations import display_path
 from .escape import escape_text
-from .base import BOLD, DIM, RESET, BaseFormatter, chain_text, fold, location
+from .base import (BOLD, DIM, RESET, BaseFormatter, chain_text, fold, fold_instances, location,
+                   message, refused_text, targets_tag, value_from_text)
 
 
 class TextFormatter(BaseFormatter):
@@ -24,15 +25,20 @@ class TextFormatter(BaseFormatter):
             w(f"{BOLD}{path}{RESET}\n")
             self._current = path
         code = self.paint(f.code, self.severity_color(f.severity))
-        name = self.paint(f"[{f.name}]", DIM)
-        w(f"{location(f)}: {code} {escape_text(f.message)} {name}\n")
+        name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
+        w(f"{location(f)}: {code} {escape_text(message(f))} {name}\n")
+        if f.detail and not f.instances:
+            w(f"    {escape_text(f.detail)}\n")
         if self.options.show_source:
             w(self.code_frame(f))
-        ch = chain_text(f)
-        if ch:
-            w(f"    {ch}\n")
+        for line in (chain_text(f), value_from_text(f), fold_instances(f)):
+            if line:
+                w(f"    {line}\n")
         if self.options.show_models and len(f.models) > 1:
             w(f"    in {len(f.models)} models: {fold(f.models)}\n")
+        why = refused_text(f)
+        if why:
+            w(f"    {why}\n")
 
     def finish(self, result):
         if not self.options.quiet:
@@ -59,9 +65,10 @@ class TextFormatter(BaseFormatter):
 
     def _source(self, path):
         if path not in self._lines:
-            try:
-                with open(path, encoding="utf-8", errors="replace") as fh:
-                    self._lines[path] = fh.read().splitlines()
+            from .. import fsbound
+            try:   # what a worker could read: inside the roots, a regular file, bounded
+                self._lines[path] = fsbound.read_text(
+                    path, self.options.roots, errors="replace").splitlines()
             except OSError:
                 self._lines[path] = []
         return self._lines[path]

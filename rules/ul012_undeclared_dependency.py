@@ -1,0 +1,117 @@
+"""A `package://NAME/...` mesh or texture, or a file read through `$(find NAME)`, comes from a
+package that the model's own `package.xml` does not declare as a dependency (`<depend>`,
+`<exec_depend>`, `<build_export_depend>`, or `<run_depend>` in format 1).
+
+Why: `rosdep install` and the build farm install only declared dependencies: on a fresh machine
+or in a released binary the description loads without those meshes or includes (RViz shows
+nothing, `robot_state_publisher` fails on the include). Each package is reported once, with
+every reference to it listed under it.
+
+How to fix: Add `<exec_depend>NAME</exec_depend>` (or `<depend>`) to the package.xml of the
+package that holds the model.
+"""
+CODE = "UL012"
+NAME = "undeclared-dependency"
+SEVERITY = "warning"
+FAIL = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://other_meshes/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+FAIL_AT = [(2, 36)]
+PASS = """<robot name="r">
+  <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
+</robot>
+"""
+import os
+import re
+
+from urdf_lint.findings import Cause
+from urdf_lint.rules._meshes import TETRA_STL
+from urdf_lint.rules._schema import urdf_iter
+
+EXAMPLE_FILES = {
+    "third_party/other_meshes/package.xml":
+        '<?xml version="1.0"?>\n<package format="3"><name>other_meshes</name><version>0.0.0'
+        '</version><description>t</description><maintainer email="a@b.c">t</maintainer>'
+        '<license>BSD</license></package>\n',
+    "third_party/other_meshes/meshes/part.stl": TETRA_STL,
+    "meshes/part.stl": TETRA_STL,
+}
+
+DEPEND_TAGS = ("depend", "exec_depend", "build_export_depend", "run_depend")
+_DEP = re.compile(r"<(" + "|".join(DEPEND_TAGS) + r")(?:\s[^>]*)?>\s*([^<\s]+)\s*</\1>")
+_NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
+_COMMENT = re.compile(r"<!--.*?-->", re.S)
+
+
+def own_package(model):
+    """(name, package.xml path, declared dependencies) of the package holding the model's
+    entry (the nearest package.xml above it, inside the package roots), or None."""
+    resolver = model.resolver
+    d = os.path.dirname(os.path.abspath(model.entry))
+    while True:
+        pxml = os.path.join(d, "package.xml")
+        if resolver is not None and not resolver.is_inside(d):
+            return None
+        if os.path.isfile(pxml):
+            try:
+                with open(pxml, encoding="utf-8", errors="replace") as f:
+                    text = _COMMENT.sub("", f.read(1 << 20))
+            except OSError:
+                return None
+            m = _NAME.search(text)
+            return (m.group(1) if m else os.path.basename(d), pxml,
+                    {x.group(2) for x in _DEP.finditer(text)})
+        up = os.path.dirname(d)
+        if up == d:
+            return None
+        d = up
+
+
+def _package_of(resolver, path: str):
+    """The name of the known package whose folder holds ``path`` (the deepest), or None."""
+    best, name = "", None
+    for n, where in list(resolver.scanned.items()) + list(resolver.explicit.items()):
+        w = str(where)
+        if (path == w or path.startswith(w + os.sep)) and len(w) > len(best):
+            best, name = w, n
+    return name
+
+
+def _cause(own, pxml, name):
+    from urdf_lint.locations import display_path
+    return Cause(CODE, f"undeclared-dependency:{own}:{name}",
+                 f"package '{name}' is used but {display_path(pxml)} does not declare it: add "
+                 f"<exec_depend>{name}</exec_depend> (or <depend>)")
+
+
+def check(model, ctx):
+    own = own_package(model)
+    if own is None or model.resolver is None:
+        return
+    name, pxml, declared = own
+    ok = declared | {name}
+    for tag in ("mesh", "texture"):
+        for m in urdf_iter(model, tag):
+            uri = m.get("filename") or ""
+            if uri.startswith("package://"):
+                pkg = uri[len("package://"):].partition("/")[0]
+                if pkg and pkg not in ok and ctx.mesh_ref(model, uri).path:
+                    yield m, f"{tag} '{uri}'", _cause(name, pxml, pkg)
+    # files read through $(find NAME): at the first element they made (its macro call chain
+    # leads back to the model's own files)
+    firsts: dict = {}
+    for dep in model.deps[1:]:
+        pkg = _package_of(model.resolver, os.path.abspath(dep))
+        if pkg and pkg not in ok and pkg not in firsts:
+            firsts[pkg] = dep
+    if not firsts:
+        return
+    for el, o in model.origins.items():
+        for pkg, dep in list(firsts.items()):
+            if o.file == dep or any(c[0] == dep for c in o.chain):
+                from urdf_lint.locations import display_path
+                yield el, f"reads {display_path(dep)}", _cause(name, pxml, pkg)
+                del firsts[pkg]
+        if not firsts:
+            return

@@ -1,0 +1,233 @@
+"""urdf-lint's severities per consumer target against the real consumers (issue 25).
+
+Single-defect variants of one clean robot are loaded by MuJoCo, Pinocchio (model, collision and
+visual geometry, dynamics) and PyBullet, each in a subprocess with a timeout (they crash on some
+defects), and linted by urdf-lint with that consumer as the only target. Per target:
+
+* the consumer rejects or crashes  =>  urdf-lint reports an error for that target;
+* the consumer loads it            =>  urdf-lint reports the defect, and not as an error, unless
+  the class is in :data:`ERROR_BY_INTENT` (a silent change of the kinematics that every consumer
+  makes: the issue asks for an error there).
+
+Install the consumers with ``pip install -e '.[consumers]'``; without them the test skips. Run
+``pytest tests/test_consumers.py -s`` to see the table (consumer verdict, urdf-lint code and
+severity per target).
+"""
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from conftest import make_package, run_cli
+
+CONSUMERS = [c for c, mod in (("mujoco", "mujoco"), ("pinocchio", "pinocchio"),
+                              ("pybullet", "pybullet")) if importlib.util.find_spec(mod)]
+pytestmark = pytest.mark.skipif(not {"mujoco", "pinocchio"} <= set(CONSUMERS),
+                                reason="needs the consumers extra: pip install -e '.[consumers]'")
+
+INERTIAL = ('<inertial><mass value="{m}"/><inertia ixx="{i}" ixy="0" ixz="0" iyy="{i}" iyz="0" '
+            'izz="{z}"/></inertial>')
+LIMIT = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
+CLEAN = f"""<?xml version="1.0"?>
+<robot name="probe">
+  <link name="base">
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="upper">
+    <inertial><origin xyz="0 0 0.25"/><mass value="1"/>
+      <inertia ixx="0.0215" ixy="0" ixz="0" iyy="0.0215" iyz="0" izz="0.00125"/></inertial>
+    <visual><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.05" length="0.5"/></geometry></visual>
+    <collision><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.05" length="0.5"/></geometry></collision>
+  </link>
+  <link name="lower">
+    <inertial><origin xyz="0 0 0.2"/><mass value="0.5"/>
+      <inertia ixx="0.0068" ixy="0" ixz="0" iyy="0.0068" iyz="0" izz="0.0002"/></inertial>
+    <visual><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></visual>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision>
+  </link>
+  <link name="tool">{INERTIAL.format(m=0.1, i=0.0001, z=0.0001)}</link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>{LIMIT}</joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>
+    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>{LIMIT}</joint>
+  <joint name="wrist" type="revolute"><parent link="lower"/><child link="tool"/>
+    <origin xyz="0 0 0.4"/><axis xyz="0 0 1"/>{LIMIT}</joint>
+  <transmission name="shoulder_trans"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="shoulder"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="shoulder_motor"/></transmission>
+</robot>
+"""
+ELBOW = '<joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>'
+LOWER_INERTIAL = ('<inertia ixx="0.0068" ixy="0" ixz="0" iyy="0.0068" iyz="0" izz="0.0002"/>'
+                  '</inertial>')
+LOWER_MASS = '<inertial><origin xyz="0 0 0.2"/><mass value="0.5"/>\n      '
+TOOL = '<link name="tool">' + INERTIAL.format(m=0.1, i=0.0001, z=0.0001) + '</link>'
+
+# defect class -> (the code urdf-lint reports, how to make the variant from CLEAN)
+DEFECTS = {
+    "no <inertial> on a moving link": ("UL601", [(LOWER_MASS + LOWER_INERTIAL, "")]),
+    "no <inertial> on a moving leaf link": ("UL601", [(TOOL, '<link name="tool"/>')]),
+    "no <inertial>, a collision box": ("UL601", [(TOOL, (
+        '<link name="tool"><collision><geometry><box size="0.05 0.05 0.05"/></geometry>'
+        '</collision></link>'))]),
+    "no <inertial>, a visual box only": ("UL601", [(TOOL, (
+        '<link name="tool"><visual><geometry><box size="0.05 0.05 0.05"/></geometry>'
+        '</visual></link>'))]),
+    "zero mass on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="0"/>')]),
+    "negative mass": ("UL602", [('<mass value="0.5"/>', '<mass value="-0.5"/>')]),
+    "1e-9 kg on a moving link": ("UL602", [('<mass value="0.5"/>', '<mass value="1e-9"/>')]),
+    "inertia not positive definite": ("UL603", [(LOWER_INERTIAL, LOWER_INERTIAL.replace(
+        'ixy="0"', 'ixy="0.01"'))]),
+    "principal moments break A+B>=C": ("UL603", [(LOWER_INERTIAL, (
+        '<inertia ixx="4.7e-3" ixy="0" ixz="2.5e-3" iyy="3.65e-3" iyz="0" izz="4.7e-3"/>'
+        '</inertial>'))]),
+    "diagonal breaks A+B>=C": ("UL603", [(LOWER_INERTIAL, LOWER_INERTIAL.replace(
+        'izz="0.0002"', 'izz="0.02"'))]),
+    "axis 0 0 0": ("UL307", [('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>')]),
+    "axis 0 0 2": ("UL307", [('<axis xyz="0 0 1"/>', '<axis xyz="0 0 2"/>')]),
+    "NaN in an origin": ("UL207", [('<origin xyz="0 0 0.4"/>', '<origin xyz="0 nan 0.4"/>')]),
+    "revolute without <limit>": ("UL301", [(
+        f'<axis xyz="0 0 1"/>{LIMIT}', '<axis xyz="0 0 1"/>')]),
+    "<limit> without effort": ("UL304", [(
+        f'<axis xyz="0 0 1"/>{LIMIT}', '<axis xyz="0 0 1"/><limit lower="-1" upper="1" '
+                                       'velocity="1"/>')]),
+    "velocity 0": ("UL304", [(f'<axis xyz="0 0 1"/>{LIMIT}', '<axis xyz="0 0 1"/><limit '
+                              'lower="-1" upper="1" effort="10" velocity="0"/>')]),
+    "lower > upper": ("UL302", [(f'<axis xyz="0 0 1"/>{LIMIT}', '<axis xyz="0 0 1"/><limit '
+                                 'lower="1" upper="-1" effort="10" velocity="1"/>')]),
+    "joint names a missing link": ("UL103", [('<child link="tool"/>', '<child link="tol"/>')]),
+    "duplicate link": ("UL105", [('<link name="tool">', '<link name="lower">')]),
+    "duplicate joint": ("UL105", [('<joint name="wrist"', '<joint name="elbow"')]),
+    "two roots": ("UL101", [('<parent link="lower"/><child link="tool"/>',
+                             '<parent link="spare"/><child link="tool"/>'),
+                            ('<link name="tool">', '<link name="spare"/>\n  <link name="tool">')]),
+    "kinematic loop": ("UL102", [('</robot>', '  <joint name="loop" type="fixed"><parent '
+                                  'link="tool"/><child link="upper"/></joint>\n</robot>')]),
+    "mimic of a missing joint": ("UL308", [('<axis xyz="0 0 1"/>',
+                                            '<axis xyz="0 0 1"/><mimic joint="elbw"/>')]),
+    "mimic on a fixed joint": ("UL309", [(
+        '<joint name="wrist" type="revolute"><parent link="lower"/><child link="tool"/>\n'
+        f'    <origin xyz="0 0 0.4"/><axis xyz="0 0 1"/>{LIMIT}</joint>',
+        '<joint name="wrist" type="fixed"><parent link="lower"/><child link="tool"/>\n'
+        '    <origin xyz="0 0 0.4"/><mimic joint="elbow"/></joint>')]),
+    "duplicate transmission name": ("UL704", [('</robot>', (
+        '  <transmission name="shoulder_trans"><type>transmission_interface/SimpleTransmission'
+        '</type><joint name="elbow"><hardwareInterface>EffortJointInterface</hardwareInterface>'
+        '</joint><actuator name="elbow_motor"/></transmission>\n</robot>'))]),
+    "empty <geometry/>": ("UL204", [('<geometry><box size="0.05 0.05 0.4"/></geometry></collision>',
+                                     '<geometry/></collision>')]),
+    "negative box size": ("UL205", [('<box size="0.05 0.05 0.4"/></geometry></collision>',
+                                     '<box size="0.05 -0.05 0.4"/></geometry></collision>')]),
+    "zero radius": ("UL205", [('radius="0.05" length="0.5"/></geometry></collision>',
+                               'radius="0" length="0.5"/></geometry></collision>')]),
+    "<orgin> typo in a joint": ("UL209", [('<origin xyz="0 0 0.4"/>', '<orgin xyz="0 0 0.4"/>')]),
+    "version 2.0": ("UL211", [('<robot name="probe">', '<robot name="probe" version="2.0">')]),
+    "undeclared namespace prefix": ("UL001", [(
+        '<link name="tool">', '<link name="tool"><drake:joint_damping value="1"/>')]),
+    "undefined material": ("UL502", [('<geometry><box size="0.2 0.2 0.1"/></geometry></visual>',
+                                      '<geometry><box size="0.2 0.2 0.1"/></geometry>'
+                                      '<material name="nowhere"/></visual>')]),
+}
+# silent changes that are errors on purpose (issue 25, item 3): every consumer drops the origin
+ERROR_BY_INTENT = {"<orgin> typo in a joint"}
+
+LOADER = r'''
+import sys
+path, which = sys.argv[1], sys.argv[2]
+text = open(path).read()
+if which == "mujoco":
+    import mujoco
+    m = mujoco.MjModel.from_xml_string(text)
+    d = mujoco.MjData(m)
+    mujoco.mj_step(m, d)
+elif which == "pinocchio":
+    import numpy as np
+    import pinocchio as pin
+    model = pin.buildModelFromUrdf(path)
+    for kind in (pin.GeometryType.COLLISION, pin.GeometryType.VISUAL):
+        pin.buildGeomFromUrdf(model, path, kind)
+    data = model.createData()
+    q = pin.neutral(model)
+    pin.computeAllTerms(model, data, q, np.zeros(model.nv))
+    pin.aba(model, data, q, np.zeros(model.nv), np.zeros(model.nv))
+elif which == "pybullet":
+    import pybullet as p
+    p.connect(p.DIRECT)
+    p.loadURDF(path)
+    for _ in range(240):
+        p.stepSimulation()
+print("loaded")
+'''
+
+
+def verdict(path: Path, consumer: str) -> str:
+    """R (rejects), C (crashes or hangs) or . (loads)."""
+    try:
+        # in the model's folder: MuJoCo writes MUJOCO_LOG.TXT into the working directory
+        r = subprocess.run([sys.executable, "-c", LOADER, str(path), consumer],
+                           capture_output=True, text=True, timeout=60, cwd=path.parent)
+    except subprocess.TimeoutExpired:
+        return "C"
+    if r.returncode == 0 and "loaded" in r.stdout:
+        return "."
+    return "C" if r.returncode < 0 else "R"
+
+
+def variant(edits) -> str:
+    text = CLEAN
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    return text
+
+
+def lint_target(pkg: Path, target: str) -> list:
+    p = run_cli("check", ".", "--no-cache", "--format", "json", "--fail-on", "never",
+                "--select", "ALL", "--target", target, cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)["findings"]
+
+
+def test_the_clean_robot_loads_everywhere_and_passes(tmp_path):
+    path = tmp_path / "clean.urdf"
+    path.write_text(CLEAN)
+    assert {c: verdict(path, c) for c in CONSUMERS} == {c: "." for c in CONSUMERS}
+    pkg = make_package(tmp_path, "p", {"urdf/r.urdf": CLEAN})
+    for c in CONSUMERS:
+        assert lint_target(pkg, c) == [], c
+
+
+def test_severity_per_target_agrees_with_the_consumers():
+    rows, wrong = [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, (name, (code, edits)) in enumerate(DEFECTS.items()):
+            text = variant(edits)
+            pkg = make_package(Path(tmp) / str(i), "p", {"urdf/r.urdf": text})
+            path = pkg / "urdf/r.urdf"
+            row = [name, code]
+            for c in CONSUMERS:
+                v = verdict(path, c)
+                sevs = {f["severity"] for f in lint_target(pkg, c) if f["code"] == code}
+                sev = max(sevs, key=("info", "warning", "error").index) if sevs else "-"
+                row.append(f"{v} {sev}")
+                if v in "RC" and sev != "error":
+                    wrong.append(f"{name}: {c} {'rejects' if v == 'R' else 'crashes'}, "
+                                 f"urdf-lint {code} is {sev} for target {c}")
+                elif v == "." and sev == "-":
+                    wrong.append(f"{name}: {c} loads it, urdf-lint reports no {code}")
+                elif v == "." and sev == "error" and name not in ERROR_BY_INTENT:
+                    wrong.append(f"{name}: {c} loads it, urdf-lint {code} is an error for "
+                                 f"target {c}")
+            rows.append(row)
+    width = max(len(r[0]) for r in rows)
+    print("\n" + f"{'defect':<{width}}  code   " + "  ".join(f"{c:<16}" for c in CONSUMERS))
+    for r in rows:
+        print(f"{r[0]:<{width}}  {r[1]}  " + "  ".join(f"{x:<16}" for x in r[2:]))
+    assert not wrong, "\n".join(wrong)
