@@ -12,7 +12,7 @@ want=$(cat pyproject.toml | (sha256sum 2>/dev/null || shasum -a 256) | cut -c1-1
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   log=$(mktemp)
   if ! { .venv/bin/python -m pip install -q --upgrade pip &&
-         .venv/bin/python -m pip install -q -e '.[test,render]'; } >"$log" 2>&1; then
+         .venv/bin/python -m pip install -q -e '.[test,render,server]'; } >"$log" 2>&1; then
     cat "$log" >&2
     echo "bootstrap: installation failed" >&2
     exit 1

@@ -1,5 +1,378 @@
+"""`urdf-lint server` end to end: a real LSP client (pytest-lsp) talks to the server over
+stdio, on a copy of the corpus UR description, and checks positions and contents."""
+from __future__ import annotations
+
+import asyncio
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pygls")
+pytest_lsp = pytest.importorskip("pytest_lsp")
+from lsprotocol import types  # noqa: E402
+from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
+
+from conftest import CORPUS  # noqa: E402
+
+# (a worktree beside the checkout: URDF_LINT_CORPUS names the corpus)
+UR = Path(os.environ.get("URDF_LINT_CORPUS") or CORPUS) / "ur_description"
+pytestmark = pytest.mark.skipif(not (UR / "package.xml").is_file(),
+                                reason="the corpus UR description is not present")
+aio = pytest.mark.asyncio(loop_scope="function")
 
 
+@pytest.fixture
+def ur(tmp_path) -> Path:
+    dst = tmp_path / "ur_description"
+    shutil.copytree(UR, dst)
+    return dst
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
+async def client(lsp_client: LanguageClient, ur):
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=types.ClientCapabilities(), root_uri=ur.as_uri(),
+        workspace_folders=[types.WorkspaceFolder(uri=ur.as_uri(), name="ur")]))
+    yield
+    await lsp_client.shutdown_session()
+
+
+def open_doc(client: LanguageClient, path: Path, text: str | None = None) -> str:
+    uri = path.as_uri()
+    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
+        uri=uri, language_id="xml", version=1, text=path.read_text() if text is None else text)))
+    return uri
+
+
+async def diagnostics_for(client: LanguageClient, uri: str, want=lambda ds: True,
+                          timeout: float = 60.0) -> list:
+    """The diagnostics of ``uri`` once ``want`` holds for them."""
+    async def wait():
+        while True:
+            got = client.diagnostics.get(uri)
+            if got is not None and want(got):
+                return got
+            await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    return await asyncio.wait_for(wait(), timeout)
+
+
+def change(client: LanguageClient, uri: str, text: str, version: int) -> None:
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=uri, version=version),
+        content_changes=[types.TextDocumentContentChangeWholeDocument(text=text)]))
+
+
+def pos(d):
+    return (d.range.start.line, d.range.start.character)
+
+
+@aio
+async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client, ur):
+    """ur_macro.xacro is a macro library: it shows the findings of the robots including it
+    (the missing visual meshes of ur10), at its own lines, with each call site as related
+    information."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    uri = open_doc(client, macro)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    base = [d for d in ds if d.code == "UL401" and "ur10/visual/base.dae" in d.message]
+    assert len(base) == 1
+    d = base[0]
+    assert pos(d) == (83, 10)                     # line 84, col 11: the <mesh> in the macro
+    assert d.range.end == types.Position(83, 15)  # "<mesh"
+    assert d.severity == types.DiagnosticSeverity.Error and d.source == "urdf-lint"
+    assert "(in ur10)" in d.message
+    rel = [(r.location.uri.rsplit("/", 1)[-1], r.location.range.start.line,
+            r.location.range.start.character) for r in d.related_information]
+    assert rel == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)]
+
+
+@aio
+async def test_diagnostics_follow_the_unsaved_buffer_and_reach_every_robot(client, ur):
+    """An unsaved edit of the shared macro (a joint axis of length 2) is linted from the
+    buffer, not the file, and lands for all nine robots at the edited line; undoing it in the
+    buffer clears it. The file on disk is never written."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    disk = macro.read_text()
+    uri = open_doc(client, macro)
+    await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    lines = disk.split("\n")
+    assert lines[236].strip() == '<axis xyz="0 0 1" />'
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    change(client, uri, "\n".join(lines), 2)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL307" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL307"]
+    assert pos(d) == (236, 6)
+    for robot in ("ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30"):
+        assert robot in d.message.split("(in ")[-1] or d.message.endswith("...)")
+    assert macro.read_text() == disk
+    change(client, uri, disk, 3)
+    await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
+
+
+@aio
+async def test_a_config_mistake_is_one_diagnostic_at_its_line(client, ur, tmp_path):
+    """A bad key in [tool.urdf-lint] of pyproject.toml: one diagnostic on that line."""
+    pp = ur / "pyproject.toml"
+    pp.write_text('[project]\nname = "x"\n\n[tool.urdf-lint]\nselect = ["UL4"]\nfail_onn = 1\n')
+    uri = open_doc(client, pp)
+    client.text_document_did_save(types.DidSaveTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=uri)))
+    ds = await diagnostics_for(client, uri, lambda ds: len(ds) > 0)
+    assert len(ds) == 1
+    assert pos(ds[0]) == (5, 0) and ds[0].range.end.character == len("fail_onn = 1")
+    assert "unknown key 'fail_onn'" in ds[0].message
+
+
+@aio
+async def test_quick_fix_and_suppressions_as_code_actions(client, ur):
+    """The UL307 fix is a workspace edit of the buffer's "0 0 2" to "0 0 1"; the suppression
+    actions insert the comment above the element and at the top of the file."""
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    uri = open_doc(client, macro, "\n".join(lines))
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL307" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL307"]
+    acts = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=d.range,
+        context=types.CodeActionContext(diagnostics=[d])))
+    by = {a.title: a for a in acts}
+    fix = next(a for t, a in by.items() if t.startswith("UL307:"))
+    assert fix.kind == types.CodeActionKind.QuickFix and fix.is_preferred
+    (edit,) = fix.edit.changes[uri]
+    assert edit.new_text in ("0 0 1", '"0 0 1"', "0.0 0.0 1.0")
+    assert edit.range.start.line == 236
+    assert lines[236][edit.range.start.character:edit.range.end.character] in ("0 0 2", '"0 0 2"')
+    nxt = by["Disable UL307 for the next element"].edit.changes[uri][0]
+    assert nxt.range.start == types.Position(236, 0)
+    assert nxt.new_text == "      <!-- urdf-lint: disable-next UL307 -->\n"
+    whole = by["Disable UL307 for this file"].edit.changes[uri][0]
+    assert whole.range.start == types.Position(1, 0)
+    assert whole.new_text == "<!-- urdf-lint: disable-file UL307 -->\n"
+    allsafe = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=d.range,
+        context=types.CodeActionContext(diagnostics=[], only=[types.CodeActionKind.SourceFixAll])))
+    (a,) = allsafe
+    assert a.title == "urdf-lint: fix all safe"
+    assert [e.range.start.line for e in a.edit.changes[uri]] == [236]
+    # the suppression, typed into the buffer, silences the finding
+    lines.insert(236, "      <!-- urdf-lint: disable-next UL307 -->")
+    change(client, uri, "\n".join(lines), 2)
+    await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL307" for d in ds))
+
+
+async def linted(client, ur) -> str:
+    """Open the shared macro file and wait until every robot including it is linted."""
+    uri = open_doc(client, ur / "urdf" / "inc" / "ur_macro.xacro")
+    await diagnostics_for(client, uri, lambda ds: any(d.code == "UL401" for d in ds))
+    return uri
+
+
+def where(locs):
+    return [(loc.uri.rsplit("/", 1)[-1], loc.range.start.line, loc.range.start.character)
+            for loc in locs]
+
+
+async def definition(client, uri, line, char):
+    return await client.text_document_definition_async(types.DefinitionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(line, char)))
+
+
+@aio
+async def test_go_to_definition(client, ur):
+    """A macro call to its xacro:macro; ${prefix} to the parameter of the macro it is in;
+    $(find pkg)/... to the file; $(arg x) to its xacro:arg; a parent link written as
+    ${prefix}base_link to the <link> that defines it, through the expanded robots' maps."""
+    macro_uri = await linted(client, ur)
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    uri = open_doc(client, ur5e)
+    lines = ur5e.read_text().split("\n")
+    call = lines[20].index("ur5e_robot")
+    assert where(await definition(client, uri, 20, call + 2)) == [("ur5e_macro.xacro", 22, 2)]
+    inc = lines[19].index("inc/ur5e_macro")
+    got = await definition(client, uri, 19, inc + 3)
+    assert got[0].uri == (ur / "urdf" / "inc" / "ur5e_macro.xacro").as_uri()
+    # in the shared macro: <parent link="${prefix}base_link" /> (line 224)
+    macro_lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    assert macro_lines[223].strip() == '<parent link="${prefix}base_link" />'
+    col = macro_lines[223].index("base_link")
+    assert where(await definition(client, macro_uri, 223, col + 1)) == \
+        [("ur_macro.xacro", 78, 4)]                           # <link name="${prefix}base_link">
+    col = macro_lines[223].index("prefix")
+    assert where(await definition(client, macro_uri, 223, col + 1)) == \
+        [("ur_macro.xacro", 56, 2)]                           # <xacro:macro name="ur_robot" ...
+    ur_x = ur / "urdf" / "ur.xacro"
+    ur_lines = ur_x.read_text().split("\n")
+    uri = open_doc(client, ur_x)
+    col = ur_lines[24].index("joint_limit_params")
+    assert where(await definition(client, uri, 24, col + 2)) == [("ur.xacro", 7, 3)]
+
+
+@aio
+async def test_references_of_a_macro_and_a_link(client, ur):
+    """Every call of ur_robot (one per robot's macro file, and ur.xacro's), and every element naming
+    base_link_inertia (its definition, the joint's child, the next joint's parent)."""
+    macro_uri = await linted(client, ur)
+    lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    refs = await client.text_document_references_async(types.ReferenceParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(56, lines[56].index("ur_robot") + 1),
+        context=types.ReferenceContext(include_declaration=False)))
+    files = sorted(r[0] for r in where(refs))
+    assert files == sorted([f"{m}_macro.xacro" for m in (
+        "ur3", "ur3e", "ur5", "ur5e", "ur10", "ur10e", "ur16e", "ur20", "ur30")] + ["ur.xacro"])
+    refs = await client.text_document_references_async(types.ReferenceParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(79, lines[79].index("base_link_inertia") + 2),
+        context=types.ReferenceContext(include_declaration=True)))
+    assert sorted(where(refs)) == [("ur_macro.xacro", 79, 4), ("ur_macro.xacro", 224, 6),
+                                   ("ur_macro.xacro", 233, 6)]
+
+
+@aio
+async def test_hover_shows_values_per_model_macro_parameters_and_rule_summaries(client, ur):
+    macro_uri = await linted(client, ur)
+    lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    assert '<origin xyz="0 0 ${shoulder_offset}"' in lines[121]
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(121, lines[121].index("shoulder_offset") + 3)))
+    text = h.contents.value
+    assert "`0 0 0.138` in ur5e (config/ur5e/physical_parameters.yaml:12)" in text
+    assert "`0 0 0.220941` in ur10 (config/ur10/physical_parameters.yaml:12)" in text
+    # a joint: its type, parent, child, limits and world pose at the zero configuration
+    assert lines[232].strip().startswith('<joint name="${prefix}shoulder_pan_joint"')
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(232, lines[232].index("shoulder_pan") + 2)))
+    row = next(r for r in h.contents.value.split("\n") if r.startswith("- **ur5e**"))
+    assert row.startswith("- **ur5e**: `shoulder_pan_joint` revolute; parent `base_link_inertia`, "
+                          "child `shoulder_link`; limits lower -6.283185307179586, upper "
+                          "6.283185307179586, effort 150.0, velocity 3.141592653589793")
+    assert row.endswith("world pose at zero: xyz 0.0 0.0 0.1625, rpy 0.0 0.0 3.1416")
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    uri = open_doc(client, ur5e)
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(20, 10)))
+    assert h.contents.value.startswith("**macro ur5e_robot** (ur5e_macro.xacro:23)")
+    assert "- `prefix` (required)" in h.contents.value
+    assert "- `safety_pos_margin` = `0.15`" in h.contents.value
+    text = ur5e.read_text().replace("<robot ", "<!-- urdf-lint: disable-next UL307 -->\n<robot ", 1)
+    change(client, uri, text, 2)
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(1, text.split("\n")[1].index("UL307") + 2)))
+    assert h.contents.value.startswith("**UL307 joint-axis** (error)")
+
+
+@aio
+async def test_completion_of_macros_parameters_and_rule_codes(client, ur):
+    await linted(client, ur)
+    ur5e = ur / "urdf" / "ur5e.xacro"
+    lines = ur5e.read_text().split("\n")
+    lines.insert(21, "  <xacro:")
+    uri = open_doc(client, ur5e, "\n".join(lines))
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 9)))
+    by = {i.label: i for i in got.items}
+    assert by["ur5e_robot"].insert_text == 'ur5e_robot prefix="${1}"/>'
+    assert "ur_robot" in by and "ur10_robot" in by
+    # parameter names inside the call, those not written yet
+    lines[21] = '  <xacro:ur5e_robot prefix="a_" '
+    change(client, uri, "\n".join(lines), 2)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 31)))
+    by = {i.label: i for i in got.items}
+    assert "prefix" not in by and by["safety_limits"].detail == "default false"
+    assert by["joint_limits_parameters_file"].insert_text == 'joint_limits_parameters_file="${1}"'
+    # mesh files below a package
+    lines[21] = '  <mesh filename="package://ur_description/meshes/ur5e/vi'
+    change(client, uri, "\n".join(lines), 3)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(21, len(lines[21]))))
+    assert sorted(i.label for i in got.items) == ["collision/", "visual/"]
+    lines[21] = "  <!-- urdf-lint: disable-next UL3"
+    change(client, uri, "\n".join(lines), 4)
+    got = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=types.Position(21, 34)))
+    by = {i.label: i for i in got.items}
+    assert by["UL307"].detail == "joint-axis"
+
+
+@aio
+async def test_document_symbols(client, ur):
+    macro_uri = await linted(client, ur)
+    syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri)))
+    by = {(s.detail, s.name): (s.range.start.line, s.range.start.character) for s in syms}
+    assert by[("macro", "ur_robot")] == (56, 2)
+    assert by[("link", "${prefix}base_link")] == (78, 4)
+    assert by[("joint", "${prefix}shoulder_pan_joint")] == (232, 4)
+
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.skipif(not shutil.which("nvim"), reason="nvim is not installed (apt: neovim)")
+def test_neovim_receives_the_diagnostics(ur, tmp_path):
+    """Neovim's own LSP client (headless, editors/neovim/urdf_lint.lua) starts the server on
+    the shared macro file with a planted defect (a joint axis of length 2 at line 237) and
+    holds the finding at that line and column, from urdf-lint."""
+    import json
+    import subprocess
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    macro.write_text("\n".join(lines))
+    out = tmp_path / "diagnostics.json"
+    env = dict(os.environ, URDF_LINT_NVIM_OUT=str(out), URDF_LINT_NVIM_WANT="UL307",
+               URDF_LINT_PY=sys.executable,
+               URDF_LINT_NVIM_PLUGIN=str(REPO / "editors" / "neovim" / "urdf_lint.lua"))
+    subprocess.run(["nvim", "--headless", "-u", "NONE", "-i", "NONE", "-n", str(macro),
+                    "-c", f"luafile {REPO / 'tests' / 'support' / 'nvim_lsp_probe.lua'}"],
+                   cwd=ur, env=env, timeout=120, stdin=subprocess.DEVNULL,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    got = json.loads(out.read_text())
+    (axis,) = [d for d in got if d["code"] == "UL307"]
+    assert (axis["lnum"], axis["col"]) == (236, 6)
+    assert axis["source"] == "urdf-lint" and axis["severity"] == 2   # vim.diagnostic WARN
+    assert "axis" in axis["message"]
+    assert any(d["code"] == "UL401" and d["lnum"] == 83 and d["col"] == 10 for d in got)
+
+
+@pytest.mark.skipif(not shutil.which("npm"), reason="npm is not installed")
+def test_the_vscode_client_builds(tmp_path):
+    """editors/vscode compiles with its locked dependencies (vscode-languageclient) into an
+    extension that starts `urdf-lint server`."""
+    import json
+    import subprocess
+    src = REPO / "editors" / "vscode"
+    dst = tmp_path / "vscode"
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("node_modules", "out"))
+    r = subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=dst, capture_output=True,
+                       text=True, timeout=300)
+    if r.returncode and any(s in r.stderr for s in ("ENOTFOUND", "EAI_AGAIN", "ECONNREFUSED",
+                                                     "ETIMEDOUT")):
+        pytest.skip("the npm registry is not reachable")
+    assert r.returncode == 0, r.stderr[-2000:]
+    r = subprocess.run(["npm", "run", "compile"], cwd=dst, capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    js = (dst / "out" / "extension.js").read_text()
+    assert 'require("vscode-languageclient/node")' in js
+    assert '"urdf-lint", "server"' in js
+    manifest = json.loads((dst / "package.json").read_text())
+    assert manifest["main"] == "./out/extension.js"
+
+
+@aio
 async def test_an_unsaved_yaml_file_reaches_the_models_that_load_it(client, ur):
     """ur10's visual meshes are named in config/ur10/visual_parameters.yaml (read with
     xacro.load_yaml in the sandboxed workers): pointing its base at a mesh that exists, in
@@ -43,3 +416,73 @@ def test_a_buffer_outside_the_roots_is_never_read(tmp_path):
         assert str(outside) not in rep.deps
     finally:
         ws.close()
+
+
+@aio
+async def test_a_file_changed_outside_the_editor_relints_what_it_reaches(client, ur):
+    """A watched-file notification for a YAML file rewritten on disk (a checkout) re-lints
+    the models that load it; the open macro file's diagnostics follow."""
+    macro_uri = await linted(client, ur)
+    yml = ur / "config" / "ur10" / "visual_parameters.yaml"
+    yml.write_text(yml.read_text().replace("meshes/ur10/visual/base.dae",
+                                           "meshes/ur5e/visual/base.dae"))
+    client.workspace_did_change_watched_files(types.DidChangeWatchedFilesParams(changes=[
+        types.FileEvent(uri=yml.as_uri(), type=types.FileChangeType.Changed)]))
+    ds = await diagnostics_for(client, macro_uri, lambda ds: not any(
+        "ur10/visual/base.dae" in d.message for d in ds))
+    assert any("ur10/visual/shoulder.dae" in d.message for d in ds)
+
+
+@pytest.fixture
+def hanging(tmp_path) -> Path:
+    """A package whose one model never finishes (a sum over 10**13 numbers), with the time
+    limit lowered in its own config (a repository may lower it, never raise it)."""
+    pkg = tmp_path / "hang"
+    (pkg / "urdf").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>hang</name></package>")
+    (pkg / "pyproject.toml").write_text("[tool.urdf-lint]\ntimeout = 2\n")
+    (pkg / "urdf" / "slow.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+        '  <link name="${python.sum(python.range(10**13))}"/>\n</robot>\n')
+    (pkg / "urdf" / "ok.urdf.xacro").write_text(
+        '<robot name="ok" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+        '  <xacro:property name="w" value="0.5"/>\n'
+        '  <link name="a"/>\n  <link name="b"/>\n'
+        '  <joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+        '<origin xyz="${w} 0 0"/></joint>\n</robot>\n')
+    return pkg
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(
+    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
+async def hang_client(lsp_client: LanguageClient, hanging):
+    await lsp_client.initialize_session(types.InitializeParams(
+        capabilities=types.ClientCapabilities(), root_uri=hanging.as_uri()))
+    yield
+    await lsp_client.shutdown_session()
+
+
+@aio
+async def test_a_model_that_hangs_costs_its_worker_not_the_editor(hang_client, hanging):
+    """The hanging model gets UL904 from the time limit of its worker (killed, replaced);
+    while it runs, the editor's requests are answered, and the next lint works."""
+    import time
+    client = hang_client
+    slow = open_doc(client, hanging / "urdf" / "slow.urdf.xacro")
+    ok = hanging / "urdf" / "ok.urdf.xacro"
+    ok_uri = open_doc(client, ok)
+    await asyncio.sleep(0.3)   # the slow model's lint is under way
+    t0 = time.perf_counter()
+    syms = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
+        text_document=types.TextDocumentIdentifier(uri=ok_uri)))
+    assert time.perf_counter() - t0 < 1.5
+    assert [(s.detail, s.name) for s in syms] == [("property", "w"), ("link", "a"),
+                                                 ("link", "b"), ("joint", "j")]
+    ds = await diagnostics_for(client, slow, lambda ds: any(d.code == "UL904" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL904"]
+    assert "within the time limit (2 s)" in d.message and pos(d) == (0, 0)
+    # a worker took the hanging job's place: a change to the good model is linted
+    text = ok.read_text().replace('<origin xyz="${w} 0 0"/>', '<axis xyz="0 0 0"/>') \
+        .replace('type="fixed"', 'type="continuous"')
+    change(client, ok_uri, text, 2)
+    await diagnostics_for(client, ok_uri, lambda ds: any(d.code == "UL307" for d in ds))

@@ -351,6 +351,14 @@ def _cmd_clean(sub, raw):
                     help="find the cache from here (default: .)")
 
 
+def _cmd_server(sub, raw):
+    sub.add_parser("server", help="a language server for editors (LSP over stdio; needs the "
+                   "'server' extra)",
+                   description="Run the urdf-lint language server on stdin/stdout: diagnostics "
+                               "from the real expansion, fixes, navigation, hover, completion. "
+                               "Editors start it; see the README for the set-up.")
+
+
 # the subcommands in the order of `urdf-lint --help`; each builds its own parser
 _COMMAND_PARSERS = {
     "check": _cmd_check,
@@ -365,6 +373,7 @@ _COMMAND_PARSERS = {
     "mcp": _cmd_mcp,
     "doctor": _cmd_doctor,
     "clean": _cmd_clean,
+    "server": _cmd_server,
 }
 
 
@@ -1075,10 +1084,19 @@ def cmd_clean(args) -> int:
     return 0
 
 
+def cmd_server(args) -> int:
+    try:
+        from .lsp.server import main as serve
+    except ImportError as e:
+        raise UsageError(f"the language server needs the 'server' extra ({e.name} is not "
+                         "installed): pip install 'urdf-lint[server]'") from None
+    return serve()
+
+
 COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules": cmd_rules, "rule": cmd_rule,
             "render": cmd_render, "diff": cmd_diff, "generate": cmd_generate, "format": cmd_format,
             "mcp": cmd_mcp, "clean": cmd_clean,
-            "doctor": cmd_doctor}
+            "doctor": cmd_doctor, "server": cmd_server}
 
 
 def main(argv=None) -> int:

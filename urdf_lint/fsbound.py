@@ -99,7 +99,19 @@ def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
                nofollow: bool = False, resolved: bool = False) -> bytes:
     """The bytes of a regular file of at most ``max_bytes`` (inside ``roots`` after symlinks
     when given; ``resolved`` as for :func:`within`); raises :class:`BoundaryError` (or the
-    ``OSError`` of the open)."""
+    ``OSError`` of the open). An unsaved editor buffer standing for the file
+    (``urdf-lint server``, :mod:`urdf_lint.overlay`) is returned instead of its bytes, once
+    the path passed the same roots check."""
+    from . import overlay
+    buffer = overlay.get(path) if overlay.active() else None
+    if buffer is not None:
+        if roots is not None and not within(path, roots, resolved):
+            raise BoundaryError(path, "resolves outside the package roots and the linted "
+                                "repository; it was not read")
+        if len(buffer) > max_bytes:
+            raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
+                                errno.EFBIG)
+        return buffer
     f, st = _open_regular(path, roots, nofollow, resolved)
     with f:
         if st.st_size > max_bytes:

@@ -41,6 +41,9 @@ class LintJob:
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
     outputs: tuple = ()            # more checked-in URDFs whose header names this xacro
                                    # (compared when they are the same variant as ``output``)
+    # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
+    # files by this job's expansion and lint (urdf_lint/overlay.py); such a result is not cached
+    overlay: tuple = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

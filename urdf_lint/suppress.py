@@ -66,7 +66,7 @@ def _read_source(path: str) -> bytes | None:
     """The bytes of a regular file of bounded size (never a device, FIFO or folder), or None
     when it holds no urdf-lint comment at all."""
     from .hashing import read_regular
-    data = read_regular(path, MAX_BYTES)
+    data = read_regular(path, MAX_BYTES)   # (an unsaved editor buffer: urdf_lint/overlay.py)
     return data if data is not None and (b"urdf-lint" in data or b"urdf_lint" in data) else None
 
 
@@ -80,6 +80,11 @@ def with_directives(deps) -> list[str]:
     out = []
     for d in deps:
         if not d.endswith(SOURCE_SUFFIXES):
+            continue
+        from . import overlay
+        if overlay.get(d) is not None:
+            if _read_source(d) is not None:
+                out.append(d)
             continue
         try:
             st = os.stat(d)

@@ -32,9 +32,12 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
         # a render run draws the meshes the rules measured: load them once, keep them
         meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render)
     before = _env_failures()
-    report, model, ctx = lint_model(job, settings)
-    if _env_failures() != before:
-        report.cacheable = False   # e.g. a mesh refused by the memory limit: not the file's fault
+    from . import overlay
+    with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
+        report, model, ctx = lint_model(job, settings)
+    if _env_failures() != before or job.overlay:
+        # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
+        report.cacheable = False
     if settings.diff_render and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
     if settings.render_dir and model is not None:

@@ -1,0 +1,42 @@
+// The urdf-lint language client: starts `urdf-lint server` (LSP over stdio) for xacro,
+// URDF, the YAML files xacro.load_yaml reads and pyproject.toml (its [tool.urdf-lint]).
+import * as vscode from "vscode";
+import {
+  LanguageClient,
+  LanguageClientOptions,
+  ServerOptions,
+  TransportKind,
+} from "vscode-languageclient/node";
+
+let client: LanguageClient | undefined;
+
+export async function activate(context: vscode.ExtensionContext): Promise<void> {
+  const command = vscode.workspace
+    .getConfiguration("urdf-lint")
+    .get<string[]>("command", ["urdf-lint", "server"]);
+  const serverOptions: ServerOptions = {
+    command: command[0],
+    args: command.slice(1),
+    transport: TransportKind.stdio,
+  };
+  const clientOptions: LanguageClientOptions = {
+    documentSelector: [
+      { scheme: "file", pattern: "**/*.xacro" },
+      { scheme: "file", pattern: "**/*.urdf" },
+      { scheme: "file", language: "yaml" },
+      { scheme: "file", pattern: "**/pyproject.toml" },
+    ],
+    synchronize: {
+      fileEvents: vscode.workspace.createFileSystemWatcher("**/*.{xacro,urdf,yaml,toml}"),
+    },
+  };
+  client = new LanguageClient("urdf-lint", "urdf-lint", serverOptions, clientOptions);
+  context.subscriptions.push(client);
+  await client.start();
+}
+
+export async function deactivate(): Promise<void> {
+  if (client) {
+    await client.stop();
+  }
+}
