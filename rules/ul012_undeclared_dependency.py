@@ -54,11 +54,11 @@ def own_package(model):
         if resolver is not None and not resolver.is_inside(d):
             return None
         if os.path.isfile(pxml):
-            try:
-                with open(pxml, encoding="utf-8", errors="replace") as f:
-                    text = _COMMENT.sub("", f.read(1 << 20))
-            except OSError:
+            from urdf_lint import fsbound   # a regular file of bounded size (the boundary)
+            data = fsbound.read_regular(pxml, 1 << 20)
+            if data is None:
                 return None
+            text = _COMMENT.sub("", data.decode("utf-8", "replace"))
             m = _NAME.search(text)
             return (m.group(1) if m else os.path.basename(d), pxml,
                     {x.group(2) for x in _DEP.finditer(text)})

@@ -125,8 +125,9 @@ def test_baseline_survives_a_move_a_reindent_and_edits_above(tmp_path):
 def test_old_baseline_still_loads_with_a_note(tmp_path):
     repo = workspace(tmp_path)
     p = run_cli("check", ".", "--no-cache", "--format", "json", "--fail-on", "never", cwd=repo)
-    old = [{"code": f["code"], "file": f["file"], "message": f["message"]}
-           for f in json.loads(p.stdout)["findings"]]
+    # a version 1 file held one entry per instance (urdf-lint before findings were grouped)
+    old = [{"code": i["code"], "file": i["file"], "message": i["message"]}
+           for f in json.loads(p.stdout)["findings"] for i in f.get("instances") or [f]]
     (repo / "old.json").write_text(json.dumps({"version": 1, "findings": old}))
     p = run_cli("check", ".", "--no-cache", "--baseline", "old.json", cwd=repo)
     assert p.returncode == 0, p.stdout

@@ -4,6 +4,7 @@ outputs and the cache folder. Every case is a fixture repository in the shape of
 from __future__ import annotations
 
 import json
+import re
 import os
 import shutil
 import subprocess
@@ -245,7 +246,8 @@ def test_render_fragment_renders_its_model_and_fails_without_snapshot(tmp_path):
     out = tmp_path / "snap"
     p = run_cli("render", V3 + "arm.xacro", "--out", out, "--no-rrd", cwd=repo)
     assert p.returncode == 0, p.stderr
-    assert [f.name for f in out.glob("*.png")] == ["v3_description__urdf__robot_v3.png"]
+    (png,) = [f.name for f in out.glob("*.png")]   # the model's picture name: stem + key hash
+    assert re.fullmatch(r"v3_description__urdf__robot_v3-[0-9a-f]{10}\.png", png), png
     # a requested model that cannot be snapshotted is a failure, not a blank image
     (repo / V3 / "main.xacro").unlink()
     p = run_cli("render", V3 + "robot_v3.xacro", "--out", tmp_path / "snap2", "--no-rrd", cwd=repo)

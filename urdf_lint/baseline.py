@@ -19,7 +19,6 @@ says how to rewrite them.
 from __future__ import annotations
 
 import bisect
-import hashlib
 import json
 import os
 import re
@@ -43,6 +42,7 @@ def normalized(message: str, base: str) -> str:
 
 
 def fingerprint(message: str, base: str) -> str:
+    import hashlib   # (only baselines need it: not every run's start-up)
     return hashlib.sha256(normalized(message, base).encode()).hexdigest()[:16]
 
 

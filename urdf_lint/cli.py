@@ -1181,8 +1181,7 @@ def _main(argv) -> int:
     if not args.command:
         parser.print_help()
         return 2
-    from .config import ConfigError
-    from .baseline import BaselineError
+    from .config import ConfigError   # (a BaselineError is a UsageError)
     import signal
 
     def _terminate(signum, frame):  # SIGTERM is handled like Ctrl-C: workers are stopped
@@ -1193,7 +1192,7 @@ def _main(argv) -> int:
         pass
     try:
         return COMMANDS[args.command](args)
-    except (UsageError, ConfigError, BaselineError) as e:
+    except (UsageError, ConfigError) as e:
         say(f"urdf-lint: error: {e}")
         return 2
     except KeyboardInterrupt:

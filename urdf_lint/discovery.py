@@ -228,14 +228,15 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
 def _config_line(path: str, name: str) -> tuple[int, int]:
     """(line, col) of the first ``name =`` in the config file (an arg in ``args``), else (1, 1)."""
     pat = re.compile(r"""(?:^|[\s{,])["']?""" + re.escape(name) + r"""["']?\s*=""")
-    try:
-        with open(path, encoding="utf-8") as f:
-            for i, line in enumerate(f, 1):
-                m = pat.search(line)
-                if m:
-                    return i, m.start() + 1 + (line[m.start()] in " \t{,")
+    from . import fsbound
+    try:   # the config file: a regular file of bounded size (the boundary)
+        text = fsbound.read_text(path, errors="replace")
     except OSError:
-        pass
+        text = ""
+    for i, line in enumerate(text.splitlines(), 1):
+        m = pat.search(line)
+        if m:
+            return i, m.start() + 1 + (line[m.start()] in " \t{,")
     return 1, 1
 
 

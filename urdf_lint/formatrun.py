@@ -77,6 +77,7 @@ def style_of(cfg, args=None) -> Style:
 
 @dataclass
 class FileResult:
+    """One file the formatter looked at: its bytes before and after, or why it is left alone."""
     path: str                   # real path
     shown: str                  # as messages show it
     old: bytes = b""

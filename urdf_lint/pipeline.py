@@ -387,10 +387,9 @@ def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
         names: dict = {}
         for f in r.deps:
             if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
-                try:
-                    with open(f, "rb") as fh:
-                        data = fh.read()
-                except OSError:
+                from . import fsbound
+                data = fsbound.read_regular(f, MAX_SOURCE_BYTES)
+                if data is None:
                     continue
                 for m in _BOOL_ARG.finditer(data):
                     names[m.group(1).decode("utf-8", "replace")] = None

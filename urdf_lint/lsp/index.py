@@ -12,6 +12,7 @@ XACRO_NS = ("http://wiki.ros.org/xacro", "http://www.ros.org/wiki/xacro")
 
 @dataclass
 class Decl:
+    """A declaration found in a source file: a macro, property, arg, include, link or joint, where it is."""
     kind: str            # macro | property | arg | include | link | joint
     name: str
     file: str
@@ -25,6 +26,7 @@ class Decl:
 
 @dataclass
 class FileIndex:
+    """The declarations and references of one source file (for definition, references, completion)."""
     file: str
     decls: list = field(default_factory=list)
 

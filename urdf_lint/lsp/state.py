@@ -34,6 +34,7 @@ class ConfigProblem:
 
 @dataclass
 class Workspace:
+    """What the language server knows of one workspace: open buffers, latest reports, includes."""
     root: str
     buffers: dict = field(default_factory=dict)       # path -> bytes (open, maybe unsaved)
     reports: dict = field(default_factory=dict)       # job_key -> ModelReport
