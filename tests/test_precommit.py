@@ -269,7 +269,8 @@ def test_readme_local_hook_works_as_pasted(tmp_path):
 
 
 def test_warnings_are_seen_when_the_hook_passes(hook_repo):
-    """A warning (a misspelt <orgin>, which URDF parsers drop) does not fail the commit, and
+    """A warning (an attribute URDF parsers ignore; a misspelt <orgin> is an error now, issue
+    25) does not fail the commit, and
     pre-commit hides a passing hook's output: the hook is verbose, so the finding and the
     one-line summary are shown on the passing commit (issue 22)."""
     work, env = hook_repo
@@ -278,11 +279,11 @@ def test_warnings_are_seen_when_the_hook_passes(hook_repo):
     typo.parent.mkdir(parents=True)
     typo.write_text('<robot name="typo">\n  <link name="a"/>\n  <link name="b"/>\n'
                     '  <joint name="j" type="fixed">\n    <parent link="a"/>\n'
-                    '    <child link="b"/>\n    <orgin xyz="0 0 1"/>\n  </joint>\n</robot>\n')
+                    '    <child link="b"/>\n    <origin xyz="0 0 1" spin="1"/>\n  </joint>\n</robot>\n')
     p = commit(work, env, "a typo")
     out = p.stdout + p.stderr
     assert p.returncode == 0 and "Passed" in out, out
-    assert "typo_description/urdf/typo.urdf:7:5: UL209 unknown element <orgin>" in out, out
+    assert "typo_description/urdf/typo.urdf:7:5: UL210 unknown attribute 'spin'" in out, out
     assert re.search(r"urdf-lint: 1 model\(s\) affected by 1 file\(s\): 0 error\(s\), "
                      r"\d+ warning\(s\), \d+ info \(\d+ in the committed files\)", out), out
     # a commit with no robot file says so in one line
