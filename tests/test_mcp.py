@@ -75,7 +75,8 @@ def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
     assert check["exit_code"] == 1 and isinstance(check["result"], dict), check
     assert [m["entry"] for m in check["result"]["models"]] == [entry]
     ul302 = [f for f in check["result"]["findings"] if f["code"] == "UL302"]
-    assert len(ul302) == 4, ul302          # the macro makes the four wheel joints
+    # one finding at the macro line, the four wheel joints it makes as its instances (issue 24)
+    assert len(ul302) == 1 and ul302[0]["count"] == 4, ul302
     assert {(f["file"], f["line"]) for f in ul302} == {
         ("r2d2_description/urdf/r2d2_macros.xacro", 47)}
     assert all(f.get("fix") for f in ul302), ul302

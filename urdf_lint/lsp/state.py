@@ -182,15 +182,15 @@ class Workspace:
 def _load_cfg(root: str):
     """The config ``check`` would use for ``root`` (no command line): the repository's own
     config may not loosen the guarantees (``trust.py``), limits are clamped."""
-    import sys
     from .. import trust
     from ..config import find_config, load_config, validate_codes
     from ..registry import codes_to_names
     from ..vcs import repo_root
     known = codes_to_names()
     cfg = load_config(find_config(root), known)
+    from ..emit import say
     for note in trust.apply(cfg, repo_root(root), trusted=False):
-        sys.stderr.write(f"urdf-lint: {note}\n")   # (stdout is the protocol)
+        say(f"urdf-lint: {note}")   # on stderr (stdout is the protocol), escaped
     trust.clamp(cfg)
     validate_codes(cfg, known)
     return cfg
