@@ -486,3 +486,39 @@ async def test_a_model_that_hangs_costs_its_worker_not_the_editor(hang_client, h
         .replace('type="fixed"', 'type="continuous"')
     change(client, ok_uri, text, 2)
     await diagnostics_for(client, ok_uri, lambda ds: any(d.code == "UL307" for d in ds))
+
+
+YAML_BOT = """<robot name="yamlbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="lim"
+    value="${xacro.load_yaml('$(find ur_description)/config/yamlbot.yaml')}"/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="${lim['lower']}" upper="${lim['upper']}" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+@aio
+async def test_a_yaml_file_shows_the_findings_whose_values_it_holds(client, ur):
+    """A value read with xacro.load_yaml that breaks a joint: the YAML file, opened, shows the
+    finding at the line that holds the value, related to the xacro element that uses it;
+    fixing the value in the unsaved buffer clears it in both files."""
+    yml = ur / "config" / "yamlbot.yaml"
+    yml.write_text("# limits of the yamlbot\nlower: 1.5\nupper: -1.5\n")
+    bot = ur / "urdf" / "yamlbot.urdf.xacro"
+    bot.write_text(YAML_BOT)
+    bot_uri = open_doc(client, bot)
+    await diagnostics_for(client, bot_uri, lambda ds: any(d.code == "UL302" for d in ds))
+    uri = open_doc(client, yml)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL302" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL302"]
+    assert pos(d) == (1, 7), pos(d)                      # `1.5` on "lower: 1.5" (line 2)
+    assert "lower 1.5 > upper -1.5" in d.message and "yamlbot.urdf.xacro:8" in d.message
+    (rel,) = d.related_information
+    assert rel.location.uri == bot_uri and rel.location.range.start.line == 7
+    change(client, uri, "# limits of the yamlbot\nlower: -1.5\nupper: 1.5\n", 2)
+    await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL302" for d in ds))
+    await diagnostics_for(client, bot_uri, lambda ds: not any(d.code == "UL302" for d in ds))

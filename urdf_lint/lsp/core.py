@@ -130,9 +130,11 @@ class UrdfLintServer(LanguageServer):
                 message=cp.message, severity=types.DiagnosticSeverity.Error, source=SOURCE,
                 code="config"))
         findings = ws.findings_in(path)
-        if not findings:
+        valued = ws.findings_valued_in(path)
+        if not findings and not valued:
             return out
         doc = self.doc(path)
+        out.extend(self._value_diagnostics(doc, valued))
         docs: dict = {}
         for f in findings:
             related = []
@@ -151,6 +153,32 @@ class UrdfLintServer(LanguageServer):
                 severity=SEVERITY.get(f.severity, types.DiagnosticSeverity.Error),
                 code=f.code, source=SOURCE, related_information=related or None,
                 data={"name": f.name}))
+        return out
+
+
+    def _value_diagnostics(self, doc, valued) -> list[types.Diagnostic]:
+        """A finding whose value is written in this file (a YAML scalar): one diagnostic at
+        that value, pointing at the element that uses it (once per value, code and message)."""
+        out, seen = [], set()
+        for f in valued:
+            _, line, col = f.value_from
+            key = (f.code, f.message, line, col)
+            if key in seen:
+                continue
+            seen.add(key)
+            text = doc.line(line - 1)
+            start = max(col - 1, 0)
+            use = self.doc(f.file)
+            out.append(types.Diagnostic(
+                range=types.Range(types.Position(line - 1, start),
+                                  types.Position(line - 1, max(len(text.rstrip()), start))),
+                message=f"{f.message} (the value is used at {os.path.basename(f.file)}:{f.line})",
+                severity=SEVERITY.get(f.severity, types.DiagnosticSeverity.Error),
+                code=f.code, source=SOURCE, data={"name": f.name},
+                related_information=[types.DiagnosticRelatedInformation(
+                    location=types.Location(uri=path_uri(f.file),
+                                            range=use.element_range(f.line, f.col)),
+                    message="the value is used here")]))
         return out
 
 

@@ -175,6 +175,13 @@ class Workspace:
         path = os.path.realpath(path)
         return [f for f in self.findings if f.file == path]
 
+    def findings_valued_in(self, path: str) -> list[Problem]:
+        """The findings elsewhere whose value comes from ``path`` (a YAML file read by
+        ``xacro.load_yaml``, a property file): ``Problem.value_from`` points into it."""
+        path = os.path.realpath(path)
+        return [f for f in self.findings if f.value_from and f.file != path
+                and os.path.realpath(f.value_from[0]) == path]
+
     def models(self) -> list[ModelReport]:
         return [r for r in self.reports.values() if r.status is Status.MODEL]
 
