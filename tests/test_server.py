@@ -522,3 +522,16 @@ async def test_a_yaml_file_shows_the_findings_whose_values_it_holds(client, ur):
     change(client, uri, "# limits of the yamlbot\nlower: -1.5\nupper: 1.5\n", 2)
     await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL302" for d in ds))
     await diagnostics_for(client, bot_uri, lambda ds: not any(d.code == "UL302" for d in ds))
+
+
+@aio
+async def test_run_scope_findings_reach_the_editor(client, ur):
+    """A rule over all the models of the run (UL106: two robots with one name) is reported in
+    the editor as `check` reports it, at the robot element of each file."""
+    for name in ("twin_a", "twin_b"):
+        (ur / "urdf" / f"{name}.urdf").write_text(
+            '<?xml version="1.0"?>\n<robot name="twin">\n  <link name="base"/>\n</robot>\n')
+    uri = open_doc(client, ur / "urdf" / "twin_a.urdf")
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL106" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL106"]
+    assert pos(d) == (1, 0) and "twin_b.urdf" in d.message, (pos(d), d.message)

@@ -84,6 +84,7 @@ class Workspace:
         self.cache = None
         found = discover_models([self.root], cfg, resolver, cache.dir if cache else None)
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
+        self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
         from .pool import Pool
@@ -152,9 +153,11 @@ class Workspace:
             return before | {f.file for f in self.findings}
 
     def _finish(self) -> list[Problem]:
-        """What ``check`` would report from the reports held (run-scope rules aside)."""
+        """What ``check`` would report from the reports held: the models' findings, the
+        run-scope rules over every model held, and discovery's own (the config's args)."""
         from .. import overlay
-        from ..pipeline import _split_models, _suppress, _with_policy
+        from ..pipeline import (RUN_LABEL, CheckResult, _run_rules, _split_models, _suppress,
+                                _with_policy)
         import copy
         reports = [copy.copy(r) for r in self.reports.values()]
         for r in reports:
@@ -164,6 +167,9 @@ class Workspace:
         problems: list[Problem] = []
         for r in models:
             problems.extend(_with_policy(r.problems, r.label, self.policy))
+        run = CheckResult(models=models, generated=dict(self.generated))
+        problems.extend(_with_policy(_run_rules(run, self.settings), RUN_LABEL, self.policy))
+        problems.extend(_with_policy(self.discovery_problems, RUN_LABEL, self.policy))
         with overlay.using(self.buffers):   # suppression comments of the unsaved buffers
             kept = _suppress(merge(problems), models, self.settings, self.policy)
         p = self.policy
