@@ -85,7 +85,7 @@ def main():
 
     # -- stock xacro, once per entry model ------------------------------------------------
     from stock_xacro import stock_xacro
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     pmap = PackageResolver.build([corpus], extra_roots=[corpus]).scanned
     t0 = time.perf_counter()
     for f, args in ents:
@@ -160,7 +160,7 @@ def main():
 
     # -- start-up: a warm run must not import the heavy modules ------------------------------
     env = dict(os.environ, URDF_LINT_CACHE_DIR=str(tmp / "cache0"))
-    code = ("import sys; from urdf_lint.cli import main; "
+    code = ("import sys; from urdf_lint.cli.main import main; "
             f"main({['check', *files, '--config', str(config), '--format', 'json', '-q']!r}); "
             "print(sorted(m for m in ('xacro', 'trimesh', 'yourdfpy', 'rerun', 'collada') "
             "if m in sys.modules), file=sys.stderr)")
@@ -170,13 +170,13 @@ def main():
     if a.profile:
         import cProfile
         import pstats
-        from urdf_lint.config import load_config
-        from urdf_lint.discovery import build_resolver
+        from urdf_lint.config.schema import load_config
+        from urdf_lint.discovery.discover import build_resolver
         cfg = load_config(config)
         res = build_resolver(files, cfg)
-        from urdf_lint.lint import run_job
-        from urdf_lint.discovery import discover
-        from urdf_lint.pipeline import settings_for
+        from urdf_lint.engine.lint import run_job
+        from urdf_lint.discovery.discover import discover
+        from urdf_lint.run.pipeline import settings_for
         jobs = discover(files, cfg)
         settings = settings_for(cfg, res, None)
         prof = cProfile.Profile()

@@ -120,7 +120,7 @@ def main():
             import cProfile
             os.chdir(top)
             sys.argv = ["urdf-lint", "diff", "HEAD", "--format", "json"]
-            from urdf_lint.cli import main as cli_main
+            from urdf_lint.cli.main import main as cli_main
             cProfile.runctx("cli_main(sys.argv[1:])", globals(), {"cli_main": cli_main,
                                                                     "sys": sys}, a.profile)
             print(f"profile written to {a.profile}")

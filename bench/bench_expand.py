@@ -48,7 +48,7 @@ def main():
     xacro_entries = [(str(f), args) for f, args in entries(corpus) if f.suffix == ".xacro"]
 
     from stock_xacro import _shim_dir
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     res = PackageResolver.build([corpus], extra_roots=[corpus])
     env = dict(os.environ, SHIM=_shim_dir(), STOCK_XACRO_PACKAGE_MAP=json.dumps(
         {k: str(v) for k, v in res.scanned.items()}))
@@ -56,11 +56,11 @@ def main():
                                  env=env, capture_output=True, text=True, check=True).stdout)
 
     from urdf_lint.expansion import expand_file
-    from urdf_lint.pipeline import settings_for
-    from urdf_lint.config import load_config
-    from urdf_lint.lint import Context
-    from urdf_lint.model import model_from_xml
-    from urdf_lint.registry import load_rules
+    from urdf_lint.run.pipeline import settings_for
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import model_from_xml
+    from urdf_lint.engine.registry import load_rules
     safe, models = None, []
     for _ in range(a.repeat):
         t0 = time.perf_counter()

@@ -26,7 +26,7 @@ DATA = ("*.stl", "*.STL", "*.dae", "*.DAE", "*.obj", "*.OBJ", "*.png", "*.jpg", 
 
 
 def engine(blobs, cpu: list) -> float:
-    from urdf_lint.formatter import FormatError, Refused, format_source
+    from urdf_lint.formatting.layout import FormatError, Refused, format_source
     t0, c0 = time.perf_counter(), time.process_time()
     for path, data in blobs:
         try:

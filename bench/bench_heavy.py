@@ -165,7 +165,7 @@ def main():
     ap.add_argument("--findings", help="keep the findings of each side here (JSON)")
     a = ap.parse_args()
     from heavy_repo import generate
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     tmp = Path(tempfile.mkdtemp(prefix="urdf-lint-heavy-"))
     rows: list = []
     print(f"{os.cpu_count()} cores; {a.repeat} repeats, the sides interleaved in each; ratios are "

@@ -28,12 +28,12 @@ def main():
     os.chdir(a.corpus)
     import rerun  # noqa: F401 - measured separately: imported once per worker process
     import dataclasses
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.jobs import LintJob
-    from urdf_lint.lint import run_job
-    from urdf_lint.pipeline import settings_for
-    from urdf_lint.worker import process_job
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.engine.lint import run_job
+    from urdf_lint.run.pipeline import settings_for
+    from urdf_lint.runner.worker import process_job
     cfg = load_config(None)
     for path, args in ROBOTS:
         entry = os.path.abspath(path)

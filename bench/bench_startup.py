@@ -6,7 +6,7 @@
 * a warm ``urdf-lint check`` of the whole corpus, nothing changed (target: <= 0.15 s), as a
   folder (``check corpus/``) and as the entry models with their args (bench.py's config);
 * one changed macro file (``ur_macro.xacro``): only its dependents re-lint (target: <= 0.6 s);
-* the floor: ``python -c pass`` and ``python -c "import urdf_lint.cli"``.
+* the floor: ``python -c pass`` and ``python -c "import urdf_lint.cli.main"``.
 
 Each is run ``--repeat`` times, interleaved; the table shows the minimum (what the code costs,
 least disturbed by other processes) and the median. Bytecode is written and used, as after
@@ -53,7 +53,7 @@ def main():
     r2d2 = REPO / "descriptions" / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
     cases = {
         "python -c pass": ([PY, "-c", "pass"], env),
-        "import urdf_lint.cli": ([PY, "-c", "import urdf_lint.cli"], env),
+        "import urdf_lint.cli.main": ([PY, "-c", "import urdf_lint.cli.main"], env),
         "expand r2d2 (worker, sandbox)": ([LINT, "expand", str(r2d2)], env),
         "warm check corpus/": ([LINT, "check", str(corpus), "-q", "--fail-on", "never"], env_dir),
         "warm check entry models + args": ([LINT, "check", *files, "--config", str(config), "-q",
@@ -94,8 +94,8 @@ def main():
     times[f"one changed macro ({len(redone)}/{len(doc['models'])} models re-lint)"] = changed
 
     # issue 10: discovery by include graph costs at most 10% of a cold run
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver, discover_models
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver, discover_models
     cfg = load_config(None)
     t0 = time.perf_counter()
     found = discover_models([str(corpus)], cfg, build_resolver([str(corpus)], cfg), cache_dir=None)

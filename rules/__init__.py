@@ -1,1 +1,1 @@
-"""The urdf-lint rule catalogue: one module per rule (see urdf_lint.registry)."""
+"""The urdf-lint rule catalogue: one module per rule (see urdf_lint.engine.registry)."""

@@ -6,7 +6,7 @@ the unit that moves is a *body*: a link that is the child of a non-fixed joint (
 together with everything fixed to it. A massless sensor frame fixed to a heavy link is valid;
 a body that moves and has no mass at all is not.
 """
-from urdf_lint.ruleutil import number
+from urdf_lint.engine.api import number
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 

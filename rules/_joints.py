@@ -1,5 +1,5 @@
 """Helpers for the joint-limit rules (not a rule)."""
-from urdf_lint.ruleutil import number, reference_fixes
+from urdf_lint.engine.api import number, reference_fixes
 
 
 def limits(j):

@@ -1,5 +1,5 @@
 """Helpers for the material rules (not a rule)."""
-from urdf_lint.ruleutil import numbers
+from urdf_lint.engine.api import numbers
 from urdf_lint.rules._schema import urdf_iter
 
 

@@ -1,6 +1,6 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
-from urdf_lint.findings import Cause
-from urdf_lint.meshes import MeshStatus
+from urdf_lint.core.findings import Cause
+from urdf_lint.meshes.resolve import MeshStatus
 from urdf_lint.rules import ul004_unknown_package as unknown_package
 from urdf_lint.rules._schema import urdf_iter
 
@@ -114,7 +114,7 @@ def scaled(factor):
 
 def resolution_problems(model, ctx, statuses, tag="mesh"):
     """(element, message) for every ``<tag filename>`` in the URDF part of the document whose
-    resolution ended in one of ``statuses`` (:class:`urdf_lint.meshes.MeshStatus`). A
+    resolution ended in one of ``statuses`` (:class:`urdf_lint.meshes.resolve.MeshStatus`). A
     reference to an unknown package is an instance of that package's root cause (one
     ``UL004`` with every reference listed under it), not a finding of its own."""
     for m in urdf_iter(model, tag):

@@ -85,7 +85,7 @@ def macro_names(model) -> set:
     for f in [model.entry, *model.deps]:
         if not str(f).endswith(".xacro"):
             continue
-        from urdf_lint import fsbound
+        from urdf_lint.core import fsbound
         try:   # a regular file of bounded size, through the boundary
             data = fsbound.read_regular(f, fsbound.MAX_SOURCE_BYTES)
         except OSError:

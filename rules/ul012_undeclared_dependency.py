@@ -25,7 +25,7 @@ PASS = """<robot name="r">
 import os
 import re
 
-from urdf_lint.findings import Cause
+from urdf_lint.core.findings import Cause
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.rules._schema import urdf_iter
 
@@ -54,7 +54,7 @@ def own_package(model):
         if resolver is not None and not resolver.is_inside(d):
             return None
         if os.path.isfile(pxml):
-            from urdf_lint import fsbound   # a regular file of bounded size (the boundary)
+            from urdf_lint.core import fsbound  # a regular file of bounded size (the boundary)
             data = fsbound.read_regular(pxml, 1 << 20)
             if data is None:
                 return None
@@ -79,7 +79,7 @@ def _package_of(resolver, path: str):
 
 
 def _cause(own, pxml, name):
-    from urdf_lint.locations import display_path
+    from urdf_lint.core.locations import display_path
     return Cause(CODE, f"undeclared-dependency:{own}:{name}",
                  f"package '{name}' is used but {display_path(pxml)} does not declare it: add "
                  f"<exec_depend>{name}</exec_depend> (or <depend>)")
@@ -110,7 +110,7 @@ def check(model, ctx):
     for el, o in model.origins.items():
         for pkg, dep in list(firsts.items()):
             if o.file == dep or any(c[0] == dep for c in o.chain):
-                from urdf_lint.locations import display_path
+                from urdf_lint.core.locations import display_path
                 yield el, f"reads {display_path(dep)}", _cause(name, pxml, pkg)
                 del firsts[pkg]
         if not firsts:

@@ -19,7 +19,7 @@ PASS = """<robot name="r">
   <joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.engine.api import did_you_mean
 
 
 def check(model, ctx):

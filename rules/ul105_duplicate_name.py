@@ -23,7 +23,7 @@ PASS = """<robot name="r">
 
 
 def check(model, ctx):
-    from urdf_lint.locations import display_path
+    from urdf_lint.core.locations import display_path
     for tag in ("link", "joint"):
         first = {}
         for e in model.root:

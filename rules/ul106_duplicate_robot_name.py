@@ -24,7 +24,7 @@ EXAMPLE_FILES = {"urdf/other.urdf": '<robot name="visual">\n  <link name="a"/>\n
 
 
 def check(run, ctx):
-    from urdf_lint.locations import display_path
+    from urdf_lint.core.locations import display_path
     by_name: dict = {}
     generated = getattr(run, "generated", {})   # a generated URDF is the same robot as its xacro
     for m in run.models:

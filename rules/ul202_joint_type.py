@@ -18,7 +18,7 @@ PASS = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.engine.api import did_you_mean
 
 TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 

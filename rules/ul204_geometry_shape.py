@@ -24,7 +24,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.engine.api import did_you_mean
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 

@@ -26,7 +26,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.ruleutil import number, numbers
+from urdf_lint.engine.api import number, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 

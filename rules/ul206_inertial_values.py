@@ -22,7 +22,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.ruleutil import number
+from urdf_lint.engine.api import number
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 

@@ -37,7 +37,7 @@ NOT_FINITE = ("nan", "inf", "infinity")
 # 3.2.7 load it (measured by tests/test_consumers.py)
 LOADS_NAN = {"mujoco": "warning", "pybullet": "warning"}
 
-from urdf_lint.ruleutil import numbers
+from urdf_lint.engine.api import numbers
 from urdf_lint.rules._schema import urdf_iter
 
 

@@ -21,8 +21,8 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
-from urdf_lint.fixes import set_attrs
-from urdf_lint.ruleutil import numbers
+from urdf_lint.fix.fixes import set_attrs
+from urdf_lint.engine.api import numbers
 from urdf_lint.rules._schema import urdf_iter
 
 

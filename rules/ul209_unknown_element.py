@@ -37,8 +37,8 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.fixes import rename_tag
-from urdf_lint.ruleutil import did_you_mean, single_candidate
+from urdf_lint.fix.fixes import rename_tag
+from urdf_lint.engine.api import did_you_mean, single_candidate
 from urdf_lint.rules._schema import CHILDREN, SINGLE, XACRO_WORDS, checked_elements, macro_names
 
 # a misspelling of one of these, where it is, changes the robot's kinematics or dynamics

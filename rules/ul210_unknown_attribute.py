@@ -27,8 +27,8 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.fixes import rename_attr
-from urdf_lint.ruleutil import did_you_mean, number, single_candidate
+from urdf_lint.fix.fixes import rename_attr
+from urdf_lint.engine.api import did_you_mean, number, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 
 

@@ -27,7 +27,7 @@ PASS = FAIL.replace('<link name="{prefix}tool"/>', '<link name="${prefix}tool"/>
     '<link name="arm_{prefix}tip"/>', '<link name="arm_${prefix}tip"/>')
 import re
 
-from urdf_lint.fixes import add_dollar, names_in_scope
+from urdf_lint.fix.fixes import add_dollar, names_in_scope
 from urdf_lint.rules._schema import checked_elements, urdf_iter
 
 ATTRS = ("name", "reference", "link")

@@ -27,8 +27,8 @@ PASS = """<robot name="r">
     <limit lower="-2.1" upper="2.1" effort="10" velocity="1"/></joint>
 </robot>
 """
-from urdf_lint.fixes import set_attrs
-from urdf_lint.ruleutil import fmt
+from urdf_lint.fix.fixes import set_attrs
+from urdf_lint.engine.api import fmt
 from urdf_lint.rules._joints import ranged
 
 

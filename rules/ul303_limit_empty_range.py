@@ -20,7 +20,7 @@ PASS = """<robot name="r">
     <limit lower="0" upper="0.2" effort="10" velocity="1"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import fmt
+from urdf_lint.engine.api import fmt
 from urdf_lint.rules._joints import ranged
 
 

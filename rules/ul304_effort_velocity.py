@@ -38,7 +38,7 @@ PASS = """<robot name="r">
     <limit lower="-1" upper="1" effort="30" velocity="2"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import number
+from urdf_lint.engine.api import number
 
 ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but effort-based "
                "controllers and simulators cannot move the joint; write the drive's rated torque "

@@ -29,7 +29,7 @@ PASS = """<robot name="r">
 """
 
 
-from urdf_lint.fixes import drop_attrs, set_attrs
+from urdf_lint.fix.fixes import drop_attrs, set_attrs
 
 def check(model, ctx):
     how = ctx.options.get("fix", "drop-limits")

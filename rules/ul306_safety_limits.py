@@ -25,8 +25,8 @@ PASS = """<robot name="r">
     <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
 </robot>
 """
-from urdf_lint.fixes import set_attrs
-from urdf_lint.ruleutil import fmt, number
+from urdf_lint.fix.fixes import set_attrs
+from urdf_lint.engine.api import fmt, number
 from urdf_lint.rules._joints import limits
 
 

@@ -30,8 +30,8 @@ PASS = """<robot name="r">
 """
 import math
 
-from urdf_lint.fixes import set_attrs
-from urdf_lint.ruleutil import fmt, numbers
+from urdf_lint.fix.fixes import set_attrs
+from urdf_lint.engine.api import fmt, numbers
 
 
 def check(model, ctx):

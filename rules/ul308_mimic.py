@@ -26,7 +26,7 @@ PASS = """<robot name="r">
   <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1" multiplier="-1"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean, reference_fixes
+from urdf_lint.engine.api import did_you_mean, reference_fixes
 
 
 # consumers that load an unknown mimicked joint and ignore the relation (docstring)

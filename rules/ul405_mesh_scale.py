@@ -17,7 +17,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules._meshes import TETRA_STL
-from urdf_lint.ruleutil import numbers
+from urdf_lint.engine.api import numbers
 from urdf_lint.rules._schema import urdf_iter
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}

@@ -23,7 +23,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules._meshes import resolved_meshes, scaled
-from urdf_lint.ruleutil import numbers
+from urdf_lint.engine.api import numbers
 
 EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
 

@@ -25,7 +25,7 @@ from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_mes
 
 
 def check(model, ctx):
-    from urdf_lint.meshes import texture_refs
+    from urdf_lint.meshes.resolve import texture_refs
     for m, uri, path in resolved_meshes(model, ctx):
         for t in texture_refs(path):
             if not os.path.exists(t):

@@ -24,7 +24,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean, reference_fixes
+from urdf_lint.engine.api import did_you_mean, reference_fixes
 from urdf_lint.rules._schema import urdf_iter
 
 

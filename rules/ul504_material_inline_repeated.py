@@ -37,7 +37,7 @@ PASS = """<robot name="r">
 """
 from collections import Counter
 
-from urdf_lint.fixes import named_material
+from urdf_lint.fix.fixes import named_material
 from urdf_lint.rules._materials import all_materials, rgba as rgba_of
 
 

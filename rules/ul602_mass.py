@@ -45,7 +45,7 @@ PASS = """<robot name="r">
   <joint name="cam" type="fixed"><parent link="a"/><child link="camera_frame"/></joint>
 </robot>
 """
-from urdf_lint.ruleutil import number
+from urdf_lint.engine.api import number
 from urdf_lint.rules._inertial import Bodies, mass
 
 

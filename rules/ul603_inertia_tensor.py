@@ -40,7 +40,7 @@ PASS = """<robot name="r">
 """
 import math
 
-from urdf_lint.ruleutil import fmt, number
+from urdf_lint.engine.api import fmt, number
 from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
 
 NOISE = 1e-15      # kg m^2: below MuJoCo's mjMINVAL, float noise of a lumped body, not inertia

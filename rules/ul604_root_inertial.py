@@ -27,7 +27,7 @@ PASS = """<robot name="r">
 """
 
 
-from urdf_lint.fixes import new_root
+from urdf_lint.fix.fixes import new_root
 
 
 def check(model, ctx):

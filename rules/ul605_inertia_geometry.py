@@ -26,7 +26,7 @@ from urdf_lint.rules._physics import example, declared_matrix, hull_note, measur
 FAIL = example(1, 0.5, 0.5, 0.5)
 FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
-from urdf_lint.ruleutil import fmt
+from urdf_lint.engine.api import fmt
 
 WHICH = ("smallest", "middle", "largest")
 

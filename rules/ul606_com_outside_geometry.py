@@ -26,7 +26,7 @@ from urdf_lint.rules._physics import example, hull_note, measured_links, pose
 FAIL = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.5")
 FAIL_AT = [(4, 15)]
 PASS = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.02")
-from urdf_lint.ruleutil import fmt
+from urdf_lint.engine.api import fmt
 
 
 def _outside(com, g, tol):

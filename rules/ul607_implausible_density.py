@@ -23,7 +23,7 @@ from urdf_lint.rules._physics import example, hull_note, measured_links
 FAIL = example(1000, 1.7, 1.7, 1.7)
 FAIL_AT = [(4, 15)]
 PASS = example(2.7, 0.0045, 0.0045, 0.0045)
-from urdf_lint.ruleutil import fmt
+from urdf_lint.engine.api import fmt
 
 
 def check(model, ctx):

@@ -23,7 +23,7 @@ FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
 import re
 
-from urdf_lint.ruleutil import fmt
+from urdf_lint.engine.api import fmt
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 

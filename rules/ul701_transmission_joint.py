@@ -28,7 +28,7 @@ PASS = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.engine.api import did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 

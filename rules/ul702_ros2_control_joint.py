@@ -25,7 +25,7 @@ PASS = """<robot name="r">
     <joint name="joint1"><command_interface name="position"/></joint></ros2_control>
 </robot>
 """
-from urdf_lint.ruleutil import did_you_mean
+from urdf_lint.engine.api import did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 

@@ -23,7 +23,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules.ul212_missing_dollar import literal_names
-from urdf_lint.ruleutil import did_you_mean, reference_fixes
+from urdf_lint.engine.api import did_you_mean, reference_fixes
 
 
 def check(model, ctx):

@@ -20,9 +20,9 @@ sys.path.insert(0, str(REPO / "tests"))
 
 def positions(rule, workdir: Path) -> list[tuple[int, int]]:
     from conftest import make_package
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.pipeline import run_check
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import run_check
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in rule.fail else "urdf/example.urdf"
     pkg = make_package(workdir, "example_pkg", {**rule.example_files, name: rule.fail})
     here = os.getcwd()
@@ -38,7 +38,7 @@ def positions(rule, workdir: Path) -> list[tuple[int, int]]:
 
 
 def main() -> int:
-    from urdf_lint.registry import load_rules
+    from urdf_lint.engine.registry import load_rules
     os.environ.setdefault("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
     for code, rule in load_rules().items():
         if rule.fail_at and "--all" not in sys.argv:

@@ -40,7 +40,7 @@ def corpus():
 
 @pytest.fixture(scope="session")
 def corpus_resolver(corpus):
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     return PackageResolver.build([corpus], extra_roots=[corpus])
 
 
@@ -78,7 +78,7 @@ def terminated(*args, cwd, after: float):
 def carried(job, data):
     """What a test's replacement of ``worker.process_job`` reports from inside the worker
     (JSON ``data``), sent back inside a lint result: the parent accepts nothing else."""
-    from urdf_lint.jobs import ModelReport
+    from urdf_lint.core.jobs import ModelReport
     return ModelReport(job.entry, {}, name=json.dumps(data))
 
 

@@ -99,7 +99,7 @@ def test_dae_with_dangling_surface_is_not_empty(tmp_path):
 
 
 def test_lenient_dae_load_keeps_the_geometry(tmp_path):
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     p = tmp_path / "skin.dae"
     p.write_text(BROKEN_SURFACE_DAE)
     facts = meshes.mesh_facts(str(p))
@@ -109,7 +109,7 @@ def test_lenient_dae_load_keeps_the_geometry(tmp_path):
 
 def test_loader_errors_name_their_type_once():
     import collada
-    from urdf_lint.meshes import error_text
+    from urdf_lint.meshes.resolve import error_text
     msg = error_text(collada.common.DaeMalformedError("Corrupted index in triangleset"))
     assert msg == "DaeMalformedError: Corrupted index in triangleset"
     assert error_text(ValueError("bad")) == "ValueError: bad"
@@ -382,7 +382,7 @@ def test_placeholder_inertias(tmp_path):
 
 
 def test_mass_facts_are_cached_by_content(tmp_path):
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     p = tmp_path / "part.stl"
     p.write_text(TETRA_STL)
     cache = tmp_path / "cache"
@@ -394,7 +394,7 @@ def test_mass_facts_are_cached_by_content(tmp_path):
 def test_broken_demo_shows_every_class():
     """The demo (`urdf-lint check descriptions/`) shows every rule firing on the broken models,
     but UL904 (a time or memory limit would make the demo wait for it), and the seeds pass."""
-    from urdf_lint.registry import load_rules
+    from urdf_lint.engine.registry import load_rules
     p = run_cli("check", str(DESCRIPTIONS), "--no-cache", "--format", "json")
     assert p.returncode == 1, p.stderr
     doc = json.loads(p.stdout)
@@ -428,9 +428,9 @@ def test_geometry_moments_follow_scale_rotation_and_offset(tmp_path):
     answer for the same solids moved into place."""
     import numpy as np
     import trimesh
-    from urdf_lint.lint import Context
-    from urdf_lint.model import Model, parse_urdf_bytes
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import Model, parse_urdf_bytes
+    from urdf_lint.discovery.packages import PackageResolver
     from urdf_lint.rules._physics import link_geometry, rotation
     body = """<robot name="r"><link name="a">
   <collision><origin xyz="0.1 -0.2 0.3" rpy="0.3 0.2 0.1"/>
@@ -465,7 +465,7 @@ def test_geometry_moments_follow_scale_rotation_and_offset(tmp_path):
 def test_dae_losing_only_some_instances_is_loaded_whole(tmp_path):
     """A broken material binding drops just the instance bound to it: the mesh is not empty,
     but half of it is missing. The geometry is still loaded whole, and the reference reported."""
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     second = ('<node id="t2" name="t2" type="NODE"><matrix sid="transform">1 0 0 0.5 0 1 0 0 '
               '0 0 1 0 0 0 0 1</matrix><instance_geometry url="#tetra-mesh" name="t2"/></node>\n'
               '    </visual_scene>')
@@ -481,7 +481,7 @@ def test_readme_numbers_are_the_demos():
     are those of a real run of the command it shows, so they cannot go stale (issue 22)."""
     import re
     from conftest import REPO
-    from urdf_lint.registry import load_rules
+    from urdf_lint.engine.registry import load_rules
     readme = (REPO / "README.md").read_text()
     p = run_cli("check", "descriptions/", "--no-cache", cwd=REPO)
     assert p.returncode == 1, p.stderr

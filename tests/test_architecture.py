@@ -7,7 +7,7 @@ import re
 import pytest
 
 from conftest import REPO
-from urdf_lint.registry import load_rules
+from urdf_lint.engine.registry import load_rules
 
 PKG = REPO / "urdf_lint"
 RULES_DIR = REPO / "rules"
@@ -102,8 +102,8 @@ def find_cycle(graph):
 
 def test_the_import_graph_is_acyclic():
     graph = import_graph()
-    assert "urdf_lint.pipeline" in graph and "urdf_lint.rules.ul302_limit_order" in graph
-    assert "urdf_lint.discovery" in graph["urdf_lint.pipeline"]    # the graph sees imports
+    assert "urdf_lint.run.pipeline" in graph and "urdf_lint.rules.ul302_limit_order" in graph
+    assert "urdf_lint.discovery.discover" in graph["urdf_lint.run.pipeline"]    # the graph sees imports
     cycle = find_cycle(graph)
     assert cycle is None, " -> ".join(cycle)
 
@@ -151,9 +151,9 @@ def test_scopes():
 def test_problem_and_report_cross_the_pipe_and_the_cache():
     import json
     import pickle
-    from urdf_lint.findings import Problem
-    from urdf_lint.jobs import LintJob, ModelReport, Status
-    from urdf_lint.locations import Origin
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import LintJob, ModelReport, Status
+    from urdf_lint.core.locations import Origin
     p = Problem.at("UL302", "lower > upper", ("/r/arm.xacro", 14, 7, [["/r/robot.xacro", 7, 3]]),
                    ["joint", "elbow"])
     assert p.origin == Origin("/r/arm.xacro", 14, 7, (("/r/robot.xacro", 7, 3),))
@@ -175,7 +175,7 @@ def test_problem_and_report_cross_the_pipe_and_the_cache():
 def test_source_map_alignment_is_strict():
     from lxml import etree
     from urdf_lint.expansion.sourcemap import SourceMap
-    from urdf_lint.model import model_from_xml
+    from urdf_lint.engine.model import model_from_xml
     stamps = [("/f.xacro", 1, 1, ()), None, ("/f.xacro", 3, 5, (("/g.xacro", 2, 3),))]
     sm = SourceMap.from_stamps(stamps)
     assert len(sm) == 3 and sm[1] == sm[0] and sm[2].chain == (("/g.xacro", 2, 3),)
@@ -213,7 +213,7 @@ def test_error_table_maps_xacro_failures_to_rule_modules():
 
 
 def test_policy_is_one_matcher():
-    from urdf_lint.policy import Policy, code_matches
+    from urdf_lint.config.policy import Policy, code_matches
     assert code_matches("UL3", "UL302") and code_matches("limit-order", "UL302", "limit-order")
     assert code_matches("ALL", "UL302") and not code_matches("UL30", "UL401")
     pol = Policy(select=("UL",), ignore=("UL3",), severity={"UL3": "warning", "UL302": "info"},
@@ -230,7 +230,7 @@ def test_policy_is_one_matcher():
 def test_a_plain_rule_module_still_loads():
     """Backward compatible rule API: CODE/NAME/SEVERITY/FAIL/PASS and check(model, ctx)."""
     import types
-    from urdf_lint.registry import rule_from_module
+    from urdf_lint.engine.registry import rule_from_module
     mod = types.ModuleType("urdf_lint.rules.ul999_plain")
     mod.__doc__ = "Something.\n\nWhy: x.\n\nHow to fix: y."
     mod.CODE, mod.NAME, mod.SEVERITY = "UL999", "plain", "warning"
@@ -245,9 +245,9 @@ def test_a_plain_rule_module_still_loads():
 
 def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
     from conftest import make_package
-    from urdf_lint.meshes import MeshStatus, resolve
-    from urdf_lint.model import Model
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.meshes.resolve import MeshStatus, resolve
+    from urdf_lint.engine.model import Model
+    from urdf_lint.discovery.packages import PackageResolver
     from lxml import etree
     pkg = make_package(tmp_path, "p", {"meshes/part.stl": "solid x\nendsolid x\n"})
     res = PackageResolver.build([tmp_path], extra_roots=[tmp_path])
@@ -266,7 +266,7 @@ def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
 
 def test_settings_are_typed_and_readable_as_the_old_dict():
     import dataclasses
-    from urdf_lint.jobs import LintSettings
+    from urdf_lint.core.jobs import LintSettings
     s = LintSettings(resolver={"scanned": {}}, selected=("UL302",), mesh_cache_dir="/c")
     assert s.selected == ("UL302",) and s["mesh_cache_dir"] == "/c" and s.get("render_dir") is None
     with pytest.raises(KeyError):
@@ -280,11 +280,11 @@ def test_a_rule_may_choose_the_severity_of_one_problem(monkeypatch):
     """check() may yield (element, message, severity); configured overrides still win."""
     import types
     from lxml import etree
-    from urdf_lint import registry
-    from urdf_lint.findings import Problem
-    from urdf_lint.model import Model
-    from urdf_lint.pipeline import _with_policy
-    from urdf_lint.policy import Policy
+    from urdf_lint.engine import registry
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.engine.model import Model
+    from urdf_lint.run.pipeline import _with_policy
+    from urdf_lint.config.policy import Policy
     mod = types.ModuleType("urdf_lint.rules.ul998_fake")
     mod.__doc__ = "Fake.\n\nWhy: x.\n\nHow to fix: y."
     mod.CODE, mod.NAME, mod.SEVERITY, mod.FAIL, mod.PASS = "UL998", "fake", "error", "<r/>", "<r/>"
@@ -331,7 +331,7 @@ def test_no_module_of_ours_rebinds_another_modules_names():
         ("urdf_lint.expansion.expand", "sys.stdout"): "capture, restored",
         ("urdf_lint.expansion.expand", "sys.stderr"): "capture, restored",
         # a worker process's own interpreter setting (the worker is ours alone)
-        ("urdf_lint.worker", "sys.dont_write_bytecode"): "the worker's own process",
+        ("urdf_lint.runner.worker", "sys.dont_write_bytecode"): "the worker's own process",
     }
     found = []
     for name, path in _modules().items():
@@ -361,7 +361,7 @@ def test_the_standard_library_is_untouched_by_the_sandbox_probe():
     import subprocess
     import sys
     code = (
-        "import sys, dataclasses, urdf_lint, urdf_lint.sandbox as s\n"
+        "import sys, dataclasses, urdf_lint, urdf_lint.runner.sandbox as s\n"
         "s.landlock_status()\n"
         "import inspect\n"
         "assert type(sys.modules['inspect']).__name__ == 'module', type(sys.modules['inspect'])\n"

@@ -1,4 +1,4 @@
-"""One file-system boundary (``urdf_lint/fsbound.py``): no other module of ``urdf_lint/`` or
+"""One file-system boundary (``urdf_lint/core/fsbound.py``): no other module of ``urdf_lint/`` or
 ``rules/`` opens, globs, walks, parses, writes or removes a path itself.
 
 The test walks the AST of every module and fails on a call that touches the file system
@@ -13,7 +13,7 @@ from pathlib import Path
 
 from conftest import REPO
 
-BOUNDARY = "urdf_lint/fsbound.py"
+BOUNDARY = "urdf_lint/core/fsbound.py"
 
 # a call of one of these (module, function) pairs touches the file system
 MODULE_CALLS = {
@@ -40,41 +40,41 @@ MODULES = {"glob", "shutil"}          # importing them at all
 
 # (file, what) -> why it may do that outside the boundary
 ALLOWED = {
-    ("urdf_lint/worker.py", "open"):
+    ("urdf_lint/runner/worker.py", "open"):
         "reads /proc/self/status and /proc/stat: this process's memory and the machine's "
         "run queue, never a path from the repository",
-    ("urdf_lint/sandbox.py", "os.listdir"):
+    ("urdf_lint/runner/sandbox.py", "os.listdir"):
         "lists /proc/self/fd to close inherited descriptors before a worker reads a job",
-    ("urdf_lint/hardening.py", "open"):
+    ("urdf_lint/runner/hardening.py", "open"):
         "reads /proc/self/status: this process's inherited memory, never a repository path",
-    ("urdf_lint/hardening.py", "os.listdir"):
+    ("urdf_lint/runner/hardening.py", "os.listdir"):
         "lists /proc/self/fd to keep a worker's (or the recorder's) own descriptors",
-    ("urdf_lint/forked.py", "os.open"):
+    ("urdf_lint/runner/forked.py", "os.open"):
         "opens os.devnull as a worker's stdin",
-    ("urdf_lint/cache.py", "os.open"):
+    ("urdf_lint/run/cache.py", "os.open"):
         "the HMAC key in the user's own ~/.cache/urdf-lint (refused inside the repository), "
         "created O_CREAT|O_EXCL|O_NOFOLLOW 0600 and read O_NOFOLLOW",
-    ("urdf_lint/cache.py", ".mkdir"):
+    ("urdf_lint/run/cache.py", ".mkdir"):
         "the folder of that key (0700), outside the repository",
-    ("urdf_lint/render.py", "import shutil"):
+    ("urdf_lint/render/snapshot.py", "import shutil"):
         "shutil.which finds the rerun executable on PATH (no file is read or written)",
-    ("urdf_lint/render.py", "shutil.which"):
+    ("urdf_lint/render/snapshot.py", "shutil.which"):
         "finds the rerun executable on PATH (no file is read or written)",
-    ("urdf_lint/meshes.py", "trimesh.load"):
+    ("urdf_lint/meshes/resolve.py", "trimesh.load"):
         "trimesh needs a file name (COLLADA/OBJ resolve their references from it); runs "
         "only in the sandboxed worker, after meshes._readable (inside the roots, regular, "
         "size-capped)",
-    ("urdf_lint/meshes.py", "trimesh.load_scene"):
+    ("urdf_lint/meshes/resolve.py", "trimesh.load_scene"):
         "as trimesh.load: sandboxed worker, path checked by meshes._readable",
-    ("urdf_lint/meshes.py", "collada.Collada"):
+    ("urdf_lint/meshes/resolve.py", "collada.Collada"):
         "as trimesh.load: sandboxed worker, path checked by meshes._readable",
-    ("urdf_lint/meshio.py", "np.fromfile"):
+    ("urdf_lint/meshes/readers.py", "np.fromfile"):
         "reads binary STL records in chunks from the file object fsbound.open_regular "
         "opened (regular, non-blocking), not from a path",
-    ("urdf_lint/raster.py", ".save"):
+    ("urdf_lint/render/raster.py", ".save"):
         "Pillow encodes into the exclusive temporary file fsbound.temp_path made in the "
         "checked snapshot folder (or into an in-memory buffer)",
-    ("urdf_lint/recording.py", ".save"):
+    ("urdf_lint/render/recording.py", ".save"):
         "rerun writes a recording into the exclusive temporary file fsbound.temp_path made "
         "in the checked snapshot folder",
 }
@@ -148,7 +148,7 @@ def test_no_module_touches_the_file_system_outside_the_boundary():
                 used.add((rel, what))
                 continue
             bad.append(f"{rel}:{line}: {what}")
-    assert not bad, ("read, list and write files through urdf_lint/fsbound.py (or add an "
+    assert not bad, ("read, list and write files through urdf_lint/core/fsbound.py (or add an "
                      "entry with its reason to ALLOWED):\n" + "\n".join(bad))
     stale = sorted(set(ALLOWED) - used)
     assert not stale, f"ALLOWED entries that match nothing any more: {stale}"
@@ -333,7 +333,7 @@ def test_include_globs_are_bounded_in_the_parent(attack):
 def test_unbounded_include_globs_count_as_unresolved(tmp_path):
     """A glob the parent can match within its bound is resolved as xacro would (the include
     graph needs it); one that would look at too many entries counts as unresolved."""
-    from urdf_lint.discovery import _read_includes
+    from urdf_lint.discovery.discover import _read_includes
     f = tmp_path / "a.xacro"
     (tmp_path / "b.xacro").write_text(f'<robot {X}/>')
     for n in range(5):
@@ -350,7 +350,7 @@ def test_unbounded_include_globs_count_as_unresolved(tmp_path):
                                      "nothing*", "*/*", ".h*", "*"])
 def test_bounded_glob_matches_what_glob_matches(tmp_path, pattern, monkeypatch):
     import glob
-    from urdf_lint.fsbound import bounded_glob
+    from urdf_lint.core.fsbound import bounded_glob
     for rel in ("a.xacro", "b.xacro", "sub/x1.xacro", "sub/y.xacro", ".hidden.xacro",
                 "sub2/x2.xacro"):
         (tmp_path / rel).parent.mkdir(exist_ok=True)
@@ -381,8 +381,8 @@ def test_snapshots_never_go_through_a_committed_symlinked_folder(attack, cmd):
 
 
 def test_the_stale_snapshot_cleaner_checks_every_component(tmp_path):
-    from urdf_lint.fsbound import BoundaryError
-    from urdf_lint.render import clear_stale
+    from urdf_lint.core.fsbound import BoundaryError
+    from urdf_lint.render.snapshot import clear_stale
     (tmp_path / "real" / "snaps").mkdir(parents=True)
     os.symlink(tmp_path / "real", tmp_path / "link")
     with pytest.raises(BoundaryError, match="symlink"):
@@ -449,7 +449,7 @@ def test_the_parent_writes_no_path_a_worker_sent_outside_the_output_folder(tmp_p
     a forged result) is not written by the parent, which holds the secrets."""
     import types
     import zlib
-    from urdf_lint.render import finish_snapshots
+    from urdf_lint.render.snapshot import finish_snapshots
     out, elsewhere = tmp_path / "snaps", tmp_path / "elsewhere"
     out.mkdir()
     elsewhere.mkdir()

@@ -181,7 +181,7 @@ def test_the_values_of_allowed_environment_variables_key_the_cache(repo):
         assert [m["cached"] for m in json.loads(p.stdout)["models"]] == [hit], value
 
 
-# -- the run memo (urdf_lint/runcache.py): a whole unchanged run reused, every change seen ------
+# -- the run memo (urdf_lint/run/runcache.py): a whole unchanged run reused, every change seen ------
 def _age(root, seconds=60):
     """Make every file and folder look edited a minute ago (the memo ignores inputs that
     changed in the last seconds: a coarse clock could hide a later edit)."""
@@ -276,7 +276,8 @@ def test_run_memo_is_not_written_when_a_folder_changes_during_the_run(repo, monk
     one lints the new model."""
     import io
     from contextlib import redirect_stdout
-    from urdf_lint import cli, runcache
+    from urdf_lint.cli import main as cli
+    from urdf_lint.run import runcache
     run(repo)          # (the cache folder exists: the repository's folder is settled)
     _age(repo)
     late = repo / "r2d2_description" / "urdf" / "late.urdf"
@@ -324,7 +325,7 @@ def test_a_file_has_one_digest_whichever_way_it_is_read(tmp_path, monkeypatch):
     follows the content's length, so the worker's read-once hash of a mesh, the parent's
     streamed hash and a reader's hash of the same bytes agree."""
     import hashlib
-    from urdf_lint import hashing
+    from urdf_lint.core import hashing
     monkeypatch.setattr(hashing, "_memo", {})
     small = tmp_path / "a.xacro"
     small.write_bytes(b"<robot/>" * 1000)
@@ -345,12 +346,12 @@ def test_a_result_the_cache_refuses_is_not_remembered_by_the_run_memo(tmp_path):
     """A worker that reports reading a file outside the package roots: the cache stores
     nothing, and says so on the result, so the run memo does not keep the run either."""
     import types
-    from urdf_lint.cache import Cache
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.jobs import LintJob, ModelReport
-    from urdf_lint.pipeline import settings_for
-    from urdf_lint.runcache import RunMemo
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.run.pipeline import settings_for
+    from urdf_lint.run.runcache import RunMemo
     repo = tmp_path / "repo"
     entry = repo / "p" / "urdf" / "r.urdf"
     entry.parent.mkdir(parents=True)
@@ -385,7 +386,7 @@ def test_a_result_the_cache_refuses_is_not_remembered_by_the_run_memo(tmp_path):
 def test_a_signed_entry_copied_under_another_key_is_refused(tmp_path):
     """The signature covers the entry's key (its file name): the memo of another command line
     (an --ignore of everything, say) copied over this one's is not read."""
-    from urdf_lint.cache import Cache
+    from urdf_lint.run.cache import Cache
     cache = Cache(str(tmp_path / "cache"))
     here, there = (os.path.join(cache.dir, "runs", f"{k * 40}.json") for k in "ab")
     assert cache.write_signed(here, b'{"findings": []}')

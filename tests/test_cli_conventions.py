@@ -19,9 +19,11 @@ import yaml
 
 from conftest import CORPUS, REPO, make_package
 
-from urdf_lint import cli, report
-from urdf_lint.cli import build_parser, main
-from urdf_lint.findings import Problem
+from urdf_lint.report import registry as report
+
+from urdf_lint.cli import main as cli
+from urdf_lint.cli.main import build_parser, main
+from urdf_lint.core.findings import Problem
 
 from test_formats import SRC, X   # a macro-made joint whose limits are swapped (UL302)
 
@@ -231,7 +233,7 @@ def test_in_n_models_is_folded():
 
 
 def test_ctrl_c_in_process_exits_130(pkg, capsys, monkeypatch):
-    import urdf_lint.pipeline as pipeline
+    import urdf_lint.run.pipeline as pipeline
 
     def interrupted(*a, **k):
         raise KeyboardInterrupt
@@ -298,7 +300,7 @@ def test_output_file_is_written_atomically_and_never_half(pkg, capsys, monkeypat
 
 
 def test_one_atomic_write_helper():
-    """No module writes a temporary file and renames it by itself: they use urdf_lint.fsbound
+    """No module writes a temporary file and renames it by itself: they use urdf_lint.core.fsbound
     (the file-system boundary; it replaced urdf_lint.atomic)."""
     offenders = []
     for path in sorted((REPO / "urdf_lint").rglob("*.py")):
@@ -322,7 +324,8 @@ def test_adding_a_format_is_adding_one_file(pkg, capsys, monkeypatch, tmp_path):
         "    help = 'only the codes'\n\n"
         "    def handle(self, f):\n"
         "        self.stream.write(f.code + '\\n')\n")
-    monkeypatch.setattr(report, "__path__", [*report.__path__, str(extra)])
+    import urdf_lint.report as package
+    monkeypatch.setattr(package, "__path__", [*package.__path__, str(extra)])
     monkeypatch.setattr(report, "_FORMATS", None)
     monkeypatch.delitem(sys.modules, "urdf_lint.report.codes_only", raising=False)
     try:

@@ -1,4 +1,4 @@
-"""The config schema (urdf_lint/config.py): every bad value is exit 2 naming the key, the value
+"""The config schema (urdf_lint/config/schema.py): every bad value is exit 2 naming the key, the value
 and what was expected, in a config file and on the command line alike."""
 from __future__ import annotations
 
@@ -10,10 +10,10 @@ import pytest
 
 from conftest import REPO, make_package
 
-from urdf_lint.cli import main
-from urdf_lint.config import (KEYS, SCHEMA, Config, ConfigError, find_config, load_config,
+from urdf_lint.cli.main import main
+from urdf_lint.config.schema import (KEYS, SCHEMA, Config, ConfigError, find_config, load_config,
                               option_types)
-from urdf_lint.registry import codes_to_names
+from urdf_lint.engine.registry import codes_to_names
 
 URDF = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="continuous">'
         '<parent link="a"/><child link="b"/><axis xyz="0 0 1.01"/></joint></robot>')
@@ -169,7 +169,7 @@ def test_schema_is_complete_and_documented():
                f"| {key.help} |")
         assert row in readme, f"README's key table is out of date for {key.name}: {row}"
     assert set(KEYS) == {k.name for k in SCHEMA}
-    from urdf_lint.config import FORMAT_SCHEMA   # [tool.urdf-lint.format]
+    from urdf_lint.config.schema import FORMAT_SCHEMA   # [tool.urdf-lint.format]
     for key in FORMAT_SCHEMA:
         row = (f"| `{key.name}` | {key.type.expected} | {key.default_text} | {key.help} |")
         assert row in readme, f"README's [format] table is out of date for {key.name}: {row}"

@@ -15,10 +15,10 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import xacro
 import xacro.substitution_args as sa
 
-from urdf_lint import safe_eval
+from urdf_lint.expansion import safe_eval
 from urdf_lint.expansion import expand
-from urdf_lint.packages import PackageResolver
-from urdf_lint.safe_eval import UnsafeExpression, is_allowed_callable
+from urdf_lint.discovery.packages import PackageResolver
+from urdf_lint.expansion.safe_eval import UnsafeExpression, is_allowed_callable
 
 expand._install_hooks()
 G = xacro._global_symbols

@@ -327,7 +327,7 @@ def test_corpus_round_trip(tmp_path, corpus):
     """--fix --unsafe-fixes on a copy of the whole corpus: every changed model still expands
     with stock xacro, no finding is introduced, and a second run changes nothing."""
     from collections import Counter
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     copy = tmp_path / "corpus"
     shutil.copytree(corpus, copy)
     def run(*extra):
@@ -462,7 +462,7 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
 
 
 def test_start_tag_tokeniser_on_raw_bytes():
-    from urdf_lint.sourceedit import Edit, apply_edits, end_tag_of, escape, start_tag_at
+    from urdf_lint.fix.sourceedit import Edit, apply_edits, end_tag_of, escape, start_tag_at
     data = ('<robot>\r\n<!-- <link name="x"> -->\r\n\t<link  name = \'é&amp;"q\'\r\n'
             '\ttype="a&#x41;\tb"><link name="in"></link><!-- </link> --></link>\r\n'
             '</robot>\r\n').encode()

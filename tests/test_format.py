@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from conftest import CORPUS, run_cli
-from urdf_lint.formatter import FormatError, Refused, Style, format_source
+from urdf_lint.formatting.layout import FormatError, Refused, Style, format_source
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
@@ -145,7 +145,7 @@ def test_suppression_comments_stay_attached_to_their_element():
            '\n\n<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
     out = fmt(src)
     assert "  <!-- urdf-lint: disable-next UL204 -->\n  <joint name=\"j\"" in out
-    from urdf_lint.suppress import coverage
+    from urdf_lint.engine.suppress import coverage
     assert [c[2] for c in coverage(src.encode())] == [c[2] for c in coverage(out.encode())]
 
 
@@ -240,10 +240,10 @@ _DATA = (".stl", ".STL", ".dae", ".DAE", ".obj", ".OBJ", ".png", ".jpg", ".jpeg"
 
 def _robots(root: Path) -> dict:
     """{(entry, args): canonical robot or the failure} of every xacro model under root."""
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver, discover_models
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver, discover_models
     from urdf_lint.expansion import expand_file
-    from urdf_lint.formatrun import canonical_robot
+    from urdf_lint.formatting.run import canonical_robot
     cfg = load_config(None)
     resolver = build_resolver([str(root)], cfg)
     out = {}

@@ -80,7 +80,7 @@ def workdir(tmp_path_factory):
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(case=mutated())
 def test_never_crashes_or_hangs(workdir, case):
-    from urdf_lint.cli import main
+    from urdf_lint.cli.main import main
     seed, text = case
     target = workdir / seed.parent.parent.name / seed.parent.name / seed.name
     original = target.read_bytes()

@@ -200,9 +200,9 @@ def test_time_limit_counts_cpu_time(tmp_path, monkeypatch):
     """Item 11: a job that waits (no CPU) longer than the limit is not killed; one that burns
     CPU past it is UL904."""
     from conftest import carried_data
-    from urdf_lint import worker
-    from urdf_lint.jobs import LintJob, LintSettings
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.runner import worker
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.discovery.packages import PackageResolver
     monkeypatch.setattr(worker, "process_job", _sleeper)
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     jobs = [LintJob(str(tmp_path / "wait.urdf"), kind="urdf"),
@@ -404,7 +404,7 @@ def test_diff_picture_marks_only_visible_changes_and_has_a_legend(tmp_path):
     import numpy as np
     from PIL import Image
 
-    from urdf_lint import raster
+    from urdf_lint.render import raster
 
     def geom(z):
         tri = np.array([[[0, 0, 0], [0.2, 0, 0], [0, 0.2, z]]], float)

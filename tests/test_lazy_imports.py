@@ -9,7 +9,7 @@ from conftest import DESCRIPTIONS
 
 CODE = """
 import sys
-from urdf_lint.cli import main
+from urdf_lint.cli.main import main
 rc = main(["check", ".", "-q"])
 heavy = sorted(m for m in ("xacro", "trimesh", "yourdfpy", "rerun", "collada", "PIL") if m in sys.modules)
 print(rc, heavy)
@@ -26,16 +26,16 @@ def test_warm_run_imports_nothing_heavy(tmp_path):
 
 LINT_IN_PROCESS = """
 import sys
-from urdf_lint.config import load_config
-from urdf_lint.discovery import build_resolver, discover
-from urdf_lint.lint import run_job
-from urdf_lint.pipeline import settings_for
+from urdf_lint.config.schema import load_config
+from urdf_lint.discovery.discover import build_resolver, discover
+from urdf_lint.engine.lint import run_job
+from urdf_lint.run.pipeline import settings_for
 cfg = load_config(None)
 cfg.ignore = IGNORE
 settings = settings_for(cfg, build_resolver(["."], cfg), None)
 results = [run_job(job, settings) for job in discover(["."], cfg)]
 assert [r.status for r in results].count("model") == 1, results
-print(sorted(m for m in ("trimesh", "collada", "yourdfpy", "rerun", "urdf_lint.meshio")
+print(sorted(m for m in ("trimesh", "collada", "yourdfpy", "rerun", "urdf_lint.meshes.readers")
              if m in sys.modules))
 """
 
@@ -45,19 +45,19 @@ def test_mesh_loading_only_when_a_rule_needs_it(tmp_path):
     run = lambda ignore: subprocess.run(  # noqa: E731
         [sys.executable, "-c", LINT_IN_PROCESS.replace("IGNORE", repr(ignore))], cwd=tmp_path,
         capture_output=True, text=True)
-    from urdf_lint.registry import load_rules
+    from urdf_lint.engine.registry import load_rules
     mesh_rules = sorted(c for c, r in load_rules().items() if "meshes" in r.needs)
     assert {"UL404", "UL406", "UL605", "UL606", "UL607"} <= set(mesh_rules)
     p = run(mesh_rules)
     assert p.stdout.strip() == "[]", p.stdout + p.stderr
     p = run([])
     # the rules read R2D2's STL meshes, with urdf-lint's own readers: no trimesh (issue 12)
-    assert p.stdout.strip() == "['urdf_lint.meshio']", p.stdout + p.stderr
+    assert p.stdout.strip() == "['urdf_lint.meshes.readers']", p.stdout + p.stderr
 
 
 EXPAND = """
 import sys
-from urdf_lint.cli import main
+from urdf_lint.cli.main import main
 rc = main(["expand", "r2d2_description/urdf/r2d2.urdf.xacro", "-o", "out.urdf"])
 print(rc, sorted(m for m in ("urdf_lint.report", "xacro", "urdf_lint.expansion.expand")
                  if m in sys.modules))

@@ -58,8 +58,8 @@ EXTRA = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
 @pytest.fixture()
 def model(tmp_path):
     from urdf_lint.expansion import expand_file
-    from urdf_lint.model import model_from_xml
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.engine.model import model_from_xml
+    from urdf_lint.discovery.packages import PackageResolver
     pkg = make_package(tmp_path, "loc_pkg", {"urdf/robot.urdf.xacro": ROBOT, "urdf/arm.xacro": ARM,
                                              "urdf/parts.xacro": PARTS, "urdf/extra.xacro": EXTRA})
     res = PackageResolver.build([tmp_path], extra_roots=[tmp_path])
@@ -112,7 +112,7 @@ def test_cli_reports_macro_line_and_chain(model):
 
 
 def test_plain_urdf_lines_and_columns(tmp_path):
-    from urdf_lint.model import parse_urdf_bytes
+    from urdf_lint.engine.model import parse_urdf_bytes
     data = b'<robot name="r">\n  <link name="a"/>\n    <joint name="j" type="fixed"/>\n</robot>\n'
     root, origins, err = parse_urdf_bytes("/x.urdf", data)
     assert err is None

@@ -100,13 +100,13 @@ def test_without_the_extra_it_says_how_to_install_it(monkeypatch, capsys, tmp_pa
     monkeypatch.setitem(sys.modules, "mcp", None)     # as if urdf-lint[mcp] were not installed
     for name in [m for m in sys.modules if m.startswith("mcp.")]:
         monkeypatch.setitem(sys.modules, name, None)
-    from urdf_lint.cli import main
+    from urdf_lint.cli.main import main
     assert main(["mcp", "--root", str(tmp_path)]) == 2
     assert "pip install 'urdf-lint[mcp]'" in capsys.readouterr().err
 
 
 def test_paths_outside_the_root_are_refused_before_anything_runs(tmp_path):
-    from urdf_lint.mcp_server import OutsideRoot, Tools
+    from urdf_lint.cli.mcp import OutsideRoot, Tools
     root = tmp_path / "root"
     (root / "sub").mkdir(parents=True)
     (root / "link").symlink_to(tmp_path)              # a symlink out of the root

@@ -35,7 +35,7 @@ def ascii_stl(path: Path, tris) -> Path:
 
 def trimesh_facts(path) -> dict:
     """The facts as urdf-lint measured them before issue 12: on trimesh's concatenated mesh."""
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     m = meshes.load_mesh(str(path))
     v = np.asarray(m.vertices, dtype=float)
     finite = bool(np.isfinite(v).all()) if len(v) else True
@@ -46,9 +46,9 @@ def trimesh_facts(path) -> dict:
 
 
 def lint_in_process(path, cache=None):
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.pipeline import run_check
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import run_check
     cfg = load_config(None)
     return run_check([str(path)], cfg, build_resolver([str(path)], cfg), cache=cache,
                      in_process=True).findings
@@ -57,7 +57,8 @@ def lint_in_process(path, cache=None):
 @pytest.fixture
 def fresh(monkeypatch):
     """The mesh module with empty per-process memories."""
-    from urdf_lint import hashing, meshes
+    from urdf_lint.core import hashing
+    from urdf_lint.meshes import resolve as meshes
     for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo", "_kept_bytes"):
         monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
     monkeypatch.setattr(hashing, "_memo", {})
@@ -84,7 +85,7 @@ def test_stl_that_trimesh_reads_otherwise_still_goes_through_trimesh(tmp_path, f
     try:
         want = trimesh_facts(p)
     except Exception as e:  # noqa: BLE001
-        from urdf_lint.meshes import error_text
+        from urdf_lint.meshes.resolve import error_text
         assert not got["ok"] and got["error"] == error_text(e)[:300]
     else:
         assert got == want
@@ -219,7 +220,7 @@ def _trimesh_arrays(meshes, path):
 
 
 def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     daes = _generated_daes(tmp_path)
     lean = {}
     for name, p in daes.items():
@@ -246,7 +247,7 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
 def test_corpus_collada_read_without_trimesh_gives_the_same_arrays(fresh):
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() == ".dae")
     assert len(paths) > 30
     lean_read = 0
@@ -319,12 +320,12 @@ def _generated_objs(tmp_path):
 
 def _trimesh_obj_arrays(path):
     import trimesh
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     return meshio.scene_arrays(trimesh.load_scene(str(path), process=False))
 
 
 def test_obj_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     objs = _generated_objs(tmp_path)
     lean = {}
     for name, p in objs.items():
@@ -354,7 +355,7 @@ def test_obj_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
 def test_corpus_obj_read_without_trimesh_gives_the_same_arrays():
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() == ".obj")
     assert len(paths) > 20
     for p in paths:
@@ -367,7 +368,7 @@ def test_corpus_obj_read_without_trimesh_gives_the_same_arrays():
 def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
     from trimesh.grouping import unique_rows
     from trimesh.triangles import mass_properties
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     v, f = sphere(5000, radius=0.3, center=(1.0, 2.0, -0.5))
     rng = np.random.default_rng(1)
     v = v + rng.normal(scale=1e-3, size=v.shape)
@@ -388,7 +389,7 @@ def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
 def test_rows_are_grouped_exactly_even_when_their_mixes_collide(monkeypatch):
     """first_of_equal_rows (the COLLADA merge, merged_ids) groups on a 64-bit mix per row and
     checks each group: rows whose mixes collide are still told apart."""
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     rng = np.random.default_rng(3)
     rows = rng.integers(-5, 5, size=(400, 5)).astype(np.int64)
     rows = np.vstack([rows, rows[::7]])
@@ -443,7 +444,7 @@ def test_a_collada_file_is_read_once_for_hash_facts_volume_and_textures(tmp_path
 
 
 def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     lean = [worker.Block("a", [], 1.0, frozenset({".stl", ".dae"}))]
     assert "trimesh" not in worker._mesh_modules(lean) and "collada" in worker._mesh_modules(lean)
     stl = [worker.Block("a", [], 1.0, frozenset({".stl"}))]
@@ -456,7 +457,7 @@ def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
 
 # -- item 2: big meshes are streamed, not errors ---------------------------------------------
 def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
-    from urdf_lint import meshio
+    from urdf_lint.meshes import readers as meshio
     v, f = sphere(20_000, radius=0.2, center=(1.0, 2.0, 3.0))
     p = binary_stl(tmp_path / "big.stl", v[f])
     want = trimesh_facts(p)
@@ -506,7 +507,7 @@ def test_non_finite_vertex_in_a_later_chunk(tmp_path, fresh, monkeypatch):
 
 
 def test_a_mesh_over_the_limit_is_a_clear_finding(tmp_path, monkeypatch):
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     v, f = sphere(4000)
     pkg = make_package(tmp_path, "big_description", {
         "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry>'
@@ -543,7 +544,7 @@ def test_memory_error_says_it_is_the_limit_and_is_not_cached(tmp_path, fresh, mo
 def test_a_model_whose_mesh_hit_the_memory_limit_is_not_cached(tmp_path, fresh, monkeypatch):
     """The memory limit is the environment's, not the file's: neither the mesh facts nor the
     model's result are stored, so the next run (with more memory) measures it."""
-    from urdf_lint.cache import Cache
+    from urdf_lint.run.cache import Cache
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
     v, f = sphere(500)
     pkg = make_package(tmp_path / "ws", "m_description", {
@@ -567,9 +568,9 @@ def test_a_model_whose_mesh_hit_the_memory_limit_is_not_cached(tmp_path, fresh, 
 
 # -- item 3: models scheduled by package -------------------------------------------------------
 def _settings_for(tmp_path, packages: dict):
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.pipeline import settings_for
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import settings_for
     cfg = load_config(None)
     for name, files in packages.items():
         make_package(tmp_path, name, files)
@@ -582,8 +583,8 @@ def _robot(mesh=None):
 
 
 def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
-    from urdf_lint import worker
-    from urdf_lint.jobs import LintJob
+    from urdf_lint.runner import worker
+    from urdf_lint.core.jobs import LintJob
     settings = _settings_for(tmp_path, {
         "small_description": {"urdf/a.urdf": _robot(), "urdf/b.urdf": _robot()},
         "other_description": {"urdf/z.urdf": _robot(), "urdf/y.urdf": _robot()}})
@@ -615,8 +616,8 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
 def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
     """A 200-link robot written as 200 macro calls costs more than a small model with meshes
     to measure: it starts first, so it does not run alone at the end while workers idle."""
-    from urdf_lint import worker
-    from urdf_lint.jobs import LintJob
+    from urdf_lint.runner import worker
+    from urdf_lint.core.jobs import LintJob
     calls = "\n".join(f'  <xacro:seg i="{i}"/>' for i in range(200))
     snake = ('<robot name="s" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
              '  <xacro:macro name="seg" params="i"><link name="l${i}"/></xacro:macro>\n'
@@ -642,7 +643,7 @@ def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
 
 
 def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     if worker._procs_running() is None:
         pytest.skip("no /proc/stat here")
     # the 1-minute load average says 1.6 cores are busy (the previous command of a script)
@@ -661,7 +662,7 @@ def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
 
 def test_an_idle_worker_takes_from_the_far_end_of_another_block():
     from collections import deque
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     mine, other = deque(), deque(["m1", "m2", "m3", "m4"])
     assert worker._next_job(mine, [mine, other]) == "m4"
     assert worker._next_job(other, [mine, other]) == "m1"
@@ -671,7 +672,7 @@ def test_an_idle_worker_takes_a_whole_package_nobody_started():
     """Its meshes are then loaded by one worker: the idle one takes the last block of the
     other queue whole (in its order), unless a worker is already on that block."""
     from collections import deque
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     b1, b2, c1, c2, c3 = "b1", "b2", "c1", "c2", "c3"
     block_of = {id(b1): 0, id(b2): 0, id(c1): 1, id(c2): 1, id(c3): 1}
     mine, other = deque(), deque([b1, b2, c1, c2, c3])
@@ -690,8 +691,8 @@ def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monke
     """Real forked workers: each package's models land in one process (so the mesh facts it
     loaded are reused); the worker that runs out steals the last models of the other block."""
     import time
-    from urdf_lint import worker
-    from urdf_lint.jobs import LintJob, ModelReport
+    from urdf_lint.runner import worker
+    from urdf_lint.core.jobs import LintJob, ModelReport
     names = [f"m{i}.urdf" for i in range(8)]
     settings = _settings_for(tmp_path, {"big_description": {f"urdf/{n}": _robot() for n in names},
                                         "one_description": {"urdf/only.urdf": _robot()}})
@@ -736,8 +737,8 @@ def _textured_repo(tmp_path):
 
 
 def test_folders_are_listed_once_and_the_parent_never_hashes(tmp_path, fresh, monkeypatch):
-    from urdf_lint import cache as cache_mod
-    from urdf_lint.cache import Cache
+    from urdf_lint.run import cache as cache_mod
+    from urdf_lint.run.cache import Cache
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
     pkg = _textured_repo(tmp_path / "ws")
     monkeypatch.setattr(fresh, "_listings", {})
@@ -756,7 +757,7 @@ def test_folders_are_listed_once_and_the_parent_never_hashes(tmp_path, fresh, mo
 
 
 def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, monkeypatch):
-    from urdf_lint import hashing
+    from urdf_lint.core import hashing
     pkg = _textured_repo(tmp_path / "ws")
     cache = tmp_path / "cache"
     first = sorted((x.code, x.message) for x in lint_in_process(pkg, None) if x.code == "UL407")

@@ -1,6 +1,6 @@
 """Issue 21, items 13-15: nothing a repository names can forge what urdf-lint prints.
 
-Every command's messages go through one escaper (``urdf_lint/report/escape.py``, written by
+Every command's messages go through one escaper (``urdf_lint/core/escape.py``, written by
 ``emit.say``), checked by walking the code; a hostile file name (newline, ``::``, ``%0A``, an
 ANSI escape, a line separator) and hostile link names and ``xacro.fatal`` text then go through
 every registered output format and through ``generate``, ``diff`` and ``render``: no line
@@ -76,7 +76,7 @@ def assert_unforged(text: str, what: str, github: bool = False) -> None:
 def test_no_command_output_can_be_forged(tmp_path):
     """Every registered output format, and the messages of generate, diff and render, with
     a hostile file name (newline, ::, %0A, ANSI escape, U+2028) and hostile names inside."""
-    from urdf_lint import report
+    from urdf_lint.report import registry as report
     repo = tmp_path / "repo"
     _hostile_repo(repo)
     env = {"GITHUB_ACTIONS": ""}
@@ -149,19 +149,19 @@ def test_diff_markdown_renders_untrusted_text_as_text_only(tmp_path):
 
 
 # -- every message through the one escaper, by construction ------------------------------------
-# writes to the standard streams outside urdf_lint/emit.py's say(), each with its reason
+# writes to the standard streams outside urdf_lint/core/emit.py's say(), each with its reason
 ALLOWED_WRITES = {
-    ("emit.py", "report_internal"): "safe_lines: every line escaped, later lines indented",
-    ("cli.py", "progress"): "the progress counter: two numbers",
-    ("cli.py", "cmd_expand"): "the expanded URDF itself, the product the user asked for",
-    ("cli.py", "cmd_rules"): "the rule catalogue: urdf-lint's own text",
-    ("cli.py", "cmd_rule"): "one rule's documentation: urdf-lint's own text",
-    ("cli.py", "cmd_doctor"): "this machine's protections: urdf-lint's own text",
-    ("cli.py", "_main"): "--version: urdf-lint's own text",
-    ("fixcli.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
+    ("core/emit.py", "report_internal"): "safe_lines: every line escaped, later lines indented",
+    ("cli/main.py", "progress"): "the progress counter: two numbers",
+    ("cli/main.py", "cmd_expand"): "the expanded URDF itself, the product the user asked for",
+    ("cli/main.py", "cmd_rules"): "the rule catalogue: urdf-lint's own text",
+    ("cli/main.py", "cmd_rule"): "one rule's documentation: urdf-lint's own text",
+    ("cli/main.py", "cmd_doctor"): "this machine's protections: urdf-lint's own text",
+    ("cli/main.py", "_main"): "--version: urdf-lint's own text",
+    ("fix/cli.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
                                 "every other line starts with ' ', '+', '-' or '@'",
-    ("formatrun.py", "cmd_format"): "format --diff: the same patch, from fixrun.unified_diff",
-    ("sandbox.py", "enter_worker"): "a worker's own note: the kernel's reasons",
+    ("formatting/run.py", "cmd_format"): "format --diff: the same patch, from fixrun.unified_diff",
+    ("runner/sandbox.py", "enter_worker"): "a worker's own note: the kernel's reasons",
 }
 
 
@@ -196,12 +196,12 @@ def test_every_message_goes_through_the_escaper():
     found, used = [], set()
     for path in sorted((REPO / "urdf_lint").rglob("*.py")):
         for func, line in _stream_writes(ast.parse(path.read_text(), str(path))):
-            key = (path.name, func)
+            key = (path.relative_to(REPO / "urdf_lint").as_posix(), func)
             if key in ALLOWED_WRITES:
                 used.add(key)
             else:
                 found.append(f"{path.relative_to(REPO)}:{line} in {func}()")
-    assert not found, "write through urdf_lint.emit.say:\n" + "\n".join(found)
+    assert not found, "write through urdf_lint.core.emit.say:\n" + "\n".join(found)
     assert used == set(ALLOWED_WRITES), f"stale allow-list entries: {set(ALLOWED_WRITES) - used}"
 
 
@@ -233,7 +233,7 @@ MODELS = ("p/urdf/arm.urdf", "p/urdf_arm.urdf", "p/urdf/X.xacro", "p/urdf/X.urdf
 def test_picture_names_never_collide_and_render_and_diff_agree(tmp_path):
     pytest.importorskip("PIL")
     from PIL import Image
-    from urdf_lint.locations import picture_name
+    from urdf_lint.core.locations import picture_name
     repo = _lookalike_repo(tmp_path / "repo")
     want = {m: picture_name(m) for m in MODELS}
     assert len(set(want.values())) == 4, want
@@ -263,8 +263,8 @@ def test_a_picture_name_two_models_share_is_drawn_for_neither(tmp_path, monkeypa
     same name (a hash collision, which a repository could grind for), neither picture is
     drawn and each says why, in render and in diff --render."""
     pytest.importorskip("PIL")
-    from urdf_lint import locations
-    from urdf_lint.cli import main
+    from urdf_lint.core import locations
+    from urdf_lint.cli.main import main
     repo = _lookalike_repo(tmp_path / "repo")
     monkeypatch.chdir(repo)
     monkeypatch.setattr(locations, "picture_name", lambda rel, args=None, key=None: "same")

@@ -34,7 +34,7 @@ def peer(tmp_path_factory):
 def expand_both(peer, name, doc, args=None, monkeypatch=None):
     """(ours, stock) for a wrapper document written to test/<name>, cwd = test/ as upstream."""
     from urdf_lint.expansion import expand_file
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     test = peer / "test"
     f = test / name
     f.write_text(doc)
@@ -246,7 +246,7 @@ def _xml_matches(a, b):
 
 def test_pr2_golden(peer):
     from urdf_lint.expansion import expand_file
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.discovery.packages import PackageResolver
     res = PackageResolver.build([peer], extra_roots=[peer])
     got = expand_file(str(peer / "test/robots/pr2/pr2.urdf.xacro"), {}, res)
     assert got.error is None, got.error

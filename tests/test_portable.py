@@ -61,7 +61,7 @@ def absolute_paths_of(top: Path, text: str) -> list:
 
 
 def test_every_format_is_free_of_the_checkout_path(ws_repo):
-    from urdf_lint.report import formats
+    from urdf_lint.report.registry import formats
     top = ws_repo.parents[2]
     names = list(formats())
     assert len(names) >= 6
@@ -78,7 +78,7 @@ def test_every_format_is_free_of_the_checkout_path(ws_repo):
 
 
 def test_diff_formats_are_free_of_the_checkout_path(ws_repo, tmp_path):
-    from urdf_lint.review_report import FORMATS
+    from urdf_lint.review.report import FORMATS
     repo = tmp_path / "copy"
     shutil.copytree(ws_repo.parents[1], repo, symlinks=True)
     repo = repo / "src" / "robot"

@@ -130,4 +130,4 @@ def test_without_the_option_nothing_is_added(tmp_path):
 def test_the_plugin_is_registered_by_the_installed_package(pkg):
     from importlib.metadata import entry_points
     eps = {e.name: e.value for e in entry_points(group="pytest11")}
-    assert eps.get("urdf_lint") == "urdf_lint.pytest_plugin"
+    assert eps.get("urdf_lint") == "urdf_lint.cli.pytest_plugin"

@@ -1,6 +1,6 @@
 """The .rrd of a snapshot, read back with rerun's own reader: Z-up at the root, the blueprint,
 axes scaled to the robot, the ``joint_sweep`` timeline (yourdfpy kinematics, checked against the
-zero-configuration transforms of :mod:`urdf_lint.scene`) and no path of the machine inside."""
+zero-configuration transforms of :mod:`urdf_lint.render.scene`) and no path of the machine inside."""
 from __future__ import annotations
 
 import dataclasses
@@ -33,11 +33,11 @@ def corpus_robot(file, **want):
 
 def load_model(entry: Path, args: dict):
     """The expanded Model of a trusted entry, linted in process."""
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.jobs import LintJob
-    from urdf_lint.lint import lint_model
-    from urdf_lint.pipeline import settings_for
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.engine.lint import lint_model
+    from urdf_lint.run.pipeline import settings_for
     cfg = load_config(None)
     settings = dataclasses.replace(settings_for(cfg, build_resolver([str(entry)], cfg), None),
                                    keep_model=True)
@@ -94,8 +94,8 @@ def strings(path):
 
 # -- yourdfpy against the zero configuration ---------------------------------------------------
 def _poses_agree(model):
-    from urdf_lint.scene import kinematic_tree
-    from urdf_lint.sweep import build_urdf, link_poses
+    from urdf_lint.render.scene import kinematic_tree
+    from urdf_lint.render.sweep import build_urdf, link_poses
     world, _tree, _roots = kinematic_tree(model)
     urdf = build_urdf(model.root)
     assert urdf is not None
@@ -121,7 +121,7 @@ def test_yourdfpy_agrees_with_zero_configuration_on_ur5e_and_panda(corpus, file,
 
 def test_yourdfpy_reads_no_file(tmp_path, monkeypatch):
     """The mesh exists, yet yourdfpy neither opens it nor resolves its name."""
-    from urdf_lint import sweep
+    from urdf_lint.render import sweep
     mesh = tmp_path / "secret.stl"
     mesh.write_bytes(b"solid x\nendsolid x\n")
     root = etree.fromstring(f"""<robot name="r">
@@ -149,7 +149,7 @@ def test_yourdfpy_reads_no_file(tmp_path, monkeypatch):
 
 
 def test_sweep_plan_moves_each_joint_through_its_range():
-    from urdf_lint import sweep
+    from urdf_lint.render import sweep
     root = etree.fromstring(b"""<robot name="r">
       <link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="e"/>
       <link name="f"/>
@@ -194,7 +194,7 @@ def _rz(a):
 # -- the recording -------------------------------------------------------------------------
 def _stem(entry) -> str:
     """The name `render` gives the pictures of ``entry``, run from the checkout (REPO)."""
-    from urdf_lint.locations import snapshot_name
+    from urdf_lint.core.locations import snapshot_name
     return snapshot_name(str(entry), {}, str(REPO))
 
 
@@ -294,7 +294,7 @@ def test_z_up_blueprint_and_scaled_axes(recordings):
     assert ["+ /robot/**", "+ /collision/**"] in queries
     # axes scale with the robot: a few percent of its extent (link origins and geometry)
     for entry in (SEEDS[0][0], SEEDS[1][0]):
-        from urdf_lint.scene import kinematic_tree
+        from urdf_lint.render.scene import kinematic_tree
         stem = _stem(entry)
         length = _axis_length(recordings / f"{stem}.rrd")
         world, _tree, _roots = kinematic_tree(load_model(entry, {}))
@@ -364,14 +364,14 @@ def test_recorder_writes_what_record_rrd_writes_and_says_what_failed(tmp_path):
     comes back as a reason, and a dead recorder is an error, never a hang."""
     import subprocess
     import sys
-    from urdf_lint.recording import Recorder, label_base, plan_rrd, record_rrd
-    from urdf_lint.scene import build_scene
+    from urdf_lint.render.recording import Recorder, label_base, plan_rrd, record_rrd
+    from urdf_lint.render.scene import build_scene
     entry = DESCRIPTIONS / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.jobs import LintJob
-    from urdf_lint.lint import lint_model
-    from urdf_lint.pipeline import settings_for
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.engine.lint import lint_model
+    from urdf_lint.run.pipeline import settings_for
     cfg = load_config(None)
     settings = dataclasses.replace(settings_for(cfg, build_resolver([str(entry)], cfg), None),
                                    keep_model=True)

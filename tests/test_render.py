@@ -14,7 +14,7 @@ import pytest
 from PIL import Image
 
 from conftest import DESCRIPTIONS, SEED_PACKAGES, make_package, run_cli
-from urdf_lint.locations import picture_name
+from urdf_lint.core.locations import picture_name
 
 # picture names of the seed robots, rendered from the checkout's root (the repository)
 R2D2 = picture_name("descriptions/r2d2_description/urdf/r2d2.urdf.xacro")

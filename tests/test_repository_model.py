@@ -222,7 +222,7 @@ def test_corpus_generated_outputs_are_fresh(corpus, tmp_path):
 
 def test_cache_folder_markers_and_place(tmp_path, monkeypatch):
     from repo_shapes import stl_box
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     # the mesh cache creating the folder first still leaves both markers
     mesh = tmp_path / "box.stl"
     mesh.write_bytes(stl_box())

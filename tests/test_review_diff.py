@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from conftest import DESCRIPTIONS
-from urdf_lint.cli import main
-from urdf_lint.locations import picture_name
+from urdf_lint.cli.main import main
+from urdf_lint.core.locations import picture_name
 
 # the name both `diff --render` and `render` give the pictures of the seed robot
 R2D2 = picture_name("r2d2_description/urdf/r2d2.urdf.xacro")
@@ -170,9 +170,9 @@ def test_markdown_is_valid_gfm_and_escapes_names(repo, capsys):
 
 
 def test_markdown_stays_under_the_limit():
-    from urdf_lint.review import DiffResult
-    from urdf_lint.review_report import to_markdown
-    from urdf_lint.robotdiff import Change, ModelDiff
+    from urdf_lint.review.run import DiffResult
+    from urdf_lint.review.report import to_markdown
+    from urdf_lint.review.robotdiff import Change, ModelDiff
     r = DiffResult(base="a", head="b", total_models=400)
     for i in range(400):
         r.models.append(ModelDiff(model=f"pkg/urdf/robot_{i}.urdf.xacro", status="changed",
@@ -196,7 +196,7 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     out.mkdir()
     (out / "stale.diff.png").write_bytes(b"old")        # an earlier run's file is cleared
     (out / "notes.diff.png").write_bytes(b"mine")       # a file urdf-lint did not write stays
-    from urdf_lint.render import MANIFEST, _digest
+    from urdf_lint.render.snapshot import MANIFEST, _digest
     (out / MANIFEST).write_text(json.dumps({"files": {      # what the earlier run wrote
         "stale.diff.png": _digest(out / "stale.diff.png"), "notes.diff.png": "0" * 32}}))
     assert main(["diff", "HEAD", "--render", str(out), "--no-rrd", "--no-cache"]) == 0
@@ -208,7 +208,7 @@ def test_render_moved_link_is_highlighted_exactly_there(repo, tmp_path, capsys):
     assert before.shape == after.shape == diff.shape
     tinted = (diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)   # magenta
     outline = (diff[:, :, 2] > 150) & (diff[:, :, 0] < 80)                        # blue
-    from urdf_lint.raster import LEGEND_H
+    from urdf_lint.render.raster import LEGEND_H
     tinted[-LEGEND_H:] = outline[-LEGEND_H:] = False   # the legend's swatches
     marked = tinted | outline
     # where the moved links are, computed here from both revisions with the same framing
@@ -230,7 +230,7 @@ def test_pictures_drawn_in_two_threads_are_those_drawn_in_one(repo, tmp_path):
     its revision through the shared frame, and an unchanged robot is encoded once into two
     identical files."""
     from PIL import Image
-    from urdf_lint import raster
+    from urdf_lint.render import raster
     top = repo / "r2d2_description" / "urdf" / "r2d2.urdf.xacro"
     base_geom, _ = _link_mask(repo, ())
     edit(top, 'origin xyz="0 0 ${bodylen/2}"', 'origin xyz="0 0 ${bodylen/2 + 0.05}"')
@@ -258,10 +258,10 @@ def test_pictures_drawn_in_two_threads_are_those_drawn_in_one(repo, tmp_path):
 
 def _link_mask(root, links):
     from urdf_lint.expansion import expand_file
-    from urdf_lint.lint import Context
-    from urdf_lint.model import model_from_xml
-    from urdf_lint.packages import PackageResolver
-    from urdf_lint import render
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import model_from_xml
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.render import snapshot as render
     pkg = root / "r2d2_description"
     res = PackageResolver.build([str(root)], extra_roots=[str(root)])
     e = expand_file(str(pkg / "urdf" / "r2d2.urdf.xacro"), resolver=res)
@@ -271,13 +271,13 @@ def _link_mask(root, links):
 
 
 def render_frame(masks):
-    from urdf_lint import render
+    from urdf_lint.render import snapshot as render
     return render.frame_for([g for g, _ in masks], views="sheet")   # diff's default
 
 
 def render_mask(g, frame, links):
     """Where the parts of ``links`` are drawn in ``frame`` (no labels, skeleton or triads)."""
-    from urdf_lint import raster
+    from urdf_lint.render import raster
     return raster._mask(raster.draw(g.only(links), frame, annotate=False))
 
 
@@ -302,7 +302,7 @@ def test_render_unchanged_model_gives_identical_pictures(repo, tmp_path, capsys)
     assert [m["status"] for m in doc["models"]] == ["unchanged"]
     stem = out / R2D2
     assert Path(f"{stem}.before.png").read_bytes() == Path(f"{stem}.after.png").read_bytes()
-    from urdf_lint.raster import LEGEND_H
+    from urdf_lint.render.raster import LEGEND_H
     diff = _img(f"{stem}.diff.png")[:-LEGEND_H]   # (the legend's swatches below)
     assert not ((diff[:, :, 0] > 180) & (diff[:, :, 1] < 120) & (diff[:, :, 2] > 100)).any()
 
@@ -351,8 +351,8 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
     imported, writes both revisions into one recording (no half files, no merge)."""
     rerun = pytest.importorskip("rerun")
     import sys
-    from urdf_lint import review
-    from urdf_lint.recording import Plan
+    from urdf_lint.review import run as review
+    from urdf_lint.render.recording import Plan
     real = review._start_recorder
     started = []
 
@@ -363,7 +363,7 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
         return rec
     monkeypatch.setattr(review, "_start_recorder", start)
     plans = []
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     real_jobs = worker.run_jobs
 
     def spy(*a, **kw):
@@ -388,7 +388,7 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
 @pytest.fixture()
 def expanded(monkeypatch):
     """The entry of every job a worker expands, as the run goes."""
-    from urdf_lint import worker
+    from urdf_lint.runner import worker
     seen: list = []
     real = worker.run_jobs
 
@@ -560,8 +560,9 @@ def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
     the pipe: the sandbox gives it no write access to the snapshot folder (only to the
     mesh facts), unlike a render worker, which writes its own files."""
     import dataclasses
-    from urdf_lint import forked, sandbox
-    from urdf_lint.jobs import LintSettings
+    from urdf_lint.runner import forked
+    from urdf_lint.runner import sandbox
+    from urdf_lint.core.jobs import LintSettings
     got = []
     monkeypatch.setattr(sandbox, "enter", lambda pid, read, write, keep_fds=(): got.append(
         list(write)) or {})

@@ -8,7 +8,7 @@ import re
 import pytest
 
 from conftest import make_package, run_cli
-from urdf_lint.registry import load_rules
+from urdf_lint.engine.registry import load_rules
 
 RULES = load_rules()
 
@@ -55,9 +55,9 @@ def test_fail_example_fires(tmp_path, code):
 
 def _in_process(tmp_path, monkeypatch, rule, text):
     """The findings of ``rule`` on one example, linted in this process (fast: no workers)."""
-    from urdf_lint.config import load_config
-    from urdf_lint.discovery import build_resolver
-    from urdf_lint.pipeline import run_check
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import run_check
     pkg = _write_example(tmp_path, rule, text)
     monkeypatch.chdir(pkg)
     monkeypatch.setenv("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
@@ -81,7 +81,7 @@ def test_fail_example_reports_its_pinned_positions(tmp_path, monkeypatch, code):
     for line, col in rule.fail_at:
         assert 1 <= line <= len(lines) and 1 <= col <= len(lines[line - 1]) + 1, (line, col)
     # a rule that offers a fix (on its own FAIL example) documents it: safe or unsafe
-    from urdf_lint.rulesdoc import sections
+    from urdf_lint.engine.rulesdoc import sections
     doc = sections(rule.doc).get("fix", "")
     if any(f.fix is not None for f in found):
         assert doc.startswith(("safe", "unsafe")), f"{code} offers a fix, 'Fix:' says {doc!r}"
@@ -114,7 +114,7 @@ def test_rules_and_rule_commands():
 
 @pytest.mark.parametrize("code", sorted(RULES))
 def test_docstring_has_the_fixed_sections(code):
-    from urdf_lint.rulesdoc import sections
+    from urdf_lint.engine.rulesdoc import sections
     rule = RULES[code]
     s = sections(rule.doc)        # raises on a missing, repeated or misplaced section
     assert len(s["why"]) > 20 and len(s["how to fix"]) > 10, s
@@ -128,7 +128,7 @@ def test_docstring_has_the_fixed_sections(code):
 
 
 def test_sections_parser_rejects_bad_docstrings():
-    from urdf_lint.rulesdoc import DocError, sections
+    from urdf_lint.engine.rulesdoc import DocError, sections
     good = "What.\n\nWhy: because.\n\nHow to fix: do it."
     assert sections(good)["how to fix"] == "do it."
     for bad in ("What only.", "What.\n\nHow to fix: x.\n\nWhy: y.", "What.\n\nWhy: a.",

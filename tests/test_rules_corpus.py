@@ -88,7 +88,7 @@ def test_clean_on_real_robots(report, code):
 
 
 def test_every_rule_is_covered():
-    from urdf_lint.registry import load_rules
+    from urdf_lint.engine.registry import load_rules
     covered = set(REAL) | set(CLEAN) | {"UL008"}  # UL008: xacro warnings; none in the corpus
     assert set(load_rules()) <= covered, set(load_rules()) - covered
 

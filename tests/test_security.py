@@ -239,7 +239,7 @@ def test_billion_laughs(world):
 
 def test_safe_evaluator_still_computes_what_robots_compute():
     """The allow-list covers real descriptions (the corpus byte-identity test covers more)."""
-    from urdf_lint.safe_eval import evaluate
+    from urdf_lint.expansion.safe_eval import evaluate
     env = {"a": 2, "d": {"k": [1, 2, 3]}, "s": "left", "str": str}
     look = env.__getitem__
     import math
@@ -267,7 +267,7 @@ def test_worker_audit_hook_blocks_processes_and_writes(tmp_path):
     allowed.mkdir()
     code = f"""
 import os, subprocess
-from urdf_lint.worker import _install_audit_hook
+from urdf_lint.runner.worker import _install_audit_hook
 _install_audit_hook({str(allowed)!r})
 results = []
 for attempt in (lambda: os.system("touch {marker}"),
@@ -337,8 +337,8 @@ def test_mesh_directory_and_symlink_loop_are_located(world):
 
 def test_never_all_checks_passed_after_an_internal_error():
     import io
-    from urdf_lint import report
-    from urdf_lint.check import CheckResult
+    from urdf_lint.report import registry as report
+    from urdf_lint.run.pipeline import CheckResult
     out = io.StringIO()
     report.write(CheckResult(internal=["boom"]), "text", out)
     assert "All checks passed" not in out.getvalue() and "internal error" in out.getvalue()
@@ -401,9 +401,9 @@ def test_names_cannot_forge_output(world, fmt):
 
 
 def test_summary_md_escapes_markdown_and_html():
-    from urdf_lint.jobs import ModelReport
-    from urdf_lint.pipeline import CheckResult
-    from urdf_lint.render import write_summary
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.run.pipeline import CheckResult
+    from urdf_lint.render.snapshot import write_summary
     import tempfile
     m = ModelReport("/r/a.urdf", {"x": "<img src=x onerror=alert(1)>](http://evil) | `b`\n# h"},
                     links=1, snapshot={"png": "/tmp/s/a.png"})
@@ -495,8 +495,8 @@ def test_repository_config_cannot_loosen(world, tmp_path):
 
 
 def test_numeric_limits_are_clamped():
-    from urdf_lint import trust
-    from urdf_lint.config import Config
+    from urdf_lint.config import trust
+    from urdf_lint.config.schema import Config
     cfg = Config(timeout=1e9, memory_mb=10 ** 9, jobs=10 ** 6, raw={})
     trust.apply(cfg, "/nonexistent", trusted=True)
     assert (cfg.timeout, cfg.memory_mb, cfg.jobs) == (600.0, 65536, 64)
@@ -556,14 +556,14 @@ def test_git_tracked_or_symlinked_cache_is_refused(world, tmp_path):
 
 def test_cache_records_the_bytes_the_worker_read(tmp_path, monkeypatch):
     """A file edited during a run: the result of the old content is never filed under the new."""
-    from urdf_lint.cache import Cache, file_record
+    from urdf_lint.run.cache import Cache, file_record
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "home"))
     f = tmp_path / "r.urdf"
     f.write_text(BROKEN)
     read = file_record(str(f))                    # what the worker saw
     f.write_text('<robot name="r"><link name="a"/></robot>\n')   # edited meanwhile
-    from urdf_lint.findings import Problem
-    from urdf_lint.jobs import LintJob, LintSettings, ModelReport
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
     cache = Cache(str(tmp_path / "c"))
     job = LintJob(str(f), kind="urdf")
     settings = LintSettings(resolver={})
@@ -651,8 +651,8 @@ def test_dae_texture_to_dev_zero_and_obj_mtllib_outside(world):
 
 def test_suppression_comments_are_read_only_from_the_roots(tmp_path):
     """Files the parent scans for suppression comments pass the same confinement as reads."""
-    from urdf_lint.packages import PackageResolver
-    from urdf_lint.suppress import parse_directives
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.engine.suppress import parse_directives
     inside = tmp_path / "repo"
     inside.mkdir()
     (inside / "a.xacro").write_text("<!-- urdf-lint: disable-file UL1 --><robot/>")
@@ -706,9 +706,9 @@ def test_concise_format_cannot_be_forged(world):
 
 def test_diff_reports_escape_names():
     """urdf-lint diff's text and markdown show a description's names as one visible line."""
-    from urdf_lint import review_report
-    from urdf_lint.review import DiffResult
-    from urdf_lint.robotdiff import Change, ModelDiff
+    from urdf_lint.review import report as review_report
+    from urdf_lint.review.run import DiffResult
+    from urdf_lint.review.robotdiff import Change, ModelDiff
     evil = "j\n::error file=x.py,line=1::pwned\x1b[31m\u202e"
     r = DiffResult("base", "head", models=[ModelDiff(
         "p/r.urdf", "changed", changes=[Change("joint", evil, "changed", "limit.upper",
@@ -727,8 +727,8 @@ def test_case_check_lists_no_folder_outside_the_roots(tmp_path, monkeypatch):
     inside the package roots are ever listed, also for a reference that points outside them
     (issue 15: it listed the names of folders outside the roots)."""
     from types import SimpleNamespace
-    from urdf_lint import meshes
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.meshes import resolve as meshes
+    from urdf_lint.discovery.packages import PackageResolver
     outside = tmp_path / "Private" / "Keys"
     outside.mkdir(parents=True)
     (outside / "id.stl").write_text("solid x\nendsolid x\n")

@@ -45,7 +45,7 @@ def test_unknown_package_lookups_are_memoised_with_one_index_of_ros_package_path
 
 def _scan(path, timeout=5.0) -> tuple[int, float]:
     """(directives found, seconds) of the parent's scan of ``path``, in a process of its own."""
-    code = ("import sys\nfrom urdf_lint.suppress import parse_directives\n"
+    code = ("import sys\nfrom urdf_lint.engine.suppress import parse_directives\n"
             "print(len(parse_directives(sys.argv[1])))\n")
     t0 = time.monotonic()
     p = subprocess.run([sys.executable, "-c", code, str(path)], capture_output=True, text=True,
@@ -77,7 +77,7 @@ def test_the_scan_finds_what_the_pattern_finds():
     generated texts made of its pieces (unclosed, nested, ``-->`` inside the kind...)."""
     import random
 
-    from urdf_lint.suppress import _DIRECTIVE, _comments
+    from urdf_lint.engine.suppress import _DIRECTIVE, _comments
     pieces = ["<!--", "-->", " ", "\n", "urdf-lint", "urdf_lint", ":", "disable", "-", "next",
               "UL1", ",", ">", "x", "--", "enable"]
     rnd = random.Random(21)

@@ -105,7 +105,7 @@ def test_diff_robot_reload_gets_no_wider_roots(tmp_path, form, sandbox):
 def test_a_symlinked_ament_share_leading_out_is_no_package(tmp_path):
     """``share/NAME`` listed by the ament index but symlinked out of the prefix (an install
     step of the repository can make one) is not that package."""
-    from urdf_lint.packages import PackageNotFound, PackageResolver
+    from urdf_lint.discovery.packages import PackageNotFound, PackageResolver
     outside = tmp_path / "outside"
     outside.mkdir()
     prefix = tmp_path / "prefix"
@@ -142,12 +142,12 @@ def test_a_symlinked_ament_share_leading_out_is_no_package(tmp_path):
     ("a\x00b", False), ("x" * 201, False),
 ])
 def test_package_names_are_names_not_paths(name, ok):
-    from urdf_lint.packages import valid_package_name
+    from urdf_lint.discovery.packages import valid_package_name
     assert valid_package_name(name) is ok
 
 
 def test_every_corpus_package_name_is_valid(corpus):
-    from urdf_lint.packages import PackageResolver, valid_package_name
+    from urdf_lint.discovery.packages import PackageResolver, valid_package_name
     names = PackageResolver.build([corpus]).scanned
     assert len(names) > 10
     assert [n for n in names if not valid_package_name(n)] == []
@@ -156,7 +156,7 @@ def test_every_corpus_package_name_is_valid(corpus):
 def test_the_resolver_is_an_immutable_snapshot(tmp_path, monkeypatch):
     """Looking packages up (found in the environment, or not found) changes nothing a worker
     gets, and nothing can be added to the roots."""
-    from urdf_lint.packages import PackageNotFound, PackageResolver
+    from urdf_lint.discovery.packages import PackageNotFound, PackageResolver
     ext = tmp_path / "ext"
     make_package(ext, "extpkg", {"urdf/a.xacro": f"<robot {X}/>\n"})
     repo = tmp_path / "repo"

@@ -81,9 +81,11 @@ def test_generate_runs_in_a_sandboxed_worker(tmp_path, monkeypatch, capsys):
     import json
     import resource
 
-    from urdf_lint import sandbox, worker
-    from urdf_lint.cli import main
-    from urdf_lint.jobs import KeptModel, ModelReport
+    from urdf_lint.runner import sandbox
+
+    from urdf_lint.runner import worker
+    from urdf_lint.cli.main import main
+    from urdf_lint.core.jobs import KeptModel, ModelReport
     repo = _generated_repo(tmp_path, '<link name="x"/>')
     (tmp_path / "secret.txt").write_text(SECRET)
     parent = os.getpid()
@@ -134,7 +136,7 @@ def _recorder_attacks(path, recording_id, plans, blueprint=True):
 def _probe_recorder(tmp_path, monkeypatch):
     import json
 
-    from urdf_lint import recording
+    from urdf_lint.render import recording
     repo = tmp_path / "repo"
     pkg = make_package(repo, "p", {"urdf/r.urdf": '<robot name="r"><link name="a"/></robot>\n'})
     (tmp_path / "secret.txt").write_text(SECRET)
@@ -160,7 +162,7 @@ def test_the_recorder_is_sandboxed_like_a_worker(tmp_path, monkeypatch):
     """``diff --render``'s recorder reads nothing (not the repository, not a secret, not the
     parent's environment), writes only into the output folder, opens no socket, and runs with
     a scrubbed environment."""
-    from urdf_lint import sandbox
+    from urdf_lint.runner import sandbox
     monkeypatch.delenv("URDF_LINT_SANDBOX", raising=False)
     got = _probe_recorder(tmp_path, monkeypatch)
     assert got["pid"] != os.getpid() and got["env"] is False, got

@@ -15,7 +15,7 @@ from PIL import Image
 
 from conftest import make_package, run_cli
 
-from urdf_lint import raster
+from urdf_lint.render import raster
 
 BG = np.array([236, 238, 241])
 
@@ -120,10 +120,10 @@ GHOST = ('<robot name="torn">\n'
 def _geometry(urdf_text, tmp_path, name="m"):
     """The geometry of a plain URDF, computed in process like the worker does."""
     from urdf_lint.expansion import expand_file
-    from urdf_lint.lint import Context
-    from urdf_lint.model import model_from_xml
-    from urdf_lint.packages import PackageResolver
-    from urdf_lint import render
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import model_from_xml
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.render import snapshot as render
     f = tmp_path / f"{name}.urdf"
     f.write_text(urdf_text)
     res = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
@@ -337,7 +337,7 @@ def test_failed_snapshot_exits_1_and_stale_files_go_but_users_stay(tmp_path):
     # a manifest planted in the folder (or edited), even with the files' true digests, cannot
     # make urdf-lint delete a file outside the folder or one that is not a snapshot output;
     # a listed output whose bytes changed since is kept too
-    from urdf_lint.render import MANIFEST, _digest
+    from urdf_lint.render.snapshot import MANIFEST, _digest
     (out / "keep.txt").write_text("the user's notes")
     (out / MANIFEST).write_text(json.dumps({"files": {
         "notes.png": "0" * 32,
@@ -352,7 +352,7 @@ def test_failed_snapshot_exits_1_and_stale_files_go_but_users_stay(tmp_path):
 def test_render_time_per_png_on_the_biggest_corpus_meshes(corpus, tmp_path):
     """The triangle cap is above what the corpus needs: the biggest meshes render whole."""
     import time
-    from urdf_lint import meshes
+    from urdf_lint.meshes import resolve as meshes
     big = sorted((p for p in Path(corpus).rglob("*") if p.suffix.lower() in (".stl", ".dae", ".obj")),
                  key=lambda p: -p.stat().st_size)[:3]
     for path in big:

@@ -15,7 +15,7 @@ from stock_xacro import stock_xacro  # noqa: E402
 
 from urdf_lint.expansion import splice  # noqa: E402
 from urdf_lint.expansion import expand_file  # noqa: E402
-from urdf_lint.packages import PackageResolver  # noqa: E402
+from urdf_lint.discovery.packages import PackageResolver  # noqa: E402
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 

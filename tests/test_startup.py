@@ -1,5 +1,5 @@
-"""The worker plumbing without multiprocessing (urdf_lint.forked), modules loaded on first use
-(urdf_lint.lazy), and the console script's quick exit."""
+"""The worker plumbing without multiprocessing (urdf_lint.runner.forked), modules loaded on first use
+(urdf_lint.core.lazy), and the console script's quick exit."""
 from __future__ import annotations
 
 import json
@@ -129,9 +129,9 @@ def test_a_child_does_not_hold_the_parents_ends_of_its_channel():
 
 
 def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
-    from urdf_lint import worker
-    from urdf_lint.jobs import LintJob, LintSettings
-    from urdf_lint.packages import PackageResolver
+    from urdf_lint.runner import worker
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.discovery.packages import PackageResolver
 
     def probe(job, settings):
         return carried(job, [fd for fd in range(256) if _is_open(fd)])
@@ -155,24 +155,24 @@ def _is_open(fd):
 
 
 def forked_start(target, *args):
-    from urdf_lint import forked
+    from urdf_lint.runner import forked
     return forked.start(target, args)
 
 
 def forked_wait(conns, timeout):
-    from urdf_lint import forked
+    from urdf_lint.runner import forked
     return forked.wait(conns, timeout)
 
 
 def forked_active():
-    from urdf_lint import forked
+    from urdf_lint.runner import forked
     return forked.active_children()
 
 
-# -- urdf_lint.lazy ---------------------------------------------------------------------------
+# -- urdf_lint.core.lazy ---------------------------------------------------------------------------
 LAZY = """
 import sys
-from urdf_lint import lazy
+from urdf_lint.core import lazy
 lazy.defer("json")
 import json                                    # binds the placeholder, loads nothing
 placeholder = json
@@ -197,8 +197,8 @@ def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
 
 EXPAND_MODULES = """
 import os, sys
-from urdf_lint import worker
-from urdf_lint.cli import main
+from urdf_lint.runner import worker
+from urdf_lint.cli.main import main
 # (not inspect, platform, ctypes.util: landlock and pyseccomp import them, and urdf-lint imports
 # those packages as they are, never with the standard library swapped under them: issue 22)
 NAMES = ("multiprocessing", "yaml", "_hashlib")
@@ -248,7 +248,7 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
 
 # -- what a cached run loads ---------------------------------------------------------------------
 def test_no_rule_modules_is_an_error_not_a_clean_run(tmp_path):
-    import urdf_lint.registry as registry
+    import urdf_lint.engine.registry as registry
     (tmp_path / "ul001_x.pyc").write_bytes(b"")     # compiled only: no source to list
     with pytest.raises(RuntimeError, match="without its sources"):
         registry.submodule_names([str(tmp_path)])
@@ -256,7 +256,7 @@ def test_no_rule_modules_is_an_error_not_a_clean_run(tmp_path):
 
 def test_the_catalogue_read_from_sources_matches_the_loaded_rules():
     """The rule catalogue (no imports) says what importing every rule module says."""
-    import urdf_lint.registry as registry
+    import urdf_lint.engine.registry as registry
     saved = registry._RULES, registry._CATALOGUE
     try:
         registry._RULES = registry._CATALOGUE = None
@@ -295,7 +295,7 @@ def test_every_dataclass_has_a_docstring():
 
 WARM = """
 import json, os, sys
-from urdf_lint.cli import main
+from urdf_lint.cli.main import main
 sys.stdout = open(os.devnull, "w")
 rc = main(["check", ".", "--format", "json"])
 sys.stdout = sys.__stdout__

@@ -94,7 +94,7 @@ def test_rules_page_shows_the_targets_table():
 
 def test_a_rule_table_is_checked():
     import types
-    from urdf_lint.registry import rule_from_module
+    from urdf_lint.engine.registry import rule_from_module
     mod = types.ModuleType("urdf_lint.rules.ul997_fake")
     mod.CODE, mod.NAME, mod.SEVERITY, mod.check = "UL997", "fake", "error", lambda m, c: iter(())
     mod.TARGETS = {"mojuco": "error"}
@@ -106,7 +106,7 @@ def test_a_rule_table_is_checked():
 
 
 def test_resolve():
-    from urdf_lint.targets import resolve
+    from urdf_lint.core.targets import resolve
     assert resolve({"mujoco": "error"}, "warning", ["ros"]) == ("warning", ())
     assert resolve({"mujoco": "error"}, "warning", ["ros", "mujoco"]) == ("error", ("mujoco",))
     assert resolve({"*": "off", "mujoco": "warning"}, "warning", ["ros"]) == (None, ())

@@ -1,3 +1,3 @@
-from .cli import entry
+from urdf_lint.cli.main import entry
 
 entry()

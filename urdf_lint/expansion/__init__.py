@@ -9,8 +9,8 @@ first use: a cached run, and code that only needs the source-map type, never pay
 """
 from __future__ import annotations
 
-from .. import lazy
-from .sourcemap import SourceMap
+from urdf_lint.core import lazy
+from urdf_lint.expansion.sourcemap import SourceMap
 
 # before xacro is imported (by .expand or .errors): PyYAML loads when a model first reads YAML
 lazy.defer("yaml")
@@ -20,6 +20,6 @@ __all__ = ["Expansion", "SourceMap", "expand_file"]
 
 def __getattr__(name: str):
     if name in ("Expansion", "expand_file"):
-        from . import expand
+        from urdf_lint.expansion import expand
         return getattr(expand, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -36,10 +36,12 @@ from typing import Any, Callable
 import xacro
 import xacro.substitution_args as _subst
 
-from .. import fsbound, safe_eval
-from ..findings import Problem
-from ..packages import OutsideRoots, PackageNotFound
-from ..rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+from urdf_lint.core import fsbound
+
+from urdf_lint.expansion import safe_eval
+from urdf_lint.core.findings import Problem
+from urdf_lint.discovery.packages import OutsideRoots, PackageNotFound
+from urdf_lint.rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
                      ul004_unknown_package, ul005_missing_arg, ul902_outside_roots,
                      ul903_unsafe_expression, ul904_resource_limit)
 
@@ -77,7 +79,7 @@ def _arg_declared_later(name: str, deps) -> str | None:
     default exists, but xacro reached a use of the arg first."""
     import re
 
-    from ..locations import display_path
+    from urdf_lint.core.locations import display_path
     q = re.escape(name)
     decl = re.compile(r"<xacro:arg\b[^>]*\bname\s*=\s*[\"']" + q + r"[\"'][^>]*\bdefault\s*=")
     decl2 = re.compile(r"<xacro:arg\b[^>]*\bdefault\s*=[^>]*\bname\s*=\s*[\"']" + q + r"[\"']")

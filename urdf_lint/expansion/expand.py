@@ -12,7 +12,7 @@ call time:
 * ``eval_all`` and friends track the innermost element being evaluated, so that errors point
   at a source line;
 * ``$(find)``, ``$(env)``, ``$(optenv)``, ``load_yaml`` and expression evaluation are routed
-  through our resolver and policies (see :mod:`urdf_lint.safe_eval`).
+  through our resolver and policies (see :mod:`urdf_lint.expansion.safe_eval`).
 
 The output text is exactly ``doc.toprettyxml(indent='  ')``, i.e. what the xacro CLI writes.
 """
@@ -31,16 +31,16 @@ from xml.dom import expatbuilder
 import xacro
 import xacro.substitution_args as _subst
 
-from .. import fsbound
-from ..jobs import DEFAULT_ENV_ALLOW
-from ..findings import Problem
-from ..packages import PackageResolver
-from .. import safe_eval
-from ..hashing import read_recorded
-from ..rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
-from . import splice
-from .errors import RefusedInput, XmlSyntaxError, problem_for
-from .sourcemap import KEY, SourceMap
+from urdf_lint.core import fsbound
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW
+from urdf_lint.core.findings import Problem
+from urdf_lint.discovery.packages import PackageResolver
+from urdf_lint.expansion import safe_eval
+from urdf_lint.core.hashing import read_recorded
+from urdf_lint.rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
+from urdf_lint.expansion import splice
+from urdf_lint.expansion.errors import RefusedInput, XmlSyntaxError, problem_for
+from urdf_lint.expansion.sourcemap import KEY, SourceMap
 
 
 @dataclass
@@ -486,10 +486,10 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise
             res.error = classify_error(e, st, path, before)
-            from .errors import wrapped
+            from urdf_lint.expansion.errors import wrapped
             inner = wrapped(e)   # the innermost error (a missing YAML file is wrapped twice)
             # a file looked for and not there, or a folder read as a file: the result holds
-            # until a regular file appears at that path (urdf_lint/cache.py)
+            # until a regular file appears at that path (urdf_lint/run/cache.py)
             if isinstance(inner, OSError) and getattr(inner, "filename", None) and \
                     not os.path.isfile(str(inner.filename)):
                 res.missing.append(os.path.abspath(str(inner.filename)))

@@ -5,7 +5,7 @@ While xacro parses a file, our expat builder stamps every element with
 invisible to xacro and copied to clones by a ``NODE_CLONED`` handler. A macro body being
 instantiated gets the chain of call sites that produced it. After expansion, the output
 document's elements are read in document order into a :class:`SourceMap`: one
-:class:`~urdf_lint.locations.Origin` per element, so element *i* of the output (counting the
+:class:`~urdf_lint.core.locations.Origin` per element, so element *i* of the output (counting the
 root, elements only, as ``lxml``'s ``root.iter(tag=etree.Element)`` does) came from
 ``source_map[i]``:
 
@@ -21,7 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Iterator, Sequence
 
-from ..locations import Origin
+from urdf_lint.core.locations import Origin
 
 KEY = "urdf_lint.origin"   # the minidom user-data key of an element's stamp
 

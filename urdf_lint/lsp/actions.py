@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from lsprotocol import types
 
-from .. import overlay
-from ..fixes import Fix
-from .core import UrdfLintServer, path_uri, uri_path
+from urdf_lint.core import overlay
+from urdf_lint.fix.fixes import Fix
+from urdf_lint.lsp.core import UrdfLintServer, path_uri, uri_path
 
 FIX_ALL = types.CodeActionKind.SourceFixAll.value + ".urdf-lint"
 
@@ -34,7 +34,7 @@ def _fix_action(ls, f, diag) -> types.CodeAction | None:
 
 
 def _suppress_next(ls, f, diag) -> types.CodeAction | None:
-    from ..addsuppress import suppression_edits
+    from urdf_lint.fix.addsuppress import suppression_edits
     with overlay.using(ls.ws.buffers):
         edits, _ = suppression_edits([f])
     es = [e for v in edits.values() for e in v]
@@ -47,7 +47,7 @@ def _suppress_next(ls, f, diag) -> types.CodeAction | None:
 
 
 def _suppress_file(ls, f, diag) -> types.CodeAction | None:
-    from ..sourceedit import Edit
+    from urdf_lint.fix.sourceedit import Edit
     if not f.file.endswith((".xacro", ".urdf", ".xml")):
         return None
     data = ls.doc(f.file).data

@@ -6,7 +6,7 @@ expansion.
 
 Diagnostics come from the same expansion, rules, policy and suppressions as ``check``, run
 in the same sandboxed workers with the same limits, on the unsaved buffers (given to the
-workers as their jobs' overlay, :mod:`urdf_lint.overlay`). A finding in an included file (a
+workers as their jobs' overlay, :mod:`urdf_lint.core.overlay`). A finding in an included file (a
 macro library, a fragment, a YAML file) is shown there, with the macro chain as related
 information at each call site. Code actions are the findings' fixes and suppression comments;
 navigation, hover, completion and symbols are in :mod:`.features`.
@@ -21,9 +21,9 @@ from urllib.parse import unquote, urlparse
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 
-from .. import __version__
-from .state import Workspace
-from .text import Doc
+from urdf_lint import __version__
+from urdf_lint.lsp.state import Workspace
+from urdf_lint.lsp.text import Doc
 
 DEBOUNCE_S = 0.15        # after the last keystroke, before a change is linted
 SOURCE = "urdf-lint"
@@ -55,7 +55,7 @@ class UrdfLintServer(LanguageServer):
         ws = self.ws
         if ws is not None and path in ws.buffers:
             return Doc(ws.buffers[path])
-        from .. import fsbound
+        from urdf_lint.core import fsbound
         try:
             return Doc(fsbound.read_bytes(path))
         except OSError:

@@ -13,9 +13,9 @@ import re
 
 from lsprotocol import types
 
-from .core import UrdfLintServer, path_uri, uri_path
-from .index import Decl, index_text, macro_params
-from .text import Doc
+from urdf_lint.lsp.core import UrdfLintServer, path_uri, uri_path
+from urdf_lint.lsp.index import Decl, index_text, macro_params
+from urdf_lint.lsp.text import Doc
 
 # where a name of another element is written: (tag, attribute) -> "link" | "joint" | "any"
 NAME_REFS = {("parent", "link"): "link", ("child", "link"): "link", ("mimic", "joint"): "joint",
@@ -336,7 +336,7 @@ def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | N
     if at.comment:
         m = re.search(r"urdf[-_]lint\s*:", at.line)
         if m and re.fullmatch(r"UL\d+", at.word or ""):
-            from ..registry import load_rule
+            from urdf_lint.engine.registry import load_rule
             rule = load_rule(at.word)
             if rule is not None:
                 return _md(f"**{rule.code} {rule.name}** ({rule.severity})\n\n{rule.summary}")
@@ -401,7 +401,7 @@ def _yaml_source(ls, v: "ModelView", keys: set, value: str | None) -> str:
             if m and m.group(1) in keys:
                 try:
                     if float(m.group(2)) in numbers:
-                        from ..locations import display_path
+                        from urdf_lint.core.locations import display_path
                         return f"{os.path.relpath(f, ws.root) if ws else display_path(f)}:{n}"
                 except ValueError:
                     continue
@@ -496,7 +496,7 @@ def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types
     before = at.before
     items: dict = {}
     if at.comment and re.search(r"urdf[-_]lint\s*:\s*[\w-]*\s.*$", before):
-        from ..registry import catalogue
+        from urdf_lint.engine.registry import catalogue
         for code, e in catalogue().items():
             items[code] = types.CompletionItem(label=code, detail=e.name,
                                                kind=types.CompletionItemKind.EnumMember)
@@ -612,7 +612,7 @@ def _package_files(ls: UrdfLintServer, package: str, partial: str) -> list:
         return []
     out = []
     try:
-        from .. import fsbound
+        from urdf_lint.core import fsbound
         names = sorted(fsbound.list_dir(folder))[:MAX_LISTED]
     except OSError:
         return []

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import time
 
-from .. import forked
-from ..jobs import LintJob, LintSettings, ModelReport
-from ..worker import _limit_result, _Worker, preload
+from urdf_lint.runner import forked
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+from urdf_lint.runner.worker import _limit_result, _Worker, preload
 
 
 class Pool:
@@ -30,7 +30,7 @@ class Pool:
 
     def start(self) -> None:
         """Fork the workers now (they share what the parent imported)."""
-        from ..sandbox import prepare
+        from urdf_lint.runner.sandbox import prepare
         prepare()
         preload()
         while len(self.workers) < self.size:

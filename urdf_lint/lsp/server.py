@@ -8,9 +8,9 @@ import os
 
 from lsprotocol import types
 
-from . import actions, features
-from .core import DEBOUNCE_S, UrdfLintServer, uri_path
-from .state import Workspace
+from urdf_lint.lsp import actions, features
+from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
+from urdf_lint.lsp.state import Workspace
 
 server = UrdfLintServer()
 

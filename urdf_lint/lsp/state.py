@@ -16,8 +16,8 @@ import re
 import threading
 from dataclasses import dataclass, field
 
-from ..findings import Problem, merge
-from ..jobs import LintJob, ModelReport, Status
+from urdf_lint.core.findings import Problem, merge
+from urdf_lint.core.jobs import LintJob, ModelReport, Status
 
 
 def job_key(job: LintJob) -> tuple:
@@ -53,10 +53,10 @@ class Workspace:
     # -- set-up ----------------------------------------------------------------------------
     def load(self) -> None:
         """(Re)read the config, the packages and the models (after a config change)."""
-        from ..config import ConfigError, Config
-        from ..discovery import build_resolver, discover_models
-        from ..pipeline import settings_for
-        from ..policy import Policy
+        from urdf_lint.config.schema import ConfigError, Config
+        from urdf_lint.discovery.discover import build_resolver, discover_models
+        from urdf_lint.run.pipeline import settings_for
+        from urdf_lint.config.policy import Policy
         if self.pool is not None:
             self.pool.close()
             self.pool = None
@@ -87,7 +87,7 @@ class Workspace:
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
-        from .pool import Pool
+        from urdf_lint.lsp.pool import Pool
         self.pool = Pool(self.settings, self.pool_size, timeout=cfg.timeout,
                          memory_mb=cfg.memory_mb)
 
@@ -155,8 +155,8 @@ class Workspace:
     def _finish(self) -> list[Problem]:
         """What ``check`` would report from the reports held: the models' findings, the
         run-scope rules over every model held, and discovery's own (the config's args)."""
-        from .. import overlay
-        from ..pipeline import (RUN_LABEL, CheckResult, _run_rules, _split_models, _suppress,
+        from urdf_lint.core import overlay
+        from urdf_lint.run.pipeline import (RUN_LABEL, CheckResult, _run_rules, _split_models, _suppress,
                                 _with_policy)
         import copy
         reports = [copy.copy(r) for r in self.reports.values()]
@@ -195,13 +195,13 @@ class Workspace:
 def _load_cfg(root: str):
     """The config ``check`` would use for ``root`` (no command line): the repository's own
     config may not loosen the guarantees (``trust.py``), limits are clamped."""
-    from .. import trust
-    from ..config import find_config, load_config, validate_codes
-    from ..registry import codes_to_names
-    from ..vcs import repo_root
+    from urdf_lint.config import trust
+    from urdf_lint.config.schema import find_config, load_config, validate_codes
+    from urdf_lint.engine.registry import codes_to_names
+    from urdf_lint.discovery.vcs import repo_root
     known = codes_to_names()
     cfg = load_config(find_config(root), known)
-    from ..emit import say
+    from urdf_lint.core.emit import say
     for note in trust.apply(cfg, repo_root(root), trusted=False):
         say(f"urdf-lint: {note}")   # on stderr (stdout is the protocol), escaped
     trust.clamp(cfg)
@@ -217,8 +217,8 @@ def _cache_for(root: str, cfg):
     """The on-disk cache of ``check`` (results of unchanged files, mesh facts), where
     ``check`` would keep it; none outside git without a configured folder (the server's
     working directory is wherever the editor started it)."""
-    from ..cache import Cache
-    from ..vcs import git_root
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.discovery.vcs import git_root
     if not (os.environ.get("URDF_LINT_CACHE_DIR") or cfg.cache_dir or git_root(root)):
         return None
     try:
@@ -232,10 +232,10 @@ def _own_mesh_cache(root: str) -> str | None:
     """Outside git without a configured cache: the mesh facts (keyed by content) in a folder
     of the user's cache for this workspace alone (the workers write there, so no two
     workspaces share one), so that reopening the editor does not measure every mesh again."""
-    from ..cache import key_path
-    from ..hashing import content_digest
+    from urdf_lint.run.cache import key_path
+    from urdf_lint.core.hashing import content_digest
     d = os.path.join(str(key_path().parent), "server", content_digest(root.encode()))
-    from .. import fsbound
+    from urdf_lint.core import fsbound
     try:
         fsbound.make_own_dirs(d)
     except OSError:
@@ -248,7 +248,7 @@ _AT_LINE = re.compile(r"^(?P<file>[^\n]*?):(?P<line>\d+): ")
 
 def _config_problem(message: str, root: str) -> ConfigProblem:
     """A ConfigError's message (``path:LINE: what``) as a located problem."""
-    from ..config import find_config
+    from urdf_lint.config.schema import find_config
     cfg_file = find_config(root)
     m = _AT_LINE.match(message)
     line = int(m.group("line")) if m else 0

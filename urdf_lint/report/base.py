@@ -4,8 +4,8 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
-from ..locations import Origin, display_path, portable
-from .escape import escape_text
+from urdf_lint.core.locations import Origin, display_path, portable
+from urdf_lint.core.escape import escape_text
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
 BOLD, DIM, RESET = "\033[1m", "\033[2m", "\033[0m"
@@ -104,15 +104,15 @@ def fold(items, shown: int = MODELS_SHOWN) -> str:
 def message(f) -> str:
     """A finding's message as every format shows it: a path in it (``looked for
     /home/.../meshes/x.stl``) is shown as the locations are, relative (see
-    :func:`urdf_lint.locations.portable`)."""
+    :func:`urdf_lint.core.locations.portable`)."""
     return portable(f.message)
 
 
 def grouped(result):
-    """``result`` with its findings grouped (:func:`urdf_lint.findings.group`): every format
+    """``result`` with its findings grouped (:func:`urdf_lint.core.findings.group`): every format
     counts and shows one finding per source location and rule (and per root cause)."""
     import copy
-    from ..findings import group
+    from urdf_lint.core.findings import group
     if getattr(result, "_grouped", False):
         return result
     out = copy.copy(result)
@@ -128,7 +128,7 @@ def fold_instances(f, shown: int = INSTANCES_SHOWN) -> str:
     """``in 42 links: a, b, c, ... (+39)`` for a grouped finding, "" for a single one."""
     if not f.instances:
         return ""
-    from ..findings import instances_summary
+    from urdf_lint.core.findings import instances_summary
     noun, labels = instances_summary(f)
     if len(labels) < 2:
         return ""

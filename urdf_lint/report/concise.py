@@ -2,9 +2,9 @@
 macro call chain folded into the line, for editors' problem matchers and grep."""
 from __future__ import annotations
 
-from .base import (DIM, BaseFormatter, chain_text, fold_instances, location, message,
+from urdf_lint.report.base import (DIM, BaseFormatter, chain_text, fold_instances, location, message,
                    targets_tag, value_from_text)
-from .escape import escape_text
+from urdf_lint.core.escape import escape_text
 
 
 class ConciseFormatter(BaseFormatter):

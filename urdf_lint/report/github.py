@@ -2,9 +2,9 @@
 request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
 from __future__ import annotations
 
-from ..locations import display_path
-from .base import BaseFormatter, chain_text, fold_instances, message, value_from_text
-from .escape import escape_text
+from urdf_lint.core.locations import display_path
+from urdf_lint.report.base import BaseFormatter, chain_text, fold_instances, message, value_from_text
+from urdf_lint.core.escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
 

@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import json
 
-from .. import __version__
-from ..locations import display_path
-from ..locations import portable
-from .base import BaseFormatter, counts, grouped, summary
+from urdf_lint import __version__
+from urdf_lint.core.locations import display_path
+from urdf_lint.core.locations import portable
+from urdf_lint.report.base import BaseFormatter, counts, grouped, summary
 
 
 def _shown(d: dict) -> dict:

@@ -1,9 +1,9 @@
 """``junit``: JUnit XML, one failed test case per finding and one passed case per clean model."""
 from __future__ import annotations
 
-from ..locations import display_path
-from .base import BaseFormatter, chain_text, fold_instances, grouped, message, value_from_text
-from .escape import escape_xml
+from urdf_lint.core.locations import display_path
+from urdf_lint.report.base import BaseFormatter, chain_text, fold_instances, grouped, message, value_from_text
+from urdf_lint.core.escape import escape_xml
 
 
 class JunitFormatter(BaseFormatter):

@@ -4,9 +4,9 @@ from __future__ import annotations
 import json
 import os
 
-from .. import __version__
-from ..locations import display_path
-from .base import BaseFormatter, grouped, message
+from urdf_lint import __version__
+from urdf_lint.core.locations import display_path
+from urdf_lint.report.base import BaseFormatter, grouped, message
 
 _SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
@@ -37,7 +37,7 @@ class SarifFormatter(BaseFormatter):
 
     def write(self, result):
         result = grouped(result)
-        from ..registry import load_rules
+        from urdf_lint.engine.registry import load_rules
         rules = load_rules()
         used = sorted({f.code for f in result.findings})
         index = {c: i for i, c in enumerate(used)}

@@ -2,10 +2,11 @@
 models that share the finding, each on an indented line; ``--show-source`` adds a code frame."""
 from __future__ import annotations
 
-from ..locations import display_path
-from .escape import escape_text
-from .base import (BOLD, DIM, RESET, BaseFormatter, chain_text, fold, fold_instances, location,
-                   message, refused_text, targets_tag, value_from_text)
+from urdf_lint.core.locations import display_path
+from urdf_lint.core.escape import escape_text
+from urdf_lint.report.base import (BOLD, DIM, RESET, BaseFormatter, chain_text, fold,
+                                   fold_instances, location, message, refused_text, targets_tag,
+                                   value_from_text)
 
 
 class TextFormatter(BaseFormatter):
@@ -65,7 +66,7 @@ class TextFormatter(BaseFormatter):
 
     def _source(self, path):
         if path not in self._lines:
-            from .. import fsbound
+            from urdf_lint.core import fsbound
             try:   # what a worker could read: inside the roots, a regular file, bounded
                 self._lines[path] = fsbound.read_text(
                     path, self.options.roots, errors="replace").splitlines()

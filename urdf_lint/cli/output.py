@@ -1,0 +1,50 @@
+"""Write the findings of a run as ``check`` reports them (baseline, format, ``-o``, ``-q``):
+shared by ``check`` and ``check --fix``."""
+from __future__ import annotations
+
+import os
+import sys
+
+from urdf_lint.core.emit import safe_lines
+from urdf_lint.core.errors import UsageError
+
+
+def write_base(target, paths) -> str:
+    """The folder a write to ``target`` (named on the command line) is checked from
+    (:func:`urdf_lint.core.fsbound.output_base`): the repository of the linted paths (their
+    folder outside git) or the git work tree of the working directory when ``target`` is in
+    one, else the nearest existing folder above it (the user's own, as named)."""
+    from urdf_lint.core import fsbound
+    from urdf_lint.discovery.discover import start_dir
+    from urdf_lint.discovery.vcs import git_root, repo_root
+    repos: list[str | None] = [repo_root(start_dir(paths))] if paths else []
+    repos.append(git_root(os.getcwd()))
+    return fsbound.output_base(target, repos)
+
+
+def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
+    """The findings of a run as ``check`` reports them: baseline, format, ``-o`` (atomic), ``-q``.
+    ``check --fix`` reports what remains through the same function."""
+    from urdf_lint.report import registry as report
+    from urdf_lint.core.locations import display_path
+    if cfg.baseline:
+        from urdf_lint.engine.baseline import filter_baseline
+        before = len(result.findings)
+        result.findings = filter_baseline(cfg.baseline, result.findings, out.note)
+        out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
+                 f"({display_path(cfg.baseline)})")
+    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet,
+                   roots=None if roots is None else tuple(str(r) for r in roots))
+    if getattr(args, "output", None):
+        from urdf_lint.core import fsbound
+        try:
+            with fsbound.open_write(args.output, write_base(args.output, args.paths)) as f:
+                report.write(result, fmt, f, color=color_mode == "always", **options)
+        except OSError as e:
+            why = getattr(e, "why", None) or e.strerror or e
+            raise UsageError(f"cannot write {safe_lines(args.output)}: {safe_lines(why)}") from None
+    elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
+              and not args.statistics):
+        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
+                     **options)

@@ -1,0 +1,703 @@
+"""The configuration schema: ``[tool.urdf-lint]`` in pyproject.toml, ``urdf-lint.toml``, and the
+command line, all validated by the same table.
+
+:data:`SCHEMA` lists every key with its type, default and help. A config file and the CLI are two
+sources of values for the same keys; every value goes through its key's type, so a bad value is
+one :class:`ConfigError` (exit 2) naming the key, the value and what was expected. Rule options
+(``[tool.urdf-lint.rule-options.UL307]``) are typed from each rule's ``OPTIONS`` defaults: a
+float default accepts any number, an int default an integer, and a rule may declare other
+types with ``OPTION_TYPES = {"name": (int, float)}``.
+"""
+from __future__ import annotations
+
+import difflib
+import fnmatch
+import json
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+from urdf_lint.config.policy import code_matches
+from urdf_lint.engine.api import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
+
+try:
+    import tomllib
+except ImportError:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW  # noqa: E402,F401 - a run's setting; config shows it
+
+TABLE = "tool.urdf-lint"
+SEVERITY_NAMES = ("error", "warning", "info")
+FAIL_ON = ("error", "warning", "info", "never")
+
+
+class ConfigError(Exception):
+    pass
+
+
+class _Bad(Exception):
+    """A value does not fit its type; ``expected`` says what would have."""
+
+    def __init__(self, expected: str, value: Any = None, where: str = ""):
+        super().__init__(expected)
+        self.expected, self.value, self.where = expected, value, where
+
+
+def show(value: Any) -> str:
+    """A value as the user wrote it in TOML (strings in double quotes)."""
+    try:
+        return json.dumps(value, ensure_ascii=False)
+    except (TypeError, ValueError):
+        return repr(value)
+
+
+# -- value types ------------------------------------------------------------------------------
+class Type:
+    expected = "a value"
+
+    def check(self, v: Any) -> Any:
+        raise NotImplementedError
+
+    def from_cli(self, s: str) -> Any:
+        """The value of a command-line string (then checked like a config value)."""
+        return s
+
+
+class Str(Type):
+    expected = "a string"
+
+    def check(self, v):
+        if not isinstance(v, str):
+            raise _Bad(self.expected)
+        return v
+
+
+class StrList(Type):
+    def __init__(self, what: str = "strings"):
+        self.expected = f"a list of {what}"
+
+    def check(self, v):
+        if isinstance(v, str):
+            raise _Bad(f"{self.expected}, like [{show(v)}]")
+        if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
+            raise _Bad(self.expected)
+        return list(v)
+
+    def from_cli(self, s):
+        return [c.strip() for c in s.split(",") if c.strip()]
+
+
+class Choice(Type):
+    def __init__(self, choices: tuple | Callable[[], tuple]):
+        self._choices = choices
+
+    @property
+    def choices(self) -> tuple:
+        return tuple(self._choices() if callable(self._choices) else self._choices)
+
+    @property
+    def expected(self):
+        return "one of " + ", ".join(self.choices)
+
+    def check(self, v):
+        if not isinstance(v, str) or v not in self.choices:
+            close = difflib.get_close_matches(v, self.choices, n=1, cutoff=0.6) \
+                if isinstance(v, str) else []
+            raise _Bad(self.expected + (f"; did you mean {show(close[0])}?" if close else ""))
+        return v
+
+
+class ChoiceList(StrList):
+    """A non-empty list of values from ``choices`` (each as :class:`Choice` checks it)."""
+
+    def __init__(self, choices: tuple, what: str):
+        super().__init__(what)
+        self.choice = Choice(choices)
+        self.expected = f"a list of {what} ({', '.join(choices)})"
+
+    def check(self, v):
+        v = super().check(v)
+        if not v:
+            raise _Bad(f"{self.expected}, not empty")
+        for x in v:
+            try:
+                self.choice.check(x)
+            except _Bad as e:
+                raise _Bad(f"{self.expected}: {show(x)} is not {e.expected}") from None
+        return list(dict.fromkeys(v))
+
+
+class Number(Type):
+    """A number (int or float; booleans are not numbers) above ``minimum``."""
+
+    def __init__(self, kind=float, minimum: float | None = None, unit: str = ""):
+        self.kind, self.minimum = kind, minimum
+        noun = "an integer" if kind is int else "a number"
+        self.expected = noun + (f" of {unit}" if unit else "") + \
+            (f" > {minimum:g}" if minimum is not None else "")
+
+    def check(self, v):
+        ok_types = (int,) if self.kind is int else (int, float)
+        if isinstance(v, bool) or not isinstance(v, ok_types):
+            raise _Bad(self.expected)
+        if self.minimum is not None and not v > self.minimum:
+            raise _Bad(self.expected)
+        return self.kind(v)
+
+    def from_cli(self, s):
+        try:
+            return int(s) if self.kind is int else float(s)
+        except ValueError:
+            raise _Bad(self.expected) from None
+
+
+class Bool(Type):
+    expected = "true or false"
+
+    def check(self, v):
+        if not isinstance(v, bool):
+            raise _Bad(self.expected)
+        return v
+
+    def from_cli(self, s):
+        if s.lower() in ("true", "false"):
+            return s.lower() == "true"
+        raise _Bad(self.expected)
+
+
+class Table(Type):
+    """A table of string keys to values of one type."""
+
+    def __init__(self, value: Type, what: str):
+        self.value, self.expected = value, what
+
+    def check(self, v):
+        if not isinstance(v, dict):
+            raise _Bad(self.expected)
+        out = {}
+        for k, x in v.items():
+            try:
+                out[k] = self.value.check(x)
+            except _Bad as e:
+                raise _Bad(e.expected, x, k) from None
+        return out
+
+
+class Models(Type):
+    expected = "an array of tables [[models]] with 'path' and optional 'args'"
+
+    def check(self, v):
+        if not isinstance(v, list):
+            raise _Bad(self.expected)
+        out = []
+        for m in v:
+            if not isinstance(m, dict) or not isinstance(m.get("path"), str):
+                raise _Bad("each [[models]] entry to have a string 'path'", m)
+            fields = ("path", "args", "output", "mesh-base")
+            extra = set(m) - set(fields)
+            if extra:
+                raise _Bad("only 'path', 'args', 'output' and 'mesh-base' in a [[models]] entry"
+                           + did_you_mean(sorted(extra)[0], fields), m)
+            for k in ("output", "mesh-base"):
+                if k in m and (not isinstance(m[k], str) or not m[k]):
+                    raise _Bad(f"'{k}' to be a path", m)
+            args = m.get("args", [{}])
+            if isinstance(args, dict):
+                args = [args]
+            if not isinstance(args, list) or not all(
+                    isinstance(a, dict) and all(isinstance(x, (str, int, float, bool)) for x in a.values())
+                    for a in args):
+                raise _Bad("'args' to be a table (or a list of tables) of xacro arg = value", args)
+            out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args],
+                        "output": m.get("output"), "mesh-base": m.get("mesh-base")})
+        return out
+
+
+class RuleOptions(Type):
+    expected = "a table of tables: [rule-options.CODE] option = value"
+
+    def check(self, v):
+        if not isinstance(v, dict) or not all(isinstance(x, dict) for x in v.values()):
+            raise _Bad(self.expected)
+        return {k: dict(x) for k, x in v.items()}
+
+
+class FormatKey(Type):
+    """``format``: the output format (a string), or the table ``[format]`` of
+    ``urdf-lint format`` (its keys in :data:`FORMAT_SCHEMA`)."""
+
+    def __init__(self, output: Choice):
+        self.output = output
+
+    @property
+    def expected(self):
+        return (f"{self.output.expected}; or a table [format] of "
+                f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
+
+    def check(self, v):
+        if not isinstance(v, dict):
+            return self.output.check(v)
+        out = {}
+        for k, x in v.items():
+            key = FORMAT_KEYS.get(k)
+            if key is None:
+                raise _Bad(f"one of {', '.join(FORMAT_KEYS)} in [format]"
+                           f"{did_you_mean(str(k), FORMAT_KEYS)}", x, k)
+            try:
+                out[k] = key.type.check(x)
+            except _Bad as e:
+                raise _Bad(e.expected, x, k) from None
+        return out
+
+    def from_cli(self, s):
+        return self.output.from_cli(s)
+
+
+@dataclass(frozen=True)
+class Key:
+    """One configuration key: its name, type, default and help."""
+    name: str
+    type: Type
+    default: Any
+    help: str
+    cli_merge: str = "replace"      # "replace" or "extend" when given on the command line
+
+    @property
+    def attr(self) -> str:
+        return self.name.replace("-", "_")
+
+    @property
+    def default_text(self) -> str:
+        d = self.default
+        if d is None:
+            return {"jobs": "from the work, at most all cores",
+                    "format": "text, or github on GitHub Actions",
+                    "cache-dir": ".urdf_lint_cache", "baseline": "none",
+                    "views": "single for render, sheet for diff"}.get(self.name, "none")
+        if isinstance(d, list):
+            return ",".join(d) if d else "none"
+        if isinstance(d, float) and d.is_integer():
+            return str(int(d))
+        return str(d) if not isinstance(d, dict) else "none"
+
+
+def _targets() -> tuple:
+    from urdf_lint.core.targets import NAMES
+    return NAMES
+
+
+def _formats() -> tuple:
+    from urdf_lint.report.registry import names
+    return names()
+
+
+SCHEMA: tuple[Key, ...] = (
+    Key("select", StrList("rule codes or prefixes"), ["UL"],
+        'rule codes, prefixes or names to enable ("ALL" for every rule)'),
+    Key("extend-select", StrList("rule codes or prefixes"), [],
+        "codes or prefixes to enable on top of select", cli_merge="extend"),
+    Key("ignore", StrList("rule codes or prefixes"), [],
+        "codes or prefixes to disable", cli_merge="extend"),
+    Key("per-file-ignores", Table(StrList("rule codes or prefixes"),
+                                  'a table of glob = ["CODE", ...]'), {},
+        "codes to ignore in files matching a glob"),
+    Key("severity", Table(Choice(SEVERITY_NAMES), "a table of CODE = error|warning|info"), {},
+        "override default severities"),
+    Key("fail-on", Choice(FAIL_ON), "error",
+        "lowest severity that makes the exit code 1"),
+    Key("targets", ChoiceList(_targets(), "consumer targets"), ["ros"],
+        "the programs the descriptions are for; a finding takes the highest severity any of "
+        "them gives it (see 'urdf-lint rules')"),
+    Key("package-paths", Table(Str(), 'a table of package = "folder"'), {},
+        "where packages that have no package.xml under the linted paths are"),
+    Key("models", Models(), [], "entry models and the xacro args to expand them with"),
+    Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
+    Key("env-allow", StrList("environment variable names"), [],
+        "environment variables $(env)/$(optenv) may read", cli_merge="extend"),
+    Key("timeout", Number(float, 0, "seconds"), 30.0, "time limit per model, in seconds"),
+    Key("memory-mb", Number(int, 0, "MiB"), 2048, "memory limit per model, in MiB"),
+    Key("rule-options", RuleOptions(), {}, "options of single rules"),
+    Key("jobs", Number(int, 0), None, "parallel workers"),
+    Key("cache-dir", Str(), None, "folder of the result cache"),
+    Key("format", FormatKey(Choice(_formats)), None,
+        "output format; as a table [format], the settings of urdf-lint format"),
+    Key("baseline", Str(), None, "ignore the findings recorded in this file"),
+    Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
+    Key("views", Choice(("single", "sheet")), None,
+        "snapshot pictures: one 3/4 view, or a 2x2 sheet of front, side, top and 3/4 views"),
+    Key("forward-axis", Choice(("+x", "-x", "+y", "-y")), "+x",
+        "the robot's forward axis in its base frame, for the snapshot views"),
+)
+KEYS = {k.name: k for k in SCHEMA}
+KNOWN_KEYS = set(KEYS)
+
+# [tool.urdf-lint.format]: the settings of `urdf-lint format` (urdf_lint/formatting/layout.py)
+FORMAT_SCHEMA: tuple[Key, ...] = (
+    Key("indent", Number(int, 0, "spaces"), 2, "spaces per level of nesting"),
+    Key("line-length", Number(int, 0, "characters"), 100,
+        "a start tag longer than this gets one attribute per line"),
+    Key("attribute-order", Choice(("keep", "canonical")), "keep",
+        "keep: attributes as written; canonical: name first, then the URDF/xacro schema order"),
+    Key("exclude", StrList("globs"), [], "paths (globs) not to format, on top of exclude"),
+)
+FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
+
+
+@dataclass
+class ModelSpec:
+    """A ``[[models]]`` entry: the file, its argument sets, and where its output and meshes are."""
+    path: str                       # absolute
+    arg_sets: list                  # list of dicts
+    output: str | None = None       # absolute: the generated URDF written from this xacro
+    mesh_base: str | None = None    # absolute: where relative mesh paths start
+
+
+@dataclass
+class Config:
+    """The settings of a run, from the config file and the command line."""
+    path: str | None = None         # the file it came from
+    root: str = "."                 # folder paths are relative to
+    select: list = field(default_factory=lambda: ["UL"])
+    extend_select: list = field(default_factory=list)
+    ignore: list = field(default_factory=list)
+    per_file_ignores: dict = field(default_factory=dict)
+    severity: dict = field(default_factory=dict)
+    fail_on: str = "error"
+    targets: list = field(default_factory=lambda: ["ros"])
+    package_paths: dict = field(default_factory=dict)
+    models: list = field(default_factory=list)
+    exclude: list = field(default_factory=list)
+    env_allow: list = field(default_factory=list)
+    timeout: float = 30.0
+    memory_mb: int = 2048
+    rule_options: dict = field(default_factory=dict)
+    jobs: int | None = None
+    cache_dir: str | None = None
+    format: str | None = None
+    baseline: str | None = None     # absolute
+    discover: bool = True           # false: lint only the configured models
+    views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
+    forward_axis: str = "+x"        # snapshots: the robot's forward axis
+    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
+    raw: dict = field(default_factory=dict)
+
+    def is_excluded(self, path: str) -> bool:
+        try:
+            rel = os.path.relpath(path, self.root)
+        except ValueError:
+            rel = path
+        return any(fnmatch.fnmatch(rel, p) or fnmatch.fnmatch(rel, p.rstrip("/") + "/*")
+                   for p in self.exclude)
+
+    def options_for(self, code: str, name: str) -> dict:
+        out = {}
+        out.update(self.rule_options.get(name, {}))
+        out.update(self.rule_options.get(code, {}))
+        return out
+
+
+# -- reading files ----------------------------------------------------------------------------
+def _read_config(path: Path) -> str:
+    """The text of a config file: a regular file (never a FIFO or device), bounded."""
+    from urdf_lint.core import fsbound
+    return fsbound.read_text(path, max_bytes=fsbound.MAX_CONFIG_BYTES)
+
+
+def _parse_toml(path: Path) -> dict:
+    try:
+        text = _read_config(path)
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"{_shown(path)}: cannot read config: {e}") from None
+    except OSError as e:
+        from urdf_lint.core.escape import escape_text
+        why = getattr(e, "why", None) or e.strerror or e
+        raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
+    try:
+        return tomllib.loads(text)
+    except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
+        raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
+    except tomllib.TOMLDecodeError as e:
+        msg = str(e)
+        m = re.search(r"\s*\(at line (\d+), column (\d+)\)$", msg)
+        if m:
+            msg = msg[:m.start()]
+            raise ConfigError(f"{_shown(path)}:{m.group(1)}:{m.group(2)}: invalid TOML: {msg}") from None
+        m = re.search(r"\s*\(at end of document\)$", msg)
+        if m:
+            line = text.count("\n") + 1
+            raise ConfigError(f"{_shown(path)}:{line}: invalid TOML: {msg[:m.start()]} "
+                              "(at end of file)") from None
+        raise ConfigError(f"{_shown(path)}: invalid TOML: {msg}") from None
+
+
+def _near_miss_table(tool: dict) -> str | None:
+    """A ``[tool.X]`` that was meant to be ``[tool.urdf-lint]``."""
+    for k in tool:
+        if not isinstance(k, str) or k == "urdf-lint":
+            continue
+        norm = re.sub(r"[-_. ]", "", k.lower())
+        if norm in ("urdflint", "urdflinter") or difflib.get_close_matches(
+                k.lower(), ["urdf-lint"], n=1, cutoff=0.8):
+            return k
+    return None
+
+
+def _pyproject_table(path: Path, data: dict) -> dict | None:
+    tool = data.get("tool", {})
+    if not isinstance(tool, dict):
+        return None
+    if "urdf-lint" in tool:
+        return tool["urdf-lint"]
+    near = _near_miss_table(tool)
+    if near is not None:
+        raise ConfigError(f"{_shown(path)}: found [tool.{near}]; did you mean [{TABLE}]? "
+                          f"(the table is named [{TABLE}], with a hyphen)")
+    return None
+
+
+def find_config(start: str) -> Path | None:
+    p = Path(start).resolve()
+    if p.is_file():
+        p = p.parent
+    for d in [p, *p.parents]:
+        for fname in ("urdf-lint.toml", ".urdf-lint.toml"):
+            if (d / fname).is_file():
+                return d / fname
+        pp = d / "pyproject.toml"
+        if pp.is_file() and _pyproject_table(pp, _parse_toml(pp)) is not None:
+            return pp
+    return None
+
+
+def _shown(path) -> str:
+    """A config file's path as messages show it: relative to the working directory when below."""
+    if isinstance(path, str) and not os.path.exists(path):
+        return path                      # "command line"
+    from urdf_lint.core.locations import display_path
+    return display_path(os.path.abspath(path))
+
+
+def _line_of(path: Path, key: str) -> str:
+    """``:LINE`` of the first ``key = ...`` in the file, when it can be found."""
+    try:
+        lines = _read_config(path).splitlines()
+    except (OSError, UnicodeDecodeError):
+        return ""
+    pat = re.compile(r'^\s*(?:"|\')?' + re.escape(key) + r'(?:"|\')?\s*=')
+    header = re.compile(r'^\s*\[[^\]]*[."\']' + re.escape(key) + r'["\']?\s*\]')
+    ours = path.name != "pyproject.toml"   # in pyproject.toml, only [tool.urdf-lint...] tables
+    for i, ln in enumerate(lines, 1):
+        if ln.lstrip().startswith("["):
+            ours = path.name != "pyproject.toml" or ln.lstrip().lstrip("[").startswith(TABLE)
+            if ours and header.match(ln):
+                return f":{i}"
+        elif ours and pat.match(ln):
+            return f":{i}"
+    return ""
+
+
+# -- validation -------------------------------------------------------------------------------
+def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
+    if key.name == "package-paths":
+        value = {k: str((base / v).resolve()) for k, v in value.items()}
+    elif key.name == "models":
+        specs = []
+        for m in value:
+            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
+            for k in ("output", "mesh-base"):
+                if m.get(k):
+                    setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
+            if not os.path.isfile(spec.path):
+                raise ConfigError(f"{_shown(cfg.path or base)}: model {m['path']!r} does not exist"
+                                  f"{_did_you_mean_file(m['path'], base)}")
+            specs.append(spec)
+        value = specs
+    elif key.name == "baseline" and value is not None:
+        value = str((base / value).resolve())
+    elif key.name == "format" and isinstance(value, dict):
+        cfg.format_options = value
+        return
+    setattr(cfg, key.attr, value)
+
+
+def load_config(path: str | Path | None, known_codes: dict | None = None) -> Config:
+    """Load and validate. ``known_codes`` maps code -> name for checking codes and options."""
+    if path is None:
+        return Config(root=os.getcwd())
+    path = Path(path)
+    data = _parse_toml(path)
+    table = "[tool.urdf-lint]"
+    if path.name == "pyproject.toml":
+        data = _pyproject_table(path, data) or {}
+    else:
+        table = path.name
+        if "tool" in data and isinstance(data["tool"], dict) and (
+                "urdf-lint" in data["tool"] or _near_miss_table(data["tool"])):
+            raise ConfigError(f"{_shown(path)}: in {path.name} the keys go at the top level, "
+                              f"without a [{TABLE}] table")
+    if not isinstance(data, dict):
+        raise ConfigError(f"{_shown(path)}: [{TABLE}] must be a table")
+    cfg = Config(path=str(path), root=str(path.parent.resolve()), raw=data)
+    for k in data:
+        if k not in KEYS:
+            raise ConfigError(f"{_shown(path)}{_line_of(path, k)}: unknown key {k!r} in {table}"
+                              f"{did_you_mean(k, KEYS)} (known: {', '.join(sorted(KEYS))})")
+    for k, v in data.items():
+        key = KEYS[k]
+        try:
+            value = key.type.check(v)
+        except _Bad as e:
+            shown = show(v if e.value is None else e.value)
+            inner = k
+            if e.where:
+                bare = re.fullmatch(r"[A-Za-z0-9_-]+", e.where)
+                inner += "." + (e.where if bare else show(e.where))
+            line = (_line_of(path, e.where) if e.where else "") or _line_of(path, k)
+            raise ConfigError(f"{_shown(path)}{line}: invalid value for {inner}: {shown} "
+                              f"(expected {e.expected})") from None
+        _set(cfg, key, value, path.parent)
+    if known_codes is not None:
+        validate_codes(cfg, known_codes, str(path))
+    return cfg
+
+
+def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config:
+    """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
+
+    ``values`` maps schema key names to the flag's string, or None when the flag was not
+    given. Keys with ``cli_merge="extend"`` add to the configured list."""
+    for name, s in values.items():
+        if s is None:
+            continue
+        key = KEYS[name]
+        try:
+            value = key.type.check(key.type.from_cli(s) if isinstance(s, str) else s)
+        except _Bad as e:
+            raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
+        if key.cli_merge == "extend":
+            value = list(getattr(cfg, key.attr)) + value
+        if key.name == "baseline":
+            value = os.path.abspath(value)
+        setattr(cfg, key.attr, value)
+    return cfg
+
+
+def format_option(name: str, s: str):
+    """The value of a command-line flag of ``urdf-lint format`` (``--line-length``), checked
+    by the key's type like the same key under [format]."""
+    key = FORMAT_KEYS[name]
+    try:
+        return key.type.check(key.type.from_cli(s))
+    except _Bad as e:
+        raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
+
+
+def _did_you_mean_file(rel: str, root: Path) -> str:
+    """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
+    import difflib
+    from urdf_lint.core import fsbound
+    from urdf_lint.discovery.packages import SKIP_DIRS
+    files = [os.path.relpath(f, root) for f in fsbound.walk_files(
+        root, suffixes=(".xacro", ".urdf"), skip=lambda d: d in SKIP_DIRS or d.startswith("."))]
+    best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
+        os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
+    if not best:
+        return ""
+    hit = best[0] if best[0] in files else next(f for f in files if os.path.basename(f) == best[0])
+    return f" (did you mean {hit!r}?)"
+
+
+def validate_codes(cfg: Config, known: dict, where: str = "command line"):
+    names = set(known.values())
+
+    def check(p, what):
+        if p == "ALL" or p in names:
+            return
+        if not any(code_matches(p, c, n) for c, n in known.items()):
+            line = _line_of(Path(where), what) if os.path.isfile(where) else ""
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule code or prefix {p!r} in {what}"
+                              f"{did_you_mean(p, list(known) + sorted(names))} "
+                              f"(see 'urdf-lint rules')")
+    for p in cfg.select + cfg.extend_select:
+        check(p, "select")
+    for p in cfg.ignore:
+        check(p, "ignore")
+    for codes in cfg.per_file_ignores.values():
+        for p in codes:
+            check(p, "per-file-ignores")
+    for p in cfg.severity:
+        check(p, "severity")
+    validate_rule_options(cfg, where)
+
+
+def option_types(rule) -> dict:
+    """Option name -> accepted Python types, from the rule's ``OPTIONS`` defaults and its
+    optional ``OPTION_TYPES`` declaration."""
+    import sys
+    declared = dict(getattr(sys.modules.get(rule.module), "OPTION_TYPES", {}) or {})
+    out = {}
+    for name, default in rule.options.items():
+        if name in declared:
+            t = declared[name]
+            out[name] = tuple(t) if isinstance(t, (tuple, list)) else (t,)
+        elif isinstance(default, bool):
+            out[name] = (bool,)
+        elif isinstance(default, float):
+            out[name] = (float, int)
+        else:
+            out[name] = (type(default),)
+    return out
+
+
+def option_choices(rule) -> dict:
+    """Option name -> the values it may take, from the rule's optional ``OPTION_CHOICES``."""
+    import sys
+    return {k: tuple(v) for k, v in
+            (getattr(sys.modules.get(rule.module), "OPTION_CHOICES", {}) or {}).items()}
+
+
+_TYPE_NAMES = {bool: "true or false", int: "an integer", float: "a number", str: "a string",
+               list: "a list"}
+
+
+def validate_rule_options(cfg: Config, where: str) -> None:
+    if not cfg.rule_options:
+        return
+    from urdf_lint.engine.registry import load_rules
+    rules = load_rules()
+    by_name = {r.name: r for r in rules.values()}
+    for key, opts in cfg.rule_options.items():
+        rule = rules.get(key) or by_name.get(key)
+        if rule is None:
+            line = _line_of(Path(where), key) if os.path.isfile(where) else ""
+            raise ConfigError(f"{_shown(where)}{line}: unknown rule {key!r} in rule-options"
+                              f"{did_you_mean(key, list(rules) + list(by_name))} "
+                              "(use a rule code like UL307 or its name)")
+        types = option_types(rule)
+        choices = option_choices(rule)
+        for name, value in opts.items():
+            line = _line_of(Path(where), name) if os.path.isfile(where) else ""
+            if name not in types:
+                raise ConfigError(f"{_shown(where)}{line}: unknown option {name!r} in rule-options.{key} "
+                                  f"({rule.code} {rule.name})"
+                                  f"{did_you_mean(name, types)} (known: "
+                                  f"{', '.join(sorted(types)) or 'none'})")
+            ok = types[name]
+            if isinstance(value, bool) and bool not in ok or not isinstance(value, ok):
+                expected = " or ".join(dict.fromkeys(_TYPE_NAMES.get(t, t.__name__) for t in ok))
+                if float in ok and int in ok:
+                    expected = "a number"
+                raise ConfigError(f"{_shown(where)}{line}: invalid value for rule-options.{key}.{name}: "
+                                  f"{show(value)} (expected {expected}, like "
+                                  f"{show(rule.options[name])})")
+            if float in ok and isinstance(value, int) and not isinstance(value, bool):
+                opts[name] = float(value)
+            allowed = choices.get(name)
+            if allowed is not None and value not in allowed:
+                raise ConfigError(f"{_shown(where)}{line}: invalid value: rule-options.{key}.{name} "
+                                  f"must be one of {', '.join(map(repr, allowed))}, not "
+                                  f"{value!r}{did_you_mean(str(value), allowed)}")

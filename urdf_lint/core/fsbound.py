@@ -1,0 +1,467 @@
+"""The file-system boundary: every read, listing and write of repository data goes through here.
+
+A repository is untrusted (SECURITY.md): its files may be symlinks to anywhere, FIFOs,
+devices, or huge. Code outside this module does not ``open``, ``glob``, ``walk`` or parse a
+path itself (``tests/test_boundary.py`` walks the AST of ``urdf_lint/`` and ``rules/`` to
+keep it so); it calls:
+
+* **reads** -- :func:`read_bytes`, :func:`read_text`, :func:`read_head`, :func:`parse_xml`:
+  inside the run's roots after symlinks (when ``roots`` is given), regular files only (opened
+  with ``O_NONBLOCK``, then ``fstat`` must say ``S_ISREG``: a FIFO or ``/dev/stdout`` never
+  blocks), at most ``max_bytes`` (a clean :class:`BoundaryError` naming the file when over);
+* **listings** -- :func:`walk_files`, :func:`list_dir`, :func:`scan_dir`: symlinked folders are
+  never entered;
+* **writes** -- :func:`write_bytes`, :func:`write_text`, :func:`rewrite`, :func:`temp_path`,
+  :func:`remove`: only below an allowed ``base`` (the repository, or a folder the user named
+  on the command line), every component from the base down opened with ``O_NOFOLLOW``
+  (a symlinked folder anywhere below the base is refused, ``check_no_symlink``), the data
+  written to a random name opened ``O_CREAT|O_EXCL|O_NOFOLLOW`` in the target folder and
+  renamed over the target (``os.replace``, relative to the folder's descriptor), so a
+  committed symlink can neither receive the data nor replace the file.
+
+:class:`BoundaryError` is an ``OSError``: callers that already handle a failed read or write
+keep doing so, with a message that says why.
+"""
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import stat as _st
+from typing import Iterable, Iterator
+
+MAX_SOURCE_BYTES = 256 << 20   # an XML or YAML source file read in the parent
+MAX_CONFIG_BYTES = 4 << 20     # a config file, a baseline's folder's config
+MAX_DATA_BYTES = 256 << 20     # a baseline, a report, a memo
+
+_RD = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+_NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
+_DIR = os.O_RDONLY | getattr(os, "O_DIRECTORY", 0) | _NOFOLLOW | getattr(os, "O_CLOEXEC", 0)
+
+
+class BoundaryError(OSError):
+    """A read or write the boundary refused (outside the roots, not a regular file, too large,
+    a symlinked component); ``str()`` is one sentence naming the path."""
+
+    def __init__(self, path, why: str, code: int = errno.EACCES):
+        super().__init__(code, why, os.fspath(path))
+        self.why = why
+
+    def __str__(self) -> str:
+        return f"{self.filename}: {self.why}"
+
+
+def inside(f: str, p: str) -> bool:
+    """Is path ``f`` the folder ``p`` or below it? (strings, as written: resolve first)"""
+    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
+
+
+def within(path, roots: Iterable, resolved: bool = False) -> bool:
+    """Does ``path`` resolve (after symlinks) inside one of ``roots``? ``resolved``: the
+    caller made ``path`` with ``os.path.realpath`` (only its last component may be a
+    symlink since, e.g. a discovered file that is a link): one ``lstat`` instead of one per
+    component (discovery asks for every file)."""
+    path = os.fspath(path)
+    real = os.path.realpath(path) if not resolved or os.path.islink(path) else path
+    return any(inside(real, os.fspath(r)) for r in roots)
+
+
+# -- reads ------------------------------------------------------------------------------------
+def _open_regular(path, roots, nofollow: bool, resolved: bool = False):
+    """(a file object of a regular file, its stat); raises BoundaryError / OSError."""
+    path = os.fspath(path)
+    if roots is not None and not within(path, roots, resolved):
+        raise BoundaryError(path, "resolves outside the package roots and the linted "
+                            "repository; it was not read")
+    fd = os.open(path, _RD | (_NOFOLLOW if nofollow else 0))
+    try:
+        st = os.fstat(fd)
+        if not _st.S_ISREG(st.st_mode):
+            raise BoundaryError(path, "is not a regular file (a folder, device, FIFO or "
+                                "socket); it was not read",
+                                errno.EISDIR if _st.S_ISDIR(st.st_mode) else errno.EACCES)
+    except BaseException:
+        os.close(fd)
+        raise
+    return os.fdopen(fd, "rb"), st
+
+
+@contextlib.contextmanager
+def open_regular(path, roots=None, nofollow: bool = False):
+    """(a binary file object, its ``fstat``) of a regular file (inside ``roots`` when given),
+    opened without blocking; for readers that stream (hashes, meshes in chunks)."""
+    f, st = _open_regular(path, roots, nofollow)
+    with f:
+        yield f, st
+
+
+def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+               nofollow: bool = False, resolved: bool = False) -> bytes:
+    """The bytes of a regular file of at most ``max_bytes`` (inside ``roots`` after symlinks
+    when given; ``resolved`` as for :func:`within`); raises :class:`BoundaryError` (or the
+    ``OSError`` of the open). An unsaved editor buffer standing for the file
+    (``urdf-lint server``, :mod:`urdf_lint.core.overlay`) is returned instead of its bytes, once
+    the path passed the same roots check."""
+    from urdf_lint.core import overlay
+    buffer = overlay.get(path) if overlay.active() else None
+    if buffer is not None:
+        if roots is not None and not within(path, roots, resolved):
+            raise BoundaryError(path, "resolves outside the package roots and the linted "
+                                "repository; it was not read")
+        if len(buffer) > max_bytes:
+            raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
+                                errno.EFBIG)
+        return buffer
+    f, st = _open_regular(path, roots, nofollow, resolved)
+    with f:
+        if st.st_size > max_bytes:
+            raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
+                                errno.EFBIG)
+        # the size fstat gave, plus one byte to see a file that grew (read(n) allocates n)
+        data = f.read(st.st_size + 1)
+        while len(data) <= max_bytes and len(data) > st.st_size:   # it grew: read the rest
+            more = f.read(max_bytes + 1 - len(data))
+            if not more:
+                break
+            data += more
+    if len(data) > max_bytes:
+        raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
+                            errno.EFBIG)
+    return data
+
+
+def read_head(path, n: int, roots=None, resolved: bool = False) -> bytes:
+    """At most the first ``n`` bytes of a regular file (inside ``roots`` when given;
+    ``resolved`` as for :func:`within`)."""
+    f, _ = _open_regular(path, roots, False, resolved)
+    with f:
+        return f.read(n)
+
+
+def read_text(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+              errors: str = "strict") -> str:
+    """:func:`read_bytes` decoded as UTF-8 (``UnicodeDecodeError`` with ``errors='strict'``)."""
+    return read_bytes(path, roots, max_bytes).decode("utf-8", errors)
+
+
+def read_regular(path, max_bytes: int, roots=None, nofollow: bool = False) -> bytes | None:
+    """:func:`read_bytes`, or None when it cannot or may not be read."""
+    try:
+        return read_bytes(path, roots, max_bytes, nofollow)
+    except OSError:
+        return None
+
+
+def parse_xml(path, parser, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+              resolved: bool = False):
+    """The lxml root element of a file read by :func:`read_bytes` (never lxml's own open,
+    which would follow a FIFO or a device); lxml's errors are raised as they are."""
+    from lxml import etree
+    data = read_bytes(path, roots, max_bytes, resolved=resolved)
+    return etree.fromstring(data, parser, base_url=os.fspath(path))
+
+
+def _size(n: int) -> str:
+    return f"{n >> 20} MiB" if n >= 1 << 20 else f"{n} bytes"
+
+
+# -- listings ---------------------------------------------------------------------------------
+def scan_dir(path) -> list:
+    """The ``os.DirEntry`` of a folder, sorted by name; [] when it cannot be listed."""
+    try:
+        with os.scandir(path) as it:
+            return sorted(it, key=lambda e: e.name)
+    except OSError:
+        return []
+
+
+def list_dir(path) -> list[str]:
+    """The names in a folder, in the order the file system gives them (raises OSError)."""
+    return os.listdir(path)
+
+
+def has_entries(path) -> bool:
+    """Does the folder hold anything? (False when it cannot be listed)"""
+    try:
+        with os.scandir(path) as it:
+            return any(True for _ in it)
+    except OSError:
+        return False
+
+
+def walk(top, skip=lambda d: False) -> Iterator[tuple[str, list[str]]]:
+    """(folder, file names) for every folder below ``top``, symlinked folders not entered
+    and folders for which ``skip(name)`` is true left out."""
+    for dirpath, dirnames, filenames in os.walk(top):
+        dirnames[:] = [d for d in dirnames if not skip(d)]
+        yield dirpath, filenames
+
+
+def walk_files(top, suffixes: tuple[str, ...] | None = None, names: set | None = None,
+               skip=lambda d: False, folders: list | None = None) -> Iterator[str]:
+    """Every file below ``top`` whose name ends with one of ``suffixes`` or is in ``names``,
+    in sorted order; folders for which ``skip(name)`` is true are not entered, nor symlinked
+    folders (``os.walk`` does not follow them). Each folder looked into is added to
+    ``folders`` when given. A file ``top`` is yielded itself."""
+    top = os.fspath(top)
+    if os.path.isfile(top):
+        yield top
+        return
+    for dirpath, dirnames, filenames in os.walk(top):
+        if folders is not None:
+            folders.append(dirpath)
+        dirnames[:] = sorted(d for d in dirnames if not skip(d))
+        for fn in sorted(filenames):
+            if (names and fn in names) or (suffixes and fn.endswith(suffixes)):
+                yield os.path.join(dirpath, fn)
+
+
+MAX_GLOB_ENTRIES = 20_000
+
+
+def bounded_glob(pattern: str, limit: int = MAX_GLOB_ENTRIES) -> list[str] | None:
+    """What ``glob.glob(pattern)`` gives (no ``**`` recursion; names starting with ``.``
+    only for a pattern part starting with ``.``), or None when matching it would look at
+    more than ``limit`` folder entries or candidate paths: a pattern from a repository
+    (``*/*/*/...`` through ``l -> .`` symlinks) can never make the run walk without end."""
+    import fnmatch
+    import re
+    magic = re.compile(r"[*?[]")
+    pattern = os.path.normpath(pattern)
+    parts = pattern.split(os.sep)
+    paths = [os.sep if pattern.startswith(os.sep) else ""]
+    if paths[0]:
+        parts = parts[1:]
+    seen = 0
+    for i, part in enumerate(parts):
+        last = i == len(parts) - 1
+        nxt = []
+        if not magic.search(part):
+            for p in paths:
+                q = os.path.join(p, part) if p else part
+                if (os.path.lexists(q) if last else os.path.isdir(q)):
+                    nxt.append(q)
+        else:
+            for p in paths:
+                try:
+                    names = os.listdir(p or os.curdir)
+                except OSError:
+                    continue
+                seen += len(names)
+                if seen > limit:
+                    return None
+                for n in names:
+                    if (n.startswith(".") and not part.startswith(".")) or \
+                            not fnmatch.fnmatchcase(n, part):
+                        continue
+                    q = os.path.join(p, n) if p else n
+                    if last or os.path.isdir(q):
+                        nxt.append(q)
+        if len(nxt) > limit:
+            return None
+        paths = nxt
+    return paths
+
+
+def glob_paths(root, pattern: str) -> list:
+    """``Path(root).glob(pattern)`` for the user's own install layouts (``*/share``), sorted;
+    patterns here are the code's own, never a repository's."""
+    from pathlib import Path
+    return sorted(Path(root).glob(pattern))
+
+
+# -- writes -----------------------------------------------------------------------------------
+def output_base(path, repos: Iterable) -> str:
+    """The folder a write to ``path`` (named on the command line) is checked from: the
+    repository when ``path`` is in it (then no component below the repository may be a
+    symlink: a committed ``build -> /elsewhere`` cannot redirect it), else the nearest
+    existing folder above it, as the user named it."""
+    a = os.path.abspath(path)
+    for repo in repos:
+        if not repo:
+            continue
+        for r in dict.fromkeys([os.path.abspath(repo), os.path.realpath(repo)]):
+            if inside(a, r):
+                return r
+    d = os.path.dirname(a)
+    while not os.path.isdir(d) and os.path.dirname(d) != d:
+        d = os.path.dirname(d)
+    return d
+
+
+def _parts(path, base) -> tuple[str, list[str]]:
+    a, b = os.path.abspath(path), os.path.abspath(base)
+    if not inside(a, b) or a == b:
+        raise BoundaryError(path, f"is outside {b}, the folder urdf-lint may write to; "
+                            "it was not written")
+    return b, a[len(b.rstrip(os.sep)) + 1:].split(os.sep)
+
+
+def _open_dirs(base: str, comps: list[str], make: bool) -> int:
+    """A descriptor of the folder ``base/comps...``, every component opened with
+    ``O_NOFOLLOW`` (created when ``make``); raises BoundaryError on a symlinked component."""
+    fd = os.open(base, _DIR & ~_NOFOLLOW)
+    try:
+        for i, c in enumerate(comps):
+            if c in ("", ".", ".."):
+                raise BoundaryError(os.path.join(base, *comps), "has a '.' or '..' component")
+            try:
+                nfd = os.open(c, _DIR, dir_fd=fd)
+            except FileNotFoundError:
+                if not make:
+                    raise
+                with contextlib.suppress(FileExistsError):
+                    os.mkdir(c, 0o777, dir_fd=fd)
+                nfd = os.open(c, _DIR, dir_fd=fd)
+            except OSError as e:
+                if e.errno in (errno.ELOOP, errno.ENOTDIR):
+                    raise BoundaryError(os.path.join(base, *comps[:i + 1]),
+                                        "is a symlink or not a folder; refusing to write "
+                                        "through it", errno.ELOOP) from None
+                raise
+            os.close(fd)
+            fd = nfd
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd
+
+
+def _components(path, base) -> Iterator[tuple[str, os.stat_result]]:
+    """(path, lstat) of each existing component of ``path`` below ``base``, down to the
+    first missing one."""
+    b, comps = _parts(path, base) if os.path.abspath(path) != os.path.abspath(base) \
+        else (os.path.abspath(base), [])
+    cur = b
+    for c in comps:
+        cur = os.path.join(cur, c)
+        try:
+            yield cur, os.lstat(cur)
+        except FileNotFoundError:
+            return
+
+
+def first_symlink(path, base) -> str | None:
+    """The first component of ``path`` below ``base`` (the last one included) that is a
+    symlink, or None."""
+    return next((p for p, st in _components(path, base) if _st.S_ISLNK(st.st_mode)), None)
+
+
+def check_no_symlink(path, base) -> None:
+    """Raise :class:`BoundaryError` when a component of ``path`` below ``base`` (the last one
+    included) is a symlink or not a folder; missing components are fine (they will be made)."""
+    for cur, st in _components(path, base):
+        if _st.S_ISLNK(st.st_mode) or not _st.S_ISDIR(st.st_mode):
+            raise BoundaryError(cur, "is a symlink or not a folder; refusing to write "
+                                "through it", errno.ELOOP)
+
+
+@contextlib.contextmanager
+def _temp_in(path, base, make_dirs: bool, suffix: str = ""):
+    """(temp path, its descriptor) in the target's folder, once every folder from ``base``
+    down has been opened without following a symlink; on success the temp is renamed over
+    the target (a symlink there is replaced, never followed), else removed. Full paths are
+    used after the check, so a worker's audit hook sees what is written where."""
+    b, comps = _parts(path, base)
+    os.close(_open_dirs(b, comps[:-1], make_dirs))
+    folder = os.path.join(b, *comps[:-1])
+    target = os.path.join(folder, comps[-1])
+    tmp = os.path.join(folder, f".{comps[-1][:80]}.{os.urandom(8).hex()}.tmp{suffix}")
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | _NOFOLLOW |
+                 getattr(os, "O_CLOEXEC", 0), 0o666)
+    try:
+        yield tmp, fd
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def write_bytes(path, data: bytes | str, base, make_dirs: bool = False,
+                mode: int | None = None) -> None:
+    """Write ``data`` to ``path`` (below ``base``) atomically, through a random temporary
+    name opened ``O_CREAT|O_EXCL|O_NOFOLLOW`` beside it; text is written as UTF-8. With
+    ``make_dirs``, missing folders below ``base`` are created (never through a symlink)."""
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    with _temp_in(path, base, make_dirs) as (_, fd):
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+            if mode is not None:
+                os.fchmod(f.fileno(), mode)
+
+
+def write_text(path, text: str, base, make_dirs: bool = False) -> None:
+    write_bytes(path, text.encode("utf-8"), base, make_dirs)
+
+
+@contextlib.contextmanager
+def open_write(path, base, make_dirs: bool = False):
+    """A text stream whose content appears at ``path`` only when the block succeeds."""
+    import io
+    with _temp_in(path, base, make_dirs) as (_, fd):
+        with io.open(fd, "w", encoding="utf-8") as f:
+            yield f
+
+
+@contextlib.contextmanager
+def temp_path(path, base, suffix: str = "", make_dirs: bool = False):
+    """A path to a new, empty, unpredictably named file beside ``path`` (created exclusively,
+    so no committed symlink can stand in for it) for writers that want a file name (Pillow,
+    rerun); on success it replaces ``path``, on an exception it is removed."""
+    with _temp_in(path, base, make_dirs, suffix) as (tmp, fd):
+        os.close(fd)
+        yield tmp
+
+
+def rewrite(path, data: bytes, bases: Iterable) -> None:
+    """Rewrite a source file in place (``check --fix``, ``--add-suppressions``): a symlink is
+    followed (the link stays a link, its target gets the bytes) when its target is inside one
+    of ``bases`` (the linted paths); the file keeps its mode."""
+    real = os.path.realpath(path)
+    for b in bases:
+        rb = os.path.realpath(b)
+        base = rb if os.path.isdir(rb) else os.path.dirname(rb)
+        if inside(real, base) and real != base:
+            try:
+                keep = _st.S_IMODE(os.lstat(real).st_mode)
+            except OSError:
+                keep = None
+            write_bytes(real, data, base, mode=keep)
+            return
+    raise BoundaryError(path, "is outside the linted paths; it was not written")
+
+
+def remove(path, base) -> bool:
+    """Remove the regular file ``path`` below ``base`` (no component a symlink); False when it
+    is not there or is not a regular file."""
+    try:
+        b, comps = _parts(path, base)
+        os.close(_open_dirs(b, comps[:-1], False))
+        target = os.path.join(b, *comps)
+        if not _st.S_ISREG(os.lstat(target).st_mode):
+            return False
+        os.unlink(target)
+        return True
+    except OSError:
+        return False
+
+
+def make_own_dirs(path) -> None:
+    """Create a folder urdf-lint itself chose or the user named and the CLI checked (a
+    temporary folder, the cache, ``--out`` after :func:`check_no_symlink`), with parents."""
+    os.makedirs(path, exist_ok=True)
+
+
+def remove_tree(path) -> None:
+    """Remove a folder urdf-lint made (the cache: ``urdf-lint clean``); symlinks inside are
+    removed, never followed (``shutil.rmtree``'s descriptor-based walk)."""
+    import shutil
+    shutil.rmtree(path, ignore_errors=True)
+
+
+def make_dirs(path, base) -> None:
+    """Create ``path`` and its missing parents below ``base``, never through a symlink."""
+    b, comps = _parts(path, base)
+    os.close(_open_dirs(b, comps, True))

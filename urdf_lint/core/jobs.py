@@ -1,0 +1,166 @@
+"""The typed data that crosses the worker pipe: a job, the run's settings, a model's report.
+
+``LintJob`` and ``LintSettings`` go to a worker, a ``ModelReport`` comes back (pickled as is);
+the cache stores a ``ModelReport`` with :meth:`ModelReport.to_record`.
+"""
+from __future__ import annotations
+
+import enum
+import os
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from urdf_lint.core.findings import Problem
+from urdf_lint.core.locations import Origin
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.expansion.sourcemap import SourceMap
+
+
+class Status(str, enum.Enum):
+    """What linting one candidate file found it to be."""
+    MODEL = "model"            # a robot model, linted
+    FAILED = "failed"          # could not be expanded or parsed (its problems say why)
+    LIBRARY = "library"        # a macro library (only macros/properties/args/includes)
+    NOT_ROBOT = "not-robot"    # an XML file whose root is not <robot>
+    FRAGMENT = "fragment"      # a file other linted files include: linted through them
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class LintJob:
+    """One model to lint: an entry file and the xacro args to expand it with."""
+    entry: str                 # absolute path
+    args: dict = field(default_factory=dict)
+    kind: str = "xacro"        # "xacro" | "urdf" | "expand" (urdf-lint expand, in a worker too)
+    explicit: bool = False     # named by the user or the config (never skipped as a library)
+    display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
+    output: str | None = None      # config: the generated URDF this xacro is written to
+    mesh_base: str | None = None   # config: the folder relative mesh paths start from
+    outputs: tuple = ()            # more checked-in URDFs whose header names this xacro
+                                   # (compared when they are the same variant as ``output``)
+    # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
+    # files by this job's expansion and lint (urdf_lint/core/overlay.py); such a result is not cached
+    overlay: tuple = ()
+
+
+# environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:
+# the expansion reads it in a worker that never needs the config schema)
+DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
+                     "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
+
+
+@dataclass(frozen=True)
+class LintSettings:
+    """Everything a worker needs besides the job; the same for every model of a run."""
+    resolver: dict                           # PackageResolver.to_dict()
+    selected: tuple[str, ...] = ()           # rule codes to run
+    options: dict = field(default_factory=dict)   # code -> {option: value} (configured only)
+    env_allow: tuple[str, ...] = ()
+    mesh_cache_dir: str | None = None
+    expr_policy: object = None
+    render_dir: str | None = None            # set: the worker also writes a snapshot
+    render_rrd: bool = True
+    render_base: str | None = None          # picture names are relative to it (the repository)
+    render_refused: tuple = ()               # picture names two models of the run would share
+    render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
+    render_forward: str = "+x"               # the robot's forward axis, for the named views
+    keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
+    diff_render: bool = False                # diff --render: the geometry of its picture too
+    diff_rrd: bool = True                    # diff --render: also the plan of its recording
+    # urdf-lint format: real path -> the bytes expansion reads instead of the file's (the
+    # layout being proved; nothing is written while it is)
+    overlay: dict = field(default_factory=dict)
+
+    # read-only dict-style access, for worker start-up code written against the old dict
+    def __getitem__(self, key: str):
+        try:
+            return getattr(self, key)
+        except AttributeError:
+            raise KeyError(key) from None
+
+    def get(self, key: str, default=None):
+        return getattr(self, key, default)
+
+    def cache_key(self) -> list:
+        """What a cached result depends on (rendering does not change findings): the values of
+        the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""
+        env = {k: os.environ.get(k) for k in self.env_allow}
+        return [list(self.selected), self.options, env, self.resolver]
+
+
+@dataclass(frozen=True)
+class KeptModel:
+    """The expanded robot itself, sent back when ``LintSettings.keep_model`` is set."""
+    xml: str | None                          # None for a plain .urdf: the parent parses it
+    origins: "SourceMap | None" = None
+
+
+@dataclass
+class ModelReport:
+    """What linting one job produced."""
+    entry: str
+    args: dict
+    status: Status = Status.MODEL
+    deps: list = field(default_factory=list)        # files read (absolute), entry first
+    missing: list = field(default_factory=list)     # files looked for and not found
+    problems: list = field(default_factory=list)    # Problem, as found (before policy)
+    internal: list = field(default_factory=list)    # internal errors (exit 2)
+    name: str = ""                                  # the robot's name
+    name_origin: Origin | None = None               # where the name was set
+    links: int = 0
+    joints: int = 0
+    meshes: int = 0
+    snapshot: dict | None = None                    # what the renderer wrote (render runs only)
+    kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
+    diff_geometry: object = None                    # diff --render: render.Geometry
+    diff_rrd: object = None                         # diff --render: recording.Plan of this side
+    digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
+    directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
+    cached: bool = False
+    cacheable: bool = True                          # False: a fact depended on the environment
+    current_outputs: list = field(default_factory=list)   # generated URDFs that are today's
+                                                    # expansion of this model (not linted again)
+
+    @classmethod
+    def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":
+        return cls(job.entry, dict(job.args), Status.FAILED, deps=[job.entry],
+                   problems=list(problems), internal=list(internal))
+
+    @property
+    def label(self) -> str:
+        from urdf_lint.core.locations import display_path
+        base = display_path(self.entry)
+        if self.args:
+            base += " [" + " ".join(f"{k}:={v}" for k, v in sorted(self.args.items())) + "]"
+        return base
+
+    @property
+    def stats(self) -> dict:
+        """The counts, as the reporters show them."""
+        return {"name": self.name, "links": self.links, "joints": self.joints,
+                "meshes": self.meshes}
+
+    # -- cache -------------------------------------------------------------------------------
+    def to_record(self) -> dict:
+        o = self.name_origin
+        return {"status": self.status.value, "deps": list(self.deps),
+                "missing": list(self.missing),
+                "problems": [p.to_record() for p in self.problems],
+                "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
+                "links": self.links, "joints": self.joints, "meshes": self.meshes,
+                "directive_files": self.directive_files,
+                "current_outputs": list(self.current_outputs)}
+
+    @classmethod
+    def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
+        o = rec.get("name_origin")
+        return cls(job.entry, dict(job.args), Status(rec["status"]), deps=list(rec["deps"]),
+                   missing=list(rec.get("missing", [])),
+                   problems=[Problem.from_record(p) for p in rec["problems"]],
+                   name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
+                   links=rec.get("links", 0), joints=rec.get("joints", 0),
+                   meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
+                   cached=True, current_outputs=list(rec.get("current_outputs", ())))

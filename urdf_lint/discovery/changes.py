@@ -1,0 +1,30 @@
+"""Which models a set of changed files affects, through the dependency graph expansion records
+(every xacro, YAML, mesh and texture a model read). The changed files come from
+:func:`urdf_lint.discovery.vcs.changed_files` (``--changed-since``) or from pre-commit (``hook``)."""
+from __future__ import annotations
+
+import os
+
+
+
+
+def _real(f: str) -> str:
+    """realpath of a file that may be gone (its folder resolved)."""
+    if os.path.exists(f):
+        return os.path.realpath(f)
+    return os.path.join(os.path.realpath(os.path.dirname(f)), os.path.basename(f))
+
+
+def affected(models, files: set[str]):
+    """(models whose recorded inputs intersect ``files``, files no model uses). A model's
+    inputs are its entry, every file it read and every file it looked for and did not find,
+    so a deleted or renamed-away include, YAML file or mesh re-lints the models that used it."""
+    files = {_real(f) for f in files}
+    hit, used = [], set()
+    for m in models:
+        deps = {_real(d) for d in [*m.deps, *m.missing, m.entry]}
+        inter = deps & files
+        if inter:
+            hit.append(m)
+            used |= inter
+    return hit, sorted(files - used)

@@ -1,0 +1,141 @@
+"""Workspaces: the colcon/catkin workspace around the linted paths, and its packages.
+
+A workspace is a folder with a ``src/`` folder holding packages (often one git repository
+each: ``ws/src/robot_description``, ``ws/src/robot_meshes``, ...). It is found upward from the
+linted paths; its ``src/`` is indexed for ``package.xml`` files, skipping folders marked with
+``COLCON_IGNORE``, ``CATKIN_IGNORE`` or ``AMENT_IGNORE``, and so is its install space
+(``install/share/NAME/package.xml``, or ``install/NAME/share/NAME/package.xml``). Every
+workspace folder is also a confinement root: files may be read from it.
+"""
+from __future__ import annotations
+
+import functools
+import os
+from pathlib import Path
+
+from urdf_lint.discovery.folders import IGNORE_MARKERS, ignored  # noqa: F401 - ignored: part of this API
+from urdf_lint.discovery.packages import SKIP_DIRS, package_name
+
+# how far below a workspace's src/ packages are looked for (src/repo/group/package)
+MAX_DEPTH = 4
+
+
+def find_workspace(path: str) -> str | None:
+    """The nearest folder at or above ``path`` whose ``src/`` holds ``path`` (or that is
+    ``path``) and holds at least one package."""
+    p = Path(os.path.abspath(path))
+    if p.is_file():
+        p = p.parent
+    home = Path.home().resolve()
+    for d in [p, *p.parents]:
+        if d == home or d == Path(d.anchor):
+            break
+        src = d / "src"
+        if src.is_dir() and (d == p or _inside(p, src)) and _has_package(src):
+            return str(d)
+    return None
+
+
+@functools.lru_cache(maxsize=1024)
+def _find_workspace_cached(d: str) -> str | None:
+    return find_workspace(d)
+
+
+def _inside(p: Path, top: Path) -> bool:
+    try:
+        p.relative_to(top)
+        return True
+    except ValueError:
+        return False
+
+
+def _has_package(src: Path) -> bool:
+    for _ in _walk_packages(src, MAX_DEPTH):
+        return True
+    return False
+
+
+def _walk_packages(top: Path, depth: int):
+    """Every ``package.xml`` under ``top`` (not below a package, not in ignored folders)."""
+    from urdf_lint.core import fsbound
+    try:
+        names = fsbound.list_dir(top)
+    except OSError:
+        return
+    if any(m in names for m in IGNORE_MARKERS):
+        return
+    if "package.xml" in names:
+        yield top / "package.xml"
+        return
+    if depth <= 0:
+        return
+    for n in sorted(names):
+        if n in SKIP_DIRS or n.startswith("."):
+            continue
+        d = top / n
+        if d.is_dir() and not d.is_symlink():
+            yield from _walk_packages(d, depth - 1)
+
+
+def _install_packages(install: Path):
+    """``share/NAME/package.xml`` of a merged or isolated install space."""
+    from urdf_lint.core import fsbound
+    for share in [install / "share", *fsbound.glob_paths(install, "*/share")]:
+        if share.is_dir():
+            yield from fsbound.glob_paths(share, "*/package.xml")
+
+
+def index(workspace: str) -> dict[str, str]:
+    """Package name -> folder for a workspace: its sources first, then its install space."""
+    ws = Path(workspace)
+    out: dict[str, str] = {}
+    for pxml in [*_walk_packages(ws / "src", MAX_DEPTH), *_install_packages(ws / "install")]:
+        name = package_name(pxml)
+        if name and name not in out:
+            out[name] = str(pxml.parent.resolve())
+    return out
+
+
+def workspace_roots(paths) -> list[str]:
+    """The workspace folders around the linted paths: confinement roots as well as places
+    packages are found."""
+    out: list[str] = []
+    dirs = {os.path.abspath(p if os.path.isdir(p) else os.path.dirname(os.path.abspath(p)))
+            for p in paths or ["."]}
+    for p in sorted(dirs):
+        ws = _find_workspace_cached(p)
+        if ws and ws not in out:
+            out.append(os.path.realpath(ws))
+    return out
+
+
+def install_share_packages(top: str) -> dict[str, str]:
+    """``share/NAME/package.xml`` below ``top`` (an install layout being linted), which the
+    package scan skips (it never walks into install/ folders)."""
+    out: dict[str, str] = {}
+    t = Path(top)
+    from urdf_lint.core import fsbound
+    for share in [t / "share", t / "install" / "share", *fsbound.glob_paths(t, "install/*/share")]:
+        if share.is_dir():
+            for pxml in fsbound.glob_paths(share, "*/package.xml"):
+                name = package_name(pxml)
+                if name and name not in out:
+                    out[name] = str(pxml.parent.resolve())
+    return out
+
+
+def beside(name: str, paths, depth: int = 2) -> str | None:
+    """The folder holding the ``package.xml`` of package ``name`` beside the linted ``paths``
+    (in their parent folders, ``depth`` levels down), for a ``--package-path`` hint: such a
+    folder is not a root by itself (outside git and a workspace, the working directory is not
+    searched), but the user can name it."""
+    seen = set()
+    for p in paths:
+        top = os.path.dirname(os.path.abspath(p if os.path.isdir(p) else os.path.dirname(p)))
+        if top in seen:
+            continue
+        seen.add(top)
+        for pxml in _walk_packages(Path(top), depth):
+            if package_name(pxml) == name:
+                return str(pxml.parent)
+    return None

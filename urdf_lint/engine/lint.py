@@ -1,0 +1,345 @@
+"""Lint one model: expand (or parse) it, build the Model, run the selected model-scope rules.
+
+``lint_model`` takes a typed job and the run's settings and returns a :class:`ModelReport`
+(plus the model itself, for consumers such as the renderer). It runs the same in process and
+in a worker.
+"""
+from __future__ import annotations
+
+import os
+
+from urdf_lint.core.findings import Problem
+from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
+from urdf_lint.core.locations import Origin
+from urdf_lint.rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
+
+# lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
+
+XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
+
+
+class Context:
+    """What a rule's ``check`` gets besides the model."""
+
+    def __init__(self, options: dict, mesh_cache_dir: str | None):
+        self.options = options
+        self.mesh_cache_dir = mesh_cache_dir
+        self._refs: dict = {}
+        self._facts: dict = {}
+
+    def mesh_ref(self, model, uri):
+        from urdf_lint.meshes import resolve as meshes
+        key = (model.base_dir, uri)
+        if key not in self._refs:
+            self._refs[key] = meshes.resolve(model, uri)
+        return self._refs[key]
+
+    def mesh(self, path):
+        from urdf_lint.meshes import resolve as meshes
+        return meshes.get_mesh(path)
+
+    def mesh_facts(self, path):
+        """A mesh file's facts, looked up once per model: several rules ask for every mesh
+        element (a 200-link robot: 1,200 asks, each a stat of the file and of its digest)."""
+        return self._once("facts", path)
+
+    def mass_facts(self, path):
+        """A mesh file's volume properties, looked up once per model (like ``mesh_facts``)."""
+        return self._once("mass", path)
+
+    def _once(self, kind: str, path: str):
+        got = self._facts.get((kind, path))
+        if got is None:
+            from urdf_lint.meshes import resolve as meshes
+            measure = meshes.mesh_facts if kind == "facts" else meshes.mass_facts
+            got = self._facts[(kind, path)] = measure(path, self.mesh_cache_dir)
+        return got
+
+
+def target_of(el):
+    """("link"|"joint", name) of the nearest enclosing top-level link or joint, for snapshots."""
+    while el is not None:
+        parent = el.getparent()
+        if el.tag in ("link", "joint") and parent is not None and parent.tag == "robot":
+            return (el.tag, el.get("name"))
+        el = parent
+    return None
+
+
+def classify_xacro(path: str) -> Status | None:
+    """None for a candidate model, LIBRARY (only macro/property/arg at top level, no include)
+    or NOT_ROBOT."""
+    from lxml import etree
+    from urdf_lint.core import fsbound
+    try:   # a regular file, bounded (a FIFO named as a file never blocks)
+        root = fsbound.parse_xml(path, _quick_parser())
+    except (etree.XMLSyntaxError, OSError):
+        return None  # let expansion report the problem with its location
+    if etree.QName(root).localname != "robot":
+        return Status.NOT_ROBOT
+    includes = False
+    for el in root:
+        if not isinstance(el.tag, str):
+            continue
+        q = etree.QName(el)
+        if not (q.namespace and "xacro" in q.namespace and q.localname in XACRO_DIRECTIVES):
+            return None
+        includes = includes or q.localname == "include"
+    # a file made of includes may be a robot whose included files emit the links: expansion
+    # tells (no link after expansion: a library)
+    return None if includes else Status.LIBRARY
+
+
+def _quick_parser():
+    from lxml import etree
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
+
+
+def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
+    """UL011 at each checked-in generated file that differs from today's expansion; the
+    outputs become inputs of the model (editing one re-lints the model). The outputs after
+    the first (more URDFs whose header names this xacro) are compared only when they are the
+    same variant (robot name and links): another is generated with args urdf-lint does not
+    know."""
+    from urdf_lint.discovery.generated import same_variant, stale_at
+    from urdf_lint.core.locations import display_path
+    from urdf_lint.rules import ul011_stale_output
+    for n, output in enumerate((job.output or "",) + tuple(job.outputs)):
+        (out.deps if os.path.exists(output) else out.missing).append(output)
+        if n and not same_variant(output, xml):
+            continue
+        got = stale_at(output, xml)
+        if got is None and os.path.exists(output):
+            out.current_outputs.append(output)
+        if got is not None:
+            line, col, what = got
+            out.problems.append(Problem.at(
+                ul011_stale_output.CODE,
+                f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
+                "expands to today; regenerate it with 'urdf-lint generate'",
+                (output, line, col)))
+
+
+def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
+    """The Model of the job, or None (``out`` then says why)."""
+    from urdf_lint.engine.model import model_from_xml, parse_urdf_bytes, Model
+    entry = job.entry
+    problems = out.problems
+    if job.kind == "xacro":
+        if not job.explicit:
+            kind = classify_xacro(entry)
+            if kind is not None:
+                out.status = kind
+                return None
+        from urdf_lint.expansion import expand_file
+        exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
+                          expr_policy=settings.expr_policy)
+        out.deps = list(exp.deps)
+        out.missing = list(exp.missing)
+        out.digests = dict(exp.digests)
+        problems.extend(exp.notes)
+        if exp.error is not None:
+            problems.append(exp.error)
+            out.status = Status.FAILED
+            return None
+        assert exp.xml is not None  # expand_file sets xml or error
+        if job.output or job.outputs:
+            _check_output(job, exp.xml, out)
+        try:
+            model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+        except Exception as e:  # noqa: BLE001 - lxml refused what xacro produced
+            problems.append(_expanded_xml_error(e, exp, entry))
+            out.status = Status.FAILED
+            return None
+        # meshes written relative to the generated URDF (or a configured folder)
+        model.mesh_base = job.mesh_base or (os.path.dirname(job.output) if job.output else None)
+        if not model.top_links() and not job.explicit:
+            out.status = Status.LIBRARY
+            out.problems = []
+            return None
+        if settings.keep_model:  # urdf-lint diff compares the robots themselves
+            out.kept_model = KeptModel(exp.xml, exp.origins)
+        return model
+    from urdf_lint.core.hashing import read_recorded
+    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES, regular_file
+    if not resolver.is_inside(entry):
+        problems.append(Problem.at(ul902_outside_roots.CODE,
+                                   "this file resolves outside the package roots and the linted "
+                                   "repository (a symlink?); it was not read", (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
+    if not regular_file(entry, MAX_SOURCE_BYTES):
+        problems.append(Problem.at(ul001_xml_syntax.CODE,
+                                   f"not a regular file of at most {MAX_SOURCE_BYTES >> 20} MiB "
+                                   "(a device, FIFO or a huge file?); it was not read",
+                                   (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
+    try:
+        data, rec = read_recorded(entry)
+        out.digests = {entry: rec}
+    except OSError as e:
+        problems.append(Problem.at(ul001_xml_syntax.CODE, f"cannot read file: {e.strerror}",
+                                   (entry, 1, 1)))
+        out.status = Status.FAILED
+        return None
+    if b"<!DOCTYPE" in data[:4096] or b"<!ENTITY" in data:
+        line = data[:data.find(b"<!")].count(b"\n") + 1
+        problems.append(Problem.at(ul007_doctype.CODE,
+                                   "DOCTYPE/ENTITY declaration in a robot description; remove it "
+                                   "(URDF needs none, and urdf-lint never loads DTDs)",
+                                   (entry, line, 1)))
+    root, origins, errors = parse_urdf_bytes(entry, data)
+    problems.extend(errors or ())
+    if root is None:
+        out.status = Status.FAILED
+        return None
+    if settings.keep_model:
+        out.kept_model = KeptModel(None)   # the parent parses the .urdf itself
+    return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
+
+
+def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelReport) -> None:
+    """`urdf-lint expand`: the expansion itself, in a worker too (limits, sandbox). The XML
+    comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
+    from urdf_lint.expansion import expand_file
+    exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
+                      display_name=job.display_name, expr_policy=settings.expr_policy,
+                      overlay=settings.overlay)
+    out.deps = list(exp.deps)
+    out.problems.extend(exp.notes)
+    if exp.error is not None:
+        out.problems.append(exp.error)
+        out.status = Status.FAILED
+    else:
+        out.kept_model = KeptModel(exp.xml)
+
+
+def _expanded_xml_error(e: Exception, exp, entry: str) -> Problem:
+    """A located UL001 for an expansion lxml cannot hold (nesting deeper than its limit, a
+    huge attribute, a control character an expression produced), at the source line of the
+    element the error is in."""
+    from urdf_lint.engine.model import element_positions
+    msg = " ".join(str(getattr(e, "msg", None) or e).split())
+    line = (getattr(e, "position", None) or (0, 0))[0]
+    origin = Origin(entry, 1, 1)
+    if line:
+        positions = element_positions(exp.xml.encode("utf-8", "replace"))
+        idx = max((i for i, (ln, _) in enumerate(positions) if ln <= line), default=None)
+        if positions and positions[-1][0] < line and len(positions) < len(exp.origins):
+            idx = len(positions)  # expat stopped at the same character: the next element
+        if idx is not None and idx < len(exp.origins) and exp.origins[idx] is not None:
+            origin = exp.origins[idx]
+    hint = ""
+    if "invalid character" in msg.lower() or "char" in msg.lower():
+        hint = " (an expression produced a character XML cannot hold)"
+    elif "depth" in msg.lower():
+        hint = " (elements nested deeper than 256 levels)"
+    elif "limit" in msg.lower():
+        hint = " (a text or attribute longer than 10 MB)"
+    return Problem.at(ul001_xml_syntax.CODE, f"the expanded URDF is not valid XML: {msg}{hint}",
+                      origin)
+
+
+def _record_reads(out: ModelReport) -> None:
+    """Digests of the inputs not recorded at parse time (YAML, meshes, textures), taken here,
+    in the worker, right after it used them (see urdf_lint/run/cache.py)."""
+    from urdf_lint.core.hashing import file_record
+    for d in out.deps:
+        if d not in out.digests:
+            rec = file_record(d)
+            if rec is not None:
+                out.digests[d] = rec
+
+
+def lint_model(job: LintJob, settings: LintSettings):
+    """(ModelReport, Model or None, Context) for one job."""
+    report, model, ctx = _lint_model(job, settings)
+    # the digests of every input not recorded at parse time, here in the worker, on every
+    # return path: the parent never hashes inputs again when it writes the cache
+    _record_reads(report)
+    if job.kind != "expand":
+        from urdf_lint.engine.suppress import with_directives
+        # which sources hold suppression comments: the parent parses only those, also when
+        # the result comes from the cache (a warm run reads no source file)
+        report.directive_files = with_directives(report.deps)
+    return report, model, ctx
+
+
+def _lint_model(job: LintJob, settings: LintSettings):
+    from urdf_lint.discovery.packages import from_settings
+    out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
+    ctx = Context({}, settings.mesh_cache_dir)
+    resolver = from_settings(settings.resolver)
+    if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
+        _expand_only(job, settings, resolver, out)
+        return out, None, ctx
+    from urdf_lint.meshes import resolve as meshes
+    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts
+    meshes.set_confinement(resolver.is_inside, settings.mesh_cache_dir)
+    model = _load(job, settings, resolver, out)
+    if model is None:
+        return out, None, ctx
+    problems = out.problems
+    if model.root.tag != "robot":
+        problems.append(Problem.at(ul006_not_a_robot.CODE,
+                                   f"root element is <{model.root.tag}>, not <robot>",
+                                   model.origin(model.root)))
+        out.status = Status.FAILED
+        return out, None, ctx
+    if not model.top_links():
+        problems.append(Problem.at(ul006_not_a_robot.CODE,
+                                   "robot has no <link>: a URDF needs at least one link",
+                                   model.origin(model.root)))
+
+    from urdf_lint.engine.registry import run_rules
+    fixer = None
+    for rule, el, msg, sev, req, cause, table in run_rules(
+            "model", settings.selected, settings.options, model, ctx, out.internal,
+            f" on {job.entry}", with_fix=True, with_table=True):
+        fix = None
+        from urdf_lint.fix.fixes import Fixer
+        fixer = fixer or Fixer(model)
+        if req is not None:
+            fix = fixer.fix(el, req)
+        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
+                                      if req is not None and req.kind == "set" else ())
+        p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
+                       consumers=table, value_from=value_from)
+        if cause is not None:   # one finding per root cause, this problem one instance of it
+            p = p.replace(code=cause.code, message=cause.message, detail=msg, group=cause.key)
+        problems.append(p)
+
+    out.deps, out.missing = _mesh_deps(model, ctx, out.deps)
+    out.name = model.name
+    o = model.origin(model.root)
+    out.name_origin = Origin(o.file, o.line, o.col)
+    out.links = len(model.top_links())
+    out.joints = len(model.top_joints())
+    out.meshes = len(list(model.root.iter("mesh")))
+    return out, model, ctx
+
+
+def _mesh_deps(model, ctx, deps):
+    """(deps + every mesh / texture the model points at that resolved inside the roots,
+    the ones that were looked for and are missing)."""
+    from urdf_lint.meshes import resolve as meshes
+    mesh_deps, missing = [], []
+    for m in list(model.root.iter("mesh")) + list(model.root.iter("texture")):
+        uri = m.get("filename")
+        if uri:
+            ref = ctx.mesh_ref(model, uri)
+            if ref.path and ref.status is meshes.MeshStatus.OK:
+                mesh_deps.append(ref.path)
+                for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
+                    if model.resolver is None or model.resolver.is_inside(t):
+                        # references outside the roots are never deps
+                        (mesh_deps if os.path.exists(t) else missing).append(t)
+            elif ref.path and ref.status is meshes.MeshStatus.NOT_FOUND:
+                missing.append(ref.path)
+    return list(dict.fromkeys(list(deps) + mesh_deps)), sorted(set(missing))
+
+
+def run_job(job: LintJob, settings: LintSettings) -> ModelReport:
+    """Lint one job in process (no rendering)."""
+    return lint_model(job, settings)[0]

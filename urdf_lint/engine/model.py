@@ -1,0 +1,180 @@
+"""The expanded robot: an lxml tree whose every element knows its xacro origin."""
+from __future__ import annotations
+
+import os
+import xml.parsers.expat
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from urdf_lint.core.findings import Problem
+from urdf_lint.core.locations import Origin
+from urdf_lint.rules import ul001_xml_syntax as xml_syntax
+
+# Strict and inert: no entities resolved, no DTD loaded, nothing fetched.
+def safe_parser(recover: bool = False) -> etree.XMLParser:
+    return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                           huge_tree=False, recover=recover, remove_comments=False)
+
+
+def element_positions(data: bytes) -> list[tuple[int, int]]:
+    """(line, col) of every start tag, in document order (namespace-unaware, so it works on
+    documents with undeclared prefixes)."""
+    out: list[tuple[int, int]] = []
+    p = xml.parsers.expat.ParserCreate()
+    p.StartElementHandler = lambda name, attrs: out.append(
+        (p.CurrentLineNumber, p.CurrentColumnNumber + 1))
+    p.EntityDeclHandler = _refuse_entities
+    try:
+        p.Parse(data, True)
+    except Exception:
+        pass
+    return out
+
+
+def _refuse_entities(*_):
+    raise ValueError("entity declarations are refused")
+
+
+@dataclass
+class Model:
+    """One expanded robot: the lxml tree, the source origin of every element, the files read,
+    and indexes of its links and joints."""
+    entry: str                       # the entry file (absolute)
+    args: dict
+    root: etree._Element             # <robot>
+    origins: dict                    # lxml element -> Origin
+    deps: list                       # files read while expanding (absolute)
+    resolver: object = None          # PackageResolver
+    links: dict = field(default_factory=dict)
+    joints: dict = field(default_factory=dict)
+    materials: dict = field(default_factory=dict)   # top-level <material name=...>
+    mesh_base: str | None = None     # config: where relative mesh paths start (default: entry's)
+
+    def __post_init__(self):
+        for el in self.root:
+            if not isinstance(el.tag, str):
+                continue
+            name = el.get("name")
+            if el.tag == "link" and name is not None:
+                self.links.setdefault(name, el)
+            elif el.tag == "joint" and name is not None:
+                self.joints.setdefault(name, el)
+            elif el.tag == "material" and name is not None:
+                self.materials.setdefault(name, el)
+
+    # -- locations ---------------------------------------------------------------------------
+    def origin(self, el) -> Origin:
+        while el is not None:
+            o = self.origins.get(el)
+            if o is not None:
+                return o
+            el = el.getparent()
+        return Origin(self.entry, 1, 1, ())
+
+    @property
+    def name(self) -> str:
+        return self.root.get("name", "")
+
+    @property
+    def base_dir(self) -> str:
+        return self.mesh_base or os.path.dirname(self.entry)
+
+    def iter(self, tag: str):
+        return self.root.iter(tag)
+
+    def children(self, el, tag):
+        return [c for c in el if c.tag == tag]
+
+    def parents_of_links(self) -> dict:
+        """child link name -> list of joints that name it as child."""
+        out: dict = {}
+        for j in self.root.iter("joint"):
+            if j.getparent() is not self.root:
+                continue
+            c = j.find("child")
+            if c is not None and c.get("link") is not None:
+                out.setdefault(c.get("link"), []).append(j)
+        return out
+
+    def top_joints(self):
+        return [j for j in self.root if j.tag == "joint"]
+
+    def top_links(self):
+        return [lk for lk in self.root if lk.tag == "link"]
+
+
+def model_from_xml(entry: str, args: dict, xml_text: str, origins, deps: list,
+                   resolver=None) -> Model:
+    """The Model of an expansion's output; ``origins`` is its source map (one origin per
+    element, document order). Element and origin counts must agree (else ``ValueError``)."""
+    from urdf_lint.expansion.sourcemap import as_source_map
+    root = etree.fromstring(xml_text.encode("utf-8"), safe_parser())
+    omap = as_source_map(origins).align(root.iter(tag=etree.Element))
+    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver)
+
+
+# the XML problems tinyxml-based consumers (urdfdom, MuJoCo, Pinocchio, PyBullet, Drake) load
+# and the strict Python parsers reject (measured: /work/shared/notes/consumer-facts.md)
+LENIENT = {"*": "warning", "python": "error"}
+LENIENT_WHY = ("; urdfdom and the C++ consumers load it, the Python parsers (urdf_parser_py, "
+               "urchin) reject it; the rest of the file is still linted")
+
+
+def _blank_declaration(data: bytes) -> bytes | None:
+    """``data`` with its XML declaration blanked out (lines and columns kept), or None when it
+    has none."""
+    head = data.lstrip()
+    if not head.startswith(b"<?xml"):
+        return None
+    start = data.find(b"<?xml")
+    end = data.find(b"?>", start)
+    if end < 0:
+        return None
+    decl = data[start:end + 2]
+    return data[:start] + bytes(b if b in b"\r\n" else 32 for b in decl) + data[end + 2:]
+
+
+def parse_urdf_bytes(entry: str, data: bytes):
+    """Parse a plain URDF. Returns (root or None, origins dict, [Problem] or None).
+
+    A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) or has
+    a malformed XML declaration (``<?xml verison=``) is reported (each problem once: an error
+    for the Python parsers, a warning for the consumers that load it, :data:`LENIENT`), then
+    read with recovery so that the rest of the model is still linted.
+    """
+    errors: list[Problem] = []
+    root = None
+    text = data
+    for _ in range(3):
+        try:
+            root = etree.fromstring(text, safe_parser())
+            break
+        except etree.XMLSyntaxError as e:
+            line, col = (e.position if e.position else (1, 1))
+            msg = " ".join(e.msg.split())
+            low = msg.lower()
+            blanked = _blank_declaration(text) if "declaration" in low else None
+            lenient = blanked is not None or "namespace" in low or "prefix" in low
+            errors.append(Problem.at(xml_syntax.CODE, f"XML syntax error: {msg}"
+                                     + (LENIENT_WHY if lenient else ""),
+                                     (entry, line, max(col, 1)),
+                                     consumers=LENIENT if lenient else None))
+            if blanked is not None:
+                text = blanked      # then look for a further problem past the declaration
+                continue
+            if lenient:
+                try:
+                    root = etree.fromstring(text, safe_parser(recover=True))
+                except etree.XMLSyntaxError:
+                    root = None
+            break   # only recover from namespace/declaration problems; others stop here
+    origins = {}
+    if root is not None:
+        positions = element_positions(text)
+        # expat stops at the first error (a recovered document, a refused entity declaration),
+        # so the positions may cover only a prefix of the elements: those keep theirs, the rest
+        # fall back to their parent's origin (Model.origin)
+        for el, (line, col) in zip(root.iter(tag=etree.Element), positions, strict=False):
+            origins[el] = Origin(entry, line, col, ())
+    return root, origins, (errors or None)

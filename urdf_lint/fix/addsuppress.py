@@ -1,0 +1,67 @@
+"""``urdf-lint check --add-suppressions``: a ``<!-- urdf-lint: disable-next CODES -->`` line
+above the source line of every current finding (like ruff's ``--add-noqa``), to adopt the
+linter on a large repository in one commit.
+
+The comment takes the indentation and the line ending of the line it precedes; the findings of
+one line share one comment. Nothing is written above an XML declaration, into a file that is
+not XML (a YAML file), or for an unused suppression (UL009: remove that comment instead).
+"""
+from __future__ import annotations
+
+from urdf_lint.core import fsbound
+from urdf_lint.rules import ul009_unused_suppression as unused_suppression
+from urdf_lint.fix.sourceedit import Edit, apply_edits, inside, line_offset
+
+
+def suppression_edits(findings) -> tuple[dict, list]:
+    """({file: [Edit]}, [findings left alone])."""
+    by_line: dict = {}
+    skipped = []
+    for f in findings:
+        if f.code == unused_suppression.CODE or not f.file.endswith((".xacro", ".urdf", ".xml")):
+            skipped.append(f)
+            continue
+        by_line.setdefault((f.file, f.line), []).append(f)
+    edits: dict = {}
+    cache: dict = {}
+    for (file, line), fs in sorted(by_line.items()):
+        if file not in cache:
+            try:
+                cache[file] = fsbound.read_bytes(file)
+            except OSError:
+                skipped.extend(fs)
+                continue
+        data = cache[file]
+        start = line_offset(data, line)
+        if start is None:
+            skipped.extend(fs)
+            continue
+        end = data.find(b"\n", start)
+        text = data[start:end if end >= 0 else len(data)]
+        if b"<?xml" in text or b"<!DOCTYPE" in text:
+            skipped.extend(fs)
+            continue
+        indent = text[:len(text) - len(text.lstrip(b" \t"))].decode("utf-8")
+        eol = "\r\n" if text.endswith(b"\r") else "\n"
+        codes = ", ".join(dict.fromkeys(sorted(f.code for f in fs)))
+        edits.setdefault(file, []).append(
+            Edit(file, start, start, f"{indent}<!-- urdf-lint: disable-next {codes} -->{eol}"))
+    return edits, skipped
+
+
+def add_suppressions(findings, paths=None) -> tuple[int, list, list]:
+    """Write the comments; (comments written, files changed, findings left alone). With
+    ``paths``, files outside them (another package, an installed one) are left alone."""
+    mine: list = []
+    outside: list = []
+    for f in findings:
+        (mine if paths is None or inside(f.file, paths) else outside).append(f)
+    findings = mine
+    edits, skipped = suppression_edits(findings)
+    skipped += outside
+    written = 0
+    for file, es in sorted(edits.items()):
+        data = fsbound.read_bytes(file)
+        fsbound.rewrite(file, apply_edits(data, es), paths if paths is not None else [file])
+        written += len(es)
+    return written, sorted(edits), skipped

@@ -1,0 +1,90 @@
+"""The ``check --fix`` / ``--diff`` / ``--add-suppressions`` side of the command line."""
+from __future__ import annotations
+
+import sys
+
+from urdf_lint.cli.output import write_findings
+from urdf_lint.core.emit import report_internal, say
+from urdf_lint.core.errors import UsageError
+
+
+def _summary(outcome) -> list[str]:
+    """What ``--fix`` did, one message per line (each written through :func:`say`)."""
+    from urdf_lint.core.locations import display_path
+    lines = []
+    for p, reason in outcome.refused:
+        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
+                     f"{reason}")
+    for p, reason in outcome.rolled_back:
+        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
+                     f"{reason}")
+    n = len(outcome.applied)
+    files = len(outcome.changed_files)
+    remaining = len(outcome.result.findings)
+    lines.append(f"Fixed {n} finding{'s' if n != 1 else ''} in {files} "
+                 f"file{'s' if files != 1 else ''} ({remaining} remaining"
+                 + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
+                    else "")
+                 + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")
+                 + ").")
+    return lines
+
+
+def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
+    from urdf_lint.fix.addsuppress import add_suppressions
+    from urdf_lint.core.locations import display_path
+    from urdf_lint.run.pipeline import exit_code, run_check
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    if result.internal:
+        report_internal(result.internal)
+        return 2
+    n, files, _ = add_suppressions(result.findings, args.paths)
+    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    report_internal(result.internal)
+    if result.findings:
+        write_findings(args, cfg, result, out, color_mode, resolver.roots)
+    say(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
+        f"file{'s' if len(files) != 1 else ''}")
+    for f in files:
+        say(f"  {display_path(f)}")
+    return exit_code(result, cfg.fail_on)
+
+
+def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
+    from urdf_lint.fix.run import run_fix
+    from urdf_lint.run.pipeline import exit_code
+    if render_dir:
+        raise UsageError("--fix/--diff/--add-suppressions cannot be combined with --render")
+    if affected_by is not None:
+        raise UsageError("--fix/--diff/--add-suppressions lint every model (a fix must be right "
+                         "for all of them); drop --changed-since")
+    if args.write_baseline:
+        raise UsageError("--fix/--diff cannot be combined with --write-baseline")
+    if args.add_suppressions:
+        return _add_suppressions(args, cfg, resolver, out, color_mode)
+    memo = None
+    if not getattr(args, "no_cache", False):
+        from urdf_lint.run.cache import Cache
+        from urdf_lint.fix.memo import FixMemo
+        cache = Cache.for_paths(args.paths, cfg)
+        memo = FixMemo(cache) if not cache.refused else None
+    outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
+                      unsafe=args.unsafe_fixes, diff_only=args.diff, memo=memo)
+    report_internal(outcome.result.internal)
+    if args.diff:
+        sys.stdout.write(outcome.diff)
+        n = len(outcome.applied)
+        say(f"Would fix {n} finding{'s' if n != 1 else ''} in "
+            f"{len(outcome.changed_files)} file(s).")
+        if outcome.result.internal:
+            return 2
+        return 1 if outcome.diff else 0
+    write_findings(args, cfg, outcome.result, out, color_mode, resolver.roots)
+    for line in _summary(outcome):   # also with -q: what --fix did to the sources
+        say(line)
+    if args.exit_zero:
+        return 2 if outcome.result.internal else 0
+    code = exit_code(outcome.result, cfg.fail_on)
+    if code == 0 and getattr(args, "exit_non_zero_on_fix", False) and outcome.changed_files:
+        return 1
+    return code

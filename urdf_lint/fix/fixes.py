@@ -1,0 +1,671 @@
+"""Fixes written back into the xacro source.
+
+A rule that knows the right value yields ``(element, message, request)``, where the request
+(:func:`set_attrs`) says which attributes of the *expanded* element should get which values.
+:func:`resolve` (run where the model is, in the worker) turns it into a :class:`Fix`: byte
+edits of the literal that produced each value, found from the element's origin by tokenising
+the start tag in the raw source (:mod:`urdf_lint.fix.sourceedit`):
+
+* a literal in the element itself is edited in place;
+* ``${name}`` inside a macro, where the innermost call passes ``name=...``: the call's argument;
+* ``${name}`` naming a ``xacro:property`` defined exactly once in the files the model read;
+* ``${var['key']...}`` / ``${var.key}`` where ``var`` is a property set by ``load_yaml('f')``:
+  the YAML scalar;
+* anything else (an expression, ``$(arg)``, a property defined twice) is refused with "not
+  fixable automatically: the value comes from the expression at FILE:LINE".
+
+The run then checks that a fix is right for every model and arg set that uses the edited line
+(:mod:`urdf_lint.fix.run`).
+"""
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+
+from urdf_lint.fix.sourceedit import Attr, Edit, escape, inside, iter_start_tags, line_col, start_tag_at
+
+_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
+_YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|\d+)\s*\]"
+                       r"|\.[A-Za-z_]\w*)+)\s*\}")
+_KEY = re.compile(r"\[\s*(?:'([^']*)'|\"([^\"]*)\"|(\d+))\s*\]|\.([A-Za-z_]\w*)")
+_LOAD_YAML = re.compile(r"\$\{\s*(?:xacro\.)?load_yaml\(\s*(?:'([^']*)'|\"([^\"]*)\")\s*\)\s*\}")
+NOT_FIXABLE = "not fixable automatically"
+
+
+@dataclass(frozen=True)
+class Request:
+    """What a rule wants done to the expanded element: ``kind`` "set" (``changes``: new values
+    of attributes), "rename_attr" (``changes``: ((old, new),)) or "rename_tag" (((old, new),))."""
+    changes: tuple[tuple[str, str], ...]
+    description: str
+    safe: bool = True
+    kind: str = "set"
+    on_parent: bool = False      # the fix edits the parent of the element reported
+    elements: tuple = field(default=(), compare=False)   # more elements the fix edits
+
+
+def set_attrs(changes: dict, description: str, safe: bool = True,
+              on_parent: bool = False) -> Request:
+    return Request(tuple(changes.items()), description, safe, "set", on_parent)
+
+
+def drop_attrs(names, description: str, safe: bool = False) -> Request:
+    """Remove attributes (with the blank before each) from the element's start tag."""
+    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+
+
+def named_material(elements, name: str, rgba: str, define: bool) -> Request:
+    """Unsafe: replace the inline ``<material>`` elements by ``<material name="name"/>`` and
+    (``define``) define it once, after the ``<robot>`` tag of the first one's file."""
+    return Request((("name", name), ("rgba", rgba), ("define", "1" if define else "")),
+                   f"use one named material '{name}' for the inline colour {rgba}", False,
+                   "named_material", False, tuple(elements))
+
+
+def new_root(description: str, suffix: str = "_root") -> Request:
+    """Unsafe: a massless root link joined by a fixed joint, inserted before the link that
+    the reported element (its ``<inertial>``) belongs to."""
+    return Request((("suffix", suffix),), description, False, "new_root", True)
+
+
+def rename_attr(old: str, new: str, safe: bool = True) -> Request:
+    return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
+
+
+def add_dollar(attr: str, names, safe: bool = True) -> Request:
+    """Turn the literal ``{name}`` of each of ``names`` in ``attr`` into ``${name}``."""
+    return Request(((attr, ",".join(names)),), "add the missing '$' of "
+                   + ", ".join("${" + n + "}" for n in names), safe, "add_dollar")
+
+
+def names_in_scope(model) -> set:
+    """The xacro property and macro parameter names defined in the files the model read."""
+    src = _Sources(model)
+    out: set = set()
+    for path in src.xacro_files():
+        try:
+            d = src.get(path)
+        except (OSError, _Refuse):
+            continue
+        for t in iter_start_tags(d, "property"):
+            n = t.attr("name")
+            if n is not None:
+                out.add(n.value)
+        for t in iter_start_tags(d, "macro"):
+            p = t.attr("params")
+            for par in (p.value.split() if p is not None else ()):
+                out.add(par.lstrip("*").split(":=")[0].split("=")[0].lstrip("^"))
+    return out
+
+
+def rename_tag(old: str, new: str, safe: bool = True) -> Request:
+    return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
+
+
+@dataclass(frozen=True)
+class Fix:
+    """A fix of one finding: byte edits of source files, or why there is none."""
+    description: str
+    safe: bool = True
+    edits: tuple[Edit, ...] = ()
+    refused: str = ""                                  # why it is not applied automatically
+    # what the fix does to the expanded robot of the model that found it, for verification:
+    # ((kind, element index, attr | old name, value | new name), ...); () for a structural fix
+    expect: tuple = field(default=(), compare=False)
+
+    @property
+    def applicable(self) -> bool:
+        return bool(self.edits) and not self.refused
+
+    def to_dict(self) -> dict:
+        from urdf_lint.core.locations import display_path
+        d: dict = {"description": self.description,
+             "applicability": "safe" if self.safe else "unsafe"}
+        if self.refused:
+            d["refused"] = self.refused
+        else:
+            d["edits"] = [dict(e.to_dict(), file=display_path(e.file)) for e in self.edits]
+        return d
+
+    def to_record(self) -> dict:
+        return {"description": self.description, "safe": self.safe, "refused": self.refused,
+                "edits": [e.to_dict() for e in self.edits],
+                "expect": [list(x) for x in self.expect]}
+
+    @classmethod
+    def from_record(cls, d: dict) -> "Fix":
+        return cls(d["description"], d["safe"], tuple(Edit(**e) for e in d["edits"]),
+                   d.get("refused", ""), tuple(tuple(x) for x in d.get("expect", ())))
+
+
+def combine(a: Fix, b: Fix, label_a: str = "", label_b: str = "") -> Fix:
+    """One fix for a finding reported by several models or macro instances: the union of
+    their edits when they agree, refused when they edit the same bytes differently."""
+    if a.refused:
+        return a
+    if b.refused:
+        return b
+    if a.edits == b.edits:
+        return a
+    by_range = {(e.file, e.start, e.end): e.text for e in a.edits}
+    for e in b.edits:
+        t = by_range.get((e.file, e.start, e.end))
+        if t is not None and t != e.text:
+            who = f" ({label_a} and {label_b})" if label_a and label_b else ""
+            return Fix(a.description, a.safe, (), f"{NOT_FIXABLE}: the models that use this "
+                       f"line need different values{who}")
+    edits = tuple(sorted(set(a.edits) | set(b.edits), key=lambda e: (e.file, e.start)))
+    return Fix(a.description, a.safe and b.safe, edits, "")
+
+
+class _Refuse(Exception):
+    pass
+
+
+class _Sources:
+    """The raw bytes of the files a model read (nothing else is read)."""
+
+    def __init__(self, model):
+        self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
+        self.data: dict = {}
+
+    def get(self, path: str) -> bytes:
+        real = os.path.realpath(path)
+        if real not in self.allowed:
+            raise _Refuse(f"{NOT_FIXABLE}: {_where(path)} was not read by the model")
+        if real not in self.data:
+            from urdf_lint.core import fsbound
+            self.data[real] = fsbound.read_bytes(real)
+        return self.data[real]
+
+    def xacro_files(self):
+        return [p for p in sorted(self.allowed) if p.endswith((".xacro", ".urdf", ".xml"))]
+
+
+def _where(path, line=None):
+    from urdf_lint.core.locations import display_path
+    return f"{display_path(path)}:{line}" if line else display_path(path)
+
+
+def _expression(path, data, off):
+    return _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                   f"{_where(path, line_col(data, off)[0])}")
+
+
+def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
+    """The :class:`Fix` of ``req`` on ``el`` (refused, with the reason, when it cannot be
+    located or traced to one literal)."""
+    src = src or _Sources(model)
+    if req.on_parent:
+        el = el.getparent()
+    origin = model.origins.get(el)
+    try:
+        if origin is None:
+            raise _Refuse(f"{NOT_FIXABLE}: the element has no source location")
+        data = src.get(origin.file)
+        tag = start_tag_at(data, origin.line, origin.col)
+        if tag is None or tag.name.rpartition(":")[2] != el.tag:
+            raise _Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
+                          f"{_where(origin.file, origin.line)}")
+        if req.kind == "add_dollar":
+            return Fix(req.description, req.safe, _add_dollar(origin, tag, req), "", ())
+        if req.kind == "drop_attrs":
+            return Fix(req.description, req.safe, _drop(origin, data, tag, req), "", ())
+        if req.kind == "named_material":
+            return Fix(req.description, req.safe, _named_material(model, src, req), "", ())
+        if req.kind == "new_root":
+            return Fix(req.description, req.safe, _new_root(model, el, origin, data, tag, req),
+                       "", ())
+        if req.kind != "set":
+            return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
+        edits = []
+        for attr, new in req.changes:
+            a = _written(tag, attr, origin)
+            file, lit = _trace(src, origin.file, data, a, tuple(origin.chain), 0)
+            if not _same(lit.value, el.get(attr)):
+                raise _Refuse(f"{NOT_FIXABLE}: the literal at {_where(file)} "
+                              f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")
+            edits.append(Edit(file, lit.value_start, lit.value_end, escape(new, lit.quote))
+                         if isinstance(lit, Attr) else
+                         Edit(file, lit.value_start, lit.value_end, _yaml_text(new, lit)))
+        if len({(e.file, e.start) for e in edits}) != len(edits):
+            raise _Refuse(f"{NOT_FIXABLE}: two of the values come from the same literal")
+        return Fix(req.description, req.safe, tuple(edits), "", ())
+    except _Refuse as r:
+        return Fix(req.description, req.safe, (), str(r))
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
+
+
+def _written(tag, name: str, origin):
+    """The attribute ``name`` of the start tag at ``origin`` (refused when not written there)."""
+    a = tag.attr(name)
+    if a is None:
+        raise _Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
+                      f"{_where(origin.file, origin.line)}")
+    return a
+
+
+def _add_dollar(origin, tag, req) -> tuple:
+    ((attr, names),) = req.changes
+    a = _written(tag, attr, origin)
+    raw = a.raw
+    for n in names.split(","):
+        raw, k = re.subn(r"(?<![$}]){" + re.escape(n) + "}", "${" + n + "}", raw)
+        if not k:
+            raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
+                          f"{_where(origin.file, origin.line)}")
+    return (Edit(origin.file, a.value_start, a.value_end, raw),)
+
+
+def _named_material(model, src, req) -> tuple:
+    from urdf_lint.fix.sourceedit import end_tag_of, parse_start_tag
+    opts = dict(req.changes)
+    name, rgba = opts["name"], opts["rgba"]
+    edits = []
+    first = None
+    for el in req.elements:
+        o = model.origins.get(el)
+        if o is None or o.chain:
+            raise _Refuse(f"{NOT_FIXABLE}: an inline colour is written in a macro "
+                          f"({_where(o.file, o.line) if o else '?'}) that may make other colours")
+        data = src.get(o.file)
+        tag = start_tag_at(data, o.line, o.col)
+        if tag is None or tag.name.rpartition(":")[2] != "material" or tag.self_closing:
+            raise _Refuse(f"{NOT_FIXABLE}: <material> not found at {_where(o.file, o.line)}")
+        end = end_tag_of(data, tag)
+        if end is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no </material> for {_where(o.file, o.line)}")
+        inner = data[tag.end:end]
+        c = inner.find(b"<color")
+        ctag = parse_start_tag(data, tag.end + c) if c >= 0 else None
+        rgba_attr = ctag.attr("rgba") if ctag is not None else None
+        if rgba_attr is None or "$" in rgba_attr.value \
+                or b"<texture" in inner:
+            raise _Refuse(f"{NOT_FIXABLE}: the colour at {_where(o.file, o.line)} is not a "
+                          "literal rgba")
+        q = tag.attrs[0].quote if tag.attrs else '"'
+        edits.append(Edit(o.file, tag.start, data.index(b">", end) + 1,
+                          f"<material name={q}{name}{q}/>"))
+        first = first or (o.file, data, q)
+    if opts["define"] and first is not None:
+        file, data, q = first
+        robot = next(iter_start_tags(data, "robot"), None)
+        if robot is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no <robot> in {_where(file)}")
+        nl = data.find(b"\n", robot.end)
+        eol = "\r\n" if nl > 0 and data[nl - 1:nl] == b"\r" else "\n"
+        nxt = data[nl + 1:data.find(b"\n", nl + 1)] if nl >= 0 else b""
+        indent = nxt[:len(nxt) - len(nxt.lstrip(b" \t"))].decode("utf-8") or "  "
+        edits.append(Edit(file, robot.end, robot.end,
+                          f"{eol}{indent}<material name={q}{name}{q}><color rgba={q}{rgba}{q}/>"
+                          "</material>"))
+    return tuple(edits)
+
+
+def _drop(origin, data, tag, req) -> tuple:
+    edits = []
+    for name, _ in req.changes:
+        a = _written(tag, name, origin)
+        start = a.name_start
+        while start > 0 and data[start - 1:start] in (b" ", b"\t"):
+            start -= 1
+        if data[start - 1:start] in (b"\n", b"\r"):   # first on its line: keep the indentation
+            start = a.name_start
+            end = a.value_end + 1
+            while data[end:end + 1] in (b" ", b"\t"):
+                end += 1
+        else:
+            end = a.value_end + 1
+        edits.append(Edit(origin.file, start, end, ""))
+    return tuple(edits)
+
+
+def _new_root(model, link, origin, data, tag, req) -> tuple:
+    ((_, suffix),) = req.changes
+    if origin.chain:
+        raise _Refuse(f"{NOT_FIXABLE}: the root link is written in a macro "
+                      f"({_where(origin.file, origin.line)}) that may make other links too")
+    name = tag.attr("name")
+    if name is None:
+        raise _Refuse(f"{NOT_FIXABLE}: the link's name is not written at "
+                      f"{_where(origin.file, origin.line)}")
+    new = link.get("name") + suffix
+    if new in model.links or new + "_joint" in model.joints:
+        raise _Refuse(f"{NOT_FIXABLE}: '{new}' already exists")
+    raw = name.raw
+    q = name.quote
+    line_start = data.rfind(b"\n", 0, tag.start) + 1
+    before = data[line_start:tag.start]
+    eol = "\r\n" if data.find(b"\r\n", tag.start) == data.find(b"\n", tag.start) - 1 else "\n"
+    block = (f"<link name={q}{raw}{suffix}{q}/>", f"<joint name={q}{raw}{suffix}_joint{q} "
+             f"type={q}fixed{q}><parent link={q}{raw}{suffix}{q}/><child link={q}{raw}{q}/>"
+             "</joint>")
+    if not before.strip():
+        indent = before.decode("utf-8")
+        text = "".join(f"{indent}{b}{eol}" for b in block)
+        return (Edit(origin.file, line_start, line_start, text),)
+    return (Edit(origin.file, tag.start, tag.start, "".join(block)),)
+
+
+def _rename(src, origin, data, tag, req) -> tuple:
+    """The edits of a rename: names are always written literally in the start tag (and end
+    tag) at the element's origin."""
+    from urdf_lint.fix.sourceedit import end_tag_of
+    ((old, new),) = req.changes
+    if req.kind == "rename_attr":
+        a = tag.attr(old)
+        if a is None:
+            raise _Refuse(f"{NOT_FIXABLE}: attribute '{old}' is not written at "
+                          f"{_where(origin.file, origin.line)}")
+        return (Edit(origin.file, a.name_start, a.name_start + len(old.encode()), new),)
+    start = tag.name_end - len(old.encode())
+    if tag.name != old:
+        raise _Refuse(f"{NOT_FIXABLE}: <{tag.name}> at {_where(origin.file, origin.line)}")
+    edits = [Edit(origin.file, start, tag.name_end, new)]
+    if not tag.self_closing:
+        end = end_tag_of(data, tag)
+        if end is None:
+            raise _Refuse(f"{NOT_FIXABLE}: no end tag for <{old}> at "
+                          f"{_where(origin.file, origin.line)}")
+        edits.append(Edit(origin.file, end + 2, end + 2 + len(old.encode()), new))
+    return tuple(edits)
+
+
+def _same(literal: str, expanded) -> bool:
+    if expanded is None:
+        return False
+    if literal.strip() == expanded.strip():
+        return True
+    a, b = literal.split(), expanded.split()
+    try:
+        return len(a) == len(b) and all(float(x) == float(y) for x, y in zip(a, b, strict=True))
+    except ValueError:
+        return False
+
+
+def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
+    """(file, the literal Attr or YAML scalar) that produced attribute ``a``."""
+    v = a.value
+    if "$" not in v:
+        return file, a
+    if depth > 8:
+        raise _expression(file, data, a.value_start)
+    m = _REF.fullmatch(v.strip())
+    if m:
+        name = m.group(1)
+        if chain:   # a macro parameter passed by the innermost call
+            cfile, cline, ccol = chain[-1][:3]
+            cdata = src.get(cfile)
+            call = start_tag_at(cdata, cline, ccol)
+            if call is not None:
+                p = call.attr(name)
+                if p is not None:
+                    return _trace(src, cfile, cdata, p, chain[:-1], depth + 1)
+        return _property(src, name, file, data, a, depth)
+    m = _YAML_REF.fullmatch(v.strip())
+    while m and chain:   # ${cfg['lower']} in a macro whose call passes cfg="${yaml['arm']}"
+        cfile, cline, ccol = chain[-1][:3]
+        cdata = src.get(cfile)
+        call = start_tag_at(cdata, cline, ccol)
+        p = call.attr(m.group(1)) if call is not None else None
+        if p is None:    # not passed by the call: a property (as for ${name} above)
+            break
+        inner = re.fullmatch(r"\$\{(.*)\}", p.value.strip(), re.S)
+        if inner is None:
+            raise _expression(file, data, a.value_start)
+        m = _YAML_REF.fullmatch("${" + inner.group(1).strip() + m.group(2) + "}")
+        file, data, a, chain = cfile, cdata, p, chain[:-1]
+    if m:
+        return _yaml_scalar(src, m, file, data, a)
+    raise _expression(file, data, a.value_start)
+
+
+def _property_defs(src, name):
+    out = []
+    for path in src.xacro_files():
+        d = src.get(path)
+        if name.encode() not in d:
+            continue
+        for t in iter_start_tags(d, "property"):
+            n = t.attr("name")
+            if n is not None and n.value == name:
+                out.append((path, d, t))
+    return out
+
+
+def _property(src, name, file, data, a, depth):
+    defs = _property_defs(src, name)
+    if len(defs) != 1:
+        if not defs:
+            raise _expression(file, data, a.value_start)
+        where = ", ".join(_where(p, line_col(d, t.start)[0]) for p, d, t in defs)
+        raise _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                      f"{_where(file, line_col(data, a.value_start)[0])} (property '{name}' "
+                      f"is defined {len(defs)} times: {where})")
+    path, d, t = defs[0]
+    val = t.attr("value")
+    if val is None:
+        raise _Refuse(f"{NOT_FIXABLE}: property '{name}' at {_where(path, line_col(d, t.start)[0])}"
+                      " has no value= literal")
+    return _trace(src, path, d, val, (), depth + 1)
+
+
+@dataclass(frozen=True)
+class YamlScalar:
+    """A scalar value in a YAML file, with its span in the text and its quoting style."""
+    value: str
+    value_start: int
+    value_end: int
+    style: str          # "" (plain), "'" or '"'
+
+
+def _yaml_scalar(src, m, file, data, a):
+    var, keys = m.group(1), [k for k in _KEY.findall(m.group(2))]
+    defs = _property_defs(src, var)
+    if len(defs) != 1:
+        raise _expression(file, data, a.value_start)
+    path, d, t = defs[0]
+    val = t.attr("value")
+    lm = _LOAD_YAML.fullmatch(val.value.strip()) if val is not None else None
+    if lm is None:
+        raise _expression(file, data, a.value_start)
+    ref = lm.group(1) or lm.group(2)
+    fm = re.fullmatch(r"\$\(find [\w-]+\)/(.+)", ref)
+    if fm:   # $(find pkg)/rest: the one YAML file the model read that ends with rest
+        hits = [p for p in src.allowed if p.endswith("/" + fm.group(1))]
+        if len(hits) != 1:
+            raise _expression(path, d, val.value_start)
+        yaml_path = hits[0]
+    elif "$" in ref:
+        raise _expression(path, d, val.value_start)
+    else:
+        yaml_path = os.path.normpath(os.path.join(os.path.dirname(path), ref))
+    ydata = src.get(yaml_path)
+    path_keys = [k[0] or k[1] or k[3] or (int(k[2]) if k[2] else "") for k in keys]
+    node = _yaml_node(ydata, path_keys)
+    if node is None:
+        raise _expression(file, data, a.value_start)
+    return yaml_path, node
+
+
+def _yaml_node(ydata: bytes, keys):
+    import yaml
+    try:
+        root = yaml.compose(ydata.decode("utf-8"), Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return None
+    node = root
+    for k in keys:
+        if isinstance(node, yaml.MappingNode):
+            node = next((v for kn, v in node.value if kn.value == str(k)), None)
+        elif isinstance(node, yaml.SequenceNode) and isinstance(k, int) and k < len(node.value):
+            node = node.value[k]
+        else:
+            return None
+        if node is None:
+            return None
+    if not isinstance(node, yaml.ScalarNode):
+        return None
+    # byte offsets: PyYAML marks count characters
+    text = ydata.decode("utf-8")
+    s = len(text[:node.start_mark.index].encode("utf-8"))
+    e = len(text[:node.end_mark.index].encode("utf-8"))
+    return YamlScalar(node.value, s, e, node.style or "")
+
+
+def _yaml_text(new: str, lit: YamlScalar) -> str:
+    if lit.style == "'":
+        return "'" + new.replace("'", "''") + "'"
+    if lit.style == '"':
+        return '"' + new.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return new
+
+
+class Fixer:
+    """Resolves the fix requests of one model (reads each source file once)."""
+
+    def __init__(self, model):
+        self.model = model
+        self.src = _Sources(model)
+        self._index: dict | None = None
+
+    def index(self, el) -> int:
+        if self._index is None:
+            from lxml import etree
+            self._index = {e: i for i, e in enumerate(self.model.root.iter(tag=etree.Element))}
+        return self._index[el]
+
+    def value_from(self, el, attrs=()) -> tuple:
+        """``(file, line, col)`` of where the value of ``el`` comes from when that is not the
+        element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
+        macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
+        traced, else every attribute written with ``$``; the first that leads elsewhere wins.
+        ``()`` when the value is written at the element or cannot be traced."""
+        origin = self.model.origins.get(el)
+        if origin is None:
+            return ()
+        try:
+            data = self.src.get(origin.file)
+            tag = start_tag_at(data, origin.line, origin.col)
+            if tag is None:
+                return ()
+            written = [a for a in tag.attrs if "$" in a.value] if not attrs else \
+                [a for a in (tag.attr(n) for n in attrs) if a is not None and "$" in a.value]
+            for a in written:
+                try:
+                    file, lit = _trace(self.src, origin.file, data, a, tuple(origin.chain), 0)
+                except _Refuse:
+                    continue
+                fdata = self.src.get(file)
+                line, col = line_col(fdata, lit.value_start)
+                here = {(origin.file, origin.line)} | {(c[0], c[1]) for c in origin.chain}
+                if isinstance(lit, Attr) and (file, line) in here:
+                    continue   # written at the element or at a macro call the chain shows
+                return (file, line, col)
+        except (_Refuse, OSError, UnicodeDecodeError, ValueError):
+            return ()
+        return ()
+
+    def fix(self, el, req: Request) -> Fix:
+        f = resolve(self.model, el, req, self.src)
+        if f.refused:
+            return f
+        i = self.index(el.getparent() if req.on_parent else el)
+        if req.kind == "add_dollar":    # the new value is whatever xacro makes of ${name}
+            return Fix(f.description, f.safe, f.edits, "", (("any", i, req.changes[0][0], ""),))
+        if req.kind == "named_material":   # each inline colour becomes a reference
+            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
+        if req.kind == "new_root":      # structure changes: the findings decide alone
+            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
+        if req.kind == "drop_attrs":
+            return Fix(f.description, f.safe, f.edits, "",
+                       tuple(("drop", i, a, "") for a, _ in req.changes))
+        return Fix(f.description, f.safe, f.edits, "",
+                   tuple((req.kind, i, a, v) for a, v in req.changes))
+
+
+_REMOVABLE = re.compile(rb"<!--\s*urdf-lint:\s*(disable-next|disable-file)\b.*?-->", re.S)
+
+
+def remove_comment(loc) -> Fix | None:
+    """The fix of an unused ``disable-next`` / ``disable-file`` comment at ``loc`` (file, line,
+    col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
+    its ``enable`` would dangle)."""
+    from urdf_lint.fix.sourceedit import offset_of
+    data = _source_bytes(loc[0])
+    if data is None:
+        return None
+    off = offset_of(data, loc[1], loc[2])
+    m = _REMOVABLE.match(data, off) if off is not None else None
+    if m is None:
+        return None
+    start, end = m.start(), m.end()
+    line_start = data.rfind(b"\n", 0, start) + 1
+    nl = data.find(b"\n", end)
+    line_end = len(data) if nl < 0 else nl + 1
+    if not data[line_start:start].strip() and not data[end:line_end].strip():
+        start, end = line_start, line_end        # alone on its line: the whole line goes
+    return Fix("remove the unused suppression comment", True, (Edit(loc[0], start, end, ""),),
+               "", (("none", 0, "", ""),))
+
+
+_SOURCE: list = [None, None]   # ((path, size, mtime), its bytes): one read for all its comments
+
+
+def _source_bytes(path: str) -> bytes | None:
+    """The bytes of ``path``, read once for all the unused comments of one file."""
+    try:
+        st = os.stat(path)
+        key = (path, st.st_size, st.st_mtime_ns)
+        if _SOURCE[0] != key:
+            from urdf_lint.core import fsbound  # a regular file of bounded size (the boundary)
+            _SOURCE[:] = [key, fsbound.read_bytes(path)]
+    except OSError:
+        return None
+    return _SOURCE[1]
+
+
+def inside_paths(findings, paths, generated: dict | None = None) -> list:
+    """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
+    installed package, a dependency elsewhere in the workspace) refused, and those that would
+    edit a generated URDF (:func:`not_in_generated`)."""
+    from urdf_lint.core.locations import display_path
+    out = []
+    real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
+    known: dict = {}   # file -> inside? (once per file, not once per fix)
+    for p in not_in_generated(findings, generated or {}):
+        fx = p.fix
+        if fx is not None and fx.applicable:
+            for e in fx.edits:
+                if e.file not in known:
+                    known[e.file] = inside(e.file, real_paths, resolved=True)
+            outside = [e.file for e in fx.edits if not known[e.file]]
+            if outside:
+                p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                      f"{display_path(outside[0])} is outside the linted paths"))
+        out.append(p)
+    return out
+
+
+def not_in_generated(findings, generated: dict) -> list:
+    """The findings, with the fixes that would edit a generated URDF (``generated``: output ->
+    the xacro it comes from) refused: fixes go to sources only, safe or unsafe."""
+    if not generated:
+        return list(findings)
+    from urdf_lint.core.locations import display_path
+    outputs = {os.path.realpath(k): v for k, v in generated.items()}
+    out = []
+    for p in findings:
+        fx = p.fix
+        made = [e.file for e in fx.edits if os.path.realpath(e.file) in outputs] \
+            if fx is not None and fx.applicable else []
+        if made:
+            src = outputs[os.path.realpath(made[0])]
+            p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
+                                  f"{display_path(made[0])} is generated from "
+                                  f"{display_path(src)}; fix the source and run "
+                                  "urdf-lint generate"))
+        out.append(p)
+    return out

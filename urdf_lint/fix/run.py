@@ -1,0 +1,369 @@
+"""``urdf-lint check --fix``: apply the fixes of a run, verify them, roll back the wrong ones.
+
+1. Lint every model, keeping each expanded robot.
+2. Take the applicable fixes (safe ones; unsafe ones too with ``--unsafe-fixes``); two fixes that
+   edit overlapping bytes: the first one wins, the other waits for the next run.
+3. Write the edited sources (atomically) and lint again in the same run. A fix is rolled back
+   (and reported) when its finding is still there, when a finding appears that was not there
+   before in a model whose files it edited, or when the expanded robot of a model it touches is
+   not exactly the robot before with the fix's attribute values applied: this is what makes a
+   fix right "for every model and arg set that uses that source line" (a macro line or property
+   shared by a model without the finding changes that model, so the fix is refused).
+4. Repeat with the remaining fixes until the run verifies (at most a few rounds).
+"""
+from __future__ import annotations
+
+import difflib
+import os
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from lxml import etree
+
+from urdf_lint.core import fsbound
+from urdf_lint.fix.fixes import inside_paths
+from urdf_lint.fix.sourceedit import apply_edits, line_offset
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.run.pipeline import CheckResult
+
+MAX_ROUNDS = 4
+
+
+@dataclass
+class FixOutcome:
+    """What ``--fix`` did: the fixes written, those rolled back or refused, and the run after."""
+    result: "CheckResult"                            # the CheckResult after fixing
+    applied: list = field(default_factory=list)      # Problems whose fix was written
+    rolled_back: list = field(default_factory=list)  # (Problem, reason)
+    changed_files: list = field(default_factory=list)
+    diff: str = ""
+    refused: list = field(default_factory=list)      # (Problem, reason): never written
+
+
+def _fkey(p):
+    return (p.code, p.file, p.line, p.col, p.message)
+
+
+def _lkey(p, line_maps=None):
+    """A finding's identity across an edit: code, file, line (in the numbering before the
+    edits, through ``line_maps``) and message (columns move when a line is edited)."""
+    m = (line_maps or {}).get(p.file)
+    return (p.code, p.file, m(p.line) if m else p.line, p.message)
+
+
+def line_maps(fixed, originals: dict) -> dict:
+    """{file: new line -> old line} for the edits of ``fixed``: the old line of the first byte
+    of the new line (a line made by an edit maps to where the edit starts)."""
+    out = {}
+    for f, edits in _edits_by_file(fixed).items():
+        old = originals[f]
+        new = apply_edits(old, edits)
+        spans = []            # (new start, new end, old start, old end) of each edit
+        shift = 0
+        for e in sorted(edits, key=lambda e: (e.start, e.end)):
+            n = len(e.text.encode("utf-8"))
+            spans.append((e.start + shift, e.start + shift + n, e.start, e.end))
+            shift += n - (e.end - e.start)
+
+        def back(line, old=old, new=new, spans=spans):
+            x = line_offset(new, line)
+            if x is None:
+                return line
+            total = 0
+            for ns, ne, os_, oe in spans:
+                if x < ns:
+                    break
+                if x < ne:            # inside an edit's new text: where the edit starts
+                    return old.count(b"\n", 0, os_) + 1
+                total += (ne - ns) - (oe - os_)
+            o = x - total
+            return old.count(b"\n", 0, o) + 1
+        out[f] = back
+    return out
+
+
+def candidates(findings, unsafe: bool):
+    """(chosen, deferred, refused): applicable fixes without overlapping edits, in finding
+    order; a fix that overlaps an earlier one waits for the next run (deferred), and two fixes
+    that want different text on the same bytes (one macro line, several models or instances
+    that need different values) are both refused, with the reason."""
+    from urdf_lint.core.locations import display_path
+    chosen: list = []
+    deferred: list = []
+    refused: list = []
+    taken: dict = {}      # file -> [(start, end, text, finding)]
+    for p in findings:
+        fx = p.fix
+        if fx is None or not fx.applicable or (not fx.safe and not unsafe):
+            continue
+        clash, rival = False, None
+        for e in fx.edits:
+            for (s, t, text, q) in taken.get(e.file, ()):
+                if s == e.start and t == e.end:
+                    if text != e.text:
+                        rival = (q, e, text)
+                elif e.start < t and s < e.end:
+                    clash = True
+        if rival is not None:
+            q, e, text = rival
+            line = e.file and f"{display_path(e.file)}"
+            reason = (f"the models or macro calls that use {line} need different values there "
+                      f"({text!r} for {', '.join(q.models) or 'one'}, {e.text!r} for "
+                      f"{', '.join(p.models) or 'another'})")
+            refused.append((p, reason))
+            if q in chosen:
+                chosen.remove(q)
+                refused.append((q, reason))
+            continue
+        if clash:
+            deferred.append(p)
+            continue
+        for e in fx.edits:
+            taken.setdefault(e.file, []).append((e.start, e.end, e.text, p))
+        chosen.append(p)
+    return chosen, deferred, refused
+
+
+def _edits_by_file(fixed) -> dict:
+    """{file: {Edit}} of the fixes of ``fixed`` (an edit two findings share, once)."""
+    per_file: dict = {}
+    for p in fixed:
+        for e in p.fix.edits:
+            per_file.setdefault(e.file, set()).add(e)
+    return per_file
+
+
+def edited_sources(fixed, originals: dict) -> dict:
+    """{file: new bytes} for the fixes of ``fixed`` (each edit once)."""
+    out = {}
+    for f, edits in _edits_by_file(fixed).items():
+        if f not in originals:
+            originals[f] = fsbound.read_bytes(f)
+        out[f] = apply_edits(originals[f], edits)
+    return out
+
+
+def unified_diff(new: dict, originals: dict) -> str:
+    from urdf_lint.core.locations import display_path
+    from urdf_lint.core.escape import escape_text
+    out: list[str] = []
+    for f in sorted(new):
+        if new[f] == originals[f]:
+            continue
+        a = originals[f].decode("utf-8", "replace").splitlines(keepends=True)
+        b = new[f].decode("utf-8", "replace").splitlines(keepends=True)
+        name = escape_text(display_path(f))   # one line: no name adds a line to the patch
+        out.extend(difflib.unified_diff(a, b, f"a/{name}", f"b/{name}"))
+    return "".join(x if x.endswith("\n") else x + "\n\\ No newline at end of file\n"
+                   for x in out)
+
+
+# -- verification --------------------------------------------------------------------------------
+def _tree(report, xml_or_none):
+    if report.kept_model is None:
+        return None
+    xml = report.kept_model.xml if xml_or_none is None else xml_or_none
+    parser = etree.XMLParser(remove_blank_text=True, resolve_entities=False, no_network=True,
+                             load_dtd=False, remove_comments=True)
+    try:
+        if xml is None:
+            return etree.fromstring(fsbound.read_bytes(report.entry), parser)
+        return etree.fromstring(xml.encode("utf-8"), parser)
+    except (OSError, etree.XMLSyntaxError):
+        return None
+
+
+ANY = "\ue000any"   # a private-use marker: "this attribute may take any value"
+
+
+def _values_equal(a, b) -> bool:
+    if a == b or a == ANY:
+        return True
+    if a is None or b is None:
+        return False
+    x, y = a.split(), b.split()
+    try:
+        return len(x) == len(y) and all(abs(float(p) - float(q)) <= 1e-9 * max(1, abs(float(p)))
+                                        for p, q in zip(x, y, strict=True))
+    except ValueError:
+        return False
+
+
+def _same_robot(a, b) -> bool:
+    ea = list(a.iter(tag=etree.Element))
+    eb = list(b.iter(tag=etree.Element))
+    if len(ea) != len(eb):
+        return False
+    for x, y in zip(ea, eb, strict=True):
+        if x.tag != y.tag or set(x.attrib) != set(y.attrib):
+            return False
+        if (x.text or "").strip() != (y.text or "").strip():
+            return False
+        if not all(_values_equal(x.get(k), y.get(k)) for k in x.attrib):
+            return False
+    return True
+
+
+def _snapshot(result) -> dict:
+    """{label: (report, tree)} of the models of a run, with their robots parsed now (a plain
+    .urdf is read from disk, so this runs before anything is written)."""
+    return {r.label: (r, _tree(r, None)) for r in result.models}
+
+
+def verify(before: dict, before_findings, after, fixed, maps=None) -> dict:
+    """{finding key: reason} for the fixes of ``fixed`` that must be rolled back (``maps``:
+    :func:`line_maps` of the edits, to compare findings on lines that moved)."""
+    from urdf_lint.core.locations import display_path
+    bad: dict = {}
+    fixed_keys = {_fkey(p): p for p in fixed}
+
+    def touches(p, report):
+        deps = {os.path.realpath(d) for d in report.deps}
+        return any(os.path.realpath(e.file) in deps for e in p.fix.edits)
+
+    # 1. the finding must be gone
+    after_keys = {_lkey(f, maps) for f in after.findings}
+    for k, p in fixed_keys.items():
+        if _lkey(p) in after_keys:
+            bad[k] = "the fix did not remove its finding"
+    # 2. no finding may appear
+    before_keys = {_lkey(f) for f in before_findings}
+    after_models = {r.label: r for r in after.models}
+    for f in after.findings:
+        if _lkey(f, maps) in before_keys:
+            continue
+        where = f"{display_path(f.file)}:{f.line}"
+        for label in f.models or tuple(before):
+            rep = before.get(label, (None,))[0]
+            for k, p in fixed_keys.items():
+                if k not in bad and (rep is None or touches(p, rep)):
+                    bad[k] = f"the fix adds {f.code} at {where} ({f.message})"
+    # 3. every model's robot is exactly the old one with the fixes' values
+    for label, (rep, tree) in before.items():
+        arep = after_models.get(label)
+        mine = [p for p in fixed if touches(p, rep)]
+        if not mine:
+            continue
+        if arep is None or tree is None:
+            for p in mine:
+                bad.setdefault(_fkey(p), f"{label} no longer expands")
+            continue
+        new = _tree(arep, None)
+        expected = _expected(tree, rep, fixed_keys)
+        if expected is None:      # a structural (unsafe) fix: its findings decide alone
+            continue
+        if new is None or not _same_robot(expected, new):
+            for p in mine:
+                k = _fkey(p)
+                if k in bad:
+                    continue
+                if label in p.models:
+                    bad[k] = f"the fix changes more of {label} than the flagged element"
+                else:
+                    bad[k] = (f"the edited source is also used by {label}, where the fix is "
+                              "wrong (it changes that robot)")
+    return bad
+
+
+def _expected(tree, rep, fixed_keys):
+    """The robot of ``rep`` before fixing with the attribute values of its fixed findings."""
+    import copy
+    out = copy.deepcopy(tree)
+    elements = list(out.iter(tag=etree.Element))
+    for p in rep.problems:
+        if p.fix is None or _fkey(p) not in fixed_keys:
+            continue
+        if not p.fix.expect:
+            return None
+        for kind, i, a, b in p.fix.expect:
+            if i >= len(elements):
+                continue
+            el = elements[i]
+            if kind == "none":       # e.g. a comment removed: the robot does not change
+                continue
+            if kind == "structural":
+                return None
+            if kind == "drop":
+                el.attrib.pop(a, None)
+                continue
+
+            if kind == "set":
+                el.set(a, b)
+            elif kind == "any":      # this attribute may take any value
+                el.set(a, ANY)
+            elif kind == "rename_attr":
+                v = el.attrib.pop(a, None)
+                if v is not None:
+                    el.set(b, v)
+            elif kind == "rename_tag":
+                el.tag = b
+    return out
+
+
+def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
+            in_process: bool = False, memo=None) -> FixOutcome:
+    """``memo`` (a :class:`urdf_lint.fix.memo.FixMemo`): the fixes earlier runs rolled back,
+    not tried again while nothing they depend on changed; this run's rollbacks are added."""
+    from urdf_lint.run.pipeline import run_check
+    before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
+                              in_process=in_process)
+    before_result.findings = inside_paths(before_result.findings, paths,
+                                          before_result.generated)
+    chosen, _, refused = candidates(before_result.findings, unsafe)
+    keys: dict = {}
+    if memo is not None:
+        from urdf_lint.fix.memo import fix_key
+        keys = {_fkey(p): fix_key(p, before_result.models) for p in chosen}
+        earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
+        refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
+                        "it depends on changes") for p, why in earlier if why]
+        chosen = [p for p, why in earlier if not why]
+    originals: dict = {}
+    if diff_only:
+        new = edited_sources(chosen, originals)
+        return FixOutcome(before_result, chosen, [], sorted(
+            f for f in new if new[f] != originals[f]), unified_diff(new, originals), refused)
+    before = _snapshot(before_result)
+    rolled: list = []
+    result = before_result
+    written: set = set()
+    try:
+        for _ in range(MAX_ROUNDS):
+            if not chosen:
+                break
+            new = edited_sources(chosen, originals)
+            for f in set(originals) - set(new):      # a file whose fixes were all rolled back
+                if f in written:
+                    fsbound.rewrite(f, originals[f], paths)
+                    written.discard(f)
+            for f, data in new.items():
+                fsbound.rewrite(f, data, paths)
+                written.add(f)
+            result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
+                               in_process=in_process)
+            bad = verify(before, before_result.findings, result, chosen,
+                         line_maps(chosen, originals))
+            if not bad:
+                break
+            rolled += [(p, bad[_fkey(p)]) for p in chosen if _fkey(p) in bad]
+            chosen = [p for p in chosen if _fkey(p) not in bad]
+        else:
+            rolled += [(p, "the fixes did not verify") for p in chosen]
+            chosen = []
+        if not chosen:
+            for f in written:
+                fsbound.rewrite(f, originals[f], paths)
+            written = set()
+            if rolled:
+                result = run_check(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
+    except BaseException:
+        for f in written:     # never leave half-fixed sources behind
+            fsbound.rewrite(f, originals[f], paths)
+        raise
+    if memo is not None:
+        for p, why in rolled:
+            memo.remember(keys.get(_fkey(p)), why)
+        memo.save()
+    changed = sorted(f for f in written if originals.get(f) is not None)
+    return FixOutcome(result, chosen, rolled, changed, "", refused)

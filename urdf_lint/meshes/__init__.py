@@ -1,0 +1,1 @@
+"""meshes: see ARCHITECTURE.md."""

@@ -1,0 +1,575 @@
+"""Mesh readers for the facts the rules need (counts, bounds, finiteness, mass properties):
+vertex and face arrays, without building a processed ``trimesh.Trimesh``.
+
+* Binary STL is read with numpy straight from its 50-byte records, in chunks of
+  ``STL_CHUNK_TRIANGLES`` (so a 5M-triangle file never needs gigabytes); ASCII STL with one
+  solid is parsed like trimesh parses it (``np.fromstring`` of the ``vertex`` lines).
+* COLLADA is read by pycollada and assembled, placed and merged exactly as trimesh's loader
+  and scene would (:func:`collada_arrays`), without importing trimesh or decoding textures.
+* A plain Wavefront OBJ is split by material, unmerged by texture and normal references and
+  its quads split exactly as trimesh's loader does (:func:`obj_arrays`), without trimesh.
+* Every other format and any COLLADA or OBJ file the readers cannot vouch for is loaded by
+  ``trimesh.load_scene(process=False)`` and its instances are placed and stacked with numpy,
+  which is what ``Scene.to_mesh`` computes without the copies, visual merging and array
+  hashing it pays for.
+* Mass properties and closedness use trimesh's formulas and grouping, copied to the bit
+  (:func:`mass_properties`, :func:`merged_ids`), so STL, COLLADA and OBJ facts need no
+  trimesh.
+
+Anything these fast paths do not recognise exactly (a binary STL whose length does not match
+its header, an ASCII file with several solids, an OBJ with negative indices) goes through
+trimesh as before, so the facts are the same numbers trimesh gives.
+"""
+from __future__ import annotations
+
+import re
+from typing import Iterator
+
+import numpy as np
+
+from urdf_lint.core import fsbound
+
+from urdf_lint.core import lazy
+
+# pycollada imports Pillow (~14 ms) at start-up for the images of a document, which urdf-lint
+# never decodes (the texture scan reads their names): loaded on first use, if ever
+lazy.defer("PIL.Image")
+
+STL_RECORD = np.dtype([("n", "<f4", (3,)), ("v", "<f4", (3, 3)), ("a", "<u2")])
+STL_CHUNK_TRIANGLES = 1 << 20        # 50 MB of records per chunk
+MAX_MESH_READ = 1 << 30              # a mesh read whole (meshes.MAX_MESH_BYTES)
+
+
+def binary_stl_triangles(path: str) -> int | None:
+    """The triangle count of a well-formed binary STL (its size matches its header), else None
+    (ASCII, or a file trimesh would try to read as ASCII)."""
+    try:
+        with fsbound.open_regular(path) as (f, st):
+            head = f.read(84)
+            size = st.st_size
+    except OSError:
+        return None
+    if len(head) < 84:
+        return None
+    n = int(np.frombuffer(head, dtype="<u4", count=1, offset=80)[0])
+    return n if size - 84 == n * STL_RECORD.itemsize else None
+
+
+def iter_binary_stl(path: str, chunk: int | None = None,
+                    data: bytes | None = None) -> Iterator[np.ndarray]:
+    """The triangles of a binary STL as float32 arrays of shape (k, 3, 3), ``chunk`` at a time
+    (from ``data``, the file's bytes, when the caller holds them)."""
+    chunk = chunk or STL_CHUNK_TRIANGLES
+    if data is not None:
+        rec = np.frombuffer(data, dtype=STL_RECORD, offset=84,
+                            count=(len(data) - 84) // STL_RECORD.itemsize)
+        for i in range(0, len(rec), chunk):
+            yield rec["v"][i:i + chunk]
+        return
+    with fsbound.open_regular(path) as (f, _):
+        f.seek(84)
+        while True:
+            rec = np.fromfile(f, dtype=STL_RECORD, count=chunk)
+            if not len(rec):
+                return
+            yield rec["v"]
+
+
+def bounds(points):
+    """(min, max) per column of (n, 3) points: NaN where a column holds a NaN, like
+    ``points.min(axis=0)``, but on a transposed copy (a reduction along the long axis: 20x
+    faster than along the first axis of three columns)."""
+    t = np.asarray(points).T.copy()
+    return t.min(axis=1), t.max(axis=1)
+
+
+def read_ascii_stl(path: str):
+    """(vertices float64 (n, 3), faces) of an ASCII STL holding exactly one solid, parsed as
+    trimesh parses it; None for anything else (the caller lets trimesh decide)."""
+    data = fsbound.read_bytes(path, max_bytes=MAX_MESH_READ)
+    try:
+        raw = data.decode("utf-8").strip().lower()
+    except UnicodeDecodeError:
+        return None
+    start, end = raw.find("solid"), raw.find("endsolid")
+    if start < 0 or end < 0 or start > end or raw.find("endsolid", end + 8) >= 0 \
+            or raw.find("solid", end + 8) >= 0:
+        return None
+    parts = raw[start:end].split("vertex")
+    try:
+        v = np.fromstring(" ".join(line[: line.find("\n")] for line in parts[1:]), sep=" ",
+                          dtype=np.float64)
+    except ValueError:
+        return None     # trimesh says what is wrong
+    if len(v) < 3 or len(v) % 3 != 0:
+        return None
+    v = v.reshape((-1, 3))
+    if len(v) % 3 != 0:
+        return None     # trimesh would fail building the faces: let it say how
+    return v, np.arange(len(v)).reshape((-1, 3))
+
+
+def scene_arrays(scene):
+    """(vertices, faces) of every Trimesh instance of a trimesh Scene placed by its transform,
+    stacked in graph order: ``Scene.to_mesh()``'s numbers, without building the mesh."""
+    from trimesh import Trimesh, transformations, util
+    eye4, eye3 = np.eye(4), np.eye(3)
+    verts, faces, offset = [], [], 0
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        g = scene.geometry[name]
+        if not isinstance(g, Trimesh):
+            continue
+        v = np.asarray(g.vertices, dtype=np.float64)
+        f = np.asarray(g.faces, dtype=np.int64)
+        matrix = np.asanyarray(transform, order="C", dtype=np.float64)
+        if not util.allclose(matrix, eye4, 1e-8):
+            v = transformations.transform_points(v, matrix=matrix)
+            if not util.allclose(matrix[:3, :3], eye3, atol=1e-6) and \
+                    transformations.flips_winding(matrix):
+                f = np.fliplr(f)
+        verts.append(v)
+        if len(f):
+            faces.append(f + offset)
+        offset += len(v)
+    v = np.vstack(verts) if verts else np.zeros((0, 3))
+    f = np.vstack(faces).astype(np.int64) if faces else np.zeros((0, 3), dtype=np.int64)
+    return v.reshape((-1, 3)), f.reshape((-1, 3))
+
+
+def scale_points(v, unit: float):
+    """``Trimesh.apply_scale(unit)`` on vertices: :func:`transform_points` by
+    ``trimesh.transformations.scale_and_translate(scale=unit)`` (the same arithmetic)."""
+    m = np.eye(4)
+    if np.any(unit != 1):
+        m[:3, :3] *= unit
+    return transform_points(v, m)
+
+
+# -- mass properties over chunks ---------------------------------------------------------------
+_DIVISORS = np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
+
+
+def _integrals(t) -> np.ndarray:
+    """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of each of (n, 3, 3)
+    float64 triangles, shape (10, n): ``trimesh.triangles.mass_properties``' formulas, in its
+    order of operations (its cross product of (p1 - p0) and (p2 - p1) included)."""
+    vectors = t[:, 1:, :] - t[:, :2, :]
+    crosses = np.cross(vectors[:, 0], vectors[:, 1])
+    p0, p1, p2 = t[:, 0, :], t[:, 1, :], t[:, 2, :]
+    f1 = p0 + p1 + p2
+    f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
+    f3 = (p0 ** 3) + (p0 ** 2) * p1 + p0 * (p1 ** 2) + (p1 ** 3) + (p2 * f2)
+    g0 = f2 + (p0 + f1) * p0
+    g1 = f2 + (p1 + f1) * p1
+    g2 = f2 + (p2 + f1) * p2
+    integral = np.zeros((10, len(f1)))
+    integral[0] = crosses[:, 0] * f1[:, 0]
+    integral[1:4] = (crosses * f2).T
+    integral[4:7] = (crosses * f3).T
+    for i in range(3):
+        j = np.mod(i + 1, 3)
+        integral[i + 7] = crosses[:, i] * ((t[:, 0, j] * g0[:, i]) + (t[:, 1, j] * g1[:, i])
+                                           + (t[:, 2, j] * g2[:, i]))
+    return integral
+
+
+def volume_integrals(tris) -> np.ndarray:
+    """The 10 volume integrals of a closed surface's triangles, summed: additive over chunks
+    (:func:`moments` turns their sum into volume and moments)."""
+    return _integrals(np.asarray(tris, dtype=np.float64)).sum(axis=1) / _DIVISORS
+
+
+def mass_properties(triangles):
+    """(volume, center of mass, inertia about it) of closed triangles at density 1:
+    ``trimesh.triangles.mass_properties`` to the last bit, without importing trimesh."""
+    t = np.asanyarray(triangles, dtype=np.float64)
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError("Triangles must be (n, 3, 3)!")
+    integrated = _integrals(t).sum(axis=1) / _DIVISORS
+    volume = integrated[0]
+    com = integrated[1:4] / volume
+    inertia = np.zeros((3, 3))
+    inertia[0, 0] = integrated[5] + integrated[6] - (volume * (com[[1, 2]] ** 2).sum())
+    inertia[1, 1] = integrated[4] + integrated[6] - (volume * (com[[0, 2]] ** 2).sum())
+    inertia[2, 2] = integrated[4] + integrated[5] - (volume * (com[[0, 1]] ** 2).sum())
+    inertia[0, 1] = -(integrated[7] - (volume * np.prod(com[[0, 1]])))
+    inertia[1, 2] = -(integrated[8] - (volume * np.prod(com[[1, 2]])))
+    inertia[0, 2] = -(integrated[9] - (volume * np.prod(com[[0, 2]])))
+    inertia[2, 0] = inertia[0, 2]
+    inertia[2, 1] = inertia[1, 2]
+    inertia[1, 0] = inertia[0, 1]
+    return volume, com, inertia * 1.0
+
+
+def merged_ids(points) -> np.ndarray:
+    """One id per point, equal for points equal to 8 decimals (the grouping of
+    ``trimesh.grouping.unique_rows(points, digits=8)``: its rounding, any injective row key)."""
+    q = np.ascontiguousarray(np.round((np.asarray(points, dtype=np.float64) * 10 ** 8) - 1e-6)
+                             .astype(np.int64))
+    return first_of_equal_rows(q)[1]
+
+
+def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
+    """(volume, first moment ∫r dV, second moment ∫r rᵀ dV) from summed integrals."""
+    vol = float(integrated[0])
+    first = np.asarray(integrated[1:4], dtype=float)
+    xx, yy, zz, xy, yz, zx = (float(x) for x in integrated[4:10])
+    second = np.array([[xx, xy, zx], [xy, yy, yz], [zx, yz, zz]])
+    return vol, first, second
+
+
+_MIX = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27D4EB4F,
+        0x165667B19E3779F9, 0x27D4EB2F165667C5, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD)
+
+
+def row_mix(rows) -> np.ndarray:
+    """One 64-bit mix (uint64) per row of an (n, k) int64 array: equal rows, equal mixes."""
+    u = np.ascontiguousarray(rows, dtype=np.int64).view(np.uint64)
+    h = np.zeros(len(u), dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for c in range(u.shape[1]):
+            h ^= h >> np.uint64(29)
+            h += u[:, c] * np.uint64(_MIX[c % len(_MIX)])
+    return h
+
+
+def first_of_equal_rows(rows):
+    """(index of the first occurrence of each distinct row, the distinct row of every row) of
+    an (n, k) int64 array, as ``np.unique(return_index, return_inverse)`` gives them for the
+    rows (distinct rows in another order: callers sort by first occurrence, or only compare).
+    Grouped on :func:`row_mix`, several times faster than comparing the rows as bytes; every
+    group is checked to hold one row only, else the rows are compared whole."""
+    _, index, inverse = np.unique(row_mix(rows), return_index=True, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
+        whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
+        _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+    return index, inverse
+
+
+def vertex_keys(tris) -> np.ndarray:
+    """One int64 per vertex of (k, 3, 3) triangles: the vertex rounded to 8 decimals (what
+    ``trimesh.grouping.unique_rows(digits=8)`` merges), packed by :func:`row_mix`. Used to test
+    closedness of meshes too large for ``unique_rows``."""
+    q = np.round(np.asarray(tris, dtype=np.float64).reshape(-1, 3) * 1e8)
+    q = np.nan_to_num(q, nan=0.0, posinf=0.0, neginf=0.0)
+    q = np.clip(q, -(2.0 ** 62), 2.0 ** 62).astype(np.int64)
+    return row_mix(q).view(np.int64)
+
+
+def edge_codes(tris):
+    """(directed edge codes, their reverses) of the non-degenerate triangles of a (k, 3, 3)
+    chunk: one int64 per edge from the two ends' :func:`vertex_keys`. A closed, consistently
+    wound surface has every code once and the reverses are the same set."""
+    k = vertex_keys(tris).view(np.uint64).reshape(-1, 3)
+    k = k[(k[:, 0] != k[:, 1]) & (k[:, 1] != k[:, 2]) & (k[:, 0] != k[:, 2])]
+    a, b = k.reshape(-1), np.roll(k, -1, axis=1).reshape(-1)
+    with np.errstate(over="ignore"):
+        code = (a * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (b * np.uint64(0x165667B19E3779F9) +
+                                                      np.uint64(0x27D4EB2F165667C5))
+        rev = (b * np.uint64(0xC2B2AE3D27D4EB4F)) ^ (a * np.uint64(0x165667B19E3779F9) +
+                                                     np.uint64(0x27D4EB2F165667C5))
+    return code.view(np.int64), rev.view(np.int64)
+
+
+# -- COLLADA without trimesh -------------------------------------------------------------------
+_EYE4 = np.eye(4)
+_EYE3 = np.eye(3)
+MERGE_DIGITS = 8        # trimesh's tol.merge (1e-8) as decimal digits
+NORMAL_DIGITS = 2       # trimesh.grouping.merge_vertices' digits_norm
+UV_DIGITS = 4           # ... and digits_uv
+
+
+def collada_arrays(data: bytes):
+    """(vertices float64 (n, 3), faces int64 (m, 3)) of a COLLADA document before its unit:
+    the numbers ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without
+    importing trimesh, decoding textures or building materials.
+
+    The document is read by pycollada (trimesh's parser, with the errors trimesh ignores) and
+    assembled as ``trimesh.exchange.dae`` assembles it: every triangle set (a polylist
+    fanned) of every ``<instance_geometry>`` is one mesh with three vertices per triangle,
+    placed by the product of its nodes' matrices. Each mesh is then processed like the
+    ``Trimesh`` trimesh builds for it (``load_scene`` does not pass ``process=False`` on to
+    the meshes of a scene): vertices equal to 8 decimals, with their UV (4 decimals, when the
+    set has a bound material) and normal (2 decimals), merged into the first of them.
+
+    None whenever trimesh might do otherwise: a geometry lost to a broken reference (fewer
+    sets than ``<instance_geometry>`` elements), an empty set, a non-finite vertex, vertex
+    colours, a material trimesh cannot convert, an index out of range, any error. The caller
+    then loads the file through trimesh, as before."""
+    import io
+    import collada
+    from collada import common
+    ignore = [common.DaeError, common.DaeIncompleteError, common.DaeMalformedError,
+              common.DaeBrokenRefError, common.DaeUnsupportedError]
+    try:
+        c = collada.Collada(io.BytesIO(data), ignore=ignore)
+        if c.scene is None or not all(_plain_effect(m.effect) for m in c.materials):
+            return None
+        materials = {m.id for m in c.materials}
+        parts: list = []
+        for node in c.scene.nodes:
+            if not _collada_node(node, _EYE4, parts, materials):
+                return None
+        if not parts or len(parts) < data.count(b"<instance_geometry"):
+            return None
+        verts, faces, offset = [], [], 0
+        for (v, f), matrix in parts:
+            matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
+            if matrix is None:
+                return None
+            if not _allclose(matrix, _EYE4, 1e-8):
+                v = transform_points(v, matrix)
+                if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
+                        np.linalg.det(matrix[:3, :3]) < 0.0:
+                    f = np.fliplr(f)
+            verts.append(v)
+            faces.append(f + offset)
+            offset += len(v)
+    except Exception:  # noqa: BLE001 - trimesh decides (and says what is wrong)
+        return None
+    return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
+
+
+# -- Wavefront OBJ without trimesh ------------------------------------------------------------
+# a face reference's forms: (pattern, numbers per reference)
+_OBJ_FORMS = {"v": (r"\d+", 1), "v/t": (r"\d+/\d+", 2), "v//n": (r"\d+//\d+", 2),
+              "v/t/n": (r"\d+/\d+/\d+", 3)}
+
+
+def _obj_line_check(form: str, refs: int) -> re.Pattern:
+    """A line no plain OBJ of one face form holds (searched after each newline)."""
+    num = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"   # (one way to match: linear)
+    face = " ".join([_OBJ_FORMS[form][0]] * refs)
+    ok = (rf"#[^\n]*|v {num} {num} {num}|vt {num} {num}(?: {num})?|vn {num} {num} {num}"
+          rf"|f {face}|usemtl [^\s#][^\n]*|mtllib [^\n]*|[ogs] [^\n]*|")
+    return re.compile(rf"\n(?!(?:{ok})(?:\n|\Z))")
+
+
+_OBJ_ROWS = re.compile(r"\nv ([^\n]*)")
+_OBJ_FACES = re.compile(r"\nf ([^\n]*)")
+
+
+def obj_arrays(data: bytes):
+    """(vertices float64 (n, 3), faces int64 (m, 3)) of a Wavefront OBJ file: the numbers
+    ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without trimesh.
+
+    trimesh (``exchange.obj.load_obj``, default arguments) groups the faces by ``usemtl``
+    material, in order of first use, and builds one mesh per material, the last used first.
+    Each mesh keeps one vertex per distinct (position, texture, normal) reference of its faces
+    (``visual.texture.unmerge_faces``: rows ordered by their packed key, then by position
+    index) or, for faces with neither, the positions its faces use; quads are split into
+    (0, 1, 2) then, after all of them, (2, 3, 0).
+
+    Only plain files are read here: ``v``/``vt``/``vn`` rows of 3 (2-3) numbers, faces of one
+    form (``v``, ``v/t``, ``v//n``, ``v/t/n``) with 3 or 4 positive references that are in
+    range, ``usemtl``, ``mtllib``, ``o``, ``g``, ``s`` and comments, UTF-8, ``\n`` or ``\r\n``
+    line ends. Anything else (negative or out-of-range indices, mixed face forms, polygons,
+    vertex colours, line continuations, no face) gives None: the caller loads the file through
+    trimesh, which decides what it means."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    text = "\n{}\n".format(text.strip().replace("\r\n", "\n"))
+    if "\\\n" in text or "\r" in text or "+e" in text or "-e" in text:
+        return None
+    first = text.find("\nf ")
+    if first < 0:
+        return None
+    sample = text[first + 3:text.find("\n", first + 3)].split()
+    form = next((name for name, (pattern, _) in _OBJ_FORMS.items()
+                 if all(re.fullmatch(pattern, ref) for ref in sample)), None)
+    if form is None or len(sample) not in (3, 4):
+        return None
+    refs, per_ref = len(sample), _OBJ_FORMS[form][1]
+    if _obj_line_check(form, refs).search(text) or text.count("usemtl ") != \
+            text.count("\nusemtl "):
+        return None
+    rows = _OBJ_ROWS.findall(text)
+    has_normals = "\nvn " in text
+    groups: dict = {}
+    for k, part in enumerate(text.split("\nusemtl ")):
+        name, body = ("", part) if k == 0 else part.split("\n", 1)
+        found = _OBJ_FACES.findall("\n" + body)
+        if found:
+            groups.setdefault(None if k == 0 else name.strip(), []).extend(found)
+    if not rows:
+        return None
+    # (every number was matched by the pattern above: the parse reads them all)
+    v = np.fromstring(" ".join(rows), sep=" ", dtype=np.float64).reshape((-1, 3))
+    verts, faces, offset = [], [], 0
+    for face_lines in reversed(list(groups.values())):
+        array = np.fromstring(" ".join(face_lines).replace("/", " "), sep=" ", dtype=np.int64)
+        if (array < 1).any():
+            return None       # 0 is no OBJ index (trimesh would read it as the first vertex)
+        array = array.reshape((-1, refs * per_ref)) - 1
+        index = np.arange(refs) * per_ref
+        f = array[:, index]
+        if int(f.max()) >= len(v):
+            return None
+        others = []
+        if form in ("v/t", "v/t/n"):
+            others.append(array[:, index + 1])
+        if form == "v/t/n" or (form == "v//n" and has_normals):
+            others.append(array[:, index + (2 if form == "v/t/n" else 1)])
+        if others:
+            new_faces, mask_v = _unmerge(f, others)
+        else:
+            mask_v = np.zeros(len(v), dtype=bool)
+            mask_v[f] = True
+            inverse = np.zeros(len(v), dtype=np.int64)
+            inverse[mask_v] = np.arange(mask_v.sum())
+            new_faces = inverse[f]
+        if refs == 4:
+            new_faces = np.vstack((new_faces[:, [0, 1, 2]], new_faces[:, [2, 3, 0]]))
+        verts.append(v[mask_v])
+        faces.append(new_faces + offset)
+        offset += len(verts[-1])
+    return np.vstack(verts), np.vstack(faces).astype(np.int64)
+
+
+def _unmerge(faces, others):
+    """(new faces, position index of each new vertex): ``unmerge_faces`` of trimesh, one
+    vertex per distinct row of (position, *others) references."""
+    stack = np.column_stack([faces.reshape(-1)] + [o.reshape(-1) for o in others])
+    precision = 64 // stack.shape[1]
+    threshold = (2 ** (precision - 1)) - 1
+    if stack.max() < threshold and stack.min() > -threshold:
+        rows = np.zeros(len(stack), dtype=np.uint64)
+        for k, column in enumerate((stack.T + (threshold + 1)).astype(np.uint64)):
+            np.bitwise_xor(rows, column << np.uint64(k * precision), out=rows)
+    else:
+        rows = np.ascontiguousarray(stack).view(
+            np.dtype((np.void, stack.dtype.itemsize * stack.shape[1]))).reshape(-1)
+    _, unique, inverse = np.unique(rows, return_index=True, return_inverse=True)
+    pairs = stack[unique]
+    order = pairs[:, 0].argsort()
+    remap = np.zeros(len(order), dtype=np.int64)
+    remap[order] = np.arange(len(order))
+    return remap[inverse].reshape((-1, faces.shape[1])), pairs[order][:, 0]
+
+
+def _plain_effect(effect) -> bool:
+    """Whether trimesh turns this effect into a material without failing (colours of four
+    components; a texture it cannot load is only logged)."""
+    from collada.material import Map
+    for value in (effect.diffuse, effect.transparent):
+        if value is not None and not isinstance(value, Map) and len(value) != 4:
+            return False
+    return effect.emission is None or isinstance(effect.emission, Map) or \
+        len(effect.emission) >= 3
+
+
+def _collada_node(node, parent, parts, materials) -> bool:
+    """``trimesh.exchange.dae._parse_node`` for the geometry: ((vertices, faces) merged, matrix)
+    of each triangle set under ``node`` appended to ``parts``; False when trimesh might fail
+    or differ."""
+    from collada import polylist, scene, triangleset
+    if isinstance(node, scene.GeometryNode):
+        symbols = set()
+        for mn in node.materials:
+            if mn.target is None or mn.target.id not in materials:
+                return False    # trimesh would convert the material itself
+            symbols.add(mn.symbol)
+        for prim in node.geometry.primitives:
+            if isinstance(prim, polylist.Polylist):
+                prim = prim.triangleset()
+            if not isinstance(prim, triangleset.TriangleSet):
+                continue
+            vertex = prim.vertex
+            if vertex is None:
+                continue
+            index = prim.vertex_index
+            if not len(index) or np.ndim(vertex) != 2 or np.shape(vertex)[1] != 3 \
+                    or not _in_range(index, len(vertex)):
+                return False
+            if "COLOR" in prim.sources and len(prim.sources["COLOR"]) > 0:
+                return False    # vertex colours: trimesh checks their shape
+            n = len(index) * 3
+            normals = uv = None
+            if prim.normal is not None:
+                if np.ndim(prim.normal) != 2 or np.shape(prim.normal)[1] != 3 or \
+                        not _in_range(prim.normal_index, len(prim.normal)):
+                    return False
+                normals = prim.normal[prim.normal_index].reshape(-1, 3)
+            if prim.material in symbols and len(prim.texcoordset) > 0:
+                tc, ti = prim.texcoordset[0], prim.texcoord_indexset[0]
+                if np.ndim(tc) != 2 or np.shape(tc)[1] != 2 or not _in_range(ti, len(tc)):
+                    return False
+                uv = tc[ti].reshape(-1, 2)
+            merged = _merge(vertex[index].reshape(n, 3), normals, uv)
+            if merged is None:
+                return False
+            parts.append((merged, parent))
+    elif isinstance(node, scene.Node):
+        if node.children is not None:
+            for child in node.children:
+                if not _collada_node(child, np.dot(parent, node.matrix), parts, materials):
+                    return False
+    return True
+
+
+def _merge(vertices, normals, uv):
+    """(vertices, faces) of the triangle soup ``vertices`` after ``Trimesh.process()``: rows
+    equal to trimesh's digits (position, then UV and normal when given for every vertex)
+    merged into their first occurrence, faces renumbered (``grouping.merge_vertices`` and
+    ``unique_ordered``; the grouping does not depend on how a row is encoded for sorting).
+    None for a non-finite vertex (trimesh would drop faces first)."""
+    v = np.asarray(vertices, dtype=np.float64)
+    if not np.isfinite(v).all():
+        return None
+    stacked = [v * (10 ** MERGE_DIGITS)]
+    if uv is not None and len(uv) == len(v):
+        stacked.append(np.asarray(uv, dtype=np.float64) * (10 ** UV_DIGITS))
+    if normals is not None:
+        normals = np.asarray(normals, dtype=np.float64)
+        if normals.shape == v.shape:
+            stacked.append(normals * (10 ** NORMAL_DIGITS))
+    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
+    index, inverse = first_of_equal_rows(rows)
+    order = index.argsort()
+    faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
+    return v[index[order]], faces
+
+
+def _fix_rigid(matrix, max_deviance: float = 1e-5):
+    """What trimesh's scene graph returns for a node's matrix (``SceneGraph.get`` with its
+    default ``repair_rigid``: ``transformations.fix_rigid``, a rotation off by accumulated
+    rounding restored by SVD); None where trimesh's own check would fail."""
+    check = np.abs(np.dot(matrix[:3, :3], matrix[:3, :3].T) - _EYE3).max()
+    if 1e-13 < check < max_deviance:
+        u, _, vt = np.linalg.svd(matrix[:3, :3])
+        repaired = np.eye(4)
+        repaired[:3, :3] = np.dot(u, vt)
+        repaired[:3, 3] = matrix[:3, 3]
+        return repaired if np.allclose(repaired, matrix, atol=max_deviance) else None
+    return matrix
+
+
+def _in_range(index, n: int) -> bool:
+    index = np.asarray(index)
+    return index.size == 0 or (int(index.min()) >= -n and int(index.max()) < n)
+
+
+def _allclose(a, b, atol: float) -> bool:
+    """``trimesh.util.allclose`` (the peak-to-peak of the difference)."""
+    return bool(float(np.ptp(a - b)) < atol)
+
+
+_IDENTITY = np.eye(4)
+
+
+def transform_points(points, matrix):
+    """``trimesh.transformations.transform_points`` (the same arithmetic, without trimesh)."""
+    points = np.asanyarray(points, dtype=np.float64)
+    if len(points) == 0 or matrix is None:
+        return points.copy()
+    matrix = np.asanyarray(matrix, dtype=np.float64)
+    count, dim = points.shape
+    if np.abs(matrix - _IDENTITY[: dim + 1, : dim + 1]).max() < 1e-8:
+        return np.ascontiguousarray(points.copy())
+    stack = np.column_stack((points, np.ones(count)))
+    return np.dot(matrix, stack.T).T[:, :dim]

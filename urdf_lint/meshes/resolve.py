@@ -1,0 +1,834 @@
+"""Mesh references: resolution through the package resolver, confinement, and mesh facts.
+
+Resolution and existence checks are pure path work (no trimesh). Loading a mesh (for the
+rules that need its geometry, and for rendering) imports trimesh lazily, and its facts are
+cached by file content, so a mesh is read once per change, not once per model or run.
+"""
+from __future__ import annotations
+
+import enum
+import json
+import math
+import os
+import re
+import stat
+import time
+from collections import OrderedDict
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from urdf_lint.core import fsbound
+from urdf_lint.core.hashing import memo_read
+from urdf_lint.discovery.packages import PackageNotFound
+
+
+class MeshStatus(enum.Enum):
+    """How a mesh or texture reference resolved (the UL4xx rules map these to codes)."""
+    OK = "ok"                          # an existing file inside the package roots
+    UNKNOWN_PACKAGE = "unknown-package"
+    NOT_FOUND = "not-found"
+    CASE_MISMATCH = "case-mismatch"    # exists only with different letter case
+    OUTSIDE_ROOTS = "outside-roots"    # resolves outside the package roots: never read
+
+
+@dataclass
+class MeshRef:
+    """A mesh reference of the model: its URI, the resolved file, and whether it loads."""
+    uri: str
+    path: str | None          # resolved absolute path (None when it cannot be resolved)
+    status: MeshStatus
+    message: str = ""
+    package: str = ""         # the unknown package (UNKNOWN_PACKAGE)
+    cause: str = ""           # why it is unknown (the searched places), for the root cause
+
+    @property
+    def problem(self) -> MeshStatus | None:
+        """None when the reference resolved (``status is MeshStatus.OK``), else its status.
+        Kept for rules written before :class:`MeshStatus`; new code reads ``status``."""
+        return None if self.status is MeshStatus.OK else self.status
+
+
+def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | None]:
+    """(exists with exact case, the real spelling if it only exists with another case).
+
+    Only folders below ``top`` (the root holding ``path``) are listed: names of folders
+    outside the roots are never read."""
+    if top is not None:
+        try:
+            rest = path.relative_to(top).parts
+        except ValueError:
+            top = None
+    if top is None:
+        cur, rest = Path(path.parts[0]), path.parts[1:]
+    else:
+        cur = top
+    exact = True
+    for part in rest:
+        names = _listing(cur)
+        if names is None:
+            return False, None
+        if part in names:
+            cur = cur / part
+            continue
+        low = [n for n in names if n.lower() == part.lower()]
+        if not low:
+            return False, None
+        exact = False
+        cur = cur / low[0]
+    return exact, (None if exact else str(cur))
+
+
+_listings: dict = {}     # folder -> (mtime_ns, names in listdir order, set of names)
+MAX_LISTINGS = 20_000
+RACY_NS = 2_000_000_000  # a folder changed this recently may change again within its mtime tick
+
+
+def _listing(folder: Path) -> "_Names | None":
+    """The names in a folder, listed once per version of it in this process (a folder's
+    mtime changes when an entry is added, removed or renamed; one modified in the last two
+    seconds is listed again, like git's racily clean entries)."""
+    key = str(folder)
+    try:
+        mtime = os.stat(key).st_mtime_ns
+    except OSError:
+        return None
+    got = _listings.get(key)
+    if got is not None and got.mtime == mtime and time.time_ns() - mtime > RACY_NS:
+        return got
+    try:
+        names = _Names(mtime, fsbound.list_dir(key))
+    except OSError:
+        return None
+    if len(_listings) >= MAX_LISTINGS:
+        _listings.clear()
+    _listings[key] = names
+    return names
+
+
+class _Names(list):
+    """A folder's names in ``os.listdir`` order, with a set for membership tests."""
+
+    def __init__(self, mtime: int, names):
+        super().__init__(names)
+        self.mtime = mtime
+        self._set = frozenset(names)
+
+    def __contains__(self, name) -> bool:
+        return name in self._set
+
+
+def resolve(model, uri: str) -> MeshRef:
+    resolver = model.resolver
+    try:
+        p = resolver.resolve_uri(uri, model.base_dir)
+    except PackageNotFound as e:
+        return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}", e.name,
+                       str(e))
+    p = Path(os.path.abspath(p))
+    top = _root_of(resolver, p)
+    if top is None and resolver.is_inside(p):  # written outside, resolves inside (a symlink)
+        p = Path(os.path.realpath(p))
+        top = _root_of(resolver, p)
+    if top is None:
+        if not os.path.lexists(p):
+            return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                           f"mesh file not found: '{uri}' (looked for {p})")
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+                       "the package roots; it is not read")
+    exact, real = _case_true_path(p, top)
+    if not exact and real is None:
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh file not found: '{uri}' (looked for {p})")
+    if not exact:
+        return MeshRef(uri, real, MeshStatus.CASE_MISMATCH,
+                       f"mesh '{uri}' only exists as '{os.path.basename(real or '')}' "
+                       f"(case differs: works on macOS/Windows, fails on Linux)")
+    if not resolver.is_inside(p):
+        return MeshRef(uri, None, MeshStatus.OUTSIDE_ROOTS,
+                       f"mesh '{uri}' resolves to {os.path.realpath(p)}, outside "
+                       "the package roots; it is not read")
+    try:
+        st = os.stat(p)
+    except OSError as e:  # a symlink loop, a dangling link, no permission
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND, f"mesh '{uri}' cannot be read: "
+                       f"{e.strerror or e} ({p})")
+    if not stat.S_ISREG(st.st_mode):
+        what = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file"
+        return MeshRef(uri, str(p), MeshStatus.NOT_FOUND,
+                       f"mesh '{uri}' is {what}, not a mesh file ({p})")
+    return MeshRef(uri, str(p), MeshStatus.OK)
+
+
+def _root_of(resolver, p: Path) -> Path | None:
+    """The deepest root that holds ``p`` as written (before symlinks), or None."""
+    best = resolver.root_of(p)
+    return None if best is None else Path(best)
+
+
+_DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
+_MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)*(\S.*?)\s*$", re.M)
+
+
+_textures: dict = {}
+MAX_MESH_BYTES = 1 << 30
+_confine = None   # set per job to the resolver's is_inside: texture references stay in the roots
+_texture_cache_dir: str | None = None   # set per job: texture scans are cached with the facts
+_scan_memory: dict = {}
+TEXTURE_SCAN_VERSION = 1
+
+
+def set_confinement(inside, cache_dir: str | None = None) -> None:
+    global _confine, _texture_cache_dir
+    _confine = inside
+    _texture_cache_dir = cache_dir
+
+
+def _readable(path: str) -> bool:
+    from urdf_lint.discovery.packages import regular_file
+    return regular_file(path, MAX_MESH_BYTES) and (_confine is None or _confine(path))
+
+
+def texture_refs(path: str) -> list[str]:
+    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths (memoized per version)."""
+    if not path.lower().endswith((".dae", ".obj")):
+        return []      # (asked for every mesh of every link: no stat for formats without any)
+    try:
+        key = _version(path)
+    except OSError:
+        return []
+    if key not in _textures:
+        _textures[key] = _texture_refs(path)
+    return list(_textures[key])
+
+
+def _texture_refs(path: str) -> list[str]:
+    out: list[str] = []
+    base = os.path.dirname(path)
+    low = path.lower()
+    if not low.endswith((".dae", ".obj")) or not _readable(path):
+        return out
+    try:
+        # what the mesh itself names depends on its bytes only: scanned once per content,
+        # cached on disk with the mesh facts (a DAE is not read again on the next run)
+        scan = _cached(_scan_memory, f"tex{TEXTURE_SCAN_VERSION}", path, _texture_cache_dir,
+                       _scan_texture_names)
+    except OSError:
+        return out
+    if low.endswith(".dae"):
+        return [os.path.normpath(os.path.join(base, ref)) for ref in scan.get("refs", [])]
+    try:
+        for name in scan.get("refs", []):
+            mtl = os.path.normpath(os.path.join(base, name))
+            out.append(mtl)
+            if _readable(mtl):   # the MTL is read each time: it may lie outside the roots
+                text = fsbound.read_text(mtl, max_bytes=MAX_MESH_BYTES, errors="replace")
+                for ref in _MTL_MAP.finditer(text):
+                    out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
+                                                             ref.group(1))))
+    except OSError:
+        pass
+    return out
+
+
+def _scan_texture_names(path: str) -> dict:
+    """{ok, refs}: the image references of a DAE (``<init_from>``, relative as written) or
+    the ``mtllib`` names of an OBJ."""
+    refs: list[str] = []
+    if path.lower().endswith(".dae"):
+        data = _file_bytes(path)
+        for m in _DAE_IMAGE.finditer(data):
+            ref = m.group(1).decode("utf-8", "replace").strip()
+            if ref.startswith("file://"):
+                ref = ref[7:]
+            if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
+                refs.append(ref)
+    else:
+        text = fsbound.read_text(path, max_bytes=MAX_MESH_BYTES, errors="replace")
+        # the lines open() in text mode gives (universal newlines: \r\n and \r become \n)
+        for line in text.replace("\r\n", "\n").replace("\r", "\n").split("\n"):
+            parts = line.split(None, 1)
+            if line.startswith("mtllib") and len(parts) == 2:
+                refs.append(parts[1].strip())
+    return {"ok": True, "refs": refs}
+
+
+# -- mesh facts (geometry) -------------------------------------------------------------------
+_memory: dict = {}
+FACTS_VERSION = 3  # bump when the loader changes what it measures
+
+
+def _version(path: str):
+    st = os.stat(path)
+    return (os.path.realpath(path), st.st_size, st.st_mtime_ns)
+
+
+def _digest(path: str) -> str:
+    """Content hash of a file, computed once per file version in this process (shared with
+    the worker's record of what a model read, :func:`hashing.memo_digest`). A mesh up to
+    ``READ_WHOLE_BYTES`` hashed for the first time is read once: its bytes are kept for the
+    readers and scans that follow (:func:`_file_bytes`)."""
+    got = memo_read(path, READ_WHOLE_BYTES)
+    if got is None:
+        raise OSError(f"cannot read {path}")
+    digest, data = got
+    if data is not None:
+        _kept_bytes[digest] = data
+        _kept_bytes.move_to_end(digest)
+        total = sum(map(len, _kept_bytes.values()))
+        while total > MAX_KEPT_BYTES and len(_kept_bytes) > 1:
+            total -= len(_kept_bytes.popitem(last=False)[1])
+    return digest
+
+
+READ_WHOLE_BYTES = 32 << 20       # meshes up to this size: hashed and parsed from one read
+MAX_KEPT_BYTES = 64 << 20         # the bytes kept between the hash, the facts and the scans
+_kept_bytes: "OrderedDict[str, bytes]" = OrderedDict()
+
+
+def _file_bytes(path: str) -> bytes:
+    """The bytes of a mesh file: those read for its hash when still kept, else read now."""
+    data = _kept_bytes.get(_digest(path))
+    if data is not None:
+        return data
+    return fsbound.read_bytes(path, max_bytes=MAX_MESH_BYTES)
+
+
+# the libraries that read a model or its meshes: what they log about a model (yourdfpy's
+# "Joint 'spinner' is supposed to mimic 'spinner'", 53 times on the broken demo) is the rules'
+# job, reported as located findings; it never reaches the user's terminal
+LIBRARY_LOGGERS = ("trimesh", "collada", "PIL", "yourdfpy")
+
+
+def quiet_libraries():
+    import logging
+    for name in LIBRARY_LOGGERS:
+        lg = logging.getLogger(name)
+        lg.setLevel(logging.CRITICAL + 1)
+        lg.propagate = False
+
+
+
+
+def load_mesh(path: str):
+    """A trimesh.Trimesh (scene concatenated) or raises.
+
+    A COLLADA file whose geometry is lost to a broken internal reference (a ``<surface>``,
+    effect or material that points at nothing makes pycollada drop the whole
+    ``<instance_geometry>``) is loaded again without its materials, so a valid mesh is never
+    reported empty; the broken references are kept in ``metadata["broken_refs"]``."""
+    quiet_libraries()
+    import trimesh  # lazy: only rules that need geometry, and the renderer, pay for it
+    is_dae = path.lower().endswith(".dae")
+    if not is_dae:
+        m = trimesh.load(path, force="mesh", process=False)
+    else:
+        m, failure, lost = None, None, True
+        try:
+            scene = trimesh.load_scene(path, process=False)   # what force="mesh" does
+            m = scene.to_mesh()
+            # every <instance_geometry> that loads gives at least one geometry node
+            lost = len(scene.graph.nodes_geometry) < \
+                _file_bytes(path).count(b"<instance_geometry")
+        except Exception as e:  # noqa: BLE001 - retried without materials below
+            failure = e
+        broken = dae_broken_refs(path) if lost or m is None or len(m.vertices) == 0 else []
+        if broken:
+            try:
+                full = _load_dae_without_materials(path)
+                if m is None or len(full.vertices) > len(m.vertices):
+                    m = full
+            except Exception:  # noqa: BLE001 - report the original problem
+                pass
+            if m is not None:
+                m.metadata["broken_refs"] = broken
+        if m is None:
+            raise failure if failure is not None else ValueError("the mesh has no geometry")
+    assert m is not None
+    unit = dae_unit(path) if is_dae else 1.0
+    if unit != 1.0:
+        m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
+    return m
+
+
+def dae_broken_refs(path: str) -> list[str]:
+    """The broken internal references pycollada finds in a COLLADA file (messages)."""
+    import collada
+    ignore = [collada.common.DaeBrokenRefError, collada.common.DaeUnsupportedError,
+              collada.common.DaeIncompleteError, collada.common.DaeMalformedError,
+              collada.common.DaeError]
+    try:
+        c = collada.Collada(path, ignore=ignore)
+    except Exception:  # noqa: BLE001 - not a broken reference: the caller reports the failure
+        return []
+    out = []
+    for e in c.errors:
+        if isinstance(e, collada.common.DaeBrokenRefError):
+            msg = error_text(e)
+            if msg not in out:
+                out.append(msg)
+    return out
+
+
+def _load_dae_without_materials(path: str):
+    """The geometry of a COLLADA file with every material binding, effect and image removed
+    (what a broken material reference cannot take down)."""
+    import io
+    import trimesh
+    from lxml import etree
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=True)
+    root = fsbound.parse_xml(path, parser, max_bytes=MAX_MESH_BYTES)
+    drop = {"bind_material", "library_effects", "library_materials", "library_images"}
+    for el in [e for e in root.iter() if isinstance(e.tag, str)
+               and etree.QName(e).localname in drop]:
+        el.getparent().remove(el)
+    for el in root.iter():
+        if isinstance(el.tag, str) and etree.QName(el).localname in (
+                "triangles", "polylist", "polygons", "lines", "tristrips", "trifans"):
+            el.attrib.pop("material", None)
+    data = etree.tostring(root)
+    return trimesh.load(io.BytesIO(data), file_type="dae", force="mesh", process=False)
+
+
+def error_text(e: BaseException) -> str:
+    """``Type: message`` once (pycollada's messages already start with their type)."""
+    msg = str(e).strip()
+    name = type(e).__name__
+    return msg if msg.startswith(name) else f"{name}: {msg}" if msg else name
+
+
+_DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
+
+
+def dae_unit(path: str) -> float:
+    """The metres-per-unit a COLLADA file declares in its <asset> (1.0 when absent)."""
+    try:
+        return _unit_of(fsbound.read_head(path, 8192))
+    except OSError:
+        return 1.0
+
+
+def _unit_of(data: bytes) -> float:
+    """:func:`dae_unit` of a COLLADA document's bytes (its first 8 KiB)."""
+    m = _DAE_UNIT.search(data[:8192])
+    try:
+        v = float(m.group(1)) if m else 1.0
+    except ValueError:
+        return 1.0
+    return v if math.isfinite(v) and v > 0 else 1.0
+
+
+_loaded: "OrderedDict[str, Any]" = OrderedDict()
+MAX_LOADED_VERTICES = 4_000_000   # bound the in-memory mesh cache of a long-lived worker
+
+
+def get_mesh(path: str):
+    """The loaded mesh, shared in memory between the rules and the renderer (by content).
+    Least recently used meshes are dropped beyond MAX_LOADED_VERTICES."""
+    digest = _digest(path)
+    if digest in _loaded:
+        _loaded.move_to_end(digest)
+        return _loaded[digest]
+    mesh = load_mesh(path)
+    _loaded[digest] = mesh
+    total = sum(len(m.vertices) for m in _loaded.values())
+    while total > MAX_LOADED_VERTICES and len(_loaded) > 1:
+        _, old = _loaded.popitem(last=False)
+        total -= len(old.vertices)
+    return mesh
+
+
+def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
+    """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
+    content. Measured on the mesh's arrays (:mod:`urdf_lint.meshes.readers`), never on a processed
+    trimesh: a binary STL is streamed in chunks, so its size alone is never an error."""
+    over = _over_limit(path)
+    if over is not None:
+        return over
+    return _cached(_memory, f"v{FACTS_VERSION}", path, cache_dir, _measure)
+
+
+def _over_limit(path: str) -> dict | None:
+    """The finding for a mesh file larger than urdf-lint reads (a stat decides it, so it is
+    the same on every run without being stored)."""
+    try:
+        size = os.stat(path).st_size
+    except OSError:
+        return None
+    if size <= MAX_MESH_BYTES:
+        return None
+    return {"ok": False, "error": f"the file is {size / 2**20:.0f} MiB, over the "
+            f"{MAX_MESH_BYTES / 2**20:g} MiB limit of mesh files urdf-lint reads",
+            "vertices": 0, "faces": 0, "finite": True, "bounds": None}
+
+
+def _measure(path: str) -> dict:
+    try:
+        from urdf_lint.meshes import readers as meshio
+        n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
+        if n is not None:
+            return _stl_facts(path, n)
+        v, f, broken = _arrays(path)
+        import numpy as np
+        finite, bounds = True, None
+        if len(v):
+            lo, hi = meshio.bounds(v)
+            finite = bool(np.isfinite(lo).all() and np.isfinite(hi).all())
+            bounds = [list(map(float, lo)), list(map(float, hi))] if finite else None
+        return {"ok": True, "error": "", "vertices": int(len(v)), "faces": int(len(f)),
+                "finite": finite, "bounds": bounds, "broken_refs": list(broken)}
+    except (PermissionError, MemoryError) as e:
+        # the environment refused (sandbox, memory limit): a finding now, never cached
+        msg = error_text(e)[:300]
+        if isinstance(e, MemoryError):
+            msg = ("ran out of memory while loading it (the worker's memory limit, "
+                   f"memory-mb): {msg}")[:300]
+        raise _Uncached({"ok": False, "error": msg, "vertices": 0,
+                         "faces": 0, "finite": True, "bounds": None}) from e
+    except Exception as e:  # noqa: BLE001 - any loader failure is a finding
+        return {"ok": False, "error": error_text(e)[:300], "vertices": 0,
+                "faces": 0, "finite": True, "bounds": None}
+
+
+def _stl_facts(path: str, n: int) -> dict:
+    """The facts of a binary STL of ``n`` triangles, streamed chunk by chunk."""
+    import numpy as np
+    from urdf_lint.meshes import readers as meshio
+    finite, lo, hi = True, None, None
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK, _kept_bytes.get(_digest(path))):
+        # a NaN makes its column's minimum NaN, an infinity a minimum or maximum infinite
+        clo, chi = meshio.bounds(tris.reshape(-1, 3))
+        if not (np.isfinite(clo).all() and np.isfinite(chi).all()):
+            finite = False
+            break
+        lo = clo if lo is None else np.minimum(lo, clo)
+        hi = chi if hi is None else np.maximum(hi, chi)
+    bounds = [list(map(float, lo)), list(map(float, hi))] \
+        if n and finite and lo is not None and hi is not None else None
+    return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
+            "bounds": bounds, "broken_refs": []}
+
+
+KEEP_LOADED = False   # a render run: measure the trimesh meshes the renderer draws (get_mesh)
+STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
+_arrays_memo: "OrderedDict[str, tuple]" = OrderedDict()
+MAX_MEMO_VERTICES = 1_000_000     # the arrays kept between the facts and the mass rules
+
+
+def _arrays(path: str):
+    """(vertices float64 (n, 3), faces int64 (m, 3), broken_refs) of a mesh: what
+    ``load_mesh`` gives (scene instances placed and stacked, the COLLADA unit applied), from
+    the loaders' raw arrays. A render run that already holds the loaded mesh uses it."""
+    digest = _digest(path)
+    if digest in _arrays_memo:
+        _arrays_memo.move_to_end(digest)
+        return _arrays_memo[digest]
+    import numpy as np
+    if digest in _loaded or KEEP_LOADED:
+        m = get_mesh(path)
+        out = (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
+               list(m.metadata.get("broken_refs", ())))
+    else:
+        out = _read_arrays(path)
+    if len(out[0]) <= MAX_MEMO_VERTICES:
+        _arrays_memo[digest] = out
+        total = sum(len(a[0]) for a in _arrays_memo.values())
+        while total > MAX_MEMO_VERTICES and len(_arrays_memo) > 1:
+            _, old = _arrays_memo.popitem(last=False)
+            total -= len(old[0])
+    return out
+
+
+def _read_arrays(path: str):
+    import numpy as np
+    from urdf_lint.meshes import readers as meshio
+    low = path.lower()
+    if low.endswith(".stl"):
+        n = meshio.binary_stl_triangles(path)
+        if n is not None:
+            tris = np.concatenate(list(meshio.iter_binary_stl(
+                path, data=_kept_bytes.get(_digest(path))))) if n else \
+                np.zeros((0, 3, 3), dtype=np.float32)
+            v = tris.reshape(-1, 3).astype(np.float64)
+            return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3), []
+        got = meshio.read_ascii_stl(path)
+        if got is not None:
+            return got[0], got[1], []
+    elif low.endswith(".obj"):
+        got = meshio.obj_arrays(_file_bytes(path))   # the same numbers without trimesh
+        if got is not None:
+            return got[0], got[1], []
+        return _scene_arrays(path, False)
+    elif low.endswith(".dae"):
+        got = _scene_arrays(path, True)
+        if got is not None:
+            return got
+    m = load_mesh(path)     # anything unusual: trimesh decides, as before
+    return (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
+            list(m.metadata.get("broken_refs", ())))
+
+
+def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
+    """The arrays of ``load_mesh`` for a COLLADA or OBJ file through ``load_scene``, or None
+    when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that).
+    A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
+    numbers, without trimesh)."""
+    from urdf_lint.meshes import readers as meshio
+    if is_dae and lean:
+        data = _file_bytes(path)
+        got = meshio.collada_arrays(data)   # the same numbers without trimesh, when it can
+        if got is not None:
+            unit = _unit_of(data)
+            v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
+            return v, got[1], []
+    quiet_libraries()
+    import trimesh
+    if not is_dae:
+        return (*meshio.scene_arrays(trimesh.load_scene(path, process=False)), [])
+    try:
+        scene = trimesh.load_scene(path, process=False)
+    except Exception:  # noqa: BLE001 - load_mesh retries without materials, or reports it
+        return None
+    lost = len(scene.graph.nodes_geometry) < _file_bytes(path).count(b"<instance_geometry")
+    v, f = meshio.scene_arrays(scene)
+    if lost or len(v) == 0:
+        return None
+    unit = dae_unit(path)
+    if unit != 1.0:
+        v = meshio.scale_points(v, unit)
+    return v, f, []
+
+
+env_failures = 0   # results this process measured that depend on the environment (never cached)
+
+
+class _Uncached(Exception):
+    """A result that depends on the environment, not on the file: returned, never cached."""
+
+    def __init__(self, facts):
+        super().__init__()
+        self.facts = facts
+
+
+def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute) -> dict:
+    """``compute(path)``, memoized in ``memory`` and on disk under ``cache_dir/meshes``, keyed
+    by the file's content."""
+    digest = _digest(path)
+    if digest in memory:
+        return memory[digest]
+    cache_file = None
+    if cache_dir:
+        cache_file = Path(cache_dir, "meshes", f"{prefix}-{digest}.json")
+        try:
+            from urdf_lint.core import fsbound
+            facts = json.loads(fsbound.read_bytes(str(cache_file), max_bytes=1 << 20,
+                                                  nofollow=True))
+            if isinstance(facts, dict) and "ok" in facts:
+                memory[digest] = facts
+                return facts
+        except (OSError, ValueError, RecursionError):   # (unsigned: any bytes may be there)
+            pass
+    try:
+        facts = compute(path)
+    except _Uncached as e:
+        global env_failures
+        env_failures += 1     # the model's result must not be cached either
+        return e.facts
+    memory[digest] = facts
+    if cache_file is not None:
+        try:
+            from urdf_lint.run.cachedir import ensure
+            ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
+            from urdf_lint.core import fsbound
+            # the worker's sandbox may write (and read) only below meshes/, not the cache folder
+            fsbound.make_own_dirs(str(cache_file.parent))
+            fsbound.write_text(str(cache_file), json.dumps(facts), str(cache_file.parent))
+        except OSError:
+            pass
+    return facts
+
+
+def parse_scale(s):
+    if s is None:
+        return [1.0, 1.0, 1.0]
+    parts = s.split()
+    try:
+        vals = [float(p) for p in parts]
+    except ValueError:
+        return None
+    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
+        return None
+    return vals
+
+
+# -- mass properties (for the physical plausibility rules) ----------------------------------
+_mass_memory: dict = {}
+MASS_FACTS_VERSION = 1
+
+
+def mass_facts(path: str, cache_dir: str | None = None) -> dict:
+    """Volume properties of a mesh filled with unit density, cached by content (like
+    ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
+    bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
+    used instead (an open surface has no volume)."""
+    return _cached(_mass_memory, f"mass{MASS_FACTS_VERSION}", path, cache_dir, _measure_mass)
+
+
+def _measure_mass(path: str) -> dict:
+    try:
+        from urdf_lint.meshes import readers as meshio
+        n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
+        if n is not None and n > (STL_CHUNK or meshio.STL_CHUNK_TRIANGLES):
+            return _stl_mass_chunked(path, n)
+        v, f, _ = _arrays(path)
+        return _mass_arrays(v, f)
+    except (PermissionError, MemoryError) as e:
+        raise _Uncached({"ok": False}) from e
+    except Exception:  # noqa: BLE001 - UL404 reports meshes that do not load
+        return {"ok": False}
+
+
+def _mass_properties(mesh) -> dict:
+    import numpy as np
+    return _mass_arrays(np.asarray(mesh.vertices, dtype=float),
+                        np.asarray(mesh.faces, dtype=np.int64))
+
+
+def _mass_arrays(v, f) -> dict:
+    import numpy as np
+    from urdf_lint.meshes.readers import mass_properties
+    if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
+        return {"ok": False}
+    hull = not _closed(v, f)
+    if hull:
+        try:
+            h = _convex_hull(v)
+        except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
+            return {"ok": False}
+        tris = np.asarray(h.vertices)[np.asarray(h.faces)]
+    else:
+        tris = v[f]
+    with np.errstate(divide="ignore", invalid="ignore"):   # (no volume: judged below)
+        volume, com, inertia = mass_properties(tris)
+    vol = float(volume)
+    if not math.isfinite(vol) or abs(vol) < 1e-15:
+        return {"ok": False}
+    sign = 1.0 if vol > 0 else -1.0      # inside-out winding: every moment flips sign
+    vol *= sign
+    com = np.asarray(com, dtype=float)
+    inertia = sign * np.asarray(inertia, dtype=float)   # about com, density 1
+    s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
+    second = s_com + vol * np.outer(com, com)
+    return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
+            "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}
+
+
+def _closed(v, f) -> bool:
+    """Whether the triangles bound a volume: with coincident vertices merged, every directed
+    edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
+    building a processed trimesh.Trimesh for it."""
+    from urdf_lint.meshes.readers import merged_ids
+    return _closed_faces(merged_ids(v)[f])     # vertices merged as trimesh's unique_rows does
+
+
+def _closed_faces(ff) -> bool:
+    """``_closed`` on faces already indexing merged vertices."""
+    import numpy as np
+    ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
+    if len(ff) < 4:
+        return False
+    e = np.stack([ff[:, [0, 1]], ff[:, [1, 2]], ff[:, [2, 0]]], axis=1).reshape(-1, 2)
+    n = int(ff.max()) + 1
+    code = np.sort(e[:, 0] * n + e[:, 1])
+    if (code[1:] == code[:-1]).any():
+        return False
+    rev = e[:, 1] * n + e[:, 0]
+    pos = np.searchsorted(code, rev).clip(0, len(code) - 1)
+    return bool((code[pos] == rev).all())
+
+
+MAX_MASS_TRIANGLES = 6_000_000   # above: no mass facts (~15 s, ~1 GB at 5M; the inertia rules skip it)
+
+
+def _stl_mass_chunked(path: str, n: int) -> dict:
+    """Mass properties of a binary STL too large to hold as one float64 array: the volume
+    integrals are summed chunk by chunk, closedness is tested on one int64 code per directed
+    edge (from its ends rounded like ``unique_rows``), and an open surface (a second pass)
+    uses the hull of the chunks' hulls."""
+    import numpy as np
+    from urdf_lint.meshes import readers as meshio
+    if n > MAX_MASS_TRIANGLES:
+        return {"ok": False, "error": f"{n} triangles: over the {MAX_MASS_TRIANGLES} "
+                "urdf-lint measures volumes of"}
+    integ = np.zeros(10)
+    codes, revs = [], []
+    lo = hi = None
+    for tris in meshio.iter_binary_stl(path, STL_CHUNK):
+        t = tris.astype(np.float64)
+        if not np.isfinite(t).all():
+            return {"ok": False}
+        integ += meshio.volume_integrals(t)
+        code, rev = meshio.edge_codes(t)
+        codes.append(code)
+        revs.append(rev)
+        pts = t.reshape(-1, 3)
+        lo = pts.min(axis=0) if lo is None else np.minimum(lo, pts.min(axis=0))
+        hi = pts.max(axis=0) if hi is None else np.maximum(hi, pts.max(axis=0))
+    if lo is None:
+        return {"ok": False}
+    hull = not _closed_codes(codes, revs)
+    del codes, revs
+    if hull:
+        try:
+            parts = []
+            for tris in meshio.iter_binary_stl(path, STL_CHUNK):
+                pts = tris.reshape(-1, 3).astype(np.float64)
+                try:
+                    parts.append(np.asarray(_convex_hull(pts).vertices))
+                except Exception:  # noqa: BLE001 - a flat chunk: keep its points
+                    parts.append(pts)
+            h = _convex_hull(np.concatenate(parts))
+        except Exception:  # noqa: BLE001 - flat or degenerate: no volume to judge
+            return {"ok": False}
+        integ = meshio.volume_integrals(np.asarray(h.vertices)[np.asarray(h.faces)])
+    vol, first, second = meshio.moments(integ)
+    if not math.isfinite(vol) or abs(vol) < 1e-15:
+        return {"ok": False}
+    sign = 1.0 if vol > 0 else -1.0
+    return {"ok": True, "volume": sign * vol, "first": (sign * first).tolist(),
+            "second": (sign * second).tolist(),
+            "bounds": [lo.tolist(), hi.tolist()] if lo is not None and hi is not None else None,
+            "hull": bool(hull)}
+
+
+def _closed_codes(codes, revs) -> bool:
+    """``_closed`` for millions of faces, on the chunks' directed edge codes
+    (:func:`meshio.edge_codes`): every code once, and sorted they equal their reverses sorted
+    (no merge of vertices, no random-access search over the whole array)."""
+    import numpy as np
+    code = np.concatenate(codes)
+    if len(code) < 12:
+        return False
+    code.sort()
+    if (code[1:] == code[:-1]).any():
+        return False
+    rev = np.concatenate(revs)
+    rev.sort()
+    return bool(np.array_equal(code, rev))
+
+
+def _convex_hull(points):
+    """The convex hull of points (``.vertices``, ``.faces``), with manifold3d (a 4 MB wheel
+    that imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to
+    import)."""
+    import types
+    import manifold3d
+    import numpy as np
+    m = manifold3d.Manifold.hull_points(np.ascontiguousarray(points, dtype=np.float64)).to_mesh()
+    verts = np.asarray(m.vert_properties, dtype=float)[:, :3]
+    faces = np.asarray(m.tri_verts, dtype=np.int64)
+    if len(faces) < 4:
+        raise ValueError("degenerate hull")
+    return types.SimpleNamespace(vertices=verts, faces=faces)

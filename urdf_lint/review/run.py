@@ -1,0 +1,614 @@
+"""``urdf-lint diff BASE [HEAD]``: what a change did to the robots, for review in CI.
+
+1. Both revisions are materialised from git (``git archive``, extracted with tarfile's ``data``
+   filter); HEAD defaults to the working tree, used in place.
+2. HEAD is linted as ``check`` would (cache included); the models whose recorded inputs (every
+   xacro, YAML, mesh and texture read, and every file looked for and missing) meet a changed
+   path are *affected*. Deleted entry models are affected too.
+3. Only the affected models are expanded at BASE; every other model costs nothing there.
+4. Each affected model is expanded once more on each side in a worker (same isolation as
+   ``check``) to get the robot itself, and :mod:`urdf_lint.review.robotdiff` compares the two.
+5. Findings are compared by code, file (relative to the revision's root) and message: those
+   only at HEAD are *introduced*, those only at BASE are *fixed*.
+"""
+from __future__ import annotations
+
+import dataclasses
+import functools
+import io
+import os
+import subprocess
+import tarfile
+import tempfile
+from collections import Counter
+from dataclasses import dataclass, field
+
+from urdf_lint.review.robotdiff import ModelDiff, diff_models
+from urdf_lint.rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+                    ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
+                    ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
+
+# the problems that say why a model could not be expanded or parsed
+_FAILURE_RULES = (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
+                  ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
+                  ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
+
+MARKDOWN_LIMIT = 60_000
+
+
+class ReviewError(Exception):
+    pass
+
+
+def _git(top, *args, binary=False):
+    p = subprocess.run(["git", *args], cwd=top, capture_output=True, timeout=120)
+    if p.returncode != 0:
+        raise ReviewError(p.stderr.decode(errors="replace").strip().splitlines()[-1]
+                          if p.stderr.strip() else f"git {' '.join(args)} failed")
+    return p.stdout if binary else p.stdout.decode()
+
+
+def verify_rev(top: str, rev: str) -> str:
+    try:
+        return _git(top, "rev-parse", "--verify", "--quiet", rev + "^{commit}").strip()
+    except ReviewError:
+        raise ReviewError(f"'{rev}' is not a commit in {top} (fetch it first, e.g. "
+                          f"'git fetch origin {rev}')") from None
+
+
+def materialize(top: str, rev: str, dest: str, only=None) -> None:
+    """The tracked files of ``rev`` (or just ``only``, paths relative to the top) under
+    ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
+    from urdf_lint.core import fsbound
+    fsbound.make_own_dirs(dest)   # a temporary folder of this run
+    batches: list[list[str]]
+    if only is None:
+        batches = [[]]
+    else:
+        only = sorted(only)
+        batches = [only[i:i + 400] for i in range(0, len(only), 400)]
+    for batch in batches:
+        if only is not None and not batch:
+            continue
+        spec = ["--"] + [":(literal)" + p for p in batch] if batch else []
+        data = _git(top, "archive", "--format=tar", rev, *spec, binary=True)
+        with tarfile.open(fileobj=io.BytesIO(data)) as tf:
+            tf.extractall(dest, filter=_data_or_skip)
+
+
+def _data_or_skip(member, path):
+    """tarfile's ``data`` filter, but a member it refuses (an absolute symlink, a link out of
+    the tree, a device) is left out instead of ending the run: what reads it later finds it
+    missing, as the linted tree would not hold it either (inside the roots)."""
+    try:
+        return tarfile.data_filter(member, path)
+    except tarfile.FilterError:
+        return None
+
+
+def tracked_files(top: str, rev: str) -> set[str]:
+    return {p for p in _git(top, "ls-tree", "-r", "-z", "--name-only", rev).split("\0") if p}
+
+
+def name_status(top: str, base: str, head: str | None) -> list[tuple[str, str, str]]:
+    """(status letter, old path, new path) relative to the top, renames detected."""
+    args = ["diff", "--name-status", "-M", "-z", base] + ([head] if head else [])
+    parts = _git(top, *args).split("\0")
+    out, i = [], 0
+    while i < len(parts) and parts[i]:
+        st = parts[i]
+        if st.startswith(("R", "C")):
+            out.append((st[0], parts[i + 1], parts[i + 2]))
+            i += 3
+        else:
+            out.append((st[0], parts[i + 1], parts[i + 1]))
+            i += 2
+    if head is None:
+        for f in _git(top, "ls-files", "--others", "--exclude-standard", "-z").split("\0"):
+            if f:
+                out.append(("A", f, f))
+    return out
+
+
+@dataclass
+class Side:
+    """One revision of a ``diff`` run: its models, findings, robots and pictures."""
+    root: str
+    models: dict = field(default_factory=dict)      # key -> ModelResult
+    findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
+    severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
+    robots: dict = field(default_factory=dict)      # key -> Model | None
+    geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
+    rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
+    errors: dict = field(default_factory=dict)      # key -> message
+    pictures: dict = field(default_factory=dict)    # key -> its pictures' name (as `render`'s)
+
+
+@dataclass
+class DiffResult:
+    """The outcome of ``urdf-lint diff``: the models a change affected, and what it did to each."""
+    base: str
+    head: str
+    models: list = field(default_factory=list)      # ModelDiff, affected models only
+    total_models: int = 0
+    base_expanded: int = 0
+    internal: list = field(default_factory=list)
+    snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
+    no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
+
+
+def _key(rel_entry: str, args: dict) -> str:
+    return rel_entry + ("" if not args else " [" + " ".join(
+        f"{k}:={v}" for k, v in sorted(args.items())) + "]")
+
+
+@functools.lru_cache(maxsize=65536)
+def _realpath(path):
+    return os.path.realpath(path)
+
+
+def _rel(root, path):
+    # memoised: every dependency of every model goes through here (thousands of paths)
+    return os.path.relpath(_realpath(path), _realpath(root))
+
+
+_SOURCE_SUFFIXES = (".xacro", ".urdf")
+
+
+class _Reach:
+    """Which models a change can reach without expanding them: when every changed path is a
+    xacro or URDF file, a model is skipped (not linted at HEAD) when its include closure,
+    read from the include graph, is complete (no include only expansion can resolve) and
+    holds none of them. Any other change (YAML, meshes, manifests, configs) lints every
+    model, whose recorded inputs then say which are affected."""
+
+    def __init__(self, changed_abs):
+        self.changed = {os.path.realpath(p) for p in changed_abs}
+        self.active = bool(self.changed) and all(p.endswith(_SOURCE_SUFFIXES)
+                                                 for p in self.changed)
+        self.skipped = 0   # models not linted (counted in the total)
+
+    def __call__(self, jobs, found):
+        if not self.active:
+            return jobs
+        keep = []
+        for job in jobs:
+            if self._may_reach(job, found):
+                keep.append(job)
+            elif job.entry not in found.fragments:
+                self.skipped += 1
+        return keep
+
+    def _may_reach(self, job, found) -> bool:
+        graph = found.graph
+        # a xacro with a generated output reads that file too (UL011 compares them); a
+        # generated URDF is a model of its own, whose only source is itself
+        todo, seen = [job.entry] + ([job.output] if job.output else []), set()
+        while todo:
+            f = todo.pop()
+            real = _realpath(f)
+            if real in seen:
+                continue
+            seen.add(real)
+            if real in self.changed:
+                return True
+            if f.endswith(".xacro"):
+                if f not in graph.includes or graph.unresolved.get(f):
+                    return True   # not read, or an include only expansion can resolve
+                todo.extend(graph.includes.get(f, ()))
+        return False
+
+
+def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
+               mesh_cache_dir=None, select_jobs=None, settings_overrides=None):
+    """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
+    the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
+    whole revision (``side.root``), as they do at HEAD, even when only a few entries are
+    linted."""
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.core.locations import picture_name
+    from urdf_lint.run.pipeline import run_check
+    resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
+    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
+                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
+                       select_jobs=select_jobs, settings_overrides=settings_overrides)
+    labels = {}
+    for m in result.models:
+        k = _key(_rel(side.root, m.entry), m.args)
+        side.models[k] = m
+        side.pictures[k] = picture_name(_rel(side.root, m.entry), m.args)
+        labels[m.label] = k
+        side.findings[k] = Counter()
+    real_root = os.path.realpath(side.root)
+    for f in result.findings:
+        fk = (f.code, _rel(side.root, f.file),
+              f.message.replace(real_root + os.sep, "").replace(side.root + os.sep, ""))
+        side.severities[fk] = f.severity
+        for label in f.models:
+            if label in labels:
+                side.findings[labels[label]][fk] += 1
+    return resolver, result
+
+
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
+    """Expand the given models once more in workers and build the Model of each (and, for
+    ``--render``, the geometry of its picture and its half of the shared recording)."""
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.run.pipeline import settings_for
+    from urdf_lint.runner.worker import run_jobs
+    jobs, key_of = [], {}
+    for k in keys:
+        m = side.models.get(k)
+        if m is None:
+            continue
+        kind = "urdf" if m.entry.endswith(".urdf") else "xacro"
+        job = LintJob(m.entry, dict(m.args), kind, explicit=True)
+        jobs.append(job)
+        key_of[id(job)] = k
+    settings = dataclasses.replace(settings_for(cfg, resolver, None), selected=(),
+                                   keep_model=True)
+    if render:
+        settings = dataclasses.replace(settings, diff_render=True, diff_rrd=rrd)
+    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
+                             memory_mb=cfg.memory_mb):
+        k = key_of[id(job)]
+        if res.diff_geometry is not None:
+            side.geometry[k] = res.diff_geometry
+        if res.diff_rrd:
+            side.rrd[k] = res.diff_rrd
+        _keep_robot(side, k, job.entry, job.args, res, resolver)
+
+
+def _keep_robot(side: Side, k, entry, args, res, resolver):
+    """The Model of a report that kept its robot (``LintSettings.keep_model``), or why not."""
+    from urdf_lint.engine.model import Model, model_from_xml, parse_urdf_bytes
+    kept = res.kept_model
+    if kept is None:
+        failures = {r.CODE for r in _FAILURE_RULES}
+        msgs = [p.message for p in res.problems if p.code in failures]
+        side.robots[k] = None
+        side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
+        return
+    if kept.xml is not None:
+        side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
+    else:
+        from urdf_lint.core import fsbound
+        try:
+            data = fsbound.read_bytes(entry, resolver.roots if resolver is not None else None)
+        except OSError:
+            data = b""
+        root, origins, _ = parse_urdf_bytes(entry, data)
+        side.robots[k] = (Model(entry=entry, args={}, root=root, origins=origins,
+                                deps=[entry], resolver=resolver)
+                          if root is not None else None)
+
+
+def _half(jobs_n, cfg) -> int:
+    """Workers for one of two revisions that are linted / drawn at the same time."""
+    return max(1, (jobs_n or cfg.jobs or os.cpu_count() or 2) // 2)
+
+
+class _Background:
+    """``fn(*args)`` in a thread (its workers are processes: the thread only waits on
+    them); :meth:`join` raises what it raised."""
+
+    def __init__(self, fn, *args):
+        import threading
+        self.error = None
+        self.thread = None
+        if args and not args[1]:   # no keys: nothing to do
+            return
+
+        def run():
+            try:
+                fn(*args)
+            except BaseException as e:  # noqa: BLE001 - raised again by join()
+                self.error = e
+        self.thread = threading.Thread(target=run, name="urdf-lint-diff", daemon=True)
+        self.thread.start()
+
+    def join(self):
+        if self.thread is not None:
+            self.thread.join()
+        if self.error is not None:
+            raise self.error
+
+
+def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
+             jobs_n=None, use_cache=True, render_dir: str | None = None,
+             rrd: bool = True) -> DiffResult:
+    from urdf_lint.discovery.discover import start_dir
+    from urdf_lint.discovery.vcs import git_root
+    top = git_root(start_dir(paths))
+    if top is None:
+        raise ReviewError("diff compares git revisions: run it inside a git repository")
+    base_sha = verify_rev(top, base_rev)
+    head_sha = verify_rev(top, head_rev) if head_rev else None
+    result = DiffResult(base=base_rev, head=head_rev or "working tree")
+    # the recordings' writer imports rerun while the revisions are linted (forked now, before
+    # any worker or thread)
+    recorder = _start_recorder(render_dir) if render_dir and rrd else None
+    try:
+        with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
+            return _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
+                             jobs_n, use_cache, render_dir, rrd, recorder, tmp)
+    finally:
+        if recorder is not None:
+            recorder.close()
+
+
+def _start_recorder(render_dir: str):
+    from urdf_lint.render.recording import Recorder
+    try:
+        return Recorder(render_dir)
+    except OSError:   # no process to spare: the recordings are written here
+        return None
+
+
+def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths, jobs_n,
+              use_cache, render_dir, rrd, recorder, tmp) -> DiffResult:
+    changes = name_status(top, base_sha, head_sha)
+    changed_head = {new for st, _, new in changes if st != "D"}
+    changed_base = {old for st, old, _ in changes if st != "A"}
+    renamed = {new: old for st, old, new in changes if st == "R"}
+    head_root = top
+    if head_sha:
+        head_root = os.path.join(tmp, "head")
+        materialize(top, head_sha, head_root)
+    base_root = os.path.join(tmp, "base")
+    rel_paths = [os.path.relpath(os.path.abspath(p), top) for p in (paths or ["."])]
+
+    head = Side(head_root)
+    head_paths = [os.path.normpath(os.path.join(head_root, p)) for p in rel_paths]
+    head_paths = [p for p in head_paths if os.path.exists(p)] or [head_root]
+    cfg = cfg_loader(head_paths)
+    cache = None
+    if use_cache and head_sha is None:
+        from urdf_lint.run.cache import Cache
+        cache = Cache.for_paths(head_paths, cfg)
+        if cache.refused:  # said why on stderr; nothing goes there
+            cache = None
+    # models linted now (not from the cache) bring their robot back: no second expansion
+    # models the change cannot reach (include graph) are not even linted
+    reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
+                   [os.path.join(head_root, p) for p in changed_base])
+    head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
+                                            cache, keep_models=not render_dir,
+                                            select_jobs=reach)
+    result.internal += head_result.internal
+    result.total_models = len(head.models) + reach.skipped
+
+    affected = []
+    for k, m in head.models.items():
+        inputs = {_rel(head_root, d) for d in list(m.deps) + list(getattr(m, "missing", []))}
+        inputs.add(_rel(head_root, m.entry))
+        if inputs & (changed_head | changed_base):
+            affected.append(k)
+    if render_dir:
+        _clear_snapshots(render_dir)
+    again = []
+    for k in affected:
+        m = head.models[k]
+        if m.kept_model is not None and not render_dir:
+            _keep_robot(head, k, m.entry, m.args, m, head_resolver)
+        else:
+            again.append(k)
+    for m in head.models.values():
+        m.kept_model = None  # only the affected robots are needed from here on
+    # the head's robots (and pictures) are made while the base is materialised and linted
+    head_load = _Background(_load_robots, head, again, head_resolver, cfg,
+                            _half(jobs_n, cfg), bool(render_dir), rrd)
+    # (an exception from here on leaves it: its workers die with this process)
+    base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
+    # the base needs only what the affected models can read there: their inputs at HEAD
+    # (through renames), every changed path, and the package manifests and configs
+    base_files = tracked_files(top, base_sha)
+    need = set(changed_base)
+    for k in affected:
+        m = head.models[k]
+        for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]:
+            rel = _rel(head_root, d)
+            need.add(renamed.get(rel, rel))
+    need |= {f for f in base_files if os.path.basename(f) in
+             ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
+              "CATKIN_IGNORE")}
+    materialize(top, base_sha, base_root, only=need & base_files)
+    # base entries: the affected models (through renames) and deleted model files
+    base_entries = set()
+    for k in affected:
+        rel = _rel(head_root, head.models[k].entry)
+        rel = renamed.get(rel, rel)
+        if os.path.exists(os.path.join(base_root, rel)):
+            base_entries.add(rel)
+    from urdf_lint.engine.lint import classify_xacro
+    for st, old, _new in changes:
+        if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
+                any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
+                    for p in rel_paths):
+            f = os.path.join(base_root, old)
+            if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
+                base_entries.add(old)
+    base = Side(base_root)
+    base_resolver = None
+    if base_entries:
+        base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
+        base_cfg = cfg_loader([base_root])
+        # the base's robots (and with --render its pictures and half recordings) come
+        # from this one expansion; mesh facts (keyed by content) are shared with the
+        # working tree's cache
+        overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
+        base_resolver, base_result = _lint_side(
+            base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
+            mesh_cache_dir=cache.dir if cache else None, settings_overrides=overrides)
+        result.internal += base_result.internal
+        for k, m in base.models.items():
+            _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+            if m.diff_geometry is not None:
+                base.geometry[k] = m.diff_geometry
+            if m.diff_rrd:
+                base.rrd[k] = m.diff_rrd
+    result.base_expanded = len(base.models)
+
+    base_keys = {}
+    for k in affected:
+        m = head.models[k]
+        rel = _rel(head_root, m.entry)
+        bk = _key(renamed.get(rel, rel), m.args)
+        if bk in base.models:
+            base_keys[k] = bk
+    deleted = [k for k in base.models if k not in base_keys.values()]
+    head_load.join()
+
+    for k in sorted(affected):
+        result.models.append(_model_diff(k, head, base, base_keys.get(k)))
+    for dk in sorted(deleted):
+        result.models.append(_model_diff(dk, head, base, dk, removed=True))
+    if render_dir:
+        from urdf_lint.core.locations import clashing_names
+        from urdf_lint.render.snapshot import write_manifest
+        recordings: dict = {}
+        clash = clashing_names({md.model: md.picture for md in result.models})
+        for name, models in clash.items():
+            result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
+                                             f"has the picture name {name}: neither is drawn")
+                                         for k in models]
+        for md in result.models:
+            if md.picture in clash:
+                md.snapshot = {}
+                continue
+            removed = md.status == "removed"
+            md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
+                                    md.model if removed else base_keys.get(md.model),
+                                    render_dir, result, cfg, recorder, recordings)
+        _finish_recordings(result, recorder, recordings)
+        files = [v for md in result.models for k, v in md.snapshot.items()
+                 if k in ("before", "after", "diff", "rrd") and v]
+        write_manifest(render_dir, files)
+    return result
+
+
+def _clear_snapshots(render_dir):
+    """Remove what an earlier diff --render wrote here (its manifest), so no stale picture
+    survives; files this tool did not write stay."""
+    from urdf_lint.render.snapshot import clear_stale
+    from urdf_lint.core import fsbound
+    fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
+    if os.path.islink(render_dir):
+        raise ReviewError(f"--render {render_dir} is a symbolic link; refusing to write there")
+    clear_stale(render_dir)
+
+
+def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
+              recorder=None, recordings=None) -> dict:
+    from urdf_lint.render import snapshot as render
+    md = next(m for m in result.models if m.model == key)
+    stem = os.path.join(render_dir, md.picture)
+    before = base.geometry.get(bk) if bk else None
+    after = head.geometry.get(hk) if hk else None
+    info: dict = {}
+    lost = [side for side, g, wanted in (("base", before, md.status != "added"),
+                                         ("head", after, md.status != "removed"))
+            if wanted and g is None]
+    if lost:
+        result.snapshot_problems.append(
+            (key, f"no picture of the {' and '.join(lost)} revision (it did not expand; see "
+                  "'urdf-lint check')"))
+    if before is None and after is None:
+        return info
+    changed = {name for name, _, _ in md.moved}
+    changed |= {c.name for c in md.changes if c.kind == "link"}
+    whole = after if after is not None else before
+    if md.status in ("added", "removed") and whole is not None:
+        changed |= set(whole.part_links) | set(whole.wire_links)
+    views = (cfg.views if cfg is not None else None) or "sheet"
+    forward = cfg.forward_axis if cfg is not None else "+x"
+    plans = [(prefix, p) for prefix, p in (("base/", base.rrd.get(bk) if bk else None),
+                                           ("head/", head.rrd.get(hk) if hk else None)) if p]
+    if plans and recordings is not None:
+        # both revisions in one recording, written by the recorder while the pictures are
+        # drawn (collected by _finish_recordings)
+        path, rid = stem + ".rrd", f"urdf-lint-diff/{md.picture}"
+        recordings[path] = (key, info, rid, plans)
+        if recorder is not None:
+            recorder.write(path, rid, plans, blueprint=("base/", "head/"))
+    info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
+                                   forward=forward))
+    return info
+
+
+def _finish_recordings(result, recorder, recordings) -> None:
+    """Wait for the recorder (or write here without one); a recording that could not be
+    written is a snapshot problem, except when rerun is not installed (no .rrd then, as
+    ``--no-rrd``, and ``result.no_recordings`` says why once)."""
+    from urdf_lint.render.recording import NO_RERUN, write_recording
+    if not recordings:
+        return
+    if recorder is not None:
+        done = recorder.results()
+    else:
+        done = {path: write_recording(path, rid, plans, blueprint=("base/", "head/"))
+                for path, (_k, _i, rid, plans) in recordings.items()}
+    for path, (key, info, _rid, _plans) in recordings.items():
+        why = done.get(path, "not written")
+        if why is None:
+            info["rrd"] = path
+        elif why == NO_RERUN:   # an optional part: the pictures are made, said once
+            result.no_recordings = why
+        else:
+            result.snapshot_problems.append((key, f"no recording: {why}"))
+
+
+def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
+    hm = None if removed else head.robots.get(k)
+    bm = base.robots.get(bk) if bk else None
+    if removed:
+        status = "removed"
+    elif bk is None:
+        status = "added"
+    else:
+        status = "changed"
+    md = ModelDiff(model=k, status=status,
+                   picture=base.pictures.get(bk, "") if removed else head.pictures.get(k, ""))
+    if not removed and hm is None:
+        md.status, md.error = "failed", head.errors.get(k, "")
+    elif bk is not None and bm is None and not removed:
+        md.error = "at base: " + base.errors.get(bk, "")
+    try:
+        changes, md.moved = diff_models(bm, hm)
+        md.changes = [_rebase(c, base.root, head.root) for c in changes]
+    except Exception as e:  # noqa: BLE001 - a malformed model still gets its findings diff
+        md.error = f"could not compare: {type(e).__name__}: {e}"
+    hf = head.findings.get(k, Counter()) if not removed else Counter()
+    bf = base.findings.get(bk, Counter()) if bk else Counter()
+    md.findings_introduced = [(fk, head.severities.get(fk, "error"))
+                              for fk in sorted((hf - bf).elements())]
+    md.findings_fixed = [(fk, base.severities.get(fk, "error"))
+                         for fk in sorted((bf - hf).elements())]
+    if status == "changed" and not md.changes and not md.moved and not md.findings_introduced \
+            and not md.findings_fixed and not md.error:
+        md.status = "unchanged"
+    return md
+
+
+def _rebase(c, base_root, head_root):
+    """Base-side locations name the file where it is in the repository, not the temporary copy."""
+    from dataclasses import replace
+
+    from urdf_lint.core.locations import Origin
+    if c.base is None:
+        return c
+
+    def move(p):
+        rel = os.path.relpath(p, base_root)
+        return p if rel.startswith("..") else os.path.join(head_root, rel)
+    o = c.base
+    return replace(c, base=Origin(move(o.file), o.line, o.col,
+                                  tuple((move(x[0]),) + tuple(x[1:]) for x in o.chain)))
+
+
+def exit_code(result: DiffResult, fail_on: str) -> int:
+    from urdf_lint.core.findings import exit_status
+    code = exit_status((sev for m in result.models for _, sev in m.findings_introduced),
+                       bool(result.internal), fail_on)
+    # a requested snapshot that could not be made fails the run (said on stderr by the CLI)
+    return max(code, 1) if result.snapshot_problems else code
