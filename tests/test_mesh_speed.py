@@ -415,7 +415,7 @@ def test_stl_collada_and_obj_facts_import_no_trimesh(tmp_path):
     daes = _generated_daes(tmp_path)
     obj = _generated_objs(tmp_path)["quads.obj"]
     paths = [str(p) for p in (tmp_path / "b.stl", tmp_path / "a.stl", daes["nested.dae"], obj)]
-    code = ("import sys, json; from urdf_lint import meshes\n"
+    code = ("import sys, json; from urdf_lint.meshes import resolve as meshes\n"
             f"for p in {paths!r}:\n"
             "    assert meshes.mesh_facts(p)['ok'] and meshes.mass_facts(p)['ok']\n"
             "    meshes.texture_refs(p)\n"
