@@ -1,4 +1,5 @@
-"""The engine's shape: no import cycles, every code is a rule module and is raised through it."""
+"""The engine's shape: rooms by layer (import-linter contracts), no import cycles, every code is
+a rule module and is raised through it."""
 from __future__ import annotations
 
 import ast
@@ -111,6 +112,53 @@ def test_the_import_graph_is_acyclic():
 def test_the_cycle_finder_finds_cycles():
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+# -- the layer contracts (import-linter; [tool.importlinter] in pyproject.toml) -------------------
+def _installed_layout(tmp_path):
+    """The package as installed (``rules/`` as ``urdf_lint.rules``), copied under ``tmp_path``:
+    import-linter reads the files of the package it finds, and an editable install maps
+    ``urdf_lint.rules`` to ``rules/`` without a folder inside ``urdf_lint/``."""
+    import shutil
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
+    shutil.copytree(PKG, tmp_path / "urdf_lint", ignore=ignore)
+    shutil.copytree(RULES_DIR, tmp_path / "urdf_lint" / "rules", ignore=ignore)
+    shutil.copy(REPO / "pyproject.toml", tmp_path / "pyproject.toml")
+    return tmp_path
+
+
+def _lint_imports(tree):
+    import os
+    import subprocess
+    import sys
+    exe = os.path.join(os.path.dirname(sys.executable), "lint-imports")
+    if not os.path.exists(exe):
+        pytest.skip("import-linter is not installed (pip install -e '.[test]')")
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    return subprocess.run([exe, "--config", str(tree / "pyproject.toml"), "--no-cache"],
+                          cwd=tree, env=env, capture_output=True, text=True, timeout=120)
+
+
+def test_the_layer_contracts_are_kept(tmp_path):
+    p = _lint_imports(_installed_layout(tmp_path))
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "Contracts: 2 kept, 0 broken." in p.stdout, p.stdout
+
+
+def test_an_upward_import_breaks_the_layer_contract(tmp_path):
+    """The contracts see an import inside a function too: a lower room (core) importing a
+    higher one (cli) is reported with its line, and the runner importing the engine breaks its
+    own contract."""
+    tree = _installed_layout(tmp_path)
+    with open(tree / "urdf_lint" / "core" / "escape.py", "a", encoding="utf-8") as f:
+        f.write("\n\ndef _upward():\n    from urdf_lint.cli import main  # noqa: F401\n")
+    with open(tree / "urdf_lint" / "runner" / "forked.py", "a", encoding="utf-8") as f:
+        f.write("\n\ndef _knows_lint():\n    from urdf_lint.engine import model  # noqa: F401\n")
+    p = _lint_imports(tree)
+    assert p.returncode != 0, p.stdout
+    assert "urdf_lint.core.escape -> urdf_lint.cli.main" in p.stdout, p.stdout
+    assert "urdf_lint.runner.forked -> urdf_lint.engine.model" in p.stdout, p.stdout
+    assert "0 kept, 2 broken" in p.stdout, p.stdout
 
 
 CODE_LITERAL = re.compile(r"UL\d{3}")
