@@ -312,13 +312,11 @@ def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
         assert (ref.problem is None) == (status is MeshStatus.OK)
 
 
-def test_settings_are_typed_and_readable_as_the_old_dict():
+def test_settings_are_typed():
     import dataclasses
     from urdf_lint.core.jobs import LintSettings
     s = LintSettings(resolver={"scanned": {}}, selected=("UL302",), mesh_cache_dir="/c")
-    assert s.selected == ("UL302",) and s["mesh_cache_dir"] == "/c" and s.get("render_dir") is None
-    with pytest.raises(KeyError):
-        s["no_such_setting"]
+    assert s.selected == ("UL302",) and s.mesh_cache_dir == "/c" and s.render_dir is None
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.selected = ()
     assert dataclasses.replace(s, keep_model=True).keep_model
@@ -421,3 +419,28 @@ def test_the_standard_library_is_untouched_by_the_sandbox_probe():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "P(x: int = 1)", p.stdout
+
+
+def test_one_git_runner(tmp_path):
+    """git is run in one place, :func:`urdf_lint.discovery.vcs.git`: text or bytes out, and every
+    failure (not a work tree, no git at all) one GitError with git's message."""
+    offenders = []
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.List) and node.elts and isinstance(node.elts[0], ast.Constant) \
+                    and node.elts[0].value == "git" and name != "urdf_lint.discovery.vcs":
+                offenders.append(f"{path.relative_to(REPO)}:{node.lineno}")
+    assert not offenders, "git run outside discovery/vcs.py:\n" + "\n".join(offenders)
+    import os
+    from urdf_lint.discovery.vcs import GitError, git
+    assert git("--version", cwd=str(tmp_path)).startswith("git version")
+    assert git("--version", cwd=str(tmp_path), binary=True).startswith(b"git version")
+    with pytest.raises(GitError, match="not a git repository"):
+        git("rev-parse", "--show-toplevel", cwd=str(tmp_path))
+    old = os.environ["PATH"]
+    os.environ["PATH"] = str(tmp_path)     # no git on the PATH
+    try:
+        with pytest.raises(GitError):
+            git("--version", cwd=str(tmp_path))
+    finally:
+        os.environ["PATH"] = old

@@ -333,7 +333,6 @@ SCHEMA: tuple[Key, ...] = (
         "the robot's forward axis in its base frame, for the snapshot views"),
 )
 KEYS = {k.name: k for k in SCHEMA}
-KNOWN_KEYS = set(KEYS)
 
 # [tool.urdf-lint.format]: the settings of `urdf-lint format` (urdf_lint/formatting/layout.py)
 FORMAT_SCHEMA: tuple[Key, ...] = (

@@ -306,11 +306,6 @@ class PackageResolver:
         a device, FIFO or folder) and, with ``cap``, at most that many bytes."""
         return self.is_inside(path) and regular_file(path, cap)
 
-    def confine(self, path: str | os.PathLike, what: str = "file") -> Path:
-        if not self.is_inside(path):
-            raise OutsideRoots(str(path), what)
-        return Path(path)
-
     def to_dict(self) -> dict:
         return {"explicit": {k: str(v) for k, v in self.explicit.items()},
                 "scanned": {k: str(v) for k, v in self.scanned.items()},

@@ -650,19 +650,6 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     return facts
 
 
-def parse_scale(s):
-    if s is None:
-        return [1.0, 1.0, 1.0]
-    parts = s.split()
-    try:
-        vals = [float(p) for p in parts]
-    except ValueError:
-        return None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        return None
-    return vals
-
-
 # -- mass properties (for the physical plausibility rules) ----------------------------------
 _mass_memory: dict = {}
 MASS_FACTS_VERSION = 1
