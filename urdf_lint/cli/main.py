@@ -173,7 +173,7 @@ def _add_output(p):
 
 
 def _add_fix(p):
-    """``check --fix`` and friends (issue 14; :mod:`urdf_lint.fix.cli`)."""
+    """``check --fix`` and friends (issue 14; :mod:`urdf_lint.cli.fix`)."""
     p.add_argument("--fix", action="store_true",
                    help="apply the safe fixes to the xacro sources, then report what remains "
                         "(default: off, nothing is written)")
@@ -330,7 +330,7 @@ def _cmd_generate(sub, raw):
 
 
 def _cmd_format(sub, raw):
-    from urdf_lint.formatting.run import add_parser
+    from urdf_lint.cli.format import add_parser
     add_parser(sub, raw, _add_inputs)
 
 
@@ -609,7 +609,7 @@ def cmd_check(args) -> int:
                 "--fix/--diff/--add-suppressions on a file that models include: run it on "
                 f"the folder ({_safe_text(display_path(args.paths[0]))}), so that every fix "
                 "is checked against every model that uses the file")
-        from urdf_lint.fix.cli import check_fix
+        from urdf_lint.cli.fix import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
         _clear_stale(render_dir, args.paths)
@@ -1054,7 +1054,7 @@ def _generate_summary(outputs, stale, failed, check) -> str:
 
 
 def cmd_format(args) -> int:
-    from urdf_lint.formatting.run import cmd_format as run
+    from urdf_lint.cli.format import cmd_format as run
     return run(args, _load_cfg, _parse_package_paths)
 
 
