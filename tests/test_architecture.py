@@ -377,7 +377,7 @@ def test_no_module_of_ours_rebinds_another_modules_names():
         ("urdf_lint.expansion.expand", "sys.stdout"): "capture, restored",
         ("urdf_lint.expansion.expand", "sys.stderr"): "capture, restored",
         # a worker process's own interpreter setting (the worker is ours alone)
-        ("urdf_lint.runner.worker", "sys.dont_write_bytecode"): "the worker's own process",
+        ("urdf_lint.runner.pool", "sys.dont_write_bytecode"): "the worker's own process",
     }
     found = []
     for name, path in _modules().items():

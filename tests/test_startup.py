@@ -129,7 +129,7 @@ def test_a_child_does_not_hold_the_parents_ends_of_its_channel():
 
 
 def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
 
@@ -197,7 +197,7 @@ def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
 
 EXPAND_MODULES = """
 import os, sys
-from urdf_lint.runner import worker
+from urdf_lint.run import worker
 from urdf_lint.cli.main import main
 # (not inspect, platform, ctypes.util: landlock and pyseccomp import them, and urdf-lint imports
 # those packages as they are, never with the standard library swapped under them: issue 22)

@@ -810,7 +810,7 @@ def _hook_summary(result, files) -> None:
 def cmd_expand(args) -> int:
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
-    from urdf_lint.runner.worker import prestart
+    from urdf_lint.run.worker import prestart
     prestart()   # (done already by main(); here for callers of cmd_expand)
     from urdf_lint.config.schema import find_config, load_config
     from urdf_lint.discovery.discover import build_resolver
@@ -1069,7 +1069,7 @@ def _expand_in_workers(jobs: list, resolver, cfg) -> list:
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
     from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.core.jobs import LintSettings
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     settings = LintSettings(resolver=resolver.to_dict(),
                             env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
     done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
@@ -1162,7 +1162,7 @@ def _main(argv) -> int:
     if command in ("expand", "generate") and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
-        from urdf_lint.runner.worker import prestart
+        from urdf_lint.run.worker import prestart
         prestart()
     parser = build_parser(command)
     try:

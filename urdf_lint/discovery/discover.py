@@ -491,7 +491,7 @@ def _load_memo(path) -> dict:
 
 def _save_memo(path, data) -> None:
     import json
-    from urdf_lint.run.cachedir import ensure
+    from urdf_lint.core.cachedir import ensure
     try:
         cache_dir = os.path.dirname(os.path.dirname(path))
         ensure(cache_dir)

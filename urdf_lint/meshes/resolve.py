@@ -639,7 +639,7 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     memory[digest] = facts
     if cache_file is not None:
         try:
-            from urdf_lint.run.cachedir import ensure
+            from urdf_lint.core.cachedir import ensure
             ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
             from urdf_lint.core import fsbound
             # the worker's sandbox may write (and read) only below meshes/, not the cache folder

@@ -236,7 +236,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     from urdf_lint.core.jobs import LintJob
     from urdf_lint.run.pipeline import settings_for
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     jobs, key_of = [], {}
     for k in keys:
         m = side.models.get(k)

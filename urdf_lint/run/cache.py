@@ -30,7 +30,7 @@ from urdf_lint.core import fsbound
 from urdf_lint.discovery.discover import start_dir
 from urdf_lint.core.hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
-from urdf_lint.run.cachedir import ensure as ensure_cache_dir
+from urdf_lint.core.cachedir import ensure as ensure_cache_dir
 from urdf_lint.discovery.vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;

@@ -142,7 +142,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import inside
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     if not changed:
         return {}, 0
     root = repository_root(paths)

@@ -396,7 +396,7 @@ def enter_worker(conn, settings) -> dict:
     if facts:
         # the cache folder's markers (.gitignore, CACHEDIR.TAG) now: the sandbox lets the
         # worker write below meshes/ only, and a folder without them would get committed
-        from urdf_lint.run.cachedir import ensure
+        from urdf_lint.core.cachedir import ensure
         try:
             ensure(settings.mesh_cache_dir)
         except OSError:
