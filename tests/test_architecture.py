@@ -444,3 +444,26 @@ def test_one_git_runner(tmp_path):
             git("--version", cwd=str(tmp_path))
     finally:
         os.environ["PATH"] = old
+
+
+def test_rooms_below_the_rules_name_real_rules():
+    """Below the rules a code is named by its rule module (``RuleName("ul904_resource_limit")``,
+    urdf_lint.core.codes), never imported: every such name is a rule module of rules/ and its
+    code is the module's CODE; every rule file is named by its code."""
+    from urdf_lint.core.codes import RuleName
+    rules = load_rules()
+    by_leaf = {r.module.rsplit(".", 1)[1]: code for code, r in rules.items()}
+    assert all(RuleName(leaf).CODE == code for leaf, code in by_leaf.items() if leaf.startswith("ul"))
+    named = []
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                    and node.func.id == "RuleName":
+                assert node.args and isinstance(node.args[0], ast.Constant), \
+                    f"{path.relative_to(REPO)}:{node.lineno}: a RuleName of a literal module name"
+                named.append((node.args[0].value, f"{path.relative_to(REPO)}:{node.lineno}"))
+    assert len(named) >= 15, named
+    unknown = [f"{where}: {leaf}" for leaf, where in named if leaf not in by_leaf]
+    assert not unknown, "no such rule module:\n" + "\n".join(unknown)
+    with pytest.raises(ValueError):
+        RuleName("resource_limit")
