@@ -26,7 +26,7 @@ from __future__ import annotations
 import os
 
 from urdf_lint.config.schema import Config
-from urdf_lint.discovery.packages import inside
+from urdf_lint.core.tree import inside
 
 CLAMP = {"timeout": (0.5, 600.0), "memory-mb": (128, 65536), "jobs": (1, 64)}
 

@@ -25,8 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
-SKIP_DIRS = {".git", ".hg", ".svn", "node_modules", ".venv", "venv", "__pycache__", "build",
-             "install", "log", ".urdf_lint_cache", ".tox", ".mypy_cache", ".pytest_cache"}
+from urdf_lint.core.tree import SKIP_DIRS, inside  # noqa: F401 - inside: part of this API
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 # REP 144 (lower case letters, digits and underscores, starting with a letter), leniently:
@@ -405,11 +404,6 @@ def colcon_workspace(start: str) -> str | None:
                 or any((parent / m).is_file() for m in ("colcon.meta", "colcon_defaults.yaml"))):
             return str(parent)
     return None
-
-
-def inside(f: str, p: str) -> bool:
-    """Is path ``f`` the folder ``p`` or below it? (strings, as written: resolve first)"""
-    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
 def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
