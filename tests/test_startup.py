@@ -173,6 +173,7 @@ def forked_active():
 LAZY = """
 import sys
 from urdf_lint.core import lazy
+lazy.enable()
 lazy.defer("json")
 import json                                    # binds the placeholder, loads nothing
 placeholder = json
@@ -193,6 +194,23 @@ def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
     assert p.returncode == 0, p.stderr
     assert p.stdout.split("\n")[:5] == ["_Deferred False", '{"a": 1} True', "[2] True", "False",
                                          "True module"]
+
+
+LIBRARY = """
+import sys
+import urdf_lint.meshes.readers
+from urdf_lint.expansion import expand_file   # xacro imports PyYAML, pycollada Pillow
+import collada
+print(sorted(type(sys.modules[n]).__name__ for n in ("yaml", "PIL.Image") if n in sys.modules))
+"""
+
+
+def test_a_library_importer_gets_no_placeholder_modules():
+    """Deferring is the command's own business: a program that imports urdf-lint's modules
+    gets the real PyYAML and Pillow in its ``sys.modules``, never a placeholder."""
+    p = subprocess.run([sys.executable, "-c", LIBRARY], capture_output=True, text=True, cwd=REPO)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "['module', 'module']", p.stdout
 
 
 EXPAND_MODULES = """

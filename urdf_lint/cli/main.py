@@ -1101,6 +1101,8 @@ COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules":
 
 
 def main(argv=None) -> int:
+    from urdf_lint.core import lazy
+    lazy.enable()   # modules few runs use load on first use (PyYAML, Pillow): in this process only
     try:
         return _main(argv)
     except KeyboardInterrupt:
