@@ -33,7 +33,7 @@ def main():
     from urdf_lint.core.jobs import LintJob
     from urdf_lint.engine.lint import run_job
     from urdf_lint.run.pipeline import settings_for
-    from urdf_lint.runner.worker import process_job
+    from urdf_lint.run.worker import process_job
     cfg = load_config(None)
     for path, args in ROBOTS:
         entry = os.path.abspath(path)

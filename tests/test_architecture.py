@@ -1,4 +1,5 @@
-"""The engine's shape: no import cycles, every code is a rule module and is raised through it."""
+"""The engine's shape: rooms by layer (import-linter contracts), no import cycles, every code is
+a rule module and is raised through it."""
 from __future__ import annotations
 
 import ast
@@ -111,6 +112,53 @@ def test_the_import_graph_is_acyclic():
 def test_the_cycle_finder_finds_cycles():
     assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
     assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+# -- the layer contracts (import-linter; [tool.importlinter] in pyproject.toml) -------------------
+def _installed_layout(tmp_path):
+    """The package as installed (``rules/`` as ``urdf_lint.rules``), copied under ``tmp_path``:
+    import-linter reads the files of the package it finds, and an editable install maps
+    ``urdf_lint.rules`` to ``rules/`` without a folder inside ``urdf_lint/``."""
+    import shutil
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
+    shutil.copytree(PKG, tmp_path / "urdf_lint", ignore=ignore)
+    shutil.copytree(RULES_DIR, tmp_path / "urdf_lint" / "rules", ignore=ignore)
+    shutil.copy(REPO / "pyproject.toml", tmp_path / "pyproject.toml")
+    return tmp_path
+
+
+def _lint_imports(tree):
+    import os
+    import subprocess
+    import sys
+    exe = os.path.join(os.path.dirname(sys.executable), "lint-imports")
+    if not os.path.exists(exe):
+        pytest.skip("import-linter is not installed (pip install -e '.[test]')")
+    env = {**os.environ, "PYTHONPATH": str(tree)}
+    return subprocess.run([exe, "--config", str(tree / "pyproject.toml"), "--no-cache"],
+                          cwd=tree, env=env, capture_output=True, text=True, timeout=120)
+
+
+def test_the_layer_contracts_are_kept(tmp_path):
+    p = _lint_imports(_installed_layout(tmp_path))
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "Contracts: 2 kept, 0 broken." in p.stdout, p.stdout
+
+
+def test_an_upward_import_breaks_the_layer_contract(tmp_path):
+    """The contracts see an import inside a function too: a lower room (core) importing a
+    higher one (cli) is reported with its line, and the runner importing the engine breaks its
+    own contract."""
+    tree = _installed_layout(tmp_path)
+    with open(tree / "urdf_lint" / "core" / "escape.py", "a", encoding="utf-8") as f:
+        f.write("\n\ndef _upward():\n    from urdf_lint.cli import main  # noqa: F401\n")
+    with open(tree / "urdf_lint" / "runner" / "forked.py", "a", encoding="utf-8") as f:
+        f.write("\n\ndef _knows_lint():\n    from urdf_lint.engine import model  # noqa: F401\n")
+    p = _lint_imports(tree)
+    assert p.returncode != 0, p.stdout
+    assert "urdf_lint.core.escape -> urdf_lint.cli.main" in p.stdout, p.stdout
+    assert "urdf_lint.runner.forked -> urdf_lint.engine.model" in p.stdout, p.stdout
+    assert "0 kept, 2 broken" in p.stdout, p.stdout
 
 
 CODE_LITERAL = re.compile(r"UL\d{3}")
@@ -264,13 +312,11 @@ def test_mesh_resolution_is_a_status_that_rules_map_to_codes(tmp_path):
         assert (ref.problem is None) == (status is MeshStatus.OK)
 
 
-def test_settings_are_typed_and_readable_as_the_old_dict():
+def test_settings_are_typed():
     import dataclasses
     from urdf_lint.core.jobs import LintSettings
     s = LintSettings(resolver={"scanned": {}}, selected=("UL302",), mesh_cache_dir="/c")
-    assert s.selected == ("UL302",) and s["mesh_cache_dir"] == "/c" and s.get("render_dir") is None
-    with pytest.raises(KeyError):
-        s["no_such_setting"]
+    assert s.selected == ("UL302",) and s.mesh_cache_dir == "/c" and s.render_dir is None
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.selected = ()
     assert dataclasses.replace(s, keep_model=True).keep_model
@@ -331,7 +377,7 @@ def test_no_module_of_ours_rebinds_another_modules_names():
         ("urdf_lint.expansion.expand", "sys.stdout"): "capture, restored",
         ("urdf_lint.expansion.expand", "sys.stderr"): "capture, restored",
         # a worker process's own interpreter setting (the worker is ours alone)
-        ("urdf_lint.runner.worker", "sys.dont_write_bytecode"): "the worker's own process",
+        ("urdf_lint.runner.pool", "sys.dont_write_bytecode"): "the worker's own process",
     }
     found = []
     for name, path in _modules().items():
@@ -373,3 +419,51 @@ def test_the_standard_library_is_untouched_by_the_sandbox_probe():
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "P(x: int = 1)", p.stdout
+
+
+def test_one_git_runner(tmp_path):
+    """git is run in one place, :func:`urdf_lint.discovery.vcs.git`: text or bytes out, and every
+    failure (not a work tree, no git at all) one GitError with git's message."""
+    offenders = []
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.List) and node.elts and isinstance(node.elts[0], ast.Constant) \
+                    and node.elts[0].value == "git" and name != "urdf_lint.discovery.vcs":
+                offenders.append(f"{path.relative_to(REPO)}:{node.lineno}")
+    assert not offenders, "git run outside discovery/vcs.py:\n" + "\n".join(offenders)
+    import os
+    from urdf_lint.discovery.vcs import GitError, git
+    assert git("--version", cwd=str(tmp_path)).startswith("git version")
+    assert git("--version", cwd=str(tmp_path), binary=True).startswith(b"git version")
+    with pytest.raises(GitError, match="not a git repository"):
+        git("rev-parse", "--show-toplevel", cwd=str(tmp_path))
+    old = os.environ["PATH"]
+    os.environ["PATH"] = str(tmp_path)     # no git on the PATH
+    try:
+        with pytest.raises(GitError):
+            git("--version", cwd=str(tmp_path))
+    finally:
+        os.environ["PATH"] = old
+
+
+def test_rooms_below_the_rules_name_real_rules():
+    """Below the rules a code is named by its rule module (``RuleName("ul904_resource_limit")``,
+    urdf_lint.core.codes), never imported: every such name is a rule module of rules/ and its
+    code is the module's CODE; every rule file is named by its code."""
+    from urdf_lint.core.codes import RuleName
+    rules = load_rules()
+    by_leaf = {r.module.rsplit(".", 1)[1]: code for code, r in rules.items()}
+    assert all(RuleName(leaf).CODE == code for leaf, code in by_leaf.items() if leaf.startswith("ul"))
+    named = []
+    for name, path in _modules().items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                    and node.func.id == "RuleName":
+                assert node.args and isinstance(node.args[0], ast.Constant), \
+                    f"{path.relative_to(REPO)}:{node.lineno}: a RuleName of a literal module name"
+                named.append((node.args[0].value, f"{path.relative_to(REPO)}:{node.lineno}"))
+    assert len(named) >= 15, named
+    unknown = [f"{where}: {leaf}" for leaf, where in named if leaf not in by_leaf]
+    assert not unknown, "no such rule module:\n" + "\n".join(unknown)
+    with pytest.raises(ValueError):
+        RuleName("resource_limit")

@@ -243,7 +243,7 @@ def _robots(root: Path) -> dict:
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver, discover_models
     from urdf_lint.expansion import expand_file
-    from urdf_lint.formatting.run import canonical_robot
+    from urdf_lint.run.format import canonical_robot
     cfg = load_config(None)
     resolver = build_resolver([str(root)], cfg)
     out = {}

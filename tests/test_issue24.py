@@ -200,7 +200,7 @@ def test_time_limit_counts_cpu_time(tmp_path, monkeypatch):
     """Item 11: a job that waits (no CPU) longer than the limit is not killed; one that burns
     CPU past it is UL904."""
     from conftest import carried_data
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
     monkeypatch.setattr(worker, "process_job", _sleeper)

@@ -444,7 +444,7 @@ def test_a_collada_file_is_read_once_for_hash_facts_volume_and_textures(tmp_path
 
 
 def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     lean = [worker.Block("a", [], 1.0, frozenset({".stl", ".dae"}))]
     assert "trimesh" not in worker._mesh_modules(lean) and "collada" in worker._mesh_modules(lean)
     stl = [worker.Block("a", [], 1.0, frozenset({".stl"}))]
@@ -583,7 +583,7 @@ def _robot(mesh=None):
 
 
 def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
-    from urdf_lint.runner import worker
+    from urdf_lint.runner import pool
     from urdf_lint.core.jobs import LintJob
     settings = _settings_for(tmp_path, {
         "small_description": {"urdf/a.urdf": _robot(), "urdf/b.urdf": _robot()},
@@ -591,24 +591,24 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     jobs = [LintJob(str(tmp_path / p / "urdf" / f)) for p, f in (
         ("small_description", "b.urdf"), ("other_description", "z.urdf"),
         ("small_description", "a.urdf"), ("other_description", "y.urdf"))]
-    blocks = worker.package_blocks(jobs, settings)
+    blocks = pool.package_blocks(jobs, settings)
     assert sorted([os.path.basename(j.entry) for j in b.jobs] for b in blocks) == \
         [["a.urdf", "b.urdf"], ["y.urdf", "z.urdf"]]
     # four small models: one worker (a second process costs more than it saves)
-    assert worker.default_workers(blocks, cores=8, load=0.0) == 1
+    assert pool.default_workers(blocks, cores=8, load=0.0) == 1
     # a package with 60 MB of COLLADA meshes is worth a second worker, never more than the cores
     mesh_dir = tmp_path / "other_description" / "meshes"
     mesh_dir.mkdir()
     with open(mesh_dir / "big.dae", "wb") as f:
         f.truncate(60 << 20)                     # sparse: only its size is looked at
-    blocks = worker.package_blocks(jobs, settings)
+    blocks = pool.package_blocks(jobs, settings)
     assert blocks[0].key.endswith("other_description") and blocks[0].cost > 1
-    assert worker.default_workers(blocks, cores=2, load=0.0) == 2
-    assert worker.default_workers(blocks, cores=1, load=0.0) == 1
+    assert pool.default_workers(blocks, cores=2, load=0.0) == 2
+    assert pool.default_workers(blocks, cores=1, load=0.0) == 1
     # a machine already busy (load 2 on 2 cores): another worker would only add CPU
-    assert worker.default_workers(blocks, cores=2, load=2.0) == 1
-    assert worker.default_workers(blocks, cores=2, load=0.4) == 2
-    queues = worker.assign(blocks, 2)
+    assert pool.default_workers(blocks, cores=2, load=2.0) == 1
+    assert pool.default_workers(blocks, cores=2, load=0.4) == 2
+    queues = pool.assign(blocks, 2)
     assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
             for q in queues] == [["other_description"], ["small_description"]]
 
@@ -616,7 +616,7 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
 def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
     """A 200-link robot written as 200 macro calls costs more than a small model with meshes
     to measure: it starts first, so it does not run alone at the end while workers idle."""
-    from urdf_lint.runner import worker
+    from urdf_lint.runner import pool
     from urdf_lint.core.jobs import LintJob
     calls = "\n".join(f'  <xacro:seg i="{i}"/>' for i in range(200))
     snake = ('<robot name="s" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
@@ -632,58 +632,58 @@ def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
         f.truncate(30 << 20)                     # 30 MB of binary STL (sparse)
     jobs = [LintJob(str(tmp_path / "arm_description" / "urdf" / n)) for n in ("arm.urdf", "arm2.urdf")]
     jobs.append(LintJob(str(tmp_path / "snake_description" / "urdf" / "snake.urdf.xacro")))
-    assert worker.job_cost(jobs[2]) > 5 * worker.job_cost(jobs[0])
+    assert pool.job_cost(jobs[2]) > 5 * pool.job_cost(jobs[0])
     if hasattr(os, "mkfifo"):   # a FIFO named as a model: costed without being read (no hang)
         os.mkfifo(tmp_path / "pipe.urdf.xacro")
-        assert worker.job_cost(LintJob(str(tmp_path / "pipe.urdf.xacro"))) == worker.JOB_COST_S
-    blocks = worker.package_blocks(jobs, settings)
+        assert pool.job_cost(LintJob(str(tmp_path / "pipe.urdf.xacro"))) == pool.JOB_COST_S
+    blocks = pool.package_blocks(jobs, settings)
     assert [b.key.rsplit(os.sep, 1)[1] for b in blocks] == ["snake_description", "arm_description"]
-    queues = worker.assign(blocks, 2)
+    queues = pool.assign(blocks, 2)
     assert [j.entry.endswith("snake.urdf.xacro") for j in queues[0]] == [True]
 
 
 def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
-    from urdf_lint.runner import worker
-    if worker._procs_running() is None:
+    from urdf_lint.runner import pool
+    if pool._procs_running() is None:
         pytest.skip("no /proc/stat here")
     # the 1-minute load average says 1.6 cores are busy (the previous command of a script)
     monkeypatch.setattr(os, "getloadavg", lambda: (1.6, 1.0, 0.5))
-    monkeypatch.setattr(worker, "_procs_running", lambda: 1)          # only this process now
-    assert worker.busy_cores() == 0
-    monkeypatch.setattr(worker, "_procs_running", lambda: 2)          # one other running now
-    assert worker.busy_cores() == 1
-    monkeypatch.setattr(worker, "_procs_running", lambda: 9)          # a short spike: the average
-    assert worker.busy_cores() == 1.6
-    monkeypatch.setattr(worker, "_procs_running", lambda: None)       # no /proc: the average
-    assert worker.busy_cores() == 1.6
+    monkeypatch.setattr(pool, "_procs_running", lambda: 1)          # only this process now
+    assert pool.busy_cores() == 0
+    monkeypatch.setattr(pool, "_procs_running", lambda: 2)          # one other running now
+    assert pool.busy_cores() == 1
+    monkeypatch.setattr(pool, "_procs_running", lambda: 9)          # a short spike: the average
+    assert pool.busy_cores() == 1.6
+    monkeypatch.setattr(pool, "_procs_running", lambda: None)       # no /proc: the average
+    assert pool.busy_cores() == 1.6
     monkeypatch.undo()
-    assert worker._procs_running() >= 1                               # this test is running
+    assert pool._procs_running() >= 1                               # this test is running
 
 
 def test_an_idle_worker_takes_from_the_far_end_of_another_block():
     from collections import deque
-    from urdf_lint.runner import worker
+    from urdf_lint.runner import pool
     mine, other = deque(), deque(["m1", "m2", "m3", "m4"])
-    assert worker._next_job(mine, [mine, other]) == "m4"
-    assert worker._next_job(other, [mine, other]) == "m1"
+    assert pool._next_job(mine, [mine, other]) == "m4"
+    assert pool._next_job(other, [mine, other]) == "m1"
 
 
 def test_an_idle_worker_takes_a_whole_package_nobody_started():
     """Its meshes are then loaded by one worker: the idle one takes the last block of the
     other queue whole (in its order), unless a worker is already on that block."""
     from collections import deque
-    from urdf_lint.runner import worker
+    from urdf_lint.runner import pool
     b1, b2, c1, c2, c3 = "b1", "b2", "c1", "c2", "c3"
     block_of = {id(b1): 0, id(b2): 0, id(c1): 1, id(c2): 1, id(c3): 1}
     mine, other = deque(), deque([b1, b2, c1, c2, c3])
-    assert worker._next_job(mine, [mine, other], block_of, running={0}) == c1
+    assert pool._next_job(mine, [mine, other], block_of, running={0}) == c1
     assert list(mine) == [c2, c3] and list(other) == [b1, b2]
     # the last block is being linted: only its last job moves
     mine, other = deque(), deque([c2, c3])
-    assert worker._next_job(mine, [mine, other], block_of, running={1}) == c3
+    assert pool._next_job(mine, [mine, other], block_of, running={1}) == c3
     assert list(mine) == [] and list(other) == [c2]
     # ... but not the only one left: its worker takes it next, with the meshes loaded
-    assert worker._next_job(mine, [mine, other], block_of, running={1}) is None
+    assert pool._next_job(mine, [mine, other], block_of, running={1}) is None
     assert list(other) == [c2]
 
 
@@ -691,7 +691,7 @@ def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monke
     """Real forked workers: each package's models land in one process (so the mesh facts it
     loaded are reused); the worker that runs out steals the last models of the other block."""
     import time
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, ModelReport
     names = [f"m{i}.urdf" for i in range(8)]
     settings = _settings_for(tmp_path, {"big_description": {f"urdf/{n}": _robot() for n in names},

@@ -158,9 +158,9 @@ ALLOWED_WRITES = {
     ("cli/main.py", "cmd_rule"): "one rule's documentation: urdf-lint's own text",
     ("cli/main.py", "cmd_doctor"): "this machine's protections: urdf-lint's own text",
     ("cli/main.py", "_main"): "--version: urdf-lint's own text",
-    ("fix/cli.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
+    ("cli/fix.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
                                 "every other line starts with ' ', '+', '-' or '@'",
-    ("formatting/run.py", "cmd_format"): "format --diff: the same patch, from fixrun.unified_diff",
+    ("cli/format.py", "cmd_format"): "format --diff: the same patch, from fixrun.unified_diff",
     ("runner/sandbox.py", "enter_worker"): "a worker's own note: the kernel's reasons",
 }
 

@@ -363,7 +363,7 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
         return rec
     monkeypatch.setattr(review, "_start_recorder", start)
     plans = []
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     real_jobs = worker.run_jobs
 
     def spy(*a, **kw):
@@ -388,7 +388,7 @@ def test_render_recording_needs_no_rerun_in_the_workers(repo, tmp_path, capsys, 
 @pytest.fixture()
 def expanded(monkeypatch):
     """The entry of every job a worker expands, as the run goes."""
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     seen: list = []
     real = worker.run_jobs
 

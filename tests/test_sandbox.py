@@ -1,7 +1,7 @@
 """The OS sandbox of the workers, tested as if the evaluator had fallen.
 
 The test injects arbitrary Python into a REAL worker (``run_jobs`` forks it from this process,
-so replacing ``urdf_lint.runner.worker.process_job`` here is what the worker runs) and has it try what an
+so replacing ``urdf_lint.run.worker.process_job`` here is what the worker runs) and has it try what an
 escaped expression would: read a file outside the roots, read the parent's environment from
 ``/proc``, run a program, open a network connection, write outside the cache, trace or signal
 the parent. Every attempt goes through ``ctypes`` (which the audit hook does not see), so what
@@ -114,10 +114,10 @@ class AttackJob(dict):
 
 
 def _run_in_worker(monkeypatch, paths, port, env=None, mild=False, parent_fd=-1):
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintSettings
     from urdf_lint.discovery.packages import PackageResolver
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     monkeypatch.setattr(worker, "process_job", lambda job, s: carried(job, _attacks(job, s)))
     for k, v in (env or {}).items():
         monkeypatch.setenv(k, v)
@@ -180,10 +180,10 @@ def _state(pid):
 
 PARENT = """
 import os, sys, time
-from urdf_lint.runner import worker
+from urdf_lint.run import worker
 from urdf_lint.core.jobs import LintJob, LintSettings
 from urdf_lint.discovery.packages import PackageResolver
-from urdf_lint.runner.worker import run_jobs
+from urdf_lint.run.worker import run_jobs
 def slow(job, settings):
     from urdf_lint.core.jobs import ModelReport
     if job.entry == "slow":
@@ -327,7 +327,7 @@ def test_a_worker_result_the_parent_cannot_trust_fails_its_model_only(tmp_path, 
     ends) fails its model with an internal error: never the run, never a hang."""
     import time
     from urdf_lint.runner import forked
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings, Status
     from urdf_lint.discovery.packages import PackageResolver
     if case == "bad call":
@@ -351,7 +351,7 @@ def test_a_worker_result_the_parent_cannot_trust_fails_its_model_only(tmp_path, 
 def test_runs_leave_no_descriptor_behind(tmp_path):
     """``--fix`` and ``diff`` run several passes in one process: the channels of workers that
     ended are closed, not left to the garbage collector."""
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
     (tmp_path / "m.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
@@ -370,7 +370,7 @@ def test_runs_leave_no_descriptor_behind(tmp_path):
 
 def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, monkeypatch):
     from urdf_lint.runner import forked
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
     marker = tmp_path / "pwned"
@@ -469,9 +469,9 @@ def test_a_worker_cannot_signal_another_process_or_leave_a_child(tmp_path, monke
     at the parent fail (kill did already), and so does every way of starting a process: a
     forked child would have outlived the worker. A thread still starts, and the worker may
     still signal itself."""
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintSettings
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     pkg = make_package(tmp_path / "repo", "p", {"urdf/r.urdf": '<robot name="r"/>\n'})
     monkeypatch.setattr(worker, "process_job",
                         lambda job, s: carried(job, _signals_and_children(job, s)))
@@ -516,9 +516,9 @@ def test_landlock_scopes_a_workers_signals_even_without_seccomp(tmp_path, monkey
     from landlock import landlock_abi_version
     if landlock_abi_version() < 6:
         pytest.skip("Landlock ABI < 6: no scopes on this kernel")
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintSettings
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     pkg = make_package(tmp_path / "repo", "p", {"urdf/r.urdf": '<robot name="r"/>\n'})
     monkeypatch.setattr(sandbox, "seccomp_status", lambda: (False, "left out by the test"))
     monkeypatch.setattr(worker, "process_job", lambda job, s: carried(job, _signals_only(job, s)))

@@ -267,7 +267,7 @@ def test_worker_audit_hook_blocks_processes_and_writes(tmp_path):
     allowed.mkdir()
     code = f"""
 import os, subprocess
-from urdf_lint.runner.worker import _install_audit_hook
+from urdf_lint.runner.pool import _install_audit_hook
 _install_audit_hook({str(allowed)!r})
 results = []
 for attempt in (lambda: os.system("touch {marker}"),

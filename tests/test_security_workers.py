@@ -83,7 +83,7 @@ def test_generate_runs_in_a_sandboxed_worker(tmp_path, monkeypatch, capsys):
 
     from urdf_lint.runner import sandbox
 
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.cli.main import main
     from urdf_lint.core.jobs import KeptModel, ModelReport
     repo = _generated_repo(tmp_path, '<link name="x"/>')

@@ -129,7 +129,7 @@ def test_a_child_does_not_hold_the_parents_ends_of_its_channel():
 
 
 def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
-    from urdf_lint.runner import worker
+    from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
 
@@ -173,6 +173,7 @@ def forked_active():
 LAZY = """
 import sys
 from urdf_lint.core import lazy
+lazy.enable()
 lazy.defer("json")
 import json                                    # binds the placeholder, loads nothing
 placeholder = json
@@ -195,9 +196,26 @@ def test_a_deferred_module_loads_on_first_use_and_is_the_same_module():
                                          "True module"]
 
 
+LIBRARY = """
+import sys
+import urdf_lint.meshes.readers
+from urdf_lint.expansion import expand_file   # xacro imports PyYAML, pycollada Pillow
+import collada
+print(sorted(type(sys.modules[n]).__name__ for n in ("yaml", "PIL.Image") if n in sys.modules))
+"""
+
+
+def test_a_library_importer_gets_no_placeholder_modules():
+    """Deferring is the command's own business: a program that imports urdf-lint's modules
+    gets the real PyYAML and Pillow in its ``sys.modules``, never a placeholder."""
+    p = subprocess.run([sys.executable, "-c", LIBRARY], capture_output=True, text=True, cwd=REPO)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "['module', 'module']", p.stdout
+
+
 EXPAND_MODULES = """
 import os, sys
-from urdf_lint.runner import worker
+from urdf_lint.run import worker
 from urdf_lint.cli.main import main
 # (not inspect, platform, ctypes.util: landlock and pyseccomp import them, and urdf-lint imports
 # those packages as they are, never with the standard library swapped under them: issue 22)

@@ -173,7 +173,7 @@ def _add_output(p):
 
 
 def _add_fix(p):
-    """``check --fix`` and friends (issue 14; :mod:`urdf_lint.fix.cli`)."""
+    """``check --fix`` and friends (issue 14; :mod:`urdf_lint.cli.fix`)."""
     p.add_argument("--fix", action="store_true",
                    help="apply the safe fixes to the xacro sources, then report what remains "
                         "(default: off, nothing is written)")
@@ -330,7 +330,7 @@ def _cmd_generate(sub, raw):
 
 
 def _cmd_format(sub, raw):
-    from urdf_lint.formatting.run import add_parser
+    from urdf_lint.cli.format import add_parser
     add_parser(sub, raw, _add_inputs)
 
 
@@ -609,7 +609,7 @@ def cmd_check(args) -> int:
                 "--fix/--diff/--add-suppressions on a file that models include: run it on "
                 f"the folder ({_safe_text(display_path(args.paths[0]))}), so that every fix "
                 "is checked against every model that uses the file")
-        from urdf_lint.fix.cli import check_fix
+        from urdf_lint.cli.fix import check_fix
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
         _clear_stale(render_dir, args.paths)
@@ -810,7 +810,7 @@ def _hook_summary(result, files) -> None:
 def cmd_expand(args) -> int:
     if not os.path.isfile(args.file):
         raise UsageError(f"no such file: {args.file}")
-    from urdf_lint.runner.worker import prestart
+    from urdf_lint.run.worker import prestart
     prestart()   # (done already by main(); here for callers of cmd_expand)
     from urdf_lint.config.schema import find_config, load_config
     from urdf_lint.discovery.discover import build_resolver
@@ -1054,7 +1054,7 @@ def _generate_summary(outputs, stale, failed, check) -> str:
 
 
 def cmd_format(args) -> int:
-    from urdf_lint.formatting.run import cmd_format as run
+    from urdf_lint.cli.format import cmd_format as run
     return run(args, _load_cfg, _parse_package_paths)
 
 
@@ -1069,7 +1069,7 @@ def _expand_in_workers(jobs: list, resolver, cfg) -> list:
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
     from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.core.jobs import LintSettings
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     settings = LintSettings(resolver=resolver.to_dict(),
                             env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
     done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
@@ -1101,6 +1101,8 @@ COMMANDS = {"check": cmd_check, "hook": cmd_hook, "expand": cmd_expand, "rules":
 
 
 def main(argv=None) -> int:
+    from urdf_lint.core import lazy
+    lazy.enable()   # modules few runs use load on first use (PyYAML, Pillow): in this process only
     try:
         return _main(argv)
     except KeyboardInterrupt:
@@ -1162,7 +1164,7 @@ def _main(argv) -> int:
     if command in ("expand", "generate") and "-h" not in argv and "--help" not in argv:
         # the worker imports the expansion while the parent parses, reads the config and
         # finds the packages (a run that stops early stops it too)
-        from urdf_lint.runner.worker import prestart
+        from urdf_lint.run.worker import prestart
         prestart()
     parser = build_parser(command)
     try:

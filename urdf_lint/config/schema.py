@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from urdf_lint.config.policy import code_matches
-from urdf_lint.engine.api import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
+from urdf_lint.core.suggest import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
 
 try:
     import tomllib
@@ -333,7 +333,6 @@ SCHEMA: tuple[Key, ...] = (
         "the robot's forward axis in its base frame, for the snapshot views"),
 )
 KEYS = {k.name: k for k in SCHEMA}
-KNOWN_KEYS = set(KEYS)
 
 # [tool.urdf-lint.format]: the settings of `urdf-lint format` (urdf_lint/formatting/layout.py)
 FORMAT_SCHEMA: tuple[Key, ...] = (
@@ -600,7 +599,7 @@ def _did_you_mean_file(rel: str, root: Path) -> str:
     """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
     import difflib
     from urdf_lint.core import fsbound
-    from urdf_lint.discovery.packages import SKIP_DIRS
+    from urdf_lint.core.tree import SKIP_DIRS
     files = [os.path.relpath(f, root) for f in fsbound.walk_files(
         root, suffixes=(".xacro", ".urdf"), skip=lambda d: d in SKIP_DIRS or d.startswith("."))]
     best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(

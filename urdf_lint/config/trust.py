@@ -26,9 +26,8 @@ from __future__ import annotations
 import os
 
 from urdf_lint.config.schema import Config
-from urdf_lint.discovery.packages import inside
+from urdf_lint.core.tree import inside
 
-LOOSENING = ("env-allow", "package-paths", "cache-dir", "timeout", "memory-mb", "jobs")
 CLAMP = {"timeout": (0.5, 600.0), "memory-mb": (128, 65536), "jobs": (1, 64)}
 
 

@@ -215,10 +215,6 @@ def exit_status(severities, internal: bool, fail_on: str) -> int:
     return 1 if any(SEVERITY_RANK.get(s, 2) >= threshold for s in severities) else 0
 
 
-# the name the reporters and older code use
-Finding = Problem
-
-
 def merge(findings: list[Problem]) -> list[Problem]:
     """One finding per source location and message; the models that share it are listed."""
     out: dict = {}

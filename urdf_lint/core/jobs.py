@@ -74,16 +74,6 @@ class LintSettings:
     # layout being proved; nothing is written while it is)
     overlay: dict = field(default_factory=dict)
 
-    # read-only dict-style access, for worker start-up code written against the old dict
-    def __getitem__(self, key: str):
-        try:
-            return getattr(self, key)
-        except AttributeError:
-            raise KeyError(key) from None
-
-    def get(self, key: str, default=None):
-        return getattr(self, key, default)
-
     def cache_key(self) -> list:
         """What a cached result depends on (rendering does not change findings): the values of
         the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""

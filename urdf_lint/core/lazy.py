@@ -9,11 +9,26 @@
 (the import system reads only its ``__spec__``); the first other attribute looked up on it
 imports the real module, and the placeholder takes on its namespace, so code holding either
 object sees the same functions and classes.
+
+Only in urdf-lint's own process: :func:`defer` does nothing until the command enables it
+(:func:`enable`, first thing in :func:`urdf_lint.cli.main.main`; the workers it forks inherit
+it). A program that imports urdf-lint's modules as a library never gets a placeholder in its
+``sys.modules``. (``importlib.util.LazyLoader`` cannot do this job: a second ``import yaml``
+reads the module's ``__spec__``, which loads a lazily loaded module at once.)
 """
 from __future__ import annotations
 
 import sys
 import types
+
+
+_enabled = False
+
+
+def enable() -> None:
+    """Let :func:`defer` defer, in this process (the command's) and the workers it forks."""
+    global _enabled
+    _enabled = True
 
 
 class _Deferred(types.ModuleType):
@@ -50,8 +65,9 @@ def load(name: str) -> None:
 
 
 def defer(name: str) -> None:
-    """Bind ``name`` to a placeholder, unless it is imported already or cannot be found."""
-    if name in sys.modules:
+    """Bind ``name`` to a placeholder, unless it is imported already or cannot be found, or
+    deferring is not enabled (urdf-lint imported as a library)."""
+    if not _enabled or name in sys.modules:
         return
     import importlib.util
     try:

@@ -5,6 +5,8 @@ import os
 import re
 from typing import NamedTuple
 
+from urdf_lint.core.tree import find_workspace_cached, inside
+
 
 class Loc(NamedTuple):
     file: str
@@ -60,7 +62,7 @@ def display_path(path: str, base: str | None = None) -> str:
             rel = os.path.relpath(path, base)
         except ValueError:
             rel = ".."
-        if rel.startswith("..") and not _inside(os.path.abspath(path), project_root(base)):
+        if rel.startswith("..") and not inside(os.path.abspath(path), project_root(base)):
             shown = path
         else:
             shown = rel
@@ -132,10 +134,6 @@ def clashing_names(named: dict) -> dict:
     return {n: sorted(ms) for n, ms in by.items() if len(ms) > 1}
 
 
-def _inside(path: str, top: str) -> bool:
-    return path == top or path.startswith(top.rstrip(os.sep) + os.sep)
-
-
 _roots: dict = {}
 
 
@@ -152,11 +150,10 @@ def project_root(base: str) -> str:
                 top = d
                 break
         try:
-            from urdf_lint.discovery.workspace import _find_workspace_cached
-            ws = _find_workspace_cached(base)
+            ws = find_workspace_cached(base)
         except (OSError, ValueError):   # a folder the sandbox may not list
             ws = None
-        if ws and _inside(top, ws):
+        if ws and inside(top, ws):
             top = ws
         _roots[base] = top
     return top

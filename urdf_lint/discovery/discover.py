@@ -203,7 +203,8 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
     there reads: xacro accepts and ignores it (a launch file's args often hold more), so the
     model is linted as its default variant for that arg."""
     from urdf_lint.core.findings import Problem
-    from urdf_lint.rules import ul008_xacro_warning
+    from urdf_lint.core.codes import RuleName
+    ul008_xacro_warning = RuleName("ul008_xacro_warning")
     if not spec.path.endswith(".xacro"):
         return []
     declared = graph.declared_args(spec.path)
@@ -491,7 +492,7 @@ def _load_memo(path) -> dict:
 
 def _save_memo(path, data) -> None:
     import json
-    from urdf_lint.run.cachedir import ensure
+    from urdf_lint.core.cachedir import ensure
     try:
         cache_dir = os.path.dirname(os.path.dirname(path))
         ensure(cache_dir)

@@ -6,7 +6,7 @@ import functools
 import os
 from pathlib import Path
 
-IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+from urdf_lint.core.tree import IGNORE_MARKERS
 
 
 def ignored(folder, top) -> bool:

@@ -25,8 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
-SKIP_DIRS = {".git", ".hg", ".svn", "node_modules", ".venv", "venv", "__pycache__", "build",
-             "install", "log", ".urdf_lint_cache", ".tox", ".mypy_cache", ".pytest_cache"}
+from urdf_lint.core.tree import SKIP_DIRS, inside  # noqa: F401 - inside: part of this API
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 # REP 144 (lower case letters, digits and underscores, starting with a letter), leniently:
@@ -306,11 +305,6 @@ class PackageResolver:
         a device, FIFO or folder) and, with ``cap``, at most that many bytes."""
         return self.is_inside(path) and regular_file(path, cap)
 
-    def confine(self, path: str | os.PathLike, what: str = "file") -> Path:
-        if not self.is_inside(path):
-            raise OutsideRoots(str(path), what)
-        return Path(path)
-
     def to_dict(self) -> dict:
         return {"explicit": {k: str(v) for k, v in self.explicit.items()},
                 "scanned": {k: str(v) for k, v in self.scanned.items()},
@@ -410,11 +404,6 @@ def colcon_workspace(start: str) -> str | None:
                 or any((parent / m).is_file() for m in ("colcon.meta", "colcon_defaults.yaml"))):
             return str(parent)
     return None
-
-
-def inside(f: str, p: str) -> bool:
-    """Is path ``f`` the folder ``p`` or below it? (strings, as written: resolve first)"""
-    return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
 def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:

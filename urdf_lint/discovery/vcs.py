@@ -4,21 +4,23 @@ from __future__ import annotations
 import functools
 import os
 import subprocess
+from typing import Any
 
 
 class GitError(Exception):
     pass
 
 
-def _git(*args: str, cwd: str, timeout: float = 60) -> str:
+def git(*args: str, cwd: str, timeout: float = 60, binary: bool = False) -> Any:
+    """The one way urdf-lint runs git: its output (``str``, or ``bytes`` with ``binary``), or
+    :class:`GitError` with git's message (no git, a time-out and a failing command alike)."""
     try:
-        p = subprocess.run(["git", *args], cwd=cwd, capture_output=True, text=True,
-                           timeout=timeout)
+        p = subprocess.run(["git", *args], cwd=cwd, capture_output=True, timeout=timeout)
     except (OSError, subprocess.SubprocessError) as e:
         raise GitError(str(e)) from None
     if p.returncode != 0:
-        raise GitError(p.stderr.strip() or f"git {' '.join(args)} failed")
-    return p.stdout
+        raise GitError(p.stderr.decode(errors="replace").strip() or f"git {' '.join(args)} failed")
+    return p.stdout if binary else p.stdout.decode()
 
 
 def git_root(start: str) -> str | None:
@@ -29,7 +31,7 @@ def git_root(start: str) -> str | None:
 @functools.lru_cache(maxsize=16)  # asked by config trust, roots and the cache: one git call
 def _git_root(start: str) -> str | None:
     try:
-        top = _git("rev-parse", "--show-toplevel", cwd=start, timeout=5).strip()
+        top = git("rev-parse", "--show-toplevel", cwd=start, timeout=5).strip()
     except GitError:
         return None
     return top or None
@@ -58,17 +60,17 @@ def _name_status(out: str):
 def changed_files(ref: str, cwd: str) -> set[str]:
     """Files changed since ``ref`` (committed, staged, unstaged and untracked), absolute;
     deleted files and the old names of renamed files included."""
-    top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
-    names = [p for _, paths in _name_status(_git("diff", "--name-status", "-z", "-M", ref,
+    top = git("rev-parse", "--show-toplevel", cwd=cwd).strip()
+    names = [p for _, paths in _name_status(git("diff", "--name-status", "-z", "-M", ref,
                                                  cwd=cwd)) for p in paths]
-    names += _git("ls-files", "--others", "--exclude-standard", cwd=cwd).splitlines()
+    names += git("ls-files", "--others", "--exclude-standard", cwd=cwd).splitlines()
     return {_absolute(top, n) for n in names if n}
 
 
 def staged_removals(cwd: str) -> set[str]:
     """Files the index deletes or renames away (pre-commit passes only files that exist)."""
-    top = _git("rev-parse", "--show-toplevel", cwd=cwd).strip()
-    out = _git("diff", "--cached", "--name-status", "-z", "-M", cwd=cwd)
+    top = git("rev-parse", "--show-toplevel", cwd=cwd).strip()
+    out = git("diff", "--cached", "--name-status", "-z", "-M", cwd=cwd)
     return {_absolute(top, paths[0]) for status, paths in _name_status(out)
             if status in "DR" and paths}
 

@@ -9,72 +9,14 @@ workspace folder is also a confinement root: files may be read from it.
 """
 from __future__ import annotations
 
-import functools
 import os
 from pathlib import Path
 
-from urdf_lint.discovery.folders import IGNORE_MARKERS, ignored  # noqa: F401 - ignored: part of this API
-from urdf_lint.discovery.packages import SKIP_DIRS, package_name
-
-# how far below a workspace's src/ packages are looked for (src/repo/group/package)
-MAX_DEPTH = 4
-
-
-def find_workspace(path: str) -> str | None:
-    """The nearest folder at or above ``path`` whose ``src/`` holds ``path`` (or that is
-    ``path``) and holds at least one package."""
-    p = Path(os.path.abspath(path))
-    if p.is_file():
-        p = p.parent
-    home = Path.home().resolve()
-    for d in [p, *p.parents]:
-        if d == home or d == Path(d.anchor):
-            break
-        src = d / "src"
-        if src.is_dir() and (d == p or _inside(p, src)) and _has_package(src):
-            return str(d)
-    return None
-
-
-@functools.lru_cache(maxsize=1024)
-def _find_workspace_cached(d: str) -> str | None:
-    return find_workspace(d)
-
-
-def _inside(p: Path, top: Path) -> bool:
-    try:
-        p.relative_to(top)
-        return True
-    except ValueError:
-        return False
-
-
-def _has_package(src: Path) -> bool:
-    for _ in _walk_packages(src, MAX_DEPTH):
-        return True
-    return False
-
-
-def _walk_packages(top: Path, depth: int):
-    """Every ``package.xml`` under ``top`` (not below a package, not in ignored folders)."""
-    from urdf_lint.core import fsbound
-    try:
-        names = fsbound.list_dir(top)
-    except OSError:
-        return
-    if any(m in names for m in IGNORE_MARKERS):
-        return
-    if "package.xml" in names:
-        yield top / "package.xml"
-        return
-    if depth <= 0:
-        return
-    for n in sorted(names):
-        if n in SKIP_DIRS or n.startswith("."):
-            continue
-        d = top / n
-        if d.is_dir() and not d.is_symlink():
-            yield from _walk_packages(d, depth - 1)
+from urdf_lint.core.tree import MAX_DEPTH, walk_packages
+from urdf_lint.core.tree import find_workspace  # noqa: F401 - part of this API
+from urdf_lint.core.tree import find_workspace_cached as _find_workspace_cached
+from urdf_lint.discovery.folders import ignored  # noqa: F401 - part of this API
+from urdf_lint.discovery.packages import package_name
 
 
 def _install_packages(install: Path):
@@ -89,7 +31,7 @@ def index(workspace: str) -> dict[str, str]:
     """Package name -> folder for a workspace: its sources first, then its install space."""
     ws = Path(workspace)
     out: dict[str, str] = {}
-    for pxml in [*_walk_packages(ws / "src", MAX_DEPTH), *_install_packages(ws / "install")]:
+    for pxml in [*walk_packages(ws / "src", MAX_DEPTH), *_install_packages(ws / "install")]:
         name = package_name(pxml)
         if name and name not in out:
             out[name] = str(pxml.parent.resolve())
@@ -135,7 +77,7 @@ def beside(name: str, paths, depth: int = 2) -> str | None:
         if top in seen:
             continue
         seen.add(top)
-        for pxml in _walk_packages(Path(top), depth):
+        for pxml in walk_packages(Path(top), depth):
             if package_name(pxml) == name:
                 return str(pxml.parent)
     return None

@@ -4,6 +4,8 @@ from __future__ import annotations
 import difflib
 import math
 
+from urdf_lint.core.suggest import did_you_mean  # noqa: F401 - for the rules
+
 
 def number(s):
     """A finite float from an attribute value, or None."""
@@ -30,11 +32,6 @@ def numbers(s, n=None):
             return None
         out.append(v)
     return out
-
-
-def did_you_mean(word, candidates):
-    m = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
-    return f" (did you mean '{m[0]}'?)" if m else ""
 
 
 CLEAR_MARGIN = 0.15

@@ -11,7 +11,14 @@ import os
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
-from urdf_lint.rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
+from urdf_lint.core.codes import RuleName
+
+# the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
+ul001_xml_syntax = RuleName("ul001_xml_syntax")
+ul006_not_a_robot = RuleName("ul006_not_a_robot")
+ul007_doctype = RuleName("ul007_doctype")
+ul902_outside_roots = RuleName("ul902_outside_roots")
+ul011_stale_output = RuleName("ul011_stale_output")
 
 # lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
 
@@ -103,7 +110,6 @@ def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
     know."""
     from urdf_lint.discovery.generated import same_variant, stale_at
     from urdf_lint.core.locations import display_path
-    from urdf_lint.rules import ul011_stale_output
     for n, output in enumerate((job.output or "",) + tuple(job.outputs)):
         (out.deps if os.path.exists(output) else out.missing).append(output)
         if n and not same_variant(output, xml):

@@ -261,9 +261,11 @@ def apply(findings, directives_by_file: dict, report_unused=True,
     if not directives:
         return list(findings), [], []
     from urdf_lint.core.findings import Problem
-    from urdf_lint.rules import ul010_invalid_suppression as invalid_suppression
-    invalid = [Problem.at(invalid_suppression.CODE, p, (d.file, d.line, d.col))
-               .replace(name=invalid_suppression.NAME)
+    from urdf_lint.core.codes import RuleName
+    from urdf_lint.engine.registry import catalogue
+    invalid_suppression = RuleName("ul010_invalid_suppression")
+    name = catalogue()[invalid_suppression.CODE].name
+    invalid = [Problem.at(invalid_suppression.CODE, p, (d.file, d.line, d.col)).replace(name=name)
                for d in directives for p in d.problems]
     directives = [d for d in directives if d.kind in KINDS]
     kept: list = []

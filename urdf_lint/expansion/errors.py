@@ -30,7 +30,6 @@ import os
 import re
 
 from dataclasses import dataclass
-from types import ModuleType
 from typing import Any, Callable
 
 import xacro
@@ -41,9 +40,17 @@ from urdf_lint.core import fsbound
 from urdf_lint.expansion import safe_eval
 from urdf_lint.core.findings import Problem
 from urdf_lint.discovery.packages import OutsideRoots, PackageNotFound
-from urdf_lint.rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
-                     ul004_unknown_package, ul005_missing_arg, ul902_outside_roots,
-                     ul903_unsafe_expression, ul904_resource_limit)
+from urdf_lint.core.codes import RuleName
+
+# the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
+ul001_xml_syntax = RuleName("ul001_xml_syntax")
+ul002_xacro_error = RuleName("ul002_xacro_error")
+ul003_missing_include = RuleName("ul003_missing_include")
+ul004_unknown_package = RuleName("ul004_unknown_package")
+ul005_missing_arg = RuleName("ul005_missing_arg")
+ul902_outside_roots = RuleName("ul902_outside_roots")
+ul903_unsafe_expression = RuleName("ul903_unsafe_expression")
+ul904_resource_limit = RuleName("ul904_resource_limit")
 
 
 class XmlSyntaxError(xacro.XacroException):
@@ -54,8 +61,8 @@ class XmlSyntaxError(xacro.XacroException):
 
 class RefusedInput(xacro.XacroException):
     """Input refused for safety (entity declarations, files outside the roots, ...); ``rule``
-    is the module of the code it is reported as."""
-    def __init__(self, msg, rule: ModuleType, loc=None):
+    names the rule (its code) it is reported as."""
+    def __init__(self, msg, rule: RuleName, loc=None):
         super().__init__(msg)
         self.rule = rule
         self.loc = loc
@@ -65,7 +72,7 @@ class RefusedInput(xacro.XacroException):
 class ErrorRow:
     """How one kind of xacro failure becomes a finding: what it catches and the rule it names."""
     catches: type | tuple
-    rule: ModuleType | None              # None: the exception names its rule (RefusedInput)
+    rule: RuleName | None                # None: the exception names its rule (RefusedInput)
     message: Callable[..., str]
     looks_at: str = "either"             # "raised" | "wrapped" | "either"
     macros: bool = False                 # append the macro context

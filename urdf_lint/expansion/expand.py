@@ -37,10 +37,16 @@ from urdf_lint.core.findings import Problem
 from urdf_lint.discovery.packages import PackageResolver
 from urdf_lint.expansion import safe_eval
 from urdf_lint.core.hashing import read_recorded
-from urdf_lint.rules import ul007_doctype, ul008_xacro_warning, ul901_env_read, ul902_outside_roots
+from urdf_lint.core.codes import RuleName
 from urdf_lint.expansion import splice
 from urdf_lint.expansion.errors import RefusedInput, XmlSyntaxError, problem_for
 from urdf_lint.expansion.sourcemap import KEY, SourceMap
+
+# the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
+ul007_doctype = RuleName("ul007_doctype")
+ul008_xacro_warning = RuleName("ul008_xacro_warning")
+ul901_env_read = RuleName("ul901_env_read")
+ul902_outside_roots = RuleName("ul902_outside_roots")
 
 
 @dataclass

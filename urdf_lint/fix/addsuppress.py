@@ -9,8 +9,11 @@ not XML (a YAML file), or for an unused suppression (UL009: remove that comment 
 from __future__ import annotations
 
 from urdf_lint.core import fsbound
-from urdf_lint.rules import ul009_unused_suppression as unused_suppression
+from urdf_lint.core.codes import RuleName
 from urdf_lint.fix.sourceedit import Edit, apply_edits, inside, line_offset
+
+# the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
+unused_suppression = RuleName("ul009_unused_suppression")
 
 
 def suppression_edits(findings) -> tuple[dict, list]:

@@ -15,7 +15,7 @@ the start tag in the raw source (:mod:`urdf_lint.fix.sourceedit`):
   fixable automatically: the value comes from the expression at FILE:LINE".
 
 The run then checks that a fix is right for every model and arg set that uses the edited line
-(:mod:`urdf_lint.fix.run`).
+(:mod:`urdf_lint.run.fix`).
 """
 from __future__ import annotations
 

@@ -223,7 +223,7 @@ def apply_edits(data: bytes, edits) -> bytes:
 def inside(path: str, paths, resolved: bool = False) -> bool:
     """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
     (``resolved``: the ``paths`` are already real paths)."""
-    from urdf_lint.discovery.packages import inside as below
+    from urdf_lint.core.tree import inside as below
     real = os.path.realpath(path)
     roots = paths if resolved else (os.path.realpath(p) for p in paths)
     return any(below(real, r) for r in roots)

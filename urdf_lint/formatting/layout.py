@@ -31,7 +31,7 @@ comments, processing instructions, all text but the whitespace between child ele
 every ``urdf-lint:`` suppression comment must cover the same elements
 (:func:`urdf_lint.engine.suppress.coverage`). That the layout is a fixed point is shown by the tests
 (every unit input and the whole corpus), not checked on each run.
-:mod:`urdf_lint.formatting.run` adds the proof on the expanded robots.
+:mod:`urdf_lint.run.format` adds the proof on the expanded robots.
 """
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """Sandboxed workers kept alive between edits (the language server's lint pool).
 
-``worker.run_jobs`` forks a pool per run; an editor re-lints after every pause in typing, and
+``pool.run_jobs`` forks a pool per run; an editor re-lints after every pause in typing, and
 a fork and sandbox per change would cost more than the lint. This pool keeps its workers
-(forked, limited and sandboxed exactly like ``check``'s: ``worker._Worker``) until the
+(forked, limited and sandboxed exactly like ``check``'s: ``urdf_lint.runner.pool._Worker``) until the
 settings change, and enforces the same time limit: a model that hangs costs its worker
 (killed and replaced), never the editor.
 """
@@ -12,7 +12,8 @@ import time
 
 from urdf_lint.runner import forked
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
-from urdf_lint.runner.worker import _limit_result, _Worker, preload
+from urdf_lint.run.worker import LINT, limit_result as _limit_result, preload
+from urdf_lint.runner.pool import _Worker
 
 
 class Pool:
@@ -24,7 +25,7 @@ class Pool:
         self.closing = False   # set from another thread: hand out no further job
 
     def _spawn(self) -> _Worker:
-        w = _Worker(self.settings, self.memory_mb)
+        w = _Worker(LINT, self.settings, self.memory_mb)
         self.workers.append(w)
         return w
 

@@ -639,7 +639,7 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     memory[digest] = facts
     if cache_file is not None:
         try:
-            from urdf_lint.run.cachedir import ensure
+            from urdf_lint.core.cachedir import ensure
             ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
             from urdf_lint.core import fsbound
             # the worker's sandbox may write (and read) only below meshes/, not the cache folder
@@ -648,19 +648,6 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
         except OSError:
             pass
     return facts
-
-
-def parse_scale(s):
-    if s is None:
-        return [1.0, 1.0, 1.0]
-    parts = s.split()
-    try:
-        vals = [float(p) for p in parts]
-    except ValueError:
-        return None
-    if len(vals) != 3 or not all(math.isfinite(v) for v in vals):
-        return None
-    return vals
 
 
 # -- mass properties (for the physical plausibility rules) ----------------------------------

@@ -26,8 +26,6 @@ CAPTION_H = 24                  # the caption strip above the drawing
 # so the cap only guards against pathological meshes
 MAX_TRIANGLES = 1_000_000
 VIEW_NAMES = ("front", "side", "top", "3/4")
-FORWARD_AXES = ("+x", "-x", "+y", "-y")
-VIEW_MODES = ("single", "sheet")
 
 _SS = 2  # supersampling for anti-aliasing
 _BACKGROUND = np.array([236, 238, 241])

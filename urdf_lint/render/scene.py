@@ -15,7 +15,6 @@ from urdf_lint.meshes.resolve import MeshStatus
 from urdf_lint.engine.api import numbers
 
 MAX_TEXTURE = 1024
-MISSING_RGBA = (0.9, 0.1, 0.1, 1.0)
 DEFAULT_RGBA = (0.72, 0.74, 0.78, 1.0)
 
 

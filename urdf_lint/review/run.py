@@ -17,7 +17,6 @@ import dataclasses
 import functools
 import io
 import os
-import subprocess
 import tarfile
 import tempfile
 from collections import Counter
@@ -41,11 +40,13 @@ class ReviewError(Exception):
 
 
 def _git(top, *args, binary=False):
-    p = subprocess.run(["git", *args], cwd=top, capture_output=True, timeout=120)
-    if p.returncode != 0:
-        raise ReviewError(p.stderr.decode(errors="replace").strip().splitlines()[-1]
-                          if p.stderr.strip() else f"git {' '.join(args)} failed")
-    return p.stdout if binary else p.stdout.decode()
+    """git in ``top`` (:func:`urdf_lint.discovery.vcs.git`); a failure is a ReviewError with
+    git's last line."""
+    from urdf_lint.discovery.vcs import GitError, git
+    try:
+        return git(*args, cwd=top, timeout=120, binary=binary)
+    except GitError as e:
+        raise ReviewError(str(e).strip().splitlines()[-1]) from None
 
 
 def verify_rev(top: str, rev: str) -> str:
@@ -235,7 +236,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     from urdf_lint.core.jobs import LintJob
     from urdf_lint.run.pipeline import settings_for
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     jobs, key_of = [], {}
     for k in keys:
         m = side.models.get(k)

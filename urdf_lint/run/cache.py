@@ -23,7 +23,6 @@ import hmac
 import json
 import os
 import stat as _st
-import subprocess
 from pathlib import Path
 
 from urdf_lint import __version__
@@ -31,7 +30,7 @@ from urdf_lint.core import fsbound
 from urdf_lint.discovery.discover import start_dir
 from urdf_lint.core.hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
-from urdf_lint.run.cachedir import ensure as ensure_cache_dir
+from urdf_lint.core.cachedir import ensure as ensure_cache_dir
 from urdf_lint.discovery.vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;
@@ -79,12 +78,11 @@ def _load_key(repo_dirs=()) -> bytes | None:
 
 
 def _git_tracks(directory: str) -> bool:
+    from urdf_lint.discovery.vcs import GitError, git
     try:
-        out = subprocess.run(["git", "ls-files", "--", "."], cwd=directory, capture_output=True,
-                             text=True, timeout=10)
-    except (OSError, subprocess.SubprocessError):
-        return False  # no git: nothing can be tracked
-    return out.returncode == 0 and bool(out.stdout.strip())
+        return bool(git("ls-files", "--", ".", cwd=directory, timeout=10).strip())
+    except GitError:
+        return False  # no git, or not a work tree: nothing can be tracked
 
 
 MAX_ENTRY_BYTES = 64 << 20

@@ -2,7 +2,7 @@
 run-scope rules -> merge -> suppress -> policy -> CheckResult.
 
 Discovery is :mod:`urdf_lint.discovery.discover`, one model's lint :mod:`urdf_lint.engine.lint` (inside
-workers, :mod:`urdf_lint.runner.worker`), what is kept and at what severity :mod:`urdf_lint.config.policy`.
+workers, :mod:`urdf_lint.runner.pool`), what is kept and at what severity :mod:`urdf_lint.config.policy`.
 """
 from __future__ import annotations
 
@@ -203,7 +203,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
             todo.append(job)
     internal: list[str] = []
     if todo:
-        from urdf_lint.runner.worker import process_job, run_jobs
+        from urdf_lint.run.worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
             run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
         for n, (job, res) in enumerate(done, 1):

@@ -1,5 +1,5 @@
 """The hardening every forked process of urdf-lint that handles repository data gets: the
-workers (``worker.py``) and the ``diff --render`` recorder (``recording.py``): a scrubbed
+workers (``pool.py``) and the ``diff --render`` recorder (``recording.py``): a scrubbed
 environment, a memory limit, the audit hook, and for a process that only writes, the OS
 sandbox of :mod:`urdf_lint.runner.sandbox` with nothing of the repository readable."""
 from __future__ import annotations

@@ -235,9 +235,10 @@ def _runtime_read_paths() -> list[str]:
             out.append(p)
     import urdf_lint
     out += [os.path.abspath(p) for p in urdf_lint.__path__]   # the package and every room
-    try:
-        import urdf_lint.rules as r
-        out += list(r.__path__)
+    try:   # (found, not imported: the runner runs no rule)
+        import importlib.util
+        spec = importlib.util.find_spec("urdf_lint.rules")
+        out += list(spec.submodule_search_locations or ()) if spec else []
     except Exception:  # noqa: BLE001
         pass
     return out
@@ -396,7 +397,7 @@ def enter_worker(conn, settings) -> dict:
     if facts:
         # the cache folder's markers (.gitignore, CACHEDIR.TAG) now: the sandbox lets the
         # worker write below meshes/ only, and a folder without them would get committed
-        from urdf_lint.run.cachedir import ensure
+        from urdf_lint.core.cachedir import ensure
         try:
             ensure(settings.mesh_cache_dir)
         except OSError:

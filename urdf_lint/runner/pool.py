@@ -1,8 +1,10 @@
-"""Run lint jobs in isolated worker processes with a time limit and a memory limit.
+"""Run jobs in isolated worker processes with a time limit and a memory limit.
 
 Each worker is a forked process with a scrubbed environment and an address-space limit.
 The parent hands out one job at a time; a worker that exceeds the time limit is killed (and
-replaced), and its job becomes a ``UL904`` finding. Other models keep going.
+replaced), and its job becomes the handler's limit result (a ``UL904`` finding). Other models
+keep going. The pool knows neither lint nor render: it is handed a :class:`Handler` (the lint
+and render one is :data:`urdf_lint.run.worker.LINT`).
 """
 from __future__ import annotations
 
@@ -13,81 +15,40 @@ import sys
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 from urdf_lint.runner import forked
-from urdf_lint.core.findings import Problem
 from urdf_lint.runner.hardening import limit_memory
 from urdf_lint.runner.hardening import inherited_data_bytes as _inherited_data_bytes
 from urdf_lint.runner.hardening import install_audit_hook as _install_audit_hook
 from urdf_lint.runner.hardening import scrub_environment as _scrub_environment
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
-from urdf_lint.rules import ul904_resource_limit as resource_limit
-
-def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
-    """Lint one job; on a render run, hand the linted model to the renderer too."""
-    from urdf_lint.engine.lint import lint_model
-    if job.kind != "expand":
-        from urdf_lint.meshes import resolve as meshes
-        # a render run draws the meshes the rules measured: load them once, keep them
-        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render)
-    before = _env_failures()
-    from urdf_lint.core import overlay
-    with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
-        report, model, ctx = lint_model(job, settings)
-    if _env_failures() != before or job.overlay:
-        # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
-        report.cacheable = False
-    if settings.diff_render and model is not None and report.kept_model is not None:
-        report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
-    if settings.render_dir and model is not None:
-        # drawn here (meshes are read only in the sandbox); captioned and given its findings
-        # by the parent once the run's policy and baseline are applied
-        from urdf_lint.render.snapshot import render_model
-        report.snapshot = render_model(model, ctx, [], settings.render_dir,
-                                       settings.render_base, rrd=settings.render_rrd,
-                                       views=settings.render_views,
-                                       forward=settings.render_forward,
-                                       refused=settings.render_refused)
-    return report
 
 
-def _env_failures() -> int:
-    meshes = sys.modules.get("urdf_lint.meshes.resolve")   # (not imported by `expand` jobs)
-    return getattr(meshes, "env_failures", 0)
+@dataclass(frozen=True)
+class Handler:
+    """What the workers run, handed to the pool (module-level functions: a worker started
+    without fork receives it pickled).
 
-
-def _diff_snapshot(model, ctx, settings: LintSettings):
-    """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
-    revision's framing) and the plan of this revision's part of the shared recording
-    (written with the other revision's by the parent's recorder: no rerun import here)."""
-    from urdf_lint.render import snapshot as render
-    scene = render.build_scene(model, ctx)
-    geometry = render.scene_geometry(scene, ctx)
-    plan = None
-    if settings.diff_rrd:
-        from urdf_lint.render.recording import label_base, plan_rrd
-        plan = plan_rrd(scene, ctx, model, label_base(model.entry))
-    return geometry, plan
-
-
-# Optional accelerators trimesh probes for when it is imported (~0.4 s per process). urdf-lint
-# uses none of them (its convex hulls come from manifold3d); they arrive with yourdfpy's
-# ``trimesh[easy]`` (the ``render`` extra). A worker runs only urdf-lint's code, so it skips them.
-UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
-
-
-def _skip_unused_imports():
-    for name in UNUSED_TRIMESH_EXTRAS:
-        # None in sys.modules: "import fails" (ImportError), so trimesh skips them
-        sys.modules.setdefault(name, None)  # type: ignore[arg-type]
-
+    ``run(job, settings)``: a job's report, in the sandboxed worker. ``limit_result(job,
+    message)``: the report of a job a limit stopped (never cached). ``allowed``: the (module,
+    class) names a report may be made of (the parent unpickles nothing else). ``setup()``: first
+    thing in a new worker; ``warm()``: the imports of a worker started ahead of its settings;
+    ``preload(blocks, settings, n)``: in the parent before it forks ``n`` workers (they share
+    what it imports)."""
+    run: Callable[[LintJob, LintSettings], ModelReport]
+    limit_result: Callable[[LintJob, str], ModelReport]
+    allowed: frozenset
+    setup: Callable[[], None] | None = None
+    warm: Callable[[], None] | None = None
+    preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
 
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
-def _worker_main(conn, settings: LintSettings | None, memory_mb):
-    _skip_unused_imports()
+def _worker_main(conn, handler: Handler, settings: LintSettings | None, memory_mb):
+    if handler.setup is not None:
+        handler.setup()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
     # 200-link robot spends a third of its time in the collector (0.17 vs 0.10 s)
     gc.set_threshold(WORKER_GC_THRESHOLD, *gc.get_threshold()[1:])
@@ -102,8 +63,8 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
         # reads the config and finds the packages, then wait for what to run with
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
-            from urdf_lint.engine import lint  # noqa: F401
-            from urdf_lint.expansion import expand  # noqa: F401
+            if handler.warm is not None:
+                handler.warm()
             from urdf_lint.runner.sandbox import warm
             warm()
         except Exception:  # noqa: BLE001 - the job imports them again and reports the failure
@@ -127,10 +88,10 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for job in forked.messages(conn):
         try:
-            result = process_job(job, settings)
+            result = handler.run(job, settings)
         except MemoryError:
-            result = _limit_result(job, "expansion ran out of memory (memory-mb limit "
-                                   f"{memory_mb} MiB)")
+            result = handler.limit_result(job, "expansion ran out of memory (memory-mb limit "
+                                          f"{memory_mb} MiB)")
         except BaseException as e:  # noqa: BLE001
             import traceback
             result = ModelReport.failed(
@@ -138,53 +99,13 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
         try:
             conn.send(result)
         except MemoryError:
-            conn.send(_limit_result(job, "result too large for the memory limit"))
-
-
-def _limit_result(job: LintJob, message: str) -> ModelReport:
-    """A limit stopped the job: the finding depends on the machine (its load, its memory) and
-    its deps are unknown (an included file that loops is not in them), so it is never cached."""
-    out = ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
-    out.cacheable = False
-    return out
-
-
-# What a worker's result may be made of (with plain data: str, numbers, lists, dicts, tuples,
-# sets, bytes): the parent reads nothing else from a worker. Were code to escape the evaluator
-# and the sandbox, a pickle naming any other function would run it in the parent, which holds
-# the secrets (test_sandbox.py::test_a_worker_cannot_run_code_in_the_parent_through_its_result).
-RESULT_CLASSES = frozenset({
-    ("urdf_lint.core.jobs", "ModelReport"), ("urdf_lint.core.jobs", "Status"),
-    ("urdf_lint.core.jobs", "KeptModel"), ("urdf_lint.core.findings", "Problem"),
-    ("urdf_lint.core.locations", "Origin"), ("urdf_lint.core.locations", "Loc"),
-    ("urdf_lint.fix.fixes", "Fix"), ("urdf_lint.fix.sourceedit", "Edit"),
-    ("urdf_lint.expansion.sourcemap", "SourceMap"), ("urdf_lint.render.raster", "Geometry"),
-    ("urdf_lint.render.recording", "Plan"),
-    # numpy arrays (numpy 1 and 2 name their reconstructors differently)
-    ("numpy", "ndarray"), ("numpy", "dtype"),
-    ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "_reconstruct"),
-    ("numpy.core.numeric", "_frombuffer"), ("numpy._core.numeric", "_frombuffer"),
-})
-
-
-def preload() -> None:
-    """Import in the parent what every lint job uses (the expansion, xacro, the rules, lxml)
-    before it forks workers, so that they share it instead of each importing it again (~60 ms
-    per worker). Not PyYAML (~20 ms): only models that load YAML files need it, and a worker
-    imports it for the first of them. Not for ``expand``'s worker, forked before the parent
-    knew."""
-    from urdf_lint.engine import lint  # noqa: F401
-    from urdf_lint.engine import model  # noqa: F401
-    from urdf_lint.engine import suppress  # noqa: F401
-    from urdf_lint.expansion import expand  # noqa: F401
-    from urdf_lint.engine.registry import load_rules
-    load_rules()
+            conn.send(handler.limit_result(job, "result too large for the memory limit"))
 
 
 _prestarted: "_Worker | None" = None
 
 
-def prestart() -> None:
+def prestart(handler: Handler) -> None:
     """Fork one worker now, before the run's settings are known, so that its imports overlap
     with the parent's config and package discovery (``urdf-lint expand``: a single small job
     whose latency is mostly start-up). The next :func:`run_jobs` hands it the settings; it
@@ -194,7 +115,7 @@ def prestart() -> None:
         from urdf_lint.runner.sandbox import disabled
         disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
         try:
-            _prestarted = _Worker(None, None)
+            _prestarted = _Worker(handler, None, None)
         except OSError:   # no fork here, or no process to spare: start later
             _prestarted = None
             return
@@ -350,55 +271,6 @@ def assign(blocks: list[Block], n: int) -> list[deque]:
     return queues
 
 
-MESH_MODULES = ("numpy", "manifold3d", "_hashlib",    # STL facts, volumes, hulls, mesh hashes
-                "urdf_lint.meshes.resolve", "urdf_lint.meshes.readers")
-DAE_MODULES = ("collada",)                   # COLLADA facts (meshio.collada_arrays)
-TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
-                   "trimesh.exchange.dae", "trimesh.exchange.obj")   # any other format
-LEAN_FORMATS = (".stl", ".dae", ".obj")      # read without trimesh (unusual files aside)
-
-
-def _mesh_modules(blocks: list[Block]) -> tuple:
-    """The loaders the packages' meshes need: trimesh (~0.35 s to import) only for formats
-    urdf-lint does not read itself."""
-    formats = set().union(*(b.formats for b in blocks)) if blocks else set()
-    out = MESH_MODULES + (DAE_MODULES if ".dae" in formats else ())
-    return out + (TRIMESH_MODULES if formats - set(LEAN_FORMATS) else ())
-
-
-def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
-    """Import the mesh loaders once in the parent before forking several workers, when the
-    selected rules read meshes and the packages hold some: the workers share the imported
-    modules instead of each importing them again."""
-    if not any(b.formats for b in blocks):
-        return
-    if _mesh_facts_cached(settings):
-        return   # a run after the first: the workers find the facts and seldom load a mesh
-    from urdf_lint.engine.registry import load_rules
-    rules = load_rules()
-    if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
-        return
-    import importlib
-    # without trimesh's optional accelerators, like the workers (~0.4 s of scipy & co. the
-    # parent would import for nothing); the markers are removed again afterwards, so the
-    # parent's own later imports are untouched
-    marked = [n for n in UNUSED_TRIMESH_EXTRAS if n not in sys.modules]
-    for n in marked:
-        sys.modules[n] = None  # type: ignore[assignment]
-    try:
-        from urdf_lint.core import lazy
-        for name in _mesh_modules(blocks):
-            try:
-                importlib.import_module(name)
-                lazy.load(name)    # (Pillow, deferred by meshio: trimesh's formats use it)
-            except ImportError:
-                pass
-    finally:
-        for n in marked:
-            if n in sys.modules and sys.modules[n] is None:
-                del sys.modules[n]
-
-
 def _mesh_facts_cached(settings: LintSettings) -> bool:
     """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
@@ -434,7 +306,7 @@ def _next_job(mine, queues, block_of=None, running=()):
 
 
 class _Worker:
-    def __init__(self, settings, memory_mb):
+    def __init__(self, handler: Handler, settings, memory_mb):
         # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
         # exits 130 for both; its SIGTERM handler must not run in the child)
         try:
@@ -443,13 +315,13 @@ class _Worker:
         except ValueError:          # not the main thread: signals are not ours to change
             old = old_term = None
         try:
-            self.conn, self.proc = forked.start(_worker_main, (settings, memory_mb),
-                                                allowed=RESULT_CLASSES)
+            self.conn, self.proc = forked.start(_worker_main, (handler, settings, memory_mb),
+                                                allowed=handler.allowed)
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
                 signal.signal(signal.SIGTERM, old_term)
-        self.job = None
+        self.job: Any = None
         self.started = 0.0
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
@@ -485,9 +357,10 @@ def _used(w) -> float | None:
     return None if now is None or w.cpu0 is None else now - w.cpu0
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
-             memory_mb=2048):
-    """Yield (job, ModelReport) for every job; results arrive in completion order.
+def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs_n=None,
+             timeout=30.0, memory_mb=2048):
+    """Yield (job, ModelReport) for every job, run by ``handler``; results arrive in
+    completion order.
 
     ``timeout`` limits the CPU time a job uses (a loaded CI machine does not make a model that
     lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job waiting on
@@ -509,12 +382,12 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         len(jobs)))
     queues = assign(blocks, n)
     block_of = {id(j): k for k, b in enumerate(blocks) for j in b.jobs}
-    if pre is None or n > 1:   # workers forked from here on share what the parent imports
-        preload()
-    if n > 1:   # (the prestarted worker was forked before the mesh modules)
-        _preload_mesh_modules(blocks, settings)
+    if handler.preload is not None and (pre is None or n > 1):
+        # workers forked from here on share what the parent imports (the prestarted one was
+        # forked before)
+        handler.preload(blocks, settings, n)
     workers = [pre] if pre is not None else []
-    workers += [_Worker(settings, memory_mb) for _ in range(n - len(workers))]
+    workers += [_Worker(handler, settings, memory_mb) for _ in range(n - len(workers))]
     for w, q in zip(workers, queues, strict=True):
         w.queue = q
 
@@ -522,7 +395,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         return any(queues)
 
     def replace(old):
-        new = _Worker(settings, memory_mb)
+        new = _Worker(handler, settings, memory_mb)
         new.queue = old.queue
         workers.append(new)
     try:
@@ -563,7 +436,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     replace(w)
                 except (EOFError, OSError):
                     code = w.proc.exitcode
-                    result = _limit_result(job, "the expansion worker died (exit code "
+                    result = handler.limit_result(job, "the expansion worker died (exit code "
                                            f"{code}); likely the memory limit ({memory_mb} MiB)")
                     workers.remove(w)
                     w.kill()
@@ -588,8 +461,9 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
                     w.kill()
                     if pending() or busy:
                         replace(w)
-                    yield job, _limit_result(job, f"expansion/lint did not finish within "
-                                             f"{what}; a huge expression, loop or recursion?")
+                    yield job, handler.limit_result(
+                        job, f"expansion/lint did not finish within {what}; a huge expression, "
+                        "loop or recursion?")
     finally:
         for w in workers:
             try:

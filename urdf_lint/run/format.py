@@ -1,5 +1,5 @@
-"""``urdf-lint format [PATHS]``: lay out xacro and URDF sources (:mod:`urdf_lint.formatting.layout`)
-and prove that no robot changes.
+"""The run of ``urdf-lint format [PATHS]`` (the command: :mod:`urdf_lint.cli.format`): lay out
+xacro and URDF sources (:mod:`urdf_lint.formatting.layout`) and prove that no robot changes.
 
 1. Every ``.urdf``/``.xacro`` under the paths (``exclude`` and ``[format] exclude`` honoured;
    a file named explicitly is always formatted) is read (regular files of bounded size only)
@@ -24,42 +24,11 @@ from __future__ import annotations
 
 import dataclasses
 import os
-import sys
 from dataclasses import dataclass
 
 from urdf_lint.formatting.layout import FormatError, Refused, Style, format_source, read_document, _normal
 
 SUFFIXES = (".urdf", ".xacro")
-
-
-def add_parser(sub, raw, add_inputs) -> None:
-    p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
-                       description="Format xacro and URDF files: one element per line, "
-                                   "children indented, long tags wrapped; comments, text and "
-                                   "${...} kept byte for byte. Every model that reads a "
-                                   "changed file is expanded before and after and must be "
-                                   "identical, else the file is left alone.")
-    p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
-                   help="files or folders to format (default: .)")
-    p.add_argument("--check", action="store_true",
-                   help="write nothing; exit 1 when a file would be reformatted")
-    p.add_argument("--diff", action="store_true",
-                   help="write nothing; print the changes as a unified diff (exit 1 when "
-                        "there are any)")
-    p.add_argument("--indent", metavar="N", help="spaces per level (default: 2; config key "
-                   "'indent' under [tool.urdf-lint.format])")
-    p.add_argument("--line-length", metavar="N", help="wrap a start tag's attributes one per "
-                   "line past N characters (default: 100; config key 'line-length')")
-    p.add_argument("--attribute-order", metavar="{keep,canonical}",
-                   help="canonical: name first, then the URDF/xacro schema order (default: "
-                        "keep; config key 'attribute-order')")
-    p.add_argument("--isolated", action="store_true", help="ignore all config files")
-    add_inputs(p)
-    p.add_argument("--timeout", metavar="SECONDS",
-                   help="time limit per model expansion of the proof (default: 30)")
-    p.add_argument("--memory-mb", metavar="MIB",
-                   help="memory limit per model expansion of the proof (default: 2048)")
-    p.add_argument("-q", "--quiet", action="store_true", help="print only errors")
 
 
 def style_of(cfg, args=None) -> Style:
@@ -173,7 +142,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import inside
-    from urdf_lint.runner.worker import run_jobs
+    from urdf_lint.run.worker import run_jobs
     if not changed:
         return {}, 0
     root = repository_root(paths)
@@ -239,61 +208,3 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
             overlay.pop(f, None)
         pending = [k for k in jobs if deps[k] & removed and deps[k] & overlay.keys()]
     return refused, compared
-
-
-# -- the command ---------------------------------------------------------------------------------
-def cmd_format(args, load_cfg, parse_package_paths) -> int:
-    from urdf_lint.core.errors import UsageError
-    from urdf_lint.core.escape import escape_text
-    for p in args.paths:
-        if not os.path.exists(p):
-            raise UsageError(f"no such file or directory: {p}")
-    cfg = load_cfg(args, args.paths)
-    style = style_of(cfg, args)
-    results = format_files(files_to_format(args.paths, cfg), style, args.paths)
-    changed = {r.path: r.new for r in results if r.new is not None}
-    compared = 0
-    if changed:
-        refused, compared = prove(changed, args.paths, cfg,
-                                  parse_package_paths(args.package_path), cfg.jobs)
-        for r in results:
-            if r.path in refused:
-                r.refused, r.new = refused[r.path], None
-    from urdf_lint.core.emit import say as said
-    say = (lambda s: None) if args.quiet else said
-    status = 0
-    for r in results:
-        if r.error:
-            said(f"error: {escape_text(r.error)}")
-            status = 2
-        elif r.refused:
-            said(f"{escape_text(r.shown)}: left alone: {escape_text(r.refused)}")
-            if r.refused.startswith("internal"):
-                status = 2
-    todo = [r for r in results if r.new is not None]
-    if args.diff:
-        from urdf_lint.fix.run import unified_diff
-        sys.stdout.write(unified_diff({r.path: r.new for r in todo},
-                                      {r.path: r.old for r in todo}))
-    elif args.check:
-        from urdf_lint.core.emit import tell
-        for r in todo:
-            tell(f"Would reformat: {escape_text(r.shown)}")
-    else:
-        from urdf_lint.core import fsbound
-        for r in todo:
-            try:   # only below the formatted paths, atomically (the boundary)
-                fsbound.rewrite(r.path, r.new or b"", args.paths)
-            except OSError as e:
-                said(f"error: {escape_text(r.shown)}: cannot write: "
-                     f"{getattr(e, 'why', None) or e.strerror or e}")
-                status = 2
-    left = sum(1 for r in results if r.refused)
-    same = sum(1 for r in results if r.new is None and not r.refused and not r.error)
-    verb = "would be reformatted" if args.check or args.diff else "reformatted"
-    say(f"{len(todo)} file(s) {verb}, {same} file(s) left unchanged"
-        + (f", {left} file(s) left alone" if left else "")
-        + (f" ({compared} model(s) expanded before and after)" if compared else ""))
-    if status:
-        return status
-    return 1 if todo and (args.check or args.diff) else 0

@@ -51,7 +51,7 @@ def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
 
 
 def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
-    from urdf_lint.fix.run import run_fix
+    from urdf_lint.run.fix import run_fix
     from urdf_lint.run.pipeline import exit_code
     if render_dir:
         raise UsageError("--fix/--diff/--add-suppressions cannot be combined with --render")

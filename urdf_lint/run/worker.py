@@ -1,0 +1,189 @@
+"""What a worker runs: the job handler the pool (:mod:`urdf_lint.runner.pool`) is handed. A job
+is expanded and linted and, on a render run, its model drawn; the parent imports beforehand
+what the workers will share, and a job stopped by a limit is a ``UL904`` finding."""
+from __future__ import annotations
+
+import sys
+
+from urdf_lint.core.findings import Problem
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+from urdf_lint.rules import ul904_resource_limit as resource_limit
+from urdf_lint.runner import pool
+from urdf_lint.runner.pool import Block, Handler, _mesh_facts_cached
+
+
+def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
+    """Lint one job; on a render run, hand the linted model to the renderer too."""
+    from urdf_lint.engine.lint import lint_model
+    if job.kind != "expand":
+        from urdf_lint.meshes import resolve as meshes
+        # a render run draws the meshes the rules measured: load them once, keep them
+        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render)
+    before = _env_failures()
+    from urdf_lint.core import overlay
+    with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
+        report, model, ctx = lint_model(job, settings)
+    if _env_failures() != before or job.overlay:
+        # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
+        report.cacheable = False
+    if settings.diff_render and model is not None and report.kept_model is not None:
+        report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
+    if settings.render_dir and model is not None:
+        # drawn here (meshes are read only in the sandbox); captioned and given its findings
+        # by the parent once the run's policy and baseline are applied
+        from urdf_lint.render.snapshot import render_model
+        report.snapshot = render_model(model, ctx, [], settings.render_dir,
+                                       settings.render_base, rrd=settings.render_rrd,
+                                       views=settings.render_views,
+                                       forward=settings.render_forward,
+                                       refused=settings.render_refused)
+    return report
+
+
+def _env_failures() -> int:
+    meshes = sys.modules.get("urdf_lint.meshes.resolve")   # (not imported by `expand` jobs)
+    return getattr(meshes, "env_failures", 0)
+
+
+def _diff_snapshot(model, ctx, settings: LintSettings):
+    """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
+    revision's framing) and the plan of this revision's part of the shared recording
+    (written with the other revision's by the parent's recorder: no rerun import here)."""
+    from urdf_lint.render import snapshot as render
+    scene = render.build_scene(model, ctx)
+    geometry = render.scene_geometry(scene, ctx)
+    plan = None
+    if settings.diff_rrd:
+        from urdf_lint.render.recording import label_base, plan_rrd
+        plan = plan_rrd(scene, ctx, model, label_base(model.entry))
+    return geometry, plan
+
+
+# Optional accelerators trimesh probes for when it is imported (~0.4 s per process). urdf-lint
+# uses none of them (its convex hulls come from manifold3d); they arrive with yourdfpy's
+# ``trimesh[easy]`` (the ``render`` extra). A worker runs only urdf-lint's code, so it skips them.
+UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
+
+
+def _skip_unused_imports():
+    for name in UNUSED_TRIMESH_EXTRAS:
+        # None in sys.modules: "import fails" (ImportError), so trimesh skips them
+        sys.modules.setdefault(name, None)  # type: ignore[arg-type]
+
+
+def limit_result(job: LintJob, message: str) -> ModelReport:
+    """A limit stopped the job: the finding depends on the machine (its load, its memory) and
+    its deps are unknown (an included file that loops is not in them), so it is never cached."""
+    out = ModelReport.failed(job, [Problem.at(resource_limit.CODE, message, (job.entry, 1, 1))])
+    out.cacheable = False
+    return out
+
+
+# What a worker's result may be made of (with plain data: str, numbers, lists, dicts, tuples,
+# sets, bytes): the parent reads nothing else from a worker. Were code to escape the evaluator
+# and the sandbox, a pickle naming any other function would run it in the parent, which holds
+# the secrets (test_sandbox.py::test_a_worker_cannot_run_code_in_the_parent_through_its_result).
+RESULT_CLASSES = frozenset({
+    ("urdf_lint.core.jobs", "ModelReport"), ("urdf_lint.core.jobs", "Status"),
+    ("urdf_lint.core.jobs", "KeptModel"), ("urdf_lint.core.findings", "Problem"),
+    ("urdf_lint.core.locations", "Origin"), ("urdf_lint.core.locations", "Loc"),
+    ("urdf_lint.fix.fixes", "Fix"), ("urdf_lint.fix.sourceedit", "Edit"),
+    ("urdf_lint.expansion.sourcemap", "SourceMap"), ("urdf_lint.render.raster", "Geometry"),
+    ("urdf_lint.render.recording", "Plan"),
+    # numpy arrays (numpy 1 and 2 name their reconstructors differently)
+    ("numpy", "ndarray"), ("numpy", "dtype"),
+    ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "_reconstruct"),
+    ("numpy.core.numeric", "_frombuffer"), ("numpy._core.numeric", "_frombuffer"),
+})
+
+
+def preload(blocks: list[Block] | None = None, settings: LintSettings | None = None,
+            n: int = 1) -> None:
+    """Import in the parent what every lint job uses (the expansion, xacro, the rules, lxml)
+    before it forks workers, so that they share it instead of each importing it again (~60 ms
+    per worker). Not PyYAML (~20 ms): only models that load YAML files need it, and a worker
+    imports it for the first of them. Not for ``expand``'s worker, forked before the parent
+    knew."""
+    from urdf_lint.engine import lint  # noqa: F401
+    from urdf_lint.engine import model  # noqa: F401
+    from urdf_lint.engine import suppress  # noqa: F401
+    from urdf_lint.expansion import expand  # noqa: F401
+    from urdf_lint.engine.registry import load_rules
+    load_rules()
+    if n > 1 and blocks is not None and settings is not None:
+        _preload_mesh_modules(blocks, settings)
+
+
+MESH_MODULES = ("numpy", "manifold3d", "_hashlib",    # STL facts, volumes, hulls, mesh hashes
+                "urdf_lint.meshes.resolve", "urdf_lint.meshes.readers")
+DAE_MODULES = ("collada",)                   # COLLADA facts (meshio.collada_arrays)
+TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
+                   "trimesh.exchange.dae", "trimesh.exchange.obj")   # any other format
+LEAN_FORMATS = (".stl", ".dae", ".obj")      # read without trimesh (unusual files aside)
+
+
+def _mesh_modules(blocks: list[Block]) -> tuple:
+    """The loaders the packages' meshes need: trimesh (~0.35 s to import) only for formats
+    urdf-lint does not read itself."""
+    formats = set().union(*(b.formats for b in blocks)) if blocks else set()
+    out = MESH_MODULES + (DAE_MODULES if ".dae" in formats else ())
+    return out + (TRIMESH_MODULES if formats - set(LEAN_FORMATS) else ())
+
+
+def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
+    """Import the mesh loaders once in the parent before forking several workers, when the
+    selected rules read meshes and the packages hold some: the workers share the imported
+    modules instead of each importing them again."""
+    if not any(b.formats for b in blocks):
+        return
+    if _mesh_facts_cached(settings):
+        return   # a run after the first: the workers find the facts and seldom load a mesh
+    from urdf_lint.engine.registry import load_rules
+    rules = load_rules()
+    if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
+        return
+    import importlib
+    # without trimesh's optional accelerators, like the workers (~0.4 s of scipy & co. the
+    # parent would import for nothing); the markers are removed again afterwards, so the
+    # parent's own later imports are untouched
+    marked = [n for n in UNUSED_TRIMESH_EXTRAS if n not in sys.modules]
+    for n in marked:
+        sys.modules[n] = None  # type: ignore[assignment]
+    try:
+        from urdf_lint.core import lazy
+        for name in _mesh_modules(blocks):
+            try:
+                importlib.import_module(name)
+                lazy.load(name)    # (Pillow, deferred by meshio: trimesh's formats use it)
+            except ImportError:
+                pass
+    finally:
+        for n in marked:
+            if n in sys.modules and sys.modules[n] is None:
+                del sys.modules[n]
+
+
+def warm() -> None:
+    """A worker started ahead of its settings (prestart) imports the expansion meanwhile."""
+    from urdf_lint.engine import lint  # noqa: F401
+    from urdf_lint.expansion import expand  # noqa: F401
+
+
+def _run(job: LintJob, settings: LintSettings) -> ModelReport:
+    return process_job(job, settings)   # (looked up when called: a test may replace it)
+
+
+LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
+               setup=_skip_unused_imports, warm=warm, preload=preload)
+
+
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
+             memory_mb=2048):
+    """:func:`urdf_lint.runner.pool.run_jobs` with the lint handler."""
+    return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n, timeout=timeout,
+                         memory_mb=memory_mb)
+
+
+def prestart() -> None:
+    """:func:`urdf_lint.runner.pool.prestart` with the lint handler."""
+    pool.prestart(LINT)
