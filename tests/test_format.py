@@ -181,7 +181,7 @@ def test_check_diff_and_write_exit_codes(pkg):
     assert p.returncode == 1 and "+    <visual>" in p.stdout and f.read_text() == UGLY
     p = run_cli("format", pkg, cwd=pkg)
     assert p.returncode == 0 and "1 file(s) reformatted" in p.stderr, p.stderr
-    assert "1 model(s) expanded before and after" in p.stderr
+    assert "(1 proved from the file itself, 0 model(s) expanded before and after)" in p.stderr
     assert "  <link name=\"base\">\n    <visual>\n" in f.read_text()
     p = run_cli("format", "--check", pkg, cwd=pkg)
     assert p.returncode == 0 and p.stdout == "", p.stdout

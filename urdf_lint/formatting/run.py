@@ -166,16 +166,27 @@ def _outcome(report):
         return None, e.message
 
 
-def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, int]:
-    """({real path: why it must be left alone}, how many models were compared) for the new
-    layouts ``changed`` ({real path: bytes})."""
+@dataclass
+class Proof:
+    """What the proof of a run found."""
+    refused: dict = dataclasses.field(default_factory=dict)   # real path -> why left alone
+    compared: int = 0        # models expanded before and after
+    by_file: int = 0         # changed files proved from the file itself (formatting.inert)
+
+
+def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
+          old: dict | None = None) -> Proof:
+    """The proof for the new layouts ``changed`` ({real path: bytes}); ``old`` ({real path:
+    bytes}, the files as they are) lets a file be proved from itself
+    (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only."""
     from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import inside
     from urdf_lint.runner.worker import run_jobs
+    proof = Proof()
     if not changed:
-        return {}, 0
+        return proof
     root = repository_root(paths)
     scan = [root] + [p for p in paths if not inside(os.path.realpath(p), os.path.realpath(root))]
     resolver = build_resolver(scan, cfg, package_paths)
@@ -192,11 +203,20 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
                     seen.add(g)
                     todo.append(g)
         return seen
+    unproven = set(changed)
+    if old:
+        from urdf_lint.formatting.inert import proven
+        for f in sorted(changed):
+            if f in old and proven(read_document(old[f]), read_document(changed[f])) is None:
+                unproven.discard(f)
+        proof.by_file = len(changed) - len(unproven)
+    if not unproven:
+        return proof
     jobs = {}
     for job in disc.jobs:
         if job.kind != "xacro":   # a .urdf model is the file itself: the guard compared it
             continue
-        if reach(job.entry) & changed.keys() or graph.unresolved_below(job.entry):
+        if reach(job.entry) & unproven or graph.unresolved_below(job.entry):
             key = (job.entry, tuple(sorted(job.args.items())))
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
     env_allow = tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)))
@@ -211,9 +231,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     overlay = dict(changed)
-    refused: dict = {}
-    pending = [k for k in jobs if deps[k] & overlay.keys()]
-    compared = len(pending)
+    refused = proof.refused
+    pending = [k for k in jobs if deps[k] & unproven]
+    proof.compared = len(pending)
     while pending:
         after = expand(pending, overlay)
         removed: set = set()
@@ -232,13 +252,15 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
                 why = f"the expansion {'fails' if b is None else 'succeeds'} once formatted" + \
                     (f" ({why_b})" if why_b else "")
             label = before[k].label
-            for f in sorted(deps[k] & overlay.keys()):
+            # the files not proved by themselves (all it reads, should those not do)
+            culprits = deps[k] & overlay.keys() & unproven or deps[k] & overlay.keys()
+            for f in sorted(culprits):
                 refused.setdefault(f, f"formatting would change the robot {label}: {why}")
                 removed.add(f)
         for f in removed:
             overlay.pop(f, None)
         pending = [k for k in jobs if deps[k] & removed and deps[k] & overlay.keys()]
-    return refused, compared
+    return proof
 
 
 # -- the command ---------------------------------------------------------------------------------
@@ -252,13 +274,13 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     style = style_of(cfg, args)
     results = format_files(files_to_format(args.paths, cfg), style, args.paths)
     changed = {r.path: r.new for r in results if r.new is not None}
-    compared = 0
+    proof = Proof()
     if changed:
-        refused, compared = prove(changed, args.paths, cfg,
-                                  parse_package_paths(args.package_path), cfg.jobs)
+        proof = prove(changed, args.paths, cfg, parse_package_paths(args.package_path),
+                      cfg.jobs, old={r.path: r.old for r in results if r.new is not None})
         for r in results:
-            if r.path in refused:
-                r.refused, r.new = refused[r.path], None
+            if r.path in proof.refused:
+                r.refused, r.new = proof.refused[r.path], None
     from urdf_lint.core.emit import say as said
     say = (lambda s: None) if args.quiet else said
     status = 0
@@ -293,7 +315,8 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     verb = "would be reformatted" if args.check or args.diff else "reformatted"
     say(f"{len(todo)} file(s) {verb}, {same} file(s) left unchanged"
         + (f", {left} file(s) left alone" if left else "")
-        + (f" ({compared} model(s) expanded before and after)" if compared else ""))
+        + (f" ({proof.by_file} proved from the file itself, {proof.compared} model(s) "
+           "expanded before and after)" if changed else ""))
     if status:
         return status
     return 1 if todo and (args.check or args.diff) else 0
