@@ -135,3 +135,63 @@ def test_format_proves_from_the_file_and_expands_only_for_the_rest(tmp_path):
 def test_an_unchanged_file_is_proved():
     doc = read_document(f'<robot {X}><link name="a"/></robot>'.encode())
     assert proven(doc, doc) is None
+
+
+COLOURS = (f'<?xml version="1.0"?>\n<robot {X}>\n\n  <!-- yellow -->\n'
+           '  <xacro:property name="yellow"   value="0.96 0.76 0.13 1.0" />\n'
+           '  <!-- white -->\n  <xacro:property name="white" value="0.86 0.85 0.81 1.0" />\n\n\n'
+           '  <xacro:macro name="arm"><link name="a"><visual><geometry><box size="1 1 1"/>'
+           '</geometry><material name="y"><color rgba="${yellow}"/></material></visual></link>'
+           '</xacro:macro>\n</robot>\n')
+
+
+def test_reads_quietly_wants_two_nodes_that_reach_the_robot_next_to_xacro_elements():
+    from urdf_lint.formatting.inert import reads_quietly
+    quiet = f'<robot {X}>\n  <link name="a"/>\n  <xacro:property name="p" value="1"/>\n</robot>'
+    assert reads_quietly(read_document(quiet.encode()))
+    assert reads_quietly(read_document(COLOURS.encode()))
+    for loud in (f'<robot {X}><link name="a"/><xacro:property name="p" value="1"/></robot>',
+                 f'<robot {X}>\n<link name="k"><xacro:property name="a" value="1"/></link></robot>',
+                 f'<robot {X}>\n<link name="k"> <xacro:if value="1"/></link></robot>'):
+        assert not reads_quietly(read_document(loud.encode())), loud
+    # xacro:element, xacro:attribute and insert_block do not read the text before them
+    assert reads_quietly(read_document(
+        f'<robot {X}><link name="k"><xacro:attribute name="n" value="1"/></link></robot>'.encode()))
+
+
+def test_a_new_shape_next_to_xacro_elements_is_proved_when_every_file_reads_quietly(tmp_path):
+    # a blank line after <robot> removed before a comment and an xacro:property (xacro then
+    # removes that comment, and moves its "\n\n" node, differently): every file of the model
+    # holds two nodes that reach the robot wherever xacro reads, so it writes the same robot
+    from conftest import make_package
+    main = MAIN.replace('<xacro:include filename="lib.xacro"/>',
+                        '<xacro:include filename="lib.xacro"/>\n  <link name="m"/>')
+    pkg = make_package(tmp_path, "p", {"urdf/m.urdf.xacro": main, "urdf/lib.xacro": COLOURS})
+    lib = pkg / "urdf" / "lib.xacro"
+    new = format_source(COLOURS.encode())
+    assert proven(read_document(COLOURS.encode()), read_document(new)) is not None
+    assert proven(read_document(COLOURS.encode()), read_document(new), quiet_reads=True) is None
+    before = _robot(pkg / "urdf", {})
+    p = run_cli("format", "urdf/lib.xacro", cwd=pkg)
+    assert p.returncode == 0 and "1 file(s) reformatted" in p.stderr, p.stderr
+    assert "(1 proved from the file itself, 0 model(s) expanded" in p.stderr, p.stderr
+    assert lib.read_bytes() == new
+    assert _robot(pkg / "urdf", {}) == before
+
+
+def test_a_new_shape_is_expanded_when_a_file_of_the_model_does_not_read_quietly(tmp_path):
+    # the same change, with the model's main file holding an xacro element alone in text
+    # (test_whitespace_whose_shape_xacro_reads_next_to_its_elements_is_not_proved): expanded,
+    # and left alone as the robot changes
+    from conftest import make_package
+    main = (f'<robot name="m" {X}>\n  <link name="l"/>\n  <gazebo><plugin name="p" '
+            'filename="x.so"><robotNamespace>/r<xacro:property name="z" value="1"/>'
+            '<xacro:property name="z2" value="1"/></robotNamespace></plugin></gazebo>'
+            '<xacro:include filename="lib.xacro"/></robot>\n')
+    lib = f'<robot {X}>\n<link name="k"><xacro:property name="a" value="1"/></link></robot>\n'
+    pkg = make_package(tmp_path, "p", {"urdf/m.urdf.xacro": main, "urdf/lib.xacro": lib})
+    p = run_cli("format", "urdf/lib.xacro", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    assert "urdf/lib.xacro: left alone: formatting would change the robot" in p.stderr, p.stderr
+    assert re.search(r"\(0 proved from the file itself, [1-9]\d* model\(s\) expanded", p.stderr)
+    assert (pkg / "urdf" / "lib.xacro").read_text() == lib

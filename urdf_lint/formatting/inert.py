@@ -73,7 +73,7 @@ def _shape(nodes: list) -> list:
     return [("t", n[1].count("\n") > 1) if n[0] == "text" else n[0] for n in nodes]
 
 
-def _changed_level(el, parent, ka: list, kb: list) -> str | None:
+def _changed_level(el, parent, ka: list, kb: list, quiet_reads: bool) -> str | None:
     """None when the new text of the level ``ka`` -> ``kb`` (the children of ``el``) cannot
     reach the robot."""
     if any(n[1].strip() for n in ka + kb if n[0] == "text"):
@@ -82,6 +82,11 @@ def _changed_level(el, parent, ka: list, kb: list) -> str | None:
         if el[1] in STRUCTURAL and _kept(el, parent):
             return None
         return f"the whitespace of <{el[1]}> may reach the robot once it is self-closed"
+    if quiet_reads:     # what xacro reads of whitespace changes nothing it writes
+        if any(n[0] == "el" and _reaches(n) for n in ka) or min(
+                sum(1 for n in k if _reaches(n)) for k in (ka, kb)) >= 2:
+            return None
+        return f"the whitespace in <{el[1]}> may be the only child of an element"
     if any(n[0] == "el" and _reaches(n) for n in ka):
         # it reaches the robot with an element: the element it lands in is written with its
         # whitespace-only text left out, wherever that is. xacro reads where the text is
@@ -100,7 +105,7 @@ def _changed_level(el, parent, ka: list, kb: list) -> str | None:
     return None
 
 
-def _pairs(xs: list, ys: list, parent) -> str | None:
+def _pairs(xs: list, ys: list, parent, quiet_reads: bool) -> str | None:
     """None when the nodes (one level, its text left out) read the same to xacro."""
     if len(xs) != len(ys):
         return "the structure differs"
@@ -110,7 +115,7 @@ def _pairs(xs: list, ys: list, parent) -> str | None:
         if x[0] == "el":
             if x[1] != y[1] or x[2] != y[2]:    # (attributes in order: xacro evaluates so)
                 return f"<{x[1]}> differs"
-            why = _same(x, y, parent)
+            why = _same(x, y, parent, quiet_reads)
             if why is not None:
                 return why
         elif x != y:
@@ -118,18 +123,40 @@ def _pairs(xs: list, ys: list, parent) -> str | None:
     return None
 
 
-def _same(a, b, parent) -> str | None:
+def _same(a, b, parent, quiet_reads: bool) -> str | None:
     ka, kb = _joined(a[3]), _joined(b[3])
-    why = _pairs([n for n in ka if n[0] != "text"], [n for n in kb if n[0] != "text"], a)
+    why = _pairs([n for n in ka if n[0] != "text"], [n for n in kb if n[0] != "text"], a,
+                 quiet_reads)
     if why is not None or ka == kb:
         return why
-    return _changed_level(a, parent, ka, kb)
+    return _changed_level(a, parent, ka, kb, quiet_reads)
 
 
-def proven(old_doc: list, new_doc: list) -> str | None:
+def proven(old_doc: list, new_doc: list, quiet_reads: bool = False) -> str | None:
     """None when the new layout provably expands to the same robot in every model that reads
     the file; else why the models must be expanded to prove it. ``old_doc`` and ``new_doc``
-    are :func:`urdf_lint.formatting.layout.read_document` of the two layouts."""
+    are :func:`urdf_lint.formatting.layout.read_document` of the two layouts.
+    ``quiet_reads``: every file those models read passes :func:`reads_quietly` (as it is and
+    as it will be), so where xacro reads whitespace changes nothing it writes."""
     # (the whitespace around the root element is not read)
     return _pairs([n for n in old_doc if n[0] != "text"], [n for n in new_doc if n[0] != "text"],
-                  None)
+                  None, quiet_reads)
+
+
+def reads_quietly(doc: list) -> bool:
+    """Does every element of the document with an xacro element that reads the whitespace
+    before it (``remove_previous_comments``) among its children also hold two nodes that reach
+    the robot with it (text, plain elements)? Then, in every model whose files all do, what
+    that reading does (which comments go, where xacro's one shared ``"\\n\\n"`` text node ends,
+    always in such a level) never changes what xacro writes: such a level is written with
+    at least two children, whose whitespace-only text and comments the canonical robot drops."""
+    todo = [n for n in doc if n[0] == "el"]
+    while todo:
+        el = todo.pop()
+        kids = el[3]
+        loud = any(n[0] == "el" and n[1].startswith("xacro:") and n[1] not in QUIET
+                   for n in kids)
+        if loud and sum(1 for n in _joined(kids) if _reaches(n)) < 2:
+            return False
+        todo.extend(n for n in kids if n[0] == "el")
+    return True

@@ -209,14 +209,23 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         for f in sorted(changed):
             if f in old and proven(read_document(old[f]), read_document(changed[f])) is None:
                 unproven.discard(f)
+        relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach)
+        unproven -= relaxed
         proof.by_file = len(changed) - len(unproven)
-    if not unproven:
+    else:
+        relaxed, is_quiet = set(), None
+    if not unproven and not relaxed:
         return proof
+
+    def needed(files_read: set) -> bool:
+        """Must a model that reads these files be expanded before and after?"""
+        return bool(files_read & unproven) or bool(files_read & relaxed) and not all(
+            is_quiet(f) for f in sorted(files_read))
     jobs = {}
     for job in disc.jobs:
         if job.kind != "xacro":   # a .urdf model is the file itself: the guard compared it
             continue
-        if reach(job.entry) & unproven or graph.unresolved_below(job.entry):
+        if needed(reach(job.entry)) or graph.unresolved_below(job.entry):
             key = (job.entry, tuple(sorted(job.args.items())))
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
     env_allow = tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)))
@@ -232,7 +241,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     overlay = dict(changed)
     refused = proof.refused
-    pending = [k for k in jobs if deps[k] & unproven]
+    pending = [k for k in jobs if needed(deps[k])]
     proof.compared = len(pending)
     while pending:
         after = expand(pending, overlay)
@@ -253,7 +262,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
                     (f" ({why_b})" if why_b else "")
             label = before[k].label
             # the files not proved by themselves (all it reads, should those not do)
-            culprits = deps[k] & overlay.keys() & unproven or deps[k] & overlay.keys()
+            culprits = deps[k] & overlay.keys() & (unproven | relaxed) or deps[k] & overlay.keys()
             for f in sorted(culprits):
                 refused.setdefault(f, f"formatting would change the robot {label}: {why}")
                 removed.add(f)
@@ -261,6 +270,37 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
             overlay.pop(f, None)
         pending = [k for k in jobs if deps[k] & removed and deps[k] & overlay.keys()]
     return proof
+
+
+def _proven_quietly(files: set, changed: dict, old: dict, disc, reach) -> tuple:
+    """Those of ``files`` :func:`urdf_lint.formatting.inert.proven` holds for when xacro's
+    reading of whitespace is quiet in every model that reads them: every file of those models
+    (as it is and as it will be) :func:`~urdf_lint.formatting.inert.reads_quietly`; and the
+    test of that per file. A model with an include only expansion resolves is not asked here:
+    :func:`prove` expands it and asks once it knows what the model read."""
+    from urdf_lint.core.hashing import read_regular
+    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
+    from urdf_lint.formatting.inert import proven, reads_quietly
+    ok = {f for f in files if f in old and proven(read_document(old[f]),
+                                                 read_document(changed[f]), True) is None}
+    quiet: dict = {}
+
+    def is_quiet(f: str) -> bool:
+        if f not in quiet:
+            data = [old[f], changed[f]] if f in changed else [read_regular(f, MAX_SOURCE_BYTES)]
+            try:
+                quiet[f] = all(d is not None and reads_quietly(read_document(d)) for d in data)
+            except FormatError:
+                quiet[f] = False
+        return quiet[f]
+    for job in disc.jobs:
+        if job.kind != "xacro" or disc.graph.unresolved_below(job.entry):
+            continue   # (what it reads is known once it is expanded: prove() checks it then)
+        files_read = reach(job.entry)
+        hit = files_read & ok
+        if hit and not all(is_quiet(g) for g in sorted(files_read)):
+            ok -= hit
+    return ok, is_quiet
 
 
 # -- the command ---------------------------------------------------------------------------------
