@@ -205,11 +205,14 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         return seen
     unproven = set(changed)
     if old:
+        from functools import lru_cache
+
         from urdf_lint.formatting.inert import proven
+        parsed = lru_cache(maxsize=None)(read_document)   # (each layout read once)
         for f in sorted(changed):
-            if f in old and proven(read_document(old[f]), read_document(changed[f])) is None:
+            if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
                 unproven.discard(f)
-        relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach)
+        relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed)
         unproven -= relaxed
         proof.by_file = len(changed) - len(unproven)
     else:
@@ -272,7 +275,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     return proof
 
 
-def _proven_quietly(files: set, changed: dict, old: dict, disc, reach) -> tuple:
+def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed) -> tuple:
     """Those of ``files`` :func:`urdf_lint.formatting.inert.proven` holds for when xacro's
     reading of whitespace is quiet in every model that reads them: every file of those models
     (as it is and as it will be) :func:`~urdf_lint.formatting.inert.reads_quietly`; and the
@@ -281,15 +284,15 @@ def _proven_quietly(files: set, changed: dict, old: dict, disc, reach) -> tuple:
     from urdf_lint.core.hashing import read_regular
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
     from urdf_lint.formatting.inert import proven, reads_quietly
-    ok = {f for f in files if f in old and proven(read_document(old[f]),
-                                                 read_document(changed[f]), True) is None}
+    ok = {f for f in files if f in old and proven(parsed(old[f]), parsed(changed[f]),
+                                                 True) is None}
     quiet: dict = {}
 
     def is_quiet(f: str) -> bool:
         if f not in quiet:
             data = [old[f], changed[f]] if f in changed else [read_regular(f, MAX_SOURCE_BYTES)]
             try:
-                quiet[f] = all(d is not None and reads_quietly(read_document(d)) for d in data)
+                quiet[f] = all(d is not None and reads_quietly(parsed(d)) for d in data)
             except FormatError:
                 quiet[f] = False
         return quiet[f]
