@@ -93,8 +93,9 @@ def files_to_format(paths, cfg) -> list[str]:
     return [f for f, _ in _candidates(paths, scoped)]
 
 
-def format_files(files, style: Style, paths) -> list[FileResult]:
-    """Read and lay out each file (not written)."""
+def format_files(files, style: Style, paths, docs: dict | None = None) -> list[FileResult]:
+    """Read and lay out each file (not written); ``docs`` receives the documents read of the
+    files that change, before and after (:func:`urdf_lint.formatting.layout.format_source`)."""
     from urdf_lint.core.hashing import read_regular
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
@@ -115,7 +116,7 @@ def format_files(files, style: Style, paths) -> list[FileResult]:
             continue
         res.old = data
         try:
-            new = format_source(data, style, real)
+            new = format_source(data, style, real, docs)
         except FormatError as e:
             res.error = f"{res.shown}:{e.line}:{e.col}: {e.message}"
             continue
@@ -175,10 +176,11 @@ class Proof:
 
 
 def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
-          old: dict | None = None) -> Proof:
+          old: dict | None = None, docs: dict | None = None) -> Proof:
     """The proof for the new layouts ``changed`` ({real path: bytes}); ``old`` ({real path:
     bytes}, the files as they are) lets a file be proved from itself
-    (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only."""
+    (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only;
+    ``docs`` ({bytes: read_document}) holds the documents already read."""
     from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob, LintSettings
@@ -208,7 +210,10 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         from functools import lru_cache
 
         from urdf_lint.formatting.inert import proven
-        parsed = lru_cache(maxsize=None)(read_document)   # (each layout read once)
+        read = lru_cache(maxsize=None)(read_document)
+
+        def parsed(data: bytes) -> list:   # (each layout read once: format_files read most)
+            return (docs or {}).get(data) or read(data)
         for f in sorted(changed):
             if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
                 unproven.discard(f)
@@ -315,12 +320,14 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
             raise UsageError(f"no such file or directory: {p}")
     cfg = load_cfg(args, args.paths)
     style = style_of(cfg, args)
-    results = format_files(files_to_format(args.paths, cfg), style, args.paths)
+    docs: dict = {}
+    results = format_files(files_to_format(args.paths, cfg), style, args.paths, docs)
     changed = {r.path: r.new for r in results if r.new is not None}
     proof = Proof()
     if changed:
         proof = prove(changed, args.paths, cfg, parse_package_paths(args.package_path),
-                      cfg.jobs, old={r.path: r.old for r in results if r.new is not None})
+                      cfg.jobs, old={r.path: r.old for r in results if r.new is not None},
+                      docs=docs)
         for r in results:
             if r.path in proof.refused:
                 r.refused, r.new = proof.refused[r.path], None
