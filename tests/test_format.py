@@ -262,6 +262,9 @@ def test_corpus_formats_without_changing_any_robot(tmp_path):
     root = tmp_path / "corpus"
     shutil.copytree(CORPUS, root, ignore=shutil.ignore_patterns(*("*" + s for s in _DATA)))
     files = sorted(p for p in root.rglob("*") if p.suffix in (".urdf", ".xacro"))
+    # the corpus has no file with a BOM: give one real CRLF file one (xacro reads it alike)
+    crlf = next(f for f in files if b"\r\n" in f.read_bytes())
+    crlf.write_bytes(codecs.BOM_UTF8 + crlf.read_bytes())
     before_bytes = {p: p.read_bytes() for p in files}
     robots_before = _robots(root)
     p = run_cli("format", root, cwd=root, timeout=900)
@@ -285,6 +288,7 @@ def test_corpus_formats_without_changing_any_robot(tmp_path):
         for expr in set(re.findall(rb"\$[{(][^}\)]*[})]", old)):
             assert new.count(expr) == old.count(expr), (f, expr)
     assert any(b"\r\n" in before_bytes[f] for f in changed)     # CRLF files are in the corpus
+    assert crlf in changed and crlf.read_bytes().startswith(codecs.BOM_UTF8 + b"<")
     # a second pass changes nothing
     p = run_cli("format", "--check", root, cwd=root, timeout=900)
     assert "0 file(s) would be reformatted" in p.stderr and p.stdout == "", p.stdout
