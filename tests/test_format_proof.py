@@ -74,6 +74,18 @@ def test_whitespace_directly_in_a_macro_body_without_elements_is_not_proved(tmp_
     assert not same and why is not None and "xacro:macro" in why, why
 
 
+def test_whitespace_next_to_text_is_proved_as_xacro_leaves_it_out(tmp_path):
+    # two text nodes around the xacro:if: wherever the body lands, the element has more than
+    # one child, and xacro writes such an element without its whitespace-only text (this pins
+    # that behaviour of xacro's writer, which the proof relies on)
+    main = MAIN.replace("<robotNamespace>/r</robotNamespace>",
+                        "<robotNamespace><xacro:t/></robotNamespace>")
+    lib = (f'<robot {X}>\n  <xacro:macro name="arm"><link name="a"/></xacro:macro>\n'
+           '  <xacro:macro name="t"> <xacro:if value="1">/x</xacro:if> </xacro:macro>\n</robot>\n')
+    why, same = _case(tmp_path, main, lib)
+    assert same and why is None, why
+
+
 def test_the_root_of_an_included_file_without_elements_is_not_proved(tmp_path):
     # the root's children are spliced where it is included: here alone into an element
     main = MAIN.replace("<robotNamespace>/r</robotNamespace>",
