@@ -4,16 +4,19 @@ and prove that no robot changes.
 1. Every ``.urdf``/``.xacro`` under the paths (``exclude`` and ``[format] exclude`` honoured;
    a file named explicitly is always formatted) is read (regular files of bounded size only)
    and laid out; the guard of :func:`urdf_lint.formatting.layout.check_same` runs on each result.
-2. **The proof.** The models of the repository that read a file that would change (the
-   include graph of :mod:`urdf_lint.discovery.discover`, plus the models whose includes only expansion
-   resolves, kept when their recorded inputs meet a changed file; ``exclude`` and
-   ``discover = false`` do not hide a model from the proof) are expanded in the
-   sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
+2. **The proof.** A layout is proved from the file itself where xacro's rules make it one
+   (:mod:`urdf_lint.formatting.inert`; the weaker of its two rules also asks every file of
+   every model that reads the file). The models of the repository that read a file not
+   proved so (the include graph of :mod:`urdf_lint.discovery.discover`, plus the models whose
+   includes only expansion resolves, kept when their recorded inputs meet such a file;
+   ``exclude`` and ``discover = false`` do not hide a model from the proof) are expanded in
+   the sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
    new layouts in place of the files (``LintSettings.overlay``: nothing is written while it
    is proved). The two robots are compared as canonical XML (comments, layout whitespace and
    attribute order ignored; every other text kept exact). A model that differs leaves every
-   changed file it reads alone, and the reason is printed; the models those files also feed
-   are proved again without them, until nothing more is refused.
+   changed file it reads that was not proved by itself alone, and the reason is printed;
+   the models those files also feed are proved again without them, until nothing more is
+   refused.
 3. The rest is written atomically (:func:`urdf_lint.core.fsbound.rewrite`), only below the
    formatted paths; ``--check`` and ``--diff`` write nothing.
 
@@ -36,9 +39,11 @@ def add_parser(sub, raw, add_inputs) -> None:
     p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
                        description="Format xacro and URDF files: one element per line, "
                                    "children indented, long tags wrapped; comments, text and "
-                                   "${...} kept byte for byte. Every model that reads a "
-                                   "changed file is expanded before and after and must be "
-                                   "identical, else the file is left alone.")
+                                   "${...} kept byte for byte. A layout must expand to "
+                                   "the same robot in every model that reads the file: "
+                                   "proved from the file itself by xacro's rules, or by "
+                                   "expanding those models before and after; else the file "
+                                   "is left alone.")
     p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
                    help="files or folders to format (default: .)")
     p.add_argument("--check", action="store_true",
