@@ -165,7 +165,7 @@ def test_reads_quietly_wants_two_nodes_that_reach_the_robot_next_to_xacro_elemen
                  f'<robot {X}>\n<link name="k"><xacro:property name="a" value="1"/></link></robot>',
                  f'<robot {X}>\n<link name="k"> <xacro:if value="1"/></link></robot>'):
         assert not reads_quietly(read_document(loud.encode())), loud
-    # xacro:element, xacro:attribute and insert_block do not read the text before them
+    # xacro:attribute and insert_block do not read the text before them
     assert reads_quietly(read_document(
         f'<robot {X}><link name="k"><xacro:attribute name="n" value="1"/></link></robot>'.encode()))
 

@@ -20,19 +20,30 @@ text nodes (xacro 2, whose output urdf-lint's expansion writes unchanged):
   nodes left out (its other text on lines of their own).
 
 So :func:`proven` holds a new layout for the same robot, without expanding anything, when
-every level whose text changed either
+every level whose text changed (all of it whitespace) is one of these:
 
-* keeps its shape: a text node in the same places as before, each of at most one newline or
-  more as before (xacro then takes the same steps on both layouts, and every node lands in the
-  same place), and holds at least two nodes that reach the robot together (text, plain
-  elements, ``xacro:element``): none of its text can be the single child of an element, so
-  none is written; or
-* is the whitespace of a plain structural element (``<link> </link>``, which the canonical
-  robot drops as ``<link/>``) that stays an element around its own children (not the root
-  element, which an include splices, nor a block of a macro call).
+* it has a plain child element (one xacro never removes): wherever the level lands, that
+  element lands with it, so its whitespace-only text is never written. What xacro reads of it
+  must still not change: it has no xacro element among its children but ``xacro:attribute``
+  and ``xacro:insert_block`` (which do not read the text before them), or the same shape (a
+  text node in the same places, each of one newline at most or more as before); and it is
+  either kept as an element around its own children (a plain element, not the root element,
+  which an include splices, nor a block of a macro call), or, spliced elsewhere, ends with a
+  plain element (the elements after it there step back over its last text node only to
+  that element);
+* it keeps its shape and holds two nodes that reach the robot together (text, plain
+  elements): none of its text can be the single child of an element;
+* it is the whitespace of a plain structural element (``<link> </link>``, which the canonical
+  robot drops as ``<link/>``) kept as an element around its own children.
 
-Anything else (text added where there was none, a blank line removed next to a comment,
-another attribute order) is proved by expanding the models
+With ``quiet_reads`` (every file of every model that reads the file passes
+:func:`reads_quietly`: each level with an xacro element that reads the text before it holds
+two nodes that reach the robot with it), what xacro reads of whitespace never changes what it
+writes, and the shape no longer matters: a plain child element, or two such nodes before and
+after, suffice.
+
+Anything else (a macro body of only an xacro:if given text nodes, a blank line removed next to
+a comment where a file reads loudly, another attribute order) is proved by expanding the models
 (:func:`urdf_lint.formatting.run.prove`). A formatted file is read by xacro as XML (the entry
 or an include); the formatter touches ``.urdf`` and ``.xacro`` files only.
 """
@@ -43,7 +54,8 @@ from urdf_lint.formatting.layout import STRUCTURAL
 # the parents that keep a child element an element around its own children
 KEEPING = ("xacro:macro", "xacro:if", "xacro:unless")
 # xacro elements that do not look at the text around them (no remove_previous_comments)
-QUIET = ("xacro:element", "xacro:attribute", "xacro:insert_block")
+# (not xacro:element: the name it takes may be an xacro one, xacro:if, which it then is)
+QUIET = ("xacro:attribute", "xacro:insert_block")
 
 
 def _joined(nodes: list) -> list:
@@ -65,8 +77,7 @@ def _kept(el, parent) -> bool:
 
 def _reaches(n) -> bool:
     """Does the node reach the robot with the rest of its level, whatever xacro does?"""
-    return n[0] == "text" or (n[0] == "el" and (not n[1].startswith("xacro:")
-                                                or n[1] == "xacro:element"))
+    return n[0] == "text" or (n[0] == "el" and not n[1].startswith("xacro:"))
 
 
 def _shape(nodes: list) -> list:
