@@ -199,10 +199,53 @@ def test_a_new_shape_is_expanded_when_a_file_of_the_model_does_not_read_quietly(
             'filename="x.so"><robotNamespace>/r<xacro:property name="z" value="1"/>'
             '<xacro:property name="z2" value="1"/></robotNamespace></plugin></gazebo>'
             '<xacro:include filename="lib.xacro"/></robot>\n')
-    lib = f'<robot {X}>\n<link name="k"><xacro:property name="a" value="1"/></link></robot>\n'
+    lib = (f'<robot {X}>\n<link name="k"><visual><geometry><box size="1 1 1"/></geometry>'
+           '</visual><xacro:property name="a" value="1"/></link></robot>\n')
+    new = format_source(lib.encode())   # (so xacro's "\n\n" node moves into <link>)
+    assert proven(read_document(lib.encode()), read_document(new)) is not None
+    assert proven(read_document(lib.encode()), read_document(new), quiet_reads=True) is None
     pkg = make_package(tmp_path, "p", {"urdf/m.urdf.xacro": main, "urdf/lib.xacro": lib})
+    before = _robot(pkg / "urdf", {})
+    (pkg / "urdf" / "lib.xacro").write_bytes(new)
+    assert _robot(pkg / "urdf", {}) != before      # it would change the robot
+    (pkg / "urdf" / "lib.xacro").write_text(lib)
     p = run_cli("format", "urdf/lib.xacro", cwd=pkg)
     assert p.returncode == 0, p.stderr
     assert "urdf/lib.xacro: left alone: formatting would change the robot" in p.stderr, p.stderr
     assert re.search(r"\(0 proved from the file itself, [1-9]\d* model\(s\) expanded", p.stderr)
     assert (pkg / "urdf" / "lib.xacro").read_text() == lib
+
+
+@pytest.mark.parametrize("seed", [3])
+def test_random_layouts_of_real_xacros_are_proved_soundly(tmp_path, seed):
+    # xacro's own test inputs and a real description, every gap between two tags replaced by
+    # one of several shapes (none, a space, blank lines, ...), or, in some files, by none at
+    # all (where the new layout may change robots): formatted with the proof, and
+    # every model expanded as it was and as written must be the same robot, whether its files
+    # were proved from themselves or by expanding the models
+    import random
+    import shutil
+
+    from conftest import CORPUS
+    from test_format import _robots
+    if not (CORPUS / "MANIFEST.md").is_file():
+        pytest.skip("../shared/corpus is not present")
+    rnd = random.Random(seed)
+    shapes = [b"><", b"> <", b">\n<", b">\n\n<", b">\n\n\n  <", b">  \n <"]
+    for part in ("peer-tests/xacro", "ur_description"):
+        shutil.copytree(CORPUS / part, tmp_path / part,
+                        ignore=shutil.ignore_patterns("*.stl", "*.dae", "*.STL", "*.DAE"))
+    for f in sorted(tmp_path.rglob("*")):
+        if f.suffix in (".urdf", ".xacro"):
+            tight = rnd.random() < 0.3     # no whitespace at all: formatting it changes robots
+            f.write_bytes(re.sub(rb">\s*<", lambda m, t=tight: b"><" if t else rnd.choice(shapes),
+                                 f.read_bytes()))
+    before = _robots(tmp_path)
+    p = run_cli("format", ".", cwd=tmp_path, timeout=900)
+    m = re.search(r"(\d+) file\(s\) reformatted.*\((\d+) proved from the file itself, (\d+) "
+                  r"model\(s\) expanded", p.stderr)
+    after = _robots(tmp_path)
+    assert [k for k in before if before[k] != after[k]] == []
+    assert m and int(m.group(1)) > 30 and int(m.group(2)) > 10 and int(m.group(3)) > 10, p.stderr
+    assert "left alone: formatting would change the robot" in p.stderr   # the proof was needed
+    assert sum(1 for v in before.values() if not isinstance(v, str)) > 40
