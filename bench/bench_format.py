@@ -7,8 +7,9 @@
 * steady:  ``urdf-lint format --check`` on a formatted copy of the corpus, as a process (what a
            pre-commit hook or CI pays once the repository is formatted: nothing changes, so
            nothing needs proving);
-* first:   ``urdf-lint format --check`` on an unformatted copy: every model that reads a file
-           that would change is expanded twice in the sandboxed workers (the proof).
+* first:   ``urdf-lint format --check`` on an unformatted copy: the proof (each changed file
+           proved from itself where xacro's rules allow, urdf_lint/formatting/inert.py; the
+           models that read any other changed file expanded twice in the sandboxed workers).
 """
 from __future__ import annotations
 

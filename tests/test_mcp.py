@@ -64,7 +64,18 @@ def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
                                   .replace('<limit effort="100" velocity="10"/>',
                                            '<limit lower="1" upper="0" effort="100" '
                                            'velocity="10"/>', 1))
+                # and one whose severity depends on the consumer: two transmissions of
+                # one name (UL704: a warning for ROS, an error for Drake)
+                robot = repo / entry
+                robot.write_text(robot.read_text().replace("</robot>", "".join(
+                    f'<transmission name="t"><type>transmission_interface/SimpleTransmission'
+                    f'</type><joint name="{j}"><hardwareInterface>EffortJointInterface'
+                    f'</hardwareInterface></joint><actuator name="m{j}"/></transmission>\n'
+                    for j in ("head_swivel", "gripper_extension")) + "</robot>"))
                 seen["check"] = _payload(await s.call_tool("check", {"paths": ["."]}))
+                seen["drake"] = _payload(await s.call_tool(
+                    "check", {"paths": ["."], "select": "UL704", "targets": ["drake"]}))
+                seen["bad-target"] = await s.call_tool("check", {"targets": ["--fix"]})
                 seen["fix"] = _payload(await s.call_tool("fix", {"paths": ["."]}))
                 seen["diff"] = _payload(await s.call_tool("diff", {"base": "HEAD"}))
                 seen["render"] = _payload(await s.call_tool("render", {"paths": [entry]}))
@@ -80,6 +91,16 @@ def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
     assert {(f["file"], f["line"]) for f in ul302} == {
         ("r2d2_description/urdf/r2d2_macros.xacro", 47)}
     assert all(f.get("fix") for f in ul302), ul302
+    # the consumer targets: the same transmission, a warning for ROS, an error for Drake
+    ros = [f for f in check["result"]["findings"] if f["code"] == "UL704"]
+    assert [(f["severity"], f.get("severity_from")) for f in ros] == [("warning", None)], ros
+    drake = seen["drake"]
+    assert drake["exit_code"] == 1, drake
+    assert {f["code"] for f in drake["result"]["findings"]} == {"UL704"}    # select
+    assert [(f["file"], f["severity"], f["severity_from"]) for f in drake["result"]["findings"]] \
+        == [(entry, "error", ["drake"])], drake["result"]["findings"]
+    assert _is_error(seen["bad-target"]) and "cannot start with '-'" in str(
+        seen["bad-target"].content)
     assert seen["rule"]["exit_code"] == 0 and "UL302 limit-order" in seen["rule"]["stdout"]
     exp = seen["expand"]
     assert exp["exit_code"] == 0 and '<robot name="r2d2">' in exp["stdout"]

@@ -5,16 +5,18 @@ from __future__ import annotations
 import os
 import sys
 
-from urdf_lint.run.format import files_to_format, format_files, prove, style_of
+from urdf_lint.run.format import Proof, files_to_format, format_files, prove, style_of
 
 
 def add_parser(sub, raw, add_inputs) -> None:
     p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
                        description="Format xacro and URDF files: one element per line, "
                                    "children indented, long tags wrapped; comments, text and "
-                                   "${...} kept byte for byte. Every model that reads a "
-                                   "changed file is expanded before and after and must be "
-                                   "identical, else the file is left alone.")
+                                   "${...} kept byte for byte. A layout must expand to "
+                                   "the same robot in every model that reads the file: "
+                                   "proved from the file itself by xacro's rules, or by "
+                                   "expanding those models before and after; else the file "
+                                   "is left alone.")
     p.add_argument("paths", nargs="*", default=["."], metavar="PATH",
                    help="files or folders to format (default: .)")
     p.add_argument("--check", action="store_true",
@@ -46,15 +48,17 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
             raise UsageError(f"no such file or directory: {p}")
     cfg = load_cfg(args, args.paths)
     style = style_of(cfg, args)
-    results = format_files(files_to_format(args.paths, cfg), style, args.paths)
+    docs: dict = {}
+    results = format_files(files_to_format(args.paths, cfg), style, args.paths, docs)
     changed = {r.path: r.new for r in results if r.new is not None}
-    compared = 0
+    proof = Proof()
     if changed:
-        refused, compared = prove(changed, args.paths, cfg,
-                                  parse_package_paths(args.package_path), cfg.jobs)
+        proof = prove(changed, args.paths, cfg, parse_package_paths(args.package_path),
+                      cfg.jobs, old={r.path: r.old for r in results if r.new is not None},
+                      docs=docs)
         for r in results:
-            if r.path in refused:
-                r.refused, r.new = refused[r.path], None
+            if r.path in proof.refused:
+                r.refused, r.new = proof.refused[r.path], None
     from urdf_lint.core.emit import say as said
     say = (lambda s: None) if args.quiet else said
     status = 0
@@ -89,7 +93,8 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     verb = "would be reformatted" if args.check or args.diff else "reformatted"
     say(f"{len(todo)} file(s) {verb}, {same} file(s) left unchanged"
         + (f", {left} file(s) left alone" if left else "")
-        + (f" ({compared} model(s) expanded before and after)" if compared else ""))
+        + (f" ({proof.by_file} proved from the file itself, {proof.compared} model(s) "
+           "expanded before and after)" if changed else ""))
     if status:
         return status
     return 1 if todo and (args.check or args.diff) else 0

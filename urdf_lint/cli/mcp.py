@@ -56,10 +56,14 @@ class Tools:
     def paths(self, paths) -> list[str]:
         return [_inside(self.root, p) for p in (paths or ["."])]
 
-    def check(self, paths: list[str] | None = None, select: str | None = None) -> dict:
+    def check(self, paths: list[str] | None = None, select: str | None = None,
+              targets: list[str] | None = None) -> dict:
         args = ["check", *self.paths(paths), "--output-format", "json", "-q"]
-        if select:
-            args += ["--select", select]
+        for opt, value in (("--select", select), *(("--target", t) for t in targets or ())):
+            if value:
+                if value.startswith("-"):
+                    raise ValueError(f"{opt} cannot start with '-': {value!r}")
+                args.append(f"{opt}={value}")
         return _json(_run(self.root, *args))
 
     def explain_rule(self, code: str) -> dict:
@@ -121,10 +125,14 @@ def build_server(root: str):
         f"{plain.root} (paths are relative to it; nothing outside it is read)."))
 
     @server.tool()
-    def check(paths: list[str] | None = None, select: str | None = None) -> dict:
+    def check(paths: list[str] | None = None, select: str | None = None,
+              targets: list[str] | None = None) -> dict:
         """Lint the robot models under the paths: findings as urdf-lint's JSON report
-        (file, line, column, code, message, macro chain, fixes)."""
-        return tools.check(paths, select)
+        (file, line, column, code, message, macro chain, fixes). select: rule codes or names,
+        comma-separated (like --select); targets: the consumers the robot is for, as
+        --target (ros, gazebo, mujoco, drake, ...: `urdf-lint rules` lists them), which set
+        each finding's severity (severity_from names the target that raised it)."""
+        return tools.check(paths, select, targets)
 
     @server.tool()
     def explain_rule(code: str) -> dict:

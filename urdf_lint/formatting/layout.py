@@ -392,17 +392,22 @@ class Refused(Exception):
         self.reason = reason
 
 
-def format_source(data: bytes, style: Style = Style(), path: str = "") -> bytes:
+def format_source(data: bytes, style: Style = Style(), path: str = "",
+                  docs: dict | None = None) -> bytes:
     """The formatted file, ``data`` itself when it is formatted already. Raises
     :class:`FormatError` (not well-formed, an encoding it cannot keep) or :class:`Refused`
-    (the guard of :func:`check_same` failed)."""
+    (the guard of :func:`check_same` failed). ``docs``, when given, receives the
+    :func:`read_document` of the source and of a new layout, by their bytes."""
     src, codec, bom = _decode(data)
     old_doc = read_document(data)
     new = _layout(src, codec, bom, style)
     if new != data:
-        reason = check_same(data, new, style, path, old_doc)
+        new_doc: list = []
+        reason = check_same(data, new, style, path, old_doc, new_doc)
         if reason is not None:
             raise Refused(reason)
+        if docs is not None:
+            docs[data], docs[new] = old_doc, new_doc
     return new
 
 
@@ -445,14 +450,17 @@ def _kids(nodes: list, ordered: bool, comments: bool) -> tuple[list, bool, bool]
 
 
 def check_same(old: bytes, new: bytes, style: Style, path: str = "",
-               old_doc: list | None = None) -> str | None:
+               old_doc: list | None = None, new_doc: list | None = None) -> str | None:
     """None when ``new`` is a safe layout of ``old``; else why not (a formatter bug, or a
-    suppression comment whose reach would change)."""
+    suppression comment whose reach would change). ``new_doc``, when given (empty), receives
+    the :func:`read_document` of ``new``."""
     try:
         a = old_doc if old_doc is not None else read_document(old)
         b = read_document(new)
     except FormatError as e:
         return f"internal: the result is not well-formed ({e.message})"
+    if new_doc is not None:
+        new_doc.extend(b)
     ordered = style.attribute_order != "canonical"
     a = [n for n in a if n[0] != "text"]   # (only whitespace outside the root element)
     b = [n for n in b if n[0] != "text"]

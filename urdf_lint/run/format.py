@@ -4,16 +4,19 @@ xacro and URDF sources (:mod:`urdf_lint.formatting.layout`) and prove that no ro
 1. Every ``.urdf``/``.xacro`` under the paths (``exclude`` and ``[format] exclude`` honoured;
    a file named explicitly is always formatted) is read (regular files of bounded size only)
    and laid out; the guard of :func:`urdf_lint.formatting.layout.check_same` runs on each result.
-2. **The proof.** The models of the repository that read a file that would change (the
-   include graph of :mod:`urdf_lint.discovery.discover`, plus the models whose includes only expansion
-   resolves, kept when their recorded inputs meet a changed file; ``exclude`` and
-   ``discover = false`` do not hide a model from the proof) are expanded in the
-   sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
+2. **The proof.** A layout is proved from the file itself where xacro's rules make it one
+   (:mod:`urdf_lint.formatting.inert`; the weaker of its two rules also asks every file of
+   every model that reads the file). The models of the repository that read a file not
+   proved so (the include graph of :mod:`urdf_lint.discovery.discover`, plus the models whose
+   includes only expansion resolves, kept when their recorded inputs meet such a file;
+   ``exclude`` and ``discover = false`` do not hide a model from the proof) are expanded in
+   the sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
    new layouts in place of the files (``LintSettings.overlay``: nothing is written while it
    is proved). The two robots are compared as canonical XML (comments, layout whitespace and
    attribute order ignored; every other text kept exact). A model that differs leaves every
-   changed file it reads alone, and the reason is printed; the models those files also feed
-   are proved again without them, until nothing more is refused.
+   changed file it reads that was not proved by itself alone, and the reason is printed;
+   the models those files also feed are proved again without them, until nothing more is
+   refused.
 3. The rest is written atomically (:func:`urdf_lint.core.fsbound.rewrite`), only below the
    formatted paths; ``--check`` and ``--diff`` write nothing.
 
@@ -62,8 +65,9 @@ def files_to_format(paths, cfg) -> list[str]:
     return [f for f, _ in _candidates(paths, scoped)]
 
 
-def format_files(files, style: Style, paths) -> list[FileResult]:
-    """Read and lay out each file (not written)."""
+def format_files(files, style: Style, paths, docs: dict | None = None) -> list[FileResult]:
+    """Read and lay out each file (not written); ``docs`` receives the documents read of the
+    files that change, before and after (:func:`urdf_lint.formatting.layout.format_source`)."""
     from urdf_lint.core.hashing import read_regular
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
@@ -84,7 +88,7 @@ def format_files(files, style: Style, paths) -> list[FileResult]:
             continue
         res.old = data
         try:
-            new = format_source(data, style, real)
+            new = format_source(data, style, real, docs)
         except FormatError as e:
             res.error = f"{res.shown}:{e.line}:{e.col}: {e.message}"
             continue
@@ -135,16 +139,28 @@ def _outcome(report):
         return None, e.message
 
 
-def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, int]:
-    """({real path: why it must be left alone}, how many models were compared) for the new
-    layouts ``changed`` ({real path: bytes})."""
+@dataclass
+class Proof:
+    """What the proof of a run found."""
+    refused: dict = dataclasses.field(default_factory=dict)   # real path -> why left alone
+    compared: int = 0        # models expanded before and after
+    by_file: int = 0         # changed files proved from the file itself (formatting.inert)
+
+
+def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
+          old: dict | None = None, docs: dict | None = None) -> Proof:
+    """The proof for the new layouts ``changed`` ({real path: bytes}); ``old`` ({real path:
+    bytes}, the files as they are) lets a file be proved from itself
+    (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only;
+    ``docs`` ({bytes: read_document}) holds the documents already read."""
     from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import inside
     from urdf_lint.run.worker import run_jobs
+    proof = Proof()
     if not changed:
-        return {}, 0
+        return proof
     root = repository_root(paths)
     scan = [root] + [p for p in paths if not inside(os.path.realpath(p), os.path.realpath(root))]
     resolver = build_resolver(scan, cfg, package_paths)
@@ -161,11 +177,35 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
                     seen.add(g)
                     todo.append(g)
         return seen
+    unproven = set(changed)
+    if old:
+        from functools import lru_cache
+
+        from urdf_lint.formatting.inert import proven
+        read = lru_cache(maxsize=None)(read_document)
+
+        def parsed(data: bytes) -> list:   # (each layout read once: format_files read most)
+            return (docs or {}).get(data) or read(data)
+        for f in sorted(changed):
+            if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
+                unproven.discard(f)
+        relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed)
+        unproven -= relaxed
+        proof.by_file = len(changed) - len(unproven)
+    else:
+        relaxed, is_quiet = set(), None
+    if not unproven and not relaxed:
+        return proof
+
+    def needed(files_read: set) -> bool:
+        """Must a model that reads these files be expanded before and after?"""
+        return bool(files_read & unproven) or bool(files_read & relaxed) and not all(
+            is_quiet(f) for f in sorted(files_read))
     jobs = {}
     for job in disc.jobs:
         if job.kind != "xacro":   # a .urdf model is the file itself: the guard compared it
             continue
-        if reach(job.entry) & changed.keys() or graph.unresolved_below(job.entry):
+        if needed(reach(job.entry)) or graph.unresolved_below(job.entry):
             key = (job.entry, tuple(sorted(job.args.items())))
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
     env_allow = tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)))
@@ -180,9 +220,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     overlay = dict(changed)
-    refused: dict = {}
-    pending = [k for k in jobs if deps[k] & overlay.keys()]
-    compared = len(pending)
+    refused = proof.refused
+    pending = [k for k in jobs if needed(deps[k])]
+    proof.compared = len(pending)
     while pending:
         after = expand(pending, overlay)
         removed: set = set()
@@ -201,10 +241,43 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
                 why = f"the expansion {'fails' if b is None else 'succeeds'} once formatted" + \
                     (f" ({why_b})" if why_b else "")
             label = before[k].label
-            for f in sorted(deps[k] & overlay.keys()):
+            # the files not proved by themselves (all it reads, should those not do)
+            culprits = deps[k] & overlay.keys() & (unproven | relaxed) or deps[k] & overlay.keys()
+            for f in sorted(culprits):
                 refused.setdefault(f, f"formatting would change the robot {label}: {why}")
                 removed.add(f)
         for f in removed:
             overlay.pop(f, None)
         pending = [k for k in jobs if deps[k] & removed and deps[k] & overlay.keys()]
-    return refused, compared
+    return proof
+
+
+def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed) -> tuple:
+    """Those of ``files`` :func:`urdf_lint.formatting.inert.proven` holds for when xacro's
+    reading of whitespace is quiet in every model that reads them: every file of those models
+    (as it is and as it will be) :func:`~urdf_lint.formatting.inert.reads_quietly`; and the
+    test of that per file. A model with an include only expansion resolves is not asked here:
+    :func:`prove` expands it and asks once it knows what the model read."""
+    from urdf_lint.core.hashing import read_regular
+    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
+    from urdf_lint.formatting.inert import proven, reads_quietly
+    ok = {f for f in files if f in old and proven(parsed(old[f]), parsed(changed[f]),
+                                                 True) is None}
+    quiet: dict = {}
+
+    def is_quiet(f: str) -> bool:
+        if f not in quiet:
+            data = [old[f], changed[f]] if f in changed else [read_regular(f, MAX_SOURCE_BYTES)]
+            try:
+                quiet[f] = all(d is not None and reads_quietly(parsed(d)) for d in data)
+            except FormatError:
+                quiet[f] = False
+        return quiet[f]
+    for job in disc.jobs:
+        if job.kind != "xacro" or disc.graph.unresolved_below(job.entry):
+            continue   # (what it reads is known once it is expanded: prove() checks it then)
+        files_read = reach(job.entry)
+        hit = files_read & ok
+        if hit and not all(is_quiet(g) for g in sorted(files_read)):
+            ok -= hit
+    return ok, is_quiet
