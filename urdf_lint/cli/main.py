@@ -568,7 +568,7 @@ def _no_models_warning(paths, result, out) -> None:
 def cmd_check(args) -> int:
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.core.locations import display_path
-    from urdf_lint.run.pipeline import exit_code, run_check
+    from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
     out = _Out(args)
     color_mode = _color_mode(args)
     for p in args.paths:
@@ -613,8 +613,9 @@ def cmd_check(args) -> int:
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
         _clear_stale(render_dir, args.paths)
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
-                       progress=progress, affected_by=affected_by, render_dir=render_dir)
+    result = run_check(RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
+                                  progress=progress, affected_by=affected_by,
+                                  render_dir=render_dir))
     from urdf_lint.fix.fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
     result.findings = inside_paths(result.findings, args.paths)
     if result.reused:
@@ -888,7 +889,7 @@ def cmd_rule(args) -> int:
 
 def cmd_render(args) -> int:
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -901,8 +902,9 @@ def cmd_render(args) -> int:
         args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     _clear_stale(args.out, args.paths)
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                       render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
+    result = run_check(RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs,
+                                  render_dir=args.out, render_rrd=not args.no_rrd,
+                                  affected_by=affected_by))
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from urdf_lint.engine.baseline import filter_baseline
         result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)

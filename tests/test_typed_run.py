@@ -1,0 +1,37 @@
+"""The run side's typed hand-offs (issue 23, item 2): ``run_check`` takes one ``RunRequest``."""
+from __future__ import annotations
+
+import dataclasses
+import inspect
+
+import pytest
+
+from conftest import make_package
+
+ROBOT = ('<robot name="r"><link name="a"/><link name="b"/>'
+         '<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+         '<axis xyz="0 0 1"/><limit lower="1" upper="0" effort="1" velocity="1"/></joint>'
+         '</robot>\n')
+
+
+def test_run_check_takes_one_frozen_request(tmp_path, monkeypatch):
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    assert list(inspect.signature(run_check).parameters) == ["request"]
+    pkg = make_package(tmp_path, "p", {"urdf/r.urdf": ROBOT})
+    monkeypatch.chdir(pkg)
+    cfg = load_config(None)
+    paths = ["."]
+    request = RunRequest(paths, cfg, build_resolver(paths, cfg), in_process=True,
+                         affected_by={str(pkg / "urdf/r.urdf")})
+    paths.append("elsewhere")      # the request holds its own copy
+    assert request.paths == (".",) and request.affected_by == frozenset({str(pkg / "urdf/r.urdf")})
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        request.keep_models = True   # type: ignore[misc]
+    result = run_check(request)
+    assert ("UL302", 1) in [(f.code, f.line) for f in result.findings]
+    assert [m.entry for m in result.models] == [str(pkg / "urdf/r.urdf")]
+    # a variant is a replace of the same request: the robots come back with it
+    kept = run_check(dataclasses.replace(request, keep_models=True))
+    assert kept.models[0].kept_model is not None and result.models[0].kept_model is None
