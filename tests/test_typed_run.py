@@ -35,3 +35,24 @@ def test_run_check_takes_one_frozen_request(tmp_path, monkeypatch):
     # a variant is a replace of the same request: the robots come back with it
     kept = run_check(dataclasses.replace(request, keep_models=True))
     assert kept.models[0].kept_model is not None and result.models[0].kept_model is None
+
+
+def test_limits_travel_in_the_settings_with_one_default(tmp_path):
+    """``timeout``/``memory-mb`` reach the workers inside ``LintSettings`` (no caller passes
+    them beside it), and their default is written once: the config schema's."""
+    from urdf_lint.config.schema import KEYS, Config
+    from urdf_lint.core.jobs import LintSettings
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.lsp.pool import Pool
+    from urdf_lint.run.pipeline import settings_for, worker_settings
+    from urdf_lint.runner.worker import run_jobs
+    resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
+    cfg = Config(timeout=2.5, memory_mb=300)
+    for s in (settings_for(cfg, resolver, None), worker_settings(cfg, resolver)):
+        assert (s.timeout, s.memory_mb) == (2.5, 300)
+    plain = LintSettings(resolver={})
+    assert (plain.timeout, plain.memory_mb) == (Config().timeout, Config().memory_mb) == \
+        (KEYS["timeout"].default, KEYS["memory-mb"].default)
+    assert list(inspect.signature(run_jobs).parameters) == ["jobs", "settings", "jobs_n"]
+    assert list(inspect.signature(Pool).parameters) == ["settings", "size"]
+    assert Pool(dataclasses.replace(plain, timeout=4.0)).timeout == 4.0

@@ -1069,13 +1069,10 @@ def _expand_in_workers(jobs: list, resolver, cfg) -> list:
     """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
     workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
-    from urdf_lint.core.jobs import LintSettings
+    from urdf_lint.run.pipeline import worker_settings
     from urdf_lint.runner.worker import run_jobs
-    settings = LintSettings(resolver=resolver.to_dict(),
-                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
-    done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
-                                                  timeout=cfg.timeout, memory_mb=cfg.memory_mb)}
+    done = {id(job): res for job, res in run_jobs(jobs, worker_settings(cfg, resolver),
+                                                  jobs_n=cfg.jobs)}
     return [done[id(job)] for job in jobs]
 
 

@@ -29,6 +29,7 @@ except ImportError:  # pragma: no cover - Python 3.10
 
 
 from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW  # noqa: E402,F401 - a run's setting; config shows it
+from urdf_lint.core.jobs import DEFAULT_MEMORY_MB, DEFAULT_TIMEOUT  # noqa: E402 - the workers' limits
 
 TABLE = "tool.urdf-lint"
 SEVERITY_NAMES = ("error", "warning", "info")
@@ -318,8 +319,9 @@ SCHEMA: tuple[Key, ...] = (
     Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
     Key("env-allow", StrList("environment variable names"), [],
         "environment variables $(env)/$(optenv) may read", cli_merge="extend"),
-    Key("timeout", Number(float, 0, "seconds"), 30.0, "time limit per model, in seconds"),
-    Key("memory-mb", Number(int, 0, "MiB"), 2048, "memory limit per model, in MiB"),
+    Key("timeout", Number(float, 0, "seconds"), DEFAULT_TIMEOUT,
+        "time limit per model, in seconds"),
+    Key("memory-mb", Number(int, 0, "MiB"), DEFAULT_MEMORY_MB, "memory limit per model, in MiB"),
     Key("rule-options", RuleOptions(), {}, "options of single rules"),
     Key("jobs", Number(int, 0), None, "parallel workers"),
     Key("cache-dir", Str(), None, "folder of the result cache"),
@@ -372,8 +374,8 @@ class Config:
     models: list = field(default_factory=list)
     exclude: list = field(default_factory=list)
     env_allow: list = field(default_factory=list)
-    timeout: float = 30.0
-    memory_mb: int = 2048
+    timeout: float = DEFAULT_TIMEOUT
+    memory_mb: int = DEFAULT_MEMORY_MB
     rule_options: dict = field(default_factory=dict)
     jobs: int | None = None
     cache_dir: str | None = None

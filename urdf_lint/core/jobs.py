@@ -51,6 +51,11 @@ class LintJob:
 DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
                      "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
 
+# the limits of one model (the config keys ``timeout`` and ``memory-mb`` default to them; here
+# for the same reason as DEFAULT_ENV_ALLOW: the workers enforce them)
+DEFAULT_TIMEOUT = 30.0     # seconds of CPU time
+DEFAULT_MEMORY_MB = 2048   # MiB
+
 
 @dataclass(frozen=True)
 class LintSettings:
@@ -59,6 +64,8 @@ class LintSettings:
     selected: tuple[str, ...] = ()           # rule codes to run
     options: dict = field(default_factory=dict)   # code -> {option: value} (configured only)
     env_allow: tuple[str, ...] = ()
+    timeout: float = DEFAULT_TIMEOUT         # per job, in seconds (runner.worker.run_jobs)
+    memory_mb: int = DEFAULT_MEMORY_MB       # per worker, in MiB
     mesh_cache_dir: str | None = None
     expr_policy: object = None
     render_dir: str | None = None            # set: the worker also writes a snapshot

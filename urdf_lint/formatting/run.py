@@ -169,10 +169,10 @@ def _outcome(report):
 def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, int]:
     """({real path: why it must be left alone}, how many models were compared) for the new
     layouts ``changed`` ({real path: bytes})."""
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
-    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.core.jobs import LintJob
     from urdf_lint.discovery.packages import inside
+    from urdf_lint.run.pipeline import worker_settings
     from urdf_lint.runner.worker import run_jobs
     if not changed:
         return {}, 0
@@ -199,15 +199,13 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
         if reach(job.entry) & changed.keys() or graph.unresolved_below(job.entry):
             key = (job.entry, tuple(sorted(job.args.items())))
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
-    env_allow = tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)))
-    base = LintSettings(resolver=resolver.to_dict(), env_allow=env_allow)
+    base = worker_settings(cfg, resolver)
 
     def expand(keys, overlay):
         settings = dataclasses.replace(base, overlay=dict(overlay))
         by_job = {id(jobs[k]): k for k in keys}
         return {by_job[id(j)]: r for j, r in run_jobs([jobs[k] for k in keys], settings,
-                                                      jobs_n=jobs_n, timeout=cfg.timeout,
-                                                      memory_mb=cfg.memory_mb)}
+                                                      jobs_n=jobs_n)}
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     overlay = dict(changed)

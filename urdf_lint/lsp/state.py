@@ -88,8 +88,7 @@ class Workspace:
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
         from urdf_lint.lsp.pool import Pool
-        self.pool = Pool(self.settings, self.pool_size, timeout=cfg.timeout,
-                         memory_mb=cfg.memory_mb)
+        self.pool = Pool(self.settings, self.pool_size)
 
     def close(self) -> None:
         if self.pool is not None:

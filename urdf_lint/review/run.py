@@ -250,8 +250,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
                                    keep_model=True)
     if render:
         settings = dataclasses.replace(settings, diff_render=True, diff_rrd=rrd)
-    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
-                             memory_mb=cfg.memory_mb):
+    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs):
         k = key_of[id(job)]
         if res.diff_geometry is not None:
             side.geometry[k] = res.diff_geometry

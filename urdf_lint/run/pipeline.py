@@ -58,9 +58,19 @@ class RunContext:
         self.options = options
 
 
+def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -> LintSettings:
+    """The settings every worker of a run starts from: the packages, the variables
+    ``$(env)``/``$(optenv)`` may read and the limits of one model, from ``cfg``; ``fields``
+    set the rest."""
+    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
+    return LintSettings(resolver=resolver.to_dict(),
+                        env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
+                        timeout=cfg.timeout, memory_mb=cfg.memory_mb, **fields)
+
+
 def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | None,
                  policy: Policy | None = None) -> LintSettings:
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW, ConfigError
+    from urdf_lint.config.schema import ConfigError
     from urdf_lint.engine.registry import catalogue, load_rule
     rules = catalogue()
     policy = policy or Policy.from_config(cfg)
@@ -76,10 +86,8 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
                                   f"{', '.join(sorted(unknown))} (known: "
                                   f"{', '.join(sorted(r.options)) or 'none'})")
             options[code] = o
-    return LintSettings(resolver=resolver.to_dict(), selected=tuple(policy.selected_codes(rules)),
-                        options=options,
-                        env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
-                        mesh_cache_dir=cache_dir)
+    return worker_settings(cfg, resolver, selected=tuple(policy.selected_codes(rules)),
+                           options=options, mesh_cache_dir=cache_dir)
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
@@ -188,7 +196,7 @@ def run_check(request: RunRequest) -> CheckResult:
                                        render_refused=tuple(sorted(clash)),
                                        render_views=cfg.views or "single",
                                        render_forward=cfg.forward_axis)
-    results, internal = _lint_all(jobs, settings, cfg, req.jobs_n, cache, req.progress,
+    results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
                                   req.in_process)
     out = CheckResult(internal=internal)
     out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
@@ -224,7 +232,7 @@ def run_check(request: RunRequest) -> CheckResult:
     return out
 
 
-def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n, cache,
+def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
               progress, in_process=False) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers."""
     results: list[ModelReport] = []
@@ -241,7 +249,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
     if todo:
         from urdf_lint.runner.worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
-            run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
+            run_jobs(todo, settings, jobs_n=jobs_n)
         for n, (job, res) in enumerate(done, 1):
             internal.extend(res.internal)
             results.append(res)

@@ -86,7 +86,7 @@ def _skip_unused_imports():
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
-def _worker_main(conn, settings: LintSettings | None, memory_mb):
+def _worker_main(conn, settings: LintSettings | None):
     _skip_unused_imports()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
     # 200-link robot spends a third of its time in the collector (0.17 vs 0.10 s)
@@ -114,8 +114,9 @@ def _worker_main(conn, settings: LintSettings | None, memory_mb):
             return
         if first is None:
             return
-        settings, memory_mb = first
+        settings = first
     assert settings is not None
+    memory_mb = settings.memory_mb
     # (render --out / check --render: the worker writes recordings itself)
     limit_memory(memory_mb, inherited, bool(settings.render_dir and settings.render_rrd))
     _scrub_environment(set(settings.env_allow))
@@ -194,7 +195,7 @@ def prestart() -> None:
         from urdf_lint.runner.sandbox import disabled
         disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
         try:
-            _prestarted = _Worker(None, None)
+            _prestarted = _Worker(None)
         except OSError:   # no fork here, or no process to spare: start later
             _prestarted = None
             return
@@ -209,13 +210,13 @@ def _drop_prestarted() -> None:
         forked.stop(w.conn, w.proc, 0.5)
 
 
-def _take_prestarted(settings, memory_mb) -> "_Worker | None":
+def _take_prestarted(settings: LintSettings) -> "_Worker | None":
     global _prestarted
     w, _prestarted = _prestarted, None
     if w is None:
         return None
     try:
-        w.conn.send((settings, memory_mb))
+        w.conn.send(settings)
     except (OSError, ValueError):
         w.kill()
         return None
@@ -434,7 +435,7 @@ def _next_job(mine, queues, block_of=None, running=()):
 
 
 class _Worker:
-    def __init__(self, settings, memory_mb):
+    def __init__(self, settings: LintSettings | None):
         # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
         # exits 130 for both; its SIGTERM handler must not run in the child)
         try:
@@ -443,13 +444,13 @@ class _Worker:
         except ValueError:          # not the main thread: signals are not ours to change
             old = old_term = None
         try:
-            self.conn, self.proc = forked.start(_worker_main, (settings, memory_mb),
+            self.conn, self.proc = forked.start(_worker_main, (settings,),
                                                 allowed=RESULT_CLASSES)
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
                 signal.signal(signal.SIGTERM, old_term)
-        self.job = None
+        self.job: LintJob | None = None
         self.started = 0.0
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
@@ -485,20 +486,21 @@ def _used(w) -> float | None:
     return None if now is None or w.cpu0 is None else now - w.cpu0
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
-             memory_mb=2048):
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None):
     """Yield (job, ModelReport) for every job; results arrive in completion order.
 
-    ``timeout`` limits the CPU time a job uses (a loaded CI machine does not make a model that
-    lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job waiting on
-    I/O); where CPU time cannot be measured, ``timeout`` is wall-clock time."""
+    ``settings.timeout`` limits the CPU time a job uses (a loaded CI machine does not make a
+    model that lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job
+    waiting on I/O); where CPU time cannot be measured, it is wall-clock time.
+    ``settings.memory_mb`` limits each worker's memory."""
+    timeout, memory_mb = settings.timeout, settings.memory_mb
     wall = timeout * WALL_FACTOR
     jobs = list(jobs)
     if not jobs:
         return
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
-    pre = _take_prestarted(settings, memory_mb)
+    pre = _take_prestarted(settings)
     from urdf_lint.runner.sandbox import prepare
     prepare()
     warm_meshes = _mesh_facts_cached(settings)
@@ -514,7 +516,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
     if n > 1:   # (the prestarted worker was forked before the mesh modules)
         _preload_mesh_modules(blocks, settings)
     workers = [pre] if pre is not None else []
-    workers += [_Worker(settings, memory_mb) for _ in range(n - len(workers))]
+    workers += [_Worker(settings) for _ in range(n - len(workers))]
     for w, q in zip(workers, queues, strict=True):
         w.queue = q
 
@@ -522,7 +524,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=3
         return any(queues)
 
     def replace(old):
-        new = _Worker(settings, memory_mb)
+        new = _Worker(settings)
         new.queue = old.queue
         workers.append(new)
     try:
