@@ -56,3 +56,38 @@ def test_limits_travel_in_the_settings_with_one_default(tmp_path):
     assert list(inspect.signature(run_jobs).parameters) == ["jobs", "settings", "jobs_n"]
     assert list(inspect.signature(Pool).parameters) == ["settings", "size"]
     assert Pool(dataclasses.replace(plain, timeout=4.0)).timeout == 4.0
+
+
+def test_the_expansion_state_is_passed_in_and_the_hooks_find_it_in_one_holder(tmp_path):
+    """``expand_file`` makes an ``ExpansionState`` and sets it in ``expand.CURRENT`` for the
+    time of the expansion only (the previous value back after, also after a failure); the
+    module keeps no state of its own, and a hook that needs one refuses to run outside."""
+    import contextvars
+
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.expansion import expand
+    X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    (tmp_path / "inc.xacro").write_text(f'<robot {X}><link name="b"/></robot>')
+    (tmp_path / "r.urdf.xacro").write_text(
+        f'<robot name="r" {X}>\n  <xacro:include filename="inc.xacro"/>\n'
+        '  <link name="$(env URDF_LINT_NOT_ALLOWED)a"/>\n</robot>\n')
+    (tmp_path / "bad.urdf.xacro").write_text(f'<robot name="r" {X}>\n  <xacro:nope/>\n</robot>\n')
+    resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
+    outer = expand.ExpansionState(resolver, ())
+
+    def expand_both():
+        good = expand.expand_file(str(tmp_path / "r.urdf.xacro"), resolver=resolver)
+        bad = expand.expand_file(str(tmp_path / "bad.urdf.xacro"), resolver=resolver)
+        return good, bad, expand.CURRENT.get()
+
+    ctx = contextvars.copy_context()
+    ctx.run(expand.CURRENT.set, outer)
+    good, bad, after = ctx.run(expand_both)
+    assert after is outer and outer.notes == [] and outer.deps == {}
+    assert good.error is None and '<link name="b"/>' in (good.xml or "")
+    assert good.deps == [str(tmp_path / "r.urdf.xacro"), str(tmp_path / "inc.xacro")]
+    assert [(n.code, n.line) for n in good.notes] == [("UL901", 3)]
+    assert bad.error is not None and bad.error.line == 2
+    assert expand.CURRENT.get() is None and not hasattr(expand, "_state")
+    with pytest.raises(RuntimeError, match="outside an expansion"):
+        expand._hook_eval_find("p")
