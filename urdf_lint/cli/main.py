@@ -15,6 +15,7 @@ import os
 import re
 import sys
 from pathlib import Path
+from typing import Any
 
 from urdf_lint.core.emit import say, tell
 from urdf_lint.core.errors import UsageError
@@ -430,7 +431,7 @@ def _apply_cli(cfg, args):
     """What the user set on the command line wins (through the schema), clamped like the rest."""
     from urdf_lint.config.schema import apply_cli
     from urdf_lint.config import trust
-    values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
+    values: dict[str, Any] = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
     for k in ("env-allow", "targets"):   # --env-allow A --env-allow B
         if values[k] and not isinstance(values[k], str):
             values[k] = ",".join(values[k])

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from urdf_lint.config.policy import code_matches
-from urdf_lint.engine.api import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
+from urdf_lint.engine.api import did_you_mean as did_you_mean  # the one helper, re-exported for the CLI
 
 try:
     import tomllib
@@ -28,7 +28,7 @@ except ImportError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 
-from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW  # noqa: E402,F401 - a run's setting; config shows it
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW as DEFAULT_ENV_ALLOW  # noqa: E402 - a run's setting; config shows it
 from urdf_lint.core.jobs import DEFAULT_MEMORY_MB, DEFAULT_TIMEOUT  # noqa: E402 - the workers' limits
 
 TABLE = "tool.urdf-lint"
@@ -101,7 +101,7 @@ class Choice(Type):
         return tuple(self._choices() if callable(self._choices) else self._choices)
 
     @property
-    def expected(self):
+    def expected(self) -> str:  # type: ignore[override]  # (computed: the choices may be lazy)
         return "one of " + ", ".join(self.choices)
 
     def check(self, v):
@@ -235,7 +235,7 @@ class FormatKey(Type):
         self.output = output
 
     @property
-    def expected(self):
+    def expected(self) -> str:  # type: ignore[override]  # (computed from the output formats)
         return (f"{self.output.expected}; or a table [format] of "
                 f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
 

@@ -6,9 +6,9 @@ import stat as _st
 from typing import Any
 
 try:   # BLAKE2 is built into CPython (keys of small blobs: no OpenSSL to load for them)
-    from _blake2 import blake2b
+    from _blake2 import blake2b as blake2b   # (re-exported: the caches key on it)
 except ImportError:   # pragma: no cover - another interpreter
-    from hashlib import blake2b
+    from hashlib import blake2b as blake2b
 
 MAX_HASHED_BYTES = 2 << 30
 SHA_FROM_BYTES = 1 << 20
