@@ -93,11 +93,11 @@ class StrList(Type):
 
 
 class Choice(Type):
-    def __init__(self, choices: tuple | Callable[[], tuple]):
+    def __init__(self, choices: tuple[Any, ...] | Callable[[], tuple]):
         self._choices = choices
 
     @property
-    def choices(self) -> tuple:
+    def choices(self) -> tuple[Any, ...]:
         return tuple(self._choices() if callable(self._choices) else self._choices)
 
     @property
@@ -115,7 +115,7 @@ class Choice(Type):
 class ChoiceList(StrList):
     """A non-empty list of values from ``choices`` (each as :class:`Choice` checks it)."""
 
-    def __init__(self, choices: tuple, what: str):
+    def __init__(self, choices: tuple[Any, ...], what: str):
         super().__init__(what)
         self.choice = Choice(choices)
         self.expected = f"a list of {what} ({', '.join(choices)})"
@@ -286,12 +286,12 @@ class Key:
         return str(d) if not isinstance(d, dict) else "none"
 
 
-def _targets() -> tuple:
+def _targets() -> tuple[Any, ...]:
     from urdf_lint.core.targets import NAMES
     return NAMES
 
 
-def _formats() -> tuple:
+def _formats() -> tuple[Any, ...]:
     from urdf_lint.report.registry import names
     return names()
 
@@ -353,7 +353,7 @@ FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
 class ModelSpec:
     """A ``[[models]]`` entry: the file, its argument sets, and where its output and meshes are."""
     path: str                       # absolute
-    arg_sets: list                  # list of dicts
+    arg_sets: list[Any]             # list of dicts
     output: str | None = None       # absolute: the generated URDF written from this xacro
     mesh_base: str | None = None    # absolute: where relative mesh paths start
 
@@ -363,20 +363,20 @@ class Config:
     """The settings of a run, from the config file and the command line."""
     path: str | None = None         # the file it came from
     root: str = "."                 # folder paths are relative to
-    select: list = field(default_factory=lambda: ["UL"])
-    extend_select: list = field(default_factory=list)
-    ignore: list = field(default_factory=list)
-    per_file_ignores: dict = field(default_factory=dict)
-    severity: dict = field(default_factory=dict)
+    select: list[Any] = field(default_factory=lambda: ["UL"])
+    extend_select: list[Any] = field(default_factory=list)
+    ignore: list[Any] = field(default_factory=list)
+    per_file_ignores: dict[str, Any] = field(default_factory=dict)
+    severity: dict[str, Any] = field(default_factory=dict)
     fail_on: str = "error"
-    targets: list = field(default_factory=lambda: ["ros"])
-    package_paths: dict = field(default_factory=dict)
-    models: list = field(default_factory=list)
-    exclude: list = field(default_factory=list)
-    env_allow: list = field(default_factory=list)
+    targets: list[Any] = field(default_factory=lambda: ["ros"])
+    package_paths: dict[str, Any] = field(default_factory=dict)
+    models: list[Any] = field(default_factory=list)
+    exclude: list[Any] = field(default_factory=list)
+    env_allow: list[Any] = field(default_factory=list)
     timeout: float = DEFAULT_TIMEOUT
     memory_mb: int = DEFAULT_MEMORY_MB
-    rule_options: dict = field(default_factory=dict)
+    rule_options: dict[str, Any] = field(default_factory=dict)
     jobs: int | None = None
     cache_dir: str | None = None
     format: str | None = None
@@ -384,8 +384,8 @@ class Config:
     discover: bool = True           # false: lint only the configured models
     views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
     forward_axis: str = "+x"        # snapshots: the robot's forward axis
-    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
-    raw: dict = field(default_factory=dict)
+    format_options: dict[str, Any] = field(default_factory=dict)  # [format]: urdf-lint format's settings
+    raw: dict[str, Any] = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
         try:
@@ -395,7 +395,7 @@ class Config:
         return any(fnmatch.fnmatch(rel, p) or fnmatch.fnmatch(rel, p.rstrip("/") + "/*")
                    for p in self.exclude)
 
-    def options_for(self, code: str, name: str) -> dict:
+    def options_for(self, code: str, name: str) -> dict[str, Any]:
         out = {}
         out.update(self.rule_options.get(name, {}))
         out.update(self.rule_options.get(code, {}))
@@ -409,7 +409,7 @@ def _read_config(path: Path) -> str:
     return fsbound.read_text(path, max_bytes=fsbound.MAX_CONFIG_BYTES)
 
 
-def _parse_toml(path: Path) -> dict:
+def _parse_toml(path: Path) -> dict[str, Any]:
     try:
         text = _read_config(path)
     except UnicodeDecodeError as e:
@@ -436,7 +436,7 @@ def _parse_toml(path: Path) -> dict:
         raise ConfigError(f"{_shown(path)}: invalid TOML: {msg}") from None
 
 
-def _near_miss_table(tool: dict) -> str | None:
+def _near_miss_table(tool: dict[str, Any]) -> str | None:
     """A ``[tool.X]`` that was meant to be ``[tool.urdf-lint]``."""
     for k in tool:
         if not isinstance(k, str) or k == "urdf-lint":
@@ -448,7 +448,7 @@ def _near_miss_table(tool: dict) -> str | None:
     return None
 
 
-def _pyproject_table(path: Path, data: dict) -> dict | None:
+def _pyproject_table(path: Path, data: dict[str, Any]) -> dict[str, Any] | None:
     tool = data.get("tool", {})
     if not isinstance(tool, dict):
         return None
@@ -526,7 +526,7 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
     setattr(cfg, key.attr, value)
 
 
-def load_config(path: str | Path | None, known_codes: dict | None = None) -> Config:
+def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = None) -> Config:
     """Load and validate. ``known_codes`` maps code -> name for checking codes and options."""
     if path is None:
         return Config(root=os.getcwd())
@@ -567,7 +567,7 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
     return cfg
 
 
-def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config:
+def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line") -> Config:
     """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
 
     ``values`` maps schema key names to the flag's string, or None when the flag was not
@@ -613,7 +613,7 @@ def _did_you_mean_file(rel: str, root: Path) -> str:
     return f" (did you mean {hit!r}?)"
 
 
-def validate_codes(cfg: Config, known: dict, where: str = "command line"):
+def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line"):
     names = set(known.values())
 
     def check(p, what):
@@ -636,7 +636,7 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
     validate_rule_options(cfg, where)
 
 
-def option_types(rule) -> dict:
+def option_types(rule) -> dict[str, Any]:
     """Option name -> accepted Python types, from the rule's ``OPTIONS`` defaults and its
     optional ``OPTION_TYPES`` declaration."""
     import sys
@@ -655,7 +655,7 @@ def option_types(rule) -> dict:
     return out
 
 
-def option_choices(rule) -> dict:
+def option_choices(rule) -> dict[str, Any]:
     """Option name -> the values it may take, from the rule's optional ``OPTION_CHOICES``."""
     import sys
     return {k: tuple(v) for k, v in

@@ -405,7 +405,7 @@ def _mesh_facts_cached(settings: LintSettings) -> bool:
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
     from urdf_lint.core import fsbound
-    return bool(d) and fsbound.has_entries(d)
+    return d is not None and fsbound.has_entries(d)
 
 
 def _next_job(mine, queues, block_of=None, running=()):
