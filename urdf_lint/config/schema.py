@@ -71,7 +71,7 @@ class Type:
 class Str(Type):
     expected = "a string"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, str):
             raise _Bad(self.expected)
         return v
@@ -81,19 +81,19 @@ class StrList(Type):
     def __init__(self, what: str = "strings"):
         self.expected = f"a list of {what}"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if isinstance(v, str):
             raise _Bad(f"{self.expected}, like [{show(v)}]")
         if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
             raise _Bad(self.expected)
         return list(v)
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         return [c.strip() for c in s.split(",") if c.strip()]
 
 
 class Choice(Type):
-    def __init__(self, choices: tuple[Any, ...] | Callable[[], tuple]):
+    def __init__(self, choices: tuple[str, ...] | Callable[[], tuple[str, ...]]):
         self._choices = choices
 
     @property
@@ -104,7 +104,7 @@ class Choice(Type):
     def expected(self) -> str:  # type: ignore[override]  # (computed: the choices may be lazy)
         return "one of " + ", ".join(self.choices)
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, str) or v not in self.choices:
             close = difflib.get_close_matches(v, self.choices, n=1, cutoff=0.6) \
                 if isinstance(v, str) else []
@@ -120,7 +120,7 @@ class ChoiceList(StrList):
         self.choice = Choice(choices)
         self.expected = f"a list of {what} ({', '.join(choices)})"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         v = super().check(v)
         if not v:
             raise _Bad(f"{self.expected}, not empty")
@@ -135,13 +135,13 @@ class ChoiceList(StrList):
 class Number(Type):
     """A number (int or float; booleans are not numbers) above ``minimum``."""
 
-    def __init__(self, kind=float, minimum: float | None = None, unit: str = ""):
+    def __init__(self, kind: type = float, minimum: float | None = None, unit: str = ""):
         self.kind, self.minimum = kind, minimum
         noun = "an integer" if kind is int else "a number"
         self.expected = noun + (f" of {unit}" if unit else "") + \
             (f" > {minimum:g}" if minimum is not None else "")
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         ok_types = (int,) if self.kind is int else (int, float)
         if isinstance(v, bool) or not isinstance(v, ok_types):
             raise _Bad(self.expected)
@@ -149,7 +149,7 @@ class Number(Type):
             raise _Bad(self.expected)
         return self.kind(v)
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         try:
             return int(s) if self.kind is int else float(s)
         except ValueError:
@@ -159,12 +159,12 @@ class Number(Type):
 class Bool(Type):
     expected = "true or false"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, bool):
             raise _Bad(self.expected)
         return v
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         if s.lower() in ("true", "false"):
             return s.lower() == "true"
         raise _Bad(self.expected)
@@ -176,7 +176,7 @@ class Table(Type):
     def __init__(self, value: Type, what: str):
         self.value, self.expected = value, what
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict):
             raise _Bad(self.expected)
         out = {}
@@ -191,7 +191,7 @@ class Table(Type):
 class Models(Type):
     expected = "an array of tables [[models]] with 'path' and optional 'args'"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, list):
             raise _Bad(self.expected)
         out = []
@@ -221,7 +221,7 @@ class Models(Type):
 class RuleOptions(Type):
     expected = "a table of tables: [rule-options.CODE] option = value"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict) or not all(isinstance(x, dict) for x in v.values()):
             raise _Bad(self.expected)
         return {k: dict(x) for k, x in v.items()}
@@ -239,7 +239,7 @@ class FormatKey(Type):
         return (f"{self.output.expected}; or a table [format] of "
                 f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict):
             return self.output.check(v)
         out = {}
@@ -254,7 +254,7 @@ class FormatKey(Type):
                 raise _Bad(e.expected, x, k) from None
         return out
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         return self.output.from_cli(s)
 
 
@@ -419,7 +419,8 @@ def _parse_toml(path: Path) -> dict[str, Any]:
         why = getattr(e, "why", None) or e.strerror or e
         raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
     try:
-        return tomllib.loads(text)
+        data: dict[str, Any] = tomllib.loads(text)
+        return data
     except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
         raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
     except tomllib.TOMLDecodeError as e:
@@ -453,7 +454,8 @@ def _pyproject_table(path: Path, data: dict[str, Any]) -> dict[str, Any] | None:
     if not isinstance(tool, dict):
         return None
     if "urdf-lint" in tool:
-        return tool["urdf-lint"]
+        table: dict[str, Any] | None = tool["urdf-lint"]   # (its type is checked by the caller)
+        return table
     near = _near_miss_table(tool)
     if near is not None:
         raise ConfigError(f"{_shown(path)}: found [tool.{near}]; did you mean [{TABLE}]? "
@@ -475,7 +477,7 @@ def find_config(start: str) -> Path | None:
     return None
 
 
-def _shown(path) -> str:
+def _shown(path: str | Path) -> str:
     """A config file's path as messages show it: relative to the working directory when below."""
     if isinstance(path, str) and not os.path.exists(path):
         return path                      # "command line"
@@ -588,7 +590,7 @@ def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line")
     return cfg
 
 
-def format_option(name: str, s: str):
+def format_option(name: str, s: str) -> Any:
     """The value of a command-line flag of ``urdf-lint format`` (``--line-length``), checked
     by the key's type like the same key under [format]."""
     key = FORMAT_KEYS[name]
@@ -613,10 +615,10 @@ def _did_you_mean_file(rel: str, root: Path) -> str:
     return f" (did you mean {hit!r}?)"
 
 
-def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line"):
+def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line") -> None:
     names = set(known.values())
 
-    def check(p, what):
+    def check(p: str, what: str) -> None:
         if p == "ALL" or p in names:
             return
         if not any(code_matches(p, c, n) for c, n in known.items()):
@@ -636,7 +638,7 @@ def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command lin
     validate_rule_options(cfg, where)
 
 
-def option_types(rule) -> dict[str, Any]:
+def option_types(rule: Any) -> dict[str, Any]:
     """Option name -> accepted Python types, from the rule's ``OPTIONS`` defaults and its
     optional ``OPTION_TYPES`` declaration."""
     import sys
@@ -655,7 +657,7 @@ def option_types(rule) -> dict[str, Any]:
     return out
 
 
-def option_choices(rule) -> dict[str, Any]:
+def option_choices(rule: Any) -> dict[str, Any]:
     """Option name -> the values it may take, from the rule's optional ``OPTION_CHOICES``."""
     import sys
     return {k: tuple(v) for k, v in

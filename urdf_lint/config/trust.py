@@ -37,7 +37,7 @@ def _inside(f: str, p: str) -> bool:
     return inside(os.path.realpath(f), os.path.realpath(p))
 
 
-def _clamp(value, key):
+def _clamp(value: float, key: str) -> float:
     lo, hi = CLAMP[key]
     return min(max(value, lo), hi)
 
@@ -100,7 +100,7 @@ def apply(cfg: Config, repo: str, trusted: bool = False,
     why = "a repository's own config cannot loosen urdf-lint's guarantees"
     hint = "pass it on the command line or use --trust-config"
 
-    def note(key, what):
+    def note(key: str, what: str) -> None:
         notes.append(f"note: ignored {key!r} from {where} ({what}; {why}: {hint})")
 
     if not trusted:

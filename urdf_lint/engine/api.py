@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import difflib
 import math
+from collections.abc import Iterable
 
 
 def number(s):
@@ -32,7 +33,7 @@ def numbers(s, n=None):
     return out
 
 
-def did_you_mean(word, candidates):
+def did_you_mean(word: str, candidates: Iterable[str]) -> str:
     m = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
     return f" (did you mean '{m[0]}'?)" if m else ""
 
