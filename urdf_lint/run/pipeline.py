@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from urdf_lint.discovery.discover import discover_models
 from urdf_lint.core.findings import Problem, exit_status, merge
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.config.policy import Policy, code_matches
 from urdf_lint.rules import ul002_xacro_error, ul006_not_a_robot, ul103_missing_link
 from urdf_lint.rules import ul009_unused_suppression as unused_suppression
@@ -62,7 +62,6 @@ def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -
     """The settings every worker of a run starts from: the packages, the variables
     ``$(env)``/``$(optenv)`` may read and the limits of one model, from ``cfg``; ``fields``
     set the rest."""
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     return LintSettings(resolver=resolver.to_dict(),
                         env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
                         timeout=cfg.timeout, memory_mb=cfg.memory_mb, **fields)
