@@ -22,7 +22,7 @@ def positions(rule, workdir: Path) -> list[tuple[int, int]]:
     from conftest import make_package
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in rule.fail else "urdf/example.urdf"
     pkg = make_package(workdir, "example_pkg", {**rule.example_files, name: rule.fail})
     here = os.getcwd()
@@ -30,7 +30,7 @@ def positions(rule, workdir: Path) -> list[tuple[int, int]]:
     try:
         cfg = load_config(None)
         cfg.select = [rule.code, "UL009"] if rule.code != "UL009" else ["UL"]
-        res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+        res = run_check(RunRequest(["."], cfg, build_resolver(["."], cfg), in_process=True))
     finally:
         os.chdir(here)
     return sorted({(f.line, f.col) for f in res.findings

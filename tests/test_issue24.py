@@ -208,7 +208,7 @@ def test_time_limit_counts_cpu_time(tmp_path, monkeypatch):
     jobs = [LintJob(str(tmp_path / "wait.urdf"), kind="urdf"),
             LintJob(str(tmp_path / "spin.urdf"), kind="urdf")]
     got = {os.path.basename(j.entry): r for j, r in worker.run_jobs(
-        jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=2, timeout=1.0)}
+        jobs, LintSettings(resolver=resolver.to_dict(), timeout=1.0), jobs_n=2)}
     assert carried_data(got["wait.urdf"]) == {"slept": True}
     spin = got["spin.urdf"]
     assert [p.code for p in spin.problems] == ["UL904"], spin

@@ -48,10 +48,10 @@ def trimesh_facts(path) -> dict:
 def lint_in_process(path, cache=None):
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     cfg = load_config(None)
-    return run_check([str(path)], cfg, build_resolver([str(path)], cfg), cache=cache,
-                     in_process=True).findings
+    return run_check(RunRequest([str(path)], cfg, build_resolver([str(path)], cfg), cache=cache,
+                                in_process=True)).findings
 
 
 @pytest.fixture

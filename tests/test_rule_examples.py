@@ -57,14 +57,14 @@ def _in_process(tmp_path, monkeypatch, rule, text):
     """The findings of ``rule`` on one example, linted in this process (fast: no workers)."""
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     pkg = _write_example(tmp_path, rule, text)
     monkeypatch.chdir(pkg)
     monkeypatch.setenv("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
     cfg = load_config(None)
     cfg.select = [rule.code, "UL009"] if rule.code != "UL009" else ["UL"]
     cfg.targets = list(rule.example_targets)   # EXAMPLE_TARGETS (default: ros)
-    res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+    res = run_check(RunRequest(["."], cfg, build_resolver(["."], cfg), in_process=True))
     assert not res.internal, res.internal
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"
     return [f for f in res.findings if f.code == rule.code], str(pkg / name)

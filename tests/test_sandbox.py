@@ -122,10 +122,10 @@ def _run_in_worker(monkeypatch, paths, port, env=None, mild=False, parent_fd=-1)
     for k, v in (env or {}).items():
         monkeypatch.setenv(k, v)
     resolver = PackageResolver.build([paths["repo"]], extra_roots=[paths["repo"]])
-    settings = LintSettings(resolver=resolver.to_dict(), mesh_cache_dir=paths["cache"])
+    settings = LintSettings(resolver=resolver.to_dict(), mesh_cache_dir=paths["cache"], timeout=30)
     job = AttackJob(entry=paths["inside"], kind="urdf", paths=paths, parent=os.getpid(),
                     port=port, mild=mild, parent_fd=parent_fd)
-    results = [r for _, r in run_jobs([job], settings, jobs_n=1, timeout=30)]
+    results = [r for _, r in run_jobs([job], settings, jobs_n=1)]
     assert len(results) == 1
     return carried_data(results[0])
 
@@ -191,10 +191,10 @@ def slow(job, settings):
     return ModelReport(job.entry, {{}})
 worker.process_job = slow
 r = PackageResolver.build([{repo!r}], extra_roots=[{repo!r}])
-settings = LintSettings(resolver=r.to_dict())
+settings = LintSettings(resolver=r.to_dict(), timeout=300)
 jobs = [LintJob("slow", kind="urdf"), LintJob("quick", kind="urdf")]
 from urdf_lint.runner import forked
-gen = run_jobs(jobs, settings, jobs_n=2, timeout=300)  # one busy worker, one idle
+gen = run_jobs(jobs, settings, jobs_n=2)  # one busy worker, one idle
 import threading
 def report():
     time.sleep(1.0)
@@ -341,8 +341,8 @@ def test_a_worker_result_the_parent_cannot_trust_fails_its_model_only(tmp_path, 
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
     t0 = time.monotonic()
-    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=1,
-                                    timeout=3))
+    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict(), timeout=3),
+                                    jobs_n=1))
     assert time.monotonic() - t0 < 20
     assert r.internal and "not a lint result" in r.internal[0] and not r.cacheable, r
 
@@ -377,8 +377,8 @@ def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, mon
     monkeypatch.setattr(worker, "process_job", lambda job, settings: _Evil(str(marker)))
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
-    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=1,
-                                    timeout=30))
+    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict(), timeout=30),
+                                    jobs_n=1))
     assert not marker.exists()
     assert r.internal and "not a lint result" in r.internal[0] and "mkdir" in r.internal[0], r
     assert not r.cacheable
@@ -476,7 +476,7 @@ def test_a_worker_cannot_signal_another_process_or_leave_a_child(tmp_path, monke
     monkeypatch.setattr(worker, "process_job",
                         lambda job, s: carried(job, _signals_and_children(job, s)))
     job = AttackJob(entry=str(pkg / "urdf/r.urdf"), kind="urdf", parent=os.getpid())
-    [(_, report)] = list(run_jobs([job], LintSettings(resolver={}), jobs_n=1, timeout=30))
+    [(_, report)] = list(run_jobs([job], LintSettings(resolver={}, timeout=30), jobs_n=1))
     r = carried_data(report)
     child = r.get("fork_child") if isinstance(r, dict) else None
     if child:   # the original code: the child outlived the worker; do not leave it behind
@@ -523,6 +523,6 @@ def test_landlock_scopes_a_workers_signals_even_without_seccomp(tmp_path, monkey
     monkeypatch.setattr(sandbox, "seccomp_status", lambda: (False, "left out by the test"))
     monkeypatch.setattr(worker, "process_job", lambda job, s: carried(job, _signals_only(job, s)))
     job = AttackJob(entry=str(pkg / "urdf/r.urdf"), kind="urdf", parent=os.getpid())
-    [(_, report)] = list(run_jobs([job], LintSettings(resolver={}), jobs_n=1, timeout=30))
+    [(_, report)] = list(run_jobs([job], LintSettings(resolver={}, timeout=30), jobs_n=1))
     r = carried_data(report)
     assert r == {"kill_parent": "EPERM", "tkill_parent": "EPERM", "kill_self": "ok"}, r

@@ -139,7 +139,7 @@ def test_sandboxed_workers_keep_no_descriptor_of_a_sibling(monkeypatch):
     resolver = PackageResolver.build([str(DESCRIPTIONS)], extra_roots=[str(DESCRIPTIONS)])
     jobs = [LintJob(f"m{i}.urdf", kind="urdf") for i in range(4)]
     results = [carried_data(r) for _, r in worker.run_jobs(
-        jobs, LintSettings(resolver=resolver.to_dict()), jobs_n=2, timeout=30)]
+        jobs, LintSettings(resolver=resolver.to_dict(), timeout=30), jobs_n=2)]
     assert len(results) == 4
     for fds in results:
         # stdin, stdout, stderr and the worker's own two pipe ends: nothing of its sibling

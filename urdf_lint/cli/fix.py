@@ -33,13 +33,14 @@ def _summary(outcome) -> list[str]:
 def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
     from urdf_lint.fix.addsuppress import add_suppressions
     from urdf_lint.core.locations import display_path
-    from urdf_lint.run.pipeline import exit_code, run_check
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
+    request = RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    result = run_check(request)
     if result.internal:
         report_internal(result.internal)
         return 2
     n, files, _ = add_suppressions(result.findings, args.paths)
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    result = run_check(request)
     report_internal(result.internal)
     if result.findings:
         write_findings(args, cfg, result, out, color_mode, resolver.roots)

@@ -15,6 +15,7 @@ import os
 import re
 import sys
 from pathlib import Path
+from typing import Any
 
 from urdf_lint.core.emit import say, tell
 from urdf_lint.core.errors import UsageError
@@ -430,7 +431,7 @@ def _apply_cli(cfg, args):
     """What the user set on the command line wins (through the schema), clamped like the rest."""
     from urdf_lint.config.schema import apply_cli
     from urdf_lint.config import trust
-    values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
+    values: dict[str, Any] = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
     for k in ("env-allow", "targets"):   # --env-allow A --env-allow B
         if values[k] and not isinstance(values[k], str):
             values[k] = ",".join(values[k])
@@ -500,7 +501,7 @@ class _Out:
 def _color_mode(args) -> str:
     mode = getattr(args, "color", "auto") or "auto"
     if mode not in ("auto", "always", "never"):
-        from urdf_lint.config.schema import did_you_mean
+        from urdf_lint.core.suggest import did_you_mean
         raise UsageError(f"--color: invalid value {mode!r} (expected auto, always or never"
                          f"{did_you_mean(mode, ('auto', 'always', 'never'))})")
     return mode
@@ -568,7 +569,7 @@ def _no_models_warning(paths, result, out) -> None:
 def cmd_check(args) -> int:
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.core.locations import display_path
-    from urdf_lint.run.pipeline import exit_code, run_check
+    from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
     out = _Out(args)
     color_mode = _color_mode(args)
     for p in args.paths:
@@ -613,8 +614,9 @@ def cmd_check(args) -> int:
         return check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode)
     if render_dir:
         _clear_stale(render_dir, args.paths)
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
-                       progress=progress, affected_by=affected_by, render_dir=render_dir)
+    result = run_check(RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
+                                  progress=progress, affected_by=affected_by,
+                                  render_dir=render_dir))
     from urdf_lint.fix.fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
     result.findings = inside_paths(result.findings, args.paths)
     if result.reused:
@@ -867,7 +869,7 @@ def cmd_rule(args) -> int:
     from urdf_lint.engine.registry import find_rule
     r = find_rule(args.code)
     if r is None:
-        from urdf_lint.config.schema import did_you_mean
+        from urdf_lint.core.suggest import did_you_mean
         from urdf_lint.engine.registry import load_rules
         rules = load_rules()
         hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
@@ -888,7 +890,7 @@ def cmd_rule(args) -> int:
 
 def cmd_render(args) -> int:
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -901,8 +903,9 @@ def cmd_render(args) -> int:
         args.paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(args.paths, cfg, _parse_package_paths(args.package_path))
     _clear_stale(args.out, args.paths)
-    result = run_check(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                       render_dir=args.out, render_rrd=not args.no_rrd, affected_by=affected_by)
+    result = run_check(RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs,
+                                  render_dir=args.out, render_rrd=not args.no_rrd,
+                                  affected_by=affected_by))
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from urdf_lint.engine.baseline import filter_baseline
         result.findings = filter_baseline(cfg.baseline, result.findings, _Out(args).note)
@@ -1067,13 +1070,10 @@ def _expand_in_workers(jobs: list, resolver, cfg) -> list:
     """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
     workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
-    from urdf_lint.core.jobs import LintSettings
+    from urdf_lint.run.pipeline import worker_settings
     from urdf_lint.run.worker import run_jobs
-    settings = LintSettings(resolver=resolver.to_dict(),
-                            env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))))
-    done = {id(job): res for job, res in run_jobs(jobs, settings, jobs_n=cfg.jobs,
-                                                  timeout=cfg.timeout, memory_mb=cfg.memory_mb)}
+    done = {id(job): res for job, res in run_jobs(jobs, worker_settings(cfg, resolver),
+                                                  jobs_n=cfg.jobs)}
     return [done[id(job)] for job in jobs]
 
 

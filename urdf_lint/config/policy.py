@@ -10,7 +10,7 @@ from __future__ import annotations
 import fnmatch
 import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING, Any, Iterable
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.config.schema import Config
@@ -32,8 +32,8 @@ class Policy:
     severity overrides."""
     select: tuple[str, ...] = ("UL",)
     ignore: tuple[str, ...] = ()
-    per_file_ignores: dict = field(default_factory=dict)   # glob -> [patterns]
-    severity: dict = field(default_factory=dict)           # pattern -> severity
+    per_file_ignores: dict[str, Any] = field(default_factory=dict)  # glob -> [patterns]
+    severity: dict[str, Any] = field(default_factory=dict)  # pattern -> severity
     root: str = "."                                        # per-file globs are relative to it
     targets: tuple[str, ...] = ("ros",)                    # consumer targets (urdf_lint.core.targets)
 
@@ -47,7 +47,7 @@ class Policy:
         s = specificity(self.select, code, name)
         return s >= 0 and s > specificity(self.ignore, code, name)
 
-    def selected_codes(self, rules: dict) -> list[str]:
+    def selected_codes(self, rules: dict[str, Any]) -> list[str]:
         """The codes selected and applying to at least one selected target (a rule whose
         ``TARGETS`` turns it off for all of them does not run)."""
         from urdf_lint.core.targets import applies

@@ -20,7 +20,8 @@ from pathlib import Path
 from typing import Any, Callable
 
 from urdf_lint.config.policy import code_matches
-from urdf_lint.core.suggest import did_you_mean  # noqa: F401 - the one helper, re-exported for the CLI
+from urdf_lint.core.suggest import did_you_mean
+
 
 try:
     import tomllib
@@ -28,7 +29,8 @@ except ImportError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 
-from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW  # noqa: E402,F401 - a run's setting; config shows it
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW as DEFAULT_ENV_ALLOW  # noqa: E402 - a run's setting; config shows it
+from urdf_lint.core.jobs import DEFAULT_MEMORY_MB, DEFAULT_TIMEOUT  # noqa: E402 - the workers' limits
 
 TABLE = "tool.urdf-lint"
 SEVERITY_NAMES = ("error", "warning", "info")
@@ -70,7 +72,7 @@ class Type:
 class Str(Type):
     expected = "a string"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, str):
             raise _Bad(self.expected)
         return v
@@ -80,30 +82,30 @@ class StrList(Type):
     def __init__(self, what: str = "strings"):
         self.expected = f"a list of {what}"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if isinstance(v, str):
             raise _Bad(f"{self.expected}, like [{show(v)}]")
         if not isinstance(v, list) or not all(isinstance(x, str) for x in v):
             raise _Bad(self.expected)
         return list(v)
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         return [c.strip() for c in s.split(",") if c.strip()]
 
 
 class Choice(Type):
-    def __init__(self, choices: tuple | Callable[[], tuple]):
+    def __init__(self, choices: tuple[str, ...] | Callable[[], tuple[str, ...]]):
         self._choices = choices
 
     @property
-    def choices(self) -> tuple:
+    def choices(self) -> tuple[Any, ...]:
         return tuple(self._choices() if callable(self._choices) else self._choices)
 
     @property
-    def expected(self):
+    def expected(self) -> str:  # type: ignore[override]  # (computed: the choices may be lazy)
         return "one of " + ", ".join(self.choices)
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, str) or v not in self.choices:
             close = difflib.get_close_matches(v, self.choices, n=1, cutoff=0.6) \
                 if isinstance(v, str) else []
@@ -114,12 +116,12 @@ class Choice(Type):
 class ChoiceList(StrList):
     """A non-empty list of values from ``choices`` (each as :class:`Choice` checks it)."""
 
-    def __init__(self, choices: tuple, what: str):
+    def __init__(self, choices: tuple[Any, ...], what: str):
         super().__init__(what)
         self.choice = Choice(choices)
         self.expected = f"a list of {what} ({', '.join(choices)})"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         v = super().check(v)
         if not v:
             raise _Bad(f"{self.expected}, not empty")
@@ -134,13 +136,13 @@ class ChoiceList(StrList):
 class Number(Type):
     """A number (int or float; booleans are not numbers) above ``minimum``."""
 
-    def __init__(self, kind=float, minimum: float | None = None, unit: str = ""):
+    def __init__(self, kind: type = float, minimum: float | None = None, unit: str = ""):
         self.kind, self.minimum = kind, minimum
         noun = "an integer" if kind is int else "a number"
         self.expected = noun + (f" of {unit}" if unit else "") + \
             (f" > {minimum:g}" if minimum is not None else "")
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         ok_types = (int,) if self.kind is int else (int, float)
         if isinstance(v, bool) or not isinstance(v, ok_types):
             raise _Bad(self.expected)
@@ -148,7 +150,7 @@ class Number(Type):
             raise _Bad(self.expected)
         return self.kind(v)
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         try:
             return int(s) if self.kind is int else float(s)
         except ValueError:
@@ -158,12 +160,12 @@ class Number(Type):
 class Bool(Type):
     expected = "true or false"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, bool):
             raise _Bad(self.expected)
         return v
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         if s.lower() in ("true", "false"):
             return s.lower() == "true"
         raise _Bad(self.expected)
@@ -175,7 +177,7 @@ class Table(Type):
     def __init__(self, value: Type, what: str):
         self.value, self.expected = value, what
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict):
             raise _Bad(self.expected)
         out = {}
@@ -190,7 +192,7 @@ class Table(Type):
 class Models(Type):
     expected = "an array of tables [[models]] with 'path' and optional 'args'"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, list):
             raise _Bad(self.expected)
         out = []
@@ -220,7 +222,7 @@ class Models(Type):
 class RuleOptions(Type):
     expected = "a table of tables: [rule-options.CODE] option = value"
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict) or not all(isinstance(x, dict) for x in v.values()):
             raise _Bad(self.expected)
         return {k: dict(x) for k, x in v.items()}
@@ -234,11 +236,11 @@ class FormatKey(Type):
         self.output = output
 
     @property
-    def expected(self):
+    def expected(self) -> str:  # type: ignore[override]  # (computed from the output formats)
         return (f"{self.output.expected}; or a table [format] of "
                 f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
 
-    def check(self, v):
+    def check(self, v: Any) -> Any:
         if not isinstance(v, dict):
             return self.output.check(v)
         out = {}
@@ -253,7 +255,7 @@ class FormatKey(Type):
                 raise _Bad(e.expected, x, k) from None
         return out
 
-    def from_cli(self, s):
+    def from_cli(self, s: str) -> Any:
         return self.output.from_cli(s)
 
 
@@ -285,12 +287,12 @@ class Key:
         return str(d) if not isinstance(d, dict) else "none"
 
 
-def _targets() -> tuple:
+def _targets() -> tuple[Any, ...]:
     from urdf_lint.core.targets import NAMES
     return NAMES
 
 
-def _formats() -> tuple:
+def _formats() -> tuple[Any, ...]:
     from urdf_lint.report.registry import names
     return names()
 
@@ -318,8 +320,9 @@ SCHEMA: tuple[Key, ...] = (
     Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
     Key("env-allow", StrList("environment variable names"), [],
         "environment variables $(env)/$(optenv) may read", cli_merge="extend"),
-    Key("timeout", Number(float, 0, "seconds"), 30.0, "time limit per model, in seconds"),
-    Key("memory-mb", Number(int, 0, "MiB"), 2048, "memory limit per model, in MiB"),
+    Key("timeout", Number(float, 0, "seconds"), DEFAULT_TIMEOUT,
+        "time limit per model, in seconds"),
+    Key("memory-mb", Number(int, 0, "MiB"), DEFAULT_MEMORY_MB, "memory limit per model, in MiB"),
     Key("rule-options", RuleOptions(), {}, "options of single rules"),
     Key("jobs", Number(int, 0), None, "parallel workers"),
     Key("cache-dir", Str(), None, "folder of the result cache"),
@@ -350,7 +353,7 @@ FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
 class ModelSpec:
     """A ``[[models]]`` entry: the file, its argument sets, and where its output and meshes are."""
     path: str                       # absolute
-    arg_sets: list                  # list of dicts
+    arg_sets: list[Any]             # list of dicts
     output: str | None = None       # absolute: the generated URDF written from this xacro
     mesh_base: str | None = None    # absolute: where relative mesh paths start
 
@@ -360,20 +363,20 @@ class Config:
     """The settings of a run, from the config file and the command line."""
     path: str | None = None         # the file it came from
     root: str = "."                 # folder paths are relative to
-    select: list = field(default_factory=lambda: ["UL"])
-    extend_select: list = field(default_factory=list)
-    ignore: list = field(default_factory=list)
-    per_file_ignores: dict = field(default_factory=dict)
-    severity: dict = field(default_factory=dict)
+    select: list[Any] = field(default_factory=lambda: ["UL"])
+    extend_select: list[Any] = field(default_factory=list)
+    ignore: list[Any] = field(default_factory=list)
+    per_file_ignores: dict[str, Any] = field(default_factory=dict)
+    severity: dict[str, Any] = field(default_factory=dict)
     fail_on: str = "error"
-    targets: list = field(default_factory=lambda: ["ros"])
-    package_paths: dict = field(default_factory=dict)
-    models: list = field(default_factory=list)
-    exclude: list = field(default_factory=list)
-    env_allow: list = field(default_factory=list)
-    timeout: float = 30.0
-    memory_mb: int = 2048
-    rule_options: dict = field(default_factory=dict)
+    targets: list[Any] = field(default_factory=lambda: ["ros"])
+    package_paths: dict[str, Any] = field(default_factory=dict)
+    models: list[Any] = field(default_factory=list)
+    exclude: list[Any] = field(default_factory=list)
+    env_allow: list[Any] = field(default_factory=list)
+    timeout: float = DEFAULT_TIMEOUT
+    memory_mb: int = DEFAULT_MEMORY_MB
+    rule_options: dict[str, Any] = field(default_factory=dict)
     jobs: int | None = None
     cache_dir: str | None = None
     format: str | None = None
@@ -381,8 +384,8 @@ class Config:
     discover: bool = True           # false: lint only the configured models
     views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
     forward_axis: str = "+x"        # snapshots: the robot's forward axis
-    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
-    raw: dict = field(default_factory=dict)
+    format_options: dict[str, Any] = field(default_factory=dict)  # [format]: urdf-lint format's settings
+    raw: dict[str, Any] = field(default_factory=dict)
 
     def is_excluded(self, path: str) -> bool:
         try:
@@ -392,7 +395,7 @@ class Config:
         return any(fnmatch.fnmatch(rel, p) or fnmatch.fnmatch(rel, p.rstrip("/") + "/*")
                    for p in self.exclude)
 
-    def options_for(self, code: str, name: str) -> dict:
+    def options_for(self, code: str, name: str) -> dict[str, Any]:
         out = {}
         out.update(self.rule_options.get(name, {}))
         out.update(self.rule_options.get(code, {}))
@@ -406,7 +409,7 @@ def _read_config(path: Path) -> str:
     return fsbound.read_text(path, max_bytes=fsbound.MAX_CONFIG_BYTES)
 
 
-def _parse_toml(path: Path) -> dict:
+def _parse_toml(path: Path) -> dict[str, Any]:
     try:
         text = _read_config(path)
     except UnicodeDecodeError as e:
@@ -416,7 +419,8 @@ def _parse_toml(path: Path) -> dict:
         why = getattr(e, "why", None) or e.strerror or e
         raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
     try:
-        return tomllib.loads(text)
+        data: dict[str, Any] = tomllib.loads(text)
+        return data
     except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
         raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
     except tomllib.TOMLDecodeError as e:
@@ -433,7 +437,7 @@ def _parse_toml(path: Path) -> dict:
         raise ConfigError(f"{_shown(path)}: invalid TOML: {msg}") from None
 
 
-def _near_miss_table(tool: dict) -> str | None:
+def _near_miss_table(tool: dict[str, Any]) -> str | None:
     """A ``[tool.X]`` that was meant to be ``[tool.urdf-lint]``."""
     for k in tool:
         if not isinstance(k, str) or k == "urdf-lint":
@@ -445,12 +449,13 @@ def _near_miss_table(tool: dict) -> str | None:
     return None
 
 
-def _pyproject_table(path: Path, data: dict) -> dict | None:
+def _pyproject_table(path: Path, data: dict[str, Any]) -> dict[str, Any] | None:
     tool = data.get("tool", {})
     if not isinstance(tool, dict):
         return None
     if "urdf-lint" in tool:
-        return tool["urdf-lint"]
+        table: dict[str, Any] | None = tool["urdf-lint"]   # (its type is checked by the caller)
+        return table
     near = _near_miss_table(tool)
     if near is not None:
         raise ConfigError(f"{_shown(path)}: found [tool.{near}]; did you mean [{TABLE}]? "
@@ -472,7 +477,7 @@ def find_config(start: str) -> Path | None:
     return None
 
 
-def _shown(path) -> str:
+def _shown(path: str | Path) -> str:
     """A config file's path as messages show it: relative to the working directory when below."""
     if isinstance(path, str) and not os.path.exists(path):
         return path                      # "command line"
@@ -523,7 +528,7 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
     setattr(cfg, key.attr, value)
 
 
-def load_config(path: str | Path | None, known_codes: dict | None = None) -> Config:
+def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = None) -> Config:
     """Load and validate. ``known_codes`` maps code -> name for checking codes and options."""
     if path is None:
         return Config(root=os.getcwd())
@@ -564,7 +569,7 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
     return cfg
 
 
-def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config:
+def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line") -> Config:
     """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
 
     ``values`` maps schema key names to the flag's string, or None when the flag was not
@@ -585,7 +590,7 @@ def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config
     return cfg
 
 
-def format_option(name: str, s: str):
+def format_option(name: str, s: str) -> Any:
     """The value of a command-line flag of ``urdf-lint format`` (``--line-length``), checked
     by the key's type like the same key under [format]."""
     key = FORMAT_KEYS[name]
@@ -610,10 +615,10 @@ def _did_you_mean_file(rel: str, root: Path) -> str:
     return f" (did you mean {hit!r}?)"
 
 
-def validate_codes(cfg: Config, known: dict, where: str = "command line"):
+def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line") -> None:
     names = set(known.values())
 
-    def check(p, what):
+    def check(p: str, what: str) -> None:
         if p == "ALL" or p in names:
             return
         if not any(code_matches(p, c, n) for c, n in known.items()):
@@ -633,7 +638,7 @@ def validate_codes(cfg: Config, known: dict, where: str = "command line"):
     validate_rule_options(cfg, where)
 
 
-def option_types(rule) -> dict:
+def option_types(rule: Any) -> dict[str, Any]:
     """Option name -> accepted Python types, from the rule's ``OPTIONS`` defaults and its
     optional ``OPTION_TYPES`` declaration."""
     import sys
@@ -652,7 +657,7 @@ def option_types(rule) -> dict:
     return out
 
 
-def option_choices(rule) -> dict:
+def option_choices(rule: Any) -> dict[str, Any]:
     """Option name -> the values it may take, from the rule's optional ``OPTION_CHOICES``."""
     import sys
     return {k: tuple(v) for k, v in

@@ -24,6 +24,7 @@ passes ``--trust-config``.
 from __future__ import annotations
 
 import os
+from typing import Any
 
 from urdf_lint.config.schema import Config
 from urdf_lint.core.tree import inside
@@ -35,7 +36,7 @@ def _inside(f: str, p: str) -> bool:
     return inside(os.path.realpath(f), os.path.realpath(p))
 
 
-def _clamp(value, key):
+def _clamp(value: float, key: str) -> float:
     lo, hi = CLAMP[key]
     return min(max(value, lo), hi)
 
@@ -49,7 +50,7 @@ def config_root(cfg: Config, repo: str) -> str:
     return top if inside(folder, top) else folder
 
 
-def confine_paths(cfg: Config, repo: str, given: set) -> None:
+def confine_paths(cfg: Config, repo: str, given: set[Any]) -> None:
     """Raise a located :class:`ConfigError` when a path key of the repository's own config
     (``output``, ``mesh-base``, ``baseline``) leaves the repository or goes through a
     symlink; keys in ``given`` (set on the command line) are the user's and not checked."""
@@ -60,7 +61,7 @@ def confine_paths(cfg: Config, repo: str, given: set) -> None:
         return
     folder = os.path.dirname(os.path.realpath(cfg.path))
     top = config_root(cfg, repo)
-    found: list = []
+    found: list[Any] = []
     if "baseline" not in given and isinstance(raw.get("baseline"), str):
         found.append(("baseline", raw["baseline"]))
     for m in raw.get("models") or ():
@@ -84,7 +85,8 @@ def confine_paths(cfg: Config, repo: str, given: set) -> None:
                 f"paths inside it: pass it on the command line or use --trust-config)")
 
 
-def apply(cfg: Config, repo: str, trusted: bool = False, given: frozenset | set = frozenset()) -> list[str]:
+def apply(cfg: Config, repo: str, trusted: bool = False,
+          given: frozenset[str] | set[str] = frozenset()) -> list[str]:
     """Make ``cfg`` safe to use; return the notes to show. Run it before the command line's
     settings are applied on top (they are the user's, not the repository's); ``given`` are
     the keys set on the command line."""
@@ -97,7 +99,7 @@ def apply(cfg: Config, repo: str, trusted: bool = False, given: frozenset | set 
     why = "a repository's own config cannot loosen urdf-lint's guarantees"
     hint = "pass it on the command line or use --trust-config"
 
-    def note(key, what):
+    def note(key: str, what: str) -> None:
         notes.append(f"note: ignored {key!r} from {where} ({what}; {why}: {hint})")
 
     if not trusted:

@@ -9,7 +9,7 @@ GITIGNORE = "# Automatically created by urdf-lint.\n*\n"
 CACHEDIR_TAG = "Signature: 8a477f597d28d172789f06886806bc55\n# urdf-lint cache\n"
 
 
-_done: set = set()
+_done: set[str] = set()
 
 
 def ensure(directory: str) -> None:

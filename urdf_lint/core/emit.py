@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import sys
+from typing import Iterable, TextIO
 
 
-def say(text, stream=None) -> None:
+def say(text: object, stream: TextIO | None = None) -> None:
     """One message of urdf-lint's own on stderr (or ``stream``) as ONE visible line: every
     command's messages go through here (or through an output format), so a file, link or
     package name in them cannot start another line, forge a CI workflow command (``::error``)
@@ -14,19 +15,19 @@ def say(text, stream=None) -> None:
     (stream or sys.stderr).write(escape_text(text) + "\n")
 
 
-def tell(text) -> None:
+def tell(text: object) -> None:
     """:func:`say` on standard output (what a command prints as its result)."""
     say(text, sys.stdout)
 
 
-def safe_lines(s) -> str:
+def safe_lines(s: object) -> str:
     """Text from a model or a traceback, each line escaped for the terminal and every line
     after the first indented, so that none can start a CI workflow command."""
     from urdf_lint.core.escape import escape_text
     return "\n    ".join(escape_text(line) for line in str(s).split("\n"))
 
 
-def report_internal(messages) -> bool:
+def report_internal(messages: Iterable[str]) -> bool:
     """Each internal error on stderr (they make the exit code 2); whether there was one."""
     for msg in messages:
         sys.stderr.write(f"urdf-lint: internal error (please report): {safe_lines(msg)}\n")

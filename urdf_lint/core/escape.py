@@ -25,12 +25,12 @@ _UNSAFE = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069\
                      "\ud800-\udfff]")
 
 
-def _visible(m) -> str:
+def _visible(m: re.Match[str]) -> str:
     c = ord(m.group(0))
     return f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}"
 
 
-def escape_text(s) -> str:
+def escape_text(s: object) -> str:
     """One line of plain text, every unsafe character shown as an escape."""
     s = str(s)
     return _UNSAFE.sub(_visible, s) if _UNSAFE.search(s) else s
@@ -39,7 +39,7 @@ def escape_text(s) -> str:
 _XML = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;"})
 
 
-def escape_xml(s) -> str:
+def escape_xml(s: object) -> str:
     """One line of text or attribute content for XML 1.0 (always well-formed)."""
     return escape_text(s).translate(_XML)
 
@@ -55,7 +55,7 @@ def _defuse(s: str) -> str:
     return _GITHUB_LINKS.sub(lambda m: m.group(0) + _JOINER, s)
 
 
-def escape_html(s) -> str:
+def escape_html(s: object) -> str:
     """Text inside HTML that GitHub renders (a ``<summary>``): one line, ``&<>"`` as entities,
     no mention, reference or autolink."""
     s = escape_text(s).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;") \
@@ -69,7 +69,7 @@ _MD = re.compile(r"([\\`*_\[\]()!|~$#])")
 _BLOCK_START = re.compile(r"^([-+=]|\d+(?=[.)]))")
 
 
-def escape_markdown(s) -> str:
+def escape_markdown(s: object) -> str:
     """Untrusted text placed in Markdown (a pull-request comment, ``summary.md``): it renders
     as the same visible text and nothing else: no HTML, no link or image, no code span,
     emphasis, strikethrough or math, no table cell break, no list or heading at the start,
@@ -81,7 +81,7 @@ def escape_markdown(s) -> str:
     return _defuse(s)
 
 
-def escape_markdown_code(s) -> str:
+def escape_markdown_code(s: object) -> str:
     """Text for inside a Markdown code span in a table cell: one line, no backtick to end the
     span early, no ``|`` to end the cell."""
     return escape_text(s).replace("`", "'").replace("|", "\\|")

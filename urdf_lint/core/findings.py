@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, Any, Iterable, NamedTuple
 
 from urdf_lint.core.locations import Origin
 
@@ -36,7 +36,7 @@ class Problem:
                                             # rule's default); effective once the pipeline ran
     models: tuple[str, ...] = ()            # display labels of the models it was found in
     fix: "Fix | None" = None                # a source fix (urdf_lint.fix.fixes), if the rule has one
-    consumers: tuple | None = None          # ((target, severity | "off"), ...) the rule chose
+    consumers: tuple[Any, ...] | None = None  # ((target, severity | "off"), ...) the rule chose
                                             # for this one problem (None: the rule's TARGETS)
     severity_from: tuple[str, ...] = ()     # the selected targets that make it this severe
                                             # (set by the pipeline; urdf_lint.core.targets)
@@ -44,14 +44,15 @@ class Problem:
                                             # is a root cause's (the mesh URI of an unknown package)
     group: str = ""                         # a root cause's key ("package:NAME"): instances of one
                                             # cause are one finding wherever they are
-    value_from: tuple = ()                  # (file, line, col) of where the value came from, when
+    value_from: tuple[Any, ...] = ()        # (file, line, col) of where the value came from, when
                                             # not from the element's own line (YAML, a property)
-    instances: tuple = ()                   # the Problems a grouped finding stands for (set by
+    instances: tuple[Any, ...] = ()         # the Problems a grouped finding stands for (set by
                                             # group(); empty for a single instance)
 
     @classmethod
-    def at(cls, code: str, message: str, loc, target=None, severity: str = "",
-           fix=None, consumers: dict | None = None, value_from=()) -> "Problem":
+    def at(cls, code: str, message: str, loc: Any, target: Any = None, severity: str = "",
+           fix: "Fix | None" = None, consumers: dict[str, str] | None = None,
+           value_from: Any = ()) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
         ``severity``: set only when the rule chose it for this one problem; ``fix``: a
         :class:`urdf_lint.fix.fixes.Fix` when the rule has one; ``consumers``: the target table
@@ -77,10 +78,10 @@ class Problem:
         return self.origin.col
 
     @property
-    def chain(self) -> tuple:
+    def chain(self) -> tuple[Any, ...]:
         return self.origin.chain
 
-    def key(self):
+    def key(self) -> tuple[str, int, int, str, str, str]:
         return (self.file, self.line, self.col, self.code, self.message, self.detail)
 
     @property
@@ -88,11 +89,11 @@ class Problem:
         """How many instances (elements, references) this finding stands for."""
         return len(self.instances) or 1
 
-    def each(self) -> tuple:
+    def each(self) -> tuple[Any, ...]:
         """The instances of a grouped finding, or the finding itself."""
         return self.instances or (self,)
 
-    def replace(self, **changes) -> "Problem":
+    def replace(self, **changes: Any) -> "Problem":
         """A copy with ``changes`` (``dataclasses.replace`` without its per-field init: a run
         renames and re-rates every finding, thousands on a large repository)."""
         if not changes.keys() <= _FIELDS:
@@ -103,7 +104,7 @@ class Problem:
         return new
 
     # -- serialisation ---------------------------------------------------------------------------
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The JSON report's form of a finding (schema in :mod:`urdf_lint.report`)."""
         d = {"code": self.code, "name": self.name, "severity": self.severity,
              "message": self.message, "file": self.file, "line": self.line, "col": self.col,
@@ -122,7 +123,7 @@ class Problem:
                                                    else {})) for i in self.instances]
         return d
 
-    def to_record(self) -> dict:
+    def to_record(self) -> dict[str, Any]:
         """Plain data for the cache (everything a worker produced)."""
         d = {"code": self.code, "message": self.message, "file": self.file, "line": self.line,
              "col": self.col, "chain": [list(c) for c in self.chain]}
@@ -143,13 +144,13 @@ class Problem:
         return d
 
     @classmethod
-    def from_record(cls, d: dict) -> "Problem":
+    def from_record(cls, d: dict[str, Any]) -> "Problem":
         return cls._build(d["code"], d["message"], d["file"], d["line"], d["col"],
                           d.get("chain", ()), d.get("target"), "", d.get("severity", ""), (),
                           d.get("fix"), d.get("consumers"), (), d.get("detail", ""),
                           d.get("group", ""), d.get("value_from", ()))
 
-    def to_row(self) -> list:
+    def to_row(self) -> list[Any]:
         """Everything, the run pipeline's fields too, as one list: the run memo
         (:mod:`urdf_lint.run.runcache`) writes and reads a run's findings thousands at a time."""
         return [self.code, self.message, self.file, self.line, self.col,
@@ -161,13 +162,14 @@ class Problem:
                 [i.to_row() for i in self.instances]]
 
     @classmethod
-    def from_row(cls, row: list) -> "Problem":
+    def from_row(cls, row: list[Any]) -> "Problem":
         return cls._build(*row)
 
     @classmethod
-    def _build(cls, code, message, file, line, col, chain, target, name, severity, models,
-               fix, consumers=None, severity_from=(), detail="", group="", value_from=(),
-               instances=()) -> "Problem":
+    def _build(cls, code: str, message: str, file: str, line: int, col: int, chain: Any,
+               target: Any, name: str, severity: str, models: Any, fix: Any,
+               consumers: Any = None, severity_from: Any = (), detail: str = "",
+               group: str = "", value_from: Any = (), instances: Any = ()) -> "Problem":
         """From plain data (a record or a row): built directly, without the dataclass init,
         since every field is known here."""
         if fix:
@@ -186,7 +188,7 @@ class Problem:
         return new
 
 
-def _loc3(loc) -> tuple:
+def _loc3(loc: Any) -> tuple[Any, ...]:
     """``(file, line, col)`` of a value's source, or ``()``."""
     return (loc[0], int(loc[1]), int(loc[2])) if loc else ()
 
@@ -204,7 +206,7 @@ class Cause(NamedTuple):
 _FIELDS = frozenset(f.name for f in dataclasses.fields(Problem))
 
 
-def exit_status(severities, internal: bool, fail_on: str) -> int:
+def exit_status(severities: Iterable[str], internal: bool, fail_on: str) -> int:
     """The exit code of a run: 2 on an internal error, 1 when a severity reaches ``fail_on``
     (error | warning | info; never: always 0), else 0. Unknown severities count as errors."""
     if internal:
@@ -217,7 +219,7 @@ def exit_status(severities, internal: bool, fail_on: str) -> int:
 
 def merge(findings: list[Problem]) -> list[Problem]:
     """One finding per source location and message; the models that share it are listed."""
-    out: dict = {}
+    out: dict[tuple[str, int, int, str, str, str], Any] = {}
     for f in findings:
         k = f.key()
         if k in out:
@@ -235,7 +237,7 @@ def merge(findings: list[Problem]) -> list[Problem]:
     return sorted(out.values(), key=lambda f: (f.file, f.line, f.col, f.code, f.message))
 
 
-def group(findings) -> list[Problem]:
+def group(findings: Iterable[Problem]) -> list[Problem]:
     """One finding per source location and rule, and one per root cause: the problems of one
     macro line used by 42 fingers (messages differing only by the finger's name or values, at
     one severity) are one finding with 42 instances; the problems naming one root cause
@@ -243,7 +245,7 @@ def group(findings) -> list[Problem]:
     first location. A grouped
     finding is the first instance with its ``instances`` set, the highest severity, every model,
     the YAML/property source its instances share, and one fix for all (``fixes.combine``)."""
-    groups: dict = {}
+    groups: dict[tuple[Any, ...], list[Problem]] = {}
     for f in findings:
         k = ("", f.code, f.group, 0, 0, "", "") if f.group else \
             (f.file, f.code, "", f.line, f.col, f.severity, _template(f.message))

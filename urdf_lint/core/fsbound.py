@@ -28,7 +28,14 @@ import contextlib
 import errno
 import os
 import stat as _st
-from typing import Iterable, Iterator
+from typing import IO, TYPE_CHECKING, Any, Callable, Iterable, Iterator, TextIO
+
+if TYPE_CHECKING:  # pragma: no cover
+    from pathlib import Path
+
+# a path as the callers hold it (a string or a pathlib.Path)
+StrPath = str | os.PathLike[str]
+Roots = Iterable[StrPath] | None
 
 MAX_SOURCE_BYTES = 256 << 20   # an XML or YAML source file read in the parent
 MAX_CONFIG_BYTES = 4 << 20     # a config file, a baseline's folder's config
@@ -43,7 +50,7 @@ class BoundaryError(OSError):
     """A read or write the boundary refused (outside the roots, not a regular file, too large,
     a symlinked component); ``str()`` is one sentence naming the path."""
 
-    def __init__(self, path, why: str, code: int = errno.EACCES):
+    def __init__(self, path: StrPath, why: str, code: int = errno.EACCES) -> None:
         super().__init__(code, why, os.fspath(path))
         self.why = why
 
@@ -56,7 +63,7 @@ def inside(f: str, p: str) -> bool:
     return f == p or f.startswith(p.rstrip(os.sep) + os.sep)
 
 
-def within(path, roots: Iterable, resolved: bool = False) -> bool:
+def within(path: StrPath, roots: Iterable[StrPath], resolved: bool = False) -> bool:
     """Does ``path`` resolve (after symlinks) inside one of ``roots``? ``resolved``: the
     caller made ``path`` with ``os.path.realpath`` (only its last component may be a
     symlink since, e.g. a discovered file that is a link): one ``lstat`` instead of one per
@@ -67,7 +74,8 @@ def within(path, roots: Iterable, resolved: bool = False) -> bool:
 
 
 # -- reads ------------------------------------------------------------------------------------
-def _open_regular(path, roots, nofollow: bool, resolved: bool = False):
+def _open_regular(path: StrPath, roots: Roots, nofollow: bool,
+                  resolved: bool = False) -> tuple[IO[bytes], os.stat_result]:
     """(a file object of a regular file, its stat); raises BoundaryError / OSError."""
     path = os.fspath(path)
     if roots is not None and not within(path, roots, resolved):
@@ -87,7 +95,8 @@ def _open_regular(path, roots, nofollow: bool, resolved: bool = False):
 
 
 @contextlib.contextmanager
-def open_regular(path, roots=None, nofollow: bool = False):
+def open_regular(path: StrPath, roots: Roots = None,
+                 nofollow: bool = False) -> Iterator[tuple[IO[bytes], os.stat_result]]:
     """(a binary file object, its ``fstat``) of a regular file (inside ``roots`` when given),
     opened without blocking; for readers that stream (hashes, meshes in chunks)."""
     f, st = _open_regular(path, roots, nofollow)
@@ -95,7 +104,7 @@ def open_regular(path, roots=None, nofollow: bool = False):
         yield f, st
 
 
-def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+def read_bytes(path: StrPath, roots: Roots = None, max_bytes: int = MAX_SOURCE_BYTES,
                nofollow: bool = False, resolved: bool = False) -> bytes:
     """The bytes of a regular file of at most ``max_bytes`` (inside ``roots`` after symlinks
     when given; ``resolved`` as for :func:`within`); raises :class:`BoundaryError` (or the
@@ -130,7 +139,7 @@ def read_bytes(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
     return data
 
 
-def read_head(path, n: int, roots=None, resolved: bool = False) -> bytes:
+def read_head(path: StrPath, n: int, roots: Roots = None, resolved: bool = False) -> bytes:
     """At most the first ``n`` bytes of a regular file (inside ``roots`` when given;
     ``resolved`` as for :func:`within`)."""
     f, _ = _open_regular(path, roots, False, resolved)
@@ -138,13 +147,14 @@ def read_head(path, n: int, roots=None, resolved: bool = False) -> bytes:
         return f.read(n)
 
 
-def read_text(path, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
+def read_text(path: StrPath, roots: Roots = None, max_bytes: int = MAX_SOURCE_BYTES,
               errors: str = "strict") -> str:
     """:func:`read_bytes` decoded as UTF-8 (``UnicodeDecodeError`` with ``errors='strict'``)."""
     return read_bytes(path, roots, max_bytes).decode("utf-8", errors)
 
 
-def read_regular(path, max_bytes: int, roots=None, nofollow: bool = False) -> bytes | None:
+def read_regular(path: StrPath, max_bytes: int, roots: Roots = None,
+                 nofollow: bool = False) -> bytes | None:
     """:func:`read_bytes`, or None when it cannot or may not be read."""
     try:
         return read_bytes(path, roots, max_bytes, nofollow)
@@ -152,8 +162,8 @@ def read_regular(path, max_bytes: int, roots=None, nofollow: bool = False) -> by
         return None
 
 
-def parse_xml(path, parser, roots=None, max_bytes: int = MAX_SOURCE_BYTES,
-              resolved: bool = False):
+def parse_xml(path: StrPath, parser: Any, roots: Roots = None,
+              max_bytes: int = MAX_SOURCE_BYTES, resolved: bool = False) -> Any:
     """The lxml root element of a file read by :func:`read_bytes` (never lxml's own open,
     which would follow a FIFO or a device); lxml's errors are raised as they are."""
     from lxml import etree
@@ -166,7 +176,7 @@ def _size(n: int) -> str:
 
 
 # -- listings ---------------------------------------------------------------------------------
-def scan_dir(path) -> list:
+def scan_dir(path: StrPath) -> list[os.DirEntry[str]]:
     """The ``os.DirEntry`` of a folder, sorted by name; [] when it cannot be listed."""
     try:
         with os.scandir(path) as it:
@@ -175,12 +185,12 @@ def scan_dir(path) -> list:
         return []
 
 
-def list_dir(path) -> list[str]:
+def list_dir(path: StrPath) -> list[str]:
     """The names in a folder, in the order the file system gives them (raises OSError)."""
     return os.listdir(path)
 
 
-def has_entries(path) -> bool:
+def has_entries(path: StrPath) -> bool:
     """Does the folder hold anything? (False when it cannot be listed)"""
     try:
         with os.scandir(path) as it:
@@ -189,7 +199,8 @@ def has_entries(path) -> bool:
         return False
 
 
-def walk(top, skip=lambda d: False) -> Iterator[tuple[str, list[str]]]:
+def walk(top: StrPath, skip: Callable[[str], bool] = lambda d: False
+         ) -> Iterator[tuple[str, list[str]]]:
     """(folder, file names) for every folder below ``top``, symlinked folders not entered
     and folders for which ``skip(name)`` is true left out."""
     for dirpath, dirnames, filenames in os.walk(top):
@@ -197,8 +208,9 @@ def walk(top, skip=lambda d: False) -> Iterator[tuple[str, list[str]]]:
         yield dirpath, filenames
 
 
-def walk_files(top, suffixes: tuple[str, ...] | None = None, names: set | None = None,
-               skip=lambda d: False, folders: list | None = None) -> Iterator[str]:
+def walk_files(top: StrPath, suffixes: tuple[str, ...] | None = None,
+               names: set[str] | None = None, skip: Callable[[str], bool] = lambda d: False,
+               folders: list[Any] | None = None) -> Iterator[str]:
     """Every file below ``top`` whose name ends with one of ``suffixes`` or is in ``names``,
     in sorted order; folders for which ``skip(name)`` is true are not entered, nor symlinked
     folders (``os.walk`` does not follow them). Each folder looked into is added to
@@ -263,7 +275,7 @@ def bounded_glob(pattern: str, limit: int = MAX_GLOB_ENTRIES) -> list[str] | Non
     return paths
 
 
-def glob_paths(root, pattern: str) -> list:
+def glob_paths(root: StrPath, pattern: str) -> "list[Path]":
     """``Path(root).glob(pattern)`` for the user's own install layouts (``*/share``), sorted;
     patterns here are the code's own, never a repository's."""
     from pathlib import Path
@@ -271,7 +283,7 @@ def glob_paths(root, pattern: str) -> list:
 
 
 # -- writes -----------------------------------------------------------------------------------
-def output_base(path, repos: Iterable) -> str:
+def output_base(path: StrPath, repos: Iterable[StrPath | None]) -> str:
     """The folder a write to ``path`` (named on the command line) is checked from: the
     repository when ``path`` is in it (then no component below the repository may be a
     symlink: a committed ``build -> /elsewhere`` cannot redirect it), else the nearest
@@ -289,7 +301,7 @@ def output_base(path, repos: Iterable) -> str:
     return d
 
 
-def _parts(path, base) -> tuple[str, list[str]]:
+def _parts(path: StrPath, base: StrPath) -> tuple[str, list[str]]:
     a, b = os.path.abspath(path), os.path.abspath(base)
     if not inside(a, b) or a == b:
         raise BoundaryError(path, f"is outside {b}, the folder urdf-lint may write to; "
@@ -327,7 +339,7 @@ def _open_dirs(base: str, comps: list[str], make: bool) -> int:
     return fd
 
 
-def _components(path, base) -> Iterator[tuple[str, os.stat_result]]:
+def _components(path: StrPath, base: StrPath) -> Iterator[tuple[str, os.stat_result]]:
     """(path, lstat) of each existing component of ``path`` below ``base``, down to the
     first missing one."""
     b, comps = _parts(path, base) if os.path.abspath(path) != os.path.abspath(base) \
@@ -341,13 +353,13 @@ def _components(path, base) -> Iterator[tuple[str, os.stat_result]]:
             return
 
 
-def first_symlink(path, base) -> str | None:
+def first_symlink(path: StrPath, base: StrPath) -> str | None:
     """The first component of ``path`` below ``base`` (the last one included) that is a
     symlink, or None."""
     return next((p for p, st in _components(path, base) if _st.S_ISLNK(st.st_mode)), None)
 
 
-def check_no_symlink(path, base) -> None:
+def check_no_symlink(path: StrPath, base: StrPath) -> None:
     """Raise :class:`BoundaryError` when a component of ``path`` below ``base`` (the last one
     included) is a symlink or not a folder; missing components are fine (they will be made)."""
     for cur, st in _components(path, base):
@@ -357,7 +369,8 @@ def check_no_symlink(path, base) -> None:
 
 
 @contextlib.contextmanager
-def _temp_in(path, base, make_dirs: bool, suffix: str = ""):
+def _temp_in(path: StrPath, base: StrPath, make_dirs: bool,
+             suffix: str = "") -> Iterator[tuple[str, int]]:
     """(temp path, its descriptor) in the target's folder, once every folder from ``base``
     down has been opened without following a symlink; on success the temp is renamed over
     the target (a symlink there is replaced, never followed), else removed. Full paths are
@@ -378,7 +391,7 @@ def _temp_in(path, base, make_dirs: bool, suffix: str = ""):
         raise
 
 
-def write_bytes(path, data: bytes | str, base, make_dirs: bool = False,
+def write_bytes(path: StrPath, data: bytes | str, base: StrPath, make_dirs: bool = False,
                 mode: int | None = None) -> None:
     """Write ``data`` to ``path`` (below ``base``) atomically, through a random temporary
     name opened ``O_CREAT|O_EXCL|O_NOFOLLOW`` beside it; text is written as UTF-8. With
@@ -392,12 +405,12 @@ def write_bytes(path, data: bytes | str, base, make_dirs: bool = False,
                 os.fchmod(f.fileno(), mode)
 
 
-def write_text(path, text: str, base, make_dirs: bool = False) -> None:
+def write_text(path: StrPath, text: str, base: StrPath, make_dirs: bool = False) -> None:
     write_bytes(path, text.encode("utf-8"), base, make_dirs)
 
 
 @contextlib.contextmanager
-def open_write(path, base, make_dirs: bool = False):
+def open_write(path: StrPath, base: StrPath, make_dirs: bool = False) -> Iterator[TextIO]:
     """A text stream whose content appears at ``path`` only when the block succeeds."""
     import io
     with _temp_in(path, base, make_dirs) as (_, fd):
@@ -406,7 +419,8 @@ def open_write(path, base, make_dirs: bool = False):
 
 
 @contextlib.contextmanager
-def temp_path(path, base, suffix: str = "", make_dirs: bool = False):
+def temp_path(path: StrPath, base: StrPath, suffix: str = "",
+              make_dirs: bool = False) -> Iterator[str]:
     """A path to a new, empty, unpredictably named file beside ``path`` (created exclusively,
     so no committed symlink can stand in for it) for writers that want a file name (Pillow,
     rerun); on success it replaces ``path``, on an exception it is removed."""
@@ -415,7 +429,7 @@ def temp_path(path, base, suffix: str = "", make_dirs: bool = False):
         yield tmp
 
 
-def rewrite(path, data: bytes, bases: Iterable) -> None:
+def rewrite(path: StrPath, data: bytes, bases: Iterable[StrPath]) -> None:
     """Rewrite a source file in place (``check --fix``, ``--add-suppressions``): a symlink is
     followed (the link stays a link, its target gets the bytes) when its target is inside one
     of ``bases`` (the linted paths); the file keeps its mode."""
@@ -433,7 +447,7 @@ def rewrite(path, data: bytes, bases: Iterable) -> None:
     raise BoundaryError(path, "is outside the linted paths; it was not written")
 
 
-def remove(path, base) -> bool:
+def remove(path: StrPath, base: StrPath) -> bool:
     """Remove the regular file ``path`` below ``base`` (no component a symlink); False when it
     is not there or is not a regular file."""
     try:
@@ -448,20 +462,20 @@ def remove(path, base) -> bool:
         return False
 
 
-def make_own_dirs(path) -> None:
+def make_own_dirs(path: StrPath) -> None:
     """Create a folder urdf-lint itself chose or the user named and the CLI checked (a
     temporary folder, the cache, ``--out`` after :func:`check_no_symlink`), with parents."""
     os.makedirs(path, exist_ok=True)
 
 
-def remove_tree(path) -> None:
+def remove_tree(path: StrPath) -> None:
     """Remove a folder urdf-lint made (the cache: ``urdf-lint clean``); symlinks inside are
     removed, never followed (``shutil.rmtree``'s descriptor-based walk)."""
     import shutil
     shutil.rmtree(path, ignore_errors=True)
 
 
-def make_dirs(path, base) -> None:
+def make_dirs(path: StrPath, base: StrPath) -> None:
     """Create ``path`` and its missing parents below ``base``, never through a symlink."""
     b, comps = _parts(path, base)
     os.close(_open_dirs(b, comps, True))

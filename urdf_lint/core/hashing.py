@@ -3,19 +3,25 @@ from __future__ import annotations
 
 import os
 import stat as _st
-from typing import Any
+from typing import Any, Protocol
 
 try:   # BLAKE2 is built into CPython (keys of small blobs: no OpenSSL to load for them)
-    from _blake2 import blake2b
+    from _blake2 import blake2b as blake2b   # (re-exported: the caches key on it)
 except ImportError:   # pragma: no cover - another interpreter
-    from hashlib import blake2b
+    from hashlib import blake2b as blake2b
 
 MAX_HASHED_BYTES = 2 << 30
 SHA_FROM_BYTES = 1 << 20
 _sha256: Any = None
 
 
-def content_hash(size: int):
+class Hash(Protocol):
+    """What :func:`content_hash` gives (hashlib's hash objects)."""
+    def update(self, data: bytes, /) -> None: ...
+    def hexdigest(self) -> str: ...
+
+
+def content_hash(size: int) -> Hash:
     """A new hash for ``size`` bytes of file content. From 1 MiB on (meshes, most of what a
     cold run hashes) OpenSSL's SHA-256, which the CPU computes (SHA-NI) at twice BLAKE2b's
     speed (12 vs 23 ms per 20 MB); below, BLAKE2b, built in, so that a worker hashing only
@@ -30,10 +36,11 @@ def content_hash(size: int):
             from _hashlib import openssl_sha256 as _sha256
         except ImportError:   # pragma: no cover - a Python built without OpenSSL
             from hashlib import sha256 as _sha256
-    return _sha256()
+    h: Hash = _sha256()
+    return h
 
 
-def read_regular(path, max_bytes: int, nofollow: bool = False) -> bytes | None:
+def read_regular(path: str, max_bytes: int, nofollow: bool = False) -> bytes | None:
     """The bytes of a regular file of at most ``max_bytes`` (after symlinks, unless
     ``nofollow``), or None: it cannot be read, is larger, or is a device, FIFO or folder (it
     is opened without blocking, so a FIFO named as a file never hangs the run)."""
@@ -75,23 +82,23 @@ def file_digest(path: str) -> str | None:
     return h.hexdigest()[:32]
 
 
-_memo: dict = {}     # (path, dev, ino, size, mtime_ns) -> digest, this process only
+_memo: dict[tuple[Any, ...], str] = {}  # (path, dev, ino, size, mtime_ns) -> digest, this process only
 MAX_MEMO = 100_000
 
 
-def _memo_key(path: str):
+def _memo_key(path: str) -> tuple[os.stat_result, tuple[Any, ...]]:
     """(stat, memo key) of a file now; raises OSError."""
     st = os.stat(path)
     return st, (path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
 
 
-def _remember(key, digest: str) -> None:
+def _remember(key: tuple[Any, ...], digest: str) -> None:
     if len(_memo) >= MAX_MEMO:
         _memo.clear()
     _memo[key] = digest
 
 
-def memo_digest(path: str) -> tuple[list, str] | None:
+def memo_digest(path: str) -> tuple[list[Any], str] | None:
     """([size, mtime_ns], digest) of a file, hashed once per file version in this process
     (the stat is taken before the read, as in :func:`file_record`). The mesh facts key on
     it, and a worker records every mesh a model read with it, so a mesh shared by many
@@ -128,7 +135,7 @@ def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:
     return None if got is None else (got[1], None)
 
 
-def stat_key(path) -> list | None:
+def stat_key(path: str) -> list[Any] | None:
     try:
         st = os.stat(path)
     except OSError:
@@ -136,14 +143,14 @@ def stat_key(path) -> list | None:
     return [st.st_size, st.st_mtime_ns]
 
 
-def file_record(path: str) -> list | None:
+def file_record(path: str) -> list[Any] | None:
     """[stat, digest] of a file as read now: the stat is taken before the bytes are read, so a
     concurrent edit can only make the record stale, never wrong."""
     got = memo_digest(path)
     return None if got is None else [got[0], got[1]]
 
 
-def read_recorded(path: str) -> tuple[bytes, list]:
+def read_recorded(path: str) -> tuple[bytes, list[Any]]:
     """(the bytes of ``path``, their record [stat before the read, digest of those bytes]):
     for a caller that needs the bytes themselves (raises OSError)."""
     from urdf_lint.core import fsbound

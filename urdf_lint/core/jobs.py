@@ -8,7 +8,7 @@ from __future__ import annotations
 import enum
 import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Iterable
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.locations import Origin
@@ -33,17 +33,17 @@ class Status(str, enum.Enum):
 class LintJob:
     """One model to lint: an entry file and the xacro args to expand it with."""
     entry: str                 # absolute path
-    args: dict = field(default_factory=dict)
+    args: dict[str, str] = field(default_factory=dict)
     kind: str = "xacro"        # "xacro" | "urdf" | "expand" (urdf-lint expand, in a worker too)
     explicit: bool = False     # named by the user or the config (never skipped as a library)
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
-    outputs: tuple = ()            # more checked-in URDFs whose header names this xacro
+    outputs: tuple[str, ...] = ()  # more checked-in URDFs whose header names this xacro
                                    # (compared when they are the same variant as ``output``)
     # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
     # files by this job's expansion and lint (urdf_lint/core/overlay.py); such a result is not cached
-    overlay: tuple = ()
+    overlay: tuple[tuple[str, bytes], ...] = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:
@@ -51,20 +51,28 @@ class LintJob:
 DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",
                      "GAZEBO_MODEL_PATH", "IGN_GAZEBO_RESOURCE_PATH", "GZ_SIM_RESOURCE_PATH")
 
+# the limits of one model (the config keys ``timeout`` and ``memory-mb`` default to them; here
+# for the same reason as DEFAULT_ENV_ALLOW: the workers enforce them)
+DEFAULT_TIMEOUT = 30.0     # seconds of CPU time
+DEFAULT_MEMORY_MB = 2048   # MiB
+
 
 @dataclass(frozen=True)
 class LintSettings:
     """Everything a worker needs besides the job; the same for every model of a run."""
-    resolver: dict                           # PackageResolver.to_dict()
+    resolver: dict[str, Any]                 # PackageResolver.to_dict()
     selected: tuple[str, ...] = ()           # rule codes to run
-    options: dict = field(default_factory=dict)   # code -> {option: value} (configured only)
+    # code -> {option: value} (configured only)
+    options: dict[str, dict[str, Any]] = field(default_factory=dict)
     env_allow: tuple[str, ...] = ()
+    timeout: float = DEFAULT_TIMEOUT         # per job, in seconds (runner.worker.run_jobs)
+    memory_mb: int = DEFAULT_MEMORY_MB       # per worker, in MiB
     mesh_cache_dir: str | None = None
     expr_policy: object = None
     render_dir: str | None = None            # set: the worker also writes a snapshot
     render_rrd: bool = True
     render_base: str | None = None          # picture names are relative to it (the repository)
-    render_refused: tuple = ()               # picture names two models of the run would share
+    render_refused: tuple[str, ...] = ()     # picture names two models of the run would share
     render_views: str = "single"             # "single" (a 3/4 view) or "sheet" (2x2 views)
     render_forward: str = "+x"               # the robot's forward axis, for the named views
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
@@ -72,9 +80,9 @@ class LintSettings:
     diff_rrd: bool = True                    # diff --render: also the plan of its recording
     # urdf-lint format: real path -> the bytes expansion reads instead of the file's (the
     # layout being proved; nothing is written while it is)
-    overlay: dict = field(default_factory=dict)
+    overlay: dict[str, bytes] = field(default_factory=dict)
 
-    def cache_key(self) -> list:
+    def cache_key(self) -> list[Any]:
         """What a cached result depends on (rendering does not change findings): the values of
         the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""
         env = {k: os.environ.get(k) for k in self.env_allow}
@@ -92,30 +100,31 @@ class KeptModel:
 class ModelReport:
     """What linting one job produced."""
     entry: str
-    args: dict
+    args: dict[str, str]
     status: Status = Status.MODEL
-    deps: list = field(default_factory=list)        # files read (absolute), entry first
-    missing: list = field(default_factory=list)     # files looked for and not found
-    problems: list = field(default_factory=list)    # Problem, as found (before policy)
-    internal: list = field(default_factory=list)    # internal errors (exit 2)
+    deps: list[str] = field(default_factory=list)   # files read (absolute), entry first
+    missing: list[str] = field(default_factory=list)  # files looked for and not found
+    problems: list[Problem] = field(default_factory=list)  # Problem, as found (before policy)
+    internal: list[str] = field(default_factory=list)  # internal errors (exit 2)
     name: str = ""                                  # the robot's name
     name_origin: Origin | None = None               # where the name was set
     links: int = 0
     joints: int = 0
     meshes: int = 0
-    snapshot: dict | None = None                    # what the renderer wrote (render runs only)
+    snapshot: dict[str, Any] | None = None          # what the renderer wrote (render runs only)
     kept_model: KeptModel | None = None             # the robot itself (keep_model runs only)
     diff_geometry: object = None                    # diff --render: render.Geometry
     diff_rrd: object = None                         # diff --render: recording.Plan of this side
-    digests: dict = field(default_factory=dict)     # file -> [stat before read, digest of bytes read]
-    directive_files: list | None = None             # deps holding urdf-lint comments (None: unknown)
+    digests: dict[str, Any] = field(default_factory=dict)  # file -> [stat before read, digest of bytes read]
+    directive_files: list[str] | None = None        # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
     cacheable: bool = True                          # False: a fact depended on the environment
-    current_outputs: list = field(default_factory=list)   # generated URDFs that are today's
+    current_outputs: list[str] = field(default_factory=list)  # generated URDFs that are today's
                                                     # expansion of this model (not linted again)
 
     @classmethod
-    def failed(cls, job: LintJob, problems=(), internal=()) -> "ModelReport":
+    def failed(cls, job: LintJob, problems: Iterable[Problem] = (),
+               internal: Iterable[str] = ()) -> "ModelReport":
         return cls(job.entry, dict(job.args), Status.FAILED, deps=[job.entry],
                    problems=list(problems), internal=list(internal))
 
@@ -128,13 +137,13 @@ class ModelReport:
         return base
 
     @property
-    def stats(self) -> dict:
+    def stats(self) -> dict[str, Any]:
         """The counts, as the reporters show them."""
         return {"name": self.name, "links": self.links, "joints": self.joints,
                 "meshes": self.meshes}
 
     # -- cache -------------------------------------------------------------------------------
-    def to_record(self) -> dict:
+    def to_record(self) -> dict[str, Any]:
         o = self.name_origin
         return {"status": self.status.value, "deps": list(self.deps),
                 "missing": list(self.missing),
@@ -145,7 +154,7 @@ class ModelReport:
                 "current_outputs": list(self.current_outputs)}
 
     @classmethod
-    def from_record(cls, job: LintJob, rec: dict) -> "ModelReport":
+    def from_record(cls, job: LintJob, rec: dict[str, Any]) -> "ModelReport":
         o = rec.get("name_origin")
         return cls(job.entry, dict(job.args), Status(rec["status"]), deps=list(rec["deps"]),
                    missing=list(rec.get("missing", [])),

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import sys
 import types
+from typing import Any
 
 
 _enabled = False
@@ -32,7 +33,7 @@ def enable() -> None:
 
 
 class _Deferred(types.ModuleType):
-    def __getattr__(self, attr: str):
+    def __getattr__(self, attr: str) -> Any:
         # called only for names not (yet) in the placeholder's namespace; ``__path__`` is what
         # ``from NAME import x`` probes on a module that is not a package (it has none: the
         # placeholder of a package has its own). Any other name loads the module, dunders too

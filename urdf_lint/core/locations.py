@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import os
 import re
-from typing import NamedTuple
+from typing import Any, Iterator, NamedTuple
 
 from urdf_lint.core.tree import find_workspace_cached, inside
 
@@ -25,7 +25,7 @@ class Origin(NamedTuple):
     file: str
     line: int
     col: int
-    chain: tuple = ()
+    chain: tuple[Any, ...] = ()
 
     @property
     def loc(self) -> Loc:
@@ -42,7 +42,7 @@ class Origin(NamedTuple):
             f"{display_path(c[0], base)}:{c[1]}" for c in reversed(self.chain))
 
 
-_displayed: dict = {}
+_displayed: dict[tuple[str, str], str] = {}
 
 
 def display_path(path: str, base: str | None = None) -> str:
@@ -95,7 +95,7 @@ def relative_label(path: str) -> str:
 _PICTURE_SUFFIXES = (".urdf.xacro", ".xacro", ".urdf")
 
 
-def picture_name(rel_entry: str, args: dict | None = None, key: str | None = None) -> str:
+def picture_name(rel_entry: str, args: dict[str, Any] | None = None, key: str | None = None) -> str:
     """The file name stem of a model's pictures and recording, the same for ``render`` and
     ``diff``: readable (the entry's path relative to the repository, folders joined by
     ``__``, no suffix, then its args) and unique: a short hash of the model's key (that path
@@ -115,7 +115,7 @@ def picture_name(rel_entry: str, args: dict | None = None, key: str | None = Non
     return f"{stem[:120]}-{digest}"
 
 
-def snapshot_name(entry: str, args: dict | None, base: str) -> str:
+def snapshot_name(entry: str, args: dict[str, Any] | None, base: str) -> str:
     """:func:`picture_name` of the model ``entry`` (absolute) with ``args``, named relative
     to ``base`` (the repository); outside it relative to its package's folder, hashed with
     its whole path (no path of this machine in the name)."""
@@ -125,16 +125,16 @@ def snapshot_name(entry: str, args: dict | None, base: str) -> str:
     return picture_name(rel, args)
 
 
-def clashing_names(named: dict) -> dict:
+def clashing_names(named: dict[Any, str]) -> dict[str, list[Any]]:
     """{name: sorted models} of every name that two different models would get (``named``:
     model -> name), so that neither is written under it."""
-    by: dict = {}
+    by: dict[str, set[Any]] = {}
     for model, name in named.items():
         by.setdefault(name, set()).add(model)
     return {n: sorted(ms) for n, ms in by.items() if len(ms) > 1}
 
 
-_roots: dict = {}
+_roots: dict[str, str] = {}
 
 
 def project_root(base: str) -> str:
@@ -159,7 +159,7 @@ def project_root(base: str) -> str:
     return top
 
 
-def _parents(d: str):
+def _parents(d: str) -> Iterator[str]:
     while True:
         up = os.path.dirname(d)
         if up == d:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import os
 from contextlib import contextmanager
+from typing import Iterable, Iterator
 
 _files: dict[str, bytes] = {}
 
@@ -23,7 +24,7 @@ def _key(path: str) -> str:
 
 
 @contextmanager
-def using(pairs):
+def using(pairs: dict[str, bytes] | Iterable[tuple[str, bytes]] | None) -> Iterator[None]:
     """Read ``pairs`` (``(path, bytes)``, or a dict) in place of those files until the block
     ends (nested uses add to the outer ones)."""
     items = pairs.items() if isinstance(pairs, dict) else pairs
@@ -41,7 +42,7 @@ def active() -> bool:
     return bool(_files)
 
 
-def get(path) -> bytes | None:
+def get(path: str | os.PathLike[str]) -> bytes | None:
     """The buffer standing for ``path``, or None (read the file)."""
     if not _files:
         return None

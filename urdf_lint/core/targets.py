@@ -22,6 +22,8 @@ page and in ``tests/test_consumers.py``.
 """
 from __future__ import annotations
 
+from typing import Iterable
+
 from urdf_lint.core.findings import SEVERITIES, SEVERITY_RANK
 
 # name -> what it stands for (the rules page and --help show this)
@@ -40,7 +42,7 @@ OFF = "off"
 LEVELS = SEVERITIES + (OFF,)
 
 
-def check_table(table, where: str) -> dict:
+def check_table(table: object, where: str) -> dict[str, str]:
     """A rule's table, validated: known targets (or ``*``) to a severity or ``off``."""
     if not isinstance(table, dict):
         raise RuntimeError(f"{where}: TARGETS must be a dict of target -> severity")
@@ -53,7 +55,8 @@ def check_table(table, where: str) -> dict:
     return dict(table)
 
 
-def resolve(table: dict | None, default: str, selected) -> tuple[str | None, tuple[str, ...]]:
+def resolve(table: dict[str, str] | None, default: str,
+            selected: Iterable[str]) -> tuple[str | None, tuple[str, ...]]:
     """(effective severity or None when no selected target keeps the finding, the selected
     targets whose own entry raises it above ``default``)."""
     table = table or {}
@@ -74,12 +77,12 @@ def resolve(table: dict | None, default: str, selected) -> tuple[str | None, tup
     return best, ()
 
 
-def applies(table: dict | None, default: str, selected) -> bool:
+def applies(table: dict[str, str] | None, default: str, selected: Iterable[str]) -> bool:
     """Can a finding with this table be kept under the selected targets?"""
     return resolve(table, default, selected)[0] is not None
 
 
-def column(table: dict | None, default: str) -> dict:
+def column(table: dict[str, str] | None, default: str) -> dict[str, str]:
     """Every target's severity (or ``off``) under ``table``: the rules page's row."""
     table = table or {}
     return {t: table.get(t, table.get("*", default)) for t in NAMES}

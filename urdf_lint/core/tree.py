@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import functools
 import os
+from collections.abc import Iterator
 from pathlib import Path
 
 SKIP_DIRS = {".git", ".hg", ".svn", "node_modules", ".venv", "venv", "__pycache__", "build",
@@ -55,7 +56,7 @@ def _has_package(src: Path) -> bool:
     return False
 
 
-def walk_packages(top: Path, depth: int):
+def walk_packages(top: Path, depth: int) -> Iterator[Path]:
     """Every ``package.xml`` under ``top`` (not below a package, not in ignored folders)."""
     from urdf_lint.core import fsbound
     try:

@@ -4,8 +4,7 @@
 from __future__ import annotations
 
 import os
-
-
+from collections.abc import Iterable
 
 
 def _real(f: str) -> str:
@@ -15,16 +14,16 @@ def _real(f: str) -> str:
     return os.path.join(os.path.realpath(os.path.dirname(f)), os.path.basename(f))
 
 
-def affected(models, files: set[str]):
+def affected(models, files: Iterable[str]):
     """(models whose recorded inputs intersect ``files``, files no model uses). A model's
     inputs are its entry, every file it read and every file it looked for and did not find,
     so a deleted or renamed-away include, YAML file or mesh re-lints the models that used it."""
-    files = {_real(f) for f in files}
+    real = {_real(f) for f in files}
     hit, used = [], set()
     for m in models:
         deps = {_real(d) for d in [*m.deps, *m.missing, m.entry]}
-        inter = deps & files
+        inter = deps & real
         if inter:
             hit.append(m)
             used |= inter
-    return hit, sorted(files - used)
+    return hit, sorted(real - used)

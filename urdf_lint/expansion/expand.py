@@ -14,6 +14,10 @@ call time:
 * ``$(find)``, ``$(env)``, ``$(optenv)``, ``load_yaml`` and expression evaluation are routed
   through our resolver and policies (see :mod:`urdf_lint.expansion.safe_eval`).
 
+What one expansion collects and tracks is an :class:`ExpansionState`, made by
+:func:`expand_file` and passed down; xacro calls the hooks with its own arguments only, so they
+reach it through one holder, :data:`CURRENT`, set and reset around the expansion.
+
 The output text is exactly ``doc.toprettyxml(indent='  ')``, i.e. what the xacro CLI writes.
 """
 from __future__ import annotations
@@ -23,7 +27,9 @@ import os
 import sys
 import xml.dom
 import xml.parsers.expat
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any
 from xml.dom import expatbuilder
@@ -65,33 +71,55 @@ class Expansion:
 
 # ---------------------------------------------------------------------------------------------
 # per-expansion state
-class _State:
-    def __init__(self, resolver, env_allow, expr_policy):
-        self.resolver: PackageResolver = resolver
+# (file, line, col, chain) of an element; a chain is ((file, line, col), ...) of macro calls
+Origin4 = tuple[str, int, int, tuple]
+
+
+class ExpansionState:
+    """What one expansion collects (files read, their digests, notes) and tracks (the
+    elements being evaluated, the chain of macro calls and includes), for :func:`expand_file`."""
+
+    def __init__(self, resolver: PackageResolver, env_allow: Iterable[str],
+                 expr_policy: object = None, overlay: dict[str, bytes] | None = None) -> None:
+        self.resolver = resolver
         self.env_allow = set(env_allow)
         self.deps: dict[str, None] = {}
         self.digests: dict[str, list] = {}
         self.notes: list[Problem] = []
-        self.stack: list = []          # nodes being evaluated (eval_all / macro calls)
-        self.touched = None            # a child node being handled inline by its parent
-        self.pending_chain = ()        # chain to give to the macro body being cloned
-        self.include_chain = ()        # chain of the include element being processed
+        self.stack: list[Any] = []     # nodes being evaluated (eval_all / macro calls)
+        self.touched: Any = None       # a child node being handled inline by its parent
+        self.pending_chain: tuple = ()  # chain to give to the macro body being cloned
+        self.include_chain: tuple = ()  # chain of the include element being processed
         self.expr_policy = expr_policy
-        self.overlay: dict = {}         # real path -> bytes read instead (urdf-lint format)
+        self.overlay = dict(overlay or {})   # real path -> bytes read instead (urdf-lint format)
 
-    def current_node(self):
+    def current_node(self) -> Any:
         if self.touched is not None:
             return self.touched
         return self.stack[-1] if self.stack else None
 
-    def note(self, rule, message, node=None, loc=None):
+    def note(self, rule: Any, message: str, node: Any = None, loc: Origin4 | None = None) -> None:
         """A problem that does not stop the expansion, reported as ``rule.CODE``."""
         if loc is None:
             loc = origin_of(node if node is not None else self.current_node())
         self.notes.append(Problem.at(rule.CODE, message, loc))
 
 
-_state: _State | None = None
+# The expansion xacro's hooks serve. xacro calls them as module-level functions with its own
+# arguments only, so they find the state here: :func:`_session` sets it for the time of one
+# expansion and resets it after. Outside one it is None: the hooks that may run then (the
+# parser, the clone handler, ``abs_filename``, ``warning``) do what xacro does; the others
+# refuse (:func:`_active`). A context variable, not a module global: another thread never
+# sees this one's expansion.
+CURRENT: ContextVar[ExpansionState | None] = ContextVar("urdf_lint_expansion", default=None)
+
+
+def _active() -> ExpansionState:
+    """The expansion a hook serves (the hooks xacro calls only while processing a file)."""
+    st = CURRENT.get()
+    if st is None:
+        raise RuntimeError("an xacro hook of urdf-lint ran outside an expansion")
+    return st
 
 
 def origin_of(node):
@@ -112,8 +140,9 @@ class _CloneHandler:
     def handle(self, operation, key, data, src, dst):
         if operation == xml.dom.UserDataHandler.NODE_CLONED and dst is not None:
             file, line, col, chain, template = data
-            if template:
-                chain = _state.pending_chain if _state is not None else chain
+            st = CURRENT.get()
+            if template and st is not None:
+                chain = st.pending_chain
             dst.setUserData(key, (file, line, col, chain, False), self)
 
 
@@ -121,6 +150,8 @@ _HANDLER = _CloneHandler()
 
 
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
+    _parser: Any   # expat's parser (ExpatBuilder.createParser; not in the typeshed stubs)
+
     def __init__(self, file, chain):
         super().__init__()
         self._file = file
@@ -143,10 +174,11 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
 
     def _doctype(self, name, system_id, public_id, has_subset):
         p = self._parser
-        if _state is not None:
-            _state.note(ul007_doctype, f"DOCTYPE declaration '<!DOCTYPE {name}>' in a robot description; "
-                        "remove it (URDF needs none, and urdf-lint never loads DTDs)",
-                        loc=(self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
+        st = CURRENT.get()
+        if st is not None:
+            st.note(ul007_doctype, f"DOCTYPE declaration '<!DOCTYPE {name}>' in a robot description; "
+                    "remove it (URDF needs none, and urdf-lint never loads DTDs)",
+                    loc=(self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
         if system_id or public_id:
             raise RefusedInput(f"DOCTYPE with an external DTD ('{system_id or public_id}') refused",
                                ul007_doctype, (self._file, p.CurrentLineNumber,
@@ -179,7 +211,7 @@ def _hook_parse(inp, filename=None):
     if inp is None:
         path = os.path.join(xacro.root_dir, filename)
         absolute = os.path.abspath(path)
-        st = _state
+        st = CURRENT.get()
         chain = st.include_chain if st else ()
         if st is not None and not st.resolver.is_inside(absolute):
             xacro.filestack.pop()
@@ -212,15 +244,16 @@ def _overlaid(st, path):
 
 def _hook_abs_filename_spec(filename_spec):
     spec = str(filename_spec)
-    if spec.startswith("package://") and _state is not None:
-        return str(_state.resolver.resolve_uri(spec, None))
+    st = CURRENT.get()
+    if spec.startswith("package://") and st is not None:
+        return str(st.resolver.resolve_uri(spec, None))
     if spec.startswith("file://"):
         spec = spec[len("file://"):]
     return _orig["abs_filename_spec"](spec)
 
 
 def _hook_eval_all(node, macros, symbols):
-    st = _state
+    st = _active()
     st.stack.append(node)
     st.touched = None
     _orig["eval_all"](node, macros, symbols)
@@ -229,7 +262,7 @@ def _hook_eval_all(node, macros, symbols):
 
 
 def _hook_handle_macro_call(node, macros, symbols):
-    st = _state
+    st = _active()
     if node.tagName != "xacro:call" and not node.tagName.startswith("xacro:"):
         return False
     st.stack.append(node)
@@ -259,20 +292,22 @@ def _mark_template(elt):
 
 
 def _hook_grab_macro(elt, macros):
-    _state.touched = elt
+    st = _active()
+    st.touched = elt
     _mark_template(elt)
     _orig["grab_macro"](elt, macros)
-    _state.touched = None
+    st.touched = None
 
 
 def _hook_grab_property(elt, table):
-    _state.touched = elt
+    st = _active()
+    st.touched = elt
     _orig["grab_property"](elt, table)
-    _state.touched = None
+    st.touched = None
 
 
 def _hook_process_include(elt, macros, symbols, func):
-    st = _state
+    st = _active()
     st.touched = elt
     saved = st.include_chain
     st.include_chain = origin_of(elt)[3]
@@ -282,17 +317,17 @@ def _hook_process_include(elt, macros, symbols, func):
 
 
 def _hook_check_attrs(tag, required, optional):
-    _state.touched = tag
+    _active().touched = tag
     return _orig["check_attrs"](tag, required, optional)
 
 
 def _hook_reqd_attrs(tag, attrs):
-    _state.touched = tag
+    _active().touched = tag
     return _orig["reqd_attrs"](tag, attrs)
 
 
 def _hook_load_yaml(filename):
-    st = _state
+    st = _active()
     path = os.path.abspath(xacro.abs_filename_spec(filename))
     if not st.resolver.is_inside(path):
         raise RefusedInput(f"load_yaml('{filename}') resolves outside the package roots and the "
@@ -325,7 +360,7 @@ def _yaml_loader():
     (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml."""
     if not _YAML_LOADER:
         import yaml
-        cls = None
+        cls: Any = None
         if getattr(yaml, "__with_libyaml__", False):
             cls = type("XacroCSafeLoader", (yaml.CSafeLoader,), {})
             for unit in xacro.ConstructUnits:
@@ -340,11 +375,11 @@ def yaml_load(stream, Loader):
 
 
 def _hook_eval_find(pkg):
-    return str(_state.resolver.find(pkg))
+    return str(_active().resolver.find(pkg))
 
 
 def _hook_eval_env(name):
-    st = _state
+    st = _active()
     if name in st.env_allow:
         return _orig["eval_env"](name)
     st.note(ul901_env_read, f"$(env {name}) reads an environment variable that is not in "
@@ -353,7 +388,7 @@ def _hook_eval_env(name):
 
 
 def _hook_eval_optenv(name, default=""):
-    st = _state
+    st = _active()
     if name in st.env_allow:
         return _orig["eval_optenv"](name, default)
     st.note(ul901_env_read, f"$(optenv {name}) reads an environment variable that is not in "
@@ -362,10 +397,11 @@ def _hook_eval_optenv(name, default=""):
 
 
 def _hook_warning(*args, **kwargs):
-    if _state is not None:
+    st = CURRENT.get()
+    if st is not None:
         msg = " ".join(str(a) for a in args).strip()
         if msg:
-            _state.note(ul008_xacro_warning, "xacro: " + msg)
+            st.note(ul008_xacro_warning, "xacro: " + msg)
     return ""
 
 
@@ -413,13 +449,14 @@ def _install_hooks():
 
 
 @contextmanager
-def _session(state):
-    global _state
+def _session(state: ExpansionState) -> Iterator[ExpansionState]:
+    """Run one expansion with ``state``: the hooks installed, :data:`CURRENT` set to it (and
+    reset after), xacro's module state fresh and its chatter on stdout/stderr captured."""
     _install_hooks()
     old_stderr, old_stdout = sys.stderr, sys.stdout
     sys.stderr = io.StringIO()
     sys.stdout = io.StringIO()
-    _state = state
+    token = CURRENT.set(state)
     xacro.all_includes = []
     xacro.verbosity = 1
     xacro.substitution_args_context.clear()
@@ -428,7 +465,7 @@ def _session(state):
         yield state
     finally:
         splice.reset()
-        _state = None
+        CURRENT.reset(token)
         sys.stderr, sys.stdout = old_stderr, old_stdout
         xacro.all_includes = []
 
@@ -453,7 +490,7 @@ def _macro_context():
     return names
 
 
-def classify_error(e: BaseException, st: _State, entry: str = "",
+def classify_error(e: BaseException, st: ExpansionState, entry: str = "",
                    before: bool = False) -> Problem:
     """Turn an exception from xacro into one located problem (see :mod:`.errors`); one with
     no element to point at is at line 1 of the file on top of xacro's stack, else (nothing
@@ -476,8 +513,7 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
     res = Expansion(entry=path, args=dict(args))
     if resolver is None:
         resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
-    st = _State(resolver, env_allow, expr_policy)
-    st.overlay = dict(overlay or {})
+    st = ExpansionState(resolver, env_allow, expr_policy, overlay)
     with _session(st):
         before = True   # until xacro opens the entry
         try:

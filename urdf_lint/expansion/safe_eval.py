@@ -34,6 +34,7 @@ import math
 import operator
 import string
 from contextlib import contextmanager
+from typing import Any, Callable
 
 
 class UnsafeExpression(Exception):
@@ -68,8 +69,8 @@ _BIN = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
         ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
         ast.Pow: operator.pow, ast.LShift: operator.lshift, ast.RShift: operator.rshift,
         ast.BitAnd: operator.and_, ast.BitOr: operator.or_, ast.BitXor: operator.xor}
-_UN = {ast.UAdd: operator.pos, ast.USub: operator.neg, ast.Not: operator.not_,
-       ast.Invert: operator.invert}
+_UN: dict[type, Callable[[Any], Any]] = {ast.UAdd: operator.pos, ast.USub: operator.neg,
+                                         ast.Not: operator.not_, ast.Invert: operator.invert}
 _CMP = {ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
         ast.Gt: operator.gt, ast.GtE: operator.ge, ast.Is: operator.is_,
         ast.IsNot: operator.is_not, ast.In: lambda a, b: a in b,
@@ -306,7 +307,7 @@ class Evaluator:
             raise UnsafeExpression(f"calling {_name_of(fn)} is not allowed")
         _check_args(args, kwargs)
         if fn is range or fn is list or fn is tuple or fn is set:
-            result = fn(*args, **kwargs)
+            result: Any = fn(*args, **kwargs)
             if fn is not range and len(result) > _MAX_SEQ:
                 raise UnsafeExpression("sequence too large")
             return result
@@ -341,7 +342,7 @@ class Evaluator:
             return _UN[type(n.op)](self._ev(n.operand, sc))
         if t is ast.BoolOp:
             if isinstance(n.op, ast.And):
-                v = True
+                v: Any = True
                 for x in n.values:
                     v = self._ev(x, sc)
                     if not v:
@@ -408,7 +409,7 @@ class Evaluator:
                     d[self._ev(k, sc)] = self._ev(v, sc)
             return d
         if t in (ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp):
-            out = []
+            out: list[Any] = []
             self._comp(n.generators, 0, _Scope({}, sc), n, out)
             if t is ast.DictComp:
                 return dict(out)
@@ -416,7 +417,7 @@ class Evaluator:
                 return set(out)
             return out if t is ast.ListComp else iter(out)
         if t is ast.JoinedStr:
-            parts = []
+            parts: list[Any] = []
             for v in n.values:
                 parts.append(v.value if isinstance(v, ast.Constant) else self._ev(v, sc))
             return "".join(parts)

@@ -15,6 +15,7 @@ cannot hold) goes to the original functions, which raise the DOM's own errors.
 from __future__ import annotations
 
 import xml.dom
+from typing import Any
 from xml.dom import minidom
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
@@ -24,7 +25,7 @@ _WINDOW_BACK, _WINDOW_AHEAD = 16, 48
 
 # id(parent) -> (parent, index of the last edit); the parent is held so its id is not reused.
 _hints: dict[int, tuple] = {}
-_orig: dict[str, object] = {}
+_orig: dict[str, Any] = {}
 
 
 def reset() -> None:

@@ -17,15 +17,16 @@ from urdf_lint.runner.pool import _Worker
 
 
 class Pool:
-    def __init__(self, settings: LintSettings, size: int = 2, timeout: float = 30.0,
-                 memory_mb: int = 2048):
+    def __init__(self, settings: LintSettings, size: int = 2):
+        """``size`` workers, each limited to ``settings.timeout`` per job and
+        ``settings.memory_mb``."""
         self.settings, self.size = settings, max(1, size)
-        self.timeout, self.memory_mb = timeout, memory_mb
+        self.timeout = settings.timeout
         self.workers: list[_Worker] = []
         self.closing = False   # set from another thread: hand out no further job
 
     def _spawn(self) -> _Worker:
-        w = _Worker(LINT, self.settings, self.memory_mb)
+        w = _Worker(LINT, self.settings)
         self.workers.append(w)
         return w
 

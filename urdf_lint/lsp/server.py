@@ -20,7 +20,7 @@ def _initialized(ls: UrdfLintServer, params: types.InitializedParams) -> None:
     root = ls.workspace.root_path or os.getcwd()
     ls.ws = Workspace(root)
     # fork the pool from the main thread, before the lint thread exists
-    ls.ws.pool.start()
+    ls.ws.start()
     ls.publish(set())
     if ls.ws.config_problem is not None:
         ls.publish({ls.ws.config_problem.file})
@@ -46,7 +46,7 @@ async def _did_save(ls: UrdfLintServer, params: types.DidSaveTextDocumentParams)
         old = ws.config_problem.file if ws.config_problem else None
         loop = asyncio.get_running_loop()
         await loop.run_in_executor(ls.executor, ws.load)
-        ws.pool.start()
+        ws.start()
         files = await loop.run_in_executor(ls.executor, ws.lint, None)
         ls.publish(files | {path} | ({old} if old else set()))
         return
@@ -72,7 +72,7 @@ async def _watched(ls: UrdfLintServer, params: types.DidChangeWatchedFilesParams
            os.path.basename(p) in CONFIG_NAMES for p, t in paths):
         loop = asyncio.get_running_loop()
         await loop.run_in_executor(ls.executor, ws.load)
-        ws.pool.start()
+        ws.start()
         files = await loop.run_in_executor(ls.executor, ws.lint, None)
         ls.publish(files | set(ws.buffers), ls.versions())
         return
@@ -84,7 +84,7 @@ async def _watched(ls: UrdfLintServer, params: types.DidChangeWatchedFilesParams
 @server.feature(types.SHUTDOWN)
 async def _shutdown(ls: UrdfLintServer, params) -> None:
     if ls.ws is not None:
-        ls.ws.pool.closing = True   # the lint under way ends with the jobs it has started
+        ls.ws.stop_soon()   # the lint under way ends with the jobs it has started
         await asyncio.get_running_loop().run_in_executor(ls.executor, ls.ws.close)
 
 

@@ -15,9 +15,13 @@ import os
 import re
 import threading
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.core.findings import Problem, merge
 from urdf_lint.core.jobs import LintJob, ModelReport, Status
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.lsp.pool import Pool
 
 
 def job_key(job: LintJob) -> tuple:
@@ -45,7 +49,7 @@ class Workspace:
     def __post_init__(self):
         self.root = os.path.realpath(self.root)
         self.lock = threading.RLock()
-        self.pool = None
+        self.pool: Pool | None = None   # made by load()
         self.cache = None
         self.jobs: list[LintJob] = []
         self.load()
@@ -88,8 +92,17 @@ class Workspace:
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
         from urdf_lint.lsp.pool import Pool
-        self.pool = Pool(self.settings, self.pool_size, timeout=cfg.timeout,
-                         memory_mb=cfg.memory_mb)
+        self.pool = Pool(self.settings, self.pool_size)
+
+    def start(self) -> None:
+        """Fork the pool's workers now (from the main thread, before the lint thread exists)."""
+        if self.pool is not None:
+            self.pool.start()
+
+    def stop_soon(self) -> None:
+        """Hand out no further job: the lint under way ends with the jobs it has started."""
+        if self.pool is not None:
+            self.pool.closing = True
 
     def close(self) -> None:
         if self.pool is not None:
@@ -143,6 +156,7 @@ class Workspace:
                                         job.display_name, job.output, job.mesh_base,
                                         overlay=overlay))
             if todo:
+                assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
                     self.reports[job_key(job)] = rep
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from urdf_lint.core.jobs import DEFAULT_MEMORY_MB
 from urdf_lint.core.locations import label_base, relative_label  # noqa: F401 - (where they are used from)
 from urdf_lint.engine.api import numbers
 from urdf_lint.render.scene import origin_matrix, part_mesh
@@ -313,7 +314,7 @@ class Recorder:
     (the snapshot folder), like the parent it was forked from. Forked before any worker or
     thread of the run, so no import or lock is half-held in it."""
 
-    def __init__(self, out_dir: str, memory_mb: int = 2048):
+    def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB):
         from urdf_lint.runner import forked
         self.out_dir = os.path.realpath(out_dir)
         self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb))

@@ -208,11 +208,12 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     linted."""
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.core.locations import picture_name
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     resolver = build_resolver(list(dict.fromkeys([side.root, *paths])), cfg, package_paths)
-    result = run_check(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
-                       keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
-                       select_jobs=select_jobs, settings_overrides=settings_overrides)
+    result = run_check(RunRequest(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
+                                  keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
+                                  select_jobs=select_jobs,
+                                  settings_overrides=settings_overrides))
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -250,8 +251,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
                                    keep_model=True)
     if render:
         settings = dataclasses.replace(settings, diff_render=True, diff_rrd=rrd)
-    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs, timeout=cfg.timeout,
-                             memory_mb=cfg.memory_mb):
+    for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs):
         k = key_of[id(job)]
         if res.diff_geometry is not None:
             side.geometry[k] = res.diff_geometry

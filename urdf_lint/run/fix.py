@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import difflib
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 from lxml import etree
@@ -305,9 +305,10 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             in_process: bool = False, memo=None) -> FixOutcome:
     """``memo`` (a :class:`urdf_lint.fix.memo.FixMemo`): the fixes earlier runs rolled back,
     not tried again while nothing they depend on changed; this run's rollbacks are added."""
-    from urdf_lint.run.pipeline import run_check
-    before_result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
-                              in_process=in_process)
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    request = RunRequest(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
+                         in_process=in_process)
+    before_result = run_check(request)
     before_result.findings = inside_paths(before_result.findings, paths,
                                           before_result.generated)
     chosen, _, refused = candidates(before_result.findings, unsafe)
@@ -340,8 +341,7 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             for f, data in new.items():
                 fsbound.rewrite(f, data, paths)
                 written.add(f)
-            result = run_check(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
-                               in_process=in_process)
+            result = run_check(request)
             bad = verify(before, before_result.findings, result, chosen,
                          line_maps(chosen, originals))
             if not bad:
@@ -356,7 +356,7 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
                 fsbound.rewrite(f, originals[f], paths)
             written = set()
             if rolled:
-                result = run_check(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
+                result = run_check(replace(request, keep_models=False))
     except BaseException:
         for f in written:     # never leave half-fixed sources behind
             fsbound.rewrite(f, originals[f], paths)

@@ -153,10 +153,10 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     bytes}, the files as they are) lets a file be proved from itself
     (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only;
     ``docs`` ({bytes: read_document}) holds the documents already read."""
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
-    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.core.jobs import LintJob
     from urdf_lint.discovery.packages import inside
+    from urdf_lint.run.pipeline import worker_settings
     from urdf_lint.run.worker import run_jobs
     proof = Proof()
     if not changed:
@@ -208,15 +208,13 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         if needed(reach(job.entry)) or graph.unresolved_below(job.entry):
             key = (job.entry, tuple(sorted(job.args.items())))
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
-    env_allow = tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow)))
-    base = LintSettings(resolver=resolver.to_dict(), env_allow=env_allow)
+    base = worker_settings(cfg, resolver)
 
     def expand(keys, overlay):
         settings = dataclasses.replace(base, overlay=dict(overlay))
         by_job = {id(jobs[k]): k for k in keys}
         return {by_job[id(j)]: r for j, r in run_jobs([jobs[k] for k in keys], settings,
-                                                      jobs_n=jobs_n, timeout=cfg.timeout,
-                                                      memory_mb=cfg.memory_mb)}
+                                                      jobs_n=jobs_n)}
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     overlay = dict(changed)

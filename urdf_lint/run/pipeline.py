@@ -9,11 +9,11 @@ from __future__ import annotations
 import dataclasses
 import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from urdf_lint.discovery.discover import discover_models
 from urdf_lint.core.findings import Problem, exit_status, merge
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.config.policy import Policy, code_matches
 from urdf_lint.rules import ul002_xacro_error, ul006_not_a_robot, ul103_missing_link
 from urdf_lint.rules import ul009_unused_suppression as unused_suppression
@@ -58,9 +58,18 @@ class RunContext:
         self.options = options
 
 
+def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -> LintSettings:
+    """The settings every worker of a run starts from: the packages, the variables
+    ``$(env)``/``$(optenv)`` may read and the limits of one model, from ``cfg``; ``fields``
+    set the rest."""
+    return LintSettings(resolver=resolver.to_dict(),
+                        env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
+                        timeout=cfg.timeout, memory_mb=cfg.memory_mb, **fields)
+
+
 def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | None,
                  policy: Policy | None = None) -> LintSettings:
-    from urdf_lint.config.schema import DEFAULT_ENV_ALLOW, ConfigError
+    from urdf_lint.config.schema import ConfigError
     from urdf_lint.engine.registry import catalogue, load_rule
     rules = catalogue()
     policy = policy or Policy.from_config(cfg)
@@ -76,10 +85,8 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
                                   f"{', '.join(sorted(unknown))} (known: "
                                   f"{', '.join(sorted(r.options)) or 'none'})")
             options[code] = o
-    return LintSettings(resolver=resolver.to_dict(), selected=tuple(policy.selected_codes(rules)),
-                        options=options,
-                        env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
-                        mesh_cache_dir=cache_dir)
+    return worker_settings(cfg, resolver, selected=tuple(policy.selected_codes(rules)),
+                           options=options, mesh_cache_dir=cache_dir)
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
@@ -106,54 +113,90 @@ def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
     return out
 
 
-def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
-              cache: "Cache | None" = None, progress=None, affected_by: set | None = None,
-              render_dir: str | None = None, render_rrd: bool = True,
-              in_process: bool = False, keep_models: bool = False,
-              mesh_cache_dir: str | None = None, select_jobs=None,
-              settings_overrides: dict | None = None) -> CheckResult:
-    """Lint every model under ``paths``. With ``affected_by`` (changed files), report only the
-    models whose inputs include one of them; files no model uses land in ``unused_files``.
-    ``in_process`` lints in this process, without workers and their limits (trusted input
-    only: tests and benchmarks). ``keep_models`` brings every expanded robot back
-    (``ModelReport.kept_model``; ``--fix`` compares them before and after).
-    ``mesh_cache_dir``: mesh facts (keyed by content) from this cache folder when ``cache``
-    is None (``diff`` lints the base revision with the working tree's mesh facts).
-    ``select_jobs(jobs, discovery)`` keeps only the jobs worth linting (``diff``: the models
-    a change can reach through the include graph); ``settings_overrides`` are set on the
-    workers' settings (``diff --render``: the base's pictures come from its lint pass)."""
+@dataclass(frozen=True)
+class RunRequest:
+    """What one check run lints and how: the one argument of :func:`run_check`.
+
+    ``paths`` and ``affected_by`` are frozen (a tuple, a frozenset) when the request is made;
+    a variant of a request is ``dataclasses.replace(request, keep_models=False)``."""
+    paths: tuple[str, ...]
+    cfg: "Config"
+    resolver: "PackageResolver"
+    jobs_n: int | None = None          # workers (None: one per core, as ``run_jobs`` decides)
+    cache: "Cache | None" = None
+    progress: Callable[[int, int], None] | None = None   # progress(done, total) per linted model
+    # changed files: report only the models whose inputs include one of them; files no
+    # model uses land in ``CheckResult.unused_files``
+    affected_by: frozenset[str] | None = None
+    render_dir: str | None = None      # set: the workers also draw a snapshot of each model
+    render_rrd: bool = True            # ... and a recording beside it
+    # lint in this process, without workers and their limits (trusted input only: tests
+    # and benchmarks)
+    in_process: bool = False
+    # bring every expanded robot back (``ModelReport.kept_model``; ``--fix`` compares them
+    # before and after)
+    keep_models: bool = False
+    # mesh facts (keyed by content) from this cache folder when ``cache`` is None (``diff``
+    # lints the base revision with the working tree's mesh facts)
+    mesh_cache_dir: str | None = None
+    # select_jobs(jobs, discovery) keeps only the jobs worth linting (``diff``: the models a
+    # change can reach through the include graph)
+    select_jobs: Callable[[list[LintJob], Any], list[LintJob]] | None = None
+    # set on the workers' settings (``diff --render``: the base's pictures come from its
+    # lint pass)
+    settings_overrides: Mapping[str, Any] | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "paths", tuple(self.paths))
+        if self.affected_by is not None:
+            object.__setattr__(self, "affected_by", frozenset(self.affected_by))
+
+    @property
+    def plain(self) -> bool:
+        """A run of every model with the plain settings (whose whole result the run cache
+        keeps): no change set, pictures, job selection, kept models, overrides or in-process
+        lint."""
+        return (self.affected_by is None and not self.render_dir and self.select_jobs is None
+                and not self.keep_models and not self.settings_overrides
+                and not self.in_process)
+
+
+def run_check(request: RunRequest) -> CheckResult:
+    """Lint every model under ``request.paths`` (see :class:`RunRequest`)."""
+    req = request
+    paths, cfg, resolver, cache = list(req.paths), req.cfg, req.resolver, req.cache
     policy = Policy.from_config(cfg)
-    settings = settings_for(cfg, resolver, cache.dir if cache else mesh_cache_dir, policy)
+    settings = settings_for(cfg, resolver, cache.dir if cache else req.mesh_cache_dir, policy)
     memo = None
-    if cache is not None and affected_by is None and not render_dir and select_jobs is None \
-            and not keep_models and not settings_overrides and not in_process:
-        # a plain run: the whole result of the last identical run, if nothing it read changed
+    if cache is not None and req.plain:
+        # the whole result of the last identical run, if nothing it read changed
         from urdf_lint.run.runcache import RunMemo
         memo = RunMemo(cache, paths, cfg, resolver, settings)
         hit = memo.load()
         if hit is not None:
             return CheckResult(reused=True, **hit)
     found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
-    jobs = found.jobs if select_jobs is None else select_jobs(found.jobs, found)
-    if keep_models:
+    jobs = found.jobs if req.select_jobs is None else req.select_jobs(found.jobs, found)
+    if req.keep_models:
         settings = dataclasses.replace(settings, keep_model=True)
-    if settings_overrides:
-        settings = dataclasses.replace(settings, **settings_overrides)
-    if render_dir:
+    if req.settings_overrides:
+        settings = dataclasses.replace(settings, **req.settings_overrides)
+    if req.render_dir:
         from urdf_lint.core import fsbound
-        fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
+        fsbound.make_own_dirs(req.render_dir)   # checked by the CLI (check_no_symlink)
         # every picture's name is known here: one two models would share is drawn for neither
         from urdf_lint.discovery.discover import repository_root
         from urdf_lint.core.locations import clashing_names, snapshot_name
         base = repository_root(paths)
         clash = clashing_names({(j.entry, tuple(sorted(j.args.items()))):
                                 snapshot_name(j.entry, j.args, base) for j in jobs})
-        settings = dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
-                                       render_rrd=render_rrd, render_base=base,
+        settings = dataclasses.replace(settings, render_dir=os.path.realpath(req.render_dir),
+                                       render_rrd=req.render_rrd, render_base=base,
                                        render_refused=tuple(sorted(clash)),
                                        render_views=cfg.views or "single",
                                        render_forward=cfg.forward_axis)
-    results, internal = _lint_all(jobs, settings, cfg, jobs_n, cache, progress, in_process)
+    results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
+                                  req.in_process)
     out = CheckResult(internal=internal)
     out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
                                             found.fragments)
@@ -163,18 +206,18 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     _drop_current_outputs(out.models)
     _hint_packages(out.models, paths)
 
-    if affected_by is not None:
+    if req.affected_by is not None:
         from urdf_lint.discovery.changes import affected
-        out.models, out.unused_files = affected(out.models, affected_by)
+        out.models, out.unused_files = affected(out.models, req.affected_by)
         # a deleted file no model reads any more: a removed model (or an unused file) is gone
         out.gone = [f for f in out.unused_files if not os.path.exists(f)]
         out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
-    if render_dir:
-        _drop_snapshots([r for r in results if r not in out.models], render_dir)
+    if req.render_dir:
+        _drop_snapshots([r for r in results if r not in out.models], req.render_dir)
     problems: list[Problem] = []
     for r in out.models:
         problems.extend(_with_policy(r.problems, r.label, policy))
-    if affected_by is None:
+    if req.affected_by is None:
         problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
     problems.extend(_with_policy(found.problems, RUN_LABEL, policy))
     kept = _suppress(merge(problems), out.models, settings, policy)
@@ -188,7 +231,7 @@ def run_check(paths, cfg: "Config", resolver: "PackageResolver", jobs_n=None,
     return out
 
 
-def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n, cache,
+def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
               progress, in_process=False) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers."""
     results: list[ModelReport] = []
@@ -205,7 +248,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, cfg: "Config", jobs_n
     if todo:
         from urdf_lint.run.worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
-            run_jobs(todo, settings, jobs_n=jobs_n, timeout=cfg.timeout, memory_mb=cfg.memory_mb)
+            run_jobs(todo, settings, jobs_n=jobs_n)
         for n, (job, res) in enumerate(done, 1):
             internal.extend(res.internal)
             results.append(res)

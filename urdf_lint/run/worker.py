@@ -177,11 +177,10 @@ LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
                setup=_skip_unused_imports, warm=warm, preload=preload)
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None, timeout=30.0,
-             memory_mb=2048):
-    """:func:`urdf_lint.runner.pool.run_jobs` with the lint handler."""
-    return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n, timeout=timeout,
-                         memory_mb=memory_mb)
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None):
+    """:func:`urdf_lint.runner.pool.run_jobs` with the lint handler (the limits are the
+    settings')."""
+    return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n)
 
 
 def prestart() -> None:

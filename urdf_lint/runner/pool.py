@@ -46,7 +46,7 @@ class Handler:
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
-def _worker_main(conn, handler: Handler, settings: LintSettings | None, memory_mb):
+def _worker_main(conn, handler: Handler, settings: LintSettings | None):
     if handler.setup is not None:
         handler.setup()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
@@ -75,8 +75,9 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None, memory_m
             return
         if first is None:
             return
-        settings, memory_mb = first
+        settings = first
     assert settings is not None
+    memory_mb = settings.memory_mb
     # (render --out / check --render: the worker writes recordings itself)
     limit_memory(memory_mb, inherited, bool(settings.render_dir and settings.render_rrd))
     _scrub_environment(set(settings.env_allow))
@@ -115,7 +116,7 @@ def prestart(handler: Handler) -> None:
         from urdf_lint.runner.sandbox import disabled
         disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
         try:
-            _prestarted = _Worker(handler, None, None)
+            _prestarted = _Worker(handler, None)
         except OSError:   # no fork here, or no process to spare: start later
             _prestarted = None
             return
@@ -130,13 +131,13 @@ def _drop_prestarted() -> None:
         forked.stop(w.conn, w.proc, 0.5)
 
 
-def _take_prestarted(settings, memory_mb) -> "_Worker | None":
+def _take_prestarted(settings: LintSettings) -> "_Worker | None":
     global _prestarted
     w, _prestarted = _prestarted, None
     if w is None:
         return None
     try:
-        w.conn.send((settings, memory_mb))
+        w.conn.send(settings)
     except (OSError, ValueError):
         w.kill()
         return None
@@ -276,7 +277,7 @@ def _mesh_facts_cached(settings: LintSettings) -> bool:
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
     from urdf_lint.core import fsbound
-    return bool(d) and fsbound.has_entries(d)
+    return d is not None and fsbound.has_entries(d)
 
 
 def _next_job(mine, queues, block_of=None, running=()):
@@ -306,7 +307,7 @@ def _next_job(mine, queues, block_of=None, running=()):
 
 
 class _Worker:
-    def __init__(self, handler: Handler, settings, memory_mb):
+    def __init__(self, handler: Handler, settings: LintSettings | None):
         # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
         # exits 130 for both; its SIGTERM handler must not run in the child)
         try:
@@ -315,7 +316,7 @@ class _Worker:
         except ValueError:          # not the main thread: signals are not ours to change
             old = old_term = None
         try:
-            self.conn, self.proc = forked.start(_worker_main, (handler, settings, memory_mb),
+            self.conn, self.proc = forked.start(_worker_main, (handler, settings),
                                                 allowed=handler.allowed)
         finally:
             if old is not None:
@@ -357,21 +358,22 @@ def _used(w) -> float | None:
     return None if now is None or w.cpu0 is None else now - w.cpu0
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs_n=None,
-             timeout=30.0, memory_mb=2048):
+def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs_n=None):
     """Yield (job, ModelReport) for every job, run by ``handler``; results arrive in
     completion order.
 
-    ``timeout`` limits the CPU time a job uses (a loaded CI machine does not make a model that
-    lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job waiting on
-    I/O); where CPU time cannot be measured, ``timeout`` is wall-clock time."""
+    ``settings.timeout`` limits the CPU time a job uses (a loaded CI machine does not make a
+    model that lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job
+    waiting on I/O); where CPU time cannot be measured, it is wall-clock time.
+    ``settings.memory_mb`` limits each worker's memory."""
+    timeout, memory_mb = settings.timeout, settings.memory_mb
     wall = timeout * WALL_FACTOR
     jobs = list(jobs)
     if not jobs:
         return
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
-    pre = _take_prestarted(settings, memory_mb)
+    pre = _take_prestarted(settings)
     from urdf_lint.runner.sandbox import prepare
     prepare()
     warm_meshes = _mesh_facts_cached(settings)
@@ -387,7 +389,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs
         # forked before)
         handler.preload(blocks, settings, n)
     workers = [pre] if pre is not None else []
-    workers += [_Worker(handler, settings, memory_mb) for _ in range(n - len(workers))]
+    workers += [_Worker(handler, settings) for _ in range(n - len(workers))]
     for w, q in zip(workers, queues, strict=True):
         w.queue = q
 
@@ -395,7 +397,7 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs
         return any(queues)
 
     def replace(old):
-        new = _Worker(handler, settings, memory_mb)
+        new = _Worker(handler, settings)
         new.queue = old.queue
         workers.append(new)
     try:
