@@ -43,6 +43,7 @@ class Handler:
     warm: Callable[[], None] | None = None
     preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
 
+
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
