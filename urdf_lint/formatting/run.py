@@ -244,7 +244,6 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None) -> tuple[dict, 
 # -- the command ---------------------------------------------------------------------------------
 def cmd_format(args, load_cfg, parse_package_paths) -> int:
     from urdf_lint.core.errors import UsageError
-    from urdf_lint.core.escape import escape_text
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -259,23 +258,45 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
         for r in results:
             if r.path in refused:
                 r.refused, r.new = refused[r.path], None
-    from urdf_lint.core.emit import say as said
-    say = (lambda s: None) if args.quiet else said
-    status = 0
-    for r in results:
-        if r.error:
-            said(f"error: {escape_text(r.error)}")
-            status = 2
-        elif r.refused:
-            said(f"{escape_text(r.shown)}: left alone: {escape_text(r.refused)}")
-            if r.refused.startswith("internal"):
-                status = 2
+    status = _say_problems(results)
     todo = [r for r in results if r.new is not None]
     if args.diff:
         from urdf_lint.fix.run import unified_diff
         sys.stdout.write(unified_diff({r.path: r.new for r in todo},
                                       {r.path: r.old for r in todo}))
-    elif args.check:
+    else:
+        status = max(status, _check_or_write(todo, args))
+    if not args.quiet:
+        _say_summary(results, todo, args, compared)
+    if status:
+        return status
+    return 1 if todo and (args.check or args.diff) else 0
+
+
+def _say_problems(results) -> int:
+    """Say each file that could not be formatted or was left alone; 2 for an error or an
+    internal problem, else 0."""
+    from urdf_lint.core.emit import say
+    from urdf_lint.core.escape import escape_text
+    status = 0
+    for r in results:
+        if r.error:
+            say(f"error: {escape_text(r.error)}")
+            status = 2
+        elif r.refused:
+            say(f"{escape_text(r.shown)}: left alone: {escape_text(r.refused)}")
+            if r.refused.startswith("internal"):
+                status = 2
+    return status
+
+
+def _check_or_write(todo, args) -> int:
+    """The names of the files to format (``--check``), or the files written in place; 2 when
+    one cannot be written, else 0."""
+    from urdf_lint.core.emit import say
+    from urdf_lint.core.escape import escape_text
+    status = 0
+    if args.check:
         from urdf_lint.core.emit import tell
         for r in todo:
             tell(f"Would reformat: {escape_text(r.shown)}")
@@ -285,15 +306,17 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
             try:   # only below the formatted paths, atomically (the boundary)
                 fsbound.rewrite(r.path, r.new or b"", args.paths)
             except OSError as e:
-                said(f"error: {escape_text(r.shown)}: cannot write: "
-                     f"{getattr(e, 'why', None) or e.strerror or e}")
+                say(f"error: {escape_text(r.shown)}: cannot write: "
+                    f"{getattr(e, 'why', None) or e.strerror or e}")
                 status = 2
+    return status
+
+
+def _say_summary(results, todo, args, compared) -> None:
+    from urdf_lint.core.emit import say
     left = sum(1 for r in results if r.refused)
     same = sum(1 for r in results if r.new is None and not r.refused and not r.error)
     verb = "would be reformatted" if args.check or args.diff else "reformatted"
     say(f"{len(todo)} file(s) {verb}, {same} file(s) left unchanged"
         + (f", {left} file(s) left alone" if left else "")
         + (f" ({compared} model(s) expanded before and after)" if compared else ""))
-    if status:
-        return status
-    return 1 if todo and (args.check or args.diff) else 0
