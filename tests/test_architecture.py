@@ -159,6 +159,29 @@ def test_an_upward_import_breaks_the_layer_contract(tmp_path):
     assert "urdf_lint.core.escape -> urdf_lint.cli.main" in p.stdout, p.stdout
     assert "urdf_lint.runner.forked -> urdf_lint.engine.model" in p.stdout, p.stdout
     assert "0 kept, 2 broken" in p.stdout, p.stdout
+def _too_complex(source, label):
+    """``label:line name rank(complexity)`` for every block radon grades E or F in ``source``
+    (functions, methods and classes, as ``radon cc -n E`` lists them)."""
+    from radon.complexity import cc_rank, cc_visit
+    return [f"{label}:{b.lineno} {b.fullname} {cc_rank(b.complexity)}({b.complexity})"
+            for b in cc_visit(source) if cc_rank(b.complexity) in "EF"]
+
+
+def test_no_function_is_above_radon_grade_d():
+    """Every function, method and class in urdf_lint/ and rules/ at radon grade D or better
+    (cli/ and config/ included: none of theirs is above D)."""
+    pytest.importorskip("radon")
+    found = []
+    for path in sorted([*PKG.rglob("*.py"), *RULES_DIR.rglob("*.py")]):
+        found += _too_complex(path.read_text(encoding="utf-8"), path.relative_to(REPO).as_posix())
+    assert not found, "split these (radon grade E or F):\n" + "\n".join(found)
+
+
+def test_the_complexity_check_finds_a_complex_function():
+    pytest.importorskip("radon")
+    branches = "".join(f"    if x == {i}:\n        return {i}\n" for i in range(40))
+    assert _too_complex(f"def f(x):\n{branches}    return -1\n", "m.py") == ["m.py:1 f F(41)"]
+    assert _too_complex("def g(x):\n    return x\n", "m.py") == []
 
 
 CODE_LITERAL = re.compile(r"UL\d{3}")

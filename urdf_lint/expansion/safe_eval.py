@@ -330,113 +330,134 @@ class Evaluator:
 
     # -- the walk ----------------------------------------------------------------------------
     def _ev(self, n, sc):
+        """Evaluate node ``n``: one handler per allowed node type (``_NODES``, matched by exact
+        type); any other node is refused."""
         self.tick()
         t = type(n)
-        if t is ast.Constant:
+        if t is ast.Constant:       # the commonest nodes skip the table lookup
             return n.value
         if t is ast.Name:
             return self.name(n.id, sc)
-        if t is ast.BinOp:
-            return self.binop(type(n.op), self._ev(n.left, sc), self._ev(n.right, sc))
-        if t is ast.UnaryOp:
-            return _UN[type(n.op)](self._ev(n.operand, sc))
-        if t is ast.BoolOp:
-            if isinstance(n.op, ast.And):
-                v: Any = True
-                for x in n.values:
-                    v = self._ev(x, sc)
-                    if not v:
-                        return v
-                return v
-            v = False
+        handler = _NODES.get(t)
+        if handler is None:
+            raise UnsafeExpression(f"{t.__name__} is not allowed in xacro expressions")
+        return handler(self, n, sc)
+
+    def _ev_binop(self, n, sc):
+        return self.binop(type(n.op), self._ev(n.left, sc), self._ev(n.right, sc))
+
+    def _ev_unaryop(self, n, sc):
+        return _UN[type(n.op)](self._ev(n.operand, sc))
+
+    def _ev_boolop(self, n, sc):
+        if isinstance(n.op, ast.And):
+            v = True
             for x in n.values:
                 v = self._ev(x, sc)
-                if v:
+                if not v:
                     return v
             return v
-        if t is ast.Compare:
-            left = self._ev(n.left, sc)
-            for op, c in zip(n.ops, n.comparators, strict=True):
-                right = self._ev(c, sc)
-                if not _CMP[type(op)](left, right):
-                    return False
-                left = right
-            return True
-        if t is ast.IfExp:
-            return self._ev(n.body, sc) if self._ev(n.test, sc) else self._ev(n.orelse, sc)
-        if t is ast.Attribute:
-            return self.attr(self._ev(n.value, sc), n.attr)
-        if t is ast.Subscript:
-            obj = self._ev(n.value, sc)
-            key = self._ev(n.slice, sc)
-            if not isinstance(obj, _value_types + _namespace_types):
-                raise UnsafeExpression(f"indexing a {type(obj).__name__} is not allowed")
-            if isinstance(obj, _namespace_types) and isinstance(key, str) and key.startswith("_"):
-                raise UnsafeExpression(f"access to '{key}' is not allowed")
-            return _gate(obj[key], "that item")
-        if t is ast.Slice:
-            return slice(*(self._ev(x, sc) if x is not None else None
-                           for x in (n.lower, n.upper, n.step)))
-        if t is ast.Call:
-            fn = self._ev(n.func, sc)
-            args = []
-            for a in n.args:
-                if isinstance(a, ast.Starred):
-                    args.extend(self._ev(a.value, sc))
-                else:
-                    args.append(self._ev(a, sc))
-            kwargs = {}
-            for k in n.keywords:
-                if k.arg is None:
-                    kwargs.update(self._ev(k.value, sc))
-                else:
-                    kwargs[k.arg] = self._ev(k.value, sc)
-            return self.call(fn, args, kwargs)
-        if t in (ast.List, ast.Tuple, ast.Set):
-            items = []
-            for e in n.elts:
-                if isinstance(e, ast.Starred):
-                    items.extend(self._ev(e.value, sc))
-                else:
-                    items.append(self._ev(e, sc))
-            return list(items) if t is ast.List else tuple(items) if t is ast.Tuple else set(items)
-        if t is ast.Dict:
-            d = {}
-            for k, v in zip(n.keys, n.values, strict=True):
-                if k is None:
-                    d.update(self._ev(v, sc))
-                else:
-                    d[self._ev(k, sc)] = self._ev(v, sc)
-            return d
-        if t in (ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp):
-            out: list[Any] = []
-            self._comp(n.generators, 0, _Scope({}, sc), n, out)
-            if t is ast.DictComp:
-                return dict(out)
-            if t is ast.SetComp:
-                return set(out)
-            return out if t is ast.ListComp else iter(out)
-        if t is ast.JoinedStr:
-            parts: list[Any] = []
-            for v in n.values:
-                parts.append(v.value if isinstance(v, ast.Constant) else self._ev(v, sc))
-            return "".join(parts)
-        if t is ast.FormattedValue:
-            v = self._ev(n.value, sc)
-            if n.conversion == ord("r"):
-                v = repr(v)
-            elif n.conversion == ord("s"):
-                v = str(v)
-            elif n.conversion == ord("a"):
-                v = ascii(v)
-            spec = self._ev(n.format_spec, sc) if n.format_spec is not None else ""
-            return format(v, spec)
-        if t is ast.Lambda:
-            a = n.args
-            if a.vararg or a.kwarg or a.kwonlyargs or a.defaults or a.posonlyargs:
-                raise UnsafeExpression("only simple lambdas are supported")
-            return _Lambda(n, self, sc)
-        raise UnsafeExpression(f"{t.__name__} is not allowed in xacro expressions")
+        v = False
+        for x in n.values:
+            v = self._ev(x, sc)
+            if v:
+                return v
+        return v
+
+    def _ev_compare(self, n, sc):
+        left = self._ev(n.left, sc)
+        for op, c in zip(n.ops, n.comparators, strict=True):
+            right = self._ev(c, sc)
+            if not _CMP[type(op)](left, right):
+                return False
+            left = right
+        return True
+
+    def _ev_ifexp(self, n, sc):
+        return self._ev(n.body, sc) if self._ev(n.test, sc) else self._ev(n.orelse, sc)
+
+    def _ev_attribute(self, n, sc):
+        return self.attr(self._ev(n.value, sc), n.attr)
+
+    def _ev_subscript(self, n, sc):
+        obj = self._ev(n.value, sc)
+        key = self._ev(n.slice, sc)
+        if not isinstance(obj, _value_types + _namespace_types):
+            raise UnsafeExpression(f"indexing a {type(obj).__name__} is not allowed")
+        if isinstance(obj, _namespace_types) and isinstance(key, str) and key.startswith("_"):
+            raise UnsafeExpression(f"access to '{key}' is not allowed")
+        return _gate(obj[key], "that item")
+
+    def _ev_slice(self, n, sc):
+        return slice(*(self._ev(x, sc) if x is not None else None
+                       for x in (n.lower, n.upper, n.step)))
+
+    def _ev_call(self, n, sc):
+        fn = self._ev(n.func, sc)
+        args = self._items(n.args, sc)
+        kwargs = {}
+        for k in n.keywords:
+            if k.arg is None:
+                kwargs.update(self._ev(k.value, sc))
+            else:
+                kwargs[k.arg] = self._ev(k.value, sc)
+        return self.call(fn, args, kwargs)
+
+    def _items(self, nodes, sc):
+        """The values of ``nodes`` (call arguments, display elements), ``*x`` spread in."""
+        items = []
+        for e in nodes:
+            if isinstance(e, ast.Starred):
+                items.extend(self._ev(e.value, sc))
+            else:
+                items.append(self._ev(e, sc))
+        return items
+
+    def _ev_list(self, n, sc):
+        return self._items(n.elts, sc)
+
+    def _ev_tuple(self, n, sc):
+        return tuple(self._items(n.elts, sc))
+
+    def _ev_set(self, n, sc):
+        return set(self._items(n.elts, sc))
+
+    def _ev_dict(self, n, sc):
+        d = {}
+        for k, v in zip(n.keys, n.values, strict=True):
+            if k is None:
+                d.update(self._ev(v, sc))
+            else:
+                d[self._ev(k, sc)] = self._ev(v, sc)
+        return d
+
+    def _ev_comprehension(self, n, sc):
+        out: list[Any] = []
+        self._comp(n.generators, 0, _Scope({}, sc), n, out)
+        return _COMPREHENSIONS[type(n)](out)
+
+    def _ev_joinedstr(self, n, sc):
+        parts: list[Any] = []
+        for v in n.values:
+            parts.append(v.value if isinstance(v, ast.Constant) else self._ev(v, sc))
+        return "".join(parts)
+
+    def _ev_formattedvalue(self, n, sc):
+        v = self._ev(n.value, sc)
+        if n.conversion == ord("r"):
+            v = repr(v)
+        elif n.conversion == ord("s"):
+            v = str(v)
+        elif n.conversion == ord("a"):
+            v = ascii(v)
+        spec = self._ev(n.format_spec, sc) if n.format_spec is not None else ""
+        return format(v, spec)
+
+    def _ev_lambda(self, n, sc):
+        a = n.args
+        if a.vararg or a.kwarg or a.kwonlyargs or a.defaults or a.posonlyargs:
+            raise UnsafeExpression("only simple lambdas are supported")
+        return _Lambda(n, self, sc)
 
     def _comp(self, gens, i, sc, node, out):
         if i == len(gens):
@@ -467,6 +488,25 @@ class Evaluator:
                 self._assign(t, v, sc)
         else:
             raise UnsafeExpression("unsupported comprehension target")
+
+
+# the node types an expression may contain (besides Constant and Name, which _ev handles
+# first), each with its handler; a node of any other type is refused
+_NODES = {
+    ast.BinOp: Evaluator._ev_binop, ast.UnaryOp: Evaluator._ev_unaryop,
+    ast.BoolOp: Evaluator._ev_boolop, ast.Compare: Evaluator._ev_compare,
+    ast.IfExp: Evaluator._ev_ifexp, ast.Attribute: Evaluator._ev_attribute,
+    ast.Subscript: Evaluator._ev_subscript, ast.Slice: Evaluator._ev_slice,
+    ast.Call: Evaluator._ev_call, ast.List: Evaluator._ev_list, ast.Tuple: Evaluator._ev_tuple,
+    ast.Set: Evaluator._ev_set, ast.Dict: Evaluator._ev_dict,
+    ast.ListComp: Evaluator._ev_comprehension, ast.SetComp: Evaluator._ev_comprehension,
+    ast.GeneratorExp: Evaluator._ev_comprehension, ast.DictComp: Evaluator._ev_comprehension,
+    ast.JoinedStr: Evaluator._ev_joinedstr, ast.FormattedValue: Evaluator._ev_formattedvalue,
+    ast.Lambda: Evaluator._ev_lambda,
+}
+# what each comprehension builds from its items (a generator expression: an iterator over them)
+_COMPREHENSIONS = {ast.ListComp: lambda out: out, ast.SetComp: set, ast.DictComp: dict,
+                   ast.GeneratorExp: iter}
 
 
 @functools.lru_cache(maxsize=8192)

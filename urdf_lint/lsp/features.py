@@ -491,92 +491,154 @@ def _md(text: str) -> types.Hover:
 
 # -- completion ---------------------------------------------------------------------------------
 def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types.CompletionItem]:
-    doc = ls.doc(path)
-    at = At(doc, pos)
-    before = at.before
-    items: dict = {}
-    if at.comment and re.search(r"urdf[-_]lint\s*:\s*[\w-]*\s.*$", before):
-        from urdf_lint.engine.registry import catalogue
-        for code, e in catalogue().items():
-            items[code] = types.CompletionItem(label=code, detail=e.name,
-                                               kind=types.CompletionItemKind.EnumMember)
-        return list(items.values())
-    if re.search(r"<xacro:[\w-]*$", before):
-        for d in INDEX.decls(ls, path, "macro"):
-            if d.name in items:
-                continue
-            req = [n for n, v in macro_params(d.attrs.get("params", ""))
-                   if v is None and not n.startswith("*")]
-            snippet = d.name + "".join(f' {n}="${{{i}}}"' for i, n in enumerate(req, 1)) + "/>"
-            items[d.name] = types.CompletionItem(
-                label=d.name, kind=types.CompletionItemKind.Function,
-                detail=f"macro ({os.path.basename(d.file)}:{d.line})",
-                insert_text=snippet, insert_text_format=types.InsertTextFormat.Snippet)
-        return list(items.values())
-    pm = re.search(r"package://([\w-]+)/([^\"'\s]*)$", before)
-    if pm:
-        return _package_files(ls, pm.group(1), pm.group(2))
-    if at.in_tag and at.value is None and at.tag and at.tag.startswith("xacro:") and \
-            not re.search(r"<[\w:.-]*$", before):
-        # parameter names inside a macro call (those not written yet)
-        name = at.tag.split(":", 1)[1]
-        start = at.doc.text.rfind("<", 0, at.off)
-        written = set(re.findall(r"([\w-]+)\s*=", at.doc.text[start:at.off]))
-        for d in INDEX.decls(ls, path, "macro", name)[:1]:
-            for n, default in macro_params(d.attrs.get("params", "")):
-                if not n.startswith("*") and n not in written:
-                    items[n] = types.CompletionItem(
-                        label=n, kind=types.CompletionItemKind.Property,
-                        detail="required" if default is None else f"default {default}",
-                        insert_text=f'{n}="${{1}}"',
-                        insert_text_format=types.InsertTextFormat.Snippet)
-        return list(items.values())
-    if at.in_tag and at.value is None and at.tag and not at.tag.startswith("xacro:"):
-        attrs = URDF_ATTRIBUTES.get(at.tag.split(":")[-1])
-        if attrs and not re.search(r"<[\w:.-]*$", before):
-            return [types.CompletionItem(label=a, kind=types.CompletionItemKind.Property,
-                                         insert_text=f'{a}="${{1}}"',
-                                         insert_text_format=types.InsertTextFormat.Snippet)
-                    for a in attrs]
-    if re.search(r"<[\w-]*$", before) and not at.comment:
-        return [types.CompletionItem(label=e, kind=types.CompletionItemKind.Keyword)
-                for e in URDF_ATTRIBUTES]
-    if re.search(r"\$\(arg\s+[\w-]*$", before):
-        for d in INDEX.decls(ls, path, "arg"):
-            items.setdefault(d.name, types.CompletionItem(
-                label=d.name, kind=types.CompletionItemKind.Variable,
-                detail=f"arg, default {d.attrs.get('default')!r}"))
-        return list(items.values())
-    if re.search(r"(package://|\$\(find\s+)[\w-]*$", before):
-        ws = ls.ws
-        names = set(ws.resolver.explicit) | set(ws.resolver.scanned) if ws else set()
-        return [types.CompletionItem(label=n, kind=types.CompletionItemKind.Module)
-                for n in sorted(names)]
-    if at.expr() is not None:
-        m = _enclosing_macro(ls, path, at)
-        if m is not None:
-            for n, _default in macro_params(m.attrs.get("params", "")):
-                if not n.startswith("*"):
-                    items[n] = types.CompletionItem(label=n, kind=types.CompletionItemKind.Variable,
-                                                    detail=f"parameter of {m.name}")
-        for d in INDEX.decls(ls, path, "property"):
-            items.setdefault(d.name, types.CompletionItem(
-                label=d.name, kind=types.CompletionItemKind.Constant,
-                detail=f"property = {d.attrs.get('value', '')}"[:80]))
-        return list(items.values())
-    if at.value is not None and at.tag in ("parent", "child", "gazebo", "mimic") and \
-            at.attr in ("link", "reference", "joint"):
-        want = "joint" if at.attr == "joint" else "link"
-        for view in views(ls):
-            if path not in _model_files(view):
-                continue
-            for (k, n) in view.named:
-                if k == want or at.attr == "reference":
-                    items.setdefault(n, types.CompletionItem(
-                        label=n, kind=types.CompletionItemKind.Reference,
-                        detail=f"{k} in {view.name}"))
-        return list(items.values())
+    at = At(ls.doc(path), pos)
+    for complete in _COMPLETERS:
+        got = complete(ls, path, at)
+        if got is not None:
+            return got
     return []
+
+
+# Each completer returns its items where the cursor is its kind of place, else None (the next
+# one is asked); they are asked in this order (see _COMPLETERS).
+def _complete_codes(ls, path, at) -> list | None:
+    """Rule codes in a suppression comment."""
+    if not (at.comment and re.search(r"urdf[-_]lint\s*:\s*[\w-]*\s.*$", at.before)):
+        return None
+    from urdf_lint.engine.registry import catalogue
+    return [types.CompletionItem(label=code, detail=e.name,
+                                 kind=types.CompletionItemKind.EnumMember)
+            for code, e in catalogue().items()]
+
+
+def _complete_macros(ls, path, at) -> list | None:
+    """Macro names after ``<xacro:``, with their required parameters as a snippet."""
+    if not re.search(r"<xacro:[\w-]*$", at.before):
+        return None
+    items: dict = {}
+    for d in INDEX.decls(ls, path, "macro"):
+        if d.name in items:
+            continue
+        req = [n for n, v in macro_params(d.attrs.get("params", ""))
+               if v is None and not n.startswith("*")]
+        snippet = d.name + "".join(f' {n}="${{{i}}}"' for i, n in enumerate(req, 1)) + "/>"
+        items[d.name] = types.CompletionItem(
+            label=d.name, kind=types.CompletionItemKind.Function,
+            detail=f"macro ({os.path.basename(d.file)}:{d.line})",
+            insert_text=snippet, insert_text_format=types.InsertTextFormat.Snippet)
+    return list(items.values())
+
+
+def _complete_package_files(ls, path, at) -> list | None:
+    pm = re.search(r"package://([\w-]+)/([^\"'\s]*)$", at.before)
+    return _package_files(ls, pm.group(1), pm.group(2)) if pm else None
+
+
+def _in_attribute_name(at) -> bool:
+    """Inside a tag where an attribute name goes (not its value, not the tag's name)."""
+    return bool(at.in_tag and at.value is None and at.tag) and \
+        not re.search(r"<[\w:.-]*$", at.before)
+
+
+def _complete_macro_params(ls, path, at) -> list | None:
+    """Parameter names inside a macro call (those not written yet)."""
+    if not (_in_attribute_name(at) and at.tag.startswith("xacro:")):
+        return None
+    items: dict = {}
+    name = at.tag.split(":", 1)[1]
+    start = at.doc.text.rfind("<", 0, at.off)
+    written = set(re.findall(r"([\w-]+)\s*=", at.doc.text[start:at.off]))
+    for d in INDEX.decls(ls, path, "macro", name)[:1]:
+        for n, default in macro_params(d.attrs.get("params", "")):
+            if not n.startswith("*") and n not in written:
+                items[n] = types.CompletionItem(
+                    label=n, kind=types.CompletionItemKind.Property,
+                    detail="required" if default is None else f"default {default}",
+                    insert_text=f'{n}="${{1}}"',
+                    insert_text_format=types.InsertTextFormat.Snippet)
+    return list(items.values())
+
+
+def _complete_urdf_attributes(ls, path, at) -> list | None:
+    """The attributes of a URDF element."""
+    if not (_in_attribute_name(at) and not at.tag.startswith("xacro:")):
+        return None
+    attrs = URDF_ATTRIBUTES.get(at.tag.split(":")[-1])
+    if not attrs:
+        return None
+    return [types.CompletionItem(label=a, kind=types.CompletionItemKind.Property,
+                                 insert_text=f'{a}="${{1}}"',
+                                 insert_text_format=types.InsertTextFormat.Snippet)
+            for a in attrs]
+
+
+def _complete_elements(ls, path, at) -> list | None:
+    if not re.search(r"<[\w-]*$", at.before) or at.comment:
+        return None
+    return [types.CompletionItem(label=e, kind=types.CompletionItemKind.Keyword)
+            for e in URDF_ATTRIBUTES]
+
+
+def _complete_args(ls, path, at) -> list | None:
+    if not re.search(r"\$\(arg\s+[\w-]*$", at.before):
+        return None
+    items: dict = {}
+    for d in INDEX.decls(ls, path, "arg"):
+        items.setdefault(d.name, types.CompletionItem(
+            label=d.name, kind=types.CompletionItemKind.Variable,
+            detail=f"arg, default {d.attrs.get('default')!r}"))
+    return list(items.values())
+
+
+def _complete_packages(ls, path, at) -> list | None:
+    if not re.search(r"(package://|\$\(find\s+)[\w-]*$", at.before):
+        return None
+    ws = ls.ws
+    names = set(ws.resolver.explicit) | set(ws.resolver.scanned) if ws else set()
+    return [types.CompletionItem(label=n, kind=types.CompletionItemKind.Module)
+            for n in sorted(names)]
+
+
+def _complete_expression(ls, path, at) -> list | None:
+    """Inside ``${...}``: the enclosing macro's parameters, then the properties."""
+    if at.expr() is None:
+        return None
+    items: dict = {}
+    m = _enclosing_macro(ls, path, at)
+    if m is not None:
+        for n, _default in macro_params(m.attrs.get("params", "")):
+            if not n.startswith("*"):
+                items[n] = types.CompletionItem(label=n, kind=types.CompletionItemKind.Variable,
+                                                detail=f"parameter of {m.name}")
+    for d in INDEX.decls(ls, path, "property"):
+        items.setdefault(d.name, types.CompletionItem(
+            label=d.name, kind=types.CompletionItemKind.Constant,
+            detail=f"property = {d.attrs.get('value', '')}"[:80]))
+    return list(items.values())
+
+
+def _complete_references(ls, path, at) -> list | None:
+    """Link (or joint) names of the models this file is part of, in a reference."""
+    if not (at.value is not None and at.tag in ("parent", "child", "gazebo", "mimic") and
+            at.attr in ("link", "reference", "joint")):
+        return None
+    items: dict = {}
+    want = "joint" if at.attr == "joint" else "link"
+    for view in views(ls):
+        if path not in _model_files(view):
+            continue
+        for (k, n) in view.named:
+            if k == want or at.attr == "reference":
+                items.setdefault(n, types.CompletionItem(
+                    label=n, kind=types.CompletionItemKind.Reference,
+                    detail=f"{k} in {view.name}"))
+    return list(items.values())
+
+
+_COMPLETERS = (_complete_codes, _complete_macros, _complete_package_files,
+               _complete_macro_params, _complete_urdf_attributes, _complete_elements,
+               _complete_args, _complete_packages, _complete_expression,
+               _complete_references)
 
 
 # the URDF schema's elements and their attributes (urdfdom, plus the common ROS extensions)

@@ -31,6 +31,73 @@ def _sarif_fix(fix) -> dict:
                 for path, edits in sorted(by_file.items())]}
 
 
+def _region(file, line, col) -> dict:
+    return {"artifactLocation": {"uri": _uri(file)},
+            "region": {"startLine": max(1, line), "startColumn": max(1, col)}}
+
+
+def _driver_rule(code, r) -> dict:
+    """The ``tool.driver.rules`` entry of ``code`` (rule ``r``, None if unknown)."""
+    return {
+        "id": code, "name": r.name if r else code,
+        "shortDescription": {"text": r.summary if r else code},
+        "fullDescription": {"text": r.doc if r else code},
+        "defaultConfiguration": {"level": _SARIF_LEVEL[r.severity if r else "error"]},
+        "help": {"text": r.doc if r else code},
+    }
+
+
+def _related(f) -> list:
+    """(text, (file, line, col)) of a finding's related places: the macro calls, where its
+    value comes from, its other instances and where their values come from."""
+    related = [("macro called here", c) for c in reversed(f.chain)]
+    if f.value_from:
+        related.append(("value from here", f.value_from))
+    places = list(dict.fromkeys((i.file, i.line, i.col) for i in f.instances))
+    related += [(i.detail or i.message, (i.file, i.line, i.col)) for i in
+                {(i.file, i.line, i.col): i for i in f.instances}.values()
+                if (i.file, i.line, i.col) != (f.file, f.line, f.col)] \
+        if len(places) > 1 else []
+    related += [("value from here", i.value_from) for i in f.instances
+                if i.value_from and i.value_from != f.value_from]
+    return related
+
+
+def _properties(f) -> dict:
+    props: dict = {}
+    if f.models:
+        props["models"] = f.models
+    if f.detail and not f.instances:
+        props["detail"] = f.detail
+    if f.instances:
+        props["count"] = len(f.instances)
+        props["instances"] = [
+            {"message": i.message, "file": display_path(i.file), "line": i.line,
+             "col": i.col, **({"detail": i.detail} if i.detail else {}),
+             **({"target": list(i.target)} if i.target else {}),
+             "models": list(i.models)} for i in f.instances]
+    if f.severity_from:
+        props["severityFrom"] = list(f.severity_from)
+    return props
+
+
+def _sarif_result(f, rule_index: int) -> dict:
+    res = {"ruleId": f.code, "ruleIndex": rule_index, "level": _SARIF_LEVEL[f.severity],
+           "message": {"text": message(f)},
+           "locations": [{"physicalLocation": _region(f.file, f.line, f.col)}]}
+    related = _related(f)
+    if related:
+        res["relatedLocations"] = [
+            {"id": i, "message": {"text": text}, "physicalLocation": _region(c[0], c[1], c[2])}
+            for i, (text, c) in enumerate(related)]
+    props = _properties(f)
+    if props:
+        res["properties"] = props
+    if f.fix is not None and f.fix.applicable:
+        res["fixes"] = [_sarif_fix(f.fix)]
+    return res
+
+
 class SarifFormatter(BaseFormatter):
     name = "sarif"
     help = "SARIF 2.1.0 (GitHub code scanning)"
@@ -41,59 +108,8 @@ class SarifFormatter(BaseFormatter):
         rules = load_rules()
         used = sorted({f.code for f in result.findings})
         index = {c: i for i, c in enumerate(used)}
-        driver_rules = []
-        for c in used:
-            r = rules.get(c)
-            driver_rules.append({
-                "id": c, "name": r.name if r else c,
-                "shortDescription": {"text": r.summary if r else c},
-                "fullDescription": {"text": r.doc if r else c},
-                "defaultConfiguration": {"level": _SARIF_LEVEL[r.severity if r else "error"]},
-                "help": {"text": r.doc if r else c},
-            })
-        results = []
-        for f in result.findings:
-            res = {"ruleId": f.code, "ruleIndex": index[f.code], "level": _SARIF_LEVEL[f.severity],
-                   "message": {"text": message(f)},
-                   "locations": [{"physicalLocation": {
-                       "artifactLocation": {"uri": _uri(f.file)},
-                       "region": {"startLine": max(1, f.line), "startColumn": max(1, f.col)}}}]}
-            related = [("macro called here", c) for c in reversed(f.chain)]
-            if f.value_from:
-                related.append(("value from here", f.value_from))
-            places = list(dict.fromkeys((i.file, i.line, i.col) for i in f.instances))
-            related += [(i.detail or i.message, (i.file, i.line, i.col)) for i in
-                        {(i.file, i.line, i.col): i for i in f.instances}.values()
-                        if (i.file, i.line, i.col) != (f.file, f.line, f.col)] \
-                if len(places) > 1 else []
-            related += [("value from here", i.value_from) for i in f.instances
-                        if i.value_from and i.value_from != f.value_from]
-            if related:
-                res["relatedLocations"] = [
-                    {"id": i, "message": {"text": text},
-                     "physicalLocation": {"artifactLocation": {"uri": _uri(c[0])},
-                                          "region": {"startLine": max(1, c[1]),
-                                                     "startColumn": max(1, c[2])}}}
-                    for i, (text, c) in enumerate(related)]
-            props: dict = {}
-            if f.models:
-                props["models"] = f.models
-            if f.detail and not f.instances:
-                props["detail"] = f.detail
-            if f.instances:
-                props["count"] = len(f.instances)
-                props["instances"] = [
-                    {"message": i.message, "file": display_path(i.file), "line": i.line,
-                     "col": i.col, **({"detail": i.detail} if i.detail else {}),
-                     **({"target": list(i.target)} if i.target else {}),
-                     "models": list(i.models)} for i in f.instances]
-            if f.severity_from:
-                props["severityFrom"] = list(f.severity_from)
-            if props:
-                res["properties"] = props
-            if f.fix is not None and f.fix.applicable:
-                res["fixes"] = [_sarif_fix(f.fix)]
-            results.append(res)
+        driver_rules = [_driver_rule(c, rules.get(c)) for c in used]
+        results = [_sarif_result(f, index[f.code]) for f in result.findings]
         doc = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
                "runs": [{"tool": {"driver": {"name": "urdf-lint", "version": __version__,
                                              "informationUri": "https://pypi.org/project/urdf-lint/",

@@ -157,72 +157,93 @@ def robot_facts(model) -> dict:
     facts: dict = {}
     cache: dict = {}
     for lk in model.top_links():
-        name = lk.get("name")
-        f: dict = {}
-        inertial = lk.find("inertial")
-        if inertial is not None:
-            m = inertial.find("mass")
-            f["inertial.mass"] = _Fact(_num(m.get("value")) if m is not None else None, _el(m, inertial))
-            o = _origin(inertial)
-            f["inertial.origin.xyz"] = _Fact(o["xyz"], _el(inertial.find("origin"), inertial))
-            f["inertial.origin.rpy"] = _Fact(o["rpy"], _el(inertial.find("origin"), inertial))
-            i = inertial.find("inertia")
-            if i is not None:
-                f["inertial.inertia"] = _Fact(tuple(_num(i.get(k)) for k in
-                                                    ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")), i)
-        for part in ("visual", "collision"):
-            for n, el in enumerate(lk.findall(part)):
-                key = f"{part}[{n}]"
-                geometry = el.find("geometry")
-                shape = next((c for c in geometry if isinstance(c.tag, str)), geometry) \
-                    if geometry is not None else el
-                for k, v in _geometry(model, geometry, cache).items():
-                    f[f"{key}.{k}"] = _Fact(v, shape)
-                o = _origin(el)
-                f[f"{key}.origin.xyz"] = _Fact(o["xyz"], _el(el.find("origin"), el))
-                f[f"{key}.origin.rpy"] = _Fact(o["rpy"], _el(el.find("origin"), el))
-                mat = el.find("material")
-                if part == "visual" and mat is not None:
-                    f[f"{key}.material"] = _Fact(mat.get("name"), mat)
-                    c = mat.find("color")
-                    if c is not None:
-                        f[f"{key}.material.rgba"] = _Fact(_vec(c.get("rgba"), 4), c)
-        facts[("link", name)] = (lk, f)
+        facts[("link", lk.get("name"))] = (lk, _link_facts(model, lk, cache))
     for j in model.top_joints():
-        name = j.get("name")
-        f = {"type": _Fact(j.get("type"), j)}
-        for k in ("parent", "child"):
-            e = j.find(k)
-            f[k] = _Fact(e.get("link") if e is not None else None, e if e is not None else j)
-        o = _origin(j)
-        f["origin.xyz"] = _Fact(o["xyz"], _el(j.find("origin"), j))
-        f["origin.rpy"] = _Fact(o["rpy"], _el(j.find("origin"), j))
-        ax = j.find("axis")
-        if ax is not None or j.get("type") in ("revolute", "continuous", "prismatic", "planar"):
-            f["axis"] = _Fact(_vec(ax.get("xyz")) if ax is not None and ax.get("xyz") else
-                              (1.0, 0.0, 0.0), ax if ax is not None else j)
-        for tag, attrs in (("limit", ("lower", "upper", "effort", "velocity")),
-                           ("mimic", ("joint", "multiplier", "offset")),
-                           ("dynamics", ("damping", "friction")),
-                           ("safety_controller", ("soft_lower_limit", "soft_upper_limit",
-                                                  "k_position", "k_velocity"))):
-            e = j.find(tag)
-            if e is None:
-                continue
-            for a in attrs:
-                if e.get(a) is not None:
-                    f[f"{tag}.{a}"] = _Fact(_num(e.get(a)) if a != "joint" else e.get(a), e)
-        facts[("joint", name)] = (j, f)
+        facts[("joint", j.get("name"))] = (j, _joint_facts(j))
     for name, el in model.materials.items():
-        f = {}
-        c = el.find("color")
-        if c is not None:
-            f["rgba"] = _Fact(_vec(c.get("rgba"), 4), c)
-        t = el.find("texture")
-        if t is not None:
-            f["texture"] = _Fact(t.get("filename"), t)
-        facts[("material", name)] = (el, f)
+        facts[("material", name)] = (el, _material_facts(el))
     return facts
+
+
+def _link_facts(model, lk, cache) -> dict:
+    f: dict = {}
+    inertial = lk.find("inertial")
+    if inertial is not None:
+        _inertial_facts(inertial, f)
+    for part in ("visual", "collision"):
+        for n, el in enumerate(lk.findall(part)):
+            _part_facts(model, part, f"{part}[{n}]", el, cache, f)
+    return f
+
+
+def _inertial_facts(inertial, f: dict) -> None:
+    m = inertial.find("mass")
+    f["inertial.mass"] = _Fact(_num(m.get("value")) if m is not None else None, _el(m, inertial))
+    o = _origin(inertial)
+    f["inertial.origin.xyz"] = _Fact(o["xyz"], _el(inertial.find("origin"), inertial))
+    f["inertial.origin.rpy"] = _Fact(o["rpy"], _el(inertial.find("origin"), inertial))
+    i = inertial.find("inertia")
+    if i is not None:
+        f["inertial.inertia"] = _Fact(tuple(_num(i.get(k)) for k in
+                                            ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")), i)
+
+
+def _part_facts(model, part: str, key: str, el, cache, f: dict) -> None:
+    """The facts of one ``<visual>`` or ``<collision>`` (``key``: ``visual[0]``...)."""
+    geometry = el.find("geometry")
+    shape = next((c for c in geometry if isinstance(c.tag, str)), geometry) \
+        if geometry is not None else el
+    for k, v in _geometry(model, geometry, cache).items():
+        f[f"{key}.{k}"] = _Fact(v, shape)
+    o = _origin(el)
+    f[f"{key}.origin.xyz"] = _Fact(o["xyz"], _el(el.find("origin"), el))
+    f[f"{key}.origin.rpy"] = _Fact(o["rpy"], _el(el.find("origin"), el))
+    mat = el.find("material")
+    if part == "visual" and mat is not None:
+        f[f"{key}.material"] = _Fact(mat.get("name"), mat)
+        c = mat.find("color")
+        if c is not None:
+            f[f"{key}.material.rgba"] = _Fact(_vec(c.get("rgba"), 4), c)
+
+
+_JOINT_ATTRS = (("limit", ("lower", "upper", "effort", "velocity")),
+                ("mimic", ("joint", "multiplier", "offset")),
+                ("dynamics", ("damping", "friction")),
+                ("safety_controller", ("soft_lower_limit", "soft_upper_limit",
+                                       "k_position", "k_velocity")))
+
+
+def _joint_facts(j) -> dict:
+    f = {"type": _Fact(j.get("type"), j)}
+    for k in ("parent", "child"):
+        e = j.find(k)
+        f[k] = _Fact(e.get("link") if e is not None else None, e if e is not None else j)
+    o = _origin(j)
+    f["origin.xyz"] = _Fact(o["xyz"], _el(j.find("origin"), j))
+    f["origin.rpy"] = _Fact(o["rpy"], _el(j.find("origin"), j))
+    ax = j.find("axis")
+    if ax is not None or j.get("type") in ("revolute", "continuous", "prismatic", "planar"):
+        f["axis"] = _Fact(_vec(ax.get("xyz")) if ax is not None and ax.get("xyz") else
+                          (1.0, 0.0, 0.0), ax if ax is not None else j)
+    for tag, attrs in _JOINT_ATTRS:
+        e = j.find(tag)
+        if e is None:
+            continue
+        for a in attrs:
+            if e.get(a) is not None:
+                f[f"{tag}.{a}"] = _Fact(_num(e.get(a)) if a != "joint" else e.get(a), e)
+    return f
+
+
+def _material_facts(el) -> dict:
+    f = {}
+    c = el.find("color")
+    if c is not None:
+        f["rgba"] = _Fact(_vec(c.get("rgba"), 4), c)
+    t = el.find("texture")
+    if t is not None:
+        f["texture"] = _Fact(t.get("filename"), t)
+    return f
 
 
 # -- kinematics at the zero configuration ------------------------------------------------------
@@ -303,16 +324,26 @@ def _round(v):
 
 def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, list]:
     """(changes, moved links) between two fact sets of one robot."""
-    changes: list[Change] = []
     hloc = head_model.origin if head_model is not None else (lambda el: None)
     bloc = base_model.origin if base_model is not None else (lambda el: None)
-    value_from = _value_source(head_model)
+    renames = _match_renames(base, head)
+    changes = _presence_changes(base, head, renames, hloc, bloc)
+    changes += _field_changes(base, head, renames, hloc, bloc, _value_source(head_model))
+    return changes, _moved_links(base, head, renames)
 
+
+def _link_map(renames: dict) -> dict:
+    return {o: n for (k, o), n in renames.items() if k == "link"}
+
+
+def _match_renames(base: dict, head: dict) -> dict:
+    """``(kind, old name) -> new name`` for each element removed at BASE whose facts match
+    one added at HEAD (links first, so joints and materials match through renamed links)."""
     renames: dict = {}   # (kind, old) -> new
     for kind in ("link", "joint", "material"):
         removed = [n for (k, n) in base if k == kind and (k, n) not in head]
         added = [n for (k, n) in head if k == kind and (k, n) not in base]
-        link_map = {o: n for (k, o), n in renames.items() if k == "link"}
+        link_map = _link_map(renames)
         by_sig: dict = {}
         for n in added:
             by_sig.setdefault(_signature(head[(kind, n)][1], {}), []).append(n)
@@ -322,20 +353,29 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
             if cands:
                 renames[(kind, o)] = cands.pop(0)
         if kind == "joint":
-            # joints also match by structure: the same parent and child links
-            left = [o for o in removed if (kind, o) not in renames]
-            taken = set(renames.values())
-            for o in left:
-                bf = base[(kind, o)][1]
-                pc = (link_map.get(bf["parent"].value, bf["parent"].value),
-                      link_map.get(bf["child"].value, bf["child"].value))
-                for n in added:
-                    hf = head[(kind, n)][1]
-                    if n not in taken and (hf["parent"].value, hf["child"].value) == pc:
-                        renames[(kind, o)] = n
-                        taken.add(n)
-                        break
+            _match_joints_by_links(base, head, removed, added, link_map, renames)
+    return renames
 
+
+def _match_joints_by_links(base, head, removed, added, link_map, renames) -> None:
+    """Joints also match by structure: the same parent and child links."""
+    left = [o for o in removed if ("joint", o) not in renames]
+    taken = set(renames.values())
+    for o in left:
+        bf = base[("joint", o)][1]
+        pc = (link_map.get(bf["parent"].value, bf["parent"].value),
+              link_map.get(bf["child"].value, bf["child"].value))
+        for n in added:
+            hf = head[("joint", n)][1]
+            if n not in taken and (hf["parent"].value, hf["child"].value) == pc:
+                renames[("joint", o)] = n
+                taken.add(n)
+                break
+
+
+def _presence_changes(base, head, renames, hloc, bloc) -> list[Change]:
+    """The elements added, renamed and removed."""
+    changes: list[Change] = []
     new_names = {(k, n) for (k, _), n in renames.items()}
     for (kind, name), (el, _f) in sorted(head.items()):
         if (kind, name) not in base and (kind, name) not in new_names:
@@ -349,7 +389,12 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
                                   head=hloc(head[(kind, new)][0]), base=bloc(el)))
         else:
             changes.append(Change(kind, name, "removed", base=bloc(el)))
+    return changes
 
+
+def _field_changes(base, head, renames, hloc, bloc, value_from) -> list[Change]:
+    """The fields whose value differs, for each element on both sides (renamed included)."""
+    changes: list[Change] = []
     pairs = [((k, n), (k, n)) for (k, n) in head if (k, n) in base]
     pairs += [(old, (old[0], new)) for old, new in renames.items()]
     for bkey, hkey in sorted(pairs, key=lambda p: p[1]):
@@ -363,9 +408,14 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
                                   head=hloc(h.el) if h else hloc(hel),
                                   base=bloc(b.el) if b else bloc(bel),
                                   value_from=value_from(h, k)))
+    return changes
 
+
+def _moved_links(base, head, renames) -> list:
+    """(link, distance, angle) of each link whose pose at the zero configuration moved,
+    the farthest first."""
     bp, hp = world_poses(base), world_poses(head)
-    link_map = {o: n for (k, o), n in renames.items() if k == "link"}
+    link_map = _link_map(renames)
     moved = []
     for old, (rb, tb) in bp.items():
         new = link_map.get(old, old)
@@ -377,7 +427,7 @@ def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, li
         if dist > _MOVE_TOL or ang > _MOVE_TOL:
             moved.append((new, dist, ang))
     moved.sort(key=lambda m: (-m[1], -m[2], m[0]))
-    return changes, moved
+    return moved
 
 
 def _value_source(model):

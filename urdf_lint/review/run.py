@@ -346,12 +346,34 @@ def _start_recorder(render_dir: str):
         return None
 
 
+@dataclass
+class _Changes:
+    """What git says changed between the revisions (paths relative to the top)."""
+    entries: list            # (status letter, old path, new path)
+    head: set                # paths present at HEAD that changed
+    base: set                # paths present at BASE that changed
+    renamed: dict            # new path -> old path
+
+    @classmethod
+    def between(cls, top, base_sha, head_sha) -> _Changes:
+        changes = name_status(top, base_sha, head_sha)
+        return cls(changes, {new for st, _, new in changes if st != "D"},
+                   {old for st, old, _ in changes if st != "A"},
+                   {new: old for st, old, new in changes if st == "R"})
+
+    def at_base(self, rel: str) -> str:
+        """Where a HEAD path was at BASE (through a rename)."""
+        return self.renamed.get(rel, rel)
+
+
+def _inputs(root, m) -> list:
+    """Every path (relative to ``root``) model result ``m`` read or looked for, entry included."""
+    return [_rel(root, d) for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]]
+
+
 def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths, jobs_n,
               use_cache, render_dir, rrd, recorder, tmp) -> DiffResult:
-    changes = name_status(top, base_sha, head_sha)
-    changed_head = {new for st, _, new in changes if st != "D"}
-    changed_base = {old for st, old, _ in changes if st != "A"}
-    renamed = {new: old for st, old, new in changes if st == "R"}
+    changed = _Changes.between(top, base_sha, head_sha)
     head_root = top
     if head_sha:
         head_root = os.path.join(tmp, "head")
@@ -363,98 +385,39 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     head_paths = [os.path.normpath(os.path.join(head_root, p)) for p in rel_paths]
     head_paths = [p for p in head_paths if os.path.exists(p)] or [head_root]
     cfg = cfg_loader(head_paths)
-    cache = None
-    if use_cache and head_sha is None:
-        from urdf_lint.run.cache import Cache
-        cache = Cache.for_paths(head_paths, cfg)
-        if cache.refused:  # said why on stderr; nothing goes there
-            cache = None
+    cache = _head_cache(head_paths, cfg) if use_cache and head_sha is None else None
     # models linted now (not from the cache) bring their robot back: no second expansion
     # models the change cannot reach (include graph) are not even linted
-    reach = _Reach([os.path.join(head_root, p) for p in changed_head] +
-                   [os.path.join(head_root, p) for p in changed_base])
+    reach = _Reach([os.path.join(head_root, p) for p in changed.head] +
+                   [os.path.join(head_root, p) for p in changed.base])
     head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
                                             cache, keep_models=not render_dir,
                                             select_jobs=reach)
     result.internal += head_result.internal
     result.total_models = len(head.models) + reach.skipped
 
-    affected = []
-    for k, m in head.models.items():
-        inputs = {_rel(head_root, d) for d in list(m.deps) + list(getattr(m, "missing", []))}
-        inputs.add(_rel(head_root, m.entry))
-        if inputs & (changed_head | changed_base):
-            affected.append(k)
+    touched = changed.head | changed.base
+    affected = [k for k, m in head.models.items() if set(_inputs(head_root, m)) & touched]
     if render_dir:
         _clear_snapshots(render_dir)
-    again = []
-    for k in affected:
-        m = head.models[k]
-        if m.kept_model is not None and not render_dir:
-            _keep_robot(head, k, m.entry, m.args, m, head_resolver)
-        else:
-            again.append(k)
-    for m in head.models.values():
-        m.kept_model = None  # only the affected robots are needed from here on
+    again = _keep_affected_robots(head, affected, head_resolver, render_dir)
     # the head's robots (and pictures) are made while the base is materialised and linted
     head_load = _Background(_load_robots, head, again, head_resolver, cfg,
                             _half(jobs_n, cfg), bool(render_dir), rrd)
     # (an exception from here on leaves it: its workers die with this process)
     base_jobs = _half(jobs_n, cfg) if head_load.thread is not None else jobs_n
-    # the base needs only what the affected models can read there: their inputs at HEAD
-    # (through renames), every changed path, and the package manifests and configs
-    base_files = tracked_files(top, base_sha)
-    need = set(changed_base)
-    for k in affected:
-        m = head.models[k]
-        for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]:
-            rel = _rel(head_root, d)
-            need.add(renamed.get(rel, rel))
-    need |= {f for f in base_files if os.path.basename(f) in
-             ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
-              "CATKIN_IGNORE")}
-    materialize(top, base_sha, base_root, only=need & base_files)
-    # base entries: the affected models (through renames) and deleted model files
-    base_entries = set()
-    for k in affected:
-        rel = _rel(head_root, head.models[k].entry)
-        rel = renamed.get(rel, rel)
-        if os.path.exists(os.path.join(base_root, rel)):
-            base_entries.add(rel)
-    from urdf_lint.engine.lint import classify_xacro
-    for st, old, _new in changes:
-        if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
-                any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
-                    for p in rel_paths):
-            f = os.path.join(base_root, old)
-            if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
-                base_entries.add(old)
+    _materialize_base(top, base_sha, base_root, head, affected, changed)
+    base_entries = _base_entries(base_root, head, affected, changed, rel_paths)
     base = Side(base_root)
-    base_resolver = None
     if base_entries:
-        base_paths = [os.path.join(base_root, e) for e in sorted(base_entries)]
-        base_cfg = cfg_loader([base_root])
-        # the base's robots (and with --render its pictures and half recordings) come
-        # from this one expansion; mesh facts (keyed by content) are shared with the
-        # working tree's cache
-        overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
-        base_resolver, base_result = _lint_side(
-            base, base_paths, base_cfg, package_paths, base_jobs, None, keep_models=True,
-            mesh_cache_dir=cache.dir if cache else None, settings_overrides=overrides)
-        result.internal += base_result.internal
-        for k, m in base.models.items():
-            _keep_robot(base, k, m.entry, m.args, m, base_resolver)
-            if m.diff_geometry is not None:
-                base.geometry[k] = m.diff_geometry
-            if m.diff_rrd:
-                base.rrd[k] = m.diff_rrd
+        _lint_base(result, base, base_entries, cfg_loader, package_paths, base_jobs,
+                   cache.dir if cache else None, render_dir, rrd)
     result.base_expanded = len(base.models)
 
     base_keys = {}
     for k in affected:
         m = head.models[k]
-        rel = _rel(head_root, m.entry)
-        bk = _key(renamed.get(rel, rel), m.args)
+        bk = _key(changed.at_base(_rel(head_root, m.entry)), m.args)
         if bk in base.models:
             base_keys[k] = bk
     deleted = [k for k in base.models if k not in base_keys.values()]
@@ -465,27 +428,111 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     for dk in sorted(deleted):
         result.models.append(_model_diff(dk, head, base, dk, removed=True))
     if render_dir:
-        from urdf_lint.core.locations import clashing_names
-        from urdf_lint.render.snapshot import write_manifest
-        recordings: dict = {}
-        clash = clashing_names({md.model: md.picture for md in result.models})
-        for name, models in clash.items():
-            result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
-                                             f"has the picture name {name}: neither is drawn")
-                                         for k in models]
-        for md in result.models:
-            if md.picture in clash:
-                md.snapshot = {}
-                continue
-            removed = md.status == "removed"
-            md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
-                                    md.model if removed else base_keys.get(md.model),
-                                    render_dir, result, cfg, recorder, recordings)
-        _finish_recordings(result, recorder, recordings)
-        files = [v for md in result.models for k, v in md.snapshot.items()
-                 if k in ("before", "after", "diff", "rrd") and v]
-        write_manifest(render_dir, files)
+        _render_snapshots(result, head, base, base_keys, render_dir, cfg, recorder)
     return result
+
+
+def _head_cache(head_paths, cfg):
+    """The working tree's cache, or None when it is refused (said why on stderr)."""
+    from urdf_lint.run.cache import Cache
+    cache = Cache.for_paths(head_paths, cfg)
+    return None if cache.refused else cache
+
+
+def _keep_affected_robots(head: Side, affected, resolver, render_dir) -> list:
+    """Keep the robots the head's lint brought back for the affected models; the keys of
+    those that must be expanded again (all of them with ``render_dir``: pictures are drawn
+    from a fresh expansion) are returned. Every other kept model is dropped."""
+    again = []
+    for k in affected:
+        m = head.models[k]
+        if m.kept_model is not None and not render_dir:
+            _keep_robot(head, k, m.entry, m.args, m, resolver)
+        else:
+            again.append(k)
+    for m in head.models.values():
+        m.kept_model = None  # only the affected robots are needed from here on
+    return again
+
+
+_BASE_MANIFESTS = ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IGNORE",
+                   "CATKIN_IGNORE")
+
+
+def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _Changes):
+    """The base needs only what the affected models can read there: their inputs at HEAD
+    (through renames), every changed path, and the package manifests and configs."""
+    base_files = tracked_files(top, base_sha)
+    need = set(changed.base)
+    for k in affected:
+        need.update(changed.at_base(rel) for rel in _inputs(head.root, head.models[k]))
+    need |= {f for f in base_files if os.path.basename(f) in _BASE_MANIFESTS}
+    materialize(top, base_sha, base_root, only=need & base_files)
+
+
+def _base_entries(base_root, head: Side, affected, changed: _Changes, rel_paths) -> set:
+    """The models to expand at BASE: the affected ones (through renames) and the deleted
+    model files under the paths asked for."""
+    from urdf_lint.engine.lint import classify_xacro
+    base_entries = set()
+    for k in affected:
+        rel = changed.at_base(_rel(head.root, head.models[k].entry))
+        if os.path.exists(os.path.join(base_root, rel)):
+            base_entries.add(rel)
+    for st, old, _new in changed.entries:
+        if st in ("D", "R") and old.endswith((".urdf", ".xacro")) and \
+                any(old == p or old.startswith(p.rstrip("/") + "/") or p == "."
+                    for p in rel_paths):
+            f = os.path.join(base_root, old)
+            if os.path.isfile(f) and (old.endswith(".urdf") or classify_xacro(f) is None):
+                base_entries.add(old)
+    return base_entries
+
+
+def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs_n,
+               mesh_cache_dir, render_dir, rrd) -> None:
+    """Lint the base entries and keep their robots (and with --render their pictures'
+    geometry and half recordings): all from this one expansion; mesh facts (keyed by
+    content) are shared with the working tree's cache."""
+    base_paths = [os.path.join(base.root, e) for e in sorted(base_entries)]
+    base_cfg = cfg_loader([base.root])
+    overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
+    base_resolver, base_result = _lint_side(
+        base, base_paths, base_cfg, package_paths, jobs_n, None, keep_models=True,
+        mesh_cache_dir=mesh_cache_dir, settings_overrides=overrides)
+    result.internal += base_result.internal
+    for k, m in base.models.items():
+        _keep_robot(base, k, m.entry, m.args, m, base_resolver)
+        if m.diff_geometry is not None:
+            base.geometry[k] = m.diff_geometry
+        if m.diff_rrd:
+            base.rrd[k] = m.diff_rrd
+
+
+def _render_snapshots(result, head: Side, base: Side, base_keys, render_dir, cfg,
+                      recorder) -> None:
+    """Draw each model's before/after pictures (and recordings) and write the manifest; two
+    models whose pictures would share a name are not drawn (a snapshot problem)."""
+    from urdf_lint.core.locations import clashing_names
+    from urdf_lint.render.snapshot import write_manifest
+    recordings: dict = {}
+    clash = clashing_names({md.model: md.picture for md in result.models})
+    for name, models in clash.items():
+        result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
+                                         f"has the picture name {name}: neither is drawn")
+                                     for k in models]
+    for md in result.models:
+        if md.picture in clash:
+            md.snapshot = {}
+            continue
+        removed = md.status == "removed"
+        md.snapshot = _snapshot(md.model, head, base, None if removed else md.model,
+                                md.model if removed else base_keys.get(md.model),
+                                render_dir, result, cfg, recorder, recordings)
+    _finish_recordings(result, recorder, recordings)
+    files = [v for md in result.models for k, v in md.snapshot.items()
+             if k in ("before", "after", "diff", "rrd") and v]
+    write_manifest(render_dir, files)
 
 
 def _clear_snapshots(render_dir):

@@ -306,25 +306,47 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     """``memo`` (a :class:`urdf_lint.fix.memo.FixMemo`): the fixes earlier runs rolled back,
     not tried again while nothing they depend on changed; this run's rollbacks are added."""
     from urdf_lint.run.pipeline import RunRequest, run_check
-    request = RunRequest(paths, cfg, resolver, jobs_n=jobs_n, keep_models=True,
-                         in_process=in_process)
-    before_result = run_check(request)
+    request = RunRequest(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
+
+    def check(keep_models: bool = False):
+        return run_check(replace(request, keep_models=keep_models))
+    before_result = check(keep_models=True)
     before_result.findings = inside_paths(before_result.findings, paths,
                                           before_result.generated)
     chosen, _, refused = candidates(before_result.findings, unsafe)
     keys: dict = {}
     if memo is not None:
-        from urdf_lint.fix.memo import fix_key
-        keys = {_fkey(p): fix_key(p, before_result.models) for p in chosen}
-        earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
-        refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
-                        "it depends on changes") for p, why in earlier if why]
-        chosen = [p for p, why in earlier if not why]
+        chosen, keys = _skip_rolled_back(chosen, refused, memo, before_result.models)
     originals: dict = {}
     if diff_only:
         new = edited_sources(chosen, originals)
         return FixOutcome(before_result, chosen, [], sorted(
             f for f in new if new[f] != originals[f]), unified_diff(new, originals), refused)
+    result, chosen, rolled, written = _fix_rounds(check, paths, before_result, chosen,
+                                                  originals)
+    if memo is not None:
+        for p, why in rolled:
+            memo.remember(keys.get(_fkey(p)), why)
+        memo.save()
+    changed = sorted(f for f in written if originals.get(f) is not None)
+    return FixOutcome(result, chosen, rolled, changed, "", refused)
+
+
+def _skip_rolled_back(chosen, refused: list, memo, models) -> tuple[list, dict]:
+    """(the fixes to try, each fix's memo key): a fix an earlier run rolled back, while
+    nothing it depends on changed, joins ``refused`` instead."""
+    from urdf_lint.fix.memo import fix_key
+    keys = {_fkey(p): fix_key(p, models) for p in chosen}
+    earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
+    refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
+                    "it depends on changes") for p, why in earlier if why]
+    return [p for p, why in earlier if not why], keys
+
+
+def _fix_rounds(check, paths, before_result, chosen, originals: dict):
+    """Write the fixes and check again, rolling back those that do not verify, until the
+    rest do (at most ``MAX_ROUNDS``): (result, fixes kept, (fix, why) rolled back, files
+    written). ``originals`` receives each edited file's text; a failure restores them."""
     before = _snapshot(before_result)
     rolled: list = []
     result = before_result
@@ -333,15 +355,8 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
         for _ in range(MAX_ROUNDS):
             if not chosen:
                 break
-            new = edited_sources(chosen, originals)
-            for f in set(originals) - set(new):      # a file whose fixes were all rolled back
-                if f in written:
-                    fsbound.rewrite(f, originals[f], paths)
-                    written.discard(f)
-            for f, data in new.items():
-                fsbound.rewrite(f, data, paths)
-                written.add(f)
-            result = run_check(request)
+            _write_sources(edited_sources(chosen, originals), originals, written, paths)
+            result = check(keep_models=True)
             bad = verify(before, before_result.findings, result, chosen,
                          line_maps(chosen, originals))
             if not bad:
@@ -352,18 +367,27 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             rolled += [(p, "the fixes did not verify") for p in chosen]
             chosen = []
         if not chosen:
-            for f in written:
-                fsbound.rewrite(f, originals[f], paths)
+            _restore(written, originals, paths)
             written = set()
             if rolled:
-                result = run_check(replace(request, keep_models=False))
+                result = check()
     except BaseException:
-        for f in written:     # never leave half-fixed sources behind
-            fsbound.rewrite(f, originals[f], paths)
+        _restore(written, originals, paths)     # never leave half-fixed sources behind
         raise
-    if memo is not None:
-        for p, why in rolled:
-            memo.remember(keys.get(_fkey(p)), why)
-        memo.save()
-    changed = sorted(f for f in written if originals.get(f) is not None)
-    return FixOutcome(result, chosen, rolled, changed, "", refused)
+    return result, chosen, rolled, written
+
+
+def _write_sources(new: dict, originals: dict, written: set, paths) -> None:
+    """Write this round's sources; a file whose fixes were all rolled back is restored."""
+    for f in set(originals) - set(new):
+        if f in written:
+            fsbound.rewrite(f, originals[f], paths)
+            written.discard(f)
+    for f, data in new.items():
+        fsbound.rewrite(f, data, paths)
+        written.add(f)
+
+
+def _restore(written: set, originals: dict, paths) -> None:
+    for f in written:
+        fsbound.rewrite(f, originals[f], paths)

@@ -182,19 +182,7 @@ def run_check(request: RunRequest) -> CheckResult:
     if req.settings_overrides:
         settings = dataclasses.replace(settings, **req.settings_overrides)
     if req.render_dir:
-        from urdf_lint.core import fsbound
-        fsbound.make_own_dirs(req.render_dir)   # checked by the CLI (check_no_symlink)
-        # every picture's name is known here: one two models would share is drawn for neither
-        from urdf_lint.discovery.discover import repository_root
-        from urdf_lint.core.locations import clashing_names, snapshot_name
-        base = repository_root(paths)
-        clash = clashing_names({(j.entry, tuple(sorted(j.args.items()))):
-                                snapshot_name(j.entry, j.args, base) for j in jobs})
-        settings = dataclasses.replace(settings, render_dir=os.path.realpath(req.render_dir),
-                                       render_rrd=req.render_rrd, render_base=base,
-                                       render_refused=tuple(sorted(clash)),
-                                       render_views=cfg.views or "single",
-                                       render_forward=cfg.forward_axis)
+        settings = _render_settings(settings, req.render_dir, req.render_rrd, paths, jobs, cfg)
     results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
                                   req.in_process)
     out = CheckResult(internal=internal)
@@ -207,28 +195,59 @@ def run_check(request: RunRequest) -> CheckResult:
     _hint_packages(out.models, paths)
 
     if req.affected_by is not None:
-        from urdf_lint.discovery.changes import affected
-        out.models, out.unused_files = affected(out.models, req.affected_by)
-        # a deleted file no model reads any more: a removed model (or an unused file) is gone
-        out.gone = [f for f in out.unused_files if not os.path.exists(f)]
-        out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
+        _keep_affected(out, req.affected_by)
     if req.render_dir:
         _drop_snapshots([r for r in results if r not in out.models], req.render_dir)
+    out.findings = _findings(out, found.problems, settings, policy,
+                             run_rules=req.affected_by is None)
+    if memo is not None:
+        memo.store(out, results, found.folders)
+    return out
+
+
+def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool, paths, jobs,
+                     cfg: "Config") -> LintSettings:
+    """The workers' settings for a run that draws each model's picture into ``render_dir``."""
+    from urdf_lint.core import fsbound
+    fsbound.make_own_dirs(render_dir)   # checked by the CLI (check_no_symlink)
+    # every picture's name is known here: one two models would share is drawn for neither
+    from urdf_lint.discovery.discover import repository_root
+    from urdf_lint.core.locations import clashing_names, snapshot_name
+    base = repository_root(paths)
+    clash = clashing_names({(j.entry, tuple(sorted(j.args.items()))):
+                            snapshot_name(j.entry, j.args, base) for j in jobs})
+    return dataclasses.replace(settings, render_dir=os.path.realpath(render_dir),
+                               render_rrd=render_rrd, render_base=base,
+                               render_refused=tuple(sorted(clash)),
+                               render_views=cfg.views or "single",
+                               render_forward=cfg.forward_axis)
+
+
+def _keep_affected(out: CheckResult, affected_by: frozenset) -> None:
+    """Only the models whose inputs include a changed file; the files no model uses."""
+    from urdf_lint.discovery.changes import affected
+    out.models, out.unused_files = affected(out.models, affected_by)
+    # a deleted file no model reads any more: a removed model (or an unused file) is gone
+    out.gone = [f for f in out.unused_files if not os.path.exists(f)]
+    out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
+
+
+def _findings(out: CheckResult, run_problems, settings: LintSettings, policy: Policy,
+              run_rules: bool) -> list[Problem]:
+    """The findings of the run: the models', the run-scope rules' (``run_rules``) and
+    discovery's, with the policy's severities, suppressions and selection applied, sorted."""
     problems: list[Problem] = []
     for r in out.models:
         problems.extend(_with_policy(r.problems, r.label, policy))
-    if req.affected_by is None:
+    if run_rules:
         problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
-    problems.extend(_with_policy(found.problems, RUN_LABEL, policy))
+    problems.extend(_with_policy(run_problems, RUN_LABEL, policy))
     kept = _suppress(merge(problems), out.models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
     from urdf_lint.fix.fixes import not_in_generated
-    out.findings = sorted(not_in_generated(final, out.generated),
-                          key=lambda f: (f.file, f.line, f.col, f.code))
-    if memo is not None:
-        memo.store(out, results, found.folders)
-    return out
+    return sorted(not_in_generated(final, out.generated),
+                  key=lambda f: (f.file, f.line, f.col, f.code))
 
 
 def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,

@@ -367,11 +367,23 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs
     model that lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job
     waiting on I/O); where CPU time cannot be measured, it is wall-clock time.
     ``settings.memory_mb`` limits each worker's memory."""
-    timeout, memory_mb = settings.timeout, settings.memory_mb
-    wall = timeout * WALL_FACTOR
     jobs = list(jobs)
     if not jobs:
         return
+    pool = _start_pool(jobs, settings, handler, jobs_n)
+    try:
+        while pool.pending() or pool.busy:
+            pool.dispatch()
+            for conn in pool.wait():
+                yield pool.collect(conn)
+            yield from pool.expire()
+    finally:
+        pool.close()
+
+
+def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
+                jobs_n) -> "_Pool":
+    """Plan the pool (package blocks, worker count, queues) and start its workers."""
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
     pre = _take_prestarted(settings)
@@ -384,96 +396,128 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs
         blocks, cores, worker_cost=WARM_WORKER_COST_S if warm_meshes else WORKER_COST_S),
         len(jobs)))
     queues = assign(blocks, n)
-    block_of = {id(j): k for k, b in enumerate(blocks) for j in b.jobs}
     if handler.preload is not None and (pre is None or n > 1):
         # workers forked from here on share what the parent imports (the prestarted one was
         # forked before)
         handler.preload(blocks, settings, n)
-    workers = [pre] if pre is not None else []
-    workers += [_Worker(handler, settings) for _ in range(n - len(workers))]
-    for w, q in zip(workers, queues, strict=True):
+    pool = _Pool(settings, handler, queues,
+                 {id(j): k for k, b in enumerate(blocks) for j in b.jobs})
+    pool.workers = [pre] if pre is not None else []
+    pool.workers += [_Worker(handler, settings) for _ in range(n - len(pool.workers))]
+    for w, q in zip(pool.workers, queues, strict=True):
         w.queue = q
+    return pool
 
-    def pending():
-        return any(queues)
 
-    def replace(old):
-        new = _Worker(handler, settings)
+class _Pool:
+    """The workers of one :func:`run_jobs`: which is busy with what, and their limits."""
+
+    def __init__(self, settings: LintSettings, handler: Handler, queues, block_of):
+        self.settings, self.handler = settings, handler
+        self.timeout, self.memory_mb = settings.timeout, settings.memory_mb
+        self.wall = self.timeout * WALL_FACTOR
+        self.queues, self.block_of = queues, block_of
+        self.workers: list[_Worker] = []
+        self.busy: dict = {}   # connection -> its worker, busy with a job
+
+    def pending(self) -> bool:
+        return any(self.queues)
+
+    def replace(self, old: "_Worker") -> None:
+        """Stop worker ``old`` and start another on its queue."""
+        self.retire(old)
+        new = _Worker(self.handler, self.settings)
         new.queue = old.queue
-        workers.append(new)
-    try:
-        busy: dict = {}
-        while pending() or busy:
-            for w in workers:
-                if w.job is None and pending():
-                    w.job = _next_job(w.queue, queues, block_of,
-                                      {block_of.get(id(o.job)) for o in workers if o.job})
-                    if w.job is None:
-                        continue
-                    w.started = time.monotonic()
-                    w.cpu0 = _cpu_seconds(w.proc.pid)
-                    w.conn.send(w.job)
-                    busy[w.conn] = w
-            now = time.monotonic()
-            next_deadline = min(w.started + (wall if w.cpu0 is not None else timeout)
-                                for w in busy.values())
-            if any(w.cpu0 is not None for w in busy.values()):
-                next_deadline = min(next_deadline, now + POLL_S)
-            ready = forked.wait(list(busy), timeout=max(0.0, next_deadline - now))
-            for conn in ready:
-                w = busy.pop(conn)
+        self.workers.append(new)
+
+    def retire(self, w: "_Worker") -> None:
+        self.workers.remove(w)
+        w.kill()
+
+    def _limit(self, w: "_Worker") -> float:
+        return self.wall if w.cpu0 is not None else self.timeout
+
+    def dispatch(self) -> None:
+        """Send each idle worker its next job."""
+        for w in self.workers:
+            if w.job is None and self.pending():
+                w.job = _next_job(w.queue, self.queues, self.block_of,
+                                  {self.block_of.get(id(o.job)) for o in self.workers if o.job})
+                if w.job is None:
+                    continue
+                w.started = time.monotonic()
+                w.cpu0 = _cpu_seconds(w.proc.pid)
+                w.conn.send(w.job)
+                self.busy[w.conn] = w
+
+    def wait(self):
+        """The connections of busy workers that sent something, by the next deadline (or the
+        next look at CPU times)."""
+        now = time.monotonic()
+        next_deadline = min(w.started + self._limit(w) for w in self.busy.values())
+        if any(w.cpu0 is not None for w in self.busy.values()):
+            next_deadline = min(next_deadline, now + POLL_S)
+        return forked.wait(list(self.busy), timeout=max(0.0, next_deadline - now))
+
+    def collect(self, conn):
+        """(job, result) from the worker on ``conn``; a worker that sent something else or
+        died is replaced."""
+        w = self.busy.pop(conn)
+        job = w.job
+        try:
+            result = w.conn.recv(timeout=max(1.0, w.started + self._limit(w) - time.monotonic()))
+            if not isinstance(result, ModelReport):
+                raise forked.Refused(f"a {type(result).__name__}")
+        except forked.Refused as e:
+            # not a lint result: the worker ran something that is not urdf-lint's
+            result = ModelReport.failed(job, internal=[
+                f"the worker linting this model sent back something that is not a lint "
+                f"result ({e}); it was not read, and the worker was stopped"])
+            result.cacheable = False
+            self.replace(w)
+        except (EOFError, OSError):
+            code = w.proc.exitcode
+            result = self.handler.limit_result(
+                job, f"the expansion worker died (exit code {code}); likely the memory limit "
+                f"({self.memory_mb} MiB)")
+            self.replace(w)
+        else:
+            w.job = None
+        return job, result
+
+    def _over(self, w: "_Worker", now: float) -> tuple[bool, str]:
+        """(whether busy worker ``w`` is over its time limit, the limit in words)."""
+        timeout, wall = self.timeout, self.wall
+        if w.cpu0 is not None:
+            cpu = _used(w)
+            over = (cpu is not None and cpu >= timeout) or now - w.started >= wall
+            return over, (f"the time limit ({timeout:g} s of CPU time, {wall:g} s of "
+                          "wall-clock time)")
+        return now - w.started >= timeout, f"the time limit ({timeout:g} s)"
+
+    def expire(self):
+        """Yield (job, limit result) for each busy worker over its time limit, stopped."""
+        now = time.monotonic()
+        for conn, w in list(self.busy.items()):
+            over, what = self._over(w, now)
+            if over:
+                self.busy.pop(conn)
                 job = w.job
-                try:
-                    limit = wall if w.cpu0 is not None else timeout
-                    result = w.conn.recv(timeout=max(1.0, w.started + limit - time.monotonic()))
-                    if not isinstance(result, ModelReport):
-                        raise forked.Refused(f"a {type(result).__name__}")
-                except forked.Refused as e:
-                    # not a lint result: the worker ran something that is not urdf-lint's
-                    result = ModelReport.failed(job, internal=[
-                        f"the worker linting this model sent back something that is not a lint "
-                        f"result ({e}); it was not read, and the worker was stopped"])
-                    result.cacheable = False
-                    workers.remove(w)
-                    w.kill()
-                    replace(w)
-                except (EOFError, OSError):
-                    code = w.proc.exitcode
-                    result = handler.limit_result(job, "the expansion worker died (exit code "
-                                           f"{code}); likely the memory limit ({memory_mb} MiB)")
-                    workers.remove(w)
-                    w.kill()
-                    replace(w)
+                if self.pending() or self.busy:
+                    self.replace(w)
                 else:
-                    w.job = None
-                yield job, result
-            now = time.monotonic()
-            for conn, w in list(busy.items()):
-                if w.cpu0 is not None:
-                    cpu = _used(w)
-                    over = (cpu is not None and cpu >= timeout) or now - w.started >= wall
-                    what = (f"the time limit ({timeout:g} s of CPU time, {wall:g} s of "
-                            "wall-clock time)")
-                else:
-                    over = now - w.started >= timeout
-                    what = f"the time limit ({timeout:g} s)"
-                if over:
-                    busy.pop(conn)
-                    job = w.job
-                    workers.remove(w)
-                    w.kill()
-                    if pending() or busy:
-                        replace(w)
-                    yield job, handler.limit_result(
-                        job, f"expansion/lint did not finish within {what}; a huge expression, "
-                        "loop or recursion?")
-    finally:
-        for w in workers:
+                    self.retire(w)
+                yield job, self.handler.limit_result(
+                    job, f"expansion/lint did not finish within {what}; a huge expression, "
+                    "loop or recursion?")
+
+    def close(self) -> None:
+        for w in self.workers:
             try:
                 w.conn.send(None)
-            except Exception:
+            except Exception:  # noqa: BLE001 - a dead worker: killed below
                 pass
-        for w in workers:
+        for w in self.workers:
             w.proc.join(0.5)
             if w.proc.is_alive():
                 w.kill()
