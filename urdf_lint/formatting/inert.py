@@ -94,26 +94,39 @@ def _changed_level(el, parent, ka: list, kb: list, quiet_reads: bool) -> str | N
             return None
         return f"the whitespace of <{el[1]}> may reach the robot once it is self-closed"
     if quiet_reads:     # what xacro reads of whitespace changes nothing it writes
-        if any(n[0] == "el" and _reaches(n) for n in ka) or min(
-                sum(1 for n in k if _reaches(n)) for k in (ka, kb)) >= 2:
+        if _with_element(ka) or min(_reaching(k) for k in (ka, kb)) >= 2:
             return None
         return f"the whitespace in <{el[1]}> may be the only child of an element"
-    if any(n[0] == "el" and _reaches(n) for n in ka):
-        # it reaches the robot with an element: the element it lands in is written with its
-        # whitespace-only text left out, wherever that is. xacro reads where the text is
-        # next to its own elements among the children; and, where the level is spliced into
-        # another, from the elements that follow it there, stepping back over its last text
-        # to a comment (none when the level ends with an element)
-        quiet = all(not n[1].startswith("xacro:") or n[1] in QUIET for n in ka if n[0] == "el")
-        last = [n for n in ka if n[0] != "text"][-1]
-        ends = last[0] == "el" and _reaches(last)
-        if (quiet or _shape(ka) == _shape(kb)) and (_kept(el, parent) or ends):
-            return None
+    if _with_element(ka) and _lands_in_an_element(el, parent, ka, kb):
+        return None
     if _shape(ka) != _shape(kb):
         return f"the whitespace in <{el[1]}> changes its shape, which xacro reads"
-    if sum(1 for n in ka if _reaches(n)) < 2:
+    if _reaching(ka) < 2:
         return f"the whitespace in <{el[1]}> may be the only child of an element"
     return None
+
+
+def _reaching(nodes: list) -> int:
+    """How many of the nodes reach the robot."""
+    return sum(1 for n in nodes if _reaches(n))
+
+
+def _with_element(nodes: list) -> bool:
+    """Does an element among the nodes reach the robot?"""
+    return any(n[0] == "el" and _reaches(n) for n in nodes)
+
+
+def _lands_in_an_element(el, parent, ka: list, kb: list) -> bool:
+    """Whether a level that reaches the robot with an element (``ka`` -> ``kb``) keeps its
+    new whitespace out of it. The element it lands in is written with its whitespace-only
+    text left out, wherever that is. xacro reads where the text is next to its own elements
+    among the children; and, where the level is spliced into another, from the elements that
+    follow it there, stepping back over its last text to a comment (none when the level ends
+    with an element)."""
+    quiet = all(not n[1].startswith("xacro:") or n[1] in QUIET for n in ka if n[0] == "el")
+    last = [n for n in ka if n[0] != "text"][-1]
+    ends = last[0] == "el" and _reaches(last)
+    return (quiet or _shape(ka) == _shape(kb)) and (_kept(el, parent) or ends)
 
 
 def _pairs(xs: list, ys: list, parent, quiet_reads: bool) -> str | None:

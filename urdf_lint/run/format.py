@@ -168,32 +168,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     every = dataclasses.replace(cfg, exclude=[], discover=True)
     disc = discover_models(scan, every, resolver)
     graph = disc.graph
-
-    def reach(entry):
-        seen, todo = {entry}, [entry]
-        while todo:
-            for g in graph.includes.get(todo.pop(), ()):
-                if g not in seen:
-                    seen.add(g)
-                    todo.append(g)
-        return seen
-    unproven = set(changed)
-    if old:
-        from functools import lru_cache
-
-        from urdf_lint.formatting.inert import proven
-        read = lru_cache(maxsize=None)(read_document)
-
-        def parsed(data: bytes) -> list:   # (each layout read once: format_files read most)
-            return (docs or {}).get(data) or read(data)
-        for f in sorted(changed):
-            if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
-                unproven.discard(f)
-        relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed)
-        unproven -= relaxed
-        proof.by_file = len(changed) - len(unproven)
-    else:
-        relaxed, is_quiet = set(), None
+    reach = _reach(graph)
+    unproven, relaxed, is_quiet = _by_file(changed, old, docs, disc, reach)
+    proof.by_file = len(changed) - len(unproven)
     if not unproven and not relaxed:
         return proof
 
@@ -226,18 +203,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         removed: set = set()
         for k in pending:
             deps[k] |= {os.path.realpath(d) for d in after[k].deps}
-            (a, why_a), (b, why_b) = _outcome(before[k]), _outcome(after[k])
-            if a is not None and b is not None:
-                if a == b:
-                    continue
-                why = f"{first_difference(a, b)} differs"
-            elif a is None and b is None:
-                if why_a == why_b:
-                    continue   # it does not expand either way: the guard is the proof
-                why = f"the expansion fails differently ({why_b})"
-            else:
-                why = f"the expansion {'fails' if b is None else 'succeeds'} once formatted" + \
-                    (f" ({why_b})" if why_b else "")
+            why = _difference(before[k], after[k])
+            if why is None:
+                continue
             label = before[k].label
             # the files not proved by themselves (all it reads, should those not do)
             culprits = deps[k] & overlay.keys() & (unproven | relaxed) or deps[k] & overlay.keys()
@@ -248,6 +216,52 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
             overlay.pop(f, None)
         pending = [k for k in jobs if deps[k] & removed and deps[k] & overlay.keys()]
     return proof
+
+
+def _reach(graph):
+    """The files a model's entry reads by the static include graph (itself included)."""
+    def reach(entry):
+        seen, todo = {entry}, [entry]
+        while todo:
+            for g in graph.includes.get(todo.pop(), ()):
+                if g not in seen:
+                    seen.add(g)
+                    todo.append(g)
+        return seen
+    return reach
+
+
+def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach) -> tuple:
+    """(the changed files not proved from the file itself, those proved only where every
+    file of their models reads quietly, the per-file quiet test) (:mod:`urdf_lint.formatting.inert`)."""
+    unproven = set(changed)
+    if not old:
+        return unproven, set(), None
+    from functools import lru_cache
+
+    from urdf_lint.formatting.inert import proven
+    read = lru_cache(maxsize=None)(read_document)
+
+    def parsed(data: bytes) -> list:   # (each layout read once: format_files read most)
+        return (docs or {}).get(data) or read(data)
+    for f in sorted(changed):
+        if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
+            unproven.discard(f)
+    relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed)
+    return unproven - relaxed, relaxed, is_quiet
+
+
+def _difference(before, after) -> str | None:
+    """None when a model's expansion before and after the new layouts is the same robot
+    (or fails the same way); else how they differ."""
+    (a, why_a), (b, why_b) = _outcome(before), _outcome(after)
+    if a is not None and b is not None:
+        return None if a == b else f"{first_difference(a, b)} differs"
+    if a is None and b is None:
+        # it does not expand either way: the guard is the proof
+        return None if why_a == why_b else f"the expansion fails differently ({why_b})"
+    return f"the expansion {'fails' if b is None else 'succeeds'} once formatted" + \
+        (f" ({why_b})" if why_b else "")
 
 
 def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed) -> tuple:
