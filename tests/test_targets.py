@@ -377,3 +377,33 @@ def test_principal_moments_match_numpy():
         got = principal_moments(m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2])
         want = np.linalg.eigvalsh(m)
         assert np.allclose(got, want, rtol=1e-9, atol=1e-12 * np.abs(m).max()), (m, got, want)
+
+
+def test_gazebo_lumped_reference_only_where_sdformat_lumps(tmp_path):
+    """UL705: a <gazebo reference> on the child of a fixed joint is reported for the gazebo
+    target only, and not where the joint is kept (preserveFixedJoint, disableFixedJointLumping),
+    attaches to `world`, or the block is empty."""
+    fixed = '<joint name="{j}" type="fixed"><parent link="{p}"/><child link="{c}"/></joint>'
+    body = f"""<robot name="r">
+  <link name="world"/><link name="base"/><link name="cam"/><link name="imu"/><link name="tof"/>
+  <link name="bare"/>
+  {fixed.format(j="world_joint", p="world", c="base")}
+  {fixed.format(j="cam_joint", p="base", c="cam")}
+  {fixed.format(j="imu_joint", p="base", c="imu")}
+  {fixed.format(j="tof_joint", p="base", c="tof")}
+  {fixed.format(j="bare_joint", p="base", c="bare")}
+  <gazebo reference="base"><material>Gazebo/Grey</material></gazebo>
+  <gazebo reference="cam"><sensor name="c" type="camera"/></gazebo>
+  <gazebo reference="imu"><sensor name="i" type="imu"/></gazebo>
+  <gazebo reference="imu_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>
+  <gazebo reference="tof"><sensor name="t" type="gpu_lidar"/></gazebo>
+  <gazebo reference="tof_joint"><disableFixedJointLumping>true</disableFixedJointLumping></gazebo>
+  <gazebo reference="bare"><!-- nothing --></gazebo>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    fs = [f for f in lint(pkg, "--target", "gazebo") if f["code"] == "UL705"]
+    assert [(f["line"], f["severity"], f.get("severity_from")) for f in fs] == \
+        [(10, "warning", ["gazebo"])], fs
+    assert "'cam' into 'base'" in fs[0]["message"] and "cam_joint" in fs[0]["message"]
+    assert not of(lint(pkg), "UL705")
