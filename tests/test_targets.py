@@ -407,3 +407,28 @@ def test_gazebo_lumped_reference_only_where_sdformat_lumps(tmp_path):
         [(10, "warning", ["gazebo"])], fs
     assert "'cam' into 'base'" in fs[0]["message"] and "cam_joint" in fs[0]["message"]
     assert not of(lint(pkg), "UL705")
+
+
+def test_isaac_findings_only_for_the_isaac_target(tmp_path):
+    """UL609 on an empty root link that is the root of something, UL310 on a moving joint's
+    non-zero damping or friction; nothing for ros."""
+    body = f"""<robot name="r">
+  <link name="base_footprint"/>
+  <link name="base">{inertial(1)}</link>
+  <link name="a">{inertial(1)}</link><link name="b">{inertial(1)}</link>
+  <joint name="fix" type="fixed"><parent link="base_footprint"/><child link="base"/>
+    <dynamics damping="1"/></joint>
+  <joint name="ja" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <dynamics damping="0" friction="0.2"/></joint>
+  <joint name="jb" type="continuous"><parent link="base"/><child link="b"/><axis xyz="0 0 1"/>
+    <dynamics damping="0.0" friction="0"/></joint>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    fs = lint(pkg, "--target", "isaac")
+    assert [(f["code"], f["line"], f["severity"]) for f in fs if f["code"] in ("UL609", "UL310")] \
+        == [("UL609", 2, "warning"), ("UL310", 8, "warning")], fs
+    assert "friction" in [f for f in fs if f["code"] == "UL310"][0]["message"]
+    assert not [f for f in lint(pkg) if f["code"] in ("UL609", "UL310")]
+    one = pkg_with(tmp_path / "one", '<robot name="r"><link name="only"/></robot>')
+    assert not of(lint(one, "--target", "isaac"), "UL609")
