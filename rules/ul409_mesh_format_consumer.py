@@ -8,9 +8,10 @@ triangles ("stl_decoder: number of faces should be between 1 and 200000 ... perh
 ASCII file?"): ASCII STL is rejected. MuJoCo discards a URDF's visuals unless its `<mujoco>`
 block says `<compiler discardvisual="false"/>`; then the visual meshes are decoded too, with
 the same result. The extension is compared case-insensitively, as MuJoCo does. Drake 1.51.1
-computes contact geometry only from OBJ, VTK and glTF collision meshes and rejects others
-(measured by the session that filed issue 25: /work/shared/notes/consumer-facts.md; Drake does
-not install here, so this entry is not re-measured). An error for `mujoco` and `drake`. For
+computes the convex hull of every collision mesh and rejects any but OBJ, VTK and glTF
+(`.gltf`; it rejects binary `.glb`): "MakeConvexHull only applies to .obj, .vtk, and .gltf meshes";
+its visuals load in any of these formats (measured with Drake 1.51.1 from pip, not part of the
+suite's consumers). An error for `mujoco` and `drake`. For
 the other targets nothing, unless the description carries a `<mujoco>` block: it says that
 MuJoCo loads it, and MuJoCo's findings are then an info for the other targets.
 
@@ -54,7 +55,7 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL, "meshes/part.obj": TETRA_OBJ,
 
 MUJOCO_FORMATS = (".stl", ".obj", ".msh")
 MUJOCO_STL_FACES = 200000            # MuJoCo 4.0.0's stl_decoder: 1 to 200000 triangles
-DRAKE_FORMATS = (".obj", ".vtk", ".gltf", ".glb")   # .glb: glTF, given the benefit of the doubt
+DRAKE_FORMATS = (".obj", ".vtk", ".gltf")      # Drake 1.51.1 rejects .glb collision meshes
 
 
 def mujoco_keeps_visuals(model) -> bool:

@@ -432,3 +432,42 @@ def test_isaac_findings_only_for_the_isaac_target(tmp_path):
     assert not [f for f in lint(pkg) if f["code"] in ("UL609", "UL310")]
     one = pkg_with(tmp_path / "one", '<robot name="r"><link name="only"/></robot>')
     assert not of(lint(one, "--target", "isaac"), "UL609")
+
+
+def test_consumer_mesh_formats(tmp_path):
+    """UL409: per mesh, what MuJoCo 4.0.0 and Drake 1.51.1 do with it (measured: see the rule's
+    docstring): a binary STL (any case) is MuJoCo's, not Drake's; an ASCII STL and one of more
+    than 200000 triangles neither's; visuals count for MuJoCo only when its <mujoco> block keeps
+    them, and that block makes MuJoCo's findings an info for ros."""
+    import struct
+    from urdf_lint.rules._meshes import TETRA_STL
+    tri = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 0.1, 0, 0, 0, 0.1, 0, 0)
+    files = {"meshes/ascii.stl": TETRA_STL,
+             "meshes/BIN.STL": struct.pack("<80sI", b"binary", 1) + tri,
+             "meshes/huge.stl": struct.pack("<80sI", b"binary", 200001) + tri * 200001,
+             "meshes/part.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n"
+                                "f 2 3 4\n"}
+
+    def mesh(tag, name):
+        return (f'<{tag}><geometry><mesh filename="package://p/meshes/{name}"/></geometry>'
+                f'</{tag}>')
+    links = [mesh("collision", "BIN.STL"), mesh("collision", "huge.stl"),
+             mesh("visual", "ascii.stl"), mesh("collision", "part.obj")]
+    body = '<robot name="r">{}\n' + "".join(
+        f'  <link name="l{i}">{m}</link>\n' for i, m in enumerate(links)) + "</robot>\n"
+    plain = make_package(tmp_path / "a", "p", {"urdf/r.urdf": body.format(""), **files})
+
+    def ul409(pkg, target=None):
+        fs = lint(pkg, *(["--target", target] if target else []))
+        return [(f["line"], f["severity"], f["message"].split(": ", 1)[1])
+                for f in fs if f["code"] == "UL409"]
+    assert [(line, sev, msg.split(";")[0]) for line, sev, msg in ul409(plain, "mujoco")] == [
+        (3, "error", "MuJoCo reads at most 200000 triangles from an STL, it has 200001 (MuJoCo "
+                     "rejects the model)")]
+    assert [(line, sev) for line, sev, _ in ul409(plain, "drake")] == [(2, "error"), (3, "error")]
+    assert ul409(plain) == []
+    kept = make_package(tmp_path / "b", "p", {"urdf/r.urdf": body.format(
+        '<mujoco><compiler discardvisual="false"/></mujoco>'), **files})
+    assert [(line, sev) for line, sev, _ in ul409(kept, "mujoco")] == [(3, "error"), (4, "error")]
+    assert [(line, sev) for line, sev, _ in ul409(kept)] == [(3, "info"), (4, "info")]
+    assert "this one is ASCII" in ul409(kept)[1][2]
