@@ -26,8 +26,14 @@ import pytest
 
 from conftest import make_package, run_cli
 
+# Drake (pip install drake, about 200 MB) is not in the extra; where installed it takes part in
+# the clean robots and the mesh classes (DRAKE_CLASSES). On the other classes Drake 1.51.1's
+# verdicts differ in places from the rules' drake entries, which came from
+# /work/shared/notes/consumer-facts.md (it loads two roots, a duplicate transmission name and a
+# negative mass, and rejects an undefined material): reconciling them is still open.
 CONSUMERS = [c for c, mod in (("mujoco", "mujoco"), ("pinocchio", "pinocchio"),
-                              ("pybullet", "pybullet")) if importlib.util.find_spec(mod)]
+                              ("pybullet", "pybullet"), ("drake", "pydrake"))
+             if importlib.util.find_spec(mod)]
 pytestmark = pytest.mark.skipif(not {"mujoco", "pinocchio"} <= set(CONSUMERS),
                                 reason="needs the consumers extra: pip install -e '.[consumers]'")
 
@@ -135,16 +141,58 @@ DEFECTS = {
                                       '<geometry><box size="0.2 0.2 0.1"/></geometry>'
                                       '<material name="nowhere"/></visual>')]),
 }
+
+def _mesh_files() -> dict:
+    """The mesh files of the mesh defect classes, next to the URDF (MuJoCo does not resolve
+    package:// URIs; a relative path is read from the model's folder by every consumer): the
+    lower link's 0.05 x 0.05 x 0.4 box as binary STL, ASCII STL, OBJ and COLLADA, and a flat
+    plate as OBJ (every vertex in one plane, in a format Drake reads too)."""
+    import trimesh
+    box = trimesh.creation.box(extents=(0.05, 0.05, 0.4))
+    box.apply_translation((0, 0, 0.2))
+    plate = trimesh.Trimesh(vertices=[[0, 0, 0], [0.05, 0, 0], [0, 0.05, 0.4], [0.05, 0.05, 0.4]],
+                            faces=[[0, 1, 2], [1, 3, 2]])
+    return {"urdf/box.stl": box.export(file_type="stl"),
+            "urdf/box_ascii.stl": box.export(file_type="stl_ascii"),
+            "urdf/box.obj": box.export(file_type="obj"),
+            "urdf/box.dae": box.export(file_type="dae"),
+            "urdf/plate.obj": plate.export(file_type="obj")}
+
+
+LOWER_BOX = ('<origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry>'
+             '</collision>')
+
+
+def lower_collision_mesh(name: str) -> list:
+    return [(LOWER_BOX, f'<geometry><mesh filename="{name}"/></geometry></collision>')]
+
+
+# mesh defects: (the code, the edits, the consumers for which it is no defect at all: there a
+# clean load with no finding is right)
+MESH_DEFECTS = {
+    "COLLADA collision mesh": ("UL409", lower_collision_mesh("box.dae"),
+                               {"pinocchio", "pybullet"}),
+    "ASCII STL collision mesh": ("UL409", lower_collision_mesh("box_ascii.stl"),
+                                 {"pinocchio", "pybullet"}),
+    "flat collision mesh": ("UL410", lower_collision_mesh("plate.obj"),
+                            {"pinocchio", "pybullet", "drake"}),
+    "binary STL collision mesh": ("UL409", lower_collision_mesh("box.stl"),
+                                  {"mujoco", "pinocchio", "pybullet"}),
+}
+DRAKE_CLASSES = set(MESH_DEFECTS)
+# a mesh every consumer reads: no finding for any target
+MESH_CLEAN = {"OBJ collision mesh": lower_collision_mesh("box.obj")}
+
 # silent changes that are errors on purpose (issue 25, item 3): every consumer drops the origin
 ERROR_BY_INTENT = {"<orgin> typo in a joint"}
 
 LOADER = r'''
+import os
 import sys
 path, which = sys.argv[1], sys.argv[2]
-text = open(path).read()
 if which == "mujoco":
     import mujoco
-    m = mujoco.MjModel.from_xml_string(text)
+    m = mujoco.MjModel.from_xml_path(path)
     d = mujoco.MjData(m)
     mujoco.mj_step(m, d)
 elif which == "pinocchio":
@@ -152,7 +200,8 @@ elif which == "pinocchio":
     import pinocchio as pin
     model = pin.buildModelFromUrdf(path)
     for kind in (pin.GeometryType.COLLISION, pin.GeometryType.VISUAL):
-        pin.buildGeomFromUrdf(model, path, kind)
+        # a relative mesh path is looked up in package_dirs, not in the model's folder
+        pin.buildGeomFromUrdf(model, path, kind, package_dirs=[os.path.dirname(path)])
     data = model.createData()
     q = pin.neutral(model)
     pin.computeAllTerms(model, data, q, np.zeros(model.nv))
@@ -163,6 +212,19 @@ elif which == "pybullet":
     p.loadURDF(path)
     for _ in range(240):
         p.stepSimulation()
+elif which == "drake":
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.systems.framework import DiagramBuilder
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
+    Parser(plant).AddModels(path)
+    plant.Finalize()
+    diagram = builder.Build()
+    context = diagram.CreateDefaultContext()
+    query = scene_graph.get_query_output_port().Eval(scene_graph.GetMyContextFromRoot(context))
+    query.ComputePointPairPenetration()
+    plant.CalcMassMatrix(plant.GetMyContextFromRoot(context))
 print("loaded")
 '''
 
@@ -204,15 +266,32 @@ def test_the_clean_robot_loads_everywhere_and_passes(tmp_path):
         assert lint_target(pkg, c) == [], c
 
 
+def test_meshes_every_consumer_reads_pass(tmp_path):
+    files = _mesh_files()
+    for i, (name, edits) in enumerate(MESH_CLEAN.items()):
+        pkg = make_package(tmp_path / str(i), "p", {"urdf/r.urdf": variant(edits), **files})
+        assert {c: verdict(pkg / "urdf/r.urdf", c) for c in CONSUMERS} == \
+            {c: "." for c in CONSUMERS}, name
+        for c in CONSUMERS:
+            assert not [f for f in lint_target(pkg, c) if f["code"] in ("UL409", "UL410")], \
+                (name, c)
+
+
 def test_severity_per_target_agrees_with_the_consumers():
     rows, wrong = [], []
+    files = _mesh_files()
+    classes = {name: (code, edits, set()) for name, (code, edits) in DEFECTS.items()}
+    classes.update(MESH_DEFECTS)
     with tempfile.TemporaryDirectory() as tmp:
-        for i, (name, (code, edits)) in enumerate(DEFECTS.items()):
+        for i, (name, (code, edits, no_defect)) in enumerate(classes.items()):
             text = variant(edits)
-            pkg = make_package(Path(tmp) / str(i), "p", {"urdf/r.urdf": text})
+            pkg = make_package(Path(tmp) / str(i), "p", {"urdf/r.urdf": text, **files})
             path = pkg / "urdf/r.urdf"
             row = [name, code]
             for c in CONSUMERS:
+                if c == "drake" and name not in DRAKE_CLASSES:
+                    row.append("(not compared)")    # see CONSUMERS
+                    continue
                 v = verdict(path, c)
                 sevs = {f["severity"] for f in lint_target(pkg, c) if f["code"] == code}
                 sev = max(sevs, key=("info", "warning", "error").index) if sevs else "-"
@@ -220,7 +299,7 @@ def test_severity_per_target_agrees_with_the_consumers():
                 if v in "RC" and sev != "error":
                     wrong.append(f"{name}: {c} {'rejects' if v == 'R' else 'crashes'}, "
                                  f"urdf-lint {code} is {sev} for target {c}")
-                elif v == "." and sev == "-":
+                elif v == "." and sev == "-" and c not in no_defect:
                     wrong.append(f"{name}: {c} loads it, urdf-lint reports no {code}")
                 elif v == "." and sev == "error" and name not in ERROR_BY_INTENT:
                     wrong.append(f"{name}: {c} loads it, urdf-lint {code} is an error for "

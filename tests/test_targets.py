@@ -377,3 +377,97 @@ def test_principal_moments_match_numpy():
         got = principal_moments(m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2])
         want = np.linalg.eigvalsh(m)
         assert np.allclose(got, want, rtol=1e-9, atol=1e-12 * np.abs(m).max()), (m, got, want)
+
+
+def test_gazebo_lumped_reference_only_where_sdformat_lumps(tmp_path):
+    """UL705: a <gazebo reference> on the child of a fixed joint is reported for the gazebo
+    target only, and not where the joint is kept (preserveFixedJoint, disableFixedJointLumping),
+    attaches to `world`, or the block is empty."""
+    fixed = '<joint name="{j}" type="fixed"><parent link="{p}"/><child link="{c}"/></joint>'
+    body = f"""<robot name="r">
+  <link name="world"/><link name="base"/><link name="cam"/><link name="imu"/><link name="tof"/>
+  <link name="bare"/>
+  {fixed.format(j="world_joint", p="world", c="base")}
+  {fixed.format(j="cam_joint", p="base", c="cam")}
+  {fixed.format(j="imu_joint", p="base", c="imu")}
+  {fixed.format(j="tof_joint", p="base", c="tof")}
+  {fixed.format(j="bare_joint", p="base", c="bare")}
+  <gazebo reference="base"><material>Gazebo/Grey</material></gazebo>
+  <gazebo reference="cam"><sensor name="c" type="camera"/></gazebo>
+  <gazebo reference="imu"><sensor name="i" type="imu"/></gazebo>
+  <gazebo reference="imu_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>
+  <gazebo reference="tof"><sensor name="t" type="gpu_lidar"/></gazebo>
+  <gazebo reference="tof_joint"><disableFixedJointLumping>true</disableFixedJointLumping></gazebo>
+  <gazebo reference="bare"><!-- nothing --></gazebo>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    fs = [f for f in lint(pkg, "--target", "gazebo") if f["code"] == "UL705"]
+    assert [(f["line"], f["severity"], f.get("severity_from")) for f in fs] == \
+        [(10, "warning", ["gazebo"])], fs
+    assert "'cam' into 'base'" in fs[0]["message"] and "cam_joint" in fs[0]["message"]
+    assert not of(lint(pkg), "UL705")
+
+
+def test_isaac_findings_only_for_the_isaac_target(tmp_path):
+    """UL609 on an empty root link that is the root of something, UL310 on a moving joint's
+    non-zero damping or friction; nothing for ros."""
+    body = f"""<robot name="r">
+  <link name="base_footprint"/>
+  <link name="base">{inertial(1)}</link>
+  <link name="a">{inertial(1)}</link><link name="b">{inertial(1)}</link>
+  <joint name="fix" type="fixed"><parent link="base_footprint"/><child link="base"/>
+    <dynamics damping="1"/></joint>
+  <joint name="ja" type="continuous"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <dynamics damping="0" friction="0.2"/></joint>
+  <joint name="jb" type="continuous"><parent link="base"/><child link="b"/><axis xyz="0 0 1"/>
+    <dynamics damping="0.0" friction="0"/></joint>
+</robot>
+"""
+    pkg = pkg_with(tmp_path, body)
+    fs = lint(pkg, "--target", "isaac")
+    assert [(f["code"], f["line"], f["severity"]) for f in fs if f["code"] in ("UL609", "UL310")] \
+        == [("UL609", 2, "warning"), ("UL310", 8, "warning")], fs
+    assert "friction" in [f for f in fs if f["code"] == "UL310"][0]["message"]
+    assert not [f for f in lint(pkg) if f["code"] in ("UL609", "UL310")]
+    one = pkg_with(tmp_path / "one", '<robot name="r"><link name="only"/></robot>')
+    assert not of(lint(one, "--target", "isaac"), "UL609")
+
+
+def test_consumer_mesh_formats(tmp_path):
+    """UL409: per mesh, what MuJoCo 4.0.0 and Drake 1.51.1 do with it (measured: see the rule's
+    docstring): a binary STL (any case) is MuJoCo's, not Drake's; an ASCII STL and one of more
+    than 200000 triangles neither's; visuals count for MuJoCo only when its <mujoco> block keeps
+    them, and that block makes MuJoCo's findings an info for ros."""
+    import struct
+    from urdf_lint.rules._meshes import TETRA_STL
+    tri = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 0.1, 0, 0, 0, 0.1, 0, 0)
+    files = {"meshes/ascii.stl": TETRA_STL,
+             "meshes/BIN.STL": struct.pack("<80sI", b"binary", 1) + tri,
+             "meshes/huge.stl": struct.pack("<80sI", b"binary", 200001) + tri * 200001,
+             "meshes/part.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n"
+                                "f 2 3 4\n"}
+
+    def mesh(tag, name):
+        return (f'<{tag}><geometry><mesh filename="package://p/meshes/{name}"/></geometry>'
+                f'</{tag}>')
+    links = [mesh("collision", "BIN.STL"), mesh("collision", "huge.stl"),
+             mesh("visual", "ascii.stl"), mesh("collision", "part.obj")]
+    body = '<robot name="r">{}\n' + "".join(
+        f'  <link name="l{i}">{m}</link>\n' for i, m in enumerate(links)) + "</robot>\n"
+    plain = make_package(tmp_path / "a", "p", {"urdf/r.urdf": body.format(""), **files})
+
+    def ul409(pkg, target=None):
+        fs = lint(pkg, *(["--target", target] if target else []))
+        return [(f["line"], f["severity"], f["message"].split(": ", 1)[1])
+                for f in fs if f["code"] == "UL409"]
+    assert [(line, sev, msg.split(";")[0]) for line, sev, msg in ul409(plain, "mujoco")] == [
+        (3, "error", "MuJoCo reads at most 200000 triangles from an STL, it has 200001 (MuJoCo "
+                     "rejects the model)")]
+    assert [(line, sev) for line, sev, _ in ul409(plain, "drake")] == [(2, "error"), (3, "error")]
+    assert ul409(plain) == []
+    kept = make_package(tmp_path / "b", "p", {"urdf/r.urdf": body.format(
+        '<mujoco><compiler discardvisual="false"/></mujoco>'), **files})
+    assert [(line, sev) for line, sev, _ in ul409(kept, "mujoco")] == [(3, "error"), (4, "error")]
+    assert [(line, sev) for line, sev, _ in ul409(kept)] == [(3, "info"), (4, "info")]
+    assert "this one is ASCII" in ul409(kept)[1][2]

@@ -1,0 +1,116 @@
+"""A mesh file in a format the selected consumer cannot read.
+
+Why: ROS reads meshes through assimp (rviz, Gazebo) and loads any of them, but MuJoCo and Drake
+decode only a few formats and reject the whole model otherwise. Measured with MuJoCo 4.0.0
+(tests/test_consumers.py): a collision mesh other than STL, OBJ or MSH is rejected ("no decoder
+found for mesh file", DAE, glTF and PLY alike); an STL must be binary with 1 to 200000
+triangles ("stl_decoder: number of faces should be between 1 and 200000 ... perhaps this is an
+ASCII file?"): ASCII STL is rejected. MuJoCo discards a URDF's visuals unless its `<mujoco>`
+block says `<compiler discardvisual="false"/>`; then the visual meshes are decoded too, with
+the same result. The extension is compared case-insensitively, as MuJoCo does. Drake 1.51.1
+computes the convex hull of every collision mesh and rejects any but OBJ, VTK and glTF
+(`.gltf`; it rejects binary `.glb`): "MakeConvexHull only applies to .obj, .vtk, and .gltf meshes";
+its visuals load in any of these formats (measured with Drake 1.51.1 from pip, not part of the
+suite's consumers). An error for `mujoco` and `drake`. For
+the other targets nothing, unless the description carries a `<mujoco>` block: it says that
+MuJoCo loads it, and MuJoCo's findings are then an info for the other targets.
+
+How to fix: Convert the collision mesh (e.g. `meshio convert`, `trimesh`'s export, Blender) to
+binary STL or OBJ for MuJoCo, to OBJ (or glTF, VTK) for Drake, and point `<collision>` at the
+copy; keep DAE for the visuals, or, when MuJoCo keeps visuals, convert those too. Split a mesh
+of more than 200000 triangles, or decimate it.
+"""
+CODE = "UL409"
+NAME = "mesh-format-consumer"
+SEVERITY = "error"
+NEEDS = {"meshes"}
+# "*": info so that the rule runs under every target: each finding carries its own table, in
+# which the other targets are off unless the description has a <mujoco> block
+TARGETS = {"*": "info", "mujoco": "error", "drake": "error"}
+EXAMPLE_TARGETS = ["mujoco", "drake"]
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><geometry><mesh filename="package://example_pkg/meshes/skin.dae"/></geometry></visual>
+    <collision><geometry><mesh filename="package://example_pkg/meshes/skin.dae"/></geometry></collision>
+    <collision><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></collision>
+  </link>
+</robot>
+"""
+FAIL_AT = [(4, 26), (5, 26)]
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><geometry><mesh filename="package://example_pkg/meshes/skin.dae"/></geometry></visual>
+    <collision><geometry><mesh filename="package://example_pkg/meshes/part.obj"/></geometry></collision>
+  </link>
+</robot>
+"""
+import os
+
+from urdf_lint.core import fsbound
+from urdf_lint.rules._meshes import PLAIN_DAE, TETRA_STL, resolved_meshes
+
+TETRA_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL, "meshes/part.obj": TETRA_OBJ,
+                 "meshes/skin.dae": PLAIN_DAE}
+
+MUJOCO_FORMATS = (".stl", ".obj", ".msh")
+MUJOCO_STL_FACES = 200000            # MuJoCo 4.0.0's stl_decoder: 1 to 200000 triangles
+DRAKE_FORMATS = (".obj", ".vtk", ".gltf")      # Drake 1.51.1 rejects .glb collision meshes
+
+
+def mujoco_keeps_visuals(model) -> bool:
+    """Whether the description's own ``<mujoco><compiler discardvisual="false"/>`` makes MuJoCo
+    load its visuals (MuJoCo discards a URDF's visuals by default)."""
+    return any(c.get("discardvisual", "").strip().lower() == "false"
+               for c in model.root.iterfind("mujoco/compiler"))
+
+
+def _mujoco_problem(path: str, ext: str) -> str | None:
+    if ext not in MUJOCO_FORMATS:
+        return f"MuJoCo has no decoder for {ext or 'a file without extension'}"
+    if ext != ".stl":
+        return None
+    from urdf_lint.meshes.readers import binary_stl_triangles
+    n = binary_stl_triangles(path)
+    if n is not None:
+        return (None if 1 <= n <= MUJOCO_STL_FACES else
+                f"MuJoCo reads at most {MUJOCO_STL_FACES} triangles from an STL, it has {n}")
+    try:
+        with fsbound.open_regular(path) as (f, _):
+            head = f.read(5)
+    except OSError:                       # BoundaryError too
+        return None                       # UL401/UL404 say why
+    return "MuJoCo reads binary STL only, this one is ASCII" if head == b"solid" else None
+
+
+def geometry_meshes(model, ctx):
+    """(mesh element, uri, path, "collision" or "visual") for every resolved mesh of a link."""
+    for m, uri, path in resolved_meshes(model, ctx):
+        geom = m.getparent().getparent() if m.getparent() is not None else None
+        if geom is not None and geom.tag in ("collision", "visual"):
+            yield m, uri, path, geom.tag
+
+
+def mujoco_loads(model) -> tuple[set, str]:
+    """(the kinds of geometry MuJoCo decodes the meshes of, the severity of its findings for
+    the other targets: ``info`` when the description's own ``<mujoco>`` block says MuJoCo
+    loads it, else ``off``)."""
+    kinds = {"collision", "visual"} if mujoco_keeps_visuals(model) else {"collision"}
+    return kinds, "info" if model.root.find("mujoco") is not None else "off"
+
+
+def check(model, ctx):
+    kinds, others = mujoco_loads(model)
+    for m, uri, path, kind in geometry_meshes(model, ctx):
+        ext = os.path.splitext(path)[1].lower()
+        said, table = [], {"*": "off"}
+        why = _mujoco_problem(path, ext) if kind in kinds else None
+        if why:
+            said.append(f"{why} (MuJoCo rejects the model)")
+            table.update({"*": others, "mujoco": "error"})
+        if kind == "collision" and ext not in DRAKE_FORMATS:
+            said.append(f"Drake computes contact only from OBJ, VTK or glTF, not {ext or 'this'} "
+                        "(Drake rejects the model)")
+            table["drake"] = "error"
+        if said:
+            yield m, f"{kind} mesh '{uri}': " + "; ".join(said), table

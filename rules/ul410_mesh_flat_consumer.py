@@ -1,0 +1,74 @@
+"""A collision mesh whose vertices all lie in one plane (or on one line): it has no volume.
+
+Why: MuJoCo computes the convex hull of every collision mesh, and of every visual mesh it keeps,
+for contact and inertia. Measured with MuJoCo 4.0.0 (tests/test_consumers.py): a flat collision
+mesh rejects the model ("mesh 'plate' has coplanar vertices, cannot compute convex hull"), a
+tilted plane as well as one in a coordinate plane; a flat visual mesh kept by `<compiler
+discardvisual="false"/>` too ("mesh volume is too small"). Pinocchio 4.1.0 and PyBullet 3.2.7
+load such a mesh (tests/test_consumers.py), and so does ROS: an error for `mujoco` only. As for
+UL409, a description carrying a `<mujoco>` block says that MuJoCo loads it, and the finding is
+then an info for the other targets. A mesh MuJoCo cannot decode at all is UL409's, not this
+rule's; a zero in `scale` is UL405's.
+
+How to fix: Use a primitive for the collision (a thin `<box>` for a plate), or give the mesh a
+thickness; keep the flat mesh as a visual only.
+"""
+CODE = "UL410"
+NAME = "mesh-flat-consumer"
+SEVERITY = "error"
+NEEDS = {"meshes"}
+# "*": info so that the rule runs under every target: each finding carries its own table
+TARGETS = {"*": "info", "mujoco": "error"}
+EXAMPLE_TARGETS = ["mujoco"]
+FAIL = """<robot name="r">
+  <link name="a">
+    <visual><geometry><mesh filename="package://example_pkg/meshes/plate.obj"/></geometry></visual>
+    <collision><geometry><mesh filename="package://example_pkg/meshes/plate.obj"/></geometry></collision>
+  </link>
+</robot>
+"""
+FAIL_AT = [(4, 26)]
+PASS = """<robot name="r">
+  <link name="a">
+    <visual><geometry><mesh filename="package://example_pkg/meshes/plate.obj"/></geometry></visual>
+    <collision><geometry><box size="0.1 0.1 0.002"/></geometry></collision>
+  </link>
+</robot>
+"""
+import os
+
+from urdf_lint.rules.ul409_mesh_format_consumer import _mujoco_problem, geometry_meshes, mujoco_loads
+
+# a tilted square plate: no two coordinates constant, every vertex in one plane
+EXAMPLE_FILES = {"meshes/plate.obj": ("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0.05\nv 0.1 0.1 0.05\n"
+                                      "f 1 2 3\nf 2 4 3\n")}
+
+# MuJoCo's hull (qhull) on float32 vertices: a plane tilted off the axes is flat to within the
+# float32 rounding of its coordinates, about 1e-7 of the mesh's size
+FLAT = 1e-6
+
+
+def flat(vertices) -> bool:
+    """Whether the vertices span less than three dimensions (relative to their extent)."""
+    import numpy as np
+    v = np.asarray(vertices, dtype=float)
+    if len(v) < 4:
+        return True
+    s = np.linalg.svd(v - v.mean(axis=0), compute_uv=False)
+    return bool(s[0] == 0 or s[2] <= FLAT * s[0])
+
+
+def check(model, ctx):
+    kinds, others = mujoco_loads(model)
+    for m, uri, path, kind in geometry_meshes(model, ctx):
+        if kind not in kinds or _mujoco_problem(path, os.path.splitext(path)[1].lower()):
+            continue                      # UL409: MuJoCo does not get as far as the hull
+        if ctx.mass_facts(path).get("ok"):
+            continue                      # it has a volume (the common case: no load here)
+        facts = ctx.mesh_facts(path)
+        if not facts["ok"] or not facts["vertices"] or not facts["finite"]:
+            continue                      # UL404 says why
+        if flat(ctx.mesh(path).vertices):
+            yield m, (f"{kind} mesh '{uri}' is flat (all its vertices lie in one plane); MuJoCo "
+                      "cannot compute its convex hull and rejects the model"), \
+                {"*": others, "mujoco": "error"}
