@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from urdf_lint.engine.api import number, numbers
+from urdf_lint.engine.api import mesh_mass_properties, number, numbers
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 
@@ -114,8 +114,7 @@ def _capsule(shape, np):
     if r is None or h is None or r <= 0 or h <= 0:
         return None
     import trimesh
-    from urdf_lint.meshes.resolve import _mass_properties
-    f = _mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
+    f = mesh_mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
     if not f["ok"]:
         return None
     return f["volume"], f["first"], f["second"], _box_corners([r, r, h / 2 + r], np)

@@ -22,8 +22,10 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report, display_path
+
+
 def check(model, ctx):
-    from urdf_lint.core.locations import display_path
     for tag in ("link", "joint"):
         first = {}
         for e in model.root:
@@ -32,8 +34,7 @@ def check(model, ctx):
             n = e.get("name")
             if n in first:
                 o = model.origin(first[n])
-                yield e, (f"duplicate {tag} name '{n}' (first defined at "
-                          f"{display_path(o.file)}:{o.line}); give each a unique name"), \
-                    ({"mujoco": "warning"} if tag == "joint" else None)
+                yield Report(e, (f"duplicate {tag} name '{n}' (first defined at "
+                                 f"{display_path(o.file)}:{o.line}); give each a unique name"), targets={"mujoco": "warning"} if tag == "joint" else None)
             else:
                 first[n] = e

@@ -23,7 +23,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules._meshes import resolved_meshes, scaled
-from urdf_lint.engine.api import numbers
+from urdf_lint.engine.api import Report, numbers
 
 EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
 
@@ -39,4 +39,4 @@ def check(model, ctx):
         size = max(abs(s) * (b - a) for s, a, b in zip(scale, lo, hi, strict=False))
         if size > limit:
             hint = " (millimetres? add scale=\"0.001 0.001 0.001\")" if size / 1000 < limit else ""
-            yield m, f"mesh '{uri}' is {size:.4g} m across{hint}"
+            yield Report(m, f"mesh '{uri}' is {size:.4g} m across{hint}")

@@ -1,8 +1,74 @@
-"""Small helpers shared by rules: number parsing and "did you mean"."""
+"""The one module a rule imports from urdf-lint: what a check yields (:class:`Report`, a
+:class:`Cause`), the fix requests it may attach (``set_attrs``, ``rename_tag``, ...), the mesh
+look-ups it may need (``MeshStatus``, ``texture_refs``) and small helpers (number parsing, "did
+you mean"). A rule imports nothing else of urdf_lint except its own private helper modules
+(``rules/_*.py``); ``tests/test_architecture.py`` checks it.
+
+The mesh names are imported on first use (``__getattr__``): a rule that needs none of them, and
+``urdf-lint expand``, never import the mesh module.
+"""
 from __future__ import annotations
 
 import difflib
 import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from urdf_lint.core.findings import Cause
+from urdf_lint.core.locations import display_path
+from urdf_lint.fix.fixes import (Request, add_dollar, drop_attrs, named_material, names_in_scope,
+                                 new_root, rename_attr, rename_tag, set_attrs)
+
+if TYPE_CHECKING:  # pragma: no cover - imported on first use below
+    from urdf_lint.meshes.resolve import MeshStatus, texture_refs
+
+__all__ = ["Cause", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
+           "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
+           "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
+           "rename_attr", "rename_tag", "set_attrs", "single_candidate", "texture_refs", "top"]
+
+
+@dataclass(frozen=True)
+class Report:
+    """One problem a rule's ``check`` found: where (``element``, an element of the model; a
+    run-scope rule gives an :class:`urdf_lint.core.locations.Origin`) and what (``message``).
+    ``severity`` raises or lowers the rule's severity for this one problem; ``fix`` is a fix
+    request (``set_attrs`` and the other requests here); ``targets`` a severity per consumer
+    target for this one problem (:mod:`urdf_lint.core.targets`); ``cause`` the root cause it
+    is an instance of (:class:`Cause`)."""
+    element: Any
+    message: str
+    severity: str | None = None
+    fix: Request | None = None
+    targets: dict | None = None
+    cause: Cause | None = None
+
+
+_LAZY = {"MeshStatus": "urdf_lint.meshes.resolve", "texture_refs": "urdf_lint.meshes.resolve"}
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def mesh_mass_properties(mesh) -> dict:
+    """The volume properties of a loaded mesh (a ``trimesh.Trimesh``) filled with unit
+    density, as the mesh facts give them for a file (``ctx.mass_facts``)."""
+    from urdf_lint.meshes.resolve import _mass_properties
+    return _mass_properties(mesh)
+
+
+def read_source(path: str, max_bytes: int | None = None) -> bytes | None:
+    """The bytes of a source file the model read, through the file-system boundary (a regular
+    file of bounded size), or None when it cannot or may not be read."""
+    from urdf_lint.core import fsbound
+    return fsbound.read_regular(path, fsbound.MAX_SOURCE_BYTES if max_bytes is None else max_bytes)
 
 
 def number(s):
@@ -60,7 +126,6 @@ def reference_fixes(broken, candidates, taken=()):
     """{(element, attr): fix request} for broken references ``broken`` (``(element, attr,
     name)``) that have one close candidate (similarity 0.75) which no other reference of the
     same kind already names and no other broken reference would take too."""
-    from urdf_lint.fix.fixes import set_attrs
     guess = {(el, a): single_candidate(n, candidates, 0.75) for el, a, n in broken}
     counts: dict = {}
     for g in guess.values():

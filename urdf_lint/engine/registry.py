@@ -6,11 +6,12 @@ A rule module defines:
 * ``CODE``, ``NAME``, ``SEVERITY``, a docstring (why, how to fix, options), ``FAIL`` and
   ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
   report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
-* ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
-  (or ``(element, message, severity)`` to raise or lower that one problem, and/or a fix
-  request from ``urdf_lint.fix.fixes`` after the message) for one model, or ``"run"`` for
-  ``check(run, ctx)`` yielding ``(origin, message)``
-  over every model of a run (e.g. UL106: the same robot name in two files);
+* ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding
+  :class:`urdf_lint.engine.api.Report` ``(element, message, severity=None, fix=None)`` (a
+  severity raises or lowers that one problem; a fix is a request such as ``set_attrs``) for one
+  model, or ``"run"`` for ``check(run, ctx)`` yielding ``Report(origin, message)`` over every
+  model of a run (e.g. UL106: the same robot name in two files). A rule imports only
+  :mod:`urdf_lint.engine.api` (and its own ``rules/_*.py`` helpers);
 * or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
   table, :mod:`urdf_lint.expansion.errors`) or ``"engine"`` (the lint and run pipeline);
@@ -18,7 +19,7 @@ A rule module defines:
   the rules page so that users know what ``ignore`` saves);
 * optional ``TARGETS = {"mujoco": "error", ...}``: the severity (or ``"off"``) per consumer
   target (:mod:`urdf_lint.core.targets`); a literal dict of strings, read like the assignments
-  above. A check may yield such a dict after the message for one finding.
+  above. A check may give such a dict for one finding (``Report(..., targets=...)``).
 
 ``CODE``, ``NAME``, ``SEVERITY``, ``SCOPE`` and ``ORIGIN`` are plain string assignments at the
 start of a line: :func:`catalogue` reads them from the sources without importing the 65
@@ -225,12 +226,22 @@ def load_rule(code: str) -> Rule | None:
 _LOADED: dict = {}
 
 
-def _extras(rest) -> tuple:
-    """(severity or "", fix request or None, target table or None, root cause or None) from
-    what a rule yields after the message."""
+def as_report(item, code: str):
+    """The :class:`urdf_lint.engine.api.Report` a check yielded. A tuple ``(item, message,
+    extras...)`` (the form before ``Report``; accepted for one release, with a
+    ``DeprecationWarning`` naming the rule) has its extras sorted by type: a string is a
+    severity, a dict a target table, a :class:`urdf_lint.core.findings.Cause` the root cause,
+    anything else a fix request."""
+    from urdf_lint.engine.api import Report
+    if isinstance(item, Report):
+        return item
+    import warnings
+    warnings.warn(f"rule {code} yields a tuple; yield urdf_lint.engine.api.Report(element, "
+                  "message, severity=None, fix=None) instead (tuples are accepted until the "
+                  "next release)", DeprecationWarning, stacklevel=2)
     from urdf_lint.core.findings import Cause
-    sev, req, table, cause = "", None, None, None
-    for x in rest:
+    sev, req, table, cause = None, None, None, None
+    for x in item[2:]:
         if isinstance(x, Cause):
             cause = x
         elif isinstance(x, str):
@@ -239,7 +250,7 @@ def _extras(rest) -> tuple:
             table = x
         elif x is not None:
             req = x
-    return sev, req, table, cause
+    return Report(item[0], item[1], sev, req, table, cause)
 
 
 def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
@@ -248,10 +259,9 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
     (:mod:`urdf_lint.fix.fixes`) and the root cause or None, with ``with_table`` then the target
-    table or None. A rule yields ``(item, message)``, optionally followed by a severity (a
-    string), a target table (a dict, :mod:`urdf_lint.core.targets`), a fix request and/or a
-    :class:`urdf_lint.core.findings.Cause`. A rule that crashes adds an
-    internal error and the others still run."""
+    table or None: the fields of the :class:`urdf_lint.engine.api.Report` the rule yields
+    (:func:`as_report`; a severity of None is ""). A rule that crashes adds an internal error and the others
+    still run."""
     import traceback
     entries = catalogue()
     for code in selected:
@@ -264,12 +274,13 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                sev, req, table, cause = _extras(item[2:])
+                r = as_report(item, code)
+                table = r.targets
                 if table is not None:
                     from urdf_lint.core.targets import check_table
                     table = check_table(table, f"rule {code}")
-                yield ((rule, item[0], item[1], sev) + ((req, cause) if with_fix else ())
-                       + ((table,) if with_table else ()))
+                yield ((rule, r.element, r.message, r.severity or "")
+                       + ((r.fix, r.cause) if with_fix else ()) + ((table,) if with_table else ()))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 
