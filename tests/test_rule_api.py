@@ -19,13 +19,18 @@ RULES = registry.load_rules()
 TUPLE_WARNING = r"rule UL\d{3} yields a tuple"
 
 
-def _fake_rule(monkeypatch, check):
-    mod = types.ModuleType("urdf_lint.rules.ul997_fake")
-    mod.__doc__ = "Fake.\n\nWhy: x.\n\nHow to fix: y."
-    mod.CODE, mod.NAME, mod.SEVERITY, mod.FAIL, mod.PASS = "UL997", "fake", "error", "<r/>", "<r/>"
+def fake_rule(monkeypatch, code: str, check) -> None:
+    """A rule ``code`` with ``check``, loaded beside the built-in rules for this test."""
+    mod = types.ModuleType(f"urdf_lint.rules.{code.lower()}_fake")
+    mod.__doc__ = "Fake.\n\nWhy: x.\n\nHow to fix: y.\n\nFix: safe."
+    mod.CODE, mod.NAME, mod.SEVERITY, mod.FAIL, mod.PASS = code, "fake", "error", "<r/>", "<r/>"
     mod.check = check
     monkeypatch.setattr(registry, "_RULES", {**registry.load_rules(),
-                                             "UL997": registry.rule_from_module(mod)})
+                                             code: registry.rule_from_module(mod)})
+
+
+def _fake_rule(monkeypatch, check):
+    fake_rule(monkeypatch, "UL997", check)
     return Model(entry="/r.urdf", args={}, root=etree.fromstring("<robot><link/></robot>"),
                  origins={}, deps=[])
 

@@ -4,8 +4,9 @@ look-ups it may need (``MeshStatus``, ``texture_refs``) and small helpers (numbe
 you mean"). A rule imports nothing else of urdf_lint except its own private helper modules
 (``rules/_*.py``); ``tests/test_architecture.py`` checks it.
 
-The mesh names are imported on first use (``__getattr__``): a rule that needs none of them, and
-``urdf-lint expand``, never import the mesh module.
+The mesh names and the fix kinds' request functions are imported on first use
+(``__getattr__``): a rule that needs none of them, and ``urdf-lint expand``, never import the
+mesh module.
 """
 from __future__ import annotations
 
@@ -16,10 +17,16 @@ from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Cause
 from urdf_lint.core.locations import display_path
-from urdf_lint.fix.fixes import (Request, add_dollar, drop_attrs, named_material, names_in_scope,
-                                 new_root, rename_attr, rename_tag, set_attrs)
+from urdf_lint.fix.fixes import Request, names_in_scope
 
 if TYPE_CHECKING:  # pragma: no cover - imported on first use below
+    from urdf_lint.fix.kinds.add_dollar import add_dollar
+    from urdf_lint.fix.kinds.drop_attrs import drop_attrs
+    from urdf_lint.fix.kinds.named_material import named_material
+    from urdf_lint.fix.kinds.new_root import new_root
+    from urdf_lint.fix.kinds.rename_attr import rename_attr
+    from urdf_lint.fix.kinds.rename_tag import rename_tag
+    from urdf_lint.fix.kinds.set import set_attrs
     from urdf_lint.meshes.resolve import MeshStatus, texture_refs
 
 __all__ = ["Cause", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
@@ -48,11 +55,18 @@ _LAZY = {"MeshStatus": "urdf_lint.meshes.resolve", "texture_refs": "urdf_lint.me
 
 
 def __getattr__(name: str):
+    """The mesh names on first use, and the request function of every fix kind
+    (``REQUESTS`` of each module of :mod:`urdf_lint.fix.kinds`: a new kind needs no line
+    here)."""
     module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
-    value = getattr(importlib.import_module(module), name)
+    if module is not None:
+        import importlib
+        value = getattr(importlib.import_module(module), name)
+    else:
+        from urdf_lint.fix.kinds import requests
+        value = requests().get(name)
+        if value is None:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
     return value
 

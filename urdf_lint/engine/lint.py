@@ -302,8 +302,7 @@ def _lint_model(job: LintJob, settings: LintSettings):
         fixer = fixer or Fixer(model)
         if req is not None:
             fix = fixer.fix(el, req)
-        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
-                                      if req is not None and req.kind == "set" else ())
+        value_from = fixer.value_from(el, fixer.traced(req))
         p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
                        consumers=table, value_from=value_from)
         if cause is not None:   # one finding per root cause, this problem one instance of it
