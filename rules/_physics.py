@@ -115,9 +115,9 @@ def _capsule(shape, np):
         return None
     import trimesh
     f = mesh_mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
-    if not f["ok"]:
+    if not f.ok:
         return None
-    return f["volume"], f["first"], f["second"], _box_corners([r, r, h / 2 + r], np)
+    return f.volume, f.first, f.second, _box_corners([r, r, h / 2 + r], np)
 
 
 def link_geometry(model, ctx, lk, np, kind=None):
@@ -144,16 +144,16 @@ def link_geometry(model, ctx, lk, np, kind=None):
                 return None
             f = ctx.mass_facts(ref.path)
             scale = numbers(shape.get("scale", "1 1 1"), 3)
-            if not f.get("ok") or not scale or any(s == 0 for s in scale):
+            if not f.ok or f.bounds is None or not scale or any(s == 0 for s in scale):
                 return None
             a = np.diag(scale)
             det = abs(scale[0] * scale[1] * scale[2])
-            lo, hi = f["bounds"]
+            lo, hi = f.bounds
             corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]) * np.asarray(scale)
-            g.add(det * f["volume"], det * (a @ np.asarray(f["first"])),
-                  det * (a @ np.asarray(f["second"]) @ a.T), corners, rot, t)
-            if f["hull"]:
+            g.add(det * f.volume, det * (a @ np.asarray(f.first)),
+                  det * (a @ np.asarray(f.second) @ a.T), corners, rot, t)
+            if f.hull:
                 g.hull.append(uri)
         else:
             prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)

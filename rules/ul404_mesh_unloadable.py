@@ -29,9 +29,9 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
 def check(model, ctx):
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
-        if not facts["ok"]:
-            yield Report(m, f"mesh '{uri}' cannot be loaded: {facts['error']}")
-        elif facts["vertices"] == 0:
+        if not facts.ok:
+            yield Report(m, f"mesh '{uri}' cannot be loaded: {facts.error}")
+        elif facts.vertices == 0:
             yield Report(m, f"mesh '{uri}' is empty (no vertices)")
-        elif not facts["finite"]:
+        elif not facts.finite:
             yield Report(m, f"mesh '{uri}' has non-finite (NaN/inf) vertices")

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from urdf_lint.core.findings import Cause
 from urdf_lint.core.locations import display_path
 from urdf_lint.fix.fixes import Request, names_in_scope
+from urdf_lint.meshes.facts import MassFacts, MeshFacts
 
 if TYPE_CHECKING:  # pragma: no cover - imported on first use below
     from urdf_lint.fix.kinds.add_dollar import add_dollar
@@ -29,7 +30,7 @@ if TYPE_CHECKING:  # pragma: no cover - imported on first use below
     from urdf_lint.fix.kinds.set import set_attrs
     from urdf_lint.meshes.resolve import MeshStatus, texture_refs
 
-__all__ = ["Cause", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
+__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
            "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
            "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
            "rename_attr", "rename_tag", "set_attrs", "single_candidate", "texture_refs", "top"]
@@ -71,11 +72,11 @@ def __getattr__(name: str):
     return value
 
 
-def mesh_mass_properties(mesh) -> dict:
+def mesh_mass_properties(mesh) -> MassFacts:
     """The volume properties of a loaded mesh (a ``trimesh.Trimesh``) filled with unit
     density, as the mesh facts give them for a file (``ctx.mass_facts``)."""
     from urdf_lint.meshes.resolve import _mass_properties
-    return _mass_properties(mesh)
+    return MassFacts.from_record(_mass_properties(mesh))
 
 
 def read_source(path: str, max_bytes: int | None = None) -> bytes | None:

@@ -11,6 +11,7 @@ import os
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
+from urdf_lint.meshes.facts import MassFacts, MeshFacts
 from urdf_lint.rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
 
 # lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
@@ -25,7 +26,8 @@ class Context:
         self.options = options
         self.mesh_cache_dir = mesh_cache_dir
         self._refs: dict = {}
-        self._facts: dict = {}
+        self._mesh_facts: dict[str, MeshFacts] = {}
+        self._mass_facts: dict[str, MassFacts] = {}
 
     def mesh_ref(self, model, uri):
         from urdf_lint.meshes import resolve as meshes
@@ -38,21 +40,23 @@ class Context:
         from urdf_lint.meshes import resolve as meshes
         return meshes.get_mesh(path)
 
-    def mesh_facts(self, path):
+    def mesh_facts(self, path: str) -> MeshFacts:
         """A mesh file's facts, looked up once per model: several rules ask for every mesh
         element (a 200-link robot: 1,200 asks, each a stat of the file and of its digest)."""
-        return self._once("facts", path)
-
-    def mass_facts(self, path):
-        """A mesh file's volume properties, looked up once per model (like ``mesh_facts``)."""
-        return self._once("mass", path)
-
-    def _once(self, kind: str, path: str):
-        got = self._facts.get((kind, path))
+        got = self._mesh_facts.get(path)
         if got is None:
             from urdf_lint.meshes import resolve as meshes
-            measure = meshes.mesh_facts if kind == "facts" else meshes.mass_facts
-            got = self._facts[(kind, path)] = measure(path, self.mesh_cache_dir)
+            got = self._mesh_facts[path] = MeshFacts.from_record(
+                meshes.mesh_facts(path, self.mesh_cache_dir))
+        return got
+
+    def mass_facts(self, path: str) -> MassFacts:
+        """A mesh file's volume properties, looked up once per model (like ``mesh_facts``)."""
+        got = self._mass_facts.get(path)
+        if got is None:
+            from urdf_lint.meshes import resolve as meshes
+            got = self._mass_facts[path] = MassFacts.from_record(
+                meshes.mass_facts(path, self.mesh_cache_dir))
         return got
 
 
