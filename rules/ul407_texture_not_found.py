@@ -22,13 +22,13 @@ PASS = """<robot name="r">
 import os
 from dataclasses import replace
 
-from urdf_lint.engine.api import Report, texture_refs
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_meshes
 
 
 def check(model, ctx):
     for m, uri, path in resolved_meshes(model, ctx):
-        for t in texture_refs(path):
+        for t in ctx.texture_refs(path):   # (references outside the roots are not read)
             if not os.path.exists(t):
                 yield Report(m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist")
     for r in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):

@@ -37,3 +37,36 @@ def test_empty_and_unloadable_meshes_have_typed_facts_saying_so(tmp_path):
     f = ctx.mesh_facts(str(broken))
     assert not f.ok and f.error and f.bounds is None and f.vertices == 0
     assert ctx.mass_facts(str(empty)) == ctx.mass_facts(str(broken)) == MassFacts(False)
+
+
+def test_a_job_changes_no_module_global_and_an_environment_failure_is_not_cached(
+        tmp_path, monkeypatch):
+    """The run's mesh state (confinement, cache folder, render run, environment failures)
+    lives in the Context's MeshStore: linting a model rebinds no global of the mesh module,
+    and a mesh the environment refused (here: out of memory) makes the result uncacheable."""
+    from conftest import make_package
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.meshes import readers
+    from urdf_lint.rules._meshes import TETRA_STL
+    from urdf_lint.runner.worker import process_job
+    pkg = make_package(tmp_path, "p", {
+        "meshes/part.stl": TETRA_STL,
+        "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry><mesh '
+                       'filename="package://p/meshes/part.stl"/></geometry></visual></link></robot>'})
+    settings = LintSettings(resolver=PackageResolver.build([str(pkg)]).to_dict(),
+                            selected=("UL404",), mesh_cache_dir=str(tmp_path / "cache"))
+    job = LintJob(str(pkg / "urdf" / "r.urdf"), kind="urdf")
+
+    def no_memory(*a, **k):
+        raise MemoryError("no memory")
+    monkeypatch.setattr(readers, "binary_stl_triangles", no_memory)
+    before = {k: v for k, v in vars(meshes).items() if not k.startswith("__")}
+    report = process_job(job, settings)
+    after = {k: v for k, v in vars(meshes).items() if not k.startswith("__")}
+    assert [k for k in set(before) | set(after) if before.get(k) is not after.get(k)] == []
+    [p] = [p for p in report.problems if p.code == "UL404"]
+    assert "ran out of memory" in p.message
+    assert not report.cacheable
+    monkeypatch.undo()
+    assert process_job(job, settings).cacheable     # measured now: an ordinary result

@@ -1,8 +1,9 @@
 """The one module a rule imports from urdf-lint: what a check yields (:class:`Report`, a
 :class:`Cause`), the fix requests it may attach (``set_attrs``, ``rename_tag``, ...), the mesh
-look-ups it may need (``MeshStatus``, ``texture_refs``) and small helpers (number parsing, "did
-you mean"). A rule imports nothing else of urdf_lint except its own private helper modules
-(``rules/_*.py``); ``tests/test_architecture.py`` checks it.
+types it may need (``MeshStatus``, ``MeshFacts``, ``MassFacts``; the look-ups themselves are
+the context's: ``ctx.mesh_ref``, ``ctx.mesh_facts``, ``ctx.mass_facts``, ``ctx.texture_refs``)
+and small helpers (number parsing, "did you mean"). A rule imports nothing else of urdf_lint
+except its own private helper modules (``rules/_*.py``); ``tests/test_rule_api.py`` checks it.
 
 The mesh names and the fix kinds' request functions are imported on first use
 (``__getattr__``): a rule that needs none of them, and ``urdf-lint expand``, never import the
@@ -28,12 +29,12 @@ if TYPE_CHECKING:  # pragma: no cover - imported on first use below
     from urdf_lint.fix.kinds.rename_attr import rename_attr
     from urdf_lint.fix.kinds.rename_tag import rename_tag
     from urdf_lint.fix.kinds.set import set_attrs
-    from urdf_lint.meshes.resolve import MeshStatus, texture_refs
+    from urdf_lint.meshes.resolve import MeshStatus
 
 __all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
            "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
            "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
-           "rename_attr", "rename_tag", "set_attrs", "single_candidate", "texture_refs", "top"]
+           "rename_attr", "rename_tag", "set_attrs", "single_candidate", "top"]
 
 
 @dataclass(frozen=True)
@@ -52,7 +53,7 @@ class Report:
     cause: Cause | None = None
 
 
-_LAZY = {"MeshStatus": "urdf_lint.meshes.resolve", "texture_refs": "urdf_lint.meshes.resolve"}
+_LAZY = {"MeshStatus": "urdf_lint.meshes.resolve"}
 
 
 def __getattr__(name: str):

@@ -12,6 +12,7 @@ from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
 from urdf_lint.meshes.facts import MassFacts, MeshFacts
+from urdf_lint.meshes.store import MeshStore
 from urdf_lint.rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
 
 # lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
@@ -20,11 +21,14 @@ XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
 
 
 class Context:
-    """What a rule's ``check`` gets besides the model."""
+    """What a rule's ``check`` gets besides the model: its options, and the mesh look-ups of
+    the run (``meshes``, the run's :class:`urdf_lint.meshes.store.MeshStore`: where facts are
+    cached, which texture references may be read)."""
 
-    def __init__(self, options: dict, mesh_cache_dir: str | None):
+    def __init__(self, options: dict, mesh_cache_dir: str | None, meshes: MeshStore | None = None):
         self.options = options
         self.mesh_cache_dir = mesh_cache_dir
+        self.meshes = meshes if meshes is not None else MeshStore(cache_dir=mesh_cache_dir)
         self._refs: dict = {}
         self._mesh_facts: dict[str, MeshFacts] = {}
         self._mass_facts: dict[str, MassFacts] = {}
@@ -47,7 +51,7 @@ class Context:
         if got is None:
             from urdf_lint.meshes import resolve as meshes
             got = self._mesh_facts[path] = MeshFacts.from_record(
-                meshes.mesh_facts(path, self.mesh_cache_dir))
+                meshes.mesh_facts(path, store=self.meshes))
         return got
 
     def mass_facts(self, path: str) -> MassFacts:
@@ -56,8 +60,13 @@ class Context:
         if got is None:
             from urdf_lint.meshes import resolve as meshes
             got = self._mass_facts[path] = MassFacts.from_record(
-                meshes.mass_facts(path, self.mesh_cache_dir))
+                meshes.mass_facts(path, store=self.meshes))
         return got
+
+    def texture_refs(self, path: str) -> list[str]:
+        """The image (and MTL) files a mesh refers to; those outside the roots are not read."""
+        from urdf_lint.meshes import resolve as meshes
+        return meshes.texture_refs(path, self.meshes)
 
 
 def target_of(el):
@@ -278,9 +287,10 @@ def _lint_model(job: LintJob, settings: LintSettings):
     if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)
         return out, None, ctx
-    from urdf_lint.meshes import resolve as meshes
-    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts
-    meshes.set_confinement(resolver.is_inside, settings.mesh_cache_dir)
+    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts;
+    # a render run draws the meshes the rules measured: they are loaded once and kept
+    ctx.meshes = MeshStore(resolver.is_inside, settings.mesh_cache_dir,
+                           bool(settings.render_dir or settings.diff_render))
     model = _load(job, settings, resolver, out)
     if model is None:
         return out, None, ctx
@@ -334,7 +344,7 @@ def _mesh_deps(model, ctx, deps):
             ref = ctx.mesh_ref(model, uri)
             if ref.path and ref.status is meshes.MeshStatus.OK:
                 mesh_deps.append(ref.path)
-                for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
+                for t in ctx.texture_refs(ref.path) if m.tag == "mesh" else ():
                     if model.resolver is None or model.resolver.is_inside(t):
                         # references outside the roots are never deps
                         (mesh_deps if os.path.exists(t) else missing).append(t)
