@@ -120,3 +120,30 @@ def test_a_kind_whose_expected_result_is_wrong_is_rolled_back(upper_kind, tmp_pa
     assert not out.applied and [p.code for p, _ in out.rolled_back] == ["UL996"]
     assert "changes more" in out.rolled_back[0][1]
     assert path.read_text() == TEXT
+
+
+def test_a_value_from_a_property_defined_twice_is_refused_naming_both(tmp_path, monkeypatch):
+    """The ``set`` kind's trace through a property: defined twice, it names both places."""
+    from conftest import make_package
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import run_check
+    head = '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    src = (head + '  <xacro:property name="lo" value="3"/>\n'
+           '  <xacro:include filename="$(find twice)/urdf/more.xacro"/>\n'
+           '  <link name="a"/><link name="b"/>\n'
+           '  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+           '<axis xyz="0 0 1"/><limit lower="${lo}" upper="-2" effort="1" velocity="1"/></joint>\n'
+           '</robot>\n')
+    more = head + '  <xacro:property name="lo" value="2"/>\n</robot>\n'
+    pkg = make_package(tmp_path, "twice", {"urdf/robot.urdf.xacro": src, "urdf/more.xacro": more})
+    monkeypatch.chdir(pkg)
+    cfg = load_config(None)
+    cfg.select = ["UL302"]
+    res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+    assert not res.internal, res.internal
+    (f,) = [f for f in res.findings if f.code == "UL302"]
+    assert f.fix is not None and not f.fix.edits
+    assert f.fix.refused == ("not fixable automatically: the value comes from the expression at "
+                             "urdf/robot.urdf.xacro:6 (property 'lo' is defined 2 times: "
+                             "urdf/more.xacro:3, urdf/robot.urdf.xacro:3)")

@@ -264,10 +264,10 @@ def _property(src, name, file, data, a, depth):
     if len(defs) != 1:
         if not defs:
             raise _expression(file, data, a.value_start)
-        where = ", ".join(where(p, line_col(d, t.start)[0]) for p, d, t in defs)
+        places = ", ".join(where(p, line_col(d, t.start)[0]) for p, d, t in defs)
         raise Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
-                      f"{where(file, line_col(data, a.value_start)[0])} (property '{name}' "
-                      f"is defined {len(defs)} times: {where})")
+                     f"{where(file, line_col(data, a.value_start)[0])} (property '{name}' "
+                     f"is defined {len(defs)} times: {places})")
     path, d, t = defs[0]
     val = t.attr("value")
     if val is None:
