@@ -15,6 +15,7 @@ scale, origin rotation and translation, and several geometries on one link combi
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from urdf_lint.engine.api import mesh_mass_properties, number, numbers
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
@@ -159,7 +160,8 @@ def link_geometry(model, ctx, lk, np, kind=None):
             prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)
             if prim is None:
                 return None
-            g.add(*prim, rot, t)
+            vol, first, second, corners = prim
+            g.add(vol, first, second, corners, rot, t)
     return g if g.volume > 0 else None
 
 
@@ -193,7 +195,7 @@ def measured_links(model, ctx):
     if key in cache:
         return cache[key]
     out = []
-    np = None
+    np: Any = None
     for lk, _j in moving_links(model):
         m, t, inr = mass(lk), tensor(lk), lk.find("inertial")
         if m is None or m <= 0 or t is None or is_zero(t) or is_identity(t):

@@ -35,7 +35,7 @@ def check(model, ctx):
     if not names:
         return
     children = model.parents_of_links()
-    parents_of_joints = {}
+    parents_of_joints: dict = {}
     for j in model.top_joints():
         p = j.find("parent")
         if p is not None and p.get("link"):

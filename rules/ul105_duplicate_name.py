@@ -27,7 +27,7 @@ from urdf_lint.engine.api import Report, display_path
 
 def check(model, ctx):
     for tag in ("link", "joint"):
-        first = {}
+        first: dict = {}
         for e in model.root:
             if e.tag != tag or not e.get("name"):
                 continue

@@ -27,7 +27,7 @@ from urdf_lint.rules._materials import all_materials
 
 
 def check(model, ctx):
-    first = {}
+    first: dict = {}
     for el, name, rgba, _top in all_materials(model):
         if not name or rgba is None:
             continue

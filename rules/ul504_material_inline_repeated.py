@@ -59,7 +59,7 @@ def _fix(model, rgba, items):
 
 def check(model, ctx):
     n = int(ctx.options.get("min-repeats", 3))
-    groups = {}
+    groups: dict = {}
     for el, name, rgba, top in all_materials(model):
         if not top and rgba is not None:
             groups.setdefault(rgba, []).append((el, name))

@@ -146,7 +146,8 @@ def filter_baseline(path, findings, note=None):
     try:   # a regular file (never a device or FIFO), bounded
         data = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES))
         version = data.get("version", 1)
-        exact, loose = Counter(), Counter()
+        exact: Counter = Counter()
+        loose: Counter = Counter()
         for i in data["findings"]:
             if version >= 2:
                 exact[(i["code"], i["file"], i["element"], i["fingerprint"])] += 1

@@ -337,7 +337,8 @@ def _mesh_deps(model, ctx, deps):
     """(deps + every mesh / texture the model points at that resolved inside the roots,
     the ones that were looked for and are missing)."""
     from urdf_lint.meshes import resolve as meshes
-    mesh_deps, missing = [], []
+    mesh_deps: list[str] = []
+    missing: list[str] = []
     for m in list(model.root.iter("mesh")) + list(model.root.iter("texture")):
         uri = m.get("filename")
         if uri:
