@@ -86,7 +86,7 @@ def check(model, ctx):
                         and el.find(to) is None:
                     yield Report(c, (f"unknown element <{c.tag}> in <{el.tag}> (did you mean '{to}'?): "
                                      f"every URDF parser ignores it silently, so this <{el.tag}> has no "
-                                     f"<{to}> and its default is used instead"), severity="error", fix=None if clash else rename_tag(c.tag, to))
+                                     f"<{to}> and its default is used instead"), severity="error", fix=rename_tag(c.tag, to) if to is not None and not clash else None)
                     continue
                 yield Report(c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
-                                 + "; URDF parsers ignore it"), fix=None if clash else rename_tag(c.tag, to))
+                                 + "; URDF parsers ignore it"), fix=rename_tag(c.tag, to) if to is not None and not clash else None)

@@ -108,9 +108,10 @@ def check(model, ctx):
         i = lk.find("inertial/inertia")
         if i is None:
             continue
-        v = {a: number(i.get(a, "0")) for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        if any(x is None for x in v.values()):
+        got = {a: number(i.get(a, "0")) for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        if any(x is None for x in got.values()):
             continue  # UL206
+        v = {a: x for a, x in got.items() if x is not None}
         name = lk.get("name")
         if _negligible(v):
             bodies = bodies or Bodies(model)

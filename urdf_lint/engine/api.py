@@ -14,7 +14,7 @@ from __future__ import annotations
 import difflib
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Iterable
 
 from urdf_lint.core.findings import Cause
 from urdf_lint.core.locations import display_path
@@ -49,14 +49,14 @@ class Report:
     message: str
     severity: str | None = None
     fix: Request | None = None
-    targets: dict | None = None
+    targets: dict[str, str] | None = None
     cause: Cause | None = None
 
 
 _LAZY = {"MeshStatus": "urdf_lint.meshes.resolve"}
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     """The mesh names on first use, and the request function of every fix kind
     (``REQUESTS`` of each module of :mod:`urdf_lint.fix.kinds`: a new kind needs no line
     here)."""
@@ -73,7 +73,7 @@ def __getattr__(name: str):
     return value
 
 
-def mesh_mass_properties(mesh) -> MassFacts:
+def mesh_mass_properties(mesh: Any) -> MassFacts:
     """The volume properties of a loaded mesh (a ``trimesh.Trimesh``) filled with unit
     density, as the mesh facts give them for a file (``ctx.mass_facts``)."""
     from urdf_lint.meshes.resolve import _mass_properties
@@ -87,7 +87,7 @@ def read_source(path: str, max_bytes: int | None = None) -> bytes | None:
     return fsbound.read_regular(path, fsbound.MAX_SOURCE_BYTES if max_bytes is None else max_bytes)
 
 
-def number(s):
+def number(s: str | None) -> float | None:
     """A finite float from an attribute value, or None."""
     if s is None:
         return None
@@ -98,7 +98,7 @@ def number(s):
     return v if math.isfinite(v) else None
 
 
-def numbers(s, n=None):
+def numbers(s: str | None, n: int | None = None) -> list[float] | None:
     """A list of finite floats from a whitespace-separated value (None if any is bad)."""
     if s is None:
         return None
@@ -114,7 +114,7 @@ def numbers(s, n=None):
     return out
 
 
-def did_you_mean(word, candidates):
+def did_you_mean(word: str, candidates: Iterable[str]) -> str:
     m = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
     return f" (did you mean '{m[0]}'?)" if m else ""
 
@@ -122,7 +122,7 @@ def did_you_mean(word, candidates):
 CLEAR_MARGIN = 0.15
 
 
-def single_candidate(word, candidates, cutoff=0.6):
+def single_candidate(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | None:
     """The one close match of ``word`` among ``candidates`` (None when there are none or
     several): what a "did you mean" fix may apply. With a ``cutoff`` above 0.6 (references),
     a second candidate a "did you mean" would consider (similarity 0.6) within
@@ -138,22 +138,23 @@ def single_candidate(word, candidates, cutoff=0.6):
     return m[0]
 
 
-def reference_fixes(broken, candidates, taken=()):
+def reference_fixes(broken: Iterable[tuple[Any, str, str]], candidates: Iterable[str],
+                    taken: Iterable[str] = ()) -> dict[tuple[Any, str], Request]:
     """{(element, attr): fix request} for broken references ``broken`` (``(element, attr,
     name)``) that have one close candidate (similarity 0.75) which no other reference of the
     same kind already names and no other broken reference would take too."""
     guess = {(el, a): single_candidate(n, candidates, 0.75) for el, a, n in broken}
-    counts: dict = {}
+    counts: dict[str | None, int] = {}
     for g in guess.values():
         counts[g] = counts.get(g, 0) + 1
     return {k: set_attrs({k[1]: g}, f"point the reference at '{g}'")
             for k, g in guess.items() if g and counts[g] == 1 and g not in set(taken)}
 
 
-def fmt(v):
+def fmt(v: float) -> str:
     """Short, readable number."""
     return f"{v:g}"
 
 
-def top(model, tag):
+def top(model: Any, tag: str) -> list[Any]:
     return [e for e in model.root if e.tag == tag]

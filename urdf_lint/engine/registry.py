@@ -31,7 +31,11 @@ from __future__ import annotations
 import importlib
 import re
 from dataclasses import dataclass, field
-from typing import Callable, NamedTuple
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, NamedTuple
+
+if TYPE_CHECKING:  # pragma: no cover - the rules' module, imported when a rule runs
+    from urdf_lint.engine.api import Report
 
 SCOPES = ("model", "run")
 ORIGINS = ("rule", "expansion", "engine")
@@ -45,18 +49,18 @@ class Rule:
     name: str
     severity: str
     doc: str
-    check: Callable | None = None
+    check: Callable[..., Iterable[Any]] | None = None
     fail: str = ""
     passing: str = ""
-    options: dict = field(default_factory=dict)
-    needs: frozenset = frozenset()
-    example_files: dict = field(default_factory=dict)
+    options: dict[str, Any] = field(default_factory=dict)
+    needs: frozenset[str] = frozenset()
+    example_files: dict[str, str] = field(default_factory=dict)
     module: str = ""
     scope: str = "model"
     origin: str = "rule"               # who raises it: a rule's check, expansion or the engine
-    fail_at: tuple = ()                # ((line, col), ...) the FAIL example must report
-    targets: dict = field(default_factory=dict)   # target -> severity | "off" (urdf_lint.core.targets)
-    example_targets: tuple = ("ros",)  # the targets its FAIL and PASS examples are linted with
+    fail_at: tuple[tuple[int, int], ...] = ()   # ((line, col), ...) the FAIL example must report
+    targets: dict[str, str] = field(default_factory=dict)   # target -> severity | "off" (core.targets)
+    example_targets: tuple[str, ...] = ("ros",)  # the targets its FAIL and PASS examples are linted with
 
     @property
     def summary(self) -> str:
@@ -65,10 +69,10 @@ class Rule:
         return para if end < 0 else para[:end + 1]
 
 
-_RULES: dict | None = None
+_RULES: dict[str, Rule] | None = None
 
 
-def submodule_names(paths) -> list[str]:
+def submodule_names(paths: Iterable[str]) -> list[str]:
     """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
     (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
     an error: an install without its sources must not lint with no rules, or report nothing."""
@@ -87,7 +91,7 @@ def submodule_names(paths) -> list[str]:
     return sorted(names)
 
 
-def rule_from_module(mod) -> Rule:
+def rule_from_module(mod: ModuleType) -> Rule:
     check = getattr(mod, "check", None)
     origin = getattr(mod, "ORIGIN", "rule")
     scope = getattr(mod, "SCOPE", "model")
@@ -113,7 +117,7 @@ def rule_from_module(mod) -> Rule:
                 example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))))
 
 
-def load_rules() -> dict:
+def load_rules() -> dict[str, Rule]:
     global _RULES
     if _RULES is not None:
         return _RULES
@@ -139,16 +143,16 @@ class Entry(NamedTuple):
     scope: str
     origin: str
     module: str
-    targets: dict = {}
+    targets: dict[str, str] = {}
 
 
-_CATALOGUE: dict | None = None
-_CATALOGUE_OF: dict | None = None   # the loaded rules it was made from (None: the sources)
+_CATALOGUE: dict[str, Entry] | None = None
+_CATALOGUE_OF: dict[str, Rule] | None = None   # the loaded rules it was made from (None: the sources)
 _ASSIGNED = re.compile(r"""^(CODE|NAME|SEVERITY|SCOPE|ORIGIN) = ["']([^"'\n]*)["'][ \t]*$""", re.M)
 _TARGETS = re.compile(r"^TARGETS = (\{[^{}]*\})[ \t]*$", re.M)
 
 
-def _targets_of(source: str, where: str) -> dict | None:
+def _targets_of(source: str, where: str) -> dict[str, str] | None:
     """The ``TARGETS`` literal of a rule's source ({} when it has none; None when it has one
     that is not a plain literal: the module is imported instead)."""
     if "\nTARGETS" not in source:
@@ -164,7 +168,7 @@ def _targets_of(source: str, where: str) -> dict | None:
         return None
 
 
-def catalogue() -> dict:
+def catalogue() -> dict[str, Entry]:
     """code -> :class:`Entry` for every rule, read from the rule sources (or from the loaded
     rules when they are loaded already)."""
     global _CATALOGUE, _CATALOGUE_OF
@@ -223,10 +227,10 @@ def load_rule(code: str) -> Rule | None:
     return rule
 
 
-_LOADED: dict = {}
+_LOADED: dict[str, Rule] = {}
 
 
-def as_report(item, code: str):
+def as_report(item: Any, code: str) -> Report:
     """The :class:`urdf_lint.engine.api.Report` a check yielded. A tuple ``(item, message,
     extras...)`` (the form before ``Report``; accepted for one release, with a
     ``DeprecationWarning`` naming the rule) has its extras sorted by type: a string is a
@@ -253,8 +257,9 @@ def as_report(item, code: str):
     return Report(item[0], item[1], sev, req, table, cause)
 
 
-def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
-              with_fix: bool = False, with_table: bool = False):
+def run_rules(scope: str, selected: Iterable[str], options: dict[str, dict[str, Any]], subject: Any,
+              ctx: Any, internal: list[str], where: str = "", with_fix: bool = False,
+              with_table: bool = False) -> Iterator[tuple[Any, ...]]:
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
@@ -285,7 +290,7 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 
 
-def codes_to_names() -> dict:
+def codes_to_names() -> dict[str, str]:
     return {c: e.name for c, e in catalogue().items()}
 
 

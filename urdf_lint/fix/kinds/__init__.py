@@ -86,10 +86,12 @@ _REQUESTS: dict[str, Callable] = {}
 def _load() -> None:
     if _KINDS:
         return
-    from urdf_lint.engine.registry import submodule_names
+    from urdf_lint.core import fsbound
     kinds: dict[str, FixKind] = {}
     requests: dict[str, Callable] = {}
-    for name in submodule_names(__path__):
+    names = {fn[:-3] for folder in __path__ for fn in fsbound.list_dir(folder)
+             if fn.endswith(".py") and not fn.startswith("_")}
+    for name in sorted(names):
         mod = importlib.import_module(f"{__name__}.{name}")
         for obj in vars(mod).values():
             if isinstance(obj, type) and issubclass(obj, FixKind) and obj.name \
