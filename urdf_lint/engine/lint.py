@@ -7,12 +7,17 @@ in a worker.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
 from urdf_lint.meshes.facts import MassFacts, MeshFacts
 from urdf_lint.meshes.store import MeshStore
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.model import Model
+    from urdf_lint.meshes.resolve import MeshRef
 from urdf_lint.rules import ul001_xml_syntax, ul006_not_a_robot, ul007_doctype, ul902_outside_roots
 
 # lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
@@ -25,22 +30,23 @@ class Context:
     the run (``meshes``, the run's :class:`urdf_lint.meshes.store.MeshStore`: where facts are
     cached, which texture references may be read)."""
 
-    def __init__(self, options: dict, mesh_cache_dir: str | None, meshes: MeshStore | None = None):
+    def __init__(self, options: dict[str, Any], mesh_cache_dir: str | None,
+                 meshes: MeshStore | None = None):
         self.options = options
         self.mesh_cache_dir = mesh_cache_dir
         self.meshes = meshes if meshes is not None else MeshStore(cache_dir=mesh_cache_dir)
-        self._refs: dict = {}
+        self._refs: dict[tuple[str, str], MeshRef] = {}
         self._mesh_facts: dict[str, MeshFacts] = {}
         self._mass_facts: dict[str, MassFacts] = {}
 
-    def mesh_ref(self, model, uri):
+    def mesh_ref(self, model: Model, uri: str) -> MeshRef:
         from urdf_lint.meshes import resolve as meshes
         key = (model.base_dir, uri)
         if key not in self._refs:
             self._refs[key] = meshes.resolve(model, uri)
         return self._refs[key]
 
-    def mesh(self, path):
+    def mesh(self, path: str) -> Any:
         from urdf_lint.meshes import resolve as meshes
         return meshes.get_mesh(path)
 
@@ -69,7 +75,7 @@ class Context:
         return meshes.texture_refs(path, self.meshes)
 
 
-def target_of(el):
+def target_of(el: Any) -> tuple[str, str] | None:
     """("link"|"joint", name) of the nearest enclosing top-level link or joint, for snapshots."""
     while el is not None:
         parent = el.getparent()
@@ -103,7 +109,7 @@ def classify_xacro(path: str) -> Status | None:
     return None if includes else Status.LIBRARY
 
 
-def _quick_parser():
+def _quick_parser() -> Any:
     from lxml import etree
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
@@ -133,7 +139,7 @@ def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
                 (output, line, col)))
 
 
-def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
+def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> Model | None:
     """The Model of the job, or None (``out`` then says why)."""
     from urdf_lint.engine.model import model_from_xml, parse_urdf_bytes, Model
     entry = job.entry
@@ -212,7 +218,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
     return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
 
 
-def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelReport) -> None:
+def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> None:
     """`urdf-lint expand`: the expansion itself, in a worker too (limits, sandbox). The XML
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from urdf_lint.expansion import expand_file
@@ -228,7 +234,7 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelRepor
         out.kept_model = KeptModel(exp.xml)
 
 
-def _expanded_xml_error(e: Exception, exp, entry: str) -> Problem:
+def _expanded_xml_error(e: Exception, exp: Any, entry: str) -> Problem:
     """A located UL001 for an expansion lxml cannot hold (nesting deeper than its limit, a
     huge attribute, a control character an expression produced), at the source line of the
     element the error is in."""
@@ -265,7 +271,7 @@ def _record_reads(out: ModelReport) -> None:
                 out.digests[d] = rec
 
 
-def lint_model(job: LintJob, settings: LintSettings):
+def lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model | None, Context]:
     """(ModelReport, Model or None, Context) for one job."""
     report, model, ctx = _lint_model(job, settings)
     # the digests of every input not recorded at parse time, here in the worker, on every
@@ -279,7 +285,7 @@ def lint_model(job: LintJob, settings: LintSettings):
     return report, model, ctx
 
 
-def _lint_model(job: LintJob, settings: LintSettings):
+def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model | None, Context]:
     from urdf_lint.discovery.packages import from_settings
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
@@ -333,7 +339,7 @@ def _lint_model(job: LintJob, settings: LintSettings):
     return out, model, ctx
 
 
-def _mesh_deps(model, ctx, deps):
+def _mesh_deps(model: Model, ctx: Context, deps: list[str]) -> tuple[list[str], list[str]]:
     """(deps + every mesh / texture the model points at that resolved inside the roots,
     the ones that were looked for and are missing)."""
     from urdf_lint.meshes import resolve as meshes

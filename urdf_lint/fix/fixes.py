@@ -24,6 +24,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
 from urdf_lint.fix.sourceedit import Attr, Edit, inside, iter_start_tags, line_col, start_tag_at
 
@@ -350,7 +351,7 @@ def yaml_text(new: str, lit: YamlScalar) -> str:
 class Fixer:
     """Resolves the fix requests of one model (reads each source file once)."""
 
-    def __init__(self, model):
+    def __init__(self, model: Any) -> None:
         self.model = model
         self.src = _Sources(model)
         self._index: dict | None = None
