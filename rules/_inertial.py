@@ -36,8 +36,8 @@ class Bodies:
 
     def __init__(self, model):
         self.model = model
-        self.parent_joint = {}          # child link name -> first joint naming it as child
-        self.children = {}              # parent link name -> [(joint, child name)]
+        self.parent_joint: dict = {}    # child link name -> first joint naming it as child
+        self.children: dict = {}        # parent link name -> [(joint, child name)]
         for j in model.top_joints():
             p, c = j.find("parent"), j.find("child")
             if p is None or c is None or not p.get("link") or not c.get("link"):

@@ -1,9 +1,8 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
-from urdf_lint.core.findings import Cause
-from urdf_lint.meshes.resolve import MeshStatus
-from urdf_lint.rules import ul004_unknown_package as unknown_package
+from urdf_lint.engine.api import Cause, MeshStatus, Report
 from urdf_lint.rules._schema import urdf_iter
 
+UNKNOWN_PACKAGE = "UL004"   # the root cause of references to an unknown package (ul004)
 # the resolution statuses that mean "there is no such file" (UL401, and UL407 for textures)
 NOT_FOUND = frozenset({MeshStatus.NOT_FOUND, MeshStatus.UNKNOWN_PACKAGE})
 
@@ -123,10 +122,10 @@ def resolution_problems(model, ctx, statuses, tag="mesh"):
             ref = ctx.mesh_ref(model, uri)
             if ref.status in statuses:
                 if ref.status is MeshStatus.UNKNOWN_PACKAGE and ref.package:
-                    yield m, f"{tag} '{uri}'", Cause(unknown_package.CODE,
-                                                     f"package:{ref.package}", ref.cause)
+                    yield Report(m, f"{tag} '{uri}'", cause=Cause(UNKNOWN_PACKAGE,
+                                                            f"package:{ref.package}", ref.cause))
                 else:
-                    yield m, ref.message
+                    yield Report(m, ref.message)
 
 
 def resolved_meshes(model, ctx):

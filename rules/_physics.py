@@ -15,8 +15,9 @@ scale, origin rotation and translation, and several geometries on one link combi
 from __future__ import annotations
 
 import math
+from typing import Any
 
-from urdf_lint.engine.api import number, numbers
+from urdf_lint.engine.api import mesh_mass_properties, number, numbers
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 
@@ -114,11 +115,10 @@ def _capsule(shape, np):
     if r is None or h is None or r <= 0 or h <= 0:
         return None
     import trimesh
-    from urdf_lint.meshes.resolve import _mass_properties
-    f = _mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
-    if not f["ok"]:
+    f = mesh_mass_properties(trimesh.creation.capsule(height=h, radius=r, count=[24, 24]))
+    if not f.ok:
         return None
-    return f["volume"], f["first"], f["second"], _box_corners([r, r, h / 2 + r], np)
+    return f.volume, f.first, f.second, _box_corners([r, r, h / 2 + r], np)
 
 
 def link_geometry(model, ctx, lk, np, kind=None):
@@ -145,22 +145,23 @@ def link_geometry(model, ctx, lk, np, kind=None):
                 return None
             f = ctx.mass_facts(ref.path)
             scale = numbers(shape.get("scale", "1 1 1"), 3)
-            if not f.get("ok") or not scale or any(s == 0 for s in scale):
+            if not f.ok or f.bounds is None or not scale or any(s == 0 for s in scale):
                 return None
             a = np.diag(scale)
             det = abs(scale[0] * scale[1] * scale[2])
-            lo, hi = f["bounds"]
+            lo, hi = f.bounds
             corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]) * np.asarray(scale)
-            g.add(det * f["volume"], det * (a @ np.asarray(f["first"])),
-                  det * (a @ np.asarray(f["second"]) @ a.T), corners, rot, t)
-            if f["hull"]:
+            g.add(det * f.volume, det * (a @ np.asarray(f.first)),
+                  det * (a @ np.asarray(f.second) @ a.T), corners, rot, t)
+            if f.hull:
                 g.hull.append(uri)
         else:
             prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)
             if prim is None:
                 return None
-            g.add(*prim, rot, t)
+            vol, first, second, corners = prim
+            g.add(vol, first, second, corners, rot, t)
     return g if g.volume > 0 else None
 
 
@@ -194,7 +195,7 @@ def measured_links(model, ctx):
     if key in cache:
         return cache[key]
     out = []
-    np = None
+    np: Any = None
     for lk, _j in moving_links(model):
         m, t, inr = mass(lk), tensor(lk), lk.find("inertial")
         if m is None or m <= 0 or t is None or is_zero(t) or is_identity(t):

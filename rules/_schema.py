@@ -1,4 +1,8 @@
-"""The URDF element/attribute schema shared by UL209 and UL210 (not a rule: starts with _)."""
+"""The URDF element/attribute schema shared by UL209 and UL210, and the names a xacro source
+writes (not a rule: starts with _)."""
+import re
+
+from urdf_lint.engine.api import names_in_scope, read_source
 
 CHILDREN = {
     "robot": {"link", "joint", "material", "transmission", "gazebo", "ros2_control", "mujoco",
@@ -44,6 +48,8 @@ ATTRIBUTES = {
 }
 
 
+
+
 def is_foreign(el):
     """Namespaced (``drake:...``) or under a free-form extension element."""
     tag = el.tag if isinstance(el.tag, str) else ""
@@ -85,11 +91,7 @@ def macro_names(model) -> set:
     for f in [model.entry, *model.deps]:
         if not str(f).endswith(".xacro"):
             continue
-        from urdf_lint.core import fsbound
-        try:   # a regular file of bounded size, through the boundary
-            data = fsbound.read_regular(f, fsbound.MAX_SOURCE_BYTES)
-        except OSError:
-            continue
+        data = read_source(f)   # a regular file of bounded size, through the boundary
         if data:
             names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(data))
     try:
@@ -114,3 +116,17 @@ def urdf_iter(model, tag):
     for el in model.root.iter(tag):
         if not is_foreign(el):
             yield el
+
+
+# a literal {name} anywhere in the value, also after a word character (arm_{side}_link); not
+# ${name} and not an expression's {} (after "}")
+BRACED = re.compile(r"(?<![$}]){([A-Za-z_]\w*)}")
+
+
+def literal_names(model, value: str, known: set | None = None) -> list:
+    """The property / parameter names written as a literal ``{name}`` in ``value``."""
+    hits = BRACED.findall(value) if value and "{" in value else []
+    if not hits:
+        return []
+    known = names_in_scope(model) if known is None else known
+    return [h for h in hits if h in known]

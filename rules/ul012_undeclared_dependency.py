@@ -25,7 +25,7 @@ PASS = """<robot name="r">
 import os
 import re
 
-from urdf_lint.core.findings import Cause
+from urdf_lint.engine.api import Cause, Report, display_path, read_source
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.rules._schema import urdf_iter
 
@@ -54,8 +54,7 @@ def own_package(model):
         if resolver is not None and not resolver.is_inside(d):
             return None
         if os.path.isfile(pxml):
-            from urdf_lint.core import fsbound  # a regular file of bounded size (the boundary)
-            data = fsbound.read_regular(pxml, 1 << 20)
+            data = read_source(pxml, 1 << 20)   # a regular file of bounded size (the boundary)
             if data is None:
                 return None
             text = _COMMENT.sub("", data.decode("utf-8", "replace"))
@@ -79,7 +78,6 @@ def _package_of(resolver, path: str):
 
 
 def _cause(own, pxml, name):
-    from urdf_lint.core.locations import display_path
     return Cause(CODE, f"undeclared-dependency:{own}:{name}",
                  f"package '{name}' is used but {display_path(pxml)} does not declare it: add "
                  f"<exec_depend>{name}</exec_depend> (or <depend>)")
@@ -97,7 +95,7 @@ def check(model, ctx):
             if uri.startswith("package://"):
                 pkg = uri[len("package://"):].partition("/")[0]
                 if pkg and pkg not in ok and ctx.mesh_ref(model, uri).path:
-                    yield m, f"{tag} '{uri}'", _cause(name, pxml, pkg)
+                    yield Report(m, f"{tag} '{uri}'", cause=_cause(name, pxml, pkg))
     # files read through $(find NAME): at the first element they made (its macro call chain
     # leads back to the model's own files)
     firsts: dict = {}
@@ -110,8 +108,7 @@ def check(model, ctx):
     for el, o in model.origins.items():
         for pkg, dep in list(firsts.items()):
             if o.file == dep or any(c[0] == dep for c in o.chain):
-                from urdf_lint.core.locations import display_path
-                yield el, f"reads {display_path(dep)}", _cause(name, pxml, pkg)
+                yield Report(el, f"reads {display_path(dep)}", cause=_cause(name, pxml, pkg))
                 del firsts[pkg]
         if not firsts:
             return

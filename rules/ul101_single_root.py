@@ -26,13 +26,16 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     links = model.top_links()
     names = [lk.get("name") for lk in links if lk.get("name")]
     if not names:
         return
     children = model.parents_of_links()
-    parents_of_joints = {}
+    parents_of_joints: dict = {}
     for j in model.top_joints():
         p = j.find("parent")
         if p is not None and p.get("link"):
@@ -44,8 +47,8 @@ def check(model, ctx):
     if not roots and undefined_parents:
         return  # the tree hangs off a link that is not defined: UL103 reports it
     if not roots:
-        yield model.root, ("no root link: every link is the child of a joint, so the joints form "
-                           "a closed loop; make one link the base (no joint names it as child)")
+        yield Report(model.root, ("no root link: every link is the child of a joint, so the joints form "
+                                  "a closed loop; make one link the base (no joint names it as child)"))
         return
     if len(tree_roots) > 1:
         # the main tree is the largest; every other root is reported where it is defined
@@ -63,6 +66,5 @@ def check(model, ctx):
         ordered = sorted(tree_roots, key=lambda n: -size(n))
         main = ordered[0]
         for n in ordered[1:]:
-            yield model.links[n], (f"link '{n}' is a second root (the main tree starts at "
-                                   f"'{main}'); connect it with a joint or remove it"), \
-                {"mujoco": "warning"}
+            yield Report(model.links[n], (f"link '{n}' is a second root (the main tree starts at "
+                                          f"'{main}'); connect it with a joint or remove it"), targets={"mujoco": "warning"})

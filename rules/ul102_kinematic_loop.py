@@ -27,14 +27,17 @@ PASS = """<robot name="linkage">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     for child, joints in model.parents_of_links().items():
         if len(joints) > 1:
             names = ", ".join(f"'{j.get('name')}'" for j in joints)
             for j in joints[1:]:
-                yield j, (f"link '{child}' has {len(joints)} parent joints ({names}): a kinematic "
-                          "loop; URDF allows one parent per link")
+                yield Report(j, (f"link '{child}' has {len(joints)} parent joints ({names}): a kinematic "
+                                 "loop; URDF allows one parent per link"))
     for j in model.top_joints():
         p, c = j.find("parent"), j.find("child")
         if p is not None and c is not None and p.get("link") and p.get("link") == c.get("link"):
-            yield j, f"joint '{j.get('name')}' connects link '{p.get('link')}' to itself"
+            yield Report(j, f"joint '{j.get('name')}' connects link '{p.get('link')}' to itself")

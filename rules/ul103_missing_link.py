@@ -19,7 +19,7 @@ PASS = """<robot name="r">
   <joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean
+from urdf_lint.engine.api import Report, did_you_mean
 
 
 def check(model, ctx):
@@ -30,5 +30,5 @@ def check(model, ctx):
                 continue
             name = e.get("link")
             if name is not None and name not in model.links:
-                yield e, (f"joint '{j.get('name')}': {role} link '{name}' is not defined"
-                          + did_you_mean(name, model.links))
+                yield Report(e, (f"joint '{j.get('name')}': {role} link '{name}' is not defined"
+                                 + did_you_mean(name, model.links)))

@@ -20,6 +20,9 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     links = model.top_links()
     if len(links) < 2:
@@ -33,4 +36,4 @@ def check(model, ctx):
     for lk in links:
         n = lk.get("name")
         if n and n not in used and model.links.get(n) is lk:
-            yield lk, f"link '{n}' is not connected by any joint"
+            yield Report(lk, f"link '{n}' is not connected by any joint")

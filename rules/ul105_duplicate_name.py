@@ -22,18 +22,19 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report, display_path
+
+
 def check(model, ctx):
-    from urdf_lint.core.locations import display_path
     for tag in ("link", "joint"):
-        first = {}
+        first: dict = {}
         for e in model.root:
             if e.tag != tag or not e.get("name"):
                 continue
             n = e.get("name")
             if n in first:
                 o = model.origin(first[n])
-                yield e, (f"duplicate {tag} name '{n}' (first defined at "
-                          f"{display_path(o.file)}:{o.line}); give each a unique name"), \
-                    ({"mujoco": "warning"} if tag == "joint" else None)
+                yield Report(e, (f"duplicate {tag} name '{n}' (first defined at "
+                                 f"{display_path(o.file)}:{o.line}); give each a unique name"), targets={"mujoco": "warning"} if tag == "joint" else None)
             else:
                 first[n] = e

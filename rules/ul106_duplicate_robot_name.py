@@ -23,8 +23,10 @@ PASS = """<robot name="unique_name_for_this_example">
 EXAMPLE_FILES = {"urdf/other.urdf": '<robot name="visual">\n  <link name="a"/>\n</robot>\n'}
 
 
+from urdf_lint.engine.api import Report, display_path
+
+
 def check(run, ctx):
-    from urdf_lint.core.locations import display_path
     by_name: dict = {}
     generated = getattr(run, "generated", {})   # a generated URDF is the same robot as its xacro
     for m in run.models:
@@ -38,4 +40,4 @@ def check(run, ctx):
             for m in members.values():
                 rest = [display_path(e) for k, g in groups.items() if k != key for e in g]
                 others = ", ".join(rest[:3]) + (f" and {len(rest) - 3} more" if len(rest) > 3 else "")
-                yield m.name_origin, f"robot name '{name}' is also used by {others}"
+                yield Report(m.name_origin, f"robot name '{name}' is also used by {others}")

@@ -19,9 +19,12 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     if not (model.root.get("name") or "").strip():
-        yield model.root, "<robot> has no name attribute"
+        yield Report(model.root, "<robot> has no name attribute")
     for e in model.root:
         if e.tag in ("link", "joint") and not (e.get("name") or "").strip():
-            yield e, f"<{e.tag}> has no name attribute"
+            yield Report(e, f"<{e.tag}> has no name attribute")

@@ -18,7 +18,7 @@ PASS = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean
+from urdf_lint.engine.api import Report, did_you_mean
 
 TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
@@ -27,6 +27,6 @@ def check(model, ctx):
     for j in model.top_joints():
         t = j.get("type")
         if t is None:
-            yield j, f"joint '{j.get('name')}' has no type (one of {', '.join(TYPES)})"
+            yield Report(j, f"joint '{j.get('name')}' has no type (one of {', '.join(TYPES)})")
         elif t not in TYPES:
-            yield j, f"joint '{j.get('name')}': unknown type '{t}'" + did_you_mean(t, TYPES)
+            yield Report(j, f"joint '{j.get('name')}': unknown type '{t}'" + did_you_mean(t, TYPES))

@@ -21,13 +21,16 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     for j in model.top_joints():
         for role in ("parent", "child"):
             found = j.findall(role)
             if not found:
-                yield j, f"joint '{j.get('name')}' has no <{role} link=...>"
+                yield Report(j, f"joint '{j.get('name')}' has no <{role} link=...>")
             elif len(found) > 1:
-                yield found[1], f"joint '{j.get('name')}' has {len(found)} <{role}> elements"
+                yield Report(found[1], f"joint '{j.get('name')}' has {len(found)} <{role}> elements")
             elif not (found[0].get("link") or "").strip():
-                yield found[0], f"joint '{j.get('name')}': <{role}> has no link attribute"
+                yield Report(found[0], f"joint '{j.get('name')}': <{role}> has no link attribute")

@@ -24,7 +24,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean
+from urdf_lint.engine.api import Report, did_you_mean
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 
@@ -36,19 +36,18 @@ def check(model, ctx):
                 continue
             geoms = part.findall("geometry")
             if not geoms:
-                yield part, f"link '{lk.get('name')}': <{part.tag}> has no <geometry>"
+                yield Report(part, f"link '{lk.get('name')}': <{part.tag}> has no <geometry>")
                 continue
             for g in geoms[1:]:
-                yield g, f"link '{lk.get('name')}': <{part.tag}> has more than one <geometry>"
+                yield Report(g, f"link '{lk.get('name')}': <{part.tag}> has more than one <geometry>")
             g = geoms[0]
             shapes = [c for c in g if isinstance(c.tag, str)]
             if not shapes:
-                yield g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>", \
-                    {"pinocchio": "warning"}
+                yield Report(g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>", targets={"pinocchio": "warning"})
             for s in shapes:
                 if s.tag not in SHAPES:
-                    yield s, (f"link '{lk.get('name')}': unknown shape <{s.tag}>"
-                              + did_you_mean(s.tag, SHAPES))
+                    yield Report(s, (f"link '{lk.get('name')}': unknown shape <{s.tag}>"
+                                     + did_you_mean(s.tag, SHAPES)))
             if len(shapes) > 1:
-                yield shapes[1], (f"link '{lk.get('name')}': <geometry> holds {len(shapes)} shapes "
-                                  f"({', '.join(s.tag for s in shapes)}); use one <{part.tag}> per shape")
+                yield Report(shapes[1], (f"link '{lk.get('name')}': <geometry> holds {len(shapes)} shapes "
+                                         f"({', '.join(s.tag for s in shapes)}); use one <{part.tag}> per shape"))

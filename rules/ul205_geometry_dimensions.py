@@ -26,7 +26,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.engine.api import number, numbers
+from urdf_lint.engine.api import Report, number, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 
@@ -51,19 +51,19 @@ def check(model, ctx):
                 v = s.get("size")
                 vals = numbers(v, 3)
                 if v is None:
-                    yield s, f"{what}: <box> needs size=\"x y z\""
+                    yield Report(s, f"{what}: <box> needs size=\"x y z\"")
                 elif vals is None:
-                    yield s, f"{what}: <box size=\"{v}\"> must be three numbers"
+                    yield Report(s, f"{what}: <box size=\"{v}\"> must be three numbers")
                 elif any(x <= 0 for x in vals):
-                    yield s, f"{what}: <box size=\"{v}\"> must be three positive numbers"
+                    yield Report(s, f"{what}: <box size=\"{v}\"> must be three positive numbers")
             elif s.tag in ("cylinder", "capsule"):
                 for a in ("radius", "length"):
                     msg = _positive(model, s, a, what)
                     if msg:
-                        yield s, msg
+                        yield Report(s, msg)
             elif s.tag == "sphere":
                 msg = _positive(model, s, "radius", what)
                 if msg:
-                    yield s, msg
+                    yield Report(s, msg)
             elif s.tag == "mesh" and not (s.get("filename") or "").strip():
-                yield s, f"{what}: <mesh> has no filename"
+                yield Report(s, f"{what}: <mesh> has no filename")

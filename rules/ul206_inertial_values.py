@@ -22,7 +22,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.engine.api import number
+from urdf_lint.engine.api import Report, number
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
@@ -33,16 +33,16 @@ def check(model, ctx):
             name = lk.get("name")
             m = inr.find("mass")
             if m is None:
-                yield inr, f"link '{name}': <inertial> has no <mass value=...>"
+                yield Report(inr, f"link '{name}': <inertial> has no <mass value=...>")
             elif number(m.get("value")) is None:
-                yield m, f"link '{name}': mass value {m.get('value')!r} is not a number"
+                yield Report(m, f"link '{name}': mass value {m.get('value')!r} is not a number")
             i = inr.find("inertia")
             if i is None:
-                yield inr, f"link '{name}': <inertial> has no <inertia .../>"
+                yield Report(inr, f"link '{name}': <inertial> has no <inertia .../>")
                 continue
             missing = [a for a in INERTIA if i.get(a) is None]
             if missing:
-                yield i, f"link '{name}': <inertia> is missing {', '.join(missing)}"
+                yield Report(i, f"link '{name}': <inertia> is missing {', '.join(missing)}")
             bad = [f"{a}={i.get(a)!r}" for a in INERTIA if i.get(a) is not None and number(i.get(a)) is None]
             if bad:
-                yield i, f"link '{name}': <inertia> values are not numbers: {', '.join(bad)}"
+                yield Report(i, f"link '{name}': <inertia> values are not numbers: {', '.join(bad)}")

@@ -37,7 +37,7 @@ NOT_FINITE = ("nan", "inf", "infinity")
 # 3.2.7 load it (measured by tests/test_consumers.py)
 LOADS_NAN = {"mujoco": "warning", "pybullet": "warning"}
 
-from urdf_lint.engine.api import numbers
+from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 
@@ -49,8 +49,7 @@ def check(model, ctx):
                 if v is not None and numbers(v, 3) is None:
                     nan = len(v.split()) == 3 and any(x.lower().lstrip("+-") in NOT_FINITE
                                                       for x in v.split())
-                    yield e, f"<{tag} {a}=\"{v}\"> must be three finite numbers", \
-                        (LOADS_NAN if nan else None)
+                    yield Report(e, f"<{tag} {a}=\"{v}\"> must be three finite numbers", targets=LOADS_NAN if nan else None)
     for e in urdf_iter(model, "origin"):
         v = e.get("quat_xyzw")
         if v is None:
@@ -58,11 +57,11 @@ def check(model, ctx):
         q = numbers(v, 4)
         n = math.sqrt(sum(x * x for x in q)) if q is not None else 0.0
         if q is None or n == 0:
-            yield e, f"<origin quat_xyzw=\"{v}\"> must be four finite numbers, x y z w, not all 0"
+            yield Report(e, f"<origin quat_xyzw=\"{v}\"> must be four finite numbers, x y z w, not all 0")
         elif e.get("rpy") is not None:
-            yield e, ("<origin> has both rpy and quat_xyzw: urdfdom 6 rejects it, MuJoCo and "
-                      "PyBullet use the rpy; keep one")
+            yield Report(e, ("<origin> has both rpy and quat_xyzw: urdfdom 6 rejects it, MuJoCo and "
+                             "PyBullet use the rpy; keep one"))
         elif abs(n - 1) > 1e-3:
             unit = " ".join(f"{x / n:.6g}" for x in q)
-            yield e, (f"<origin quat_xyzw=\"{v}\"> has length {n:.4g}, not 1: urdfdom normalises "
-                      f"it (\"{unit}\"); write the unit quaternion"), "warning"
+            yield Report(e, (f"<origin quat_xyzw=\"{v}\"> has length {n:.4g}, not 1: urdfdom normalises "
+                             f"it (\"{unit}\"); write the unit quaternion"), severity="warning")

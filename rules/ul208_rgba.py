@@ -21,8 +21,7 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
-from urdf_lint.fix.fixes import set_attrs
-from urdf_lint.engine.api import numbers
+from urdf_lint.engine.api import Report, numbers, set_attrs
 from urdf_lint.rules._schema import urdf_iter
 
 
@@ -43,13 +42,13 @@ def check(model, ctx):
             continue
         v = c.get("rgba")
         if v is None:
-            yield c, "<color> needs rgba=\"r g b a\""
+            yield Report(c, "<color> needs rgba=\"r g b a\"")
             continue
         vals = numbers(v, 4)
         if vals is None:
-            yield c, f"<color rgba=\"{v}\"> must be four numbers"
+            yield Report(c, f"<color rgba=\"{v}\"> must be four numbers")
         elif any(x < 0 or x > 1 for x in vals):
             hint = " (0-255 values? divide by 255)" if any(x > 1 for x in vals) else ""
             fixed = _by_255(vals)
-            yield c, f"<color rgba=\"{v}\"> values must be within [0, 1]{hint}", (
-                set_attrs({"rgba": fixed}, "divide the 0-255 colour by 255") if fixed else None)
+            yield Report(c, f"<color rgba=\"{v}\"> values must be within [0, 1]{hint}", fix=
+                       set_attrs({"rgba": fixed}, "divide the 0-255 colour by 255") if fixed else None)

@@ -37,8 +37,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.fix.fixes import rename_tag
-from urdf_lint.engine.api import did_you_mean, single_candidate
+from urdf_lint.engine.api import Report, did_you_mean, rename_tag, single_candidate
 from urdf_lint.rules._schema import CHILDREN, SINGLE, XACRO_WORDS, checked_elements, macro_names
 
 # a misspelling of one of these, where it is, changes the robot's kinematics or dynamics
@@ -73,22 +72,21 @@ def check(model, ctx):
                 continue
             if c.tag in SINGLE.get(el.tag, ()):
                 if c.tag in once:
-                    yield c, (f"a second <{c.tag}> in <{el.tag}>: URDF parsers read the first one "
-                              "and ignore this one")
+                    yield Report(c, (f"a second <{c.tag}> in <{el.tag}>: URDF parsers read the first one "
+                                     "and ignore this one"))
                 once.add(c.tag)
             if c.tag not in allowed:
                 lost = _lost_prefix(model, el, c)
                 if lost is not None:
-                    yield c, lost[0], lost[1]
+                    yield Report(c, lost[0], severity=lost[1])
                     continue
                 to = single_candidate(c.tag, allowed)
                 clash = to is None or el.find(to) is not None
                 if to in DROPS_DATA and el.tag in ("joint", "inertial", "visual", "collision") \
                         and el.find(to) is None:
-                    yield c, (f"unknown element <{c.tag}> in <{el.tag}> (did you mean '{to}'?): "
-                              f"every URDF parser ignores it silently, so this <{el.tag}> has no "
-                              f"<{to}> and its default is used instead"), "error", \
-                        (None if clash else rename_tag(c.tag, to))
+                    yield Report(c, (f"unknown element <{c.tag}> in <{el.tag}> (did you mean '{to}'?): "
+                                     f"every URDF parser ignores it silently, so this <{el.tag}> has no "
+                                     f"<{to}> and its default is used instead"), severity="error", fix=rename_tag(c.tag, to) if to is not None and not clash else None)
                     continue
-                yield c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
-                          + "; URDF parsers ignore it"), (None if clash else rename_tag(c.tag, to))
+                yield Report(c, (f"unknown element <{c.tag}> in <{el.tag}>" + did_you_mean(c.tag, allowed)
+                                 + "; URDF parsers ignore it"), fix=rename_tag(c.tag, to) if to is not None and not clash else None)

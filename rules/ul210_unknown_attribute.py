@@ -27,8 +27,7 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
-from urdf_lint.fix.fixes import rename_attr
-from urdf_lint.engine.api import did_you_mean, number, single_candidate
+from urdf_lint.engine.api import Report, did_you_mean, number, rename_attr, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 
 
@@ -48,13 +47,13 @@ def check(model, ctx):
                 up = LOWER[a]
                 mine, theirs = number(el.get(a)), number(el.get(up, "0"))
                 same = mine is not None and theirs is not None and mine == theirs
-                yield el, (f"'{a}' on <inertia>: URDF reads only the upper triangle of the "
-                           f"symmetric tensor (ixy, ixz, iyz), so '{a}' is ignored"
-                           + ("" if same else f", and it differs from {up}={el.get(up, '0')}: "
-                              f"{up} is the value used")), ("info" if same else "warning")
+                yield Report(el, (f"'{a}' on <inertia>: URDF reads only the upper triangle of the "
+                                  f"symmetric tensor (ixy, ixz, iyz), so '{a}' is ignored"
+                                  + ("" if same else f", and it differs from {up}={el.get(up, '0')}: "
+                                     f"{up} is the value used")), severity="info" if same else "warning")
                 continue
             if a not in allowed:
                 to = single_candidate(a, allowed)
-                yield el, (f"unknown attribute '{a}' on <{el.tag}>" + did_you_mean(a, allowed)
-                           + "; URDF parsers ignore it"), (
-                    rename_attr(a, to) if to and to not in el.attrib else None)
+                yield Report(el, (f"unknown attribute '{a}' on <{el.tag}>" + did_you_mean(a, allowed)
+                                  + "; URDF parsers ignore it"), fix=
+                           rename_attr(a, to) if to and to not in el.attrib else None)

@@ -22,6 +22,7 @@ PASS = """<robot name="r" version="1.0">
 """
 import re
 
+from urdf_lint.engine.api import Report
 
 def check(model, ctx):
     v = model.root.get("version")
@@ -29,7 +30,7 @@ def check(model, ctx):
         return
     m = re.fullmatch(r"(\d+)\.(\d+)", v)
     if not m:
-        yield model.root, f"robot version '{v}' must be 'major.minor' (e.g. 1.0)"
+        yield Report(model.root, f"robot version '{v}' must be 'major.minor' (e.g. 1.0)")
     elif int(m.group(1)) != 1 or int(m.group(2)) > 2:
-        yield model.root, (f"robot version '{v}' is not supported (urdfdom 6 knows 1.0, 1.1 and "
-                           "1.2)")
+        yield Report(model.root, (f"robot version '{v}' is not supported (urdfdom 6 knows 1.0, 1.1 and "
+                                  "1.2)"))

@@ -25,24 +25,10 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
 FAIL_AT = [(4, 3), (6, 3)]
 PASS = FAIL.replace('<link name="{prefix}tool"/>', '<link name="${prefix}tool"/>').replace(
     '<link name="arm_{prefix}tip"/>', '<link name="arm_${prefix}tip"/>')
-import re
-
-from urdf_lint.fix.fixes import add_dollar, names_in_scope
-from urdf_lint.rules._schema import checked_elements, urdf_iter
+from urdf_lint.engine.api import Report, add_dollar, names_in_scope
+from urdf_lint.rules._schema import BRACED, checked_elements, literal_names, urdf_iter
 
 ATTRS = ("name", "reference", "link")
-# a literal {name} anywhere in the value, also after a word character (arm_{side}_link); not
-# ${name} and not an expression's {} (after "}")
-_BRACED = re.compile(r"(?<![$}]){([A-Za-z_]\w*)}")
-
-
-def literal_names(model, value: str, known: set | None = None) -> list:
-    """The property / parameter names written as a literal ``{name}`` in ``value``."""
-    hits = _BRACED.findall(value) if value and "{" in value else []
-    if not hits:
-        return []
-    known = names_in_scope(model) if known is None else known
-    return [h for h in hits if h in known]
 
 
 def _elements(model):
@@ -64,12 +50,11 @@ def check(model, ctx):
             v = el.get(a)
             if not v or "{" not in v:
                 continue
-            if not _BRACED.search(v):
+            if not BRACED.search(v):
                 continue
             if known is None:
                 known = names_in_scope(model)
             names = literal_names(model, v, known)
             if names:
-                yield el, (f"{a}=\"{v}\" holds a literal '{{{names[0]}}}', and '{names[0]}' is a "
-                           f"xacro property or parameter: did you mean '${{{names[0]}}}'?"), \
-                    add_dollar(a, names)
+                yield Report(el, (f"{a}=\"{v}\" holds a literal '{{{names[0]}}}', and '{names[0]}' is a "
+                                  f"xacro property or parameter: did you mean '${{{names[0]}}}'?"), fix=add_dollar(a, names))

@@ -47,6 +47,7 @@ PASS = """<robot name="r" version="1.2">
 """
 import re
 
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._schema import urdf_iter
 
 # what a feature is, the version that defines it, and per target what happens where it is not
@@ -87,13 +88,13 @@ def check(model, ctx):
     for o in urdf_iter(model, "origin"):
         if o.get("quat_xyzw") is not None:
             msg, table = _finding(QUAT, declared)
-            yield o, msg, table
+            yield Report(o, msg, targets=table)
     for c in urdf_iter(model, "capsule"):
         if c.getparent() is not None and c.getparent().tag == "geometry":
             msg, table = _finding(CAPSULE, declared)
-            yield c, msg, table
+            yield Report(c, msg, targets=table)
     for lim in urdf_iter(model, "limit"):
         for attr in ("acceleration", "deceleration", "jerk"):
             if lim.get(attr) is not None:
                 msg, table = _finding(LIMITS, declared, attr)
-                yield lim, msg, table
+                yield Report(lim, msg, targets=table)

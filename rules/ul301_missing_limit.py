@@ -22,11 +22,12 @@ PASS = """<robot name="r">
     <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
 </robot>
 """
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._joints import moving
 
 
 def check(model, ctx):
     for j in model.top_joints():
         if moving(j) and j.find("limit") is None:
-            yield j, (f"{j.get('type')} joint '{j.get('name')}' has no <limit>; add "
-                      "<limit lower=... upper=... effort=... velocity=...>")
+            yield Report(j, (f"{j.get('type')} joint '{j.get('name')}' has no <limit>; add "
+                             "<limit lower=... upper=... effort=... velocity=...>"))

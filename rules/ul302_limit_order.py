@@ -27,15 +27,14 @@ PASS = """<robot name="r">
     <limit lower="-2.1" upper="2.1" effort="10" velocity="1"/></joint>
 </robot>
 """
-from urdf_lint.fix.fixes import set_attrs
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt, set_attrs
 from urdf_lint.rules._joints import ranged
 
 
 def check(model, ctx):
     for j, lim, lo, hi in ranged(model):
         if lo > hi:
-            yield lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "
-                        "(swap them?)"), set_attrs({"lower": lim.get("upper", "0"),
-                                                    "upper": lim.get("lower", "0")},
-                                                   "swap lower and upper")
+            yield Report(lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "
+                               "(swap them?)"), fix=set_attrs({"lower": lim.get("upper", "0"),
+                                                           "upper": lim.get("lower", "0")},
+                                                          "swap lower and upper"))

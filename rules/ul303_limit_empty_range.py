@@ -20,7 +20,7 @@ PASS = """<robot name="r">
     <limit lower="0" upper="0.2" effort="10" velocity="1"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt
 from urdf_lint.rules._joints import ranged
 
 
@@ -28,5 +28,5 @@ def check(model, ctx):
     for j, lim, lo, hi in ranged(model):
         if lo == hi:
             why = " (both default to 0)" if lim.get("lower") is None and lim.get("upper") is None else ""
-            yield lim, (f"joint '{j.get('name')}': lower == upper == {fmt(lo)}{why}, so it cannot "
-                        "move; set the range or make the joint fixed")
+            yield Report(lim, (f"joint '{j.get('name')}': lower == upper == {fmt(lo)}{why}, so it cannot "
+                               "move; set the range or make the joint fixed"))

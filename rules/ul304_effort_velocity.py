@@ -38,7 +38,7 @@ PASS = """<robot name="r">
     <limit lower="-1" upper="1" effort="30" velocity="2"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import number
+from urdf_lint.engine.api import Report, number
 
 ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but effort-based "
                "controllers and simulators cannot move the joint; write the drive's rated torque "
@@ -57,27 +57,26 @@ def check(model, ctx):
             v = lim.get(a)
             if v is None:
                 if required:
-                    yield lim, f"joint '{j.get('name')}': <limit> has no {a}", \
-                        ({"mujoco": "warning", "pybullet": "warning"} if a == "effort" else None)
+                    yield Report(lim, f"joint '{j.get('name')}': <limit> has no {a}", targets={"mujoco": "warning", "pybullet": "warning"} if a == "effort" else None)
                 continue
             n = number(v)
             if n is None:
-                yield lim, f"joint '{j.get('name')}': limit {a}={v!r} is not a number"
+                yield Report(lim, f"joint '{j.get('name')}': limit {a}={v!r} is not a number")
             elif n == 0 and a == "effort" and required:
-                yield lim, f"joint '{j.get('name')}': limit effort=0 is {ZERO_EFFORT}", zero_effort
+                yield Report(lim, f"joint '{j.get('name')}': limit effort=0 is {ZERO_EFFORT}", severity=zero_effort)
             elif n == 0 and a == "velocity" and required:
-                yield lim, (f"joint '{j.get('name')}': limit velocity=0: every consumer loads it, "
-                            "but ros2_control and MoveIt can never move the joint"), "warning"
+                yield Report(lim, (f"joint '{j.get('name')}': limit velocity=0: every consumer loads it, "
+                                   "but ros2_control and MoveIt can never move the joint"), severity="warning")
             elif n <= 0 and required:
-                yield lim, f"joint '{j.get('name')}': limit {a}={v} must be positive"
+                yield Report(lim, f"joint '{j.get('name')}': limit {a}={v} must be positive")
         for a in ("acceleration", "deceleration", "jerk"):   # URDF 1.2
             v = lim.get(a)
             if v is None:
                 continue
             n = number(v)
             if n is None or n < 0:
-                yield lim, (f"joint '{j.get('name')}': limit {a}={v!r} must be a positive number "
-                            "(urdfdom 6 rejects the model)")
+                yield Report(lim, (f"joint '{j.get('name')}': limit {a}={v!r} must be a positive number "
+                                   "(urdfdom 6 rejects the model)"))
             elif n == 0:
-                yield lim, (f"joint '{j.get('name')}': limit {a}=0: the joint could never "
-                            "accelerate under a planner that reads it"), "warning"
+                yield Report(lim, (f"joint '{j.get('name')}': limit {a}=0: the joint could never "
+                                   "accelerate under a planner that reads it"), severity="warning")

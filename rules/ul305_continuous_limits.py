@@ -29,7 +29,9 @@ PASS = """<robot name="r">
 """
 
 
-from urdf_lint.fix.fixes import drop_attrs, set_attrs
+
+from urdf_lint.engine.api import Report, drop_attrs, set_attrs
+
 
 def check(model, ctx):
     how = ctx.options.get("fix", "drop-limits")
@@ -43,5 +45,5 @@ def check(model, ctx):
             else:
                 fix = drop_attrs([a for a in ("lower", "upper") if lim.get(a) is not None],
                                  "drop the position limits")
-            yield lim, (f"continuous joint '{j.get('name')}' has position limits, which are ignored; "
-                        "make it revolute or drop lower/upper"), fix
+            yield Report(lim, (f"continuous joint '{j.get('name')}' has position limits, which are ignored; "
+                               "make it revolute or drop lower/upper"), fix=fix)

@@ -25,8 +25,7 @@ PASS = """<robot name="r">
     <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
 </robot>
 """
-from urdf_lint.fix.fixes import set_attrs
-from urdf_lint.engine.api import fmt, number
+from urdf_lint.engine.api import Report, fmt, number, set_attrs
 from urdf_lint.rules._joints import limits
 
 
@@ -36,20 +35,20 @@ def check(model, ctx):
         if sc is None:
             continue
         if sc.get("k_velocity") is None:
-            yield sc, f"joint '{j.get('name')}': <safety_controller> needs k_velocity"
+            yield Report(sc, f"joint '{j.get('name')}': <safety_controller> needs k_velocity")
         lim, lo, hi, _, _ = limits(j)
         slo, shi = number(sc.get("soft_lower_limit", "0")), number(sc.get("soft_upper_limit", "0"))
         if slo is not None and shi is not None and slo > shi:
-            yield sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} > "
-                       f"soft_upper_limit {fmt(shi)}"), set_attrs(
-                {"soft_lower_limit": sc.get("soft_upper_limit", "0"),
-                 "soft_upper_limit": sc.get("soft_lower_limit", "0")},
-                "swap soft_lower_limit and soft_upper_limit")
+            yield Report(sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} > "
+                              f"soft_upper_limit {fmt(shi)}"), fix=set_attrs(
+                       {"soft_lower_limit": sc.get("soft_upper_limit", "0"),
+                        "soft_upper_limit": sc.get("soft_lower_limit", "0")},
+                       "swap soft_lower_limit and soft_upper_limit"))
         if lim is None or j.get("type") not in ("revolute", "prismatic") or lo is None or hi is None:
             continue
         if slo is not None and slo < lo:
-            yield sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} is below the hard "
-                       f"lower limit {fmt(lo)}")
+            yield Report(sc, (f"joint '{j.get('name')}': soft_lower_limit {fmt(slo)} is below the hard "
+                              f"lower limit {fmt(lo)}"))
         if shi is not None and shi > hi:
-            yield sc, (f"joint '{j.get('name')}': soft_upper_limit {fmt(shi)} is above the hard "
-                       f"upper limit {fmt(hi)}")
+            yield Report(sc, (f"joint '{j.get('name')}': soft_upper_limit {fmt(shi)} is above the hard "
+                              f"upper limit {fmt(hi)}"))

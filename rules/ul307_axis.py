@@ -30,8 +30,7 @@ PASS = """<robot name="r">
 """
 import math
 
-from urdf_lint.fix.fixes import set_attrs
-from urdf_lint.engine.api import fmt, numbers
+from urdf_lint.engine.api import Report, fmt, numbers, set_attrs
 
 
 def check(model, ctx):
@@ -47,11 +46,9 @@ def check(model, ctx):
             continue  # UL207 reports the format
         n = math.sqrt(sum(x * x for x in v))
         if n == 0:
-            yield ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"), \
-                {"pinocchio": "warning", "pybullet": "warning"}
+            yield Report(ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"), targets={"pinocchio": "warning", "pybullet": "warning"})
             continue
         elif abs(n - 1) > tol:
             unit = " ".join(fmt(round(x / n, 6)) for x in v)
-            yield ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has length "
-                       f"{n:.4g}, not 1; consumers normalise it (use \"{unit}\")"), "warning", \
-                set_attrs({"xyz": unit}, "normalise the axis to unit length")
+            yield Report(ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has length "
+                              f"{n:.4g}, not 1; consumers normalise it (use \"{unit}\")"), severity="warning", fix=set_attrs({"xyz": unit}, "normalise the axis to unit length"))

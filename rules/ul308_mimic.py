@@ -26,7 +26,7 @@ PASS = """<robot name="r">
   <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1" multiplier="-1"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean, reference_fixes
+from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 # consumers that load an unknown mimicked joint and ignore the relation (docstring)
@@ -42,14 +42,14 @@ def check(model, ctx):
         target = m.get("joint")
         name = j.get("name")
         if not target:
-            yield m, f"joint '{name}': <mimic> has no joint attribute"
+            yield Report(m, f"joint '{name}': <mimic> has no joint attribute")
         elif target == name:
-            yield m, f"joint '{name}' mimics itself"
+            yield Report(m, f"joint '{name}' mimics itself")
         elif target not in model.joints:
             others = [n for n in model.joints if n != name]
             fix = reference_fixes([(m, "joint", target)], others).get((m, "joint"))
-            yield m, (f"joint '{name}' mimics unknown joint '{target}'"
-                      + did_you_mean(target, others)), fix, IGNORED
+            yield Report(m, (f"joint '{name}' mimics unknown joint '{target}'"
+                             + did_you_mean(target, others)), fix=fix, targets=IGNORED)
         else:
             follows[name] = (target, m)
     reported = set()
@@ -63,4 +63,4 @@ def check(model, ctx):
             key = frozenset(cycle)
             if key not in reported:
                 reported.add(key)
-                yield follows[cycle[0]][1], ("mimic cycle: " + " -> ".join(cycle + [cycle[0]]))
+                yield Report(follows[cycle[0]][1], ("mimic cycle: " + " -> ".join(cycle + [cycle[0]])))

@@ -30,6 +30,9 @@ PASS = """<robot name="r">
 ONE_DOF = ("revolute", "continuous", "prismatic")
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     for j in model.top_joints():
         m = j.find("mimic")
@@ -37,11 +40,11 @@ def check(model, ctx):
             continue
         name, kind = j.get("name"), j.get("type")
         if kind not in ONE_DOF and kind:
-            yield m, (f"joint '{name}' is {kind} but has a <mimic>: Drake rejects it (0 DOF "
-                      "cannot mimic), the other consumers ignore it")
+            yield Report(m, (f"joint '{name}' is {kind} but has a <mimic>: Drake rejects it (0 DOF "
+                             "cannot mimic), the other consumers ignore it"))
             continue
         target = model.joints.get(m.get("joint") or "")
         if target is not None and target is not j and (target.get("type") or "") not in ONE_DOF:
-            yield m, (f"joint '{name}' mimics '{target.get('name')}', a {target.get('type')} "
-                      "joint: Drake rejects it (mimic only between 1-DoF joints), the other "
-                      "consumers ignore the relation")
+            yield Report(m, (f"joint '{name}' mimics '{target.get('name')}', a {target.get('type')} "
+                             "joint: Drake rejects it (mimic only between 1-DoF joints), the other "
+                             "consumers ignore the relation"))

@@ -19,6 +19,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._meshes import TETRA_STL, resolved_meshes
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
@@ -28,9 +29,9 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
 def check(model, ctx):
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
-        if not facts["ok"]:
-            yield m, f"mesh '{uri}' cannot be loaded: {facts['error']}"
-        elif facts["vertices"] == 0:
-            yield m, f"mesh '{uri}' is empty (no vertices)"
-        elif not facts["finite"]:
-            yield m, f"mesh '{uri}' has non-finite (NaN/inf) vertices"
+        if not facts.ok:
+            yield Report(m, f"mesh '{uri}' cannot be loaded: {facts.error}")
+        elif facts.vertices == 0:
+            yield Report(m, f"mesh '{uri}' is empty (no vertices)")
+        elif not facts.finite:
+            yield Report(m, f"mesh '{uri}' has non-finite (NaN/inf) vertices")

@@ -17,7 +17,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules._meshes import TETRA_STL
-from urdf_lint.engine.api import numbers
+from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
@@ -30,6 +30,6 @@ def check(model, ctx):
             continue
         v = numbers(s, 3)
         if v is None:
-            yield m, f"mesh scale=\"{s}\" must be three numbers"
+            yield Report(m, f"mesh scale=\"{s}\" must be three numbers")
         elif any(x == 0 for x in v):
-            yield m, f"mesh scale=\"{s}\" has a zero factor (the mesh collapses)"
+            yield Report(m, f"mesh scale=\"{s}\" has a zero factor (the mesh collapses)")

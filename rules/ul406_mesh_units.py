@@ -23,7 +23,7 @@ PASS = """<robot name="r">
 </robot>
 """
 from urdf_lint.rules._meshes import resolved_meshes, scaled
-from urdf_lint.engine.api import numbers
+from urdf_lint.engine.api import Report, numbers
 
 EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
 
@@ -32,11 +32,11 @@ def check(model, ctx):
     limit = float(ctx.options.get("max-size", 5.0))
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
-        if not facts["ok"] or not facts["bounds"]:
+        if not facts.ok or not facts.bounds:
             continue
         scale = numbers(m.get("scale", "1 1 1"), 3) or [1, 1, 1]
-        lo, hi = facts["bounds"]
+        lo, hi = facts.bounds
         size = max(abs(s) * (b - a) for s, a, b in zip(scale, lo, hi, strict=False))
         if size > limit:
             hint = " (millimetres? add scale=\"0.001 0.001 0.001\")" if size / 1000 < limit else ""
-            yield m, f"mesh '{uri}' is {size:.4g} m across{hint}"
+            yield Report(m, f"mesh '{uri}' is {size:.4g} m across{hint}")

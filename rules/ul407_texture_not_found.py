@@ -20,15 +20,16 @@ PASS = """<robot name="r">
 </robot>
 """
 import os
+from dataclasses import replace
 
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_meshes
 
 
 def check(model, ctx):
-    from urdf_lint.meshes.resolve import texture_refs
     for m, uri, path in resolved_meshes(model, ctx):
-        for t in texture_refs(path):
+        for t in ctx.texture_refs(path):   # (references outside the roots are not read)
             if not os.path.exists(t):
-                yield m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist"
-    for t, message, *cause in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):
-        yield (t, message.replace("mesh", "texture", 1), *cause)
+                yield Report(m, f"mesh '{uri}' refers to '{os.path.basename(t)}', which does not exist")
+    for r in resolution_problems(model, ctx, NOT_FOUND, tag="texture"):
+        yield replace(r, message=r.message.replace("mesh", "texture", 1))

@@ -21,6 +21,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/plain.dae"/></geometry></visual></link>
 </robot>
 """
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._meshes import BROKEN_SURFACE_DAE, PLAIN_DAE, resolved_meshes
 
 EXAMPLE_FILES = {"meshes/skin.dae": BROKEN_SURFACE_DAE, "meshes/plain.dae": PLAIN_DAE}
@@ -29,8 +30,8 @@ EXAMPLE_FILES = {"meshes/skin.dae": BROKEN_SURFACE_DAE, "meshes/plain.dae": PLAI
 def check(model, ctx):
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
-        broken = facts.get("broken_refs") or []
-        if facts["ok"] and broken:
+        broken = facts.broken_refs
+        if facts.ok and broken:
             more = f" (and {len(broken) - 1} more)" if len(broken) > 1 else ""
-            yield m, (f"mesh '{uri}' has a broken internal reference: {broken[0]}{more}; its "
-                      "geometry loads, its material or texture is lost")
+            yield Report(m, (f"mesh '{uri}' has a broken internal reference: {broken[0]}{more}; its "
+                             "geometry loads, its material or texture is lost"))

@@ -22,18 +22,18 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+from urdf_lint.engine.api import Report, display_path
 from urdf_lint.rules._materials import all_materials
 
 
 def check(model, ctx):
-    first = {}
+    first: dict = {}
     for el, name, rgba, _top in all_materials(model):
         if not name or rgba is None:
             continue
         if name in first and first[name][1] != rgba:
             o = model.origin(first[name][0])
-            from urdf_lint.core.locations import display_path
-            yield el, (f"material '{name}' redefined as rgba {' '.join(f'{x:g}' for x in rgba)}; the first "
-                       f"definition ({' '.join(f'{x:g}' for x in first[name][1])}, at "
-                       f"{display_path(o.file)}:{o.line}) wins")
+            yield Report(el, (f"material '{name}' redefined as rgba {' '.join(f'{x:g}' for x in rgba)}; the first "
+                              f"definition ({' '.join(f'{x:g}' for x in first[name][1])}, at "
+                              f"{display_path(o.file)}:{o.line}) wins"))
         first.setdefault(name, (el, rgba))

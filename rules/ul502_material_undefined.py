@@ -24,7 +24,7 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean, reference_fixes
+from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 from urdf_lint.rules._schema import urdf_iter
 
 
@@ -38,8 +38,8 @@ def check(model, ctx):
             n = m.get("name")
             if m.find("color") is None and m.find("texture") is None:
                 if not n:
-                    yield m, "<material> without a name, colour or texture"
+                    yield Report(m, "<material> without a name, colour or texture")
                 elif n not in defined:
                     fix = reference_fixes([(m, "name", n)], defined).get((m, "name"))
-                    yield m, (f"material '{n}' is used but never defined (drawn in a default "
-                              "colour)" + did_you_mean(n, defined)), "warning", fix
+                    yield Report(m, (f"material '{n}' is used but never defined (drawn in a default "
+                                     "colour)" + did_you_mean(n, defined)), severity="warning", fix=fix)

@@ -21,6 +21,7 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
 from urdf_lint.rules._schema import urdf_iter
 
 def check(model, ctx):
@@ -30,4 +31,4 @@ def check(model, ctx):
         if m.tag == "material" and m.get("name") and m.get("name") not in used \
                 and m.get("name") not in seen:
             seen.add(m.get("name"))
-            yield m, f"material '{m.get('name')}' is defined but no visual uses it"
+            yield Report(m, f"material '{m.get('name')}' is defined but no visual uses it")

@@ -37,7 +37,7 @@ PASS = """<robot name="r">
 """
 from collections import Counter
 
-from urdf_lint.fix.fixes import named_material
+from urdf_lint.engine.api import Report, named_material
 from urdf_lint.rules._materials import all_materials, rgba as rgba_of
 
 
@@ -59,7 +59,7 @@ def _fix(model, rgba, items):
 
 def check(model, ctx):
     n = int(ctx.options.get("min-repeats", 3))
-    groups = {}
+    groups: dict = {}
     for el, name, rgba, top in all_materials(model):
         if not top and rgba is not None:
             groups.setdefault(rgba, []).append((el, name))
@@ -70,7 +70,6 @@ def check(model, ctx):
             anon = sum(1 for _, nm in items if not nm)
             shown = (f"names {', '.join(named)}" if named else "") + \
                 ((", " if named else "") + f"{anon} anonymous" if anon else "")
-            yield items[0][0], (f"colour rgba {' '.join(f'{x:g}' for x in rgba)} is written inline in "
-                                f"{len(items)} visuals ({shown}); define one named "
-                                "<material> at the top and refer to it by name"), \
-                _fix(model, rgba, items)
+            yield Report(items[0][0], (f"colour rgba {' '.join(f'{x:g}' for x in rgba)} is written inline in "
+                                       f"{len(items)} visuals ({shown}); define one named "
+                                       "<material> at the top and refer to it by name"), fix=_fix(model, rgba, items))

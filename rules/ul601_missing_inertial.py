@@ -30,6 +30,9 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     from urdf_lint.rules._inertial import Bodies
     bodies = None
@@ -41,14 +44,14 @@ def check(model, ctx):
         if lk is not None and lk.find("inertial") is None:
             bodies = bodies or Bodies(model)
             if lk.find("collision/geometry") is not None:   # MuJoCo: inertia from the geometry
-                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
-                           "<inertial>; Gazebo drops the link, MuJoCo computes one from its "
-                           "collision geometry"), {"mujoco": "warning"}
+                yield Report(lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                                  "<inertial>; Gazebo drops the link, MuJoCo computes one from its "
+                                  "collision geometry"), targets={"mujoco": "warning"})
                 continue
             if bodies.subtree_mass(lk.get("name")) > 0:   # MuJoCo takes the children's mass
-                yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
-                           "<inertial>; Gazebo drops the link (MuJoCo accepts it because the "
-                           "links it carries have mass)"), {"mujoco": "warning"}
+                yield Report(lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                                  "<inertial>; Gazebo drops the link (MuJoCo accepts it because the "
+                                  "links it carries have mass)"), targets={"mujoco": "warning"})
                 continue
-            yield lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
-                       "<inertial>; MuJoCo rejects the model, Gazebo drops the link")
+            yield Report(lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                              "<inertial>; MuJoCo rejects the model, Gazebo drops the link"))

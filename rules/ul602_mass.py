@@ -45,7 +45,7 @@ PASS = """<robot name="r">
   <joint name="cam" type="fixed"><parent link="a"/><child link="camera_frame"/></joint>
 </robot>
 """
-from urdf_lint.engine.api import number
+from urdf_lint.engine.api import Report, number
 from urdf_lint.rules._inertial import Bodies, mass
 
 
@@ -61,9 +61,8 @@ def check(model, ctx):
             continue  # UL206
         name = lk.get("name")
         if v < 0:
-            yield m, (f"link '{name}': mass {v:g} must not be negative (MuJoCo rejects it; "
-                      "Pinocchio and PyBullet load it with a wrong dynamics)"), \
-                {"pinocchio": "warning", "pybullet": "warning"}
+            yield Report(m, (f"link '{name}': mass {v:g} must not be negative (MuJoCo rejects it; "
+                             "Pinocchio and PyBullet load it with a wrong dynamics)"), targets={"pinocchio": "warning", "pybullet": "warning"})
         elif v == 0:
             bodies = bodies or Bodies(model)
             body = bodies.moving_body(name)
@@ -74,21 +73,19 @@ def check(model, ctx):
             if bodies.subtree_mass(root) > 0:
                 # a massless intermediate body (two joints in a row): the links it carries
                 # have mass, so KDL and Pinocchio cope; MuJoCo and Gazebo refuse it
-                yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint "
-                          f"'{j.get('name')}'); KDL and Pinocchio accept it because the links it "
-                          "carries have mass, but MuJoCo and Gazebo refuse massless moving "
-                          "bodies: give it a small real mass and inertia"), "warning", \
-                    {"mujoco": "error"}
+                yield Report(m, (f"link '{name}': mass 0 on a body that moves{via} (joint "
+                                 f"'{j.get('name')}'); KDL and Pinocchio accept it because the links it "
+                                 "carries have mass, but MuJoCo and Gazebo refuse massless moving "
+                                 "bodies: give it a small real mass and inertia"), severity="warning", targets={"mujoco": "error"})
                 continue
-            yield m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
-                      "and nothing it carries has mass; give it its real mass (zero mass is only "
-                      "valid on frames attached by fixed joints to a body with mass, or on bodies "
-                      "that carry massive links)")
+            yield Report(m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
+                             "and nothing it carries has mass; give it its real mass (zero mass is only "
+                             "valid on frames attached by fixed joints to a body with mass, or on bodies "
+                             "that carry massive links)"))
         elif v < tiny:
             bodies = bodies or Bodies(model)
             root, j = bodies.root_of(name)
             if root != name or j is None:
                 continue  # a frame fixed to its parent (or the root): a placeholder mass
-            yield m, (f"link '{name}': mass {v:g} kg is implausibly small (grams?)"
-                      + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else "")), \
-                {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"}
+            yield Report(m, (f"link '{name}': mass {v:g} kg is implausibly small (grams?)"
+                             + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else "")), targets={"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"})

@@ -40,7 +40,7 @@ PASS = """<robot name="r">
 """
 import math
 
-from urdf_lint.engine.api import fmt, number
+from urdf_lint.engine.api import Report, fmt, number
 from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
 
 NOISE = 1e-15      # kg m^2: below MuJoCo's mjMINVAL, float noise of a lumped body, not inertia
@@ -108,17 +108,18 @@ def check(model, ctx):
         i = lk.find("inertial/inertia")
         if i is None:
             continue
-        v = {a: number(i.get(a, "0")) for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-        if any(x is None for x in v.values()):
+        got = {a: number(i.get(a, "0")) for a in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        if any(x is None for x in got.values()):
             continue  # UL206
+        v = {a: x for a, x in got.items() if x is not None}
         name = lk.get("name")
         if _negligible(v):
             bodies = bodies or Bodies(model)
             j = _spins_freely(model, bodies, lk)
             if j is not None:
-                yield i, (f"link '{name}': mass {fmt(mass(lk))} kg but an all-zero inertia tensor, "
-                          f"and it moves (joint '{j.get('name')}'); simulators refuse it or let it "
-                          "spin freely: give it the inertia of its geometry")
+                yield Report(i, (f"link '{name}': mass {fmt(mass(lk))} kg but an all-zero inertia tensor, "
+                                 f"and it moves (joint '{j.get('name')}'); simulators refuse it or let it "
+                                 "spin freely: give it the inertia of its geometry"))
             continue  # otherwise an all-zero (or float-noise) tensor is a common placeholder
         if _placeholder(lk, v):
             continue
@@ -134,20 +135,20 @@ def check(model, ctx):
                    f"iyz={fmt(yz)}")
         moments = f"principal moments {e1:.3g}, {e2:.3g}, {e3:.3g}"
         if e1 <= tol:
-            yield i, (f"link '{name}': inertia tensor is not positive definite ({written}; "
-                      f"{moments})"), table
+            yield Report(i, (f"link '{name}': inertia tensor is not positive definite ({written}; "
+                             f"{moments})"), targets=table)
         elif e1 + e2 < e3 - tol:
             if table is None:   # the written diagonal breaks it: name the pair, as before
                 for p, q, r, names in ((a, b, c, "ixx + iyy >= izz"), (a, c, b, "ixx + izz >= iyy"),
                                        (b, c, a, "iyy + izz >= ixx")):
                     if p + q < r - tol:
-                        yield i, (f"link '{name}': inertia breaks the triangle inequality "
-                                  f"({names}: {fmt(p)} + {fmt(q)} < {fmt(r)})")
+                        yield Report(i, (f"link '{name}': inertia breaks the triangle inequality "
+                                         f"({names}: {fmt(p)} + {fmt(q)} < {fmt(r)})"))
                         break
                 else:
-                    yield i, (f"link '{name}': inertia breaks the triangle inequality ({moments}: "
-                              f"{e1:.3g} + {e2:.3g} < {e3:.3g})")
+                    yield Report(i, (f"link '{name}': inertia breaks the triangle inequality ({moments}: "
+                                     f"{e1:.3g} + {e2:.3g} < {e3:.3g})"))
                 continue
-            yield i, (f"link '{name}': its {moments} break the triangle inequality ({e1:.3g} + "
-                      f"{e2:.3g} < {e3:.3g}), although the diagonal ({written}) passes: no rigid "
-                      "body has this tensor; MuJoCo rejects it (\"use 'balanceinertia'\")"), table
+            yield Report(i, (f"link '{name}': its {moments} break the triangle inequality ({e1:.3g} + "
+                             f"{e2:.3g} < {e3:.3g}), although the diagonal ({written}) passes: no rigid "
+                             "body has this tensor; MuJoCo rejects it (\"use 'balanceinertia'\")"), targets=table)

@@ -27,7 +27,9 @@ PASS = """<robot name="r">
 """
 
 
-from urdf_lint.fix.fixes import new_root
+
+
+from urdf_lint.engine.api import Report, new_root
 
 
 def check(model, ctx):
@@ -39,6 +41,5 @@ def check(model, ctx):
         n = lk.get("name")
         if n and n not in children and lk.find("inertial") is not None \
                 and model.links.get(n) is lk:
-            yield lk.find("inertial"), (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
-                                        "massless root link joined by a fixed joint"), \
-                new_root("add a massless root link joined by a fixed joint")
+            yield Report(lk.find("inertial"), (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
+                                               "massless root link joined by a fixed joint"), fix=new_root("add a massless root link joined by a fixed joint"))

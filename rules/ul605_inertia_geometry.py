@@ -26,7 +26,7 @@ from urdf_lint.rules._physics import example, declared_matrix, hull_note, measur
 FAIL = example(1, 0.5, 0.5, 0.5)
 FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt
 
 WHICH = ("smallest", "middle", "largest")
 
@@ -54,7 +54,7 @@ def check(model, ctx):
                 bad.append(f"{WHICH[k]} principal moment (about ≈{_axis(vecs[:, k])}) "
                            f"{fmt(declared[k])} vs {fmt(expected[k])} kg·m² ({ratio:.3g}x)")
         if bad:
-            yield inr.find("inertia"), (
-                f"link '{lk.get('name')}': declared inertia does not match its {g.source} geometry "
-                f"filled uniformly with {fmt(m)} kg: " + "; ".join(bad)
-                + f" (allowed {fmt(lo_r)}x-{fmt(hi_r)}x){hull_note(g)}")
+            yield Report(inr.find("inertia"), (
+                       f"link '{lk.get('name')}': declared inertia does not match its {g.source} geometry "
+                       f"filled uniformly with {fmt(m)} kg: " + "; ".join(bad)
+                       + f" (allowed {fmt(lo_r)}x-{fmt(hi_r)}x){hull_note(g)}"))

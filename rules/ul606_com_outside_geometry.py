@@ -26,7 +26,7 @@ from urdf_lint.rules._physics import example, hull_note, measured_links, pose
 FAIL = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.5")
 FAIL_AT = [(4, 15)]
 PASS = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.02")
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt
 
 
 def _outside(com, g, tol):
@@ -52,7 +52,7 @@ def check(model, ctx):
         if out:
             box = " x ".join(f"[{fmt(round(a, 4))}, {fmt(round(b, 4))}]" for a, b in zip(g.lo, g.hi, strict=True))
             where = inr.find("origin") if inr.find("origin") is not None else inr
-            yield where, (f"link '{lk.get('name')}': centre of mass "
-                          f"({' '.join(fmt(round(x, 4)) for x in com)}) is outside its {g.source} "
-                          f"geometry's bounding box {box} along {', '.join('xyz'[k] for k in out)} "
-                          f"(by more than {fmt(tol)} m){hull_note(g)}")
+            yield Report(where, (f"link '{lk.get('name')}': centre of mass "
+                                 f"({' '.join(fmt(round(x, 4)) for x in com)}) is outside its {g.source} "
+                                 f"geometry's bounding box {box} along {', '.join('xyz'[k] for k in out)} "
+                                 f"(by more than {fmt(tol)} m){hull_note(g)}"))

@@ -23,7 +23,7 @@ from urdf_lint.rules._physics import example, hull_note, measured_links
 FAIL = example(1000, 1.7, 1.7, 1.7)
 FAIL_AT = [(4, 15)]
 PASS = example(2.7, 0.0045, 0.0045, 0.0045)
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt
 
 
 def check(model, ctx):
@@ -35,6 +35,6 @@ def check(model, ctx):
             continue
         hint = ("mass in grams? geometry too small (a placeholder collision shape? scale applied twice?)" if rho > hi else
                 "geometry too large (a mesh in millimetres without scale?) or the mass too small")
-        yield inr.find("mass"), (f"link '{lk.get('name')}': implied density {rho:.3g} kg/m³ "
-                                 f"({fmt(m)} kg in {g.volume:.3g} m³ of {g.source} geometry) is "
-                                 f"outside {fmt(lo)}-{fmt(hi)} kg/m³: {hint}{hull_note(g)}")
+        yield Report(inr.find("mass"), (f"link '{lk.get('name')}': implied density {rho:.3g} kg/m³ "
+                                        f"({fmt(m)} kg in {g.volume:.3g} m³ of {g.source} geometry) is "
+                                        f"outside {fmt(lo)}-{fmt(hi)} kg/m³: {hint}{hull_note(g)}"))

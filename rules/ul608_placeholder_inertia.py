@@ -23,7 +23,7 @@ FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
 import re
 
-from urdf_lint.engine.api import fmt
+from urdf_lint.engine.api import Report, fmt
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 
@@ -56,14 +56,14 @@ def check(model, ctx):
     links = [(lk, t) for lk, t in links if t is not None and not is_zero(t)]
     for lk, t in links:
         if is_identity(t):
-            yield lk.find("inertial/inertia"), (
-                f"link '{lk.get('name')}': inertia is the identity (ixx=iyy=izz=1), a template "
-                "placeholder; give the link its real inertia")
+            yield Report(lk.find("inertial/inertia"), (
+                       f"link '{lk.get('name')}': inertia is the identity (ixx=iyy=izz=1), a template "
+                       "placeholder; give the link its real inertia"))
     rest = [(lk, t) for lk, t in links if not is_identity(t)]
     if len(rest) >= need and len({tuple(t[a] for a in INERTIA) for _, t in rest}) == 1 \
             and (len({_shape(lk) for lk, _ in rest}) > 1 or len({mass(lk) for lk, _ in rest}) > 1):
         lk, t = rest[0]
-        yield lk.find("inertial/inertia"), (
-            f"all {len(rest)} moving links declare the same inertia tensor "
-            f"(ixx={fmt(t['ixx'])} iyy={fmt(t['iyy'])} izz={fmt(t['izz'])}), a copy-pasted "
-            "placeholder; give each link its own inertia")
+        yield Report(lk.find("inertial/inertia"), (
+                   f"all {len(rest)} moving links declare the same inertia tensor "
+                   f"(ixx={fmt(t['ixx'])} iyy={fmt(t['iyy'])} izz={fmt(t['izz'])}), a copy-pasted "
+                   "placeholder; give each link its own inertia"))

@@ -28,12 +28,12 @@ PASS = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
-from urdf_lint.engine.api import did_you_mean
+from urdf_lint.engine.api import Report, did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 
 def check(model, ctx):
     pairs = [(t, j) for t in model.root.iter("transmission") for j in t.findall("joint")]
     for t, j, n, fix in unknown_joint_refs(model, pairs):
-        yield j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
-                  + did_you_mean(n, model.joints)), fix
+        yield Report(j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"
+                         + did_you_mean(n, model.joints)), fix=fix)

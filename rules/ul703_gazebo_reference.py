@@ -22,8 +22,8 @@ PASS = """<robot name="r">
   <gazebo reference="base_link"><material>Gazebo/Blue</material></gazebo>
 </robot>
 """
-from urdf_lint.rules.ul212_missing_dollar import literal_names
-from urdf_lint.engine.api import did_you_mean, reference_fixes
+from urdf_lint.rules._schema import literal_names
+from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 def check(model, ctx):
@@ -41,8 +41,8 @@ def check(model, ctx):
     for g, r in found:
         braced = literal_names(model, r)
         if braced:   # a forgotten '$' (UL212), not a misspelt name: no wrong suggestion
-            yield g, (f"<gazebo reference=\"{r}\"> names no link or joint: it holds a literal "
-                      f"'{{{braced[0]}}}' (did you mean '${{{braced[0]}}}'? see UL212)")
+            yield Report(g, (f"<gazebo reference=\"{r}\"> names no link or joint: it holds a literal "
+                             f"'{{{braced[0]}}}' (did you mean '${{{braced[0]}}}'? see UL212)"))
             continue
-        yield g, (f"<gazebo reference=\"{r}\"> names no link or joint"
-                  + did_you_mean(r, names)), fixes.get((g, "reference"))
+        yield Report(g, (f"<gazebo reference=\"{r}\"> names no link or joint"
+                         + did_you_mean(r, names)), fix=fixes.get((g, "reference")))

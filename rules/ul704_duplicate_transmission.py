@@ -43,6 +43,9 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     seen: dict = {}
     actuators: dict = {}
@@ -52,8 +55,8 @@ def check(model, ctx):
         if n:
             if twice:
                 line = model.origin(seen[n]).line
-                yield t, (f"transmission '{n}' is defined twice (first at line {line}); Drake and "
-                          "urchin reject the model, ros_control drives only one")
+                yield Report(t, (f"transmission '{n}' is defined twice (first at line {line}); Drake and "
+                                 "urchin reject the model, ros_control drives only one"))
             else:
                 seen[n] = t
         for a in t.findall("actuator"):
@@ -61,8 +64,8 @@ def check(model, ctx):
             if not an:
                 continue
             if an in actuators and actuators[an] is not t and not twice:
-                yield a, (f"actuator '{an}' of transmission '{n}' is also the actuator of "
-                          f"transmission '{actuators[an].get('name')}'; Drake rejects the model "
-                          "(one joint actuator per name)")
+                yield Report(a, (f"actuator '{an}' of transmission '{n}' is also the actuator of "
+                                 f"transmission '{actuators[an].get('name')}'; Drake rejects the model "
+                                 "(one joint actuator per name)"))
             else:
                 actuators.setdefault(an, t)

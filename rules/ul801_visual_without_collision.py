@@ -21,7 +21,10 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
+
 def check(model, ctx):
     for lk in model.top_links():
         if lk.find("visual") is not None and lk.find("collision") is None:
-            yield lk, f"link '{lk.get('name')}' has a visual but no collision"
+            yield Report(lk, f"link '{lk.get('name')}' has a visual but no collision")

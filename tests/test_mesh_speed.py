@@ -429,7 +429,6 @@ def test_a_collada_file_is_read_once_for_hash_facts_volume_and_textures(tmp_path
                                                                           monkeypatch):
     import builtins
     dae = str(_generated_daes(tmp_path)["nested.dae"])
-    fresh.set_confinement(None, None)
     opened = []
     real_open, real_os_open = builtins.open, os.open
     monkeypatch.setattr(builtins, "open", lambda f, *a, **k: (opened.append(str(f)),
@@ -763,9 +762,10 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
     first = sorted((x.code, x.message) for x in lint_in_process(pkg, None) if x.code == "UL407")
     monkeypatch.setattr(fresh, "_textures", {})
     monkeypatch.setattr(fresh, "_scan_memory", {})
-    fresh.set_confinement(None, str(cache))
+    from urdf_lint.meshes.store import MeshStore
+    store = MeshStore(cache_dir=str(cache))      # a run whose facts are cached in `cache`
     dae = str(pkg / "meshes" / "m.dae")
-    refs = fresh.texture_refs(dae)
+    refs = fresh.texture_refs(dae, store)
     assert refs == [str(pkg / "meshes" / "skin.png")]
     assert list(cache.glob("meshes/tex*.json"))
     # a new run (new process memory): the DAE is not read to find its textures
@@ -778,7 +778,7 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
         opened.append(str(f))
         return real_open(f, *a, **k)
     monkeypatch.setattr(builtins, "open", spy)
-    assert fresh.texture_refs(dae) == refs
+    assert fresh.texture_refs(dae, store) == refs
     monkeypatch.setattr(builtins, "open", real_open)
     assert dae not in opened
     assert hashing._memo, "the cache key is the content digest"
@@ -792,7 +792,7 @@ def test_only_a_render_run_keeps_loaded_meshes(tmp_path, fresh, monkeypatch):
     assert fresh._loaded == {}, "plain linting keeps no trimesh in memory"
     monkeypatch.setattr(fresh, "_memory", {})
     monkeypatch.setattr(fresh, "_arrays_memo", type(fresh._arrays_memo)())
-    monkeypatch.setattr(fresh, "KEEP_LOADED", True)
-    assert fresh.mesh_facts(dae) == plain
+    from urdf_lint.meshes.store import MeshStore
+    assert fresh.mesh_facts(dae, store=MeshStore(keep_loaded=True)) == plain   # a render run
     assert len(fresh._loaded) == 1
     assert fresh.get_mesh(dae) is next(iter(fresh._loaded.values())), "the renderer reuses it"

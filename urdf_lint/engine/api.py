@@ -1,13 +1,94 @@
-"""Small helpers shared by rules: number parsing and "did you mean"."""
+"""The one module a rule imports from urdf-lint: what a check yields (:class:`Report`, a
+:class:`Cause`), the fix requests it may attach (``set_attrs``, ``rename_tag``, ...), the mesh
+types it may need (``MeshStatus``, ``MeshFacts``, ``MassFacts``; the look-ups themselves are
+the context's: ``ctx.mesh_ref``, ``ctx.mesh_facts``, ``ctx.mass_facts``, ``ctx.texture_refs``)
+and small helpers (number parsing, "did you mean"). A rule imports nothing else of urdf_lint
+except its own private helper modules (``rules/_*.py``); ``tests/test_rule_api.py`` checks it.
+
+The mesh names and the fix kinds' request functions are imported on first use
+(``__getattr__``): a rule that needs none of them, and ``urdf-lint expand``, never import the
+mesh module.
+"""
 from __future__ import annotations
 
 import difflib
 import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Iterable
 
-from urdf_lint.core.suggest import did_you_mean  # noqa: F401 - for the rules
+from urdf_lint.core.findings import Cause
+from urdf_lint.core.locations import display_path
+from urdf_lint.core.suggest import did_you_mean
+from urdf_lint.fix.fixes import Request, names_in_scope
+from urdf_lint.meshes.facts import MassFacts, MeshFacts
+
+if TYPE_CHECKING:  # pragma: no cover - imported on first use below
+    from urdf_lint.fix.kinds.add_dollar import add_dollar
+    from urdf_lint.fix.kinds.drop_attrs import drop_attrs
+    from urdf_lint.fix.kinds.named_material import named_material
+    from urdf_lint.fix.kinds.new_root import new_root
+    from urdf_lint.fix.kinds.rename_attr import rename_attr
+    from urdf_lint.fix.kinds.rename_tag import rename_tag
+    from urdf_lint.fix.kinds.set import set_attrs
+    from urdf_lint.meshes.resolve import MeshStatus
+
+__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
+           "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
+           "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
+           "rename_attr", "rename_tag", "set_attrs", "single_candidate", "top"]
 
 
-def number(s):
+@dataclass(frozen=True)
+class Report:
+    """One problem a rule's ``check`` found: where (``element``, an element of the model; a
+    run-scope rule gives an :class:`urdf_lint.core.locations.Origin`) and what (``message``).
+    ``severity`` raises or lowers the rule's severity for this one problem; ``fix`` is a fix
+    request (``set_attrs`` and the other requests here); ``targets`` a severity per consumer
+    target for this one problem (:mod:`urdf_lint.core.targets`); ``cause`` the root cause it
+    is an instance of (:class:`Cause`)."""
+    element: Any
+    message: str
+    severity: str | None = None
+    fix: Request | None = None
+    targets: dict[str, str] | None = None
+    cause: Cause | None = None
+
+
+_LAZY = {"MeshStatus": "urdf_lint.meshes.resolve"}
+
+
+def __getattr__(name: str) -> Any:
+    """The mesh names on first use, and the request function of every fix kind
+    (``REQUESTS`` of each module of :mod:`urdf_lint.fix.kinds`: a new kind needs no line
+    here)."""
+    module = _LAZY.get(name)
+    if module is not None:
+        import importlib
+        value = getattr(importlib.import_module(module), name)
+    else:
+        from urdf_lint.fix.kinds import requests
+        value = requests().get(name)
+        if value is None:
+            raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def mesh_mass_properties(mesh: Any) -> MassFacts:
+    """The volume properties of a loaded mesh (a ``trimesh.Trimesh``) filled with unit
+    density, as the mesh facts give them for a file (``ctx.mass_facts``)."""
+    from urdf_lint.meshes.resolve import _mass_properties
+    return MassFacts.from_record(_mass_properties(mesh))
+
+
+def read_source(path: str, max_bytes: int | None = None) -> bytes | None:
+    """The bytes of a source file the model read, through the file-system boundary (a regular
+    file of bounded size), or None when it cannot or may not be read."""
+    from urdf_lint.core import fsbound
+    return fsbound.read_regular(path, fsbound.MAX_SOURCE_BYTES if max_bytes is None else max_bytes)
+
+
+def number(s: str | None) -> float | None:
     """A finite float from an attribute value, or None."""
     if s is None:
         return None
@@ -18,7 +99,7 @@ def number(s):
     return v if math.isfinite(v) else None
 
 
-def numbers(s, n=None):
+def numbers(s: str | None, n: int | None = None) -> list[float] | None:
     """A list of finite floats from a whitespace-separated value (None if any is bad)."""
     if s is None:
         return None
@@ -37,7 +118,7 @@ def numbers(s, n=None):
 CLEAR_MARGIN = 0.15
 
 
-def single_candidate(word, candidates, cutoff=0.6):
+def single_candidate(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | None:
     """The one close match of ``word`` among ``candidates`` (None when there are none or
     several): what a "did you mean" fix may apply. With a ``cutoff`` above 0.6 (references),
     a second candidate a "did you mean" would consider (similarity 0.6) within
@@ -53,23 +134,23 @@ def single_candidate(word, candidates, cutoff=0.6):
     return m[0]
 
 
-def reference_fixes(broken, candidates, taken=()):
+def reference_fixes(broken: Iterable[tuple[Any, str, str]], candidates: Iterable[str],
+                    taken: Iterable[str] = ()) -> dict[tuple[Any, str], Request]:
     """{(element, attr): fix request} for broken references ``broken`` (``(element, attr,
     name)``) that have one close candidate (similarity 0.75) which no other reference of the
     same kind already names and no other broken reference would take too."""
-    from urdf_lint.fix.fixes import set_attrs
     guess = {(el, a): single_candidate(n, candidates, 0.75) for el, a, n in broken}
-    counts: dict = {}
+    counts: dict[str | None, int] = {}
     for g in guess.values():
         counts[g] = counts.get(g, 0) + 1
     return {k: set_attrs({k[1]: g}, f"point the reference at '{g}'")
             for k, g in guess.items() if g and counts[g] == 1 and g not in set(taken)}
 
 
-def fmt(v):
+def fmt(v: float) -> str:
     """Short, readable number."""
     return f"{v:g}"
 
 
-def top(model, tag):
+def top(model: Any, tag: str) -> list[Any]:
     return [e for e in model.root if e.tag == tag]

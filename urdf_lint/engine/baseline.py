@@ -23,10 +23,14 @@ import json
 import os
 import re
 from collections import Counter
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
 from urdf_lint.core import fsbound
 from urdf_lint.core.errors import UsageError
 from urdf_lint.core.locations import display_path, portable
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
 
 VERSION = 2
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
@@ -50,8 +54,8 @@ class _Elements:
     """The identity of the source element at a finding's line and column, per file (each file
     parsed once)."""
 
-    def __init__(self):
-        self._files: dict = {}
+    def __init__(self) -> None:
+        self._files: dict[str, tuple[list[tuple[int, int]], list[str]]] = {}
 
     def identity(self, path: str, line: int, col: int) -> str:
         got = self._files.get(path)
@@ -64,7 +68,7 @@ class _Elements:
         return idents[k - 1] if k else ""
 
 
-def _element_starts(path: str) -> list:
+def _element_starts(path: str) -> list[tuple[tuple[int, int], str]]:
     """``[((line, col), identity)]`` of every element of an XML file, in document order;
     empty for a file that is not XML (YAML, a mesh) or cannot be read."""
     if not path.endswith((".xacro", ".urdf", ".xml")):
@@ -79,9 +83,9 @@ def _element_starts(path: str) -> list:
     if root is None:
         return []
     lines = data.decode("utf-8", "replace").splitlines()
-    tag_cols: dict = {}   # line -> the columns (1-based) where start tags begin on it
-    out = []
-    idents: dict = {}
+    tag_cols: dict[int, list[int]] = {}   # line -> the columns (1-based) where start tags begin on it
+    out: list[tuple[tuple[int, int], str]] = []
+    idents: dict[Any, str] = {}
     for el in root.iter():
         if not isinstance(el.tag, str):
             continue
@@ -103,7 +107,7 @@ def _element_starts(path: str) -> list:
     return out
 
 
-def _entries(findings, base):
+def _entries(findings: Iterable[Problem], base: str) -> Iterator[dict[str, str]]:
     elements = _Elements()
     real = os.path.realpath(base)
     for f in findings:
@@ -115,7 +119,7 @@ def _entries(findings, base):
                "message": portable(f.message, base)}
 
 
-def write_baseline(path, findings, write_base=None) -> int:
+def write_baseline(path: str, findings: Iterable[Problem], write_base: str | None = None) -> int:
     """Record ``findings`` in ``path`` (written below ``write_base``, by default its own
     folder: :func:`urdf_lint.core.fsbound.write_bytes`); returns how many were recorded."""
     base = os.path.dirname(os.path.abspath(path))
@@ -129,7 +133,7 @@ def write_baseline(path, findings, write_base=None) -> int:
     return len(items)
 
 
-def _shown(path) -> str:
+def _shown(path: str) -> str:
     from urdf_lint.core.escape import escape_text
     return escape_text(display_path(path))
 
@@ -139,14 +143,16 @@ def _why(e: OSError) -> str:
     return escape_text(str(getattr(e, "why", None) or e.strerror or e))
 
 
-def filter_baseline(path, findings, note=None):
+def filter_baseline(path: str, findings: list[Problem],
+                    note: Callable[[str], object] | None = None) -> list[Problem]:
     """The findings not recorded in the baseline ``path``. ``note`` (a callable) hears that an
     old (version 1) file should be rewritten."""
     base = os.path.dirname(os.path.abspath(path))
     try:   # a regular file (never a device or FIFO), bounded
         data = json.loads(fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES))
         version = data.get("version", 1)
-        exact, loose = Counter(), Counter()
+        exact: Counter[tuple[str, str, str, str]] = Counter()
+        loose: Counter[tuple[str, str, str]] = Counter()
         for i in data["findings"]:
             if version >= 2:
                 exact[(i["code"], i["file"], i["element"], i["fingerprint"])] += 1

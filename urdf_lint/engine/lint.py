@@ -7,11 +7,14 @@ in a worker.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
 from urdf_lint.core.codes import RuleName
+from urdf_lint.meshes.facts import MassFacts, MeshFacts
+from urdf_lint.meshes.store import MeshStore
 
 # the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
 ul001_xml_syntax = RuleName("ul001_xml_syntax")
@@ -20,50 +23,66 @@ ul007_doctype = RuleName("ul007_doctype")
 ul902_outside_roots = RuleName("ul902_outside_roots")
 ul011_stale_output = RuleName("ul011_stale_output")
 
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.model import Model
+    from urdf_lint.meshes.resolve import MeshRef
+
 # lxml is imported where it is used: `urdf-lint expand` runs in a worker that never needs it
 
 XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
 
 
 class Context:
-    """What a rule's ``check`` gets besides the model."""
+    """What a rule's ``check`` gets besides the model: its options, and the mesh look-ups of
+    the run (``meshes``, the run's :class:`urdf_lint.meshes.store.MeshStore`: where facts are
+    cached, which texture references may be read)."""
 
-    def __init__(self, options: dict, mesh_cache_dir: str | None):
+    def __init__(self, options: dict[str, Any], mesh_cache_dir: str | None,
+                 meshes: MeshStore | None = None):
         self.options = options
         self.mesh_cache_dir = mesh_cache_dir
-        self._refs: dict = {}
-        self._facts: dict = {}
+        self.meshes = meshes if meshes is not None else MeshStore(cache_dir=mesh_cache_dir)
+        self._refs: dict[tuple[str, str], MeshRef] = {}
+        self._mesh_facts: dict[str, MeshFacts] = {}
+        self._mass_facts: dict[str, MassFacts] = {}
 
-    def mesh_ref(self, model, uri):
+    def mesh_ref(self, model: Model, uri: str) -> MeshRef:
         from urdf_lint.meshes import resolve as meshes
         key = (model.base_dir, uri)
         if key not in self._refs:
             self._refs[key] = meshes.resolve(model, uri)
         return self._refs[key]
 
-    def mesh(self, path):
+    def mesh(self, path: str) -> Any:
         from urdf_lint.meshes import resolve as meshes
         return meshes.get_mesh(path)
 
-    def mesh_facts(self, path):
+    def mesh_facts(self, path: str) -> MeshFacts:
         """A mesh file's facts, looked up once per model: several rules ask for every mesh
         element (a 200-link robot: 1,200 asks, each a stat of the file and of its digest)."""
-        return self._once("facts", path)
-
-    def mass_facts(self, path):
-        """A mesh file's volume properties, looked up once per model (like ``mesh_facts``)."""
-        return self._once("mass", path)
-
-    def _once(self, kind: str, path: str):
-        got = self._facts.get((kind, path))
+        got = self._mesh_facts.get(path)
         if got is None:
             from urdf_lint.meshes import resolve as meshes
-            measure = meshes.mesh_facts if kind == "facts" else meshes.mass_facts
-            got = self._facts[(kind, path)] = measure(path, self.mesh_cache_dir)
+            got = self._mesh_facts[path] = MeshFacts.from_record(
+                meshes.mesh_facts(path, store=self.meshes))
         return got
 
+    def mass_facts(self, path: str) -> MassFacts:
+        """A mesh file's volume properties, looked up once per model (like ``mesh_facts``)."""
+        got = self._mass_facts.get(path)
+        if got is None:
+            from urdf_lint.meshes import resolve as meshes
+            got = self._mass_facts[path] = MassFacts.from_record(
+                meshes.mass_facts(path, store=self.meshes))
+        return got
 
-def target_of(el):
+    def texture_refs(self, path: str) -> list[str]:
+        """The image (and MTL) files a mesh refers to; those outside the roots are not read."""
+        from urdf_lint.meshes import resolve as meshes
+        return meshes.texture_refs(path, self.meshes)
+
+
+def target_of(el: Any) -> tuple[str, str] | None:
     """("link"|"joint", name) of the nearest enclosing top-level link or joint, for snapshots."""
     while el is not None:
         parent = el.getparent()
@@ -97,7 +116,7 @@ def classify_xacro(path: str) -> Status | None:
     return None if includes else Status.LIBRARY
 
 
-def _quick_parser():
+def _quick_parser() -> Any:
     from lxml import etree
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
@@ -126,7 +145,7 @@ def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
                 (output, line, col)))
 
 
-def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
+def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> Model | None:
     """The Model of the job, or None (``out`` then says why)."""
     from urdf_lint.engine.model import model_from_xml, parse_urdf_bytes, Model
     entry = job.entry
@@ -205,7 +224,7 @@ def _load(job: LintJob, settings: LintSettings, resolver, out: ModelReport):
     return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
 
 
-def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelReport) -> None:
+def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> None:
     """`urdf-lint expand`: the expansion itself, in a worker too (limits, sandbox). The XML
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from urdf_lint.expansion import expand_file
@@ -221,7 +240,7 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver, out: ModelRepor
         out.kept_model = KeptModel(exp.xml)
 
 
-def _expanded_xml_error(e: Exception, exp, entry: str) -> Problem:
+def _expanded_xml_error(e: Exception, exp: Any, entry: str) -> Problem:
     """A located UL001 for an expansion lxml cannot hold (nesting deeper than its limit, a
     huge attribute, a control character an expression produced), at the source line of the
     element the error is in."""
@@ -258,7 +277,7 @@ def _record_reads(out: ModelReport) -> None:
                 out.digests[d] = rec
 
 
-def lint_model(job: LintJob, settings: LintSettings):
+def lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model | None, Context]:
     """(ModelReport, Model or None, Context) for one job."""
     report, model, ctx = _lint_model(job, settings)
     # the digests of every input not recorded at parse time, here in the worker, on every
@@ -272,7 +291,7 @@ def lint_model(job: LintJob, settings: LintSettings):
     return report, model, ctx
 
 
-def _lint_model(job: LintJob, settings: LintSettings):
+def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model | None, Context]:
     from urdf_lint.discovery.packages import from_settings
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
     ctx = Context({}, settings.mesh_cache_dir)
@@ -280,9 +299,10 @@ def _lint_model(job: LintJob, settings: LintSettings):
     if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)
         return out, None, ctx
-    from urdf_lint.meshes import resolve as meshes
-    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts
-    meshes.set_confinement(resolver.is_inside, settings.mesh_cache_dir)
+    # texture/MTL references stay in the roots; texture scans are cached with the mesh facts;
+    # a render run draws the meshes the rules measured: they are loaded once and kept
+    ctx.meshes = MeshStore(resolver.is_inside, settings.mesh_cache_dir,
+                           bool(settings.render_dir or settings.diff_render))
     model = _load(job, settings, resolver, out)
     if model is None:
         return out, None, ctx
@@ -308,8 +328,7 @@ def _lint_model(job: LintJob, settings: LintSettings):
         fixer = fixer or Fixer(model)
         if req is not None:
             fix = fixer.fix(el, req)
-        value_from = fixer.value_from(el, tuple(a for a, _ in req.changes)
-                                      if req is not None and req.kind == "set" else ())
+        value_from = fixer.value_from(el, fixer.traced(req))
         p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
                        consumers=table, value_from=value_from)
         if cause is not None:   # one finding per root cause, this problem one instance of it
@@ -326,18 +345,19 @@ def _lint_model(job: LintJob, settings: LintSettings):
     return out, model, ctx
 
 
-def _mesh_deps(model, ctx, deps):
+def _mesh_deps(model: Model, ctx: Context, deps: list[str]) -> tuple[list[str], list[str]]:
     """(deps + every mesh / texture the model points at that resolved inside the roots,
     the ones that were looked for and are missing)."""
     from urdf_lint.meshes import resolve as meshes
-    mesh_deps, missing = [], []
+    mesh_deps: list[str] = []
+    missing: list[str] = []
     for m in list(model.root.iter("mesh")) + list(model.root.iter("texture")):
         uri = m.get("filename")
         if uri:
             ref = ctx.mesh_ref(model, uri)
             if ref.path and ref.status is meshes.MeshStatus.OK:
                 mesh_deps.append(ref.path)
-                for t in meshes.texture_refs(ref.path) if m.tag == "mesh" else ():
+                for t in ctx.texture_refs(ref.path) if m.tag == "mesh" else ():
                     if model.resolver is None or model.resolver.is_inside(t):
                         # references outside the roots are never deps
                         (mesh_deps if os.path.exists(t) else missing).append(t)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import os
 import xml.parsers.expat
 from dataclasses import dataclass, field
+from typing import Any, Iterator, NoReturn
 
 from lxml import etree
 
@@ -35,7 +36,7 @@ def element_positions(data: bytes) -> list[tuple[int, int]]:
     return out
 
 
-def _refuse_entities(*_):
+def _refuse_entities(*_: Any) -> NoReturn:
     raise ValueError("entity declarations are refused")
 
 
@@ -44,17 +45,17 @@ class Model:
     """One expanded robot: the lxml tree, the source origin of every element, the files read,
     and indexes of its links and joints."""
     entry: str                       # the entry file (absolute)
-    args: dict
+    args: dict[str, str]
     root: etree._Element             # <robot>
-    origins: dict                    # lxml element -> Origin
-    deps: list                       # files read while expanding (absolute)
-    resolver: object = None          # PackageResolver
-    links: dict = field(default_factory=dict)
-    joints: dict = field(default_factory=dict)
-    materials: dict = field(default_factory=dict)   # top-level <material name=...>
+    origins: dict[Any, Origin]       # lxml element -> Origin
+    deps: list[str]                  # files read while expanding (absolute)
+    resolver: Any = None             # PackageResolver
+    links: dict[str, Any] = field(default_factory=dict)
+    joints: dict[str, Any] = field(default_factory=dict)
+    materials: dict[str, Any] = field(default_factory=dict)   # top-level <material name=...>
     mesh_base: str | None = None     # config: where relative mesh paths start (default: entry's)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for el in self.root:
             if not isinstance(el.tag, str):
                 continue
@@ -67,7 +68,7 @@ class Model:
                 self.materials.setdefault(name, el)
 
     # -- locations ---------------------------------------------------------------------------
-    def origin(self, el) -> Origin:
+    def origin(self, el: Any) -> Origin:
         while el is not None:
             o = self.origins.get(el)
             if o is not None:
@@ -77,21 +78,23 @@ class Model:
 
     @property
     def name(self) -> str:
-        return self.root.get("name", "")
+        name: str = self.root.get("name", "")
+        return name
 
     @property
     def base_dir(self) -> str:
         return self.mesh_base or os.path.dirname(self.entry)
 
-    def iter(self, tag: str):
-        return self.root.iter(tag)
+    def iter(self, tag: str) -> Iterator[Any]:
+        elements: Iterator[Any] = self.root.iter(tag)
+        return elements
 
-    def children(self, el, tag):
+    def children(self, el: Any, tag: str) -> list[Any]:
         return [c for c in el if c.tag == tag]
 
-    def parents_of_links(self) -> dict:
+    def parents_of_links(self) -> dict[str, list[Any]]:
         """child link name -> list of joints that name it as child."""
-        out: dict = {}
+        out: dict[str, list[Any]] = {}
         for j in self.root.iter("joint"):
             if j.getparent() is not self.root:
                 continue
@@ -100,15 +103,15 @@ class Model:
                 out.setdefault(c.get("link"), []).append(j)
         return out
 
-    def top_joints(self):
+    def top_joints(self) -> list[Any]:
         return [j for j in self.root if j.tag == "joint"]
 
-    def top_links(self):
+    def top_links(self) -> list[Any]:
         return [lk for lk in self.root if lk.tag == "link"]
 
 
-def model_from_xml(entry: str, args: dict, xml_text: str, origins, deps: list,
-                   resolver=None) -> Model:
+def model_from_xml(entry: str, args: dict[str, str], xml_text: str, origins: Any, deps: list[str],
+                   resolver: Any = None) -> Model:
     """The Model of an expansion's output; ``origins`` is its source map (one origin per
     element, document order). Element and origin counts must agree (else ``ValueError``)."""
     from urdf_lint.expansion.sourcemap import as_source_map
@@ -138,7 +141,7 @@ def _blank_declaration(data: bytes) -> bytes | None:
     return data[:start] + bytes(b if b in b"\r\n" else 32 for b in decl) + data[end + 2:]
 
 
-def parse_urdf_bytes(entry: str, data: bytes):
+def parse_urdf_bytes(entry: str, data: bytes) -> tuple[Any, dict[Any, Origin], list[Problem] | None]:
     """Parse a plain URDF. Returns (root or None, origins dict, [Problem] or None).
 
     A document that is not namespace-well-formed (e.g. an undeclared ``drake:`` prefix) or has
@@ -172,7 +175,7 @@ def parse_urdf_bytes(entry: str, data: bytes):
                 except etree.XMLSyntaxError:
                     root = None
             break   # only recover from namespace/declaration problems; others stop here
-    origins = {}
+    origins: dict[Any, Origin] = {}
     if root is not None:
         positions = element_positions(text)
         # expat stops at the first error (a recovered document, a refused entity declaration),

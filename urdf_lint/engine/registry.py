@@ -6,11 +6,12 @@ A rule module defines:
 * ``CODE``, ``NAME``, ``SEVERITY``, a docstring (why, how to fix, options), ``FAIL`` and
   ``PASS`` examples, optional ``FAIL_AT`` (the ``(line, col)`` positions the FAIL example must
   report), ``OPTIONS`` (defaults) and ``EXAMPLE_FILES`` (extra files for the examples);
-* ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding ``(element, message)``
-  (or ``(element, message, severity)`` to raise or lower that one problem, and/or a fix
-  request from ``urdf_lint.fix.fixes`` after the message) for one model, or ``"run"`` for
-  ``check(run, ctx)`` yielding ``(origin, message)``
-  over every model of a run (e.g. UL106: the same robot name in two files);
+* ``SCOPE``: ``"model"`` (default) for ``check(model, ctx)`` yielding
+  :class:`urdf_lint.engine.api.Report` ``(element, message, severity=None, fix=None)`` (a
+  severity raises or lowers that one problem; a fix is a request such as ``set_attrs``) for one
+  model, or ``"run"`` for ``check(run, ctx)`` yielding ``Report(origin, message)`` over every
+  model of a run (e.g. UL106: the same robot name in two files). A rule imports only
+  :mod:`urdf_lint.engine.api` (and its own ``rules/_*.py`` helpers);
 * or no ``check`` and ``ORIGIN``, naming the part of urdf-lint that raises the code by
   importing the module and using its ``CODE``: ``"expansion"`` (the xacro integration's error
   table, :mod:`urdf_lint.expansion.errors`) or ``"engine"`` (the lint and run pipeline);
@@ -18,7 +19,7 @@ A rule module defines:
   the rules page so that users know what ``ignore`` saves);
 * optional ``TARGETS = {"mujoco": "error", ...}``: the severity (or ``"off"``) per consumer
   target (:mod:`urdf_lint.core.targets`); a literal dict of strings, read like the assignments
-  above. A check may yield such a dict after the message for one finding.
+  above. A check may give such a dict for one finding (``Report(..., targets=...)``).
 
 ``CODE``, ``NAME``, ``SEVERITY``, ``SCOPE`` and ``ORIGIN`` are plain string assignments at the
 start of a line: :func:`catalogue` reads them from the sources without importing the 65
@@ -30,7 +31,11 @@ from __future__ import annotations
 import importlib
 import re
 from dataclasses import dataclass, field
-from typing import Callable, NamedTuple
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, NamedTuple
+
+if TYPE_CHECKING:  # pragma: no cover - the rules' module, imported when a rule runs
+    from urdf_lint.engine.api import Report
 
 SCOPES = ("model", "run")
 ORIGINS = ("rule", "expansion", "engine")
@@ -44,18 +49,18 @@ class Rule:
     name: str
     severity: str
     doc: str
-    check: Callable | None = None
+    check: Callable[..., Iterable[Any]] | None = None
     fail: str = ""
     passing: str = ""
-    options: dict = field(default_factory=dict)
-    needs: frozenset = frozenset()
-    example_files: dict = field(default_factory=dict)
+    options: dict[str, Any] = field(default_factory=dict)
+    needs: frozenset[str] = frozenset()
+    example_files: dict[str, str] = field(default_factory=dict)
     module: str = ""
     scope: str = "model"
     origin: str = "rule"               # who raises it: a rule's check, expansion or the engine
-    fail_at: tuple = ()                # ((line, col), ...) the FAIL example must report
-    targets: dict = field(default_factory=dict)   # target -> severity | "off" (urdf_lint.core.targets)
-    example_targets: tuple = ("ros",)  # the targets its FAIL and PASS examples are linted with
+    fail_at: tuple[tuple[int, int], ...] = ()   # ((line, col), ...) the FAIL example must report
+    targets: dict[str, str] = field(default_factory=dict)   # target -> severity | "off" (core.targets)
+    example_targets: tuple[str, ...] = ("ros",)  # the targets its FAIL and PASS examples are linted with
 
     @property
     def summary(self) -> str:
@@ -64,10 +69,10 @@ class Rule:
         return para if end < 0 else para[:end + 1]
 
 
-_RULES: dict | None = None
+_RULES: dict[str, Rule] | None = None
 
 
-def submodule_names(paths) -> list[str]:
+def submodule_names(paths: Iterable[str]) -> list[str]:
     """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
     (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
     an error: an install without its sources must not lint with no rules, or report nothing."""
@@ -86,7 +91,7 @@ def submodule_names(paths) -> list[str]:
     return sorted(names)
 
 
-def rule_from_module(mod) -> Rule:
+def rule_from_module(mod: ModuleType) -> Rule:
     check = getattr(mod, "check", None)
     origin = getattr(mod, "ORIGIN", "rule")
     scope = getattr(mod, "SCOPE", "model")
@@ -112,7 +117,7 @@ def rule_from_module(mod) -> Rule:
                 example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))))
 
 
-def load_rules() -> dict:
+def load_rules() -> dict[str, Rule]:
     global _RULES
     if _RULES is not None:
         return _RULES
@@ -138,16 +143,16 @@ class Entry(NamedTuple):
     scope: str
     origin: str
     module: str
-    targets: dict = {}
+    targets: dict[str, str] = {}
 
 
-_CATALOGUE: dict | None = None
-_CATALOGUE_OF: dict | None = None   # the loaded rules it was made from (None: the sources)
+_CATALOGUE: dict[str, Entry] | None = None
+_CATALOGUE_OF: dict[str, Rule] | None = None   # the loaded rules it was made from (None: the sources)
 _ASSIGNED = re.compile(r"""^(CODE|NAME|SEVERITY|SCOPE|ORIGIN) = ["']([^"'\n]*)["'][ \t]*$""", re.M)
 _TARGETS = re.compile(r"^TARGETS = (\{[^{}]*\})[ \t]*$", re.M)
 
 
-def _targets_of(source: str, where: str) -> dict | None:
+def _targets_of(source: str, where: str) -> dict[str, str] | None:
     """The ``TARGETS`` literal of a rule's source ({} when it has none; None when it has one
     that is not a plain literal: the module is imported instead)."""
     if "\nTARGETS" not in source:
@@ -163,7 +168,7 @@ def _targets_of(source: str, where: str) -> dict | None:
         return None
 
 
-def catalogue() -> dict:
+def catalogue() -> dict[str, Entry]:
     """code -> :class:`Entry` for every rule, read from the rule sources (or from the loaded
     rules when they are loaded already)."""
     global _CATALOGUE, _CATALOGUE_OF
@@ -222,15 +227,25 @@ def load_rule(code: str) -> Rule | None:
     return rule
 
 
-_LOADED: dict = {}
+_LOADED: dict[str, Rule] = {}
 
 
-def _extras(rest) -> tuple:
-    """(severity or "", fix request or None, target table or None, root cause or None) from
-    what a rule yields after the message."""
+def as_report(item: Any, code: str) -> Report:
+    """The :class:`urdf_lint.engine.api.Report` a check yielded. A tuple ``(item, message,
+    extras...)`` (the form before ``Report``; accepted for one release, with a
+    ``DeprecationWarning`` naming the rule) has its extras sorted by type: a string is a
+    severity, a dict a target table, a :class:`urdf_lint.core.findings.Cause` the root cause,
+    anything else a fix request."""
+    from urdf_lint.engine.api import Report
+    if isinstance(item, Report):
+        return item
+    import warnings
+    warnings.warn(f"rule {code} yields a tuple; yield urdf_lint.engine.api.Report(element, "
+                  "message, severity=None, fix=None) instead (tuples are accepted until the "
+                  "next release)", DeprecationWarning, stacklevel=2)
     from urdf_lint.core.findings import Cause
-    sev, req, table, cause = "", None, None, None
-    for x in rest:
+    sev, req, table, cause = None, None, None, None
+    for x in item[2:]:
         if isinstance(x, Cause):
             cause = x
         elif isinstance(x, str):
@@ -239,19 +254,19 @@ def _extras(rest) -> tuple:
             table = x
         elif x is not None:
             req = x
-    return sev, req, table, cause
+    return Report(item[0], item[1], sev, req, table, cause)
 
 
-def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list, where: str = "",
-              with_fix: bool = False, with_table: bool = False):
+def run_rules(scope: str, selected: Iterable[str], options: dict[str, dict[str, Any]], subject: Any,
+              ctx: Any, internal: list[str], where: str = "", with_fix: bool = False,
+              with_table: bool = False) -> Iterator[tuple[Any, ...]]:
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
     (:mod:`urdf_lint.fix.fixes`) and the root cause or None, with ``with_table`` then the target
-    table or None. A rule yields ``(item, message)``, optionally followed by a severity (a
-    string), a target table (a dict, :mod:`urdf_lint.core.targets`), a fix request and/or a
-    :class:`urdf_lint.core.findings.Cause`. A rule that crashes adds an
-    internal error and the others still run."""
+    table or None: the fields of the :class:`urdf_lint.engine.api.Report` the rule yields
+    (:func:`as_report`; a severity of None is ""). A rule that crashes adds an internal error and the others
+    still run."""
     import traceback
     entries = catalogue()
     for code in selected:
@@ -264,17 +279,18 @@ def run_rules(scope: str, selected, options: dict, subject, ctx, internal: list,
         ctx.options = {**rule.options, **options.get(code, {})}
         try:
             for item in rule.check(subject, ctx):
-                sev, req, table, cause = _extras(item[2:])
+                r = as_report(item, code)
+                table = r.targets
                 if table is not None:
                     from urdf_lint.core.targets import check_table
                     table = check_table(table, f"rule {code}")
-                yield ((rule, item[0], item[1], sev) + ((req, cause) if with_fix else ())
-                       + ((table,) if with_table else ()))
+                yield ((rule, r.element, r.message, r.severity or "")
+                       + ((r.fix, r.cause) if with_fix else ()) + ((table,) if with_table else ()))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 
 
-def codes_to_names() -> dict:
+def codes_to_names() -> dict[str, str]:
     return {c: e.name for c, e in catalogue().items()}
 
 

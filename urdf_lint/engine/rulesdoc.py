@@ -13,6 +13,8 @@ The example is the rule's ``FAIL`` and ``PASS`` source (``FAIL_AT`` pins where i
 """
 from __future__ import annotations
 
+from typing import Any
+
 SECTIONS = ("why", "how to fix", "fix", "options")
 _PREFIX = {"why": "Why:", "how to fix": "How to fix:", "fix": "Fix:", "options": "Options:"}
 
@@ -21,7 +23,7 @@ class DocError(ValueError):
     pass
 
 
-def sections(doc: str) -> dict:
+def sections(doc: str) -> dict[str, str]:
     """{"what", "why", "how to fix", "options"} of a rule docstring (paragraphs joined into
     one line each); raises DocError when the sections are missing or out of order."""
     paras = [" ".join(p.split()) for p in doc.strip().split("\n\n") if p.strip()]
@@ -48,7 +50,7 @@ def sections(doc: str) -> dict:
     return out
 
 
-def targets_table(rules: dict) -> list[str]:
+def targets_table(rules: dict[str, Any]) -> list[str]:
     """The severity of each rule per consumer target (config ``targets``), for the rules whose
     ``TARGETS`` set one; ``off``: the rule does not apply to that target."""
     from urdf_lint.core.targets import KNOWN, NAMES, column
@@ -70,7 +72,7 @@ def targets_table(rules: dict) -> list[str]:
     return out
 
 
-def markdown(rules: dict) -> str:
+def markdown(rules: dict[str, Any]) -> str:
     """The rules page: a table of every rule, the severities per consumer target, then one
     section per rule."""
     lines = ["# urdf-lint rules", "",

@@ -14,6 +14,7 @@ import bisect
 import re
 import xml.parsers.expat
 from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable, Iterator
 
 from urdf_lint.core.locations import Origin
 from urdf_lint.discovery.packages import MAX_SOURCE_BYTES as MAX_BYTES   # the parent's cap on any XML source
@@ -27,28 +28,28 @@ KINDS = ("disable-next", "disable-file", "disable", "enable")
 class Directive:
     """An inline ``urdf-lint: disable...`` comment: its kind, codes and the lines it covers."""
     kind: str
-    codes: list
+    codes: list[str]
     file: str
     line: int
     col: int
-    span: tuple = ()          # ((start_line, start_col), end_line) for disable-next / ranges
+    span: Any = ()            # ((start_line, start_col), end_line) for disable-next / ranges
     used: bool = False
-    problems: list = field(default_factory=list)   # what is wrong with the comment itself
+    problems: list[str] = field(default_factory=list)   # what is wrong with the comment itself
 
-    def matches_code(self, code, name):
+    def matches_code(self, code: str, name: str) -> bool:
         return not self.codes or any(code_matches(c, code, name) for c in self.codes)
 
 
-def _element_spans(data: bytes):
-    spans: list = []
-    stack: list = []
+def _element_spans(data: bytes) -> list[list[Any]]:
+    spans: list[list[Any]] = []
+    stack: list[int] = []
     p = xml.parsers.expat.ParserCreate()
 
-    def start(name, attrs):
+    def start(name: str, attrs: Any) -> None:
         stack.append(len(spans))
         spans.append([(p.CurrentLineNumber, p.CurrentColumnNumber + 1), None])
 
-    def end(name):
+    def end(name: str) -> None:
         spans[stack.pop()][1] = p.CurrentLineNumber
     p.StartElementHandler = start
     p.EndElementHandler = end
@@ -70,10 +71,10 @@ def _read_source(path: str) -> bytes | None:
     return data if data is not None and (b"urdf-lint" in data or b"urdf_lint" in data) else None
 
 
-_marked: dict = {}   # (path, size, mtime) -> holds the words: a shared include is read once
+_marked: dict[Any, bool] = {}   # (path, size, mtime) -> holds the words: a shared include is read once
 
 
-def with_directives(deps) -> list[str]:
+def with_directives(deps: Iterable[str]) -> list[str]:
     """The source files among ``deps`` that may hold a suppression comment (worker side: a
     file without the words ``urdf-lint``/``urdf_lint`` holds none)."""
     import os
@@ -101,7 +102,7 @@ def with_directives(deps) -> list[str]:
 _HEAD = re.compile(r"<!--\s*urdf[-_]lint\s*:\s*([A-Za-z_-]*)")
 
 
-def _comments(text: str):
+def _comments(text: str) -> Iterator[tuple[int, int, str, str]]:
     """(start, end, kind, rest) of every ``<!-- urdf-lint: KIND REST -->`` in ``text``, what
     ``_DIRECTIVE.finditer`` yields, in one linear pass: each comment's end is the first
     ``-->`` after its kind, found once (the pattern's lazy search for it from every unclosed
@@ -148,7 +149,7 @@ def parse_directives(path: str) -> list[Directive]:
     return directives_in(data, path)
 
 
-def coverage(data: bytes, path: str = "") -> list[tuple[int, str, frozenset]]:
+def coverage(data: bytes, path: str = "") -> list[tuple[int, str, frozenset[int]]]:
     """(line, "kind codes", the ordinals of the elements it covers) for every directive in
     ``data``: what ``urdf-lint format`` must keep when it moves lines."""
     spans = _element_spans(data)
@@ -165,12 +166,12 @@ def directives_in(data: bytes, path: str) -> list[Directive]:
     """The directives in the bytes of the source ``path``."""
     text = data.decode("utf-8", "replace")
     out = []
-    spans: list | None = None
-    starts: list = []
-    open_ranges: dict = {}
+    spans: list[list[Any]] | None = None
+    starts: list[Any] = []
+    open_ranges: dict[Any, Any] = {}
     nlines = text.count("\n") + 1
     lines = _Lines(text)
-    hints: dict = {}
+    hints: dict[Any, Any] = {}
     for start, end, kind, rest in _comments(text):
         codes = [c for c in re.split(r"[\s,]+", rest.strip()) if c]
         line, col = lines.at(start)
@@ -204,21 +205,22 @@ def directives_in(data: bytes, path: str) -> list[Directive]:
     return out
 
 
-def _did_you_mean(word, candidates):
+def _did_you_mean(word: str, candidates: Iterable[str]) -> str:
     from urdf_lint.engine.api import did_you_mean
     return did_you_mean(word, candidates)
 
 
-def _hint(word, candidates, hints: dict) -> str:
+def _hint(word: str, candidates: Iterable[str], hints: dict[Any, Any]) -> str:
     """:func:`_did_you_mean`, once per word and for at most :data:`MAX_HINTS` words."""
     key = ("hint", word)
     if key not in hints:
         hints[key] = _did_you_mean(word, candidates) if hints.get("hinted", 0) < MAX_HINTS else ""
         hints["hinted"] = hints.get("hinted", 0) + 1
-    return hints[key]
+    hint: str = hints[key]
+    return hint
 
 
-def _code_problems(codes, hints: dict | None = None) -> list[str]:
+def _code_problems(codes: Iterable[str], hints: dict[Any, Any] | None = None) -> list[str]:
     """Messages for codes that name no rule, no code prefix and no rule name (each code judged
     once per ``hints``, the memo of one file's scan)."""
     memo = {} if hints is None else hints
@@ -232,7 +234,7 @@ def _code_problems(codes, hints: dict | None = None) -> list[str]:
     return out
 
 
-def _code_problem(c: str, hints: dict) -> str | None:
+def _code_problem(c: str, hints: dict[Any, Any]) -> str | None:
     from urdf_lint.engine.registry import catalogue
     rules = catalogue()
     names = {r.name for r in rules.values()}
@@ -242,7 +244,7 @@ def _code_problem(c: str, hints: dict) -> str | None:
             + _hint(c, list(rules) + sorted(names), hints) + "; it suppresses nothing")
 
 
-def _covers(d: Directive, file, line, col) -> bool:
+def _covers(d: Directive, file: str, line: int, col: int) -> bool:
     if file != d.file:
         return False
     if d.kind == "disable-file":
@@ -251,8 +253,9 @@ def _covers(d: Directive, file, line, col) -> bool:
     return (line, col) >= (sl, sc) and line <= el
 
 
-def apply(findings, directives_by_file: dict, report_unused=True,
-          is_selected=lambda code: True):
+def apply(findings: Iterable[Any], directives_by_file: dict[str, list[Directive]],
+          report_unused: bool = True, is_selected: Callable[[str], bool] = lambda code: True
+          ) -> tuple[list[Any], list[tuple[Origin, str]], list[tuple[Origin, str]]]:
     """Drop suppressed findings; return ``(kept, unused, invalid)``, the last two as
     ``(Origin, message)`` pairs: each directive that suppressed nothing, and each unknown
     directive or code (unless a suppression covers it). The run pipeline reports them as
@@ -268,8 +271,8 @@ def apply(findings, directives_by_file: dict, report_unused=True,
     invalid = [Problem.at(invalid_suppression.CODE, p, (d.file, d.line, d.col)).replace(name=name)
                for d in directives for p in d.problems]
     directives = [d for d in directives if d.kind in KINDS]
-    kept: list = []
-    invalid_kept: list = []
+    kept: list[Any] = []
+    invalid_kept: list[Any] = []
     invalid_ids = {id(f) for f in invalid}
     for f in list(findings) + invalid:
         locs = [(f.file, f.line, f.col)] + [(c[0], c[1], c[2]) for c in f.chain]

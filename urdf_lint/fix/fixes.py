@@ -14,7 +14,9 @@ the start tag in the raw source (:mod:`urdf_lint.fix.sourceedit`):
 * anything else (an expression, ``$(arg)``, a property defined twice) is refused with "not
   fixable automatically: the value comes from the expression at FILE:LINE".
 
-The run then checks that a fix is right for every model and arg set that uses the edited line
+Each kind of fix (``set`` and the structural ones) is a class in :mod:`urdf_lint.fix.kinds`,
+one file per kind: its edits, its expected result and its request function. The run then
+checks that a fix is right for every model and arg set that uses the edited line
 (:mod:`urdf_lint.run.fix`).
 """
 from __future__ import annotations
@@ -22,8 +24,9 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from typing import Any
 
-from urdf_lint.fix.sourceedit import Attr, Edit, escape, inside, iter_start_tags, line_col, start_tag_at
+from urdf_lint.fix.sourceedit import Attr, Edit, inside, iter_start_tags, line_col, start_tag_at
 
 _REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
 _YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|\d+)\s*\]"
@@ -35,48 +38,16 @@ NOT_FIXABLE = "not fixable automatically"
 
 @dataclass(frozen=True)
 class Request:
-    """What a rule wants done to the expanded element: ``kind`` "set" (``changes``: new values
-    of attributes), "rename_attr" (``changes``: ((old, new),)) or "rename_tag" (((old, new),))."""
+    """What a rule wants done to the expanded element: ``kind`` names a fix kind
+    (:mod:`urdf_lint.fix.kinds`: "set" with ``changes`` the new values of attributes,
+    "rename_attr" / "rename_tag" with ((old, new),), ...); the rules make requests with the
+    kinds' functions (``set_attrs``, ...), through :mod:`urdf_lint.engine.api`."""
     changes: tuple[tuple[str, str], ...]
     description: str
     safe: bool = True
     kind: str = "set"
     on_parent: bool = False      # the fix edits the parent of the element reported
     elements: tuple = field(default=(), compare=False)   # more elements the fix edits
-
-
-def set_attrs(changes: dict, description: str, safe: bool = True,
-              on_parent: bool = False) -> Request:
-    return Request(tuple(changes.items()), description, safe, "set", on_parent)
-
-
-def drop_attrs(names, description: str, safe: bool = False) -> Request:
-    """Remove attributes (with the blank before each) from the element's start tag."""
-    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
-
-
-def named_material(elements, name: str, rgba: str, define: bool) -> Request:
-    """Unsafe: replace the inline ``<material>`` elements by ``<material name="name"/>`` and
-    (``define``) define it once, after the ``<robot>`` tag of the first one's file."""
-    return Request((("name", name), ("rgba", rgba), ("define", "1" if define else "")),
-                   f"use one named material '{name}' for the inline colour {rgba}", False,
-                   "named_material", False, tuple(elements))
-
-
-def new_root(description: str, suffix: str = "_root") -> Request:
-    """Unsafe: a massless root link joined by a fixed joint, inserted before the link that
-    the reported element (its ``<inertial>``) belongs to."""
-    return Request((("suffix", suffix),), description, False, "new_root", True)
-
-
-def rename_attr(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
-
-
-def add_dollar(attr: str, names, safe: bool = True) -> Request:
-    """Turn the literal ``{name}`` of each of ``names`` in ``attr`` into ``${name}``."""
-    return Request(((attr, ",".join(names)),), "add the missing '$' of "
-                   + ", ".join("${" + n + "}" for n in names), safe, "add_dollar")
 
 
 def names_in_scope(model) -> set:
@@ -86,7 +57,7 @@ def names_in_scope(model) -> set:
     for path in src.xacro_files():
         try:
             d = src.get(path)
-        except (OSError, _Refuse):
+        except (OSError, Refuse):
             continue
         for t in iter_start_tags(d, "property"):
             n = t.attr("name")
@@ -97,10 +68,6 @@ def names_in_scope(model) -> set:
             for par in (p.value.split() if p is not None else ()):
                 out.add(par.lstrip("*").split(":=")[0].split("=")[0].lstrip("^"))
     return out
-
-
-def rename_tag(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
 
 
 @dataclass(frozen=True)
@@ -159,8 +126,9 @@ def combine(a: Fix, b: Fix, label_a: str = "", label_b: str = "") -> Fix:
     return Fix(a.description, a.safe and b.safe, edits, "")
 
 
-class _Refuse(Exception):
-    pass
+class Refuse(Exception):
+    """A fix that cannot be made automatically; the message says why."""
+
 
 
 class _Sources:
@@ -173,7 +141,7 @@ class _Sources:
     def get(self, path: str) -> bytes:
         real = os.path.realpath(path)
         if real not in self.allowed:
-            raise _Refuse(f"{NOT_FIXABLE}: {_where(path)} was not read by the model")
+            raise Refuse(f"{NOT_FIXABLE}: {where(path)} was not read by the model")
         if real not in self.data:
             from urdf_lint.core import fsbound
             self.data[real] = fsbound.read_bytes(real)
@@ -183,14 +151,14 @@ class _Sources:
         return [p for p in sorted(self.allowed) if p.endswith((".xacro", ".urdf", ".xml"))]
 
 
-def _where(path, line=None):
+def where(path, line=None) -> str:
     from urdf_lint.core.locations import display_path
     return f"{display_path(path)}:{line}" if line else display_path(path)
 
 
 def _expression(path, data, off):
-    return _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
-                   f"{_where(path, line_col(data, off)[0])}")
+    return Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                   f"{where(path, line_col(data, off)[0])}")
 
 
 def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
@@ -202,178 +170,35 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
     origin = model.origins.get(el)
     try:
         if origin is None:
-            raise _Refuse(f"{NOT_FIXABLE}: the element has no source location")
+            raise Refuse(f"{NOT_FIXABLE}: the element has no source location")
         data = src.get(origin.file)
         tag = start_tag_at(data, origin.line, origin.col)
         if tag is None or tag.name.rpartition(":")[2] != el.tag:
-            raise _Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
-                          f"{_where(origin.file, origin.line)}")
-        if req.kind == "add_dollar":
-            return Fix(req.description, req.safe, _add_dollar(origin, tag, req), "", ())
-        if req.kind == "drop_attrs":
-            return Fix(req.description, req.safe, _drop(origin, data, tag, req), "", ())
-        if req.kind == "named_material":
-            return Fix(req.description, req.safe, _named_material(model, src, req), "", ())
-        if req.kind == "new_root":
-            return Fix(req.description, req.safe, _new_root(model, el, origin, data, tag, req),
-                       "", ())
-        if req.kind != "set":
-            return Fix(req.description, req.safe, _rename(src, origin, data, tag, req), "", ())
-        edits = []
-        for attr, new in req.changes:
-            a = _written(tag, attr, origin)
-            file, lit = _trace(src, origin.file, data, a, tuple(origin.chain), 0)
-            if not _same(lit.value, el.get(attr)):
-                raise _Refuse(f"{NOT_FIXABLE}: the literal at {_where(file)} "
-                              f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")
-            edits.append(Edit(file, lit.value_start, lit.value_end, escape(new, lit.quote))
-                         if isinstance(lit, Attr) else
-                         Edit(file, lit.value_start, lit.value_end, _yaml_text(new, lit)))
-        if len({(e.file, e.start) for e in edits}) != len(edits):
-            raise _Refuse(f"{NOT_FIXABLE}: two of the values come from the same literal")
+            raise Refuse(f"{NOT_FIXABLE}: <{el.tag}> not found at "
+                          f"{where(origin.file, origin.line)}")
+        from urdf_lint.fix.kinds import Site, kind
+        try:
+            k = kind(req.kind)
+        except KeyError:
+            raise Refuse(f"{NOT_FIXABLE}: unknown fix kind {req.kind!r}") from None
+        edits = k.resolve(Site(model, el, origin, data, tag, req, src))
         return Fix(req.description, req.safe, tuple(edits), "", ())
-    except _Refuse as r:
+    except Refuse as r:
         return Fix(req.description, req.safe, (), str(r))
     except (OSError, UnicodeDecodeError, ValueError) as e:
         return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
 
 
-def _written(tag, name: str, origin):
+def written(tag, name: str, origin):
     """The attribute ``name`` of the start tag at ``origin`` (refused when not written there)."""
     a = tag.attr(name)
     if a is None:
-        raise _Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
-                      f"{_where(origin.file, origin.line)}")
+        raise Refuse(f"{NOT_FIXABLE}: {name}= is not written at "
+                      f"{where(origin.file, origin.line)}")
     return a
 
 
-def _add_dollar(origin, tag, req) -> tuple:
-    ((attr, names),) = req.changes
-    a = _written(tag, attr, origin)
-    raw = a.raw
-    for n in names.split(","):
-        raw, k = re.subn(r"(?<![$}]){" + re.escape(n) + "}", "${" + n + "}", raw)
-        if not k:
-            raise _Refuse(f"{NOT_FIXABLE}: '{{{n}}}' is not written at "
-                          f"{_where(origin.file, origin.line)}")
-    return (Edit(origin.file, a.value_start, a.value_end, raw),)
-
-
-def _named_material(model, src, req) -> tuple:
-    from urdf_lint.fix.sourceedit import end_tag_of, parse_start_tag
-    opts = dict(req.changes)
-    name, rgba = opts["name"], opts["rgba"]
-    edits = []
-    first = None
-    for el in req.elements:
-        o = model.origins.get(el)
-        if o is None or o.chain:
-            raise _Refuse(f"{NOT_FIXABLE}: an inline colour is written in a macro "
-                          f"({_where(o.file, o.line) if o else '?'}) that may make other colours")
-        data = src.get(o.file)
-        tag = start_tag_at(data, o.line, o.col)
-        if tag is None or tag.name.rpartition(":")[2] != "material" or tag.self_closing:
-            raise _Refuse(f"{NOT_FIXABLE}: <material> not found at {_where(o.file, o.line)}")
-        end = end_tag_of(data, tag)
-        if end is None:
-            raise _Refuse(f"{NOT_FIXABLE}: no </material> for {_where(o.file, o.line)}")
-        inner = data[tag.end:end]
-        c = inner.find(b"<color")
-        ctag = parse_start_tag(data, tag.end + c) if c >= 0 else None
-        rgba_attr = ctag.attr("rgba") if ctag is not None else None
-        if rgba_attr is None or "$" in rgba_attr.value \
-                or b"<texture" in inner:
-            raise _Refuse(f"{NOT_FIXABLE}: the colour at {_where(o.file, o.line)} is not a "
-                          "literal rgba")
-        q = tag.attrs[0].quote if tag.attrs else '"'
-        edits.append(Edit(o.file, tag.start, data.index(b">", end) + 1,
-                          f"<material name={q}{name}{q}/>"))
-        first = first or (o.file, data, q)
-    if opts["define"] and first is not None:
-        file, data, q = first
-        robot = next(iter_start_tags(data, "robot"), None)
-        if robot is None:
-            raise _Refuse(f"{NOT_FIXABLE}: no <robot> in {_where(file)}")
-        nl = data.find(b"\n", robot.end)
-        eol = "\r\n" if nl > 0 and data[nl - 1:nl] == b"\r" else "\n"
-        nxt = data[nl + 1:data.find(b"\n", nl + 1)] if nl >= 0 else b""
-        indent = nxt[:len(nxt) - len(nxt.lstrip(b" \t"))].decode("utf-8") or "  "
-        edits.append(Edit(file, robot.end, robot.end,
-                          f"{eol}{indent}<material name={q}{name}{q}><color rgba={q}{rgba}{q}/>"
-                          "</material>"))
-    return tuple(edits)
-
-
-def _drop(origin, data, tag, req) -> tuple:
-    edits = []
-    for name, _ in req.changes:
-        a = _written(tag, name, origin)
-        start = a.name_start
-        while start > 0 and data[start - 1:start] in (b" ", b"\t"):
-            start -= 1
-        if data[start - 1:start] in (b"\n", b"\r"):   # first on its line: keep the indentation
-            start = a.name_start
-            end = a.value_end + 1
-            while data[end:end + 1] in (b" ", b"\t"):
-                end += 1
-        else:
-            end = a.value_end + 1
-        edits.append(Edit(origin.file, start, end, ""))
-    return tuple(edits)
-
-
-def _new_root(model, link, origin, data, tag, req) -> tuple:
-    ((_, suffix),) = req.changes
-    if origin.chain:
-        raise _Refuse(f"{NOT_FIXABLE}: the root link is written in a macro "
-                      f"({_where(origin.file, origin.line)}) that may make other links too")
-    name = tag.attr("name")
-    if name is None:
-        raise _Refuse(f"{NOT_FIXABLE}: the link's name is not written at "
-                      f"{_where(origin.file, origin.line)}")
-    new = link.get("name") + suffix
-    if new in model.links or new + "_joint" in model.joints:
-        raise _Refuse(f"{NOT_FIXABLE}: '{new}' already exists")
-    raw = name.raw
-    q = name.quote
-    line_start = data.rfind(b"\n", 0, tag.start) + 1
-    before = data[line_start:tag.start]
-    eol = "\r\n" if data.find(b"\r\n", tag.start) == data.find(b"\n", tag.start) - 1 else "\n"
-    block = (f"<link name={q}{raw}{suffix}{q}/>", f"<joint name={q}{raw}{suffix}_joint{q} "
-             f"type={q}fixed{q}><parent link={q}{raw}{suffix}{q}/><child link={q}{raw}{q}/>"
-             "</joint>")
-    if not before.strip():
-        indent = before.decode("utf-8")
-        text = "".join(f"{indent}{b}{eol}" for b in block)
-        return (Edit(origin.file, line_start, line_start, text),)
-    return (Edit(origin.file, tag.start, tag.start, "".join(block)),)
-
-
-def _rename(src, origin, data, tag, req) -> tuple:
-    """The edits of a rename: names are always written literally in the start tag (and end
-    tag) at the element's origin."""
-    from urdf_lint.fix.sourceedit import end_tag_of
-    ((old, new),) = req.changes
-    if req.kind == "rename_attr":
-        a = tag.attr(old)
-        if a is None:
-            raise _Refuse(f"{NOT_FIXABLE}: attribute '{old}' is not written at "
-                          f"{_where(origin.file, origin.line)}")
-        return (Edit(origin.file, a.name_start, a.name_start + len(old.encode()), new),)
-    start = tag.name_end - len(old.encode())
-    if tag.name != old:
-        raise _Refuse(f"{NOT_FIXABLE}: <{tag.name}> at {_where(origin.file, origin.line)}")
-    edits = [Edit(origin.file, start, tag.name_end, new)]
-    if not tag.self_closing:
-        end = end_tag_of(data, tag)
-        if end is None:
-            raise _Refuse(f"{NOT_FIXABLE}: no end tag for <{old}> at "
-                          f"{_where(origin.file, origin.line)}")
-        edits.append(Edit(origin.file, end + 2, end + 2 + len(old.encode()), new))
-    return tuple(edits)
-
-
-def _same(literal: str, expanded) -> bool:
+def same_value(literal: str, expanded) -> bool:
     if expanded is None:
         return False
     if literal.strip() == expanded.strip():
@@ -385,7 +210,7 @@ def _same(literal: str, expanded) -> bool:
         return False
 
 
-def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
+def trace(src, file, data, a: Attr, chain: tuple, depth: int):
     """(file, the literal Attr or YAML scalar) that produced attribute ``a``."""
     v = a.value
     if "$" not in v:
@@ -402,7 +227,7 @@ def _trace(src, file, data, a: Attr, chain: tuple, depth: int):
             if call is not None:
                 p = call.attr(name)
                 if p is not None:
-                    return _trace(src, cfile, cdata, p, chain[:-1], depth + 1)
+                    return trace(src, cfile, cdata, p, chain[:-1], depth + 1)
         return _property(src, name, file, data, a, depth)
     m = _YAML_REF.fullmatch(v.strip())
     while m and chain:   # ${cfg['lower']} in a macro whose call passes cfg="${yaml['arm']}"
@@ -440,16 +265,16 @@ def _property(src, name, file, data, a, depth):
     if len(defs) != 1:
         if not defs:
             raise _expression(file, data, a.value_start)
-        where = ", ".join(_where(p, line_col(d, t.start)[0]) for p, d, t in defs)
-        raise _Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
-                      f"{_where(file, line_col(data, a.value_start)[0])} (property '{name}' "
-                      f"is defined {len(defs)} times: {where})")
+        places = ", ".join(where(p, line_col(d, t.start)[0]) for p, d, t in defs)
+        raise Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
+                     f"{where(file, line_col(data, a.value_start)[0])} (property '{name}' "
+                     f"is defined {len(defs)} times: {places})")
     path, d, t = defs[0]
     val = t.attr("value")
     if val is None:
-        raise _Refuse(f"{NOT_FIXABLE}: property '{name}' at {_where(path, line_col(d, t.start)[0])}"
+        raise Refuse(f"{NOT_FIXABLE}: property '{name}' at {where(path, line_col(d, t.start)[0])}"
                       " has no value= literal")
-    return _trace(src, path, d, val, (), depth + 1)
+    return trace(src, path, d, val, (), depth + 1)
 
 
 @dataclass(frozen=True)
@@ -515,7 +340,7 @@ def _yaml_node(ydata: bytes, keys):
     return YamlScalar(node.value, s, e, node.style or "")
 
 
-def _yaml_text(new: str, lit: YamlScalar) -> str:
+def yaml_text(new: str, lit: YamlScalar) -> str:
     if lit.style == "'":
         return "'" + new.replace("'", "''") + "'"
     if lit.style == '"':
@@ -526,7 +351,7 @@ def _yaml_text(new: str, lit: YamlScalar) -> str:
 class Fixer:
     """Resolves the fix requests of one model (reads each source file once)."""
 
-    def __init__(self, model):
+    def __init__(self, model: Any) -> None:
         self.model = model
         self.src = _Sources(model)
         self._index: dict | None = None
@@ -555,8 +380,8 @@ class Fixer:
                 [a for a in (tag.attr(n) for n in attrs) if a is not None and "$" in a.value]
             for a in written:
                 try:
-                    file, lit = _trace(self.src, origin.file, data, a, tuple(origin.chain), 0)
-                except _Refuse:
+                    file, lit = trace(self.src, origin.file, data, a, tuple(origin.chain), 0)
+                except Refuse:
                     continue
                 fdata = self.src.get(file)
                 line, col = line_col(fdata, lit.value_start)
@@ -564,7 +389,7 @@ class Fixer:
                 if isinstance(lit, Attr) and (file, line) in here:
                     continue   # written at the element or at a macro call the chain shows
                 return (file, line, col)
-        except (_Refuse, OSError, UnicodeDecodeError, ValueError):
+        except (Refuse, OSError, UnicodeDecodeError, ValueError):
             return ()
         return ()
 
@@ -572,18 +397,15 @@ class Fixer:
         f = resolve(self.model, el, req, self.src)
         if f.refused:
             return f
+        from urdf_lint.fix.kinds import kind
         i = self.index(el.getparent() if req.on_parent else el)
-        if req.kind == "add_dollar":    # the new value is whatever xacro makes of ${name}
-            return Fix(f.description, f.safe, f.edits, "", (("any", i, req.changes[0][0], ""),))
-        if req.kind == "named_material":   # each inline colour becomes a reference
-            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
-        if req.kind == "new_root":      # structure changes: the findings decide alone
-            return Fix(f.description, f.safe, f.edits, "", (("structural", i, "", ""),))
-        if req.kind == "drop_attrs":
-            return Fix(f.description, f.safe, f.edits, "",
-                       tuple(("drop", i, a, "") for a, _ in req.changes))
-        return Fix(f.description, f.safe, f.edits, "",
-                   tuple((req.kind, i, a, v) for a, v in req.changes))
+        return Fix(f.description, f.safe, f.edits, "", kind(req.kind).expect(req, i))
+
+    def traced(self, req: Request | None) -> tuple[str, ...]:
+        """The attributes of a request whose source the finding names (``value_from``)."""
+        from urdf_lint.fix.kinds import kinds
+        k = kinds().get(req.kind) if req is not None else None
+        return k.traced(req) if k is not None and req is not None else ()
 
 
 _REMOVABLE = re.compile(rb"<!--\s*urdf-lint:\s*(disable-next|disable-file)\b.*?-->", re.S)

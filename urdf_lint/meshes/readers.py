@@ -437,6 +437,7 @@ def _unmerge(faces, others):
     stack = np.column_stack([faces.reshape(-1)] + [o.reshape(-1) for o in others])
     precision = 64 // stack.shape[1]
     threshold = (2 ** (precision - 1)) - 1
+    rows: np.ndarray
     if stack.max() < threshold and stack.min() > -threshold:
         rows = np.zeros(len(stack), dtype=np.uint64)
         for k, column in enumerate((stack.T + (threshold + 1)).astype(np.uint64)):

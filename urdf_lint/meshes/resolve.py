@@ -21,6 +21,7 @@ from typing import Any
 from urdf_lint.core import fsbound
 from urdf_lint.core.hashing import memo_read
 from urdf_lint.discovery.packages import PackageNotFound
+from urdf_lint.meshes.store import MeshStore
 
 
 class MeshStatus(enum.Enum):
@@ -173,25 +174,18 @@ _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)
 
 _textures: dict = {}
 MAX_MESH_BYTES = 1 << 30
-_confine = None   # set per job to the resolver's is_inside: texture references stay in the roots
-_texture_cache_dir: str | None = None   # set per job: texture scans are cached with the facts
 _scan_memory: dict = {}
 TEXTURE_SCAN_VERSION = 1
 
 
-def set_confinement(inside, cache_dir: str | None = None) -> None:
-    global _confine, _texture_cache_dir
-    _confine = inside
-    _texture_cache_dir = cache_dir
-
-
-def _readable(path: str) -> bool:
+def _readable(path: str, store: MeshStore) -> bool:
     from urdf_lint.discovery.packages import regular_file
-    return regular_file(path, MAX_MESH_BYTES) and (_confine is None or _confine(path))
+    return regular_file(path, MAX_MESH_BYTES) and (store.inside is None or store.inside(path))
 
 
-def texture_refs(path: str) -> list[str]:
-    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths (memoized per version)."""
+def texture_refs(path: str, store: MeshStore | None = None) -> list[str]:
+    """Image files a DAE or OBJ(+MTL) mesh refers to, as absolute paths (memoized per version;
+    references outside ``store.inside`` are not read)."""
     if not path.lower().endswith((".dae", ".obj")):
         return []      # (asked for every mesh of every link: no stat for formats without any)
     try:
@@ -199,20 +193,20 @@ def texture_refs(path: str) -> list[str]:
     except OSError:
         return []
     if key not in _textures:
-        _textures[key] = _texture_refs(path)
+        _textures[key] = _texture_refs(path, store or MeshStore())
     return list(_textures[key])
 
 
-def _texture_refs(path: str) -> list[str]:
+def _texture_refs(path: str, store: MeshStore) -> list[str]:
     out: list[str] = []
     base = os.path.dirname(path)
     low = path.lower()
-    if not low.endswith((".dae", ".obj")) or not _readable(path):
+    if not low.endswith((".dae", ".obj")) or not _readable(path, store):
         return out
     try:
         # what the mesh itself names depends on its bytes only: scanned once per content,
         # cached on disk with the mesh facts (a DAE is not read again on the next run)
-        scan = _cached(_scan_memory, f"tex{TEXTURE_SCAN_VERSION}", path, _texture_cache_dir,
+        scan = _cached(_scan_memory, f"tex{TEXTURE_SCAN_VERSION}", path, store,
                        _scan_texture_names)
     except OSError:
         return out
@@ -222,7 +216,7 @@ def _texture_refs(path: str) -> list[str]:
         for name in scan.get("refs", []):
             mtl = os.path.normpath(os.path.join(base, name))
             out.append(mtl)
-            if _readable(mtl):   # the MTL is read each time: it may lie outside the roots
+            if _readable(mtl, store):   # the MTL is read each time: it may lie outside the roots
                 text = fsbound.read_text(mtl, max_bytes=MAX_MESH_BYTES, errors="replace")
                 for ref in _MTL_MAP.finditer(text):
                     out.append(os.path.normpath(os.path.join(os.path.dirname(mtl),
@@ -440,14 +434,17 @@ def get_mesh(path: str):
     return mesh
 
 
-def mesh_facts(path: str, cache_dir: str | None = None) -> dict:
+def mesh_facts(path: str, cache_dir: str | None = None, store: MeshStore | None = None) -> dict:
     """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
     content. Measured on the mesh's arrays (:mod:`urdf_lint.meshes.readers`), never on a processed
-    trimesh: a binary STL is streamed in chunks, so its size alone is never an error."""
+    trimesh: a binary STL is streamed in chunks, so its size alone is never an error. The run's
+    ``store`` (else one caching in ``cache_dir``) says where it is cached."""
     over = _over_limit(path)
     if over is not None:
         return over
-    return _cached(_memory, f"v{FACTS_VERSION}", path, cache_dir, _measure)
+    store = store or MeshStore(cache_dir=cache_dir)
+    return _cached(_memory, f"v{FACTS_VERSION}", path, store,
+                   lambda p: _measure(p, store.keep_loaded))
 
 
 def _over_limit(path: str) -> dict | None:
@@ -464,13 +461,13 @@ def _over_limit(path: str) -> dict | None:
             "vertices": 0, "faces": 0, "finite": True, "bounds": None}
 
 
-def _measure(path: str) -> dict:
+def _measure(path: str, keep_loaded: bool = False) -> dict:
     try:
         from urdf_lint.meshes import readers as meshio
         n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
         if n is not None:
             return _stl_facts(path, n)
-        v, f, broken = _arrays(path)
+        v, f, broken = _arrays(path, keep_loaded)
         import numpy as np
         finite, bounds = True, None
         if len(v):
@@ -511,22 +508,22 @@ def _stl_facts(path: str, n: int) -> dict:
             "bounds": bounds, "broken_refs": []}
 
 
-KEEP_LOADED = False   # a render run: measure the trimesh meshes the renderer draws (get_mesh)
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
 _arrays_memo: "OrderedDict[str, tuple]" = OrderedDict()
 MAX_MEMO_VERTICES = 1_000_000     # the arrays kept between the facts and the mass rules
 
 
-def _arrays(path: str):
+def _arrays(path: str, keep_loaded: bool = False):
     """(vertices float64 (n, 3), faces int64 (m, 3), broken_refs) of a mesh: what
     ``load_mesh`` gives (scene instances placed and stacked, the COLLADA unit applied), from
-    the loaders' raw arrays. A render run that already holds the loaded mesh uses it."""
+    the loaders' raw arrays. A render run (``keep_loaded``: it draws the meshes the rules
+    measure) loads the mesh and keeps it; a mesh loaded already is used."""
     digest = _digest(path)
     if digest in _arrays_memo:
         _arrays_memo.move_to_end(digest)
         return _arrays_memo[digest]
     import numpy as np
-    if digest in _loaded or KEEP_LOADED:
+    if digest in _loaded or keep_loaded:
         m = get_mesh(path)
         out = (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
                list(m.metadata.get("broken_refs", ())))
@@ -601,7 +598,6 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
     return v, f, []
 
 
-env_failures = 0   # results this process measured that depend on the environment (never cached)
 
 
 class _Uncached(Exception):
@@ -612,9 +608,11 @@ class _Uncached(Exception):
         self.facts = facts
 
 
-def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute) -> dict:
-    """``compute(path)``, memoized in ``memory`` and on disk under ``cache_dir/meshes``, keyed
-    by the file's content."""
+def _cached(memory: dict, prefix: str, path: str, store: MeshStore, compute) -> dict:
+    """``compute(path)``, memoized in ``memory`` and on disk under ``store.cache_dir/meshes``,
+    keyed by the file's content (a result that depends on the environment is neither: it is
+    counted in ``store.env_failures``)."""
+    cache_dir = store.cache_dir
     digest = _digest(path)
     if digest in memory:
         return memory[digest]
@@ -633,8 +631,7 @@ def _cached(memory: dict, prefix: str, path: str, cache_dir: str | None, compute
     try:
         facts = compute(path)
     except _Uncached as e:
-        global env_failures
-        env_failures += 1     # the model's result must not be cached either
+        store.env_failures += 1     # the model's result must not be cached either
         return e.facts
     memory[digest] = facts
     if cache_file is not None:
@@ -655,21 +652,23 @@ _mass_memory: dict = {}
 MASS_FACTS_VERSION = 1
 
 
-def mass_facts(path: str, cache_dir: str | None = None) -> dict:
+def mass_facts(path: str, cache_dir: str | None = None, store: MeshStore | None = None) -> dict:
     """Volume properties of a mesh filled with unit density, cached by content (like
     ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
     bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
     used instead (an open surface has no volume)."""
-    return _cached(_mass_memory, f"mass{MASS_FACTS_VERSION}", path, cache_dir, _measure_mass)
+    store = store or MeshStore(cache_dir=cache_dir)
+    return _cached(_mass_memory, f"mass{MASS_FACTS_VERSION}", path, store,
+                   lambda p: _measure_mass(p, store.keep_loaded))
 
 
-def _measure_mass(path: str) -> dict:
+def _measure_mass(path: str, keep_loaded: bool = False) -> dict:
     try:
         from urdf_lint.meshes import readers as meshio
         n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
         if n is not None and n > (STL_CHUNK or meshio.STL_CHUNK_TRIANGLES):
             return _stl_mass_chunked(path, n)
-        v, f, _ = _arrays(path)
+        v, f, _ = _arrays(path, keep_loaded)
         return _mass_arrays(v, f)
     except (PermissionError, MemoryError) as e:
         raise _Uncached({"ok": False}) from e

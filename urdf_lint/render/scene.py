@@ -115,7 +115,7 @@ def build_scene(model, ctx) -> Scene:
             for i, el in enumerate(lk.findall(kind)):
                 local = origin_matrix(el)
                 T = world[name] @ local
-                rgba = DEFAULT_RGBA
+                rgba: tuple[float, ...] = DEFAULT_RGBA
                 mat = el.find("material")
                 if mat is not None:
                     c = mat.find("color")

@@ -22,6 +22,8 @@ from lxml import etree
 
 from urdf_lint.core import fsbound
 from urdf_lint.fix.fixes import inside_paths
+from urdf_lint.fix.kinds import expectation
+from urdf_lint.fix.kinds.add_dollar import ANY
 from urdf_lint.fix.sourceedit import apply_edits, line_offset
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -174,7 +176,6 @@ def _tree(report, xml_or_none):
         return None
 
 
-ANY = "\ue000any"   # a private-use marker: "this attribute may take any value"
 
 
 def _values_equal(a, b) -> bool:
@@ -267,7 +268,8 @@ def verify(before: dict, before_findings, after, fixed, maps=None) -> dict:
 
 
 def _expected(tree, rep, fixed_keys):
-    """The robot of ``rep`` before fixing with the attribute values of its fixed findings."""
+    """The robot of ``rep`` before fixing with the attribute values of its fixed findings (each
+    fix's expected results replayed by its kind); None when a fix changes the structure."""
     import copy
     out = copy.deepcopy(tree)
     elements = list(out.iter(tag=etree.Element))
@@ -276,28 +278,12 @@ def _expected(tree, rep, fixed_keys):
             continue
         if not p.fix.expect:
             return None
-        for kind, i, a, b in p.fix.expect:
+        for name, i, a, b in p.fix.expect:
             if i >= len(elements):
                 continue
-            el = elements[i]
-            if kind == "none":       # e.g. a comment removed: the robot does not change
-                continue
-            if kind == "structural":
-                return None
-            if kind == "drop":
-                el.attrib.pop(a, None)
-                continue
-
-            if kind == "set":
-                el.set(a, b)
-            elif kind == "any":      # this attribute may take any value
-                el.set(a, ANY)
-            elif kind == "rename_attr":
-                v = el.attrib.pop(a, None)
-                if v is not None:
-                    el.set(b, v)
-            elif kind == "rename_tag":
-                el.tag = b
+            kind = expectation(name)     # the fix kind that recorded it (urdf_lint.fix.kinds)
+            if kind is not None and not kind.apply(elements[i], a, b):
+                return None              # a structural fix: its findings decide alone
     return out
 
 

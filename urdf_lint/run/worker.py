@@ -15,15 +15,10 @@ from urdf_lint.runner.pool import Block, Handler, _mesh_facts_cached
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from urdf_lint.engine.lint import lint_model
-    if job.kind != "expand":
-        from urdf_lint.meshes import resolve as meshes
-        # a render run draws the meshes the rules measured: load them once, keep them
-        meshes.KEEP_LOADED = bool(settings.render_dir or settings.diff_render)
-    before = _env_failures()
     from urdf_lint.core import overlay
     with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
         report, model, ctx = lint_model(job, settings)
-    if _env_failures() != before or job.overlay:
+    if ctx.meshes.env_failures or job.overlay:
         # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
         report.cacheable = False
     if settings.diff_render and model is not None and report.kept_model is not None:
@@ -38,11 +33,6 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
                                        forward=settings.render_forward,
                                        refused=settings.render_refused)
     return report
-
-
-def _env_failures() -> int:
-    meshes = sys.modules.get("urdf_lint.meshes.resolve")   # (not imported by `expand` jobs)
-    return getattr(meshes, "env_failures", 0)
 
 
 def _diff_snapshot(model, ctx, settings: LintSettings):

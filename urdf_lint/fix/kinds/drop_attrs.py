@@ -1,0 +1,42 @@
+"""``drop_attrs``: remove attributes (with the blank before each) from the element's start
+tag."""
+from __future__ import annotations
+
+from urdf_lint.fix.fixes import Request, written
+from urdf_lint.fix.kinds import FixKind, Site
+from urdf_lint.fix.sourceedit import Edit
+
+
+def drop_attrs(names, description: str, safe: bool = False) -> Request:
+    """Remove attributes (with the blank before each) from the element's start tag."""
+    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+
+
+REQUESTS = (drop_attrs,)
+
+
+class DropAttrs(FixKind):
+    name = "drop_attrs"
+    expectation = "drop"
+
+    def resolve(self, site: Site) -> tuple[Edit, ...]:
+        origin, data, tag = site.origin, site.data, site.tag
+        edits = []
+        for name, _ in site.req.changes:
+            a = written(tag, name, origin)
+            start = a.name_start
+            while start > 0 and data[start - 1:start] in (b" ", b"\t"):
+                start -= 1
+            if data[start - 1:start] in (b"\n", b"\r"):   # first on its line: keep the indentation
+                start = a.name_start
+                end = a.value_end + 1
+                while data[end:end + 1] in (b" ", b"\t"):
+                    end += 1
+            else:
+                end = a.value_end + 1
+            edits.append(Edit(origin.file, start, end, ""))
+        return tuple(edits)
+
+    def apply(self, el, attr: str, value: str) -> bool:
+        el.attrib.pop(attr, None)
+        return True

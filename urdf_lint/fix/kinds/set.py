@@ -1,0 +1,43 @@
+"""``set``: new values for attributes of the expanded element, written where each value's literal
+is: the element itself, the macro call's argument, the ``xacro:property`` or the YAML scalar
+(:func:`urdf_lint.fix.fixes.trace`)."""
+from __future__ import annotations
+
+from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, same_value, trace, where, written, yaml_text
+from urdf_lint.fix.kinds import FixKind, Site
+from urdf_lint.fix.sourceedit import Attr, Edit, escape
+
+
+def set_attrs(changes: dict, description: str, safe: bool = True,
+              on_parent: bool = False) -> Request:
+    return Request(tuple(changes.items()), description, safe, "set", on_parent)
+
+
+REQUESTS = (set_attrs,)
+
+
+class SetAttrs(FixKind):
+    name = "set"
+
+    def resolve(self, site: Site) -> tuple[Edit, ...]:
+        el, origin, data, tag, src = site.el, site.origin, site.data, site.tag, site.src
+        edits = []
+        for attr, new in site.req.changes:
+            a = written(tag, attr, origin)
+            file, lit = trace(src, origin.file, data, a, tuple(origin.chain), 0)
+            if not same_value(lit.value, el.get(attr)):
+                raise Refuse(f"{NOT_FIXABLE}: the literal at {where(file)} "
+                             f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")
+            edits.append(Edit(file, lit.value_start, lit.value_end, escape(new, lit.quote))
+                         if isinstance(lit, Attr) else
+                         Edit(file, lit.value_start, lit.value_end, yaml_text(new, lit)))
+        if len({(e.file, e.start) for e in edits}) != len(edits):
+            raise Refuse(f"{NOT_FIXABLE}: two of the values come from the same literal")
+        return tuple(edits)
+
+    def apply(self, el, attr: str, value: str) -> bool:
+        el.set(attr, value)
+        return True
+
+    def traced(self, req: Request) -> tuple[str, ...]:
+        return tuple(a for a, _ in req.changes)
