@@ -83,31 +83,29 @@ class _Parser(argparse.ArgumentParser):
         return [s for a in self._actions for s in a.option_strings]
 
 
-def _key_help(name: str, text: str | None = None) -> str:
-    from urdf_lint.config.schema import KEYS
-    k = KEYS[name]
-    return f"{text or k.help} (default: {k.default_text}; config key '{name}')"
+def add_key_flags(p, group: str) -> None:
+    """The flags of the config keys in ``group`` (each key's ``flag`` in the schema)."""
+    from urdf_lint.config.schema import FLAG_KEYS
+    for k in FLAG_KEYS:
+        f = k.flag
+        assert f is not None
+        if f.group == group:
+            p.add_argument(*f.flags, dest=f.dest or k.attr, metavar=k.metavar(),
+                           action="append" if f.repeat else "store", help=k.cli_help())
 
 
 def _add_selection(p):
-    p.add_argument("--select", metavar="CODES", help=_key_help(
-        "select", "comma-separated rule codes, prefixes or names to enable; replaces the config's"))
-    p.add_argument("--extend-select", metavar="CODES", help=_key_help(
-        "extend-select", "comma-separated codes or prefixes to enable on top of select"))
-    p.add_argument("--ignore", metavar="CODES", help=_key_help(
-        "ignore", "comma-separated codes or prefixes to disable"))
-    p.add_argument("--fail-on", metavar="{error,warning,info,never}", help=_key_help("fail-on"))
-    _add_target(p)
+    add_key_flags(p, "selection")
     p.add_argument("--exit-zero", action="store_true",
                    help="exit 0 even when there are findings (still 2 on errors)")
 
 
 def _add_target(p):
-    from urdf_lint.core.targets import NAMES
-    p.add_argument("--target", action="append", metavar="TARGET", dest="targets",
-                   help=_key_help("targets", "a consumer the descriptions are for ("
-                                  + ", ".join(NAMES) + "); repeatable or comma-separated, "
-                                  "replaces the config's"))
+    from urdf_lint.config.schema import KEYS
+    f = KEYS["targets"].flag
+    assert f is not None
+    p.add_argument(*f.flags, action="append", metavar=f.metavar, dest=f.dest,
+                   help=KEYS["targets"].cli_help())
 
 
 def _add_inputs(p, config=True):
@@ -119,31 +117,25 @@ def _add_inputs(p, config=True):
         p.add_argument("--config", metavar="FILE",
                        help="config file: pyproject.toml or urdf-lint.toml (default: the "
                             "nearest one above the first path)")
-        p.add_argument("-j", "--jobs", metavar="N", help=_key_help("jobs"))
+        add_key_flags(p, "jobs")
     _add_trust(p)
 
 
 def _add_trust(p):
     """The keys a repository's own config may not set (urdf_lint/config/trust.py), and the switch
     that lets it."""
-    p.add_argument("--env-allow", action="append", metavar="VAR", help=_key_help(
-        "env-allow", "an environment variable $(env)/$(optenv) may read; repeatable"))
-    p.add_argument("--trust-config", action="store_true",
-                   help="let the repository's config set env-allow, package-paths outside it, "
-                        "cache-dir, jobs and looser timeout/memory-mb (default: off, those "
-                        "keys are ignored with a note)")
+    from urdf_lint.config.trust import trust_config_help
+    add_key_flags(p, "trust")
+    p.add_argument("--trust-config", action="store_true", help=trust_config_help())
 
 
 def _add_views(p):
-    p.add_argument("--views", metavar="{single,sheet}", help=_key_help("views"))
-    p.add_argument("--forward-axis", metavar="{+x,-x,+y,-y}", help=_key_help(
-        "forward-axis", "the robot's forward axis, for the front/side views"))
+    add_key_flags(p, "views")
 
 
 def _add_limits(p):
-    p.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
-    p.add_argument("--memory-mb", metavar="MIB", help=_key_help("memory-mb"))
-    p.add_argument("--cache-dir", metavar="DIR", help=_key_help("cache-dir"))
+    add_key_flags(p, "limits")
+    add_key_flags(p, "cache")
 
 
 def _add_output(p):
@@ -160,8 +152,7 @@ def _add_output(p):
     p.add_argument("--color", metavar="{auto,always,never}", default="auto",
                    help="colour the text output; auto colours a terminal unless NO_COLOR is "
                         "set, or anything when FORCE_COLOR is set (default: auto)")
-    p.add_argument("--baseline", metavar="FILE", help=_key_help(
-        "baseline", "ignore the findings recorded in FILE (make it with --write-baseline)"))
+    add_key_flags(p, "baseline")
     p.add_argument("--no-cache", action="store_true",
                    help="do not read or write the result cache (.urdf_lint_cache/)")
     v = p.add_mutually_exclusive_group()
@@ -252,8 +243,7 @@ def _cmd_expand(sub, raw):
     e.add_argument("-o", "--output", metavar="FILE",
                    help="write the URDF to FILE, atomically (default: standard output)")
     _add_inputs(e, config=False)
-    e.add_argument("--timeout", metavar="SECONDS", help=_key_help("timeout"))
-    e.add_argument("--memory-mb", metavar="MIB", help=_key_help("memory-mb"))
+    add_key_flags(e, "limits")
 
 
 def _cmd_rules(sub, raw):
@@ -421,22 +411,18 @@ def _load_cfg(args, paths):
     return cfg
 
 
-_CLI_KEYS = ("select", "extend-select", "ignore", "fail-on", "targets", "timeout", "memory-mb",
-             "jobs",
-             "format", "baseline", "env-allow", "cache-dir", "views", "forward-axis")
+def _cli_values(args) -> dict:
+    """Schema key -> what the user typed for its flag (None: not given)."""
+    from urdf_lint.config.schema import FLAG_KEYS
+    return {k.name: getattr(args, (k.flag.dest if k.flag else "") or k.attr, None)
+            for k in FLAG_KEYS}
 
 
 def _apply_cli(cfg, args):
     """What the user set on the command line wins (through the schema), clamped like the rest."""
     from urdf_lint.config.schema import apply_cli
     from urdf_lint.config import trust
-    values = {k: getattr(args, k.replace("-", "_"), None) for k in _CLI_KEYS}
-    for k in ("env-allow", "targets"):   # --env-allow A --env-allow B
-        if values[k] and not isinstance(values[k], str):
-            values[k] = ",".join(values[k])
-    if values["cache-dir"]:
-        values["cache-dir"] = os.path.abspath(values["cache-dir"])
-    apply_cli(cfg, values)
+    apply_cli(cfg, _cli_values(args))
     trust.clamp(cfg)
 
 
@@ -445,7 +431,7 @@ def _trust(cfg, args, paths):
     from urdf_lint.discovery.discover import start_dir
     from urdf_lint.discovery.vcs import repo_root
     from urdf_lint.config import trust
-    given = {k for k in _CLI_KEYS if getattr(args, k.replace("-", "_"), None)}
+    given = {k for k, v in _cli_values(args).items() if v}
     for n in trust.apply(cfg, repo_root(start_dir(paths)),
                          trusted=getattr(args, "trust_config", False), given=given):
         if not getattr(args, "quiet", False):
