@@ -141,9 +141,7 @@ def _add_limits(p):
 def _add_output(p):
     from urdf_lint.report.registry import formats
     fmts = formats()
-    p.add_argument("--output-format", "--format", dest="format", metavar="FORMAT",
-                   help="output format: " + ", ".join(fmts) + " (see below; default: text, or "
-                   "github when GITHUB_ACTIONS is set; config key 'format')")
+    add_key_flags(p, "output")
     p.epilog = "output formats:\n" + "\n".join(f"  {n:<9} {c.help}" for n, c in fmts.items())
     p.add_argument("--show-source", action="store_true",
                    help="show the source line of each finding under it (text format)")
@@ -432,8 +430,8 @@ def _trust(cfg, args, paths):
     from urdf_lint.discovery.vcs import repo_root
     from urdf_lint.config import trust
     given = {k for k, v in _cli_values(args).items() if v}
-    for n in trust.apply(cfg, repo_root(start_dir(paths)),
-                         trusted=getattr(args, "trust_config", False), given=given):
+    for n in cfg.notes + trust.apply(cfg, repo_root(start_dir(paths)),
+                                     trusted=getattr(args, "trust_config", False), given=given):
         if not getattr(args, "quiet", False):
             say(f"urdf-lint: {n}")
 

@@ -33,7 +33,7 @@ def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
         result.findings = filter_baseline(cfg.baseline, result.findings, out.note)
         out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
                  f"({display_path(cfg.baseline)})")
-    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    fmt = cfg.output_format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
     options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet,
                    roots=None if roots is None else tuple(str(r) for r in roots))
     if getattr(args, "output", None):

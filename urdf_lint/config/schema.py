@@ -228,16 +228,17 @@ class RuleOptions(Type):
 
 
 class FormatKey(Type):
-    """``format``: the output format (a string), or the table ``[format]`` of
-    ``urdf-lint format`` (its keys in :data:`FORMAT_SCHEMA`)."""
+    """``format``: the table ``[format]`` of ``urdf-lint format`` (its keys in
+    :data:`FORMAT_SCHEMA`). A string is the output format's old spelling (now
+    ``output-format``): still accepted, with a deprecation note (:func:`_set`)."""
 
     def __init__(self, output: Choice):
         self.output = output
 
     @property
     def expected(self):
-        return (f"{self.output.expected}; or a table [format] of "
-                f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
+        return (f"a table [format] of {', '.join(k.name for k in FORMAT_SCHEMA)} (a string: "
+                f"the deprecated spelling of output-format)")
 
     def check(self, v):
         if not isinstance(v, dict):
@@ -253,9 +254,6 @@ class FormatKey(Type):
             except _Bad as e:
                 raise _Bad(e.expected, x, k) from None
         return out
-
-    def from_cli(self, s):
-        return self.output.from_cli(s)
 
 
 @dataclass(frozen=True)
@@ -401,10 +399,14 @@ SCHEMA: tuple[Key, ...] = (
         flag=Flag(("--cache-dir",), "cache", "DIR", path=True),
         trust=Trust("ignore", "cache-dir", "it moves where results are written and read"),
         shown_default=".urdf_lint_cache"),
-    Key("format", FormatKey(Choice(_formats)), None,
-        "output format; as a table [format], the settings of urdf-lint format",
-        flag=Flag(("--output-format", "--format"), "output", "FORMAT"),
+    Key("output-format", Choice(_formats), None,
+        "output format (see 'urdf-lint check --help')",
+        flag=Flag(("--output-format", "--format"), "output", "FORMAT",
+                  "output format: one of the formats listed below"),
         shown_default="text, or github on GitHub Actions"),
+    Key("format", FormatKey(Choice(_formats)), {},
+        "the settings of urdf-lint format, as the table [tool.urdf-lint.format] (see below)",
+        attr_name="format_options"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file",
         flag=Flag(("--baseline",), "baseline", "FILE", "ignore the findings recorded in FILE "
                   "(make it with --write-baseline)", path=True),
@@ -469,13 +471,14 @@ class Config:
     rule_options: dict = _default("rule-options")
     jobs: int | None = _default("jobs")
     cache_dir: str | None = _default("cache-dir")
-    format: str | None = _default("format")
+    output_format: str | None = _default("output-format")
+    format_options: dict = _default("format")   # [format]: urdf-lint format's settings
     baseline: str | None = _default("baseline")     # absolute
     discover: bool = _default("discover")
     views: str | None = _default("views")
     forward_axis: str = _default("forward-axis")
-    format_options: dict = field(default_factory=dict)   # [format]: urdf-lint format's settings
     raw: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)       # to say once loaded (deprecations)
 
     def is_excluded(self, path: str) -> bool:
         try:
@@ -610,8 +613,13 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = specs
     elif key.name == "baseline" and value is not None:
         value = str((base / value).resolve())
-    elif key.name == "format" and isinstance(value, dict):
-        cfg.format_options = value
+    elif key.name == "format" and isinstance(value, str):   # the old output-format key
+        where = f"{_shown(cfg.path or base)}{_line_of(Path(cfg.path), 'format') if cfg.path else ''}"
+        cfg.notes.append(f"note: {where}: format = {show(value)} is deprecated: write "
+                         f"output-format = {show(value)} ([{TABLE}.format] is the table of "
+                         "urdf-lint format's settings)")
+        if "output-format" not in cfg.raw:
+            cfg.output_format = value
         return
     setattr(cfg, key.attr, value)
 
