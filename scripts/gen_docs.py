@@ -4,7 +4,9 @@
 Each table sits between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->`` in README.md:
 
 * ``config-keys``: every key of the config schema (``urdf_lint/config/schema.py``: SCHEMA);
-* ``format-keys``: the keys of ``[tool.urdf-lint.format]`` (FORMAT_SCHEMA).
+* ``format-keys``: the keys of ``[tool.urdf-lint.format]`` (FORMAT_SCHEMA);
+* ``output-formats``: the output formats of ``check`` (``urdf_lint/report/``, the registry);
+* ``diff-formats``: the output formats of ``diff`` (``urdf_lint/report/diff/``).
 
 ``python scripts/gen_docs.py`` rewrites them; ``--check`` exits 1 when README.md is stale
 (tests/test_config_schema.py runs the check).
@@ -28,12 +30,21 @@ def _key_table(keys, first: str) -> str:
     return "\n".join(rows)
 
 
+def _format_table(formats: dict) -> str:
+    rows = ["| format | what |", "|---|---|"]
+    rows += [_row(f"`{name}`", cls.help) for name, cls in formats.items()]
+    return "\n".join(rows)
+
+
 def tables() -> dict[str, str]:
     """Table name -> its Markdown, from the sources."""
     from urdf_lint.config.schema import FORMAT_SCHEMA, SCHEMA
+    from urdf_lint.report import diff, registry
     return {
         "config-keys": _key_table(SCHEMA, "key"),
         "format-keys": _key_table(FORMAT_SCHEMA, "key under `[tool.urdf-lint.format]`"),
+        "output-formats": _format_table(registry.formats()),
+        "diff-formats": _format_table(diff.formats()),
     }
 
 

@@ -102,7 +102,9 @@ def test_no_command_output_can_be_forged(tmp_path):
     for f in (repo / "p" / "urdf").iterdir():
         f.write_text(f.read_text().replace('name="base"', 'name="base2"').replace(
             'link="base"', 'link="base2"'))
-    for fmt in ("text", "json", "markdown"):
+    from urdf_lint.report import diff as diff_formats
+    assert {"text", "json", "markdown"} <= set(diff_formats.names())
+    for fmt in diff_formats.names():
         p = run_cli("diff", "HEAD", "--format", fmt, "--no-cache", cwd=repo, env=env)
         assert p.returncode in (0, 1), (fmt, p.stderr)
         assert "forged" in p.stdout, (fmt, p.stdout)

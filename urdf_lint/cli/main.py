@@ -271,7 +271,7 @@ def _cmd_render(sub, raw):
 
 def _cmd_diff(sub, raw):
     df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
-                        "every affected model between two git revisions",
+                        "every affected model between two git revisions", formatter_class=raw,
                         description="Compare every model a change affects between two git "
                                     "revisions: links, joints, limits, inertials, geometry, "
                                     "poses and findings, at their xacro lines.")
@@ -279,8 +279,11 @@ def _cmd_diff(sub, raw):
     df.add_argument("head", nargs="?", help="the head revision (default: the working tree)")
     df.add_argument("--path", action="append", dest="paths", metavar="PATH",
                     help="limit to models under PATH (default: the whole repository)")
-    df.add_argument("--format", choices=["text", "json", "markdown"], default="text",
-                    help="output format (default: text)")
+    from urdf_lint.report import diff as diff_formats
+    fmts = diff_formats.formats()
+    df.add_argument("--format", choices=list(fmts), default="text", metavar="FORMAT",
+                    help="output format: " + ", ".join(fmts) + " (see below; default: text)")
+    df.epilog = "output formats:\n" + "\n".join(f"  {n:<9} {c.help}" for n, c in fmts.items())
     df.add_argument("-o", "--output", metavar="FILE",
                     help="write the report to FILE, atomically (default: standard output)")
     df.add_argument("--image-base-url", metavar="URL",
@@ -907,8 +910,8 @@ def cmd_render(args) -> int:
 
 
 def cmd_diff(args) -> int:
+    from urdf_lint.report import diff as diff_report
     from urdf_lint.review import run as review
-    from urdf_lint.review import report as review_report
     paths = args.paths or ["."]
     for p in paths:
         if not os.path.exists(p):
@@ -930,16 +933,16 @@ def cmd_diff(args) -> int:
                                  rrd=not args.no_rrd)
     except review.ReviewError as e:
         raise UsageError(str(e)) from None
-    kw = {"image_base_url": args.image_base_url} if args.format == "markdown" else {}
+    options = diff_report.DiffOptions(image_base_url=args.image_base_url)
     if args.output:
         try:
-            review_report.write_file(result, args.format, args.output,
-                                     _write_base(args.output, paths), **kw)
+            diff_report.write_file(result, args.format, args.output,
+                                   _write_base(args.output, paths), options)
         except OSError as e:
             raise UsageError(f"cannot write {_safe_text(args.output)}: "
                              f"{_safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
-        review_report.write(result, args.format, sys.stdout, **kw)
+        diff_report.write(result, args.format, sys.stdout, options)
     for model, why in result.snapshot_problems:
         say(f"{_safe_text(model)}: snapshot incomplete: {_safe_text(why)}")
     if result.no_recordings:
