@@ -389,3 +389,32 @@ def test_adding_a_format_is_adding_one_file(pkg, capsys, monkeypatch, tmp_path):
     finally:
         sys.modules.pop("urdf_lint.report.codes_only", None)
     monkeypatch.setattr(report, "_FORMATS", None)
+
+
+def test_each_command_is_one_module_and_argparse_stays_in_cli():
+    """cli/<command>.py per command (its parser and its run); argparse is imported only
+    inside urdf_lint/cli/, and nothing builds an argparse.Namespace by hand (commands hand
+    typed options to the layers below)."""
+    import ast
+    from urdf_lint.cli.main import COMMANDS, command_module
+    for name in COMMANDS:
+        mod = command_module(name)
+        assert mod.__name__ == f"urdf_lint.cli.{name}"
+        assert callable(mod.add_parser), name
+        assert callable(getattr(mod, "run", None) or getattr(mod, f"cmd_{name}", None)), name
+    offenders = []
+    for path in sorted((REPO / "urdf_lint").rglob("*.py")):
+        rel = path.relative_to(REPO / "urdf_lint").as_posix()
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                names = [node.module or ""]
+            else:
+                names = []
+            if "argparse" in names and not rel.startswith("cli/"):
+                offenders.append(f"{rel}:{node.lineno}: imports argparse")
+            if (isinstance(node, ast.Attribute) and node.attr == "Namespace"
+                    and isinstance(node.value, ast.Name) and node.value.id == "argparse"):
+                offenders.append(f"{rel}:{node.lineno}: argparse.Namespace")
+    assert offenders == []

@@ -321,6 +321,7 @@ def test_every_trust_rule_of_the_schema_is_applied(tmp_path):
     """Each key whose schema entry says a repository's config may not loosen it: set in the
     repository's config, it is back at its default with a note naming it; trusted, it is kept."""
     from urdf_lint.config import trust
+    from urdf_lint.config.schema import trust_config_help
     guarded = [k for k in SCHEMA if k.trust and k.trust.rule != "confine"]
     assert {"env-allow", "cache-dir", "jobs", "timeout", "memory-mb", "package-paths"} <= {
         k.name for k in guarded}
@@ -335,7 +336,7 @@ def test_every_trust_rule_of_the_schema_is_applied(tmp_path):
         cfg = load_config(f)
         assert trust.apply(cfg, str(tmp_path), trusted=True) == [], key.name
         assert getattr(cfg, key.attr) not in (key.default, {}), key.name
-    assert all(k.name in trust.trust_config_help() or k.trust.rule == "confine"
+    assert all(k.name in trust_config_help() or k.trust.rule == "confine"
                for k in SCHEMA if k.trust)
 
 

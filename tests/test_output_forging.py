@@ -154,11 +154,11 @@ def test_diff_markdown_renders_untrusted_text_as_text_only(tmp_path):
 # writes to the standard streams outside urdf_lint/core/emit.py's say(), each with its reason
 ALLOWED_WRITES = {
     ("core/emit.py", "report_internal"): "safe_lines: every line escaped, later lines indented",
-    ("cli/main.py", "progress"): "the progress counter: two numbers",
-    ("cli/main.py", "cmd_expand"): "the expanded URDF itself, the product the user asked for",
-    ("cli/main.py", "cmd_rules"): "the rule catalogue: urdf-lint's own text",
-    ("cli/main.py", "cmd_rule"): "one rule's documentation: urdf-lint's own text",
-    ("cli/main.py", "cmd_doctor"): "this machine's protections: urdf-lint's own text",
+    ("cli/check.py", "progress"): "the progress counter: two numbers",
+    ("cli/expand.py", "run"): "the expanded URDF itself, the product the user asked for",
+    ("cli/rules.py", "run"): "the rule catalogue: urdf-lint's own text",
+    ("cli/rule.py", "run"): "one rule's documentation: urdf-lint's own text",
+    ("cli/doctor.py", "run"): "this machine's protections: urdf-lint's own text",
     ("cli/main.py", "_main"): "--version: urdf-lint's own text",
     ("fix/cli.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "
                                 "every other line starts with ' ', '+', '-' or '@'",

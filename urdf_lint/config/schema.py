@@ -668,6 +668,14 @@ def load_config(path: str | Path | None, known_codes: dict | None = None) -> Con
 FLAG_KEYS: tuple[Key, ...] = tuple(k for k in SCHEMA if k.flag is not None)
 
 
+def trust_config_help() -> str:
+    """``--trust-config``'s help, naming what it lets a repository's config do (the keys'
+    ``trust`` in the schema; :mod:`urdf_lint.config.trust` applies them)."""
+    loosens = [k.trust.loosens for k in SCHEMA if k.trust is not None and k.trust.loosens]
+    return (f"let the repository's config set {', '.join(loosens[:-1])} and {loosens[-1]} "
+            "(default: off, those keys are ignored with a note)")
+
+
 def apply_cli(cfg: Config, values: dict, source: str = "command line") -> Config:
     """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
 

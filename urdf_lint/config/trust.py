@@ -41,13 +41,6 @@ def keys_with(rule: str) -> tuple[Key, ...]:
     return tuple(k for k in SCHEMA if k.trust is not None and k.trust.rule == rule)
 
 
-def trust_config_help() -> str:
-    """``--trust-config``'s help, naming what it lets a repository's config do."""
-    loosens = [k.trust.loosens for k in SCHEMA if k.trust is not None and k.trust.loosens]
-    return (f"let the repository's config set {', '.join(loosens[:-1])} and {loosens[-1]} "
-            "(default: off, those keys are ignored with a note)")
-
-
 def _number(v) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
