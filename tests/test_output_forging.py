@@ -107,7 +107,8 @@ def test_no_command_output_can_be_forged(tmp_path):
     for fmt in diff_formats.names():
         p = run_cli("diff", "HEAD", "--format", fmt, "--no-cache", cwd=repo, env=env)
         assert p.returncode in (0, 1), (fmt, p.stderr)
-        assert "forged" in p.stdout, (fmt, p.stdout)
+        if fmt in ("text", "json", "markdown"):   # (these show the names: the test bites)
+            assert "forged" in p.stdout, (fmt, p.stdout)
         assert_unforged(p.stdout + p.stderr, f"diff {fmt}")
     # render: the files it wrote, and the models it could not draw
     p = run_cli("render", ".", "--out", tmp_path / "snaps", "--no-rrd", cwd=repo, env=env)
