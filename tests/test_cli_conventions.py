@@ -164,7 +164,24 @@ def test_help_lists_every_registered_format(capsys):
     assert "output formats:\n" in h
     for name, formatter in report.formats().items():
         assert f"\n  {name:<9} {formatter.help}\n" in h + "\n", name
-    assert report.names() == ("text", "concise", "json", "sarif", "github", "junit")
+    assert report.names() == _declared_formats(REPO / "urdf_lint" / "report", report.ORDER)
+    # diff's formats: the same kind of registry, the same help
+    from urdf_lint.report import diff as diff_formats
+    h = cli.SUBPARSERS["diff"].format_help()
+    for name, formatter in diff_formats.formats().items():
+        assert f"\n  {name:<9} {formatter.help}" in h, name
+    assert diff_formats.names() == _declared_formats(REPO / "urdf_lint" / "report" / "diff",
+                                                     diff_formats.ORDER)
+
+
+def _declared_formats(folder, order) -> tuple:
+    """The format names the modules of ``folder`` declare (read as text, not imported), in
+    the registry's order: those in ``order`` first, then by name."""
+    found = set()
+    for f in folder.glob("*.py"):
+        found |= set(re.findall(r'^    name = "([a-z0-9-]+)"$', f.read_text(), re.M))
+    assert found, folder
+    return tuple(sorted(found, key=lambda n: (order.index(n) if n in order else len(order), n)))
 
 
 def test_flag_typo_gets_one_line_with_did_you_mean(pkg, capsys):
@@ -312,6 +329,37 @@ def test_one_atomic_write_helper():
     assert offenders == []
 
 
+def test_adding_a_diff_format_is_adding_one_file(monkeypatch, tmp_path):
+    """A module with a DiffFormatter subclass in urdf_lint/report/diff/ is a format of
+    ``urdf-lint diff``: its --format choices and help come from that registry."""
+    import io
+    from urdf_lint.report import diff as diff_formats
+    from urdf_lint.review.run import DiffResult
+    extra = tmp_path / "diff_formats"
+    extra.mkdir()
+    (extra / "count_only.py").write_text(
+        "from urdf_lint.report.diff.base import DiffFormatter\n\n\n"
+        "class CountOnly(DiffFormatter):\n"
+        "    name = 'count'\n"
+        "    help = 'only the number of models'\n\n"
+        "    def render(self, result):\n"
+        "        return f'{len(result.models)}\\n'\n")
+    monkeypatch.setattr(diff_formats, "__path__", [*diff_formats.__path__, str(extra)])
+    monkeypatch.setattr(diff_formats, "_FORMATS", None)
+    monkeypatch.delitem(sys.modules, "urdf_lint.report.diff.count_only", raising=False)
+    try:
+        assert "count" in diff_formats.names()
+        args = build_parser().parse_args(["diff", "HEAD", "--format", "count"])
+        assert args.format == "count"
+        assert "  count     only the number of models" in cli.SUBPARSERS["diff"].format_help()
+        out = io.StringIO()
+        diff_formats.write(DiffResult("a", "b"), "count", out)
+        assert out.getvalue() == "0\n"
+    finally:
+        sys.modules.pop("urdf_lint.report.diff.count_only", None)
+    monkeypatch.setattr(diff_formats, "_FORMATS", None)
+
+
 def test_adding_a_format_is_adding_one_file(pkg, capsys, monkeypatch, tmp_path):
     """A module with a BaseFormatter subclass in urdf_lint/report/ is a format: the CLI's
     choices, help and config key all come from the registry."""
@@ -341,3 +389,32 @@ def test_adding_a_format_is_adding_one_file(pkg, capsys, monkeypatch, tmp_path):
     finally:
         sys.modules.pop("urdf_lint.report.codes_only", None)
     monkeypatch.setattr(report, "_FORMATS", None)
+
+
+def test_each_command_is_one_module_and_argparse_stays_in_cli():
+    """cli/<command>.py per command (its parser and its run); argparse is imported only
+    inside urdf_lint/cli/, and nothing builds an argparse.Namespace by hand (commands hand
+    typed options to the layers below)."""
+    import ast
+    from urdf_lint.cli.main import COMMANDS, command_module
+    for name in COMMANDS:
+        mod = command_module(name)
+        assert mod.__name__ == f"urdf_lint.cli.{name}"
+        assert callable(mod.add_parser), name
+        assert callable(getattr(mod, "run", None) or getattr(mod, f"cmd_{name}", None)), name
+    offenders = []
+    for path in sorted((REPO / "urdf_lint").rglob("*.py")):
+        rel = path.relative_to(REPO / "urdf_lint").as_posix()
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                names = [node.module or ""]
+            else:
+                names = []
+            if "argparse" in names and not rel.startswith("cli/"):
+                offenders.append(f"{rel}:{node.lineno}: imports argparse")
+            if (isinstance(node, ast.Attribute) and node.attr == "Namespace"
+                    and isinstance(node.value, ast.Name) and node.value.id == "argparse"):
+                offenders.append(f"{rel}:{node.lineno}: argparse.Namespace")
+    assert offenders == []

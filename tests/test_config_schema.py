@@ -90,7 +90,7 @@ def test_valid_values_still_work(pkg, capsys):
     assert rc == 0, err
     assert out == "All checks passed: 1 model(s).\n"
     cfg = load_config(pkg / "urdf-lint.toml", codes_to_names())
-    assert (cfg.timeout, cfg.jobs, cfg.format) == (20.0, 1, "concise")
+    assert (cfg.timeout, cfg.jobs, cfg.output_format) == (20.0, 1, "concise")
     assert cfg.rule_options["UL307"]["tolerance"] == 1.0 and isinstance(
         cfg.rule_options["UL307"]["tolerance"], float)
 
@@ -228,11 +228,14 @@ def test_any_value_is_accepted_or_named(tmp_path, key, value):
         assert key in msg or "rule code" in msg or "rule-options" in msg, msg
         return
     got = getattr(cfg, KEYS[key].attr)
-    if key == "format" and isinstance(value, dict):   # [format]: urdf-lint format's settings
-        assert isinstance(cfg.format_options, dict) and cfg.format is None, (value, cfg)
+    if key == "format":   # [format]: urdf-lint format's settings; a string: output-format's
+        if isinstance(value, dict):
+            assert isinstance(cfg.format_options, dict) and cfg.output_format is None, (value, cfg)
+        else:
+            assert cfg.output_format == value and "deprecated" in cfg.notes[0], (value, cfg)
         return
     expected_type = {"timeout": float, "memory-mb": int, "jobs": int, "fail-on": str,
-                     "format": str, "cache-dir": str, "baseline": str, "discover": bool,
+                     "output-format": str, "cache-dir": str, "baseline": str, "discover": bool,
                      "views": str, "forward-axis": str}.get(key, (list, dict))
     assert isinstance(got, expected_type), (key, value, got)
 
@@ -246,6 +249,117 @@ def test_readme_config_example_is_valid(tmp_path):
         (tmp_path / m).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / m).write_text('<robot name="r"><link name="a"/></robot>\n')
     cfg = load_config(tmp_path / "pyproject.toml", codes_to_names())
-    assert cfg.rule_options == {"UL307": {"tolerance": 1e-3}} and cfg.format == "text"
+    assert cfg.rule_options == {"UL307": {"tolerance": 1e-3}} and cfg.output_format == "text"
+    assert cfg.notes == []
     assert cfg.baseline == str(tmp_path / "urdf-lint-baseline.json")
     assert [m.arg_sets for m in cfg.models] == [[{"ur_type": "ur5e"}, {"ur_type": "ur10e"}]]
+
+
+# -- the schema is the one source: defaults, CLI flags, trust rules, the README's tables --------
+def _gen_docs():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("gen_docs", REPO / "scripts" / "gen_docs.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_readme_tables_are_generated_and_current():
+    """The README's key tables are written by scripts/gen_docs.py from the schema: stale
+    README -> this fails (run the script)."""
+    gen = _gen_docs()
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    assert gen.render(readme) == readme, "README.md is stale: run python scripts/gen_docs.py"
+    stale = readme.replace("| `timeout` | a number of seconds > 0 | 30 |",
+                           "| `timeout` | a number of seconds > 0 | 31 |")
+    assert stale != readme and gen.render(stale) == readme
+
+
+def test_config_fields_are_the_schema_keys_with_its_defaults():
+    import dataclasses
+    own = {"path", "root", "raw", "notes"}
+    fields = {f.name for f in dataclasses.fields(Config)} - own
+    assert fields == {k.attr for k in SCHEMA} - own
+    a, b = Config(), Config()
+    for key in SCHEMA:
+        assert getattr(a, key.attr) == key.default, key.name
+        if isinstance(key.default, (list, dict)):   # a fresh copy per Config
+            assert getattr(a, key.attr) is not getattr(b, key.attr), key.name
+
+
+def test_every_flag_of_the_schema_is_on_the_command_line():
+    """A key with a ``flag`` is on every command that takes the flag's group; its help names
+    the config key and its default; a bad value is the schema's message."""
+    from urdf_lint.cli.main import SUBPARSERS, build_parser
+    from urdf_lint.config.schema import FLAG_KEYS
+    build_parser()
+    assert {"select", "timeout", "jobs", "env-allow", "baseline"} <= {k.name for k in FLAG_KEYS}
+    helps = {name: " ".join(p.format_help().split()) for name, p in SUBPARSERS.items()}
+    for key in FLAG_KEYS:
+        on = [name for name, h in helps.items() if f"config key '{key.name}'" in h]
+        assert on and "check" in on, key.name
+        for flag in key.flag.flags:
+            assert flag in helps["check"], (key.name, flag)
+
+
+def _loosening(key):
+    """A value of ``key`` that loosens what its trust rule guards."""
+    from urdf_lint.config.schema import Number, Str, StrList, Table
+    t = key.type
+    if isinstance(t, Number):
+        return (key.default or 1) * 10
+    if isinstance(t, StrList):
+        return ["X_TOKEN"]
+    if isinstance(t, Table):
+        return {"far": "/nonexistent/elsewhere"}
+    if isinstance(t, Str):
+        return "/nonexistent/elsewhere"
+    raise AssertionError(f"no loosening value for {key.name}")
+
+
+def test_every_trust_rule_of_the_schema_is_applied(tmp_path):
+    """Each key whose schema entry says a repository's config may not loosen it: set in the
+    repository's config, it is back at its default with a note naming it; trusted, it is kept."""
+    from urdf_lint.config import trust
+    from urdf_lint.config.schema import trust_config_help
+    guarded = [k for k in SCHEMA if k.trust and k.trust.rule != "confine"]
+    assert {"env-allow", "cache-dir", "jobs", "timeout", "memory-mb", "package-paths"} <= {
+        k.name for k in guarded}
+    for key in guarded:
+        f = tmp_path / "urdf-lint.toml"
+        f.write_text(f"{key.name} = {_toml(_loosening(key))}\n")
+        cfg = load_config(f)
+        notes = trust.apply(cfg, str(tmp_path))
+        assert len(notes) == 1 and f"ignored {key.name!r} from urdf-lint.toml" in notes[0], notes
+        assert getattr(cfg, key.attr) == (key.default if key.default is not None else None) or \
+            getattr(cfg, key.attr) == {}, (key.name, getattr(cfg, key.attr))
+        cfg = load_config(f)
+        assert trust.apply(cfg, str(tmp_path), trusted=True) == [], key.name
+        assert getattr(cfg, key.attr) not in (key.default, {}), key.name
+    assert all(k.name in trust_config_help() or k.trust.rule == "confine"
+               for k in SCHEMA if k.trust)
+
+
+def test_output_format_key_and_the_deprecated_string_format(pkg, capsys):
+    """``output-format`` is the output format's key (the flag's name); ``format`` is the table
+    of urdf-lint format, and a string there still works, with one located deprecation note."""
+    (pkg / "urdf-lint.toml").write_text('output-format = "concise"\n[format]\nindent = 4\n')
+    cfg = load_config(pkg / "urdf-lint.toml")
+    assert (cfg.output_format, cfg.format_options, cfg.notes) == ("concise", {"indent": 4}, [])
+    rc, out, err = run(capsys, "check", ".", "--no-cache", "--select", "UL307")
+    assert rc == 0 and err == "", err
+    (pkg / "urdf-lint.toml").write_text('select = ["UL"]\nformat = "json"\n')
+    rc, out, err = run(capsys, "check", ".", "--no-cache")
+    assert json.loads(out)["summary"]["models"] == 1, out
+    assert err == ('urdf-lint: note: urdf-lint.toml:2: format = "json" is deprecated: write '
+                   'output-format = "json" ([tool.urdf-lint.format] is the table of urdf-lint '
+                   "format's settings)\n"), err
+    rc, out, err = run(capsys, "check", ".", "--no-cache", "-q")
+    assert err == "" and json.loads(out)
+    # both: output-format wins
+    (pkg / "urdf-lint.toml").write_text('format = "json"\noutput-format = "concise"\n')
+    assert load_config(pkg / "urdf-lint.toml").output_format == "concise"
+    (pkg / "urdf-lint.toml").write_text('output-format = "gitlab"\n')
+    rc, _, err = run(capsys, "check", ".", "--no-cache")
+    assert rc == 2 and 'invalid value for output-format: "gitlab"' in err and \
+        'did you mean "github"' in err, err

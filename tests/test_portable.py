@@ -78,7 +78,7 @@ def test_every_format_is_free_of_the_checkout_path(ws_repo):
 
 
 def test_diff_formats_are_free_of_the_checkout_path(ws_repo, tmp_path):
-    from urdf_lint.review.report import FORMATS
+    from urdf_lint.report.diff import names
     repo = tmp_path / "copy"
     shutil.copytree(ws_repo.parents[1], repo, symlinks=True)
     repo = repo / "src" / "robot"
@@ -86,7 +86,7 @@ def test_diff_formats_are_free_of_the_checkout_path(ws_repo, tmp_path):
         ROBOT.replace("gone.stl", "gone_too.stl")   # a change, and a removal (base side)
         .replace('  <joint name="fix" type="fixed"><parent link="base"/><child link="a"/></joint>\n',
                  ""))
-    for fmt in FORMATS:
+    for fmt in names():
         p = run_cli("diff", "HEAD", "--format", fmt, "--no-cache", cwd=repo)
         assert p.returncode in (0, 1), (fmt, p.stderr)
         assert "robot.urdf.xacro" in p.stdout, (fmt, p.stdout)

@@ -171,7 +171,7 @@ def test_markdown_is_valid_gfm_and_escapes_names(repo, capsys):
 
 def test_markdown_stays_under_the_limit():
     from urdf_lint.review.run import DiffResult
-    from urdf_lint.review.report import to_markdown
+    from urdf_lint.report.diff.markdown import to_markdown
     from urdf_lint.review.robotdiff import Change, ModelDiff
     r = DiffResult(base="a", head="b", total_models=400)
     for i in range(400):

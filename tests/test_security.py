@@ -706,7 +706,9 @@ def test_concise_format_cannot_be_forged(world):
 
 def test_diff_reports_escape_names():
     """urdf-lint diff's text and markdown show a description's names as one visible line."""
-    from urdf_lint.review import report as review_report
+    from urdf_lint.report import diff as diff_formats
+    from urdf_lint.report.diff.markdown import to_markdown
+    from urdf_lint.report.diff.text import to_text
     from urdf_lint.review.run import DiffResult
     from urdf_lint.review.robotdiff import Change, ModelDiff
     evil = "j\n::error file=x.py,line=1::pwned\x1b[31m\u202e"
@@ -714,12 +716,16 @@ def test_diff_reports_escape_names():
         "p/r.urdf", "changed", changes=[Change("joint", evil, "changed", "limit.upper",
                                                 1.0, f"<img src=x> | `{evil}`")],
         error=evil)], total_models=1)
-    text = review_report.to_text(r)
+    text = to_text(r)
     assert "\x1b" not in text and "\u202e" not in text
     assert not any(ln.startswith("::") for ln in text.splitlines()), text
-    md = review_report.to_markdown(r)
+    md = to_markdown(r)
     assert "\x1b" not in md and "\u202e" not in md and "<img" not in md
     assert not any(ln.startswith("::") for ln in md.splitlines()), md
+    for name, cls in diff_formats.formats().items():   # every registered format, a new one too
+        out = cls().render(r)
+        assert "\x1b" not in out and "\u202e" not in out, name
+        assert not any(ln.startswith("::") for ln in out.splitlines()), (name, out)
 
 
 def test_case_check_lists_no_folder_outside_the_roots(tmp_path, monkeypatch):

@@ -2,10 +2,24 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass
 
-from urdf_lint.cli.output import write_findings
+from urdf_lint.cli.output import FindingsOutput, write_findings
 from urdf_lint.core.emit import report_internal, say
 from urdf_lint.core.errors import UsageError
+
+
+@dataclass(frozen=True)
+class FixRequest:
+    """What ``check --fix``/``--diff``/``--add-suppressions`` was asked to do."""
+    report: FindingsOutput              # how the remaining findings are written (its paths)
+    write_baseline: str | None = None
+    add_suppressions: bool = False
+    no_cache: bool = False
+    unsafe_fixes: bool = False
+    diff: bool = False
+    exit_zero: bool = False
+    exit_non_zero_on_fix: bool = False
 
 
 def _summary(outcome) -> list[str]:
@@ -30,20 +44,21 @@ def _summary(outcome) -> list[str]:
     return lines
 
 
-def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
+def _add_suppressions(req: FixRequest, cfg, resolver, out, color_mode) -> int:
     from urdf_lint.fix.addsuppress import add_suppressions
     from urdf_lint.core.locations import display_path
     from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
-    request = RunRequest(args.paths, cfg, resolver, jobs_n=cfg.jobs)
+    paths = req.report.paths
+    request = RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs)
     result = run_check(request)
     if result.internal:
         report_internal(result.internal)
         return 2
-    n, files, _ = add_suppressions(result.findings, args.paths)
+    n, files, _ = add_suppressions(result.findings, paths)
     result = run_check(request)
     report_internal(result.internal)
     if result.findings:
-        write_findings(args, cfg, result, out, color_mode, resolver.roots)
+        write_findings(req.report, cfg, result, out, color_mode, resolver.roots)
     say(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
         f"file{'s' if len(files) != 1 else ''}")
     for f in files:
@@ -51,7 +66,7 @@ def _add_suppressions(args, cfg, resolver, out, color_mode) -> int:
     return exit_code(result, cfg.fail_on)
 
 
-def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
+def check_fix(req: FixRequest, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
     from urdf_lint.run.fix import run_fix
     from urdf_lint.run.pipeline import exit_code
     if render_dir:
@@ -59,20 +74,21 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
     if affected_by is not None:
         raise UsageError("--fix/--diff/--add-suppressions lint every model (a fix must be right "
                          "for all of them); drop --changed-since")
-    if args.write_baseline:
+    if req.write_baseline:
         raise UsageError("--fix/--diff cannot be combined with --write-baseline")
-    if args.add_suppressions:
-        return _add_suppressions(args, cfg, resolver, out, color_mode)
+    if req.add_suppressions:
+        return _add_suppressions(req, cfg, resolver, out, color_mode)
     memo = None
-    if not getattr(args, "no_cache", False):
+    paths = req.report.paths
+    if not req.no_cache:
         from urdf_lint.run.cache import Cache
         from urdf_lint.fix.memo import FixMemo
-        cache = Cache.for_paths(args.paths, cfg)
+        cache = Cache.for_paths(paths, cfg)
         memo = FixMemo(cache) if not cache.refused else None
-    outcome = run_fix(args.paths, cfg, resolver, jobs_n=cfg.jobs,
-                      unsafe=args.unsafe_fixes, diff_only=args.diff, memo=memo)
+    outcome = run_fix(paths, cfg, resolver, jobs_n=cfg.jobs,
+                      unsafe=req.unsafe_fixes, diff_only=req.diff, memo=memo)
     report_internal(outcome.result.internal)
-    if args.diff:
+    if req.diff:
         sys.stdout.write(outcome.diff)
         n = len(outcome.applied)
         say(f"Would fix {n} finding{'s' if n != 1 else ''} in "
@@ -80,12 +96,12 @@ def check_fix(args, cfg, resolver, affected_by, render_dir, out, color_mode) -> 
         if outcome.result.internal:
             return 2
         return 1 if outcome.diff else 0
-    write_findings(args, cfg, outcome.result, out, color_mode, resolver.roots)
+    write_findings(req.report, cfg, outcome.result, out, color_mode, resolver.roots)
     for line in _summary(outcome):   # also with -q: what --fix did to the sources
         say(line)
-    if args.exit_zero:
+    if req.exit_zero:
         return 2 if outcome.result.internal else 0
     code = exit_code(outcome.result, cfg.fail_on)
-    if code == 0 and getattr(args, "exit_non_zero_on_fix", False) and outcome.changed_files:
+    if code == 0 and req.exit_non_zero_on_fix and outcome.changed_files:
         return 1
     return code

@@ -4,11 +4,17 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass, field
 
+from urdf_lint.cli.common import ConfigOptions, load_cfg, options_from, parse_package_paths
+from urdf_lint.cli.parser import add_inputs
+from urdf_lint.core.escape import escape_text
 from urdf_lint.run.format import Proof, files_to_format, format_files, prove, style_of
 
+NAME = "format"
 
-def add_parser(sub, raw, add_inputs) -> None:
+
+def add_parser(sub, raw) -> None:
     p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
                        description="Format xacro and URDF files: one element per line, "
                                    "children indented, long tags wrapped; comments, text and "
@@ -40,9 +46,27 @@ def add_parser(sub, raw, add_inputs) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors")
 
 
+@dataclass(frozen=True)
+class FormatOptions:
+    """What ``format`` was asked to do (the formatter reads these by name)."""
+    config: ConfigOptions = field(default_factory=ConfigOptions)
+    paths: list = field(default_factory=lambda: ["."])
+    package_path: list | None = None
+    check: bool = False
+    diff: bool = False
+    quiet: bool = False
+    indent: str | None = None
+    line_length: str | None = None
+    attribute_order: str | None = None
+
+
+def run(args) -> int:
+    opts = options_from(FormatOptions, args, config=ConfigOptions.from_args(args))
+    return cmd_format(opts, lambda o, paths: load_cfg(o.config, paths), parse_package_paths)
+
+
 def cmd_format(args, load_cfg, parse_package_paths) -> int:
     from urdf_lint.core.errors import UsageError
-    from urdf_lint.core.escape import escape_text
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
@@ -59,17 +83,7 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
         for r in results:
             if r.path in proof.refused:
                 r.refused, r.new = proof.refused[r.path], None
-    from urdf_lint.core.emit import say as said
-    say = (lambda s: None) if args.quiet else said
-    status = 0
-    for r in results:
-        if r.error:
-            said(f"error: {escape_text(r.error)}")
-            status = 2
-        elif r.refused:
-            said(f"{escape_text(r.shown)}: left alone: {escape_text(r.refused)}")
-            if r.refused.startswith("internal"):
-                status = 2
+    status = _say_problems(results)
     todo = [r for r in results if r.new is not None]
     if args.diff:
         from urdf_lint.run.fix import unified_diff
@@ -80,21 +94,52 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
         for r in todo:
             tell(f"Would reformat: {escape_text(r.shown)}")
     else:
-        from urdf_lint.core import fsbound
-        for r in todo:
-            try:   # only below the formatted paths, atomically (the boundary)
-                fsbound.rewrite(r.path, r.new or b"", args.paths)
-            except OSError as e:
-                said(f"error: {escape_text(r.shown)}: cannot write: "
-                     f"{getattr(e, 'why', None) or e.strerror or e}")
+        status = max(status, _write(todo, args.paths))
+    if not args.quiet:
+        _say_summary(results, todo, args, proof if changed else None)
+    if status:
+        return status
+    return 1 if todo and (args.check or args.diff) else 0
+
+
+def _say_problems(results) -> int:
+    """Say each file that could not be formatted or was left alone; 2 for an error or an
+    internal problem, else 0."""
+    from urdf_lint.core.emit import say
+    status = 0
+    for r in results:
+        if r.error:
+            say(f"error: {escape_text(r.error)}")
+            status = 2
+        elif r.refused:
+            say(f"{escape_text(r.shown)}: left alone: {escape_text(r.refused)}")
+            if r.refused.startswith("internal"):
                 status = 2
+    return status
+
+
+def _write(todo, paths) -> int:
+    """Write the new layouts, only below the formatted paths, atomically (the boundary); 2
+    when one cannot be written, else 0."""
+    from urdf_lint.core import fsbound
+    from urdf_lint.core.emit import say
+    status = 0
+    for r in todo:
+        try:
+            fsbound.rewrite(r.path, r.new or b"", paths)
+        except OSError as e:
+            say(f"error: {escape_text(r.shown)}: cannot write: "
+                f"{getattr(e, 'why', None) or e.strerror or e}")
+            status = 2
+    return status
+
+
+def _say_summary(results, todo, args, proof: Proof | None) -> None:
+    from urdf_lint.core.emit import say
     left = sum(1 for r in results if r.refused)
     same = sum(1 for r in results if r.new is None and not r.refused and not r.error)
     verb = "would be reformatted" if args.check or args.diff else "reformatted"
     say(f"{len(todo)} file(s) {verb}, {same} file(s) left unchanged"
         + (f", {left} file(s) left alone" if left else "")
         + (f" ({proof.by_file} proved from the file itself, {proof.compared} model(s) "
-           "expanded before and after)" if changed else ""))
-    if status:
-        return status
-    return 1 if todo and (args.check or args.diff) else 0
+           "expanded before and after)" if proof is not None else ""))

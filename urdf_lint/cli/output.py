@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass, field
 
 from urdf_lint.core.emit import safe_lines
 from urdf_lint.core.errors import UsageError
@@ -22,7 +23,16 @@ def write_base(target, paths) -> str:
     return fsbound.output_base(target, repos)
 
 
-def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
+@dataclass(frozen=True)
+class FindingsOutput:
+    """Where and how ``check`` writes its findings."""
+    paths: list = field(default_factory=list)   # the linted paths (-o is checked from there)
+    output: str | None = None                   # -o FILE
+    statistics: bool = False
+    show_source: bool = False
+
+
+def write_findings(opts: FindingsOutput, cfg, result, out, color_mode, roots=None) -> None:
     """The findings of a run as ``check`` reports them: baseline, format, ``-o`` (atomic), ``-q``.
     ``check --fix`` reports what remains through the same function."""
     from urdf_lint.report import registry as report
@@ -33,18 +43,18 @@ def write_findings(args, cfg, result, out, color_mode, roots=None) -> None:
         result.findings = filter_baseline(cfg.baseline, result.findings, out.note)
         out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
                  f"({display_path(cfg.baseline)})")
-    fmt = cfg.format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
-    options = dict(statistics=args.statistics, show_source=args.show_source, quiet=out.quiet,
+    fmt = cfg.output_format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    options = dict(statistics=opts.statistics, show_source=opts.show_source, quiet=out.quiet,
                    roots=None if roots is None else tuple(str(r) for r in roots))
-    if getattr(args, "output", None):
+    if opts.output:
         from urdf_lint.core import fsbound
         try:
-            with fsbound.open_write(args.output, write_base(args.output, args.paths)) as f:
+            with fsbound.open_write(opts.output, write_base(opts.output, opts.paths)) as f:
                 report.write(result, fmt, f, color=color_mode == "always", **options)
         except OSError as e:
             why = getattr(e, "why", None) or e.strerror or e
-            raise UsageError(f"cannot write {safe_lines(args.output)}: {safe_lines(why)}") from None
+            raise UsageError(f"cannot write {safe_lines(opts.output)}: {safe_lines(why)}") from None
     elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
-              and not args.statistics):
+              and not opts.statistics):
         report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
                      **options)

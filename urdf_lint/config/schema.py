@@ -10,6 +10,7 @@ types with ``OPTION_TYPES = {"name": (int, float)}``.
 """
 from __future__ import annotations
 
+import copy
 import difflib
 import fnmatch
 import json
@@ -229,16 +230,17 @@ class RuleOptions(Type):
 
 
 class FormatKey(Type):
-    """``format``: the output format (a string), or the table ``[format]`` of
-    ``urdf-lint format`` (its keys in :data:`FORMAT_SCHEMA`)."""
+    """``format``: the table ``[format]`` of ``urdf-lint format`` (its keys in
+    :data:`FORMAT_SCHEMA`). A string is the output format's old spelling (now
+    ``output-format``): still accepted, with a deprecation note (:func:`_set`)."""
 
     def __init__(self, output: Choice):
         self.output = output
 
     @property
-    def expected(self) -> str:  # type: ignore[override]  # (computed from the output formats)
-        return (f"{self.output.expected}; or a table [format] of "
-                f"{', '.join(k.name for k in FORMAT_SCHEMA)}")
+    def expected(self) -> str:  # type: ignore[override]  # (computed from the format keys)
+        return (f"a table [format] of {', '.join(k.name for k in FORMAT_SCHEMA)} (a string: "
+                f"the deprecated spelling of output-format)")
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, dict):
@@ -255,36 +257,84 @@ class FormatKey(Type):
                 raise _Bad(e.expected, x, k) from None
         return out
 
-    def from_cli(self, s: str) -> Any:
-        return self.output.from_cli(s)
+
+@dataclass(frozen=True)
+class Flag:
+    """How a key is given on the command line. The CLI adds the flags of a ``group`` together
+    (:func:`urdf_lint.cli.common.add_key_flags`): a key with a flag is on every command that
+    takes its group, and its value goes through :func:`apply_cli`."""
+    flags: tuple[str, ...]          # ("-j", "--jobs")
+    group: str                      # selection, jobs, trust, limits, cache, views, output, baseline
+    metavar: str = ""               # (default: a Choice's {a,b,c})
+    help: str = ""                  # (default: the key's help)
+    repeat: bool = False            # --env-allow A --env-allow B (also comma-separated)
+    path: bool = False              # a path, made absolute where the user typed it
+    dest: str = ""                  # (default: the key's attribute)
+
+    def shown(self, name: str) -> str:
+        """The flag as an error message names it: ``--name``, with its aliases when the key's
+        own name is one of them (``--output-format/--format``)."""
+        longs = [f for f in self.flags if f.startswith("--")]
+        return "/".join(longs) if f"--{name}" in longs else f"--{name}"
+
+
+@dataclass(frozen=True)
+class Trust:
+    """What a repository's own config may do with a key (:mod:`urdf_lint.config.trust`).
+
+    ``rule``: ``ignore`` (the repository's value is dropped, with ``why`` in the note),
+    ``at-most-default`` (may only tighten the default; ``unit`` after the value in the note),
+    ``inside-repo`` (table entries pointing outside the repository are dropped), ``confine``
+    (a path, or the ``fields`` of each entry, must stay inside the repository, else a config
+    error). ``loosens``: how ``--trust-config``'s help names what it lets the config do."""
+    rule: str
+    loosens: str = ""
+    why: str = ""
+    unit: str = ""
+    fields: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
 class Key:
-    """One configuration key: its name, type, default and help."""
+    """One configuration key: its name, type, default and help; how the command line sets it
+    (``flag``), what a repository's own config may do with it (``trust``) and the range a
+    number is clamped to wherever it came from (``clamp``)."""
     name: str
     type: Type
     default: Any
     help: str
     cli_merge: str = "replace"      # "replace" or "extend" when given on the command line
+    flag: Flag | None = None
+    trust: Trust | None = None
+    clamp: tuple[float, float] | None = None      # (low, high)
+    shown_default: str = ""         # what None means, for the help and the README
+    attr_name: str = ""             # the Config attribute (default: the name, with underscores)
 
     @property
     def attr(self) -> str:
-        return self.name.replace("-", "_")
+        return self.attr_name or self.name.replace("-", "_")
 
     @property
     def default_text(self) -> str:
         d = self.default
         if d is None:
-            return {"jobs": "from the work, at most all cores",
-                    "format": "text, or github on GitHub Actions",
-                    "cache-dir": ".urdf_lint_cache", "baseline": "none",
-                    "views": "single for render, sheet for diff"}.get(self.name, "none")
+            return self.shown_default or "none"
         if isinstance(d, list):
             return ",".join(d) if d else "none"
         if isinstance(d, float) and d.is_integer():
             return str(int(d))
         return str(d) if not isinstance(d, dict) else "none"
+
+    def cli_help(self) -> str:
+        """The flag's help: what it does, the default and the config key."""
+        text = (self.flag.help if self.flag else "") or self.help
+        return f"{text} (default: {self.default_text}; config key '{self.name}')"
+
+    def metavar(self) -> str:
+        if self.flag and self.flag.metavar:
+            return self.flag.metavar
+        t = self.type
+        return "{" + ",".join(t.choices) + "}" if isinstance(t, Choice) else self.name.upper()
 
 
 def _targets() -> tuple[Any, ...]:
@@ -297,43 +347,80 @@ def _formats() -> tuple[Any, ...]:
     return names()
 
 
+_SEVERITIES = "{" + ",".join(FAIL_ON) + "}"
 SCHEMA: tuple[Key, ...] = (
     Key("select", StrList("rule codes or prefixes"), ["UL"],
-        'rule codes, prefixes or names to enable ("ALL" for every rule)'),
+        'rule codes, prefixes or names to enable ("ALL" for every rule)',
+        flag=Flag(("--select",), "selection", "CODES", "comma-separated rule codes, prefixes "
+                  "or names to enable; replaces the config's")),
     Key("extend-select", StrList("rule codes or prefixes"), [],
-        "codes or prefixes to enable on top of select", cli_merge="extend"),
+        "codes or prefixes to enable on top of select", cli_merge="extend",
+        flag=Flag(("--extend-select",), "selection", "CODES",
+                  "comma-separated codes or prefixes to enable on top of select")),
     Key("ignore", StrList("rule codes or prefixes"), [],
-        "codes or prefixes to disable", cli_merge="extend"),
+        "codes or prefixes to disable", cli_merge="extend",
+        flag=Flag(("--ignore",), "selection", "CODES",
+                  "comma-separated codes or prefixes to disable")),
     Key("per-file-ignores", Table(StrList("rule codes or prefixes"),
                                   'a table of glob = ["CODE", ...]'), {},
         "codes to ignore in files matching a glob"),
     Key("severity", Table(Choice(SEVERITY_NAMES), "a table of CODE = error|warning|info"), {},
         "override default severities"),
     Key("fail-on", Choice(FAIL_ON), "error",
-        "lowest severity that makes the exit code 1"),
+        "lowest severity that makes the exit code 1",
+        flag=Flag(("--fail-on",), "selection")),
     Key("targets", ChoiceList(_targets(), "consumer targets"), ["ros"],
         "the programs the descriptions are for; a finding takes the highest severity any of "
-        "them gives it (see 'urdf-lint rules')"),
+        "them gives it (see 'urdf-lint rules')",
+        flag=Flag(("--target",), "selection", "TARGET", "a consumer the descriptions are for ("
+                  + ", ".join(_targets()) + "); repeatable or comma-separated, replaces the "
+                  "config's", repeat=True, dest="targets")),
     Key("package-paths", Table(Str(), 'a table of package = "folder"'), {},
-        "where packages that have no package.xml under the linted paths are"),
-    Key("models", Models(), [], "entry models and the xacro args to expand them with"),
+        "where packages that have no package.xml under the linted paths are",
+        trust=Trust("inside-repo", "package-paths outside it")),
+    Key("models", Models(), [], "entry models and the xacro args to expand them with",
+        trust=Trust("confine", fields=("output", "mesh-base"))),
     Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
     Key("env-allow", StrList("environment variable names"), [],
-        "environment variables $(env)/$(optenv) may read", cli_merge="extend"),
-    Key("timeout", Number(float, 0, "seconds"), DEFAULT_TIMEOUT,
-        "time limit per model, in seconds"),
-    Key("memory-mb", Number(int, 0, "MiB"), DEFAULT_MEMORY_MB, "memory limit per model, in MiB"),
+        "environment variables $(env)/$(optenv) may read", cli_merge="extend",
+        flag=Flag(("--env-allow",), "trust", "VAR",
+                  "an environment variable $(env)/$(optenv) may read; repeatable", repeat=True),
+        trust=Trust("ignore", "env-allow", "it lets descriptions read environment variables")),
+    Key("timeout", Number(float, 0, "seconds"), DEFAULT_TIMEOUT, "time limit per model, in seconds",
+        flag=Flag(("--timeout",), "limits", "SECONDS"),
+        trust=Trust("at-most-default", "looser timeout", unit="s"), clamp=(0.5, 600.0)),
+    Key("memory-mb", Number(int, 0, "MiB"), DEFAULT_MEMORY_MB, "memory limit per model, in MiB",
+        flag=Flag(("--memory-mb",), "limits", "MIB"),
+        trust=Trust("at-most-default", "looser memory-mb", unit="MiB"), clamp=(128, 65536)),
     Key("rule-options", RuleOptions(), {}, "options of single rules"),
-    Key("jobs", Number(int, 0), None, "parallel workers"),
-    Key("cache-dir", Str(), None, "folder of the result cache"),
-    Key("format", FormatKey(Choice(_formats)), None,
-        "output format; as a table [format], the settings of urdf-lint format"),
-    Key("baseline", Str(), None, "ignore the findings recorded in this file"),
+    Key("jobs", Number(int, 0), None, "parallel workers",
+        flag=Flag(("-j", "--jobs"), "jobs", "N"),
+        trust=Trust("ignore", "jobs", "it sets how many processes a run starts"), clamp=(1, 64),
+        shown_default="from the work, at most all cores"),
+    Key("cache-dir", Str(), None, "folder of the result cache",
+        flag=Flag(("--cache-dir",), "cache", "DIR", path=True),
+        trust=Trust("ignore", "cache-dir", "it moves where results are written and read"),
+        shown_default=".urdf_lint_cache"),
+    Key("output-format", Choice(_formats), None,
+        "output format (see 'urdf-lint check --help')",
+        flag=Flag(("--output-format", "--format"), "output", "FORMAT",
+                  "output format: one of the formats listed below"),
+        shown_default="text, or github on GitHub Actions"),
+    Key("format", FormatKey(Choice(_formats)), {},
+        "the settings of urdf-lint format, as the table [tool.urdf-lint.format] (see below)",
+        attr_name="format_options"),
+    Key("baseline", Str(), None, "ignore the findings recorded in this file",
+        flag=Flag(("--baseline",), "baseline", "FILE", "ignore the findings recorded in FILE "
+                  "(make it with --write-baseline)", path=True),
+        trust=Trust("confine")),
     Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
     Key("views", Choice(("single", "sheet")), None,
-        "snapshot pictures: one 3/4 view, or a 2x2 sheet of front, side, top and 3/4 views"),
+        "snapshot pictures: one 3/4 view, or a 2x2 sheet of front, side, top and 3/4 views",
+        flag=Flag(("--views",), "views"), shown_default="single for render, sheet for diff"),
     Key("forward-axis", Choice(("+x", "-x", "+y", "-y")), "+x",
-        "the robot's forward axis in its base frame, for the snapshot views"),
+        "the robot's forward axis in its base frame, for the snapshot views",
+        flag=Flag(("--forward-axis",), "views", "",
+                  "the robot's forward axis, for the front/side views")),
 )
 KEYS = {k.name: k for k in SCHEMA}
 
@@ -358,34 +445,42 @@ class ModelSpec:
     mesh_base: str | None = None    # absolute: where relative mesh paths start
 
 
+def _default(name: str) -> Any:
+    """A Config field's default: the schema key's (a fresh copy per Config)."""
+    key = KEYS[name]
+    return field(default_factory=lambda: copy.deepcopy(key.default))
+
+
 @dataclass
 class Config:
-    """The settings of a run, from the config file and the command line."""
+    """The settings of a run, from the config file and the command line: one field per schema
+    key, its default from :data:`SCHEMA` (a test checks that the two agree)."""
     path: str | None = None         # the file it came from
     root: str = "."                 # folder paths are relative to
-    select: list[Any] = field(default_factory=lambda: ["UL"])
-    extend_select: list[Any] = field(default_factory=list)
-    ignore: list[Any] = field(default_factory=list)
-    per_file_ignores: dict[str, Any] = field(default_factory=dict)
-    severity: dict[str, Any] = field(default_factory=dict)
-    fail_on: str = "error"
-    targets: list[Any] = field(default_factory=lambda: ["ros"])
-    package_paths: dict[str, Any] = field(default_factory=dict)
-    models: list[Any] = field(default_factory=list)
-    exclude: list[Any] = field(default_factory=list)
-    env_allow: list[Any] = field(default_factory=list)
-    timeout: float = DEFAULT_TIMEOUT
-    memory_mb: int = DEFAULT_MEMORY_MB
-    rule_options: dict[str, Any] = field(default_factory=dict)
-    jobs: int | None = None
-    cache_dir: str | None = None
-    format: str | None = None
-    baseline: str | None = None     # absolute
-    discover: bool = True           # false: lint only the configured models
-    views: str | None = None        # snapshots: "single" or "sheet" (None: per command)
-    forward_axis: str = "+x"        # snapshots: the robot's forward axis
-    format_options: dict[str, Any] = field(default_factory=dict)  # [format]: urdf-lint format's settings
+    select: list[Any] = _default("select")
+    extend_select: list[Any] = _default("extend-select")
+    ignore: list[Any] = _default("ignore")
+    per_file_ignores: dict[str, Any] = _default("per-file-ignores")
+    severity: dict[str, Any] = _default("severity")
+    fail_on: str = _default("fail-on")
+    targets: list[Any] = _default("targets")
+    package_paths: dict[str, Any] = _default("package-paths")
+    models: list[Any] = _default("models")
+    exclude: list[Any] = _default("exclude")
+    env_allow: list[Any] = _default("env-allow")
+    timeout: float = _default("timeout")
+    memory_mb: int = _default("memory-mb")
+    rule_options: dict[str, Any] = _default("rule-options")
+    jobs: int | None = _default("jobs")
+    cache_dir: str | None = _default("cache-dir")
+    output_format: str | None = _default("output-format")
+    format_options: dict[str, Any] = _default("format")   # [format]: urdf-lint format's settings
+    baseline: str | None = _default("baseline")     # absolute
+    discover: bool = _default("discover")
+    views: str | None = _default("views")
+    forward_axis: str = _default("forward-axis")
     raw: dict[str, Any] = field(default_factory=dict)
+    notes: list[Any] = field(default_factory=list)       # to say once loaded (deprecations)
 
     def is_excluded(self, path: str) -> bool:
         try:
@@ -522,8 +617,13 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = specs
     elif key.name == "baseline" and value is not None:
         value = str((base / value).resolve())
-    elif key.name == "format" and isinstance(value, dict):
-        cfg.format_options = value
+    elif key.name == "format" and isinstance(value, str):   # the old output-format key
+        where = f"{_shown(cfg.path or base)}{_line_of(Path(cfg.path), 'format') if cfg.path else ''}"
+        cfg.notes.append(f"note: {where}: format = {show(value)} is deprecated: write "
+                         f"output-format = {show(value)} ([{TABLE}.format] is the table of "
+                         "urdf-lint format's settings)")
+        if "output-format" not in cfg.raw:
+            cfg.output_format = value
         return
     setattr(cfg, key.attr, value)
 
@@ -569,23 +669,39 @@ def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = No
     return cfg
 
 
+FLAG_KEYS: tuple[Key, ...] = tuple(k for k in SCHEMA if k.flag is not None)
+
+
+def trust_config_help() -> str:
+    """``--trust-config``'s help, naming what it lets a repository's config do (the keys'
+    ``trust`` in the schema; :mod:`urdf_lint.config.trust` applies them)."""
+    loosens = [k.trust.loosens for k in SCHEMA if k.trust is not None and k.trust.loosens]
+    return (f"let the repository's config set {', '.join(loosens[:-1])} and {loosens[-1]} "
+            "(default: off, those keys are ignored with a note)")
+
+
 def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line") -> Config:
     """Merge command-line values (strings, as typed) into ``cfg`` through the schema.
 
-    ``values`` maps schema key names to the flag's string, or None when the flag was not
-    given. Keys with ``cli_merge="extend"`` add to the configured list."""
+    ``values`` maps schema key names to the flag's string (a list of them for a repeatable
+    flag), or None when the flag was not given. Keys with ``cli_merge="extend"`` add to the
+    configured list; a path flag is made absolute."""
     for name, s in values.items():
         if s is None:
             continue
         key = KEYS[name]
+        flag = key.flag or Flag((f"--{name}",), "")
+        if flag.repeat and isinstance(s, (list, tuple)):
+            s = ",".join(s)
+        if flag.path and isinstance(s, str) and s:
+            s = os.path.abspath(s)
         try:
             value = key.type.check(key.type.from_cli(s) if isinstance(s, str) else s)
         except _Bad as e:
-            raise ConfigError(f"--{name}: invalid value {show(s)} (expected {e.expected})") from None
+            raise ConfigError(f"{flag.shown(name)}: invalid value {show(s)} "
+                              f"(expected {e.expected})") from None
         if key.cli_merge == "extend":
             value = list(getattr(cfg, key.attr)) + value
-        if key.name == "baseline":
-            value = os.path.abspath(value)
         setattr(cfg, key.attr, value)
     return cfg
 

@@ -15,6 +15,9 @@ passes ``--trust-config``. Keys that only choose what is reported and how severe
 ``ignore``, ``severity``, ``targets``) are the repository's to set: they widen nothing a
 description may read or a run may take. Numeric limits are always clamped to sane ranges, trusted or not.
 
+Which key gets which treatment is the key's ``trust`` and ``clamp`` in the schema
+(:data:`urdf_lint.config.schema.SCHEMA`); this module only applies them.
+
 The paths a run writes or reads as data -- a models entry's ``output`` and ``mesh-base``, and
 ``baseline`` -- must, from the repository's own config, resolve inside the repository with no
 symlinked component (:func:`confine_paths`): otherwise the run stops with a config error
@@ -26,19 +29,21 @@ from __future__ import annotations
 import os
 from typing import Any
 
-from urdf_lint.config.schema import Config
-from urdf_lint.core.tree import inside
-
-CLAMP = {"timeout": (0.5, 600.0), "memory-mb": (128, 65536), "jobs": (1, 64)}
+from urdf_lint.config.schema import SCHEMA, Config, Key, Number
+from urdf_lint.discovery.packages import inside
 
 
 def _inside(f: str, p: str) -> bool:
     return inside(os.path.realpath(f), os.path.realpath(p))
 
 
-def _clamp(value: float, key: str) -> float:
-    lo, hi = CLAMP[key]
-    return min(max(value, lo), hi)
+def keys_with(rule: str) -> tuple[Key, ...]:
+    """The schema keys whose ``trust`` rule is ``rule``."""
+    return tuple(k for k in SCHEMA if k.trust is not None and k.trust.rule == rule)
+
+
+def _number(v: float) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v)
 
 
 def config_root(cfg: Config, repo: str) -> str:
@@ -61,12 +66,14 @@ def confine_paths(cfg: Config, repo: str, given: set[Any]) -> None:
         return
     folder = os.path.dirname(os.path.realpath(cfg.path))
     top = config_root(cfg, repo)
-    found: list[Any] = []
-    if "baseline" not in given and isinstance(raw.get("baseline"), str):
-        found.append(("baseline", raw["baseline"]))
-    for m in raw.get("models") or ():
-        if isinstance(m, dict):
-            found += [(k, m[k]) for k in ("output", "mesh-base") if isinstance(m.get(k), str)]
+    found: list[tuple[str, Any]] = []
+    for k in keys_with("confine"):
+        assert k.trust is not None
+        if not k.trust.fields and k.name not in given and isinstance(raw.get(k.name), str):
+            found.append((k.name, raw[k.name]))
+        for m in (raw.get(k.name) or ()) if k.trust.fields else ():
+            if isinstance(m, dict):
+                found += [(f, m[f]) for f in k.trust.fields if isinstance(m.get(f), str)]
     for key, value in found:
         p = os.path.normpath(os.path.join(folder, os.path.expanduser(value)))
         why = None
@@ -93,50 +100,47 @@ def apply(cfg: Config, repo: str, trusted: bool = False,
     notes: list[str] = []
     if not trusted:
         confine_paths(cfg, repo, set(given))
-    raw = cfg.raw or {}
-    where = os.path.basename(cfg.path) if cfg.path else "the config"
-    default = Config()
-    why = "a repository's own config cannot loosen urdf-lint's guarantees"
-    hint = "pass it on the command line or use --trust-config"
-
-    def note(key: str, what: str) -> None:
-        notes.append(f"note: ignored {key!r} from {where} ({what}; {why}: {hint})")
-
-    if not trusted:
-        if raw.get("env-allow"):
-            note("env-allow", "it lets descriptions read environment variables")
-            cfg.env_allow = []
-        if raw.get("cache-dir"):
-            note("cache-dir", "it moves where results are written and read")
-            cfg.cache_dir = None
-        if raw.get("jobs") is not None:
-            note("jobs", "it sets how many processes a run starts")
-            cfg.jobs = None
-        if "timeout" in raw and cfg.timeout > default.timeout:
-            note("timeout", f"{cfg.timeout:g} s is above the default {default.timeout:g} s")
-            cfg.timeout = default.timeout
-        if "memory-mb" in raw and cfg.memory_mb > default.memory_mb:
-            note("memory-mb", f"{cfg.memory_mb} MiB is above the default {default.memory_mb} MiB")
-            cfg.memory_mb = default.memory_mb
-        if raw.get("package-paths"):
-            kept = {}
-            for name, d in cfg.package_paths.items():
-                if _inside(d, repo):
-                    kept[name] = d
-                else:
-                    note("package-paths", f"{name} = {d} is outside the repository")
-            cfg.package_paths = kept
+        raw = cfg.raw or {}
+        where = os.path.basename(cfg.path) if cfg.path else "the config"
+        why = "a repository's own config cannot loosen urdf-lint's guarantees"
+        hint = "pass it on the command line or use --trust-config"
+        for key in SCHEMA:
+            if key.trust is not None and raw.get(key.name) is not None:
+                for what in _loosened(cfg, key, repo):
+                    notes.append(f"note: ignored {key.name!r} from {where} ({what}; {why}: {hint})")
     clamp(cfg)
     return notes
 
 
+def _loosened(cfg: Config, key: Key, repo: str) -> list[str]:
+    """Undo what the repository's value of ``key`` loosens in ``cfg``; say what each was."""
+    assert key.trust is not None
+    rule, value = key.trust.rule, getattr(cfg, key.attr)
+    if rule == "ignore" and cfg.raw.get(key.name):
+        setattr(cfg, key.attr, key.default)
+        return [key.trust.why]
+    if rule == "at-most-default" and value > key.default:
+        setattr(cfg, key.attr, key.default)
+        unit = key.trust.unit
+        return [f"{_number(value)} {unit} is above the default {_number(key.default)} {unit}"]
+    if rule == "inside-repo":
+        kept = {n: d for n, d in value.items() if _inside(d, repo)}
+        setattr(cfg, key.attr, kept)
+        return [f"{n} = {d} is outside the repository" for n, d in value.items() if n not in kept]
+    return []
+
+
 def clamp(cfg: Config) -> None:
     """Numeric limits within sane ranges, wherever they came from."""
+    keys = [k for k in SCHEMA if k.clamp is not None]
     try:
-        cfg.timeout = float(_clamp(float(cfg.timeout), "timeout"))
-        cfg.memory_mb = int(_clamp(int(cfg.memory_mb), "memory-mb"))
-        if cfg.jobs is not None:
-            cfg.jobs = int(_clamp(int(cfg.jobs), "jobs"))
+        for k in keys:
+            value = getattr(cfg, k.attr)
+            if value is not None:
+                kind = k.type.kind if isinstance(k.type, Number) else float
+                lo, hi = k.clamp  # type: ignore[misc]
+                setattr(cfg, k.attr, kind(min(max(kind(value), lo), hi)))
     except (TypeError, ValueError):
         from urdf_lint.config.schema import ConfigError
-        raise ConfigError("'timeout', 'memory-mb' and 'jobs' must be numbers") from None
+        names = [repr(k.name) for k in keys]
+        raise ConfigError(f"{', '.join(names[:-1])} and {names[-1]} must be numbers") from None

@@ -9,31 +9,40 @@ import sys
 import urdf_lint.report as _package
 from urdf_lint.report.base import BaseFormatter, ReportOptions
 
-__all__ = ["BaseFormatter", "ReportOptions", "formats", "names", "write", "use_color"]
+__all__ = ["BaseFormatter", "ReportOptions", "discover", "formats", "names", "write", "use_color"]
 
 _FORMATS: dict | None = None
+
+
+ORDER = ("text", "concise", "json", "sarif", "github", "junit")
+
+
+def discover(package: str, paths, base: type, order: tuple = ()) -> dict:
+    """name -> class, for every ``base`` subclass with a ``name`` defined in a module of
+    ``package`` (its folders ``paths``), those named in ``order`` first. ``check``'s formats
+    and ``diff``'s (:mod:`urdf_lint.report.diff`) are found by it alike."""
+    from urdf_lint.engine.registry import submodule_names
+    found: dict = {}
+    for module in submodule_names(paths):
+        if module in ("base", "registry"):
+            continue
+        mod = importlib.import_module(f"{package}.{module}")
+        for obj in vars(mod).values():
+            name = getattr(obj, "name", "")
+            if (isinstance(obj, type) and issubclass(obj, base) and obj is not base
+                    and obj.__module__ == mod.__name__ and name):
+                if name in found:
+                    raise RuntimeError(f"duplicate output format {name!r}")
+                found[name] = obj
+    return dict(sorted(found.items(), key=lambda kv: (
+        order.index(kv[0]) if kv[0] in order else len(order), kv[0])))
 
 
 def formats() -> dict:
     """name -> formatter class, for every format module in this package."""
     global _FORMATS
     if _FORMATS is None:
-        from urdf_lint.engine.registry import submodule_names
-        found = {}
-        for name in submodule_names(_package.__path__):
-            if name in ("base", "registry"):
-                continue
-            mod = importlib.import_module(f"{_package.__name__}.{name}")
-            for obj in vars(mod).values():
-                if (isinstance(obj, type) and issubclass(obj, BaseFormatter)
-                        and obj is not BaseFormatter and obj.__module__ == mod.__name__
-                        and obj.name):
-                    if obj.name in found:
-                        raise RuntimeError(f"duplicate output format {obj.name!r}")
-                    found[obj.name] = obj
-        order = ["text", "concise", "json", "sarif", "github", "junit"]
-        _FORMATS = dict(sorted(found.items(), key=lambda kv: (
-            order.index(kv[0]) if kv[0] in order else len(order), kv[0])))
+        _FORMATS = discover(_package.__name__, _package.__path__, BaseFormatter, ORDER)
     return _FORMATS
 
 

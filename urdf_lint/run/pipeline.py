@@ -9,7 +9,8 @@ from __future__ import annotations
 import dataclasses
 import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from collections.abc import Set as AbstractSet
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from urdf_lint.discovery.discover import discover_models
 from urdf_lint.core.findings import Problem, exit_status, merge
@@ -119,7 +120,7 @@ class RunRequest:
 
     ``paths`` and ``affected_by`` are frozen (a tuple, a frozenset) when the request is made;
     a variant of a request is ``dataclasses.replace(request, keep_models=False)``."""
-    paths: tuple[str, ...]
+    paths: Sequence[str]               # (a tuple once made)
     cfg: "Config"
     resolver: "PackageResolver"
     jobs_n: int | None = None          # workers (None: one per core, as ``run_jobs`` decides)
@@ -127,7 +128,7 @@ class RunRequest:
     progress: Callable[[int, int], None] | None = None   # progress(done, total) per linted model
     # changed files: report only the models whose inputs include one of them; files no
     # model uses land in ``CheckResult.unused_files``
-    affected_by: frozenset[str] | None = None
+    affected_by: AbstractSet[str] | None = None   # (a frozenset once made)
     render_dir: str | None = None      # set: the workers also draw a snapshot of each model
     render_rrd: bool = True            # ... and a recording beside it
     # lint in this process, without workers and their limits (trusted input only: tests
@@ -223,7 +224,7 @@ def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool, 
                                render_forward=cfg.forward_axis)
 
 
-def _keep_affected(out: CheckResult, affected_by: frozenset) -> None:
+def _keep_affected(out: CheckResult, affected_by: AbstractSet[str]) -> None:
     """Only the models whose inputs include a changed file; the files no model uses."""
     from urdf_lint.discovery.changes import affected
     out.models, out.unused_files = affected(out.models, affected_by)

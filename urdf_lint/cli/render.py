@@ -1,0 +1,65 @@
+"""``urdf-lint render``: a .rrd recording and a PNG snapshot per model."""
+from __future__ import annotations
+
+import os
+
+from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, load_cfg, no_models_warning,
+                                  note_unused, parse_package_paths, refuse_symlinked_out,
+                                  report_snapshots, through_models)
+from urdf_lint.cli.parser import add_inputs, add_limits, add_target, add_views
+from urdf_lint.core.emit import tell
+from urdf_lint.core.errors import UsageError
+
+
+NAME = "render"
+
+
+def add_parser(sub, raw):
+    rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots",
+                        description="Write a .rrd recording and a PNG snapshot per model.")
+    rd.add_argument("paths", nargs="*", default=["."], metavar="PATH",
+                    help="files or folders (default: .)")
+    rd.add_argument("--out", default="snapshots", metavar="DIR",
+                    help="output folder (default: snapshots)")
+    add_inputs(rd)
+    add_limits(rd)
+    rd.add_argument("--no-rrd", action="store_true", help="PNG only, no rerun recording")
+    add_views(rd)
+    add_target(rd)
+
+
+def run(args) -> int:
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    for p in args.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or directory: {p}")
+    refuse_symlinked_out(args.out, args.paths)
+    cfg = load_cfg(ConfigOptions.from_args(args), args.paths)
+    package_paths = parse_package_paths(args.package_path)
+    paths, affected_by, named = list(args.paths), None, set()
+    redirect = through_models(args.paths, package_paths, cfg)
+    if redirect is not None:
+        paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
+    resolver = build_resolver(paths, cfg, package_paths)
+    clear_stale(args.out, paths)
+    result = run_check(RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs,
+                                  render_dir=args.out, render_rrd=not args.no_rrd,
+                                  affected_by=affected_by))
+    if cfg.baseline:   # the pictures and summary.md count what 'check' would report
+        from urdf_lint.engine.baseline import filter_baseline
+        result.findings = filter_baseline(cfg.baseline, result.findings, Out().note)
+    note_unused(result, Out(), named)
+    no_models_warning(args.paths, result, Out())
+    missed = report_snapshots(result, args.out)
+    for m in result.models:
+        snap = m.snapshot or {}
+        for k in ("png", "rrd"):
+            if snap.get(k):
+                from urdf_lint.core.locations import display_path
+                tell(display_path(snap[k]))
+    from urdf_lint.core.emit import report_internal
+    if report_internal(result.internal):
+        return 2
+    # a requested model that could not be snapshotted is a failure, not a blank image
+    return 1 if missed else 0

@@ -1,0 +1,36 @@
+"""``urdf-lint rule CODE``: one rule's documentation."""
+from __future__ import annotations
+
+from urdf_lint.cli.rules import plain
+from urdf_lint.core.errors import UsageError
+
+
+NAME = "rule"
+
+
+def add_parser(sub, raw):
+    r = sub.add_parser("rule", help="explain one rule", description="Explain one rule.")
+    r.add_argument("code", help="a rule code (UL302) or name (limit-order)")
+
+
+def run(args) -> int:
+    from urdf_lint.engine.registry import find_rule
+    r = find_rule(args.code)
+    if r is None:
+        from urdf_lint.core.suggest import did_you_mean
+        from urdf_lint.engine.registry import load_rules
+        rules = load_rules()
+        hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
+        raise UsageError(f"unknown rule {args.code!r}{hint} (see 'urdf-lint rules')")
+    print(f"{r.code} {r.name} (default severity: {r.severity})\n")
+    if r.targets:
+        print("Per consumer target (config 'targets'): "
+              + ", ".join(f"{t} {s}" for t, s in r.targets.items()) + "\n")
+    print(plain(r.doc))
+    if r.options:
+        print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
+        for k, v in r.options.items():
+            print(f"  {k} = {v!r}")
+    print("\nFails:\n" + r.fail.strip())
+    print("\nPasses:\n" + r.passing.strip())
+    return 0

@@ -1,0 +1,24 @@
+"""``urdf-lint server``: the language server (LSP over stdio)."""
+from __future__ import annotations
+
+from urdf_lint.core.errors import UsageError
+
+
+NAME = "server"
+
+
+def add_parser(sub, raw):
+    sub.add_parser("server", help="a language server for editors (LSP over stdio; needs the "
+                   "'server' extra)",
+                   description="Run the urdf-lint language server on stdin/stdout: diagnostics "
+                               "from the real expansion, fixes, navigation, hover, completion. "
+                               "Editors start it; see the README for the set-up.")
+
+
+def run(args) -> int:
+    try:
+        from urdf_lint.lsp.server import main as serve
+    except ImportError as e:
+        raise UsageError(f"the language server needs the 'server' extra ({e.name} is not "
+                         "installed): pip install 'urdf-lint[server]'") from None
+    return serve()

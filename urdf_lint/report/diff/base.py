@@ -1,0 +1,92 @@
+"""The base of every output format of ``urdf-lint diff`` (as :mod:`urdf_lint.report.base` is
+of ``check``'s), and the helpers the formats share."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from urdf_lint.core.escape import escape_markdown, escape_markdown_code
+from urdf_lint.review.run import DiffResult
+
+
+@dataclass(frozen=True)
+class DiffOptions:
+    """How a diff report is written."""
+    image_base_url: str | None = None   # markdown: where the --render pictures are served
+
+
+class DiffFormatter:
+    """Subclass, set ``name`` and ``help``, and override :meth:`render`: the whole report of
+    one :class:`~urdf_lint.review.run.DiffResult` as text. Every name, value and message in
+    it is the description's (untrusted): escape it for the format."""
+
+    name = ""
+    help = ""
+
+    def __init__(self, options: DiffOptions | None = None):
+        self.options = options or DiffOptions()
+
+    def render(self, result: DiffResult) -> str:
+        raise NotImplementedError
+
+
+ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
+MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
+
+
+def fmt(v) -> str:
+    if v is None:
+        return "—"
+    if isinstance(v, tuple):
+        return " ".join(fmt(x) for x in v)
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def loc(o, root=None) -> str:
+    if o is None:
+        return ""
+    from urdf_lint.core.locations import display_path
+    return f"{display_path(o.file, root)}:{o.line}"
+
+
+def vloc(v, root=None) -> str:
+    """``config/joint_limits.yaml:28``: where a changed value is written."""
+    from urdf_lint.core.locations import display_path
+    return f"{display_path(v[0], root)}:{v[1]}"
+
+
+def chain(o, root=None) -> str:
+    return o.format_chain(root) if o is not None and o.chain else ""
+
+
+def what(c) -> str:
+    return f"{c.kind} '{c.name}'" + (f" {c.field}" if c.field and c.change != "renamed" else "")
+
+
+def moved(m, n=3) -> str:
+    parts = [f"{link} {d * 1000:.3g} mm" + (f", {a:.3g} rad" if a > 1e-6 else "")
+             for link, d, a in m.moved[:n]]
+    more = len(m.moved) - n
+    return ", ".join(parts) + (f" and {more} more" if more > 0 else "")
+
+
+def finding(fk) -> str:
+    code, file, msg = fk
+    return f"{code} {file}: {msg}"
+
+
+def md_escape(s) -> str:
+    """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
+    renders as that text only: no HTML, link, image, mention, table break or line break
+    (the shared helper, :mod:`urdf_lint.core.escape`)."""
+    return escape_markdown(str(s).replace("\r", " ").replace("\n", " "))
+
+
+def code(s) -> str:
+    """A code span: shown literally (no link, HTML or mention is made inside one)."""
+    s = str(s).replace("\r", " ").replace("\n", " ")
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return f"`{escape_markdown_code(s)}`"
+
+
