@@ -75,7 +75,10 @@ def run_main(*args, cwd=None, env=None):
         os.environ.update(env or {})
         os.chdir(cwd or REPO)
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            rc = main([str(a) for a in args])
+            try:
+                rc = main([str(a) for a in args])
+            except SystemExit as e:         # argparse's usage errors and --help
+                rc = e.code if isinstance(e.code, int) else int(e.code is not None)
     finally:
         os.chdir(saved_cwd)
         os.environ.clear()

@@ -28,7 +28,7 @@ def test_the_rule_follows_what_a_test_uses():
     # run_cli, in the test itself and reached through a module-level helper (lint)
     assert _why("test_accuracy", "test_broken_demo_shows_every_class") == \
         "test_broken_demo_shows_every_class uses run_cli"
-    assert _why("test_accuracy", "test_negative_mass_is_always_an_error") == "lint uses run_cli"
+    assert _why("test_cache", "test_invalidation") == "run uses run_cli"
     # a subprocess of another program, reached through a helper of tests/support (stock xacro)
     assert _why("test_fixes", "fix_and_check") in ("stock_xacro uses executable",
                                                   "stock_xacro uses subprocess")
@@ -37,4 +37,5 @@ def test_the_rule_follows_what_a_test_uses():
         "test_robotiq_mimic_joints_follow reads the corpus (GRIPPER)"
     # in process: the CLI's main() in this process (run_main), a tokeniser
     assert _why("test_fixes", "test_fix_options_are_checked") is None
+    assert _why("test_accuracy", "test_negative_mass_is_always_an_error") is None
     assert _why("test_fixes", "test_start_tag_tokeniser_on_raw_bytes") is None
