@@ -2,6 +2,7 @@
 cleanly when it does not."""
 from __future__ import annotations
 
+import functools
 import json
 import os
 import subprocess
@@ -146,8 +147,8 @@ def make_package(root: Path, name: str, files: dict, depends=()) -> Path:
 # ``corpus`` fixtures, ``corpus_entries`` or a module-level path under ../shared/corpus), or
 # lives in one of E2E_FILES; `unit` otherwise (in process: `pytest -m unit` is the inner loop).
 # A test marked by hand keeps its marker; marked `unit` against the rule it gets both, and
-# test_architecture.py's check of the markers fails. A `unit` test that still spawns a program
-# other than git (the rule missed it) fails with the command line (see _spawn_audit below).
+# tests/test_markers.py fails. A `unit` test that still spawns a program (the rule missed it)
+# fails with the command line (see _spawn_audit below).
 E2E_NAMES = frozenset({"run_cli", "terminated", "subprocess", "Popen", "executable",
                        "corpus_entries"})
 E2E_FIXTURES = frozenset({"corpus", "corpus_resolver", "corpus_report"})
@@ -155,6 +156,12 @@ E2E_FIXTURES = frozenset({"corpus", "corpus_resolver", "corpus_report"})
 E2E_FILES = {"test_server.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
              "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess"}
 _TESTS = Path(__file__).resolve().parent
+
+
+@functools.lru_cache(maxsize=None)
+def _ours(filename: str) -> bool:
+    """Whether code from ``filename`` is the test suite's own (tests/, tests/support/)."""
+    return Path(filename).resolve().is_relative_to(_TESTS)
 
 
 def _under_corpus(value) -> bool:
@@ -177,7 +184,7 @@ def _uses_e2e(code, globs: dict, seen: set) -> str | None:
             return f"{code.co_name} reads the corpus ({name})"
         func = getattr(value, "__wrapped__", value)
         sub = getattr(func, "__code__", None)
-        if sub is not None and Path(sub.co_filename).resolve().is_relative_to(_TESTS):
+        if sub is not None and _ours(sub.co_filename):
             why = _uses_e2e(sub, func.__globals__, seen)
             if why:
                 return why
@@ -191,7 +198,7 @@ def _uses_e2e(code, globs: dict, seen: set) -> str | None:
 
 def kind_of(item) -> tuple[str, str]:
     """("e2e" or "unit", why) for a collected test, by the rule above."""
-    path = Path(str(item.fspath))
+    path = Path(item.path)
     if path.name in E2E_FILES:
         return "e2e", E2E_FILES[path.name]
     names = set(getattr(item, "fixturenames", ()))
@@ -208,7 +215,7 @@ def kind_of(item) -> tuple[str, str]:
     for func in funcs:
         func = getattr(func, "__wrapped__", func)
         code = getattr(func, "__code__", None)
-        if code is not None and Path(code.co_filename).resolve().is_relative_to(_TESTS):
+        if code is not None and _ours(code.co_filename):
             why = _uses_e2e(code, func.__globals__, seen)
             if why:
                 return "e2e", why
