@@ -160,8 +160,11 @@ _TESTS = Path(__file__).resolve().parent
 
 @functools.lru_cache(maxsize=None)
 def _ours(filename: str) -> bool:
-    """Whether code from ``filename`` is the test suite's own (tests/, tests/support/)."""
-    return Path(filename).resolve().is_relative_to(_TESTS)
+    """Whether code from ``filename`` is a test file's or tests/support's, to follow. Not this
+    file's: its helpers that run something are named above (run_cli, terminated, the corpus
+    fixtures), and the rule's own code reads the corpus's path."""
+    path = Path(filename).resolve()
+    return path.is_relative_to(_TESTS) and path != Path(__file__).resolve()
 
 
 def _under_corpus(value) -> bool:
