@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from conftest import DESCRIPTIONS, make_package, run_cli
+from conftest import DESCRIPTIONS, make_package, run_cli, run_main
 from urdf_lint.rules._meshes import BROKEN_SURFACE_DAE, TETRA_STL
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -15,7 +15,7 @@ LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
 
 
 def lint(pkg, *extra, fail_on="never"):
-    p = run_cli("check", ".", "--no-cache", "--format", "json", "--fail-on", fail_on, *extra,
+    p = run_main("check", ".", "--no-cache", "--format", "json", "--fail-on", fail_on, *extra,
                 cwd=pkg)
     assert p.returncode in (0, 1), p.stderr
     return json.loads(p.stdout)["findings"]
@@ -167,7 +167,7 @@ def test_zero_effort_is_a_warning(tmp_path):
     sev = {f["message"].split("'")[1]: f["severity"] for f in fs}
     assert sev == {"j1": "warning", "j2": "error"}
     assert "ROS-Industrial convention" in next(f["message"] for f in fs if "'j1'" in f["message"])
-    p = run_cli("check", ".", "--no-cache", "--select", "UL304", cwd=pkg_with(tmp_path, EFFORT0))
+    p = run_main("check", ".", "--no-cache", "--select", "UL304", cwd=pkg_with(tmp_path, EFFORT0))
     assert p.returncode == 1  # the velocity=0 error
 
 

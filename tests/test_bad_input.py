@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from conftest import make_package, run_cli
+from conftest import make_package, run_main
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
@@ -35,7 +35,7 @@ CASES = {
 def test_one_located_diagnostic(tmp_path, name):
     files, code, loc = CASES[name]
     pkg = make_package(tmp_path, "bad_pkg", files)
-    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    p = run_main("check", ".", "--no-cache", cwd=pkg)
     assert p.returncode == 1, p.stdout + p.stderr
     diag = [ln for ln in p.stdout.splitlines() if ": UL" in ln]
     assert len(diag) == 1, p.stdout
@@ -45,26 +45,26 @@ def test_one_located_diagnostic(tmp_path, name):
 
 def test_messages_name_the_culprit(tmp_path):
     pkg = make_package(tmp_path, "bad_pkg", CASES["unknown-package"][0])
-    out = run_cli("check", ".", "--no-cache", cwd=pkg).stdout
+    out = run_main("check", ".", "--no-cache", cwd=pkg).stdout
     assert "unknown package 'ghost_pkg'" in out and "package.xml under" in out
     pkg = make_package(tmp_path / "b", "bad_pkg", CASES["required-arg"][0])
-    out = run_cli("check", ".", "--no-cache", cwd=pkg).stdout
+    out = run_main("check", ".", "--no-cache", cwd=pkg).stdout
     assert "xacro arg 'link_name'" in out
 
 
 def test_expand_command_reports_and_writes_nothing(tmp_path):
     pkg = make_package(tmp_path, "bad_pkg", CASES["missing-include"][0])
     out = tmp_path / "out" / "r.urdf"
-    p = run_cli("expand", pkg / "urdf/r.urdf.xacro", "-o", out)
+    p = run_main("expand", pkg / "urdf/r.urdf.xacro", "-o", out)
     assert p.returncode == 1
     assert "UL003" in p.stderr and "r.urdf.xacro:3:3" in p.stderr
     assert not out.exists() and not out.parent.exists()
 
 
 def test_usage_errors_exit_2(tmp_path):
-    assert run_cli("check", tmp_path / "does-not-exist").returncode == 2
-    assert run_cli("check", ".", "--select", "XX999", cwd=tmp_path).returncode == 2
-    assert run_cli("frobnicate").returncode == 2
+    assert run_main("check", tmp_path / "does-not-exist").returncode == 2
+    assert run_main("check", ".", "--select", "XX999", cwd=tmp_path).returncode == 2
+    assert run_main("frobnicate").returncode == 2
     (tmp_path / "urdf-lint.toml").write_text("selcet = ['UL1']\n")
-    p = run_cli("check", ".", cwd=tmp_path)
+    p = run_main("check", ".", cwd=tmp_path)
     assert p.returncode == 2 and "unknown key" in p.stderr and "selcet" in p.stderr

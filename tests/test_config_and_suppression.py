@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 
-from conftest import make_package, run_cli
+from conftest import make_package, run_main
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 ROBOT = f"""<robot name="r" {X}>
@@ -29,7 +29,7 @@ ROBOT = f"""<robot name="r" {X}>
 
 
 def findings(pkg, *extra):
-    p = run_cli("check", ".", "--no-cache", "--format", "json", *extra, cwd=pkg)
+    p = run_main("check", ".", "--no-cache", "--format", "json", *extra, cwd=pkg)
     assert p.returncode in (0, 1), p.stderr
     return json.loads(p.stdout)["findings"], p.returncode
 
@@ -90,7 +90,7 @@ fail-on = "error"
 def test_models_with_arg_sets(tmp_path):
     body = f'<robot name="$(arg kind)_bot" {X}>\n  <link name="$(arg kind)_base"/>\n</robot>\n'
     pkg = make_package(tmp_path, "p", {"urdf/bot.xacro": body})
-    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg)
+    p = run_main("check", ".", "--no-cache", "--format", "json", cwd=pkg)
     assert p.returncode == 1
     assert json.loads(p.stdout)["findings"][0]["code"] == "UL005"
     (pkg / "urdf-lint.toml").write_text("""
@@ -98,7 +98,7 @@ def test_models_with_arg_sets(tmp_path):
 path = "urdf/bot.xacro"
 args = [{ kind = "small" }, { kind = "large" }]
 """)
-    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg)
+    p = run_main("check", ".", "--no-cache", "--format", "json", cwd=pkg)
     assert p.returncode == 0, p.stdout
     names = sorted(m["name"] for m in json.loads(p.stdout)["models"])
     assert names == ["large_bot", "small_bot"]
@@ -110,7 +110,7 @@ def test_bad_config_is_an_error(tmp_path):
                         ("[rule-options.UL307]\ntolerence = 1\n", "unknown option"),
                         ("exclude = 3\n", "exclude")]:
         (tmp_path / "urdf-lint.toml").write_text(text)
-        p = run_cli("check", ".", cwd=tmp_path)
+        p = run_main("check", ".", cwd=tmp_path)
         assert p.returncode == 2, text
         assert words in p.stderr, (text, p.stderr)
 

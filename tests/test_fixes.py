@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import make_package, run_cli
+from conftest import make_package, run_cli, run_main
 from support.stock_xacro import stock_xacro
 
 HEAD = '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
@@ -26,7 +26,7 @@ def joint(limit: str) -> str:
 
 
 def findings(pkg, *extra):
-    p = run_cli("check", pkg, "--format", "json", "--no-cache", "--isolated", *extra)
+    p = run_main("check", pkg, "--format", "json", "--no-cache", "--isolated", *extra)
     assert p.returncode in (0, 1), p.stderr
     return json.loads(p.stdout)["findings"]
 
@@ -41,17 +41,17 @@ def fix_and_check(pkg: Path, code: str, expected_diff: str, hand_fixed: dict,
     a second --fix changes nothing; stock xacro of the fixed source == of the hand-fixed one."""
     before = codes(pkg)
     assert any(c == code for c, _ in before), before
-    d = run_cli("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
+    d = run_main("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
     assert d.returncode == 1, d.stderr
     assert d.stdout == expected_diff
     snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 1 finding" in f.stderr, f.stderr
     after = codes(pkg)
     assert [c for c in after if c[0] == code] == [], after
     assert set(after) <= set(before)            # nothing introduced
     again = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
-    g = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    g = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 0 findings" in g.stderr
     assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == again
     assert again != snapshot
@@ -130,15 +130,15 @@ def test_expression_is_refused_with_its_location(tmp_path):
     src = (HEAD + '  <xacro:property name="lo" value="1"/>\n' + LINKS
            + joint('<limit lower="${lo*2}" upper="-2" effort="1" velocity="1"/>') + "</robot>\n")
     pkg = make_package(tmp_path, "expr", {"urdf/robot.urdf.xacro": src})
-    p = run_cli("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
+    p = run_main("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
     (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
     assert f["fix"] == {"description": "swap lower and upper", "applicability": "safe",
                         "refused": "not fixable automatically: the value comes from the "
                                    "expression at urdf/robot.urdf.xacro:6"}
-    d = run_cli("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
+    d = run_main("check", ".", "--diff", "--no-cache", "--isolated", cwd=pkg)
     assert d.stdout == "" and d.returncode == 0
     before = (pkg / "urdf/robot.urdf.xacro").read_bytes()
-    run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert (pkg / "urdf/robot.urdf.xacro").read_bytes() == before
 
 
@@ -162,7 +162,7 @@ def test_fix_shared_with_a_model_it_would_break_is_rolled_back(tmp_path):
                                             "urdf/a.urdf.xacro": robot("-1"),
                                             "urdf/b.urdf.xacro": robot("3")})
     snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "UL302 fix rolled back: the edited source is also used by urdf/b.urdf.xacro, where " \
            "the fix is wrong" in f.stderr, f.stderr
     assert "Fixed 0 findings" in f.stderr
@@ -179,7 +179,7 @@ def test_crlf_tabs_non_ascii_and_comments_survive(tmp_path):
            "\t\t<limit  effort='1'\tlower='2'\r\n\t\t\tupper = '-2' velocity=\"1\"><!-- été --></limit>\r\n"
            '\t</joint>\r\n</robot>\r\n').encode("utf-8")
     pkg = make_package(tmp_path, "crlf", {"urdf/robot.urdf.xacro": src})
-    run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     out = (pkg / "urdf/robot.urdf.xacro").read_bytes()
     assert out == src.replace(b"lower='2'", b"lower='-2'").replace(b"upper = '-2'", b"upper = '2'")
     assert not [c for c, _ in codes(pkg) if c == "UL302"]
@@ -192,7 +192,7 @@ def test_axis_and_colour_fixes(tmp_path):
            '  <joint name="j" type="continuous"><parent link="a"/><child link="b"/>'
            '<axis xyz="0 0 2"/></joint>\n</robot>\n')
     pkg = make_package(tmp_path, "ax", {"urdf/robot.urdf.xacro": src})
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 2 findings" in f.stderr, f.stderr
     assert (pkg / "urdf/robot.urdf.xacro").read_text() == src.replace(
         'rgba="255 128 0 1"', 'rgba="1 0.502 0 1"').replace('xyz="0 0 2"', 'xyz="0 0 1"')
@@ -200,7 +200,7 @@ def test_axis_and_colour_fixes(tmp_path):
 
 
 def test_fix_options_are_checked(tmp_path):
-    p = run_cli("check", ".", "--unsafe-fixes", "--isolated", cwd=tmp_path)
+    p = run_main("check", ".", "--unsafe-fixes", "--isolated", cwd=tmp_path)
     assert p.returncode == 2 and "--unsafe-fixes needs --fix or --diff" in p.stderr
 
 
@@ -222,7 +222,7 @@ def test_typo_and_reference_fixes(tmp_path):
            '  </transmission>\n  <gazebo reference="bse_link"/>\n</robot>\n')
     pkg = make_package(tmp_path, "typo", {"urdf/robot.urdf": src})
     before = codes(pkg)
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 7 findings" in f.stderr, f.stderr
     want = (src.replace("<orgin xyz", "<origin xyz").replace("</orgin>", "</origin>")
             .replace("raduis", "radius").replace("ornage", "orange")
@@ -252,7 +252,7 @@ def test_unused_suppression_comment_is_removed(tmp_path):
            '  <link name="b"/>\r\n</robot>\r\n')
     pkg = make_package(tmp_path, "sup", {"urdf/robot.urdf": src.encode()})
     assert [c for c, _ in codes(pkg)].count("UL009") == 2
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 2 findings" in f.stderr, f.stderr
     assert (pkg / "urdf/robot.urdf").read_bytes() == (
         '<?xml version="1.0"?>\r\n<robot name="r">\r\n'
@@ -287,12 +287,12 @@ def test_json_and_sarif_carry_the_fix(tmp_path):
     pkg = make_package(tmp_path, "sarif", {"urdf/robot.urdf.xacro": src})
     data = src.encode()
     lo, hi = data.index(b'"2.1"') + 1, data.index(b'"-2.1"') + 1
-    p = run_cli("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
+    p = run_main("check", ".", "--format", "json", "--no-cache", "--isolated", cwd=pkg)
     (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
     assert f["fix"] == {"description": "swap lower and upper", "applicability": "safe", "edits": [
         {"file": "urdf/robot.urdf.xacro", "start": lo, "end": lo + 3, "text": "-2.1"},
         {"file": "urdf/robot.urdf.xacro", "start": hi, "end": hi + 4, "text": "2.1"}]}
-    p = run_cli("check", ".", "--format", "sarif", "--no-cache", "--isolated", cwd=pkg)
+    p = run_main("check", ".", "--format", "sarif", "--no-cache", "--isolated", cwd=pkg)
     (r,) = [r for r in json.loads(p.stdout)["runs"][0]["results"] if r["ruleId"] == "UL302"]
     assert r["fixes"] == [{"description": {"text": "swap lower and upper"}, "artifactChanges": [
         {"artifactLocation": {"uri": "urdf/robot.urdf.xacro"}, "replacements": [
@@ -308,7 +308,7 @@ def test_add_suppressions(tmp_path):
     pkg = make_package(tmp_path, "adopt", {"urdf/robot.urdf": src.encode()})
     before = codes(pkg)
     assert sorted(c for c, _ in before) == ["UL302", "UL307", "UL601"]
-    p = run_cli("check", ".", "--add-suppressions", "--no-cache", "--isolated", cwd=pkg)
+    p = run_main("check", ".", "--add-suppressions", "--no-cache", "--isolated", cwd=pkg)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "Added 3 suppression comments in 1 file" in p.stderr
     assert (pkg / "urdf/robot.urdf").read_bytes() == (
@@ -323,7 +323,7 @@ def test_add_suppressions(tmp_path):
     assert codes(pkg) == []
 
 
-def test_corpus_round_trip(tmp_path, corpus):
+def test_corpus_round_trip(tmp_path, corpus, corpus_report):
     """--fix --unsafe-fixes on a copy of the whole corpus: every changed model still expands
     with stock xacro, no finding is introduced, and a second run changes nothing."""
     from collections import Counter
@@ -335,7 +335,7 @@ def test_corpus_round_trip(tmp_path, corpus):
                     timeout=900)
         assert p.returncode in (0, 1), p.stderr
         return json.loads(p.stdout), p.stderr
-    before, _ = run()
+    before = corpus_report    # `run()` on the original: the same findings (cwd-relative)
     after, err = run("--fix", "--unsafe-fixes")
     fixed = int(err.rsplit("Fixed ", 1)[1].split()[0])
     changed = sorted(str(p.relative_to(copy)) for p in copy.rglob("*")
@@ -377,9 +377,9 @@ CONT = ('<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/><link name="
 
 def test_unsafe_fixes_need_the_flag_continuous_limits_dropped(tmp_path):
     pkg = make_package(tmp_path, "cont", {"urdf/robot.urdf": CONT})
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 0 findings" in f.stderr and (pkg / "urdf/robot.urdf").read_text() == CONT
-    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 1 finding" in f.stderr, f.stderr
     assert (pkg / "urdf/robot.urdf").read_text() == CONT.replace(
         '<limit lower="-3.14" upper="3.14" effort', '<limit effort')
@@ -390,7 +390,7 @@ def test_continuous_limits_made_revolute_by_option(tmp_path):
     pkg = make_package(tmp_path, "rev", {
         "urdf/robot.urdf": CONT,
         "urdf-lint.toml": '[rule-options.UL305]\nfix = "revolute"\n'})
-    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--unsafe-fixes", "--no-cache", cwd=pkg)
     assert "Fixed 1 finding" in f.stderr, f.stderr
     assert (pkg / "urdf/robot.urdf").read_text() == CONT.replace('"continuous"', '"revolute"')
 
@@ -403,7 +403,7 @@ def test_root_inertial_gets_a_massless_root(tmp_path):
            '\t<joint name="j" type="fixed"><parent link="${base}"/><child link="arm"/></joint>\r\n'
            '</robot>\r\n')
     pkg = make_package(tmp_path, "root", {"urdf/robot.urdf.xacro": src.encode()})
-    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 1 finding" in f.stderr, f.stderr
     fixed = src.replace('\t<link name="${base}">', '\t<link name="${base}_root"/>\r\n'
                         '\t<joint name="${base}_root_joint" type="fixed"><parent link="${base}_root"/>'
@@ -424,7 +424,7 @@ def test_repeated_inline_colour_becomes_one_named_material(tmp_path):
            '  <joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>\n</robot>\n')
     pkg = make_package(tmp_path, "mat", {"urdf/robot.urdf": src})
     assert "UL504" in [c for c, _ in codes(pkg)]
-    f = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 1 finding" in f.stderr, f.stderr
     ref = '<visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual>'
     assert (pkg / "urdf/robot.urdf").read_text() == (
@@ -446,16 +446,16 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     ws = tmp_path / "ws" / "src"
     make_package(ws, "common", {"urdf/props.xacro": props})
     robot = make_package(ws, "robot", {"urdf/robot.urdf.xacro": src})
-    p = run_cli("check", "robot", "--fix", "--no-cache", "--isolated", "--package-path",
+    p = run_main("check", "robot", "--fix", "--no-cache", "--isolated", "--package-path",
                 f"common={ws / 'common'}", cwd=ws)
     assert "Fixed 0 findings" in p.stderr, p.stderr
     assert (ws / "common/urdf/props.xacro").read_text() == props
-    p = run_cli("check", "robot", "--format", "json", "--no-cache", "--isolated",
+    p = run_main("check", "robot", "--format", "json", "--no-cache", "--isolated",
                 "--package-path", f"common={ws / 'common'}", cwd=ws)
     (f,) = [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL302"]
     assert f["fix"]["refused"] == ("not fixable automatically: common/urdf/props.xacro is "
                                    "outside the linted paths")
-    p = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=ws)
+    p = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=ws)
     assert "Fixed 1 finding" in p.stderr, p.stderr
     assert (ws / "common/urdf/props.xacro").read_text() != props
     assert (robot / "urdf/robot.urdf.xacro").read_text() == src
@@ -480,7 +480,7 @@ def test_start_tag_tokeniser_on_raw_bytes():
 def test_fixes_survive_the_cache(tmp_path):
     src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
     pkg = make_package(tmp_path, "cached", {"urdf/robot.urdf.xacro": src})
-    runs = [run_cli("check", ".", "--format", "json", "--isolated", cwd=pkg) for _ in range(2)]
+    runs = [run_main("check", ".", "--format", "json", "--isolated", cwd=pkg) for _ in range(2)]
     cold, warm = (json.loads(r.stdout) for r in runs)
     assert [m["cached"] for m in warm["models"]] == [True]
     assert cold["findings"] == warm["findings"]
@@ -497,9 +497,9 @@ def test_pre_commit_fix_hook_fails_when_it_changed_files(tmp_path):
     assert entry[0] == "urdf-lint" and hooks["urdf-lint-fix"]["pass_filenames"] is False
     src = HEAD + LINKS + joint('<limit lower="2.1" upper="-2.1" effort="1" velocity="1"/>') + "</robot>\n"
     pkg = make_package(tmp_path, "hook", {"urdf/robot.urdf.xacro": src})
-    first = run_cli(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
+    first = run_main(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
     assert first.returncode == 1 and "Fixed 1 finding" in first.stderr, first.stderr
-    second = run_cli(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
+    second = run_main(*entry[1:], "--isolated", "--no-cache", cwd=pkg)
     assert second.returncode == 0 and "Fixed 0 findings" in second.stderr, second.stderr
 
 
@@ -564,7 +564,7 @@ def test_fix_where_the_value_is_written(tmp_path, kind, code, element, bad, good
 def test_a_bad_fix_option_is_a_config_error(tmp_path):
     pkg = make_package(tmp_path, "badopt", {"urdf/robot.urdf": CONT,
                                             "urdf-lint.toml": '[rule-options.UL305]\nfix = "drop"\n'})
-    p = run_cli("check", ".", "--no-cache", cwd=pkg)
+    p = run_main("check", ".", "--no-cache", cwd=pkg)
     assert p.returncode == 2
     assert "rule-options.UL305.fix must be one of 'drop-limits', 'revolute', not 'drop'" in p.stderr
 
@@ -582,7 +582,7 @@ def test_a_macro_literal_that_needs_different_values_per_model_is_not_fixed(tmp_
     pkg = make_package(tmp_path, "perm", {"urdf/parts.xacro": parts, "urdf/a.urdf.xacro": robot("-1"),
                                           "urdf/b.urdf.xacro": robot("-3")})
     snapshot = {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()}
-    f = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    f = run_main("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
     assert "Fixed 0 findings" in f.stderr, f.stderr
     assert "UL302 fix not applied: the models or macro calls that use urdf/parts.xacro need different values there ('-1' for urdf/a.urdf.xacro, '-3' for urdf/b.urdf.xacro)" in f.stderr, f.stderr
     assert {p: p.read_bytes() for p in pkg.rglob("*") if p.is_file()} == snapshot
@@ -597,7 +597,7 @@ def test_symlinked_source_stays_a_link(tmp_path):
     link = tmp_path / "ws"
     link.mkdir()
     (link / "robot.urdf.xacro").symlink_to(real / "urdf/robot.urdf.xacro")
-    f = run_cli("check", str(tmp_path), "--fix", "--no-cache", "--isolated", cwd=tmp_path)
+    f = run_main("check", str(tmp_path), "--fix", "--no-cache", "--isolated", cwd=tmp_path)
     assert "Fixed" in f.stderr and (link / "robot.urdf.xacro").is_symlink()
     assert 'lower="-2.1" upper="2.1"' in (real / "urdf/robot.urdf.xacro").read_text()
 
@@ -616,10 +616,10 @@ def test_a_rolled_back_fix_is_not_retried_until_its_inputs_change(tmp_path):
                                             "urdf/a.urdf.xacro": robot("-1"),
                                             "urdf/b.urdf.xacro": robot("3")})
     cache = ["--cache-dir", str(tmp_path / "cache")]
-    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    f = run_main("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
     assert "UL302 fix rolled back: the edited source is also used by urdf/b.urdf.xacro" in f.stderr
     stamp = os.stat(pkg / "urdf/common.xacro").st_mtime_ns
-    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    f = run_main("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
     assert "fix rolled back" not in f.stderr, f.stderr
     assert ("UL302 fix not applied: rolled back on an earlier run (the edited source is also "
             "used by urdf/b.urdf.xacro") in f.stderr, f.stderr
@@ -627,5 +627,5 @@ def test_a_rolled_back_fix_is_not_retried_until_its_inputs_change(tmp_path):
     assert os.stat(pkg / "urdf/common.xacro").st_mtime_ns == stamp   # not rewritten
     # an input of the models changes: tried (and rolled back) again
     (pkg / "urdf/b.urdf.xacro").write_text(robot("3", "  <!-- edited -->\n"))
-    f = run_cli("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
+    f = run_main("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
     assert "UL302 fix rolled back: the edited source is also used by" in f.stderr, f.stderr

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from conftest import make_package, run_cli
+from conftest import make_package, run_main
 
 LIMITS_YAML = "# limits\nfinger:\n  lower: 1.5\n  upper: -1.5\n"
 
@@ -51,7 +51,7 @@ def hand(tmp_path_factory):
 
 
 def check(pkg, *args):
-    return run_cli("check", ".", "--no-cache", "--isolated", *args, cwd=pkg)
+    return run_main("check", ".", "--no-cache", "--isolated", *args, cwd=pkg)
 
 
 def test_one_finding_per_source_line_with_its_elements_listed(hand):
@@ -135,12 +135,12 @@ def test_diff_shows_the_yaml_line_that_changed(tmp_path):
     git("add", "-A")
     git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
     (pkg / "urdf/joint_limits.yaml").write_text(good.replace("upper: 1.5", "upper: 1.2"))
-    doc = json.loads(run_cli("diff", "HEAD", "--format", "json", "--no-cache", cwd=pkg).stdout)
+    doc = json.loads(run_main("diff", "HEAD", "--format", "json", "--no-cache", cwd=pkg).stdout)
     changes = [c for m in doc["models"] for c in m["changes"] if c["field"] == "limit.upper"]
     assert len(changes) == 5, doc
     assert all(c["value_from"][:2] == ["urdf/joint_limits.yaml", 4] for c in changes), changes
     assert all(c["head"]["line"] == LIMIT_LINE for c in changes)
-    text = run_cli("diff", "HEAD", "--no-cache", cwd=pkg).stdout
+    text = run_main("diff", "HEAD", "--no-cache", cwd=pkg).stdout
     assert "value from urdf/joint_limits.yaml:4" in text, text
 
 

@@ -5,7 +5,7 @@ import os
 
 import pytest
 
-from conftest import make_package, run_cli
+from conftest import make_package, run_main
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="loc" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -103,7 +103,7 @@ def test_find_and_package_includes(model):
 
 
 def test_cli_reports_macro_line_and_chain(model):
-    p = run_cli("check", model.pkg, "--select", "UL302", "--no-cache", cwd=model.pkg)
+    p = run_main("check", model.pkg, "--select", "UL302", "--no-cache", cwd=model.pkg)
     assert p.returncode == 1
     lines = p.stdout.splitlines()
     assert lines[0] == ("urdf/arm.xacro:14:7: UL302 joint 'left_joint': lower 1 > upper -1 "

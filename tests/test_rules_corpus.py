@@ -3,11 +3,9 @@ clean result. Also: every defect the corpus MANIFEST names is found, and every u
 that urdfdom rejects gets at least one error."""
 from __future__ import annotations
 
-import json
-
 import pytest
 
-from conftest import CORPUS, run_cli
+from conftest import CORPUS
 
 # code -> (file, line, col) of a real finding in the corpus
 REAL = {
@@ -67,11 +65,8 @@ CLEAN = ["UL002", "UL003", "UL007", "UL012", "UL009", "UL010", "UL011", "UL408",
 
 
 @pytest.fixture(scope="module")
-def report(corpus):
-    p = run_cli("check", ".", "--no-cache", "--format", "json", "--fail-on", "never",
-                cwd=corpus, timeout=600)
-    assert p.returncode == 0, p.stderr
-    return json.loads(p.stdout)
+def report(corpus_report):
+    return corpus_report      # the session's one run (tests/conftest.py)
 
 
 def _at(report, code, file):
