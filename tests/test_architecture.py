@@ -490,3 +490,19 @@ def test_rooms_below_the_rules_name_real_rules():
     assert not unknown, "no such rule module:\n" + "\n".join(unknown)
     with pytest.raises(ValueError):
         RuleName("resource_limit")
+
+
+def test_every_package_folder_is_installed():
+    """pyproject.toml lists the packages by hand (``rules/`` is installed as
+    ``urdf_lint.rules``): a new room or sub-room missing from that list would be left out of
+    the wheel, and the installed tool would fail where the checkout works."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:   # Python 3.10
+        import tomli as tomllib
+    pyproject = tomllib.loads((REPO / "pyproject.toml").read_text())
+    listed = set(pyproject["tool"]["setuptools"]["packages"])
+    found = {".".join(("urdf_lint", *p.parent.relative_to(PKG).parts))
+             for p in PKG.rglob("__init__.py") if "__pycache__" not in p.parts}
+    found.add("urdf_lint.rules")
+    assert found == listed, f"not installed: {sorted(found - listed)}; stale: {sorted(listed - found)}"

@@ -36,7 +36,7 @@ KIND = '''
 """``upper_value``: upper-case an attribute's literal value (a test's kind)."""
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, written
 from urdf_lint.fix.kinds import FixKind
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 
 def upper_value(attr, description):

@@ -462,7 +462,8 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
 
 
 def test_start_tag_tokeniser_on_raw_bytes():
-    from urdf_lint.fix.sourceedit import Edit, apply_edits, end_tag_of, escape, start_tag_at
+    from urdf_lint.core.edits import Edit
+    from urdf_lint.fix.sourceedit import apply_edits, end_tag_of, escape, start_tag_at
     data = ('<robot>\r\n<!-- <link name="x"> -->\r\n\t<link  name = \'é&amp;"q\'\r\n'
             '\ttype="a&#x41;\tb"><link name="in"></link><!-- </link> --></link>\r\n'
             '</robot>\r\n').encode()

@@ -61,16 +61,16 @@ def parse_package_paths(items):
 # -- config -----------------------------------------------------------------------------------
 def load_cfg(opts: ConfigOptions, paths):
     from urdf_lint.config.schema import find_config, load_config, validate_codes
-    from urdf_lint.engine.registry import codes_to_names
+    from urdf_lint.engine.registry import codes_to_names, load_rules
     known = codes_to_names()
     if opts.isolated:
         cfg = load_config(None)
     else:
         path = opts.config or find_config(paths[0] if paths else ".")
-        cfg = load_config(path, known)
+        cfg = load_config(path, known, load_rules)
     apply_trust(cfg, opts, paths)
     apply_cli_values(cfg, opts)
-    validate_codes(cfg, known)
+    validate_codes(cfg, known, rules=load_rules)
     return cfg
 
 

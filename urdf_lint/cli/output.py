@@ -44,8 +44,10 @@ def write_findings(opts: FindingsOutput, cfg, result, out, color_mode, roots=Non
         out.info(f"baseline: {before - len(result.findings)} known finding(s) hidden "
                  f"({display_path(cfg.baseline)})")
     fmt = cfg.output_format or ("github" if os.environ.get("GITHUB_ACTIONS") else "text")
+    from urdf_lint.engine.registry import load_rules
     options = dict(statistics=opts.statistics, show_source=opts.show_source, quiet=out.quiet,
-                   roots=None if roots is None else tuple(str(r) for r in roots))
+                   roots=None if roots is None else tuple(str(r) for r in roots),
+                   rules=load_rules() if fmt == "sarif" else None)
     if opts.output:
         from urdf_lint.core import fsbound
         try:

@@ -18,7 +18,7 @@ import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 from urdf_lint.config.policy import code_matches
 from urdf_lint.core.suggest import did_you_mean
@@ -628,8 +628,11 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
     setattr(cfg, key.attr, value)
 
 
-def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = None) -> Config:
-    """Load and validate. ``known_codes`` maps code -> name for checking codes and options."""
+def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = None,
+                rules: "Callable[[], Mapping[str, Any]] | None" = None) -> Config:
+    """Load and validate. ``known_codes`` maps code -> name for checking codes; ``rules()``
+    gives code -> rule (its options) for checking ``rule-options`` (the caller knows the rules:
+    the config room is below the engine's)."""
     if path is None:
         return Config(root=os.getcwd())
     path = Path(path)
@@ -665,7 +668,7 @@ def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = No
                               f"(expected {e.expected})") from None
         _set(cfg, key, value, path.parent)
     if known_codes is not None:
-        validate_codes(cfg, known_codes, str(path))
+        validate_codes(cfg, known_codes, str(path), rules)
     return cfg
 
 
@@ -731,7 +734,8 @@ def _did_you_mean_file(rel: str, root: Path) -> str:
     return f" (did you mean {hit!r}?)"
 
 
-def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line") -> None:
+def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command line",
+                   rules: "Callable[[], Mapping[str, Any]] | None" = None) -> None:
     names = set(known.values())
 
     def check(p: str, what: str) -> None:
@@ -751,7 +755,8 @@ def validate_codes(cfg: Config, known: dict[str, Any], where: str = "command lin
             check(p, "per-file-ignores")
     for p in cfg.severity:
         check(p, "severity")
-    validate_rule_options(cfg, where)
+    if rules is not None:
+        validate_rule_options(cfg, where, rules)
 
 
 def option_types(rule: Any) -> dict[str, Any]:
@@ -784,10 +789,10 @@ _TYPE_NAMES = {bool: "true or false", int: "an integer", float: "a number", str:
                list: "a list"}
 
 
-def validate_rule_options(cfg: Config, where: str) -> None:
+def validate_rule_options(cfg: Config, where: str,
+                          load_rules: "Callable[[], Mapping[str, Any]]") -> None:
     if not cfg.rule_options:
         return
-    from urdf_lint.engine.registry import load_rules
     rules = load_rules()
     by_name = {r.name: r for r in rules.values()}
     for key, opts in cfg.rule_options.items():

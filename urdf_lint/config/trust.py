@@ -30,7 +30,7 @@ import os
 from typing import Any
 
 from urdf_lint.config.schema import SCHEMA, Config, Key, Number
-from urdf_lint.discovery.packages import inside
+from urdf_lint.core.tree import inside
 
 
 def _inside(f: str, p: str) -> bool:

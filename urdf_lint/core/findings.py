@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Iterable, NamedTuple
 from urdf_lint.core.locations import Origin
 
 if TYPE_CHECKING:  # pragma: no cover
-    from urdf_lint.fix.fixes import Fix
+    from urdf_lint.core.edits import Fix
 
 SEVERITIES = ("info", "warning", "error")
 SEVERITY_RANK = {s: i for i, s in enumerate(SEVERITIES)}
@@ -35,7 +35,7 @@ class Problem:
     severity: str = ""                      # a rule's choice for this one problem ("" = the
                                             # rule's default); effective once the pipeline ran
     models: tuple[str, ...] = ()            # display labels of the models it was found in
-    fix: "Fix | None" = None                # a source fix (urdf_lint.fix.fixes), if the rule has one
+    fix: "Fix | None" = None                # a source fix (urdf_lint.core.edits), if the rule has one
     consumers: tuple[Any, ...] | None = None  # ((target, severity | "off"), ...) the rule chose
                                             # for this one problem (None: the rule's TARGETS)
     severity_from: tuple[str, ...] = ()     # the selected targets that make it this severe
@@ -55,7 +55,7 @@ class Problem:
            value_from: Any = ()) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
         ``severity``: set only when the rule chose it for this one problem; ``fix``: a
-        :class:`urdf_lint.fix.fixes.Fix` when the rule has one; ``consumers``: the target table
+        :class:`urdf_lint.core.edits.Fix` when the rule has one; ``consumers``: the target table
         the rule chose for this one problem (:mod:`urdf_lint.core.targets`)."""
         chain = tuple(tuple(c) for c in (loc[3] if len(loc) > 3 else ()))
         return cls(code, message, Origin(loc[0], int(loc[1]), int(loc[2]), chain),
@@ -173,7 +173,7 @@ class Problem:
         """From plain data (a record or a row): built directly, without the dataclass init,
         since every field is known here."""
         if fix:
-            from urdf_lint.fix.fixes import Fix
+            from urdf_lint.core.edits import Fix
             fix = Fix.from_record(fix)
         new = object.__new__(cls)
         new.__dict__.update(
@@ -228,7 +228,7 @@ def merge(findings: list[Problem]) -> list[Problem]:
             if more:
                 have = out[k] = have.replace(models=have.models + more)
             if have.fix is not None and f.fix is not None and have.fix != f.fix:
-                from urdf_lint.fix.fixes import combine
+                from urdf_lint.core.edits import combine
                 out[k] = have.replace(fix=combine(have.fix, f.fix, have.models[0] if
                                                   have.models else "", f.models[0] if
                                                   f.models else ""))
@@ -263,7 +263,7 @@ def group(findings: Iterable[Problem]) -> list[Problem]:
         froms = {f.value_from for f in fs}
         fix = head.fix if all(f.fix == head.fix for f in fs) else None
         if fix is None and any(f.fix is not None for f in fs):
-            from urdf_lint.fix.fixes import combine
+            from urdf_lint.core.edits import combine
             fixes = [f.fix for f in fs if f.fix is not None]
             fix = fixes[0]
             for other in fixes[1:]:

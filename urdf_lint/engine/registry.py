@@ -34,6 +34,8 @@ from dataclasses import dataclass, field
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, NamedTuple
 
+from urdf_lint.core.plugins import submodule_names
+
 if TYPE_CHECKING:  # pragma: no cover - the rules' module, imported when a rule runs
     from urdf_lint.engine.api import Report
 
@@ -70,25 +72,6 @@ class Rule:
 
 
 _RULES: dict[str, Rule] | None = None
-
-
-def submodule_names(paths: Iterable[str]) -> list[str]:
-    """The public modules (``*.py`` not starting with ``_``) in a package's folders, sorted.
-    (``pkgutil.iter_modules`` would import ``inspect``, ~7 ms, to name them.) None at all is
-    an error: an install without its sources must not lint with no rules, or report nothing."""
-    from urdf_lint.core import fsbound
-    paths = list(paths)
-    names: set[str] = set()
-    for folder in paths:
-        try:
-            names.update(fn[:-3] for fn in fsbound.list_dir(folder)
-                         if fn.endswith(".py") and not fn.startswith("_"))
-        except OSError:
-            continue
-    if not names:
-        raise RuntimeError(f"no modules in {', '.join(map(str, paths))}: urdf-lint is "
-                           "installed without its sources (.py files)")
-    return sorted(names)
 
 
 def rule_from_module(mod: ModuleType) -> Rule:

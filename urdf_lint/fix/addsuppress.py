@@ -10,7 +10,8 @@ from __future__ import annotations
 
 from urdf_lint.core import fsbound
 from urdf_lint.core.codes import RuleName
-from urdf_lint.fix.sourceedit import Edit, apply_edits, inside, line_offset
+from urdf_lint.core.edits import Edit
+from urdf_lint.fix.sourceedit import apply_edits, inside, line_offset
 
 # the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
 unused_suppression = RuleName("ul009_unused_suppression")

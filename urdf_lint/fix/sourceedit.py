@@ -12,6 +12,7 @@ import os
 import re
 from dataclasses import dataclass
 
+
 _NAME = re.compile(rb"[^\s/>=]+")
 _WS = re.compile(rb"\s*")
 _ENTITY = re.compile(r"&(#x[0-9a-fA-F]+|#[0-9]+|amp|lt|gt|quot|apos);")
@@ -193,18 +194,6 @@ def line_col(data: bytes, off: int) -> tuple[int, int]:
     line = data.count(b"\n", 0, off) + 1
     start = data.rfind(b"\n", 0, off) + 1
     return line, len(data[start:off].decode("utf-8", "replace")) + 1
-
-
-@dataclass(frozen=True)
-class Edit:
-    """Replace bytes [start, end) of ``file`` with ``text`` (UTF-8)."""
-    file: str
-    start: int
-    end: int
-    text: str
-
-    def to_dict(self) -> dict:
-        return {"file": self.file, "start": self.start, "end": self.end, "text": self.text}
 
 
 def apply_edits(data: bytes, edits) -> bytes:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from lsprotocol import types
 
 from urdf_lint.core import overlay
-from urdf_lint.fix.fixes import Fix
+from urdf_lint.core.edits import Fix
 from urdf_lint.lsp.core import UrdfLintServer, path_uri, uri_path
 
 FIX_ALL = types.CodeActionKind.SourceFixAll.value + ".urdf-lint"
@@ -47,7 +47,7 @@ def _suppress_next(ls, f, diag) -> types.CodeAction | None:
 
 
 def _suppress_file(ls, f, diag) -> types.CodeAction | None:
-    from urdf_lint.fix.sourceedit import Edit
+    from urdf_lint.core.edits import Edit
     if not f.file.endswith((".xacro", ".urdf", ".xml")):
         return None
     data = ls.doc(f.file).data

@@ -211,15 +211,15 @@ def _load_cfg(root: str):
     config may not loosen the guarantees (``trust.py``), limits are clamped."""
     from urdf_lint.config import trust
     from urdf_lint.config.schema import find_config, load_config, validate_codes
-    from urdf_lint.engine.registry import codes_to_names
+    from urdf_lint.engine.registry import codes_to_names, load_rules
     from urdf_lint.discovery.vcs import repo_root
     known = codes_to_names()
-    cfg = load_config(find_config(root), known)
+    cfg = load_config(find_config(root), known, load_rules)
     from urdf_lint.core.emit import say
     for note in trust.apply(cfg, repo_root(root), trusted=False):
         say(f"urdf-lint: {note}")   # on stderr (stdout is the protocol), escaped
     trust.clamp(cfg)
-    validate_codes(cfg, known)
+    validate_codes(cfg, known, rules=load_rules)
     return cfg
 
 

@@ -1,6 +1,8 @@
 """The base of every output format (after flake8's ``BaseFormatter``)."""
 from __future__ import annotations
 
+from typing import Any
+
 from collections import Counter
 from dataclasses import dataclass
 
@@ -20,6 +22,9 @@ class ReportOptions:
     roots: tuple | None = None      # --show-source reads sources only inside these (fsbound)
     quiet: bool = False            # findings only: no summary line
     show_models: bool = True
+    # code -> the rule (its name, summary, doc and severity), for formats that describe the
+    # rules they report (SARIF); handed over by the caller, which knows the rules
+    rules: Any = None
 
 
 class BaseFormatter:

@@ -21,7 +21,7 @@ def discover(package: str, paths, base: type, order: tuple = ()) -> dict:
     """name -> class, for every ``base`` subclass with a ``name`` defined in a module of
     ``package`` (its folders ``paths``), those named in ``order`` first. ``check``'s formats
     and ``diff``'s (:mod:`urdf_lint.report.diff`) are found by it alike."""
-    from urdf_lint.engine.registry import submodule_names
+    from urdf_lint.core.plugins import submodule_names
     found: dict = {}
     for module in submodule_names(paths):
         if module in ("base", "registry"):

@@ -104,8 +104,7 @@ class SarifFormatter(BaseFormatter):
 
     def write(self, result):
         result = grouped(result)
-        from urdf_lint.engine.registry import load_rules
-        rules = load_rules()
+        rules = self.options.rules or {}
         used = sorted({f.code for f in result.findings})
         index = {c: i for i, c in enumerate(used)}
         driver_rules = [_driver_rule(c, rules.get(c)) for c in used]

@@ -22,6 +22,7 @@ import tempfile
 from collections import Counter
 from dataclasses import dataclass, field
 
+from urdf_lint.report.diff.base import DiffResult
 from urdf_lint.review.robotdiff import ModelDiff, diff_models
 from urdf_lint.rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
                     ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
@@ -32,7 +33,6 @@ _FAILURE_RULES = (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
                   ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
                   ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
 
-MARKDOWN_LIMIT = 60_000
 
 
 class ReviewError(Exception):
@@ -123,19 +123,6 @@ class Side:
     rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
     errors: dict = field(default_factory=dict)      # key -> message
     pictures: dict = field(default_factory=dict)    # key -> its pictures' name (as `render`'s)
-
-
-@dataclass
-class DiffResult:
-    """The outcome of ``urdf-lint diff``: the models a change affected, and what it did to each."""
-    base: str
-    head: str
-    models: list = field(default_factory=list)      # ModelDiff, affected models only
-    total_models: int = 0
-    base_expanded: int = 0
-    internal: list = field(default_factory=list)
-    snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
-    no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
 
 
 def _key(rel_entry: str, args: dict) -> str:

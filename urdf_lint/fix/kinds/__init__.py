@@ -24,7 +24,8 @@ from typing import TYPE_CHECKING, Any, Callable, ClassVar
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.core.locations import Origin
     from urdf_lint.fix.fixes import Request, _Sources
-    from urdf_lint.fix.sourceedit import Edit, StartTag
+    from urdf_lint.core.edits import Edit
+    from urdf_lint.fix.sourceedit import StartTag
 
 Expect = tuple[str, int, str, str]   # (expectation, element index, attr | old name, value | new)
 

@@ -7,7 +7,7 @@ import re
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where, written
 from urdf_lint.fix.kinds import Expect, FixKind, Site
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 ANY = "\ue000any"   # a private-use marker: "this attribute may take any value"
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import Request, written
 from urdf_lint.fix.kinds import FixKind, Site
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 
 def drop_attrs(names, description: str, safe: bool = False) -> Request:

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import Site, StructuralKind
-from urdf_lint.fix.sourceedit import Edit, end_tag_of, iter_start_tags, parse_start_tag, start_tag_at
+from urdf_lint.core.edits import Edit
+from urdf_lint.fix.sourceedit import end_tag_of, iter_start_tags, parse_start_tag, start_tag_at
 
 
 def named_material(elements, name: str, rgba: str, define: bool) -> Request:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import Site, StructuralKind
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 
 def new_root(description: str, suffix: str = "_root") -> Request:

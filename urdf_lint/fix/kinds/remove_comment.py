@@ -4,7 +4,7 @@ of the robot: the expanded robot does not change."""
 from __future__ import annotations
 
 from urdf_lint.fix.kinds import FixKind, Site
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 
 class RemoveComment(FixKind):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import FixKind, Site
-from urdf_lint.fix.sourceedit import Edit
+from urdf_lint.core.edits import Edit
 
 
 def rename_attr(old: str, new: str, safe: bool = True) -> Request:

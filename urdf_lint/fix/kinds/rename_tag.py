@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import FixKind, Site
-from urdf_lint.fix.sourceedit import Edit, end_tag_of
+from urdf_lint.core.edits import Edit
+from urdf_lint.fix.sourceedit import end_tag_of
 
 
 def rename_tag(old: str, new: str, safe: bool = True) -> Request:

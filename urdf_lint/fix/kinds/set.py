@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, same_value, trace, where, written, yaml_text
 from urdf_lint.fix.kinds import FixKind, Site
-from urdf_lint.fix.sourceedit import Attr, Edit, escape
+from urdf_lint.core.edits import Edit
+from urdf_lint.fix.sourceedit import Attr, escape
 
 
 def set_attrs(changes: dict, description: str, safe: bool = True,

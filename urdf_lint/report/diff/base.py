@@ -2,10 +2,22 @@
 of ``check``'s), and the helpers the formats share."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from urdf_lint.core.escape import escape_markdown, escape_markdown_code
-from urdf_lint.review.run import DiffResult
+
+
+@dataclass
+class DiffResult:
+    """The outcome of ``urdf-lint diff``: the models a change affected, and what it did to each."""
+    base: str
+    head: str
+    models: list = field(default_factory=list)      # ModelDiff, affected models only
+    total_models: int = 0
+    base_expanded: int = 0
+    internal: list = field(default_factory=list)
+    snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
+    no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
 
 
 @dataclass(frozen=True)
@@ -16,7 +28,7 @@ class DiffOptions:
 
 class DiffFormatter:
     """Subclass, set ``name`` and ``help``, and override :meth:`render`: the whole report of
-    one :class:`~urdf_lint.review.run.DiffResult` as text. Every name, value and message in
+    one :class:`DiffResult` as text. Every name, value and message in
     it is the description's (untrusted): escape it for the format."""
 
     name = ""

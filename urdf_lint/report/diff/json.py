@@ -3,8 +3,7 @@ from __future__ import annotations
 
 import json
 
-from urdf_lint.review.run import DiffResult
-from urdf_lint.report.diff.base import DiffFormatter
+from urdf_lint.report.diff.base import DiffResult, DiffFormatter
 
 
 class JsonDiff(DiffFormatter):

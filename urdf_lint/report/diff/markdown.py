@@ -3,8 +3,10 @@ comment (always under 60,000 characters; with --image-base-url, the --render pic
 from __future__ import annotations
 
 from urdf_lint.core.escape import escape_html
-from urdf_lint.report.diff.base import MD_ICON, DiffFormatter, chain, code, fmt, loc, md_escape, moved, vloc
-from urdf_lint.review.run import MARKDOWN_LIMIT, DiffResult
+from urdf_lint.report.diff.base import (MD_ICON, DiffFormatter, DiffResult, chain, code, fmt, loc,
+                                        md_escape, moved, vloc)
+
+MARKDOWN_LIMIT = 60_000   # characters of a job summary
 
 
 class MarkdownDiff(DiffFormatter):

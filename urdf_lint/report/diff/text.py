@@ -2,8 +2,8 @@
 from __future__ import annotations
 
 from urdf_lint.core.escape import escape_text
-from urdf_lint.report.diff.base import ICON, DiffFormatter, chain, finding, fmt, loc, moved, vloc, what
-from urdf_lint.review.run import DiffResult
+from urdf_lint.report.diff.base import (ICON, DiffFormatter, DiffResult, chain, finding, fmt, loc,
+                                        moved, vloc, what)
 
 
 class TextDiff(DiffFormatter):
