@@ -90,7 +90,7 @@ def _fix(tmp_path, monkeypatch, text):
     from test_rule_api import fake_rule
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.fix.run import run_fix
+    from urdf_lint.run.fix import run_fix
     fake_rule(monkeypatch, "UL996", _upper_rule)
     pkg = make_package(tmp_path, "upper", {"urdf/r.urdf": text})
     monkeypatch.chdir(pkg)
@@ -127,7 +127,7 @@ def test_a_value_from_a_property_defined_twice_is_refused_naming_both(tmp_path, 
     from conftest import make_package
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     head = '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
     src = (head + '  <xacro:property name="lo" value="3"/>\n'
            '  <xacro:include filename="$(find twice)/urdf/more.xacro"/>\n'
@@ -140,7 +140,7 @@ def test_a_value_from_a_property_defined_twice_is_refused_naming_both(tmp_path, 
     monkeypatch.chdir(pkg)
     cfg = load_config(None)
     cfg.select = ["UL302"]
-    res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+    res = run_check(RunRequest((".",), cfg, build_resolver(["."], cfg), in_process=True))
     assert not res.internal, res.internal
     (f,) = [f for f in res.findings if f.code == "UL302"]
     assert f.fix is not None and not f.fix.edits

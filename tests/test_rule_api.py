@@ -89,7 +89,7 @@ def test_the_run_scope_rule_yields_reports(tmp_path, monkeypatch):
     from conftest import make_package
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import run_check
+    from urdf_lint.run.pipeline import RunRequest, run_check
     pkg = make_package(tmp_path, "two", {"urdf/a.urdf": '<robot name="r"><link name="a"/></robot>',
                                          "urdf/b.urdf": '<robot name="r"><link name="b"/></robot>'})
     monkeypatch.chdir(pkg)
@@ -97,7 +97,7 @@ def test_the_run_scope_rule_yields_reports(tmp_path, monkeypatch):
     cfg.select = ["UL106"]
     with warnings.catch_warnings():
         warnings.filterwarnings("error", message=TUPLE_WARNING, category=DeprecationWarning)
-        res = run_check(["."], cfg, build_resolver(["."], cfg), in_process=True)
+        res = run_check(RunRequest((".",), cfg, build_resolver(["."], cfg), in_process=True))
     assert not res.internal, res.internal
     assert [f.code for f in res.findings] == ["UL106", "UL106"]
 
