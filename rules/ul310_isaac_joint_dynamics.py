@@ -32,6 +32,8 @@ PASS = """<robot name="r">
 """
 
 
+from urdf_lint.engine.api import Report
+
 def _set(value) -> bool:
     """A damping or friction that is there and not zero (a malformed number is UL207's)."""
     try:
@@ -45,6 +47,6 @@ def check(model, ctx):
         for d in j.findall("dynamics"):
             what = [a for a in ("damping", "friction") if _set(d.get(a))]
             if what and j.get("type") not in (None, "fixed"):
-                yield d, (f"joint '{j.get('name')}' sets {' and '.join(what)}; Isaac Sim's URDF "
+                yield Report(d, (f"joint '{j.get('name')}' sets {' and '.join(what)}; Isaac Sim's URDF "
                           "importer drops them silently (IsaacSim#841): set them after the "
-                          "import")
+                          "import"))

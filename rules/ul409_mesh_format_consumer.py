@@ -46,65 +46,20 @@ PASS = """<robot name="r">
 """
 import os
 
-from urdf_lint.core import fsbound
-from urdf_lint.rules._meshes import PLAIN_DAE, TETRA_STL, resolved_meshes
+from urdf_lint.engine.api import Report
+from urdf_lint.rules._consumers import DRAKE_FORMATS, geometry_meshes, mujoco_loads, mujoco_problem
+from urdf_lint.rules._meshes import PLAIN_DAE, TETRA_STL
 
 TETRA_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL, "meshes/part.obj": TETRA_OBJ,
                  "meshes/skin.dae": PLAIN_DAE}
-
-MUJOCO_FORMATS = (".stl", ".obj", ".msh")
-MUJOCO_STL_FACES = 200000            # MuJoCo 4.0.0's stl_decoder: 1 to 200000 triangles
-DRAKE_FORMATS = (".obj", ".vtk", ".gltf")      # Drake 1.51.1 rejects .glb collision meshes
-
-
-def mujoco_keeps_visuals(model) -> bool:
-    """Whether the description's own ``<mujoco><compiler discardvisual="false"/>`` makes MuJoCo
-    load its visuals (MuJoCo discards a URDF's visuals by default)."""
-    return any(c.get("discardvisual", "").strip().lower() == "false"
-               for c in model.root.iterfind("mujoco/compiler"))
-
-
-def _mujoco_problem(path: str, ext: str) -> str | None:
-    if ext not in MUJOCO_FORMATS:
-        return f"MuJoCo has no decoder for {ext or 'a file without extension'}"
-    if ext != ".stl":
-        return None
-    from urdf_lint.meshes.readers import binary_stl_triangles
-    n = binary_stl_triangles(path)
-    if n is not None:
-        return (None if 1 <= n <= MUJOCO_STL_FACES else
-                f"MuJoCo reads at most {MUJOCO_STL_FACES} triangles from an STL, it has {n}")
-    try:
-        with fsbound.open_regular(path) as (f, _):
-            head = f.read(5)
-    except OSError:                       # BoundaryError too
-        return None                       # UL401/UL404 say why
-    return "MuJoCo reads binary STL only, this one is ASCII" if head == b"solid" else None
-
-
-def geometry_meshes(model, ctx):
-    """(mesh element, uri, path, "collision" or "visual") for every resolved mesh of a link."""
-    for m, uri, path in resolved_meshes(model, ctx):
-        geom = m.getparent().getparent() if m.getparent() is not None else None
-        if geom is not None and geom.tag in ("collision", "visual"):
-            yield m, uri, path, geom.tag
-
-
-def mujoco_loads(model) -> tuple[set, str]:
-    """(the kinds of geometry MuJoCo decodes the meshes of, the severity of its findings for
-    the other targets: ``info`` when the description's own ``<mujoco>`` block says MuJoCo
-    loads it, else ``off``)."""
-    kinds = {"collision", "visual"} if mujoco_keeps_visuals(model) else {"collision"}
-    return kinds, "info" if model.root.find("mujoco") is not None else "off"
-
 
 def check(model, ctx):
     kinds, others = mujoco_loads(model)
     for m, uri, path, kind in geometry_meshes(model, ctx):
         ext = os.path.splitext(path)[1].lower()
         said, table = [], {"*": "off"}
-        why = _mujoco_problem(path, ext) if kind in kinds else None
+        why = mujoco_problem(path, ext) if kind in kinds else None
         if why:
             said.append(f"{why} (MuJoCo rejects the model)")
             table.update({"*": others, "mujoco": "error"})
@@ -113,4 +68,4 @@ def check(model, ctx):
                         "(Drake rejects the model)")
             table["drake"] = "error"
         if said:
-            yield m, f"{kind} mesh '{uri}': " + "; ".join(said), table
+            yield Report(m, f"{kind} mesh '{uri}': " + "; ".join(said), targets=table)

@@ -37,7 +37,8 @@ PASS = """<robot name="r">
 """
 import os
 
-from urdf_lint.rules.ul409_mesh_format_consumer import _mujoco_problem, geometry_meshes, mujoco_loads
+from urdf_lint.engine.api import Report
+from urdf_lint.rules._consumers import geometry_meshes, mujoco_loads, mujoco_problem
 
 # a tilted square plate: no two coordinates constant, every vertex in one plane
 EXAMPLE_FILES = {"meshes/plate.obj": ("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0.05\nv 0.1 0.1 0.05\n"
@@ -61,14 +62,14 @@ def flat(vertices) -> bool:
 def check(model, ctx):
     kinds, others = mujoco_loads(model)
     for m, uri, path, kind in geometry_meshes(model, ctx):
-        if kind not in kinds or _mujoco_problem(path, os.path.splitext(path)[1].lower()):
+        if kind not in kinds or mujoco_problem(path, os.path.splitext(path)[1].lower()):
             continue                      # UL409: MuJoCo does not get as far as the hull
-        if ctx.mass_facts(path).get("ok"):
+        if ctx.mass_facts(path).ok:
             continue                      # it has a volume (the common case: no load here)
         facts = ctx.mesh_facts(path)
-        if not facts["ok"] or not facts["vertices"] or not facts["finite"]:
+        if not facts.ok or not facts.vertices or not facts.finite:
             continue                      # UL404 says why
         if flat(ctx.mesh(path).vertices):
-            yield m, (f"{kind} mesh '{uri}' is flat (all its vertices lie in one plane); MuJoCo "
-                      "cannot compute its convex hull and rejects the model"), \
-                {"*": others, "mujoco": "error"}
+            yield Report(m, f"{kind} mesh '{uri}' is flat (all its vertices lie in one plane); "
+                         "MuJoCo cannot compute its convex hull and rejects the model",
+                         targets={"*": others, "mujoco": "error"})

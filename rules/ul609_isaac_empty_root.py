@@ -37,13 +37,15 @@ PASS = """<robot name="r">
 PARTS = ("inertial", "visual", "collision")
 
 
+from urdf_lint.engine.api import Report
+
 def check(model, ctx):
     links = model.top_links()
     has_parent = model.parents_of_links()
     roots = [lk for lk in links if lk.get("name") and lk.get("name") not in has_parent]
     for lk in roots if len(links) > 1 else ():     # one link alone articulates nothing
         if all(lk.find(part) is None for part in PARTS):
-            yield lk, (f"root link '{lk.get('name')}' is empty (no inertial, visual or "
+            yield Report(lk, (f"root link '{lk.get('name')}' is empty (no inertial, visual or "
                        "collision); Isaac Sim's URDF importer makes it the articulation root: it "
                        "crashes before 6.0 ('Used null prim') and gives it an invented inertia "
-                       "since")
+                       "since"))

@@ -38,6 +38,8 @@ PASS = """<robot name="r">
 KEEPS = ("preserveFixedJoint", "disableFixedJointLumping")
 
 
+from urdf_lint.engine.api import Report
+
 def _kept(model) -> set:
     """The joints whose own <gazebo> block turns lumping off."""
     out = set()
@@ -65,7 +67,7 @@ def check(model, ctx):
             continue                     # an empty block sets nothing
         link = g.get("reference")
         joint, parent = lumped[link]
-        yield g, (f"<gazebo reference=\"{link}\">: Gazebo's URDF to SDF conversion merges link "
+        yield Report(g, (f"<gazebo reference=\"{link}\">: Gazebo's URDF to SDF conversion merges link "
                   f"'{link}' into '{parent}' (fixed joint '{joint}' is lumped), so what this "
                   f"block sets moves to '{parent}' and '{link}' has no frame of its own; set "
-                  f"<preserveFixedJoint> on '{joint}' to keep it")
+                  f"<preserveFixedJoint> on '{joint}' to keep it"))

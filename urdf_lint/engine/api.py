@@ -32,7 +32,8 @@ if TYPE_CHECKING:  # pragma: no cover - imported on first use below
     from urdf_lint.fix.kinds.set import set_attrs
     from urdf_lint.meshes.resolve import MeshStatus
 
-__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar", "did_you_mean",
+__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar",
+           "binary_stl_triangles", "did_you_mean", "read_head",
            "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
            "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
            "rename_attr", "rename_tag", "set_attrs", "single_candidate", "top"]
@@ -86,6 +87,26 @@ def read_source(path: str, max_bytes: int | None = None) -> bytes | None:
     file of bounded size), or None when it cannot or may not be read."""
     from urdf_lint.core import fsbound
     return fsbound.read_regular(path, fsbound.MAX_SOURCE_BYTES if max_bytes is None else max_bytes)
+
+
+def read_head(path: str, n: int) -> bytes | None:
+    """The first ``n`` bytes of a file the model read (a mesh's magic bytes), through the
+    file-system boundary, or None when it cannot or may not be read."""
+    from urdf_lint.core import fsbound
+    try:
+        with fsbound.open_regular(path) as (f, _):
+            data: bytes = f.read(n)
+            return data
+    except OSError:                       # BoundaryError too
+        return None
+
+
+def binary_stl_triangles(path: str) -> int | None:
+    """The triangle count a binary STL declares when its size agrees with it, else None (an
+    ASCII STL, or not an STL)."""
+    from urdf_lint.meshes.readers import binary_stl_triangles as count
+    n: int | None = count(path)
+    return n
 
 
 def number(s: str | None) -> float | None:

@@ -77,7 +77,7 @@ RESULT_CLASSES = frozenset({
     ("urdf_lint.core.jobs", "ModelReport"), ("urdf_lint.core.jobs", "Status"),
     ("urdf_lint.core.jobs", "KeptModel"), ("urdf_lint.core.findings", "Problem"),
     ("urdf_lint.core.locations", "Origin"), ("urdf_lint.core.locations", "Loc"),
-    ("urdf_lint.fix.fixes", "Fix"), ("urdf_lint.fix.sourceedit", "Edit"),
+    ("urdf_lint.core.edits", "Fix"), ("urdf_lint.core.edits", "Edit"),
     ("urdf_lint.expansion.sourcemap", "SourceMap"), ("urdf_lint.render.raster", "Geometry"),
     ("urdf_lint.render.recording", "Plan"),
     # numpy arrays (numpy 1 and 2 name their reconstructors differently)
