@@ -49,7 +49,7 @@ def test_a_job_changes_no_module_global_and_an_environment_failure_is_not_cached
     from urdf_lint.discovery.packages import PackageResolver
     from urdf_lint.meshes import readers
     from urdf_lint.rules._meshes import TETRA_STL
-    from urdf_lint.runner.worker import process_job
+    from urdf_lint.run.worker import process_job
     pkg = make_package(tmp_path, "p", {
         "meshes/part.stl": TETRA_STL,
         "urdf/r.urdf": '<robot name="r"><link name="a"><visual><geometry><mesh '
