@@ -6,18 +6,24 @@ Each table sits between ``<!-- generated: NAME -->`` and ``<!-- end: NAME -->`` 
 * ``config-keys``: every key of the config schema (``urdf_lint/config/schema.py``: SCHEMA);
 * ``format-keys``: the keys of ``[tool.urdf-lint.format]`` (FORMAT_SCHEMA);
 * ``output-formats``: the output formats of ``check`` (``urdf_lint/report/``, the registry);
-* ``diff-formats``: the output formats of ``diff`` (``urdf_lint/report/diff/``).
+* ``diff-formats``: the output formats of ``diff`` (``urdf_lint/report/diff/``);
+* ``demo``: what the demo (``urdf-lint check descriptions/``) lints, which rules fire and its
+  summary line, from a real run (:func:`demo_paragraph`; tests/test_accuracy.py checks it).
 
 ``python scripts/gen_docs.py`` rewrites them; ``--check`` exits 1 when README.md is stale
-(tests/test_config_schema.py runs the check).
+(tests/test_config_schema.py checks the tables in process, tests/test_accuracy.py the demo).
 """
 from __future__ import annotations
 
+import json
+import os
 import re
+import subprocess
 import sys
 from pathlib import Path
 
-README = Path(__file__).resolve().parent.parent / "README.md"
+REPO = Path(__file__).resolve().parent.parent
+README = REPO / "README.md"
 
 
 def _row(*cells: str) -> str:
@@ -36,21 +42,79 @@ def _format_table(formats: dict) -> str:
     return "\n".join(rows)
 
 
-def tables() -> dict[str, str]:
-    """Table name -> its Markdown, from the sources."""
+def run_demo() -> tuple[dict, str]:
+    """(the JSON report, the text summary line) of the README's demo, run as a user runs it."""
+    def run(*extra: str) -> str:
+        p = subprocess.run([sys.executable, "-m", "urdf_lint", "check", "descriptions/",
+                            "--no-cache", *extra], cwd=REPO, capture_output=True, text=True,
+                           env={**os.environ, "NO_COLOR": "1"}, timeout=600)
+        if p.returncode != 1:
+            raise SystemExit(f"the demo exited {p.returncode}, not 1:\n{p.stderr}")
+        return p.stdout
+    return json.loads(run("--output-format", "json")), run().splitlines()[-1]
+
+
+def demo_paragraph(report: dict, summary: str) -> str:
+    """The README's demo paragraph for a run of it: how many models, which rules fire (and why
+    the others do not), and the summary line it ends with."""
+    from urdf_lint.core.targets import applies
+    from urdf_lint.engine.registry import load_rules
+    rules = load_rules()
+    fired = {f["code"] for f in report["findings"]}
+    off = sorted(c for c, r in rules.items()
+                 if c not in fired and not applies(r.targets, r.severity, ["ros"]))
+    quiet = sorted(set(rules) - fired - set(off))
+    targets = sorted({t for c in off for t, sev in rules[c].targets.items()
+                      if t != "*" and sev != "off"})
+    why = []
+    if quiet == ["UL904"]:
+        why.append("`UL904`, the time and memory limit, which would make the demo wait")
+    elif quiet:
+        why.append(", ".join(f"`{c}`" for c in quiet))
+    if off:
+        names = ", ".join(f"`{c}`" for c in off[:-1]) + (" and " if len(off) > 1 else "") + \
+            f"`{off[-1]}`"
+        why.append(f"{names}, which {'are' if len(off) > 1 else 'is'} off for the default "
+                   f"target: add `--target {','.join(targets)}` to see them")
+    but = f" (all but {', and '.join(why)})" if why else ""
+    text = (f"It lints {len(report['models'])} models: the two seed robots pass, and the broken "
+            f"ones under `descriptions/broken/` make {len(fired)} of the {len(rules)} rules "
+            f"fire{but}, each at its xacro line with the macro chain. It ends with `{summary}` "
+            "and exits 1, as a lint run with errors does.")
+    return _wrap(text)
+
+
+def _wrap(text: str, width: int = 99) -> str:
+    """``text`` wrapped at ``width`` without breaking inside a `code span`."""
+    lines, line = [], ""
+    for word in re.findall(r"`[^`]*`[^\s]*|\S+", text):
+        if line and len(line) + 1 + len(word) > width:
+            lines.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    return "\n".join([*lines, line])
+
+
+def tables(demo: bool = True) -> dict[str, str]:
+    """Block name -> its Markdown, from the sources (``demo``: run the demo for its block)."""
     from urdf_lint.config.schema import FORMAT_SCHEMA, SCHEMA
     from urdf_lint.report import diff, registry
-    return {
+    out = {
         "config-keys": _key_table(SCHEMA, "key"),
         "format-keys": _key_table(FORMAT_SCHEMA, "key under `[tool.urdf-lint.format]`"),
         "output-formats": _format_table(registry.formats()),
         "diff-formats": _format_table(diff.formats()),
     }
+    if demo:
+        out["demo"] = demo_paragraph(*run_demo())
+    return out
 
 
-def render(text: str) -> str:
-    """``text`` (README.md) with every generated table as its source says."""
-    for name, table in tables().items():
+def render(text: str, demo: bool = False) -> str:
+    """``text`` (README.md) with every generated block as its source says (the demo's only
+    with ``demo``: it runs the demo)."""
+    for name, table in tables(demo).items():
         pat = re.compile(rf"(<!-- generated: {re.escape(name)} -->\n).*?(<!-- end: "
                          rf"{re.escape(name)} -->)", re.S)
         if not pat.search(text):
@@ -61,7 +125,7 @@ def render(text: str) -> str:
 
 def main(argv: list[str]) -> int:
     old = README.read_text(encoding="utf-8")
-    new = render(old)
+    new = render(old, demo=True)
     if "--check" in argv:
         if new != old:
             print("README.md is stale: run python scripts/gen_docs.py", file=sys.stderr)
