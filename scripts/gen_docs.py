@@ -24,6 +24,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 README = REPO / "README.md"
+sys.path.insert(0, str(REPO))   # this checkout's code, as the demo it runs uses
 
 
 def _row(*cells: str) -> str:

@@ -422,8 +422,8 @@ def test_broken_demo_shows_every_class():
     readme = (DESCRIPTIONS.parent / "README.md").read_text()
     s = doc["summary"]
     fired = len(set(load_rules()) - set(missing))
-    said = re.search(r"It lints (\d+) models: .*?\smake (\d+) of the (\d+) rules fire .*?"
-                     r"`Found (\d+) problem\(s\) \((\d+) error, (\d+) warning, (\d+) info\)"
+    said = re.search(r"It lints (\d+) models: .*?\smake\s+(\d+)\s+of\s+the\s+(\d+)\s+rules\s+fire"
+                     r"\s.*?`Found (\d+) problem\(s\) \((\d+) error, (\d+) warning, (\d+) info\)"
                      r"\s+in (\d+) model\(s\)\.`", readme, re.S)
     assert said, "README's demo paragraph not found"
     assert [int(x) for x in said.groups()] == [
@@ -501,7 +501,7 @@ def test_readme_numbers_are_the_demos():
     models = int(re.search(r"in (\d+) model", summary).group(1))
     fired = {m.group(1) for m in re.finditer(r"^\S+:\d+:\d+: (UL\d{3}) ", p.stdout, re.M)}
     rules = load_rules()
-    said = re.search(r"It lints (\d+) models: .*?\s+make (\d+) of the (\d+) rules fire",
+    said = re.search(r"It lints (\d+) models: .*?\s+make\s+(\d+)\s+of\s+the\s+(\d+)\s+rules\s+fire",
                      readme, re.S)
     assert said, "README.md no longer says how many models the demo lints and rules fire"
     assert tuple(int(x) for x in said.groups()) == (models, len(fired), len(rules)), \
