@@ -13,7 +13,7 @@ from conftest import REPO, make_package
 from urdf_lint.cli.main import main
 from urdf_lint.config.schema import (KEYS, SCHEMA, Config, ConfigError, find_config, load_config,
                               option_types)
-from urdf_lint.engine.registry import codes_to_names
+from urdf_lint.engine.registry import codes_to_names, load_rules
 
 URDF = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="continuous">'
         '<parent link="a"/><child link="b"/><axis xyz="0 0 1.01"/></joint></robot>')
@@ -89,7 +89,7 @@ def test_valid_values_still_work(pkg, capsys):
     rc, out, err = run(capsys, "check", ".", "--no-cache", "--select", "UL307")
     assert rc == 0, err
     assert out == "All checks passed: 1 model(s).\n"
-    cfg = load_config(pkg / "urdf-lint.toml", codes_to_names())
+    cfg = load_config(pkg / "urdf-lint.toml", codes_to_names(), load_rules)
     assert (cfg.timeout, cfg.jobs, cfg.output_format) == (20.0, 1, "concise")
     assert cfg.rule_options["UL307"]["tolerance"] == 1.0 and isinstance(
         cfg.rule_options["UL307"]["tolerance"], float)
@@ -221,7 +221,7 @@ def test_any_value_is_accepted_or_named(tmp_path, key, value):
     f = tmp_path / "urdf-lint.toml"
     f.write_text(f"{key} = {_toml(value)}\n")
     try:
-        cfg = load_config(f, codes_to_names())
+        cfg = load_config(f, codes_to_names(), load_rules)
     except ConfigError as e:
         msg = str(e)
         assert "\n" not in msg and msg.split(":")[0].endswith("urdf-lint.toml"), msg
@@ -248,7 +248,7 @@ def test_readme_config_example_is_valid(tmp_path):
     for m in re.findall(r'^path = "([^"]+)"', example, re.M):   # models must exist
         (tmp_path / m).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / m).write_text('<robot name="r"><link name="a"/></robot>\n')
-    cfg = load_config(tmp_path / "pyproject.toml", codes_to_names())
+    cfg = load_config(tmp_path / "pyproject.toml", codes_to_names(), load_rules)
     assert cfg.rule_options == {"UL307": {"tolerance": 1e-3}} and cfg.output_format == "text"
     assert cfg.notes == []
     assert cfg.baseline == str(tmp_path / "urdf-lint-baseline.json")
