@@ -36,6 +36,12 @@ def geometry_meshes(model, ctx):
             yield m, uri, path, geom.tag
 
 
+def wanted(model, ctx, targets: tuple[str, ...]) -> bool:
+    """Whether a finding of a rule that only ``targets`` make more than off (and the model's own
+    ``<mujoco>`` block makes info) can be kept in this run: else the rule has nothing to do."""
+    return any(t in ctx.targets for t in targets) or model.root.find("mujoco") is not None
+
+
 def mujoco_loads(model) -> tuple[set, str]:
     """(the kinds of geometry MuJoCo decodes the meshes of, the severity of its findings for
     the other targets: ``info`` when the description's own ``<mujoco>`` block says MuJoCo

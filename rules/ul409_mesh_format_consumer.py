@@ -47,7 +47,8 @@ PASS = """<robot name="r">
 import os
 
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._consumers import DRAKE_FORMATS, geometry_meshes, mujoco_loads, mujoco_problem
+from urdf_lint.rules._consumers import (DRAKE_FORMATS, geometry_meshes, mujoco_loads,
+                                        mujoco_problem, wanted)
 from urdf_lint.rules._meshes import PLAIN_DAE, TETRA_STL
 
 TETRA_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
@@ -55,6 +56,8 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL, "meshes/part.obj": TETRA_OBJ,
                  "meshes/skin.dae": PLAIN_DAE}
 
 def check(model, ctx):
+    if not wanted(model, ctx, ("mujoco", "drake")):
+        return                            # every finding would be off in this run
     kinds, others = mujoco_loads(model)
     for m, uri, path, kind in geometry_meshes(model, ctx):
         ext = os.path.splitext(path)[1].lower()

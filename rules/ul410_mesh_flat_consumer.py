@@ -38,7 +38,7 @@ PASS = """<robot name="r">
 import os
 
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._consumers import geometry_meshes, mujoco_loads, mujoco_problem
+from urdf_lint.rules._consumers import geometry_meshes, mujoco_loads, mujoco_problem, wanted
 
 # a tilted square plate: no two coordinates constant, every vertex in one plane
 EXAMPLE_FILES = {"meshes/plate.obj": ("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0.05\nv 0.1 0.1 0.05\n"
@@ -60,6 +60,8 @@ def flat(vertices) -> bool:
 
 
 def check(model, ctx):
+    if not wanted(model, ctx, ("mujoco",)):
+        return                            # every finding would be off in this run
     kinds, others = mujoco_loads(model)
     for m, uri, path, kind in geometry_meshes(model, ctx):
         if kind not in kinds or mujoco_problem(path, os.path.splitext(path)[1].lower()):

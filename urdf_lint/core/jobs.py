@@ -62,6 +62,9 @@ class LintSettings:
     """Everything a worker needs besides the job; the same for every model of a run."""
     resolver: dict[str, Any]                 # PackageResolver.to_dict()
     selected: tuple[str, ...] = ()           # rule codes to run
+    # the consumer targets of the run (core.targets): a rule whose findings only some targets
+    # keep may skip the work when none of them is selected (ctx.targets)
+    targets: tuple[str, ...] = ("ros",)
     # code -> {option: value} (configured only)
     options: dict[str, dict[str, Any]] = field(default_factory=dict)
     env_allow: tuple[str, ...] = ()
@@ -86,7 +89,7 @@ class LintSettings:
         """What a cached result depends on (rendering does not change findings): the values of
         the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""
         env = {k: os.environ.get(k) for k in self.env_allow}
-        return [list(self.selected), self.options, env, self.resolver]
+        return [list(self.selected), list(self.targets), self.options, env, self.resolver]
 
 
 @dataclass(frozen=True)

@@ -33,13 +33,15 @@ XACRO_DIRECTIVES = {"macro", "property", "arg", "include"}
 
 
 class Context:
-    """What a rule's ``check`` gets besides the model: its options, and the mesh look-ups of
-    the run (``meshes``, the run's :class:`urdf_lint.meshes.store.MeshStore`: where facts are
-    cached, which texture references may be read)."""
+    """What a rule's ``check`` gets besides the model: its options, the consumer targets of the
+    run (``targets``), and the mesh look-ups of the run (``meshes``, the run's
+    :class:`urdf_lint.meshes.store.MeshStore`: where facts are cached, which texture references
+    may be read)."""
 
     def __init__(self, options: dict[str, Any], mesh_cache_dir: str | None,
-                 meshes: MeshStore | None = None):
+                 meshes: MeshStore | None = None, targets: tuple[str, ...] = ("ros",)):
         self.options = options
+        self.targets = targets          # the run's consumer targets (LintSettings.targets)
         self.mesh_cache_dir = mesh_cache_dir
         self.meshes = meshes if meshes is not None else MeshStore(cache_dir=mesh_cache_dir)
         self._refs: dict[tuple[str, str], MeshRef] = {}
@@ -294,7 +296,7 @@ def lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model
 def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Model | None, Context]:
     from urdf_lint.discovery.packages import from_settings
     out = ModelReport(job.entry, dict(job.args), Status.MODEL, deps=[job.entry])
-    ctx = Context({}, settings.mesh_cache_dir)
+    ctx = Context({}, settings.mesh_cache_dir, targets=settings.targets)
     resolver = from_settings(settings.resolver)
     if job.kind == "expand":  # reads no mesh: the mesh module is not even imported
         _expand_only(job, settings, resolver, out)

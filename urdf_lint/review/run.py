@@ -24,9 +24,20 @@ from dataclasses import dataclass, field
 
 from urdf_lint.report.diff.base import DiffResult
 from urdf_lint.review.robotdiff import ModelDiff, diff_models
-from urdf_lint.rules import (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,
-                    ul004_unknown_package, ul005_missing_arg, ul006_not_a_robot, ul007_doctype,
-                    ul902_outside_roots, ul903_unsafe_expression, ul904_resource_limit)
+from urdf_lint.core.codes import RuleName
+
+# the rules whose findings say a revision did not expand, by name (core.codes: importing the
+# rule modules would load the rule API, which this command's parent does not need)
+ul001_xml_syntax = RuleName("ul001_xml_syntax")
+ul002_xacro_error = RuleName("ul002_xacro_error")
+ul003_missing_include = RuleName("ul003_missing_include")
+ul004_unknown_package = RuleName("ul004_unknown_package")
+ul005_missing_arg = RuleName("ul005_missing_arg")
+ul006_not_a_robot = RuleName("ul006_not_a_robot")
+ul007_doctype = RuleName("ul007_doctype")
+ul902_outside_roots = RuleName("ul902_outside_roots")
+ul903_unsafe_expression = RuleName("ul903_unsafe_expression")
+ul904_resource_limit = RuleName("ul904_resource_limit")
 
 # the problems that say why a model could not be expanded or parsed
 _FAILURE_RULES = (ul001_xml_syntax, ul002_xacro_error, ul003_missing_include,

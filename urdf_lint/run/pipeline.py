@@ -16,9 +16,16 @@ from urdf_lint.discovery.discover import discover_models
 from urdf_lint.core.findings import Problem, exit_status, merge
 from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.config.policy import Policy, code_matches
-from urdf_lint.rules import ul002_xacro_error, ul006_not_a_robot, ul103_missing_link
-from urdf_lint.rules import ul009_unused_suppression as unused_suppression
-from urdf_lint.rules import ul010_invalid_suppression as invalid_suppression
+from urdf_lint.core.codes import RuleName
+
+# the rules raised or consulted here, by name (core.codes: importing a rule module loads the
+# rule API and what it needs, ~12 ms of every run's start-up)
+ul002_xacro_error = RuleName("ul002_xacro_error")
+ul006_not_a_robot = RuleName("ul006_not_a_robot")
+ul103_missing_link = RuleName("ul103_missing_link")
+unused_suppression = RuleName("ul009_unused_suppression")
+invalid_suppression = RuleName("ul010_invalid_suppression")
+ul004_unknown_package = RuleName("ul004_unknown_package")
 
 # findings that usually mean "this file is a fragment: the model including it defines the rest"
 FRAGMENT_HINT_CODES = (ul002_xacro_error.CODE, ul006_not_a_robot.CODE, ul103_missing_link.CODE)
@@ -87,7 +94,8 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
                                   f"{', '.join(sorted(r.options)) or 'none'})")
             options[code] = o
     return worker_settings(cfg, resolver, selected=tuple(policy.selected_codes(rules)),
-                           options=options, mesh_cache_dir=cache_dir)
+                           targets=tuple(policy.targets), options=options,
+                           mesh_cache_dir=cache_dir)
 
 
 def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
@@ -317,7 +325,6 @@ def _hint_packages(models, paths) -> None:
     folders outside the roots, and such a folder is never a root by itself."""
     import re
     from urdf_lint.core.locations import display_path
-    from urdf_lint.rules import ul004_unknown_package
     from urdf_lint.discovery.workspace import beside
     found: dict = {}
     for r in models:

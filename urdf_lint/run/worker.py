@@ -7,9 +7,11 @@ import sys
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
-from urdf_lint.rules import ul904_resource_limit as resource_limit
+from urdf_lint.core.codes import RuleName
 from urdf_lint.runner import pool
 from urdf_lint.runner.pool import Block, Handler, _mesh_facts_cached
+
+resource_limit = RuleName("ul904_resource_limit")   # (by name: no rule module in the parent)
 
 
 def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
