@@ -13,8 +13,6 @@ from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import KeptModel, LintJob, LintSettings, ModelReport, Status
 from urdf_lint.core.locations import Origin
 from urdf_lint.core.codes import RuleName
-from urdf_lint.meshes.facts import MassFacts, MeshFacts
-from urdf_lint.meshes.store import MeshStore
 
 # the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
 ul001_xml_syntax = RuleName("ul001_xml_syntax")
@@ -24,6 +22,8 @@ ul902_outside_roots = RuleName("ul902_outside_roots")
 ul011_stale_output = RuleName("ul011_stale_output")
 
 if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.meshes.facts import MassFacts, MeshFacts
+    from urdf_lint.meshes.store import MeshStore
     from urdf_lint.engine.model import Model
     from urdf_lint.meshes.resolve import MeshRef
 
@@ -43,7 +43,10 @@ class Context:
         self.options = options
         self.targets = targets          # the run's consumer targets (LintSettings.targets)
         self.mesh_cache_dir = mesh_cache_dir
-        self.meshes = meshes if meshes is not None else MeshStore(cache_dir=mesh_cache_dir)
+        if meshes is None:   # (the mesh modules load where a rule reads a mesh: not in the parent)
+            from urdf_lint.meshes.store import MeshStore
+            meshes = MeshStore(cache_dir=mesh_cache_dir)
+        self.meshes = meshes
         self._refs: dict[tuple[str, str], MeshRef] = {}
         self._mesh_facts: dict[str, MeshFacts] = {}
         self._mass_facts: dict[str, MassFacts] = {}
@@ -65,6 +68,7 @@ class Context:
         got = self._mesh_facts.get(path)
         if got is None:
             from urdf_lint.meshes import resolve as meshes
+            from urdf_lint.meshes.facts import MeshFacts
             got = self._mesh_facts[path] = MeshFacts.from_record(
                 meshes.mesh_facts(path, store=self.meshes))
         return got
@@ -74,6 +78,7 @@ class Context:
         got = self._mass_facts.get(path)
         if got is None:
             from urdf_lint.meshes import resolve as meshes
+            from urdf_lint.meshes.facts import MassFacts
             got = self._mass_facts[path] = MassFacts.from_record(
                 meshes.mass_facts(path, store=self.meshes))
         return got
@@ -303,6 +308,7 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
         return out, None, ctx
     # texture/MTL references stay in the roots; texture scans are cached with the mesh facts;
     # a render run draws the meshes the rules measured: they are loaded once and kept
+    from urdf_lint.meshes.store import MeshStore
     ctx.meshes = MeshStore(resolver.is_inside, settings.mesh_cache_dir,
                            bool(settings.render_dir or settings.diff_render))
     model = _load(job, settings, resolver, out)
