@@ -22,7 +22,7 @@ PASS = """<robot name="r">
 """
 
 
-from urdf_lint.engine.api import Report, display_path
+from urdf_lint.engine.api import Report
 
 
 def check(model, ctx):
@@ -33,8 +33,8 @@ def check(model, ctx):
                 continue
             n = e.get("name")
             if n in first:
-                o = model.origin(first[n])
                 yield Report(e, (f"duplicate {tag} name '{n}' (first defined at "
-                                 f"{display_path(o.file)}:{o.line}); give each a unique name"), targets={"mujoco": "warning"} if tag == "joint" else None)
+                                 f"{model.origin(first[n]).place()}); give each a unique name"),
+                             targets={"mujoco": "warning"} if tag == "joint" else None)
             else:
                 first[n] = e

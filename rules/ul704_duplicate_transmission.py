@@ -1,10 +1,12 @@
 """Two `<transmission>` elements with the same name, or two actuators of the same name.
 
-Why: URDF requires unique names, but urdfdom ignores transmissions, so ROS tools load the file;
-Drake 1.51.1 rejects it (its joint actuators are named after them: "already contains a joint
-actuator") and so does urchin 0.0.30 (measured: /work/shared/notes/consumer-facts.md). An error
-for `drake` and `python`; a warning for the other targets, since ros_control and ros2_control
-then drive only one of the two.
+Why: URDF requires unique names, but urdfdom ignores transmissions, so ROS tools load the file.
+urchin 0.0.30 rejects two transmissions of one name (measured: /work/shared/notes/consumer-facts.md).
+Drake 1.51.1 names its joint actuators after the `<actuator>` elements and rejects two of one name
+("already contains a joint actuator"), but loads two transmissions of one name whose actuators
+differ (both measured with pydrake). An error for `python`, and for `drake` where an actuator
+name repeats; a warning for the other targets, since ros_control and ros2_control then drive
+only one of the two.
 
 How to fix: Give each transmission and each actuator a unique name (macros usually need a
 prefix parameter in the name).
@@ -47,25 +49,30 @@ from urdf_lint.engine.api import Report
 
 
 def check(model, ctx):
+    """A transmission named like an earlier one (urchin rejects it; Drake too when an actuator
+    name repeats as well, as it does when one macro is called twice), and an actuator named
+    like one of another transmission (Drake rejects it)."""
     seen: dict = {}
     actuators: dict = {}
     for t in model.root.findall("transmission"):
         n = t.get("name")
-        twice = bool(n) and n in seen
-        if n:
-            if twice:
-                line = model.origin(seen[n]).line
-                yield Report(t, (f"transmission '{n}' is defined twice (first at line {line}); Drake and "
-                                 "urchin reject the model, ros_control drives only one"))
-            else:
-                seen[n] = t
+        first = seen.get(n) if n else None
+        names = [a.get("name") for a in t.findall("actuator") if a.get("name")]
+        shared = [a for a in names if a in actuators and actuators[a] is not t]
+        if first is not None:
+            who = "Drake and urchin reject" if shared else "urchin rejects"
+            yield Report(t, f"transmission '{n}' is defined twice (first at "
+                            f"{model.origin(first).place()}); {who} the model, ros_control "
+                            "drives only one",
+                         targets={"drake": "error", "python": "error"} if shared else
+                         {"python": "error"})
+        elif n:
+            seen[n] = t
         for a in t.findall("actuator"):
             an = a.get("name")
-            if not an:
-                continue
-            if an in actuators and actuators[an] is not t and not twice:
-                yield Report(a, (f"actuator '{an}' of transmission '{n}' is also the actuator of "
-                                 f"transmission '{actuators[an].get('name')}'; Drake rejects the model "
-                                 "(one joint actuator per name)"))
-            else:
-                actuators.setdefault(an, t)
+            if first is None and an in shared:
+                yield Report(a, f"actuator '{an}' of transmission '{n}' is also the actuator of "
+                                f"transmission '{actuators[an].get('name')}'; Drake rejects the "
+                                "model (one joint actuator per name)", targets={"drake": "error"})
+        for an in names:
+            actuators.setdefault(an, t)

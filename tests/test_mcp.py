@@ -65,12 +65,13 @@ def test_mcp_server_over_stdio_lists_and_runs_every_tool(repo, tmp_path):
                                            '<limit lower="1" upper="0" effort="100" '
                                            'velocity="10"/>', 1))
                 # and one whose severity depends on the consumer: two transmissions of
-                # one name (UL704: a warning for ROS, an error for Drake)
+                # one name driving one actuator name, as a macro called twice writes them
+                # (UL704: a warning for ROS, an error for Drake)
                 robot = repo / entry
                 robot.write_text(robot.read_text().replace("</robot>", "".join(
                     f'<transmission name="t"><type>transmission_interface/SimpleTransmission'
                     f'</type><joint name="{j}"><hardwareInterface>EffortJointInterface'
-                    f'</hardwareInterface></joint><actuator name="m{j}"/></transmission>\n'
+                    f'</hardwareInterface></joint><actuator name="m"/></transmission>\n'
                     for j in ("head_swivel", "gripper_extension")) + "</robot>"))
                 seen["check"] = _payload(await s.call_tool("check", {"paths": ["."]}))
                 seen["drake"] = _payload(await s.call_tool(

@@ -34,6 +34,13 @@ class Origin(NamedTuple):
     def format(self, base: str | None = None) -> str:
         return f"{display_path(self.file, base)}:{self.line}:{self.col}"
 
+    def place(self, base: str | None = None) -> str:
+        """Where a message names this element: ``robot.urdf.xacro:7``, and when a macro wrote
+        it, the call that did (``arm.xacro:7, called from robot.urdf.xacro:18``): two elements
+        one macro line wrote differ only there."""
+        at = f"{display_path(self.file, base)}:{self.line}"
+        return f"{at}, {self.format_chain(base)}" if self.chain else at
+
     def format_chain(self, base: str | None = None) -> str:
         """``called from arm.xacro:22 < robot.urdf.xacro:17`` (innermost call first)."""
         if not self.chain:
