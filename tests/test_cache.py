@@ -394,3 +394,26 @@ def test_a_signed_entry_copied_under_another_key_is_refused(tmp_path):
     os.makedirs(os.path.dirname(there), exist_ok=True)
     shutil.copy(here, there)
     assert cache.read_signed(there) is None
+
+
+def test_a_result_cached_by_other_code_is_not_reused(tmp_path, monkeypatch):
+    """The caches are keyed by the code that made a result, not only by the version number: an
+    install from a newer commit (still 0.1.0) or an edited rule must not show the old findings
+    (``run.cache.build_id``: the version and a digest of every module's size and mtime)."""
+    import urdf_lint.rules as rules
+    from urdf_lint.run import cache
+    cache.build_id.cache_clear()
+    before = cache.build_id()
+    cache.build_id.cache_clear()
+    assert cache.build_id() == before                 # stable while the code is
+    extra = tmp_path / "more_rules"
+    extra.mkdir()
+    (extra / "ul999_new.py").write_text("CODE = 'UL999'\n")
+    monkeypatch.setattr(rules, "__path__", [*rules.__path__, str(extra)])
+    cache.build_id.cache_clear()
+    edited = cache.build_id()
+    assert edited != before and edited.startswith(before.split("+")[0] + "+")
+    os.utime(extra / "ul999_new.py", ns=(1, 1))       # the same file, changed again
+    cache.build_id.cache_clear()
+    assert cache.build_id() not in (before, edited)
+    cache.build_id.cache_clear()

@@ -228,6 +228,23 @@ def walk_files(top: StrPath, suffixes: tuple[str, ...] | None = None,
                 yield os.path.join(dirpath, fn)
 
 
+def stat_files(top: StrPath, suffix: str) -> list[tuple[str, int, int]]:
+    """(path below ``top``, size, mtime in ns) of every file ending with ``suffix`` below
+    ``top``, sorted; folders are read with ``scandir``, symlinks not followed."""
+    out: list[tuple[str, int, int]] = []
+    todo = [os.fspath(top)]
+    while todo:
+        folder = todo.pop()
+        for e in scan_dir(folder):
+            if e.is_dir(follow_symlinks=False):
+                if e.name != "__pycache__":
+                    todo.append(e.path)
+            elif e.name.endswith(suffix):
+                st = e.stat(follow_symlinks=False)
+                out.append((os.path.relpath(e.path, top), st.st_size, st.st_mtime_ns))
+    return sorted(out)
+
+
 MAX_GLOB_ENTRIES = 20_000
 
 

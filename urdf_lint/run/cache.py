@@ -18,6 +18,7 @@ The cache cannot lie (issue 15):
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import hmac
 import json
@@ -38,6 +39,20 @@ from urdf_lint.discovery.vcs import git_root, repo_root
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached)
 RECORD_FORMAT = 13
+
+
+@functools.lru_cache(maxsize=None)
+def build_id() -> str:
+    """urdf-lint's version and a digest of its own code as installed (every module's path,
+    size and modification time): a result cached by other code is not reused, also when an
+    install from a newer commit keeps the version number (~1 ms: stats only)."""
+    import urdf_lint
+    import urdf_lint.rules as rules
+    from urdf_lint.core import fsbound
+    files = [f for top in [*urdf_lint.__path__, *rules.__path__]
+             for f in fsbound.stat_files(top, ".py")]
+    digest = blake2b(json.dumps(files).encode(), digest_size=8).hexdigest()
+    return f"{__version__}+{digest}"
 
 __all__ = ["Cache", "file_digest", "file_record", "key_path"]
 
@@ -129,7 +144,7 @@ class Cache:
         if memo is None or memo[0] is not settings:   # the run's settings, serialised once
             memo = self._settings_key = (settings, json.dumps(settings.cache_key(),
                                                               sort_keys=True))
-        blob = json.dumps([__version__, RECORD_FORMAT, job.entry, sorted(job.args.items()),
+        blob = json.dumps([build_id(), RECORD_FORMAT, job.entry, sorted(job.args.items()),
                            job.kind, bool(job.explicit), job.output, job.mesh_base,
                            list(job.outputs)]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
@@ -150,7 +165,7 @@ class Cache:
             if blob is None:
                 return None  # absent, or not written by this user's urdf-lint
             rec = json.loads(blob)
-            if rec.get("version") != __version__ or not isinstance(rec.get("deps"), dict):
+            if rec.get("version") != build_id() or not isinstance(rec.get("deps"), dict):
                 return None
             deps = rec["deps"]
             for path, (stat, digest) in list(deps.items()):
@@ -207,7 +222,7 @@ class Cache:
                 return
             deps[d] = rec
         result.digests = deps
-        rec = {"version": __version__, "deps": deps, "missing": list(result.missing),
+        rec = {"version": build_id(), "deps": deps, "missing": list(result.missing),
                "result": result.to_record()}
         self.write_signed(self._path(self._key(job, settings)), json.dumps(rec).encode("utf-8"))
 

@@ -37,8 +37,8 @@ RACY_S = 2.0   # inputs changed this recently are not trusted to show a later ch
 
 class RunMemo:
     def __init__(self, cache: "Cache", paths, cfg, resolver, settings):
-        from urdf_lint import __version__
-        blob = json.dumps([__version__, FORMAT, os.getcwd(), [os.path.abspath(p) for p in paths],
+        from urdf_lint.run.cache import build_id
+        blob = json.dumps([build_id(), FORMAT, os.getcwd(), [os.path.abspath(p) for p in paths],
                            repr(cfg), resolver.to_dict(), settings.cache_key()],
                           sort_keys=True, default=str)
         key = blake2b(blob.encode(), digest_size=20).hexdigest()
