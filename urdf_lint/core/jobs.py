@@ -81,9 +81,6 @@ class LintSettings:
     keep_model: bool = False                 # send the expanded robot back (urdf-lint diff)
     diff_render: bool = False                # diff --render: the geometry of its picture too
     diff_rrd: bool = True                    # diff --render: also the plan of its recording
-    # urdf-lint format: real path -> the bytes expansion reads instead of the file's (the
-    # layout being proved; nothing is written while it is)
-    overlay: dict[str, bytes] = field(default_factory=dict)
 
     def cache_key(self) -> list[Any]:
         """What a cached result depends on (rendering does not change findings): the values of

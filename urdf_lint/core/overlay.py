@@ -7,8 +7,8 @@ expansion, the lint and the fixes make (includes, ``xacro.load_yaml``, the entry
 comments, fix sources) goes through ``fsbound.read_bytes``, which asks :func:`get` first,
 after the same roots check (and the expansion's own confinement check before it), so a
 buffer is only ever read where the file it stands for could be: the overlay never widens what
-a worker may read, and no temporary file is written anywhere. (``LintSettings.overlay``, the
-formatter's layouts being proved, is read by the expansion's parse hook alone.)
+a worker may read, and no temporary file is written anywhere. ``urdf-lint format`` hands its
+layouts being proved to the workers the same way.
 """
 from __future__ import annotations
 

@@ -236,8 +236,7 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: Model
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from urdf_lint.expansion import expand_file
     exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
-                      display_name=job.display_name, expr_policy=settings.expr_policy,
-                      overlay=settings.overlay)
+                      display_name=job.display_name, expr_policy=settings.expr_policy)
     out.deps = list(exp.deps)
     out.problems.extend(exp.notes)
     if exp.error is not None:

@@ -80,7 +80,7 @@ class ExpansionState:
     elements being evaluated, the chain of macro calls and includes), for :func:`expand_file`."""
 
     def __init__(self, resolver: PackageResolver, env_allow: Iterable[str],
-                 expr_policy: object = None, overlay: dict[str, bytes] | None = None) -> None:
+                 expr_policy: object = None) -> None:
         self.resolver = resolver
         self.env_allow = set(env_allow)
         self.deps: dict[str, None] = {}
@@ -91,7 +91,6 @@ class ExpansionState:
         self.pending_chain: tuple = ()  # chain to give to the macro body being cloned
         self.include_chain: tuple = ()  # chain of the include element being processed
         self.expr_policy = expr_policy
-        self.overlay = dict(overlay or {})   # real path -> bytes read instead (urdf-lint format)
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -218,7 +217,7 @@ def _hook_parse(inp, filename=None):
             raise RefusedInput(f"include '{filename}' resolves outside the package roots and the "
                                "linted repository; it was not read", ul902_outside_roots)
         try:
-            data, record = _overlaid(st, path) or read_recorded(path)
+            data, record = read_recorded(path)   # (an overlay's bytes: core.overlay)
         except (IOError, OSError) as e:
             xacro.filestack.pop()
             raise xacro.XacroException((e.strerror or str(e)) + ": " + str(e.filename), exc=e) from e
@@ -232,14 +231,6 @@ def _hook_parse(inp, filename=None):
         data = inp.read()
         return parse_bytes(data.encode("utf-8") if isinstance(data, str) else data, "<stream>")
     return inp
-
-
-def _overlaid(st, path):
-    """(bytes, record) of ``path`` from the state's overlay, or None."""
-    if st is None or not st.overlay:
-        return None
-    data = st.overlay.get(os.path.realpath(path))
-    return None if data is None else (data, [[len(data), 0], ""])
 
 
 def _hook_abs_filename_spec(filename_spec):
@@ -505,15 +496,16 @@ def classify_error(e: BaseException, st: ExpansionState, entry: str = "",
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
                 env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
-                expr_policy=None, overlay: dict | None = None) -> Expansion:
-    """Expand one xacro (or URDF) file in process. Never raises for bad input. ``overlay``
-    maps real paths to the bytes to read instead of the file's (``urdf-lint format``)."""
+                expr_policy=None) -> Expansion:
+    """Expand one xacro (or URDF) file in process. Never raises for bad input. Bytes to read
+    instead of a file's (an editor's buffer, a layout ``format`` proves) come from
+    :mod:`urdf_lint.core.overlay`, installed around the job by the worker."""
     path = os.path.abspath(path)
     args = dict(args or {})
     res = Expansion(entry=path, args=dict(args))
     if resolver is None:
         resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
-    st = ExpansionState(resolver, env_allow, expr_policy, overlay)
+    st = ExpansionState(resolver, env_allow, expr_policy)
     with _session(st):
         before = True   # until xacro opens the entry
         try:

@@ -11,7 +11,7 @@ xacro and URDF sources (:mod:`urdf_lint.formatting.layout`) and prove that no ro
    includes only expansion resolves, kept when their recorded inputs meet such a file;
    ``exclude`` and ``discover = false`` do not hide a model from the proof) are expanded in
    the sandboxed workers, as ``check`` and ``expand`` do, once as the files are and once with the
-   new layouts in place of the files (``LintSettings.overlay``: nothing is written while it
+   new layouts in place of the files (``LintJob.overlay``: nothing is written while it
    is proved). The two robots are compared as canonical XML (comments, layout whitespace and
    attribute order ignored; every other text kept exact). A model that differs leaves every
    changed file it reads that was not proved by itself alone, and the reason is printed;
@@ -188,9 +188,13 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     base = worker_settings(cfg, resolver)
 
     def expand(keys, overlay):
-        settings = dataclasses.replace(base, overlay=dict(overlay))
-        by_job = {id(jobs[k]): k for k in keys}
-        return {by_job[id(j)]: r for j, r in run_jobs([jobs[k] for k in keys], settings,
+        """Each model of ``keys`` expanded with the new layouts ``overlay`` read in place of
+        the files (the job's overlay, as the language server's unsaved buffers: nothing is
+        written while it is proved)."""
+        pairs = tuple(sorted(overlay.items()))
+        todo = {k: dataclasses.replace(jobs[k], overlay=pairs) for k in keys}
+        by_job = {id(j): k for k, j in todo.items()}
+        return {by_job[id(j)]: r for j, r in run_jobs(list(todo.values()), base,
                                                       jobs_n=jobs_n)}
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
