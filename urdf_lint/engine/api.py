@@ -94,9 +94,7 @@ def read_head(path: str, n: int) -> bytes | None:
     file-system boundary, or None when it cannot or may not be read."""
     from urdf_lint.core import fsbound
     try:
-        with fsbound.open_regular(path) as (f, _):
-            data: bytes = f.read(n)
-            return data
+        return fsbound.read_head(path, n)
     except OSError:                       # BoundaryError too
         return None
 
