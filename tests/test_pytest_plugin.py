@@ -131,3 +131,150 @@ def test_the_plugin_is_registered_by_the_installed_package(pkg):
     from importlib.metadata import entry_points
     eps = {e.name: e.value for e in entry_points(group="pytest11")}
     assert eps.get("urdf_lint") == "urdf_lint.cli.pytest_plugin"
+
+
+ARM_MACRO = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="prefix parent">
+    <link name="${prefix}link"/>
+    <joint name="${prefix}joint" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${prefix}link"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="1" upper="-1" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+HAND = """<?xml version="1.0"?>
+<robot name="hand" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="arm.xacro"/>
+  <link name="base"/>
+  <xacro:arm prefix="h_" parent="base"/>
+</robot>
+"""
+DUAL = """<?xml version="1.0"?>
+<robot name="dual" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="arm.xacro"/>
+  <link name="base"/>
+
+  <xacro:arm prefix="left_" parent="base"/>
+  <xacro:arm prefix="right_" parent="base"/>
+</robot>
+"""
+
+
+def test_each_model_item_shows_its_own_instances_and_a_clean_classname(tmp_path):
+    """Two models of one package share a macro with a swapped limit: one finding (at the macro
+    line) with an instance per joint. Each model's JUnit failure shows its own joints and call
+    chains, never the other model's, and the JUnit classname is a name, not ``PKG.``."""
+    src = tmp_path / "src"
+    (src / "urdf").mkdir(parents=True)
+    (src / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>two_arms</name>'
+        "<version>0.0.1</version><description>x</description>"
+        '<maintainer email="a@b.c">a</maintainer><license>MIT</license></package>\n')
+    (src / "urdf" / "arm.xacro").write_text(ARM_MACRO)
+    (src / "urdf" / "hand.urdf.xacro").write_text(HAND)
+    (src / "urdf" / "dual.urdf.xacro").write_text(DUAL)
+    pkg = _colcon_package(src, tmp_path / "ws" / "src" / "two_arms")
+    p, cases = _colcon_test(pkg)
+    assert p.returncode == 1, p.stdout + p.stderr
+    hand_failed, hand = cases["urdf/hand.urdf.xacro"]
+    dual_failed, dual = cases["urdf/dual.urdf.xacro"]
+    assert hand_failed and dual_failed
+    assert "'h_joint'" in hand and "called from urdf/hand.urdf.xacro:5" in hand
+    assert "left_" not in hand and "right_" not in hand and "dual" not in hand.split(":", 1)[1]
+    assert "'left_joint'" in dual and "called from urdf/dual.urdf.xacro:6" in dual
+    assert "'right_joint'" in dual and "called from urdf/dual.urdf.xacro:7" in dual
+    assert "h_joint" not in dual and "hand.urdf.xacro" not in dual
+    assert "1 finding(s) (2 instances)" in dual
+    classnames = {c.get("name"): c.get("classname")
+                  for c in ET.parse(pkg.parent / "two_arms.xml").iter("testcase")}
+    assert classnames["urdf/dual.urdf.xacro"] == "two_arms.urdf_lint", classnames
+    assert not any(c.endswith(".") for c in classnames.values()), classnames
+
+
+def _recipe(name: str) -> str:
+    """The README block under ``<!-- recipe: NAME -->``, as a user pastes it."""
+    import re
+    readme = (DESCRIPTIONS.parent / "README.md").read_text()
+    m = re.search(r"<!-- recipe: " + re.escape(name) + r" -->\n```\w*\n(.*?)```", readme, re.S)
+    assert m, f"README has no recipe block {name!r}"
+    return m.group(1)
+
+
+def _two_arms(dest):
+    (dest / "urdf").mkdir(parents=True)
+    (dest / "urdf" / "arm.xacro").write_text(ARM_MACRO)
+    (dest / "urdf" / "hand.urdf.xacro").write_text(HAND)
+    (dest / "urdf" / "dual.urdf.xacro").write_text(DUAL)
+    return dest
+
+
+def _package_xml(name: str, build_type: str, test_depend: str) -> str:
+    return ('<?xml version="1.0"?>\n<package format="3">\n'
+            f"  <name>{name}</name>\n  <version>0.0.1</version>\n  <description>x</description>\n"
+            '  <maintainer email="a@b.c">a</maintainer>\n  <license>MIT</license>\n'
+            f"{test_depend}"
+            f"  <export><build_type>{build_type}</build_type></export>\n</package>\n")
+
+
+def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
+    """The README's ament_python recipe, pasted into a package, under real ``colcon build`` and
+    ``colcon test`` (colcon-common-extensions from the package index; the ``consumers`` extra):
+    each model is a test with its own findings; the package's clean model passes."""
+    colcon = os.path.join(os.path.dirname(sys.executable), "colcon")
+    if not os.path.exists(colcon):
+        pytest.skip("colcon is not installed (pip install colcon-common-extensions)")
+    name = "my_robot_description"
+    pkg = _two_arms(tmp_path / "ws" / "src" / name)
+    (pkg / "urdf" / "clean.urdf").write_text(
+        '<?xml version="1.0"?>\n<robot name="clean"><link name="base"/></robot>\n')
+    (pkg / "package.xml").write_text(_package_xml(name, "ament_python",
+                                                  _recipe("ament_python package.xml")))
+    (pkg / "setup.py").write_text(_recipe("ament_python setup.py"))
+    (pkg / "setup.cfg").write_text(_recipe("ament_python setup.cfg"))
+    (pkg / "resource").mkdir()
+    (pkg / "resource" / name).write_text("")
+    env = {k: v for k, v in os.environ.items() if k != "GITHUB_ACTIONS"}
+    ws = tmp_path / "ws"
+    # (the language server's test plugins in this environment are not a colcon user's)
+    for step in (["build"], ["test", "--pytest-args", "-p", "no:pytest-lsp", "-p", "no:asyncio"]):
+        p = subprocess.run([colcon, *step], cwd=ws, capture_output=True, text=True,
+                           timeout=600, env=env)
+        assert p.returncode == 0, p.stdout + p.stderr
+    junit = ws / "build" / name / "pytest.xml"
+    assert junit.is_file(), "colcon ran no pytest: the recipe misses a step"
+    cases = {c.get("name"): (c.get("classname"), c.find("failure") is not None,
+                             "".join(x.text or "" for x in c))
+             for c in ET.parse(junit).iter("testcase")}
+    assert set(cases) == {"urdf/hand.urdf.xacro", "urdf/dual.urdf.xacro", "urdf/clean.urdf"}
+    assert {c for c, _, _ in cases.values()} == {f"{name}.urdf_lint"}
+    assert not cases["urdf/clean.urdf"][1], cases["urdf/clean.urdf"][2]
+    assert cases["urdf/hand.urdf.xacro"][1] and cases["urdf/dual.urdf.xacro"][1]
+    assert "'left_joint'" in cases["urdf/dual.urdf.xacro"][2]
+    assert "'h_joint'" not in cases["urdf/dual.urdf.xacro"][2]
+
+
+def test_the_readme_ament_cmake_recipe_runs_the_models(tmp_path):
+    """What ``ament_add_pytest_test(urdf_lint test WORKING_DIRECTORY ...)`` runs (ament_cmake's
+    generated command: ``python -m pytest <pkg>/test -o cache_dir=... --junit-xml=...
+    --junit-prefix=PKG`` in the package folder) with the README's ``pytest.ini``."""
+    cmake = _recipe("ament_cmake CMakeLists.txt")
+    assert "ament_add_pytest_test(urdf_lint test WORKING_DIRECTORY" in cmake
+    name = "arm_description"
+    pkg = _two_arms(tmp_path / name)
+    (pkg / "package.xml").write_text(_package_xml(
+        name, "ament_cmake", "  <test_depend>ament_cmake_pytest</test_depend>\n"))
+    (pkg / "pytest.ini").write_text(_recipe("ament_cmake pytest.ini"))
+    (pkg / "test").mkdir()
+    junit = tmp_path / "urdf_lint.xunit.xml"
+    p = subprocess.run([sys.executable, "-u", "-m", "pytest", str(pkg / "test"),
+                        "-o", f"cache_dir={tmp_path / 'cache'}", f"--junit-xml={junit}",
+                        f"--junit-prefix={name}", "-p", "no:pytest-lsp", "-p", "no:asyncio"],
+                       cwd=pkg, capture_output=True, text=True, timeout=300)
+    assert p.returncode == 1, p.stdout + p.stderr
+    cases = {c.get("name"): c.get("classname") for c in ET.parse(junit).iter("testcase")}
+    assert cases == {"urdf/hand.urdf.xacro": f"{name}.urdf_lint",
+                     "urdf/dual.urdf.xacro": f"{name}.urdf_lint"}, cases

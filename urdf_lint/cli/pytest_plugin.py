@@ -62,9 +62,12 @@ class ModelItem(pytest.Item):
     def repr_failure(self, excinfo, style=None):  # type: ignore[override]
         if isinstance(excinfo.value, UrdfLintError):
             bad = excinfo.value.args[0]
-            lines = [f"{self.label}: {len(bad)} finding(s) at or above '{self.fail_on}'"
+            own = [i for f in bad for i in _own_instances(f, self.label)]
+            n = f"{len(bad)} finding(s)" + (f" ({len(own)} instances)" if len(own) != len(bad)
+                                            else "")
+            lines = [f"{self.label}: {n} at or above '{self.fail_on}'"
                      + ("" if bad or not self.failed else " (the model did not expand)")]
-            lines += [_finding_line(f) for f in bad]
+            lines += [_finding_line(i) for i in own]
             return "\n".join(lines)
         return super().repr_failure(excinfo)
 
@@ -100,6 +103,14 @@ def _finding_line(f: dict) -> str:
     return s
 
 
+def _own_instances(finding: dict, label: str) -> list[dict]:
+    """What ``finding`` is in the model ``label``: a finding at a macro line that several
+    models reach is one finding whose ``instances`` say which element, message and call chain
+    belong to which model; a model's item shows its own (all of them), never another model's."""
+    own = [i for i in finding.get("instances") or () if label in (i.get("models") or ())]
+    return own or [finding]
+
+
 def _label(model: dict) -> str:
     """The label urdf-lint gives a model (``jobs.ModelReport.label``): its entry, then its
     args as ``[k:=v ...]``."""
@@ -131,6 +142,13 @@ def _run(paths: list, rootdir: str) -> tuple[dict | None, str]:
         return None, f"urdf-lint check printed no JSON report:\n{p.stderr.strip()}"
 
 
+def _nodeid(name: str) -> str:
+    """``urdf_lint::NAME``: the items hang off the session, whose node id is empty, so pytest
+    would make ``::NAME`` of them, and JUnit's classname (``--junit-prefix`` + the id's part
+    before the name) would end with a dot; ``urdf_lint`` is the class every model test is in."""
+    return f"urdf_lint::{name}"
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config,
                                   items: list) -> None:
@@ -141,7 +159,8 @@ def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config
     paths = list(config.getini("urdf_lint_paths")) or ["."]
     report, problem = _run(paths, rootdir)
     if report is None:
-        items.append(RunItem.from_parent(session, name="urdf-lint", problem=problem))
+        items.append(RunItem.from_parent(session, name="urdf-lint", nodeid=_nodeid("urdf-lint"),
+                                         problem=problem))
         return
     fail_on = _fail_on(os.path.join(rootdir, paths[0]))
     by_model: dict[str, list] = {}
@@ -151,11 +170,13 @@ def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config
     for m in report["models"]:
         label = _label(m)
         items.append(ModelItem.from_parent(
-            session, name=label, label=label, findings=by_model.get(label, []),
-            fail_on=fail_on, failed=m.get("status") == "failed"))
+            session, name=label, nodeid=_nodeid(label), label=label,
+            findings=by_model.get(label, []), fail_on=fail_on,
+            failed=m.get("status") == "failed"))
     if by_model.get(""):
+        name = "urdf-lint (run-wide rules)"
         items.append(ModelItem.from_parent(
-            session, name="urdf-lint (run-wide rules)", label="run-wide rules",
+            session, name=name, nodeid=_nodeid(name), label="run-wide rules",
             findings=by_model[""], fail_on=fail_on, failed=False))
 
 
