@@ -158,3 +158,56 @@ def test_two_problems_of_one_rule_on_one_element_stay_two(tmp_path):
     assert sorted("velocity=0" in f["message"] for f in limits) == [False, True], limits
     assert sorted(f["severity"] for f in limits) == ["warning", "warning"], limits
     assert all(f["count"] == 5 for f in limits)
+
+
+ARM = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="prefix parent">
+    <link name="${prefix}link"/>
+    <joint name="${prefix}joint" type="revolute">
+      <parent link="${parent}"/>
+      <child link="${prefix}link"/>
+      <axis xyz="0 0 1"/>
+      <limit lower="1" upper="-1" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+ONE_ARM = """<?xml version="1.0"?>
+<robot name="one" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="arm.xacro"/>
+  <link name="base"/>
+  <xacro:arm prefix="h_" parent="base"/>
+</robot>
+"""
+TWO_ARMS = ONE_ARM.replace('name="one"', 'name="two"').replace(
+    '<xacro:arm prefix="h_" parent="base"/>',
+    '<xacro:arm prefix="l_" parent="base"/>\n  <xacro:arm prefix="r_" parent="base"/>')
+
+
+def test_every_command_counts_one_tree_alike(tmp_path):
+    """One swapped limit in a macro that two models call three times, and a missing inertial
+    beside it: two findings (one error, one warning) of six instances. check, the hook's
+    summary, --write-baseline and --fix count the same findings, the instances in parentheses
+    (they said 2, '3 error(s), 3 warning(s)', 6 and 'Fixed 3 (3 remaining)')."""
+    import subprocess
+    (tmp_path / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>arms</name><version>0.0.1</version>'
+        '<description>x</description><maintainer email="a@b.c">a</maintainer>'
+        "<license>MIT</license></package>\n")
+    (tmp_path / "arm.xacro").write_text(ARM)
+    (tmp_path / "one.urdf.xacro").write_text(ONE_ARM)
+    (tmp_path / "two.urdf.xacro").write_text(TWO_ARMS)
+    for cmd in (["init", "-q"], ["add", "-A"]):
+        subprocess.run(["git", *cmd], cwd=tmp_path, check=True)
+    check = run_main("check", ".", "--no-cache", cwd=tmp_path)
+    assert check.stdout.splitlines()[-1] == \
+        "Found 2 problem(s) (1 error, 1 warning, 0 info) in 2 model(s).", check.stdout
+    hook = run_main("hook", "--no-cache", "--", "arm.xacro", cwd=tmp_path)
+    assert ("2 model(s) affected by 1 file(s): 1 error(s), 1 warning(s), 0 info "
+            "(2 in the committed files)") in hook.stdout + hook.stderr, hook.stdout + hook.stderr
+    base = run_main("check", ".", "--no-cache", "--write-baseline", "bl.json", cwd=tmp_path)
+    assert "wrote 2 finding(s) (6 instances) in 1 file(s)" in base.stdout + base.stderr
+    fix = run_main("check", ".", "--no-cache", "--fix", cwd=tmp_path)
+    assert "Fixed 1 finding (3 instances) in 1 file (1 remaining)." in fix.stdout + fix.stderr, \
+        fix.stdout + fix.stderr

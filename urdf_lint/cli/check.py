@@ -186,9 +186,10 @@ def _write_baseline(o: CheckOptions, paths, result, out) -> int:
     from urdf_lint.core.locations import display_path
     from urdf_lint.engine.baseline import write_baseline
     assert o.write_baseline is not None
-    n = write_baseline(o.write_baseline, result.findings, write_base(o.write_baseline, paths))
+    from urdf_lint.core.findings import tally
+    write_baseline(o.write_baseline, result.findings, write_base(o.write_baseline, paths))
     files = len({f.file for f in result.findings})
-    out.note(f"urdf-lint: wrote {n} finding(s) in {files} file(s) to "
+    out.note(f"urdf-lint: wrote {tally(result.findings).phrase()} in {files} file(s) to "
              f"{display_path(os.path.abspath(o.write_baseline))}; "
              f"lint with --baseline {o.write_baseline} to report only new ones")
     if o.render:
@@ -260,13 +261,13 @@ def note_variants(result, cfg, resolver, out) -> None:
 def hook_summary(result, files) -> None:
     """``hook``: one line on every run, passed or failed, with the warnings and infos that do
     not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
-    from collections import Counter
+    from urdf_lint.core.findings import group, tally
     named = {os.path.realpath(f) for f in files}
-    sev = Counter(f.severity for f in result.findings)
-    mine = sum(1 for f in result.findings if os.path.realpath(f.file) in named)
+    t = tally(result.findings)
+    mine = sum(1 for f in group(result.findings) if os.path.realpath(f.file) in named)
     n = len(result.models)
-    line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {sev['error']} error(s), "
-            f"{sev['warning']} warning(s), {sev['info']} info")
+    line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {t.errors} error(s), "
+            f"{t.warnings} warning(s), {t.infos} info")
     if result.findings:
         line += f" ({mine} in the committed files)"
     say(line)

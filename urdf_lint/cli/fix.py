@@ -32,11 +32,12 @@ def _summary(outcome) -> list[str]:
     for p, reason in outcome.rolled_back:
         lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
                      f"{reason}")
-    n = len(outcome.applied)
+    from urdf_lint.core.findings import tally
+    fixed = tally(outcome.applied)
     files = len(outcome.changed_files)
-    remaining = len(outcome.result.findings)
-    lines.append(f"Fixed {n} finding{'s' if n != 1 else ''} in {files} "
-                 f"file{'s' if files != 1 else ''} ({remaining} remaining"
+    remaining = tally(outcome.result.findings).findings
+    lines.append(f"Fixed {fixed.phrase('finding' if fixed.findings == 1 else 'findings')} "
+                 f"in {files} file{'s' if files != 1 else ''} ({remaining} remaining"
                  + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
                     else "")
                  + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")

@@ -273,6 +273,34 @@ def group(findings: Iterable[Problem]) -> list[Problem]:
     return sorted(out, key=lambda f: (f.file, f.line, f.col, f.code, f.message))
 
 
+@dataclass(frozen=True)
+class Tally:
+    """The one counting rule of every command: a finding is what :func:`group` makes (one per
+    source location and rule, one per root cause), counted once however many elements or models
+    it stands for; its instances are said in parentheses where they differ
+    (``2 finding(s) (6 instances)``). Severities are the grouped findings'."""
+    findings: int
+    instances: int
+    errors: int
+    warnings: int
+    infos: int
+
+    def phrase(self, noun: str = "finding(s)") -> str:
+        """``N NOUN`` plus `` (M instances)`` when M differs from N."""
+        more = f" ({self.instances} instances)" if self.instances != self.findings else ""
+        return f"{self.findings} {noun}{more}"
+
+
+def tally(findings: Iterable[Problem]) -> Tally:
+    """How many findings (and instances) ``findings`` are, grouped as every report groups them."""
+    grouped = group(findings)
+    sev = {"error": 0, "warning": 0, "info": 0}
+    for f in grouped:
+        sev[f.severity] = sev.get(f.severity, 0) + 1
+    return Tally(len(grouped), sum(f.count for f in grouped), sev["error"], sev["warning"],
+                 sev["info"])
+
+
 _VARYING = None
 
 
