@@ -3,7 +3,7 @@
 Why: No root means every link is somebody's child: the joints form a closed loop. Several roots
 mean separate trees. URDF parsers refuse both (Pinocchio 4.1.0 rejects two roots, PyBullet 3.2.7
 crashes); MuJoCo 4.0.0 loads a second tree as another body on the world (a warning for `mujoco`;
-measured by tests/test_consumers.py). Links that no joint touches at all are reported
+measured). Links that no joint touches at all are reported
 by UL104 instead.
 
 How to fix: Connect the extra trees with a joint (often a `fixed` joint to the main base), or

@@ -2,7 +2,7 @@
 
 Why: URDF parsers reject the model (urdfdom: "link/joint is not unique"; PyBullet 3.2.7
 crashes on a duplicate joint); with xacro this usually means a macro was called twice without a
-distinct `prefix`. MuJoCo 4.0.0 loads two joints of one name (a warning for `mujoco`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+distinct `prefix`. MuJoCo 4.0.0 loads two joints of one name (a warning for `mujoco`) (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Rename one of them, or pass each macro call its own prefix.
 """

@@ -3,7 +3,7 @@
 Why: An empty geometry, two shapes in one geometry, or an unknown shape is rejected by URDF
 parsers (or silently drops the shape). An empty `<geometry/>` is rejected by MuJoCo 4.0.0 and
 PyBullet 3.2.7 (iDynTree segfaults); Pinocchio 4.1.0 loads it without the shape (a warning for
-`pinocchio`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+`pinocchio`) (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Keep exactly one of box, cylinder, sphere, mesh or capsule (URDF 1.1) in each geometry; split two shapes
 into two visuals or collisions.

@@ -3,7 +3,7 @@
 
 Why: Parsers reject such shapes, or draw and collide with nothing. MuJoCo 4.0.0 rejects a
 negative box size or a zero radius; Pinocchio 4.1.0 and PyBullet 3.2.7 load them (a warning for
-`pinocchio` and `pybullet`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+`pinocchio` and `pybullet`) (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Write the dimensions in metres as positive numbers.
 """

@@ -34,7 +34,7 @@ import math
 
 NOT_FINITE = ("nan", "inf", "infinity")
 # a NaN or infinite value: urdfdom 6.0.0 (Pinocchio 4.1.0) rejects it, MuJoCo 4.0.0 and PyBullet
-# 3.2.7 load it (measured by tests/test_consumers.py)
+# 3.2.7 load it (measured)
 LOADS_NAN = {"mujoco": "warning", "pybullet": "warning"}
 
 from urdf_lint.engine.api import Report, numbers

@@ -6,7 +6,7 @@ blocks (`<gazebo>`, `<transmission>`, `<ros2_control>`, `<mujoco>`) and namespac
 (`drake:...`) are not checked.
 
 Three cases say more, because a consumer silently loses data there (none of them warns but
-urdf_parser_py: /work/shared/notes/consumer-facts.md): a misspelled element that changes the
+urdf_parser_py): a misspelled element that changes the
 kinematics or the dynamics (`<orgin>`, `<axsi>`, `<mas>` in a joint, inertial, visual or
 collision: the origin, axis or mass is silently dropped) is an error; a xacro directive or a
 macro call that lost its `xacro:` prefix (`<insert_block name="origin"/>`, `<sensor_d435 .../>`)

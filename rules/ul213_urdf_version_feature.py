@@ -6,13 +6,13 @@ URDF 1.1 adds `quat_xyzw` on `<origin>` and the `<capsule>` shape; 1.2 adds `acc
 least their version.
 
 Why: Where they are not read, the data is silently lost. Measured with MuJoCo 4.0.0, Pinocchio
-4.1.0 (urdfdom 6.0.0) and PyBullet 3.2.7 (tests/test_consumers.py): MuJoCo and PyBullet ignore
+4.1.0 (urdfdom 6.0.0) and PyBullet 3.2.7: MuJoCo and PyBullet ignore
 `quat_xyzw` (the frame keeps the identity orientation: a warning for `mujoco` and `pybullet`)
 and have no acceleration or jerk limits (an info for them); both read `<capsule>` whatever the
 version. Pinocchio reads all of them, but only from the declared version on: with `version`
 absent or `1.0` it ignores `quat_xyzw` and drops a capsule geometry ("Could not parse visual
 element"): a warning for `ros` and `pinocchio`. Not run here, from the notes in
-/work/shared/notes/consumer-facts.md: urdf_parser_py 0.0.4 does not read them (its support is an
+urdf_parser_py 0.0.4 does not read them (its support is an
 open pull request, ros/urdf_parser_py#95): a warning for `python`. urdfdom before 6 (the ROS 2
 distributions before it) refuses `version="1.1"` altogether, per urdfdom's compatibility table;
 Gazebo, Drake and Isaac Sim were not checked, so this rule says nothing for them.

@@ -2,7 +2,7 @@
 
 Why: URDF requires `<limit effort=... velocity=...>` (and usually `lower`/`upper`) on these
 joints; urdfdom, Pinocchio and PyBullet refuse the model without it. MuJoCo 4.0.0 loads it as
-an unlimited joint: a warning for `mujoco` (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+an unlimited joint: a warning for `mujoco` (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Add the limit. If the joint really has no position limits, make it `continuous`.
 """

@@ -2,7 +2,7 @@
 
 Why: Controllers and planners refuse or clamp every position (Drake 1.51.1 rejects the model;
 MuJoCo 4.0.0, Pinocchio 4.1.0 and PyBullet 3.2.7 load it with an empty range: a warning for
-`mujoco`, `pinocchio` and `pybullet`, measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7). Usually the two were swapped, or a
+`mujoco`, `pinocchio` and `pybullet`, measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7). Usually the two were swapped, or a
 sign was lost in a mirrored (`reflect`) macro.
 
 How to fix: Swap the two values, or fix the sign.

@@ -2,7 +2,7 @@
 
 Why: URDF parsers require both on revolute and prismatic joints. A velocity of 0 loads in
 every consumer measured (urdfdom 6.0.0, MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, Drake
-1.51.1, the Python parsers: /work/shared/notes/consumer-facts.md), often as a placeholder, but
+1.51.1, the Python parsers), often as a placeholder, but
 the joint can never move under ros2_control or MoveIt (they clamp to it): a warning. `effort="0"` is different: it is
 the ROS-Industrial convention for position-controlled industrial arms, whose drives are not
 torque-controlled (the vendor packages of FANUC, ABB, Motoman ... write it on purpose). It is
@@ -10,7 +10,7 @@ reported as a warning naming that convention, because it still breaks effort-bas
 and simulators.
 
 A missing `effort` is rejected by urdfdom, Pinocchio and the Python parsers; MuJoCo 4.0.0 and
-PyBullet 3.2.7 load it (a warning for `mujoco` and `pybullet`) (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+PyBullet 3.2.7 load it (a warning for `mujoco` and `pybullet`) (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 URDF 1.2's `acceleration`, `deceleration` and `jerk` must be numbers of at least 0: urdfdom
 6.0.0 rejects a negative or non-numeric one (measured through Pinocchio 4.1.0); 0 is a warning.

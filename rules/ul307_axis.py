@@ -1,8 +1,7 @@
 """A joint axis of zero length (no direction), or one that is not a unit vector.
 
 Why: a zero axis has no direction at all: MuJoCo 4.0.0 and Drake 1.51.1 reject the model,
-Pinocchio 4.1.0 and PyBullet 3.2.7 load it with NaN joint motion (measured, see
-/work/shared/notes/consumer-facts.md). It is an error, but a warning for `pinocchio` and `pybullet`, which load it. A non-unit axis is
+Pinocchio 4.1.0 and PyBullet 3.2.7 load it with NaN joint motion (measured). It is an error, but a warning for `pinocchio` and `pybullet`, which load it. A non-unit axis is
 normalised by every consumer measured (urdfdom 6.0.0, MuJoCo, Pinocchio, PyBullet, Drake, the
 Python parsers): a warning, since a hand-written `0 0 2` usually hides another mistake.
 

@@ -3,7 +3,7 @@ mimics b mimics a).
 
 Why: Such a model has no well-defined joint positions; parsers and controllers refuse it
 (urchin and Drake reject an unknown mimicked joint; MuJoCo 4.0.0, Pinocchio 4.1.0 and PyBullet
-3.2.7 load it and ignore the relation: a warning for them, measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+3.2.7 load it and ignore the relation: a warning for them, measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Point the mimic at an existing, different joint and break the cycle.
 

@@ -4,7 +4,7 @@ single-degree-of-freedom (fixed, floating, planar).
 Why: A mimic relation couples two one-degree-of-freedom joints. Typical cause: a joint frozen
 to `fixed` (for a variant without the gripper's motion) keeps its `<mimic>` line. Drake 1.51.1
 rejects the model ("has 0 DOF cannot mimic"); urdfdom 6.0.0, MuJoCo 4.0.0, Pinocchio 4.1.0 and
-PyBullet 3.2.7 load it and ignore the relation (measured: /work/shared/notes/consumer-facts.md).
+PyBullet 3.2.7 load it and ignore the relation (measured).
 An error for `drake`, a warning for the other targets.
 
 How to fix: Remove the `<mimic>` from the fixed joint, or point it at a revolute, continuous or

@@ -1,8 +1,8 @@
 """A mesh file in a format the selected consumer cannot read.
 
 Why: ROS reads meshes through assimp (rviz, Gazebo) and loads any of them, but MuJoCo and Drake
-decode only a few formats and reject the whole model otherwise. Measured with MuJoCo 4.0.0
-(tests/test_consumers.py): a collision mesh other than STL, OBJ or MSH is rejected ("no decoder
+decode only a few formats and reject the whole model otherwise. Measured with MuJoCo 4.0.0:
+a collision mesh other than STL, OBJ or MSH is rejected ("no decoder
 found for mesh file", DAE, glTF and PLY alike); an STL must be binary with 1 to 200000
 triangles ("stl_decoder: number of faces should be between 1 and 200000 ... perhaps this is an
 ASCII file?"): ASCII STL is rejected. MuJoCo discards a URDF's visuals unless its `<mujoco>`

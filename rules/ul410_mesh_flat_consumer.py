@@ -1,11 +1,11 @@
 """A collision mesh whose vertices all lie in one plane (or on one line): it has no volume.
 
 Why: MuJoCo computes the convex hull of every collision mesh, and of every visual mesh it keeps,
-for contact and inertia. Measured with MuJoCo 4.0.0 (tests/test_consumers.py): a flat collision
+for contact and inertia. Measured with MuJoCo 4.0.0: a flat collision
 mesh rejects the model ("mesh 'plate' has coplanar vertices, cannot compute convex hull"), a
 tilted plane as well as one in a coordinate plane; a flat visual mesh kept by `<compiler
 discardvisual="false"/>` too ("mesh volume is too small"). Pinocchio 4.1.0 and PyBullet 3.2.7
-load such a mesh (tests/test_consumers.py), and so does ROS: an error for `mujoco` only. As for
+load such a mesh, and so does ROS: an error for `mujoco` only. As for
 UL409, a description carrying a `<mujoco>` block says that MuJoCo loads it, and the finding is
 then an info for the other targets. A mesh MuJoCo cannot decode at all is UL409's, not this
 rule's; a zero in `scale` is UL405's.

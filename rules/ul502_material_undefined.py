@@ -3,7 +3,7 @@ defined.
 
 Why: the visual is drawn in a default colour: urdfdom 6.0.0 and iDynTree 15.1.0 warn, the
 other consumers measured (MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, Drake 1.51.1, the
-Python parsers) load it silently (/work/shared/notes/consumer-facts.md). A warning for every
+Python parsers) load it silently. A warning for every
 target; a material without a name, colour or texture stays an error.
 
 How to fix: Define the material at the top level, or fix the name.

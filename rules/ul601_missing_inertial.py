@@ -6,8 +6,8 @@ does nothing in simulation: a warning for `gazebo`. MuJoCo 4.0.0 rejects the mod
 inertia of moving bodies must be larger than mjMINVAL", measured on 16 real models): an error
 for `mujoco` when the link has no collision geometry and nothing it carries has mass either.
 MuJoCo 4.0.0 computes a missing inertial from the collision geometry (visuals are discarded),
-and loads a link without `<inertial>` whose children have mass: a warning then, (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7)). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
-(/work/shared/notes/consumer-facts.md): a warning for the others. A link is "moving" when it
+and loads a link without `<inertial>` whose children have mass: a warning then (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
+(measured): a warning for the others. A link is "moving" when it
 is the child of a non-fixed joint.
 
 How to fix: Add an inertial. For kinematics-only models, ignore this rule.

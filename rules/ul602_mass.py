@@ -12,12 +12,12 @@ MuJoCo and Gazebo do not (an error for `mujoco`: MuJoCo 4.0.0 rejects massless m
 1e-6 kg silently, gazebosim/sdformat#199). Tiny masses on a link a joint moves usually mean
 grams or millimetre-based units were written as kilograms; on a frame attached by a `fixed`
 joint a tiny mass (1e-9 kg) is a common placeholder that every consumer measured loads
-(/work/shared/notes/consumer-facts.md) and is left alone.
+(measured) and is left alone.
 
 A tiny mass on a moving link is an error (a unit mistake), but a warning for `mujoco`,
 `pinocchio` and `pybullet`, which load 1e-9 kg as it is. A negative mass is an error, but a
 warning for `pinocchio` and `pybullet`, which load it
-(measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
+(measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7).
 
 How to fix: Write the mass in kilograms; give a moving body its real mass.
 

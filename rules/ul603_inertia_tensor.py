@@ -15,10 +15,10 @@ below 1e-9 of the tensor's largest (or all below 1e-15 kg m^2, float noise of a 
 taken as zero, so a 1e-20 tensor is treated like its exact-zero twin; all six entries equal and
 at most 1e-6 on a dummy link of at most 1e-6 kg is a placeholder. Per target: a tensor whose
 written diagonal already fails is an error (as before) but a warning for `pinocchio` and
-`pybullet`, which load it (measured by tests/test_consumers.py with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7); one that only its
+`pybullet`, which load it (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7); one that only its
 principal moments show is an error for `mujoco` (MuJoCo 4.0.0 rejects it: "use
 'balanceinertia'") and a warning for the others (urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7
-load it silently, Drake 1.51.1 with a warning: /work/shared/notes/consumer-facts.md).
+load it silently, Drake 1.51.1 with a warning).
 
 How to fix: Recompute the tensor from the part's geometry and mass (CAD tools export it).
 """

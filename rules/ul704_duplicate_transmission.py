@@ -1,7 +1,7 @@
 """Two `<transmission>` elements with the same name, or two actuators of the same name.
 
 Why: URDF requires unique names, but urdfdom ignores transmissions, so ROS tools load the file.
-urchin 0.0.30 rejects two transmissions of one name (measured: /work/shared/notes/consumer-facts.md).
+urchin 0.0.30 rejects two transmissions of one name (measured).
 Drake 1.51.1 names its joint actuators after the `<actuator>` elements and rejects two of one name
 ("already contains a joint actuator"), but loads two transmissions of one name whose actuators
 differ (both measured with pydrake). An error for `python`, and for `drake` where an actuator

@@ -6,7 +6,7 @@ joint is discarded (gazebosim/sdf_tutorials, docs/urdf/sdf_extensions.md, "Fixed
 lumping"; libsdformat 9.9.0 and later keep only a `<frame>` for the pose). What a `<gazebo>`
 block sets for the merged link (a sensor, a plugin's frame, friction, a material) is moved to
 the parent or applies to all of the parent's geometry, and the link's own frame is gone
-(gazebosim/sdformat#199; /work/shared/notes/consumer-facts.md). Gazebo could not be run here:
+(gazebosim/sdformat#199). Not measured with Gazebo itself:
 the behaviour is the documented one. A warning for `gazebo`; off for the other targets, which
 keep the link. The joint is kept when its own `<gazebo reference>` sets `<preserveFixedJoint>`
 or `<disableFixedJointLumping>` to true; a fixed joint to a link named `world` attaches the

@@ -127,6 +127,17 @@ def test_docstring_has_the_fixed_sections(code):
     assert "``" not in rule.doc, f"{code}: reST markup; write `code` in single backticks"
 
 
+@pytest.mark.parametrize("code", sorted(RULES))
+def test_rule_help_cites_nothing_outside_the_product(code):
+    """A user reads `urdf-lint rule CODE` in an installed wheel: the project's test files and
+    paths of the machine it was built on mean nothing there."""
+    import re
+    doc = RULES[code].doc
+    bad = re.findall(r"tests/\S*|test_\w+\.py|/work/\S*|shared/notes\S*|consumer-facts\S*|"
+                     r"\bhere:", doc)
+    assert not bad, f"{code}'s help cites {bad}"
+
+
 def test_sections_parser_rejects_bad_docstrings():
     from urdf_lint.engine.rulesdoc import DocError, sections
     good = "What.\n\nWhy: because.\n\nHow to fix: do it."
