@@ -59,16 +59,21 @@ def check(model, ctx):
     if not wanted(model, ctx, ("mujoco", "drake")):
         return                            # every finding would be off in this run
     kinds, others = mujoco_loads(model)
+    # the consumers the message speaks of: those of the run's targets (under --target mujoco,
+    # what Drake does is beside the point), or both when the run selects neither
+    speak = {t for t in ("mujoco", "drake") if t in ctx.targets} or {"mujoco", "drake"}
     for m, uri, path, kind in geometry_meshes(model, ctx):
         ext = os.path.splitext(path)[1].lower()
         said, table = [], {"*": "off"}
         why = mujoco_problem(path, ext) if kind in kinds else None
         if why:
-            said.append(f"{why} (MuJoCo rejects the model)")
             table.update({"*": others, "mujoco": "error"})
+            if "mujoco" in speak:
+                said.append(f"{why} (MuJoCo rejects the model)")
         if kind == "collision" and ext not in DRAKE_FORMATS:
-            said.append(f"Drake computes contact only from OBJ, VTK or glTF, not {ext or 'this'} "
-                        "(Drake rejects the model)")
             table["drake"] = "error"
+            if "drake" in speak:
+                said.append(f"Drake computes contact only from OBJ, VTK or glTF, not "
+                            f"{ext or 'this'} (Drake rejects the model)")
         if said:
             yield Report(m, f"{kind} mesh '{uri}': " + "; ".join(said), targets=table)

@@ -471,6 +471,9 @@ def test_consumer_mesh_formats(tmp_path):
         (3, "error", "MuJoCo reads at most 200000 triangles from an STL, it has 200001 (MuJoCo "
                      "rejects the model)")]
     assert [(line, sev) for line, sev, _ in ul409(plain, "drake")] == [(2, "error"), (3, "error")]
+    # each target hears of its own consumer only (under mujoco, Drake's verdict is not claimed)
+    assert not any("Drake" in msg for _, _, msg in ul409(plain, "mujoco"))
+    assert not any("MuJoCo" in msg for _, _, msg in ul409(plain, "drake"))
     assert ul409(plain) == []
     kept = make_package(tmp_path / "b", "p", {"urdf/r.urdf": body.format(
         '<mujoco><compiler discardvisual="false"/></mujoco>'), **files})
