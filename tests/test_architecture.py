@@ -145,6 +145,21 @@ def test_the_layer_contracts_are_kept(tmp_path):
     assert "Contracts: 2 kept, 0 broken." in p.stdout, p.stdout
 
 
+def test_plain_lint_imports_at_the_root_runs_the_contracts():
+    """A contributor types ``lint-imports`` in the checkout: the contracts run there too (it
+    stopped at "No matches for ignored import ..." and "Missing layer", rules/ being outside
+    urdf_lint/ in an editable install)."""
+    import os
+    import subprocess
+    import sys
+    exe = os.path.join(os.path.dirname(sys.executable), "lint-imports")
+    if not os.path.exists(exe):
+        pytest.skip("import-linter is not installed (pip install -e '.[test]')")
+    p = subprocess.run([exe, "--no-cache"], cwd=REPO, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "Contracts: 2 kept, 0 broken." in p.stdout, p.stdout
+
+
 def test_an_upward_import_breaks_the_layer_contract(tmp_path):
     """The contracts see an import inside a function too: a lower room (core) importing a
     higher one (cli) is reported with its line, and the runner importing the engine breaks its
