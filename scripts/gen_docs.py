@@ -107,8 +107,24 @@ def tables(demo: bool = True) -> dict[str, str]:
         "diff-formats": _format_table(diff.formats()),
     }
     if demo:
-        out["demo"] = demo_paragraph(run_demo())
+        output = run_demo()
+        out["demo"] = demo_paragraph(output)
+        out["demo-yaml"] = yaml_example(output)
     return out
+
+
+def yaml_example(output: str) -> str:
+    """The demo's first finding whose value comes from a YAML file, as the run printed it (the
+    finding, its call chain and the ``value from`` line), in a console block."""
+    lines = output.splitlines()
+    for i, line in enumerate(lines):
+        if line.lstrip().startswith("value from ") and ".yaml:" in line:
+            start = i
+            while start > 0 and lines[start].startswith("    "):
+                start -= 1
+            shown = "\n".join(lines[start:i + 1])
+            return f"```console\n$ urdf-lint check descriptions/\n...\n{shown}\n...\n```"
+    raise SystemExit("the demo shows no finding with a value from a YAML file")
 
 
 def render(text: str, demo: bool = False) -> str:

@@ -264,7 +264,12 @@ def hook_summary(result, files) -> None:
     from urdf_lint.core.findings import group, tally
     named = {os.path.realpath(f) for f in files}
     t = tally(result.findings)
-    mine = sum(1 for f in group(result.findings) if os.path.realpath(f.file) in named)
+    # a finding is in the committed files when it is, or when its value comes from one (a
+    # limit the commit changed in a YAML file is reported at the xacro line that reads it)
+    mine = sum(1 for f in group(result.findings)
+               if any(os.path.realpath(i.file) in named or
+                      (i.value_from and os.path.realpath(i.value_from[0]) in named)
+                      for i in f.each()))
     n = len(result.models)
     line = (f"urdf-lint: {n} model(s) affected by {len(files)} file(s): {t.errors} error(s), "
             f"{t.warnings} warning(s), {t.infos} info")

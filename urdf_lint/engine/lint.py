@@ -178,7 +178,8 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
         if job.output or job.outputs:
             _check_output(job, exp.xml, out)
         try:
-            model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver)
+            model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver,
+                                   exp.values)
         except Exception as e:  # noqa: BLE001 - lxml refused what xacro produced
             problems.append(_expanded_xml_error(e, exp, entry))
             out.status = Status.FAILED

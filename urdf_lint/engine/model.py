@@ -54,6 +54,9 @@ class Model:
     joints: dict[str, Any] = field(default_factory=dict)
     materials: dict[str, Any] = field(default_factory=dict)   # top-level <material name=...>
     mesh_base: str | None = None     # config: where relative mesh paths start (default: entry's)
+    # lxml element -> {attribute: ((file, line, col), derived)}: the attributes whose value was
+    # read from a YAML scalar (through properties, macro parameters, ...: expansion.traced)
+    value_origins: dict[Any, dict[str, Any]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         for el in self.root:
@@ -111,13 +114,17 @@ class Model:
 
 
 def model_from_xml(entry: str, args: dict[str, str], xml_text: str, origins: Any, deps: list[str],
-                   resolver: Any = None) -> Model:
+                   resolver: Any = None, values: Any = ()) -> Model:
     """The Model of an expansion's output; ``origins`` is its source map (one origin per
-    element, document order). Element and origin counts must agree (else ``ValueError``)."""
+    element, document order), ``values`` the YAML sources of attributes (the expansion's
+    ``values``, aligned alike). Element and origin counts must agree (else ``ValueError``)."""
     from urdf_lint.expansion.sourcemap import as_source_map
     root = etree.fromstring(xml_text.encode("utf-8"), safe_parser())
-    omap = as_source_map(origins).align(root.iter(tag=etree.Element))
-    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver)
+    elements = list(root.iter(tag=etree.Element))
+    omap = as_source_map(origins).align(elements)
+    vmap = {el: v for el, v in zip(elements, values, strict=True) if v} if values else {}
+    return Model(entry=entry, args=args, root=root, origins=omap, deps=deps, resolver=resolver,
+                 value_origins=vmap)
 
 
 # the XML problems tinyxml-based consumers (urdfdom, MuJoCo, Pinocchio, PyBullet, Drake) load

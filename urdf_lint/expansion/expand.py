@@ -44,7 +44,7 @@ from urdf_lint.discovery.packages import PackageResolver
 from urdf_lint.expansion import safe_eval
 from urdf_lint.core.hashing import read_recorded
 from urdf_lint.core.codes import RuleName
-from urdf_lint.expansion import splice
+from urdf_lint.expansion import splice, traced
 from urdf_lint.expansion.errors import RefusedInput, XmlSyntaxError, problem_for
 from urdf_lint.expansion.sourcemap import KEY, SourceMap
 
@@ -67,6 +67,9 @@ class Expansion:
     notes: list = field(default_factory=list)     # Problems that did not stop the expansion
     missing: list = field(default_factory=list)   # files looked for and not found
     digests: dict = field(default_factory=dict)   # file -> [stat before read, digest of bytes read]
+    # per output element (document order, as ``origins``): {attribute: ((file, line, col),
+    # derived)} for the attributes whose value came from a YAML scalar (expansion.traced)
+    values: tuple = ()
 
 
 # ---------------------------------------------------------------------------------------------
@@ -91,6 +94,10 @@ class ExpansionState:
         self.pending_chain: tuple = ()  # chain to give to the macro body being cloned
         self.include_chain: tuple = ()  # chain of the include element being processed
         self.expr_policy = expr_policy
+        # expansion.traced: the text -> source of the values eval_text gave in each eval_all
+        # being run (innermost last), and per element the attributes that came from YAML
+        self.value_frames: list[dict[str, Any]] = []
+        self.values: dict[Any, dict[str, Any]] = {}
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -247,9 +254,30 @@ def _hook_eval_all(node, macros, symbols):
     st = _active()
     st.stack.append(node)
     st.touched = None
+    attrs = list(node.attributes.items()) if node.attributes else []
+    frame: dict[str, Any] = {}
+    st.value_frames.append(frame)
     _orig["eval_all"](node, macros, symbols)
+    st.value_frames.pop()
+    if frame:
+        got = {name: frame[text] for name, text in attrs if text in frame}
+        if got:
+            st.values[node] = got
     st.stack.pop()
     st.touched = None
+
+
+def _hook_eval_text(text, symbols):
+    """xacro's ``eval_text``; a result read from YAML (:mod:`.traced`) is noted for the element
+    whose ``eval_all`` runs (its attributes are evaluated first, so the first note of a text
+    is the attribute's)."""
+    result = _orig["eval_text"](text, symbols)
+    src = traced.source_of(result)
+    if src is not None:
+        st = CURRENT.get()
+        if st is not None and st.value_frames:
+            st.value_frames[-1].setdefault(text, src)
+    return result
 
 
 def _hook_handle_macro_call(node, macros, symbols):
@@ -337,7 +365,7 @@ def _hook_load_yaml(filename):
     f.name = filename   # type: ignore[misc]
     xacro.filestack.append(filename)
     try:
-        return xacro.YamlListWrapper.wrap(yaml_load(f, Loader=loader))
+        return xacro.YamlListWrapper.wrap(traced.load(f, loader, filename))
     finally:
         xacro.filestack.pop()
         xacro.all_includes.append(filename)
@@ -360,9 +388,6 @@ def _yaml_loader():
     return _YAML_LOADER[0]
 
 
-def yaml_load(stream, Loader):
-    import yaml
-    return yaml.load(stream, Loader=Loader)  # noqa: S506 - a SafeLoader subclass
 
 
 def _hook_eval_find(pkg):
@@ -405,13 +430,14 @@ def _install_hooks():
         return
     for name in ("parse", "abs_filename_spec", "eval_all", "handle_macro_call", "grab_macro",
                  "grab_property", "process_include", "check_attrs", "reqd_attrs", "load_yaml",
-                 "warning", "print_location", "safe_eval"):
+                 "warning", "print_location", "safe_eval", "eval_text"):
         _orig[name] = getattr(xacro, name)
     _orig["eval_env"] = _subst._eval_env
     _orig["eval_optenv"] = _subst._eval_optenv
     xacro.parse = _hook_parse
     xacro.abs_filename_spec = _hook_abs_filename_spec
     xacro.eval_all = _hook_eval_all
+    xacro.eval_text = _hook_eval_text
     xacro.handle_macro_call = _hook_handle_macro_call
     xacro.grab_macro = _hook_grab_macro
     xacro.grab_property = _hook_grab_property
@@ -471,6 +497,16 @@ def _elements(node, out):
     return out
 
 
+def _element_values(node, values, out):
+    """Per output element (document order, as :func:`_elements`): its YAML-sourced
+    attributes, or None."""
+    for c in node.childNodes:
+        if c.nodeType == xml.dom.Node.ELEMENT_NODE:
+            out.append(values.get(c))
+            _element_values(c, values, out)
+    return out
+
+
 def _macro_context():
     names = []
     for m in reversed(xacro.macrostack or []):
@@ -516,6 +552,8 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
             res.xml = doc.toprettyxml(indent="  ")
             res.origins = SourceMap.from_stamps(_elements(doc, []))
+            if st.values:
+                res.values = tuple(_element_values(doc, st.values, []))
         except BaseException as e:  # noqa: BLE001 - every failure becomes a diagnostic
             if isinstance(e, (KeyboardInterrupt, SystemExit)) and not isinstance(e, SystemExit):
                 raise

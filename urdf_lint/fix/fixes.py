@@ -259,6 +259,41 @@ def _yaml_scalar(src, m, file, data, a):
     return yaml_path, node
 
 
+def traced_scalar(model, src, el, attr: str):
+    """(yaml file, :class:`YamlScalar`) of the YAML scalar the expansion read ``attr`` of
+    ``el`` from, when it is that scalar's literal value (not computed from it); else None."""
+    got = (getattr(model, "value_origins", {}).get(el) or {}).get(attr)
+    if not got or got[1]:
+        return None
+    (file, line, col), _ = got
+    node = _yaml_node_at(src.get(file), line, col)
+    return (file, node) if node is not None else None
+
+
+def _yaml_node_at(ydata: bytes, line: int, col: int):
+    """The scalar of a YAML text that starts at 1-based ``line``, ``col``, or None."""
+    import yaml
+    try:
+        text = ydata.decode("utf-8")
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except (yaml.YAMLError, UnicodeDecodeError):
+        return None
+    stack = [root]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, yaml.ScalarNode):
+            m = node.start_mark
+            if (m.line + 1, m.column + 1) == (line, col):
+                s = len(text[:m.index].encode("utf-8"))
+                e = len(text[:node.end_mark.index].encode("utf-8"))
+                return YamlScalar(node.value, s, e, node.style or "")
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+        elif isinstance(node, yaml.MappingNode):
+            stack.extend(v for _, v in node.value)
+    return None
+
+
 def _yaml_node(ydata: bytes, keys):
     import yaml
     try:
@@ -311,7 +346,14 @@ class Fixer:
         element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
         macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
         traced, else every attribute written with ``$``; the first that leads elsewhere wins.
-        ``()`` when the value is written at the element or cannot be traced."""
+        ``()`` when the value is written at the element or cannot be traced. A value the
+        expansion saw come from a YAML scalar (:mod:`urdf_lint.expansion.traced`: through
+        properties, sub-dicts, macro parameters, arithmetic) names that scalar."""
+        got = getattr(self.model, "value_origins", {}).get(el)
+        if got:
+            for name in attrs or sorted(got):
+                if name in got:
+                    return tuple(got[name][0])
         origin = self.model.origins.get(el)
         if origin is None:
             return ()

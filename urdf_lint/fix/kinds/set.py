@@ -3,7 +3,8 @@ is: the element itself, the macro call's argument, the ``xacro:property`` or the
 (:func:`urdf_lint.fix.fixes.trace`)."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, same_value, trace, where, written, yaml_text
+from urdf_lint.fix.fixes import (NOT_FIXABLE, Refuse, Request, same_value, trace, traced_scalar,
+                                 where, written, yaml_text)
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import Attr, escape
@@ -25,7 +26,13 @@ class SetAttrs(FixKind):
         edits = []
         for attr, new in site.req.changes:
             a = written(tag, attr, origin)
-            file, lit = trace(src, origin.file, data, a, tuple(origin.chain), 0)
+            try:
+                file, lit = trace(src, origin.file, data, a, tuple(origin.chain), 0)
+            except Refuse:   # the expansion saw it come from a YAML scalar: that literal
+                found = traced_scalar(site.model, src, el, attr)
+                if found is None:
+                    raise
+                file, lit = found
             if not same_value(lit.value, el.get(attr)):
                 raise Refuse(f"{NOT_FIXABLE}: the literal at {where(file)} "
                              f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")

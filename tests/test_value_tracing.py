@@ -1,0 +1,190 @@
+"""A value read from YAML is located at its YAML line through the patterns real descriptions
+use (issue 33): a property holding the loaded dict or a sub-dict (UR), item and attribute
+access, a macro parameter carrying a dict (Franka, per-link macros), arithmetic; the finding
+names the YAML line in every format, the hook counts it for a YAML commit, and ``--fix`` edits
+the YAML scalar when the value is written there (and only then)."""
+from __future__ import annotations
+
+import json
+import subprocess
+
+from conftest import make_package, run_main
+
+PKG = "arm_description"
+
+UR_YAML = """# UR-style joint limits
+joint_limits:
+  shoulder:
+    min_position: 1.5   # swapped on purpose
+    max_position: -1.5
+  elbow: {min_position: -3.0, max_position: 3.0}
+"""
+# UR: a macro reads the file, a property holds one joint's sub-dict, attribute and item access
+UR = """<?xml version="1.0"?>
+<robot name="ur" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="limits_file">
+    <xacro:property name="config" value="${xacro.load_yaml(limits_file)}"/>
+    <xacro:property name="sec" value="${config['joint_limits']}"/>
+    <link name="base"/>
+    <xacro:macro name="rev" params="name">
+      <xacro:property name="lim" value="${sec[name]}"/>
+      <link name="${name}_link"/>
+      <joint name="${name}" type="revolute">
+        <parent link="base"/><child link="${name}_link"/><axis xyz="0 0 1"/>
+        <limit lower="${lim.min_position}" upper="${lim['max_position']}" effort="1" velocity="1"/>
+      </joint>
+    </xacro:macro>
+    <xacro:rev name="shoulder"/>
+    <xacro:rev name="elbow"/>
+  </xacro:macro>
+  <xacro:arm limits_file="$(find arm_description)/config/limits.yaml"/>
+</robot>
+"""
+# Franka: the dict is a macro parameter; per-link macro: a dict of link properties
+FRANKA = """<?xml version="1.0"?>
+<robot name="fr" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="cfg" value="${load_yaml('../config/limits.yaml')}"/>
+  <xacro:macro name="hinge" params="name ext">
+    <link name="${name}_link"/>
+    <joint name="${name}" type="revolute">
+      <parent link="base"/><child link="${name}_link"/><axis xyz="0 0 1"/>
+      <limit lower="${ext['min_position']}" upper="${ext['max_position']}" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:hinge name="shoulder" ext="${cfg['joint_limits']['shoulder']}"/>
+</robot>
+"""
+ARITH = FRANKA.replace("lower=\"${ext['min_position']}\"", "lower=\"${ext['min_position'] * 1.0}\"")
+
+
+def _lint(pkg, *args):
+    p = run_main("check", ".", "--no-cache", "--output-format", "json", *args, cwd=pkg)
+    assert p.returncode in (0, 1), p.stderr
+    return json.loads(p.stdout)["findings"]
+
+
+def _ul302(findings):
+    return [f for f in findings if f["code"] == "UL302"]
+
+
+def test_ur_style_property_sub_dict_names_the_yaml_line(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML,
+                                       "urdf/ur.urdf.xacro": UR})
+    (f,) = _ul302(_lint(pkg))
+    assert f["file"].endswith("urdf/ur.urdf.xacro") and f["line"] == 12
+    assert f["value_from"][0].endswith("config/limits.yaml") and f["value_from"][1] == 4, f
+    text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
+    assert "value from config/limits.yaml:4" in text, text
+    sarif = json.loads(run_main("check", ".", "--no-cache", "--output-format", "sarif",
+                                cwd=pkg).stdout)
+    res = [r for r in sarif["runs"][0]["results"] if r["ruleId"] == "UL302"]
+    rel = [r["physicalLocation"] for r in res[0]["relatedLocations"]
+           if r["physicalLocation"]["artifactLocation"]["uri"].endswith("config/limits.yaml")]
+    assert [r["region"]["startLine"] for r in rel] == [4], res[0]["relatedLocations"]
+
+
+def test_franka_style_macro_parameter_dict_names_the_yaml_line(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML,
+                                       "urdf/fr.urdf.xacro": FRANKA})
+    (f,) = _ul302(_lint(pkg))
+    assert f["value_from"][0].endswith("config/limits.yaml") and f["value_from"][1] == 4, f
+
+
+def test_fix_swaps_the_yaml_scalars_keeping_comments_and_flow_style(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML,
+                                       "urdf/ur.urdf.xacro": UR})
+    p = run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert "Fixed 1 finding" in p.stderr, p.stderr
+    assert (pkg / "config/limits.yaml").read_text() == UR_YAML.replace(
+        "min_position: 1.5   #", "min_position: -1.5   #").replace(
+        "max_position: -1.5\n", "max_position: 1.5\n")
+    assert (pkg / "urdf/ur.urdf.xacro").read_text() == UR
+    assert not _ul302(_lint(pkg))
+
+
+def test_a_value_computed_from_yaml_is_located_but_not_written_back(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML,
+                                       "urdf/fr.urdf.xacro": ARITH})
+    (f,) = _ul302(_lint(pkg))
+    assert f["value_from"][0].endswith("config/limits.yaml") and f["value_from"][1] == 4, f
+    assert f["fix"].get("refused"), f["fix"]
+    run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert (pkg / "config/limits.yaml").read_text() == UR_YAML
+
+
+def test_per_link_macro_dict_locates_a_mass(tmp_path):
+    yaml = "links:\n  upper_arm:\n    mass: -2.0\n    size: 0.1\n"
+    xacro = """<?xml version="1.0"?>
+<robot name="m" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="params" value="${load_yaml('../config/links.yaml')}"/>
+  <xacro:macro name="solid" params="name props">
+    <link name="${name}">
+      <inertial>
+        <mass value="${props['mass']}"/>
+        <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>
+      </inertial>
+    </link>
+  </xacro:macro>
+  <link name="base"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="upper_arm"/></joint>
+  <xacro:solid name="upper_arm" props="${params['links']['upper_arm']}"/>
+</robot>
+"""
+    pkg = make_package(tmp_path, PKG, {"config/links.yaml": yaml, "urdf/m.urdf.xacro": xacro})
+    mass = [f for f in _lint(pkg) if f["code"] == "UL602"]
+    assert mass and mass[0]["value_from"][0].endswith("config/links.yaml"), mass
+    assert mass[0]["value_from"][1] == 3
+
+
+def test_the_expansion_is_unchanged_by_tracing(tmp_path):
+    """Traced values print as the plain ones: the expanded URDF is stock xacro's, byte for
+    byte (here against the same expansion with the values made plain)."""
+    import sys
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML.replace(
+        "1.5", "1.5e-7").replace("3.0", "3"), "urdf/fr.urdf.xacro": ARITH})
+    out = run_main("expand", "urdf/fr.urdf.xacro", cwd=pkg)
+    assert out.returncode == 0, out.stderr
+    # stock xacro in a process of its own (this one may have urdf-lint's hooks installed)
+    stock = subprocess.run([sys.executable, "-c", "import sys, xacro; sys.stdout.write(xacro."
+                            "process_file(sys.argv[1]).toprettyxml(indent='  '))",
+                            str(pkg / "urdf/fr.urdf.xacro")], capture_output=True, text=True,
+                           check=True).stdout
+    assert "1.5e-07" in stock
+    assert out.stdout.split("-->", 2)[-1] == stock.split("-->", 2)[-1]
+
+
+def test_the_hook_counts_a_yaml_commit_as_its_own(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML.replace(
+        "min_position: 1.5   #", "min_position: -1.5   #").replace(
+        "max_position: -1.5\n", "max_position: 1.5\n"), "urdf/ur.urdf.xacro": UR})
+    for cmd in (["init", "-q"], ["add", "-A"]):
+        subprocess.run(["git", *cmd], cwd=pkg, check=True)
+    (pkg / "config/limits.yaml").write_text(UR_YAML)
+    subprocess.run(["git", "add", "-A"], cwd=pkg, check=True)
+    p = run_main("hook", "--no-cache", "--", "config/limits.yaml", cwd=pkg)
+    out = p.stdout + p.stderr
+    assert p.returncode == 1, out
+    assert "value from config/limits.yaml:4" in out, out
+    assert "1 error(s)" in out and "(1 in the committed files)" in out, out
+
+
+def test_the_seed_r2d2_names_its_yaml_line_and_fixes_the_flow_mapping(tmp_path):
+    """The seed R2D2 reads its limits as ``ext = limits['gripper_extension']`` (a property
+    holding a sub-dict of the loaded file): a swapped limit in its YAML's flow mapping is
+    reported with the YAML line, and --fix swaps the two scalars in place."""
+    import shutil
+    from conftest import DESCRIPTIONS
+    pkg = tmp_path / "r2d2_description"
+    shutil.copytree(DESCRIPTIONS / "r2d2_description", pkg)
+    limits = pkg / "config" / "joint_limits.yaml"
+    good = limits.read_text()
+    assert "gripper_extension: {lower: -0.38, upper: 0.0," in good
+    bad = good.replace("gripper_extension: {lower: -0.38, upper: 0.0,",
+                       "gripper_extension: {lower: 0.0, upper: -0.38,")
+    limits.write_text(bad)
+    (f,) = _ul302(_lint(pkg))
+    assert f["file"].endswith("urdf/r2d2.urdf.xacro")
+    assert f["value_from"][0].endswith("config/joint_limits.yaml") and f["value_from"][1] == 2
+    run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert limits.read_text() == good
