@@ -26,11 +26,13 @@ from pathlib import Path
 from lsprotocol import types
 
 TRACED = "open,openat,openat2"
+FORKS = "clone,clone3,fork,vfork"   # traced too: which thread belongs to which process
 # what every Python process and git open: the kernel's and the system's files, never the user's
 SYSTEM = ("/proc", "/sys", "/dev", "/etc", "/usr", "/lib", "/lib32", "/lib64", "/bin",
           "/sbin", "/run")
 # a call and its result; ``-y`` decorates the descriptor returned with the path opened
 _CALL = re.compile(r"^(?:open|openat|openat2)\(.*\)\s+=\s+(?P<ret>-?\d+)(?:<(?P<fdpath>[^>]*)>)?")
+_FORK = re.compile(r"^(?P<call>clone3?|v?fork)\((?P<args>.*)\)\s+=\s+(?P<ret>\d+)")
 
 
 def trace_works(tmp: Path) -> bool:
@@ -52,11 +54,35 @@ def runtime_folders() -> list[str]:
     return sorted({os.path.realpath(p) for p in out})
 
 
-def opened(trace_dir: Path) -> list[tuple[str, str]]:
+def _threads(trace_dir: Path) -> tuple[dict, int | None]:
+    """({thread id: the id of its process}, the first traced process), from the clone, fork
+    and vfork calls of each thread's trace."""
+    made: dict = {}   # child -> (parent thread, a thread of the parent's process?)
+    for f in trace_dir.iterdir():
+        tid = int(f.name.rsplit(".", 1)[1])
+        for line in f.read_text(errors="replace").splitlines():
+            m = _FORK.match(line)
+            if m:
+                made[int(m.group("ret"))] = (tid, "CLONE_THREAD" in m.group("args"))
+    tids = [int(f.name.rsplit(".", 1)[1]) for f in trace_dir.iterdir()]
+    roots = [t for t in tids if t not in made]
+
+    def process(t: int) -> int:
+        while t in made and made[t][1]:
+            t = made[t][0]
+        return t
+    return {t: process(t) for t in tids}, (min(roots) if roots else None)
+
+
+def opened(trace_dir: Path, server_only: bool = False) -> list[tuple[str, str]]:
     """(the real path the kernel opened, the trace line) of every successful traced call of
-    every thread (a refused or failed call read nothing)."""
+    every thread (a refused or failed call read nothing); ``server_only``: of the threads of
+    the first process only (not a worker it forked, not git)."""
+    process, first = _threads(trace_dir)
     out = []
     for f in sorted(trace_dir.iterdir()):
+        if server_only and process[int(f.name.rsplit(".", 1)[1])] != first:
+            continue
         for line in f.read_text(errors="replace").splitlines():
             m = _CALL.match(line)
             if m and int(m.group("ret")) >= 0 and m.group("fdpath") is not None:
@@ -68,12 +94,13 @@ def _below(path: str, folders) -> bool:
     return any(path == d or path.startswith(d.rstrip("/") + "/") for d in folders)
 
 
-def opened_outside(trace_dir: Path, allowed) -> list[str]:
+def opened_outside(trace_dir: Path, allowed, server_only: bool = False) -> list[str]:
     """The trace lines of every file or folder opened outside ``allowed`` (their real paths),
-    the Python runtime and the system folders."""
+    the Python runtime and the system folders (``server_only``: as for :func:`opened`)."""
     folders = [os.path.realpath(a) for a in allowed]
     folders += runtime_folders() + list(SYSTEM)
-    return [line for path, line in opened(trace_dir) if not _below(path, folders)]
+    return [line for path, line in opened(trace_dir, server_only)
+            if not _below(path, folders)]
 
 
 class TracedServer:
@@ -97,7 +124,7 @@ class TracedServer:
     async def __aenter__(self):
         self.trace_dir.mkdir(parents=True, exist_ok=True)
         await self.lsp.start_io("strace", "-ff", "-y", "-qq", "-s", "4096", "-e",
-                                f"trace={TRACED}", "-o", str(self.trace_dir / "trace"),
+                                f"trace={TRACED},{FORKS}", "-o", str(self.trace_dir / "trace"),
                                 sys.executable, "-m", "urdf_lint", "server",
                                 cwd=str(self.cwd), env=self.env)
         return self
