@@ -86,14 +86,14 @@ class UrdfLintServer(LanguageServer):
         ws = self.ws
         if ws is None:
             return
+        loop = asyncio.get_running_loop()
         if not ws.readable(path):   # not linted: it gets the diagnostic saying so
             self.publish({path}, self.versions())
-            return
-        jobs = ws.affected(path)
-        loop = asyncio.get_running_loop()
-        versions = self.versions()   # what the lint reads: its diagnostics carry these
-        files = await loop.run_in_executor(self.executor, ws.lint, jobs)
-        self.publish(files | {path} | set(ws.buffers), versions)
+        else:
+            jobs = ws.affected(path)
+            versions = self.versions()   # what the lint reads: its diagnostics carry these
+            files = await loop.run_in_executor(self.executor, ws.lint, jobs)
+            self.publish(files | {path} | set(ws.buffers), versions)
         rest = ws.unlinted()
         if rest:   # then the models this file does not reach, to have them warm
             versions = self.versions()
