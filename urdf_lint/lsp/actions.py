@@ -12,8 +12,13 @@ from urdf_lint.lsp.core import UrdfLintServer, path_uri, uri_path
 FIX_ALL = types.CodeActionKind.SourceFixAll.value + ".urdf-lint"
 
 
-def _workspace_edit(ls: UrdfLintServer, edits) -> types.WorkspaceEdit:
-    """LSP text edits from byte edits, per file, against the text the editor has."""
+def _workspace_edit(ls: UrdfLintServer, edits) -> types.WorkspaceEdit | None:
+    """LSP text edits from byte edits, per file, against the text the editor has; None when
+    an edit is of a file the run may not write (``check --fix``'s rule: outside the
+    workspace folder, an installed package, a file a symlink leads out to)."""
+    ws = ls.ws
+    if ws is None or not all(ws.writable(e.file) for e in edits):
+        return None
     changes: dict = {}
     for e in edits:
         doc = ls.doc(e.file)
@@ -27,28 +32,33 @@ def _fix_action(ls, f, diag) -> types.CodeAction | None:
     fix: Fix | None = f.fix
     if fix is None or not fix.applicable:
         return None
+    edit = _workspace_edit(ls, fix.edits)
+    if edit is None:
+        return None
     title = fix.description + ("" if fix.safe else " (unsafe: check the result)")
     return types.CodeAction(title=f"{f.code}: {title}", kind=types.CodeActionKind.QuickFix,
                             diagnostics=[diag] if diag else None, is_preferred=fix.safe,
-                            edit=_workspace_edit(ls, fix.edits))
+                            edit=edit)
 
 
 def _suppress_next(ls, f, diag) -> types.CodeAction | None:
     from urdf_lint.fix.addsuppress import suppression_edits
+    if not ls.ws.writable(f.file):   # (--add-suppressions leaves it alone too; nor is it read)
+        return None
     with overlay.using(ls.ws.buffers):
         edits, _ = suppression_edits([f])
     es = [e for v in edits.values() for e in v]
-    if not es:
+    edit = _workspace_edit(ls, es) if es else None
+    if edit is None:
         return None
     return types.CodeAction(title=f"Disable {f.code} for the next element",
                             kind=types.CodeActionKind.QuickFix,
-                            diagnostics=[diag] if diag else None,
-                            edit=_workspace_edit(ls, es))
+                            diagnostics=[diag] if diag else None, edit=edit)
 
 
 def _suppress_file(ls, f, diag) -> types.CodeAction | None:
     from urdf_lint.core.edits import Edit
-    if not f.file.endswith((".xacro", ".urdf", ".xml")):
+    if not f.file.endswith((".xacro", ".urdf", ".xml")) or not ls.ws.writable(f.file):
         return None
     data = ls.doc(f.file).data
     at = 0
@@ -76,7 +86,8 @@ def fix_all_safe(ls, path: str) -> types.CodeAction | None:
     taken: list = []
     for f in ws.findings_in(path):
         fix = f.fix
-        if fix is None or not fix.applicable or not fix.safe:
+        if fix is None or not fix.applicable or not fix.safe or \
+                not all(ws.writable(e.file) for e in fix.edits):
             continue
         spans = [(e.file, e.start, e.end) for e in fix.edits]
         if any(a == c and b < d2 and b2 < e2 for (a, b, e2) in spans
@@ -84,10 +95,10 @@ def fix_all_safe(ls, path: str) -> types.CodeAction | None:
             continue
         taken.extend(spans)
         chosen.extend(fix.edits)
-    if not chosen:
+    edit = _workspace_edit(ls, list(dict.fromkeys(chosen))) if chosen else None
+    if edit is None:
         return None
-    return types.CodeAction(title="urdf-lint: fix all safe", kind=FIX_ALL,
-                            edit=_workspace_edit(ls, list(dict.fromkeys(chosen))))
+    return types.CodeAction(title="urdf-lint: fix all safe", kind=FIX_ALL, edit=edit)
 
 
 def register(server: UrdfLintServer) -> None:

@@ -51,13 +51,15 @@ class UrdfLintServer(LanguageServer):
 
     # -- documents -------------------------------------------------------------------------
     def doc(self, path: str) -> Doc:
-        """The file as the editor has it, else as on disk (b"" when unreadable)."""
+        """The file as the editor has it, else as on disk through the boundary with the run's
+        roots (b"" when unreadable or outside them: never a file ``check`` could not read)."""
         ws = self.ws
-        if ws is not None and path in ws.buffers:
+        if ws is None:
+            return Doc(b"")
+        if path in ws.buffers:
             return Doc(ws.buffers[path])
-        from urdf_lint.core import fsbound
         try:
-            return Doc(fsbound.read_bytes(path))
+            return Doc(ws.read(path))
         except OSError:
             return Doc(b"")
 
@@ -84,11 +86,14 @@ class UrdfLintServer(LanguageServer):
         ws = self.ws
         if ws is None:
             return
-        jobs = ws.affected(path)
         loop = asyncio.get_running_loop()
-        versions = self.versions()   # what the lint reads: its diagnostics carry these
-        files = await loop.run_in_executor(self.executor, ws.lint, jobs)
-        self.publish(files | {path} | set(ws.buffers), versions)
+        if not ws.readable(path):   # not linted: it gets the diagnostic saying so
+            self.publish({path}, self.versions())
+        else:
+            jobs = ws.affected(path)
+            versions = self.versions()   # what the lint reads: its diagnostics carry these
+            files = await loop.run_in_executor(self.executor, ws.lint, jobs)
+            self.publish(files | {path} | set(ws.buffers), versions)
         rest = ws.unlinted()
         if rest:   # then the models this file does not reach, to have them warm
             versions = self.versions()
@@ -118,6 +123,8 @@ class UrdfLintServer(LanguageServer):
     def diagnostics(self, path: str) -> list[types.Diagnostic]:
         ws = self.ws
         assert ws is not None
+        if path in ws.buffers and not ws.readable(path):
+            return [not_linted(ws, path)]
         out = []
         cp = ws.config_problem
         if cp is not None and cp.file == path:
@@ -180,6 +187,17 @@ class UrdfLintServer(LanguageServer):
                                             range=use.element_range(f.line, f.col)),
                     message="the value is used here")]))
         return out
+
+
+def not_linted(ws: Workspace, path: str) -> types.Diagnostic:
+    """The one diagnostic of an open file outside the run's roots: it is not linted (no
+    diagnostic would look clean), and why."""
+    return types.Diagnostic(
+        range=types.Range(types.Position(0, 0), types.Position(0, 0)),
+        message=f"not linted: this file is outside the roots of the workspace {ws.root} "
+        "(the packages, git repository and colcon workspace holding it); urdf-lint reads "
+        "no file there", severity=types.DiagnosticSeverity.Information, source=SOURCE,
+        code="not-linted")
 
 
 def _model_name(label: str) -> str:

@@ -39,13 +39,16 @@ class Index:
         return hit[1]
 
     def all_files(self, ls: UrdfLintServer) -> list[str]:
+        """The workspace's xacro files: open or in the include graph, inside the run's roots
+        (an include a symlink or ``$(find)`` leads out of them is not indexed)."""
         ws = ls.ws
-        files = set(ws.buffers) if ws else set()
-        if ws is not None:
-            for f, inc in ws.graph.includes.items():
-                files.add(f)
-                files.update(inc)
-        return sorted(f for f in files if f.endswith(".xacro"))
+        if ws is None:
+            return []
+        files = set(ws.buffers)
+        for f, inc in ws.graph.includes.items():
+            files.add(f)
+            files.update(inc)
+        return sorted(f for f in files if f.endswith(".xacro") and ws.readable(f))
 
     def reachable(self, ls: UrdfLintServer, path: str) -> list[str]:
         """``path``, the files it includes (transitively), then every other xacro file."""
@@ -57,7 +60,7 @@ class Index:
                 continue
             out.append(f)
             if ws is not None:
-                todo.extend(ws.graph.includes.get(f, ()))
+                todo.extend(i for i in ws.graph.includes.get(f, ()) if ws.readable(i))
         return out + [f for f in self.all_files(ls) if f not in out]
 
     def decls(self, ls, path, kind, name=None) -> list[Decl]:
@@ -227,7 +230,7 @@ def _file_target(ls, path, at: At) -> str | None:
     except Exception:  # noqa: BLE001 - an unknown package: nowhere to go
         return None
     p = os.path.realpath(p)
-    return p if os.path.isfile(p) else None
+    return p if ws.readable(p) and os.path.isfile(p) else None
 
 
 def _targets(ls, path, at: At):

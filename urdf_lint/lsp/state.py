@@ -77,6 +77,7 @@ class Workspace:
             self.policy = Policy.from_config(cfg)
             self.settings = settings_for(cfg, resolver, None, self.policy)
         self.cfg, self.resolver = cfg, resolver
+        self.read_roots = tuple(resolver.read_paths())   # (frozen with the resolver)
         # the workers send each robot back (navigation and hover read it through its source
         # map): results are kept in memory, not taken from check's cache (it holds no robot);
         # its mesh facts are used
@@ -110,6 +111,30 @@ class Workspace:
 
     def contains(self, path: str) -> bool:
         return os.path.realpath(path).startswith(self.root + os.sep)
+
+    # -- what the server process may read and offer to write -----------------------------------
+    def readable(self, path: str) -> bool:
+        """May the server read ``path``? Exactly what ``check``'s own process may: inside the
+        run's roots after symlinks (the packages, repository and colcon workspace holding the
+        workspace folder, and the environment's packages: ``PackageResolver.is_inside``)."""
+        return self.resolver.is_inside(path)
+
+    def read(self, path: str) -> bytes:
+        """The bytes of ``path`` through the boundary with the run's roots (regular files only,
+        bounded); raises ``BoundaryError`` (an ``OSError``) for a file outside them."""
+        from urdf_lint.core import fsbound
+        if not self.readable(path):
+            raise fsbound.BoundaryError(path, "resolves outside the package roots and the "
+                                        "workspace; it was not read")
+        return fsbound.read_bytes(path, roots=self.read_roots)
+
+    def writable(self, path: str) -> bool:
+        """May a code action edit ``path``? The rule of ``check --fix`` and
+        ``--add-suppressions`` for the linted path (the workspace folder): its real path is
+        inside it (:func:`urdf_lint.fix.sourceedit.inside`), never an installed package or a
+        file a symlink leads out to."""
+        from urdf_lint.fix.sourceedit import inside
+        return inside(path, [self.root], resolved=True)
 
     # -- which models a file reaches ---------------------------------------------------------
     def affected(self, path: str) -> list[LintJob]:
@@ -189,6 +214,10 @@ class Workspace:
         p = self.policy
         final = [f for f in kept if p.is_selected(f.code, f.name)
                  and not p.ignored_for_file(f.code, f.name, f.file)]
+        # the fixes check --fix would refuse (an edit outside the workspace folder, of a
+        # generated URDF) are refused here too: no code action offers them
+        from urdf_lint.fix.fixes import inside_paths
+        final = inside_paths(final, [self.root], self.generated)
         return sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
 
     def findings_in(self, path: str) -> list[Problem]:
