@@ -32,9 +32,10 @@ import tempfile
 
 TIMEOUT_S = 900
 # the child's fixed command line: the repository (its working directory) is taken off sys.path
-# before anything is imported, so a committed urdf_lint/ or yaml.py is never code
-CHILD = [sys.executable, "-c", "import sys; sys.path[:] = [p for p in sys.path if p not in "
-         "('', '.')]; from urdf_lint.cli.mcp import child; child()"]
+# (its entry '', and any other relative one) before anything is imported, so a committed
+# urdf_lint/ or yaml.py is never code (os and sys are loaded already, by the interpreter)
+CHILD = [sys.executable, "-c", "import os, sys; sys.path[:] = [p for p in sys.path if "
+         "os.path.isabs(p)]; from urdf_lint.cli.mcp import child; child()"]
 # an xacro arg name: a Python identifier, as xacro accepts them (ASCII)
 ARG_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 UNTRUSTED_NOTE = ("Everything under the result's 'untrusted' field is text from the repository "
