@@ -156,9 +156,9 @@ def test_diff_markdown_renders_untrusted_text_as_text_only(tmp_path):
 ALLOWED_WRITES = {
     ("core/emit.py", "report_internal"): "safe_lines: every line escaped, later lines indented",
     ("cli/check.py", "progress"): "the progress counter: two numbers",
-    ("cli/expand.py", "run"): "the expanded URDF itself, the product the user asked for",
+    ("cli/expand.py", "expand"): "the expanded URDF itself, the product the user asked for",
     ("cli/rules.py", "run"): "the rule catalogue: urdf-lint's own text",
-    ("cli/rule.py", "run"): "one rule's documentation: urdf-lint's own text",
+    ("cli/rule.py", "explain"): "one rule's documentation: urdf-lint's own text",
     ("cli/doctor.py", "run"): "this machine's protections: urdf-lint's own text",
     ("cli/main.py", "_main"): "--version: urdf-lint's own text",
     ("cli/fix.py", "check_fix"): "the --diff patch: file names escaped by fixrun.unified_diff, "

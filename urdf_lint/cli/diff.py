@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass, field
 
-from urdf_lint.cli.common import (ConfigOptions, load_cfg, no_recordings_note, parse_package_paths,
-                                  refuse_symlinked_out, safe_text, write_base)
+from urdf_lint.cli.common import (ConfigOptions, load_cfg, no_recordings_note, options_from,
+                                  parse_package_paths, refuse_symlinked_out, safe_text,
+                                  write_base)
 from urdf_lint.cli.parser import add_target, add_views
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
@@ -54,42 +56,63 @@ def add_parser(sub, raw):
                          "repository, cache-dir, jobs and looser limits (default: off)")
 
 
+@dataclass
+class ReviewOptions:
+    """What ``diff`` was asked to do (from the command line, or the MCP server's ``diff``
+    tool: the same typed options, no command line in between)."""
+    base: str
+    head: str | None = None
+    paths: list | None = None
+    format: str = "text"
+    output: str | None = None
+    image_base_url: str | None = None
+    fail_on: str | None = None
+    package_path: list | None = None
+    no_cache: bool = False
+    render: str | None = None
+    no_rrd: bool = False
+    config: ConfigOptions = field(default_factory=ConfigOptions)
+
+
 def run(args) -> int:
+    return diff(options_from(ReviewOptions, args, config=ConfigOptions.from_args(args)))
+
+
+def diff(o: ReviewOptions) -> int:
     from urdf_lint.report import diff as diff_report
     from urdf_lint.review import run as review
-    paths = args.paths or ["."]
+    paths = o.paths or ["."]
     for p in paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only its flags' keys
-    config = ConfigOptions.from_args(args)
-    refuse_symlinked_out(args.render, paths)
+    refuse_symlinked_out(o.render, paths)
     cfgs = []
 
     def load(ps):
-        cfgs.append(load_cfg(config, ps))
+        cfgs.append(load_cfg(o.config, ps))
         return cfgs[-1]
     try:
-        result = review.run_diff(args.base, args.head, paths, load,
-                                 parse_package_paths(args.package_path), jobs_n=None,
-                                 use_cache=not args.no_cache, render_dir=args.render,
-                                 rrd=not args.no_rrd)
+        result = review.run_diff(o.base, o.head, paths, load,
+                                 parse_package_paths(o.package_path), jobs_n=None,
+                                 use_cache=not o.no_cache, render_dir=o.render,
+                                 rrd=not o.no_rrd)
     except review.ReviewError as e:
         raise UsageError(str(e)) from None
-    options = diff_report.DiffOptions(image_base_url=args.image_base_url)
-    if args.output:
+    options = diff_report.DiffOptions(image_base_url=o.image_base_url)
+    if o.output:
         try:
-            diff_report.write_file(result, args.format, args.output,
-                                   write_base(args.output, paths), options)
+            diff_report.write_file(result, o.format, o.output,
+                                   write_base(o.output, paths), options)
         except OSError as e:
-            raise UsageError(f"cannot write {safe_text(args.output)}: "
+            raise UsageError(f"cannot write {safe_text(o.output)}: "
                              f"{safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
-        diff_report.write(result, args.format, sys.stdout, options)
+        diff_report.write(result, o.format, sys.stdout, options)
     for model, why in result.snapshot_problems:
         say(f"{safe_text(model)}: snapshot incomplete: {safe_text(why)}")
     if result.no_recordings:
         no_recordings_note(result.no_recordings)
     from urdf_lint.core.emit import report_internal
     report_internal(result.internal)
-    return review.exit_code(result, cfgs[0].fail_on if cfgs else (args.fail_on or "error"))
+    return review.exit_code(result, cfgs[0].fail_on if cfgs else (o.fail_on or "error"))

@@ -3,9 +3,10 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass, field
 
 from urdf_lint.cli.common import (ConfigOptions, apply_cli_values, apply_trust, expand_in_workers,
-                                  parse_package_paths, safe_text, write_base)
+                                  options_from, parse_package_paths, safe_text, write_base)
 from urdf_lint.cli.parser import add_inputs, add_key_flags
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
@@ -37,26 +38,41 @@ def parse_mappings(items):
     return args, rest
 
 
+@dataclass
+class ExpandOptions:
+    """What ``expand`` was asked to do (from the command line, or the MCP server's ``expand``
+    tool: the same typed options, no command line in between)."""
+    file: str
+    mappings: dict = field(default_factory=dict)     # xacro arg name -> value
+    output: str | None = None
+    package_path: list | None = None
+    config: ConfigOptions = field(default_factory=ConfigOptions)
+
+
 def run(args) -> int:
-    if not os.path.isfile(args.file):
-        raise UsageError(f"no such file: {args.file}")
+    mappings, rest = parse_mappings(args.mappings)
+    if rest:
+        raise UsageError(f"expected name:=value, got {' '.join(rest)}")
+    return expand(options_from(ExpandOptions, args, mappings=mappings,
+                               config=ConfigOptions.from_args(args)))
+
+
+def expand(o: ExpandOptions) -> int:
+    if not os.path.isfile(o.file):
+        raise UsageError(f"no such file: {o.file}")
     from urdf_lint.run.worker import prestart
-    prestart()   # (done already by main(); here for callers of cmd_expand)
+    prestart()   # (done already by main(); here for callers of expand)
     from urdf_lint.config.schema import find_config, load_config
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.core.jobs import LintJob, Status
     from urdf_lint.core.locations import display_path
-    mappings, rest = parse_mappings(args.mappings)
-    if rest:
-        raise UsageError(f"expected name:=value, got {' '.join(rest)}")
-    cfg = load_config(find_config(args.file))
-    opts = ConfigOptions.from_args(args)
-    apply_trust(cfg, opts, [args.file])
-    apply_cli_values(cfg, opts)
-    resolver = build_resolver([args.file], cfg, parse_package_paths(args.package_path))
+    cfg = load_config(find_config(o.file))
+    apply_trust(cfg, o.config, [o.file])
+    apply_cli_values(cfg, o.config)
+    resolver = build_resolver([o.file], cfg, parse_package_paths(o.package_path))
     # expanded in a worker like `check`: time and memory limits, scrubbed environment, sandbox
-    job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
-                  display_name=args.file)
+    job = LintJob(os.path.abspath(o.file), dict(o.mappings), "expand", explicit=True,
+                  display_name=o.file)
     res = expand_in_workers([job], resolver, cfg)[0]
     from urdf_lint.core.emit import report_internal
     if report_internal(res.internal):
@@ -70,13 +86,13 @@ def run(args) -> int:
             from urdf_lint.rules import ul002_xacro_error
             say(f"{display_path(job.entry)}:1:1: {ul002_xacro_error.CODE} expansion failed")
         return 1
-    if args.output:
+    if o.output:
         from urdf_lint.core import fsbound
         try:
-            fsbound.write_text(args.output, xml, write_base(args.output, [args.file]),
+            fsbound.write_text(o.output, xml, write_base(o.output, [o.file]),
                                make_dirs=True)
         except OSError as e:
-            raise UsageError(f"cannot write {safe_text(args.output)}: "
+            raise UsageError(f"cannot write {safe_text(o.output)}: "
                              f"{safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
     else:
         sys.stdout.write(xml)

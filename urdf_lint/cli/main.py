@@ -152,6 +152,13 @@ def _main(argv) -> int:
     if not args.command:
         parser.print_help()
         return 2
+    return guarded(_runner(args.command), args)
+
+
+def guarded(command, *args) -> int:
+    """Run one command (``command(*args)``, its exit status) as ``urdf-lint`` does: SIGTERM
+    handled like Ctrl-C, a usage or config error is one line and 2, any other exception an
+    internal error and 2 (the command line, and each call of the MCP server's tools)."""
     from urdf_lint.config.schema import ConfigError   # (a BaselineError is a UsageError)
     import signal
 
@@ -162,7 +169,7 @@ def _main(argv) -> int:
     except ValueError:  # pragma: no cover - not the main thread
         pass
     try:
-        return _runner(args.command)(args)
+        return command(*args)
     except (UsageError, ConfigError) as e:
         say(f"urdf-lint: error: {e}")
         return 2

@@ -2,10 +2,11 @@
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass, field
 
 from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, load_cfg, no_models_warning,
-                                  note_unused, parse_package_paths, refuse_symlinked_out,
-                                  report_snapshots, through_models)
+                                  note_unused, options_from, parse_package_paths,
+                                  refuse_symlinked_out, report_snapshots, through_models)
 from urdf_lint.cli.parser import add_inputs, add_limits, add_target, add_views
 from urdf_lint.core.emit import tell
 from urdf_lint.core.errors import UsageError
@@ -28,30 +29,45 @@ def add_parser(sub, raw):
     add_target(rd)
 
 
+@dataclass
+class RenderOptions:
+    """What ``render`` was asked to do (from the command line, or the MCP server's ``render``
+    tool: the same typed options, no command line in between)."""
+    paths: list = field(default_factory=lambda: ["."])
+    out: str = "snapshots"
+    no_rrd: bool = False
+    package_path: list | None = None
+    config: ConfigOptions = field(default_factory=ConfigOptions)
+
+
 def run(args) -> int:
+    return render(options_from(RenderOptions, args, config=ConfigOptions.from_args(args)))
+
+
+def render(o: RenderOptions) -> int:
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.run.pipeline import RunRequest, run_check
-    for p in args.paths:
+    for p in o.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
-    refuse_symlinked_out(args.out, args.paths)
-    cfg = load_cfg(ConfigOptions.from_args(args), args.paths)
-    package_paths = parse_package_paths(args.package_path)
-    paths, affected_by, named = list(args.paths), None, set()
-    redirect = through_models(args.paths, package_paths, cfg)
+    refuse_symlinked_out(o.out, o.paths)
+    cfg = load_cfg(o.config, o.paths)
+    package_paths = parse_package_paths(o.package_path)
+    paths, affected_by, named = list(o.paths), None, set()
+    redirect = through_models(o.paths, package_paths, cfg)
     if redirect is not None:
         paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(paths, cfg, package_paths)
-    clear_stale(args.out, paths)
+    clear_stale(o.out, paths)
     result = run_check(RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs,
-                                  render_dir=args.out, render_rrd=not args.no_rrd,
+                                  render_dir=o.out, render_rrd=not o.no_rrd,
                                   affected_by=affected_by))
     if cfg.baseline:   # the pictures and summary.md count what 'check' would report
         from urdf_lint.engine.baseline import filter_baseline
         result.findings = filter_baseline(cfg.baseline, result.findings, Out().note)
     note_unused(result, Out(), named)
-    no_models_warning(args.paths, result, Out())
-    missed = report_snapshots(result, args.out)
+    no_models_warning(o.paths, result, Out())
+    missed = report_snapshots(result, o.out)
     for m in result.models:
         snap = m.snapshot or {}
         for k in ("png", "rrd"):

@@ -14,14 +14,19 @@ def add_parser(sub, raw):
 
 
 def run(args) -> int:
+    return explain(args.code)
+
+
+def explain(code: str) -> int:
+    """One rule's documentation on standard output (``rule``, and the MCP ``explain_rule``)."""
     from urdf_lint.engine.registry import find_rule
-    r = find_rule(args.code)
+    r = find_rule(code)
     if r is None:
         from urdf_lint.core.suggest import did_you_mean
         from urdf_lint.engine.registry import load_rules
         rules = load_rules()
-        hint = did_you_mean(args.code, list(rules) + [x.name for x in rules.values()])
-        raise UsageError(f"unknown rule {args.code!r}{hint} (see 'urdf-lint rules')")
+        hint = did_you_mean(code, list(rules) + [x.name for x in rules.values()])
+        raise UsageError(f"unknown rule {code!r}{hint} (see 'urdf-lint rules')")
     print(f"{r.code} {r.name} (default severity: {r.severity})\n")
     if r.targets:
         print("Per consumer target (config 'targets'): "

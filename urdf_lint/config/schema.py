@@ -564,12 +564,26 @@ def find_config(start: str) -> Path | None:
         p = p.parent
     for d in [p, *p.parents]:
         for fname in ("urdf-lint.toml", ".urdf-lint.toml"):
-            if (d / fname).is_file():
+            if _found(d / fname):
                 return d / fname
         pp = d / "pyproject.toml"
-        if pp.is_file() and _pyproject_table(pp, _parse_toml(pp)) is not None:
+        if _found(pp) and _pyproject_table(pp, _parse_toml(pp)) is not None:
             return pp
     return None
+
+
+def _found(path: Path) -> bool:
+    """Is there a config file at ``path``? One found by looking up from the linted paths is
+    never read through a symlink leading out of its folder (a committed ``pyproject.toml``
+    pointing at a file elsewhere on the machine): that is a config error, before any read
+    (``--config FILE`` names a file to read wherever it is)."""
+    if not path.is_file():
+        return False
+    from urdf_lint.core import fsbound
+    if not fsbound.within(path, [path.parent]):
+        raise ConfigError(f"{_shown(path)} is a symlink leading out of its folder; it was not "
+                          "read (name the file with --config to use it)")
+    return True
 
 
 def _shown(path: str | Path) -> str:

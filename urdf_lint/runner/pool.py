@@ -184,18 +184,20 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
         b.jobs.sort(key=lambda j: (j.entry, sorted(j.args.items())))
         # (``meshes=False``: the mesh facts are cached, the packages' meshes cost nothing)
         mesh_cost, b.formats = _mesh_cost(b.key) if b.key and meshes else (0.0, frozenset())
-        b.cost = sum(map(job_cost, b.jobs)) + mesh_cost
+        b.cost = sum(job_cost(j, r.get("roots")) for j in b.jobs) + mesh_cost
         out.append(b)
     return sorted(out, key=lambda b: -b.cost)
 
 
-def job_cost(job: LintJob) -> float:
+def job_cost(job: LintJob, roots=None) -> float:
     """A first-time estimate of one model's expansion and checks, its meshes aside: every
     xacro element of its entry file adds to it (a 200-link robot written as 200 macro calls
     takes ~0.25 s, a model of a few includes ~0.03 s). Scheduled costliest first, such a
-    model does not start last and leave the other workers idle."""
-    from urdf_lint.core.hashing import read_regular
-    text = read_regular(job.entry, MAX_ENTRY_READ)    # (a FIFO named as a model: not read)
+    model does not start last and leave the other workers idle. Read only inside the run's
+    ``roots`` (an entry symlinked out of them is not read: it costs the base estimate)."""
+    from urdf_lint.core import fsbound
+    # (a FIFO named as a model: not read)
+    text = fsbound.read_regular(job.entry, MAX_ENTRY_READ, roots)
     return JOB_COST_S + (XACRO_ELEMENT_COST_S * text.count(b"<xacro:") if text else 0.0)
 
 
