@@ -565,11 +565,22 @@ def find_config(start: str) -> Path | None:
     for d in [p, *p.parents]:
         for fname in ("urdf-lint.toml", ".urdf-lint.toml"):
             if (d / fname).is_file():
-                return d / fname
+                return _in_its_folder(d / fname)
         pp = d / "pyproject.toml"
-        if pp.is_file() and _pyproject_table(pp, _parse_toml(pp)) is not None:
+        if pp.is_file() and _pyproject_table(pp, _parse_toml(_in_its_folder(pp))) is not None:
             return pp
     return None
+
+
+def _in_its_folder(path: Path) -> Path:
+    """A config file found by walking up: it must resolve inside the folder it was found in
+    (a committed ``urdf-lint.toml -> /elsewhere`` is refused, never read); ``--config`` names
+    any file."""
+    from urdf_lint.core.fsbound import within
+    if not within(path, [path.parent]):
+        raise ConfigError(f"{_shown(path)}: is a symlink to a file outside its folder; "
+                          "it was not read (name it with --config to use it)")
+    return path
 
 
 def _shown(path: str | Path) -> str:
