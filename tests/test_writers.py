@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -75,6 +76,27 @@ def test_format_writes_through_a_named_symlink_whose_target_is_inside_the_reposi
     assert link.is_symlink() and os.readlink(link) == "p/urdf/r.urdf"
     assert (root / "p" / "urdf" / "r.urdf").read_text().startswith(
         '<?xml version="1.0"?>\n<robot name="r">\n  <material name="red">\n')
+
+
+# the modules that write repository sources: format, check --fix, --add-suppressions, generate
+SOURCE_WRITERS = ("cli/format.py", "run/fix.py", "fix/addsuppress.py", "discovery/generated.py",
+                  "cli/generate.py")
+
+
+def test_format_fix_and_generate_write_only_through_the_one_rewrite():
+    import ast
+    import urdf_lint
+    top = Path(urdf_lint.__file__).parent
+    for rel in SOURCE_WRITERS:
+        tree = ast.parse((top / rel).read_text())
+        calls = {n.func.attr for n in ast.walk(tree) if isinstance(n, ast.Call)
+                 and isinstance(n.func, ast.Attribute) and isinstance(n.func.value, ast.Name)
+                 and n.func.value.id == "fsbound"}
+        writes = calls & {"write_bytes", "write_text", "open_write", "temp_path", "rewrite"}
+        assert writes <= {"rewrite"}, (rel, writes)
+    assert "rewrite" in {n.func.attr for n in ast.walk(ast.parse(
+        (top / "discovery/generated.py").read_text())) if isinstance(n, ast.Call)
+        and isinstance(n.func, ast.Attribute)}
 
 
 # -- the lost update --------------------------------------------------------------------------
