@@ -67,23 +67,28 @@ def run(args) -> int:
 
 def cmd_format(args, load_cfg, parse_package_paths) -> int:
     from urdf_lint.core.errors import UsageError
+    from urdf_lint.discovery.discover import repository_root
     for p in args.paths:
         if not os.path.exists(p):
             raise UsageError(f"no such file or directory: {p}")
-    cfg = load_cfg(args, args.paths)
+    repo = repository_root(args.paths)
+    paths, status = _inside_repository(args.paths, repo)
+    if not paths:
+        return status
+    cfg = load_cfg(args, paths)
     style = style_of(cfg, args)
     docs: dict = {}
-    results = format_files(files_to_format(args.paths, cfg), style, args.paths, docs)
+    results = format_files(files_to_format(paths, cfg), style, paths, docs, repo)
     changed = {r.path: r.new for r in results if r.new is not None}
     proof = Proof()
     if changed:
-        proof = prove(changed, args.paths, cfg, parse_package_paths(args.package_path),
+        proof = prove(changed, paths, cfg, parse_package_paths(args.package_path),
                       cfg.jobs, old={r.path: r.old for r in results if r.new is not None},
                       docs=docs)
         for r in results:
             if r.path in proof.refused:
                 r.refused, r.new = proof.refused[r.path], None
-    status = _say_problems(results)
+    status = max(status, _say_problems(results))
     todo = [r for r in results if r.new is not None]
     if args.diff:
         from urdf_lint.run.fix import unified_diff
@@ -94,12 +99,28 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
         for r in todo:
             tell(f"Would reformat: {escape_text(r.shown)}")
     else:
-        status = max(status, _write(todo, args.paths))
+        status = max(status, _write(todo, paths, repo))
+        todo = [r for r in todo if r.new is not None]
     if not args.quiet:
         _say_summary(results, todo, args, proof if changed else None)
     if status:
         return status
     return 1 if todo and (args.check or args.diff) else 0
+
+
+def _inside_repository(paths, repo) -> tuple[list, int]:
+    """(the named paths to format, 2 when one was refused else 0): a named path that is a
+    symlink (or in the repository through one) resolving outside the repository is refused
+    with one located error and nothing of it is read or written."""
+    from urdf_lint.core.emit import say
+    from urdf_lint.core.fsbound import named_root
+    from urdf_lint.core.locations import display_path
+    keep = [p for p in paths if named_root(p, repo) is not None]
+    for p in paths:
+        if p not in keep:
+            say(f"error: {escape_text(display_path(os.path.abspath(p)))}:1:1: resolves outside "
+                "the repository (a symlink to elsewhere); not formatted")
+    return keep, 2 if len(keep) < len(paths) else 0
 
 
 def _say_problems(results) -> int:
@@ -118,15 +139,21 @@ def _say_problems(results) -> int:
     return status
 
 
-def _write(todo, paths) -> int:
-    """Write the new layouts, only below the formatted paths, atomically (the boundary); 2
-    when one cannot be written, else 0."""
+def _write(todo, paths, repo) -> int:
+    """Write the new layouts, only below the formatted paths, atomically (the boundary's
+    rewrite: a file saved since it was read is skipped, exit 1); 2 when one cannot be
+    written, else 0."""
     from urdf_lint.core import fsbound
     from urdf_lint.core.emit import say
     status = 0
     for r in todo:
         try:
-            fsbound.rewrite(r.path, r.new or b"", paths)
+            fsbound.rewrite(r.path, r.new or b"", paths, old=r.old, repo=repo)
+        except fsbound.ChangedError:
+            say(f"{escape_text(r.shown)}: skipped: it changed while urdf-lint formatted it; "
+                "the newer content is kept (run format again)")
+            r.refused, r.new = "changed while formatting", None
+            status = max(status, 1)
         except OSError as e:
             say(f"error: {escape_text(r.shown)}: cannot write: "
                 f"{getattr(e, 'why', None) or e.strerror or e}")

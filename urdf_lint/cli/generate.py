@@ -34,9 +34,11 @@ def run(args) -> int:
     import dataclasses
 
     from urdf_lint.config import trust
+    from urdf_lint.core import fsbound
     from urdf_lint.discovery.discover import build_resolver, discover_models, start_dir
     from urdf_lint.core.emit import report_internal
-    from urdf_lint.discovery.generated import header_source, stale_at, write_output
+    from urdf_lint.discovery.generated import (header_source, read_output, stale_at,
+                                               write_output)
     from urdf_lint.core.jobs import Status
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.vcs import repo_root
@@ -64,6 +66,7 @@ def run(args) -> int:
             status = max(status, 1)
             failed += 1
             continue
+        old = read_output(job.output)    # what a rewrite expects to find there
         if stale_at(job.output, xml) is None:
             continue
         status = max(status, 1)
@@ -79,7 +82,11 @@ def run(args) -> int:
             try:   # inside the repository only (anywhere the user trusts with --trust-config)
                 write_output(job.output, xml, write_base(job.output, args.paths)
                              if args.trust_config else
-                             trust.config_root(cfg, repo_root(start_dir(args.paths))))
+                             trust.config_root(cfg, repo_root(start_dir(args.paths))), old)
+            except fsbound.ChangedError:
+                say(f"{safe_text(display_path(job.output))}: skipped: it changed while "
+                    "urdf-lint regenerated it; the newer content is kept (run generate again)")
+                continue
             except OSError as e:
                 say(f"urdf-lint: error: cannot write {display_path(job.output)}: "
                     f"{getattr(e, 'why', None) or e.strerror or e}")

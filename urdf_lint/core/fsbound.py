@@ -17,7 +17,10 @@ keep it so); it calls:
   (a symlinked folder anywhere below the base is refused, ``check_no_symlink``), the data
   written to a random name opened ``O_CREAT|O_EXCL|O_NOFOLLOW`` in the target folder and
   renamed over the target (``os.replace``, relative to the folder's descriptor), so a
-  committed symlink can neither receive the data nor replace the file.
+  committed symlink can neither receive the data nor replace the file. A repository file is
+  rewritten only by :func:`rewrite` (format, ``--fix``, generate): resolved before it is
+  judged inside, compared with the bytes the caller read right before the rename
+  (:class:`ChangedError`), owner, group and mode kept.
 
 :class:`BoundaryError` is an ``OSError``: callers that already handle a failed read or write
 keep doing so, with a message that says why.
@@ -385,13 +388,65 @@ def check_no_symlink(path: StrPath, base: StrPath) -> None:
                                 "through it", errno.ELOOP)
 
 
+class _Unchecked:
+    """The ``old`` of a write that does not compare (a file urdf-lint owns: a report, the
+    cache)."""
+
+
+UNCHECKED = _Unchecked()
+# what a compare-and-swap write expects to find: the bytes read, None for "not there"
+Old = bytes | None | _Unchecked
+
+
+class ChangedError(BoundaryError):
+    """A rewrite whose file no longer holds the bytes urdf-lint read (someone saved it while
+    urdf-lint worked on it): nothing was written, the newer content stays."""
+
+    def __init__(self, path: StrPath) -> None:
+        super().__init__(path, "changed while urdf-lint worked on it; it was not written "
+                         "(the newer content is kept: run again)", errno.EAGAIN)
+
+
+def _holds(target: str, old: bytes | None) -> bool:
+    """Does ``target`` hold exactly ``old`` now (None: is it absent)? Read without following
+    a symlink, without blocking, at most one byte more than ``old``."""
+    try:
+        fd = os.open(target, _RD | _NOFOLLOW)
+    except FileNotFoundError:
+        return old is None
+    except OSError:
+        return False
+    with os.fdopen(fd, "rb") as f:
+        st = os.fstat(fd)
+        if old is None or not _st.S_ISREG(st.st_mode) or st.st_size != len(old):
+            return False
+        return f.read(len(old) + 1) == old
+
+
+def _keep_owner(fd: int, keep: os.stat_result) -> None:
+    """Give the temp file ``fd`` the owner, group and mode of ``keep`` (the file it replaces):
+    root hands another user's file back to that user; a user keeps the group where they may;
+    the mode last (a chown clears set-id bits)."""
+    now = os.fstat(fd)
+    if (now.st_uid, now.st_gid) != (keep.st_uid, keep.st_gid):
+        try:
+            os.fchown(fd, keep.st_uid, keep.st_gid)
+        except OSError:
+            with contextlib.suppress(OSError):
+                os.fchown(fd, -1, keep.st_gid)
+    os.fchmod(fd, _st.S_IMODE(keep.st_mode))
+
+
 @contextlib.contextmanager
-def _temp_in(path: StrPath, base: StrPath, make_dirs: bool,
-             suffix: str = "") -> Iterator[tuple[str, int]]:
+def _temp_in(path: StrPath, base: StrPath, make_dirs: bool, suffix: str = "",
+             old: Old = UNCHECKED) -> Iterator[tuple[str, int]]:
     """(temp path, its descriptor) in the target's folder, once every folder from ``base``
     down has been opened without following a symlink; on success the temp is renamed over
-    the target (a symlink there is replaced, never followed), else removed. Full paths are
-    used after the check, so a worker's audit hook sees what is written where."""
+    the target (a symlink there is replaced, never followed), else removed. With ``old``
+    (bytes, or None for no file) the target is read again right before the rename and must
+    still hold it, else :class:`ChangedError` (compare-and-swap: an edit saved meanwhile is
+    never lost). Full paths are used after the check, so a worker's audit hook sees what is
+    written where."""
     b, comps = _parts(path, base)
     os.close(_open_dirs(b, comps[:-1], make_dirs))
     folder = os.path.join(b, *comps[:-1])
@@ -401,6 +456,8 @@ def _temp_in(path: StrPath, base: StrPath, make_dirs: bool,
                  getattr(os, "O_CLOEXEC", 0), 0o666)
     try:
         yield tmp, fd
+        if not isinstance(old, _Unchecked) and not _holds(target, old):
+            raise ChangedError(target)
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -409,15 +466,21 @@ def _temp_in(path: StrPath, base: StrPath, make_dirs: bool,
 
 
 def write_bytes(path: StrPath, data: bytes | str, base: StrPath, make_dirs: bool = False,
-                mode: int | None = None) -> None:
+                mode: int | None = None, old: Old = UNCHECKED,
+                keep: os.stat_result | None = None) -> None:
     """Write ``data`` to ``path`` (below ``base``) atomically, through a random temporary
     name opened ``O_CREAT|O_EXCL|O_NOFOLLOW`` beside it; text is written as UTF-8. With
-    ``make_dirs``, missing folders below ``base`` are created (never through a symlink)."""
+    ``make_dirs``, missing folders below ``base`` are created (never through a symlink).
+    ``old``: see :func:`_temp_in`; ``keep``: the stat of the file replaced, whose owner,
+    group and mode the new file gets."""
     if isinstance(data, str):
         data = data.encode("utf-8")
-    with _temp_in(path, base, make_dirs) as (_, fd):
+    with _temp_in(path, base, make_dirs, old=old) as (_, fd):
         with os.fdopen(fd, "wb") as f:
             f.write(data)
+            f.flush()
+            if keep is not None:
+                _keep_owner(f.fileno(), keep)
             if mode is not None:
                 os.fchmod(f.fileno(), mode)
 
@@ -446,22 +509,53 @@ def temp_path(path: StrPath, base: StrPath, suffix: str = "",
         yield tmp
 
 
-def rewrite(path: StrPath, data: bytes, bases: Iterable[StrPath]) -> None:
-    """Rewrite a source file in place (``check --fix``, ``--add-suppressions``): a symlink is
-    followed (the link stays a link, its target gets the bytes) when its target is inside one
-    of ``bases`` (the linted paths); the file keeps its mode."""
+def named_root(path: StrPath, repo: StrPath | None) -> str | None:
+    """The real path a path the user named stands for when urdf-lint rewrites files below it:
+    the path resolved after symlinks; None when it is a symlink, or is in the repository
+    ``repo`` as written, and resolves outside the repository (a committed ``robot.xacro ->
+    ~/.bashrc`` handed over by a hook or a shell glob). ``repo`` None: resolved as it is."""
+    a = os.path.normpath(os.path.abspath(path))
+    real = os.path.realpath(a)
+    if repo is None:
+        return real
+    r = os.path.normpath(os.path.abspath(repo))
+    rr = os.path.realpath(r)
+    if (os.path.islink(a) or inside(a, r) or inside(a, rr)) and not inside(real, rr):
+        return None
+    return real
+
+
+def write_roots(paths: Iterable[StrPath], repo: StrPath | None) -> list[str]:
+    """The real paths of the named ``paths`` (:func:`named_root`) that a rewrite may land
+    below; those that resolve outside the repository are left out."""
+    roots = (named_root(p, repo) for p in paths)
+    return list(dict.fromkeys(r for r in roots if r is not None))
+
+
+def rewrite(path: StrPath, data: bytes, bases: Iterable[StrPath], old: Old,
+            repo: StrPath | None = None, make_dirs: bool = False) -> None:
+    """The one rewrite of a repository file (``format``, ``check --fix``,
+    ``--add-suppressions``, ``generate``): the path is resolved first, then must lie inside
+    one of the ``bases`` the user named (:func:`write_roots`: a named symlink whose target is
+    outside the repository ``repo`` counts for nothing), so a symlink is followed (the link
+    stays a link, its target gets the bytes) only to a target inside them. ``old`` is what
+    the caller read (None: there was no file): the file must still hold it right before the
+    rename, else :class:`ChangedError` and nothing is written. The file keeps its owner,
+    group (where the user may set them: root always) and mode."""
     real = os.path.realpath(path)
-    for b in bases:
-        rb = os.path.realpath(b)
+    for rb in write_roots(bases, repo):
         base = rb if os.path.isdir(rb) else os.path.dirname(rb)
-        if inside(real, base) and real != base:
+        if inside(real, rb) and real != base:
             try:
-                keep = _st.S_IMODE(os.lstat(real).st_mode)
+                keep: os.stat_result | None = os.stat(real)
             except OSError:
                 keep = None
-            write_bytes(real, data, base, mode=keep)
+            if keep is not None and not _st.S_ISREG(keep.st_mode):
+                raise BoundaryError(path, "is not a regular file; it was not written")
+            write_bytes(real, data, base, make_dirs, old=old, keep=keep)
             return
-    raise BoundaryError(path, "is outside the linted paths; it was not written")
+    raise BoundaryError(path, "resolves outside the paths named on the command line or the "
+                        "repository (a symlink?); it was not written")
 
 
 def remove(path: StrPath, base: StrPath) -> bool:

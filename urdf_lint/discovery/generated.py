@@ -140,8 +140,17 @@ def _canonical_one(el, out: list) -> None:
                 (el.tail or "").strip(), len([c for c in el if isinstance(c.tag, str)])))
 
 
-def write_output(output: str, xml: str, repo: str) -> None:
+def write_output(output: str, xml: str, repo: str, old: bytes | None) -> None:
     """Write a generated URDF atomically, inside the repository ``repo`` only, creating its
-    folders but never through a symlink (:func:`urdf_lint.core.fsbound.write_bytes`)."""
+    folders but never through a symlink, and only while it still holds ``old`` (what was
+    read of it; None: it did not exist), else :class:`urdf_lint.core.fsbound.ChangedError`
+    (the boundary's one rewrite, :func:`urdf_lint.core.fsbound.rewrite`)."""
     from urdf_lint.core import fsbound
-    fsbound.write_text(output, xml, repo, make_dirs=True)
+    fsbound.rewrite(output, xml.encode("utf-8"), [repo], old=old, repo=repo, make_dirs=True)
+
+
+def read_output(output: str) -> bytes | None:
+    """The bytes of a generated URDF as they are now, None when there is none (or it is not
+    a regular file of bounded size: then a rewrite finds it changed and skips it)."""
+    from urdf_lint.core import fsbound
+    return fsbound.read_regular(output, fsbound.MAX_SOURCE_BYTES)

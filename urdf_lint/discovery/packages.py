@@ -79,8 +79,10 @@ class OutsideRoots(Exception):
 
 def package_name(package_xml: Path) -> str | None:
     from urdf_lint.core import fsbound
-    try:   # a regular file (never a FIFO or device), its first 64 KiB
-        data = fsbound.read_head(package_xml, 65536)
+    try:   # a regular file (never a FIFO or device) in its own folder, its first 64 KiB
+        # (a committed package.xml -> /elsewhere is not read: not a package)
+        data = fsbound.read_head(package_xml, 65536,
+                                 [os.path.realpath(os.path.dirname(os.path.abspath(package_xml)))])
     except OSError:
         return None
     m = _NAME_RE.search(data)

@@ -64,8 +64,11 @@ def add_suppressions(findings, paths=None) -> tuple[int, list, list]:
     edits, skipped = suppression_edits(findings)
     skipped += outside
     written = 0
+    from urdf_lint.discovery.discover import repository_root
+    repo = repository_root(paths) if paths is not None else None
     for file, es in sorted(edits.items()):
         data = fsbound.read_bytes(file)
-        fsbound.rewrite(file, apply_edits(data, es), paths if paths is not None else [file])
+        fsbound.rewrite(file, apply_edits(data, es), paths if paths is not None else [file],
+                        old=data, repo=repo)
         written += len(es)
     return written, sorted(edits), skipped

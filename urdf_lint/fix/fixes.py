@@ -441,7 +441,10 @@ def inside_paths(findings, paths, generated: dict | None = None) -> list:
     edit a generated URDF (:func:`not_in_generated`)."""
     from urdf_lint.core.locations import display_path
     out = []
-    real_paths = [os.path.realpath(p) for p in paths]   # once, not once per edit
+    from urdf_lint.core.fsbound import write_roots
+    from urdf_lint.discovery.discover import repository_root
+    # once, not once per edit; a named symlink out of the repository stands for nothing
+    real_paths = write_roots(paths, repository_root(paths))
     known: dict = {}   # file -> inside? (once per file, not once per fix)
     for p in not_in_generated(findings, generated or {}):
         fx = p.fix

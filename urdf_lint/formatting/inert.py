@@ -167,6 +167,41 @@ def proven(old_doc: list, new_doc: list, quiet_reads: bool = False) -> str | Non
                   None, quiet_reads)
 
 
+# where what reaches the robot depends on the values of args: a branch is proved as taken,
+# whatever its condition (the models are expanded with the args they are given only)
+CONDITIONAL = ("xacro:if", "xacro:unless")
+
+
+def unproven_in_branches(old_doc: list, new_doc: list) -> str | None:
+    """None when every level whose whitespace changed inside an ``xacro:if``/``xacro:unless``
+    body (at any depth) is proved by the rules of :func:`proven` (which hold whatever the
+    condition); else why. Expanding the models proves only the branches their args take:
+    ``sim:=true`` from a launch file takes one nobody configured, so such a level is left as
+    it is."""
+    return _branches([n for n in old_doc if n[0] == "el"],
+                     [n for n in new_doc if n[0] == "el"], None, False)
+
+
+def _branches(xs: list, ys: list, parent, taken: bool) -> str | None:
+    if len(xs) != len(ys):
+        return "the structure differs"
+    for a, b in zip(xs, ys, strict=True):
+        if a[0] != b[0] or a[1] != b[1]:
+            return "the structure differs"
+        ka, kb = _joined(a[3]), _joined(b[3])
+        inner = taken or a[1] in CONDITIONAL
+        why = _branches([n for n in ka if n[0] == "el"], [n for n in kb if n[0] == "el"],
+                        a, inner)
+        if why is None and inner and ka != kb:
+            why = _changed_level(a, parent, ka, kb, False)
+            if why is not None:
+                why += " (in an xacro:if or xacro:unless body: expanding the models with " \
+                       "their args does not prove every branch)"
+        if why is not None:
+            return why
+    return None
+
+
 def reads_quietly(doc: list) -> bool:
     """Does every element of the document with an xacro element that reads the whitespace
     before it (``remove_previous_comments``) among its children also hold two nodes that reach

@@ -329,19 +329,27 @@ def _skip_rolled_back(chosen, refused: list, memo, models) -> tuple[list, dict]:
     return [p for p, why in earlier if not why], keys
 
 
+CHANGED = ("its file changed while urdf-lint worked on it; not written (the newer content "
+           "is kept: run --fix again)")
+
+
 def _fix_rounds(check, paths, before_result, chosen, originals: dict):
     """Write the fixes and check again, rolling back those that do not verify, until the
     rest do (at most ``MAX_ROUNDS``): (result, fixes kept, (fix, why) rolled back, files
-    written). ``originals`` receives each edited file's text; a failure restores them."""
+    written). ``originals`` receives each edited file's text; a failure restores them. Every
+    write is a compare-and-swap (:func:`urdf_lint.core.fsbound.rewrite`): a file saved by
+    someone else since urdf-lint read or wrote it is left as they saved it, and its fixes
+    are given up."""
+    from urdf_lint.discovery.discover import repository_root
     before = _snapshot(before_result)
     rolled: list = []
     result = before_result
-    written: set = set()
+    out = _Writes(paths, repository_root(paths), originals)
     try:
         for _ in range(MAX_ROUNDS):
+            chosen = out.write(chosen, rolled)
             if not chosen:
                 break
-            _write_sources(edited_sources(chosen, originals), originals, written, paths)
             result = check(keep_models=True)
             bad = verify(before, before_result.findings, result, chosen,
                          line_maps(chosen, originals))
@@ -353,27 +361,63 @@ def _fix_rounds(check, paths, before_result, chosen, originals: dict):
             rolled += [(p, "the fixes did not verify") for p in chosen]
             chosen = []
         if not chosen:
-            _restore(written, originals, paths)
-            written = set()
+            out.restore()
             if rolled:
                 result = check()
     except BaseException:
-        _restore(written, originals, paths)     # never leave half-fixed sources behind
+        out.restore()     # never leave half-fixed sources behind
         raise
-    return result, chosen, rolled, written
+    return result, chosen, rolled, set(out.written)
 
 
-def _write_sources(new: dict, originals: dict, written: set, paths) -> None:
-    """Write this round's sources; a file whose fixes were all rolled back is restored."""
-    for f in set(originals) - set(new):
-        if f in written:
-            fsbound.rewrite(f, originals[f], paths)
-            written.discard(f)
-    for f, data in new.items():
-        fsbound.rewrite(f, data, paths)
-        written.add(f)
+class _Writes:
+    """The sources --fix has written, and what each holds now (what the next write of it
+    expects to find there)."""
 
+    def __init__(self, paths, repo: str, originals: dict) -> None:
+        self.paths, self.repo, self.originals = paths, repo, originals
+        self.on_disk: dict = {}     # real path -> the bytes it holds (as read, or as written)
+        self.written: set = set()
+        self.skipped: set = set()   # real paths someone else changed: never written again
 
-def _restore(written: set, originals: dict, paths) -> None:
-    for f in written:
-        fsbound.rewrite(f, originals[f], paths)
+    def put(self, f: str, data: bytes) -> bool:
+        """Write one file if it still holds what urdf-lint last saw there; False (and said)
+        when it changed meanwhile."""
+        from urdf_lint.core.emit import say
+        from urdf_lint.core.escape import escape_text
+        from urdf_lint.core.locations import display_path
+        real = os.path.realpath(f)    # (a file and a symlink to it are one file)
+        old = self.on_disk.get(real, self.originals[f])
+        try:
+            fsbound.rewrite(f, data, self.paths, old=old, repo=self.repo)
+        except fsbound.ChangedError:
+            say(f"{escape_text(display_path(f))}: skipped: it changed while urdf-lint fixed "
+                "it; the newer content is kept (run --fix again)")
+            self.skipped.add(real)
+            self.written.discard(f)
+            return False
+        self.on_disk[real] = data
+        return True
+
+    def write(self, chosen: list, rolled: list) -> list:
+        """Write this round's sources (a file whose fixes were all rolled back is restored);
+        the fixes kept, those that edit a file someone changed added to ``rolled``."""
+        while True:
+            new = edited_sources(chosen, self.originals)
+            for f in sorted(set(self.written) - set(new)):
+                if self.put(f, self.originals[f]):
+                    self.written.discard(f)
+            for f, data in sorted(new.items()):
+                if os.path.realpath(f) not in self.skipped and self.put(f, data):
+                    self.written.add(f)
+            gone = [p for p in chosen
+                    if any(os.path.realpath(e.file) in self.skipped for e in p.fix.edits)]
+            if not gone:
+                return chosen
+            rolled += [(p, CHANGED) for p in gone]
+            chosen = [p for p in chosen if p not in gone]
+
+    def restore(self) -> None:
+        for f in sorted(self.written):
+            self.put(f, self.originals[f])
+        self.written = set()

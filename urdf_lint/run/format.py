@@ -17,8 +17,13 @@ xacro and URDF sources (:mod:`urdf_lint.formatting.layout`) and prove that no ro
    changed file it reads that was not proved by itself alone, and the reason is printed;
    the models those files also feed are proved again without them, until nothing more is
    refused.
+   Expanding proves a layout only for the args the models are given: a file whose new
+   whitespace in an ``xacro:if``/``xacro:unless`` body the file's own rules do not prove is
+   left alone (:func:`urdf_lint.formatting.inert.unproven_in_branches`).
 3. The rest is written atomically (:func:`urdf_lint.core.fsbound.rewrite`), only below the
-   formatted paths; ``--check`` and ``--diff`` write nothing.
+   formatted paths (a named symlink out of the repository is refused), and only while the
+   file still holds what was read (else skipped, exit 1); ``--check`` and ``--diff`` write
+   nothing.
 
 Exit codes as ``ruff format``: 0 formatted (or nothing to do), 1 with ``--check``/``--diff``
 when a file would change, 2 on an error (a file that is not well-formed XML, a bad option).
@@ -65,14 +70,19 @@ def files_to_format(paths, cfg) -> list[str]:
     return [f for f, _ in _candidates(paths, scoped)]
 
 
-def format_files(files, style: Style, paths, docs: dict | None = None) -> list[FileResult]:
+def format_files(files, style: Style, paths, docs: dict | None = None,
+                 repo: str | None = None) -> list[FileResult]:
     """Read and lay out each file (not written); ``docs`` receives the documents read of the
-    files that change, before and after (:func:`urdf_lint.formatting.layout.format_source`)."""
+    files that change, before and after (:func:`urdf_lint.formatting.layout.format_source`).
+    A file is read only when its real path is below a named path's
+    (:func:`urdf_lint.core.fsbound.write_roots`: a named symlink out of the repository ``repo``
+    stands for nothing)."""
+    from urdf_lint.core.fsbound import write_roots
     from urdf_lint.core.hashing import read_regular
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
     from urdf_lint.fix.sourceedit import inside
-    real_paths = [os.path.realpath(p) for p in paths]
+    real_paths = write_roots(paths, repo)
     out = []
     for f in files:
         real = os.path.realpath(f)
@@ -169,8 +179,13 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     disc = discover_models(scan, every, resolver)
     graph = disc.graph
     reach = _reach(graph)
-    unproven, relaxed, is_quiet = _by_file(changed, old, docs, disc, reach)
+    unproven, relaxed, is_quiet = _by_file(changed, old, docs, disc, reach, resolver.roots)
     proof.by_file = len(changed) - len(unproven)
+    # expanding proves only the branches the models' args take: a file whose changed
+    # whitespace in an xacro:if/unless body the file's own rules do not prove is left alone
+    branches = _in_branches(unproven, old, docs, changed)
+    proof.refused.update(branches)
+    unproven -= branches.keys()
     if not unproven and not relaxed:
         return proof
 
@@ -198,7 +213,13 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
                                                       jobs_n=jobs_n)}
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
-    overlay = dict(changed)
+    # (a file proved where every file reads quietly, read by a model whose files do not)
+    loud = {f for k in jobs for f in deps[k] & relaxed
+            if not all(is_quiet(g) for g in sorted(deps[k]))}
+    branches = _in_branches(loud, old, docs, changed)
+    proof.refused.update(branches)
+    proof.by_file -= len(branches)
+    overlay = {f: v for f, v in changed.items() if f not in proof.refused}
     refused = proof.refused
     pending = [k for k in jobs if needed(deps[k])]
     proof.compared = len(pending)
@@ -235,7 +256,8 @@ def _reach(graph):
     return reach
 
 
-def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach) -> tuple:
+def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach,
+             roots=None) -> tuple:
     """(the changed files not proved from the file itself, those proved only where every
     file of their models reads quietly, the per-file quiet test) (:mod:`urdf_lint.formatting.inert`)."""
     unproven = set(changed)
@@ -251,8 +273,27 @@ def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach) ->
     for f in sorted(changed):
         if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
             unproven.discard(f)
-    relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed)
+    relaxed, is_quiet = _proven_quietly(unproven, changed, old, disc, reach, parsed, roots)
     return unproven - relaxed, relaxed, is_quiet
+
+
+def _in_branches(files: set, old: dict | None, docs: dict | None, changed: dict) -> dict:
+    """{file: why} for the changed files whose new whitespace inside an xacro:if/unless body
+    the rules of :mod:`urdf_lint.formatting.inert` do not prove: expanding the models proves
+    only the branches their args take, so they are left alone."""
+    from urdf_lint.formatting.inert import unproven_in_branches
+    out = {}
+    for f in sorted(files):
+        if old is None or f not in old:
+            continue
+        try:
+            why = unproven_in_branches(*((docs or {}).get(d) or read_document(d)
+                                         for d in (old[f], changed[f])))
+        except FormatError as e:
+            why = e.message
+        if why is not None:
+            out[f] = f"formatting it cannot be proved for every value of the args: {why}"
+    return out
 
 
 def _difference(before, after) -> str | None:
@@ -268,13 +309,14 @@ def _difference(before, after) -> str | None:
         (f" ({why_b})" if why_b else "")
 
 
-def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed) -> tuple:
+def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed,
+                    roots=None) -> tuple:
     """Those of ``files`` :func:`urdf_lint.formatting.inert.proven` holds for when xacro's
     reading of whitespace is quiet in every model that reads them: every file of those models
     (as it is and as it will be) :func:`~urdf_lint.formatting.inert.reads_quietly`; and the
     test of that per file. A model with an include only expansion resolves is not asked here:
     :func:`prove` expands it and asks once it knows what the model read."""
-    from urdf_lint.core.hashing import read_regular
+    from urdf_lint.core.fsbound import read_regular
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
     from urdf_lint.formatting.inert import proven, reads_quietly
     ok = {f for f in files if f in old and proven(parsed(old[f]), parsed(changed[f]),
@@ -283,7 +325,9 @@ def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed) -
 
     def is_quiet(f: str) -> bool:
         if f not in quiet:
-            data = [old[f], changed[f]] if f in changed else [read_regular(f, MAX_SOURCE_BYTES)]
+            # (a file outside the roots is not read: it does not count as quiet)
+            data = [old[f], changed[f]] if f in changed else [
+                read_regular(f, MAX_SOURCE_BYTES, roots)]
             try:
                 quiet[f] = all(d is not None and reads_quietly(parsed(d)) for d in data)
             except FormatError:
