@@ -58,6 +58,8 @@ def run(args) -> int:
     job = LintJob(os.path.abspath(args.file), mappings, "expand", explicit=True,
                   display_name=args.file)
     res = expand_in_workers([job], resolver, cfg)[0]
+    from urdf_lint.run.pipeline import hint_packages
+    hint_packages([res], [args.file])   # a sibling package's package.xml: --package-path
     from urdf_lint.core.emit import report_internal
     if report_internal(res.internal):
         return 2
