@@ -1,6 +1,9 @@
-"""A `package://NAME/...` mesh or texture, or a file read through `$(find NAME)`, comes from a
-package that the model's own `package.xml` does not declare as a dependency (`<depend>`,
-`<exec_depend>`, `<build_export_depend>`, or `<run_depend>` in format 1).
+"""A `package://NAME/...` mesh or texture, a file read from another package, or `$(find NAME)`
+written in the model's own files (an include, an arg's default, a path in an element's text
+such as a controllers file handed to a plugin) names a package that the model's own
+`package.xml` does not declare as a dependency (`<depend>`, `<exec_depend>`,
+`<build_export_depend>`, or `<run_depend>` in format 1). It is reported at the line in the
+model's own package: the `$(find)`, or the macro call that made the element.
 
 Why: `rosdep install` and the build farm install only declared dependencies: on a fresh machine
 or in a released binary the description loads without those meshes or includes (RViz shows
@@ -25,7 +28,7 @@ PASS = """<robot name="r">
 import os
 import re
 
-from urdf_lint.engine.api import Cause, Report, display_path, read_source
+from urdf_lint.engine.api import Cause, Origin, Report, display_path, read_source
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.rules._schema import urdf_iter
 
@@ -42,6 +45,7 @@ DEPEND_TAGS = ("depend", "exec_depend", "build_export_depend", "run_depend")
 _DEP = re.compile(r"<(" + "|".join(DEPEND_TAGS) + r")(?:\s[^>]*)?>\s*([^<\s]+)\s*</\1>")
 _NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
 _COMMENT = re.compile(r"<!--.*?-->", re.S)
+_FIND = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
 
 
 def own_package(model):
@@ -83,12 +87,53 @@ def _cause(own, pxml, name):
                  f"<exec_depend>{name}</exec_depend> (or <depend>)")
 
 
+def _known(resolver, pkg: str) -> bool:
+    try:
+        resolver.find(pkg)
+        return True
+    except Exception:  # noqa: BLE001 - an unknown package is UL004's
+        return False
+
+
+def _finds(model, top: str, ok: set):
+    """(package, Origin) of every `$(find NAME)` written in the model's own sources (the files
+    it read below ``top``, its package's folder; not in comments) for a known package that is
+    not in ``ok``: in an include, an arg's default or an element's text (a controllers file
+    handed to a plugin), each at its line in the linted repository."""
+    for f in model.deps:
+        path = os.path.abspath(f)
+        if not path.startswith(top + os.sep) or not path.endswith((".xacro", ".urdf")):
+            continue
+        data = read_source(path, 1 << 22)
+        if data is None:
+            continue
+        text = _COMMENT.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)),
+                            data.decode("utf-8", "replace"))
+        for m in _FIND.finditer(text):
+            pkg = m.group(1)
+            if pkg not in ok and "$" not in pkg and _known(model.resolver, pkg):
+                line = text.count("\n", 0, m.start()) + 1
+                yield pkg, Origin(path, line, m.start() - text.rfind("\n", 0, m.start()))
+
+
+def _own_place(o, top: str):
+    """The innermost macro call in the linted package that made an element (its own line when
+    it is there), or None."""
+    if o.file.startswith(top + os.sep):
+        return None
+    for c in reversed(o.chain):
+        if str(c[0]).startswith(top + os.sep):
+            return Origin(c[0], c[1], c[2])
+    return None
+
+
 def check(model, ctx):
     own = own_package(model)
     if own is None or model.resolver is None:
         return
     name, pxml, declared = own
     ok = declared | {name}
+    top = os.path.dirname(os.path.abspath(pxml))
     for tag in ("mesh", "texture"):
         for m in urdf_iter(model, tag):
             uri = m.get("filename") or ""
@@ -96,19 +141,24 @@ def check(model, ctx):
                 pkg = uri[len("package://"):].partition("/")[0]
                 if pkg and pkg not in ok and ctx.mesh_ref(model, uri).path:
                     yield Report(m, f"{tag} '{uri}'", cause=_cause(name, pxml, pkg))
-    # files read through $(find NAME): at the first element they made (its macro call chain
-    # leads back to the model's own files)
+    seen = set()
+    for pkg, at in _finds(model, top, ok):
+        seen.add(pkg)
+        yield Report(at, f"$(find {pkg})", cause=_cause(name, pxml, pkg))
+    # files read otherwise (package:// includes): at the first element they made, or at the
+    # macro call in the linted package that made it
     firsts: dict = {}
     for dep in model.deps[1:]:
         pkg = _package_of(model.resolver, os.path.abspath(dep))
-        if pkg and pkg not in ok and pkg not in firsts:
+        if pkg and pkg not in ok and pkg not in firsts and pkg not in seen:
             firsts[pkg] = dep
     if not firsts:
         return
     for el, o in model.origins.items():
         for pkg, dep in list(firsts.items()):
             if o.file == dep or any(c[0] == dep for c in o.chain):
-                yield Report(el, f"reads {display_path(dep)}", cause=_cause(name, pxml, pkg))
+                yield Report(_own_place(o, top) or el, f"reads {display_path(dep)}",
+                             cause=_cause(name, pxml, pkg))
                 del firsts[pkg]
         if not firsts:
             return

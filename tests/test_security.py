@@ -351,7 +351,8 @@ def test_check_honours_ros_package_path_and_prints_no_env_value(world, tmp_path)
                                  '<link name="arm"/></xacro:macro></robot>\n'})
     make_package(repo, "p", {"urdf/r.urdf.xacro": robot(
         '  <xacro:include filename="$(find extpkg)/urdf/arm.xacro"/>\n  <xacro:arm/>\n'
-        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')})
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>')},
+        depends=["extpkg"])   # (undeclared, $(find extpkg) is UL012: issue 33)
     ok = _check_text(repo, "--format", "json", env={"ROS_PACKAGE_PATH": str(ext)})
     assert json.loads(ok.stdout)["findings"] == [], ok.stdout
     # an unknown package names the variables it searched, never their values

@@ -68,6 +68,11 @@ class LintSettings:
     # code -> {option: value} (configured only)
     options: dict[str, dict[str, Any]] = field(default_factory=dict)
     env_allow: tuple[str, ...] = ()
+    # the names (never the values) of the variables set where the run started: a worker's own
+    # environment is scrubbed to env_allow, and $(optenv) of a variable that is set but not
+    # allowed is a warning (None: the worker's own). Not part of cache_key: a result records
+    # the few variables it looked up (ModelReport.env, env_unchanged)
+    env_set: tuple[str, ...] | None = None
     timeout: float = DEFAULT_TIMEOUT         # per job, in seconds (runner.worker.run_jobs)
     memory_mb: int = DEFAULT_MEMORY_MB       # per worker, in MiB
     mesh_cache_dir: str | None = None
@@ -87,6 +92,11 @@ class LintSettings:
         the variables ``$(env)``/``$(optenv)`` may read too, as the workers will see them."""
         env = {k: os.environ.get(k) for k in self.env_allow}
         return [list(self.selected), list(self.targets), self.options, env, self.resolver]
+
+
+def env_unchanged(env: dict[str, bool]) -> bool:
+    """Is each variable in ``env`` (name -> was it set) still set, or still unset, here?"""
+    return all((name in os.environ) == bool(was) for name, was in env.items())
 
 
 @dataclass(frozen=True)
@@ -119,6 +129,8 @@ class ModelReport:
     directive_files: list[str] | None = None        # deps holding urdf-lint comments (None: unknown)
     cached: bool = False
     cacheable: bool = True                          # False: a fact depended on the environment
+    env: dict[str, bool] = field(default_factory=dict)  # $(optenv) variables not allowed ->
+                                                    # set? (the result holds while they stay so)
     current_outputs: list[str] = field(default_factory=list)  # generated URDFs that are today's
                                                     # expansion of this model (not linted again)
 
@@ -151,7 +163,7 @@ class ModelReport:
                 "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
                 "links": self.links, "joints": self.joints, "meshes": self.meshes,
                 "directive_files": self.directive_files,
-                "current_outputs": list(self.current_outputs)}
+                "current_outputs": list(self.current_outputs), "env": dict(self.env)}
 
     @classmethod
     def from_record(cls, job: LintJob, rec: dict[str, Any]) -> "ModelReport":
@@ -162,4 +174,5 @@ class ModelReport:
                    name=rec.get("name", ""), name_origin=Origin(o[0], o[1], o[2]) if o else None,
                    links=rec.get("links", 0), joints=rec.get("joints", 0),
                    meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
-                   cached=True, current_outputs=list(rec.get("current_outputs", ())))
+                   cached=True, current_outputs=list(rec.get("current_outputs", ())),
+                   env={str(k): bool(v) for k, v in dict(rec.get("env") or {}).items()})

@@ -265,6 +265,10 @@ def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) ->
 _XACRO_NS_HINT = "xacro"
 _ARG_RE = re.compile(r"\$\(\s*arg\s+([^)\s]+)\s*\)")
 _FIND_RE = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
+# $(optenv VAR default): expansion reads no variable outside env-allow, so it gets the default
+_OPTENV_RE = re.compile(r"\$\(\s*optenv\s+[^)\s]+\s*([^)]*?)\s*\)")
+# what the memo of the include graph holds (bump when _read_includes reads more)
+GRAPH_FORMAT = 2
 
 
 @dataclass
@@ -376,6 +380,7 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
                 name = os.path.join(str(resolver.find(pkg)), rel)
         except Exception:  # noqa: BLE001 - unknown package: expansion reports it
             return None
+    name = _OPTENV_RE.sub(lambda m: m.group(1), name)
     if "$" in name or not name:
         return None
     if name.startswith("file://"):
@@ -409,6 +414,17 @@ def _maybe_included(name: str, base: str, resolver) -> list:
     if len(literal.strip("._-")) < 4:
         return []
     return _resolve_include(pattern, base, resolver) or []
+
+
+def _default_file(value: str | None, base: str, resolver) -> list:
+    """The model file an arg's default or a property's value names (``$(find p)/urdf/empty.urdf``,
+    ``$(optenv EXTRAS empty.urdf)``), when it exists: an include of ``$(arg NAME)`` reads it, so
+    it is included (a placeholder that makes "no extras" the default is no model of its own)."""
+    value = _OPTENV_RE.sub(lambda m: m.group(1), value or "").strip()
+    if not value.endswith((".urdf", ".xacro")):
+        return []
+    got = _resolve_include(value, base, resolver) or []
+    return [f for f in got if os.path.isfile(f)]
 
 
 def _read_includes(f: str, resolver):
@@ -445,6 +461,9 @@ def _read_includes(f: str, resolver):
                 inc.extend(got)
         elif q.localname == "arg" and el.get("name"):
             args.append(el.get("name"))
+            inc.extend(_default_file(el.get("default"), base, resolver))
+        elif q.localname == "property":
+            inc.extend(_default_file(el.get("value"), base, resolver))
     # an arg used as $(arg NAME) without a declaration is set on xacro's command line
     for el in root.iter():
         if isinstance(el.tag, str):
@@ -473,7 +492,8 @@ def _memo_path(cache_dir, resolver) -> str | None:
     import json
     # everything an include's resolution depends on: the package maps, the roots and the
     # environment's search paths
-    key = json.dumps(resolver.to_dict() if resolver is not None else {}, sort_keys=True)
+    key = json.dumps([GRAPH_FORMAT, resolver.to_dict() if resolver is not None else {}],
+                     sort_keys=True)
     return os.path.join(cache_dir, "graph",
                         hashlib.blake2b(key.encode(), digest_size=10).hexdigest() + ".json")
 

@@ -66,14 +66,29 @@ def install_share_packages(top: str) -> dict[str, str]:
     return out
 
 
+def _package_holding(p: str, up: int = 4) -> str:
+    """The folder of the package that holds ``p`` (the nearest ``package.xml`` above it, at
+    most ``up`` levels up), else ``p``'s folder: a file is beside what its package is beside."""
+    start = d = os.path.abspath(p if os.path.isdir(p) else os.path.dirname(p))
+    for _ in range(up + 1):
+        if os.path.isfile(os.path.join(d, "package.xml")):
+            return d
+        parent = os.path.dirname(d)
+        if parent == d:
+            break
+        d = parent
+    return start
+
+
 def beside(name: str, paths, depth: int = 2) -> str | None:
     """The folder holding the ``package.xml`` of package ``name`` beside the linted ``paths``
-    (in their parent folders, ``depth`` levels down), for a ``--package-path`` hint: such a
+    (in the parent folders of their packages, ``depth`` levels down: a file's package, a folder
+    that is a package or lies in one), for a ``--package-path`` hint: such a
     folder is not a root by itself (outside git and a workspace, the working directory is not
     searched), but the user can name it."""
     seen = set()
     for p in paths:
-        top = os.path.dirname(os.path.abspath(p if os.path.isdir(p) else os.path.dirname(p)))
+        top = os.path.dirname(_package_holding(p))
         if top in seen:
             continue
         seen.add(top)

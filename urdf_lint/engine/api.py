@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable
 
 from urdf_lint.core.findings import Cause
-from urdf_lint.core.locations import display_path
+from urdf_lint.core.locations import Origin, display_path
 from urdf_lint.core.suggest import did_you_mean
 from urdf_lint.fix.fixes import Request, names_in_scope
 from urdf_lint.meshes.facts import MassFacts, MeshFacts
@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # pragma: no cover - imported on first use below
     from urdf_lint.fix.kinds.set import set_attrs
     from urdf_lint.meshes.resolve import MeshStatus
 
-__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request", "add_dollar",
+__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Origin", "Report", "Request", "add_dollar",
            "binary_stl_triangles", "did_you_mean", "read_head",
            "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
            "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
@@ -42,7 +42,8 @@ __all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Report", "Request",
 @dataclass(frozen=True)
 class Report:
     """One problem a rule's ``check`` found: where (``element``, an element of the model; a
-    run-scope rule gives an :class:`urdf_lint.core.locations.Origin`) and what (``message``).
+    run-scope rule gives an :class:`urdf_lint.core.locations.Origin`, and so may a model rule
+    for a place in a source that no element has) and what (``message``).
     ``severity`` raises or lowers the rule's severity for this one problem; ``fix`` is a fix
     request (``set_attrs`` and the other requests here); ``targets`` a severity per consumer
     target for this one problem (:mod:`urdf_lint.core.targets`); ``cause`` the root cause it

@@ -165,7 +165,8 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
                 return None
         from urdf_lint.expansion import expand_file
         exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
-                          expr_policy=settings.expr_policy)
+                          expr_policy=settings.expr_policy, env_set=settings.env_set)
+        out.env = dict(exp.env)
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)
         out.digests = dict(exp.digests)
@@ -227,9 +228,20 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
     if root is None:
         out.status = Status.FAILED
         return None
+    if not job.explicit and _placeholder(root):
+        out.status = Status.LIBRARY
+        out.problems = []
+        return None
     if settings.keep_model:
         out.kept_model = KeptModel(None)   # the parent parses the .urdf itself
     return Model(entry=entry, args={}, root=root, origins=origins, deps=[entry], resolver=resolver)
+
+
+def _placeholder(root: Any) -> bool:
+    """A ``<robot>`` empty by design: no name and no element (an ``empty.urdf`` included so
+    that "no extras" is the default, the expansion of a macro-only file): no model to lint."""
+    return root.tag == "robot" and not root.get("name") and \
+        not any(isinstance(c.tag, str) for c in root)
 
 
 def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> None:
@@ -237,7 +249,8 @@ def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: Model
     comes back as ``kept_model.xml``; the notes and the error as ``problems``."""
     from urdf_lint.expansion import expand_file
     exp = expand_file(job.entry, job.args, resolver, env_allow=settings.env_allow,
-                      display_name=job.display_name, expr_policy=settings.expr_policy)
+                      display_name=job.display_name, expr_policy=settings.expr_policy,
+                      env_set=settings.env_set)
     out.deps = list(exp.deps)
     out.problems.extend(exp.notes)
     if exp.error is not None:
@@ -331,14 +344,17 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
     for rule, el, msg, sev, req, cause, table in run_rules(
             "model", settings.selected, settings.options, model, ctx, out.internal,
             f" on {job.entry}", with_fix=True, with_table=True):
-        fix = None
-        from urdf_lint.fix.fixes import Fixer
-        fixer = fixer or Fixer(model)
-        if req is not None:
-            fix = fixer.fix(el, req)
-        value_from = fixer.value_from(el, fixer.traced(req))
-        p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
-                       consumers=table, value_from=value_from)
+        if isinstance(el, Origin):   # a place in a source that no element has (a line)
+            p = Problem.at(rule.code, msg, el, None, sev, consumers=table)
+        else:
+            fix = None
+            from urdf_lint.fix.fixes import Fixer
+            fixer = fixer or Fixer(model)
+            if req is not None:
+                fix = fixer.fix(el, req)
+            value_from = fixer.value_from(el, fixer.traced(req))
+            p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
+                           consumers=table, value_from=value_from)
         if cause is not None:   # one finding per root cause, this problem one instance of it
             p = p.replace(code=cause.code, message=cause.message, detail=msg, group=cause.key)
         problems.append(p)

@@ -51,6 +51,7 @@ from urdf_lint.expansion.sourcemap import KEY, SourceMap
 # the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
 ul007_doctype = RuleName("ul007_doctype")
 ul008_xacro_warning = RuleName("ul008_xacro_warning")
+ul013_description_error = RuleName("ul013_description_error")
 ul901_env_read = RuleName("ul901_env_read")
 ul902_outside_roots = RuleName("ul902_outside_roots")
 
@@ -70,6 +71,9 @@ class Expansion:
     # per output element (document order, as ``origins``): {attribute: ((file, line, col),
     # derived)} for the attributes whose value came from a YAML scalar (expansion.traced)
     values: tuple = ()
+    # the variables $(optenv) looked up that are not allow-listed -> whether each was set (the
+    # result holds while that stays so: run/cache.py)
+    env: dict = field(default_factory=dict)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -83,9 +87,14 @@ class ExpansionState:
     elements being evaluated, the chain of macro calls and includes), for :func:`expand_file`."""
 
     def __init__(self, resolver: PackageResolver, env_allow: Iterable[str],
-                 expr_policy: object = None) -> None:
+                 expr_policy: object = None, env_set: Iterable[str] | None = None) -> None:
         self.resolver = resolver
         self.env_allow = set(env_allow)
+        # the names of the variables set where urdf-lint runs (never their values; a worker's
+        # own environment is scrubbed, so the parent tells it): None, this process's
+        self.env_set = set(os.environ if env_set is None else env_set)
+        self.env: dict[str, bool] = {}             # Expansion.env
+        self.env_noted: set[tuple[str, str]] = set()   # (file, variable) warned about
         self.deps: dict[str, None] = {}
         self.digests: dict[str, list] = {}
         self.notes: list[Problem] = []
@@ -104,11 +113,13 @@ class ExpansionState:
             return self.touched
         return self.stack[-1] if self.stack else None
 
-    def note(self, rule: Any, message: str, node: Any = None, loc: Origin4 | None = None) -> None:
-        """A problem that does not stop the expansion, reported as ``rule.CODE``."""
+    def note(self, rule: Any, message: str, node: Any = None, loc: Origin4 | None = None,
+             severity: str = "") -> None:
+        """A problem that does not stop the expansion, reported as ``rule.CODE`` (at
+        ``severity`` when given, else the rule's)."""
         if loc is None:
             loc = origin_of(node if node is not None else self.current_node())
-        self.notes.append(Problem.at(rule.CODE, message, loc))
+        self.notes.append(Problem.at(rule.CODE, message, loc, severity=severity))
 
 
 # The expansion xacro's hooks serve. xacro calls them as module-level functions with its own
@@ -404,11 +415,21 @@ def _hook_eval_env(name):
 
 
 def _hook_eval_optenv(name, default=""):
+    """An allow-listed variable is read; another one never is: its default is used, which is
+    what xacro makes where the variable is unset (nothing to say), and differs from it where it
+    is set (a warning, once per file and variable)."""
     st = _active()
     if name in st.env_allow:
         return _orig["eval_optenv"](name, default)
-    st.note(ul901_env_read, f"$(optenv {name}) reads an environment variable that is not in "
-            f"'env-allow'; its default was used instead of the value")
+    is_set = st.env[name] = name in st.env_set
+    if is_set:
+        loc = origin_of(st.current_node())
+        if (loc[0], name) not in st.env_noted:
+            st.env_noted.add((loc[0], name))
+            st.note(ul901_env_read, f"$(optenv {name}) reads an environment variable that is set "
+                    "here but not in 'env-allow': its default was used, so the output differs "
+                    "from xacro's in this environment (add it to env-allow if it is safe to read)",
+                    loc=loc, severity="warning")
     return default
 
 
@@ -422,6 +443,30 @@ def _hook_warning(*args, **kwargs):
 
 
 def _hook_print_location(*args, **kwargs):
+    return ""
+
+
+def _said(*args, **kwargs):
+    """What ``${xacro.error(...)}`` and its kin print: their arguments, as xacro joins them."""
+    return " ".join(str(a) for a in args).strip()
+
+
+def _hook_xacro_error(*args, **kwargs):
+    """``${xacro.error(...)}``: stock xacro prints the message (with the location) and goes
+    on; here a located error with the message (UL013)."""
+    st = CURRENT.get()
+    if st is not None:
+        st.note(ul013_description_error, "xacro.error: " + (_said(*args) or "(no message)"))
+    return ""
+
+
+def _hook_xacro_warning(*args, **kwargs):
+    """``${xacro.warning(...)}``: a located warning, as xacro's own warnings (UL008)."""
+    return _hook_warning(_said(*args))
+
+
+def _hook_xacro_message(*args, **kwargs):
+    """``${xacro.message(...)}``: xacro prints it; no finding."""
     return ""
 
 
@@ -459,6 +504,11 @@ def _install_hooks():
     ns = g["xacro"]
     dict.__setitem__(ns, "load_yaml", _hook_load_yaml)
     dict.__setitem__(ns, "abs_filename", _hook_abs_filename_spec)
+    # the description's own messages (xacro wrapped the functions when it built the namespace)
+    dict.__setitem__(ns, "error", _hook_xacro_error)
+    dict.__setitem__(ns, "warning", _hook_xacro_warning)
+    dict.__setitem__(ns, "message", _hook_xacro_message)
+    dict.__setitem__(ns, "print_location", _hook_print_location)
     dict.__setitem__(g, "load_yaml", _hook_load_yaml)
     dict.__setitem__(g, "abs_filename", _hook_abs_filename_spec)
     safe_eval.install_xacro_symbols(g)
@@ -532,16 +582,17 @@ def classify_error(e: BaseException, st: ExpansionState, entry: str = "",
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
                 env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
-                expr_policy=None) -> Expansion:
+                expr_policy=None, env_set: Iterable[str] | None = None) -> Expansion:
     """Expand one xacro (or URDF) file in process. Never raises for bad input. Bytes to read
     instead of a file's (an editor's buffer, a layout ``format`` proves) come from
-    :mod:`urdf_lint.core.overlay`, installed around the job by the worker."""
+    :mod:`urdf_lint.core.overlay`, installed around the job by the worker. ``env_set``: the
+    names of the environment variables that are set (None: this process's)."""
     path = os.path.abspath(path)
     args = dict(args or {})
     res = Expansion(entry=path, args=dict(args))
     if resolver is None:
         resolver = PackageResolver.build([os.path.dirname(path)], extra_roots=[os.path.dirname(path)])
-    st = ExpansionState(resolver, env_allow, expr_policy)
+    st = ExpansionState(resolver, env_allow, expr_policy, env_set)
     with _session(st):
         before = True   # until xacro opens the entry
         try:
@@ -568,4 +619,5 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
         res.deps = [path] + [d for d in st.deps if d != path and d not in res.missing]
         res.digests = dict(st.digests)
         res.notes = st.notes
+        res.env = dict(st.env)
     return res

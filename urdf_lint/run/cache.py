@@ -2,9 +2,10 @@
 
 A model's entry is keyed on the tool version, the entry file, its args and the lint settings
 (selected rules, options, package map, env allow-list). It is valid only while every file the
-model read (xacro, YAML, meshes) still has the content it had, and every file that was looked
-for and missing is still missing. Stat data (size, mtime) short-cuts the content hash. A corrupt
-or foreign entry is ignored.
+model read (xacro, YAML, meshes) still has the content it had, every file that was looked
+for and missing is still missing, and every variable ``$(optenv)`` looked up outside the
+allow-list is still set, or still unset, as it was (``ModelReport.env``). Stat data (size,
+mtime) short-cuts the content hash. A corrupt or foreign entry is ignored.
 
 The cache cannot lie (issue 15):
 
@@ -30,15 +31,16 @@ from urdf_lint import __version__
 from urdf_lint.core import fsbound
 from urdf_lint.discovery.discover import start_dir
 from urdf_lint.core.hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, env_unchanged
 from urdf_lint.core.cachedir import ensure as ensure_cache_dir
 from urdf_lint.discovery.vcs import git_root, repo_root
 
 # bump when the stored record changes shape (4: signed, digests of what was read;
 # 5: missing YAML files recorded as missing; 6: problems carry their fix; 7: the sources
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
-# the stream-read mesh facts, a mesh refused by the memory limit is never cached)
-RECORD_FORMAT = 13
+# the stream-read mesh facts, a mesh refused by the memory limit is never cached; 14: the
+# $(optenv) variables looked up and whether they were set)
+RECORD_FORMAT = 14
 
 
 @functools.lru_cache(maxsize=None)
@@ -187,6 +189,8 @@ class Cache:
                 if appeared:   # a file looked for (or a folder read as one) appeared
                     return None
             report = ModelReport.from_record(job, rec["result"])
+            if not env_unchanged(report.env):   # a variable $(optenv) read was set or unset
+                return None
             report.digests = deps   # what it read, as it is now (the run memo keeps it)
             return report
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):

@@ -72,6 +72,7 @@ def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -
     set the rest."""
     return LintSettings(resolver=resolver.to_dict(),
                         env_allow=tuple(sorted(set(DEFAULT_ENV_ALLOW) | set(cfg.env_allow))),
+                        env_set=tuple(sorted(os.environ)),
                         timeout=cfg.timeout, memory_mb=cfg.memory_mb, **fields)
 
 
@@ -201,7 +202,7 @@ def run_check(request: RunRequest) -> CheckResult:
     out.generated = dict(found.generated)
     _hint_fragments(out.models, found.graph)
     _drop_current_outputs(out.models)
-    _hint_packages(out.models, paths)
+    hint_packages(out.models, paths)
 
     if req.affected_by is not None:
         _keep_affected(out, req.affected_by)
@@ -318,11 +319,12 @@ def _complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
-def _hint_packages(models, paths) -> None:
+def hint_packages(models, paths) -> None:
     """An unknown package whose ``package.xml`` is in a folder beside the linted paths (a
     sibling package under the working directory, outside git): its UL004 says
-    ``--package-path NAME=DIR``. Looked for here, in the parent: the workers may not list
-    folders outside the roots, and such a folder is never a root by itself."""
+    ``--package-path NAME=DIR`` (``check`` of folders and files, ``expand``). Looked for
+    here, in the parent: the workers may not list folders outside the roots, and such a
+    folder is never a root by itself."""
     import re
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.workspace import beside

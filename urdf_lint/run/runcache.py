@@ -9,7 +9,9 @@ policy again (~80 ms on the corpus). The run memo keeps the run's final result, 
   settings the workers would get (selected rules, options, ``env-allow`` values);
 * every input any model read (the stat the worker took before reading it), every file a
   model looked for and did not find, and every folder discovery walked (a file added or
-  removed changes its folder's mtime).
+  removed changes its folder's mtime);
+* every variable a model's ``$(optenv)`` looked up outside the allow-list is still set, or
+  still unset (``ModelReport.env``).
 
 A run whose inputs or folders changed within the last seconds is not remembered (a coarse
 file-system clock could hide an edit made in the same tick), nor one with internal errors or
@@ -26,12 +28,12 @@ from typing import TYPE_CHECKING
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.hashing import blake2b, stat_key
-from urdf_lint.core.jobs import LintJob, ModelReport
+from urdf_lint.core.jobs import LintJob, ModelReport, env_unchanged
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
 
-FORMAT = 6
+FORMAT = 7
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
@@ -68,6 +70,8 @@ class RunMemo:
             for path, mtime in rec["folders"]:
                 if _mtime(path) != mtime:
                     return None
+            if not env_unchanged(rec.get("env") or {}):
+                return None
             rec = json.loads(body)
             return {"models": [_report(m) for m in rec["models"]],
                     "skipped": [_report(m) for m in rec["skipped"]],
@@ -83,7 +87,9 @@ class RunMemo:
             return
         inputs: dict = {}
         missing: set = set()
+        env: dict = {}
         for r in results:
+            env.update(r.env)
             for d in r.deps:
                 if d not in inputs:
                     rec = r.digests.get(d)   # (the cache filled them in, or refused the result)
@@ -104,7 +110,7 @@ class RunMemo:
             return
         _prune(os.path.dirname(self.path))
         head = {"format": FORMAT, "inputs": sorted(inputs.items()), "missing": sorted(missing),
-                "folders": seen}
+                "folders": seen, "env": env}
         body = {"models": [_report_record(r) for r in out.models],
                 "skipped": [_report_record(r) for r in out.skipped],
                 "findings": [p.to_row() for p in out.findings],
