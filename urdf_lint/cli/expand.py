@@ -75,7 +75,7 @@ def expand(o: ExpandOptions) -> int:
                   display_name=o.file)
     res = expand_in_workers([job], resolver, cfg)[0]
     from urdf_lint.run.pipeline import hint_packages
-    hint_packages([res], [args.file])   # a sibling package's package.xml: --package-path
+    hint_packages([res], [o.file])   # a sibling package's package.xml: --package-path
     from urdf_lint.core.emit import report_internal
     if report_internal(res.internal):
         return 2
