@@ -5,9 +5,17 @@ and the URDF is not regenerated, every consumer that reads the URDF (simulators,
 other teams) silently gets the old robot. The files are compared as XML: comments (including
 the generator header), attribute order and indentation do not count.
 
-How to fix: Regenerate it: `urdf-lint generate` rewrites every output (the `urdf-lint-generate`
-pre-commit hook does it on commit). Outputs are the `output` of a `[[tool.urdf-lint.models]]`
-entry, or a `.urdf` whose header says xacro generated it from a `.xacro` in the repository.
+Each output is compared with the variant (the xacro args) that made it: the args of the
+`[[tool.urdf-lint.models]]` entry whose `output` it is; else the args `urdf-lint generate`
+recorded in its header; else (xacro records no args) every configured variant of the xacro
+and its defaults: one that matches none is "stale, or made with args urdf-lint does not know",
+naming the closest variant and the first difference.
+
+How to fix: Regenerate it: `urdf-lint generate` rewrites every output it can tie to its args
+(the `urdf-lint-generate` pre-commit hook does it on commit). Outputs are the `output` of a
+`[[tool.urdf-lint.models]]` entry, or a `.urdf` whose header says xacro generated it from a
+`.xacro` in the repository. For a variant made with other args, add a models entry with its
+`output` and `args`: generate refuses to rewrite a file it cannot tie to its args.
 """
 CODE = "UL011"
 NAME = "stale-generated-output"

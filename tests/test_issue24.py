@@ -124,8 +124,9 @@ def test_current_generated_urdf_is_not_linted_again(tmp_path):
 
 def test_every_generated_urdf_of_a_xacro_is_checked(tmp_path):
     """Item 14: two URDFs whose headers name one xacro (and a [[models]] entry for it): both
-    stale ones are UL011, not only the first in path order; one generated with other args (other
-    links) is not compared."""
+    stale ones are UL011, not only the first in path order; one with other links is compared
+    too (issue 32: every output of a xacro is checked, whatever its link count; this xacro
+    reads no arg, so it has one variant)."""
     pkg = generated_pkg(tmp_path)
     urdf = (pkg / "urdf/robot.urdf").read_text()
     (pkg / "urdf/a_copy.urdf").write_text(urdf)
@@ -134,7 +135,8 @@ def test_every_generated_urdf_of_a_xacro_is_checked(tmp_path):
     xacro.write_text(xacro.read_text().replace('<mass value="1"/>', '<mass value="2"/>', 1))
     doc, _ = check_json(pkg)
     stale = sorted(f["file"] for f in doc["findings"] if f["code"] == "UL011")
-    assert stale == ["urdf/a_copy.urdf", "urdf/robot.urdf"], doc["findings"]
+    assert stale == ["urdf/a_copy.urdf", "urdf/robot.urdf", "urdf/variant.urdf"], \
+        doc["findings"]
 
 
 OTHER = '<robot name="o"><link name="a"/></robot>'

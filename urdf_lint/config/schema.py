@@ -586,6 +586,24 @@ def _found(path: Path) -> bool:
     return True
 
 
+def named_files(path: str | Path) -> list[str]:
+    """The files a config file names (each ``[[models]]`` entry's ``path`` and ``output``),
+    absolute, read without validating it: ``diff`` materialises them at the base revision
+    before that revision's config is loaded (and validated against them). [] when the file
+    cannot be read."""
+    path = Path(path)
+    try:
+        data: Any = _parse_toml(path)
+        if path.name == "pyproject.toml":
+            data = _pyproject_table(path, data)
+    except ConfigError:
+        return []
+    models = data.get("models") if isinstance(data, dict) else None
+    return [os.path.normpath(os.path.join(path.parent, m[k]))
+            for m in (models if isinstance(models, list) else []) if isinstance(m, dict)
+            for k in ("path", "output") if isinstance(m.get(k), str)]
+
+
 def _shown(path: str | Path) -> str:
     """A config file's path as messages show it: relative to the working directory when below."""
     if isinstance(path, str) and not os.path.exists(path):

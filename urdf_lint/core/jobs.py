@@ -39,8 +39,13 @@ class LintJob:
     display_name: str | None = None  # expand: the entry as the user wrote it (xacro's messages)
     output: str | None = None      # config: the generated URDF this xacro is written to
     mesh_base: str | None = None   # config: the folder relative mesh paths start from
-    outputs: tuple[str, ...] = ()  # more checked-in URDFs whose header names this xacro
-                                   # (compared when they are the same variant as ``output``)
+    outputs: tuple[str, ...] = ()  # more checked-in URDFs this variant made (a header names
+                                   # this xacro, and these args or none)
+    # those of ``output`` and ``outputs`` no args tie to this variant (xacro's banner records
+    # none): current when any variant of the xacro gives them, never rewritten
+    untied: tuple[str, ...] = ()
+    # the xacro's other configured arg sets (sorted items), tried for the untied outputs
+    variants: tuple[tuple[tuple[str, str], ...], ...] = ()
     # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
     # files by this job's expansion and lint (urdf_lint/core/overlay.py); such a result is not cached
     overlay: tuple[tuple[str, bytes], ...] = ()

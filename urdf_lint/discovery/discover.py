@@ -129,23 +129,23 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     detected = _detected_outputs(found, paths, resolver)
     generated = {o: x for x, os_ in detected.items() for o in os_}
     generated.update({m.output: m.path for m in cfg.models if m.output})
+    recorded = _recorded_args(detected, resolver)
     for f, p in found:
         if f in configured:
-            jobs.extend(_configured_jobs(configured[f], detected.get(f, ())))
+            jobs.extend(_configured_jobs(configured[f], detected.get(f, ()), recorded, graph))
             continue
         if not discover_all and p != f:
             continue
         includers = [g for g in by.get(f, ()) if g in linted]
         if includers and p != f:
             fragments[f] = includers
-        outs = detected.get(f, ())
-        jobs.append(LintJob(f, {}, _kind(f), explicit=p == f,
-                            output=outs[0] if outs else None, outputs=tuple(outs[1:])))
+        jobs.extend(_variant_jobs(f, [{}], p == f, None, None, detected.get(f, ()),
+                                  recorded, graph))
     # configured models inside the linted paths that the walk did not reach
     for f, spec in configured.items():
         if f in linted or not any(inside(f, os.path.abspath(p)) for p in paths):
             continue
-        jobs.extend(_configured_jobs(spec, detected.get(f, ())))
+        jobs.extend(_configured_jobs(spec, detected.get(f, ()), recorded, graph))
     jobs = _inherit_mesh_base(jobs, graph)
     return Discovery(jobs, fragments, graph, generated, folders, problems)
 
@@ -241,19 +241,59 @@ def _config_line(path: str, name: str) -> tuple[int, int]:
     return 1, 1
 
 
-def _configured_jobs(spec, detected=()) -> list:
-    """One job per arg set; the output (the configured one, else the first whose header
-    names the xacro) and the other detected outputs are compared with the first arg set's
-    expansion."""
-    f = spec.path
-    outs = [o for o in ([spec.output] if spec.output else []) + list(detected)]
-    outs = list(dict.fromkeys(outs))
-    return [LintJob(f, dict(args), _kind(f), explicit=True,
-                    output=(outs[0] if outs else None) if n == 0 else None,
-                    outputs=tuple(outs[1:]) if n == 0 else (),
-                    mesh_base=spec.mesh_base or (
-                        os.path.dirname(spec.output) if spec.output else None))
-            for n, args in enumerate(spec.arg_sets)]
+def _recorded_args(detected: dict, resolver=None) -> dict:
+    """detected output -> the args ``urdf-lint generate`` recorded in its header, or None."""
+    from urdf_lint.discovery.generated import header_args
+    roots = resolver.roots if resolver is not None else None
+    return {o: header_args(o, roots, resolved=True) for outs in detected.values() for o in outs}
+
+
+def _configured_jobs(spec, detected=(), recorded=None, graph=None) -> list:
+    """One job per arg set of a models entry (see :func:`_variant_jobs`)."""
+    return _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
+                         spec.mesh_base, detected, recorded or {}, graph)
+
+
+def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,
+                  mesh_base: str | None, detected, recorded: dict, graph) -> list:
+    """One job per arg set of ``f``, each with the outputs tied to its args: the configured
+    ``output`` to the first; a detected output (a header names ``f``) to the args
+    ``urdf-lint generate`` recorded in its header (a job of its own when no arg set has
+    them), else to the only variant when ``f`` reads no arg. The other detected outputs are
+    untied: the first job compares them with every arg set and the default args."""
+    if not arg_sets:   # (``args = []``: no variant is linted)
+        return []
+    tied: list[list[str]] = [[] for _ in arg_sets]
+    tied[0] += [output] if output else []
+    more: dict = {}
+    untied = []
+    one = graph is None or not f.endswith(".xacro") or not (
+        graph.declared_args(f) or graph.unresolved_below(f))
+    for o in detected:
+        if o == output:
+            continue
+        args = recorded.get(o)
+        if args is None:
+            tied[0].append(o)
+            if not one:
+                untied.append(o)
+        elif args in arg_sets:
+            tied[arg_sets.index(args)].append(o)
+        else:
+            more.setdefault(tuple(sorted(args.items())), []).append(o)
+    # the untied outputs are compared with every arg set, and the defaults (xacro's own)
+    known = arg_sets[1:] + ([{}] if {} not in arg_sets else [])
+    variants = tuple(tuple(sorted(a.items())) for a in known) if untied else ()
+    base = mesh_base or (os.path.dirname(output) if output else None)
+    jobs = [LintJob(f, dict(args), _kind(f), explicit=explicit,
+                    output=outs[0] if outs else None, outputs=tuple(outs[1:]),
+                    untied=tuple(untied) if n == 0 else (),
+                    variants=variants if n == 0 else (), mesh_base=base)
+            for n, (args, outs) in enumerate(zip(arg_sets, tied, strict=True))]
+    jobs += [LintJob(f, dict(key), _kind(f), explicit=explicit, output=outs[0],
+                     outputs=tuple(outs[1:]), mesh_base=mesh_base)
+             for key, outs in more.items()]
+    return jobs
 
 
 def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:

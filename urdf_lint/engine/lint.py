@@ -7,6 +7,7 @@ in a worker.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
@@ -128,28 +129,70 @@ def _quick_parser() -> Any:
     return etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)
 
 
-def _check_output(job: LintJob, xml: str, out: ModelReport) -> None:
-    """UL011 at each checked-in generated file that differs from today's expansion; the
-    outputs become inputs of the model (editing one re-lints the model). The outputs after
-    the first (more URDFs whose header names this xacro) are compared only when they are the
-    same variant (robot name and links): another is generated with args urdf-lint does not
-    know."""
-    from urdf_lint.discovery.generated import same_variant, stale_at
+def _check_output(job: LintJob, xml: str, out: ModelReport,
+                  expand: Callable[[dict[str, str]], str | None]) -> None:
+    """UL011 at each checked-in generated file that differs from today's expansion of the
+    variant that made it; the outputs become inputs of the model (editing one re-lints the
+    model). An untied output (xacro's banner records no args) is current when any configured
+    variant of the xacro gives it (``expand(args)``: that variant's XML, or None); else the
+    finding names the closest variant."""
+    from urdf_lint.discovery.generated import closest_variant, describe_args, stale_at
     from urdf_lint.core.locations import display_path
-    for n, output in enumerate((job.output or "",) + tuple(job.outputs)):
+    others: list[tuple[dict[str, str], str | None]] | None = None
+    for output in (job.output or "",) + tuple(job.outputs):
         (out.deps if os.path.exists(output) else out.missing).append(output)
-        if n and not same_variant(output, xml):
-            continue
         got = stale_at(output, xml)
+        if got is not None and output in job.untied and os.path.exists(output):
+            if others is None:
+                others = [(dict(v), expand(dict(v))) for v in job.variants]
+            args, got = closest_variant(output, [(job.args, xml)] + [
+                (a, x) for a, x in others if x is not None])
+            if got is not None:
+                line, col, what = got
+                out.problems.append(Problem.at(ul011_stale_output.CODE,
+                                               _untied_message(job, args, what),
+                                               (output, line, col)))
+                continue
         if got is None and os.path.exists(output):
             out.current_outputs.append(output)
         if got is not None:
             line, col, what = got
+            made = f" with {describe_args(job.args)}" if job.args else ""
             out.problems.append(Problem.at(
                 ul011_stale_output.CODE,
                 f"generated file is stale ({what}): it is not what {display_path(job.entry)} "
-                "expands to today; regenerate it with 'urdf-lint generate'",
+                f"expands to today{made}; regenerate it with 'urdf-lint generate'",
                 (output, line, col)))
+
+
+def _untied_message(job: LintJob, closest: dict[str, str], what: str) -> str:
+    """UL011 at an untied output no variant gives: the variants it was compared with, the
+    closest one and where it first differs."""
+    from urdf_lint.discovery.generated import describe_args
+    from urdf_lint.core.locations import display_path
+    if job.variants:
+        tried = (f"any of {len(job.variants) + 1} variants (its configured args and the "
+                 f"defaults; closest: {describe_args(closest)}, {what})")
+    else:
+        tried = f"{describe_args(job.args)} ({what})"
+    return (f"generated file is stale, or made with args urdf-lint does not know: it is not "
+            f"what {display_path(job.entry)} expands to today with {tried}; add a "
+            "[[tool.urdf-lint.models]] entry with its output and args")
+
+
+def _other_variant(job: LintJob, settings: LintSettings, resolver: Any,
+                   out: ModelReport) -> Callable[[dict[str, str]], str | None]:
+    """``args -> the XML of that variant of the job's xacro`` (None when it does not expand);
+    what it reads becomes an input of the model."""
+    def expand(args: dict[str, str]) -> str | None:
+        from urdf_lint.expansion import expand_file
+        exp = expand_file(job.entry, args, resolver, env_allow=settings.env_allow,
+                          expr_policy=settings.expr_policy)
+        out.deps += [d for d in exp.deps if d not in out.deps]
+        out.missing += [d for d in exp.missing if d not in out.missing]
+        out.digests.update(exp.digests)
+        return exp.xml if exp.error is None else None
+    return expand
 
 
 def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> Model | None:
@@ -177,7 +220,7 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
             return None
         assert exp.xml is not None  # expand_file sets xml or error
         if job.output or job.outputs:
-            _check_output(job, exp.xml, out)
+            _check_output(job, exp.xml, out, _other_variant(job, settings, resolver, out))
         try:
             model = model_from_xml(entry, job.args, exp.xml, exp.origins, exp.deps, resolver,
                                    exp.values)

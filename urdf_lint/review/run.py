@@ -180,9 +180,10 @@ class _Reach:
 
     def _may_reach(self, job, found) -> bool:
         graph = found.graph
-        # a xacro with a generated output reads that file too (UL011 compares them); a
+        # a xacro with generated outputs reads those files too (UL011 compares them); a
         # generated URDF is a model of its own, whose only source is itself
-        todo, seen = [job.entry] + ([job.output] if job.output else []), set()
+        todo = [job.entry] + ([job.output] if job.output else []) + list(job.outputs)
+        seen: set = set()
         while todo:
             f = todo.pop()
             real = _realpath(f)
@@ -219,15 +220,18 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
         side.pictures[k] = picture_name(_rel(side.root, m.entry), m.args)
         labels[m.label] = k
         side.findings[k] = Counter()
-    real_root = os.path.realpath(side.root)
     for f in result.findings:
-        fk = (f.code, _rel(side.root, f.file),
-              f.message.replace(real_root + os.sep, "").replace(side.root + os.sep, ""))
+        fk = (f.code, _rel(side.root, f.file), _unrooted(side.root, f.message))
         side.severities[fk] = f.severity
         for label in f.models:
             if label in labels:
                 side.findings[labels[label]][fk] += 1
     return resolver, result
+
+
+def _unrooted(root: str, message: str) -> str:
+    """A message naming files relative to the revision's root (a temporary copy)."""
+    return message.replace(_realpath(root) + os.sep, "").replace(root + os.sep, "")
 
 
 def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
@@ -266,7 +270,8 @@ def _keep_robot(side: Side, k, entry, args, res, resolver):
         failures = {r.CODE for r in _FAILURE_RULES}
         msgs = [p.message for p in res.problems if p.code in failures]
         side.robots[k] = None
-        side.errors[k] = msgs[0] if msgs else "the model could not be expanded"
+        side.errors[k] = (_unrooted(side.root, msgs[0]) if msgs
+                          else "the model could not be expanded")
         return
     if kept.xml is not None:
         side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
@@ -407,24 +412,28 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     _materialize_base(top, base_sha, base_root, head, affected, changed)
     base_entries = _base_entries(base_root, head, affected, changed, rel_paths)
     base = Side(base_root)
+    at_base = {k: _key(changed.at_base(_rel(head_root, m.entry)), m.args)
+               for k, m in head.models.items()}
     if base_entries:
+        # the affected variants of an entry, not its others (the change does not reach
+        # them: unchanged, never "removed"), and every variant of a deleted entry
+        select = _BaseSelect(base_root, {at_base[k] for k in affected},
+                             {changed.at_base(_rel(head_root, head.models[k].entry))
+                              for k in affected})
         _lint_base(result, base, base_entries, cfg_loader, package_paths, base_jobs,
-                   cache.dir if cache else None, render_dir, rrd)
+                   cache.dir if cache else None, render_dir, rrd, select)
     result.base_expanded = len(base.models)
 
-    base_keys = {}
-    for k in affected:
-        m = head.models[k]
-        bk = _key(changed.at_base(_rel(head_root, m.entry)), m.args)
-        if bk in base.models:
-            base_keys[k] = bk
-    deleted = [k for k in base.models if k not in base_keys.values()]
+    base_keys = {k: at_base[k] for k in affected if at_base[k] in base.models}
+    present = set(at_base.values())
+    deleted = [k for k in base.models if k not in base_keys.values() and k not in present]
     head_load.join()
 
+    shown = top if head_sha else None
     for k in sorted(affected):
-        result.models.append(_model_diff(k, head, base, base_keys.get(k)))
+        result.models.append(_model_diff(k, head, base, base_keys.get(k), top=shown))
     for dk in sorted(deleted):
-        result.models.append(_model_diff(dk, head, base, dk, removed=True))
+        result.models.append(_model_diff(dk, head, base, dk, removed=True, top=shown))
     if render_dir:
         _render_snapshots(result, head, base, base_keys, render_dir, cfg, recorder)
     return result
@@ -466,6 +475,14 @@ def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _
         need.update(changed.at_base(rel) for rel in _inputs(head.root, head.models[k]))
     need |= {f for f in base_files if os.path.basename(f) in _BASE_MANIFESTS}
     materialize(top, base_sha, base_root, only=need & base_files)
+    # and what the base's config names (its models must exist to validate it there)
+    from urdf_lint.config.schema import find_config, named_files
+    from urdf_lint.core.tree import inside
+    conf = find_config(base_root)
+    if conf is not None and inside(str(conf), os.path.realpath(base_root)):
+        named = {os.path.relpath(f, os.path.realpath(base_root)) for f in named_files(conf)}
+        if (named & base_files) - need:
+            materialize(top, base_sha, base_root, only=(named & base_files) - need)
 
 
 def _base_entries(base_root, head: Side, affected, changed: _Changes, rel_paths) -> set:
@@ -487,8 +504,25 @@ def _base_entries(base_root, head: Side, affected, changed: _Changes, rel_paths)
     return base_entries
 
 
+@dataclass
+class _BaseSelect:
+    """The base's jobs worth linting: the wanted variants (keys) of the affected entries,
+    every job of any other entry (a deleted one)."""
+    root: str
+    wanted: set
+    entries: set
+
+    def __call__(self, jobs, found):
+        keep = []
+        for j in jobs:
+            rel = _rel(self.root, j.entry)
+            if rel not in self.entries or _key(rel, j.args) in self.wanted:
+                keep.append(j)
+        return keep
+
+
 def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs_n,
-               mesh_cache_dir, render_dir, rrd) -> None:
+               mesh_cache_dir, render_dir, rrd, select=None) -> None:
     """Lint the base entries and keep their robots (and with --render their pictures'
     geometry and half recordings): all from this one expansion; mesh facts (keyed by
     content) are shared with the working tree's cache."""
@@ -497,7 +531,7 @@ def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs
     overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
     base_resolver, base_result = _lint_side(
         base, base_paths, base_cfg, package_paths, jobs_n, None, keep_models=True,
-        mesh_cache_dir=mesh_cache_dir, settings_overrides=overrides)
+        mesh_cache_dir=mesh_cache_dir, settings_overrides=overrides, select_jobs=select)
     result.internal += base_result.internal
     for k, m in base.models.items():
         _keep_robot(base, k, m.entry, m.args, m, base_resolver)
@@ -604,7 +638,9 @@ def _finish_recordings(result, recorder, recordings) -> None:
             result.snapshot_problems.append((key, f"no recording: {why}"))
 
 
-def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
+def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> ModelDiff:
+    """``top``: the repository, where locations are shown when HEAD is a revision (its
+    files are in a temporary folder)."""
     hm = None if removed else head.robots.get(k)
     bm = base.robots.get(bk) if bk else None
     if removed:
@@ -621,7 +657,7 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
         md.error = "at base: " + base.errors.get(bk, "")
     try:
         changes, md.moved = diff_models(bm, hm)
-        md.changes = [_rebase(c, base.root, head.root) for c in changes]
+        md.changes = [_rebase(c, base.root, head.root, top) for c in changes]
     except Exception as e:  # noqa: BLE001 - a malformed model still gets its findings diff
         md.error = f"could not compare: {type(e).__name__}: {e}"
     hf = head.findings.get(k, Counter()) if not removed else Counter()
@@ -636,20 +672,28 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False) -> ModelDiff:
     return md
 
 
-def _rebase(c, base_root, head_root):
-    """Base-side locations name the file where it is in the repository, not the temporary copy."""
+def _rebase(c, base_root, head_root, top=None):
+    """Locations name the file where it is in the repository (``top``), not in a temporary
+    copy of a revision: base-side ones always, head-side ones too when HEAD is a revision."""
     from dataclasses import replace
 
     from urdf_lint.core.locations import Origin
-    if c.base is None:
-        return c
+    moves = [(root, to) for root, to in [(base_root, top or head_root)]
+             + ([(head_root, top)] if top else []) for root in (root, _realpath(root))]
 
     def move(p):
-        rel = os.path.relpath(p, base_root)
-        return p if rel.startswith("..") else os.path.join(head_root, rel)
-    o = c.base
-    return replace(c, base=Origin(move(o.file), o.line, o.col,
-                                  tuple((move(x[0]),) + tuple(x[1:]) for x in o.chain)))
+        for root, to in moves:
+            rel = os.path.relpath(p, root)
+            if not rel.startswith(".."):
+                return os.path.join(to, rel)
+        return p
+
+    def origin(o):
+        return o if o is None else Origin(move(o.file), o.line, o.col,
+                                          tuple((move(x[0]),) + tuple(x[1:]) for x in o.chain))
+    return replace(c, base=origin(c.base), head=origin(c.head),
+                   value_from=(move(c.value_from[0]), *c.value_from[1:]) if c.value_from
+                   else ())
 
 
 def exit_code(result: DiffResult, fail_on: str) -> int:
