@@ -377,6 +377,7 @@ def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, mon
     from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.core.locations import display_path
     marker = tmp_path / "pwned"
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
@@ -395,6 +396,7 @@ def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, mon
     assert not marker.exists()
     assert r.internal and "not a lint result (os.mkdir)" in r.internal[0], r
     assert r.entry == jobs[0].entry and not r.cacheable
+    assert f"the worker linting {display_path(jobs[0].entry)} sent back" in r.internal[0]
     # the same message read by an end that accepts anything does run: the test measures the
     # restriction, not something else that happens to fail
     conn, proc = forked.start(_send_evil, (str(marker),))

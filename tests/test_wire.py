@@ -90,6 +90,7 @@ def test_an_object_of_no_known_form_is_not_sent():
     ('{"~":"e","c":"os:system","v":"touch /tmp/pwned"}', "os.system"),
     ('{"~":"d","c":"builtins:getattr","f":{}}', "builtins.getattr"),
     ('{"~":"n","c":"subprocess:Popen","v":[["id"]]}', "subprocess.Popen"),
+    ('{"~":"e","c":"this:s","v":1}', "this.s"),     # (``this`` prints when imported)
     (f'{{"~":"e","c":"{HERE}:Box","v":1}}', "not an enum"),
     (f'{{"~":"d","c":"{HERE}:Box","f":{{"name":"b"}}}}', "other fields"),
     (f'{{"~":"d","c":"{HERE}:Box","f":{{"name":"b","corner":1,"extra":2,"x":3}}}}',
@@ -104,7 +105,7 @@ def test_a_forged_message_is_refused_by_name_and_nothing_is_imported(forged, why
     before = set(sys.modules)
     with pytest.raises(wire.Refused, match=re.escape(why)):
         wire.decode(_message(forged), ALLOWED)
-    assert set(sys.modules) - before == set()
+    assert set(sys.modules) - before == set() and "this" not in sys.modules
 
 
 @pytest.mark.parametrize("data", [b"", b"\x80\x05N.", wire.MAGIC + b"\0\0\0\x09\0\0\0\0[]",

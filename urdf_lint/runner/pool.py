@@ -474,10 +474,12 @@ class _Pool:
             if not isinstance(result, ModelReport):
                 raise forked.Refused(f"a {type(result).__name__}")
         except forked.Refused as e:
-            # not a lint result: the worker ran something that is not urdf-lint's
-            result = ModelReport.failed(job, internal=[
-                f"the worker linting this model sent back something that is not a lint "
-                f"result ({e}); it was not read, and the worker was stopped"])
+            # not a lint result: the worker ran something that is not urdf-lint's (the run's
+            # internal errors are listed without their models: the message names it)
+            result = ModelReport.failed(job)
+            result.internal.append(
+                f"the worker linting {result.label} sent back something that is not a lint "
+                f"result ({e}); it was not read, and the worker was stopped")
             result.cacheable = False
             self.replace(w)
         except (EOFError, OSError):
