@@ -7,21 +7,19 @@ guess which calls are harmless. This encoding names no function. A message is a 
 of plain values (str, int, float, bool, None, lists, dicts with str keys) in which everything
 else is an object tagged with ``TAG``:
 
-=======================  =============================================================
-``{"~": "t", "v": [..]}``  a tuple (``s``: a set, ``fs``: a frozenset)
-``{"~": "m", "v": [[k, v], ..]}``  a dict whose keys are not all str (or hold ``TAG``)
-``{"~": "b", "i": n}``      bytes: attachment ``n`` (raw, after the JSON)
-``{"~": "a", "d": dtype, "s": shape, "i": n}``  a numpy array of numbers: attachment ``n``
-``{"~": "e", "c": name, "v": value}``  an enum member (looked up by value)
-``{"~": "n", "c": name, "v": [..]}``  a named tuple (its fields in order)
-``{"~": "d", "c": name, "f": {field: value}}``  a dataclass, every field by name
-=======================  =============================================================
+* ``{"~": "t", "v": [..]}``: a tuple (``"s"``: a set, ``"fs"``: a frozenset);
+* ``{"~": "m", "v": [[k, v], ..]}``: a dict whose keys are not all str (or that holds ``TAG``);
+* ``{"~": "b", "i": n}``: bytes, attachment ``n`` (raw, after the JSON);
+* ``{"~": "a", "d": dtype, "s": shape, "i": n}``: a numpy array of numbers, attachment ``n``;
+* ``{"~": "e", "c": name, "v": value}``: an enum member (looked up by its value);
+* ``{"~": "n", "c": name, "v": [..]}``: a named tuple (its fields in order);
+* ``{"~": "d", "c": name, "f": {field: value}}``: a dataclass, every field by name.
 
 ``name`` is ``module:qualname``. The reading end accepts a class only when ``(module, name)``
 is in its allow-list (and is that kind of class): anything else is :class:`Refused` with the
 name, before any module is imported. A dataclass is rebuilt without its ``__init__`` (as
-pickle does: its fields are set), an enum member or named tuple from its values; nothing of a
-message is ever called. The layout is fixed here, so both ends agree across patch releases.
+pickle does: its fields are set), an enum member or named tuple from its values; no function
+a message names is ever called. The layout is fixed here, so both ends agree across patch releases.
 
 The bytes: ``MAGIC``, the JSON's length and the number of attachments (``!II``), each
 attachment's length (``!Q``), the JSON (ASCII), then the attachments.
