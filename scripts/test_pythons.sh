@@ -1,18 +1,30 @@
 #!/usr/bin/env bash
 # The supported Pythons besides the one the README's test command uses (3.11 here): for each,
 # a fresh virtualenv with urdf-lint and its test tools, then a fast subset of the suite (the
-# demo, expand, the sandbox, the CLI conventions, the pytest plugin, a corpus slice). Then the
-# install path users take: `python -m build` makes an sdist and a wheel, the wheel is installed
-# (not editable) into a fresh virtualenv, and the demo runs from it outside the checkout.
+# demo, expand, the sandbox, the worker channel, the CLI conventions, the pytest plugin, a
+# corpus slice). Then the install path users take: `python -m build` makes an sdist and a
+# wheel, the wheel is installed (not editable) into a fresh virtualenv, and the demo runs from
+# it outside the checkout, on 3.12 and on the system's own Python.
+# `system` is the distribution's Python, /usr/bin/python3 (Debian 12: 3.11.2, what ROS users
+# on apt installs run; issue 31): in the default list when it exists (its venv module needs
+# apt's python3-venv: .ci/run installs it).
 # A Python that is missing is a failure, not a skip. PYTHONS overrides the list.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-PYTHONS=${PYTHONS:-"3.10 3.12 3.13"}
+SYSTEM_PYTHON=/usr/bin/python3
+default="3.10 3.12 3.13"
+[ -x "$SYSTEM_PYTHON" ] && default="$default system"
+PYTHONS=${PYTHONS:-$default}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 find_python() {   # python3.X on PATH (a real one, not a pyenv shim without it), else pyenv's
   local v=$1 p
+  if [ "$v" = system ]; then
+    [ -x "$SYSTEM_PYTHON" ] && "$SYSTEM_PYTHON" -c 'import ensurepip, venv' >/dev/null 2>&1 &&
+      echo "$SYSTEM_PYTHON" && return 0
+    return 1
+  fi
   if p=$(command -v "python$v") && "$p" -c 'import sys' >/dev/null 2>&1; then
     echo "$p"; return 0
   fi
@@ -24,11 +36,14 @@ find_python() {   # python3.X on PATH (a real one, not a pyenv shim without it),
 
 SUBSET=(tests/test_architecture.py tests/test_sandbox.py tests/test_cli_conventions.py
         tests/test_startup.py tests/test_pytest_plugin.py tests/test_expand_corpus.py
+        tests/test_wire.py
         "tests/test_accuracy.py::test_broken_demo_shows_every_class")
 
 for v in $PYTHONS; do
-  py=$(find_python "$v") || { echo "test_pythons: Python $v is not installed" >&2; exit 1; }
-  echo "== Python $v ($py): fresh virtualenv, the fast subset"
+  py=$(find_python "$v") || { echo "test_pythons: Python $v is not installed (system: or it" \
+    "has no venv module)" >&2; exit 1; }
+  echo "== Python $v ($py, $("$py" -c 'import platform; print(platform.python_version())')):" \
+    "fresh virtualenv, the fast subset"
   "$py" -m venv "$work/venv$v"
   if ! "$work/venv$v/bin/python" -m pip install -q -e '.[test]' >"$work/pip$v.log" 2>&1; then
     cat "$work/pip$v.log" >&2; echo "test_pythons: install failed on Python $v" >&2; exit 1
@@ -43,21 +58,33 @@ rm -rf "$work/dist"
 ls "$work/dist"
 wheel=$(ls "$work"/dist/urdf_lint-*.whl)
 ls "$work"/dist/urdf_lint-*.tar.gz >/dev/null
-py=$(find_python 3.12) || py=python3
-"$py" -m venv "$work/wheel-venv"
-"$work/wheel-venv/bin/python" -m pip install -q "$wheel"
-cp -r descriptions "$work/demo"
-set +e
-( cd "$work" && "$work/wheel-venv/bin/urdf-lint" check demo ) >"$work/demo.log" 2>&1
-rc=$?
-set -e
-tail -n 1 "$work/demo.log"
 want=$(grep -o 'Found [0-9]* problem(s) ([^)]*) in [0-9]* model(s)\.' README.md | head -n 1)
-if [ "$rc" != 1 ] || [ "$(tail -n 1 "$work/demo.log")" != "$want" ]; then
-  cat "$work/demo.log" >&2
-  echo "test_pythons: the demo from the installed wheel exited $rc and did not end with: $want" >&2
-  exit 1
-fi
-( cd "$work" && "$work/wheel-venv/bin/urdf-lint" check demo/r2d2_description && \
-  "$work/wheel-venv/bin/urdf-lint" rules >/dev/null && "$work/wheel-venv/bin/urdf-lint" doctor )
+
+wheel_demo() {   # a copy of the demo linted (no cache: the workers run) by urdf-lint installed
+  local py=$1 name=$2 rc   # from the wheel on Python $1 ($2: a name)
+  echo "== the wheel on $name ($py)"
+  "$py" -m venv "$work/wheel-$name"
+  "$work/wheel-$name/bin/python" -m pip install -q "$wheel"
+  mkdir -p "$work/$name" && cp -r descriptions "$work/$name/demo"
+  set +e
+  ( cd "$work/$name" && "$work/wheel-$name/bin/urdf-lint" check demo --no-cache ) \
+    >"$work/demo-$name.log" 2>&1
+  rc=$?
+  set -e
+  tail -n 1 "$work/demo-$name.log"
+  if [ "$rc" != 1 ] || [ "$(tail -n 1 "$work/demo-$name.log")" != "$want" ]; then
+    cat "$work/demo-$name.log" >&2
+    echo "test_pythons: the demo from the installed wheel on $name exited $rc and did not" \
+      "end with: $want" >&2
+    exit 1
+  fi
+}
+
+py=$(find_python 3.12) || py=python3
+wheel_demo "$py" 3.12
+( cd "$work/3.12" && "$work/wheel-3.12/bin/urdf-lint" check demo/r2d2_description && \
+  "$work/wheel-3.12/bin/urdf-lint" rules >/dev/null && "$work/wheel-3.12/bin/urdf-lint" doctor )
+case " $PYTHONS " in
+  *" system "*) wheel_demo "$(find_python system)" system ;;
+esac
 echo "test_pythons: $PYTHONS and the wheel: ok"

@@ -295,12 +295,16 @@ def _send_evil(conn, path):
     conn.send(_Evil(path))
 
 
-class _BadCall:
-    """A pickle that calls an allowed class the wrong way."""
+def _wire_message(value_json: str) -> bytes:
+    """A plain-data message (urdf_lint/runner/wire.py) written by hand: what a worker that
+    no longer keeps to the protocol could send."""
+    from urdf_lint.runner import wire
+    text = value_json.encode()
+    return wire.MAGIC + wire._HEAD.pack(len(text), 0) + text
 
-    def __reduce__(self):
-        from urdf_lint.core.jobs import ModelReport
-        return (ModelReport, ())
+
+# an allowed class called wrongly: a ModelReport without its fields
+_BAD_CALL = _wire_message('{"~":"d","c":"urdf_lint.core.jobs:ModelReport","f":{"entry":"x"}}')
 
 
 def _raw_reply(header_size: int, body: bytes, stall: float):
@@ -331,7 +335,7 @@ def test_a_worker_result_the_parent_cannot_trust_fails_its_model_only(tmp_path, 
     from urdf_lint.core.jobs import LintJob, LintSettings, Status
     from urdf_lint.discovery.packages import PackageResolver
     if case == "bad call":
-        monkeypatch.setattr(worker, "process_job", lambda job, settings: _BadCall())
+        monkeypatch.setattr(forked.Conn, "send", _raw_reply(len(_BAD_CALL), _BAD_CALL, 0))
     elif case == "not a report":
         monkeypatch.setattr(worker, "process_job", lambda job, settings: Status.MODEL)
     else:
@@ -373,15 +377,26 @@ def test_a_worker_cannot_run_code_in_the_parent_through_its_result(tmp_path, mon
     from urdf_lint.run import worker
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.core.locations import display_path
     marker = tmp_path / "pwned"
-    monkeypatch.setattr(worker, "process_job", lambda job, settings: _Evil(str(marker)))
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     jobs = [LintJob(str(tmp_path / "m.urdf"), kind="urdf")]
-    [(_, r)] = list(worker.run_jobs(jobs, LintSettings(resolver=resolver.to_dict(), timeout=30),
-                                    jobs_n=1))
+    settings = LintSettings(resolver=resolver.to_dict(), timeout=30)
+    # a worker's results cross as plain data: an object that would pickle as a call is not sent
+    monkeypatch.setattr(worker, "process_job", lambda job, settings: _Evil(str(marker)))
+    [(_, r)] = list(worker.run_jobs(jobs, settings, jobs_n=1))
     assert not marker.exists()
-    assert r.internal and "not a lint result" in r.internal[0] and "mkdir" in r.internal[0], r
+    assert r.internal and "could not be sent" in r.internal[0] and "_Evil" in r.internal[0], r
     assert not r.cacheable
+    # and a message written by hand that names a function is refused by its name, unread
+    forged = _wire_message('{"~":"n","c":"os:mkdir","v":[%s]}' % json.dumps(str(marker)))
+    monkeypatch.setattr(forked.Conn, "send", _raw_reply(len(forged), forged, 0))
+    [(_, r)] = list(worker.run_jobs(jobs, settings, jobs_n=1))
+    monkeypatch.undo()
+    assert not marker.exists()
+    assert r.internal and "not a lint result (os.mkdir)" in r.internal[0], r
+    assert r.entry == jobs[0].entry and not r.cacheable
+    assert f"the worker linting {display_path(jobs[0].entry)} sent back" in r.internal[0]
     # the same message read by an end that accepts anything does run: the test measures the
     # restriction, not something else that happens to fail
     conn, proc = forked.start(_send_evil, (str(marker),))

@@ -3,9 +3,10 @@
 A :class:`Problem` is created where a problem is found (a rule's ``check``, the expansion's
 error table, the run pipeline) with its code, message, source origin (file, line, col and the
 macro call chain) and, for snapshots, the link or joint it concerns. It crosses the worker pipe
-as is (it pickles), is stored in the cache as :meth:`Problem.to_record`, and the run pipeline
-fills in the rule name, the effective severity and the models it was found in before handing
-it to the reporters (:meth:`Problem.to_dict` is the JSON form).
+as is (plain data: urdf_lint.runner.wire), is stored in the cache as
+:meth:`Problem.to_record`, and the run pipeline fills in the rule name, the effective severity
+and the models it was found in before handing it to the reporters (:meth:`Problem.to_dict` is
+the JSON form).
 """
 from __future__ import annotations
 

@@ -1,7 +1,8 @@
 """The typed data that crosses the worker pipe: a job, the run's settings, a model's report.
 
-``LintJob`` and ``LintSettings`` go to a worker, a ``ModelReport`` comes back (pickled as is);
-the cache stores a ``ModelReport`` with :meth:`ModelReport.to_record`.
+``LintJob`` and ``LintSettings`` go to a worker (pickled: a fork of the same interpreter), a
+``ModelReport`` comes back as plain data (:mod:`urdf_lint.runner.wire`); the cache stores a
+``ModelReport`` with :meth:`ModelReport.to_record`.
 """
 from __future__ import annotations
 

@@ -317,7 +317,9 @@ class Recorder:
     def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB):
         from urdf_lint.runner import forked
         self.out_dir = os.path.realpath(out_dir)
-        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb))
+        # (its answers are plain data: ``allowed=frozenset()``)
+        self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb),
+                                            allowed=frozenset())
         self.pending: list = []
         self.failed: list = []      # recordings that could not be sent (the recorder is gone)
         self._queue: Any = None

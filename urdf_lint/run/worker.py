@@ -71,10 +71,10 @@ def limit_result(job: LintJob, message: str) -> ModelReport:
     return out
 
 
-# What a worker's result may be made of (with plain data: str, numbers, lists, dicts, tuples,
-# sets, bytes): the parent reads nothing else from a worker. Were code to escape the evaluator
-# and the sandbox, a pickle naming any other function would run it in the parent, which holds
-# the secrets (test_sandbox.py::test_a_worker_cannot_run_code_in_the_parent_through_its_result).
+# What a worker's result may be made of besides plain data (str, numbers, lists, dicts, tuples,
+# sets, bytes): it crosses the pipe as plain data (urdf_lint/runner/wire.py), each object a
+# dataclass, enum or named tuple by name, and the parent rebuilds no other class and calls
+# nothing (test_sandbox.py::test_a_worker_cannot_run_code_in_the_parent_through_its_result).
 RESULT_CLASSES = frozenset({
     ("urdf_lint.core.jobs", "ModelReport"), ("urdf_lint.core.jobs", "Status"),
     ("urdf_lint.core.jobs", "KeptModel"), ("urdf_lint.core.findings", "Problem"),
@@ -82,10 +82,7 @@ RESULT_CLASSES = frozenset({
     ("urdf_lint.core.edits", "Fix"), ("urdf_lint.core.edits", "Edit"),
     ("urdf_lint.expansion.sourcemap", "SourceMap"), ("urdf_lint.render.raster", "Geometry"),
     ("urdf_lint.render.recording", "Plan"),
-    # numpy arrays (numpy 1 and 2 name their reconstructors differently)
-    ("numpy", "ndarray"), ("numpy", "dtype"),
-    ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "_reconstruct"),
-    ("numpy.core.numeric", "_frombuffer"), ("numpy._core.numeric", "_frombuffer"),
+    ("numpy", "ndarray"),   # arrays of numbers (render: geometry, recordings)
 })
 
 

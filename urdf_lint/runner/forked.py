@@ -1,10 +1,15 @@
 """Forked worker processes and the pipes to them, without :mod:`multiprocessing`.
 
-A worker is ``os.fork()`` plus two pipes carrying length-prefixed pickles. ``multiprocessing``
+A worker is ``os.fork()`` plus two pipes carrying length-prefixed messages. ``multiprocessing``
 does the same through a fork context, but importing it (connection, reduction, socket,
 tempfile, subprocess) costs ~22 ms before the first fork, on the critical path of every run
 that starts a worker, ``urdf-lint expand`` of one small file above all. The worker needs none
-of it: only ``pickle`` and the job modules.
+of it: only ``pickle``, the plain-data encoding and the job modules.
+
+The parent sends pickles (the child is a fork of the same interpreter and trusts its parent);
+a child whose parent restricts what it reads (``allowed``: a sandboxed worker) sends plain data
+(:mod:`urdf_lint.runner.wire`), never a pickle: what the parent accepts then depends neither on
+how a Python release pickles an object nor on guessing which calls a pickle may make.
 
 Where ``os.fork`` does not exist (Windows), :func:`start` falls back to ``multiprocessing``'s
 default context, which offers the same ``send``/``recv``/``fileno`` and process methods.
@@ -19,6 +24,9 @@ import struct
 import sys
 import time
 
+from urdf_lint.runner import wire
+from urdf_lint.runner.wire import Refused
+
 _HEADER = struct.Struct("!Q")
 _live: set = set()
 # in a forked child: the pid of the process that forked it (read before the fork, so a parent
@@ -26,11 +34,8 @@ _live: set = set()
 parent_pid: int | None = None
 
 
-class Refused(pickle.UnpicklingError):
-    """A message the receiving end does not accept: it names a class or function not allowed,
-    is too large, unreadable, or unfinished in time."""
-
-
+__all__ = ["Conn", "Process", "Refused", "active_children", "messages", "pipe", "start",
+           "stop", "wait"]
 MAX_MESSAGE = 1 << 30    # bytes of one message from an untrusted end
 
 
@@ -41,24 +46,17 @@ def _readable(fd: int, timeout: float) -> bool:
     return bool(p.poll(max(0.0, timeout) * 1000))
 
 
-class _Restricted(pickle.Unpickler):
-    allowed: frozenset = frozenset()
-
-    def find_class(self, module, name):
-        if (module, name) in self.allowed:
-            return super().find_class(module, name)
-        raise Refused(f"{module}.{name}")
-
-
 class Conn:
     """One end of a duplex channel: reads from ``rfd``, writes to ``wfd``. With ``allowed``
-    (``(module, name)`` pairs), a message may name only those classes and functions: a pickle
-    can call any importable function while it is read (``os.system``), so an end that reads
-    what an untrusted process wrote must not accept anything else."""
+    (``(module, name)`` pairs), it reads only plain-data messages (:mod:`~urdf_lint.runner.wire`)
+    made of those classes, never a pickle (which can call any importable function while it
+    is read: ``os.system``); with ``plain``, it writes such messages (the other end's)."""
 
-    def __init__(self, rfd: int, wfd: int, allowed: frozenset | None = None):
+    def __init__(self, rfd: int, wfd: int, allowed: frozenset | None = None,
+                 plain: bool = False):
         self.rfd, self.wfd = rfd, wfd
         self.allowed = allowed
+        self.plain = plain
 
     def fileno(self) -> int:
         return self.rfd
@@ -68,7 +66,10 @@ class Conn:
         return self.rfd, self.wfd
 
     def send(self, obj) -> None:
-        data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+        """Write ``obj`` (a plain-data end: :class:`~urdf_lint.runner.wire.Unencodable` when
+        it has no such form; nothing is written then)."""
+        data = (wire.encode(obj) if self.plain
+                else pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL))
         view = memoryview(_HEADER.pack(len(data)) + data)
         while view:
             view = view[os.write(self.wfd, view):]
@@ -96,16 +97,7 @@ class Conn:
             return pickle.loads(self._read(n))
         if n > MAX_MESSAGE:
             raise Refused(f"a message of {n} bytes")
-        data = self._read(n, deadline)
-        import io
-        reader = _Restricted(io.BytesIO(data))
-        reader.allowed = self.allowed
-        try:
-            return reader.load()
-        except Refused:
-            raise
-        except Exception as e:  # noqa: BLE001 - a truncated pickle, a bad call, no memory
-            raise Refused(f"an unreadable message ({type(e).__name__})") from e
+        return wire.decode(self._read(n, deadline), self.allowed)
 
     def close(self) -> None:
         for fd in (self.rfd, self.wfd):
@@ -117,10 +109,11 @@ class Conn:
 
 
 def pipe(allowed: frozenset | None = None) -> tuple[Conn, Conn]:
-    """Two connected ends (parent's, child's); the parent's accepts only ``allowed``."""
+    """Two connected ends (parent's, child's); with ``allowed``, the child's sends plain data
+    and the parent's accepts only that, made of ``allowed``."""
     r1, w1 = os.pipe()   # parent -> child
     r2, w2 = os.pipe()   # child -> parent
-    return Conn(r2, w1, allowed), Conn(r1, w2)
+    return Conn(r2, w1, allowed), Conn(r1, w2, plain=allowed is not None)
 
 
 class Process:
@@ -226,8 +219,8 @@ def _quiet_stdin() -> None:
 
 def start(target, args=(), allowed: frozenset | None = None):
     """Fork a child running ``target(conn, *args)``; returns (parent's conn, process). With
-    ``allowed``, the parent's end reads only messages made of those classes (a child that
-    runs untrusted code)."""
+    ``allowed``, the child sends plain data and the parent's end reads only messages made of
+    those classes (a child that runs untrusted code; ``frozenset()``: plain data only)."""
     if not hasattr(os, "fork"):   # pragma: no cover - Windows (no OS sandbox there either)
         import multiprocessing as mp
         mp_parent, mp_child = mp.Pipe()

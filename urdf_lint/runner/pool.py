@@ -32,7 +32,8 @@ class Handler:
 
     ``run(job, settings)``: a job's report, in the sandboxed worker. ``limit_result(job,
     message)``: the report of a job a limit stopped (never cached). ``allowed``: the (module,
-    class) names a report may be made of (the parent unpickles nothing else). ``setup()``: first
+    class) names a report may be made of besides plain data (it crosses as plain data,
+    :mod:`urdf_lint.runner.wire`; the parent reads nothing else). ``setup()``: first
     thing in a new worker; ``warm()``: the imports of a worker started ahead of its settings;
     ``preload(blocks, settings, n)``: in the parent before it forks ``n`` workers (they share
     what it imports)."""
@@ -102,6 +103,10 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None):
             conn.send(result)
         except MemoryError:
             conn.send(handler.limit_result(job, "result too large for the memory limit"))
+        except forked.wire.Unencodable as e:   # (a bug: the parent reads only plain data)
+            unsent = ModelReport.failed(job, internal=[f"the result could not be sent: {e}"])
+            unsent.cacheable = False
+            conn.send(unsent)
 
 
 _prestarted: "_Worker | None" = None
@@ -471,10 +476,12 @@ class _Pool:
             if not isinstance(result, ModelReport):
                 raise forked.Refused(f"a {type(result).__name__}")
         except forked.Refused as e:
-            # not a lint result: the worker ran something that is not urdf-lint's
-            result = ModelReport.failed(job, internal=[
-                f"the worker linting this model sent back something that is not a lint "
-                f"result ({e}); it was not read, and the worker was stopped"])
+            # not a lint result: the worker ran something that is not urdf-lint's (the run's
+            # internal errors are listed without their models: the message names it)
+            result = ModelReport.failed(job)
+            result.internal.append(
+                f"the worker linting {result.label} sent back something that is not a lint "
+                f"result ({e}); it was not read, and the worker was stopped")
             result.cacheable = False
             self.replace(w)
         except (EOFError, OSError):
