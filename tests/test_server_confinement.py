@@ -196,7 +196,6 @@ def _installed(tmp_path: Path) -> tuple[Path, Path]:
     return prefix, robot
 
 
-@pytest.mark.e2e   # the workers are forked processes
 def test_code_actions_offer_no_edit_of_a_file_check_fix_refuses(tmp_path, monkeypatch):
     """The joint limits of one joint come from the properties of an installed package:
     ``check --fix`` refuses that fix (the file is outside the linted paths) and the editor
