@@ -246,6 +246,22 @@ def test_the_action_installs_in_its_own_venv_where_the_system_python_is_external
     assert untracked(work) == ""
 
 
+def test_the_action_installs_with_a_python_that_is_not_externally_managed(pull_request):
+    """As after actions/setup-python: python3 is a Python of its own (this test's, which no
+    distribution marks), and the action still installs in a virtual environment it makes."""
+    pr = pull_request
+    base = getattr(sys, "_base_executable", sys.executable)
+    (pr.bin_dir / "python3").unlink(missing_ok=True)
+    (pr.bin_dir / "python3").symlink_to(base)
+    work = checkout(pr)
+    r = run_action(work, {"sarif": ""}, "main", pr.bin_dir, pr.temp)
+    assert r.logs["install"].returncode == 0, r.logs["install"].stderr
+    cfg = Path(r.outputs["install"]["dir"], "venv", "pyvenv.cfg").read_text()
+    assert os.path.dirname(os.path.realpath(base)) in cfg or str(Path(base).parent) in cfg
+    assert r.code == 1 and "UL302" in r.logs["check"].stdout, r.logs["check"].stderr
+    assert untracked(work) == ""
+
+
 @needs_runner_python
 def test_the_review_goes_to_the_job_summary_with_pictures(pull_request):
     pr = pull_request
