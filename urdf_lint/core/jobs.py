@@ -29,6 +29,12 @@ class Status(str, enum.Enum):
     def __str__(self) -> str:
         return self.value
 
+    def __reduce_ex__(self, protocol: object) -> tuple[type[Status], tuple[str]]:
+        # pickled by value, as Python 3.12 does: early Python 3.11 releases pickle a member as
+        # getattr(Status, name), a function the parent's restricted unpickler refuses (every
+        # worker's result was an internal error on Debian 12's Python 3.11.2)
+        return Status, (self.value,)
+
 
 @dataclass(frozen=True)
 class LintJob:

@@ -85,7 +85,10 @@ def materialize(top: str, rev: str, dest: str, only=None) -> None:
         spec = ["--"] + [":(literal)" + p for p in batch] if batch else []
         data = _git(top, "archive", "--format=tar", rev, *spec, binary=True)
         with tarfile.open(fileobj=io.BytesIO(data)) as tf:
-            tf.extractall(dest, filter=_data_or_skip)
+            if hasattr(tarfile, "data_filter"):
+                tf.extractall(dest, filter=_data_or_skip)
+            else:   # a Python before 3.10.12 / 3.11.4 (Debian 12's 3.11.2): no filters
+                tf.extractall(dest, members=_inside(tf, dest))
 
 
 def _data_or_skip(member, path):
@@ -96,6 +99,26 @@ def _data_or_skip(member, path):
         return tarfile.data_filter(member, path)
     except tarfile.FilterError:
         return None
+
+
+def _inside(tf, dest):
+    """What :func:`_data_or_skip` keeps, where tarfile has no filters: folders, regular files
+    and symlinks whose path, and a symlink's target, stay inside ``dest`` after symlinks (the
+    members already extracted included), without setuid bits or group/other write."""
+    top = os.path.realpath(dest)
+
+    def inside(path: str) -> bool:
+        return path == top or path.startswith(top + os.sep)
+    for m in tf.getmembers():
+        if not (m.isreg() or m.isdir() or m.issym()) or os.path.isabs(m.name):
+            continue
+        if not inside(os.path.realpath(os.path.join(top, m.name))):
+            continue
+        if m.issym() and (os.path.isabs(m.linkname) or not inside(os.path.realpath(
+                os.path.join(top, os.path.dirname(m.name), m.linkname)))):
+            continue
+        m.mode &= 0o755
+        yield m
 
 
 def tracked_files(top: str, rev: str) -> set[str]:

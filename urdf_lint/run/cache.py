@@ -43,16 +43,38 @@ from urdf_lint.discovery.vcs import git_root, repo_root
 RECORD_FORMAT = 14
 
 
+def _recorded() -> dict[str, tuple[str, int]]:
+    """Real path -> (sha256, size) of each module that pip's RECORD of the installed wheel
+    lists; empty for an editable install or a source tree (their RECORD lists no module)."""
+    from importlib import metadata
+    try:
+        files = metadata.distribution("urdf-lint").files or []
+    except (metadata.PackageNotFoundError, OSError, ValueError):
+        return {}
+    out = {}
+    for f in files:
+        if f.hash is not None and f.size is not None and str(f).endswith(".py"):
+            out[os.path.realpath(f.locate())] = (f.hash.value, f.size)
+    return out
+
+
 @functools.lru_cache(maxsize=None)
 def build_id() -> str:
-    """urdf-lint's version and a digest of its own code as installed (every module's path,
-    size and modification time): a result cached by other code is not reused, also when an
-    install from a newer commit keeps the version number (~1 ms: stats only)."""
+    """urdf-lint's version and a digest of its own code as installed (every module's path
+    and size, and its content's hash from the wheel's RECORD, or else its modification
+    time): a result cached by other code is not reused, also when an install from a newer
+    commit keeps the version number, and two installs of one wheel agree (a CI job that
+    installs afresh each run keeps its cache: the GitHub Action). ~2 ms: stats only."""
     import urdf_lint
     import urdf_lint.rules as rules
     from urdf_lint.core import fsbound
-    files = [f for top in [*urdf_lint.__path__, *rules.__path__]
-             for f in fsbound.stat_files(top, ".py")]
+    recorded = _recorded()
+    files = []
+    for top in [*urdf_lint.__path__, *rules.__path__]:
+        real = os.path.realpath(top)
+        for rel, size, mtime in fsbound.stat_files(top, ".py"):
+            known = recorded.get(os.path.join(real, rel))
+            files.append([rel, size, known[0] if known and known[1] == size else mtime])
     digest = blake2b(json.dumps(files).encode(), digest_size=8).hexdigest()
     return f"{__version__}+{digest}"
 
