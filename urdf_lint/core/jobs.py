@@ -31,8 +31,8 @@ class Status(str, enum.Enum):
 
     def __reduce_ex__(self, protocol: object) -> tuple[type[Status], tuple[str]]:
         # pickled by value, as Python 3.12 does: early Python 3.11 releases pickle a member as
-        # getattr(Status, name), a function the parent's restricted unpickler refuses (every
-        # worker's result was an internal error on Debian 12's Python 3.11.2)
+        # getattr(Status, name). Results reach the parent as plain data (runner/wire.py); what
+        # still pickles (jobs to a worker, the pipe of the fallback without fork) stays by value
         return Status, (self.value,)
 
 
