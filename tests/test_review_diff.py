@@ -578,3 +578,30 @@ def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
     diff_worker, render_worker = got
     assert diff_worker == [str(cache / "meshes")]
     assert render_worker == [str(cache / "meshes"), str(snaps)]
+
+
+def test_a_finding_is_introduced_once_per_model(tmp_path, monkeypatch, capsys):
+    """A swapped limit in a macro that one model calls twice is one introduced finding of that
+    model (it was listed once per joint), and once in the other model that calls it once."""
+    from test_grouping import ARM, ONE_ARM, TWO_ARMS
+    r = tmp_path / "repo"
+    r.mkdir()
+    (r / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>arms</name><version>0.0.1</version>'
+        '<description>x</description><maintainer email="a@b.c">a</maintainer>'
+        "<license>MIT</license></package>\n")
+    (r / "arm.xacro").write_text(ARM.replace('lower="1" upper="-1"', 'lower="-1" upper="1"'))
+    (r / "one.urdf.xacro").write_text(ONE_ARM)
+    (r / "two.urdf.xacro").write_text(TWO_ARMS)
+    git(r, "init", "-q")
+    git(r, "add", "-A")
+    git(r, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    (r / "arm.xacro").write_text(ARM)
+    monkeypatch.chdir(r)
+    rc, d = run_json(capsys, "HEAD")
+    assert rc == 1
+    new = {m["model"].split(" ")[0]: [(f["code"], f["message"]) for f in m["findings_introduced"]]
+           for m in d["models"]}
+    assert new["two.urdf.xacro"] == [
+        ("UL302", "joint 'l_joint': lower 1 > upper -1 (swap them?) (and 1 more like it)")], new
+    assert new["one.urdf.xacro"] == [("UL302", "joint 'h_joint': lower 1 > upper -1 (swap them?)")]

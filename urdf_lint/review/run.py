@@ -243,12 +243,19 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
         side.pictures[k] = picture_name(_rel(side.root, m.entry), m.args)
         labels[m.label] = k
         side.findings[k] = Counter()
-    for f in result.findings:
-        fk = (f.code, _rel(side.root, f.file), _unrooted(side.root, f.message))
-        side.severities[fk] = f.severity
-        for label in f.models:
-            if label in labels:
-                side.findings[labels[label]][fk] += 1
+    # one entry per finding and model, as every command counts (core.findings.group): a macro
+    # line that makes two joints of one model wrong is one finding there, named by its first
+    # instance in that model, with how many more it stands for
+    from urdf_lint.core.findings import group
+    for g in group(result.findings):
+        for label in g.models:
+            if label not in labels:
+                continue
+            own = [i for i in g.each() if label in i.models] or [g]
+            more = f" (and {len(own) - 1} more like it)" if len(own) > 1 else ""
+            fk = (g.code, _rel(side.root, g.file), _unrooted(side.root, own[0].message) + more)
+            side.severities[fk] = g.severity
+            side.findings[labels[label]][fk] += 1
     return resolver, result
 
 
