@@ -605,3 +605,17 @@ def test_a_finding_is_introduced_once_per_model(tmp_path, monkeypatch, capsys):
     assert new["two.urdf.xacro"] == [
         ("UL302", "joint 'l_joint': lower 1 > upper -1 (swap them?) (and 1 more like it)")], new
     assert new["one.urdf.xacro"] == [("UL302", "joint 'h_joint': lower 1 > upper -1 (swap them?)")]
+
+
+def test_a_changed_yaml_value_names_its_yaml_line_through_a_sub_dict(repo, capsys):
+    """R2D2 reads its gripper limits as ``ext = limits['gripper_extension']`` (a property holding
+    a sub-dict): a limit changed in the YAML is shown at the xacro line that uses it, with the
+    YAML line it comes from."""
+    limits = repo / "r2d2_description" / "config" / "joint_limits.yaml"
+    edit(limits, "gripper_extension: {lower: -0.38, upper: 0.0,",
+         "gripper_extension: {lower: -0.38, upper: 0.1,")
+    rc, d = run_json(capsys, "HEAD")
+    (m,) = [m for m in d["models"] if "r2d2" in m["model"]]
+    (c,) = [c for c in m["changes"] if c["field"] == "limit.upper"] or [None]
+    assert c is not None, m["changes"]
+    assert c["value_from"][0].endswith("config/joint_limits.yaml") and c["value_from"][1] == 2, c

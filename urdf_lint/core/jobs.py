@@ -116,6 +116,9 @@ class KeptModel:
     """The expanded robot itself, sent back when ``LintSettings.keep_model`` is set."""
     xml: str | None                          # None for a plain .urdf: the parent parses it
     origins: "SourceMap | None" = None
+    # per element (document order): {attribute: ((file, line, col), derived)} of the values
+    # read from YAML (Expansion.values): diff names the YAML line of a changed value
+    values: tuple[Any, ...] = ()
 
 
 @dataclass

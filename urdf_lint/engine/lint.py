@@ -235,7 +235,7 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
             out.problems = []
             return None
         if settings.keep_model:  # urdf-lint diff compares the robots themselves
-            out.kept_model = KeptModel(exp.xml, exp.origins)
+            out.kept_model = KeptModel(exp.xml, exp.origins, exp.values)
         return model
     from urdf_lint.core.hashing import read_recorded
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES, regular_file

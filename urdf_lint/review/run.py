@@ -304,7 +304,8 @@ def _keep_robot(side: Side, k, entry, args, res, resolver):
                           else "the model could not be expanded")
         return
     if kept.xml is not None:
-        side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver)
+        side.robots[k] = model_from_xml(entry, args, kept.xml, kept.origins, res.deps, resolver,
+                                        kept.values)
     else:
         from urdf_lint.core import fsbound
         try:
