@@ -524,6 +524,39 @@ async def test_a_yaml_file_shows_the_findings_whose_values_it_holds(client, ur):
     await diagnostics_for(client, bot_uri, lambda ds: not any(d.code == "UL302" for d in ds))
 
 
+UR_STYLE_BOT = """<robot name="urstyle" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="cfg"
+    value="${xacro.load_yaml('$(find ur_description)/config/urstyle.yaml')}"/>
+  <link name="base"/>
+  <xacro:macro name="rev" params="name">
+    <xacro:property name="lim" value="${cfg['joint_limits'][name]}"/>
+    <link name="${name}_link"/>
+    <joint name="${name}" type="revolute">
+      <parent link="base"/><child link="${name}_link"/><axis xyz="0 0 1"/>
+      <limit lower="${lim.lower}" upper="${lim['upper']}" effort="1" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <xacro:rev name="shoulder"/>
+</robot>
+"""
+
+
+@aio
+async def test_a_yaml_file_shows_a_value_read_through_a_sub_dict_and_a_macro(client, ur):
+    """As UR's descriptions read their limits (a property holding one joint's sub-dict inside
+    a macro): the YAML file, opened, shows the finding at the line of the value."""
+    yml = ur / "config" / "urstyle.yaml"
+    yml.write_text("joint_limits:\n  shoulder:\n    lower: 1.5\n    upper: -1.5\n")
+    bot = ur / "urdf" / "urstyle.urdf.xacro"
+    bot.write_text(UR_STYLE_BOT)
+    bot_uri = open_doc(client, bot)
+    await diagnostics_for(client, bot_uri, lambda ds: any(d.code == "UL302" for d in ds))
+    uri = open_doc(client, yml)
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL302" for d in ds))
+    (d,) = [d for d in ds if d.code == "UL302"]
+    assert pos(d) == (2, 11), pos(d)                     # `1.5` on "    lower: 1.5" (line 3)
+
+
 @aio
 async def test_run_scope_findings_reach_the_editor(client, ur):
     """A rule over all the models of the run (UL106: two robots with one name) is reported in
