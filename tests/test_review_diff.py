@@ -619,3 +619,28 @@ def test_a_changed_yaml_value_names_its_yaml_line_through_a_sub_dict(repo, capsy
     (c,) = [c for c in m["changes"] if c["field"] == "limit.upper"] or [None]
     assert c is not None, m["changes"]
     assert c["value_from"][0].endswith("config/joint_limits.yaml") and c["value_from"][1] == 2, c
+
+
+def test_a_picture_of_a_limit_change_says_what_it_cannot_show(repo, tmp_path, monkeypatch,
+                                                              capsys):
+    """Swapped gripper limits move nothing: the difference picture's caption lists the joint's
+    limit changes and the new finding instead of 'changed: nothing'."""
+    from urdf_lint.render import snapshot
+    said = []
+    real = snapshot.render_pair
+
+    def spy(*a, **kw):
+        info = real(*a, **kw)
+        said.append(info["caption"])
+        return info
+    monkeypatch.setattr(snapshot, "render_pair", spy)
+    limits = repo / "r2d2_description" / "config" / "joint_limits.yaml"
+    edit(limits, "gripper_extension: {lower: -0.38, upper: 0.0,",
+         "gripper_extension: {lower: 0.0, upper: -0.38,")
+    rc = main(["diff", "HEAD", "--render", str(tmp_path / "pics"), "--no-rrd", "--no-cache"])
+    capsys.readouterr()
+    assert rc == 1
+    (caption,) = said
+    assert caption.startswith("changed: nothing visible; not drawn: joint 'gripper_extension' "
+                              "limit.lower, limit.upper"), caption
+    assert "1 new finding(s)" in caption, caption

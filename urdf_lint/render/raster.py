@@ -582,10 +582,12 @@ def difference_image(after, before_changed, after_changed):
 
 
 def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
-                changed_links=frozenset(), views="sheet", forward="+x", threads=None) -> dict:
+                changed_links=frozenset(), views="sheet", forward="+x", threads=None,
+                unseen: str = "") -> dict:
     """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
-    nothing changed), and ``stem.diff.png`` highlighting ``changed_links``. The views are
-    drawn by ``threads`` threads (:func:`draw_many`)."""
+    nothing changed), and ``stem.diff.png`` highlighting ``changed_links``; ``unseen``: what
+    changed that no picture shows (limits, masses, ...), said in the difference's caption.
+    The views are drawn by ``threads`` threads (:func:`draw_many`)."""
     from PIL import Image
     geoms = [g for g in (before, after) if g is not None]
     fr = frame_for(geoms, views=views, forward=forward)
@@ -633,14 +635,19 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
             [pool.submit(save_png, img, path) for path, img in pngs.items()]
         diff = difference_image(after_img, masks["before"], masks["after"])
         n = int((masks["before"] | masks["after"]).sum())
-        caption(diff, f"changed: {', '.join(sorted(changed_links)[:6]) or 'nothing'}"
+        shown = ", ".join(sorted(changed_links)[:6]) or ("nothing visible" if unseen
+                                                          else "nothing")
+        said = (f"changed: {shown}"
                 + (f" and {len(changed_links) - 6} more" if len(changed_links) > 6 else "")
-                + (" (no visible change)" if asked and not changed_links else ""))
+                + (" (no visible change)" if asked and not changed_links and not unseen
+                   else "")
+                + (f"; not drawn: {unseen}" if unseen else ""))
+        caption(diff, said)
         legend(diff)
         saving.append(pool.submit(save_png, diff, f"{stem}.diff.png"))
         for f in saving:
             f.result()
-    out["diff"], out["changed_pixels"] = f"{stem}.diff.png", n
+    out["diff"], out["changed_pixels"], out["caption"] = f"{stem}.diff.png", n, said
     return out
 
 

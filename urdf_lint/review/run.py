@@ -643,8 +643,28 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
         if recorder is not None:
             recorder.write(path, rid, plans, blueprint=("base/", "head/"))
     info.update(render.render_pair(before, after, stem, frozenset(changed), views=views,
-                                   forward=forward))
+                                   forward=forward, unseen=_unseen(md)))
     return info
+
+
+_DRAWN = ("origin", "axis", "parent", "child", "visual", "collision", "geometry")
+
+
+def _unseen(md, most: int = 3) -> str:
+    """What changed in a model that its pictures do not show: joint limits, masses and
+    inertia, materials, mimic and dynamics (``joint 'elbow' limit.lower, limit.upper``), and the
+    findings the change introduced, so a picture never reads 'changed: nothing' beside a
+    table of changes."""
+    fields: dict = {}
+    for c in md.changes:
+        if c.change == "changed" and c.field and not c.field.startswith(_DRAWN):
+            fields.setdefault(f"{c.kind} '{c.name}'", []).append(c.field)
+    parts = [f"{what} {', '.join(fs)}" for what, fs in list(fields.items())[:most]]
+    if len(fields) > most:
+        parts.append(f"{len(fields) - most} more")
+    if md.findings_introduced:
+        parts.append(f"{len(md.findings_introduced)} new finding(s)")
+    return "; ".join(parts)
 
 
 def _finish_recordings(result, recorder, recordings) -> None:
