@@ -644,3 +644,18 @@ def test_a_picture_of_a_limit_change_says_what_it_cannot_show(repo, tmp_path, mo
     assert caption.startswith("changed: nothing visible; not drawn: joint 'gripper_extension' "
                               "limit.lower, limit.upper"), caption
     assert "1 new finding(s)" in caption, caption
+
+
+def test_the_markdown_names_the_pictures_of_each_model(repo, tmp_path, capsys):
+    """Without --image-base-url (a job summary cannot show an artifact's images) the markdown
+    names each model's picture files and what its difference picture says."""
+    limits = repo / "r2d2_description" / "config" / "joint_limits.yaml"
+    edit(limits, "gripper_extension: {lower: -0.38, upper: 0.0,",
+         "gripper_extension: {lower: 0.0, upper: -0.38,")
+    out = tmp_path / "review.md"
+    main(["diff", "HEAD", "--render", str(tmp_path / "pics"), "--no-rrd", "--no-cache",
+          "--format", "markdown", "-o", str(out)])
+    capsys.readouterr()
+    text = out.read_text()
+    assert f"Pictures (in the review's artifact): `{R2D2}.before.png`, `{R2D2}.after.png`, " \
+        f"`{R2D2}.diff.png` (changed: nothing visible; not drawn: joint" in text, text

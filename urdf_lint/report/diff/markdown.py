@@ -44,6 +44,12 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
             rows += ["| before | after | difference |", "|---|---|---|",
                      f"| ![before]({base}/{stem}.before.png) | ![after]({base}/{stem}.after.png)"
                      f" | ![diff]({base}/{stem}.diff.png) |", ""]
+        elif m.snapshot:   # --render without a place to show them: name them (the artifact)
+            files = [code(m.snapshot[k].replace("\\", "/").rsplit("/", 1)[-1])
+                     for k in ("before", "after", "diff") if m.snapshot.get(k)]
+            said = m.snapshot.get("caption")
+            rows += [f"Pictures (in the review's artifact): {', '.join(files)}"
+                     + (f" ({md_escape(said)})" if said else ""), ""]
         if m.changes:
             rows += ["| | element | field | before | after | source |", "|---|---|---|---|---|---|"]
             for c in m.changes:
