@@ -1,4 +1,4 @@
-"""Issue 24's false alarms, misses and bugs, each on a fixture that reproduces the pattern seen
+"""False alarms, misses and bugs seen on real description repositories, each on a fixture that
 on real description repositories."""
 from __future__ import annotations
 
