@@ -1,5 +1,5 @@
 """False alarms, misses and bugs seen on real description repositories, each on a fixture that
-on real description repositories."""
+reproduces the pattern."""
 from __future__ import annotations
 
 import json
