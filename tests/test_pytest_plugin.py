@@ -133,35 +133,9 @@ def test_the_plugin_is_registered_by_the_installed_package(pkg):
     assert eps.get("urdf_lint") == "urdf_lint.cli.pytest_plugin"
 
 
-ARM_MACRO = """<?xml version="1.0"?>
-<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="arm" params="prefix parent">
-    <link name="${prefix}link"/>
-    <joint name="${prefix}joint" type="revolute">
-      <parent link="${parent}"/>
-      <child link="${prefix}link"/>
-      <axis xyz="0 0 1"/>
-      <limit lower="1" upper="-1" effort="1" velocity="1"/>
-    </joint>
-  </xacro:macro>
-</robot>
-"""
-HAND = """<?xml version="1.0"?>
-<robot name="hand" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="arm.xacro"/>
-  <link name="base"/>
-  <xacro:arm prefix="h_" parent="base"/>
-</robot>
-"""
-DUAL = """<?xml version="1.0"?>
-<robot name="dual" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="arm.xacro"/>
-  <link name="base"/>
-
-  <xacro:arm prefix="left_" parent="base"/>
-  <xacro:arm prefix="right_" parent="base"/>
-</robot>
-"""
+# two models sharing an arm macro with a swapped limit: one calls it once (h_), the other
+# twice (l_, r_)
+from test_grouping import ARM as ARM_MACRO, ONE_ARM as HAND, TWO_ARMS as DUAL  # noqa: E402
 
 
 def test_each_model_item_shows_its_own_instances_and_a_clean_classname(tmp_path):
@@ -184,9 +158,9 @@ def test_each_model_item_shows_its_own_instances_and_a_clean_classname(tmp_path)
     dual_failed, dual = cases["urdf/dual.urdf.xacro"]
     assert hand_failed and dual_failed
     assert "'h_joint'" in hand and "called from urdf/hand.urdf.xacro:5" in hand
-    assert "left_" not in hand and "right_" not in hand and "dual" not in hand.split(":", 1)[1]
-    assert "'left_joint'" in dual and "called from urdf/dual.urdf.xacro:6" in dual
-    assert "'right_joint'" in dual and "called from urdf/dual.urdf.xacro:7" in dual
+    assert "'l_" not in hand and "'r_" not in hand and "dual" not in hand.split(":", 1)[1]
+    assert "'l_joint'" in dual and "called from urdf/dual.urdf.xacro:5" in dual
+    assert "'r_joint'" in dual and "called from urdf/dual.urdf.xacro:6" in dual
     assert "h_joint" not in dual and "hand.urdf.xacro" not in dual
     assert "1 finding(s) (2 instances)" in dual
     classnames = {c.get("name"): c.get("classname")
@@ -253,7 +227,7 @@ def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
     assert {c for c, _, _ in cases.values()} == {f"{name}.urdf_lint"}
     assert not cases["urdf/clean.urdf"][1], cases["urdf/clean.urdf"][2]
     assert cases["urdf/hand.urdf.xacro"][1] and cases["urdf/dual.urdf.xacro"][1]
-    assert "'left_joint'" in cases["urdf/dual.urdf.xacro"][2]
+    assert "'l_joint'" in cases["urdf/dual.urdf.xacro"][2]
     assert "'h_joint'" not in cases["urdf/dual.urdf.xacro"][2]
 
 
