@@ -13,7 +13,20 @@ from subprocess import CompletedProcess
 import pytest
 
 REPO = Path(__file__).resolve().parents[1]
-SHARED = REPO.parent / "shared"
+
+
+def _shared() -> Path:
+    """``../shared`` beside the checkout, or beside the main checkout of this git worktree."""
+    here = REPO.parent / "shared"
+    git = REPO / ".git"
+    if not here.is_dir() and git.is_file():
+        text = git.read_text().strip()
+        if text.startswith("gitdir:"):   # <main>/.git/worktrees/<name>
+            return Path(text[7:].strip()).resolve().parents[2].parent / "shared"
+    return here
+
+
+SHARED = _shared()
 CORPUS = SHARED / "corpus"
 DESCRIPTIONS = REPO / "descriptions"
 # the seed robots (descriptions/ also holds the deliberately broken models of the demo)

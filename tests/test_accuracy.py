@@ -385,10 +385,16 @@ def test_mass_facts_are_cached_by_content(tmp_path):
     from urdf_lint.meshes import resolve as meshes
     p = tmp_path / "part.stl"
     p.write_text(TETRA_STL)
-    cache = tmp_path / "cache"
-    f = meshes.mass_facts(str(p), str(cache))
+    from urdf_lint.meshes.store import FactsStore, MeshStore, register
+    facts = FactsStore(str(tmp_path / "facts"), b"k" * 32)
+    register(facts)      # (the run's parent opens the user's store: its workers read it)
+    store = MeshStore(cache_dir=facts.dir)
+    f = meshes.mass_facts(str(p), store=store)
     assert f["ok"] and not f["hull"] and f["volume"] == pytest.approx(0.1 ** 3 / 6, rel=1e-9)
-    assert list((cache / "meshes").glob("mass*-*.json"))
+    # measured here, stored by the parent (the reader never writes the store)
+    assert not list((tmp_path / "facts").glob("mass*-*.json"))
+    assert facts.accept(store.measured) >= 1
+    assert list((tmp_path / "facts").glob("mass*-*.json"))
 
 
 def test_broken_demo_shows_every_class():

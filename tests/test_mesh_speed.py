@@ -762,12 +762,15 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
     first = sorted((x.code, x.message) for x in lint_in_process(pkg, None) if x.code == "UL407")
     monkeypatch.setattr(fresh, "_textures", {})
     monkeypatch.setattr(fresh, "_scan_memory", {})
-    from urdf_lint.meshes.store import MeshStore
-    store = MeshStore(cache_dir=str(cache))      # a run whose facts are cached in `cache`
+    from urdf_lint.meshes.store import FactsStore, MeshStore, register
+    facts = FactsStore(str(cache), b"k" * 32)
+    register(facts)
+    store = MeshStore(cache_dir=str(cache))      # a run whose facts are kept in `cache`
     dae = str(pkg / "meshes" / "m.dae")
     refs = fresh.texture_refs(dae, store)
     assert refs == [str(pkg / "meshes" / "skin.png")]
-    assert list(cache.glob("meshes/tex*.json"))
+    facts.accept(store.measured)                 # (what the parent does with a report's facts)
+    assert list(cache.glob("tex*.json"))
     # a new run (new process memory): the DAE is not read to find its textures
     monkeypatch.setattr(fresh, "_textures", {})
     monkeypatch.setattr(fresh, "_scan_memory", {})

@@ -557,8 +557,9 @@ def test_markdown_links_the_pictures_diff_render_wrote(repo, tmp_path, capsys):
 
 def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
     """A diff --render worker sends its picture's geometry and its recording plan back through
-    the pipe: the sandbox gives it no write access to the snapshot folder (only to the
-    mesh facts), unlike a render worker, which writes its own files."""
+    the pipe: the sandbox gives it no write access to the snapshot folder, unlike a render
+    worker, which writes its own files. Neither writes the mesh facts store (the parent
+    stores the facts workers send back)."""
     import dataclasses
     from urdf_lint.runner import forked
     from urdf_lint.runner import sandbox
@@ -576,8 +577,8 @@ def test_a_diff_render_worker_may_write_nothing(tmp_path, monkeypatch):
         conn.close()
         other.close()
     diff_worker, render_worker = got
-    assert diff_worker == [str(cache / "meshes")]
-    assert render_worker == [str(cache / "meshes"), str(snaps)]
+    assert diff_worker == []
+    assert render_worker == [str(snaps)]
 
 
 def test_a_finding_is_introduced_once_per_model(tmp_path, monkeypatch, capsys):

@@ -49,6 +49,7 @@ def _attacks(job, settings):
             libc.close(fd)
         return r
     out["read_inside"] = read(p["inside"])
+    out["read_cache"] = read(p["cache_file"])     # the user's mesh facts store: read only
     out["read_outside"] = read(p["secret"])
     out["read_parent_environ"] = read(f"/proc/{job['parent']}/environ")
     out["read_own_environ"] = read("/proc/self/environ")
@@ -93,9 +94,11 @@ def attack_world(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()
     (outside / "secret.txt").write_text(SECRET)
-    cache = repo / ".urdf_lint_cache"
+    cache = tmp_path / "xdg" / "urdf-lint" / "mesh-facts"     # the user's mesh facts store
+    cache.mkdir(parents=True)
+    (cache / "v3-00.json").write_text("signed\n{}")
     return {"inside": str(pkg / "urdf/r.urdf"), "secret": str(outside / "secret.txt"),
-            "marker": str(tmp_path / "pwned"), "cache_file": str(cache / "meshes" / "ok.json"),
+            "marker": str(tmp_path / "pwned"), "cache_file": str(cache / "v3-00.json"),
             "cache_result": str(cache / "forged.json"),
             "repo": str(repo), "cache": str(cache)}
 
@@ -145,10 +148,12 @@ def test_escaped_code_in_a_real_worker_is_contained(attack_world, monkeypatch):
     finally:
         server.close()
     assert r["read_inside"] == "ok", r          # the sandbox still lets the worker do its job
-    assert r["write_cache"] == "ok", r
-    assert os.path.exists(attack_world["cache_file"])
+    # the mesh facts store is the parent's to write (workers send their facts back)
+    assert r["read_cache"] == "ok", r
+    assert open(attack_world["cache_file"]).read() == "signed\n{}"
+    assert not os.path.exists(attack_world["cache_result"])
     for k in ("read_outside", "read_parent_environ", "read_own_environ", "list_root",
-              "write_outside", "write_cache_result"):
+              "write_outside", "write_cache", "write_cache_result"):
         assert r[k] == "EACCES", (k, r)
     for k in ("execve", "socket_inet", "socket_unix", "ptrace_parent", "signal_parent"):
         assert r[k] == "EPERM", (k, r)

@@ -148,6 +148,9 @@ class ModelReport:
                                                     # set? (the result holds while they stay so)
     current_outputs: list[str] = field(default_factory=list)  # generated URDFs that are today's
                                                     # expansion of this model (not linted again)
+    # mesh facts the worker measured, for the parent's facts store: [name, path, digest, record]
+    # (plain lists, str and JSON records; urdf_lint.meshes.store.FactsStore.accept)
+    mesh_facts: list[list[Any]] = field(default_factory=list)
 
     @classmethod
     def failed(cls, job: LintJob, problems: Iterable[Problem] = (),

@@ -15,7 +15,7 @@ import os
 import re
 import threading
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem, merge
 from urdf_lint.core.jobs import LintJob, ModelReport, Status
@@ -45,6 +45,7 @@ class Workspace:
     findings: list = field(default_factory=list)      # after policy, merge, suppression
     config_problem: ConfigProblem | None = None
     pool_size: int = 2
+    facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
 
     def __post_init__(self):
         self.root = os.path.realpath(self.root)
@@ -83,9 +84,13 @@ class Workspace:
         # its mesh facts are used
         import dataclasses
         cache = _cache_for(self.root, cfg)
+        # the user's mesh facts store, shared with check and every other workspace (the
+        # workers read it; this process stores what they measured)
+        from urdf_lint.run.cache import facts_store
+        self.facts = facts_store(repo_dirs=[self.root])
         self.settings = dataclasses.replace(self.settings, keep_model=True,
-                                            mesh_cache_dir=cache.dir if cache else
-                                            _own_mesh_cache(self.root))
+                                            mesh_cache_dir=self.facts.dir if self.facts
+                                            else None)
         self.cache = None
         found = discover_models([self.root], cfg, resolver, cache.dir if cache else None)
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
@@ -184,6 +189,8 @@ class Workspace:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
                     self.reports[job_key(job)] = rep
+                    if self.facts is not None:
+                        self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
                         plain = LintJob(job.entry, job.args, job.kind, job.explicit,
                                         job.display_name, job.output, job.mesh_base)
@@ -269,21 +276,6 @@ def _cache_for(root: str, cfg):
     except OSError:
         return None
     return None if c.refused else c
-
-
-def _own_mesh_cache(root: str) -> str | None:
-    """Outside git without a configured cache: the mesh facts (keyed by content) in a folder
-    of the user's cache for this workspace alone (the workers write there, so no two
-    workspaces share one), so that reopening the editor does not measure every mesh again."""
-    from urdf_lint.run.cache import key_path
-    from urdf_lint.core.hashing import content_digest
-    d = os.path.join(str(key_path().parent), "server", content_digest(root.encode()))
-    from urdf_lint.core import fsbound
-    try:
-        fsbound.make_own_dirs(d)
-    except OSError:
-        return None
-    return d
 
 
 _AT_LINE = re.compile(r"^(?P<file>[^\n]*?):(?P<line>\d+): ")

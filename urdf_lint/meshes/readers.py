@@ -4,8 +4,11 @@ vertex and face arrays, without building a processed ``trimesh.Trimesh``.
 * Binary STL is read with numpy straight from its 50-byte records, in chunks of
   ``STL_CHUNK_TRIANGLES`` (so a 5M-triangle file never needs gigabytes); ASCII STL with one
   solid is parsed like trimesh parses it (``np.fromstring`` of the ``vertex`` lines).
-* COLLADA is read by pycollada and assembled, placed and merged exactly as trimesh's loader
-  and scene would (:func:`collada_arrays`), without importing trimesh or decoding textures.
+* COLLADA is read with lxml alone (:func:`collada_arrays_lean`: the ``<float_array>``,
+  ``<p>``, ``<input>`` and node transforms parsed straight into numpy, as pycollada parses
+  them) or, for what that reader does not vouch for (textures, strips, node instances...), by
+  pycollada, and assembled, placed and merged exactly as trimesh's loader and scene would
+  (:func:`collada_arrays`), without importing trimesh or decoding textures.
 * A plain Wavefront OBJ is split by material, unmerged by texture and normal references and
   its quads split exactly as trimesh's loader does (:func:`obj_arrays`), without trimesh.
 * Every other format and any COLLADA or OBJ file the readers cannot vouch for is loaded by
@@ -240,13 +243,31 @@ def first_of_equal_rows(rows):
     rows (distinct rows in another order: callers sort by first occurrence, or only compare).
     Grouped on :func:`row_mix`, several times faster than comparing the rows as bytes; every
     group is checked to hold one row only, else the rows are compared whole."""
-    _, index, inverse = np.unique(row_mix(rows), return_index=True, return_inverse=True)
-    inverse = inverse.reshape(-1)
+    index, inverse = unique_first(row_mix(rows))
     if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
         whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
         _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
         inverse = inverse.reshape(-1)
     return index, inverse
+
+
+def unique_first(keys):
+    """(index of the first occurrence of each distinct key, the distinct key of every key) of
+    a 1-d array: ``np.unique(keys, return_index=True, return_inverse=True)[1:]``, the same
+    arrays, from one unstable sort (``np.unique`` sorts stably for its first occurrences: a
+    merge sort, 2-3x slower) and the least position of each run of equal keys."""
+    keys = np.asarray(keys).reshape(-1)
+    if not len(keys):
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    order = np.argsort(keys)
+    ordered = keys[order]
+    starts = np.empty(len(keys), dtype=bool)
+    starts[0] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=starts[1:])
+    first = np.flatnonzero(starts)
+    inverse = np.empty(len(keys), dtype=np.int64)
+    inverse[order] = np.cumsum(starts) - 1
+    return np.minimum.reduceat(order, first).astype(np.int64), inverse
 
 
 def vertex_keys(tris) -> np.ndarray:
@@ -299,6 +320,9 @@ def collada_arrays(data: bytes):
     sets than ``<instance_geometry>`` elements), an empty set, a non-finite vertex, vertex
     colours, a material trimesh cannot convert, an index out of range, any error. The caller
     then loads the file through trimesh, as before."""
+    lean = collada_arrays_lean(data)   # one lxml parse, no pycollada objects, when it can
+    if lean is not None:
+        return lean[0], lean[1]
     import io
     import collada
     from collada import common
@@ -315,21 +339,28 @@ def collada_arrays(data: bytes):
                 return None
         if not parts or len(parts) < data.count(b"<instance_geometry"):
             return None
-        verts, faces, offset = [], [], 0
-        for (v, f), matrix in parts:
-            matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
-            if matrix is None:
-                return None
-            if not _allclose(matrix, _EYE4, 1e-8):
-                v = transform_points(v, matrix)
-                if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
-                        np.linalg.det(matrix[:3, :3]) < 0.0:
-                    f = np.fliplr(f)
-            verts.append(v)
-            faces.append(f + offset)
-            offset += len(v)
+        return _assemble(parts)
     except Exception:  # noqa: BLE001 - trimesh decides (and says what is wrong)
         return None
+
+
+def _assemble(parts):
+    """(vertices, faces) of the merged triangle sets ``parts`` ([((v, f), matrix)]) placed by
+    their matrices and stacked, as trimesh's scene does (a mirroring matrix flips the
+    winding); None where trimesh's scene graph would refuse a matrix."""
+    verts, faces, offset = [], [], 0
+    for (v, f), matrix in parts:
+        matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
+        if matrix is None:
+            return None
+        if not _allclose(matrix, _EYE4, 1e-8):
+            v = transform_points(v, matrix)
+            if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
+                    np.linalg.det(matrix[:3, :3]) < 0.0:
+                f = np.fliplr(f)
+        verts.append(v)
+        faces.append(f + offset)
+        offset += len(v)
     return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
 
 
@@ -574,3 +605,331 @@ def transform_points(points, matrix):
         return np.ascontiguousarray(points.copy())
     stack = np.column_stack((points, np.ones(count)))
     return np.dot(matrix, stack.T).T[:, :dim]
+
+
+# -- COLLADA read with lxml alone (no pycollada objects) --------------------------------------
+_SHADINGS = ("constant", "lambert", "phong", "blinn")
+_UNSUPPORTED = ("polygons", "tristrips", "trifans", "instance_node", "instance_controller",
+                "lookat", "skew", "library_nodes", "newparam", "texture")
+
+
+def _local(el) -> str:
+    tag = el.tag
+    return tag.rpartition("}")[2] if isinstance(tag, str) else ""
+
+
+def _floats(text, dtype=np.float32) -> np.ndarray:
+    """pycollada's parse of a number list (``np.fromstring`` of the text, NaN read as 0)."""
+    if text is None or text.isspace() or not text:
+        return np.array([], dtype=dtype)
+    out = np.fromstring(text, dtype=dtype, sep=" ")
+    if dtype == np.float32:
+        out[np.isnan(out)] = 0
+    return out
+
+
+class _Unsure(Exception):
+    """A COLLADA feature the lean reader does not vouch for: pycollada reads the file."""
+
+
+def collada_arrays_lean(data: bytes):
+    """:func:`collada_arrays`' numbers from one lxml parse of the document: the sources'
+    ``<float_array>`` (float32, as pycollada reads them), the primitives' ``<p>``/``<vcount>``
+    and ``<input>`` offsets, the ``<node>`` transforms (float32 products, as pycollada's
+    ``Node.matrix``) and ``<instance_geometry>``/``<instance_material>`` bindings, assembled
+    and merged exactly as :func:`collada_arrays` does on pycollada's objects (same float32
+    values, same index arrays, same order). None for anything else (textures, parameters,
+    polygons with holes, strips and fans, node instances, controllers, a broken reference,
+    any doubt): the caller reads the file through pycollada."""
+    from lxml import etree
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=True, remove_comments=True)
+    try:
+        root = etree.fromstring(data, parser)
+        got = _lean(root)
+        # (as collada_arrays: an instance that gives no triangle set: trimesh decides)
+        return got if got is None or got[2] >= data.count(b"<instance_geometry") else None
+    except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
+        return None
+
+
+def _lean(root):
+    byid: dict = {}
+    for el in root.iter():
+        name = _local(el)
+        if name in _UNSUPPORTED:
+            raise _Unsure(name)
+        if name == "input" and el.get("semantic") == "COLOR":
+            raise _Unsure("vertex colours")
+        i = el.get("id")
+        if i is not None:
+            if i in byid:
+                raise _Unsure("duplicate id")
+            byid[i] = el
+    materials = {m.get("id") for lib in root if _local(lib) == "library_materials"
+                 for m in lib if _local(m) == "material"}
+    for mid in materials:
+        _check_material(byid, byid[mid])
+    scene = [el for el in root if _local(el) == "scene"]
+    if len(scene) != 1:
+        raise _Unsure("scene")
+    vs = [el for el in scene[0] if _local(el) == "instance_visual_scene"]
+    if len(vs) != 1:
+        raise _Unsure("scene")
+    visual = _ref(byid, vs[0].get("url"))
+    parts: list = []
+    geometries: dict = {}
+    for node in visual:
+        if _local(node) == "node":
+            _lean_node(node, _EYE4, parts, materials, byid, geometries)
+    if not parts:
+        return None
+    got = _assemble(parts)
+    if got is None:
+        raise _Unsure("not rigid")
+    return got[0], got[1], len(parts)
+
+
+def _ref(byid, url):
+    if not url or not url.startswith("#") or url[1:] not in byid:
+        raise _Unsure("broken reference")
+    return byid[url[1:]]
+
+
+def _check_material(byid, material) -> None:
+    """A material whose effect pycollada loads and trimesh converts (``_plain_effect``)."""
+    inst = [el for el in material if _local(el) == "instance_effect"]
+    if len(inst) != 1:
+        raise _Unsure("material")
+    effect = _ref(byid, inst[0].get("url"))
+    profiles = [el for el in effect if _local(el) == "profile_COMMON"]
+    if _local(effect) != "effect" or len(profiles) != 1:
+        raise _Unsure("effect")
+    techniques = [el for el in profiles[0] if _local(el) == "technique"]
+    if len(techniques) != 1:
+        raise _Unsure("effect")
+    shading = [el for el in techniques[0] if _local(el) in _SHADINGS]
+    if len(shading) != 1:
+        raise _Unsure("effect")
+    for prop in shading[0]:
+        kids = [el for el in prop if isinstance(el.tag, str)]
+        if len(kids) != 1 or _local(kids[0]) not in ("color", "float"):
+            raise _Unsure("effect property")
+        values = _floats(kids[0].text, np.float64)
+        if _local(kids[0]) == "float" and len(values) != 1:
+            raise _Unsure("effect property")
+        if _local(kids[0]) == "color":
+            need = 3 if _local(prop) == "emission" else 4
+            if len(values) < need or (need == 4 and len(values) != 4) or len(values) > 4:
+                raise _Unsure("colour")
+
+
+def _matrix(node) -> np.ndarray:
+    """pycollada's ``Node.matrix``: the node's transforms multiplied in float32."""
+    transforms = []
+    for el in node:
+        name = _local(el)
+        if name in ("matrix", "translate", "rotate", "scale"):
+            v = _floats(el.text)
+            m = np.identity(4, dtype=np.float32)
+            if name == "matrix":
+                if len(v) != 16:
+                    raise _Unsure("matrix")
+                m = v.reshape(4, 4)
+            elif name == "translate":
+                if len(v) != 3:
+                    raise _Unsure("translate")
+                m[:3, 3] = v
+            elif name == "scale":
+                if len(v) != 3:
+                    raise _Unsure("scale")
+                m[0, 0], m[1, 1], m[2, 2] = v
+            else:
+                if len(v) != 4:
+                    raise _Unsure("rotate")
+                m = _rotation(v[0], v[1], v[2], v[3] * np.pi / 180.0)
+            transforms.append(m)
+    if not transforms:
+        return np.identity(4, dtype=np.float32)
+    if len(transforms) == 1:
+        return transforms[0].copy()
+    out = np.identity(4, dtype=np.float32)
+    for m in transforms:
+        out = np.dot(out, m)
+    return out
+
+
+def _rotation(x, y, z, angle) -> np.ndarray:
+    """pycollada's ``makeRotationMatrix`` (float32)."""
+    c, s = np.cos(angle), np.sin(angle)
+    t = (1 - c)
+    return np.array([[t * x * x + c, t * x * y - s * z, t * x * z + s * y, 0],
+                     [t * x * y + s * z, t * y * y + c, t * y * z - s * x, 0],
+                     [t * x * z - s * y, t * y * z + s * x, t * z * z + c, 0],
+                     [0, 0, 0, 1]], dtype=np.float32)
+
+
+def _lean_node(node, parent, parts, materials, byid, geometries) -> None:
+    """:func:`_collada_node` on the XML: a ``<node>``'s children in document order."""
+    matrix = np.dot(parent, _matrix(node))
+    for el in node:
+        name = _local(el)
+        if name == "node":
+            _lean_node(el, matrix, parts, materials, byid, geometries)
+        elif name == "instance_geometry":
+            _lean_geometry(el, matrix, parts, materials, byid, geometries)
+
+
+def _lean_geometry(inst, matrix, parts, materials, byid, geometries) -> None:
+    url = inst.get("url")
+    geometry = _ref(byid, url)
+    symbols = set()
+    for el in inst.iter():
+        if _local(el) == "instance_material":
+            target = el.get("target") or ""
+            if not target.startswith("#") or target[1:] not in materials:
+                raise _Unsure("material binding")
+            symbols.add(el.get("symbol"))
+    if url not in geometries:
+        geometries[url] = _primitives(geometry, byid)
+    for prim in geometries[url]:
+        vertex, index, normal, normal_index, uvs, material = prim
+        n = len(index) * 3
+        normals = uv = None
+        if normal is not None:
+            normals = normal[normal_index].reshape(-1, 3)
+        if material in symbols and uvs:
+            tc, ti = uvs[0]
+            uv = tc[ti].reshape(-1, 2)
+        merged = _merge(vertex[index].reshape(n, 3), normals, uv)
+        if merged is None:
+            raise _Unsure("not finite")
+        parts.append((merged, matrix))
+
+
+def _source(byid, url, names) -> np.ndarray:
+    """A ``<source>``'s float32 values shaped by its accessor's params (pycollada's
+    ``FloatSource``), which must be ``names``."""
+    src = _ref(byid, url)
+    arrays = [el for el in src if _local(el) == "float_array"]
+    if _local(src) != "source" or len(arrays) != 1:
+        raise _Unsure("source")
+    params = [p.get("name") for el in src if _local(el) == "technique_common"
+              for acc in el if _local(acc) == "accessor" for p in acc if _local(p) == "param"]
+    if tuple(params) not in names:
+        raise _Unsure("accessor")
+    data = _floats(arrays[0].text)
+    if data.size % len(params):
+        raise _Unsure("source size")
+    return data.reshape(-1, len(params))
+
+
+_XYZ = (("X", "Y", "Z"),)
+_ST = (("S", "T"), ("U", "V"))
+
+
+def _primitives(geometry, byid) -> list:
+    """(vertex, vertex_index (k, 3), normal, normal_index, [(uv, uv_index)], material) of each
+    triangle set of a geometry's ``<mesh>`` (a polylist fanned as pycollada fans it); empty
+    sets skipped; anything else unsure."""
+    meshes = [el for el in geometry if _local(el) == "mesh"]
+    if _local(geometry) != "geometry" or len(meshes) != 1:
+        raise _Unsure("geometry")
+    out = []
+    for prim in meshes[0]:
+        kind = _local(prim)
+        if kind not in ("triangles", "polylist"):
+            if kind in ("source", "vertices", "lines", "linestrips", "extra", ""):
+                continue
+            raise _Unsure(kind)
+        by = _inputs(prim, byid)
+        stride = max(o for inputs in by.values() for o, _ in inputs) + 1
+        index = _index(prim, kind, stride)
+        if not len(index):
+            continue
+        vertex, vi = _indexed(byid, by["VERTEX"][0], index, _XYZ)
+        normal = normal_index = None
+        if by["NORMAL"]:
+            normal, normal_index = _indexed(byid, by["NORMAL"][0], index, _XYZ)
+        uvs = [_indexed(byid, t, index, _ST) for t in by["TEXCOORD"]]
+        out.append((vertex, vi, normal, normal_index, uvs, prim.get("material")))
+    return out
+
+
+def _inputs(prim, byid) -> dict:
+    """{semantic: [(offset, source url)]} of a primitive, in document order, the inputs of its
+    ``<vertices>`` in place of its VERTEX input (POSITION as VERTEX), as pycollada lists them."""
+    inputs = []
+    for el in prim:
+        if _local(el) != "input":
+            continue
+        offset, semantic, url = int(el.get("offset")), el.get("semantic"), el.get("source")
+        target = _ref(byid, url)
+        if semantic != "VERTEX" or _local(target) != "vertices":
+            inputs.append((offset, semantic, url))
+            continue
+        seen = set()
+        for vin in target:
+            if _local(vin) != "input":
+                continue
+            sem = vin.get("semantic")
+            if sem in seen:
+                raise _Unsure("vertices")
+            seen.add(sem)
+            inputs.append((offset, "VERTEX" if sem == "POSITION" else sem, vin.get("source")))
+    known = ("VERTEX", "NORMAL", "TEXCOORD")
+    if any(s not in known for _, s, _ in inputs):
+        raise _Unsure("input semantic")
+    by = {s: [(o, u) for o, s2, u in inputs if s2 == s] for s in known}
+    if len(by["VERTEX"]) != 1 or len(by["NORMAL"]) > 1:
+        raise _Unsure("inputs")
+    return by
+
+
+def _index(prim, kind: str, stride: int) -> np.ndarray:
+    """The index of a primitive's triangles, shape (k, 3, stride): its first ``<p>`` (pycollada
+    reads no other), a polylist's fanned."""
+    ps = [el for el in prim if _local(el) == "p"]
+    if not ps:
+        raise _Unsure("no index")
+    index = _floats(ps[0].text, np.int32)
+    if index.size % stride:
+        raise _Unsure("index size")
+    index = index.reshape(-1, stride)
+    if kind == "polylist":
+        index = _fan(prim, index)
+    if index.size % (3 * stride):
+        raise _Unsure("index size")
+    return index.reshape(-1, 3, stride)
+
+
+def _indexed(byid, inp, index, names):
+    """(the source's values, the (k, 3) indices into them) of one input, every index in range
+    (pycollada's ``checkSource``)."""
+    offset, url = inp
+    values, at = _source(byid, url, names), index[:, :, offset]
+    if int(at.max()) >= len(values) or int(at.min()) < 0:
+        raise _Unsure("index range")
+    return values, at
+
+
+def _fan(prim, index) -> np.ndarray:
+    """pycollada's ``Polylist.triangleset``: polygon k of ``vcount`` corners (start s) gives
+    the triangles (s, s+i+1, s+i+2)."""
+    vc = [el for el in prim if _local(el) == "vcount"]
+    if len(vc) != 1:
+        raise _Unsure("vcount")
+    vcounts = _floats(vc[0].text, np.int32)
+    if (vcounts < 3).any() or int(vcounts.sum()) != len(index):
+        raise _Unsure("vcount")
+    if not len(vcounts):
+        return index[:0]
+    ends = np.cumsum(vcounts)
+    starts = ends - vcounts
+    keep = np.ones(len(index), dtype=bool)
+    keep[ends - 1] = False
+    keep[ends - 2] = False
+    sel = np.flatnonzero(keep)
+    first = np.repeat(starts, vcounts)[sel]
+    return np.stack((index[first], index[sel + 1], index[sel + 2]), axis=1).reshape(
+        -1, index.shape[1])

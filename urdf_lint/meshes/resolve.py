@@ -7,7 +7,6 @@ cached by file content, so a mesh is read once per change, not once per model or
 from __future__ import annotations
 
 import enum
-import json
 import math
 import os
 import re
@@ -609,41 +608,29 @@ class _Uncached(Exception):
 
 
 def _cached(memory: dict, prefix: str, path: str, store: MeshStore, compute) -> dict:
-    """``compute(path)``, memoized in ``memory`` and on disk under ``store.cache_dir/meshes``,
-    keyed by the file's content (a result that depends on the environment is neither: it is
-    counted in ``store.env_failures``)."""
-    cache_dir = store.cache_dir
+    """``compute(path)``, memoized in ``memory`` and in the run's facts store (the user's
+    :class:`urdf_lint.meshes.store.FactsStore`, read only here), keyed by the file's content.
+    What is measured is noted in ``store.measured`` for the parent to store (a result that
+    depends on the environment is neither kept nor noted: it is counted in
+    ``store.env_failures``)."""
     digest = _digest(path)
     if digest in memory:
         return memory[digest]
-    cache_file = None
-    if cache_dir:
-        cache_file = Path(cache_dir, "meshes", f"{prefix}-{digest}.json")
-        try:
-            from urdf_lint.core import fsbound
-            facts = json.loads(fsbound.read_bytes(str(cache_file), max_bytes=1 << 20,
-                                                  nofollow=True))
-            if isinstance(facts, dict) and "ok" in facts:
-                memory[digest] = facts
-                return facts
-        except (OSError, ValueError, RecursionError):   # (unsigned: any bytes may be there)
-            pass
+    name = f"{prefix}-{digest}"
+    facts_store = store.facts()
+    if facts_store is not None:
+        got = facts_store.get(name)     # signed by this user's urdf-lint, else measured again
+        if got is not None:
+            memory[digest] = got
+            return got
     try:
         facts = compute(path)
     except _Uncached as e:
         store.env_failures += 1     # the model's result must not be cached either
         return e.facts
     memory[digest] = facts
-    if cache_file is not None:
-        try:
-            from urdf_lint.core.cachedir import ensure
-            ensure(str(Path(cache_dir or "")))   # in process (a worker did it before its sandbox)
-            from urdf_lint.core import fsbound
-            # the worker's sandbox may write (and read) only below meshes/, not the cache folder
-            fsbound.make_own_dirs(str(cache_file.parent))
-            fsbound.write_text(str(cache_file), json.dumps(facts), str(cache_file.parent))
-        except OSError:
-            pass
+    if store.cache_dir:
+        store.measured.append([name, path, digest, facts])
     return facts
 
 
@@ -730,9 +717,9 @@ def _closed_faces(ff) -> bool:
     code = np.sort(e[:, 0] * n + e[:, 1])
     if (code[1:] == code[:-1]).any():
         return False
-    rev = e[:, 1] * n + e[:, 0]
-    pos = np.searchsorted(code, rev).clip(0, len(code) - 1)
-    return bool((code[pos] == rev).all())
+    # every edge once, so the reverses are distinct too: each is an edge exactly when the two
+    # sets are equal (two sorts: faster than a search of each reverse among the edges)
+    return bool(np.array_equal(code, np.sort(e[:, 1] * n + e[:, 0])))
 
 
 MAX_MASS_TRIANGLES = 6_000_000   # above: no mass facts (~15 s, ~1 GB at 5M; the inertia rules skip it)

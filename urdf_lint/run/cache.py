@@ -20,15 +20,13 @@ The cache cannot lie (issue 15):
 from __future__ import annotations
 
 import functools
-import hashlib
-import hmac
 import json
 import os
 import stat as _st
 from pathlib import Path
 
 from urdf_lint import __version__
-from urdf_lint.core import fsbound
+from urdf_lint.core import fsbound, signing
 from urdf_lint.discovery.discover import start_dir
 from urdf_lint.core.hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, env_unchanged
@@ -132,6 +130,20 @@ def _read_entry(p) -> bytes | None:
     return read_regular(p, MAX_ENTRY_BYTES, nofollow=True)
 
 
+def facts_store(secret: bytes | None = None, repo_dirs=()):
+    """The user's mesh facts store (:class:`urdf_lint.meshes.store.FactsStore`), signed with a
+    key derived from the result cache's (``secret``, else loaded), registered for the workers
+    this process forks; None when no key can be kept."""
+    from urdf_lint.core.signing import derive
+    from urdf_lint.meshes.store import KEY_PURPOSE, FactsStore, facts_dir, register
+    secret = secret or _load_key(repo_dirs)
+    if secret is None:
+        return None
+    store = FactsStore(facts_dir(), derive(secret, KEY_PURPOSE))
+    register(store)
+    return store
+
+
 class Cache:
     def __init__(self, directory: str, repo: str | None = None):
         self.dir = str(directory)
@@ -229,8 +241,7 @@ class Cache:
         """The signature of ``blob`` stored under ``path``: its file name (the entry's key) is
         signed too, so an entry copied under another key is no entry there."""
         assert self._secret is not None
-        signed = os.path.basename(path).encode() + b"\0" + blob
-        return hmac.new(self._secret, signed, hashlib.sha256).hexdigest().encode("ascii")
+        return signing.mac(self._secret, os.path.basename(path), blob)
 
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
         """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
@@ -259,16 +270,17 @@ class Cache:
         data = _read_entry(path)
         if data is None:
             return None
-        mac, _, blob = data.partition(b"\n")
-        return blob if hmac.compare_digest(mac, self._mac_bytes(path, blob)) else None
+        assert self._secret is not None
+        return signing.verified(self._secret, os.path.basename(path), data)
 
     def write_signed(self, path: str, blob: bytes) -> bool:
         """Write ``blob`` under the cache folder, signed: the signature's line, then the bytes
         (read back with one parse). False when it could not be written."""
         try:
             self._ensure()
-            fsbound.write_bytes(path, self._mac_bytes(path, blob) + b"\n" + blob, self.dir,
-                                make_dirs=True)
+            assert self._secret is not None
+            fsbound.write_bytes(path, signing.signed(self._secret, os.path.basename(path), blob),
+                                self.dir, make_dirs=True)
             return True
         except OSError:
             return False

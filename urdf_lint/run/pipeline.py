@@ -146,8 +146,8 @@ class RunRequest:
     # bring every expanded robot back (``ModelReport.kept_model``; ``--fix`` compares them
     # before and after)
     keep_models: bool = False
-    # mesh facts (keyed by content) from this cache folder when ``cache`` is None (``diff``
-    # lints the base revision with the working tree's mesh facts)
+    # set: mesh facts are read from and kept in the user's facts store also when ``cache`` is
+    # None (``diff`` lints the base revision with the store the working tree uses)
     mesh_cache_dir: str | None = None
     # select_jobs(jobs, discovery) keeps only the jobs worth linting (``diff``: the models a
     # change can reach through the include graph)
@@ -176,7 +176,8 @@ def run_check(request: RunRequest) -> CheckResult:
     req = request
     paths, cfg, resolver, cache = list(req.paths), req.cfg, req.resolver, req.cache
     policy = Policy.from_config(cfg)
-    settings = settings_for(cfg, resolver, cache.dir if cache else req.mesh_cache_dir, policy)
+    facts = _facts_store(cache, req.mesh_cache_dir)
+    settings = settings_for(cfg, resolver, facts.dir if facts else None, policy)
     memo = None
     if cache is not None and req.plain:
         # the whole result of the last identical run, if nothing it read changed
@@ -195,6 +196,9 @@ def run_check(request: RunRequest) -> CheckResult:
         settings = _render_settings(settings, req.render_dir, req.render_rrd, paths, jobs, cfg)
     results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
                                   req.in_process)
+    if facts is not None:   # what the workers measured: stored by this process only
+        facts.accept((m for r in results for m in r.mesh_facts),
+                     getattr(resolver, "is_inside", None))
     out = CheckResult(internal=internal)
     out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
                                             found.fragments)
@@ -213,6 +217,16 @@ def run_check(request: RunRequest) -> CheckResult:
     if memo is not None:
         memo.store(out, results, found.folders)
     return out
+
+
+def _facts_store(cache, wanted: str | None):
+    """The user's mesh facts store for this run: with the result cache (its key), or when the
+    caller asks for mesh facts to be kept (``RunRequest.mesh_cache_dir``). ``--no-cache``: none
+    (a run without caches measures every mesh)."""
+    if cache is None and not wanted:
+        return None
+    from urdf_lint.run.cache import facts_store
+    return facts_store(getattr(cache, "_secret", None))
 
 
 def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool, paths, jobs,

@@ -23,6 +23,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     if ctx.meshes.env_failures or job.overlay:
         # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
         report.cacheable = False
+    if not job.overlay:   # (an editor's unsaved mesh is not the file: never stored)
+        report.mesh_facts = ctx.meshes.measured
     if settings.diff_render and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
     if settings.render_dir and model is not None:

@@ -87,7 +87,7 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None):
     enter_worker(conn, settings)  # Landlock, seccomp, pdeathsig, inherited fds closed
     sys.setrecursionlimit(4000)
     sys.dont_write_bytecode = True
-    _install_audit_hook(settings.mesh_cache_dir, settings.render_dir)
+    _install_audit_hook(settings.render_dir)   # (the mesh facts store: read only)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for job in forked.messages(conn):
         try:
@@ -283,7 +283,7 @@ def assign(blocks: list[Block], n: int) -> list[deque]:
 def _mesh_facts_cached(settings: LintSettings) -> bool:
     """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
-    d = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
+    d = settings.mesh_cache_dir     # the user's mesh facts store (urdf_lint.meshes.store)
     from urdf_lint.core import fsbound
     return d is not None and fsbound.has_entries(d)
 

@@ -392,26 +392,18 @@ def enter_worker(conn, settings) -> dict:
     from urdf_lint.discovery.packages import PackageResolver
     read = PackageResolver.from_dict(settings.resolver).read_paths() if settings.resolver else []
     write = []
-    # only the mesh-facts part of the cache: result entries are the parent's to write
-    facts = os.path.join(settings.mesh_cache_dir, "meshes") if settings.mesh_cache_dir else None
-    if facts:
-        # the cache folder's markers (.gitignore, CACHEDIR.TAG) now: the sandbox lets the
-        # worker write below meshes/ only, and a folder without them would get committed
-        from urdf_lint.core.cachedir import ensure
-        try:
-            ensure(settings.mesh_cache_dir)
-        except OSError:
-            pass
+    # the mesh facts store is read here, written by the parent only (urdf_lint.meshes.store)
+    if settings.mesh_cache_dir and os.path.isdir(settings.mesh_cache_dir):
+        read = [*read, settings.mesh_cache_dir]
     # snapshots: check --render / render --out (a diff --render worker writes nothing: its
     # pictures and recording plan go back through the pipe)
-    for d in (facts, settings.render_dir):
-        if d:
-            try:
-                from urdf_lint.core import fsbound
-                fsbound.make_own_dirs(d)   # the snapshot and mesh-facts folders
-                write.append(d)
-            except OSError:
-                pass
+    if settings.render_dir:
+        try:
+            from urdf_lint.core import fsbound
+            fsbound.make_own_dirs(settings.render_dir)   # the snapshot folder
+            write.append(settings.render_dir)
+        except OSError:
+            pass
     keep = list(getattr(conn, "fds", None) or (conn.fileno(),))
     status = enter(parent_pid, read, write, keep_fds=keep)
     bad = {k: v for k, v in status.items() if v.startswith("failed")}

@@ -1,0 +1,288 @@
+"""The user's mesh facts store (issue 34): content-keyed, signed, written by the parent only,
+bounded, emptied by ``urdf-lint clean``; and the COLLADA reader that needs no pycollada."""
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+from conftest import CORPUS, make_package, run_cli
+from urdf_lint.rules._meshes import TETRA_STL, scaled
+
+ROBOT = ('<robot name="r"><link name="a"><visual><geometry>'
+         '<mesh filename="package://p/meshes/big.stl"/></geometry></visual></link>'
+         '<link name="b"><visual><geometry><mesh filename="package://p/meshes/part.stl"/>'
+         '</geometry></visual></link><joint name="j" type="fixed"><parent link="a"/>'
+         '<child link="b"/></joint></robot>\n')
+
+
+@pytest.fixture
+def fresh(monkeypatch, tmp_path):
+    """Empty per-process mesh memories and a user cache folder of the test's own."""
+    from urdf_lint.core import hashing
+    from urdf_lint.meshes import resolve as meshes
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    monkeypatch.delenv("URDF_LINT_CACHE_DIR", raising=False)
+
+    def forget():
+        for name in ("_memory", "_mass_memory", "_textures", "_scan_memory", "_arrays_memo",
+                     "_kept_bytes", "_loaded"):
+            monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
+        monkeypatch.setattr(hashing, "_memo", {})
+    forget()
+    return forget
+
+
+def _package(tmp_path):
+    return make_package(tmp_path / "ws", "p", {"urdf/r.urdf": ROBOT,
+                                               "meshes/big.stl": scaled(1000.0),
+                                               "meshes/part.stl": TETRA_STL})
+
+
+def _check(pkg, cache_dir):
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    cfg = load_config(None)
+    found = run_check(RunRequest([str(pkg)], cfg, build_resolver([str(pkg)], cfg),
+                                 cache=Cache(str(cache_dir)), in_process=True)).findings
+    return sorted((f.code, f.file, f.line, f.message) for f in found)
+
+
+def _store():
+    from urdf_lint.core.signing import derive
+    from urdf_lint.meshes.store import KEY_PURPOSE, FactsStore, facts_dir
+    from urdf_lint.run.cache import _load_key
+    key = _load_key()
+    assert key is not None
+    return FactsStore(facts_dir(), derive(key, KEY_PURPOSE))
+
+
+def _name(path, prefix="v3"):
+    from urdf_lint.core.hashing import memo_digest
+    got = memo_digest(str(path))
+    assert got is not None
+    return f"{prefix}-{got[1]}"
+
+
+def test_a_forged_or_changed_store_entry_changes_no_finding(tmp_path, fresh):
+    from urdf_lint.core import signing
+    pkg = _package(tmp_path)
+    want = _check(pkg, tmp_path / "c0")
+    assert any(code == "UL406" for code, *_ in want), want   # the mesh in millimetres
+    store = _store()
+    big, small = _name(pkg / "meshes/big.stl"), _name(pkg / "meshes/part.stl")
+    entry = os.path.join(store.dir, big + ".json")
+    assert os.path.isfile(entry), "the parent stored the facts it was sent"
+    real = store.get(big)
+    assert real is not None and real["bounds"][1][0] > 10
+    lie = dict(real, bounds=[[0.0, 0.0, 0.0], [0.01, 0.01, 0.01]])
+    blob = json.dumps(lie).encode()
+    signed_elsewhere = open(os.path.join(store.dir, small + ".json"), "rb").read()
+    poisons = {
+        "bytes changed": open(entry, "rb").read().split(b"\n", 1)[0] + b"\n" + blob,
+        "signature forged": signing.signed(b"another key" * 4, big + ".json", blob),
+        "entry of another digest": signed_elsewhere,
+    }
+    for n, (what, data) in enumerate(poisons.items(), 1):
+        with open(entry, "wb") as f:
+            f.write(data)
+        fresh()
+        assert _check(pkg, tmp_path / f"c{n}") == want, what
+        assert store.get(big) == real, f"{what}: measured again and stored again"
+    # the same lie signed with the user's key is believed: the runs above did read the store
+    with open(entry, "wb") as f:
+        f.write(signing.signed(store.secret, big + ".json", blob))
+    fresh()
+    assert not any(code == "UL406" for code, *_ in _check(pkg, tmp_path / "c9"))
+
+
+def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, fresh):
+    from urdf_lint.meshes.store import FactsStore
+    store = FactsStore(str(tmp_path / "facts"), b"k" * 32)
+    mesh = tmp_path / "roots" / "part.stl"
+    mesh.parent.mkdir()
+    mesh.write_text(TETRA_STL)
+    name = _name(mesh)
+    digest = name.split("-", 1)[1]
+    rec = {"ok": True, "vertices": 3}
+    inside = lambda p: p.startswith(str(tmp_path / "roots"))  # noqa: E731
+    other = "0" * len(digest)
+    assert store.accept([[f"v3-{other}", str(mesh), other, rec]], inside) == 0  # not its bytes
+    assert store.accept([[name, "/etc/hostname", digest, rec]], inside) == 0    # outside
+    assert store.accept([[name, str(mesh), digest, "not a record"]], inside) == 0
+    assert store.accept([["../x-" + digest, str(mesh), digest, rec]], inside) == 0
+    assert store.accept(["garbage", None, [1]], inside) == 0
+    assert os.listdir(store.dir) == [] if os.path.isdir(store.dir) else True
+    assert store.accept([[name, str(mesh), digest, rec]], inside) == 1
+    assert store.get(name) == rec
+
+
+def test_measuring_never_writes_the_store(tmp_path, fresh):
+    """A worker only notes what it measured; the store is the parent's to write."""
+    from urdf_lint.meshes import resolve as meshes
+    from urdf_lint.meshes.store import FactsStore, MeshStore, register
+    facts = FactsStore(str(tmp_path / "facts"), b"k" * 32)
+    register(facts)
+    p = tmp_path / "part.stl"
+    p.write_text(TETRA_STL)
+    run = MeshStore(cache_dir=facts.dir)
+    assert meshes.mesh_facts(str(p), store=run)["vertices"] == 12
+    assert meshes.mass_facts(str(p), store=run)["ok"]
+    assert not os.path.exists(facts.dir)
+    assert sorted(m[0].split("-")[0] for m in run.measured) == ["mass1", "v3"]
+    assert facts.accept(run.measured) == 2
+    fresh()
+    again = MeshStore(cache_dir=facts.dir)
+    assert meshes.mesh_facts(str(p), store=again)["vertices"] == 12
+    assert again.measured == []            # read from the store, not measured
+
+
+def test_the_store_is_bounded_and_evicts_the_oldest(tmp_path):
+    from urdf_lint.meshes.store import FactsStore
+    store = FactsStore(str(tmp_path / "facts"), b"k" * 32)
+    names = [f"v3-{i:032x}" for i in range(10)]
+    for i, name in enumerate(names):
+        assert store.put(name, {"ok": True, "pad": "x" * 200})
+        os.utime(os.path.join(store.dir, name + ".json"), (1000 + i, 1000 + i))
+    size = os.path.getsize(os.path.join(store.dir, names[0] + ".json"))
+    store.max_bytes = 4 * size
+    assert store.evict() == 6
+    kept = sorted(f[:-5] for f in os.listdir(store.dir) if f.endswith(".json"))
+    assert kept == names[6:]                       # the four newest
+    assert sum(s for _, s, _ in store.entries()) <= store.max_bytes
+
+
+def test_clean_empties_the_store(tmp_path):
+    xdg = tmp_path / "xdg"
+    store_dir = xdg / "urdf-lint" / "mesh-facts"
+    pkg = _package(tmp_path)
+    env = {"XDG_CACHE_HOME": str(xdg), "URDF_LINT_CACHE_DIR": str(tmp_path / "cache")}
+    p = run_cli("check", str(pkg), "--fail-on", "never", env=env)
+    assert p.returncode == 0, p.stderr
+    # the workers measured, the parent stored (facts, mass and texture scans of both meshes)
+    assert len(list(store_dir.glob("v3-*.json"))) == 2, list(store_dir.iterdir())
+    p = run_cli("clean", str(pkg), env=env)
+    assert p.returncode == 0, p.stderr
+    assert not store_dir.exists()
+    assert str(store_dir) in p.stdout + p.stderr
+
+
+def test_no_cache_reads_and_writes_no_store(tmp_path):
+    xdg = tmp_path / "xdg"
+    pkg = _package(tmp_path)
+    env = {"XDG_CACHE_HOME": str(xdg), "URDF_LINT_CACHE_DIR": str(tmp_path / "cache")}
+    p = run_cli("check", str(pkg), "--no-cache", "--fail-on", "never", env=env)
+    assert p.returncode == 0, p.stderr
+    assert not (xdg / "urdf-lint" / "mesh-facts").exists()
+
+
+# -- the COLLADA reader without pycollada ---------------------------------------------------------
+def _corpus_meshes(*suffixes):
+    return sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() in suffixes)
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_corpus_collada_read_by_lxml_alone_gives_pycolladas_arrays_bit_for_bit():
+    from urdf_lint.meshes import readers
+    paths = _corpus_meshes(".dae")
+    lean = 0
+    for p in paths:
+        data = p.read_bytes()
+        got = readers.collada_arrays_lean(data)
+        if got is None:
+            continue
+        lean += 1
+        monkey = readers.collada_arrays_lean
+        try:
+            readers.collada_arrays_lean = lambda d: None    # the pycollada path
+            want = readers.collada_arrays(data)
+        finally:
+            readers.collada_arrays_lean = monkey
+        assert want is not None, p
+        assert np.array_equal(got[0], want[0]) and got[0].dtype == want[0].dtype, p
+        assert np.array_equal(got[1], want[1]), p
+    assert lean >= 0.8 * len(paths), f"only {lean} of {len(paths)} read without pycollada"
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_every_corpus_mesh_has_trimeshs_facts(monkeypatch):
+    """Every .stl/.dae/.obj of the real robots: counts, bounds, finiteness and broken
+    references equal to trimesh's mesh, volume, moments and bounds within 1e-12."""
+    from test_mesh_speed import trimesh_facts
+    from urdf_lint.meshes import resolve as meshes
+    paths = _corpus_meshes(".stl", ".dae", ".obj")
+    assert len(paths) > 200
+    for p in paths:
+        try:
+            want = trimesh_facts(p)
+        except Exception:  # noqa: BLE001 - unloadable: then ours must say so
+            assert not meshes.mesh_facts(str(p))["ok"], p
+            continue
+        got = meshes.mesh_facts(str(p))
+        assert {k: v for k, v in got.items() if k != "bounds"} == \
+            {k: v for k, v in want.items() if k != "bounds"}, p
+        assert (got["bounds"] is None) == (want["bounds"] is None), p
+        if want["bounds"] is not None:
+            assert np.allclose(got["bounds"], want["bounds"], rtol=1e-12, atol=0), p
+        mass = meshes.mass_facts(str(p))
+        ref = meshes._mass_properties(meshes.load_mesh(str(p)))
+        assert mass.keys() == ref.keys() and mass.get("hull") == ref.get("hull"), p
+        for k in ("volume", "first", "second", "bounds"):
+            if k in ref:
+                assert np.allclose(mass[k], ref[k], rtol=1e-9, atol=0), (p, k)
+
+
+def _pycollada(readers, data):
+    lean = readers.collada_arrays_lean
+    readers.collada_arrays_lean = lambda d: None
+    try:
+        return readers.collada_arrays(data)
+    finally:
+        readers.collada_arrays_lean = lean
+
+
+def _untextured(data: bytes) -> bytes:
+    """The document with its textures replaced by a colour (the lean reader refuses those)."""
+    from lxml import etree
+    root = etree.fromstring(data)
+    for el in list(root.iter("{*}newparam")):
+        el.getparent().remove(el)
+    for el in list(root.iter("{*}texture")):
+        colour = etree.SubElement(el.getparent(), el.tag.replace("texture", "color"))
+        colour.text = "0.5 0.5 0.5 1"
+        el.getparent().remove(el)
+    return etree.tostring(root)
+
+
+def test_generated_collada_read_by_lxml_alone_equals_pycollada_or_is_refused(tmp_path):
+    """Nested and mirrored nodes, several transforms, polylists of quads and pentagons: the
+    same arrays as through pycollada, bit for bit; textures, a broken reference, lines only:
+    refused (pycollada and trimesh decide, as before)."""
+    from test_mesh_speed import _generated_daes
+    from urdf_lint.meshes import readers
+    daes = _generated_daes(tmp_path)
+    read = set()
+    for name, p in daes.items():
+        data = _untextured(p.read_bytes())
+        got = readers.collada_arrays_lean(data)
+        if got is None:
+            continue
+        read.add(name)
+        want = _pycollada(readers, data)
+        assert want is not None, name
+        assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), name
+    assert {"nested.dae", "metres.dae"} <= read
+    assert not {"broken.dae", "lines.dae"} & read
+    assert readers.collada_arrays_lean(daes["nested.dae"].read_bytes()) is None   # textured
+    # more transforms on the outer node (a float32 product of five, mirrored)
+    rotated = _untextured(daes["nested.dae"].read_bytes()).replace(
+        b'<node id="a">', b'<node id="a"><rotate>0.3 0.4 0.866 33</rotate><scale>1 2 -1</scale>'
+        b'<translate>0.1 0 0.2</translate>', 1)
+    assert rotated.count(b"<rotate>") == 2
+    got, want = readers.collada_arrays_lean(rotated), _pycollada(readers, rotated)
+    assert got is not None and want is not None
+    assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
