@@ -367,7 +367,7 @@ def test_a_rule_may_choose_the_severity_of_one_problem(monkeypatch):
     from urdf_lint.engine import registry
     from urdf_lint.core.findings import Problem
     from urdf_lint.engine.model import Model
-    from urdf_lint.run.pipeline import _with_policy
+    from urdf_lint.run.finish import with_policy as _with_policy
     from urdf_lint.config.policy import Policy
     mod = types.ModuleType("urdf_lint.rules.ul998_fake")
     mod.__doc__ = "Fake.\n\nWhy: x.\n\nHow to fix: y."

@@ -145,11 +145,13 @@ def check(o: CheckOptions) -> int:
         return _fix(o, paths, named, cfg, resolver, affected_by, out, mode)
     if o.render:
         clear_stale(o.render, paths)
+    from urdf_lint.run.finish import Scope
+    # a fix offered in JSON / SARIF edits only the linted files; a baseline being written
+    # records every finding, one being read hides its own
+    how = Scope(tuple(paths), None if o.write_baseline else cfg.baseline, out.note)
     result = run_check(RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
                                   progress=_progress(out), affected_by=affected_by,
-                                  render_dir=o.render))
-    from urdf_lint.fix.fixes import inside_paths   # a fix offered in JSON / SARIF edits only linted files
-    result.findings = inside_paths(result.findings, paths)
+                                  render_dir=o.render, scope=how))
     if result.reused:
         out.info("nothing changed since the last identical run: showing its result")
     if out.verbose:

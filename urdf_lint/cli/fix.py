@@ -49,14 +49,16 @@ def _add_suppressions(req: FixRequest, cfg, resolver, out, color_mode) -> int:
     from urdf_lint.fix.addsuppress import add_suppressions
     from urdf_lint.core.locations import display_path
     from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
+    from dataclasses import replace
+    from urdf_lint.run.finish import Scope
     paths = req.report.paths
     request = RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs)
-    result = run_check(request)
+    result = run_check(request)   # every finding gets its comment, the baseline's too
     if result.internal:
         report_internal(result.internal)
         return 2
     n, files, _ = add_suppressions(result.findings, paths)
-    result = run_check(request)
+    result = run_check(replace(request, scope=Scope(tuple(paths), cfg.baseline, out.note)))
     report_internal(result.internal)
     if result.findings:
         write_findings(req.report, cfg, result, out, color_mode, resolver.roots)
@@ -87,7 +89,7 @@ def check_fix(req: FixRequest, cfg, resolver, affected_by, render_dir, out, colo
         cache = Cache.for_paths(paths, cfg)
         memo = FixMemo(cache) if not cache.refused else None
     outcome = run_fix(paths, cfg, resolver, jobs_n=cfg.jobs,
-                      unsafe=req.unsafe_fixes, diff_only=req.diff, memo=memo)
+                      unsafe=req.unsafe_fixes, diff_only=req.diff, memo=memo, note=out.note)
     report_internal(outcome.result.internal)
     if req.diff:
         sys.stdout.write(outcome.diff)

@@ -59,12 +59,12 @@ def render(o: RenderOptions) -> int:
         paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
     resolver = build_resolver(paths, cfg, package_paths)
     clear_stale(o.out, paths)
+    from urdf_lint.run.finish import Scope
+    # the pictures and summary.md count what 'check' would report (the baseline too)
     result = run_check(RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs,
                                   render_dir=o.out, render_rrd=not o.no_rrd,
-                                  affected_by=affected_by))
-    if cfg.baseline:   # the pictures and summary.md count what 'check' would report
-        from urdf_lint.engine.baseline import filter_baseline
-        result.findings = filter_baseline(cfg.baseline, result.findings, Out().note)
+                                  affected_by=affected_by,
+                                  scope=Scope(tuple(paths), cfg.baseline, Out().note)))
     note_unused(result, Out(), named)
     no_models_warning(o.paths, result, Out())
     missed = report_snapshots(result, o.out)

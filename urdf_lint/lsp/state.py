@@ -17,7 +17,7 @@ import threading
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from urdf_lint.core.findings import Problem, merge
+from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, ModelReport, Status
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -202,30 +202,21 @@ class Workspace:
         """What ``check`` would report from the reports held: the models' findings, the
         run-scope rules over every model held, and discovery's own (the config's args)."""
         from urdf_lint.core import overlay
-        from urdf_lint.run.pipeline import (RUN_LABEL, CheckResult, _run_rules, _split_models, _suppress,
-                                _with_policy)
+        from urdf_lint.run.finish import Scope, finish, scope, split_models
         import copy
         reports = [copy.copy(r) for r in self.reports.values()]
         for r in reports:
             if r.status is Status.FRAGMENT:
                 r.status = Status.MODEL   # (decided again below, over the reports held now)
-        models, _ = _split_models(reports, self.explicit, self.fragments)
-        problems: list[Problem] = []
-        for r in models:
-            problems.extend(_with_policy(r.problems, r.label, self.policy))
-        run = CheckResult(models=models, generated=dict(self.generated))
-        problems.extend(_with_policy(_run_rules(run, self.settings), RUN_LABEL, self.policy))
-        problems.extend(_with_policy(self.discovery_problems, RUN_LABEL, self.policy))
+        models, _ = split_models(reports, self.explicit, self.fragments)
         with overlay.using(self.buffers):   # suppression comments of the unsaved buffers
-            kept = _suppress(merge(problems), models, self.settings, self.policy)
-        p = self.policy
-        final = [f for f in kept if p.is_selected(f.code, f.name)
-                 and not p.ignored_for_file(f.code, f.name, f.file)]
-        # the fixes check --fix would refuse (an edit outside the workspace folder, of a
-        # generated URDF) are refused here too: no code action offers them
-        from urdf_lint.fix.fixes import inside_paths
-        final = inside_paths(final, [self.root], self.generated)
-        return sorted(final, key=lambda f: (f.file, f.line, f.col, f.code))
+            final = finish(models, self.discovery_problems, self.settings, self.policy,
+                           self.generated)
+        # the end check gives: the fixes check --fix would refuse (an edit outside the
+        # workspace folder, of a generated URDF) are refused here too, so no code action offers
+        # them; the configured baseline's findings are not shown (docs/editors: as check)
+        final, _ = scope(final, Scope((self.root,), self.cfg.baseline), self.generated)
+        return final
 
     def findings_in(self, path: str) -> list[Problem]:
         path = os.path.realpath(path)

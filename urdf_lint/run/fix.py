@@ -21,7 +21,6 @@ from typing import TYPE_CHECKING
 from lxml import etree
 
 from urdf_lint.core import fsbound
-from urdf_lint.fix.fixes import inside_paths
 from urdf_lint.fix.kinds import expectation
 from urdf_lint.fix.kinds.add_dollar import ANY
 from urdf_lint.fix.sourceedit import apply_edits, line_offset
@@ -288,17 +287,21 @@ def _expected(tree, rep, fixed_keys):
 
 
 def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
-            in_process: bool = False, memo=None) -> FixOutcome:
+            in_process: bool = False, memo=None, note=None) -> FixOutcome:
     """``memo`` (a :class:`urdf_lint.fix.memo.FixMemo`): the fixes earlier runs rolled back,
-    not tried again while nothing they depend on changed; this run's rollbacks are added."""
+    not tried again while nothing they depend on changed; this run's rollbacks are added.
+    Every fix within ``paths`` is tried (a baselined finding's too); the findings that remain
+    are reported as ``check`` reports them, without the baseline's (``note`` hears about an
+    old baseline file)."""
+    from urdf_lint.run.finish import Scope, scope
     from urdf_lint.run.pipeline import RunRequest, run_check
     request = RunRequest(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
 
     def check(keep_models: bool = False):
         return run_check(replace(request, keep_models=keep_models))
-    before_result = check(keep_models=True)
-    before_result.findings = inside_paths(before_result.findings, paths,
-                                          before_result.generated)
+    # the fixes check --fix may make: those editing only the linted paths (run.finish.scope)
+    before_result = run_check(replace(request, keep_models=True,
+                                      scope=Scope(tuple(str(p) for p in paths))))
     chosen, _, refused = candidates(before_result.findings, unsafe)
     keys: dict = {}
     if memo is not None:
@@ -315,6 +318,8 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
             memo.remember(keys.get(_fkey(p)), why)
         memo.save()
     changed = sorted(f for f in written if originals.get(f) is not None)
+    result.findings, result.baselined = scope(result.findings, Scope(None, cfg.baseline, note),
+                                              result.generated)
     return FixOutcome(result, chosen, rolled, changed, "", refused)
 
 

@@ -13,31 +13,20 @@ from collections.abc import Set as AbstractSet
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from urdf_lint.discovery.discover import discover_models
-from urdf_lint.core.findings import Problem, exit_status, merge
-from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport, Status
-from urdf_lint.config.policy import Policy, code_matches
+from urdf_lint.core.findings import exit_status
+from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport
+from urdf_lint.config.policy import Policy
 from urdf_lint.core.codes import RuleName
+from urdf_lint.run.finish import FRAGMENT_HINT_CODES, Scope, finish, scope, split_models
 
 # the rules raised or consulted here, by name (core.codes: importing a rule module loads the
 # rule API and what it needs, ~12 ms of every run's start-up)
-ul002_xacro_error = RuleName("ul002_xacro_error")
-ul006_not_a_robot = RuleName("ul006_not_a_robot")
-ul103_missing_link = RuleName("ul103_missing_link")
-unused_suppression = RuleName("ul009_unused_suppression")
-invalid_suppression = RuleName("ul010_invalid_suppression")
 ul004_unknown_package = RuleName("ul004_unknown_package")
-
-# findings that usually mean "this file is a fragment: the model including it defines the rest"
-FRAGMENT_HINT_CODES = (ul002_xacro_error.CODE, ul006_not_a_robot.CODE, ul103_missing_link.CODE)
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
     from urdf_lint.config.schema import Config
     from urdf_lint.discovery.packages import PackageResolver
-
-# a finding of a run-scope rule belongs to no single model; its "models" list holds this label
-RUN_LABEL = ""
-
 
 @dataclass
 class CheckResult:
@@ -52,18 +41,7 @@ class CheckResult:
     gone: list = field(default_factory=list)         # deleted files no model reads any more
     generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
     reused: bool = False                             # the last identical run's result (runcache)
-
-
-@dataclass
-class RunView:
-    """What a run-scope rule's ``check(run, ctx)`` sees: every linted model of the run."""
-    models: list                                     # ModelReport
-    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
-
-
-class RunContext:
-    def __init__(self, options: dict):
-        self.options = options
+    baselined: int = 0                               # findings the baseline hid (finish.scope)
 
 
 def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -> LintSettings:
@@ -99,30 +77,6 @@ def settings_for(cfg: "Config", resolver: "PackageResolver", cache_dir: str | No
                            mesh_cache_dir=cache_dir)
 
 
-def _with_policy(problems, label: str, policy: Policy) -> list[Problem]:
-    """Problems with their rule name, effective severity and model label. The severity is the
-    configured override, else the highest the selected targets give (:mod:`urdf_lint.core.targets`:
-    the finding's own target table, else the rule's ``TARGETS``, over the severity the rule
-    chose for it, else the rule's); a finding no selected target keeps is dropped."""
-    from urdf_lint.engine.registry import catalogue
-    from urdf_lint.core.targets import resolve
-    rules = catalogue()
-    out = []
-    for p in problems:
-        r = rules.get(p.code)
-        name = r.name if r else p.code
-        base = p.severity or (r.severity if r else "error")
-        table = dict(p.consumers) if p.consumers is not None else (r.targets if r else {})
-        sev, by = resolve(table, base, policy.targets) if table else (base, ())
-        if sev is None:
-            continue
-        over = policy.override_of(p.code, name)
-        if over is not None:
-            sev, by = over, ()
-        out.append(p.replace(name=name, severity=sev, models=(label,), severity_from=by))
-    return out
-
-
 @dataclass(frozen=True)
 class RunRequest:
     """What one check run lints and how: the one argument of :func:`run_check`.
@@ -155,6 +109,9 @@ class RunRequest:
     # set on the workers' settings (``diff --render``: the base's pictures come from its
     # lint pass)
     settings_overrides: Mapping[str, Any] | None = None
+    # the end of the run that depends on who asks (run.finish.scope): the paths a fix may
+    # edit, the baseline; None: the findings as the rules and the policy left them
+    scope: Scope | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "paths", tuple(self.paths))
@@ -185,7 +142,7 @@ def run_check(request: RunRequest) -> CheckResult:
         memo = RunMemo(cache, paths, cfg, resolver, settings)
         hit = memo.load()
         if hit is not None:
-            return CheckResult(reused=True, **hit)
+            return _scoped(CheckResult(reused=True, **hit), req.scope)
     found = discover_models(paths, cfg, resolver, cache.dir if cache else None)
     jobs = found.jobs if req.select_jobs is None else req.select_jobs(found.jobs, found)
     if req.keep_models:
@@ -200,7 +157,7 @@ def run_check(request: RunRequest) -> CheckResult:
         facts.accept((m for r in results for m in r.mesh_facts),
                      getattr(resolver, "is_inside", None))
     out = CheckResult(internal=internal)
-    out.models, out.skipped = _split_models(results, {j.entry for j in jobs if j.explicit},
+    out.models, out.skipped = split_models(results, {j.entry for j in jobs if j.explicit},
                                             found.fragments)
     out.fragments = dict(found.fragments)
     out.generated = dict(found.generated)
@@ -212,10 +169,18 @@ def run_check(request: RunRequest) -> CheckResult:
         _keep_affected(out, req.affected_by)
     if req.render_dir:
         _drop_snapshots([r for r in results if r not in out.models], req.render_dir)
-    out.findings = _findings(out, found.problems, settings, policy,
-                             run_rules=req.affected_by is None)
+    out.findings = finish(out.models, found.problems, settings, policy, out.generated,
+                          run_rules=req.affected_by is None, internal=out.internal)
     if memo is not None:
         memo.store(out, results, found.folders)
+    return _scoped(out, req.scope)
+
+
+def _scoped(out: CheckResult, how: Scope | None) -> CheckResult:
+    """``out`` as ``how`` asks (:func:`urdf_lint.run.finish.scope`); the run memo keeps the
+    findings before it."""
+    if how is not None:
+        out.findings, out.baselined = scope(out.findings, how, out.generated)
     return out
 
 
@@ -256,24 +221,6 @@ def _keep_affected(out: CheckResult, affected_by: AbstractSet[str]) -> None:
     out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
 
 
-def _findings(out: CheckResult, run_problems, settings: LintSettings, policy: Policy,
-              run_rules: bool) -> list[Problem]:
-    """The findings of the run: the models', the run-scope rules' (``run_rules``) and
-    discovery's, with the policy's severities, suppressions and selection applied, sorted."""
-    problems: list[Problem] = []
-    for r in out.models:
-        problems.extend(_with_policy(r.problems, r.label, policy))
-    if run_rules:
-        problems.extend(_with_policy(_run_rules(out, settings), RUN_LABEL, policy))
-    problems.extend(_with_policy(run_problems, RUN_LABEL, policy))
-    kept = _suppress(merge(problems), out.models, settings, policy)
-    final = [f for f in kept if policy.is_selected(f.code, f.name)
-             and not policy.ignored_for_file(f.code, f.name, f.file)]
-    from urdf_lint.fix.fixes import not_in_generated
-    return sorted(not_in_generated(final, out.generated),
-                  key=lambda f: (f.file, f.line, f.col, f.code))
-
-
 def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
               progress, in_process=False) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers."""
@@ -300,37 +247,6 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
             if progress:
                 progress(n, len(todo))
     return results, internal
-
-
-def _split_models(results: list[ModelReport], explicit: "set | frozenset" = frozenset(),
-                  fragments: dict | None = None):
-    """(models, skipped): macro-only files and XML that is not a robot are skipped. A file
-    other files include (``fragments``, from the include graph, or a file a model's expansion
-    read, for includes only expansion resolves such as ``${prefix}.xacro``) is kept as a model
-    of its own only when it is a complete robot by itself; otherwise it is a fragment, linted
-    through the models that include it. A file named explicitly is always a model."""
-    used = set(fragments or ())
-    for r in results:
-        if r.status is Status.MODEL:   # (a generated .urdf output is an input, not an include)
-            used.update(d for d in r.deps[1:] if d != r.entry and d.endswith(".xacro"))
-    models, skipped = [], []
-    for r in sorted(results, key=lambda r: (r.entry, sorted(r.args.items()))):
-        if r.status in (Status.LIBRARY, Status.NOT_ROBOT):
-            skipped.append(r)
-        elif r.entry in used and not r.args and r.entry not in explicit \
-                and not _complete_robot(r):
-            r.status = Status.FRAGMENT
-            skipped.append(r)
-        else:
-            models.append(r)
-    return models, skipped
-
-
-def _complete_robot(r: ModelReport) -> bool:
-    """Does an included file also stand alone as a robot (a named robot with links, no
-    undefined link or name)?"""
-    return r.status is Status.MODEL and r.links > 0 and bool(r.name) and not any(
-        p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
 def hint_packages(models, paths) -> None:
@@ -402,50 +318,6 @@ def _hint_fragments(models, graph) -> None:
         r.problems = [p.replace(message=p.message + hint)
                       if p.code in FRAGMENT_HINT_CODES and p.file == r.entry else p
                       for p in r.problems]
-
-
-def _run_rules(out: CheckResult, settings: LintSettings) -> list[Problem]:
-    """The run-scope rules (``SCOPE = "run"``) over every linted model."""
-    from urdf_lint.engine.registry import run_rules
-    run = RunView(models=list(out.models), generated=dict(out.generated))
-    return [Problem.at(rule.code, msg, loc, severity=sev, consumers=table)
-            for rule, loc, msg, sev, table in run_rules("run", settings.selected,
-                                                        settings.options, run, RunContext({}),
-                                                        out.internal, with_table=True)]
-
-
-def _suppress(merged: list[Problem], models, settings: LintSettings,
-              policy: Policy) -> list[Problem]:
-    """Drop what inline comments suppress; add a finding for each unused suppression."""
-    from urdf_lint.engine import suppress
-    from urdf_lint.engine.registry import catalogue
-    rules = catalogue()
-    files: set[str] = set()
-    # a generated URDF that is today's expansion is not linted: the comments xacro copied
-    # into it suppress nothing there (they are the xacro's)
-    current = {o for r in models for o in r.current_outputs}
-    for r in models:
-        sources = [d for d in r.deps if d.endswith(suppress.SOURCE_SUFFIXES)
-                   and d not in current]
-        # the worker said which sources hold urdf-lint comments (kept in the cache with the
-        # result, valid while the deps are); otherwise every source is read
-        known = None if r.directive_files is None else set(r.directive_files)
-        files.update(d for d in sources if known is None or d in known)
-    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES, PackageResolver
-    resolver = PackageResolver.from_dict(settings.resolver)
-    # the parent reads only what the workers could: inside the roots, regular, bounded
-    directives = {f: suppress.parse_directives(f) for f in sorted(files)
-                  if resolver.readable(f, MAX_SOURCE_BYTES)}
-    selected = settings.selected
-    kept, unused, invalid = suppress.apply(
-        merged, directives,
-        is_selected=lambda c: any(code_matches(c, s, rules[s].name) for s in selected))
-    from urdf_lint.fix.fixes import remove_comment
-    about_comments = [Problem.at(unused_suppression.CODE, msg, loc, fix=remove_comment(loc))
-                      for loc, msg in unused]
-    about_comments += [Problem.at(invalid_suppression.CODE, msg, loc) for loc, msg in invalid]
-    kept += [p.replace(models=()) for p in _with_policy(about_comments, RUN_LABEL, policy)]
-    return kept
 
 
 _VARIANT_USE = None
