@@ -120,7 +120,7 @@ def test_corpus_mesh_facts_equal_trimesh(fresh):
         except Exception:  # noqa: BLE001 - unloadable meshes: checked by the UL404 tests
             continue
         assert fresh.mesh_facts(str(p)) == want, p
-        got, want = fresh.mass_facts(str(p)), fresh._mass_properties(fresh.load_mesh(str(p)))
+        got, want = fresh.mass_facts(str(p)), fresh.trimesh_mass_properties(fresh.load_mesh(str(p)))
         # (the convex hull of an open mesh can differ in the last bit between calls)
         assert got.keys() == want.keys() and got.get("hull") == want.get("hull"), p
         for k in ("volume", "first", "second", "bounds"):
@@ -233,7 +233,7 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
             assert np.array_equal(v, want[0]) and np.array_equal(lean[name][1], want[1]), name
         # whichever path reads it: the facts and mass properties of trimesh's mesh
         assert fresh.mesh_facts(str(p)) == trimesh_facts(p), name
-        assert fresh.mass_facts(str(p)) == fresh._mass_properties(fresh.load_mesh(str(p))), name
+        assert fresh.mass_facts(str(p)) == fresh.trimesh_mass_properties(fresh.load_mesh(str(p))), name
     # read without trimesh where it can be, left to trimesh where a geometry is lost
     assert lean["nested.dae"] is not None and lean["metres.dae"] is not None
     assert lean["broken.dae"] is None and lean["lines.dae"] is None
@@ -342,7 +342,7 @@ def test_obj_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
             assert not got["ok"] and got["error"] == fresh.error_text(e)[:300], name
             continue
         assert got == want, name
-        assert fresh.mass_facts(str(p)) == fresh._mass_properties(fresh.load_mesh(str(p))), name
+        assert fresh.mass_facts(str(p)) == fresh.trimesh_mass_properties(fresh.load_mesh(str(p))), name
     assert [n for n, got in lean.items() if got is None] == [
         "negative.obj", "out_of_range.obj", "mixed.obj", "polygon.obj", "comment_usemtl.obj"]
     # one mesh per material (three here), texture and normal references unmerged: more
@@ -460,7 +460,7 @@ def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
     v, f = sphere(20_000, radius=0.2, center=(1.0, 2.0, 3.0))
     p = binary_stl(tmp_path / "big.stl", v[f])
     want = trimesh_facts(p)
-    want_mass = fresh._mass_properties(fresh.load_mesh(str(p)))
+    want_mass = fresh.trimesh_mass_properties(fresh.load_mesh(str(p)))
     seen = []
     real = meshio.iter_binary_stl
 
@@ -486,7 +486,7 @@ def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
 def test_chunked_mass_of_an_open_surface_uses_the_hull(tmp_path, fresh, monkeypatch):
     v, f = sphere(8_000, radius=0.1)
     p = binary_stl(tmp_path / "open.stl", np.delete(v[f], range(1000, 1040), axis=0))   # a hole
-    want = fresh._mass_properties(fresh.load_mesh(str(p)))
+    want = fresh.trimesh_mass_properties(fresh.load_mesh(str(p)))
     monkeypatch.setattr(fresh, "STL_CHUNK", 1000)
     got = fresh.mass_facts(str(p))
     assert want["hull"] and got["hull"]

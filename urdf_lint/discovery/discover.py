@@ -92,7 +92,7 @@ class Discovery:
     problems: list = field(default_factory=list)    # located findings about the config (UL008)
 
 
-def _candidates(paths, cfg, folders: list | None = None):
+def candidate_files(paths, cfg, folders: list | None = None):
     """(file, the path it was found under) for every .urdf/.xacro under the paths; the
     folders walked are added to ``folders``."""
     seen = set()
@@ -118,7 +118,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     listed in config is always a model."""
     configured = {m.path: m for m in cfg.models}
     folders: list = []
-    found = list(_candidates(paths, cfg, folders))
+    found = list(candidate_files(paths, cfg, folders))
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
     problems = [p for spec in cfg.models for p in _check_args(spec, graph, cfg)]
     graph.save()

@@ -79,8 +79,8 @@ def __getattr__(name: str) -> Any:
 def mesh_mass_properties(mesh: Any) -> MassFacts:
     """The volume properties of a loaded mesh (a ``trimesh.Trimesh``) filled with unit
     density, as the mesh facts give them for a file (``ctx.mass_facts``)."""
-    from urdf_lint.meshes.resolve import _mass_properties
-    return MassFacts.from_record(_mass_properties(mesh))
+    from urdf_lint.meshes.resolve import trimesh_mass_properties
+    return MassFacts.from_record(trimesh_mass_properties(mesh))
 
 
 def read_source(path: str, max_bytes: int | None = None) -> bytes | None:

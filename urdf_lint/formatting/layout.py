@@ -412,7 +412,7 @@ def format_source(data: bytes, style: Style = Style(), path: str = "",
 
 
 # -- the guard ----------------------------------------------------------------------------------
-def _normal(nodes: list, ordered_attrs: bool, comments: bool = True) -> list:
+def normal_nodes(nodes: list, ordered_attrs: bool, comments: bool = True) -> list:
     """The nodes of :func:`read_document` as a reader of the robot sees them: adjacent text
     joined, whitespace between child elements (layout) dropped, whitespace-only text of a
     :data:`STRUCTURAL` element dropped, attributes sorted unless their order is kept, comments
@@ -464,7 +464,7 @@ def check_same(old: bytes, new: bytes, style: Style, path: str = "",
     ordered = style.attribute_order != "canonical"
     a = [n for n in a if n[0] != "text"]   # (only whitespace outside the root element)
     b = [n for n in b if n[0] != "text"]
-    if _normal(a, ordered) != _normal(b, ordered):
+    if normal_nodes(a, ordered) != normal_nodes(b, ordered):
         return "internal: the result would read differently (please report)"
     if b"urdf-lint" in old or b"urdf_lint" in old:
         from urdf_lint.engine.suppress import coverage

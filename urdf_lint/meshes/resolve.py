@@ -663,7 +663,7 @@ def _measure_mass(path: str, keep_loaded: bool = False) -> dict:
         return {"ok": False}
 
 
-def _mass_properties(mesh) -> dict:
+def trimesh_mass_properties(mesh) -> dict:
     import numpy as np
     return _mass_arrays(np.asarray(mesh.vertices, dtype=float),
                         np.asarray(mesh.faces, dtype=np.int64))

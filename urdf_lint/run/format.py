@@ -34,7 +34,8 @@ import dataclasses
 import os
 from dataclasses import dataclass
 
-from urdf_lint.formatting.layout import FormatError, Refused, Style, format_source, read_document, _normal
+from urdf_lint.formatting.layout import (FormatError, Refused, Style, format_source, normal_nodes,
+                                        read_document)
 
 SUFFIXES = (".urdf", ".xacro")
 
@@ -64,10 +65,10 @@ class FileResult:
 
 
 def files_to_format(paths, cfg) -> list[str]:
-    from urdf_lint.discovery.discover import _candidates
+    from urdf_lint.discovery.discover import candidate_files
     excludes = list(cfg.exclude) + list(cfg.format_options.get("exclude", []))
     scoped = dataclasses.replace(cfg, exclude=excludes)
-    return [f for f, _ in _candidates(paths, scoped)]
+    return [f for f, _ in candidate_files(paths, scoped)]
 
 
 def format_files(files, style: Style, paths, docs: dict | None = None,
@@ -114,7 +115,7 @@ def format_files(files, style: Style, paths, docs: dict | None = None,
 def canonical_robot(xml: str) -> list:
     """An expanded robot as canonical nodes: comments and layout whitespace dropped,
     attributes sorted, all other text exact."""
-    return _normal([n for n in read_document(xml.encode("utf-8")) if n[0] == "el"], False,
+    return normal_nodes([n for n in read_document(xml.encode("utf-8")) if n[0] == "el"], False,
                    comments=False)
 
 

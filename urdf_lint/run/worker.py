@@ -9,7 +9,7 @@ from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
 from urdf_lint.core.codes import RuleName
 from urdf_lint.runner import pool
-from urdf_lint.runner.pool import Block, Handler, _mesh_facts_cached
+from urdf_lint.runner.pool import Block, Handler, mesh_facts_cached
 
 resource_limit = RuleName("ul904_resource_limit")   # (by name: no rule module in the parent)
 
@@ -127,7 +127,7 @@ def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     modules instead of each importing them again."""
     if not any(b.formats for b in blocks):
         return
-    if _mesh_facts_cached(settings):
+    if mesh_facts_cached(settings):
         return   # a run after the first: the workers find the facts and seldom load a mesh
     from urdf_lint.engine.registry import load_rules
     rules = load_rules()

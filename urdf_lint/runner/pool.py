@@ -280,7 +280,7 @@ def assign(blocks: list[Block], n: int) -> list[deque]:
     return queues
 
 
-def _mesh_facts_cached(settings: LintSettings) -> bool:
+def mesh_facts_cached(settings: LintSettings) -> bool:
     """Whether the mesh-facts cache holds entries already (then preloading the mesh readers in
     the parent costs ~0.1 s of a re-lint that will probably read no mesh)."""
     d = settings.mesh_cache_dir     # the user's mesh facts store (urdf_lint.meshes.store)
@@ -396,7 +396,7 @@ def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
     pre = _take_prestarted(settings)
     from urdf_lint.runner.sandbox import prepare
     prepare()
-    warm_meshes = _mesh_facts_cached(settings)
+    warm_meshes = mesh_facts_cached(settings)
     blocks = package_blocks(jobs, settings, meshes=not warm_meshes)
     cores = os.cpu_count() or 1
     n = max(1, min(jobs_n or default_workers(
