@@ -289,3 +289,24 @@ def test_the_server_process_opens_nothing_outside_the_repository(tmp_path, sandb
     assert bad == [], "\n".join(bad)
     assert SECRET not in shown
     assert [d.message.split(":")[0] for d in outside] == ["not linted"]
+
+
+def test_a_macro_line_is_one_diagnostic_as_check_counts_it(tmp_path, monkeypatch):
+    """A swapped limit in a macro that two models call three times: check reports one finding
+    (three instances); the editor shows one diagnostic at the macro line listing the joints,
+    not one per joint."""
+    from test_grouping import ARM, ONE_ARM, TWO_ARMS
+    pkg = make_package(tmp_path / "ws", "arms", {"urdf/arm.xacro": ARM,
+                                                 "urdf/one.urdf.xacro": ONE_ARM,
+                                                 "urdf/two.urdf.xacro": TWO_ARMS})
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        ls.ws.lint()
+        diags = [d for d in ls.diagnostics(str((pkg / "urdf" / "arm.xacro").resolve()))
+                 if d.code == "UL302"]
+    finally:
+        ls.ws.close()
+    assert len(diags) == 1, [d.message for d in diags]
+    assert "in 3 joints: h_joint, l_joint, r_joint" in diags[0].message, diags[0].message
+    p = run_main("check", ".", "--no-cache", cwd=pkg)
+    assert "in 3 joints: h_joint, l_joint, r_joint" in p.stdout, p.stdout

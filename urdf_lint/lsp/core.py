@@ -143,7 +143,11 @@ class UrdfLintServer(LanguageServer):
         doc = self.doc(path)
         out.extend(self._value_diagnostics(doc, valued))
         docs: dict = {}
-        for f in findings:
+        # one diagnostic per finding, as check counts them (core.findings.group): a macro line
+        # that makes 24 links wrong in 10 models is one diagnostic listing them
+        from urdf_lint.core.findings import group
+        from urdf_lint.report.base import fold_instances
+        for f in group(findings):
             related = []
             for (cf, cl, cc) in f.chain:
                 cdoc = docs.get(cf) or docs.setdefault(cf, self.doc(cf))
@@ -152,6 +156,9 @@ class UrdfLintServer(LanguageServer):
                     message="macro called here"))
             models = [m for m in f.models if m]
             msg = f.message
+            folded = fold_instances(f)
+            if folded:
+                msg += f" ({folded})"
             if models and len(ws.models()) > 1:
                 names = [_model_name(m) for m in models]
                 msg += f" (in {', '.join(names[:4])}{' ...' if len(names) > 4 else ''})"
