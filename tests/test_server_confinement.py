@@ -310,3 +310,25 @@ def test_a_macro_line_is_one_diagnostic_as_check_counts_it(tmp_path, monkeypatch
     assert "in 3 joints: h_joint, l_joint, r_joint" in diags[0].message, diags[0].message
     p = run_main("check", ".", "--no-cache", cwd=pkg)
     assert "in 3 joints: h_joint, l_joint, r_joint" in p.stdout, p.stdout
+
+
+def test_the_editor_hides_the_baselines_findings_as_check_does(tmp_path, monkeypatch):
+    """A repository adopting urdf-lint with a baseline: its known findings are not shown in the
+    editor either (the run's one end, run.finish.scope), new ones are."""
+    from test_grouping import ARM, ONE_ARM
+    pkg = make_package(tmp_path / "ws", "arms", {"urdf/arm.xacro": ARM,
+                                                 "urdf/one.urdf.xacro": ONE_ARM})
+    p = run_main("check", ".", "--no-cache", "--write-baseline", "baseline.json", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    (pkg / "urdf-lint.toml").write_text('baseline = "baseline.json"\n')
+    assert run_main("check", ".", "--no-cache", cwd=pkg).returncode == 0
+    arm = str((pkg / "urdf" / "arm.xacro").resolve())
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        ls.ws.lint()
+        assert [d.code for d in ls.diagnostics(arm)] == []
+        (pkg / "urdf" / "arm.xacro").write_text(ARM.replace('effort="1"', 'effort="-1"'))
+        ls.ws.lint()
+        assert "UL304" in [d.code for d in ls.diagnostics(arm)]
+    finally:
+        ls.ws.close()
