@@ -18,7 +18,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
-from urdf_lint.core import fsbound, signing
+from urdf_lint.core import fsbound
 
 MAX_STORE_BYTES = 64 << 20       # the store's bound: the oldest entries go beyond it
 MAX_ENTRY_BYTES = 1 << 20        # a facts record is a few hundred bytes
@@ -53,6 +53,7 @@ class FactsStore:
         data = fsbound.read_regular(self._path(name), MAX_ENTRY_BYTES, nofollow=True)
         if data is None:
             return None
+        from urdf_lint.core import signing   # (hashlib: only once a store is read)
         blob = signing.verified(self.secret, name + ".json", data)
         if blob is None:
             return None
@@ -70,6 +71,7 @@ class FactsStore:
         try:
             from urdf_lint.core.cachedir import ensure
             ensure(self.dir)       # CACHEDIR.TAG: backup tools skip it
+            from urdf_lint.core import signing
             fsbound.write_bytes(self._path(name), signing.signed(self.secret, name + ".json",
                                                                  blob), self.dir)
             return True
