@@ -221,15 +221,8 @@ def test_corpus_generated_outputs_are_fresh(corpus, tmp_path):
 
 
 def test_cache_folder_markers_and_place(tmp_path, monkeypatch):
-    from repo_shapes import stl_box
-    from urdf_lint.meshes import resolve as meshes
-    # the mesh cache creating the folder first still leaves both markers
-    mesh = tmp_path / "box.stl"
-    mesh.write_bytes(stl_box())
-    cache = tmp_path / "elsewhere" / ".urdf_lint_cache"
-    assert meshes.mesh_facts(str(mesh), str(cache))["ok"]
-    assert (cache / ".gitignore").read_text().strip().endswith("*")
-    assert (cache / "CACHEDIR.TAG").read_text().startswith("Signature: 8a477f597d28d172789f06886806bc55")
+    # (mesh facts no longer go into the repository's cache folder: they are the user's signed
+    # store, written by the parent only; tests/test_mesh_store.py)
     # outside git the cache goes under the working directory, not into the linted folder
     includes_only_repo(tmp_path / "work" / "robots")
     p = run_cli("check", "robots", cwd=tmp_path / "work", env={"URDF_LINT_CACHE_DIR": ""})
