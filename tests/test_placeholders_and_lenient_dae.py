@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 
 from conftest import make_package, run_main
+from urdf_lint.rules._meshes import PLAIN_DAE
 from urdf_lint.rules._physics import example
 
 PHYSICS = ("UL605", "UL606", "UL607")
@@ -56,3 +57,50 @@ def test_a_contact_sphere_on_a_real_visual_is_still_a_proxy(tmp_path):
     pkg = make_package(tmp_path, "p", {"urdf/r.urdf": src})
     (f,) = [f for f in lint(pkg) if f["code"] == "UL607"]
     assert "judged against the visual geometry" in f["message"], f["message"]
+
+
+def _mesh_robot(names) -> str:
+    links = "".join(f'<link name="{n}"><visual><geometry><mesh filename="package://p/meshes/{n}.dae"/>'
+                    "</geometry></visual></link>" for n in names)
+    joints = "".join(f'<joint name="j_{n}" type="fixed"><parent link="base"/><child link="{n}"/>'
+                     "</joint>" for n in names)
+    return f'<robot name="r"><link name="base"/>{links}{joints}</robot>'
+
+
+def test_dae_that_only_strict_parsers_refuse_is_a_warning_naming_the_consumers(tmp_path):
+    files = {"meshes/lead.dae": "\n  " + PLAIN_DAE,
+             "meshes/trail.dae": PLAIN_DAE + "\x00\x00junk\n",
+             "meshes/broken.dae": PLAIN_DAE.replace("</library_geometries>", ""),
+             "urdf/r.urdf": _mesh_robot(["lead", "trail", "broken"])}
+    pkg = make_package(tmp_path, "p", files)
+    fs = {f["message"].split("'")[1].rsplit("/", 1)[1]: f for f in lint(pkg) if f["code"] == "UL404"}
+    assert set(fs) == {"lead.dae", "trail.dae", "broken.dae"}, fs
+    lead, trail = fs["lead.dae"], fs["trail.dae"]
+    assert "3 whitespace byte(s) before its '<?xml' declaration" in lead["message"]
+    assert "6 byte(s) after its closing '</COLLADA>'" in trail["message"]
+    for f in (lead, trail):
+        assert f["severity"] == "warning", f
+        assert "cannot be loaded" not in f["message"]
+        assert "trimesh/pycollada" in f["message"] and "yourdfpy" in f["message"]
+        assert "assimp-based consumers (RViz, Gazebo) load it" in f["message"]
+    # a file no XML parser reads stays an error, worded as before
+    assert fs["broken.dae"]["severity"] == "error"
+    assert "cannot be loaded" in fs["broken.dae"]["message"]
+    # for the Python parsers' target it is an error again
+    fs = [f for f in lint(pkg, "--target", "python") if f["code"] == "UL404"]
+    assert {f["severity"] for f in fs} == {"error"}, fs
+
+
+def test_broken_effect_from_a_malformed_colour_quotes_the_value(tmp_path):
+    files = {"meshes/run.dae": PLAIN_DAE.replace("<color>0.8 0.8 0.8 1</color>",
+                                                 "<color>0.0 0.0 0.01.0</color>"),
+             "meshes/word.dae": PLAIN_DAE.replace("<color>0.8 0.8 0.8 1</color>",
+                                                  "<color>0.8 0.8 O.8 1</color>"),
+             "urdf/r.urdf": _mesh_robot(["run", "word"])}
+    fs = {f["message"].split("'")[1].rsplit("/", 1)[1]: f["message"]
+          for f in lint(make_package(tmp_path, "p", files)) if f["code"] == "UL408"}
+    assert set(fs) == {"run.dae", "word.dae"}, fs
+    assert "malformed colour value <color>0.0 0.0 0.01.0</color> in effect 'skin-effect'" \
+        in fs["run.dae"]
+    assert "malformed colour value <color>0.8 0.8 O.8 1</color>" in fs["word.dae"]
+    assert all("has a broken internal reference" not in m for m in fs.values())
