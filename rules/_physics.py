@@ -2,8 +2,8 @@
 
 For each moving link (the child of a non-fixed joint) with a declared mass and inertia, the
 link's collision geometry (its visual geometry when it has no collision, or when the collision
-shape is clearly a proxy: :func:`proxy_reason`; nothing when it is a proxy and there is no
-measurable visual) is filled uniformly
+shape is clearly a proxy: :func:`proxy_reason`, and the visual is larger; nothing when it is a
+proxy and there is no measurable visual) is filled uniformly
 and summed in the link frame: boxes, cylinders and spheres exactly, capsules and meshes through
 trimesh (imported only when a link has one). Mesh volume facts are cached by file content like
 every mesh fact, so a mesh is measured once per change. An open (non-watertight) mesh has no
@@ -206,10 +206,14 @@ def measured_links(model, ctx):
         if g is not None and g.source == "collision":
             why = proxy_reason(model, ctx, lk, g, np)
             if why:   # judge the body by its visual geometry, or not at all
-                g = link_geometry(model, ctx, lk, np, kind="visual") \
+                vis = link_geometry(model, ctx, lk, np, kind="visual") \
                     if lk.findall("visual") else None
-                if g is not None:
-                    g.note = f"; judged against the visual geometry: the collision shape {why}"
+                if vis is not None and _box_volume(vis) <= _box_volume(g):
+                    pass   # the visual is no larger (a 1 mm placeholder box): the collision is the body
+                else:
+                    g = vis
+                    if g is not None:
+                        g.note = f"; judged against the visual geometry: the collision shape {why}"
         if g is not None:
             out.append((lk, m, t, inr, g))
     cache[key] = out

@@ -1,7 +1,8 @@
 """A moving link's declared inertia does not match its geometry: a principal moment is more than
 `max-ratio` times, or less than `min-ratio` times, the moment of its collision geometry (visual when it has no
 collision, or when the collision shape is clearly a proxy: spheres of at most 1 cm, or a
-bounding box under an eighth of the visual's; nothing when the visual cannot be measured;
+bounding box under an eighth of the visual's, and the visual is larger than it; nothing when
+the visual cannot be measured;
 the message says which was used) filled uniformly with the declared mass.
 
 Why: Real links are not uniform, so a factor of two or three is normal; a factor of ten is an

@@ -1,7 +1,8 @@
 """A moving link's centre of mass (`<inertial><origin xyz>`) lies outside the bounding box of its
 collision geometry (visual when it has no
 collision, or when the collision shape is clearly a proxy: spheres of at most 1 cm, or a
-bounding box under an eighth of the visual's; nothing when the visual cannot be measured;
+bounding box under an eighth of the visual's, and the visual is larger than it; nothing when
+the visual cannot be measured;
 the message says which was used) by more than `tolerance` metres.
 
 Why: A rigid part's centre of mass is inside its convex hull, so well inside its bounding box.

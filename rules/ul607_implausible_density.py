@@ -1,6 +1,7 @@
 """A moving link's mass divided by the volume of its collision geometry (visual when it has no
 collision, or when the collision shape is clearly a proxy: spheres of at most 1 cm, or a
-bounding box under an eighth of the visual's; nothing when the visual cannot be measured;
+bounding box under an eighth of the visual's, and the visual is larger than it; nothing when
+the visual cannot be measured;
 the message says which was used) is not the density of any material a robot is made of.
 
 Why: This is how unit mix-ups show: a mass in grams written as kilograms (x1000), a mesh in
