@@ -495,3 +495,113 @@ def test_mesh_base_above_a_file_linted_alone(tmp_path):
                 cwd=tmp_path)
     doc = json.loads(p.stdout)
     assert not [f for f in doc["findings"] if f["code"].startswith("UL40")], doc["findings"]
+
+
+def _siblings(tmp_path):
+    """urdf/a.urdf.xacro and urdf/b.urdf.xacro both call a macro of urdf/macros.xacro that
+    writes a relative mesh path (from urdf/); only a has a checked-in generated URDF, one
+    folder deeper (generated/robots/a.urdf, its header naming urdf/a.urdf.xacro)."""
+    from urdf_lint.rules._meshes import TETRA_STL
+    macros = f"""<robot {X}>
+  <xacro:macro name="part" params="n">
+    <link name="${{n}}"><visual><geometry><mesh filename="../meshes/part.stl"/></geometry></visual>
+      <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  </xacro:macro>
+</robot>
+"""
+    entry = f"""<robot name="{{}}" {X}>
+  <xacro:include filename="macros.xacro"/>
+  <xacro:part n="base"/>
+</robot>
+"""
+    pkg = make_package(tmp_path, "siblings", {
+        "urdf/macros.xacro": macros, "urdf/a.urdf.xacro": entry.format("a"),
+        "urdf/b.urdf.xacro": entry.format("b"), "meshes/part.stl": TETRA_STL})
+    (pkg / "generated/robots").mkdir(parents=True)
+    p = run_cli("expand", "urdf/a.urdf.xacro", "-o", "generated/robots/a.urdf", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    assert "urdf/a.urdf.xacro" in (pkg / "generated/robots/a.urdf").read_text()
+    return pkg
+
+
+def test_sibling_models_resolve_a_shared_macro_mesh_alike(tmp_path):
+    """Item 6: the model with a generated URDF started the macro's relative mesh path from
+    generated/robots/ (UL401 "looked for generated/meshes/part.stl") while its sibling found
+    it from urdf/. Both find it; the one whose base was assumed says so once (UL411, info),
+    naming both folders and the mesh-base key."""
+    pkg = _siblings(tmp_path)
+    doc, _ = check_json(pkg)
+    assert not [f for f in doc["findings"] if f["code"] == "UL401"], doc["findings"]
+    (note,) = [f for f in doc["findings"] if f["code"] == "UL411"]
+    assert note["severity"] == "info" and note["file"] == "urdf/macros.xacro", note
+    assert "generated/robots/" in note["message"] and "urdf/," in note["message"], note
+    assert "'mesh-base'" in note["message"], note
+
+
+def test_configured_mesh_base_is_not_second_guessed(tmp_path):
+    """Item 6: a mesh-base the config sets is where relative paths start, found or not: no
+    fallback to the xacro's folder (UL401 stays), and no UL411 once it is right."""
+    pkg = _siblings(tmp_path)
+    cfg = '[[models]]\npath = "urdf/a.urdf.xacro"\nmesh-base = "{}"\n'
+    (pkg / "urdf-lint.toml").write_text(cfg.format("generated/robots"))
+    doc = json.loads(run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg).stdout)
+    codes = [f["code"] for f in doc["findings"]]
+    assert "UL401" in codes and "UL411" not in codes, doc["findings"]
+    (pkg / "urdf-lint.toml").write_text(cfg.format("urdf"))
+    doc = json.loads(run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg).stdout)
+    assert not [f for f in doc["findings"] if f["code"] in ("UL401", "UL411")], doc["findings"]
+
+
+def test_stale_generated_urdf_names_its_first_difference(tmp_path):
+    """Item 8: UL011 said "<robot 'r'> differs" or "<origin> differs". A checked-in URDF that
+    differs only in how a number is written says so, with the element path and both values;
+    one with an extra (unused) material names that, not the number formatting."""
+    src = f"""<robot name="r" {X}>
+  <link name="a"/>
+  <link name="b"/>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/>
+    <origin xyz="0 0 0.1"/></joint>
+</robot>
+"""
+    pkg = make_package(tmp_path, "stale", {"urdf/r.urdf.xacro": src})
+    p = run_cli("expand", "urdf/r.urdf.xacro", "-o", "urdf/r.urdf", cwd=pkg)
+    assert p.returncode == 0, p.stderr
+    out = pkg / "urdf/r.urdf"
+    text = out.read_text()
+    assert 'xyz="0 0 0.1"' in text
+    out.write_text(text.replace('xyz="0 0 0.1"', 'xyz="0 0 0.10"'))
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL011"]
+    assert "only number formatting differs: <joint 'j'> > <origin> xyz: '0 0 0.10' in the " \
+        "file, '0 0 0.1' from the xacro" in f["message"], f
+    out.write_text(out.read_text().replace(
+        '<link name="a"/>', '<material name="grey"><color rgba="0.5 0.5 0.5 1"/></material>'
+        '<link name="a"/>'))
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL011"]
+    assert "(<material 'grey'> is in the file, not in what the xacro gives)" \
+        in f["message"], f
+
+
+def test_load_yaml_of_a_folder_built_from_an_empty_arg_names_it(tmp_path):
+    """Item 8: `load_yaml('$(find pkg)/config/$(arg limits_file)')` with the arg left empty
+    said "YAML file not found: config" (a folder that exists); it says the path names a
+    folder and which arg is empty."""
+    src = f"""<robot name="r" {X}>
+  <xacro:arg name="limits_file" default=""/>
+  <xacro:property name="lim" value="${{xacro.load_yaml('$(find yarg)/config/$(arg limits_file)')}}"/>
+  <link name="base"/>
+  <link name="l${{lim['a']}}"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="l1"/></joint>
+</robot>
+"""
+    pkg = make_package(tmp_path, "yarg", {"urdf/r.urdf.xacro": src,
+                                          "config/limits.yaml": "a: 1\n"})
+    doc, _ = check_json(pkg)
+    (f,) = [f for f in doc["findings"] if f["code"] == "UL003"]
+    assert "YAML file path names a folder, not a file: config" in f["message"], f
+    assert "args left empty: limits_file" in f["message"], f
+    (pkg / "urdf-lint.toml").write_text('[[models]]\npath = "urdf/r.urdf.xacro"\n'
+                                        'args = [{limits_file = "limits.yaml"}]\n')
+    p = run_cli("check", ".", "--no-cache", "--format", "json", cwd=pkg)
+    assert not [f for f in json.loads(p.stdout)["findings"] if f["code"] == "UL003"], p.stdout

@@ -199,7 +199,8 @@ def test_generated_output_fresh_stale_and_meshes_relative_to_it(tmp_path):
     line = next(i for i, t in enumerate((pkg / "robot.urdf").read_text().splitlines(), 1)
                 if 'xyz="0 0 0.1"' in t)
     assert p.returncode == 1
-    assert f"gen_description/robot.urdf:{line}:5: UL011 generated file is stale (<origin> differs)" \
+    assert f"gen_description/robot.urdf:{line}:5: UL011 generated file is stale (<joint 'body_joint'> " \
+        "> <origin> xyz: '0 0 0.1' in the file, '0 0 0.25' from the xacro)" \
         in p.stdout, p.stdout
     p = run_cli("generate", "--check", cwd=tmp_path)
     assert p.returncode == 1 and "would regenerate gen_description/robot.urdf" in p.stdout

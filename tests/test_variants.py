@@ -89,7 +89,10 @@ def test_a_variant_xacro_wrote_is_never_rewritten_as_another(tmp_path):
     msg = found["urdf/robot.blue.urdf"]
     assert msg.startswith("generated file is stale, or made with args urdf-lint does not know: "
                           "it is not what urdf/robot.urdf.xacro expands to today with the "
-                          "default args (<mesh> differs); add a [[tool.urdf-lint.models]] "
+                          "default args (<link 'base'> > <visual> > <geometry> > <mesh> filename: "
+                          "'meshes/robot_blue/base.stl' in the file, "
+                          "'meshes/robot_white/base.stl' from the xacro); "
+                          "add a [[tool.urdf-lint.models]] "
                           "entry with its output and args"), msg
     for extra in ((), ("--check",)):
         p = run_cli("generate", *extra, cwd=pkg)
@@ -133,7 +136,8 @@ def test_headed_outputs_of_other_link_counts_are_checked(tmp_path):
     xacro.write_text(xacro.read_text().replace('size="0.1 0.1 0.1"', 'size="0.2 0.2 0.2"'))
     found = _ul011(pkg)
     assert sorted(found) == ["urdf/robot.urdf", "urdf/robot_gripper.urdf"], found
-    assert "closest: args gripper:=true, <box> differs" \
+    assert "closest: args gripper:=true, <link 'base'> > <collision> > <geometry> > <box> " \
+        "size: '0.1 0.1 0.1' in the file, '0.2 0.2 0.2' from the xacro" \
         in found["urdf/robot_gripper.urdf"], found
 
 

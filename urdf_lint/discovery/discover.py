@@ -284,11 +284,12 @@ def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,
     # the untied outputs are compared with every arg set, and the defaults (xacro's own)
     known = arg_sets[1:] + ([{}] if {} not in arg_sets else [])
     variants = tuple(tuple(sorted(a.items())) for a in known) if untied else ()
-    base = mesh_base or (os.path.dirname(output) if output else None)
+    # (``mesh_base`` only when configured: the engine starts from the output's folder itself,
+    # and knows it assumed it)
     jobs = [LintJob(f, dict(args), _kind(f), explicit=explicit,
                     output=outs[0] if outs else None, outputs=tuple(outs[1:]),
                     untied=tuple(untied) if n == 0 else (),
-                    variants=variants if n == 0 else (), mesh_base=base)
+                    variants=variants if n == 0 else (), mesh_base=mesh_base)
             for n, (args, outs) in enumerate(zip(arg_sets, tied, strict=True))]
     jobs += [LintJob(f, dict(key), _kind(f), explicit=explicit, output=outs[0],
                      outputs=tuple(outs[1:]), mesh_base=mesh_base)

@@ -204,21 +204,107 @@ def _stale_line(output: str, expanded_xml: str) -> tuple[int, str] | None:
     # is not XML (comments are not compared: drop what XML 1.0 cannot hold)
     want = etree.fromstring(_NOT_XML.sub("", expanded_xml).encode("utf-8"), parser)
     a, b = _elements(have), _elements(want)
-    for x, y in zip(a, b, strict=False):   # a count difference is reported below
-        ca: list = []
-        cb: list = []
-        _canonical_one(x, ca)
-        _canonical_one(y, cb)
-        if ca != cb:
-            name = x.get("name")
-            what = f"<{etree.QName(x).localname}{' ' + repr(name) if name else ''}> differs"
-            return x.sourceline or 1, what
-    if len(a) != len(b):
-        extra = a[len(b)] if len(a) > len(b) else None
-        line = extra.sourceline if extra is not None else (a[-1].sourceline if a else 1)
-        return line or 1, (f"{abs(len(a) - len(b))} element(s) "
-                           f"{'more' if len(a) > len(b) else 'fewer'} than the xacro gives")
+    if len(a) == len(b) and _canonical(have) == _canonical(want):
+        return None
+    return _first_difference(a, b)
+
+
+_FILE, _XACRO = "in the file", "from the xacro"
+
+
+def _first_difference(a: list, b: list) -> tuple[int, str]:
+    """(line in the file, what differs) for the first element of the file (``a``) that is not
+    what the xacro gives (``b``): its path and the two values; when every difference is in how
+    numbers are written (``0.10`` and ``0.1``), "only number formatting differs" and the
+    first of them."""
+    import difflib
+    na, nb = [_loose(e) for e in a], [_loose(e) for e in b]
+    if na == nb:   # the same numbers: the first value written differently
+        for x, y in zip(a, b, strict=True):
+            got = _attr_difference(x, y)
+            if got:
+                return x.sourceline or 1, f"only number formatting differs: {got}"
+        return (a[0].sourceline or 1) if a else 1, "text between elements differs"
+    if len(na) + len(nb) > 20000:   # (a huge robot: aligned as they come)
+        ops = [("replace", i, i + 1, i, i + 1) for i, (x, y) in enumerate(zip(na, nb, strict=False))
+               if x != y][:1] or [("delete" if len(na) > len(nb) else "insert",
+                                   min(len(na), len(nb)), len(na), min(len(na), len(nb)),
+                                   len(nb))]
+    else:
+        ops = [o for o in difflib.SequenceMatcher(None, na, nb, autojunk=False).get_opcodes()
+               if o[0] != "equal"]
+    op, i1, i2, j1, j2 = ops[0]
+    line = (a[min(i1, len(a) - 1)].sourceline or 1) if a else 1
+    if op == "replace" and i2 - i1 == j2 - j1:
+        x, y = a[i1], b[j1]
+        return x.sourceline or 1, _attr_difference(x, y, loose=True) or \
+            f"{_path(x)}: {_describe(x)} {_FILE}, {_describe(y)} {_XACRO}"
+    if op in ("delete", "replace") and i2 > i1:
+        return line, f"{_path(a[i1])} is in the file{_more(a[i1:i2])}, not in what the " \
+            "xacro gives"
+    return line, f"the xacro gives {_path(b[j1])}{_more(b[j1:j2])}, missing from the file"
+
+
+def _more(run: list) -> str:
+    """`` (and N more)``: the elements of ``run`` after its first, but those inside it."""
+    n = len([e for e in run[1:] if run[0] not in e.iterancestors()])
+    return f" (and {n} more)" if n else ""
+
+
+def _path(el) -> str:
+    """``joint 'j' > origin``: the element and its parents below ``<robot>``."""
+    parts = []
+    while el is not None and el.getparent() is not None:
+        parts.append(_describe(el))
+        el = el.getparent()
+    return " > ".join(reversed(parts)) or _describe(el)
+
+
+def _describe(el) -> str:
+    from lxml import etree
+    name = el.get("name")
+    return f"<{etree.QName(el).localname}{' ' + repr(name) if name else ''}>"
+
+
+def _attr_difference(x, y, loose: bool = False) -> str | None:
+    """The first attribute (or text) of ``x`` and ``y`` written differently, as
+    ``path attr: 'a' in the file, 'b' from the xacro``; with ``loose``, only one whose
+    numbers differ too."""
+    from lxml import etree
+    ax = {etree.QName(k).localname: v for k, v in x.attrib.items()}
+    ay = {etree.QName(k).localname: v for k, v in y.attrib.items()}
+    pairs = [(k, ax.get(k), ay.get(k)) for k in sorted(set(ax) | set(ay))]
+    pairs.append(("text", (x.text or "").strip(), (y.text or "").strip()))
+    for k, vx, vy in pairs:
+        if vx == vy or (loose and vx is not None and vy is not None
+                        and _numbers(vx) == _numbers(vy)):
+            continue
+        where = f"{_path(x)} {k}" if k != "text" else f"{_path(x)} text"
+        return f"{where}: {_shown(vx)} {_FILE}, {_shown(vy)} {_XACRO}"
     return None
+
+
+def _shown(v: str | None) -> str:
+    return "absent" if v is None else repr(v)
+
+
+def _numbers(v: str) -> tuple:
+    """A value with its numbers read (``0.10`` and ``0.1`` alike), its words as written."""
+    out: list = []
+    for t in v.split():
+        try:
+            out.append(float(t))
+        except ValueError:
+            out.append(t)
+    return tuple(out)
+
+
+def _loose(el) -> tuple:
+    """An element as :func:`_canonical_one` sees it, numbers read (not as written), without
+    its child count (an extra child is an element of its own)."""
+    from lxml import etree
+    attrs = sorted((etree.QName(k).localname, _numbers(v)) for k, v in el.attrib.items())
+    return (etree.QName(el).localname, tuple(attrs), _numbers((el.text or "").strip()))
 
 
 def _canonical_one(el, out: list) -> None:

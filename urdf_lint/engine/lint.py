@@ -230,6 +230,8 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
             return None
         # meshes written relative to the generated URDF (or a configured folder)
         model.mesh_base = job.mesh_base or (os.path.dirname(job.output) if job.output else None)
+        if not job.mesh_base and job.output:   # assumed, not configured: see Model
+            model.mesh_base_fallback = os.path.dirname(entry)
         if not model.top_links() and not job.explicit:
             out.status = Status.LIBRARY
             out.problems = []

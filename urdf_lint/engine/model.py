@@ -54,6 +54,10 @@ class Model:
     joints: dict[str, Any] = field(default_factory=dict)
     materials: dict[str, Any] = field(default_factory=dict)   # top-level <material name=...>
     mesh_base: str | None = None     # config: where relative mesh paths start (default: entry's)
+    # the entry's folder when ``mesh_base`` was assumed (the generated URDF's folder, no
+    # ``mesh-base`` set): a relative mesh that is not there is looked for here, as the models
+    # of the same macros without a generated URDF do (meshes.resolve; UL411 says so)
+    mesh_base_fallback: str | None = None
     # lxml element -> {attribute: ((file, line, col), derived)}: the attributes whose value was
     # read from a YAML scalar (through properties, macro parameters, ...: expansion.traced)
     value_origins: dict[Any, dict[str, Any]] = field(default_factory=dict)

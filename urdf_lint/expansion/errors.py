@@ -26,6 +26,7 @@ anything else                       UL002   xacro's message
 """
 from __future__ import annotations
 
+import errno
 import os
 import re
 
@@ -114,19 +115,24 @@ def _missing_arg(e, deps=()) -> str:
 def _missing_file(e, deps=()) -> str:
     # load_yaml records its file before opening it; an include is recorded only once read
     yaml = os.path.abspath(str(e.filename)) in set(deps)
-    return f"{'YAML' if yaml else 'included'} file not found: {e.filename}" + \
-        _empty_args_hint(str(e.filename))
+    what = "YAML" if yaml else "included"
+    if getattr(e, "errno", None) == errno.EISDIR:
+        # ``config/$(arg file)`` with the arg empty: the path ends at the folder
+        return f"{what} file path names a folder, not a file: {e.filename}" + \
+            _empty_args_hint(str(e.filename), folder=True)
+    return f"{what} file not found: {e.filename}" + _empty_args_hint(str(e.filename))
 
 
 _HOLE = re.compile(r"//|/_|_/|__|_\.|/\.(?!\.?/)|-/|/-")
 
 
-def _empty_args_hint(path: str) -> str:
-    """When the path has a hole (``arms//dof/urdf/_macro.xacro``) and args of the model are
-    empty: which ones, and how to set them."""
+def _empty_args_hint(path: str, folder: bool = False) -> str:
+    """When the path has a hole (``arms//dof/urdf/_macro.xacro``; or it names a ``folder``,
+    its file name left empty) and args of the model are empty: which ones, and how to set
+    them."""
     empty = sorted(k for k, v in (xacro.substitution_args_context.get("arg") or {}).items()
                    if str(v) == "")
-    if not empty or not _HOLE.search(path.replace(os.sep, "/")):
+    if not empty or not (folder or _HOLE.search(path.replace(os.sep, "/"))):
         return ""
     shown = ", ".join(empty[:6]) + (f" and {len(empty) - 6} more" if len(empty) > 6 else "")
     return (f" (the path was built from args left empty: {shown}; set them with NAME:=VALUE or "

@@ -13,7 +13,7 @@ import re
 import stat
 import time
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -41,6 +41,9 @@ class MeshRef:
     message: str = ""
     package: str = ""         # the unknown package (UNKNOWN_PACKAGE)
     cause: str = ""           # why it is unknown (the searched places), for the root cause
+    # the folder relative paths were assumed to start from (the generated URDF's), when this
+    # one is not there and was found from the entry's folder instead (Model.mesh_base_fallback)
+    assumed: str = ""
 
     @property
     def problem(self) -> MeshStatus | None:
@@ -119,9 +122,28 @@ class _Names(list):
 
 
 def resolve(model, uri: str) -> MeshRef:
+    ref = _resolve(model, uri, model.base_dir)
+    other = getattr(model, "mesh_base_fallback", None)
+    if ref.status is MeshStatus.NOT_FOUND and other and other != model.base_dir \
+            and _relative(uri):
+        # the generated URDF's folder was assumed, not configured: the models of the same
+        # macros without one start from their entry's folder; so does this one, when that
+        # holds the file (a fact UL411 reports, naming the ``mesh-base`` key that decides)
+        there = _resolve(model, uri, other)
+        if there.status is MeshStatus.OK:
+            return replace(there, assumed=model.base_dir)
+    return ref
+
+
+def _relative(uri: str) -> bool:
+    """A path written relative to the URDF (not ``package://``, ``file://`` nor absolute)."""
+    return "://" not in uri and not os.path.isabs(uri)
+
+
+def _resolve(model, uri: str, base_dir: str) -> MeshRef:
     resolver = model.resolver
     try:
-        p = resolver.resolve_uri(uri, model.base_dir)
+        p = resolver.resolve_uri(uri, base_dir)
     except PackageNotFound as e:
         return MeshRef(uri, None, MeshStatus.UNKNOWN_PACKAGE, f"mesh '{uri}': {e}", e.name,
                        str(e))
