@@ -188,3 +188,32 @@ def test_the_seed_r2d2_names_its_yaml_line_and_fixes_the_flow_mapping(tmp_path):
     assert f["value_from"][0].endswith("config/joint_limits.yaml") and f["value_from"][1] == 2
     run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
     assert limits.read_text() == good
+
+
+ARG_BOT = """<?xml version="1.0"?>
+<robot name="argbot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="lower" default="1.5"/>
+  <xacro:arg name="upper" default="-1.5"/>
+  <link name="base"/>
+  <link name="arm"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="$(arg lower)" upper="$(arg upper)" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+def test_a_value_from_an_arg_default_names_the_arg_line(tmp_path):
+    """A limit written as an arg at its default names the <xacro:arg> line that set it; an arg
+    a [[models]] entry passes does not point there. (An arg read through a property is a
+    number by then, as xacro converts property text: not traced.)"""
+    pkg = make_package(tmp_path, PKG, {"urdf/arg.urdf.xacro": ARG_BOT})
+    (f,) = _ul302(_lint(pkg))
+    assert f["value_from"][0].endswith("urdf/arg.urdf.xacro") and f["value_from"][1] == 3, f
+    text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
+    assert "value from urdf/arg.urdf.xacro:3" in text, text
+    (pkg / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "urdf/arg.urdf.xacro"\nargs = [{lower = "2"}]\n')
+    (f,) = _ul302(_lint(pkg))
+    assert f["value_from"][1] == 4, f          # lower is passed; upper is still its default

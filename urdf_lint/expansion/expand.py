@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import io
 import os
+import re
 import sys
 import xml.dom
 import xml.parsers.expat
@@ -107,6 +108,10 @@ class ExpansionState:
         # being run (innermost last), and per element the attributes that came from YAML
         self.value_frames: list[dict[str, Any]] = []
         self.values: dict[Any, dict[str, Any]] = {}
+        # where each arg got its value when no one passed it: its first <xacro:arg default>
+        # (file, line, col); the args passed (a [[models]] entry, the command line) are known
+        self.arg_origins: dict[str, tuple] = {}
+        self.passed_args: set[str] = set()
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -283,12 +288,19 @@ def _hook_eval_text(text, symbols):
     whose ``eval_all`` runs (its attributes are evaluated first, so the first note of a text
     is the attribute's)."""
     result = _orig["eval_text"](text, symbols)
+    st = CURRENT.get()
+    if type(result) is str and "$(arg" in text and st is not None:
+        # a value that is one arg, at its default: it comes from the <xacro:arg> line
+        m = _ARG_ONLY.fullmatch(text.strip())
+        if m and m.group(1) not in st.passed_args and m.group(1) in st.arg_origins:
+            result = traced.traced(result, st.arg_origins[m.group(1)])
     src = traced.source_of(result)
-    if src is not None:
-        st = CURRENT.get()
-        if st is not None and st.value_frames:
-            st.value_frames[-1].setdefault(text, src)
+    if src is not None and st is not None and st.value_frames:
+        st.value_frames[-1].setdefault(text, src)
     return result
+
+
+_ARG_ONLY = re.compile(r"\$\(arg\s+([^\s()]+)\s*\)")
 
 
 def _hook_handle_macro_call(node, macros, symbols):
@@ -347,7 +359,11 @@ def _hook_process_include(elt, macros, symbols, func):
 
 
 def _hook_check_attrs(tag, required, optional):
-    _active().touched = tag
+    st = _active()
+    st.touched = tag
+    if getattr(tag, "tagName", "") == "xacro:arg" and tag.hasAttribute("name"):
+        # (xacro keeps an arg's first value: a later <xacro:arg> of the name changes nothing)
+        st.arg_origins.setdefault(tag.getAttribute("name"), tuple(origin_of(tag)[:3]))
     return _orig["check_attrs"](tag, required, optional)
 
 
@@ -598,6 +614,7 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
         try:
             if not resolver.is_inside(path):
                 raise RefusedInput(f"'{path}' is outside the package roots", ul902_outside_roots)
+            st.passed_args = set(args)
             with safe_eval.policy(expr_policy):
                 before = False
                 doc = xacro.process_file(display_name or path, mappings=dict(args))
