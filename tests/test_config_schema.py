@@ -363,3 +363,21 @@ def test_output_format_key_and_the_deprecated_string_format(pkg, capsys):
     rc, _, err = run(capsys, "check", ".", "--no-cache")
     assert rc == 2 and 'invalid value for output-format: "gitlab"' in err and \
         'did you mean "github"' in err, err
+
+
+def test_contributings_config_key_example_builds_and_a_wrong_trust_fails_at_load():
+    """CONTRIBUTING's worked example of a config key, run as written: it makes a Key (its old
+    text, a trust 'at-most-default' over a None default, was an internal TypeError once a
+    repository set the key); a trust rule that cannot hold for its default fails at once."""
+    import re
+    from urdf_lint.config import schema
+    text = (REPO / "CONTRIBUTING.md").read_text(encoding="utf-8")
+    block = re.search(r"## 4\. A config key.*?```python\n(.*?)```", text, re.S).group(1)
+    key = eval(block.strip().rstrip(","), vars(schema))   # noqa: S307 - our own docs
+    assert key.name == "max-findings" and key.attr == "max_findings" and key.default is None
+    assert key.trust.rule == "ignore" and key.flag.flags == ("--max-findings",)
+    with pytest.raises(TypeError, match="'max-findings': trust 'at-most-default'"):
+        schema.Key("max-findings", schema.Number(int, 0, "findings"), None, "x",
+                   trust=schema.Trust("at-most-default", "more findings", unit="findings"))
+    with pytest.raises(ValueError, match="unknown trust rule 'loose'"):
+        schema.Key("x", schema.Number(int, 0, "n"), 1, "x", trust=schema.Trust("loose"))

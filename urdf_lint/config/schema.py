@@ -294,6 +294,9 @@ class Trust:
     fields: tuple[str, ...] = ()
 
 
+TRUST_RULES = ("ignore", "at-most-default", "inside-repo", "confine")
+
+
 @dataclass(frozen=True)
 class Key:
     """One configuration key: its name, type, default and help; how the command line sets it
@@ -309,6 +312,22 @@ class Key:
     clamp: tuple[float, float] | None = None      # (low, high)
     shown_default: str = ""         # what None means, for the help and the README
     attr_name: str = ""             # the Config attribute (default: the name, with underscores)
+
+    def __post_init__(self) -> None:
+        """A trust rule that cannot hold for the key's default is the schema's mistake: said
+        when the schema is loaded, not as an internal error once a repository sets the key."""
+        rule = self.trust.rule if self.trust is not None else None
+        if rule is not None and rule not in TRUST_RULES:
+            raise ValueError(f"config key {self.name!r}: unknown trust rule {rule!r} "
+                             f"(one of {', '.join(TRUST_RULES)})")
+        number = isinstance(self.default, (int, float)) and not isinstance(self.default, bool)
+        if rule == "at-most-default" and not number:
+            raise TypeError(f"config key {self.name!r}: trust 'at-most-default' compares with a "
+                            f"number default, and the default is {self.default!r} (use "
+                            "'ignore' for a key a repository may not set)")
+        if rule == "inside-repo" and not isinstance(self.default, dict):
+            raise TypeError(f"config key {self.name!r}: trust 'inside-repo' checks a table of "
+                            f"paths, and the default is {self.default!r}")
 
     @property
     def attr(self) -> str:
