@@ -385,9 +385,10 @@ def test_under_strace_the_server_opens_nothing_outside_repo_cache_temp_and_runti
     the temporary folder and the Python runtime (and the system's libraries and /proc,
     /dev, /sys); nothing in the secret folder is opened at all."""
     import os
-    import strace_opens
-    if not strace_opens.available():
-        pytest.skip("strace is not installed (apt-get install -y strace)")
+    import strace
+    why = strace.available()
+    if why:
+        pytest.skip(why)
     root, secret = _symlinked_repo(tmp_path)
     home, tmp = tmp_path / "home", tmp_path / "tmp"
     home.mkdir()
@@ -407,10 +408,10 @@ def test_under_strace_the_server_opens_nothing_outside_repo_cache_temp_and_runti
                 await s.call_tool("fix", {"paths": ["p"], "apply": True}),
                 await s.call_tool("render", {"paths": ["p"]}),
                 await s.call_tool("diff", {"base": "HEAD"})]
-    _, results = _serve(root, body, command=strace_opens.command(logs, []), env=env)
+    _, results = _serve(root, body, command=strace.command(logs, []), env=env)
     for r in results:
         assert SECRET not in _text(r), r
-    found = strace_opens.opens(logs)
+    found = strace.opens(logs)
     assert len({o.pid for o in found}) > 3 and any(o.opened and o.opened.startswith(
         str(root.resolve())) for o in found)    # the tree was traced, the repository read
     runtime = {sys.prefix, sys.base_prefix, sys.exec_prefix, os.path.dirname(sys.executable),
@@ -428,7 +429,7 @@ def test_under_strace_the_server_opens_nothing_outside_repo_cache_temp_and_runti
                "/etc/ssl", "/usr/lib/ssl", "/opt/pyca/cryptography/openssl"]
     leaks = [o for o in found if str(secret) in (o.opened or o.asked)]
     assert leaks == [], "\n".join(f"{o.pid}: {o.asked} -> {o.opened}" for o in leaks)
-    stray = strace_opens.outside(found, allowed)
+    stray = strace.outside(found, allowed)
     assert stray == [], "\n".join(f"{o.pid}: {o.asked} -> {o.opened}" for o in stray)
     codes = [_structured(r)["exit_code"] if not _is_error(r) or getattr(
         r, "structured_content", None) else "refused" for r in results]

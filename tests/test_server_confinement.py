@@ -248,7 +248,7 @@ def test_the_server_process_opens_nothing_outside_the_repository(tmp_path, sandb
     the cache, the (empty) home folder, the Python runtime and the system folders (a call
     that failed, like a worker's open that Landlock refused, opened nothing). With the OS
     sandbox off, the server's own process (its threads) still opens nothing there."""
-    from strace_lsp import TracedServer, opened_outside, trace_works
+    from strace_lsp import TracedServer, opened, opened_outside, trace_works
     if not trace_works(tmp_path):
         pytest.skip("strace cannot trace here (ptrace not permitted)")
     repo, secret = tmp_path / "repo", tmp_path / "secret"
@@ -287,6 +287,9 @@ def test_the_server_process_opens_nothing_outside_the_repository(tmp_path, sandb
     # nothing outside; its workers are then confined by check's own code alone (not here)
     bad = opened_outside(traces, [repo, cache, home], server_only=sandbox == "0")
     assert bad == [], "\n".join(bad)
+    # (and the trace was read: the server opened the repository's files)
+    assert any(path.startswith(str(repo.resolve())) for path, _ in opened(traces)), \
+        sorted(opened(traces))[:20]
     assert SECRET not in shown
     assert [d.message.split(":")[0] for d in outside] == ["not linted"]
 

@@ -17,32 +17,25 @@ from __future__ import annotations
 
 import os
 import re
-import shutil
 import site
-import subprocess
 import sys
 from pathlib import Path
 
 from lsprotocol import types
+
+import strace
 
 TRACED = "open,openat,openat2"
 FORKS = "clone,clone3,fork,vfork"   # traced too: which thread belongs to which process
 # what every Python process and git open: the kernel's and the system's files, never the user's
 SYSTEM = ("/proc", "/sys", "/dev", "/etc", "/usr", "/lib", "/lib32", "/lib64", "/bin",
           "/sbin", "/run")
-# a call and its result; ``-y`` decorates the descriptor returned with the path opened
-_CALL = re.compile(r"^(?:open|openat|openat2)\(.*\)\s+=\s+(?P<ret>-?\d+)(?:<(?P<fdpath>[^>]*)>)?")
 _FORK = re.compile(r"^(?P<call>clone3?|v?fork)\((?P<args>.*)\)\s+=\s+(?P<ret>\d+)")
 
 
 def trace_works(tmp: Path) -> bool:
     """Can strace trace a child here (ptrace may be forbidden in a container)?"""
-    if not shutil.which("strace"):
-        return False
-    p = subprocess.run(["strace", "-f", "-qq", "-e", f"trace={TRACED}", "-o", str(tmp / ".st"),
-                        "true"], capture_output=True)
-    (tmp / ".st").unlink(missing_ok=True)
-    return p.returncode == 0
+    return strace.available() is None
 
 
 def runtime_folders() -> list[str]:
@@ -75,19 +68,13 @@ def _threads(trace_dir: Path) -> tuple[dict, int | None]:
 
 
 def opened(trace_dir: Path, server_only: bool = False) -> list[tuple[str, str]]:
-    """(the real path the kernel opened, the trace line) of every successful traced call of
-    every thread (a refused or failed call read nothing); ``server_only``: of the threads of
-    the first process only (not a worker it forked, not git)."""
+    """(the real path the kernel opened, what to show of the call) of every successful traced
+    call of every thread (a refused or failed call read nothing; strace.opens parses the
+    logs); ``server_only``: of the threads of the first process only (not a worker it
+    forked, not git)."""
     process, first = _threads(trace_dir)
-    out = []
-    for f in sorted(trace_dir.iterdir()):
-        if server_only and process[int(f.name.rsplit(".", 1)[1])] != first:
-            continue
-        for line in f.read_text(errors="replace").splitlines():
-            m = _CALL.match(line)
-            if m and int(m.group("ret")) >= 0 and m.group("fdpath") is not None:
-                out.append((m.group("fdpath"), line))
-    return out
+    return [(o.opened, f"{o.pid}: {o.asked} -> {o.opened}") for o in strace.opens(trace_dir)
+            if o.opened and not (server_only and process.get(o.pid) != first)]
 
 
 def _below(path: str, folders) -> bool:
