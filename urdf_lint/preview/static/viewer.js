@@ -36,6 +36,7 @@
   camera.up.set(0, 0, 1);
   camera.position.set(1.6, 1.2, 1.1);
   const controls = new V.OrbitControls(camera, renderer.domElement);
+  state.camera = camera;
   scene.add(new V.HemisphereLight(0xffffff, 0x888888, 2.2));
   const sun = new V.DirectionalLight(0xffffff, 1.6);
   sun.position.set(3, 2, 5);
@@ -76,7 +77,9 @@
     if (REVIEW && inline.refused) { fail(inline.refused); return; }
     try {
       if (low.endsWith('.stl')) {
-        const mk = (g) => new V.Mesh(g, material || new V.MeshPhongMaterial());
+        // (many STL files carry zero normals: drawn black without these)
+        const mk = (g) => { g.computeVertexNormals();
+                            return new V.Mesh(g, material || new V.MeshPhongMaterial()); };
         if (inline) finish(mk(new V.STLLoader(manager).parse(b64ToBuffer(inline.data))));
         else new V.STLLoader(manager).load(path, (g) => finish(mk(g)), null, fail);
       } else if (low.endsWith('.dae')) {
