@@ -9,6 +9,7 @@ import os
 from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
+from urdf_lint.lsp.methods import preview
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
 from urdf_lint.lsp.state import Workspace
 
@@ -92,6 +93,7 @@ CONFIG_NAMES = ("pyproject.toml", ".urdf-lint.toml", "urdf-lint.toml")
 
 actions.register(server)
 features.register(server)
+preview.register(server)   # urdf-lint.preview: lsp/methods/preview.py
 
 
 def main() -> int:

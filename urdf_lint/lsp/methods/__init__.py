@@ -1,0 +1,1 @@
+"""One module per LSP method or command: a plain function of (server state, params)."""
