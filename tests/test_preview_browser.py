@@ -234,3 +234,119 @@ def test_docs_picture_of_r2d2(browser):
         DOCS_IMG.mkdir(parents=True, exist_ok=True)
         page.png().save(DOCS_IMG / "preview-r2d2.png")
         page.close()
+
+
+# -- the review page of `urdf-lint diff --html` --------------------------------------------------
+def _git(repo, *args):
+    import subprocess
+    subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *args], cwd=repo,
+                   check=True, capture_output=True)
+
+
+def _diff_html(repo: Path, out: Path) -> dict:
+    """``urdf-lint diff HEAD --html out --format json``: its JSON (the CLI, as CI runs it)."""
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-m", "urdf_lint", "diff", "HEAD", "--html", str(out),
+                        "--format", "json"], cwd=repo, capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode in (0, 1), r.stderr
+    return json.loads(r.stdout)
+
+
+def _json_changed_links(model: dict) -> set:
+    return {c["name"] for c in model["changes"] if c["kind"] == "link"} | \
+        {m["link"] for m in model["moved"]}
+
+
+def _open_review(browser, out: Path) -> Page:
+    page = Page(browser, "file://")
+    page.page.goto((out / "index.html").as_uri())
+    page.ready()
+    return page
+
+
+HIGHLIGHTED = """(() => { const out = new Set(); preview.robot.traverse(c => {
+    if (c.isMesh && !c.userData.collision && c.material.emissive &&
+        c.material.emissive.getHex() === 0xff1f8f) out.add(c.userData.link); });
+    return [...out].sort(); })()"""
+
+
+def test_the_review_page_opens_from_file_and_shows_the_changed_links(tmp_path, browser):
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    entry = make_robot(repo)
+    (repo / "secret.txt").unlink()
+    _git(repo, "init", "-q", ".")
+    _git(repo, "add", "-A")
+    _git(repo, "commit", "-qm", "base")
+    text = entry.read_text()
+    # the tool's joint moves up 10 cm (tool moves), base_link's visual moves
+    text = text.replace('<parent link="lower"/><child link="tool"/><origin xyz="0 0 0.4"/>',
+                        '<parent link="lower"/><child link="tool"/><origin xyz="0 0 0.5"/>')
+    text = text.replace('<link name="base_link">\n    <visual>',
+                        '<link name="base_link">\n    <visual><origin xyz="0.1 0 0"/>')
+    entry.write_text(text)
+    out = tmp_path / "review"
+    doc = _diff_html(repo, out)
+    [model] = doc["models"]
+    expected = _json_changed_links(model)
+    assert expected == {"base_link", "tool"}
+    page = _open_review(browser, out)
+    assert page.external == [] and page.errors == []
+    assert page.js("preview.robots.length") == 2          # base and head, overlaid
+    assert set(page.js("preview.data.variants[0].changed_links")) == expected
+    # highlighted in the scene: the changed links that have a mesh to tint (tool has none)
+    assert page.js(HIGHLIGHTED) == ["base_link"]
+    rows = page.js("[...document.querySelectorAll('#changes tr')].length")
+    assert rows == 1 + len(model["changes"]) + len(model["moved"])
+    # the sliders move both robots
+    page.slide("upper_joint", 0.7)
+    angles = page.js("preview.robots.map(r => r.joints.upper_joint.angle)")
+    assert angles[0] == angles[1] == pytest.approx(0.7, abs=0.01)
+    size = sum(f.stat().st_size for f in out.iterdir())
+    assert size < 2_000_000
+    page.close()
+
+
+@pytest.mark.skipif(not os.environ.get("URDF_LINT_DOCS_IMG"),
+                    reason="writes docs/img (URDF_LINT_DOCS_IMG=1)")
+@pytest.mark.skipif(not (CORPUS / "franka_description").is_dir(), reason="no corpus")
+def test_docs_review_page_of_two_corpus_robots(tmp_path, browser):
+    """A pull request to a copy of two corpus packages: franka's joint4 moves 2 cm (link4 and
+    everything after it move), robotiq's left knuckle 5 mm; the review page of both models,
+    each model's changed links equal to diff --format json's, one picture per model."""
+    import shutil
+    repo = tmp_path / "repo"
+    for pkg in ("franka_description", "robotiq_description"):
+        shutil.copytree(CORPUS / pkg, repo / pkg, symlinks=True)
+    _git(repo, "init", "-q", ".")
+    _git(repo, "add", "-A")
+    _git(repo, "commit", "-qm", "base")
+    arm = repo / "franka_description" / "robots" / "common" / "franka_arm.xacro"
+    arm.write_text(arm.read_text().replace('<origin rpy="${pi/2} 0 0" xyz="0.0825 0 0" />',
+                                           '<origin rpy="${pi/2} 0 0" xyz="0.1025 0 0" />', 1))
+    grip = repo / "robotiq_description" / "urdf" / "robotiq_2f_85_macro.urdf.xacro"
+    grip.write_text(grip.read_text().replace('<origin xyz="0.03060114 0.0 0.05490452"',
+                                             '<origin xyz="0.03560114 0.0 0.05490452"', 1))
+    out = tmp_path / "review"
+    doc = _diff_html(repo, out)
+    wanted = {"franka_description/robots/panda/panda.urdf.xacro": "review-panda.png",
+              "robotiq_description/urdf/robotiq_2f_85_gripper.urdf.xacro": "review-robotiq.png"}
+    page = _open_review(browser, out)
+    labels = page.js("preview.data.variants.map(v => v.label)")
+    by_label = {m["model"]: m for m in doc["models"]}
+    for i, label in enumerate(labels):
+        model = label.rsplit(" (", 1)[0]
+        assert set(page.js(f"preview.data.variants[{i}].changed_links")) == \
+            _json_changed_links(by_label[model])
+        if model in wanted:
+            page.js(f"""(() => {{ const s = document.getElementById('variant');
+                s.value = '{i}'; s.dispatchEvent(new Event('change')); }})()""")
+            page.page.wait_for_timeout(200)
+            page.ready()
+            page.page.wait_for_timeout(300)
+            DOCS_IMG.mkdir(parents=True, exist_ok=True)
+            page.png().save(DOCS_IMG / wanted[model])
+    assert page.errors == [] and page.external == []
+    page.close()

@@ -146,6 +146,13 @@ def build_scene(report: Any, findings: list[Any], resolver: Any, table: FileTabl
         return scene
     if mesh_base:
         model.mesh_base = mesh_base
+    fill_scene(scene, model, resolver, table)
+    return scene
+
+
+def fill_scene(scene: Scene, model: Any, resolver: Any, table: FileTable) -> None:
+    """The links and joints of ``model`` (where each was written), and its URDF with the
+    mesh and texture references renamed to the served names (``model.root`` is changed)."""
     for kind, items in (("link", model.root.iter("link")), ("joint", model.root.iter("joint"))):
         out = scene.links if kind == "link" else scene.joints
         for el in items:
@@ -154,7 +161,6 @@ def build_scene(report: Any, findings: list[Any], resolver: Any, table: FileTabl
                 out[el.get("name")] = [display_path(o.file), o.line]
     _serve_files(model, resolver, table, scene)
     scene.urdf = etree.tostring(model.root, encoding="unicode")
-    return scene
 
 
 def _serve_files(model: Any, resolver: Any, table: FileTable, scene: Scene) -> None:

@@ -36,15 +36,15 @@ CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' 
 LONG_POLL_S = 20.0
 
 
-def page_html(title: str, extra_head: str = "", scripts: tuple[str, ...] = (
-        "static/vendor.js", "static/viewer.js")) -> str:
+def page_html(title: str, scripts: tuple[str, ...] = ("static/vendor.js", "static/viewer.js"),
+              css: str = "static/viewer.css") -> str:
     from urdf_lint.core.escape import escape_html as html_text
     tags = "\n".join(f'<script src="{s}"></script>' for s in scripts)
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <meta name="referrer" content="no-referrer">
 <title>{html_text(title)}</title>
-<link rel="stylesheet" href="static/viewer.css">{extra_head}
+<link rel="stylesheet" href="{css}">
 </head><body>
 <div id="panel"><h1 id="title">{html_text(title)}</h1><div id="controls"></div>
 <div id="info"></div><div id="findings"></div></div>

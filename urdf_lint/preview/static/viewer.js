@@ -67,7 +67,8 @@
     return out.buffer;
   }
   function meshLoader(manager, material, path, done) {
-    const inline = REVIEW && REVIEW.files[path];
+    let inline = REVIEW && REVIEW.files[path];
+    if (inline && inline.same) inline = REVIEW.files[inline.same];   // (identical bytes)
     const fail = (err) => { state.loadErrors.push(path + ': ' + err); done(null, err); };
     const finish = (obj) => { done(obj); };
     const low = path.toLowerCase();
@@ -150,7 +151,7 @@
           n.transparent = true; n.opacity = 0.25; n.color = new V.Color(0x8a8f98);
           n.depthWrite = false;
         } else if (changed && changed.has(c.userData.link)) {
-          n.emissive = new V.Color(0xff7a00); n.emissiveIntensity = 0.55;
+          n.emissive = new V.Color(CHANGED); n.emissiveIntensity = 0.8;
         }
         if (state.highlight === 'link:' + c.userData.link && n.emissive) {
           n.emissive = new V.Color(0x0077ff); n.emissiveIntensity = 0.6;
@@ -187,6 +188,7 @@
     if (kind === 'joint') return robot.joints[name] || null;
     return null;
   }
+  const CHANGED = 0xff1f8f;   // the review page's changed links (pink: robots are often orange)
   const SEV = { error: 0xd62828, warning: 0xf59e0b, info: 0x2563eb };
   function addMarkers(robot, findings) {
     state.markers = [];
@@ -211,7 +213,7 @@
     lines.forEach((l) => info.appendChild(el('div', { text: l })));
   }
   function findingText(f) {
-    return `${f.code} ${f.name || ''}: ${f.message} (${f.file}:${f.line})`;
+    return `${f.code}${f.name ? ' ' + f.name : ''}: ${f.message} (${f.file}${f.line ? ':' + f.line : ''})`;
   }
 
   const ray = new V.Raycaster();
@@ -329,8 +331,8 @@
       state.ready = true;
       return;
     }
-    const first = !state.shown;
-    state.shown = true;
+    const first = state.framed !== state.variant;   // a new model: the camera frames it
+    state.framed = state.variant;
     const changed = new Set(v.changed_links || []);
     if (v.base_urdf) {
       const base = await loadRobot(v.base_urdf, { side: 'base' });
@@ -360,6 +362,8 @@
     t.appendChild(el('tr', {}, el('th', { text: 'element' }), el('th', { text: 'change' })));
     (v.changes || []).forEach((c) => t.appendChild(el('tr', {},
       el('td', { text: c.element }), el('td', { text: c.text }))));
+    box.appendChild(el('div', { class: 'note',
+      text: 'translucent grey: the base revision; pink: changed or moved links' }));
     box.appendChild(el('h2', { text: `${(v.changes || []).length} changes` }));
     box.appendChild(t);
     [['new findings', v.new_findings], ['fixed findings', v.fixed_findings]].forEach(([h, fs]) => {
