@@ -156,3 +156,48 @@ def test_bad_args_are_a_usage_error(tmp_path, bad):
     from urdf_lint.core.errors import UsageError
     with pytest.raises(UsageError):
         start(PreviewOptions(path=str(make_robot(tmp_path)), mappings=[bad]))
+
+
+def test_a_mesh_serves_its_own_textures_even_from_a_sibling_folder(tmp_path):
+    """A DAE naming ``../textures/skin.png`` is served one folder deep (``m/1/_/body.dae``), so
+    the browser asks for ``m/1/textures/skin.png``; a texture it names outside the package
+    roots is not served by any name."""
+    entry = make_robot(tmp_path, '<link name="body"><visual><geometry><mesh '
+                                 'filename="package://arm_description/meshes/body.dae"/>'
+                                 '</geometry></visual></link>')
+    pkg = entry.parent.parent
+    (pkg / "textures").mkdir()
+    (pkg / "textures" / "skin.png").write_bytes(b"\x89PNG skin")
+    (tmp_path / "secret.png").write_text("TOKEN=hunter2\n")
+    (pkg / "meshes" / "body.dae").write_text(
+        "<COLLADA><library_images><image id='a'><init_from>../textures/skin.png</init_from>"
+        "</image><image id='b'><init_from>../../secret.png</init_from></image>"
+        "</library_images></COLLADA>")
+    with serve(entry) as (server, _):
+        v = _state(server)["variants"][0]
+        assert 'filename="m/1/_/body.dae"' in v["urdf"]
+        t = server.token
+        assert get(server, f"/{t}/m/1/_/body.dae")[0] == 200
+        assert get(server, f"/{t}/m/1/textures/skin.png") == (200, b"\x89PNG skin")
+        for path in ("m/1/body.dae", "m/1/../secret.png", "m/1/secret.png", "m/1/_/../../secret.png",
+                     "m/0/textures/skin.png"):
+            status, body = get(server, f"/{t}/{path}")
+            assert status == 404 and b"hunter2" not in body, path
+
+
+def test_the_wheel_ships_every_file_of_the_page():
+    """Each file under urdf_lint/preview/static (the vendored bundle and its licences too)
+    matches pyproject's package data: the installed page has all its scripts."""
+    import fnmatch
+    import tomllib
+    from conftest import REPO
+    data = tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["setuptools"]
+    globs = data["package-data"]["urdf_lint.preview"]
+    assert "urdf_lint.preview" in data["packages"]
+    static = REPO / "urdf_lint" / "preview"
+    files = [p.relative_to(static).as_posix() for p in (static / "static").rglob("*")
+             if p.is_file()]
+    assert {"static/vendor/vendor.js", "static/vendor/LICENSE.three.txt",
+            "static/vendor/LICENSE.urdf-loader.txt", "static/viewer.js"} <= set(files)
+    for f in files:
+        assert any(fnmatch.fnmatch(f, g) for g in globs), f

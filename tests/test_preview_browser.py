@@ -350,3 +350,28 @@ def test_docs_review_page_of_two_corpus_robots(tmp_path, browser):
             page.png().save(DOCS_IMG / wanted[model])
     assert page.errors == [] and page.external == []
     page.close()
+
+
+@pytest.mark.skipif(not (CORPUS / "urdf_tutorial").is_dir(), reason="no corpus")
+def test_a_corpus_robot_with_textured_dae_meshes(browser):
+    """urdf_tutorial's 08-macroed (the ROS tutorial's R2D2-like robot): its PR2 gripper DAE
+    meshes load and their PNG textures are fetched through the page's token URLs."""
+    entry = CORPUS / "urdf_tutorial" / "urdf" / "08-macroed.urdf.xacro"
+    with serve(entry) as (server, session):
+        page = Page(browser, f"http://127.0.0.1:{server.port}/")
+        textures = []
+        page.page.on("response", lambda r: textures.append((r.url.rsplit("/", 1)[1], r.status))
+                     if r.url.endswith(".png") else None)
+        page.page.goto(server.url)
+        page.ready()
+        page.page.wait_for_timeout(1000)    # (textures load after the meshes)
+        assert page.js("preview.loadErrors") == [] and page.external == []
+        assert page.js("Object.keys(preview.robot.links).length") == \
+            len(session.scenes[0].links)
+        assert ("l_finger_color.png", 200) in textures
+        if os.environ.get("URDF_LINT_DOCS_IMG"):
+            page.js("document.getElementById('toggle-showFrames').click()")
+            page.slide("gripper_extension", -0.2)
+            page.page.wait_for_timeout(300)
+            page.png().save(DOCS_IMG / "preview-urdf-tutorial.png")
+        page.close()

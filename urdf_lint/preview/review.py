@@ -90,7 +90,7 @@ class ReviewPage:
         """Each file of the table not yet inlined, read now through the boundary (the base
         revision's files are gone once the diff returns)."""
         for i, served in enumerate(table.files):
-            name = f"m/{i}/{os.path.basename(served.path)}"
+            name = f"m/{i}/{served.name}"
             if name in self.files:
                 continue
             if served.refused:

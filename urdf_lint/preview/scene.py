@@ -9,6 +9,7 @@ the rules resolve them (``meshes.resolve``: inside the package roots, or not at 
 from __future__ import annotations
 
 import os
+import posixpath
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -30,7 +31,8 @@ class Served:
     kind: str                              # "mesh" | "texture"
     size: int = 0
     refused: str = ""                      # why it is not served (too big)
-    textures: dict[str, str] = field(default_factory=dict)   # relative name -> absolute path
+    textures: dict[str, str] = field(default_factory=dict)   # served name -> absolute path
+    name: str = ""                         # the name it is served by (below m/<index>/)
 
 
 @dataclass
@@ -52,8 +54,9 @@ class FileTable:
         if size > self.max_bytes:
             s.refused = (f"{display_path(path)} is {size / 1e6:.0f} MB, over the preview's "
                          f"{self.max_bytes >> 20} MB cap (--max-mesh-mb)")
+        s.name = os.path.basename(path)
         if kind == "mesh" and not s.refused:
-            s.textures = _textures_of(path, resolver)
+            s.name, s.textures = _textures_of(path, resolver)
         self.index[path] = len(self.files)
         self.files.append(s)
         return self.index[path]
@@ -64,23 +67,28 @@ class FileTable:
         if not 0 <= i < len(self.files):
             return None
         s = self.files[i]
-        if name == os.path.basename(s.path):
+        if name == s.name:
             return s
         return s.textures.get(name)
 
 
-def _textures_of(path: str, resolver: Any) -> dict[str, str]:
-    """The images (and MTL files) a DAE or OBJ names, by the relative name the mesh uses,
-    kept only when they resolve inside the package roots."""
+def _textures_of(path: str, resolver: Any) -> tuple[str, dict[str, str]]:
+    """(the mesh's served name, {served name: path} of the images and MTL files it names),
+    the references kept only when they resolve inside the package roots. A mesh whose
+    references climb out of its folder (``../textures/a.png``) is served that many folders
+    deep (``_/_/mesh.dae``), so that the browser's resolution of the relative name stays below
+    ``m/<index>/``."""
     from urdf_lint.meshes.resolve import texture_refs
     base = os.path.dirname(path)
-    out = {}
+    rels = {}
     for ref in texture_refs(path):
         if resolver is not None and not resolver.is_inside(ref):
             continue
-        rel = os.path.relpath(ref, base).replace(os.sep, "/")
-        out[rel] = ref
-    return out
+        rels[os.path.relpath(ref, base).replace(os.sep, "/")] = ref
+    depth = max((r.split("/").count("..") for r in rels), default=0)
+    pad = "_/" * depth
+    out = {posixpath.normpath(pad + r): ref for r, ref in rels.items()}
+    return pad + os.path.basename(path), out
 
 
 @dataclass
@@ -183,4 +191,4 @@ def _serve_files(model: Any, resolver: Any, table: FileTable, scene: Scene) -> N
         served = table.files[i]
         if served.refused:
             scene.notes.append(served.refused)
-        el.set("filename", f"m/{i}/{os.path.basename(ref.path)}")
+        el.set("filename", f"m/{i}/{served.name}")
