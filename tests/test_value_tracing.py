@@ -216,4 +216,43 @@ def test_a_value_from_an_arg_default_names_the_arg_line(tmp_path):
     (pkg / "urdf-lint.toml").write_text(
         '[[models]]\npath = "urdf/arg.urdf.xacro"\nargs = [{lower = "2"}]\n')
     (f,) = _ul302(_lint(pkg))
-    assert f["value_from"][1] == 4, f          # lower is passed; upper is still its default
+    # lower is passed: it names the config's line (the next test); upper is still its default
+    assert f["value_from"] == ["urdf-lint.toml", 3, 10], f
+
+
+# the forms a [[models]] entry sets args in, and the line and column ``lower`` is set at
+CONFIG_FORMS = {
+    "urdf-lint.toml": ('# variants\n[[models]]\npath = "urdf/arg.urdf.xacro"\n'
+                       'args = { lower = "2", upper = "-2" }\n', 4, 10),
+    "pyproject.toml": ('[project]\nname = "x"\n\n[[tool.urdf-lint.models]]\n'
+                       'path = "urdf/arg.urdf.xacro"\n\n[tool.urdf-lint.models.args]\n'
+                       'upper = "-2"\n"lower" = "2"\n', 9, 1),
+}
+
+
+def test_a_value_from_a_passed_arg_names_the_config_line(tmp_path):
+    """A limit written as ``$(arg lower)`` that a [[models]] entry passes is located at the
+    config line that sets it, inline or as a sub-table, in JSON and text; ``--fix`` does not
+    write into the config."""
+    for name, (config, line, col) in CONFIG_FORMS.items():
+        pkg = make_package(tmp_path / name.split(".")[0], PKG,
+                           {"urdf/arg.urdf.xacro": ARG_BOT})
+        (pkg / name).write_text(config)
+        (f,) = _ul302(_lint(pkg))
+        assert f["value_from"] == [name, line, col], f
+        text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
+        assert f"value from {name}:{line}" in text, text
+        run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+        assert (pkg / name).read_text() == config
+
+
+def test_each_arg_set_of_a_list_names_its_own_table():
+    """``args = [{...}, {...}]`` over several lines: the n-th set's arg is the n-th table's."""
+    from urdf_lint.config.places import arg_places
+    text = ('[[models]]\npath = "a.xacro"\n\n[[models]]\npath = "b.xacro"\nargs = [\n'
+            '  {lower = "1"},  # first\n  {upper = "0", lower = "2"},\n]\n[format]\n')
+    sets = [{"lower": "1"}, {"upper": "0", "lower": "2"}]
+    got = arg_places("/r/urdf-lint.toml", text, 1, sets)
+    assert got == [{"lower": ("/r/urdf-lint.toml", 7, 4)},
+                   {"upper": ("/r/urdf-lint.toml", 8, 4), "lower": ("/r/urdf-lint.toml", 8, 17)}]
+    assert arg_places("/r/urdf-lint.toml", text, 0, [{"lower": "1"}]) == [{}]

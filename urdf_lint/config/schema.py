@@ -462,6 +462,9 @@ class ModelSpec:
     arg_sets: list[Any]             # list of dicts
     output: str | None = None       # absolute: the generated URDF written from this xacro
     mesh_base: str | None = None    # absolute: where relative mesh paths start
+    # per arg set, where this config file sets each arg ({name: (file, line, col)}): a value
+    # that comes from a passed arg is located there (:mod:`urdf_lint.config.places`)
+    arg_places: list[dict[str, tuple[str, int, int]]] = field(default_factory=list)
 
 
 def _default(name: str) -> Any:
@@ -517,6 +520,18 @@ class Config:
 
 
 # -- reading files ----------------------------------------------------------------------------
+def _arg_places(cfg: Config, entry: int, arg_sets: list[Any]) -> list[dict[str, Any]]:
+    """Where the config file sets each arg of the ``entry``-th ``[[models]]`` entry."""
+    from urdf_lint.config.places import arg_places
+    if not cfg.path or not os.path.isfile(cfg.path):
+        return [{} for _ in arg_sets]
+    try:
+        text = _read_config(Path(cfg.path))
+    except (OSError, UnicodeDecodeError):
+        return [{} for _ in arg_sets]
+    return arg_places(os.path.abspath(cfg.path), text, entry, arg_sets)
+
+
 def _read_config(path: Path) -> str:
     """The text of a config file: a regular file (never a FIFO or device), bounded."""
     from urdf_lint.core import fsbound
@@ -656,8 +671,9 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = {k: str((base / v).resolve()) for k, v in value.items()}
     elif key.name == "models":
         specs = []
-        for m in value:
-            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
+        for n, m in enumerate(value):
+            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"],
+                             arg_places=_arg_places(cfg, n, m["args"]))
             for k in ("output", "mesh-base"):
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))

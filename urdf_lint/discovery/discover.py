@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -250,8 +250,13 @@ def _recorded_args(detected: dict, resolver=None) -> dict:
 
 def _configured_jobs(spec, detected=(), recorded=None, graph=None) -> list:
     """One job per arg set of a models entry (see :func:`_variant_jobs`)."""
-    return _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
+    jobs = _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
                          spec.mesh_base, detected, recorded or {}, graph)
+    places = list(getattr(spec, "arg_places", None) or [])
+    for n, job in enumerate(jobs[:len(places)]):   # (the configured sets come first)
+        if places[n]:
+            jobs[n] = replace(job, arg_origins=tuple(sorted(places[n].items())))
+    return jobs
 
 
 def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,

@@ -208,7 +208,8 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
                 return None
         from urdf_lint.expansion import expand_file
         exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
-                          expr_policy=settings.expr_policy, env_set=settings.env_set)
+                          expr_policy=settings.expr_policy, env_set=settings.env_set,
+                          arg_origins=dict(job.arg_origins))
         out.env = dict(exp.env)
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)

@@ -266,6 +266,8 @@ def traced_scalar(model, src, el, attr: str):
     if not got or got[1]:
         return None
     (file, line, col), _ = got
+    if str(file).endswith((".toml", ".xacro", ".urdf")):
+        return None      # an arg set in the config or at its <xacro:arg>: not a YAML scalar
     node = _yaml_node_at(src.get(file), line, col)
     return (file, node) if node is not None else None
 

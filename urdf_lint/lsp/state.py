@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import re
 import threading
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
@@ -182,9 +182,7 @@ class Workspace:
                 if hit is not None and not _reads_buffer(hit, self.buffers):
                     self.reports[job_key(job)] = hit
                 else:
-                    todo.append(LintJob(job.entry, job.args, job.kind, job.explicit,
-                                        job.display_name, job.output, job.mesh_base,
-                                        overlay=overlay))
+                    todo.append(replace(job, overlay=overlay))
             if todo:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
@@ -192,8 +190,7 @@ class Workspace:
                     if self.facts is not None:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
-                        plain = LintJob(job.entry, job.args, job.kind, job.explicit,
-                                        job.display_name, job.output, job.mesh_base)
+                        plain = replace(job, overlay=())
                         self.cache.put(plain, self.settings, rep)
             self.findings = self._finish()
             return before | {f.file for f in self.findings}
