@@ -337,7 +337,12 @@ def collada_arrays(data: bytes):
         for node in c.scene.nodes:
             if not _collada_node(node, _EYE4, parts, materials):
                 return None
-        if not parts or len(parts) < data.count(b"<instance_geometry"):
+        want = data.count(b"<instance_geometry")
+        if parts and len(parts) < want:   # (a mesh of lines alone gives no part, in trimesh too)
+            from lxml import etree
+            want -= _line_only_instances(etree.fromstring(data, etree.XMLParser(
+                resolve_entities=False, no_network=True, load_dtd=False, huge_tree=True)))
+        if not parts or len(parts) < want:
             return None
         return _assemble(parts)
     except Exception:  # noqa: BLE001 - trimesh decides (and says what is wrong)
@@ -647,10 +652,30 @@ def collada_arrays_lean(data: bytes):
     try:
         root = etree.fromstring(data, parser)
         got = _lean(root)
-        # (as collada_arrays: an instance that gives no triangle set: trimesh decides)
-        return got if got is None or got[2] >= data.count(b"<instance_geometry") else None
+        # (as collada_arrays: an instance that gives no triangle set: trimesh decides; but a
+        # geometry of lines alone gives none in trimesh either, without error)
+        want = data.count(b"<instance_geometry") - _line_only_instances(root)
+        return got if got is None or got[2] >= want else None
     except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
         return None
+
+
+_LINES = frozenset(("lines", "linestrips"))
+
+
+def _line_only_instances(root) -> int:
+    """How many ``<instance_geometry>`` name a mesh of line primitives alone (a sensor's
+    outline): trimesh's COLLADA loader makes no mesh of them."""
+    byid = {el.get("id"): el for el in root.iter() if el.get("id") is not None}
+    n = 0
+    for inst in root.iter():
+        if _local(inst) != "instance_geometry":
+            continue
+        geom = byid.get((inst.get("url") or "#")[1:])
+        kinds = {_local(p) for m in (geom if geom is not None else ()) if _local(m) == "mesh"
+                 for p in m if isinstance(p.tag, str)} - {"source", "vertices", "extra"}
+        n += bool(kinds) and kinds <= _LINES
+    return n
 
 
 def _lean(root):
