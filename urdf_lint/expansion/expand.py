@@ -261,10 +261,18 @@ def _hook_abs_filename_spec(filename_spec):
     spec = str(filename_spec)
     st = CURRENT.get()
     if spec.startswith("package://") and st is not None:
-        return str(st.resolver.resolve_uri(spec, None))
+        spec = str(st.resolver.find(spec[len("package://"):].partition("/")[0]) /
+                   spec[len("package://"):].partition("/")[2])
     if spec.startswith("file://"):
         spec = spec[len("file://"):]
-    return _orig["abs_filename_spec"](spec)
+    path = _orig["abs_filename_spec"](spec)
+    if st is not None and not any(c in path for c in "*?["):
+        # a path the package's build installs from another folder of its source tree
+        mapped, via = st.resolver.installed(path)
+        if via is not None:
+            st.deps[via] = None
+            return mapped
+    return path
 
 
 def _hook_eval_all(node, macros, symbols):
