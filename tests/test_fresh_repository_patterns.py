@@ -138,3 +138,23 @@ def test_an_include_built_from_an_empty_arg_names_it(tmp_path):
         "robots/gen3.xacro": KORTEX, "arms/gen3/7dof/urdf/macro.xacro": "<robot/>\n"})
     (f,) = [f for f in _lint(pkg) if f["code"] == "UL003"]
     assert "args left empty: dof;" in f["message"], f["message"]
+
+
+HAND = """<?xml version="1.0"?>
+<robot name="hand">
+  <link name="palm">
+    <visual><geometry><mesh filename="meshes/palm.STL"/></geometry></visual>
+  </link>
+</robot>
+"""
+
+
+def test_a_relative_mesh_found_a_folder_up_says_where(tmp_path):
+    """unitree's hand URDFs write ``meshes/x.STL`` in a folder below the package's meshes: the
+    error stays (relative to the URDF there is no file) and says where the file is and which
+    key decides."""
+    pkg = make_package(tmp_path, "g1_description", {
+        "hands/hand.urdf": HAND, "meshes/palm.STL": STL})
+    (f,) = [f for f in _lint(pkg) if f["code"] == "UL401"]
+    assert "a file of that name is at meshes/palm.STL" in f["message"], f["message"]
+    assert "set mesh-base" in f["message"] and f["severity"] == "error"
