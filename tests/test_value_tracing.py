@@ -256,3 +256,29 @@ def test_each_arg_set_of_a_list_names_its_own_table():
     assert got == [{"lower": ("/r/urdf-lint.toml", 7, 4)},
                    {"upper": ("/r/urdf-lint.toml", 8, 4), "lower": ("/r/urdf-lint.toml", 8, 17)}]
     assert arg_places("/r/urdf-lint.toml", text, 0, [{"lower": "1"}]) == [{}]
+
+
+def test_the_real_franka_names_its_yaml_line(tmp_path):
+    """franka_description (the corpus's copy): the limits macro reads
+    ``limits = config[name]['limit']`` and writes ``${limits.lower}``; a swapped limit in
+    ``robots/fr3/joint_limits.yaml`` is reported with that file's line, and --fix swaps the
+    two scalars there."""
+    import shutil
+    import pytest
+    from conftest import CORPUS
+    src = CORPUS / "franka_description"
+    if not (src / "robots/fr3/joint_limits.yaml").is_file():
+        pytest.skip("../shared/corpus is not present")
+    pkg = tmp_path / "franka_description"
+    shutil.copytree(src, pkg)
+    limits = pkg / "robots/fr3/joint_limits.yaml"
+    good = limits.read_text()
+    limits.write_text(good.replace("lower:      -2.3093\n    upper:       2.3093",
+                                   "lower:      2.3093\n    upper:       -2.3093", 1))
+    (pkg / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "robots/fr3/fr3.urdf.xacro"\n')
+    found = _ul302(_lint(pkg))
+    assert found and all(f["value_from"][:2] == ["robots/fr3/joint_limits.yaml", 3]
+                         for f in found), found
+    run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert limits.read_text() == good
