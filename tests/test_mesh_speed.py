@@ -820,3 +820,17 @@ def test_the_corpus_is_linted_without_importing_trimesh():
     out = subprocess.run([sys.executable, "-c", code, str(CORPUS / "turtlebot3_description")],
                          capture_output=True, text=True, check=True).stdout.split()
     assert int(out[0]) > 0 and out[1] == "False", out
+
+
+def test_mass_properties_are_trimeshs_bits_across_blocks():
+    """The block-wise integrals (contiguous coordinate rows) give trimesh's volume, centre of
+    mass and inertia to the last bit, for sizes below, at and across a block's end."""
+    import trimesh.triangles
+    from urdf_lint.meshes import readers
+    rng = np.random.default_rng(7)
+    for n in (1, 3, readers._CHUNK, readers._CHUNK + 1, 2 * readers._CHUNK + 5):
+        t = rng.normal(size=(n, 3, 3)) * 10 ** rng.uniform(-3, 3)
+        want = trimesh.triangles.mass_properties(t, skip_inertia=False)
+        vol, com, inertia = readers.mass_properties(t)
+        assert vol == want["volume"], n
+        assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"]), n

@@ -153,28 +153,50 @@ def scale_points(v, unit: float):
 _DIVISORS = np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
 
 
+_CHUNK = 1 << 15      # triangles per block: the temporaries of a block stay in the CPU's cache
+
+
 def _integrals(t) -> np.ndarray:
     """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of each of (n, 3, 3)
     float64 triangles, shape (10, n): ``trimesh.triangles.mass_properties``' formulas, in its
-    order of operations (its cross product of (p1 - p0) and (p2 - p1) included)."""
-    vectors = t[:, 1:, :] - t[:, :2, :]
-    crosses = np.cross(vectors[:, 0], vectors[:, 1])
-    p0, p1, p2 = t[:, 0, :], t[:, 1, :], t[:, 2, :]
+    order of operations (its cross product of (p1 - p0) and (p2 - p1) included), so the same
+    bits. Computed block by block on coordinate rows (every operation on contiguous memory,
+    about twice as fast); the per-triangle values do not depend on the blocks, and the caller
+    sums whole rows as trimesh does."""
+    n = len(t)
+    out = np.empty((10, n))
+    for s in range(0, n, _CHUNK):
+        e = min(n, s + _CHUNK)
+        _block_integrals(np.ascontiguousarray(np.asarray(t[s:e]).transpose(1, 2, 0)),
+                         out[:, s:e])
+    return out
+
+
+def _block_integrals(T: np.ndarray, out: np.ndarray) -> None:
+    """:func:`_integrals` of one block ``T`` (3 vertices, 3 coordinates, m) into ``out``."""
+    p0, p1, p2 = T[0], T[1], T[2]
+    v0, v1 = p1 - p0, p2 - p1
+    # np.cross(v0, v1), as numpy computes it: a1*b2 - a2*b1, a2*b0 - a0*b2, a0*b1 - a1*b0
+    c0 = v0[1] * v1[2]
+    c0 -= v0[2] * v1[1]
+    c1 = v0[2] * v1[0]
+    c1 -= v0[0] * v1[2]
+    c2 = v0[0] * v1[1]
+    c2 -= v0[1] * v1[0]
+    crosses = (c0, c1, c2)
     f1 = p0 + p1 + p2
     f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
     f3 = (p0 ** 3) + (p0 ** 2) * p1 + p0 * (p1 ** 2) + (p1 ** 3) + (p2 * f2)
     g0 = f2 + (p0 + f1) * p0
     g1 = f2 + (p1 + f1) * p1
     g2 = f2 + (p2 + f1) * p2
-    integral = np.zeros((10, len(f1)))
-    integral[0] = crosses[:, 0] * f1[:, 0]
-    integral[1:4] = (crosses * f2).T
-    integral[4:7] = (crosses * f3).T
+    out[0] = c0 * f1[0]
     for i in range(3):
-        j = np.mod(i + 1, 3)
-        integral[i + 7] = crosses[:, i] * ((t[:, 0, j] * g0[:, i]) + (t[:, 1, j] * g1[:, i])
-                                           + (t[:, 2, j] * g2[:, i]))
-    return integral
+        out[1 + i] = crosses[i] * f2[i]
+        out[4 + i] = crosses[i] * f3[i]
+    for i in range(3):
+        j = (i + 1) % 3
+        out[i + 7] = crosses[i] * ((p0[j] * g0[i]) + (p1[j] * g1[i]) + (p2[j] * g2[i]))
 
 
 def volume_integrals(tris) -> np.ndarray:
