@@ -1,0 +1,113 @@
+"""The editor's rough edges (issue 36, item 5), each in this process on a workspace written
+in tmp_path: the server object with its Workspace, its features called as the protocol
+handlers call them (the workers lint in their sandbox, as for the editor)."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pygls")
+from lsprotocol import types  # noqa: E402
+
+from conftest import make_package  # noqa: E402
+
+X = 'xmlns:xacro="http://wiki.ros.org/xacro"'
+
+
+def _server(root: Path, monkeypatch, tmp_path: Path):
+    from urdf_lint.lsp.core import UrdfLintServer
+    from urdf_lint.lsp.state import Workspace
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    ls = UrdfLintServer()
+    ls.ws = Workspace(str(root), pool_size=1)
+    return ls
+
+
+def _open(ls, path: Path, text: str | None = None) -> str:
+    p = os.path.realpath(path)
+    ls.ws.buffers[p] = (path.read_text() if text is None else text).encode()
+    return p
+
+
+def _at(path: Path, needle: str, delta: int = 0) -> types.Position:
+    """The LSP position of the first ``needle`` in the file (plus ``delta`` characters)."""
+    text = path.read_text()
+    i = text.index(needle) + delta
+    return types.Position(text.count("\n", 0, i), i - (text.rfind("\n", 0, i) + 1))
+
+
+# -- (b) a pyproject.toml that does not parse ----------------------------------------------------
+ROBOT = ('<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/>\n  <link name="b"/>\n'
+         '  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+         '<axis xyz="0 0 2"/>\n    <limit lower="0" upper="1" effort="1" velocity="1"/>'
+         '</joint>\n</robot>\n')
+GOOD_TOML = '[project]\nname = "r"\n\n[tool.urdf-lint]\nfail-on = "error"\n'
+
+
+def test_a_pyproject_that_does_not_parse_is_one_diagnostic_and_linting_resumes(
+        tmp_path, monkeypatch):
+    """A ``pyproject.toml`` with an unterminated string (line 5): the workspace still loads,
+    the config file holds one diagnostic at the TOML error's line, the models are linted with
+    the defaults; once the file is fixed and saved (the server reloads), the diagnostic is gone
+    and linting goes on."""
+    pkg = make_package(tmp_path, "r", {"urdf/r.urdf": ROBOT,
+                                       "pyproject.toml": GOOD_TOML.replace('"error"', '"error')})
+    ls = _server(pkg, monkeypatch, tmp_path)
+    toml = os.path.realpath(pkg / "pyproject.toml")
+    model = _open(ls, pkg / "urdf" / "r.urdf")
+    try:
+        ds = ls.diagnostics(toml)
+        assert len(ds) == 1, ds
+        (d,) = ds
+        assert d.code == "config" and d.range.start.line == 4, d
+        assert "invalid TOML" in d.message
+        ls.ws.lint()
+        assert "UL307" in [d.code for d in ls.diagnostics(model)]
+        (pkg / "pyproject.toml").write_text(GOOD_TOML)
+        ls.ws.load()   # what the server does on saving a config file
+        ls.ws.start()
+        ls.ws.lint()
+        assert ls.diagnostics(toml) == []
+        assert "UL307" in [d.code for d in ls.diagnostics(model)]
+    finally:
+        ls.ws.close()
+
+
+# -- (c) findings grouped as check groups them -------------------------------------------------
+MACROS = (f'<?xml version="1.0"?>\n<robot {X}>\n'
+          '  <xacro:macro name="finger" params="n parent">\n'
+          '    <link name="${n}"/>\n'
+          '    <joint name="${n}_j" type="revolute"><parent link="${parent}"/>'
+          '<child link="${n}"/><axis xyz="0 0 2"/>\n'
+          '      <limit lower="0" upper="1" effort="1" velocity="1"/></joint>\n'
+          '  </xacro:macro>\n</robot>\n')
+HAND = (f'<?xml version="1.0"?>\n<robot name="hand" {X}>\n'
+        '  <xacro:include filename="fingers.xacro"/>\n  <link name="palm"/>\n'
+        '  <xacro:finger n="f1" parent="palm"/>\n'
+        '  <xacro:finger n="f2" parent="palm"/>\n'
+        '  <xacro:finger n="f3" parent="palm"/>\n</robot>\n')
+
+
+def test_a_macro_line_wrong_in_three_calls_is_one_diagnostic_naming_them(tmp_path, monkeypatch):
+    """The axis written once in a macro called three times: one diagnostic at that line (as
+    ``check`` counts it), its three joints in the message, each call site as related
+    information."""
+    pkg = make_package(tmp_path, "hand", {"urdf/fingers.xacro": MACROS,
+                                          "urdf/hand.urdf.xacro": HAND})
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        lib = _open(ls, pkg / "urdf" / "fingers.xacro")
+        ls.ws.lint()
+        ds = [d for d in ls.diagnostics(lib) if d.code == "UL307"]
+        assert len(ds) == 1, ds
+        (d,) = ds
+        assert d.range.start.line == 4
+        assert "in 3 joints: f1_j, f2_j, f3_j" in d.message, d.message
+        calls = sorted(r.location.range.start.line for r in d.related_information or ())
+        assert calls == [4, 5, 6], d.related_information
+        assert all(r.location.uri == (pkg / "urdf" / "hand.urdf.xacro").resolve().as_uri()
+                   for r in d.related_information)
+    finally:
+        ls.ws.close()
