@@ -43,14 +43,17 @@ SUFFIXES = (".urdf", ".xacro")
 def style_of(cfg, args=None) -> Style:
     """The layout settings: ``[tool.urdf-lint.format]``, then the command line."""
     from urdf_lint.config.schema import FORMAT_KEYS, format_option
-    opts = {k: FORMAT_KEYS[k].default for k in ("indent", "line-length", "attribute-order")}
+    opts = {k: FORMAT_KEYS[k].default for k in STYLE_KEYS}
     opts.update({k: v for k, v in cfg.format_options.items() if k in opts})
     for k in opts:
         given = getattr(args, k.replace("-", "_"), None) if args is not None else None
         if given is not None:
             opts[k] = format_option(k, given)
-    return Style(indent=opts["indent"], line_length=opts["line-length"],
-                 attribute_order=opts["attribute-order"])
+    return Style(**{k.replace("-", "_"): v for k, v in opts.items()})
+
+
+# the [tool.urdf-lint.format] keys that are Style's fields (each also a flag of format)
+STYLE_KEYS = ("indent", "line-length", "attribute-order", "self-closing")
 
 
 @dataclass
