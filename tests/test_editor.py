@@ -111,3 +111,92 @@ def test_a_macro_line_wrong_in_three_calls_is_one_diagnostic_naming_them(tmp_pat
                    for r in d.related_information)
     finally:
         ls.ws.close()
+
+
+# -- (g) formatting through the language server ------------------------------------------------
+def _apply(text: str, edits) -> str:
+    """``text`` with LSP text edits applied (ASCII text: characters are UTF-16 units)."""
+    lines = text.split("\n")
+
+    def off(p):
+        return sum(len(ln) + 1 for ln in lines[:p.line]) + p.character
+    for e in sorted(edits, key=lambda e: off(e.range.start), reverse=True):
+        text = text[:off(e.range.start)] + e.new_text + text[off(e.range.end):]
+    return text
+
+
+UGLY = (f'<?xml version="1.0"?>\n<robot name="r" {X}>\n<xacro:property name="w" value="0.1" />\n'
+        '<link name="base"><visual><geometry><box size="${w} ${w} ${w}" /></geometry></visual>'
+        '</link>\n<link name="tip" />\n<joint name="j" type="fixed"><parent link="base"/>'
+        '<child link="tip" /></joint>\n</robot>\n')
+NS_MACRO = (f'<robot {X}>\n<xacro:macro name="ns"><gazebo><plugin name="p" filename="x.so">'
+            '<robotNamespace><xacro:if value="1">/arm</xacro:if></robotNamespace>'
+            '</plugin></gazebo></xacro:macro>\n</robot>\n')
+
+
+def _fmt_params(path: Path, rng=None):
+    doc = types.TextDocumentIdentifier(uri=path.resolve().as_uri())
+    opts = types.FormattingOptions(tab_size=8, insert_spaces=False)
+    if rng is None:
+        return types.DocumentFormattingParams(text_document=doc, options=opts)
+    return types.DocumentRangeFormattingParams(text_document=doc, range=rng, options=opts)
+
+
+def test_formatting_lays_out_the_unsaved_buffer_as_format_does(tmp_path, monkeypatch):
+    """``textDocument/formatting`` on an unsaved buffer (the file on disk is another text):
+    its edits make the buffer what ``urdf-lint format`` makes of it, in the repository's
+    style (indent 4 from the config, not the editor's tab size) and the file's own `` />``;
+    a buffer laid out already gets no edit."""
+    from urdf_lint.formatting.layout import Style, format_source
+    from urdf_lint.lsp.methods import formatting
+    pkg = make_package(tmp_path, "r", {"urdf/r.urdf.xacro": "<robot/>\n",
+                                       "urdf-lint.toml": "[format]\nindent = 4\n"})
+    f = pkg / "urdf" / "r.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, f, UGLY)
+        got = _apply(UGLY, formatting.handle(ls.ws, _fmt_params(f)))
+        assert got == format_source(UGLY.encode(), Style(indent=4)).decode()
+        assert '\n    <link name="tip" />\n' in got and '<parent link="base" />' in got, got
+        assert f.read_text() == "<robot/>\n"   # nothing written
+        _open(ls, f, got)
+        assert formatting.handle(ls.ws, _fmt_params(f)) == []
+    finally:
+        ls.ws.close()
+
+
+def test_range_formatting_changes_only_the_lines_asked_for(tmp_path, monkeypatch):
+    from urdf_lint.lsp.methods import range_formatting
+    pkg = make_package(tmp_path, "r", {"urdf/r.urdf.xacro": UGLY})
+    f = pkg / "urdf" / "r.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, f)
+        rng = types.Range(types.Position(3, 0), types.Position(3, 5))   # the base link's line
+        edits = range_formatting.handle(ls.ws, _fmt_params(f, rng))
+        got = _apply(UGLY, edits)
+        old, new = UGLY.split("\n"), got.split("\n")
+        assert new[:3] == old[:3] and new[-4:] == old[-4:], got   # the rest as it was
+        assert new[3:8] == ['  <link name="base">', '    <visual>', '      <geometry>',
+                            '        <box size="${w} ${w} ${w}" />', '      </geometry>'], got
+    finally:
+        ls.ws.close()
+
+
+def test_formatting_that_would_change_the_robot_is_refused_with_the_proof(tmp_path, monkeypatch):
+    """The text of ``<robotNamespace>`` comes from an ``xacro:if`` in it: laying it out would
+    change the expanded robot. Format's proof expands the model that reads it (in the
+    server's workers, with the buffers) and the request is refused, saying why."""
+    from urdf_lint.lsp.methods import Refused, formatting
+    main = UGLY.replace("</robot>", '<xacro:include filename="ns.xacro"/><xacro:ns/>\n</robot>')
+    pkg = make_package(tmp_path, "r", {"urdf/r.urdf.xacro": main, "urdf/ns.xacro": "<robot/>"})
+    ns = pkg / "urdf" / "ns.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, ns, NS_MACRO)   # unsaved: only the buffer holds the macro
+        with pytest.raises(Refused) as e:
+            formatting.handle(ls.ws, _fmt_params(ns))
+        assert "would change the robot" in e.value.reason and "robotNamespace" in e.value.reason
+        assert e.value.to_response_error().code == -32803   # LSP's RequestFailed
+    finally:
+        ls.ws.close()
