@@ -349,6 +349,44 @@ def test_neovim_receives_the_diagnostics(ur, tmp_path):
     assert any(d["code"] == "UL401" and d["lnum"] == 83 and d["col"] == 10 for d in got)
 
 
+@pytest.mark.skipif(not shutil.which("nvim"), reason="nvim is not installed (apt: neovim)")
+def test_neovim_runs_one_server_per_workspace_with_yaml_and_each_diagnostic_once(ur, tmp_path):
+    """The documented Neovim set-up (docs/editors.md: the plugin in init.lua) with three files
+    of one workspace open, two xacro files (one named ``*.urdf.xacro``) and a YAML file the
+    models load: exactly one server process, every buffer attached to it (the YAML file
+    too), and each diagnostic once in Neovim (the old set-up started one server per file,
+    two for a ``*.urdf.xacro``, none for YAML, and showed each diagnostic once per server)."""
+    import json
+    import subprocess
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    macro.write_text("\n".join(lines))
+    model = ur / "urdf" / "ur10.urdf.xacro"
+    (ur / "urdf" / "ur10.xacro").rename(model)
+    yaml = ur / "config" / "ur10" / "joint_limits.yaml"
+    init = tmp_path / "init.lua"
+    init.write_text(f'vim.g.urdf_lint_cmd = {{ "{sys.executable}", "-m", "urdf_lint", "server" }}\n'
+                    f'dofile("{REPO / "editors" / "neovim" / "urdf_lint.lua"}")\n')
+    out = tmp_path / "nvim.json"
+    env = dict(os.environ, URDF_LINT_NVIM_OUT=str(out), URDF_LINT_NVIM_WANT="UL307")
+    subprocess.run(["nvim", "--headless", "-u", str(init), "-i", "NONE", "-n", "-p",
+                    str(macro), str(model), str(yaml),
+                    "-c", f"luafile {REPO / 'tests' / 'support' / 'nvim_workspace_probe.lua'}"],
+                   cwd=ur, env=env, timeout=150, stdin=subprocess.DEVNULL,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    got = json.loads(out.read_text())
+    assert len(got["servers"]) == 1, got["servers"]
+    assert got["clients"] == 1, got
+    bufs = {os.path.realpath(b["name"]): b for b in got["buffers"]}
+    for f in (macro, model, yaml):
+        assert len(bufs[os.path.realpath(f)]["clients"]) == 1, (f, bufs)
+    diags = [(name, d["lnum"], d["col"], d["code"], d["message"])
+             for name, b in bufs.items() for d in b["diagnostics"]]
+    assert diags and len(diags) == len(set(diags)), sorted(diags)
+    assert any(d[3] == "UL307" and d[1] == 236 for d in diags), diags
+
+
 @pytest.mark.skipif(not shutil.which("npm"), reason="npm is not installed")
 def test_the_vscode_client_builds(tmp_path):
     """editors/vscode compiles with its locked dependencies (vscode-languageclient) into an
