@@ -200,3 +200,59 @@ def test_formatting_that_would_change_the_robot_is_refused_with_the_proof(tmp_pa
         assert e.value.to_response_error().code == -32803   # LSP's RequestFailed
     finally:
         ls.ws.close()
+
+
+# -- (d) hover on xacro's own names -------------------------------------------------------------
+ARM = (f'<?xml version="1.0"?>\n<robot name="arm" {X}>\n'
+       '  <xacro:arg name="side" default="left"/>\n'
+       '  <xacro:property name="bar_len" value="0.5"/>\n'
+       '  <xacro:include filename="fingers.xacro"/>\n'
+       '  <link name="$(arg side)_palm"/>\n'
+       '  <link name="bar"><visual><geometry><box size="${bar_len} 1 1"/></geometry></visual>'
+       '</link>\n'
+       '  <joint name="fix" type="fixed"><parent link="$(arg side)_palm"/><child link="bar"/>'
+       '</joint>\n'
+       '  <link name="rod"><visual><geometry><cylinder radius="0.1" length="${bar_len}"/>'
+       '</geometry></visual></link>\n'
+       '  <joint name="fix2" type="fixed"><parent link="bar"/><child link="rod"/></joint>\n'
+       '  <xacro:property name="prefix" value="$(arg side)_"/>\n'
+       '  <xacro:finger n="${prefix}f1" parent="$(arg side)_palm"/>\n'
+       '  <xacro:finger n="${prefix}f2" parent="$(arg side)_palm"/>\n'
+       '</robot>\n')
+ARGS_TOML = ('[[models]]\npath = "urdf/arm.urdf.xacro"\n'
+             'args = [{}, { side = "right" }]\n')
+
+
+def _hover_text(ls, f: Path, needle: str, delta: int = 0) -> str:
+    from urdf_lint.lsp import features
+    h = features.hover(ls, os.path.realpath(f), _at(f, needle, delta))
+    assert h is not None, needle
+    return h.contents.value
+
+
+def test_hover_on_args_properties_and_expressions_in_macro_calls(tmp_path, monkeypatch):
+    """Two variants of one model (the config sets ``side = "right"`` for one): hover on
+    ``$(arg side)`` and on its declaration shows both values and where each was set; on a
+    property declaration, its value as written and its value in the models; on
+    ``${prefix}`` in a macro call, what ``prefix`` is and the call's value in each model."""
+    pkg = make_package(tmp_path, "arm", {"urdf/arm.urdf.xacro": ARM,
+                                         "urdf/fingers.xacro": MACROS,
+                                         "urdf-lint.toml": ARGS_TOML})
+    arm = pkg / "urdf" / "arm.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, arm)
+        ls.ws.lint()
+        for needle, delta in (("$(arg side)_palm", 7), ('<xacro:arg name="side"', 3)):
+            text = _hover_text(ls, arm, needle, delta)
+            assert "**arg** `side`" in text, text
+            assert "- `left` in arm.urdf (default, urdf/arm.urdf.xacro:3)" in text, text
+            assert "- `right` in arm.urdf [side:=right] (set in urdf-lint.toml:3)" in text, text
+        text = _hover_text(ls, arm, '<xacro:property name="bar_len"', 20)
+        assert "- urdf/arm.urdf.xacro:4: `0.5`" in text, text
+        assert "value `0.5` in arm.urdf, arm.urdf [side:=right]" in text, text
+        text = _hover_text(ls, arm, 'n="${prefix}f2"', 6)
+        assert "`prefix`: property = `$(arg side)_` (urdf/arm.urdf.xacro:11)" in text, text
+        assert "`n` = `left_f2` in arm.urdf; `right_f2` in arm.urdf [side:=right]" in text, text
+    finally:
+        ls.ws.close()

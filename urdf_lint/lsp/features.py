@@ -334,6 +334,10 @@ def _text_refs(ls, path, pat, kind, name, include_declaration, whole) -> list[ty
 
 # -- hover --------------------------------------------------------------------------------------
 def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | None:
+    from urdf_lint.lsp.methods import hover_xacro   # $(arg), xacro:arg/property, macro calls
+    got = hover_xacro.hover(ls, path, pos)
+    if got is not None:
+        return got
     doc = ls.doc(path)
     at = At(doc, pos)
     if at.comment:
