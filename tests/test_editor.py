@@ -256,3 +256,61 @@ def test_hover_on_args_properties_and_expressions_in_macro_calls(tmp_path, monke
         assert "`n` = `left_f2` in arm.urdf; `right_f2` in arm.urdf [side:=right]" in text, text
     finally:
         ls.ws.close()
+
+
+# -- (e) completion mid-edit ----------------------------------------------------------------------
+BLOCKS = (f'<?xml version="1.0"?>\n<robot {X}>\n'
+          '  <xacro:macro name="wrap" params="name *origin">\n'
+          '    <link name="${name}"/>\n'
+          '    <joint name="${name}_j" type="fixed"><xacro:insert_block name="origin"/>'
+          '<parent link="base"/><child link="${name}"/></joint>\n'
+          '  </xacro:macro>\n</robot>\n')
+BODY = (f'<?xml version="1.0"?>\n<robot name="b" {X}>\n'
+        '  <xacro:include filename="fingers.xacro"/>\n'
+        '  <xacro:include filename="blocks.xacro"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:finger n="f1" parent="base"/>\n'
+        '</robot>\n')
+
+
+def test_a_block_macro_completes_as_an_open_close_pair(tmp_path, monkeypatch):
+    from urdf_lint.lsp import features
+    pkg = make_package(tmp_path, "b", {"urdf/b.urdf.xacro": BODY, "urdf/fingers.xacro": MACROS,
+                                       "urdf/blocks.xacro": BLOCKS})
+    f = pkg / "urdf" / "b.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        typed = BODY.replace("</robot>", "  <xacro:\n</robot>")
+        path = _open(ls, f, typed)
+        line = typed.count("\n", 0, typed.index("<xacro:\n"))
+        items = {i.label: i for i in features.completion(ls, path, types.Position(line, 9))}
+        assert items["wrap"].insert_text == 'wrap name="${1}">\n\t$0\n</xacro:wrap>', \
+            items["wrap"].insert_text
+        assert items["finger"].insert_text == 'finger n="${1}" parent="${2}"/>'
+    finally:
+        ls.ws.close()
+
+
+def test_link_names_complete_inside_an_unclosed_attribute(tmp_path, monkeypatch):
+    """The user types ``<parent link="`` in a new joint: the buffer is not well-formed (the
+    attribute and the tag are open), the model fails to expand on that lint, and the link
+    names of the model as it last expanded are offered."""
+    from urdf_lint.lsp import features
+    pkg = make_package(tmp_path, "b", {"urdf/b.urdf.xacro": BODY, "urdf/fingers.xacro": MACROS,
+                                       "urdf/blocks.xacro": BLOCKS})
+    f = pkg / "urdf" / "b.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        path = _open(ls, f)
+        ls.ws.lint()
+        typed = BODY.replace("</robot>", '  <joint name="k" type="fixed"><parent link="\n'
+                             '</robot>')
+        _open(ls, f, typed)
+        ls.ws.lint(ls.ws.affected(path))   # what the server does after the keystroke
+        assert not ls.ws.models()          # it does not expand now
+        line = typed.count("\n", 0, typed.index('<parent link="'))
+        char = len(typed.split("\n")[line])
+        labels = {i.label for i in features.completion(ls, path, types.Position(line, char))}
+        assert {"base", "f1"} <= labels, labels
+    finally:
+        ls.ws.close()

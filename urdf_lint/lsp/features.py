@@ -498,11 +498,12 @@ def _md(text: str) -> types.Hover:
 
 # -- completion ---------------------------------------------------------------------------------
 def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types.CompletionItem]:
+    from urdf_lint.lsp.methods import completion_xacro   # block macros, while mid-edit
     at = At(ls.doc(path), pos)
     for complete in _COMPLETERS:
         got = complete(ls, path, at)
         if got is not None:
-            return got
+            return completion_xacro.refine(ls, path, at, complete, got)
     return []
 
 

@@ -44,6 +44,7 @@ class Workspace:
     reports: dict = field(default_factory=dict)       # job_key -> ModelReport
     findings: list = field(default_factory=list)      # after policy, merge, suppression
     config_problem: ConfigProblem | None = None
+    last_good: dict = field(default_factory=dict)     # job_key -> the last report that expanded
     pool_size: int = 2
     facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
 
@@ -96,7 +97,7 @@ class Workspace:
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
-        self.reports = {}
+        self.reports, self.last_good = {}, {}
         from urdf_lint.lsp.pool import Pool
         self.pool = Pool(self.settings, self.pool_size)
 
@@ -189,6 +190,8 @@ class Workspace:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
                     self.reports[job_key(job)] = rep
+                    if rep.status is Status.MODEL and rep.kept_model is not None:
+                        self.last_good[job_key(job)] = rep   # (completion while mid-edit)
                     if self.facts is not None:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
