@@ -314,3 +314,119 @@ def test_link_names_complete_inside_an_unclosed_attribute(tmp_path, monkeypatch)
         assert {"base", "f1"} <= labels, labels
     finally:
         ls.ws.close()
+
+
+# -- (f) rename ---------------------------------------------------------------------------------
+def _renamed(ls, f: Path, needle: str, delta: int, new: str) -> dict:
+    """{file name: text} of every file the rename edits, the edits applied."""
+    from urdf_lint.lsp.methods import rename
+    uri = f.resolve().as_uri()
+    pos = _at(f, needle, delta)
+    prep = rename.prepare(ls, types.PrepareRenameParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=pos))
+    assert prep.placeholder
+    got = rename.handle(ls, types.RenameParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), position=pos, new_name=new))
+    out = {}
+    for u, edits in got.changes.items():
+        p = Path(u[len("file://"):])
+        out[p.name] = _apply(p.read_text(), edits)
+    return out
+
+
+def test_rename_a_macro_a_property_an_arg_and_a_link_across_files(tmp_path, monkeypatch):
+    pkg = make_package(tmp_path, "arm", {"urdf/arm.urdf.xacro": ARM.replace(
+        "$(arg side)_palm", "palm").replace("$(arg side)_", "$(arg side)"),
+        "urdf/fingers.xacro": MACROS})
+    arm = pkg / "urdf" / "arm.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, arm)
+        ls.ws.lint()
+        # a macro, from a call: its declaration in the library, both calls
+        got = _renamed(ls, arm, "<xacro:finger", 9, "digit")
+        assert set(got) == {"arm.urdf.xacro", "fingers.xacro"}
+        assert got["arm.urdf.xacro"].count("<xacro:digit ") == 2
+        assert "<xacro:finger" not in got["arm.urdf.xacro"]
+        assert '<xacro:macro name="digit" params="n parent">' in got["fingers.xacro"]
+        # a property, from a use: its declaration and both uses
+        got = _renamed(ls, arm, "${bar_len}", 3, "bar_length")
+        assert got["arm.urdf.xacro"].count("bar_length") == 3
+        assert "bar_len}" not in got["arm.urdf.xacro"]
+        # an arg, from its declaration: every $(arg side)
+        got = _renamed(ls, arm, '<xacro:arg name="side"', 18, "hand")
+        assert got["arm.urdf.xacro"].count("$(arg hand)") == 1
+        assert "$(arg side)" not in got["arm.urdf.xacro"]
+        assert '<xacro:arg name="hand" default="left"/>' in got["arm.urdf.xacro"]
+        # a link: its <link>, the joint's parent, and the calls giving parent="palm" to the
+        # macro's <parent link="${parent}"> (edited where the value is written)
+        got = _renamed(ls, arm, '<link name="palm"', 13, "hand_base")
+        assert list(got) == ["arm.urdf.xacro"]
+        text = got["arm.urdf.xacro"]
+        assert "palm" not in text and text.count("hand_base") == 4, text
+    finally:
+        ls.ws.close()
+
+
+def test_rename_is_refused_where_a_name_is_built_by_an_expression(tmp_path, monkeypatch):
+    """The palm link is written ``$(arg side)_palm``: refused at once. The finger link
+    ``left_f1``, named literally by a new joint, is written ``${n}`` in the macro and given as
+    ``n="${prefix}f1"`` at the call: refused, saying where the expression is."""
+    from urdf_lint.lsp.methods import Refused, rename
+    extra = ('  <link name="tip"/><joint name="tip_j" type="fixed"><parent link="left_f1"/>'
+             '<child link="tip"/></joint>\n</robot>')
+    pkg = make_package(tmp_path, "arm", {"urdf/arm.urdf.xacro": ARM.replace("</robot>", extra),
+                                         "urdf/fingers.xacro": MACROS})
+    arm = pkg / "urdf" / "arm.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, arm)
+        ls.ws.lint()
+        doc = types.TextDocumentIdentifier(uri=arm.resolve().as_uri())
+        with pytest.raises(Refused) as e:
+            rename.prepare(ls, types.PrepareRenameParams(
+                text_document=doc, position=_at(arm, '<link name="$(arg side)_palm"', 25)))
+        assert "built by an expression" in e.value.reason, e.value.reason
+        with pytest.raises(Refused) as e:
+            rename.handle(ls, types.RenameParams(
+                text_document=doc, new_name="x", position=_at(arm, 'link="left_f1"', 8)))
+        assert e.value.reason == ("not renamed: the name 'left_f1' is built by an expression "
+                                  'at urdf/arm.urdf.xacro:12 (n="${prefix}f1")'), e.value.reason
+        assert e.value.to_response_error().code == -32803
+    finally:
+        ls.ws.close()
+
+
+INSTALLED = (f'<?xml version="1.0"?>\n<robot {X}>\n'
+             '  <xacro:property name="shared_len" value="0.5"/>\n</robot>\n')
+USER = (f'<?xml version="1.0"?>\n<robot name="u" {X}>\n'
+        '  <xacro:include filename="$(find common)/urdf/props.xacro"/>\n'
+        '  <link name="a"><visual><geometry><box size="${shared_len} 1 1"/></geometry></visual>'
+        '</link>\n</robot>\n')
+
+
+def test_rename_edits_nothing_outside_the_workspace_folder(tmp_path, monkeypatch):
+    """A property declared in an installed package (readable, never writable: check --fix's
+    rule): the rename is refused, naming that file, instead of a partial edit."""
+    from urdf_lint.lsp.methods import Refused, rename
+    prefix = tmp_path / "install"
+    index = prefix / "share" / "ament_index" / "resource_index" / "packages"
+    index.mkdir(parents=True)
+    (index / "common").write_text("")
+    make_package(prefix / "share", "common", {"urdf/props.xacro": INSTALLED})
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
+    pkg = make_package(tmp_path / "ws", "u", {"urdf/u.urdf.xacro": USER})
+    f = pkg / "urdf" / "u.urdf.xacro"
+    ls = _server(pkg, monkeypatch, tmp_path)
+    try:
+        _open(ls, f)
+        ls.ws.lint()
+        with pytest.raises(Refused) as e:
+            rename.handle(ls, types.RenameParams(
+                text_document=types.TextDocumentIdentifier(uri=f.resolve().as_uri()),
+                new_name="len2", position=_at(f, "${shared_len}", 3)))
+        assert "outside the workspace folder" in e.value.reason
+        assert str((prefix / "share" / "common" / "urdf" / "props.xacro").resolve()) in \
+            e.value.reason
+    finally:
+        ls.ws.close()

@@ -9,7 +9,7 @@ import os
 from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
-from urdf_lint.lsp.methods import formatting, range_formatting
+from urdf_lint.lsp.methods import formatting, range_formatting, rename
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
 from urdf_lint.lsp.state import Workspace
 
@@ -107,6 +107,8 @@ def _in_lint_thread(handle):
 
 for _m in (formatting, range_formatting):
     server.feature(_m.METHOD)(_in_lint_thread(_m.handle))
+server.feature(rename.METHOD, rename.OPTIONS)(rename.handle)
+server.feature(rename.PREPARE)(rename.prepare)
 
 
 def main() -> int:
