@@ -17,6 +17,7 @@ X = 'xmlns:xacro="http://wiki.ros.org/xacro"'
 
 
 def _server(root: Path, monkeypatch, tmp_path: Path):
+    import urdf_lint.lsp.server  # noqa: F401 - it adds the methods' hover and completion
     from urdf_lint.lsp.core import UrdfLintServer
     from urdf_lint.lsp.state import Workspace
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))

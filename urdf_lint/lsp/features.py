@@ -333,11 +333,17 @@ def _text_refs(ls, path, pat, kind, name, include_declaration, whole) -> list[ty
 
 
 # -- hover --------------------------------------------------------------------------------------
+# asked first, in order (server.py adds them: the methods' modules import this one)
+HOVER_FIRST: list = []
+# (ls, path, at, completer, items) -> items, after the completer that answered
+COMPLETION_REFINE: list = []
+
+
 def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | None:
-    from urdf_lint.lsp.methods import hover_xacro   # $(arg), xacro:arg/property, macro calls
-    got = hover_xacro.hover(ls, path, pos)
-    if got is not None:
-        return got
+    for first in HOVER_FIRST:   # (methods.hover_xacro: $(arg), xacro:arg/property, calls)
+        got = first(ls, path, pos)
+        if got is not None:
+            return got
     doc = ls.doc(path)
     at = At(doc, pos)
     if at.comment:
@@ -498,12 +504,13 @@ def _md(text: str) -> types.Hover:
 
 # -- completion ---------------------------------------------------------------------------------
 def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types.CompletionItem]:
-    from urdf_lint.lsp.methods import completion_xacro   # block macros, while mid-edit
     at = At(ls.doc(path), pos)
     for complete in _COMPLETERS:
         got = complete(ls, path, at)
         if got is not None:
-            return completion_xacro.refine(ls, path, at, complete, got)
+            for refine in COMPLETION_REFINE:   # (methods.completion_xacro)
+                got = refine(ls, path, at, complete, got)
+            return got
     return []
 
 

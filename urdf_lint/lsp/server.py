@@ -9,7 +9,8 @@ import os
 from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
-from urdf_lint.lsp.methods import formatting, range_formatting, rename
+from urdf_lint.lsp.methods import (completion_xacro, formatting, hover_xacro, range_formatting,
+                                   rename)
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
 from urdf_lint.lsp.state import Workspace
 
@@ -109,6 +110,8 @@ for _m in (formatting, range_formatting):
     server.feature(_m.METHOD)(_in_lint_thread(_m.handle))
 server.feature(rename.METHOD, rename.OPTIONS)(rename.handle)
 server.feature(rename.PREPARE)(rename.prepare)
+features.HOVER_FIRST.append(hover_xacro.hover)
+features.COMPLETION_REFINE.append(completion_xacro.refine)
 
 
 def main() -> int:

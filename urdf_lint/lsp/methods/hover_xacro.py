@@ -103,8 +103,8 @@ def _config_where(ls, name: str) -> str:
     cfg_path = getattr(ws.cfg, "path", None) if ws else None
     if not cfg_path:
         return "given to the model"
-    from urdf_lint.discovery.discover import _config_line
-    line, _ = _config_line(cfg_path, name)
+    from urdf_lint.discovery.discover import config_line
+    line, _ = config_line(cfg_path, name)
     return f"set in {_where(ls, os.path.realpath(cfg_path), line)}"
 
 
