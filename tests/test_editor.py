@@ -26,6 +26,14 @@ def _server(root: Path, monkeypatch, tmp_path: Path):
     return ls
 
 
+def _linted(pkg: Path, f: Path, monkeypatch, tmp_path: Path):
+    """The server of ``pkg`` with ``f`` open, every model linted (close its ``ws``)."""
+    ls = _server(pkg, monkeypatch, tmp_path)
+    _open(ls, f)
+    ls.ws.lint()
+    return ls
+
+
 def _open(ls, path: Path, text: str | None = None) -> str:
     p = os.path.realpath(path)
     ls.ws.buffers[p] = (path.read_text() if text is None else text).encode()
@@ -240,10 +248,8 @@ def test_hover_on_args_properties_and_expressions_in_macro_calls(tmp_path, monke
                                          "urdf/fingers.xacro": MACROS,
                                          "urdf-lint.toml": ARGS_TOML})
     arm = pkg / "urdf" / "arm.urdf.xacro"
-    ls = _server(pkg, monkeypatch, tmp_path)
+    ls = _linted(pkg, arm, monkeypatch, tmp_path)
     try:
-        _open(ls, arm)
-        ls.ws.lint()
         for needle, delta in (("$(arg side)_palm", 7), ('<xacro:arg name="side"', 3)):
             text = _hover_text(ls, arm, needle, delta)
             assert "**arg** `side`" in text, text
@@ -340,10 +346,8 @@ def test_rename_a_macro_a_property_an_arg_and_a_link_across_files(tmp_path, monk
         "$(arg side)_palm", "palm").replace("$(arg side)_", "$(arg side)"),
         "urdf/fingers.xacro": MACROS})
     arm = pkg / "urdf" / "arm.urdf.xacro"
-    ls = _server(pkg, monkeypatch, tmp_path)
+    ls = _linted(pkg, arm, monkeypatch, tmp_path)
     try:
-        _open(ls, arm)
-        ls.ws.lint()
         # a macro, from a call: its declaration in the library, both calls
         got = _renamed(ls, arm, "<xacro:finger", 9, "digit")
         assert set(got) == {"arm.urdf.xacro", "fingers.xacro"}
@@ -379,10 +383,8 @@ def test_rename_is_refused_where_a_name_is_built_by_an_expression(tmp_path, monk
     pkg = make_package(tmp_path, "arm", {"urdf/arm.urdf.xacro": ARM.replace("</robot>", extra),
                                          "urdf/fingers.xacro": MACROS})
     arm = pkg / "urdf" / "arm.urdf.xacro"
-    ls = _server(pkg, monkeypatch, tmp_path)
+    ls = _linted(pkg, arm, monkeypatch, tmp_path)
     try:
-        _open(ls, arm)
-        ls.ws.lint()
         doc = types.TextDocumentIdentifier(uri=arm.resolve().as_uri())
         with pytest.raises(Refused) as e:
             rename.prepare(ls, types.PrepareRenameParams(
@@ -418,10 +420,8 @@ def test_rename_edits_nothing_outside_the_workspace_folder(tmp_path, monkeypatch
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
     pkg = make_package(tmp_path / "ws", "u", {"urdf/u.urdf.xacro": USER})
     f = pkg / "urdf" / "u.urdf.xacro"
-    ls = _server(pkg, monkeypatch, tmp_path)
+    ls = _linted(pkg, f, monkeypatch, tmp_path)
     try:
-        _open(ls, f)
-        ls.ws.lint()
         with pytest.raises(Refused) as e:
             rename.handle(ls, types.RenameParams(
                 text_document=types.TextDocumentIdentifier(uri=f.resolve().as_uri()),

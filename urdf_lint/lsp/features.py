@@ -96,16 +96,23 @@ def views(ls: UrdfLintServer) -> list[ModelView]:
     ws = ls.ws
     out = []
     for r in list(ws.models()) if ws else []:
-        if r.kept_model is None or r.kept_model.xml is None:
-            continue
-        v = _views.get(id(r))
-        if v is None or v[0] is not r:
-            try:
-                v = _views[id(r)] = (r, ModelView(r))
-            except Exception:  # noqa: BLE001 - a model lxml cannot hold: no navigation in it
-                continue
-        out.append(v[1])
+        v = view_of(r)
+        if v is not None:
+            out.append(v)
     return out
+
+
+def view_of(r) -> ModelView | None:
+    """The view of one model's report (kept while the report is), None without a robot."""
+    if r.kept_model is None or r.kept_model.xml is None:
+        return None
+    v = _views.get(id(r))
+    if v is None or v[0] is not r:
+        try:
+            v = _views[id(r)] = (r, ModelView(r))
+        except Exception:  # noqa: BLE001 - a model lxml cannot hold: no navigation in it
+            return None
+    return v[1]
 
 
 # -- the cursor's context ---------------------------------------------------------------------

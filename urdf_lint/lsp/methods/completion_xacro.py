@@ -50,20 +50,16 @@ def _block_pair(ls, path: str, item: types.CompletionItem) -> types.CompletionIt
 
 def _with_last_good(ls, path: str, at, items: list) -> list:
     """Add the names of the last model of each variant that expanded and read ``path``."""
-    from urdf_lint.lsp.features import ModelView, _model_files
+    from urdf_lint.lsp.features import _model_files, view_of
     ws = ls.ws
     if ws is None:
         return items
     have = {it.label for it in items}
     want = "joint" if at.attr == "joint" else "link"
     for rep in list(ws.last_good.values()):
-        view = _VIEWS.get(id(rep))
-        if view is None or view[0] is not rep:
-            try:
-                view = _VIEWS[id(rep)] = (rep, ModelView(rep))
-            except Exception:  # noqa: BLE001 - a model lxml cannot hold: none of its names
-                continue
-        v = view[1]
+        v = view_of(rep)
+        if v is None:
+            continue
         if path not in _model_files(v):
             continue
         for (k, n) in v.named:
@@ -73,5 +69,3 @@ def _with_last_good(ls, path: str, at, items: list) -> list:
                                                   detail=f"{k} in {v.name} (last expanded)"))
     return items
 
-
-_VIEWS: dict = {}
