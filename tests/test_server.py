@@ -89,7 +89,9 @@ async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client,
     assert "(in ur10, ur10e, ur16e, ur20 ...)" in d.message, d.message
     rel = [(r.location.uri.rsplit("/", 1)[-1], r.location.range.start.line,
             r.location.range.start.character) for r in d.related_information]
-    assert rel == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)]
+    # every instance's call sites (issue 36: instances in the related information too)
+    assert rel[:2] == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)], rel
+    assert ("ur10e.xacro", 20, 2) in rel and len(rel) == len(set(rel)), rel
 
 
 @aio
@@ -317,6 +319,39 @@ async def test_document_symbols(client, ur):
     assert by[("macro", "ur_robot")] == (56, 2)
     assert by[("link", "${prefix}base_link")] == (78, 4)
     assert by[("joint", "${prefix}shoulder_pan_joint")] == (232, 4)
+
+
+@aio
+async def test_formatting_and_rename_over_the_protocol(client, ur):
+    """The server advertises and answers formatting and rename over the protocol:
+    formatting a one-line URDF buffer returns format's layout (run in the lint thread, the
+    proof from the file itself); a rename where nothing is renameable (a comment) is LSP's
+    RequestFailed error with the reason; a macro renames in its library and every robot."""
+    from pygls.exceptions import JsonRpcException
+    tiny = ur / "urdf" / "tiny.urdf"
+    tiny.write_text('<robot name="t"><link name="a" /><link name="b" /></robot>\n')
+    uri = open_doc(client, tiny)
+    doc = types.TextDocumentIdentifier(uri=uri)
+    edits = await client.text_document_formatting_async(types.DocumentFormattingParams(
+        text_document=doc, options=types.FormattingOptions(tab_size=4, insert_spaces=True)))
+    assert [e.new_text for e in edits] == ['<robot name="t">\n  <link name="a" />\n'
+                                           '  <link name="b" />\n</robot>\n'], edits
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    muri = open_doc(client, macro)
+    await diagnostics_for(client, muri, lambda ds: any(d.code == "UL401" for d in ds))
+    lines = macro.read_text().split("\n")
+    comment = next(i for i, ln in enumerate(lines) if ln.strip().startswith("<!--"))
+    with pytest.raises(JsonRpcException) as e:
+        await client.text_document_prepare_rename_async(types.PrepareRenameParams(
+            text_document=types.TextDocumentIdentifier(uri=muri),
+            position=types.Position(comment, lines[comment].index("<!--") + 5)))
+    assert e.value.code == -32803 and "nothing to rename" in e.value.message
+    decl = next(i for i, ln in enumerate(lines) if '<xacro:macro name="ur_robot"' in ln)
+    got = await client.text_document_rename_async(types.RenameParams(
+        text_document=types.TextDocumentIdentifier(uri=muri), new_name="ur_arm",
+        position=types.Position(decl, lines[decl].index("ur_robot") + 2)))
+    files = {u.rsplit("/", 1)[-1] for u in got.changes}
+    assert {"ur_macro.xacro", "ur.xacro", "ur10_macro.xacro", "ur5e_macro.xacro"} <= files, files
 
 
 REPO = Path(__file__).resolve().parents[1]
