@@ -68,4 +68,3 @@ def _with_last_good(ls, path: str, at, items: list) -> list:
                 items.append(types.CompletionItem(label=n, kind=types.CompletionItemKind.Reference,
                                                   detail=f"{k} in {v.name} (last expanded)"))
     return items
-
