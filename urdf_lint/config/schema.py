@@ -450,6 +450,9 @@ FORMAT_SCHEMA: tuple[Key, ...] = (
         "a start tag longer than this gets one attribute per line"),
     Key("attribute-order", Choice(("keep", "canonical")), "keep",
         "keep: attributes as written; canonical: name first, then the URDF/xacro schema order"),
+    Key("self-closing", Choice(("auto", "compact", "spaced")), "auto",
+        "how an empty element is closed: compact <a/>, spaced <a />, auto: as most of the "
+        "file's self-closed tags are"),
     Key("exclude", StrList("globs"), [], "paths (globs) not to format, on top of exclude"),
 )
 FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}

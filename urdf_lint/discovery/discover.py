@@ -217,7 +217,7 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
             close = difflib.get_close_matches(name, sorted(declared), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             known = ", ".join(sorted(declared)) or "none"
-            where = (cfg.path, *_config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
+            where = (cfg.path, *config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
             out.append(Problem.at(
                 ul008_xacro_warning.CODE,
                 f"model {os.path.relpath(spec.path, cfg.root)}: arg {name!r} is not declared "
@@ -226,7 +226,7 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
     return list({p.key(): p for p in out}.values())
 
 
-def _config_line(path: str, name: str) -> tuple[int, int]:
+def config_line(path: str, name: str) -> tuple[int, int]:
     """(line, col) of the first ``name =`` in the config file (an arg in ``args``), else (1, 1)."""
     pat = re.compile(r"""(?:^|[\s{,])["']?""" + re.escape(name) + r"""["']?\s*=""")
     from urdf_lint.core import fsbound
