@@ -80,6 +80,43 @@ def test_canonical_attribute_order_name_first_then_the_schema():
 
 
 # -- what is kept ---------------------------------------------------------------------------------
+SPACED = ('<?xml version="1.0"?>\n<robot name="r">\n'
+          '  <link name="a" />\n'
+          '  <link name="b"></link>\n'
+          '  <joint name="j" type="fixed">\n'
+          '    <parent link="a" />\n'
+          '    <child link="b"/>\n'
+          '  </joint>\n'
+          '</robot>\n')
+
+
+def test_self_closing_style_follows_the_files_majority():
+    """A file that writes ``<a />`` (two of three self-closed tags) keeps that style: the
+    empty ``<link name="b">`` and the minority ``<child link="b"/>`` become `` />``, the rest
+    stays; a file formatted already in that style is unchanged (adopting ``format`` is no
+    churn commit). ``compact`` and ``spaced`` choose it whatever the file writes."""
+    out = fmt(SPACED)
+    assert out == SPACED.replace('"b"></link>', '"b" />').replace('"b"/>', '"b" />'), out
+    assert format_source(out.encode()) == out.encode()   # formatted already: unchanged
+    assert fmt(SPACED, self_closing="compact").count(" />") == 0
+    assert fmt(SPACED.replace(" />", "/>"), self_closing="spaced").count(" />") == 4
+    assert fmt(SPACED.replace(" />", "/>")).count(" />") == 0   # most are compact
+
+
+def test_self_closing_from_the_config_and_the_flag(tmp_path):
+    from conftest import run_main
+    f = tmp_path / "r.urdf"
+    f.write_text(SPACED)
+    (tmp_path / "urdf-lint.toml").write_text('[format]\nself-closing = "compact"\n')
+    p = run_main("format", "--check", ".", cwd=tmp_path)
+    assert p.returncode == 1 and "Would reformat: r.urdf" in p.stdout, (p.stdout, p.stderr)
+    p = run_main("format", "--self-closing", "spaced", ".", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert f.read_text().count(" />") == 4
+    p = run_main("format", "--self-closing", "tight", ".", cwd=tmp_path)
+    assert p.returncode == 2 and "--self-closing" in p.stderr, p.stderr
+
+
 def test_xacro_expressions_and_attribute_values_are_kept_byte_for_byte():
     src = (f'<robot name="r" {X}>\n<xacro:property name="p"   value="${{ a  >  b  and  c }}"/>'
            "<link name='${prefix}&amp;base'/>"

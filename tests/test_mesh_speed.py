@@ -236,7 +236,10 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
         assert fresh.mass_facts(str(p)) == fresh.trimesh_mass_properties(fresh.load_mesh(str(p))), name
     # read without trimesh where it can be, left to trimesh where a geometry is lost
     assert lean["nested.dae"] is not None and lean["metres.dae"] is not None
-    assert lean["broken.dae"] is None and lean["lines.dae"] is None
+    assert lean["broken.dae"] is None
+    # a geometry of lines alone is no mesh in trimesh either (not lost): read without it,
+    # and equal to trimesh's arrays (above)
+    assert lean["lines.dae"] is not None
     assert fresh.mesh_facts(str(daes["broken.dae"]))["broken_refs"]
     # the triangle set twice (the mirrored node too), the polylist fanned (quads: 2 triangles,
     # the two pentagons: 3 each)
@@ -799,3 +802,35 @@ def test_only_a_render_run_keeps_loaded_meshes(tmp_path, fresh, monkeypatch):
     assert fresh.mesh_facts(dae, store=MeshStore(keep_loaded=True)) == plain   # a render run
     assert len(fresh._loaded) == 1
     assert fresh.get_mesh(dae) is next(iter(fresh._loaded.values())), "the renderer reuses it"
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_the_corpus_is_linted_without_importing_trimesh():
+    """Every corpus mesh is read by urdf-lint's own readers (a sensor's DAE with line
+    primitives too): a cold lint never imports trimesh (~0.35 s of CPU per process)."""
+    import subprocess
+    import sys
+    code = ("import os, sys\nos.chdir(sys.argv[1])\n"
+            "from urdf_lint.config.schema import load_config\n"
+            "from urdf_lint.discovery.discover import build_resolver\n"
+            "from urdf_lint.run.pipeline import run_check, RunRequest\n"
+            "cfg = load_config(None)\n"
+            "res = run_check(RunRequest(['.'], cfg, build_resolver(['.'], cfg), in_process=True))\n"
+            "print(len(res.findings), 'trimesh' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code, str(CORPUS / "turtlebot3_description")],
+                         capture_output=True, text=True, check=True).stdout.split()
+    assert int(out[0]) > 0 and out[1] == "False", out
+
+
+def test_mass_properties_are_trimeshs_bits_across_blocks():
+    """The block-wise integrals (contiguous coordinate rows) give trimesh's volume, centre of
+    mass and inertia to the last bit, for sizes below, at and across a block's end."""
+    import trimesh.triangles
+    from urdf_lint.meshes import readers
+    rng = np.random.default_rng(7)
+    for n in (1, 3, readers._CHUNK, readers._CHUNK + 1, 2 * readers._CHUNK + 5):
+        t = rng.normal(size=(n, 3, 3)) * 10 ** rng.uniform(-3, 3)
+        want = trimesh.triangles.mass_properties(t, skip_inertia=False)
+        vol, com, inertia = readers.mass_properties(t)
+        assert vol == want["volume"], n
+        assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"]), n

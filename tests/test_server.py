@@ -89,7 +89,9 @@ async def test_diagnostics_in_an_included_macro_file_with_the_call_chain(client,
     assert "(in ur10, ur10e, ur16e, ur20 ...)" in d.message, d.message
     rel = [(r.location.uri.rsplit("/", 1)[-1], r.location.range.start.line,
             r.location.range.start.character) for r in d.related_information]
-    assert rel == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)]
+    # every instance's call sites (issue 36: instances in the related information too)
+    assert rel[:2] == [("ur10.xacro", 20, 2), ("ur10_macro.xacro", 34, 4)], rel
+    assert ("ur10e.xacro", 20, 2) in rel and len(rel) == len(set(rel)), rel
 
 
 @aio
@@ -319,6 +321,39 @@ async def test_document_symbols(client, ur):
     assert by[("joint", "${prefix}shoulder_pan_joint")] == (232, 4)
 
 
+@aio
+async def test_formatting_and_rename_over_the_protocol(client, ur):
+    """The server advertises and answers formatting and rename over the protocol:
+    formatting a one-line URDF buffer returns format's layout (run in the lint thread, the
+    proof from the file itself); a rename where nothing is renameable (a comment) is LSP's
+    RequestFailed error with the reason; a macro renames in its library and every robot."""
+    from pygls.exceptions import JsonRpcException
+    tiny = ur / "urdf" / "tiny.urdf"
+    tiny.write_text('<robot name="t"><link name="a" /><link name="b" /></robot>\n')
+    uri = open_doc(client, tiny)
+    doc = types.TextDocumentIdentifier(uri=uri)
+    edits = await client.text_document_formatting_async(types.DocumentFormattingParams(
+        text_document=doc, options=types.FormattingOptions(tab_size=4, insert_spaces=True)))
+    assert [e.new_text for e in edits] == ['<robot name="t">\n  <link name="a" />\n'
+                                           '  <link name="b" />\n</robot>\n'], edits
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    muri = open_doc(client, macro)
+    await diagnostics_for(client, muri, lambda ds: any(d.code == "UL401" for d in ds))
+    lines = macro.read_text().split("\n")
+    comment = next(i for i, ln in enumerate(lines) if ln.strip().startswith("<!--"))
+    with pytest.raises(JsonRpcException) as e:
+        await client.text_document_prepare_rename_async(types.PrepareRenameParams(
+            text_document=types.TextDocumentIdentifier(uri=muri),
+            position=types.Position(comment, lines[comment].index("<!--") + 5)))
+    assert e.value.code == -32803 and "nothing to rename" in e.value.message
+    decl = next(i for i, ln in enumerate(lines) if '<xacro:macro name="ur_robot"' in ln)
+    got = await client.text_document_rename_async(types.RenameParams(
+        text_document=types.TextDocumentIdentifier(uri=muri), new_name="ur_arm",
+        position=types.Position(decl, lines[decl].index("ur_robot") + 2)))
+    files = {u.rsplit("/", 1)[-1] for u in got.changes}
+    assert {"ur_macro.xacro", "ur.xacro", "ur10_macro.xacro", "ur5e_macro.xacro"} <= files, files
+
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -347,6 +382,44 @@ def test_neovim_receives_the_diagnostics(ur, tmp_path):
     assert axis["source"] == "urdf-lint" and axis["severity"] == 2   # vim.diagnostic WARN
     assert "axis" in axis["message"]
     assert any(d["code"] == "UL401" and d["lnum"] == 83 and d["col"] == 10 for d in got)
+
+
+@pytest.mark.skipif(not shutil.which("nvim"), reason="nvim is not installed (apt: neovim)")
+def test_neovim_runs_one_server_per_workspace_with_yaml_and_each_diagnostic_once(ur, tmp_path):
+    """The documented Neovim set-up (docs/editors.md: the plugin in init.lua) with three files
+    of one workspace open, two xacro files (one named ``*.urdf.xacro``) and a YAML file the
+    models load: exactly one server process, every buffer attached to it (the YAML file
+    too), and each diagnostic once in Neovim (the old set-up started one server per file,
+    two for a ``*.urdf.xacro``, none for YAML, and showed each diagnostic once per server)."""
+    import json
+    import subprocess
+    macro = ur / "urdf" / "inc" / "ur_macro.xacro"
+    lines = macro.read_text().split("\n")
+    lines[236] = lines[236].replace('"0 0 1"', '"0 0 2"')
+    macro.write_text("\n".join(lines))
+    model = ur / "urdf" / "ur10.urdf.xacro"
+    (ur / "urdf" / "ur10.xacro").rename(model)
+    yaml = ur / "config" / "ur10" / "joint_limits.yaml"
+    init = tmp_path / "init.lua"
+    init.write_text(f'vim.g.urdf_lint_cmd = {{ "{sys.executable}", "-m", "urdf_lint", "server" }}\n'
+                    f'dofile("{REPO / "editors" / "neovim" / "urdf_lint.lua"}")\n')
+    out = tmp_path / "nvim.json"
+    env = dict(os.environ, URDF_LINT_NVIM_OUT=str(out), URDF_LINT_NVIM_WANT="UL307")
+    subprocess.run(["nvim", "--headless", "-u", str(init), "-i", "NONE", "-n", "-p",
+                    str(macro), str(model), str(yaml),
+                    "-c", f"luafile {REPO / 'tests' / 'support' / 'nvim_workspace_probe.lua'}"],
+                   cwd=ur, env=env, timeout=150, stdin=subprocess.DEVNULL,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    got = json.loads(out.read_text())
+    assert len(got["servers"]) == 1, got["servers"]
+    assert got["clients"] == 1, got
+    bufs = {os.path.realpath(b["name"]): b for b in got["buffers"]}
+    for f in (macro, model, yaml):
+        assert len(bufs[os.path.realpath(f)]["clients"]) == 1, (f, bufs)
+    diags = [(name, d["lnum"], d["col"], d["code"], d["message"])
+             for name, b in bufs.items() for d in b["diagnostics"]]
+    assert diags and len(diags) == len(set(diags)), sorted(diags)
+    assert any(d[3] == "UL307" and d[1] == 236 for d in diags), diags
 
 
 @pytest.mark.skipif(not shutil.which("npm"), reason="npm is not installed")

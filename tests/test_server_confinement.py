@@ -106,7 +106,9 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
     """Includes leading out of the roots (a symlinked file, a symlinked folder, an absolute
     path): the document index, hover, definition, completion and symbols show nothing of
     them, and the server process opens no file there."""
+    import urdf_lint.lsp.server  # noqa: F401 - with the methods' hover and completion
     from urdf_lint.lsp import features
+    from urdf_lint.lsp.methods import Refused, rename
     secret = tmp_path / "secret"
     pkg, model = _symlinked_workspace(tmp_path / "ws", secret)
     opens = _Opens(secret)
@@ -116,12 +118,18 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
         ls.ws.buffers[str(model.resolve())] = text.encode()
         path = str(model.resolve())
         opens.on = True
-        got = []
+        got, renames = [], []
         for line, char in ((5, 12), (1, 30), (2, 30), (3, 30), (6, 18), (9, 30)):
             p = types.Position(line, char)
             got.append(features.hover(ls, path, p))
             got.append(features.definition(ls, path, p))
             got.append(features.references(ls, path, p, True))
+            try:   # a rename edits and says nothing of a file outside the roots either
+                renames.append(rename.handle(ls, types.RenameParams(
+                    text_document=types.TextDocumentIdentifier(uri=model.as_uri()),
+                    position=p, new_name="renamed")))
+            except Refused as e:
+                renames.append(e.reason)   # (naming the workspace's own text at most)
         for line, char in ((5, 9), (6, 17)):   # <xacro:|  and ${|
             got.append(features.completion(ls, path, types.Position(line, char)))
         got.append(features.workspace_symbols(ls, ""))
@@ -135,6 +143,8 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
         assert SECRET not in shown and "secret_macro" not in shown, shown
         assert "vendor_macro" not in shown and "abs_macro" not in shown, shown
         assert str(secret) not in shown, shown
+        assert SECRET not in repr(renames) and str(secret) not in repr(renames), renames
+        assert "declaration of the macro 'secret_macro' is not in the files" in renames[0]
         assert opens.seen == []
         # the workspace's own declarations are still indexed and shown
         assert [s.name for s in features.document_symbols(ls, path)] == ["a", "${secret_prop}",

@@ -216,4 +216,69 @@ def test_a_value_from_an_arg_default_names_the_arg_line(tmp_path):
     (pkg / "urdf-lint.toml").write_text(
         '[[models]]\npath = "urdf/arg.urdf.xacro"\nargs = [{lower = "2"}]\n')
     (f,) = _ul302(_lint(pkg))
-    assert f["value_from"][1] == 4, f          # lower is passed; upper is still its default
+    # lower is passed: it names the config's line (the next test); upper is still its default
+    assert f["value_from"] == ["urdf-lint.toml", 3, 10], f
+
+
+# the forms a [[models]] entry sets args in, and the line and column ``lower`` is set at
+CONFIG_FORMS = {
+    "urdf-lint.toml": ('# variants\n[[models]]\npath = "urdf/arg.urdf.xacro"\n'
+                       'args = { lower = "2", upper = "-2" }\n', 4, 10),
+    "pyproject.toml": ('[project]\nname = "x"\n\n[[tool.urdf-lint.models]]\n'
+                       'path = "urdf/arg.urdf.xacro"\n\n[tool.urdf-lint.models.args]\n'
+                       'upper = "-2"\n"lower" = "2"\n', 9, 1),
+}
+
+
+def test_a_value_from_a_passed_arg_names_the_config_line(tmp_path):
+    """A limit written as ``$(arg lower)`` that a [[models]] entry passes is located at the
+    config line that sets it, inline or as a sub-table, in JSON and text; ``--fix`` does not
+    write into the config."""
+    for name, (config, line, col) in CONFIG_FORMS.items():
+        pkg = make_package(tmp_path / name.split(".")[0], PKG,
+                           {"urdf/arg.urdf.xacro": ARG_BOT})
+        (pkg / name).write_text(config)
+        (f,) = _ul302(_lint(pkg))
+        assert f["value_from"] == [name, line, col], f
+        text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
+        assert f"value from {name}:{line}" in text, text
+        run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+        assert (pkg / name).read_text() == config
+
+
+def test_each_arg_set_of_a_list_names_its_own_table():
+    """``args = [{...}, {...}]`` over several lines: the n-th set's arg is the n-th table's."""
+    from urdf_lint.config.places import arg_places
+    text = ('[[models]]\npath = "a.xacro"\n\n[[models]]\npath = "b.xacro"\nargs = [\n'
+            '  {lower = "1"},  # first\n  {upper = "0", lower = "2"},\n]\n[format]\n')
+    sets = [{"lower": "1"}, {"upper": "0", "lower": "2"}]
+    got = arg_places("/r/urdf-lint.toml", text, 1, sets)
+    assert got == [{"lower": ("/r/urdf-lint.toml", 7, 4)},
+                   {"upper": ("/r/urdf-lint.toml", 8, 4), "lower": ("/r/urdf-lint.toml", 8, 17)}]
+    assert arg_places("/r/urdf-lint.toml", text, 0, [{"lower": "1"}]) == [{}]
+
+
+def test_the_real_franka_names_its_yaml_line(tmp_path):
+    """franka_description (the corpus's copy): the limits macro reads
+    ``limits = config[name]['limit']`` and writes ``${limits.lower}``; a swapped limit in
+    ``robots/fr3/joint_limits.yaml`` is reported with that file's line, and --fix swaps the
+    two scalars there."""
+    import shutil
+    import pytest
+    from conftest import CORPUS
+    src = CORPUS / "franka_description"
+    if not (src / "robots/fr3/joint_limits.yaml").is_file():
+        pytest.skip("../shared/corpus is not present")
+    pkg = tmp_path / "franka_description"
+    shutil.copytree(src, pkg)
+    limits = pkg / "robots/fr3/joint_limits.yaml"
+    good = limits.read_text()
+    limits.write_text(good.replace("lower:      -2.3093\n    upper:       2.3093",
+                                   "lower:      2.3093\n    upper:       -2.3093", 1))
+    (pkg / "urdf-lint.toml").write_text(
+        '[[models]]\npath = "robots/fr3/fr3.urdf.xacro"\n')
+    found = _ul302(_lint(pkg))
+    assert found and all(f["value_from"][:2] == ["robots/fr3/joint_limits.yaml", 3]
+                         for f in found), found
+    run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert limits.read_text() == good

@@ -30,13 +30,7 @@ def add_parser(sub, raw) -> None:
     p.add_argument("--diff", action="store_true",
                    help="write nothing; print the changes as a unified diff (exit 1 when "
                         "there are any)")
-    p.add_argument("--indent", metavar="N", help="spaces per level (default: 2; config key "
-                   "'indent' under [tool.urdf-lint.format])")
-    p.add_argument("--line-length", metavar="N", help="wrap a start tag's attributes one per "
-                   "line past N characters (default: 100; config key 'line-length')")
-    p.add_argument("--attribute-order", metavar="{keep,canonical}",
-                   help="canonical: name first, then the URDF/xacro schema order (default: "
-                        "keep; config key 'attribute-order')")
+    _add_style_flags(p)
     p.add_argument("--isolated", action="store_true", help="ignore all config files")
     add_inputs(p)
     p.add_argument("--timeout", metavar="SECONDS",
@@ -44,6 +38,20 @@ def add_parser(sub, raw) -> None:
     p.add_argument("--memory-mb", metavar="MIB",
                    help="memory limit per model expansion of the proof (default: 2048)")
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors")
+
+
+def _add_style_flags(p) -> None:
+    """One flag per layout key of ``[tool.urdf-lint.format]`` (``--line-length``), from its
+    schema entry: its help, choices and default."""
+    from urdf_lint.config.schema import FORMAT_KEYS
+    from urdf_lint.run.format import STYLE_KEYS
+    for name in STYLE_KEYS:
+        key = FORMAT_KEYS[name]
+        choices = getattr(key.type, "choices", None)
+        metavar = "{" + ",".join(choices) + "}" if choices else "N"
+        p.add_argument(f"--{name}", metavar=metavar,
+                       help=f"{key.help} (default: {key.default_text}; config key '{name}' "
+                            "under [tool.urdf-lint.format])")
 
 
 @dataclass(frozen=True)
@@ -58,6 +66,7 @@ class FormatOptions:
     indent: str | None = None
     line_length: str | None = None
     attribute_order: str | None = None
+    self_closing: str | None = None
 
 
 def run(args) -> int:

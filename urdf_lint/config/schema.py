@@ -450,6 +450,9 @@ FORMAT_SCHEMA: tuple[Key, ...] = (
         "a start tag longer than this gets one attribute per line"),
     Key("attribute-order", Choice(("keep", "canonical")), "keep",
         "keep: attributes as written; canonical: name first, then the URDF/xacro schema order"),
+    Key("self-closing", Choice(("auto", "compact", "spaced")), "auto",
+        "how an empty element is closed: compact <a/>, spaced <a />, auto: as most of the "
+        "file's self-closed tags are"),
     Key("exclude", StrList("globs"), [], "paths (globs) not to format, on top of exclude"),
 )
 FORMAT_KEYS = {k.name: k for k in FORMAT_SCHEMA}
@@ -462,6 +465,9 @@ class ModelSpec:
     arg_sets: list[Any]             # list of dicts
     output: str | None = None       # absolute: the generated URDF written from this xacro
     mesh_base: str | None = None    # absolute: where relative mesh paths start
+    # per arg set, where this config file sets each arg ({name: (file, line, col)}): a value
+    # that comes from a passed arg is located there (:mod:`urdf_lint.config.places`)
+    arg_places: list[dict[str, tuple[str, int, int]]] = field(default_factory=list)
 
 
 def _default(name: str) -> Any:
@@ -517,6 +523,18 @@ class Config:
 
 
 # -- reading files ----------------------------------------------------------------------------
+def _arg_places(cfg: Config, entry: int, arg_sets: list[Any]) -> list[dict[str, Any]]:
+    """Where the config file sets each arg of the ``entry``-th ``[[models]]`` entry."""
+    from urdf_lint.config.places import arg_places
+    if not cfg.path or not os.path.isfile(cfg.path):
+        return [{} for _ in arg_sets]
+    try:
+        text = _read_config(Path(cfg.path))
+    except (OSError, UnicodeDecodeError):
+        return [{} for _ in arg_sets]
+    return arg_places(os.path.abspath(cfg.path), text, entry, arg_sets)
+
+
 def _read_config(path: Path) -> str:
     """The text of a config file: a regular file (never a FIFO or device), bounded."""
     from urdf_lint.core import fsbound
@@ -656,8 +674,9 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         value = {k: str((base / v).resolve()) for k, v in value.items()}
     elif key.name == "models":
         specs = []
-        for m in value:
-            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"])
+        for n, m in enumerate(value):
+            spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"],
+                             arg_places=_arg_places(cfg, n, m["args"]))
             for k in ("output", "mesh-base"):
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))

@@ -56,6 +56,9 @@ class LintJob:
     # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
     # files by this job's expansion and lint (urdf_lint/core/overlay.py); such a result is not cached
     overlay: tuple[tuple[str, bytes], ...] = ()
+    # where the config sets each of ``args`` ((name, (file, line, col)), ...): a value written
+    # as one passed ``$(arg NAME)`` is located there (a finding's ``value_from``)
+    arg_origins: tuple[tuple[str, tuple[str, int, int]], ...] = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -217,7 +217,7 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
             close = difflib.get_close_matches(name, sorted(declared), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             known = ", ".join(sorted(declared)) or "none"
-            where = (cfg.path, *_config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
+            where = (cfg.path, *config_line(cfg.path, name)) if cfg.path else (spec.path, 1, 1)
             out.append(Problem.at(
                 ul008_xacro_warning.CODE,
                 f"model {os.path.relpath(spec.path, cfg.root)}: arg {name!r} is not declared "
@@ -226,7 +226,7 @@ def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
     return list({p.key(): p for p in out}.values())
 
 
-def _config_line(path: str, name: str) -> tuple[int, int]:
+def config_line(path: str, name: str) -> tuple[int, int]:
     """(line, col) of the first ``name =`` in the config file (an arg in ``args``), else (1, 1)."""
     pat = re.compile(r"""(?:^|[\s{,])["']?""" + re.escape(name) + r"""["']?\s*=""")
     from urdf_lint.core import fsbound
@@ -250,8 +250,13 @@ def _recorded_args(detected: dict, resolver=None) -> dict:
 
 def _configured_jobs(spec, detected=(), recorded=None, graph=None) -> list:
     """One job per arg set of a models entry (see :func:`_variant_jobs`)."""
-    return _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
+    jobs = _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
                          spec.mesh_base, detected, recorded or {}, graph)
+    places = list(getattr(spec, "arg_places", None) or [])
+    for n, job in enumerate(jobs[:len(places)]):   # (the configured sets come first)
+        if places[n]:
+            jobs[n] = replace(job, arg_origins=tuple(sorted(places[n].items())))
+    return jobs
 
 
 def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,

@@ -250,13 +250,48 @@ class PackageResolver:
         if uri.startswith("package://"):
             rest = uri[len("package://"):]
             name, _, rel = rest.partition("/")
-            return self.find(name) / rel
+            p = self.find(name) / rel
+            return p if p.exists() else Path(self.installed(p)[0])
         if uri.startswith("file://"):
             return Path(uri[len("file://"):])
         p = Path(uri)
         if not p.is_absolute() and base_dir is not None:
             p = Path(base_dir) / p
         return p
+
+    def installed(self, path: str | os.PathLike) -> tuple[str, str | None]:
+        """``(source path, the CMakeLists.txt that maps it)`` of a path below a package of the
+        source tree that does not exist as written but that the package's build installs from
+        another folder (:mod:`urdf_lint.discovery.installs`); ``(path, None)`` otherwise."""
+        s = os.path.normpath(str(path))
+        if os.path.exists(s):
+            return s, None
+        pkgs = [(n, str(r)) for n, r in (*self.explicit.items(), *self.scanned.items())
+                if inside(s, str(r))]
+        if not pkgs:
+            return s, None
+        name, root = max(pkgs, key=lambda p: len(p[1]))
+        from urdf_lint.discovery.installs import source_of
+        rel = os.path.relpath(s, root).replace(os.sep, "/")
+        for cand in source_of(rel, self._install_rules(name, root)):
+            p = os.path.normpath(os.path.join(root, cand))
+            if inside(p, root) and os.path.exists(p):
+                return p, os.path.join(root, "CMakeLists.txt")
+        return s, None
+
+    def _install_rules(self, name: str, root: str) -> list:
+        key = ("install", root)
+        if key not in self._memo:
+            from urdf_lint.core import fsbound
+            from urdf_lint.discovery.installs import MAX_CMAKE_BYTES, install_rules
+            cmake = os.path.join(root, "CMakeLists.txt")
+            try:
+                text = fsbound.read_text(cmake, max_bytes=MAX_CMAKE_BYTES, errors="replace") \
+                    if os.path.isfile(cmake) else ""
+            except OSError:
+                text = ""
+            self._memo[key] = install_rules(text, name)
+        return self._memo[key]
 
     def is_inside(self, path: str | os.PathLike) -> bool:
         real = os.path.realpath(path)

@@ -208,7 +208,8 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
                 return None
         from urdf_lint.expansion import expand_file
         exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
-                          expr_policy=settings.expr_policy, env_set=settings.env_set)
+                          expr_policy=settings.expr_policy, env_set=settings.env_set,
+                          arg_origins=dict(job.arg_origins))
         out.env = dict(exp.env)
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)
@@ -283,10 +284,20 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
 
 
 def _placeholder(root: Any) -> bool:
-    """A ``<robot>`` empty by design: no name and no element (an ``empty.urdf`` included so
-    that "no extras" is the default, the expansion of a macro-only file): no model to lint."""
-    return root.tag == "robot" and not root.get("name") and \
-        not any(isinstance(c.tag, str) for c in root)
+    """A ``<robot>`` that is no model by design: no name, and no element (an ``empty.urdf``
+    included so that "no extras" is the default, the expansion of a macro-only file), or no
+    ``<link>`` of its own and xacro elements in it (an extras file an arg or environment
+    variable includes, such as jackal's ``custom_example.urdf``): no model to lint."""
+    if root.tag != "robot" or root.get("name"):
+        return False
+    kids = [c for c in root if isinstance(c.tag, str)]
+    return not kids or (not any(c.tag == "link" for c in kids) and any(
+        isinstance(e.tag, str) and (e.tag.startswith("xacro:") or e.tag.startswith(_XACRO_NS))
+        for e in root.iter()))
+
+
+_XACRO_NS = ("{http://www.ros.org/wiki/xacro}", "{http://ros.org/wiki/xacro}",
+             "{http://wiki.ros.org/xacro}")
 
 
 def _expand_only(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport) -> None:

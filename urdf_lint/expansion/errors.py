@@ -132,7 +132,15 @@ def _empty_args_hint(path: str, folder: bool = False) -> str:
     them."""
     empty = sorted(k for k, v in (xacro.substitution_args_context.get("arg") or {}).items()
                    if str(v) == "")
-    if not empty or not (folder or _HOLE.search(path.replace(os.sep, "/"))):
+    path = path.replace(os.sep, "/")
+    if empty and not (folder or _HOLE.search(path)):
+        # no hole, but the name of an empty arg is left in the path (``${dof}dof`` with dof
+        # empty gives ``.../dof/...``): that one
+        words = set(re.split(r"[/_.\-]+", path))
+        empty = [k for k in empty if k in words]
+        if not empty:
+            return ""
+    if not empty:
         return ""
     shown = ", ".join(empty[:6]) + (f" and {len(empty) - 6} more" if len(empty) > 6 else "")
     return (f" (the path was built from args left empty: {shown}; set them with NAME:=VALUE or "

@@ -112,6 +112,7 @@ class ExpansionState:
         # (file, line, col); the args passed (a [[models]] entry, the command line) are known
         self.arg_origins: dict[str, tuple] = {}
         self.passed_args: set[str] = set()
+        self.passed_origins: dict[str, tuple] = {}
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -260,10 +261,18 @@ def _hook_abs_filename_spec(filename_spec):
     spec = str(filename_spec)
     st = CURRENT.get()
     if spec.startswith("package://") and st is not None:
-        return str(st.resolver.resolve_uri(spec, None))
+        spec = str(st.resolver.find(spec[len("package://"):].partition("/")[0]) /
+                   spec[len("package://"):].partition("/")[2])
     if spec.startswith("file://"):
         spec = spec[len("file://"):]
-    return _orig["abs_filename_spec"](spec)
+    path = _orig["abs_filename_spec"](spec)
+    if st is not None and not any(c in path for c in "*?["):
+        # a path the package's build installs from another folder of its source tree
+        mapped, via = st.resolver.installed(path)
+        if via is not None:
+            st.deps[via] = None
+            return mapped
+    return path
 
 
 def _hook_eval_all(node, macros, symbols):
@@ -292,8 +301,11 @@ def _hook_eval_text(text, symbols):
     if type(result) is str and "$(arg" in text and st is not None:
         # a value that is one arg, at its default: it comes from the <xacro:arg> line
         m = _ARG_ONLY.fullmatch(text.strip())
-        if m and m.group(1) not in st.passed_args and m.group(1) in st.arg_origins:
-            result = traced.traced(result, st.arg_origins[m.group(1)])
+        name = m.group(1) if m else None
+        origin = (st.passed_origins.get(name) if name in st.passed_args
+                  else st.arg_origins.get(name)) if name else None
+        if origin is not None:
+            result = traced.traced(result, origin)
     src = traced.source_of(result)
     if src is not None and st is not None and st.value_frames:
         st.value_frames[-1].setdefault(text, src)
@@ -598,11 +610,13 @@ def classify_error(e: BaseException, st: ExpansionState, entry: str = "",
 
 def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
                 env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
-                expr_policy=None, env_set: Iterable[str] | None = None) -> Expansion:
+                expr_policy=None, env_set: Iterable[str] | None = None,
+                arg_origins: dict[str, tuple[str, int, int]] | None = None) -> Expansion:
     """Expand one xacro (or URDF) file in process. Never raises for bad input. Bytes to read
     instead of a file's (an editor's buffer, a layout ``format`` proves) come from
     :mod:`urdf_lint.core.overlay`, installed around the job by the worker. ``env_set``: the
-    names of the environment variables that are set (None: this process's)."""
+    names of the environment variables that are set (None: this process's). ``arg_origins``:
+    where the config sets each passed arg (a value written as that arg is located there)."""
     path = os.path.abspath(path)
     args = dict(args or {})
     res = Expansion(entry=path, args=dict(args))
@@ -615,6 +629,7 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
             if not resolver.is_inside(path):
                 raise RefusedInput(f"'{path}' is outside the package roots", ul902_outside_roots)
             st.passed_args = set(args)
+            st.passed_origins = dict(arg_origins or {})
             with safe_eval.policy(expr_policy):
                 before = False
                 doc = xacro.process_file(display_name or path, mappings=dict(args))

@@ -266,6 +266,8 @@ def traced_scalar(model, src, el, attr: str):
     if not got or got[1]:
         return None
     (file, line, col), _ = got
+    if str(file).endswith((".toml", ".xacro", ".urdf")):
+        return None      # an arg set in the config or at its <xacro:arg>: not a YAML scalar
     node = _yaml_node_at(src.get(file), line, col)
     return (file, node) if node is not None else None
 
@@ -334,6 +336,7 @@ class Fixer:
         self.model = model
         self.src = _Sources(model)
         self._index: dict | None = None
+        self._value_from_memo: dict[tuple, tuple] = {}
 
     def index(self, el) -> int:
         if self._index is None:
@@ -357,6 +360,14 @@ class Fixer:
         origin = self.model.origins.get(el)
         if origin is None:
             return ()
+        # one trace per source location (a macro line many links share is traced once)
+        key = (origin.file, origin.line, origin.col, tuple(map(tuple, origin.chain)),
+               tuple(attrs))
+        if key not in self._value_from_memo:
+            self._value_from_memo[key] = self._value_from_source(origin, attrs)
+        return self._value_from_memo[key]
+
+    def _value_from_source(self, origin, attrs) -> tuple:
         try:
             data = self.src.get(origin.file)
             tag = start_tag_at(data, origin.line, origin.col)

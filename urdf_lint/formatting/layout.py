@@ -48,6 +48,7 @@ class Style:
     indent: int = 2
     line_length: int = 100
     attribute_order: str = "keep"     # "keep" | "canonical"
+    self_closing: str = "auto"        # "auto" (the file's majority) | "compact" | "spaced"
 
 
 class FormatError(Exception):
@@ -132,12 +133,13 @@ class _Leaf:
 
 
 class _El:
-    __slots__ = ("name", "attrs", "children", "inner")
+    __slots__ = ("name", "attrs", "children", "inner", "spaced")
 
     def __init__(self, name: str, attrs: list):
         self.name, self.attrs = name, attrs
         self.children: list = []
         self.inner: tuple[int, int] | None = None    # source span of the content; None: <x/>
+        self.spaced = False                          # written <x />
 
 
 def _doctype_end(src: str, i: int) -> int:
@@ -176,7 +178,9 @@ def _tokenize(src: str) -> list:
             el = _El(m.group("start"), _ATTR.findall(m.group("attrs")))
             into.append(el)
             i = m.end()
-            if not m.group("empty"):
+            if m.group("empty"):
+                el.spaced = src[m.start("empty") - 1].isspace()
+            else:
                 el.inner = (i, i)
                 stack.append(el)
                 into = el.children
@@ -209,9 +213,10 @@ def _newlines(ws: str) -> int:
 
 
 class _Layout:
-    def __init__(self, src: str, style: Style, nl: str):
+    def __init__(self, src: str, style: Style, nl: str, spaced: bool = False):
         self.src, self.style, self.nl = src, style, nl
         self.out: list[str] = []
+        self.empty_close = " />" if spaced else "/>"
 
     def kind(self, el: _El) -> str:
         """"empty" (self-closed), "elements" (re-laid out) or "verbatim" (kept as written)."""
@@ -243,7 +248,7 @@ class _Layout:
         indent = " " * (style.indent * depth)
         kind = self.kind(el)
         attrs = [f"{k}={v}" for k, v in self.ordered(el)]
-        close = "/>" if kind == "empty" else ">"
+        close = self.empty_close if kind == "empty" else ">"
         one = "<" + el.name + "".join(" " + a for a in attrs) + close
         first_line = one.split("\n", 1)[0].split("\r", 1)[0]
         if len(attrs) > 1 and len(indent) + len(first_line) > style.line_length:
@@ -303,9 +308,27 @@ def format_text(src: str, style: Style = Style()) -> str:
     """``src`` (decoded, no BOM) laid out; raises ValueError when the tokenizer cannot read it
     (callers check well-formedness with expat first: :func:`format_source`)."""
     nl = _newline_of(src)
-    lay = _Layout(src, style, nl)
-    lay.children(_tokenize(src), 0, top=True)
+    nodes = _tokenize(src)
+    lay = _Layout(src, style, nl, _spaced(nodes, style.self_closing))
+    lay.children(nodes, 0, top=True)
     return "".join(lay.out) + nl
+
+
+def _spaced(nodes: list, how: str) -> bool:
+    """Are empty elements closed with `` />``? ``auto``: when most of the file's self-closed
+    tags are written so (a tie, or none: ``/>``), so formatting a repository that writes
+    ``<a />`` does not rewrite every such line."""
+    if how != "auto":
+        return how == "spaced"
+    counts = [0, 0]    # [compact, spaced]
+    todo = list(nodes)
+    while todo:
+        n = todo.pop()
+        if n.__class__ is _El:
+            if n.inner is None:
+                counts[n.spaced] += 1
+            todo.extend(n.children)
+    return counts[1] > counts[0]
 
 
 # -- bytes: BOM, encoding, well-formedness ------------------------------------------------------

@@ -149,7 +149,8 @@ class UrdfLintServer(LanguageServer):
         from urdf_lint.report.base import fold_instances
         for f in group(findings):
             related = []
-            for (cf, cl, cc) in f.chain:
+            # every instance's call sites (a grouped finding: each call of the macro line)
+            for (cf, cl, cc) in dict.fromkeys(tuple(c) for i in f.each() for c in i.chain):
                 cdoc = docs.get(cf) or docs.setdefault(cf, self.doc(cf))
                 related.append(types.DiagnosticRelatedInformation(
                     location=types.Location(uri=path_uri(cf), range=cdoc.element_range(cl, cc)),

@@ -96,16 +96,23 @@ def views(ls: UrdfLintServer) -> list[ModelView]:
     ws = ls.ws
     out = []
     for r in list(ws.models()) if ws else []:
-        if r.kept_model is None or r.kept_model.xml is None:
-            continue
-        v = _views.get(id(r))
-        if v is None or v[0] is not r:
-            try:
-                v = _views[id(r)] = (r, ModelView(r))
-            except Exception:  # noqa: BLE001 - a model lxml cannot hold: no navigation in it
-                continue
-        out.append(v[1])
+        v = view_of(r)
+        if v is not None:
+            out.append(v)
     return out
+
+
+def view_of(r) -> ModelView | None:
+    """The view of one model's report (kept while the report is), None without a robot."""
+    if r.kept_model is None or r.kept_model.xml is None:
+        return None
+    v = _views.get(id(r))
+    if v is None or v[0] is not r:
+        try:
+            v = _views[id(r)] = (r, ModelView(r))
+        except Exception:  # noqa: BLE001 - a model lxml cannot hold: no navigation in it
+            return None
+    return v[1]
 
 
 # -- the cursor's context ---------------------------------------------------------------------
@@ -333,7 +340,17 @@ def _text_refs(ls, path, pat, kind, name, include_declaration, whole) -> list[ty
 
 
 # -- hover --------------------------------------------------------------------------------------
+# asked first, in order (server.py adds them: the methods' modules import this one)
+HOVER_FIRST: list = []
+# (ls, path, at, completer, items) -> items, after the completer that answered
+COMPLETION_REFINE: list = []
+
+
 def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | None:
+    for first in HOVER_FIRST:   # (methods.hover_xacro: $(arg), xacro:arg/property, calls)
+        got = first(ls, path, pos)
+        if got is not None:
+            return got
     doc = ls.doc(path)
     at = At(doc, pos)
     if at.comment:
@@ -498,6 +515,8 @@ def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types
     for complete in _COMPLETERS:
         got = complete(ls, path, at)
         if got is not None:
+            for refine in COMPLETION_REFINE:   # (methods.completion_xacro)
+                got = refine(ls, path, at, complete, got)
             return got
     return []
 

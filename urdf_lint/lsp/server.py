@@ -9,7 +9,8 @@ import os
 from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
-from urdf_lint.lsp.methods import preview
+from urdf_lint.lsp.methods import (completion_xacro, formatting, hover_xacro, preview,
+                                   range_formatting, rename)
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
 from urdf_lint.lsp.state import Workspace
 
@@ -93,7 +94,25 @@ CONFIG_NAMES = ("pyproject.toml", ".urdf-lint.toml", "urdf-lint.toml")
 
 actions.register(server)
 features.register(server)
-preview.register(server)   # urdf-lint.preview: lsp/methods/preview.py
+
+
+def _in_lint_thread(handle):
+    """A method run in the lint thread (it may use the warm pool: one run at a time)."""
+    async def run(ls: UrdfLintServer, params):
+        if ls.ws is None:
+            return None
+        return await asyncio.get_running_loop().run_in_executor(ls.executor, handle, ls.ws,
+                                                                params)
+    return run
+
+
+for _m in (formatting, range_formatting):
+    server.feature(_m.METHOD)(_in_lint_thread(_m.handle))
+server.feature(rename.METHOD, rename.OPTIONS)(rename.handle)
+server.feature(rename.PREPARE)(rename.prepare)
+features.HOVER_FIRST.append(hover_xacro.hover)
+features.COMPLETION_REFINE.append(completion_xacro.refine)
+server.command(preview.COMMAND)(preview.command)
 
 
 def main() -> int:

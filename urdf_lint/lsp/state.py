@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import re
 import threading
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
@@ -44,6 +44,7 @@ class Workspace:
     reports: dict = field(default_factory=dict)       # job_key -> ModelReport
     findings: list = field(default_factory=list)      # after policy, merge, suppression
     config_problem: ConfigProblem | None = None
+    last_good: dict = field(default_factory=dict)     # job_key -> the last report that expanded
     pool_size: int = 2
     facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
 
@@ -96,7 +97,7 @@ class Workspace:
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
-        self.reports = {}
+        self.reports, self.last_good = {}, {}
         from urdf_lint.lsp.pool import Pool
         self.pool = Pool(self.settings, self.pool_size)
 
@@ -182,18 +183,17 @@ class Workspace:
                 if hit is not None and not _reads_buffer(hit, self.buffers):
                     self.reports[job_key(job)] = hit
                 else:
-                    todo.append(LintJob(job.entry, job.args, job.kind, job.explicit,
-                                        job.display_name, job.output, job.mesh_base,
-                                        overlay=overlay))
+                    todo.append(replace(job, overlay=overlay))
             if todo:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
                     self.reports[job_key(job)] = rep
+                    if rep.status is Status.MODEL and rep.kept_model is not None:
+                        self.last_good[job_key(job)] = rep   # (completion while mid-edit)
                     if self.facts is not None:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
-                        plain = LintJob(job.entry, job.args, job.kind, job.explicit,
-                                        job.display_name, job.output, job.mesh_base)
+                        plain = replace(job, overlay=())
                         self.cache.put(plain, self.settings, rep)
             self.findings = self._finish()
             return before | {f.file for f in self.findings}
@@ -269,17 +269,26 @@ def _cache_for(root: str, cfg):
     return None if c.refused else c
 
 
-_AT_LINE = re.compile(r"^(?P<file>[^\n]*?):(?P<line>\d+): ")
+_AT_LINE = re.compile(r"^(?P<file>[^\n]*?):(?P<line>\d+)(?::\d+)?: ")
+_AT_FILE = re.compile(r"^(?P<file>[^\n]*?\.toml)(?::\d+)*: ")
 
 
 def _config_problem(message: str, root: str) -> ConfigProblem:
-    """A ConfigError's message (``path:LINE: what``) as a located problem."""
-    from urdf_lint.config.schema import find_config
-    cfg_file = find_config(root)
+    """A ConfigError's message (``path:LINE[:COL]: what``) as a located problem. The config
+    file is the one the message names; else the one found from ``root``, which is not looked
+    for again when finding it is what failed (a ``pyproject.toml`` that does not parse raises
+    the same error again)."""
+    from urdf_lint.config.schema import ConfigError, find_config
     m = _AT_LINE.match(message)
     line = int(m.group("line")) if m else 0
-    file = str(cfg_file) if cfg_file else os.path.join(root, "pyproject.toml")
-    if m and os.path.exists(m.group("file")):
-        file = m.group("file")
+    named = m or _AT_FILE.match(message)
+    if named and os.path.isfile(named.group("file")):
+        file = named.group("file")
+    else:
+        try:
+            cfg_file = find_config(root)
+        except ConfigError:
+            cfg_file = None
+        file = str(cfg_file) if cfg_file else os.path.join(root, "pyproject.toml")
     text = message[m.end():] if m else message.split(": ", 1)[-1] if ": " in message else message
     return ConfigProblem(os.path.realpath(file), line, text)

@@ -132,7 +132,29 @@ def resolve(model, uri: str) -> MeshRef:
         there = _resolve(model, uri, other)
         if there.status is MeshStatus.OK:
             return replace(there, assumed=model.base_dir)
+    if ref.status is MeshStatus.NOT_FOUND and _relative(uri) and ref.path:
+        hint = _found_above(model, uri, model.base_dir)
+        if hint:
+            return replace(ref, message=ref.message + hint)
     return ref
+
+
+def _found_above(model, uri: str, base_dir: str) -> str:
+    """Where a relative mesh missing from ``base_dir`` is when read from a folder above it
+    (inside the same root): unitree's hand URDFs write ``meshes/x.STL`` one folder below the
+    package's ``meshes``. A hint, never a resolution: the loader decides where relative paths
+    start."""
+    from urdf_lint.core.locations import display_path
+    top = model.resolver.root_of(base_dir)
+    d = base_dir
+    while top is not None and os.path.dirname(d) != d and len(d) > len(top):
+        d = os.path.dirname(d)
+        p = os.path.join(d, uri)
+        if model.resolver.is_inside(p) and os.path.isfile(p):
+            return (f"; a file of that name is at {display_path(p)}: if the program that "
+                    f"loads this robot reads relative paths from {display_path(d)}, set "
+                    "mesh-base")
+    return ""
 
 
 def _relative(uri: str) -> bool:

@@ -152,7 +152,10 @@ def merge_rrd(parts, out):
     import shutil
     import subprocess
     from urdf_lint.core import fsbound
-    exe = shutil.which("rerun") or os.path.join(os.path.dirname(sys.executable), "rerun")
+    # the rerun of this environment (the one whose rerun-sdk recorded the parts) before any on
+    # PATH: a pyenv shim on PATH may name an interpreter without rerun-sdk
+    here = os.path.join(os.path.dirname(sys.executable), "rerun")
+    exe = here if os.access(here, os.X_OK) else (shutil.which("rerun") or here)
     with fsbound.temp_path(out, os.path.dirname(os.path.abspath(out)), ".rrd") as tmp:
         p = subprocess.run([exe, "rrd", "merge", *parts, "-o", tmp], capture_output=True,
                            timeout=120, env=dict(os.environ, RERUN_ANALYTICS="off"))

@@ -183,7 +183,8 @@ class Cache:
         blob = json.dumps([build_id(), RECORD_FORMAT, job.entry, sorted(job.args.items()),
                            job.kind, bool(job.explicit), job.output, job.mesh_base,
                            list(job.outputs), list(job.untied),
-                           [list(v) for v in job.variants]]) + memo[1]
+                           [list(v) for v in job.variants],
+                           [[n, list(p)] for n, p in job.arg_origins]]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> str:

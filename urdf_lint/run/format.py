@@ -43,14 +43,17 @@ SUFFIXES = (".urdf", ".xacro")
 def style_of(cfg, args=None) -> Style:
     """The layout settings: ``[tool.urdf-lint.format]``, then the command line."""
     from urdf_lint.config.schema import FORMAT_KEYS, format_option
-    opts = {k: FORMAT_KEYS[k].default for k in ("indent", "line-length", "attribute-order")}
+    opts = {k: FORMAT_KEYS[k].default for k in STYLE_KEYS}
     opts.update({k: v for k, v in cfg.format_options.items() if k in opts})
     for k in opts:
         given = getattr(args, k.replace("-", "_"), None) if args is not None else None
         if given is not None:
             opts[k] = format_option(k, given)
-    return Style(indent=opts["indent"], line_length=opts["line-length"],
-                 attribute_order=opts["attribute-order"])
+    return Style(**{k.replace("-", "_"): v for k, v in opts.items()})
+
+
+# the [tool.urdf-lint.format] keys that are Style's fields (each also a flag of format)
+STYLE_KEYS = ("indent", "line-length", "attribute-order", "self-closing")
 
 
 @dataclass
@@ -159,11 +162,15 @@ class Proof:
 
 
 def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
-          old: dict | None = None, docs: dict | None = None) -> Proof:
+          old: dict | None = None, docs: dict | None = None, held: dict | None = None,
+          runner=None) -> Proof:
     """The proof for the new layouts ``changed`` ({real path: bytes}); ``old`` ({real path:
     bytes}, the files as they are) lets a file be proved from itself
     (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only;
-    ``docs`` ({bytes: read_document}) holds the documents already read."""
+    ``docs`` ({bytes: read_document}) holds the documents already read. The language
+    server gives ``held`` ({real path: bytes}, its unsaved buffers: read in place of the
+    files both before and after) and ``runner`` (jobs -> [(job, report)]: its warm pool of
+    sandboxed workers; default a pool of ``jobs_n`` forked for the proof)."""
     from urdf_lint.discovery.discover import build_resolver, discover_models, repository_root
     from urdf_lint.core.jobs import LintJob
     from urdf_lint.discovery.packages import inside
@@ -207,11 +214,12 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
         """Each model of ``keys`` expanded with the new layouts ``overlay`` read in place of
         the files (the job's overlay, as the language server's unsaved buffers: nothing is
         written while it is proved)."""
-        pairs = tuple(sorted(overlay.items()))
+        pairs = tuple(sorted({**(held or {}), **overlay}.items()))
         todo = {k: dataclasses.replace(jobs[k], overlay=pairs) for k in keys}
         by_job = {id(j): k for k, j in todo.items()}
-        return {by_job[id(j)]: r for j, r in run_jobs(list(todo.values()), base,
-                                                      jobs_n=jobs_n)}
+        ran = runner(list(todo.values())) if runner is not None else \
+            run_jobs(list(todo.values()), base, jobs_n=jobs_n)
+        return {by_job[id(j)]: r for j, r in ran}
     before = expand(list(jobs), {})
     deps = {k: {os.path.realpath(d) for d in r.deps} for k, r in before.items()}
     # (a file proved where every file reads quietly, read by a model whose files do not)

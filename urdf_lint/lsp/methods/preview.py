@@ -7,6 +7,7 @@ preview"), one per file, kept until the language server exits; the result is
 ``{"url": ..., "highlight": "link:NAME" | ""}`` for the client to open."""
 from __future__ import annotations
 
+import atexit
 import os
 import re
 import select
@@ -15,6 +16,8 @@ import sys
 import time
 from typing import Any
 from urllib.parse import quote
+
+from urdf_lint.lsp.methods import Refused
 
 COMMAND = "urdf-lint.preview"
 START_TIMEOUT_S = 120.0
@@ -68,28 +71,40 @@ def _start(path: str) -> tuple[subprocess.Popen, str]:
     raise RuntimeError(f"the preview of {path} did not start")
 
 
-def preview(ls: Any, args: list[Any]) -> dict[str, str]:
+def handle(ws: Any, args: list[Any]) -> dict[str, str]:
     """Start (or reuse) the preview of the file ``args[0]`` and return its URL."""
     from urdf_lint.lsp.core import uri_path
     if not args:
-        raise ValueError(f"{COMMAND} needs the file's URI")
+        raise Refused(f"{COMMAND} needs the file's URI")
     path = uri_path(str(args[0]))
     line = int(args[1]) if len(args) > 1 else 0
     character = int(args[2]) if len(args) > 2 else 0
-    highlight = element_at(ls.doc(path).text, line, character)
+    highlight = element_at(_text(ws, path), line, character)
     running = _running.get(path)
     if running is None or running[0].poll() is not None:
+        if not _running:
+            atexit.register(stop_all)   # (once: stop_all empties the table)
         running = _running[path] = _start(path)
     url = running[1] + (f"#highlight={quote(highlight)}" if highlight else "")
     return {"url": url, "highlight": highlight}
 
 
-def register(server: Any) -> None:
-    import atexit
-    def command(ls: Any, *args: Any) -> dict[str, str]:   # (pygls spreads the arguments)
-        return preview(ls, list(args))
-    server.command(COMMAND)(command)
-    atexit.register(stop_all)
+def command(ls: Any, *args: Any) -> dict[str, str]:
+    """The registered command (pygls spreads the arguments)."""
+    return handle(ls.ws, list(args))
+
+
+def _text(ws: Any, path: str) -> str:
+    """The file as the editor has it, else as on disk (through the workspace's roots)."""
+    if ws is None:
+        return ""
+    data = ws.buffers.get(path)
+    if data is None:
+        try:
+            data = ws.read(path)
+        except OSError:
+            data = b""
+    return bytes(data).decode("utf-8", "replace")
 
 
 def stop_all() -> None:
