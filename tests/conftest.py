@@ -167,7 +167,10 @@ E2E_NAMES = frozenset({"run_cli", "terminated", "subprocess", "Popen", "executab
 E2E_FIXTURES = frozenset({"corpus", "corpus_resolver", "corpus_report"})
 # what the names cannot show: servers started by a plugin's fixture, real consumers
 E2E_FILES = {"test_server.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
-             "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess"}
+             "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess",
+             "test_lsp_preview.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
+             "test_preview.py": "the preview lints in sandboxed workers and serves over HTTP",
+             "test_preview_browser.py": "headless Chromium loads the preview and review pages"}
 _TESTS = Path(__file__).resolve().parent
 
 

@@ -277,7 +277,11 @@ def test_the_review_goes_to_the_job_summary_with_pictures(pull_request):
     assert any(name.endswith(".png") for name in r.uploaded), r.uploaded
     assert [w for u, w in r.used if u.startswith("actions/upload-artifact@")] == [
         {"name": "urdf-lint-review", "path": pictures, "if-no-files-found": "ignore"}]
-    assert r.summary.rstrip().endswith(f"({ARTIFACT_URL})")     # the pictures are linked
+    assert r.summary.rstrip().endswith("in a browser (no server needed).")
+    assert r.summary.count(f"]({ARTIFACT_URL})") == 2            # the pictures are linked
+    # ... and the interactive review page, in the same artifact
+    assert "`page/index.html`" in r.summary
+    assert {"page/index.html", "page/review-data.js", "page/vendor.js"} <= set(r.uploaded)
     assert r.code == 1
     assert untracked(work) == ""
 
@@ -308,7 +312,8 @@ def test_a_pull_request_cannot_put_a_file_in_the_summary_or_the_artifact(pull_re
     assert "extraheader" not in everything
     for name in r.uploaded:                              # only what urdf-lint wrote
         full = Path(r.outputs["review"]["pictures"], name)
-        assert not full.is_symlink() and full.suffix in (".png", ".rrd", ".json", ".md"), name
+        assert not full.is_symlink() and full.suffix in (".png", ".rrd", ".json", ".md",
+                                                         ".html", ".js", ".css", ".txt"), name
     sarif = work / r.outputs["check"]["sarif"]     # relative to the workspace, if ever
     assert OUTSIDE not in sarif.read_text() and sarif.parent.parent == pr.temp
     assert untracked(work) == ""

@@ -50,6 +50,9 @@ def add_parser(sub, raw):
                     "identical framing and one .rrd holding both revisions per affected model "
                     "(default: no snapshots)")
     df.add_argument("--no-rrd", action="store_true", help="with --render: PNGs only")
+    df.add_argument("--html", metavar="DIR",
+                    help="write an interactive review page (DIR/index.html: both robots "
+                         "overlaid in 3D, changed links highlighted; opens from file://; default: none)")
     add_views(df)
     df.add_argument("--trust-config", action="store_true",
                     help="let each revision's config set env-allow, package-paths outside the "
@@ -71,7 +74,17 @@ class ReviewOptions:
     no_cache: bool = False
     render: str | None = None
     no_rrd: bool = False
+    html: str | None = None
     config: ConfigOptions = field(default_factory=ConfigOptions)
+
+
+def _write_page(page, out_dir: str, paths, result) -> None:
+    title = f"urdf-lint review: {result.base} .. {result.head}"
+    try:
+        page.write(out_dir, write_base(os.path.join(out_dir, "index.html"), paths), title)
+    except OSError as e:
+        raise UsageError(f"cannot write {safe_text(out_dir)}: "
+                         f"{safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
 def run(args) -> int:
@@ -87,6 +100,11 @@ def diff(o: ReviewOptions) -> int:
             raise UsageError(f"no such file or directory: {p}")
     # the config comes from each revision's own tree; the CLI adds only its flags' keys
     refuse_symlinked_out(o.render, paths)
+    refuse_symlinked_out(o.html, paths)
+    page = None
+    if o.html:
+        from urdf_lint.preview.review import ReviewPage
+        page = ReviewPage()
     cfgs = []
 
     def load(ps):
@@ -96,9 +114,12 @@ def diff(o: ReviewOptions) -> int:
         result = review.run_diff(o.base, o.head, paths, load,
                                  parse_package_paths(o.package_path), jobs_n=None,
                                  use_cache=not o.no_cache, render_dir=o.render,
-                                 rrd=not o.no_rrd)
+                                 rrd=not o.no_rrd,
+                                 on_model=page.collect if page is not None else None)
     except review.ReviewError as e:
         raise UsageError(str(e)) from None
+    if page is not None and o.html:
+        _write_page(page, o.html, paths, result)
     options = diff_report.DiffOptions(image_base_url=o.image_base_url)
     if o.output:
         try:

@@ -27,7 +27,7 @@ from urdf_lint.core.errors import UsageError
 
 
 COMMANDS = ("check", "hook", "expand", "rules", "rule", "render", "diff", "generate", "format",
-            "mcp", "doctor", "clean", "server")
+            "mcp", "doctor", "clean", "server", "preview")
 SUBPARSERS: dict = {}
 
 

@@ -9,8 +9,8 @@ import os
 from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
-from urdf_lint.lsp.methods import (completion_xacro, formatting, hover_xacro, range_formatting,
-                                   rename)
+from urdf_lint.lsp.methods import (completion_xacro, formatting, hover_xacro, preview,
+                                   range_formatting, rename)
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
 from urdf_lint.lsp.state import Workspace
 
@@ -112,6 +112,7 @@ server.feature(rename.METHOD, rename.OPTIONS)(rename.handle)
 server.feature(rename.PREPARE)(rename.prepare)
 features.HOVER_FIRST.append(hover_xacro.hover)
 features.COMPLETION_REFINE.append(completion_xacro.refine)
+server.command(preview.COMMAND)(preview.command)
 
 
 def main() -> int:

@@ -351,7 +351,10 @@ class _Background:
 
 def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
              jobs_n=None, use_cache=True, render_dir: str | None = None,
-             rrd: bool = True) -> DiffResult:
+             rrd: bool = True, on_model=None) -> DiffResult:
+    """``on_model(model_diff, head_model, base_model)``, when given, is called for each model
+    diff at the end, while both revisions are still on disk (``diff --html`` reads the
+    meshes then); it may change the models."""
     from urdf_lint.discovery.discover import start_dir
     from urdf_lint.discovery.vcs import git_root
     top = git_root(start_dir(paths))
@@ -366,7 +369,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
     try:
         with tempfile.TemporaryDirectory(prefix="urdf-lint-diff-") as tmp:
             return _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
-                             jobs_n, use_cache, render_dir, rrd, recorder, tmp)
+                             jobs_n, use_cache, render_dir, rrd, recorder, tmp, on_model)
     finally:
         if recorder is not None:
             recorder.close()
@@ -406,7 +409,7 @@ def _inputs(root, m) -> list:
 
 
 def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths, jobs_n,
-              use_cache, render_dir, rrd, recorder, tmp) -> DiffResult:
+              use_cache, render_dir, rrd, recorder, tmp, on_model=None) -> DiffResult:
     changed = _Changes.between(top, base_sha, head_sha)
     head_root = top
     if head_sha:
@@ -467,7 +470,20 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
         result.models.append(_model_diff(dk, head, base, dk, removed=True, top=shown))
     if render_dir:
         _render_snapshots(result, head, base, base_keys, render_dir, cfg, recorder)
+    _hand_robots(on_model, result, head, base, base_keys, affected, deleted)
     return result
+
+
+def _hand_robots(on_model, result, head: Side, base: Side, base_keys, affected, deleted):
+    """``on_model(model_diff, head_model, base_model)`` for each model diff (in the order
+    ``_run_diff`` appended them), when ``on_model`` is given."""
+    if on_model is None:
+        return
+    robots = [(head.robots.get(k), base.robots.get(base_keys[k]) if k in base_keys else None)
+              for k in sorted(affected)]
+    robots += [(None, base.robots.get(dk)) for dk in sorted(deleted)]
+    for md, (hm, bm) in zip(result.models, robots, strict=True):
+        on_model(md, hm, bm)
 
 
 def _head_cache(head_paths, cfg):

@@ -2,6 +2,7 @@
 // URDF, the YAML files xacro.load_yaml reads and pyproject.toml (its [tool.urdf-lint]).
 import * as vscode from "vscode";
 import {
+  ExecuteCommandRequest,
   LanguageClient,
   LanguageClientOptions,
   ServerOptions,
@@ -33,6 +34,24 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
   client = new LanguageClient("urdf-lint", "urdf-lint", serverOptions, clientOptions);
   context.subscriptions.push(client);
   await client.start();
+  // the 3D preview of the current file (the server's `urdf-lint.preview` command starts
+  // `urdf-lint preview` and answers its URL, the link or joint under the cursor highlighted)
+  context.subscriptions.push(
+    vscode.commands.registerCommand("urdf-lint.showPreview", async () => {
+      const editor = vscode.window.activeTextEditor;
+      if (!client || !editor) {
+        return;
+      }
+      const pos = editor.selection.active;
+      const result = (await client.sendRequest(ExecuteCommandRequest.type, {
+        command: "urdf-lint.preview",
+        arguments: [editor.document.uri.toString(), pos.line, pos.character],
+      })) as { url: string; highlight: string } | null;
+      if (result && result.url) {
+        await vscode.env.openExternal(vscode.Uri.parse(result.url, true));
+      }
+    }),
+  );
 }
 
 export async function deactivate(): Promise<void> {

@@ -1,0 +1,1 @@
+"""The 3D page: `urdf-lint preview` (a local server) and the review page of `diff --html`."""
