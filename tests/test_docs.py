@@ -162,3 +162,78 @@ def test_each_generated_block_lives_in_its_page(page):
     text = (REPO / "docs" / page).read_text(encoding="utf-8")
     names = {n for n, p in gen.PAGES.items() if p.name == page}
     assert names and all(f"<!-- generated: {n} -->" in text for n in names)
+
+
+# -- each room says what it owns and what it may import ---------------------------------------
+def allowed_imports(contracts: list[dict]) -> dict[str, set[str]]:
+    """{room: the rooms it may import} by the import-linter contracts: every room in a lower
+    layer (rooms of one layer, ``a | b``, are independent), less what a ``forbidden`` contract
+    forbids it."""
+    layers = next(c for c in contracts if c["type"] == "layers")["layers"]
+    rooms = [[m.strip().strip("()").removeprefix("urdf_lint.") for m in layer.split("|")]
+             for layer in layers]
+    out = {r: {b for lower in rooms[i + 1:] for b in lower}
+           for i, layer in enumerate(rooms) for r in layer}
+    for c in contracts:
+        if c["type"] == "forbidden":
+            for src in c["source_modules"]:
+                out[src.removeprefix("urdf_lint.")] -= {
+                    m.removeprefix("urdf_lint.") for m in c["forbidden_modules"]}
+    return out
+
+
+def room_doc_errors(pkg: Path, contracts: list[dict]) -> list[str]:
+    """What is wrong with the docstring of each room's ``__init__.py`` under ``pkg``: it must
+    say what the room owns (a first paragraph that is more than a pointer elsewhere) and have a
+    ``May import:`` paragraph naming exactly the rooms the contracts allow it."""
+    import ast
+    allowed = allowed_imports(contracts)
+    errors = []
+    for init in sorted(pkg.glob("*/__init__.py")):
+        room = init.parent.name
+        doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
+        paras = [" ".join(p.split()) for p in doc.split("\n\n")]
+        if len(paras[0]) < 60 or "see ARCHITECTURE.md" in paras[0]:
+            errors.append(f"{room}: the docstring does not say what the room owns")
+        may = [p for p in paras if p.startswith("May import:")]
+        if len(may) != 1:
+            errors.append(f"{room}: no 'May import:' paragraph")
+            continue
+        named = set(re.findall(r"``(\w+)``", may[0]))
+        if room not in allowed:
+            errors.append(f"{room}: not in the layers contract")
+        elif named != allowed[room]:
+            errors.append(f"{room}: 'May import:' names {sorted(named)}, the contracts allow "
+                          f"{sorted(allowed[room])}")
+    return errors
+
+
+def _contracts() -> list[dict]:
+    try:
+        import tomllib
+    except ModuleNotFoundError:      # Python 3.10
+        import tomli as tomllib
+    return tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["importlinter"]["contracts"]
+
+
+def test_each_room_says_what_it_owns_and_may_import():
+    contracts = _contracts()
+    assert len(list((REPO / "urdf_lint").glob("*/__init__.py"))) >= 14
+    assert room_doc_errors(REPO / "urdf_lint", contracts) == []
+
+
+def test_a_room_doc_that_disagrees_with_the_contracts_is_found(tmp_path):
+    contracts = _contracts()
+    for room, doc in {"core": "core: see ARCHITECTURE.md.",
+                      "config": "The configuration: the schema, loading, trust and the policy of "
+                                "severities.\n\nMay import: ``core``, ``report``, ``run``.",
+                      "runner": "Forked workers and their scheduler, handed a handler; it knows "
+                                "neither lint nor render.\n\nMay import: ``discovery``, "
+                                "``config``, ``report``, ``core``."}.items():
+        (tmp_path / room).mkdir()
+        (tmp_path / room / "__init__.py").write_text(f'"""{doc}"""\n')
+    assert room_doc_errors(tmp_path, contracts) == [
+        "config: 'May import:' names ['core', 'report', 'run'], the contracts allow "
+        "['core', 'report']",
+        "core: the docstring does not say what the room owns",
+        "core: no 'May import:' paragraph"]
