@@ -237,3 +237,18 @@ def test_a_room_doc_that_disagrees_with_the_contracts_is_found(tmp_path):
         "['core', 'report']",
         "core: the docstring does not say what the room owns",
         "core: no 'May import:' paragraph"]
+
+
+# -- the walk of a request through the rooms (scripts/walk_check.py) --------------------------
+def test_the_walk_of_a_command_starts_in_the_cli_and_counts_its_returns():
+    walk = load_script("walk_check")
+    assert walk.excursions(["cli", "config", "cli", "config", "cli", "run", "cli"], "cli") == \
+        ["cli", "config x2", "run"]
+    assert walk.excursions(["cli.main", "core.lazy", "cli.check", "run.pipeline"], "cli") == \
+        ["cli", "core.lazy", "run.pipeline"]
+    w = walk.walk(["rule", "UL302"])
+    assert w.rc == 0 and w.rooms[0] == "cli" and "engine" in w.rooms, w.rooms
+    assert all(a != b for a, b in zip(w.rooms, w.rooms[1:]))       # repeats collapsed
+    n = walk.counts(w)
+    assert n["stays"] == len(w.rooms) and n["cli re-entries"] == w.rooms.count("cli") - 1
+    assert w.modules[0].startswith("urdf_lint.cli.")
