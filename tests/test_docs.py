@@ -248,7 +248,7 @@ def test_the_walk_of_a_command_starts_in_the_cli_and_counts_its_returns():
         ["cli", "core.lazy", "run.pipeline"]
     w = walk.walk(["rule", "UL302"])
     assert w.rc == 0 and w.rooms[0] == "cli" and "engine" in w.rooms, w.rooms
-    assert all(a != b for a, b in zip(w.rooms, w.rooms[1:]))       # repeats collapsed
+    assert all(a != b for a, b in zip(w.rooms, w.rooms[1:], strict=False))       # repeats collapsed
     n = walk.counts(w)
     assert n["stays"] == len(w.rooms) and n["cli re-entries"] == w.rooms.count("cli") - 1
     assert w.modules[0].startswith("urdf_lint.cli.")
