@@ -22,6 +22,8 @@ def copy_repo(dst: Path) -> Path:
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc")
     for name in COPIED:
         src = REPO / name
+        if not src.exists():
+            continue
         if src.is_dir():
             shutil.copytree(src, dst / name, ignore=ignore, symlinks=True)
         else:
