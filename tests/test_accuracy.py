@@ -515,9 +515,10 @@ def test_readme_numbers_are_the_demos():
          f"{len(fired)} of the {len(rules)} rules fire")
     # the paragraph is generated from a run by scripts/gen_docs.py: a new rule or broken model
     # changes it by running the script, not by hand
-    import importlib.util
-    spec = importlib.util.spec_from_file_location("gen_docs", REPO / "scripts" / "gen_docs.py")
-    gen = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(gen)
+    from support.scripts import load_script
+    gen = load_script("gen_docs")
     assert gen.render(readme, demo=True) == readme, \
         "README.md's demo paragraph is stale: run python scripts/gen_docs.py"
+    checking = (REPO / "docs" / "checking.md").read_text()   # the demo's value from YAML
+    assert gen.render(checking, demo=True, names={"demo-yaml"}) == checking, \
+        "docs/checking.md's demo example is stale: run python scripts/gen_docs.py"

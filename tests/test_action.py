@@ -341,12 +341,13 @@ def test_python_never_imports_from_the_checkout(pull_request):
 
 
 def _workflows_in_readme() -> list[str]:
-    text = (REPO / "README.md").read_text()
+    """The workflows docs/ci.md shows (they were the README's)."""
+    text = (REPO / "docs" / "ci.md").read_text()
     return [b for b in re.findall(r"```yaml\n(.*?)```", text, re.S) if "runs-on:" in b]
 
 
 def test_the_readme_workflow_is_least_privilege():
-    """The README's workflow: no pull_request_target, minimal permissions, no credentials
+    """docs/ci.md's workflow: no pull_request_target, minimal permissions, no credentials
     left in the checkout, the SARIF uploaded from the action's output."""
     flows = _workflows_in_readme()
     assert flows
@@ -365,16 +366,16 @@ def test_the_readme_workflow_is_least_privilege():
 
 
 def _checked_copy(tmp_path: Path) -> list[Path]:
-    """action.yml and the README's workflows (the by-hand steps in a workflow of their own)
+    """action.yml and docs/ci.md's workflows (the by-hand steps in a workflow of their own)
     in a git repository, with a workflow that uses the action (its inputs get checked)."""
     flows = tmp_path / ".github" / "workflows"
     flows.mkdir(parents=True)
     shutil.copy(REPO / "action.yml", tmp_path / "action.yml")
     files = [tmp_path / "action.yml"]
-    text = (REPO / "README.md").read_text()
+    text = (REPO / "docs" / "ci.md").read_text()
     blocks = re.findall(r"```yaml\n(.*?)```", text, re.S)
     by_hand = [b for b in blocks if b.startswith("- name:") and "urdf-lint" in b]
-    assert by_hand, "the README shows the Action's steps by hand"
+    assert by_hand, "docs/ci.md shows the Action's steps by hand"
     for n, b in enumerate(_workflows_in_readme() + by_hand):
         if "runs-on:" not in b:
             b = ("on: [pull_request]\npermissions:\n  contents: read\njobs:\n  by-hand:\n"

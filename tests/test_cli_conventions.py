@@ -1,6 +1,6 @@
 """The CLI conventions of issue 9 (ruff's): concise output, --show-source, --exit-zero,
 --statistics, --color, -q/-v, help texts, flag typos, --changed-since, baselines, folding,
-Ctrl-C, and the README's pre-commit snippet. In process where possible."""
+Ctrl-C, and docs/ci.md's pre-commit snippet. In process where possible."""
 from __future__ import annotations
 
 import argparse
@@ -274,9 +274,9 @@ def test_ctrl_c_during_a_real_run_exits_130(corpus, tmp_path):
 
 
 def readme_precommit_config(kind: str = "remote") -> str:
-    """The README's ``.pre-commit-config.yaml`` of ``kind``: "local" (a repository where
+    """docs/ci.md's ``.pre-commit-config.yaml`` of ``kind``: "local" (a repository where
     urdf-lint is installed) or "remote" (pre-commit installs it from its repository)."""
-    text = (REPO / "README.md").read_text()
+    text = (REPO / "docs" / "ci.md").read_text()
     blocks = re.findall(r"```yaml\n(.*?)```", text, re.S)
     found = [b for b in blocks if b.startswith("repos:")]
     assert len(found) == 2, blocks

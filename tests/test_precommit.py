@@ -36,7 +36,7 @@ def hook_repo(tmp_path_factory):
     work = tmp_path_factory.mktemp("precommit") / "robots"
     work.mkdir()
     shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
-    # the README's snippet as pasted, pointed at this checkout and its HEAD
+    # docs/ci.md's snippet as pasted, pointed at this checkout and its HEAD
     from test_cli_conventions import readme_precommit_config
     snippet = readme_precommit_config()
     repo_url = re.search(r"repo: (\S+)", snippet).group(1)
@@ -242,7 +242,7 @@ def test_a_file_named_like_an_option_is_only_a_file(tmp_path):
 
 
 def test_readme_local_hook_works_as_pasted(tmp_path):
-    """The README's ``repo: local`` snippet, pasted unchanged into a repository where urdf-lint
+    """docs/ci.md's ``repo: local`` snippet, pasted unchanged into a repository where urdf-lint
     is installed (on PATH, as `pip install` puts it): a clean commit passes, a broken joint
     fails at its xacro line."""
     from test_cli_conventions import readme_precommit_config

@@ -170,11 +170,11 @@ def test_each_model_item_shows_its_own_instances_and_a_clean_classname(tmp_path)
 
 
 def _recipe(name: str) -> str:
-    """The README block under ``<!-- recipe: NAME -->``, as a user pastes it."""
+    """The block of docs/ci.md under ``<!-- recipe: NAME -->``, as a user pastes it."""
     import re
-    readme = (DESCRIPTIONS.parent / "README.md").read_text()
+    readme = (DESCRIPTIONS.parent / "docs" / "ci.md").read_text()
     m = re.search(r"<!-- recipe: " + re.escape(name) + r" -->\n```\w*\n(.*?)```", readme, re.S)
-    assert m, f"README has no recipe block {name!r}"
+    assert m, f"docs/ci.md has no recipe block {name!r}"
     return m.group(1)
 
 
@@ -195,7 +195,7 @@ def _package_xml(name: str, build_type: str, test_depend: str) -> str:
 
 
 def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
-    """The README's ament_python recipe, pasted into a package, under real ``colcon build`` and
+    """docs/ci.md's ament_python recipe, pasted into a package, under real ``colcon build`` and
     ``colcon test`` (colcon-common-extensions from the package index; the ``consumers`` extra):
     each model is a test with its own findings; the package's clean model passes."""
     colcon = os.path.join(os.path.dirname(sys.executable), "colcon")
@@ -234,7 +234,7 @@ def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
 def test_the_readme_ament_cmake_recipe_runs_the_models(tmp_path):
     """What ``ament_add_pytest_test(urdf_lint test WORKING_DIRECTORY ...)`` runs (ament_cmake's
     generated command: ``python -m pytest <pkg>/test -o cache_dir=... --junit-xml=...
-    --junit-prefix=PKG`` in the package folder) with the README's ``pytest.ini``."""
+    --junit-prefix=PKG`` in the package folder) with docs/ci.md's ``pytest.ini``."""
     cmake = _recipe("ament_cmake CMakeLists.txt")
     assert "ament_add_pytest_test(urdf_lint test WORKING_DIRECTORY" in cmake
     name = "arm_description"

@@ -12,7 +12,7 @@ def add_parser(sub, raw):
                    "'server' extra)",
                    description="Run the urdf-lint language server on stdin/stdout: diagnostics "
                                "from the real expansion, fixes, navigation, hover, completion. "
-                               "Editors start it; see the README for the set-up.")
+                               "Editors start it; see docs/editors.md for the set-up.")
 
 
 def run(args) -> int:

@@ -310,7 +310,7 @@ class Key:
     flag: Flag | None = None
     trust: Trust | None = None
     clamp: tuple[float, float] | None = None      # (low, high)
-    shown_default: str = ""         # what None means, for the help and the README
+    shown_default: str = ""         # what None means, for the help and docs/configuration.md
     attr_name: str = ""             # the Config attribute (default: the name, with underscores)
 
     def __post_init__(self) -> None:
@@ -426,7 +426,8 @@ SCHEMA: tuple[Key, ...] = (
                   "output format: one of the formats listed below"),
         shown_default="text, or github on GitHub Actions"),
     Key("format", FormatKey(Choice(_formats)), {},
-        "the settings of urdf-lint format, as the table [tool.urdf-lint.format] (see below)",
+        "the settings of urdf-lint format, as the table [tool.urdf-lint.format] "
+        "(see docs/formatter.md)",
         attr_name="format_options"),
     Key("baseline", Str(), None, "ignore the findings recorded in this file",
         flag=Flag(("--baseline",), "baseline", "FILE", "ignore the findings recorded in FILE "

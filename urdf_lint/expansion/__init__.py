@@ -6,6 +6,9 @@
 
 Importing :mod:`.expand` (``expand_file``, ``Expansion``) imports xacro, so it is loaded on
 first use: a cached run, and code that only needs the source-map type, never pay for it.
+
+May import: ``runner``, ``discovery``, ``config``, ``report``, ``core`` (the rooms below it,
+``[tool.importlinter]`` in pyproject.toml; never a room above).
 """
 from __future__ import annotations
 

@@ -34,5 +34,8 @@ JSON schema (``--format json``), version 1::
     }
 
 With ``--statistics``, ``--format json`` prints ``[{"code", "name", "severity", "count"}]``.
+
+May import: ``core`` (the rooms below it, ``[tool.importlinter]`` in pyproject.toml; never a
+room above).
 """
 
