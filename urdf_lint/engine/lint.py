@@ -210,6 +210,7 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
         exp = expand_file(entry, job.args, resolver, env_allow=settings.env_allow,
                           expr_policy=settings.expr_policy, env_set=settings.env_set)
         out.env = dict(exp.env)
+        out.branches = [list(b) for b in exp.branches]
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)
         out.digests = dict(exp.digests)
