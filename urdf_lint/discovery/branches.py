@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-_XACRO = "ros.org/wiki/xacro"
+_XACRO = "xacro"   # (namespaces vary: http://www.ros.org/wiki/xacro, http://wiki.ros.org/xacro)
 _ARG = r"""['"]?\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)['"]?"""
 _NAME = r"""\b([A-Za-z_]\w*)\b"""
 _REF = rf"(?:{_ARG}|{_NAME})"
@@ -152,9 +152,11 @@ def analyse(files, resolver, max_files: int = 200) -> Analysis:
             if name == "arg" and el.get("name"):
                 out.defaults.setdefault(el.get("name"), el.get("default") or "")
             elif name == "property" and el.get("name"):
-                got = set(_ARG_RE.findall(el.get("value") or el.text or ""))
-                if got:
-                    props.setdefault(el.get("name"), set()).update(got)
+                _reads(props, el.get("name"), el.get("value") or el.text or "")
+            elif name is not None and name not in _XACRO_TAGS:
+                # a macro call: a parameter given an arg (hand="$(arg hand)") reads it
+                for k, v in el.attrib.items():
+                    _reads(props, k, v)
         for ch in _choices(f, root, out, resolver):
             out.choices.append(ch)
             todo.extend(p for p in ch.values.values()
@@ -166,17 +168,36 @@ def analyse(files, resolver, max_files: int = 200) -> Analysis:
     return out
 
 
+_XACRO_TAGS = {"arg", "property", "macro", "include", "if", "unless", "insert_block",
+               "element", "attribute"}
+
+
+def _reads(props: dict[str, set[str]], name: str, value: str) -> None:
+    """``name`` (a property, a macro parameter) is set from ``value``: the args it reads, and
+    the properties (to be closed over, :func:`_close`)."""
+    got = set(_ARG_RE.findall(value))
+    if "${" in value:
+        got |= {"$" + w for w in _WORD_RE.findall(re.sub(r"\$\([^)]*\)", "", value))}
+    if got:
+        props.setdefault(name, set()).update(got)
+
+
 def _close(props: dict[str, set[str]]) -> None:
-    """A property set from another property reads that one's args too (to a fixed point)."""
-    for _ in range(4):
+    """A name set from another (``$name``) reads that one's args too; then only args stay."""
+    for _ in range(6):
         changed = False
-        for p, args in props.items():
-            for q in list(props):
-                if q != p and q in args and not props[q] <= args:
-                    args |= props[q]
+        for got in props.values():
+            for ref in [g for g in got if g.startswith("$")]:
+                more = props.get(ref[1:], set()) - got
+                if more:
+                    got |= more
                     changed = True
         if not changed:
-            return
+            break
+    for p in list(props):
+        props[p] = {g for g in props[p] if not g.startswith("$")}
+        if not props[p]:
+            del props[p]
 
 
 def _arg_of(m_arg: str | None, m_name: str | None, props: dict) -> list[str]:

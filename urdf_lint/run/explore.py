@@ -38,6 +38,7 @@ class ModelPlan:
     variants: list[dict[str, str]] = field(default_factory=list)   # proposed, best first
     kept: int = 0                            # how many of them the budget let run
     fixed: set[str] = field(default_factory=set)
+    listed: dict[str, list[str]] = field(default_factory=dict)   # explore-args
     reports: list[ModelReport] = field(default_factory=list)    # of the kept variants
 
     @property
@@ -78,6 +79,7 @@ def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) ->
             for k, v in r.args.items():
                 listed.setdefault(k, []).append(v)
         p.fixed = {k for k, v in cfg.explore_args.items() if not v}
+        p.listed = {k: list(v) for k, v in cfg.explore_args.items()}
         values = {k: v for k, v in a.values(listed).items() if k not in p.fixed}
         # an arg whose values are listed takes only those
         values.update({k: [x for x in v if x != a.defaults.get(k)]
@@ -116,7 +118,11 @@ def _variants(p: ModelPlan, values: dict[str, list[str]]) -> list[dict[str, str]
     by_key = {(c.file, c.line): c for c in a.conds}
     serves: dict[tuple, int] = {}
 
+    listed = {k: v for k, v in p.listed.items() if v}
+
     def want(g: dict[str, str]) -> None:
+        if any(k in listed and v not in listed[k] for k, v in g.items()):
+            return   # an arg whose values are listed takes only those
         if g and not (set(g) & p.fixed):
             k = tuple(sorted(g.items()))
             serves[k] = serves.get(k, 0) + 1
