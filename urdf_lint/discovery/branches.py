@@ -302,8 +302,8 @@ def _existing(text: str, arg: str, defaults: dict, base: str, resolver) -> dict[
             t = _FIND_RE.sub(lambda m: str(resolver.find(m.group(1))), t)
         except Exception:  # noqa: BLE001 - an unknown package: no value is found here
             return {}
-    if "$" in t or marker not in t:
-        return {}
+    if "$" in t or marker not in t or not t.split(marker)[-1].strip("/"):
+        return {}   # (the whole name is the arg's: any entry of the folder would match)
     path = os.path.normpath(os.path.join(base, t))
     pattern = path.replace(marker, "*")
     found = fsbound.bounded_glob(pattern)

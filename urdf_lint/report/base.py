@@ -87,6 +87,8 @@ class BaseFormatter:
         for (code, name, sev), n in counts(result):
             self.stream.write(f"{n:5d}  {code}  {name:<28} {sev}\n")
         for c in coverage_rows(result):   # branch coverage (run.explore), when it ran
+            if not c["branches"]:
+                continue
             self.stream.write(escape_text(
                 f"branches {c['taken']}/{c['branches']} taken ({c['taken_at_defaults']} at the "
                 f"defaults, {len(c['variants'])} variant(s)): {c['model']}") + "\n")

@@ -116,7 +116,7 @@ class RunMemo:
                 "skipped": [_report_record(r) for r in out.skipped],
                 "findings": [p.to_row() for p in out.findings],
                 "fragments": out.fragments, "generated": out.generated,
-                "coverage": out.coverage}
+                "coverage": getattr(out, "coverage", {})}
         # two lines of JSON (json.dumps writes no raw newline), signed together
         blob = (json.dumps(head) + "\n" + json.dumps(body)).encode("utf-8")
         self.cache.write_signed(self.path, blob)
