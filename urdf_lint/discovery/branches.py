@@ -90,8 +90,10 @@ class Analysis:
         compared literals, the values a path choice offers, the listed ones."""
         out: dict[str, dict[str, None]] = {}
 
-        def add(a: str, v: str) -> None:
-            if v != self.defaults.get(a) and "$" not in v:
+        def add(a: str, v: str, listed: bool = False) -> None:
+            # (the empty string only when listed: `arm_id == ''` checks for "unset", and an
+            # empty name makes a degenerate robot, not a branch)
+            if v != self.defaults.get(a) and "$" not in v and (v or listed):
                 out.setdefault(a, {})[v] = None
         for c in self.conds:
             for a in c.args:
@@ -107,7 +109,7 @@ class Analysis:
                 add(ch.arg, v)
         for a, vs in (listed or {}).items():
             for v in vs:
-                add(a, v)
+                add(a, v, listed=True)
         return {a: list(v) for a, v in out.items()}
 
 
@@ -336,6 +338,8 @@ def guesses(c: Cond, defaults: dict[str, str], values: dict[str, list[str]]
     seen: list[dict[str, str]] = []
     for g in out:
         g = {k: v for k, v in g.items() if v != defaults.get(k)}
+        if any(v == "" and v not in values.get(k, ()) for k, v in g.items()):
+            continue
         if g and g not in seen:
             seen.append(g)
     return seen
