@@ -185,9 +185,11 @@ def run_check(request: RunRequest) -> CheckResult:
 def _explores(req: RunRequest, cfg: "Config") -> bool:
     """Whether a run lints the variants that take the branches the defaults miss
     (:mod:`urdf_lint.run.explore`): a check or a hook run, not a render, ``--fix`` (which
-    compares kept models) or a run with overridden settings."""
+    compares kept models), ``diff`` (which selects jobs, and lints its two revisions alike)
+    or a run with overridden settings."""
     return bool(cfg.explore and cfg.explore_budget > 0 and not req.render_dir
-                and not req.keep_models and not req.settings_overrides)
+                and not req.keep_models and not req.settings_overrides
+                and req.select_jobs is None)
 
 
 def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver",
