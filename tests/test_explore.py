@@ -161,3 +161,31 @@ def test_the_branches_read_from_the_source(tmp_path):
     assert values["hand"] == ["fancy"] and values["size"] == ["big"]
     assert branches.guesses(conds[9], a.defaults, values) == [{"use_gazebo": "false"}] or \
         a.defaults["use_gazebo"] == "false"
+
+
+def test_the_budget_is_shared_round_robin_and_variant_findings_are_labelled_once():
+    """In process: every model's first variant before any model's second; a finding of two
+    variants is added once, with the smaller variant's args; one at the defaults never."""
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.discovery.branches import Analysis
+    from urdf_lint.run import explore
+    plans = [explore.ModelPlan(f"/r/{n}.xacro", [ModelReport(f"/r/{n}.xacro", {})], Analysis(),
+                               variants=[{"a": "1"}, {"a": "1", "b": "x"}, {"c": "y"}])
+             for n in ("m1", "m2")]
+    jobs = explore.select(plans, 0.25, 8)            # 2 variants for the run
+    assert [(j.entry, j.args) for j in jobs] == [("/r/m1.xacro", {"a": "1"}),
+                                                 ("/r/m2.xacro", {"a": "1"})]
+    assert [p.kept for p in plans] == [1, 1]
+    jobs = explore.select(plans, 1.0, 2)             # at least MIN_MODELS: all 6
+    assert len(jobs) == 6 and [p.kept for p in plans] == [3, 3]
+    at_default = Problem.at("UL601", "no inertial", ("/r/m1.xacro", 3, 1))
+    behind = Problem.at("UL103", "child link 'x' is not defined", ("/r/m1.xacro", 9, 5))
+    plans[0].base[0].problems = [at_default]
+    reports = [ModelReport("/r/m1.xacro", {"a": "1", "b": "x"}, problems=[at_default, behind]),
+               ModelReport("/r/m1.xacro", {"a": "1"}, problems=[at_default, behind])]
+    cov = explore.merge(plans[:1], reports)
+    got = [p.message for p in plans[0].base[0].problems]
+    assert got == ["no inertial", "child link 'x' is not defined (only with a:=1)"]
+    assert list(cov) == [plans[0].label]
+    assert cov[plans[0].label]["variants"] == [{"a": "1"}, {"a": "1", "b": "x"}]
