@@ -1,0 +1,1 @@
+"""The language server's methods, one module per LSP method or feature."""
