@@ -189,3 +189,25 @@ def test_the_budget_is_shared_round_robin_and_variant_findings_are_labelled_once
     assert got == ["no inertial", "child link 'x' is not defined (only with a:=1)"]
     assert list(cov) == [plans[0].label]
     assert cov[plans[0].label]["variants"] == [{"a": "1"}, {"a": "1", "b": "x"}]
+
+
+def test_diff_shows_a_change_inside_a_branch_the_defaults_do_not_take(tmp_path):
+    """Both revisions explore alike: a defect a change brings into the `sim` branch is
+    introduced, labelled; the findings both revisions share are not."""
+    import subprocess
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=tmp_path, check=True, capture_output=True)
+    pkg = make_package(tmp_path, "robot", FILES)
+    git("init", "-q")
+    git("add", "-A")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    f = pkg / FILE
+    f.write_text(f.read_text().replace('<mass value="-1"/>', '<mass value="-3"/>'))
+    p = run_cli("diff", "HEAD", "--format", "json", "--no-cache", cwd=tmp_path)
+    assert p.returncode in (0, 1), p.stderr
+    [m] = json.loads(p.stdout)["models"]
+    new = [x["message"] for x in m["findings_introduced"]]
+    assert len(new) == 1 and "mass -3" in new[0] and new[0].endswith("(only with sim:=true)"), m
+    [gone] = [x["message"] for x in m["findings_fixed"]]
+    assert "mass -1" in gone and gone.endswith("(only with sim:=true)"), m

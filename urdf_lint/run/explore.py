@@ -203,6 +203,17 @@ def _add_findings(p: ModelPlan) -> None:
             seen.add(q.key())
             added.append(q.replace(message=f"{q.message} (only with {shown(extra)})"))
     p.base[0].problems = list(p.base[0].problems) + added
+    # what the variants read is the model's too: suppression comments there apply, and
+    # ``diff`` materialises those files in the base revision
+    base = p.base[0]
+    for r in p.reports:
+        base.deps += [d for d in r.deps if d not in base.deps]
+        if base.directive_files is not None:
+            if r.directive_files is None:
+                base.directive_files = None
+            else:
+                base.directive_files += [d for d in r.directive_files
+                                         if d not in base.directive_files]
 
 
 def coverage(p: ModelPlan) -> dict[str, Any]:

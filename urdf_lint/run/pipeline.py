@@ -114,6 +114,9 @@ class RunRequest:
     # the end of the run that depends on who asks (run.finish.scope): the paths a fix may
     # edit, the baseline; None: the findings as the rules and the policy left them
     scope: Scope | None = None
+    # explore the branches the defaults miss (run.explore; also needs cfg.explore): None, as
+    # _explores decides from the rest of the request; ``diff`` sets it for both revisions alike
+    explore: bool | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "paths", tuple(self.paths))
@@ -185,11 +188,13 @@ def run_check(request: RunRequest) -> CheckResult:
 def _explores(req: RunRequest, cfg: "Config") -> bool:
     """Whether a run lints the variants that take the branches the defaults miss
     (:mod:`urdf_lint.run.explore`): a check or a hook run, not a render, ``--fix`` (which
-    compares kept models), ``diff`` (which selects jobs, and lints its two revisions alike)
-    or a run with overridden settings."""
-    return bool(cfg.explore and cfg.explore_budget > 0 and not req.render_dir
-                and not req.keep_models and not req.settings_overrides
-                and req.select_jobs is None)
+    compares kept models) or a run with overridden settings; ``diff`` says (``req.explore``:
+    its two revisions alike, or neither)."""
+    if not (cfg.explore and cfg.explore_budget > 0) or req.render_dir:
+        return False
+    if req.explore is not None:
+        return req.explore
+    return not req.keep_models and not req.settings_overrides and req.select_jobs is None
 
 
 def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver",
