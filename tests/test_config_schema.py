@@ -237,7 +237,8 @@ def test_any_value_is_accepted_or_named(tmp_path, key, value):
         return
     expected_type = {"timeout": float, "memory-mb": int, "jobs": int, "fail-on": str,
                      "output-format": str, "cache-dir": str, "baseline": str, "discover": bool,
-                     "views": str, "forward-axis": str}.get(key, (list, dict))
+                     "views": str, "forward-axis": str, "explore": bool,
+                     "explore-budget": float}.get(key, (list, dict))
     assert isinstance(got, expected_type), (key, value, got)
 
 

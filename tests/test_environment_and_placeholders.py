@@ -55,8 +55,10 @@ def _mobile(tmp_path):
 
 
 def _check(cwd, *args, env=None):
-    p = run_cli("check", ".", "--no-cache", "--isolated", "--format", "json", *args, cwd=cwd,
-                env=env)
+    # (at the defaults: these fixtures pin what the environment does to one variant; branch
+    # exploration, tests/test_explore.py, would add the laser that optenv switches on)
+    p = run_cli("check", ".", "--no-cache", "--isolated", "--format", "json", "--explore",
+                "false", *args, cwd=cwd, env=env)
     assert p.returncode in (0, 1), p.stderr
     return json.loads(p.stdout), p
 
@@ -111,7 +113,8 @@ def test_a_set_variable_is_not_served_from_the_cache(tmp_path, monkeypatch):
     runs = []
     for value in (None, "1", "1", None):
         env = {"MOBILE_LASER_ENABLED": value} if value else {}
-        p = run_cli("check", ".", "--isolated", "--format", "json", cwd=pkg, env=env)
+        p = run_cli("check", ".", "--isolated", "--format", "json", "--explore", "false",
+                    cwd=pkg, env=env)
         doc = json.loads(p.stdout)
         runs.append(([m["cached"] for m in doc["models"]],
                      sorted(f["code"] for f in doc["findings"])))

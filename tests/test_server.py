@@ -643,3 +643,21 @@ async def test_run_scope_findings_reach_the_editor(client, ur):
     ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL106" for d in ds))
     (d,) = [d for d in ds if d.code == "UL106"]
     assert pos(d) == (1, 0) and "twin_b.urdf" in d.message, (pos(d), d.message)
+
+
+@aio
+async def test_hover_on_a_condition_says_which_models_expand_its_body(client, ur):
+    """Issue 39: every UR variant passes safety_limits="false": the hover on the condition
+    lists them as leaving its body out (and points at --coverage)."""
+    macro_uri = await linted(client, ur)
+    lines = (ur / "urdf" / "inc" / "ur_macro.xacro").read_text().split("\n")
+    assert lines[239].strip() == '<xacro:if value="${safety_limits}">'
+    h = await client.text_document_hover_async(types.HoverParams(
+        text_document=types.TextDocumentIdentifier(uri=macro_uri),
+        position=types.Position(239, lines[239].index("xacro:if") + 3)))
+    text = h.contents.value
+    assert text.startswith("**xacro:if**"), text
+    assert "body expanded in: no linted model" in text
+    left = text.split("left out in: ")[1].split("\n")[0]
+    assert "`ur5e_robot`" in left and "`ur10_robot`" in left, text
+    assert "--coverage" in text

@@ -12,8 +12,8 @@ from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, color_mode, l
                                   parse_package_paths, refuse_symlinked_out, report_snapshots,
                                   safe_text, through_models, write_base)
 from urdf_lint.cli.output import FindingsOutput
-from urdf_lint.cli.parser import (add_fix, add_inputs, add_limits, add_output, add_selection,
-                                  add_views)
+from urdf_lint.cli.parser import (add_fix, add_inputs, add_key_flags, add_limits, add_output,
+                                  add_selection, add_views)
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
 
@@ -42,6 +42,10 @@ def add_parser(sub, raw):
     c.add_argument("--write-baseline", metavar="FILE",
                    help="record the current findings in FILE and exit 0 (default: off)")
     add_limits(c)
+    add_key_flags(c, "explore")
+    c.add_argument("--coverage", action="store_true",
+                   help="after the findings, list per model the xacro branches never taken "
+                        "and why (text; a JSON document with --format json)")
     add_fix(c)
 
 
@@ -54,6 +58,7 @@ class CheckOptions:
     output: str | None = None
     show_source: bool = False
     statistics: bool = False
+    coverage: bool = False
     color: str = "auto"
     no_cache: bool = False
     quiet: bool = False
@@ -72,7 +77,7 @@ class CheckOptions:
 
     def report(self, paths) -> FindingsOutput:
         return FindingsOutput(paths=list(paths), output=self.output, statistics=self.statistics,
-                              show_source=self.show_source)
+                              show_source=self.show_source, coverage=self.coverage)
 
 
 def run(args) -> int:
@@ -162,6 +167,11 @@ def check(o: CheckOptions) -> int:
         return _write_baseline(o, paths, result, out)
     from urdf_lint.cli.output import write_findings
     write_findings(o.report(paths), cfg, result, out, mode, resolver.roots)
+    if o.coverage and (cfg.output_format or "text") not in ("json",):
+        from urdf_lint.core.emit import tell
+        from urdf_lint.report.base import coverage_text
+        for line in coverage_text(result):
+            tell(line)
     _notes_after(o, result, cfg, resolver, out, named)
     if o.exit_zero:
         return 2 if result.internal else 0
@@ -248,7 +258,14 @@ def note_variants(result, cfg, resolver, out) -> None:
     how to lint the variants (``[[models]] args``)."""
     from urdf_lint.core.locations import display_path
     from urdf_lint.run.pipeline import variant_args
-    found = variant_args(result.models, cfg, resolver)
+    explored = {c["entry"] for c in result.coverage.values()}
+    cut = [c for c in result.coverage.values() if c["cut_by_budget"]]
+    if cut:
+        n = sum(c["cut_by_budget"] for c in cut)
+        out.note(f"note: the explore budget cut exploration short: {n} variant(s) of "
+                 f"{len(cut)} model(s) not linted (raise --explore-budget, or see --coverage)")
+    found = {e: v for e, v in variant_args(result.models, cfg, resolver).items()
+             if e not in explored}
     if not found:
         return
     entry, names = next(iter(found.items()))

@@ -30,6 +30,7 @@ class FindingsOutput:
     output: str | None = None                   # -o FILE
     statistics: bool = False
     show_source: bool = False
+    coverage: bool = False          # --coverage (JSON: in the document; text: after it)
 
 
 def write_findings(opts: FindingsOutput, cfg, result, out, color_mode, roots=None) -> None:
@@ -44,7 +45,8 @@ def write_findings(opts: FindingsOutput, cfg, result, out, color_mode, roots=Non
     from urdf_lint.engine.registry import load_rules
     options = dict(statistics=opts.statistics, show_source=opts.show_source, quiet=out.quiet,
                    roots=None if roots is None else tuple(str(r) for r in roots),
-                   rules=load_rules() if fmt == "sarif" else None)
+                   rules=load_rules() if fmt == "sarif" else None,
+                   coverage=opts.coverage)
     if opts.output:
         from urdf_lint.core import fsbound
         try:

@@ -190,6 +190,24 @@ class Table(Type):
         return out
 
 
+class ArgValues(Table):
+    """``explore-args``: arg -> the values exploration may give it (``[]``: never changed).
+    On the command line ``NAME=V1|V2`` (``NAME=``: never changed), repeatable."""
+
+    def __init__(self) -> None:
+        super().__init__(StrList("values"), 'a table of arg = ["value", ...] ([]: never '
+                                            'changed)')
+
+    def from_cli(self, s: str) -> Any:
+        out: dict[str, list[str]] = {}
+        for part in s.split(","):
+            name, eq, values = part.partition("=")
+            if not eq or not name.strip():
+                raise _Bad("NAME=V1|V2 (NAME=: never changed)")
+            out[name.strip()] = [v for v in values.split("|") if v]
+        return out
+
+
 class Models(Type):
     expected = "an array of tables [[models]] with 'path' and optional 'args'"
 
@@ -434,6 +452,23 @@ SCHEMA: tuple[Key, ...] = (
                   "(make it with --write-baseline)", path=True),
         trust=Trust("confine")),
     Key("discover", Bool(), True, "false: lint only the models listed under [[models]]"),
+    Key("explore", Bool(), True,
+        "lint the variants that take the xacro:if/unless branches and arg-chosen files the "
+        "default args leave out (docs/coverage.md)",
+        flag=Flag(("--explore",), "explore", "{true,false}")),
+    Key("explore-budget", Number(float, 0, "times the models"), 1.0,
+        "the variants explored in a run, at most this many times the models linted",
+        flag=Flag(("--explore-budget",), "explore", "N"),
+        trust=Trust("at-most-default", "larger explore-budget"), clamp=(0.0, 20.0)),
+    Key("explore-args", ArgValues(), {},
+        "the values exploration may give an arg; [] keeps the arg at its default",
+        cli_merge="replace",
+        flag=Flag(("--explore-arg",), "explore", "NAME=V1|V2",
+                  "the values exploration may give arg NAME (NAME=: never changed); "
+                  "repeatable", repeat=True)),
+    Key("explore-exclude", StrList("globs"), [], "models (globs) not explored",
+        flag=Flag(("--explore-exclude",), "explore", "GLOB",
+                  "a model (glob) not explored; repeatable", repeat=True)),
     Key("views", Choice(("single", "sheet")), None,
         "snapshot pictures: one 3/4 view, or a 2x2 sheet of front, side, top and 3/4 views",
         flag=Flag(("--views",), "views"), shown_default="single for render, sheet for diff"),
@@ -503,6 +538,10 @@ class Config:
     format_options: dict[str, Any] = _default("format")   # [format]: urdf-lint format's settings
     baseline: str | None = _default("baseline")     # absolute
     discover: bool = _default("discover")
+    explore: bool = _default("explore")
+    explore_budget: float = _default("explore-budget")
+    explore_args: dict[str, Any] = _default("explore-args")
+    explore_exclude: list[Any] = _default("explore-exclude")
     views: str | None = _default("views")
     forward_axis: str = _default("forward-axis")
     raw: dict[str, Any] = field(default_factory=dict)

@@ -154,6 +154,9 @@ class ModelReport:
     # mesh facts the worker measured, for the parent's facts store: [name, path, digest, record]
     # (plain lists, str and JSON records; urdf_lint.meshes.store.FactsStore.accept)
     mesh_facts: list[list[Any]] = field(default_factory=list)
+    # the <xacro:if>/<xacro:unless> outcomes of the expansion: [file, line, col, kept]
+    # (expansion.expand.Expansion.branches; branch coverage, urdf_lint.run.explore)
+    branches: list[list[Any]] = field(default_factory=list)
 
     @classmethod
     def failed(cls, job: LintJob, problems: Iterable[Problem] = (),
@@ -184,7 +187,8 @@ class ModelReport:
                 "name": self.name, "name_origin": [o.file, o.line, o.col] if o else None,
                 "links": self.links, "joints": self.joints, "meshes": self.meshes,
                 "directive_files": self.directive_files,
-                "current_outputs": list(self.current_outputs), "env": dict(self.env)}
+                "current_outputs": list(self.current_outputs), "env": dict(self.env),
+                "branches": [list(b) for b in self.branches]}
 
     @classmethod
     def from_record(cls, job: LintJob, rec: dict[str, Any]) -> "ModelReport":
@@ -196,4 +200,5 @@ class ModelReport:
                    links=rec.get("links", 0), joints=rec.get("joints", 0),
                    meshes=rec.get("meshes", 0), directive_files=rec.get("directive_files"),
                    cached=True, current_outputs=list(rec.get("current_outputs", ())),
-                   env={str(k): bool(v) for k, v in dict(rec.get("env") or {}).items()})
+                   env={str(k): bool(v) for k, v in dict(rec.get("env") or {}).items()},
+                   branches=[list(b) for b in rec.get("branches", ())])

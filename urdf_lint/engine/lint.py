@@ -211,6 +211,7 @@ def _load(job: LintJob, settings: LintSettings, resolver: Any, out: ModelReport)
                           expr_policy=settings.expr_policy, env_set=settings.env_set,
                           arg_origins=dict(job.arg_origins))
         out.env = dict(exp.env)
+        out.branches = [list(b) for b in exp.branches]
         out.deps = list(exp.deps)
         out.missing = list(exp.missing)
         out.digests = dict(exp.digests)

@@ -53,6 +53,7 @@ from urdf_lint.expansion.sourcemap import KEY, SourceMap
 ul007_doctype = RuleName("ul007_doctype")
 ul008_xacro_warning = RuleName("ul008_xacro_warning")
 ul013_description_error = RuleName("ul013_description_error")
+ul014_unreachable_branch = RuleName("ul014_unreachable_branch")
 ul901_env_read = RuleName("ul901_env_read")
 ul902_outside_roots = RuleName("ul902_outside_roots")
 
@@ -75,6 +76,9 @@ class Expansion:
     # the variables $(optenv) looked up that are not allow-listed -> whether each was set (the
     # result holds while that stays so: run/cache.py)
     env: dict = field(default_factory=dict)
+    # every <xacro:if>/<xacro:unless> evaluated: [file, line, col, kept] (kept: its body was
+    # expanded), one per source element and outcome (urdf_lint.run.explore: branch coverage)
+    branches: list = field(default_factory=list)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -113,6 +117,10 @@ class ExpansionState:
         self.arg_origins: dict[str, tuple] = {}
         self.passed_args: set[str] = set()
         self.passed_origins: dict[str, tuple] = {}
+        # the <xacro:if>/<xacro:unless> whose value xacro checks now, and every outcome seen:
+        # (file, line, col, kept)
+        self.pending_cond: Any = None
+        self.branches: dict[tuple, None] = {}
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -376,7 +384,38 @@ def _hook_check_attrs(tag, required, optional):
     if getattr(tag, "tagName", "") == "xacro:arg" and tag.hasAttribute("name"):
         # (xacro keeps an arg's first value: a later <xacro:arg> of the name changes nothing)
         st.arg_origins.setdefault(tag.getAttribute("name"), tuple(origin_of(tag)[:3]))
+    st.pending_cond = tag if getattr(tag, "tagName", "") in _CONDS else None
     return _orig["check_attrs"](tag, required, optional)
+
+
+_CONDS = ("xacro:if", "xacro:unless")
+
+
+def _hook_get_boolean_value(value, condition):
+    """xacro's ``get_boolean_value``; for the condition of the ``<xacro:if>``/``<xacro:unless>``
+    being handled (:func:`_hook_check_attrs` saw it), the outcome is recorded: whether its body
+    is kept (branch coverage, :mod:`urdf_lint.run.explore`)."""
+    result = _orig["get_boolean_value"](value, condition)
+    st = CURRENT.get()
+    node = st.pending_cond if st is not None else None
+    if st is not None and node is not None and condition is not None and \
+            node.getAttribute("value") == condition:
+        st.pending_cond = None
+        f, line, col = origin_of(node)[:3]
+        kept = bool(result) != (node.tagName == "xacro:unless")
+        if not kept and (f, line, col, kept) not in st.branches and \
+                _CONSTANT.fullmatch(condition):
+            st.note(ul014_unreachable_branch,
+                    f"<{node.tagName} value=\"{condition.strip()}\">: a constant, so its "
+                    "body is never expanded (no arg reaches it); delete it, or make it depend "
+                    "on an arg", loc=origin_of(node))
+        st.branches[(f, line, col, kept)] = None
+    return result
+
+
+# a condition that is a literal (true/false/1/0, bare or as ${...}): the same in every variant
+_CONSTANT = re.compile(r"\s*(?:true|false|True|False|[01]|\$\{\s*(?:True|False|true|false|[01])"
+                       r"\s*\})\s*")
 
 
 def _hook_reqd_attrs(tag, attrs):
@@ -503,7 +542,7 @@ def _install_hooks():
         return
     for name in ("parse", "abs_filename_spec", "eval_all", "handle_macro_call", "grab_macro",
                  "grab_property", "process_include", "check_attrs", "reqd_attrs", "load_yaml",
-                 "warning", "print_location", "safe_eval", "eval_text"):
+                 "warning", "print_location", "safe_eval", "eval_text", "get_boolean_value"):
         _orig[name] = getattr(xacro, name)
     _orig["eval_env"] = _subst._eval_env
     _orig["eval_optenv"] = _subst._eval_optenv
@@ -516,6 +555,7 @@ def _install_hooks():
     xacro.grab_property = _hook_grab_property
     xacro.process_include = _hook_process_include
     xacro.check_attrs = _hook_check_attrs
+    xacro.get_boolean_value = _hook_get_boolean_value
     xacro.reqd_attrs = _hook_reqd_attrs
     xacro.warning = _hook_warning
     xacro.print_location = _hook_print_location
@@ -652,4 +692,5 @@ def expand_file(path: str, args: dict | None = None, resolver: PackageResolver |
         res.digests = dict(st.digests)
         res.notes = st.notes
         res.env = dict(st.env)
+        res.branches = [list(b) for b in st.branches]
     return res

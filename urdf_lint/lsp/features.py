@@ -361,6 +361,9 @@ def hover(ls: UrdfLintServer, path: str, pos: types.Position) -> types.Hover | N
             if rule is not None:
                 return _md(f"**{rule.code} {rule.name}** ({rule.severity})\n\n{rule.summary}")
         return None
+    from urdf_lint.lsp.methods.branch_hover import branch_hover
+    if (got := branch_hover(ls, path, at.tag, at.tag_line)) is not None:
+        return got
     if at.tag and at.tag.startswith("xacro:") and at.attr is None and \
             at.tag_line == pos.line + 1:
         name = at.tag.split(":", 1)[1]

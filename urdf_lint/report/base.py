@@ -25,6 +25,33 @@ class ReportOptions:
     # code -> the rule (its name, summary, doc and severity), for formats that describe the
     # rules they report (SARIF); handed over by the caller, which knows the rules
     rules: Any = None
+    coverage: bool = False          # check --coverage: the branches never taken, per model
+
+
+def coverage_rows(result) -> list[dict[str, Any]]:
+    """The branch coverage of a run's models (``CheckResult.coverage``), by model label."""
+    cov = getattr(result, "coverage", None) or {}
+    return [cov[k] for k in sorted(cov)]
+
+
+def coverage_text(result) -> list[str]:
+    """``check --coverage`` in text: per model the branches taken, then each one never taken
+    with why (escaped by the caller's writer)."""
+    from urdf_lint.core.locations import display_path
+    lines = []
+    for c in coverage_rows(result):
+        lines.append(f"{c['model']}: {c['taken']}/{c['branches']} branch(es) taken "
+                     f"({c['taken_at_defaults']} at the defaults; {len(c['variants'])} "
+                     f"variant(s) linted" + (f", {c['cut_by_budget']} cut by the budget"
+                                             if c["cut_by_budget"] else "") + ")")
+        for row in c["not_taken"]:
+            what = row["kind"] + (f" {row['arg']}:={row['choice']}" if "choice" in row else "")
+            lines.append(f"  {display_path(row['file'])}:{row['line']}: {what} "
+                         f"{row['value']!r} never taken: {row['why']}")
+    if not lines:
+        lines.append("coverage: no xacro model was explored (explore = false, or no "
+                     "explored model)")
+    return lines
 
 
 class BaseFormatter:
@@ -59,6 +86,12 @@ class BaseFormatter:
         result = grouped(result)
         for (code, name, sev), n in counts(result):
             self.stream.write(f"{n:5d}  {code}  {name:<28} {sev}\n")
+        for c in coverage_rows(result):   # branch coverage (run.explore), when it ran
+            if not c["branches"]:
+                continue
+            self.stream.write(escape_text(
+                f"branches {c['taken']}/{c['branches']} taken ({c['taken_at_defaults']} at the "
+                f"defaults, {len(c['variants'])} variant(s)): {c['model']}") + "\n")
 
     # helpers ---------------------------------------------------------------------------------
     def paint(self, text: str, style: str) -> str:

@@ -6,7 +6,7 @@ import json
 from urdf_lint import __version__
 from urdf_lint.core.locations import display_path
 from urdf_lint.core.locations import portable
-from urdf_lint.report.base import BaseFormatter, counts, grouped, summary
+from urdf_lint.report.base import BaseFormatter, counts, coverage_rows, grouped, summary
 
 
 def _shown(d: dict) -> dict:
@@ -19,6 +19,16 @@ def _shown(d: dict) -> dict:
     if "instances" in d:
         d["instances"] = [_shown(i) for i in d["instances"]]
     return d
+
+
+def _coverage(c: dict) -> dict:
+    """One model's branch coverage as the report shows it (paths relative to cwd)."""
+    c = dict(c)
+    c["entry"] = display_path(c["entry"])
+    c["not_taken"] = [{**r, "file": display_path(r["file"])} for r in c["not_taken"]]
+    c["takers"] = {f"{display_path(k.rpartition(':')[0])}:{k.rpartition(':')[2]}": v
+                   for k, v in c["takers"].items()}
+    return c
 
 
 class JsonFormatter(BaseFormatter):
@@ -35,6 +45,8 @@ class JsonFormatter(BaseFormatter):
                           for m in result.models],
                "findings": [_shown(f.to_dict()) for f in result.findings],
                "summary": summary(result)}
+        if self.options.coverage:
+            doc["coverage"] = [_coverage(c) for c in coverage_rows(result)]
         json.dump(doc, self.stream, indent=2)
         self.stream.write("\n")
 

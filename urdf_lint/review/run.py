@@ -223,7 +223,7 @@ class _Reach:
 
 
 def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
-               mesh_cache_dir=None, select_jobs=None, settings_overrides=None):
+               mesh_cache_dir=None, select_jobs=None, settings_overrides=None, explore=False):
     """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
     the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
@@ -235,7 +235,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
     result = run_check(RunRequest(paths, cfg, resolver, jobs_n=jobs_n or cfg.jobs, cache=cache,
                                   keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
                                   select_jobs=select_jobs,
-                                  settings_overrides=settings_overrides))
+                                  settings_overrides=settings_overrides, explore=explore))
     labels = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
@@ -427,9 +427,10 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     # models the change cannot reach (include graph) are not even linted
     reach = _Reach([os.path.join(head_root, p) for p in changed.head] +
                    [os.path.join(head_root, p) for p in changed.base])
+    # both revisions explore the branches their defaults miss, or neither (a picture run)
     head_resolver, head_result = _lint_side(head, head_paths, cfg, package_paths, jobs_n,
                                             cache, keep_models=not render_dir,
-                                            select_jobs=reach)
+                                            select_jobs=reach, explore=not render_dir)
     result.internal += head_result.internal
     result.total_models = len(head.models) + reach.skipped
 
@@ -578,7 +579,8 @@ def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs
     overrides = {"diff_render": True, "diff_rrd": rrd} if render_dir else None
     base_resolver, base_result = _lint_side(
         base, base_paths, base_cfg, package_paths, jobs_n, None, keep_models=True,
-        mesh_cache_dir=mesh_cache_dir, settings_overrides=overrides, select_jobs=select)
+        mesh_cache_dir=mesh_cache_dir, settings_overrides=overrides, select_jobs=select,
+        explore=not render_dir)
     result.internal += base_result.internal
     for k, m in base.models.items():
         _keep_robot(base, k, m.entry, m.args, m, base_resolver)

@@ -42,6 +42,8 @@ class CheckResult:
     generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
     reused: bool = False                             # the last identical run's result (runcache)
     baselined: int = 0                               # findings the baseline hid (finish.scope)
+    # branch coverage per model label (run.explore.coverage), when exploration ran
+    coverage: dict = field(default_factory=dict)
 
 
 def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -> LintSettings:
@@ -112,6 +114,9 @@ class RunRequest:
     # the end of the run that depends on who asks (run.finish.scope): the paths a fix may
     # edit, the baseline; None: the findings as the rules and the policy left them
     scope: Scope | None = None
+    # explore the branches the defaults miss (run.explore; also needs cfg.explore): None, as
+    # _explores decides from the rest of the request; ``diff`` sets it for both revisions alike
+    explore: bool | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "paths", tuple(self.paths))
@@ -167,6 +172,10 @@ def run_check(request: RunRequest) -> CheckResult:
 
     if req.affected_by is not None:
         _keep_affected(out, req.affected_by)
+    if _explores(req, cfg):
+        more, more_internal = _explore(out, found, cfg, resolver, settings, req)
+        results += more
+        out.internal += more_internal
     if req.render_dir:
         _drop_snapshots([r for r in results if r not in out.models], req.render_dir)
     out.findings = finish(out.models, found.problems, settings, policy, out.generated,
@@ -174,6 +183,31 @@ def run_check(request: RunRequest) -> CheckResult:
     if memo is not None:
         memo.store(out, results, found.folders)
     return _scoped(out, req.scope)
+
+
+def _explores(req: RunRequest, cfg: "Config") -> bool:
+    """Whether a run lints the variants that take the branches the defaults miss
+    (:mod:`urdf_lint.run.explore`): a check or a hook run, not a render, ``--fix`` (which
+    compares kept models) or a run with overridden settings; ``diff`` says (``req.explore``:
+    its two revisions alike, or neither)."""
+    if not (cfg.explore and cfg.explore_budget > 0) or req.render_dir:
+        return False
+    if req.explore is not None:
+        return req.explore
+    return not req.keep_models and not req.settings_overrides and req.select_jobs is None
+
+
+def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver",
+             settings: LintSettings, req: RunRequest) -> tuple[list, list]:
+    """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
+    coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
+    from urdf_lint.run import explore
+    plans = explore.plan(cfg, out.models, found.graph, resolver)
+    jobs = explore.select(plans, cfg.explore_budget, len(out.models))
+    reports, internal = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process) \
+        if jobs else ([], [])
+    out.coverage = explore.merge(plans, reports)
+    return reports, internal
 
 
 def _scoped(out: CheckResult, how: Scope | None) -> CheckResult:

@@ -33,7 +33,7 @@ from urdf_lint.core.jobs import LintJob, ModelReport, env_unchanged
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
 
-FORMAT = 7
+FORMAT = 8
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
@@ -76,7 +76,8 @@ class RunMemo:
             return {"models": [_report(m) for m in rec["models"]],
                     "skipped": [_report(m) for m in rec["skipped"]],
                     "findings": [Problem.from_row(r) for r in rec["findings"]],
-                    "fragments": dict(rec["fragments"]), "generated": dict(rec["generated"])}
+                    "fragments": dict(rec["fragments"]), "generated": dict(rec["generated"]),
+                    "coverage": dict(rec.get("coverage") or {})}
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 
@@ -114,7 +115,8 @@ class RunMemo:
         body = {"models": [_report_record(r) for r in out.models],
                 "skipped": [_report_record(r) for r in out.skipped],
                 "findings": [p.to_row() for p in out.findings],
-                "fragments": out.fragments, "generated": out.generated}
+                "fragments": out.fragments, "generated": out.generated,
+                "coverage": getattr(out, "coverage", {})}
         # two lines of JSON (json.dumps writes no raw newline), signed together
         blob = (json.dumps(head) + "\n" + json.dumps(body)).encode("utf-8")
         self.cache.write_signed(self.path, blob)

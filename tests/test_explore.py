@@ -1,0 +1,213 @@
+"""Issue 39, branch coverage: the variants that take the xacro branches the default args
+leave out are linted, and what only they find is reported once, labelled with the args that
+reach it; ``--coverage`` says which branches stay out and why."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from conftest import make_package, run_cli
+
+X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+INERTIAL = ('<inertial><mass value="{m}"/><inertia ixx="1e-3" ixy="0" ixz="0" iyy="2e-3" '
+            'iyz="0" izz="3e-3"/></inertial>')
+# a defect behind each kind of branch; none is reached at the defaults
+ROBOT = f"""<?xml version="1.0"?>
+<robot name="r" {X}>
+  <xacro:arg name="sim" default="false"/>
+  <xacro:arg name="gripper" default="none"/>
+  <xacro:arg name="camera" default="none"/>
+  <xacro:arg name="hand" default="plain"/>
+  <xacro:arg name="size" default="small"/>
+  <xacro:property name="limits" value="${{xacro.load_yaml('$(find robot)/config/$(arg size)/limits.yaml')}}"/>
+  <link name="base"/>
+  <joint name="j1" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/>
+    <limit effort="1" velocity="${{limits['velocity']}}" lower="-1" upper="1"/>
+  </joint>
+  <link name="arm"/>
+  <xacro:if value="$(arg sim)">
+    <link name="sim_link">{INERTIAL.format(m=-1)}</link>
+    <joint name="sim_j" type="fixed"><parent link="base"/><child link="sim_link"/></joint>
+    <xacro:if value="${{'$(arg gripper)' == 'robotiq'}}">
+      <joint name="nested_j" type="fixed"><parent link="base"/><child link="no_nested"/></joint>
+    </xacro:if>
+  </xacro:if>
+  <xacro:if value="${{'$(arg gripper)' == 'robotiq'}}">
+    <joint name="grip_j" type="fixed"><parent link="base"/><child link="no_grip"/></joint>
+  </xacro:if>
+  <xacro:if value="${{'$(arg camera)' in ['d435', 'd455']}}">
+    <joint name="cam_j" type="fixed"><parent link="base"/><child link="no_cam"/></joint>
+  </xacro:if>
+  <xacro:include filename="$(find robot)/urdf/hands/$(arg hand).xacro"/>
+  <xacro:if value="false">
+    <link name="never"/>
+  </xacro:if>
+</robot>
+"""
+FILES = {
+    "urdf/robot.urdf.xacro": ROBOT,
+    "urdf/hands/plain.xacro": f'<?xml version="1.0"?>\n<robot {X}/>\n',
+    "urdf/hands/fancy.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <joint name="hand_j" type="fixed"><parent link="base"/><child link="no_hand"/></joint>
+</robot>
+""",
+    "config/small/limits.yaml": "velocity: 1.0\n",
+    "config/big/limits.yaml": "velocity: -2.0\n",
+}
+FILE = "urdf/robot.urdf.xacro"
+# (line, code) -> the label of the args that reach it
+EXPECTED = {
+    (13, "UL304"): "size:=big",                 # a YAML folder chosen by an arg
+    (17, "UL602"): "sim:=true",                 # a boolean arg
+    (20, "UL103"): "gripper:=robotiq sim:=true",   # nested conditions
+    (24, "UL103"): "gripper:=robotiq",          # a compared literal
+    (27, "UL103"): "camera:=d435",              # an `in` list
+}
+
+
+def _check(pkg: Path, *args: str, coverage: bool = True):
+    more = ("--coverage",) if coverage else ()
+    p = run_cli("check", ".", "--no-cache", "--format", "json", *more, *args, cwd=pkg)
+    assert p.returncode in (0, 1), p.stderr
+    return json.loads(p.stdout)
+
+
+def test_a_defect_behind_each_kind_of_branch_is_found_and_labelled(tmp_path):
+    pkg = make_package(tmp_path, "robot", FILES)
+    doc = _check(pkg)
+    got = {(f["line"], f["code"]): f["message"] for f in doc["findings"]
+           if f["file"].endswith(FILE)}
+    for (line, code), label in EXPECTED.items():
+        assert (line, code) in got, (line, code, sorted(got))
+        assert got[(line, code)].endswith(f"(only with {label})"), got[(line, code)]
+    hand = [f for f in doc["findings"] if f["file"].endswith("hands/fancy.xacro")]
+    assert [f["code"] for f in hand] == ["UL103"]          # an include chosen by an arg
+    assert hand[0]["message"].endswith("(only with hand:=fancy)")
+    # once each: a finding of several variants is reported with one label
+    assert len([f for f in doc["findings"] if f["line"] == 24]) == 1
+    # the branch no arg reaches: an information finding, and the coverage says why
+    assert got[(30, "UL014")] and "(only with" not in got[(30, "UL014")]
+    [cov] = doc["coverage"]
+    assert cov["taken_at_defaults"] < cov["taken"] == cov["branches"] - 1
+    assert [(r["line"], r["why"]) for r in cov["not_taken"]] == [(30, "unreachable")]
+
+
+def test_a_finding_at_the_defaults_is_not_repeated_per_variant(tmp_path):
+    files = dict(FILES)
+    files[FILE] = ROBOT.replace('<link name="arm"/>',
+                                f'<link name="arm">{INERTIAL.format(m=0)}</link>')
+    pkg = make_package(tmp_path, "robot", files)
+    doc = _check(pkg, coverage=False)
+    at = [f for f in doc["findings"] if f["file"].endswith(FILE) and f["line"] == 15]
+    assert at and all("(only with" not in f["message"] for f in at), at
+    assert len({f["code"] for f in at}) == len(at)
+
+
+def test_opt_out_and_per_arg_control(tmp_path):
+    pkg = make_package(tmp_path, "robot", FILES)
+    off = _check(pkg, "--explore", "false")
+    assert not [f for f in off["findings"] if "(only with" in f["message"]]
+    # an arg that must never change, and an arg whose values are listed
+    doc = _check(pkg, "--explore-arg", "sim=", "--explore-arg", "camera=d455")
+    labels = {f["message"].rpartition("(only with ")[2] for f in doc["findings"]
+              if "(only with" in f["message"]}
+    assert not any("sim:=" in x for x in labels), labels
+    assert "camera:=d455)" in labels and "camera:=d435)" not in labels
+    [cov] = doc["coverage"]
+    assert {r["line"]: r["why"] for r in cov["not_taken"]}[16] == "its args are fixed"
+    (pkg / "pyproject.toml").write_text('[tool.urdf-lint]\nexplore-exclude = ["urdf/*"]\n')
+    assert not [f for f in _check(pkg)["findings"] if "(only with" in f["message"]]
+
+
+def test_the_budget_cuts_exploration_short_and_says_so(tmp_path):
+    pkg = make_package(tmp_path, "robot", FILES)
+    p = run_cli("check", ".", "--no-cache", "--explore-budget", "0.125", "--coverage",
+                "--statistics", cwd=pkg)
+    assert "explore budget cut exploration short" in p.stderr, p.stderr
+    assert "never taken: budget" in p.stdout, p.stdout
+    assert "branches " in p.stdout and "robot.urdf.xacro" in p.stdout
+
+
+def test_the_branches_read_from_the_source(tmp_path):
+    """Static: the conditions, the args they read (also through a property or a macro
+    parameter), the literals they compare with and the files an arg-built path names."""
+    from urdf_lint.discovery import branches
+    from urdf_lint.discovery.packages import PackageResolver
+    pkg = make_package(tmp_path, "robot", FILES)
+    (pkg / "urdf/macro.xacro").write_text(f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:arg name="use_gazebo" default="false"/>
+  <xacro:property name="gz" value="$(arg use_gazebo)"/>
+  <xacro:macro name="m" params="hand">
+    <xacro:if value="${{hand}}"><link name="h"/></xacro:if>
+  </xacro:macro>
+  <xacro:m hand="$(arg with_hand)"/>
+  <xacro:unless value="${{gz}}"><link name="g"/></xacro:unless>
+</robot>
+""")
+    resolver = PackageResolver.build([str(tmp_path)])
+    a = branches.analyse([str(pkg / FILE), str(pkg / "urdf/macro.xacro")], resolver)
+    conds = {c.line: c for c in a.conds}
+    assert conds[19].parent and conds[19].parent[1] == 16
+    assert conds[26].compared == {"camera": ["d435", "d455"]}
+    assert conds[6].bare == "with_hand" and conds[6].in_macro
+    assert conds[9].args == ("use_gazebo",) and conds[9].kind == "unless"
+    assert conds[30].constant is False
+    values = a.values()
+    assert values["sim"] == ["true"] and values["gripper"] == ["robotiq"]
+    assert values["hand"] == ["fancy"] and values["size"] == ["big"]
+    assert branches.guesses(conds[9], a.defaults, values) == [{"use_gazebo": "false"}] or \
+        a.defaults["use_gazebo"] == "false"
+
+
+def test_the_budget_is_shared_round_robin_and_variant_findings_are_labelled_once():
+    """In process: every model's first variant before any model's second; a finding of two
+    variants is added once, with the smaller variant's args; one at the defaults never."""
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.discovery.branches import Analysis
+    from urdf_lint.run import explore
+    plans = [explore.ModelPlan(f"/r/{n}.xacro", [ModelReport(f"/r/{n}.xacro", {})], Analysis(),
+                               variants=[{"a": "1"}, {"a": "1", "b": "x"}, {"c": "y"}])
+             for n in ("m1", "m2")]
+    jobs = explore.select(plans, 0.25, 8)            # 2 variants for the run
+    assert [(j.entry, j.args) for j in jobs] == [("/r/m1.xacro", {"a": "1"}),
+                                                 ("/r/m2.xacro", {"a": "1"})]
+    assert [p.kept for p in plans] == [1, 1]
+    jobs = explore.select(plans, 1.0, 2)             # at least MIN_MODELS: all 6
+    assert len(jobs) == 6 and [p.kept for p in plans] == [3, 3]
+    at_default = Problem.at("UL601", "no inertial", ("/r/m1.xacro", 3, 1))
+    behind = Problem.at("UL103", "child link 'x' is not defined", ("/r/m1.xacro", 9, 5))
+    plans[0].base[0].problems = [at_default]
+    reports = [ModelReport("/r/m1.xacro", {"a": "1", "b": "x"}, problems=[at_default, behind]),
+               ModelReport("/r/m1.xacro", {"a": "1"}, problems=[at_default, behind])]
+    cov = explore.merge(plans[:1], reports)
+    got = [p.message for p in plans[0].base[0].problems]
+    assert got == ["no inertial", "child link 'x' is not defined (only with a:=1)"]
+    assert list(cov) == [plans[0].label]
+    assert cov[plans[0].label]["variants"] == [{"a": "1"}, {"a": "1", "b": "x"}]
+
+
+def test_diff_shows_a_change_inside_a_branch_the_defaults_do_not_take(tmp_path):
+    """Both revisions explore alike: a defect a change brings into the `sim` branch is
+    introduced, labelled; the findings both revisions share are not."""
+    import subprocess
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=tmp_path, check=True, capture_output=True)
+    pkg = make_package(tmp_path, "robot", FILES)
+    git("init", "-q")
+    git("add", "-A")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "base")
+    f = pkg / FILE
+    f.write_text(f.read_text().replace('<mass value="-1"/>', '<mass value="-3"/>'))
+    p = run_cli("diff", "HEAD", "--format", "json", "--no-cache", cwd=tmp_path)
+    assert p.returncode in (0, 1), p.stderr
+    [m] = json.loads(p.stdout)["models"]
+    new = [x["message"] for x in m["findings_introduced"]]
+    assert len(new) == 1 and "mass -3" in new[0] and new[0].endswith("(only with sim:=true)"), m
+    [gone] = [x["message"] for x in m["findings_fixed"]]
+    assert "mass -1" in gone and gone.endswith("(only with sim:=true)"), m

@@ -1,0 +1,352 @@
+"""The branches of a xacro model, read from its source (lxml, never evaluated): every
+``<xacro:if>``/``<xacro:unless>``, every include and YAML path built from an arg, and the values
+the files themselves offer each arg (booleans both ways, the literals it is compared with, the
+files and folders that exist where a path built from it points).
+
+:func:`analyse` reads the files; :func:`candidates` proposes the arg assignments that should
+take the branches the default args leave out. Whether a branch is taken is never decided here:
+the sandboxed workers expand each variant and say which conditions kept their body
+(``ModelReport.branches``); :mod:`urdf_lint.run.explore` compares. Nothing here evaluates an
+expression of a repository: the texts are matched with regular expressions.
+"""
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+_XACRO = "xacro"   # (namespaces vary: http://www.ros.org/wiki/xacro, http://wiki.ros.org/xacro)
+_ARG = r"""['"]?\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)['"]?"""
+_NAME = r"""\b([A-Za-z_]\w*)\b"""
+_REF = rf"(?:{_ARG}|{_NAME})"
+_LIT = r"""(?:(['"])([^'"]*)\{q}|(-?\d+(?:\.\d+)?))"""
+_ARG_RE = re.compile(r"\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)")
+_WORD_RE = re.compile(r"\b[A-Za-z_]\w*\b")
+_CMP_RE = re.compile(_REF + r"\s*(==|!=)\s*" + _LIT.format(q="4"))
+_CMP_REV_RE = re.compile(_LIT.format(q="1") + r"\s*(==|!=)\s*" + _REF)
+_IN_RE = re.compile(_REF + r"\s+(not\s+in|in)\s*[\[(]([^\])]*)[\])]")
+_STR_RE = re.compile(r"""(['"])([^'"]*)\1""")
+_YAML_RE = re.compile(r"""load_yaml\(\s*(['"])([^'"]*)\1""")
+_PATH_SUFFIXES = (".yaml", ".yml", ".xacro", ".urdf")
+BOOLS = ("true", "false")
+_FALSY = ("false", "0", "False", "")
+_TRUTHY = ("true", "1", "True")
+
+
+@dataclass
+class Cond:
+    """One ``<xacro:if>``/``<xacro:unless>`` of the source."""
+    file: str
+    line: int
+    col: int
+    kind: str                        # "if" or "unless"
+    text: str                        # its value, as written
+    args: tuple[str, ...] = ()       # the args it reads ($(arg X), or a property set from one)
+    compared: dict[str, list[str]] = field(default_factory=dict)   # arg -> literals, == / in
+    negated: dict[str, list[str]] = field(default_factory=dict)    # arg -> literals, != / not in
+    bare: str | None = None          # the value is one arg: $(arg X) or ${X}
+    parent: tuple | None = None      # the enclosing condition (file, line, col), if any
+    in_macro: bool = False
+
+    @property
+    def key(self) -> tuple:
+        return (self.file, self.line, self.col)
+
+    @property
+    def constant(self) -> bool | None:
+        """The value when it is a constant (no expression, no substitution), else None."""
+        t = self.text.strip()
+        if "$" in t:
+            return None
+        if t in _FALSY:
+            return False
+        if t in _TRUTHY:
+            return True
+        return None
+
+
+@dataclass
+class Choice:
+    """A path built from an arg (an include's filename, a YAML file): one branch per value of
+    the arg whose file exists."""
+    file: str
+    line: int
+    kind: str                        # "include" or "yaml"
+    arg: str
+    text: str                        # the path as written
+    values: dict[str, str] = field(default_factory=dict)   # value -> the path it names
+
+
+@dataclass
+class Analysis:
+    defaults: dict[str, str] = field(default_factory=dict)      # arg -> default (as written)
+    conds: list[Cond] = field(default_factory=list)
+    choices: list[Choice] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+
+    def values(self, listed: dict[str, list[str]] | None = None) -> dict[str, list[str]]:
+        """arg -> the values worth trying, the default excluded: booleans both ways, the
+        compared literals, the values a path choice offers, the listed ones."""
+        out: dict[str, dict[str, None]] = {}
+
+        def add(a: str, v: str, listed: bool = False) -> None:
+            # (the empty string only when listed: `arm_id == ''` checks for "unset", and an
+            # empty name makes a degenerate robot, not a branch)
+            if v != self.defaults.get(a) and "$" not in v and (v or listed):
+                out.setdefault(a, {})[v] = None
+        for c in self.conds:
+            for a in c.args:
+                if c.bare == a or self.defaults.get(a, "").lower() in BOOLS:
+                    for v in BOOLS:
+                        if self.defaults.get(a, "").lower() != v:
+                            add(a, v)
+            for a, lits in [*c.compared.items(), *c.negated.items()]:
+                for v in lits:
+                    add(a, v)
+        for ch in self.choices:
+            for v in ch.values:
+                add(ch.arg, v)
+        for a, vs in (listed or {}).items():
+            for v in vs:
+                add(a, v, listed=True)
+        return {a: list(v) for a, v in out.items()}
+
+
+def _parse(f: str, resolver):
+    from lxml import etree
+    from urdf_lint.core import fsbound
+    try:
+        return fsbound.parse_xml(f, etree.XMLParser(resolve_entities=False, no_network=True,
+                                                    load_dtd=False),
+                                 resolver.roots if resolver is not None else None, resolved=True)
+    except (etree.XMLSyntaxError, OSError, ValueError):
+        return None
+
+
+def _local(el) -> str | None:
+    from lxml import etree
+    if not isinstance(el.tag, str):
+        return None
+    q = etree.QName(el)
+    return q.localname if q.namespace and _XACRO in q.namespace else None
+
+
+def analyse(files, resolver, max_files: int = 200) -> Analysis:
+    """The branches of the xacro ``files`` (a model's sources; files an arg-built include may
+    name are added and read too, up to ``max_files``)."""
+    out = Analysis()
+    props: dict[str, set[str]] = {}      # property -> the args its value reads
+    todo = [f for f in dict.fromkeys(files) if f.endswith(".xacro")]
+    roots = []
+    seen: set[str] = set()
+    while todo and len(seen) < max_files:
+        f = todo.pop(0)
+        if f in seen:
+            continue
+        seen.add(f)
+        root = _parse(f, resolver)
+        if root is None:
+            continue
+        roots.append((f, root))
+        for el in root.iter():
+            name = _local(el)
+            if name == "arg" and el.get("name"):
+                out.defaults.setdefault(el.get("name"), el.get("default") or "")
+            elif name == "property" and el.get("name"):
+                _reads(props, el.get("name"), el.get("value") or el.text or "")
+            elif name is not None and name not in _XACRO_TAGS:
+                # a macro call: a parameter given an arg (hand="$(arg hand)") reads it
+                for k, v in el.attrib.items():
+                    _reads(props, k, v)
+        for ch in _choices(f, root, out, resolver):
+            out.choices.append(ch)
+            todo.extend(p for p in ch.values.values()
+                        if p.endswith(".xacro") and p not in seen)
+    _close(props)
+    for f, root in roots:
+        out.conds.extend(_conds(f, root, props))
+    out.files = [f for f, _ in roots]
+    return out
+
+
+_XACRO_TAGS = {"arg", "property", "macro", "include", "if", "unless", "insert_block",
+               "element", "attribute"}
+
+
+def _reads(props: dict[str, set[str]], name: str, value: str) -> None:
+    """``name`` (a property, a macro parameter) is set from ``value``: the args it reads, and
+    the properties (to be closed over, :func:`_close`)."""
+    got = set(_ARG_RE.findall(value))
+    if "${" in value:
+        got |= {"$" + w for w in _WORD_RE.findall(re.sub(r"\$\([^)]*\)", "", value))}
+    if got:
+        props.setdefault(name, set()).update(got)
+
+
+def _close(props: dict[str, set[str]]) -> None:
+    """A name set from another (``$name``) reads that one's args too; then only args stay."""
+    for _ in range(6):
+        changed = False
+        for got in props.values():
+            for ref in [g for g in got if g.startswith("$")]:
+                more = props.get(ref[1:], set()) - got
+                if more:
+                    got |= more
+                    changed = True
+        if not changed:
+            break
+    for p in list(props):
+        props[p] = {g for g in props[p] if not g.startswith("$")}
+        if not props[p]:
+            del props[p]
+
+
+def _arg_of(m_arg: str | None, m_name: str | None, props: dict) -> list[str]:
+    if m_arg:
+        return [m_arg]
+    if m_name and m_name in props:
+        return sorted(props[m_name])
+    return []
+
+
+def _conds(f: str, root, props: dict) -> list[Cond]:
+    out = []
+    for el in root.iter():
+        kind = _local(el)
+        if kind not in ("if", "unless"):
+            continue
+        text = el.get("value") or ""
+        args = set(_ARG_RE.findall(text))
+        for w in _WORD_RE.findall(re.sub(r"\$\([^)]*\)", "", text)):
+            args |= props.get(w, set())
+        c = Cond(f, el.sourceline or 1, 1, kind, text, tuple(sorted(args)))
+        _literals(c, text, props)
+        bare = re.fullmatch(r"\s*(?:\$\(\s*arg\s+([\w-]+)\s*\)|\$\{\s*([A-Za-z_]\w*)\s*\})\s*",
+                            text)
+        if bare:
+            got = _arg_of(bare.group(1), bare.group(2), props)
+            c.bare = got[0] if len(got) == 1 else None
+        anc = el.getparent()
+        while anc is not None:
+            k = _local(anc)
+            if k in ("if", "unless") and c.parent is None:
+                c.parent = (f, anc.sourceline or 1, 1)
+            if k == "macro":
+                c.in_macro = True
+            anc = anc.getparent()
+        out.append(c)
+    return out
+
+
+def _literals(c: Cond, text: str, props: dict) -> None:
+    def put(table: dict, args: list[str], lit: str | None) -> None:
+        for a in args:
+            if lit is not None:
+                table.setdefault(a, [])
+                if lit not in table[a]:
+                    table[a].append(lit)
+    for m in _CMP_RE.finditer(text):
+        lit = m.group(5) if m.group(5) is not None else m.group(6)
+        put(c.compared if m.group(3) == "==" else c.negated, _arg_of(m.group(1), m.group(2), props),
+            lit)
+    for m in _CMP_REV_RE.finditer(text):
+        lit = m.group(2) if m.group(2) is not None else m.group(3)
+        put(c.compared if m.group(4) == "==" else c.negated, _arg_of(m.group(5), m.group(6), props),
+            lit)
+    for m in _IN_RE.finditer(text):
+        table = c.compared if m.group(3) == "in" else c.negated
+        for s in _STR_RE.finditer(m.group(4)):
+            put(table, _arg_of(m.group(1), m.group(2), props), s.group(2))
+
+
+def _path_texts(root):
+    """(element, kind, text) of every path built from an arg: includes, load_yaml, and arg
+    defaults or property values that name a file."""
+    for el in root.iter():
+        name = _local(el)
+        if name == "include" and "$(arg" in (el.get("filename") or ""):
+            yield el, "include", el.get("filename")
+        values = [v for v in el.attrib.values()] if isinstance(el.tag, str) else []
+        for v in values:
+            for m in _YAML_RE.finditer(v):
+                if "$(arg" in m.group(2):
+                    yield el, "yaml", m.group(2)
+        if name in ("arg", "property"):
+            v = (el.get("default") if name == "arg" else el.get("value")) or ""
+            if "$(arg" in v and v.strip().endswith(_PATH_SUFFIXES):
+                yield el, "yaml" if v.strip().endswith((".yaml", ".yml")) else "include", v
+
+
+def _choices(f: str, root, out: Analysis, resolver) -> list[Choice]:
+    got = []
+    for el, kind, text in _path_texts(root):
+        for a in dict.fromkeys(_ARG_RE.findall(text)):
+            ch = Choice(f, el.sourceline or 1, kind, a, text)
+            ch.values = _existing(text, a, out.defaults, os.path.dirname(f), resolver)
+            got.append(ch)
+    return got
+
+
+def _existing(text: str, arg: str, defaults: dict, base: str, resolver) -> dict[str, str]:
+    """value -> path for each value of ``arg`` whose file exists where ``text`` points (the
+    other args at their defaults; other expressions match anything)."""
+    from urdf_lint.core import fsbound
+    from urdf_lint.discovery.discover import _FIND_RE
+    marker = "\0ARG\0"
+    t = text.strip()
+    for _ in range(3):   # an arg's default may itself read args
+        t = _ARG_RE.sub(lambda m: marker if m.group(1) == arg else defaults.get(m.group(1), "*"),
+                        t)
+    t = re.sub(r"\$\{[^}]*\}|\$\((?!find\s)[^)]*\)", "*", t)
+    if resolver is not None:
+        try:
+            t = _FIND_RE.sub(lambda m: str(resolver.find(m.group(1))), t)
+        except Exception:  # noqa: BLE001 - an unknown package: no value is found here
+            return {}
+    if "$" in t or marker not in t or not t.split(marker)[-1].strip("/"):
+        return {}   # (the whole name is the arg's: any entry of the folder would match)
+    path = os.path.normpath(os.path.join(base, t))
+    pattern = path.replace(marker, "*")
+    found = fsbound.bounded_glob(pattern)
+    if not found:
+        return {}
+    rx = re.compile("^" + re.escape(path).replace(re.escape(marker), "([^/]+)")
+                    .replace(r"\*", "[^/]*") + "$")
+    out: dict[str, str] = {}
+    for p in sorted(found):
+        m = rx.match(p)
+        if m and m.group(1) not in out:
+            out[m.group(1)] = os.path.realpath(p)
+    return out
+
+
+def guesses(c: Cond, defaults: dict[str, str], values: dict[str, list[str]]
+            ) -> list[dict[str, str]]:
+    """The assignments (of this condition's args only) likely to keep its body, best first:
+    read from the text, never evaluated (the workers say whether they did)."""
+    want = c.kind == "if"
+    out: list[dict[str, str]] = []
+    if c.bare is not None:
+        out.append({c.bare: "true" if want else "false"})
+    for a, lits in (c.compared if want else c.negated).items():
+        out.extend({a: v} for v in lits)
+    for a, lits in (c.negated if want else c.compared).items():
+        out.extend({a: v} for v in values.get(a, []) if v not in lits)
+    for a in c.args:
+        out.extend({a: v} for v in values.get(a, []))
+    seen: list[dict[str, str]] = []
+    for g in out:
+        g = {k: v for k, v in g.items() if v != defaults.get(k)}
+        if any(v == "" and v not in values.get(k, ()) for k, v in g.items()):
+            continue
+        if g and g not in seen:
+            seen.append(g)
+    return seen
+
+
+def merged(a: dict[str, Any], b: dict[str, Any]) -> dict[str, Any] | None:
+    """``a`` and ``b`` together, or None when they set one arg differently."""
+    if any(k in b and b[k] != v for k, v in a.items()):
+        return None
+    return {**a, **b}

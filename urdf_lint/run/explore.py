@@ -1,0 +1,290 @@
+"""Branch coverage of xacro models: the arg values that take the branches the defaults leave
+out, linted as variants, and what stays out (``check --coverage``; docs/coverage.md).
+
+After the default run, :func:`plan` reads each xacro model's sources
+(:mod:`urdf_lint.discovery.branches`: lxml, nothing evaluated) and proposes assignments for the
+conditions whose body the defaults did not expand and the files an arg-built path names that
+the defaults did not read. :func:`select` keeps what the budget allows (round robin over the
+models: every model gets its first variant before any gets a second). The variants are linted
+as any job (sandboxed workers, cache); :func:`merge` adds what only a variant found to the
+model's own findings, once, labelled ``(only with a:=x b:=y)``, and computes the coverage.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from urdf_lint.core.jobs import LintJob, ModelReport
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.branches import Analysis
+
+WHY_NO_VALUE = "no value found"
+WHY_BUDGET = "budget"
+WHY_UNREACHABLE = "unreachable"
+WHY_MACRO = "its macro is never called"
+WHY_TRIED = "no value tried takes it"
+WHY_FIXED = "its args are fixed"
+
+
+@dataclass
+class ModelPlan:
+    """One model's branches and the variants proposed for the ones its defaults miss."""
+    entry: str
+    base: list[ModelReport]                  # the model's reports at the defaults / its listed args
+    analysis: "Analysis"
+    variants: list[dict[str, str]] = field(default_factory=list)   # proposed, best first
+    kept: int = 0                            # how many of them the budget let run
+    fixed: set[str] = field(default_factory=set)
+    listed: dict[str, list[str]] = field(default_factory=dict)   # explore-args
+    reports: list[ModelReport] = field(default_factory=list)    # of the kept variants
+
+    @property
+    def label(self) -> str:
+        return self.base[0].label
+
+
+def shown(args: dict[str, str]) -> str:
+    return " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
+
+
+def explored_models(cfg: "Config", models: list[ModelReport]) -> dict[str, list[ModelReport]]:
+    """entry -> its reports, for the xacro models exploration applies to."""
+    import fnmatch
+    import os
+    out: dict[str, list[ModelReport]] = {}
+    for r in models:
+        if not r.entry.endswith(".xacro"):
+            continue
+        rel = os.path.relpath(r.entry, cfg.root)
+        if any(fnmatch.fnmatch(rel, g) or fnmatch.fnmatch(r.entry, g)
+               for g in cfg.explore_exclude):
+            continue
+        out.setdefault(r.entry, []).append(r)
+    return out
+
+
+def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) -> list[ModelPlan]:
+    """A plan for every explored model (see the module's doc)."""
+    from urdf_lint.discovery import branches as br
+    plans = []
+    for entry, base in sorted(explored_models(cfg, models).items()):
+        files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
+        a = br.analyse(files, resolver)
+        p = ModelPlan(entry, base, a)
+        listed = {k: list(v) for k, v in cfg.explore_args.items()}
+        for r in base:
+            for k, v in r.args.items():
+                listed.setdefault(k, []).append(v)
+        p.fixed = {k for k, v in cfg.explore_args.items() if not v}
+        p.listed = {k: list(v) for k, v in cfg.explore_args.items()}
+        values = {k: v for k, v in a.values(listed).items() if k not in p.fixed}
+        # an arg whose values are listed takes only those
+        values.update({k: [x for x in v if x != a.defaults.get(k)]
+                       for k, v in cfg.explore_args.items() if v})
+        p.variants = _variants(p, values)
+        plans.append(p)
+    return plans
+
+
+def _closure(entry: str, graph: Any) -> list[str]:
+    if graph is None:
+        return []
+    out, todo = [], [entry]
+    seen = {entry}
+    while todo:
+        f = todo.pop()
+        for g in graph.includes.get(f, ()):
+            if g not in seen:
+                seen.add(g)
+                out.append(g)
+                todo.append(g)
+    return out
+
+
+def taken(reports: list[ModelReport]) -> set[tuple[str, int]]:
+    """(file, line) of every condition whose body one of ``reports`` expanded."""
+    return {(b[0], b[1]) for r in reports for b in r.branches if b[3]}
+
+
+def _variants(p: ModelPlan, values: dict[str, list[str]]) -> list[dict[str, str]]:
+    """The assignments that may take what the defaults miss, those serving more first."""
+    from urdf_lint.discovery.branches import guesses, merged
+    a = p.analysis
+    done = taken(p.base)
+    read = {d for r in p.base for d in r.deps}
+    by_key = {(c.file, c.line): c for c in a.conds}
+    serves: dict[tuple, int] = {}
+
+    listed = {k: v for k, v in p.listed.items() if v}
+
+    def want(g: dict[str, str]) -> None:
+        if any(k in listed and v not in listed[k] for k, v in g.items()):
+            return   # an arg whose values are listed takes only those
+        if g and not (set(g) & p.fixed):
+            k = tuple(sorted(g.items()))
+            serves[k] = serves.get(k, 0) + 1
+    for c in a.conds:
+        if (c.file, c.line) in done or c.constant is not None:
+            continue
+        gs = guesses(c, a.defaults, values)[:2]
+        # a nested condition: the enclosing ones must be taken too (their first guess)
+        parent = by_key.get(c.parent[:2]) if c.parent else None
+        depth = 0
+        while parent is not None and depth < 4:
+            if (parent.file, parent.line) not in done:
+                pg = guesses(parent, a.defaults, values)[:1]
+                gs = [m for g in gs for m in [merged(g, pg[0]) if pg else None] if m]
+            parent = by_key.get(parent.parent[:2]) if parent.parent else None
+            depth += 1
+        for g in gs:
+            want(g)
+    for ch in a.choices:
+        if ch.arg in p.fixed:
+            continue
+        for v, path in ch.values.items():
+            if path not in read and v in values.get(ch.arg, [v]):
+                want({ch.arg: v})
+    base_args = dict(p.base[0].args)
+    ranked = sorted(serves, key=lambda k: (-serves[k], len(k), k))
+    out = []
+    for k in ranked:
+        args = {**base_args, **dict(k)}
+        if args != base_args and args not in out:
+            out.append(args)
+    return out
+
+
+# a run of few models explores as if it had this many (a single model gets 8 variants at 1.0)
+MIN_MODELS = 8
+
+
+def select(plans: list[ModelPlan], budget: float, n_models: int) -> list[LintJob]:
+    """The variant jobs the budget allows: at most ``budget`` times the models of the run
+    (at least :data:`MIN_MODELS`), round robin (every model's first variant before any
+    model's second)."""
+    allowed = math.ceil(budget * max(n_models, MIN_MODELS)) if budget > 0 else 0
+    jobs: list[LintJob] = []
+    rnd = 0
+    while len(jobs) < allowed and any(rnd < len(p.variants) for p in plans):
+        for p in plans:
+            if rnd < len(p.variants) and len(jobs) < allowed:
+                jobs.append(LintJob(p.entry, dict(p.variants[rnd]), "xacro", explicit=True,
+                                    mesh_base=None))
+                p.kept = rnd + 1
+        rnd += 1
+    return jobs
+
+
+def merge(plans: list[ModelPlan], reports: list[ModelReport]) -> dict[str, dict[str, Any]]:
+    """Add to each model what only its variants found (labelled, once, at its source line);
+    returns the coverage per model label (:func:`coverage`)."""
+    by = {(r.entry, tuple(sorted(r.args.items()))): r for r in reports}
+    out = {}
+    for p in plans:
+        p.reports = [r for v in p.variants[:p.kept]
+                     for r in [by.get((p.entry, tuple(sorted(v.items()))))] if r is not None]
+        _add_findings(p)
+        out[p.label] = coverage(p)
+    return out
+
+
+def _add_findings(p: ModelPlan) -> None:
+    base_args = p.base[0].args
+    seen = {q.key() for r in p.base for q in r.problems}
+    added = []
+    for r in sorted(p.reports, key=lambda r: (len(r.args), sorted(r.args.items()))):
+        extra = {k: v for k, v in r.args.items() if base_args.get(k) != v}
+        for q in r.problems:
+            if q.key() in seen:
+                continue
+            seen.add(q.key())
+            added.append(q.replace(message=f"{q.message} (only with {shown(extra)})"))
+    p.base[0].problems = list(p.base[0].problems) + added
+    # what the variants read is the model's too: suppression comments there apply, and
+    # ``diff`` materialises those files in the base revision
+    base = p.base[0]
+    for r in p.reports:
+        base.deps += [d for d in r.deps if d not in base.deps]
+        if base.directive_files is not None:
+            if r.directive_files is None:
+                base.directive_files = None
+            else:
+                base.directive_files += [d for d in r.directive_files
+                                         if d not in base.directive_files]
+
+
+def coverage(p: ModelPlan) -> dict[str, Any]:
+    """What :func:`merge` records per model: the branches, how many the defaults and the
+    exploration took, the variants linted, and every branch never taken with why."""
+    rows: list[dict[str, Any]] = []
+    takers: dict[str, list[str]] = {}
+    t1, a1, b1 = _cond_rows(p, rows, takers)
+    t2, a2, b2 = _choice_rows(p, rows)
+    return {"model": p.label, "entry": p.entry, "branches": t1 + t2,
+            "taken_at_defaults": a1 + a2, "taken": b1 + b2,
+            "variants": [dict(r.args) for r in p.reports],
+            "cut_by_budget": len(p.variants) - p.kept, "not_taken": rows, "takers": takers}
+
+
+def _why(p: ModelPlan, c: Any, seen_any: set, cut_args: set, tried: set) -> str:
+    """Why the condition ``c`` never kept its body."""
+    from urdf_lint.discovery.branches import guesses
+    if c.constant is not None:
+        return WHY_UNREACHABLE
+    if c.in_macro and (c.file, c.line) not in seen_any:
+        return WHY_MACRO
+    if c.args and set(c.args) <= p.fixed:
+        return WHY_FIXED
+    if set(c.args) & cut_args:
+        return WHY_BUDGET
+    if set(c.args) & tried or guesses(c, p.analysis.defaults, p.analysis.values()):
+        return WHY_TRIED
+    return WHY_NO_VALUE
+
+
+def _cond_rows(p: ModelPlan, rows: list, takers: dict) -> tuple[int, int, int]:
+    """(conditions, kept at the defaults, kept by a run); ``rows`` hears the others."""
+    at_default = taken(p.base)
+    explored = taken(p.base + p.reports)
+    seen_any = {(b[0], b[1]) for r in p.base + p.reports for b in r.branches}
+    cut_args = {k for v in p.variants[p.kept:] for k in v}
+    tried = {k for r in p.reports for k in r.args}
+    n0 = n1 = 0
+    for c in p.analysis.conds:
+        key = (c.file, c.line)
+        n0 += key in at_default
+        if key in explored:
+            n1 += 1
+            takers[f"{c.file}:{c.line}"] = (["defaults"] if key in at_default else []) + [
+                shown(r.args) for r in p.reports if key in taken([r])]
+            continue
+        rows.append({"file": c.file, "line": c.line, "kind": f"xacro:{c.kind}",
+                     "value": c.text, "why": _why(p, c, seen_any, cut_args, tried)})
+    return len(p.analysis.conds), n0, n1
+
+
+def _choice_rows(p: ModelPlan, rows: list) -> tuple[int, int, int]:
+    """(files an arg-built path may name, read at the defaults, read by a run)."""
+    read0 = {d for r in p.base for d in r.deps}
+    read = read0 | {d for r in p.reports for d in r.deps}
+    cut = p.variants[p.kept:]
+    total = n0 = n1 = 0
+    for ch in p.analysis.choices:
+        if not ch.values:
+            total += 1
+            rows.append({"file": ch.file, "line": ch.line, "kind": ch.kind, "value": ch.text,
+                         "arg": ch.arg, "choice": "", "why": WHY_NO_VALUE})
+        for v, path in ch.values.items():
+            total += 1
+            n0 += path in read0
+            n1 += path in read
+            if path in read:
+                continue
+            why = WHY_FIXED if ch.arg in p.fixed else WHY_BUDGET if any(
+                x.get(ch.arg) == v for x in cut) else WHY_TRIED
+            rows.append({"file": ch.file, "line": ch.line, "kind": ch.kind, "value": ch.text,
+                         "arg": ch.arg, "choice": v, "why": why})
+    return total, n0, n1
