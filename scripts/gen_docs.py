@@ -24,6 +24,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 README = REPO / "README.md"
 sys.path.insert(0, str(REPO))   # this checkout's code, as the demo it runs uses
+sys.path.insert(0, str(REPO / "scripts"))
 
 
 def _row(*cells: str) -> str:
@@ -140,13 +141,18 @@ def render(text: str, demo: bool = False) -> str:
 
 
 def main(argv: list[str]) -> int:
+    import gen_types    # the generated Python: engine.api's requests (scripts/gen_types.py)
     old = README.read_text(encoding="utf-8")
     new = render(old, demo=True)
     if "--check" in argv:
-        if new != old:
-            print("README.md is stale: run python scripts/gen_docs.py", file=sys.stderr)
+        stale = [name for name, ok in gen_types.current().items() if not ok]
+        stale += ["README.md"] if new != old else []
+        if stale:
+            print(f"{', '.join(stale)} stale: run python scripts/gen_docs.py", file=sys.stderr)
             return 1
         return 0
+    for name in gen_types.write():
+        print(f"{name}: regenerated")
     if new != old:
         README.write_text(new, encoding="utf-8")
         print("README.md: tables regenerated")

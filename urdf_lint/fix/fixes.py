@@ -23,10 +23,11 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from urdf_lint.core.edits import NOT_FIXABLE, Edit, Fix
+from urdf_lint.fix.request import Request as Request
 from urdf_lint.fix.sourceedit import Attr, inside, iter_start_tags, line_col, start_tag_at
 
 _REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
@@ -34,20 +35,6 @@ _YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|
                        r"|\.[A-Za-z_]\w*)+)\s*\}")
 _KEY = re.compile(r"\[\s*(?:'([^']*)'|\"([^\"]*)\"|(\d+))\s*\]|\.([A-Za-z_]\w*)")
 _LOAD_YAML = re.compile(r"\$\{\s*(?:xacro\.)?load_yaml\(\s*(?:'([^']*)'|\"([^\"]*)\")\s*\)\s*\}")
-
-
-@dataclass(frozen=True)
-class Request:
-    """What a rule wants done to the expanded element: ``kind`` names a fix kind
-    (:mod:`urdf_lint.fix.kinds`: "set" with ``changes`` the new values of attributes,
-    "rename_attr" / "rename_tag" with ((old, new),), ...); the rules make requests with the
-    kinds' functions (``set_attrs``, ...), through :mod:`urdf_lint.engine.api`."""
-    changes: tuple[tuple[str, str], ...]
-    description: str
-    safe: bool = True
-    kind: str = "set"
-    on_parent: bool = False      # the fix edits the parent of the element reported
-    elements: tuple = field(default=(), compare=False)   # more elements the fix edits
 
 
 def names_in_scope(model) -> set:

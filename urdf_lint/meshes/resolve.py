@@ -6,7 +6,6 @@ cached by file content, so a mesh is read once per change, not once per model or
 """
 from __future__ import annotations
 
-import enum
 import math
 import os
 import re
@@ -20,16 +19,8 @@ from typing import Any
 from urdf_lint.core import fsbound
 from urdf_lint.core.hashing import memo_read
 from urdf_lint.discovery.packages import PackageNotFound
+from urdf_lint.meshes.status import MeshStatus as MeshStatus
 from urdf_lint.meshes.store import MeshStore
-
-
-class MeshStatus(enum.Enum):
-    """How a mesh or texture reference resolved (the UL4xx rules map these to codes)."""
-    OK = "ok"                          # an existing file inside the package roots
-    UNKNOWN_PACKAGE = "unknown-package"
-    NOT_FOUND = "not-found"
-    CASE_MISMATCH = "case-mismatch"    # exists only with different letter case
-    OUTSIDE_ROOTS = "outside-roots"    # resolves outside the package roots: never read
 
 
 @dataclass

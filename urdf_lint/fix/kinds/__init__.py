@@ -50,6 +50,16 @@ class FixKind:
     name: ClassVar[str] = ""
     expectation: ClassVar[str] = ""
 
+    @classmethod
+    def request(cls, *, changes: tuple[tuple[str, str], ...], description: str,
+                safe: bool = True, on_parent: bool = False,
+                elements: tuple[Any, ...] = ()) -> "Request":
+        """A request of this kind (its ``kind`` is this class's ``name``): what the kind's
+        request function (``set_attrs``, ...) returns."""
+        from urdf_lint.fix.request import Request
+        return Request(changes=changes, description=description, safe=safe, kind=cls.name,
+                       on_parent=on_parent, elements=elements)
+
     def resolve(self, site: Site) -> tuple["Edit", ...]:
         raise NotImplementedError
 

@@ -14,8 +14,9 @@ ANY = "\ue000any"   # a private-use marker: "this attribute may take any value"
 
 def add_dollar(attr: str, names, safe: bool = True) -> Request:
     """Turn the literal ``{name}`` of each of ``names`` in ``attr`` into ``${name}``."""
-    return Request(((attr, ",".join(names)),), "add the missing '$' of "
-                   + ", ".join("${" + n + "}" for n in names), safe, "add_dollar")
+    return AddDollar.request(changes=((attr, ",".join(names)),), safe=safe,
+                             description="add the missing '$' of "
+                             + ", ".join("${" + n + "}" for n in names))
 
 
 REQUESTS = (add_dollar,)

@@ -9,7 +9,8 @@ from urdf_lint.core.edits import Edit
 
 def drop_attrs(names, description: str, safe: bool = False) -> Request:
     """Remove attributes (with the blank before each) from the element's start tag."""
-    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+    return DropAttrs.request(changes=tuple((n, "") for n in names), description=description,
+                             safe=safe)
 
 
 REQUESTS = (drop_attrs,)

@@ -8,7 +8,8 @@ from urdf_lint.core.edits import Edit
 
 
 def rename_attr(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
+    return RenameAttr.request(changes=((old, new),), safe=safe,
+                              description=f"rename attribute '{old}' to '{new}'")
 
 
 REQUESTS = (rename_attr,)

@@ -9,7 +9,8 @@ from urdf_lint.fix.sourceedit import end_tag_of
 
 
 def rename_tag(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
+    return RenameTag.request(changes=((old, new),), description=f"rename <{old}> to <{new}>",
+                             safe=safe)
 
 
 REQUESTS = (rename_tag,)

@@ -12,7 +12,8 @@ from urdf_lint.fix.sourceedit import Attr, escape
 
 def set_attrs(changes: dict, description: str, safe: bool = True,
               on_parent: bool = False) -> Request:
-    return Request(tuple(changes.items()), description, safe, "set", on_parent)
+    return SetAttrs.request(changes=tuple(changes.items()), description=description,
+                            safe=safe, on_parent=on_parent)
 
 
 REQUESTS = (set_attrs,)
