@@ -1,4 +1,9 @@
-"""The generated block of ``urdf_lint/engine/api.py``: the request function of every fix kind.
+"""The generated Python: what mypy and editors read of names made at run time.
+
+* ``urdf_lint/config/schema.py``: the ``class Config`` block under ``TYPE_CHECKING``, the fields
+  :func:`urdf_lint.config.schema.config_class` makes from ``SCHEMA`` at run time (adding a
+  config key is one ``Key`` in the schema, then this);
+* ``urdf_lint/engine/api.py``: the request function of every fix kind.
 
 A fix kind is one file in ``urdf_lint/fix/kinds/`` naming its request functions in
 ``REQUESTS``; the rule API imports each by name, so that mypy and editors see it (no module
@@ -11,10 +16,12 @@ from __future__ import annotations
 
 import ast
 import re
+import sys
 import textwrap
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))   # this checkout's code
 API = REPO / "urdf_lint" / "engine" / "api.py"
 KINDS = REPO / "urdf_lint" / "fix" / "kinds"
 _BLOCK = re.compile(r"(# generated: requests\n).*?(# end: requests\n)", re.S)
@@ -46,7 +53,33 @@ def render(text: str, folder: Path = KINDS) -> str:
     return _BLOCK.sub(lambda m: m.group(1) + block(folder) + m.group(2), text, count=1)
 
 
-GENERATED = {"urdf_lint/engine/api.py": (API, render)}
+SCHEMA_PY = REPO / "urdf_lint" / "config" / "schema.py"
+_CONFIG = re.compile(r"(    # generated: config .*?\n).*?(    # end: config\n)", re.S)
+
+
+def config_block() -> str:
+    """``class Config`` as mypy and editors read it: the fields :func:`config_class` makes
+    at run time from the schema (imported: the schema is the source of truth)."""
+    from urdf_lint.config import schema
+
+    def own(name: str, annotation: str, default: object) -> str:
+        value = f"field(default_factory={default.__name__})" if default in (dict, list) \
+            else repr(default).replace("'", '"')
+        return f"        {name}: {annotation} = {value}"
+    lines = ["    @dataclass", "    class Config(_ConfigMethods):",
+             '        """' + schema.CONFIG_DOC.replace("\n    ", "\n        ") + '"""']
+    lines += [own(*f) for f in schema.OWN_FIELDS_FIRST]
+    lines += [f'        {k.attr}: {k.annotation} = _default("{k.name}")' for k in schema.SCHEMA]
+    lines += [own(*f) for f in schema.OWN_FIELDS_LAST]
+    return "\n".join(lines) + "\n"
+
+
+def render_config(text: str) -> str:
+    return _CONFIG.sub(lambda m: m.group(1) + config_block() + m.group(2), text, count=1)
+
+
+GENERATED = {"urdf_lint/engine/api.py": (API, render),
+             "urdf_lint/config/schema.py": (SCHEMA_PY, render_config)}
 
 
 def current() -> dict[str, bool]:
