@@ -39,8 +39,6 @@ import codecs
 import re
 from dataclasses import dataclass
 
-ORDERS = ("keep", "canonical")
-
 
 @dataclass(frozen=True)
 class Style:
@@ -374,14 +372,6 @@ def _layout(src: str, codec: str, bom: bytes, style: Style) -> bytes:
         return bom + format_text(src, style).encode(codec)
     except ValueError as e:   # (well-formed XML the tokenizer cannot read: a bug)
         raise FormatError(f"internal: the tokenizer could not read the file ({e})") from None
-
-
-def format_bytes(data: bytes, style: Style = Style()) -> bytes:
-    """The file laid out, unguarded (see :func:`format_source`); raises :class:`FormatError`
-    when it is not well-formed XML."""
-    src, codec, bom = _decode(data)
-    read_document(data)
-    return _layout(src, codec, bom, style)
 
 
 class Refused(Exception):

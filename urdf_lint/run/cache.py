@@ -237,12 +237,6 @@ class Cache:
         seen: dict = {}
         return [self.get(job, settings, seen) for job in jobs]
 
-    def _mac_bytes(self, path: str, blob: bytes) -> bytes:
-        """The signature of ``blob`` stored under ``path``: its file name (the entry's key) is
-        signed too, so an entry copied under another key is no entry there."""
-        assert self._secret is not None
-        return signing.mac(self._secret, os.path.basename(path), blob)
-
     def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
         """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
         memo keeps), or ``result.cacheable`` turns False when it is not stored."""
