@@ -13,7 +13,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "generate"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     g = sub.add_parser("generate", help="rewrite every stale generated URDF (the 'output' of a "
                        "models entry, or a .urdf whose header names its xacro)",
                        description="Rewrite every generated URDF that no longer equals what its "

@@ -381,7 +381,7 @@ class IncludeGraph:
                     todo.append(g)
         return out
 
-    def add(self, f: str, resolver: "PackageResolver | None"):
+    def add(self, f: str, resolver: "PackageResolver | None") -> None:
         """Read ``f``'s includes and args: from the memo when its size and mtime are those
         recorded last run, else from a quick parse."""
         self._by = None

@@ -40,7 +40,7 @@ def valid_package_name(name: str) -> bool:
 
 
 class PackageNotFound(Exception):
-    def __init__(self, name: str, searched: list[str], folder: str | None = None):
+    def __init__(self, name: str, searched: list[str], folder: str | None = None) -> None:
         self.name = name
         self.searched = searched
         self.folder = folder
@@ -60,7 +60,7 @@ class PackageNotFound(Exception):
 
 class InvalidPackageName(PackageNotFound):
     """A name that is no ROS package name (a path, ``..``): it resolves to nothing."""
-    def __init__(self, name: str):
+    def __init__(self, name: str) -> None:
         shown = name if len(name) <= 80 else name[:80] + "..."
         Exception.__init__(self, f"'{shown}' is not a ROS package name (letters, digits, '_' "
                                  "and '-'; never a path): it names no package")
@@ -71,7 +71,7 @@ class InvalidPackageName(PackageNotFound):
 
 
 class OutsideRoots(Exception):
-    def __init__(self, path: str, what: str = "file"):
+    def __init__(self, path: str, what: str = "file") -> None:
         self.path = path
         super().__init__(f"{what} '{path}' resolves outside the package roots and the linted "
                          f"repository; it was not read")
@@ -123,7 +123,7 @@ class PackageResolver:
     env_paths: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
     _memo: dict = field(default_factory=dict, compare=False, repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         fixed = {"explicit": MappingProxyType({k: Path(v) for k, v in self.explicit.items()}),
                  "scanned": MappingProxyType({k: Path(v) for k, v in self.scanned.items()}),
                  "roots": tuple(Path(r) for r in self.roots),

@@ -65,7 +65,7 @@ class Refuse(Exception):
 class _Sources:
     """The raw bytes of the files a model read (nothing else is read)."""
 
-    def __init__(self, model):
+    def __init__(self, model) -> None:
         self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
         self.data: dict = {}
 

@@ -46,7 +46,7 @@ def fix_key(p, models) -> str | None:
 class FixMemo:
     """The rolled-back fixes of earlier runs (key -> reason), kept in the cache folder."""
 
-    def __init__(self, cache):
+    def __init__(self, cache) -> None:
         self.cache = cache
         self.path = os.path.join(cache.dir, FILE)
         self.entries: dict = {}

@@ -103,7 +103,7 @@ def _listing(folder: Path) -> "_Names | None":
 class _Names(list):
     """A folder's names in ``os.listdir`` order, with a set for membership tests."""
 
-    def __init__(self, mtime: int, names):
+    def __init__(self, mtime: int, names) -> None:
         super().__init__(names)
         self.mtime = mtime
         self._set = frozenset(names)
@@ -307,7 +307,7 @@ def _file_bytes(path: str) -> bytes:
 LIBRARY_LOGGERS = ("trimesh", "collada", "PIL", "yourdfpy")
 
 
-def quiet_libraries():
+def quiet_libraries() -> None:
     import logging
     for name in LIBRARY_LOGGERS:
         lg = logging.getLogger(name)
@@ -615,7 +615,7 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
 class _Uncached(Exception):
     """A result that depends on the environment, not on the file: returned, never cached."""
 
-    def __init__(self, facts):
+    def __init__(self, facts) -> None:
         super().__init__()
         self.facts = facts
 

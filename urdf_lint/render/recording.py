@@ -221,7 +221,7 @@ def _log_plan(rec, rr, prefix, plan: Plan) -> None:
             raise ValueError(f"unknown recording op {kind!r}")
 
 
-def log_findings(log, findings, paths, joint_paths, base=None, size=1.0):
+def log_findings(log, findings, paths, joint_paths, base=None, size=1.0) -> None:
     """Each finding on the entity of the link or joint it concerns (``paths``/``joint_paths``
     from :func:`entity_paths`), file names relative to ``base``, markers scaled to ``size``."""
     import rerun as rr
@@ -243,7 +243,7 @@ def log_findings(log, findings, paths, joint_paths, base=None, size=1.0):
 
 
 def record_findings(findings, paths, joint_paths, path, recording_id, prefix="", base=None,
-                    size=1.0):
+                    size=1.0) -> None:
     """A recording of ``findings`` alone, with the same entity paths and recording id as the
     model's (written by the parent once the run's findings are final; merged into the
     model's recording)."""
@@ -298,7 +298,7 @@ def _sweep_ops(sweep, joint_paths) -> list:
     return ops
 
 
-def _import_rerun():
+def _import_rerun() -> None:
     try:
         import rerun  # noqa: F401
     except Exception:  # noqa: BLE001 - reported by render_model when it imports again
@@ -314,7 +314,7 @@ class Recorder:
     (the snapshot folder), like the parent it was forked from. Forked before any worker or
     thread of the run, so no import or lock is half-held in it."""
 
-    def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB):
+    def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB) -> None:
         from urdf_lint.runner import forked
         self.out_dir = os.path.realpath(out_dir)
         # (its answers are plain data: ``allowed=frozenset()``)
@@ -412,7 +412,7 @@ def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
     return None
 
 
-def _recorder_main(conn, parent_pid, out_dir, memory_mb):
+def _recorder_main(conn, parent_pid, out_dir, memory_mb) -> None:
     """The recorder: hardened like a worker (memory limit, scrubbed environment, then
     Landlock, seccomp and the audit hook: it reads no file of the repository and writes only
     into ``out_dir``, the folder the user named)."""

@@ -73,7 +73,7 @@ def kinematic_tree(model):
     roots = [n for n in dict.fromkeys(names) if n not in has_parent] or names[:1]
     world, tree, seen = {}, [], set()
 
-    def visit(link, T):
+    def visit(link, T) -> None:
         if link in seen:
             return
         seen.add(link)

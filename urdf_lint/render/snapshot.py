@@ -165,7 +165,7 @@ def merge_rrd(parts, out):
     return out
 
 
-def _remove(path):
+def _remove(path) -> None:
     """Remove a file this run wrote in its output folder (a regular file, not a link)."""
     from urdf_lint.core import fsbound
     fsbound.remove(path, os.path.dirname(os.path.abspath(path)))

@@ -145,7 +145,7 @@ def facts_store(secret: bytes | None = None, repo_dirs=()):
 
 
 class Cache:
-    def __init__(self, directory: str, repo: str | None = None):
+    def __init__(self, directory: str, repo: str | None = None) -> None:
         self.dir = str(directory)
         self.refused: str | None = None
         self._marked = False
@@ -237,7 +237,7 @@ class Cache:
         seen: dict = {}
         return [self.get(job, settings, seen) for job in jobs]
 
-    def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
+    def put(self, job: LintJob, settings: LintSettings, result: ModelReport) -> None:
         """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
         memo keeps), or ``result.cacheable`` turns False when it is not stored."""
         if self.refused:
@@ -290,7 +290,7 @@ class Cache:
             memo = self._resolver = (settings, resolver)
         return memo[1]
 
-    def _ensure(self):
+    def _ensure(self) -> None:
         if not self._marked:
             ensure_cache_dir(self.dir)
             self._marked = True

@@ -45,7 +45,7 @@ class RunView:
 
 
 class RunContext:
-    def __init__(self, options: dict):
+    def __init__(self, options: dict) -> None:
         self.options = options
 
 

@@ -38,7 +38,7 @@ RACY_S = 2.0   # inputs changed this recently are not trusted to show a later ch
 
 
 class RunMemo:
-    def __init__(self, cache: "Cache", paths, cfg, resolver, settings):
+    def __init__(self, cache: "Cache", paths, cfg, resolver, settings) -> None:
         from urdf_lint.run.cache import build_id
         blob = json.dumps([build_id(), FORMAT, os.getcwd(), [os.path.abspath(p) for p in paths],
                            repr(cfg), resolver.to_dict(), settings.cache_key()],
