@@ -2,7 +2,7 @@
 always written literally)."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
+from urdf_lint.fix.fixes import Element, NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 
@@ -26,7 +26,7 @@ class RenameAttr(FixKind):
                          f"{where(site.origin.file, site.origin.line)}")
         return (Edit(site.origin.file, a.name_start, a.name_start + len(old.encode()), new),)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         v = el.attrib.pop(attr, None)
         if v is not None:
             el.set(value, v)
