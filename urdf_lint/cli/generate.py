@@ -72,6 +72,7 @@ def run(args) -> int:
             continue
         others = [(dict(v), _xml_of(done[_key(job.entry, dict(v))])) for v in job.variants]
         variants = [(job.args, xml)] + [(a, x) for a, x in others if x is not None]
+        assert job.output is not None   # (jobs with an output only, above)
         for output in (job.output, *job.outputs):
             tally["outputs"] += 1
             status = max(status, _one_output(args, cfg, job, output, variants, tally, resolver))
