@@ -16,16 +16,6 @@ _.pytest_configure
 _.runtest                     # pytest.Item subclasses: called by pytest
 _.reportinfo
 _.__getattr__                 # module __getattr__ (PEP 562): engine/api.py, expansion/__init__.py
-_.RemoveComment               # fix/kinds: a FixKind subclass, found by the kinds' registry
-_.ConciseFormatter            # report/*.py, report/diff/*.py: formats found by their registry
-_.GithubFormatter
-_.JsonFormatter
-_.JunitFormatter
-_.SarifFormatter
-_.TextFormatter
-_.JsonDiff
-_.MarkdownDiff
-_.TextDiff
 
 # callbacks: signal handlers' and pickling's parameters, expat's handlers
 _.signum                      # cli/main.py: a SIGTERM handler's signature
