@@ -34,7 +34,7 @@ def is_zero(t):
 class Bodies:
     """The fixed-merged bodies of a model."""
 
-    def __init__(self, model):
+    def __init__(self, model) -> None:
         self.model = model
         self.parent_joint: dict = {}    # child link name -> first joint naming it as child
         self.children: dict = {}        # parent link name -> [(joint, child name)]

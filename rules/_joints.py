@@ -11,7 +11,7 @@ def limits(j):
             number(lim.get("effort")), number(lim.get("velocity")))
 
 
-def moving(j):
+def moving(j) -> bool:
     return j.get("type") in ("revolute", "prismatic")
 
 

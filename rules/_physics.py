@@ -24,18 +24,18 @@ from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 class Geometry:
     """Unit-density volume integrals of a link's geometry, in the link frame."""
 
-    def __init__(self, np):
+    def __init__(self, np) -> None:
         self.np = np
         self.volume = 0.0
         self.first = np.zeros(3)
         self.second = np.zeros((3, 3))
         self.lo = np.full(3, np.inf)
         self.hi = np.full(3, -np.inf)
-        self.hull = []          # uris of open meshes measured through their convex hull
+        self.hull: list[str] = []   # uris of open meshes measured through their convex hull
         self.source = "collision"
         self.note = ""          # how it was chosen, when not simply the collision geometry
 
-    def add(self, vol, first, second, corners, rot, t):
+    def add(self, vol, first, second, corners, rot, t) -> None:
         """Add a piece given in its own frame, placed by rotation ``rot`` and offset ``t``."""
         np = self.np
         first = np.asarray(first, float)
@@ -270,7 +270,7 @@ def hull_note(g):
                    + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
 
 
-def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1"):
+def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1") -> str:
     """FAIL/PASS text for the physics rules: a moving link 'arm' with a box collision."""
     o = f'<origin xyz="{origin}"/>' if origin else ""
     return f"""<robot name="r">

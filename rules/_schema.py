@@ -50,7 +50,7 @@ ATTRIBUTES = {
 
 
 
-def is_foreign(el):
+def is_foreign(el) -> bool:
     """Namespaced (``drake:...``) or under a free-form extension element."""
     tag = el.tag if isinstance(el.tag, str) else ""
     if tag.startswith("{") or ":" in tag:

@@ -49,6 +49,7 @@ def use_root(root: Path) -> None:
 
 use_root(REPO)
 sys.path.insert(0, str(REPO))   # this checkout's code, as the demo it runs uses
+sys.path.insert(0, str(REPO / "scripts"))
 
 
 def _row(*cells: str) -> str:
@@ -222,12 +223,15 @@ def main(argv: list[str]) -> int:
     """``[--check] [--root DIR]``: write (or only check) the pages under DIR (default: here)."""
     root = Path(argv[argv.index("--root") + 1]).resolve() if "--root" in argv else REPO
     use_root(root)
+    import gen_types    # the generated Python: engine.api's requests, Config (scripts/gen_types.py)
     if "--check" in argv:
-        bad = stale(demo=True)
-        for path in bad:
-            print(f"{path.relative_to(root)} is stale: run python scripts/gen_docs.py",
-                  file=sys.stderr)
+        bad = [str(path.relative_to(root)) for path in stale(demo=True)]
+        bad += [name for name, ok in gen_types.current().items() if not ok]
+        for name in bad:
+            print(f"{name} is stale: run python scripts/gen_docs.py", file=sys.stderr)
         return 1 if bad else 0
+    for name in gen_types.write():
+        print(f"{name}: regenerated")
     for page in sorted(set(PAGES.values())):
         old = page.read_text(encoding="utf-8")
         new = render(old, demo=True, names={n for n, p in PAGES.items() if p == page})

@@ -3,6 +3,7 @@ and what was expected, in a config file and on the command line alike."""
 from __future__ import annotations
 
 import json
+import os
 import sys
 import types
 
@@ -381,3 +382,34 @@ def test_contributings_config_key_example_builds_and_a_wrong_trust_fails_at_load
                    trust=schema.Trust("at-most-default", "more findings", unit="findings"))
     with pytest.raises(ValueError, match="unknown trust rule 'loose'"):
         schema.Key("x", schema.Number(int, 0, "n"), 1, "x", trust=schema.Trust("loose"))
+
+
+def test_a_config_key_is_one_place_config_is_built_from_the_schema():
+    """CONTRIBUTING's key, added to the schema and nowhere else, is a field of the Config made
+    from it (typed from the key, its default a fresh copy of the key's); the typed block
+    that mypy and editors read is the one scripts/gen_types.py writes from the schema, and a
+    stale one is rewritten."""
+    import dataclasses
+    import re
+    from urdf_lint.config import schema
+    text = (REPO / "CONTRIBUTING.md").read_text(encoding="utf-8")
+    block = re.search(r"## 4\. A config key.*?```python\n(.*?)```", text, re.S).group(1)
+    key = eval(block.strip().rstrip(","), vars(schema))   # noqa: S307 - our own docs
+    listed = schema.Key("watch", schema.StrList("globs"), ["*.xacro"], "x")
+    cls = schema.config_class(schema.SCHEMA + (key, listed))
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    assert fields["max_findings"].type == "int | None" and fields["watch"].type == "list[str]"
+    a, b = cls(), cls()
+    assert a.max_findings is None and a.watch == ["*.xacro"] and a.watch is not b.watch
+    assert cls(max_findings=3).max_findings == 3 and a.select == ["UL"]
+    assert a.is_excluded(os.path.join(a.root, "x.urdf")) is False
+    assert [f.name for f in dataclasses.fields(Config)] == \
+        ["path", "root"] + [k.attr for k in SCHEMA] + ["raw", "notes"]
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("gen_types", REPO / "scripts" / "gen_types.py")
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    source = (REPO / "urdf_lint" / "config" / "schema.py").read_text(encoding="utf-8")
+    assert gen.render_config(source) == source, "schema.py is stale: run scripts/gen_docs.py"
+    stale = source.replace('        timeout: float = _default("timeout")\n', "")
+    assert stale != source and gen.render_config(stale) == source

@@ -32,15 +32,42 @@ def test_the_built_in_kinds_are_discovered_and_their_requests_are_in_the_api():
         api.no_such_request   # noqa: B018
 
 
+def test_a_kinds_request_names_the_kind_once_and_the_old_positional_form_warns():
+    """A kind builds its requests by keyword (``Kind.request(changes=..., description=...)``:
+    the kind's name is its class's ``name``, written once); a third-party rule's positional
+    ``Request(changes, description, safe, kind)`` still works for one release, with a
+    DeprecationWarning, and builds the same request."""
+    import warnings
+    from urdf_lint.fix.fixes import Request
+    from urdf_lint.fix.kinds.rename_attr import RenameAttr
+    new = RenameAttr.request(changes=(("a", "b"),), description="d", safe=False)
+    assert (new.kind, new.changes, new.safe, new.on_parent) == ("rename_attr", (("a", "b"),),
+                                                                 False, False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert api.rename_attr("a", "b", safe=False).kind == "rename_attr"   # no warning
+        assert Request(changes=(("a", "b"),), description="d", safe=False,
+                       kind="rename_attr") == new
+    with pytest.warns(DeprecationWarning, match="by position is deprecated"):
+        old = Request((("a", "b"),), "d", False, "rename_attr")
+    assert old == new
+    with pytest.raises(TypeError, match="multiple values for argument 'description'"), \
+            pytest.warns(DeprecationWarning):
+        Request((("a", "b"),), "d", description="e")
+    for name, k in kinds.kinds().items():
+        if name != "remove_comment":
+            assert k.request(changes=(), description="d").kind == name
+
+
 KIND = '''
 """``upper_value``: upper-case an attribute's literal value (a test's kind)."""
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, written
+from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, written
 from urdf_lint.fix.kinds import FixKind
 from urdf_lint.core.edits import Edit
 
 
 def upper_value(attr, description):
-    return Request(((attr, ""),), description, True, "upper_value")
+    return UpperValue.request(changes=((attr, ""),), description=description)
 
 
 REQUESTS = (upper_value,)

@@ -146,3 +146,46 @@ def test_the_import_check_finds_what_it_must():
 def test_rules_import_only_the_engine_api(path):
     assert foreign_imports(path.read_text(encoding="utf-8")) == [], \
         f"{path.name}: a rule imports only urdf_lint.engine.api (re-export what it needs there)"
+
+
+def _gen_types():
+    import importlib.util
+    from conftest import REPO
+    spec = importlib.util.spec_from_file_location("gen_types", REPO / "scripts" / "gen_types.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _top_level_names(tree: ast.Module) -> set[str]:
+    """The names a module binds unconditionally at its top level (not under an ``if``: not
+    under ``TYPE_CHECKING``, not by a module ``__getattr__``)."""
+    out = set()
+    for node in tree.body:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            out |= {(a.asname or a.name).split(".")[0] for a in node.names}
+        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            out.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            out |= {t.id for t in targets if isinstance(t, ast.Name)}
+    return out
+
+
+def test_every_name_of_the_rule_api_is_real_and_mypy_sees_the_requests():
+    """mypy and editors see a module's real names, not what a module ``__getattr__`` returns:
+    every name of ``engine.api.__all__`` and every built-in kind's request function is bound
+    at the top of api.py, and the block of requests is the one scripts/gen_types.py writes."""
+    from conftest import REPO
+    from urdf_lint.engine import api
+    from urdf_lint.fix import kinds
+    path = REPO / "urdf_lint" / "engine" / "api.py"
+    text = path.read_text(encoding="utf-8")
+    bound = _top_level_names(ast.parse(text))
+    assert set(api.__all__) <= bound, sorted(set(api.__all__) - bound)
+    assert set(kinds.requests()) <= bound and set(kinds.requests()) <= set(api.__all__)
+    assert "MeshStatus" in bound and api.MeshStatus.OK.value == "ok"
+    gen = _gen_types()
+    assert gen.render(text) == text, "api.py is stale: run python scripts/gen_docs.py"
+    stale = text.replace("from urdf_lint.fix.kinds.set import set_attrs as set_attrs\n", "")
+    assert stale != text and gen.render(stale) == text

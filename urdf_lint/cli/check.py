@@ -21,7 +21,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "check"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS",
                        formatter_class=raw,
                        description="Find, expand and lint every robot model under PATHS.")
@@ -100,7 +100,7 @@ def _progress(out: Out):
     if not sys.stderr.isatty() or os.environ.get("CI") or out.quiet:
         return None
 
-    def progress(n, total):
+    def progress(n, total) -> None:
         sys.stderr.write(f"\rlinting {n}/{total} models" + (" " * 10))
         if n == total:
             sys.stderr.write("\r" + " " * 40 + "\r")
@@ -241,7 +241,7 @@ def changed_since(ref, first_path):
         raise UsageError(f"--changed-since {ref}: {why}") from None
 
 
-def list_models(result, out):
+def list_models(result, out) -> None:
     from urdf_lint.core.locations import display_path
     for m in result.models:
         state = "cached" if m.cached else m.status

@@ -7,7 +7,7 @@ from urdf_lint.core.emit import tell
 NAME = "clean"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     cl = sub.add_parser("clean", help="remove the cache",
                         description="Remove the result cache and empty the mesh facts store "
                         "(in the user's cache folder, shared by every repository).")

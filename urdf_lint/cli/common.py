@@ -74,7 +74,7 @@ def load_cfg(opts: ConfigOptions, paths):
     return cfg
 
 
-def apply_cli_values(cfg, opts: ConfigOptions):
+def apply_cli_values(cfg, opts: ConfigOptions) -> None:
     """What the user set on the command line wins (through the schema), clamped like the rest."""
     from urdf_lint.config.schema import apply_cli
     from urdf_lint.config import trust
@@ -82,7 +82,7 @@ def apply_cli_values(cfg, opts: ConfigOptions):
     trust.clamp(cfg)
 
 
-def apply_trust(cfg, opts: ConfigOptions, paths):
+def apply_trust(cfg, opts: ConfigOptions, paths) -> None:
     """The repository's config may not loosen the guarantees (see urdf_lint/config/trust.py)."""
     from urdf_lint.discovery.discover import start_dir
     from urdf_lint.discovery.vcs import repo_root
@@ -120,14 +120,14 @@ def refuse_symlinked_out(d, paths=()):
 class Out:
     """Where the CLI's own messages go: stderr, filtered by -q / -v."""
 
-    def __init__(self, quiet: bool = False, verbose: bool = False):
+    def __init__(self, quiet: bool = False, verbose: bool = False) -> None:
         self.quiet, self.verbose = quiet, verbose
 
-    def note(self, text):
+    def note(self, text) -> None:
         if not self.quiet:
             say(text)
 
-    def info(self, text):
+    def info(self, text) -> None:
         if self.verbose:
             say(text)
 
@@ -200,7 +200,7 @@ def no_models_warning(paths, result, out) -> None:
                      ".xacro file that expands to a robot)")
 
 
-def note_unused(result, out, named=()):
+def note_unused(result, out, named=()) -> None:
     """Deleted files no remaining model reads (always said), unused files (under -v, or always
     when the user named the file)."""
     from urdf_lint.core.locations import display_path

@@ -17,7 +17,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "diff"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
                         "every affected model between two git revisions", formatter_class=raw,
                         description="Compare every model a change affects between two git "

@@ -7,7 +7,7 @@ import sys
 NAME = "doctor"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     sub.add_parser("doctor", help="show which protections the worker sandbox has here",
                    description="Show which OS protections the workers get on this machine "
                                "(Landlock, seccomp, parent-death signal) and which are missing.")

@@ -15,7 +15,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "expand"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)",
                        description="Expand one xacro file to URDF, byte-identical to xacro 2.1.1.")
     e.add_argument("file", help="the .xacro file")

@@ -13,7 +13,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "generate"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     g = sub.add_parser("generate", help="rewrite every stale generated URDF (the 'output' of a "
                        "models entry, or a .urdf whose header names its xacro)",
                        description="Rewrite every generated URDF that no longer equals what its "
@@ -72,6 +72,7 @@ def run(args) -> int:
             continue
         others = [(dict(v), _xml_of(done[_key(job.entry, dict(v))])) for v in job.variants]
         variants = [(job.args, xml)] + [(a, x) for a, x in others if x is not None]
+        assert job.output is not None   # (jobs with an output only, above)
         for output in (job.output, *job.outputs):
             tally["outputs"] += 1
             status = max(status, _one_output(args, cfg, job, output, variants, tally, resolver))

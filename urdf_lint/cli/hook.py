@@ -13,7 +13,7 @@ from urdf_lint.core.emit import say
 NAME = "hook"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
                        formatter_class=raw,
                        description="Lint the models that the given (changed) files affect; "

@@ -93,7 +93,7 @@ class Tools:
     """The tools, as plain functions of a root (what the server exposes; tested directly too).
     Each returns ``{"exit_code": n, ..., "untrusted": {...}}``."""
 
-    def __init__(self, root: str):
+    def __init__(self, root: str) -> None:
         self.root = os.path.realpath(root)
 
     def paths(self, paths) -> list[str]:

@@ -9,13 +9,14 @@ from __future__ import annotations
 import argparse
 import difflib
 import re
+from typing import NoReturn
 
 
 class Parser(argparse.ArgumentParser):
     """A command-line mistake is one line: what is wrong, the closest known flag or command,
     and where the usage is (like ruff; the whole usage buried the suggestion)."""
 
-    def error(self, message):
+    def error(self, message: str) -> NoReturn:
         m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
         if m:
             choices = re.findall(r"'([^']*)'", m.group(3))
@@ -51,13 +52,13 @@ def add_key_flags(p, group: str) -> None:
                            action="append" if f.repeat else "store", help=k.cli_help())
 
 
-def add_selection(p):
+def add_selection(p) -> None:
     add_key_flags(p, "selection")
     p.add_argument("--exit-zero", action="store_true",
                    help="exit 0 even when there are findings (still 2 on errors)")
 
 
-def add_target(p):
+def add_target(p) -> None:
     from urdf_lint.config.schema import KEYS
     f = KEYS["targets"].flag
     assert f is not None
@@ -65,7 +66,7 @@ def add_target(p):
                    help=KEYS["targets"].cli_help())
 
 
-def add_inputs(p, config=True):
+def add_inputs(p, config=True) -> None:
     p.add_argument("--package-path", action="append", metavar="NAME=DIR",
                    help="where package NAME is, for $(find NAME) and package://NAME; "
                         "repeatable (default: package.xml files under the paths and the "
@@ -78,7 +79,7 @@ def add_inputs(p, config=True):
     add_trust(p)
 
 
-def add_trust(p):
+def add_trust(p) -> None:
     """The keys a repository's own config may not set (urdf_lint/config/trust.py), and the switch
     that lets it."""
     from urdf_lint.config.schema import trust_config_help
@@ -86,16 +87,16 @@ def add_trust(p):
     p.add_argument("--trust-config", action="store_true", help=trust_config_help())
 
 
-def add_views(p):
+def add_views(p) -> None:
     add_key_flags(p, "views")
 
 
-def add_limits(p):
+def add_limits(p) -> None:
     add_key_flags(p, "limits")
     add_key_flags(p, "cache")
 
 
-def add_output(p):
+def add_output(p) -> None:
     from urdf_lint.report.registry import formats
     fmts = formats()
     add_key_flags(p, "output")
@@ -118,7 +119,7 @@ def add_output(p):
                         "no model uses")
 
 
-def add_fix(p):
+def add_fix(p) -> None:
     """``check --fix`` and friends (issue 14; :mod:`urdf_lint.cli.fix`)."""
     p.add_argument("--fix", action="store_true",
                    help="apply the safe fixes to the xacro sources, then report what remains "

@@ -35,6 +35,7 @@ def add_parser(sub, raw):
 
 @dataclass
 class PreviewOptions:
+    """What `urdf-lint preview` was asked: the robot, its args, the port and the limits."""
     path: str = "."
     mappings: list = field(default_factory=list)
     port: int = 0

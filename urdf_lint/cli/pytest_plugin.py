@@ -46,7 +46,7 @@ class UrdfLintError(Exception):
 class ModelItem(pytest.Item):
     """One robot model (one entry file with one set of xacro args)."""
 
-    def __init__(self, *, label: str, findings: list, fail_on: str, failed: bool, **kw):
+    def __init__(self, *, label: str, findings: list, fail_on: str, failed: bool, **kw) -> None:
         super().__init__(**kw)
         self.label = label
         self.findings = findings
@@ -79,7 +79,7 @@ class RunItem(pytest.Item):
     """The run itself: fails when urdf-lint could not complete (a usage or config error, an
     internal error), with what it said."""
 
-    def __init__(self, *, problem: str, **kw):
+    def __init__(self, *, problem: str, **kw) -> None:
         super().__init__(**kw)
         self.problem = problem
 

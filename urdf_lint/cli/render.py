@@ -15,7 +15,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "render"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots",
                         description="Write a .rrd recording and a PNG snapshot per model.")
     rd.add_argument("paths", nargs="*", default=["."], metavar="PATH",

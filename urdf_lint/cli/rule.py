@@ -8,7 +8,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "rule"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     r = sub.add_parser("rule", help="explain one rule", description="Explain one rule.")
     r.add_argument("code", help="a rule code (UL302) or name (limit-order)")
 

@@ -8,7 +8,7 @@ import sys
 NAME = "rules"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     rl = sub.add_parser("rules", help="list the rule catalogue", description="List the rule catalogue.")
     rl.add_argument("--format", choices=["text", "markdown"], default="text",
                     help="text: one line per rule; markdown: the full rules page (default: text)")

@@ -7,7 +7,7 @@ from urdf_lint.core.errors import UsageError
 NAME = "server"
 
 
-def add_parser(sub, raw):
+def add_parser(sub, raw) -> None:
     sub.add_parser("server", help="a language server for editors (LSP over stdio; needs the "
                    "'server' extra)",
                    description="Run the urdf-lint language server on stdin/stdout: diagnostics "

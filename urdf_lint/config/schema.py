@@ -16,9 +16,9 @@ import fnmatch
 import json
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, make_dataclass
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from urdf_lint.config.policy import code_matches
 from urdf_lint.core.suggest import did_you_mean
@@ -61,6 +61,7 @@ def show(value: Any) -> str:
 # -- value types ------------------------------------------------------------------------------
 class Type:
     expected = "a value"
+    annotation = "Any"      # the Config field's type (its default None adds "| None")
 
     def check(self, v: Any) -> Any:
         raise NotImplementedError
@@ -72,6 +73,7 @@ class Type:
 
 class Str(Type):
     expected = "a string"
+    annotation = "str"
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, str):
@@ -80,6 +82,8 @@ class Str(Type):
 
 
 class StrList(Type):
+    annotation = "list[str]"
+
     def __init__(self, what: str = "strings"):
         self.expected = f"a list of {what}"
 
@@ -95,6 +99,8 @@ class StrList(Type):
 
 
 class Choice(Type):
+    annotation = "str"
+
     def __init__(self, choices: tuple[str, ...] | Callable[[], tuple[str, ...]]):
         self._choices = choices
 
@@ -139,6 +145,7 @@ class Number(Type):
 
     def __init__(self, kind: type = float, minimum: float | None = None, unit: str = ""):
         self.kind, self.minimum = kind, minimum
+        self.annotation = "int" if kind is int else "float"
         noun = "an integer" if kind is int else "a number"
         self.expected = noun + (f" of {unit}" if unit else "") + \
             (f" > {minimum:g}" if minimum is not None else "")
@@ -160,6 +167,7 @@ class Number(Type):
 
 class Bool(Type):
     expected = "true or false"
+    annotation = "bool"
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, bool):
@@ -174,6 +182,7 @@ class Bool(Type):
 
 class Table(Type):
     """A table of string keys to values of one type."""
+    annotation = "dict[str, Any]"
 
     def __init__(self, value: Type, what: str):
         self.value, self.expected = value, what
@@ -210,6 +219,7 @@ class ArgValues(Table):
 
 class Models(Type):
     expected = "an array of tables [[models]] with 'path' and optional 'args'"
+    annotation = "list[Any]"
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, list):
@@ -240,6 +250,7 @@ class Models(Type):
 
 class RuleOptions(Type):
     expected = "a table of tables: [rule-options.CODE] option = value"
+    annotation = "dict[str, Any]"
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, dict) or not all(isinstance(x, dict) for x in v.values()):
@@ -251,6 +262,8 @@ class FormatKey(Type):
     """``format``: the table ``[format]`` of ``urdf-lint format`` (its keys in
     :data:`FORMAT_SCHEMA`). A string is the output format's old spelling (now
     ``output-format``): still accepted, with a deprecation note (:func:`_set`)."""
+
+    annotation = "dict[str, Any]"
 
     def __init__(self, output: Choice):
         self.output = output
@@ -350,6 +363,12 @@ class Key:
     @property
     def attr(self) -> str:
         return self.attr_name or self.name.replace("-", "_")
+
+    @property
+    def annotation(self) -> str:
+        """The type of its :class:`Config` field: its value type's, ``| None`` when the
+        default is None."""
+        return self.type.annotation + (" | None" if self.default is None else "")
 
     @property
     def default_text(self) -> str:
@@ -512,40 +531,11 @@ def _default(name: str) -> Any:
     return field(default_factory=lambda: copy.deepcopy(key.default))
 
 
-@dataclass
-class Config:
-    """The settings of a run, from the config file and the command line: one field per schema
-    key, its default from :data:`SCHEMA` (a test checks that the two agree)."""
-    path: str | None = None         # the file it came from
-    root: str = "."                 # folder paths are relative to
-    select: list[Any] = _default("select")
-    extend_select: list[Any] = _default("extend-select")
-    ignore: list[Any] = _default("ignore")
-    per_file_ignores: dict[str, Any] = _default("per-file-ignores")
-    severity: dict[str, Any] = _default("severity")
-    fail_on: str = _default("fail-on")
-    targets: list[Any] = _default("targets")
-    package_paths: dict[str, Any] = _default("package-paths")
-    models: list[Any] = _default("models")
-    exclude: list[Any] = _default("exclude")
-    env_allow: list[Any] = _default("env-allow")
-    timeout: float = _default("timeout")
-    memory_mb: int = _default("memory-mb")
-    rule_options: dict[str, Any] = _default("rule-options")
-    jobs: int | None = _default("jobs")
-    cache_dir: str | None = _default("cache-dir")
-    output_format: str | None = _default("output-format")
-    format_options: dict[str, Any] = _default("format")   # [format]: urdf-lint format's settings
-    baseline: str | None = _default("baseline")     # absolute
-    discover: bool = _default("discover")
-    explore: bool = _default("explore")
-    explore_budget: float = _default("explore-budget")
-    explore_args: dict[str, Any] = _default("explore-args")
-    explore_exclude: list[Any] = _default("explore-exclude")
-    views: str | None = _default("views")
-    forward_axis: str = _default("forward-axis")
-    raw: dict[str, Any] = field(default_factory=dict)
-    notes: list[Any] = field(default_factory=list)       # to say once loaded (deprecations)
+class _ConfigMethods:
+    """What a :class:`Config` does; its fields are :data:`SCHEMA`'s (:func:`config_class`)."""
+    root: str
+    exclude: list[str]
+    rule_options: dict[str, Any]
 
     def is_excluded(self, path: str) -> bool:
         try:
@@ -560,6 +550,77 @@ class Config:
         out.update(self.rule_options.get(name, {}))
         out.update(self.rule_options.get(code, {}))
         return out
+
+
+# The fields of a Config that are not config keys, (name, type, default) before and after the
+# schema's: where it came from, the folder paths are relative to; the raw table and the notes
+# to say once loaded (deprecations). A default of dict or list is a fresh one per Config.
+OWN_FIELDS_FIRST: tuple[tuple[str, str, Any], ...] = (("path", "str | None", None),
+                                                      ("root", "str", "."))
+OWN_FIELDS_LAST: tuple[tuple[str, str, Any], ...] = (("raw", "dict[str, Any]", dict),
+                                                     ("notes", "list[Any]", list))
+CONFIG_DOC = """The settings of a run, from the config file and the command line: one field per
+    schema key (its attribute, type and default from :data:`SCHEMA`), plus where it came from
+    (``path``, ``root``), the raw table and the notes to say once loaded."""
+
+
+def config_class(schema: tuple[Key, ...] = SCHEMA) -> type:
+    """The :class:`Config` dataclass of ``schema``: one field per key, its default a fresh
+    copy of the key's. Adding a key to :data:`SCHEMA` adds its field; mypy and editors see the
+    fields in the block that ``scripts/gen_types.py`` writes below from the same schema."""
+    def own(default: Any) -> Any:
+        return field(default_factory=default) if default in (dict, list) else default
+
+    def default(key: Key) -> Any:
+        return field(default_factory=lambda: copy.deepcopy(key.default))
+    fields = [(n, t, own(d)) for n, t, d in OWN_FIELDS_FIRST] + \
+        [(k.attr, k.annotation, default(k)) for k in schema] + \
+        [(n, t, own(d)) for n, t, d in OWN_FIELDS_LAST]
+    cls = make_dataclass("Config", fields, bases=(_ConfigMethods,))
+    cls.__module__, cls.__doc__ = __name__, CONFIG_DOC
+    return cls
+
+
+if TYPE_CHECKING:
+    # generated: config (scripts/gen_types.py, from SCHEMA: edit the schema, not this)
+    @dataclass
+    class Config(_ConfigMethods):
+        """The settings of a run, from the config file and the command line: one field per
+        schema key (its attribute, type and default from :data:`SCHEMA`), plus where it came from
+        (``path``, ``root``), the raw table and the notes to say once loaded."""
+        path: str | None = None
+        root: str = "."
+        select: list[str] = _default("select")
+        extend_select: list[str] = _default("extend-select")
+        ignore: list[str] = _default("ignore")
+        per_file_ignores: dict[str, Any] = _default("per-file-ignores")
+        severity: dict[str, Any] = _default("severity")
+        fail_on: str = _default("fail-on")
+        targets: list[str] = _default("targets")
+        package_paths: dict[str, Any] = _default("package-paths")
+        models: list[Any] = _default("models")
+        exclude: list[str] = _default("exclude")
+        env_allow: list[str] = _default("env-allow")
+        timeout: float = _default("timeout")
+        memory_mb: int = _default("memory-mb")
+        rule_options: dict[str, Any] = _default("rule-options")
+        jobs: int | None = _default("jobs")
+        cache_dir: str | None = _default("cache-dir")
+        output_format: str | None = _default("output-format")
+        format_options: dict[str, Any] = _default("format")
+        baseline: str | None = _default("baseline")
+        discover: bool = _default("discover")
+        explore: bool = _default("explore")
+        explore_budget: float = _default("explore-budget")
+        explore_args: dict[str, Any] = _default("explore-args")
+        explore_exclude: list[str] = _default("explore-exclude")
+        views: str | None = _default("views")
+        forward_axis: str = _default("forward-axis")
+        raw: dict[str, Any] = field(default_factory=dict)
+        notes: list[Any] = field(default_factory=list)
+    # end: config
+else:
+    Config = config_class()
 
 
 # -- reading files ----------------------------------------------------------------------------

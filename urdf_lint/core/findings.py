@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from typing import TYPE_CHECKING, Any, Iterable, NamedTuple
+from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Protocol
 
 from urdf_lint.core.locations import Origin
 
@@ -22,6 +22,46 @@ if TYPE_CHECKING:  # pragma: no cover
 
 SEVERITIES = ("info", "warning", "error")
 SEVERITY_RANK = {s: i for i, s in enumerate(SEVERITIES)}
+
+
+class Finding(Protocol):
+    """What an output format reads of a finding (``BaseFormatter.handle(self, f: Finding)``):
+    :class:`Problem` is one; a format written against this sees every field it may show and
+    nothing of the pipeline's bookkeeping."""
+
+    @property
+    def code(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def severity(self) -> str: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def detail(self) -> str: ...            # what this one instance is about, or ""
+    @property
+    def file(self) -> str: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def col(self) -> int: ...
+    @property
+    def chain(self) -> tuple[Any, ...]: ...  # the macro calls that led there, outermost first
+    @property
+    def target(self) -> tuple[str, str] | None: ...
+    @property
+    def models(self) -> tuple[str, ...]: ...
+    @property
+    def severity_from(self) -> tuple[str, ...]: ...
+    @property
+    def value_from(self) -> tuple[Any, ...]: ...
+    @property
+    def instances(self) -> tuple[Any, ...]: ...   # a grouped finding's instances (Findings)
+    @property
+    def fix(self) -> "Fix | None": ...
+
+    def each(self) -> tuple[Any, ...]: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 @dataclass(frozen=True)
@@ -317,7 +357,7 @@ def _template(message: str) -> str:
     return _VARYING.sub("#", message)
 
 
-def instance_label(f: Problem, by_place: bool) -> str:
+def instance_label(f: Finding, by_place: bool) -> str:
     """How one instance of a grouped finding is named in a folded list: its place (and
     detail) when the group spans places, else its element's name, detail or models."""
     if by_place:
@@ -329,7 +369,7 @@ def instance_label(f: Problem, by_place: bool) -> str:
     return f.detail or ", ".join(f.models) or f.message
 
 
-def instances_summary(f: Problem) -> tuple[str, list[str]]:
+def instances_summary(f: Finding) -> tuple[str, list[str]]:
     """(noun, labels) for a grouped finding: ``("links", [names])``, ``("places", [...])``;
     labels are unique, in order."""
     items = f.each()

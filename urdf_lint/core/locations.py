@@ -122,10 +122,10 @@ def picture_name(rel_entry: str, args: dict[str, Any] | None = None, key: str | 
     return f"{stem[:120]}-{digest}"
 
 
-def snapshot_name(entry: str, args: dict[str, Any] | None, base: str) -> str:
+def snapshot_name(entry: str, args: dict[str, Any] | None, base: str | None) -> str:
     """:func:`picture_name` of the model ``entry`` (absolute) with ``args``, named relative
-    to ``base`` (the repository); outside it relative to its package's folder, hashed with
-    its whole path (no path of this machine in the name)."""
+    to ``base`` (the repository; None: the working folder); outside it relative to its
+    package's folder, hashed with its whole path (no path of this machine in the name)."""
     rel = os.path.relpath(entry, base)
     if rel.startswith(".."):
         return picture_name(relative_label(entry), args, key=os.path.abspath(entry))

@@ -14,7 +14,7 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Iterable, Iterator
 
 _XACRO = "xacro"   # (namespaces vary: http://www.ros.org/wiki/xacro, http://wiki.ros.org/xacro)
 _ARG = r"""['"]?\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)['"]?"""
@@ -46,11 +46,11 @@ class Cond:
     compared: dict[str, list[str]] = field(default_factory=dict)   # arg -> literals, == / in
     negated: dict[str, list[str]] = field(default_factory=dict)    # arg -> literals, != / not in
     bare: str | None = None          # the value is one arg: $(arg X) or ${X}
-    parent: tuple | None = None      # the enclosing condition (file, line, col), if any
+    parent: tuple[Any, ...] | None = None      # the enclosing condition (file, line, col), if any
     in_macro: bool = False
 
     @property
-    def key(self) -> tuple:
+    def key(self) -> tuple[Any, ...]:
         return (self.file, self.line, self.col)
 
     @property
@@ -80,6 +80,8 @@ class Choice:
 
 @dataclass
 class Analysis:
+    """What a model's sources say of its branches: the args' defaults, the conditions and the
+    paths built from an arg (:func:`analyse`), and the files read."""
     defaults: dict[str, str] = field(default_factory=dict)      # arg -> default (as written)
     conds: list[Cond] = field(default_factory=list)
     choices: list[Choice] = field(default_factory=list)
@@ -113,7 +115,23 @@ class Analysis:
         return {a: list(v) for a, v in out.items()}
 
 
-def _parse(f: str, resolver):
+_TOKENS = (b":if", b":unless", b"$(arg", b":arg")
+
+
+def _may_branch(f: str, resolver: Any) -> bool:
+    """Whether the file can hold anything :func:`analyse` reads (a condition, an arg, a value
+    built from one): a file without these bytes is not parsed (a cached run of a robot with
+    no branches needs no lxml)."""
+    from urdf_lint.core import fsbound
+    try:
+        data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
+                                  resolved=True)
+    except (OSError, ValueError):
+        return True   # (_parse says what it can)
+    return any(t in data for t in _TOKENS)
+
+
+def _parse(f: str, resolver: Any) -> Any:
     from lxml import etree
     from urdf_lint.core import fsbound
     try:
@@ -124,7 +142,7 @@ def _parse(f: str, resolver):
         return None
 
 
-def _local(el) -> str | None:
+def _local(el: Any) -> str | None:
     from lxml import etree
     if not isinstance(el.tag, str):
         return None
@@ -132,7 +150,7 @@ def _local(el) -> str | None:
     return q.localname if q.namespace and _XACRO in q.namespace else None
 
 
-def analyse(files, resolver, max_files: int = 200) -> Analysis:
+def analyse(files: Iterable[str], resolver: Any, max_files: int = 200) -> Analysis:
     """The branches of the xacro ``files`` (a model's sources; files an arg-built include may
     name are added and read too, up to ``max_files``)."""
     out = Analysis()
@@ -145,6 +163,8 @@ def analyse(files, resolver, max_files: int = 200) -> Analysis:
         if f in seen:
             continue
         seen.add(f)
+        if not _may_branch(f, resolver):
+            continue
         root = _parse(f, resolver)
         if root is None:
             continue
@@ -202,7 +222,7 @@ def _close(props: dict[str, set[str]]) -> None:
             del props[p]
 
 
-def _arg_of(m_arg: str | None, m_name: str | None, props: dict) -> list[str]:
+def _arg_of(m_arg: str | None, m_name: str | None, props: dict[str, Any]) -> list[str]:
     if m_arg:
         return [m_arg]
     if m_name and m_name in props:
@@ -210,7 +230,7 @@ def _arg_of(m_arg: str | None, m_name: str | None, props: dict) -> list[str]:
     return []
 
 
-def _conds(f: str, root, props: dict) -> list[Cond]:
+def _conds(f: str, root: Any, props: dict[str, Any]) -> list[Cond]:
     out = []
     for el in root.iter():
         kind = _local(el)
@@ -239,8 +259,8 @@ def _conds(f: str, root, props: dict) -> list[Cond]:
     return out
 
 
-def _literals(c: Cond, text: str, props: dict) -> None:
-    def put(table: dict, args: list[str], lit: str | None) -> None:
+def _literals(c: Cond, text: str, props: dict[str, Any]) -> None:
+    def put(table: dict[str, Any], args: list[str], lit: str | None) -> None:
         for a in args:
             if lit is not None:
                 table.setdefault(a, [])
@@ -260,7 +280,7 @@ def _literals(c: Cond, text: str, props: dict) -> None:
             put(table, _arg_of(m.group(1), m.group(2), props), s.group(2))
 
 
-def _path_texts(root):
+def _path_texts(root: Any) -> Iterator[tuple[Any, str, str]]:
     """(element, kind, text) of every path built from an arg: includes, load_yaml, and arg
     defaults or property values that name a file."""
     for el in root.iter():
@@ -278,7 +298,7 @@ def _path_texts(root):
                 yield el, "yaml" if v.strip().endswith((".yaml", ".yml")) else "include", v
 
 
-def _choices(f: str, root, out: Analysis, resolver) -> list[Choice]:
+def _choices(f: str, root: Any, out: Analysis, resolver: Any) -> list[Choice]:
     got = []
     for el, kind, text in _path_texts(root):
         for a in dict.fromkeys(_ARG_RE.findall(text)):
@@ -288,7 +308,7 @@ def _choices(f: str, root, out: Analysis, resolver) -> list[Choice]:
     return got
 
 
-def _existing(text: str, arg: str, defaults: dict, base: str, resolver) -> dict[str, str]:
+def _existing(text: str, arg: str, defaults: dict[str, Any], base: str, resolver: Any) -> dict[str, str]:
     """value -> path for each value of ``arg`` whose file exists where ``text`` points (the
     other args at their defaults; other expressions match anything)."""
     from urdf_lint.core import fsbound

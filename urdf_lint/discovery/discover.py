@@ -6,23 +6,25 @@ import os
 import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, Sequence
 
+from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob
-from urdf_lint.discovery.packages import PackageResolver, inside, iter_files
+from urdf_lint.core.tree import inside as inside   # (part of this module's API)
+from urdf_lint.discovery.packages import PackageResolver, iter_files
 from urdf_lint.discovery.vcs import git_root
 
 if TYPE_CHECKING:  # pragma: no cover
-    from urdf_lint.config.schema import Config
+    from urdf_lint.config.schema import Config, ModelSpec
 
 
-def start_dir(paths) -> str:
+def start_dir(paths: Sequence[str]) -> str:
     """The folder a run starts from: the first path, or its folder when it is a file."""
     first = os.path.abspath(paths[0] if paths else ".")
     return first if os.path.isdir(first) else os.path.dirname(first)
 
 
-def repository_root(paths) -> str:
+def repository_root(paths: Sequence[str]) -> str:
     """The repository the paths belong to: git's work tree, else the working directory when
     it holds the paths, else the folder of the first path."""
     start = start_dir(paths) if paths else os.getcwd()
@@ -35,7 +37,8 @@ def repository_root(paths) -> str:
     return os.path.abspath(start)
 
 
-def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> PackageResolver:
+def build_resolver(paths: Sequence[str], cfg: "Config",
+                   cli_packages: dict[str, str] | None = None) -> PackageResolver:
     """The package roots of a run (:func:`urdf_lint.discovery.packages.discover_roots`): the packages,
     the git repository and the colcon workspace holding the linted paths; never the working
     directory by itself, and nothing above the linted paths without git (fail closed)."""
@@ -54,7 +57,7 @@ def build_resolver(paths, cfg: "Config", cli_packages: dict | None = None) -> Pa
     # packages are indexed, and the workspace is a root like the repository (never the working
     # directory by itself: see SECURITY.md)
     from urdf_lint.discovery.workspace import index, install_share_packages, workspace_roots
-    found: dict = {}
+    found: dict[str, str] = {}
     for ws in workspace_roots([*paths, start]):
         extra_roots.append(ws)
         for name, d in index(ws).items():
@@ -84,22 +87,23 @@ class Discovery:
     """What discovery found: the jobs to lint, the fragments (file -> the linted files that
     include it) that are linted only through the models including them, and the generated
     URDFs (checked against their xacro by UL011, and linted too: consumers read them)."""
-    jobs: list
-    fragments: dict
+    jobs: list[LintJob]
+    fragments: dict[str, list[str]]
     graph: "IncludeGraph"
-    generated: dict = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
-    folders: list = field(default_factory=list)     # every folder the walk looked into
-    problems: list = field(default_factory=list)    # located findings about the config (UL008)
+    generated: dict[str, str] = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
+    folders: list[str] = field(default_factory=list)     # every folder the walk looked into
+    problems: list[Problem] = field(default_factory=list)    # located findings about the config (UL008)
 
 
-def candidate_files(paths, cfg, folders: list | None = None):
+def candidate_files(paths: Iterable[str], cfg: "Config", folders: list[str] | None = None
+                    ) -> Iterator[tuple[str, str]]:
     """(file, the path it was found under) for every .urdf/.xacro under the paths; the
     folders walked are added to ``folders``."""
     seen = set()
     for p in paths:
         p = os.path.abspath(p)
-        for f in iter_files(Path(p), suffixes=(".urdf", ".xacro"), folders=folders):
-            f = os.path.realpath(f) if not os.path.islink(f) else os.path.abspath(f)
+        for found in iter_files(Path(p), suffixes=(".urdf", ".xacro"), folders=folders):
+            f = os.path.realpath(found) if not os.path.islink(found) else os.path.abspath(found)
             # an exclude does not apply below a path that is itself excluded and named explicitly
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
@@ -107,7 +111,7 @@ def candidate_files(paths, cfg, folders: list | None = None):
             yield f, p
 
 
-def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = None,
+def discover_models(paths: Sequence[str], cfg: "Config", resolver: "PackageResolver | None" = None,
                     cache_dir: str | None = None) -> Discovery:
     """Every candidate model under the paths, with the arg sets to expand it with.
 
@@ -117,7 +121,7 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     otherwise it is linted only through the models including it. A file named explicitly or
     listed in config is always a model."""
     configured = {m.path: m for m in cfg.models}
-    folders: list = []
+    folders: list[str] = []
     found = list(candidate_files(paths, cfg, folders))
     graph = include_graph([f for f, _ in found], resolver, cache_dir)
     problems = [p for spec in cfg.models for p in _check_args(spec, graph, cfg)]
@@ -150,13 +154,13 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
     return Discovery(jobs, fragments, graph, generated, folders, problems)
 
 
-def _inherit_mesh_base(jobs: list, graph: "IncludeGraph") -> list:
+def _inherit_mesh_base(jobs: list[LintJob], graph: "IncludeGraph") -> list[LintJob]:
     """A file included by models that set where relative mesh paths start (a ``mesh-base``,
     or the folder of their generated URDF) starts them there too when it is linted on its own
     (a complete robot that is also a fragment): its meshes sit next to those URDFs, not next
     to the xacro. Only when the models including it agree on one folder."""
     import dataclasses
-    base: dict = {}
+    base: dict[str, str] = {}
     for j in jobs:
         b = j.mesh_base or (os.path.dirname(j.output) if j.output else None)
         if b:
@@ -171,7 +175,8 @@ def _inherit_mesh_base(jobs: list, graph: "IncludeGraph") -> list:
     return out
 
 
-def _detected_outputs(found, paths, resolver=None) -> dict:
+def _detected_outputs(found: list[tuple[str, str]], paths: Sequence[str],
+                      resolver: PackageResolver | None = None) -> dict[str, list[str]]:
     """xacro -> the checked-in ``.urdf`` files whose generator header names it (no config
     needed), the one named after the xacro first (``robot.urdf`` for ``robot.urdf.xacro``),
     then in path order: every one is compared with today's expansion (UL011). Headers are
@@ -181,7 +186,7 @@ def _detected_outputs(found, paths, resolver=None) -> dict:
     if not xacros:
         return {}
     root = os.path.realpath(repository_root(paths))
-    out: dict = {}
+    out: dict[str, list[str]] = {}
     for f, _ in found:
         if not f.endswith(".urdf"):
             continue
@@ -197,7 +202,7 @@ def _detected_outputs(found, paths, resolver=None) -> dict:
     return out
 
 
-def _check_args(spec, graph: "IncludeGraph", cfg) -> list:
+def _check_args(spec: "ModelSpec", graph: "IncludeGraph", cfg: "Config") -> list[Problem]:
     """A ``UL008`` warning, at the config line that sets it, for an arg a configured model
     sets that no ``xacro:arg`` of the file (or its includes) declares and no ``$(arg NAME)``
     there reads: xacro accepts and ignores it (a launch file's args often hold more), so the
@@ -241,14 +246,17 @@ def config_line(path: str, name: str) -> tuple[int, int]:
     return 1, 1
 
 
-def _recorded_args(detected: dict, resolver=None) -> dict:
+def _recorded_args(detected: dict[str, list[str]], resolver: PackageResolver | None = None
+                   ) -> dict[str, dict[str, str] | None]:
     """detected output -> the args ``urdf-lint generate`` recorded in its header, or None."""
     from urdf_lint.discovery.generated import header_args
     roots = resolver.roots if resolver is not None else None
     return {o: header_args(o, roots, resolved=True) for outs in detected.values() for o in outs}
 
 
-def _configured_jobs(spec, detected=(), recorded=None, graph=None) -> list:
+def _configured_jobs(spec: "ModelSpec", detected: Sequence[str] = (),
+                     recorded: dict[str, dict[str, str] | None] | None = None,
+                     graph: "IncludeGraph | None" = None) -> list[LintJob]:
     """One job per arg set of a models entry (see :func:`_variant_jobs`)."""
     jobs = _variant_jobs(spec.path, [dict(a) for a in spec.arg_sets], True, spec.output,
                          spec.mesh_base, detected, recorded or {}, graph)
@@ -259,8 +267,10 @@ def _configured_jobs(spec, detected=(), recorded=None, graph=None) -> list:
     return jobs
 
 
-def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,
-                  mesh_base: str | None, detected, recorded: dict, graph) -> list:
+def _variant_jobs(f: str, arg_sets: list[dict[str, str]], explicit: bool, output: str | None,
+                  mesh_base: str | None, detected: Sequence[str],
+                  recorded: dict[str, dict[str, str] | None],
+                  graph: "IncludeGraph | None") -> list[LintJob]:
     """One job per arg set of ``f``, each with the outputs tied to its args: the configured
     ``output`` to the first; a detected output (a header names ``f``) to the args
     ``urdf-lint generate`` recorded in its header (a job of its own when no arg set has
@@ -270,8 +280,8 @@ def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,
         return []
     tied: list[list[str]] = [[] for _ in arg_sets]
     tied[0] += [output] if output else []
-    more: dict = {}
-    untied = []
+    more: dict[tuple[tuple[str, str], ...], list[str]] = {}
+    untied: list[str] = []
     one = graph is None or not f.endswith(".xacro") or not (
         graph.declared_args(f) or graph.unresolved_below(f))
     for o in detected:
@@ -302,7 +312,7 @@ def _variant_jobs(f: str, arg_sets: list, explicit: bool, output: str | None,
     return jobs
 
 
-def discover(paths, cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:
+def discover(paths: Sequence[str], cfg: "Config", resolver: "PackageResolver | None" = None) -> list[LintJob]:
     """The jobs of :func:`discover_models`."""
     return discover_models(paths, cfg, resolver).jobs
 
@@ -326,20 +336,20 @@ class IncludeGraph:
     ``unresolved[f]`` counts the includes whose file name needs expansion to be known
     (``${...}``, ``$(arg ...)``, an unknown package): for those the dependencies expansion
     records are used instead. ``args[f]`` are the ``xacro:arg`` names ``f`` declares."""
-    includes: dict = field(default_factory=dict)
-    unresolved: dict = field(default_factory=dict)
-    args: dict = field(default_factory=dict)
-    _by: dict | None = None
+    includes: dict[str, list[str]] = field(default_factory=dict)
+    unresolved: dict[str, int] = field(default_factory=dict)
+    args: dict[str, list[str]] = field(default_factory=dict)
+    _by: dict[str, list[str]] | None = None
     _resolver: "PackageResolver | None" = None
     _memo_file: str | None = None
-    _memo: dict = field(default_factory=dict)
-    _fresh: dict = field(default_factory=dict)
+    _memo: dict[str, Any] = field(default_factory=dict)
+    _fresh: dict[str, Any] = field(default_factory=dict)
     _dirty: bool = False
 
-    def included_by(self) -> dict:
+    def included_by(self) -> dict[str, list[str]]:
         """file -> the files that include it."""
         if self._by is None:
-            by: dict = {}
+            by: dict[str, list[str]] = {}
             for f, inc in self.includes.items():
                 for g in inc:
                     if g != f:
@@ -347,7 +357,7 @@ class IncludeGraph:
             self._by = by
         return self._by
 
-    def declared_args(self, f: str, _seen=None) -> set:
+    def declared_args(self, f: str, _seen: set[str] | None = None) -> set[str]:
         """The ``xacro:arg`` names of ``f`` and of everything it includes (transitively)."""
         seen = _seen if _seen is not None else set()
         if f in seen:
@@ -373,7 +383,7 @@ class IncludeGraph:
             todo.extend(self.includes.get(g, ()))
         return False
 
-    def includers(self, f: str) -> list:
+    def includers(self, f: str) -> list[str]:
         """Every file that includes ``f``, directly or through other files."""
         by = self.included_by()
         out, todo = [], [f]
@@ -386,7 +396,7 @@ class IncludeGraph:
                     todo.append(g)
         return out
 
-    def add(self, f: str, resolver: "PackageResolver | None"):
+    def add(self, f: str, resolver: "PackageResolver | None") -> None:
         """Read ``f``'s includes and args: from the memo when its size and mtime are those
         recorded last run, else from a quick parse."""
         self._by = None
@@ -413,11 +423,11 @@ class IncludeGraph:
             self._memo, self._dirty = dict(self._fresh), False
 
 
-def _resolve_include(name: str, base: str, resolver) -> list | None:
+def _resolve_include(name: str, base: str, resolver: PackageResolver | None) -> list[str] | None:
     """The files an include's ``filename`` names, or None when only expansion can tell."""
     name = name.strip()
     if resolver is not None:
-        def find(m):
+        def find(m: "re.Match[str]") -> str:
             return str(resolver.find(m.group(1)))
         try:
             name = _FIND_RE.sub(find, name)
@@ -444,7 +454,7 @@ def _resolve_include(name: str, base: str, resolver) -> list | None:
 _EXPR = re.compile(r"\$\{[^}]*\}|\$\((?!find\s)[^)]*\)")
 
 
-def _maybe_included(name: str, base: str, resolver) -> list:
+def _maybe_included(name: str, base: str, resolver: PackageResolver | None) -> list[str]:
     """The files an include whose ``filename`` is built from a macro parameter or an arg
     (``${side}_arm.transmissions.urdf.xacro``) may name: the expressions read as ``*``, when
     what is left names enough (at least 4 characters besides the extension), so that such
@@ -462,7 +472,7 @@ def _maybe_included(name: str, base: str, resolver) -> list:
     return _resolve_include(pattern, base, resolver) or []
 
 
-def _default_file(value: str | None, base: str, resolver) -> list:
+def _default_file(value: str | None, base: str, resolver: PackageResolver | None) -> list[str]:
     """The model file an arg's default or a property's value names (``$(find p)/urdf/empty.urdf``,
     ``$(optenv EXTRAS empty.urdf)``), when it exists: an include of ``$(arg NAME)`` reads it, so
     it is included (a placeholder that makes "no extras" the default is no model of its own)."""
@@ -473,7 +483,8 @@ def _default_file(value: str | None, base: str, resolver) -> list:
     return [f for f in got if os.path.isfile(f)]
 
 
-def _read_includes(f: str, resolver):
+def _read_includes(f: str, resolver: PackageResolver | None
+                   ) -> tuple[list[str], int, list[str], bool]:
     """(included files, number of unresolvable includes, declared or used arg names, whether
     an include is a glob)."""
     from lxml import etree
@@ -519,7 +530,8 @@ def _read_includes(f: str, resolver):
     return list(dict.fromkeys(inc)), unresolved, list(dict.fromkeys(args)), glob_used
 
 
-def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph:
+def include_graph(files: Iterable[str], resolver: PackageResolver | None,
+                  cache_dir: str | None = None) -> IncludeGraph:
     """The include graph of ``files``; with ``cache_dir``, a file whose size and mtime are
     unchanged since the last run (with the same resolver) is not parsed again (call
     ``save()`` when done: files added later, e.g. for arg checks, are memoised too)."""
@@ -531,7 +543,7 @@ def include_graph(files, resolver, cache_dir: str | None = None) -> IncludeGraph
     return g
 
 
-def _memo_path(cache_dir, resolver) -> str | None:
+def _memo_path(cache_dir: str | None, resolver: PackageResolver | None) -> str | None:
     if not cache_dir:
         return None
     import hashlib
@@ -544,7 +556,7 @@ def _memo_path(cache_dir, resolver) -> str | None:
                         hashlib.blake2b(key.encode(), digest_size=10).hexdigest() + ".json")
 
 
-def _load_memo(path) -> dict:
+def _load_memo(path: str | None) -> dict[str, Any]:
     if not path:
         return {}
     import json
@@ -556,7 +568,7 @@ def _load_memo(path) -> dict:
         return {}
 
 
-def _save_memo(path, data) -> None:
+def _save_memo(path: str, data: dict[str, Any]) -> None:
     import json
     from urdf_lint.core.cachedir import ensure
     try:

@@ -5,13 +5,14 @@ from __future__ import annotations
 import functools
 import os
 from pathlib import Path
+from typing import Iterable
 
 from urdf_lint.core.tree import IGNORE_MARKERS
 
 
-def ignored(folder, top) -> bool:
+def ignored(folder: str | os.PathLike[str], top: str | os.PathLike[str]) -> bool:
     """Is ``folder`` (at or below ``top``) in a folder marked COLCON_IGNORE/CATKIN_IGNORE?"""
-    folder, top = os.path.abspath(folder), os.path.abspath(top)
+    folder, top = os.fspath(os.path.abspath(folder)), os.fspath(os.path.abspath(top))
     while True:
         if _marked(folder):
             return True
@@ -26,7 +27,8 @@ def _marked(folder: str) -> bool:
     return any(os.path.exists(os.path.join(folder, m)) for m in IGNORE_MARKERS)
 
 
-def folder_named(name: str, tops, skip=frozenset(), depth: int = 5) -> str | None:
+def folder_named(name: str, tops: Iterable[str], skip: Iterable[str] = frozenset(),
+                 depth: int = 5) -> str | None:
     """A folder called ``name`` below ``tops`` (breadth first, the first in sorted order), for
     the hint on an unknown package: ``--package-path NAME=DIR``. The folders are listed once
     per roots in a process (one index), so each further name is a lookup."""
@@ -36,10 +38,10 @@ def folder_named(name: str, tops, skip=frozenset(), depth: int = 5) -> str | Non
 
 
 @functools.lru_cache(maxsize=8)
-def _folder_index(tops: tuple, skip: frozenset, depth: int) -> dict:
+def _folder_index(tops: tuple[str, ...], skip: frozenset[str], depth: int) -> dict[str, str]:
     """name -> the first folder of that name, breadth first below ``tops`` (hidden folders
     are neither named nor entered, ``skip`` ones are named but not entered)."""
-    index: dict = {}
+    index: dict[str, str] = {}
     level = [Path(t) for t in tops if t and os.path.isdir(t)]
     seen = set()
     for _ in range(depth):

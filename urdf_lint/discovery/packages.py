@@ -20,12 +20,14 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any, Callable
 
-from urdf_lint.core.tree import SKIP_DIRS, inside  # noqa: F401 - inside: part of this API
+from urdf_lint.core.tree import SKIP_DIRS
+from urdf_lint.core.tree import inside as inside   # (part of this API)
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 # REP 144 (lower case letters, digits and underscores, starting with a letter), leniently:
@@ -40,7 +42,7 @@ def valid_package_name(name: str) -> bool:
 
 
 class PackageNotFound(Exception):
-    def __init__(self, name: str, searched: list[str], folder: str | None = None):
+    def __init__(self, name: str, searched: list[str], folder: str | None = None) -> None:
         self.name = name
         self.searched = searched
         self.folder = folder
@@ -60,7 +62,7 @@ class PackageNotFound(Exception):
 
 class InvalidPackageName(PackageNotFound):
     """A name that is no ROS package name (a path, ``..``): it resolves to nothing."""
-    def __init__(self, name: str):
+    def __init__(self, name: str) -> None:
         shown = name if len(name) <= 80 else name[:80] + "..."
         Exception.__init__(self, f"'{shown}' is not a ROS package name (letters, digits, '_' "
                                  "and '-'; never a path): it names no package")
@@ -71,7 +73,7 @@ class InvalidPackageName(PackageNotFound):
 
 
 class OutsideRoots(Exception):
-    def __init__(self, path: str, what: str = "file"):
+    def __init__(self, path: str, what: str = "file") -> None:
         self.path = path
         super().__init__(f"{what} '{path}' resolves outside the package roots and the linted "
                          f"repository; it was not read")
@@ -90,7 +92,7 @@ def package_name(package_xml: Path) -> str | None:
 
 
 def iter_files(top: Path, suffixes: tuple[str, ...] | None = None, names: set[str] | None = None,
-               folders: list | None = None):
+               folders: list[str] | None = None) -> Iterator[Path]:
     """Walk ``top`` (skipping build/VCS/venv folders), yielding files that match; each folder
     looked into is added to ``folders`` when given."""
     from urdf_lint.core import fsbound
@@ -120,10 +122,10 @@ class PackageResolver:
     roots: tuple[Path, ...] = ()
     scanned_dirs: tuple[str, ...] = ()
     use_environment: bool = True
-    env_paths: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
-    _memo: dict = field(default_factory=dict, compare=False, repr=False)
+    env_paths: Mapping[str, Sequence[str]] = field(default_factory=dict)   # tuples once made
+    _memo: dict[Any, Any] = field(default_factory=dict, compare=False, repr=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         fixed = {"explicit": MappingProxyType({k: Path(v) for k, v in self.explicit.items()}),
                  "scanned": MappingProxyType({k: Path(v) for k, v in self.scanned.items()}),
                  "roots": tuple(Path(r) for r in self.roots),
@@ -132,12 +134,14 @@ class PackageResolver:
         for k, v in fixed.items():
             object.__setattr__(self, k, v)
 
-    def __reduce__(self):   # (the read-only maps do not pickle as such)
+    def __reduce__(self) -> tuple[Callable[[dict[str, Any]], PackageResolver],
+                                  tuple[dict[str, Any]]]:   # (the read-only maps do not pickle as such)
         return (PackageResolver.from_dict, (self.to_dict(),))
 
     @classmethod
-    def build(cls, scan_dirs, explicit: dict[str, str] | None = None, extra_roots=(),
-              use_environment: bool = True, packages: dict | None = None) -> "PackageResolver":
+    def build(cls, scan_dirs: Iterable[str], explicit: dict[str, str] | None = None,
+              extra_roots: Iterable[str] = (), use_environment: bool = True,
+              packages: dict[str, str] | None = None) -> "PackageResolver":
         """``packages``: name -> folder found elsewhere (a workspace index), after the scan."""
         env_paths = environment_paths() if use_environment else {}
         explicit_paths = {name: Path(where).resolve() for name, where in (explicit or {}).items()}
@@ -190,7 +194,8 @@ class PackageResolver:
                         os.path.realpath(folder) == os.path.join(share, name):
                     found = Path(share, name)
             self._memo[key] = found
-        return self._memo[key]
+        got: Path | None = self._memo[key]
+        return got
 
     def _real_share(self, prefix: str) -> str | None:
         """The real ``share`` folder of an ament prefix, when it is inside the prefix."""
@@ -198,14 +203,16 @@ class PackageResolver:
         if key not in self._memo:
             share = os.path.realpath(os.path.join(prefix, "share"))
             self._memo[key] = share if inside(share, os.path.realpath(prefix)) else None
-        return self._memo[key]
+        got: str | None = self._memo[key]
+        return got
 
-    def _ros_packages(self) -> tuple[dict, frozenset]:
+    def _ros_packages(self) -> tuple[dict[str, Path], frozenset[str]]:
         """(name -> folder, the set of folders) of every package under ``ROS_PACKAGE_PATH``:
         one walk per run (shared by the processes forked after it), however many lookups."""
         if "ros" not in self._memo:
             self._memo["ros"] = ros_package_index(self.env_paths.get("ROS_PACKAGE_PATH", ()))
-        return self._memo["ros"]
+        got: tuple[dict[str, Path], frozenset[str]] = self._memo["ros"]
+        return got
 
     def find(self, name: str) -> Path:
         key = ("find", name)
@@ -242,7 +249,7 @@ class PackageResolver:
         return out
 
     # -- URIs --------------------------------------------------------------------------------
-    def resolve_uri(self, uri: str, base_dir: str | os.PathLike | None) -> Path:
+    def resolve_uri(self, uri: str, base_dir: str | os.PathLike[str] | None) -> Path:
         """Turn a mesh/include URI (``package://``, ``file://``, absolute, relative) into a path.
 
         Raises PackageNotFound for unknown packages. Does not check confinement or existence.
@@ -259,7 +266,7 @@ class PackageResolver:
             p = Path(base_dir) / p
         return p
 
-    def installed(self, path: str | os.PathLike) -> tuple[str, str | None]:
+    def installed(self, path: str | os.PathLike[str]) -> tuple[str, str | None]:
         """``(source path, the CMakeLists.txt that maps it)`` of a path below a package of the
         source tree that does not exist as written but that the package's build installs from
         another folder (:mod:`urdf_lint.discovery.installs`); ``(path, None)`` otherwise."""
@@ -279,7 +286,7 @@ class PackageResolver:
                 return p, os.path.join(root, "CMakeLists.txt")
         return s, None
 
-    def _install_rules(self, name: str, root: str) -> list:
+    def _install_rules(self, name: str, root: str) -> list[tuple[str, str]]:
         key = ("install", root)
         if key not in self._memo:
             from urdf_lint.core import fsbound
@@ -291,15 +298,16 @@ class PackageResolver:
             except OSError:
                 text = ""
             self._memo[key] = install_rules(text, name)
-        return self._memo[key]
+        rules: list[tuple[str, str]] = self._memo[key]
+        return rules
 
-    def is_inside(self, path: str | os.PathLike) -> bool:
+    def is_inside(self, path: str | os.PathLike[str]) -> bool:
         real = os.path.realpath(path)
         # string prefixes of the normalised roots (what Path.relative_to tests, 20x cheaper)
         return any(inside(real, r) for r in map(str, self.roots)) or \
             self._environment_root(real) is not None
 
-    def root_of(self, path: str | os.PathLike) -> str | None:
+    def root_of(self, path: str | os.PathLike[str]) -> str | None:
         """The deepest root holding ``path`` as written (a normalised absolute path, before
         symlinks), or None. (Of two roots that both hold it the deeper is the longer string.)"""
         s = str(path)
@@ -337,12 +345,12 @@ class PackageResolver:
                 d = parent
         return None
 
-    def readable(self, path: str | os.PathLike, cap: int | None = None) -> bool:
+    def readable(self, path: str | os.PathLike[str], cap: int | None = None) -> bool:
         """May urdf-lint read this file? Inside the roots after symlinks, a regular file (not
         a device, FIFO or folder) and, with ``cap``, at most that many bytes."""
         return self.is_inside(path) and regular_file(path, cap)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         return {"explicit": {k: str(v) for k, v in self.explicit.items()},
                 "scanned": {k: str(v) for k, v in self.scanned.items()},
                 "roots": [str(r) for r in self.roots],
@@ -351,7 +359,7 @@ class PackageResolver:
                 "env_paths": {k: list(v) for k, v in self.env_paths.items()}}
 
     @classmethod
-    def from_dict(cls, d: dict) -> "PackageResolver":
+    def from_dict(cls, d: dict[str, Any]) -> "PackageResolver":
         return cls(explicit={k: Path(v) for k, v in d["explicit"].items()},
                    scanned={k: Path(v) for k, v in d["scanned"].items()},
                    roots=tuple(Path(r) for r in d["roots"]), scanned_dirs=tuple(d["scanned_dirs"]),
@@ -368,26 +376,28 @@ class PackageResolver:
         return out
 
 
-_LAST: list = [None, None]   # (a settings' resolver dict, the resolver made from it)
+_LAST: list[Any] = [None, None]   # (a settings' resolver dict, the resolver made from it)
 
 
-def from_settings(d: dict) -> PackageResolver:
+def from_settings(d: dict[str, Any]) -> PackageResolver:
     """The resolver of a run's settings (``LintSettings.resolver``), made once for the same
     dict: a worker lints its jobs with one snapshot, and so shares its lookups (it is
     immutable, so sharing it cannot widen a job's roots)."""
     if _LAST[0] is not d:
         _LAST[:] = [d, PackageResolver.from_dict(d)]
-    return _LAST[1]
+    made: PackageResolver = _LAST[1]
+    return made
 
 
-_ROS_INDEX: dict = {}   # ROS_PACKAGE_PATH (folders and their mtimes) -> its package index
+# ROS_PACKAGE_PATH (folders and their mtimes) -> its package index
+_ROS_INDEX: dict[Any, tuple[dict[str, Path], frozenset[str]]] = {}
 
 
-def ros_package_index(dirs) -> tuple[dict, frozenset]:
+def ros_package_index(dirs: Iterable[str]) -> tuple[dict[str, Path], frozenset[str]]:
     """(name -> folder, the set of folders) of the packages under ``dirs`` (``package.xml``
     files, the first of a name wins, in the order a lookup walked them before). Built once per
     search path and process: forked workers inherit the parent's."""
-    def stamp(d):
+    def stamp(d: str) -> int | None:
         try:
             return os.stat(d).st_mtime_ns
         except OSError:
@@ -395,7 +405,7 @@ def ros_package_index(dirs) -> tuple[dict, frozenset]:
     key = tuple((d, stamp(d)) for d in dirs)
     hit = _ROS_INDEX.get(key)
     if hit is None:
-        names: dict = {}
+        names: dict[str, Path] = {}
         for d in dirs:
             for pxml in iter_files(Path(d), names={"package.xml"}):
                 name = package_name(pxml)
@@ -408,7 +418,7 @@ def ros_package_index(dirs) -> tuple[dict, frozenset]:
 MAX_SOURCE_BYTES = 256 << 20   # an XML source file urdf-lint reads in the parent
 
 
-def regular_file(path, cap: int | None = None) -> bool:
+def regular_file(path: str | os.PathLike[str], cap: int | None = None) -> bool:
     """A regular file after symlinks (no device, FIFO, socket or folder), not above ``cap``."""
     import stat
     try:
@@ -418,7 +428,7 @@ def regular_file(path, cap: int | None = None) -> bool:
     return stat.S_ISREG(st.st_mode) and (cap is None or st.st_size <= cap)
 
 
-def environment_paths() -> dict:
+def environment_paths() -> dict[str, list[str]]:
     """The existing absolute folders of AMENT_PREFIX_PATH and ROS_PACKAGE_PATH."""
     out = {}
     for var in ("AMENT_PREFIX_PATH", "ROS_PACKAGE_PATH"):
@@ -443,7 +453,7 @@ def colcon_workspace(start: str) -> str | None:
     return None
 
 
-def discover_roots(paths, git_top: str | None) -> tuple[list[str], list[str]]:
+def discover_roots(paths: Iterable[str], git_top: str | None) -> tuple[list[str], list[str]]:
     """(folders to scan for package.xml, extra roots) for the linted ``paths``.
 
     Roots are exactly: the packages holding the linted paths, the git repository holding them

@@ -4,7 +4,7 @@ from __future__ import annotations
 import functools
 import os
 import subprocess
-from typing import Any
+from typing import Any, Iterator
 
 
 class GitError(Exception):
@@ -42,7 +42,7 @@ def repo_root(start: str) -> str:
     return git_root(start) or os.path.abspath(start)
 
 
-def _name_status(out: str):
+def _name_status(out: str) -> Iterator[tuple[str, list[str]]]:
     """(status letter, paths) per entry of ``git diff --name-status -z`` output: a rename or
     copy has both the old and the new path."""
     parts = out.split("\0")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Iterable, Iterator
 
 from urdf_lint.core.tree import MAX_DEPTH, walk_packages
 from urdf_lint.core.tree import find_workspace  # noqa: F401 - part of this API
@@ -19,7 +20,7 @@ from urdf_lint.discovery.folders import ignored  # noqa: F401 - part of this API
 from urdf_lint.discovery.packages import package_name
 
 
-def _install_packages(install: Path):
+def _install_packages(install: Path) -> Iterator[Path]:
     """``share/NAME/package.xml`` of a merged or isolated install space."""
     from urdf_lint.core import fsbound
     for share in [install / "share", *fsbound.glob_paths(install, "*/share")]:
@@ -38,7 +39,7 @@ def index(workspace: str) -> dict[str, str]:
     return out
 
 
-def workspace_roots(paths) -> list[str]:
+def workspace_roots(paths: Iterable[str]) -> list[str]:
     """The workspace folders around the linted paths: confinement roots as well as places
     packages are found."""
     out: list[str] = []
@@ -80,7 +81,7 @@ def _package_holding(p: str, up: int = 4) -> str:
     return start
 
 
-def beside(name: str, paths, depth: int = 2) -> str | None:
+def beside(name: str, paths: Iterable[str], depth: int = 2) -> str | None:
     """The folder holding the ``package.xml`` of package ``name`` beside the linted ``paths``
     (in the parent folders of their packages, ``depth`` levels down: a file's package, a folder
     that is a package or lies in one), for a ``--package-path`` hint: such a

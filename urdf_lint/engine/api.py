@@ -5,9 +5,11 @@ the context's: ``ctx.mesh_ref``, ``ctx.mesh_facts``, ``ctx.mass_facts``, ``ctx.t
 and small helpers (number parsing, "did you mean"). A rule imports nothing else of urdf_lint
 except its own private helper modules (``rules/_*.py``); ``tests/test_rule_api.py`` checks it.
 
-The mesh names and the fix kinds' request functions are imported on first use
-(``__getattr__``): a rule that needs none of them, and ``urdf-lint expand``, never import the
-mesh module.
+Every name here is a real one, which mypy and editors see: the fix kinds' request functions
+are imported from their kinds' modules (the block written by ``scripts/gen_docs.py`` from each
+kind's ``REQUESTS``; ``tests/test_rule_api.py`` fails while it is stale), ``MeshStatus`` from
+its own small module, so that ``urdf-lint expand`` still imports no mesh resolver. A kind
+added at run time (a folder appended to :mod:`urdf_lint.fix.kinds`) is found on first use.
 """
 from __future__ import annotations
 
@@ -21,22 +23,25 @@ from urdf_lint.core.locations import Origin, display_path
 from urdf_lint.core.suggest import did_you_mean
 from urdf_lint.fix.fixes import Request, names_in_scope
 from urdf_lint.meshes.facts import MassFacts, MeshFacts
+from urdf_lint.meshes.status import MeshStatus
 
-if TYPE_CHECKING:  # pragma: no cover - imported on first use below
-    from urdf_lint.fix.kinds.add_dollar import add_dollar
-    from urdf_lint.fix.kinds.drop_attrs import drop_attrs
-    from urdf_lint.fix.kinds.named_material import named_material
-    from urdf_lint.fix.kinds.new_root import new_root
-    from urdf_lint.fix.kinds.rename_attr import rename_attr
-    from urdf_lint.fix.kinds.rename_tag import rename_tag
-    from urdf_lint.fix.kinds.set import set_attrs
-    from urdf_lint.meshes.resolve import MeshStatus
 
-__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Origin", "Report", "Request", "add_dollar",
-           "binary_stl_triangles", "did_you_mean", "read_head",
-           "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
-           "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
-           "rename_attr", "rename_tag", "set_attrs", "single_candidate", "top"]
+__all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Origin", "Report", "Request",
+           "binary_stl_triangles", "did_you_mean", "display_path", "fmt", "mesh_mass_properties",
+           "names_in_scope", "number", "numbers", "read_head", "read_source", "reference_fixes",
+           "single_candidate", "top"]
+
+# generated: requests
+from urdf_lint.fix.kinds.add_dollar import add_dollar as add_dollar
+from urdf_lint.fix.kinds.drop_attrs import drop_attrs as drop_attrs
+from urdf_lint.fix.kinds.named_material import named_material as named_material
+from urdf_lint.fix.kinds.new_root import new_root as new_root
+from urdf_lint.fix.kinds.rename_attr import rename_attr as rename_attr
+from urdf_lint.fix.kinds.rename_tag import rename_tag as rename_tag
+from urdf_lint.fix.kinds.set import set_attrs as set_attrs
+__all__ += ["add_dollar", "drop_attrs", "named_material", "new_root", "rename_attr",
+            "rename_tag", "set_attrs"]
+# end: requests
 
 
 @dataclass(frozen=True)
@@ -56,24 +61,17 @@ class Report:
     cause: Cause | None = None
 
 
-_LAZY = {"MeshStatus": "urdf_lint.meshes.resolve"}
-
-
-def __getattr__(name: str) -> Any:
-    """The mesh names on first use, and the request function of every fix kind
-    (``REQUESTS`` of each module of :mod:`urdf_lint.fix.kinds`: a new kind needs no line
-    here)."""
-    module = _LAZY.get(name)
-    if module is not None:
-        import importlib
-        value = getattr(importlib.import_module(module), name)
-    else:
+if not TYPE_CHECKING:      # hidden from mypy: a name not defined above is a mistake there
+    def __getattr__(name: str) -> Any:
+        """The request function of a fix kind added at run time (``REQUESTS`` of a module in
+        a folder appended to :mod:`urdf_lint.fix.kinds`); the built-in ones are imported
+        above."""
         from urdf_lint.fix.kinds import requests
         value = requests().get(name)
         if value is None:
             raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    globals()[name] = value
-    return value
+        globals()[name] = value
+        return value
 
 
 def mesh_mass_properties(mesh: Any) -> MassFacts:

@@ -55,7 +55,7 @@ ul904_resource_limit = RuleName("ul904_resource_limit")
 
 
 class XmlSyntaxError(xacro.XacroException):
-    def __init__(self, msg, file, line, col, chain=()):
+    def __init__(self, msg, file, line, col, chain=()) -> None:
         super().__init__(msg)
         self.loc = (file, line, col, tuple(chain))
 
@@ -63,7 +63,7 @@ class XmlSyntaxError(xacro.XacroException):
 class RefusedInput(xacro.XacroException):
     """Input refused for safety (entity declarations, files outside the roots, ...); ``rule``
     names the rule (its code) it is reported as."""
-    def __init__(self, msg, rule: RuleName, loc=None):
+    def __init__(self, msg, rule: RuleName, loc=None) -> None:
         super().__init__(msg)
         self.rule = rule
         self.loc = loc

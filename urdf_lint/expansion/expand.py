@@ -168,7 +168,7 @@ def origin_of(node):
 class _CloneHandler:
     """Copies the origin to clones; a macro body being instantiated gets the call chain."""
 
-    def handle(self, operation, key, data, src, dst):
+    def handle(self, operation, key, data, src, dst) -> None:
         if operation == xml.dom.UserDataHandler.NODE_CLONED and dst is not None:
             file, line, col, chain, template = data
             st = CURRENT.get()
@@ -183,12 +183,12 @@ _HANDLER = _CloneHandler()
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
     _parser: Any   # expat's parser (ExpatBuilder.createParser; not in the typeshed stubs)
 
-    def __init__(self, file, chain):
+    def __init__(self, file, chain) -> None:
         super().__init__()
         self._file = file
         self._chain = chain
 
-    def install(self, parser):
+    def install(self, parser) -> None:
         super().install(parser)
         parser.EntityDeclHandler = self._refuse_entity
         parser.StartDoctypeDeclHandler = self._doctype
@@ -216,7 +216,7 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
                                          p.CurrentColumnNumber + 1, self._chain))
         return super().start_doctype_decl_handler(name, system_id, public_id, has_subset)
 
-    def start_element_handler(self, name, attributes):
+    def start_element_handler(self, name, attributes) -> None:
         super().start_element_handler(name, attributes)
         p = self._parser
         self.curNode.setUserData(KEY, (self._file, p.CurrentLineNumber,
@@ -283,7 +283,7 @@ def _hook_abs_filename_spec(filename_spec):
     return path
 
 
-def _hook_eval_all(node, macros, symbols):
+def _hook_eval_all(node, macros, symbols) -> None:
     st = _active()
     st.stack.append(node)
     st.touched = None
@@ -342,7 +342,7 @@ def _hook_handle_macro_call(node, macros, symbols):
     return result
 
 
-def _mark_template(elt):
+def _mark_template(elt) -> None:
     stack = [elt]
     while stack:
         n = stack.pop()
@@ -353,7 +353,7 @@ def _mark_template(elt):
             stack.extend(n.childNodes)
 
 
-def _hook_grab_macro(elt, macros):
+def _hook_grab_macro(elt, macros) -> None:
     st = _active()
     st.touched = elt
     _mark_template(elt)
@@ -361,14 +361,14 @@ def _hook_grab_macro(elt, macros):
     st.touched = None
 
 
-def _hook_grab_property(elt, table):
+def _hook_grab_property(elt, table) -> None:
     st = _active()
     st.touched = elt
     _orig["grab_property"](elt, table)
     st.touched = None
 
 
-def _hook_process_include(elt, macros, symbols, func):
+def _hook_process_include(elt, macros, symbols, func) -> None:
     st = _active()
     st.touched = elt
     saved = st.include_chain
@@ -500,7 +500,7 @@ def _hook_eval_optenv(name, default=""):
     return default
 
 
-def _hook_warning(*args, **kwargs):
+def _hook_warning(*args, **kwargs) -> str:
     st = CURRENT.get()
     if st is not None:
         msg = " ".join(str(a) for a in args).strip()
@@ -509,7 +509,7 @@ def _hook_warning(*args, **kwargs):
     return ""
 
 
-def _hook_print_location(*args, **kwargs):
+def _hook_print_location(*args, **kwargs) -> str:
     return ""
 
 
@@ -518,7 +518,7 @@ def _said(*args, **kwargs):
     return " ".join(str(a) for a in args).strip()
 
 
-def _hook_xacro_error(*args, **kwargs):
+def _hook_xacro_error(*args, **kwargs) -> str:
     """``${xacro.error(...)}``: stock xacro prints the message (with the location) and goes
     on; here a located error with the message (UL013)."""
     st = CURRENT.get()
@@ -532,12 +532,12 @@ def _hook_xacro_warning(*args, **kwargs):
     return _hook_warning(_said(*args))
 
 
-def _hook_xacro_message(*args, **kwargs):
+def _hook_xacro_message(*args, **kwargs) -> str:
     """``${xacro.message(...)}``: xacro prints it; no finding."""
     return ""
 
 
-def _install_hooks():
+def _install_hooks() -> None:
     if _orig:
         return
     for name in ("parse", "abs_filename_spec", "eval_all", "handle_macro_call", "grab_macro",

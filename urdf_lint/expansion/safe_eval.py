@@ -115,7 +115,7 @@ class SafeCallable:
     ``sorted``) cannot smuggle a foreign callable in."""
     __slots__ = ("_fn", "_name")
 
-    def __init__(self, fn, name):
+    def __init__(self, fn, name) -> None:
         self._fn = fn
         self._name = name
 
@@ -123,7 +123,7 @@ class SafeCallable:
         _check_args(args, kwargs)
         return self._fn(*args, **kwargs)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<function {self._name}>"
 
 
@@ -166,7 +166,7 @@ def policy(p):
         _policy.update(saved)
 
 
-def install_xacro_symbols(global_symbols):
+def install_xacro_symbols(global_symbols) -> None:
     """Make xacro's expression namespaces safe: drop the introspection builtins xacro exposes
     (``python.type``, ``python.vars``) and allow everything callable that remains, by identity."""
     global _namespace_types, _yaml_dict_types, _value_types
@@ -176,7 +176,7 @@ def install_xacro_symbols(global_symbols):
     if xacro.YamlListWrapper not in _value_types:
         _value_types = _value_types + (xacro.YamlListWrapper, xacro.YamlDictWrapper)
 
-    def walk(d):
+    def walk(d) -> None:
         for k, v in list(dict.items(d)):
             if isinstance(v, xacro.Table):
                 walk(v)
@@ -210,7 +210,7 @@ def _safe_format(s):
 class _Lambda:
     __slots__ = ("node", "ev", "scope")
 
-    def __init__(self, node, ev, scope):
+    def __init__(self, node, ev, scope) -> None:
         self.node, self.ev, self.scope = node, ev, scope
 
     def __call__(self, *args):
@@ -223,7 +223,7 @@ class _Lambda:
 class _Scope:
     __slots__ = ("vars", "parent")
 
-    def __init__(self, vars, parent):
+    def __init__(self, vars, parent) -> None:
         self.vars, self.parent = vars, parent
 
 
@@ -240,7 +240,7 @@ def _gate(value, what):
 
 
 class Evaluator:
-    def __init__(self, lookup):
+    def __init__(self, lookup) -> None:
         self.lookup = lookup  # name -> value, raises KeyError
         self.steps = 0
 
@@ -364,7 +364,7 @@ class Evaluator:
                 return v
         return v
 
-    def _ev_compare(self, n, sc):
+    def _ev_compare(self, n, sc) -> bool:
         left = self._ev(n.left, sc)
         for op, c in zip(n.ops, n.comparators, strict=True):
             right = self._ev(c, sc)

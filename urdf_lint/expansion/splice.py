@@ -130,7 +130,7 @@ def _insert_before(parent, new, ref) -> None:
     _hints[id(parent)] = (parent, i + 1)
 
 
-def remove_previous_comments(node):
+def remove_previous_comments(node) -> None:
     """xacro's ``remove_previous_comments`` with the linear-time edits above."""
     import xacro
     next = node.nextSibling

@@ -8,26 +8,32 @@ not XML (a YAML file), or for an unused suppression (UL009: remove that comment 
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Iterable
+
 from urdf_lint.core import fsbound
 from urdf_lint.core.codes import RuleName
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import apply_edits, inside, line_offset
 
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+
 # the rules raised here, by name (urdf_lint.core.codes: no rule module is imported)
 unused_suppression = RuleName("ul009_unused_suppression")
 
 
-def suppression_edits(findings) -> tuple[dict, list]:
+def suppression_edits(findings: Iterable["Problem"]
+                      ) -> tuple[dict[str, list[Edit]], list["Problem"]]:
     """({file: [Edit]}, [findings left alone])."""
-    by_line: dict = {}
-    skipped = []
+    by_line: dict[tuple[str, int], list["Problem"]] = {}
+    skipped: list["Problem"] = []
     for f in findings:
         if f.code == unused_suppression.CODE or not f.file.endswith((".xacro", ".urdf", ".xml")):
             skipped.append(f)
             continue
         by_line.setdefault((f.file, f.line), []).append(f)
-    edits: dict = {}
-    cache: dict = {}
+    edits: dict[str, list[Edit]] = {}
+    cache: dict[str, bytes] = {}
     for (file, line), fs in sorted(by_line.items()):
         if file not in cache:
             try:
@@ -53,11 +59,12 @@ def suppression_edits(findings) -> tuple[dict, list]:
     return edits, skipped
 
 
-def add_suppressions(findings, paths=None) -> tuple[int, list, list]:
+def add_suppressions(findings: Iterable["Problem"], paths: list[str] | None = None
+                     ) -> tuple[int, list[str], list["Problem"]]:
     """Write the comments; (comments written, files changed, findings left alone). With
     ``paths``, files outside them (another package, an installed one) are left alone."""
-    mine: list = []
-    outside: list = []
+    mine: list["Problem"] = []
+    outside: list["Problem"] = []
     for f in findings:
         (mine if paths is None or inside(f.file, paths) else outside).append(f)
     findings = mine

@@ -23,11 +23,20 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Iterable
 
-from urdf_lint.core.edits import NOT_FIXABLE, Edit, Fix
-from urdf_lint.fix.sourceedit import Attr, inside, iter_start_tags, line_col, start_tag_at
+from urdf_lint.core.edits import NOT_FIXABLE as NOT_FIXABLE, Edit, Fix
+from urdf_lint.fix.request import Request as Request
+from urdf_lint.fix.sourceedit import (Attr, StartTag, inside, iter_start_tags, line_col,
+                                      start_tag_at)
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.locations import Origin
+    from urdf_lint.engine.model import Model
+
+Element = Any   # an lxml element (lxml ships no type information here)
 
 _REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)\s*\}")
 _YAML_REF = re.compile(r"\$\{\s*([A-Za-z_]\w*)((?:\s*\[\s*(?:'[^']*'|\"[^\"]*\"|\d+)\s*\]"
@@ -36,24 +45,10 @@ _KEY = re.compile(r"\[\s*(?:'([^']*)'|\"([^\"]*)\"|(\d+))\s*\]|\.([A-Za-z_]\w*)"
 _LOAD_YAML = re.compile(r"\$\{\s*(?:xacro\.)?load_yaml\(\s*(?:'([^']*)'|\"([^\"]*)\")\s*\)\s*\}")
 
 
-@dataclass(frozen=True)
-class Request:
-    """What a rule wants done to the expanded element: ``kind`` names a fix kind
-    (:mod:`urdf_lint.fix.kinds`: "set" with ``changes`` the new values of attributes,
-    "rename_attr" / "rename_tag" with ((old, new),), ...); the rules make requests with the
-    kinds' functions (``set_attrs``, ...), through :mod:`urdf_lint.engine.api`."""
-    changes: tuple[tuple[str, str], ...]
-    description: str
-    safe: bool = True
-    kind: str = "set"
-    on_parent: bool = False      # the fix edits the parent of the element reported
-    elements: tuple = field(default=(), compare=False)   # more elements the fix edits
-
-
-def names_in_scope(model) -> set:
+def names_in_scope(model: "Model") -> set[str]:
     """The xacro property and macro parameter names defined in the files the model read."""
     src = _Sources(model)
-    out: set = set()
+    out: set[str] = set()
     for path in src.xacro_files():
         try:
             d = src.get(path)
@@ -78,9 +73,9 @@ class Refuse(Exception):
 class _Sources:
     """The raw bytes of the files a model read (nothing else is read)."""
 
-    def __init__(self, model):
+    def __init__(self, model: "Model") -> None:
         self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
-        self.data: dict = {}
+        self.data: dict[str, bytes] = {}
 
     def get(self, path: str) -> bytes:
         real = os.path.realpath(path)
@@ -91,21 +86,21 @@ class _Sources:
             self.data[real] = fsbound.read_bytes(real)
         return self.data[real]
 
-    def xacro_files(self):
+    def xacro_files(self) -> list[str]:
         return [p for p in sorted(self.allowed) if p.endswith((".xacro", ".urdf", ".xml"))]
 
 
-def where(path, line=None) -> str:
+def where(path: str, line: int | None = None) -> str:
     from urdf_lint.core.locations import display_path
     return f"{display_path(path)}:{line}" if line else display_path(path)
 
 
-def _expression(path, data, off):
+def _expression(path: str, data: bytes, off: int) -> Refuse:
     return Refuse(f"{NOT_FIXABLE}: the value comes from the expression at "
                    f"{where(path, line_col(data, off)[0])}")
 
 
-def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
+def resolve(model: "Model", el: Element, req: Request, src: _Sources | None = None) -> Fix:
     """The :class:`Fix` of ``req`` on ``el`` (refused, with the reason, when it cannot be
     located or traced to one literal)."""
     src = src or _Sources(model)
@@ -133,7 +128,7 @@ def resolve(model, el, req: Request, src: _Sources | None = None) -> Fix:
         return Fix(req.description, req.safe, (), f"{NOT_FIXABLE}: {e}")
 
 
-def written(tag, name: str, origin):
+def written(tag: StartTag, name: str, origin: "Origin") -> Attr:
     """The attribute ``name`` of the start tag at ``origin`` (refused when not written there)."""
     a = tag.attr(name)
     if a is None:
@@ -142,7 +137,7 @@ def written(tag, name: str, origin):
     return a
 
 
-def same_value(literal: str, expanded) -> bool:
+def same_value(literal: str, expanded: str | None) -> bool:
     if expanded is None:
         return False
     if literal.strip() == expanded.strip():
@@ -154,7 +149,8 @@ def same_value(literal: str, expanded) -> bool:
         return False
 
 
-def trace(src, file, data, a: Attr, chain: tuple, depth: int):
+def trace(src: _Sources, file: str, data: bytes, a: Attr, chain: tuple[Any, ...],
+          depth: int) -> tuple[str, "Attr | YamlScalar"]:
     """(file, the literal Attr or YAML scalar) that produced attribute ``a``."""
     v = a.value
     if "$" not in v:
@@ -191,7 +187,7 @@ def trace(src, file, data, a: Attr, chain: tuple, depth: int):
     raise _expression(file, data, a.value_start)
 
 
-def _property_defs(src, name):
+def _property_defs(src: _Sources, name: str) -> list[tuple[str, bytes, StartTag]]:
     out = []
     for path in src.xacro_files():
         d = src.get(path)
@@ -204,7 +200,8 @@ def _property_defs(src, name):
     return out
 
 
-def _property(src, name, file, data, a, depth):
+def _property(src: _Sources, name: str, file: str, data: bytes, a: Attr,
+              depth: int) -> tuple[str, "Attr | YamlScalar"]:
     defs = _property_defs(src, name)
     if len(defs) != 1:
         if not defs:
@@ -230,7 +227,8 @@ class YamlScalar:
     style: str          # "" (plain), "'" or '"'
 
 
-def _yaml_scalar(src, m, file, data, a):
+def _yaml_scalar(src: _Sources, m: "re.Match[str]", file: str, data: bytes,
+                 a: Attr) -> tuple[str, "YamlScalar"]:
     var, keys = m.group(1), [k for k in _KEY.findall(m.group(2))]
     defs = _property_defs(src, var)
     if len(defs) != 1:
@@ -238,7 +236,7 @@ def _yaml_scalar(src, m, file, data, a):
     path, d, t = defs[0]
     val = t.attr("value")
     lm = _LOAD_YAML.fullmatch(val.value.strip()) if val is not None else None
-    if lm is None:
+    if lm is None or val is None:
         raise _expression(file, data, a.value_start)
     ref = lm.group(1) or lm.group(2)
     fm = re.fullmatch(r"\$\(find [\w-]+\)/(.+)", ref)
@@ -259,7 +257,8 @@ def _yaml_scalar(src, m, file, data, a):
     return yaml_path, node
 
 
-def traced_scalar(model, src, el, attr: str):
+def traced_scalar(model: "Model", src: _Sources, el: Element,
+                  attr: str) -> tuple[str, "YamlScalar"] | None:
     """(yaml file, :class:`YamlScalar`) of the YAML scalar the expansion read ``attr`` of
     ``el`` from, when it is that scalar's literal value (not computed from it); else None."""
     got = (getattr(model, "value_origins", {}).get(el) or {}).get(attr)
@@ -272,7 +271,7 @@ def traced_scalar(model, src, el, attr: str):
     return (file, node) if node is not None else None
 
 
-def _yaml_node_at(ydata: bytes, line: int, col: int):
+def _yaml_node_at(ydata: bytes, line: int, col: int) -> "YamlScalar | None":
     """The scalar of a YAML text that starts at 1-based ``line``, ``col``, or None."""
     import yaml
     try:
@@ -296,7 +295,7 @@ def _yaml_node_at(ydata: bytes, line: int, col: int):
     return None
 
 
-def _yaml_node(ydata: bytes, keys):
+def _yaml_node(ydata: bytes, keys: list[str | int]) -> "YamlScalar | None":
     import yaml
     try:
         root = yaml.compose(ydata.decode("utf-8"), Loader=yaml.SafeLoader)
@@ -335,16 +334,17 @@ class Fixer:
     def __init__(self, model: Any) -> None:
         self.model = model
         self.src = _Sources(model)
-        self._index: dict | None = None
-        self._value_from_memo: dict[tuple, tuple] = {}
+        self._index: dict[Element, int] | None = None
+        self._value_from_memo: dict[tuple[Any, ...], tuple[Any, ...]] = {}
 
-    def index(self, el) -> int:
+    def index(self, el: Element) -> int:
         if self._index is None:
             from lxml import etree
             self._index = {e: i for i, e in enumerate(self.model.root.iter(tag=etree.Element))}
-        return self._index[el]
+        i: int = self._index[el]
+        return i
 
-    def value_from(self, el, attrs=()) -> tuple:
+    def value_from(self, el: Element, attrs: tuple[str, ...] = ()) -> tuple[Any, ...]:
         """``(file, line, col)`` of where the value of ``el`` comes from when that is not the
         element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
         macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
@@ -367,7 +367,7 @@ class Fixer:
             self._value_from_memo[key] = self._value_from_source(origin, attrs)
         return self._value_from_memo[key]
 
-    def _value_from_source(self, origin, attrs) -> tuple:
+    def _value_from_source(self, origin: Any, attrs: tuple[str, ...] | list[str]) -> tuple[Any, ...]:
         try:
             data = self.src.get(origin.file)
             tag = start_tag_at(data, origin.line, origin.col)
@@ -390,7 +390,7 @@ class Fixer:
             return ()
         return ()
 
-    def fix(self, el, req: Request) -> Fix:
+    def fix(self, el: Element, req: Request) -> Fix:
         f = resolve(self.model, el, req, self.src)
         if f.refused:
             return f
@@ -408,7 +408,7 @@ class Fixer:
 _REMOVABLE = re.compile(rb"<!--\s*urdf-lint:\s*(disable-next|disable-file)\b.*?-->", re.S)
 
 
-def remove_comment(loc) -> Fix | None:
+def remove_comment(loc: tuple[Any, ...]) -> Fix | None:
     """The fix of an unused ``disable-next`` / ``disable-file`` comment at ``loc`` (file, line,
     col): delete it, with its line when it is alone there (a ``disable`` range is left alone:
     its ``enable`` would dangle)."""
@@ -430,7 +430,7 @@ def remove_comment(loc) -> Fix | None:
                "", (("none", 0, "", ""),))
 
 
-_SOURCE: list = [None, None]   # ((path, size, mtime), its bytes): one read for all its comments
+_SOURCE: list[Any] = [None, None]   # ((path, size, mtime), its bytes): one read for all its comments
 
 
 def _source_bytes(path: str) -> bytes | None:
@@ -443,10 +443,12 @@ def _source_bytes(path: str) -> bytes | None:
             _SOURCE[:] = [key, fsbound.read_bytes(path)]
     except OSError:
         return None
-    return _SOURCE[1]
+    data: bytes = _SOURCE[1]
+    return data
 
 
-def inside_paths(findings, paths, generated: dict | None = None) -> list:
+def inside_paths(findings: Iterable["Problem"], paths: list[str],
+                 generated: dict[str, str] | None = None) -> list["Problem"]:
     """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
     installed package, a dependency elsewhere in the workspace) refused, and those that would
     edit a generated URDF (:func:`not_in_generated`)."""
@@ -456,7 +458,7 @@ def inside_paths(findings, paths, generated: dict | None = None) -> list:
     from urdf_lint.discovery.discover import repository_root
     # once, not once per edit; a named symlink out of the repository stands for nothing
     real_paths = write_roots(paths, repository_root(paths))
-    known: dict = {}   # file -> inside? (once per file, not once per fix)
+    known: dict[str, bool] = {}   # file -> inside? (once per file, not once per fix)
     for p in not_in_generated(findings, generated or {}):
         fx = p.fix
         if fx is not None and fx.applicable:
@@ -471,7 +473,8 @@ def inside_paths(findings, paths, generated: dict | None = None) -> list:
     return out
 
 
-def not_in_generated(findings, generated: dict) -> list:
+def not_in_generated(findings: Iterable["Problem"],
+                     generated: dict[str, str]) -> list["Problem"]:
     """The findings, with the fixes that would edit a generated URDF (``generated``: output ->
     the xacro it comes from) refused: fixes go to sources only, safe or unsafe."""
     if not generated:
@@ -483,7 +486,7 @@ def not_in_generated(findings, generated: dict) -> list:
         fx = p.fix
         made = [e.file for e in fx.edits if os.path.realpath(e.file) in outputs] \
             if fx is not None and fx.applicable else []
-        if made:
+        if made and fx is not None:
             src = outputs[os.path.realpath(made[0])]
             p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                   f"{display_path(made[0])} is generated from "

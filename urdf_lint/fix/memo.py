@@ -13,20 +13,26 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from typing import TYPE_CHECKING, Iterable
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.run.cache import Cache
 
 FILE = "fix-rollbacks.json"
 MAX_ENTRIES = 2000
 
 
-def fix_key(p, models) -> str | None:
+def fix_key(p: "Problem", models: Iterable["ModelReport"]) -> str | None:
     """The key of ``p``'s fix in the run whose models are ``models``; None when an input's
     digest is unknown (then nothing is remembered)."""
     fx = p.fix
     if fx is None or not fx.edits:
         return None
     edited = {e.file for e in fx.edits}
-    inputs: dict = {}
-    missing: set = set()
+    inputs: dict[str, str] = {}
+    missing: set[str] = set()
     for m in models:
         if not edited & {m.entry, *m.deps}:
             continue
@@ -46,10 +52,10 @@ def fix_key(p, models) -> str | None:
 class FixMemo:
     """The rolled-back fixes of earlier runs (key -> reason), kept in the cache folder."""
 
-    def __init__(self, cache):
+    def __init__(self, cache: "Cache") -> None:
         self.cache = cache
         self.path = os.path.join(cache.dir, FILE)
-        self.entries: dict = {}
+        self.entries: dict[str, str] = {}
         self.changed = False
         blob = cache.read_signed(self.path) if os.path.isfile(self.path) else None
         if blob:

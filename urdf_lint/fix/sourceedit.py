@@ -11,6 +11,10 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Iterable, Iterator
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.edits import Edit
 
 
 _NAME = re.compile(rb"[^\s/>=]+")
@@ -55,7 +59,7 @@ def unescape(raw: str) -> str:
     """An attribute value as an XML parser reads it (entities, char refs, normalised spaces)."""
     raw = re.sub(r"[\t\r\n]", " ", raw.replace("\r\n", "\n"))
 
-    def sub(m):
+    def sub(m: "re.Match[str]") -> str:
         g = m.group(1)
         if g.startswith("#x"):
             return chr(int(g[2:], 16))
@@ -70,7 +74,7 @@ def escape(value: str, quote: str) -> str:
     return out.replace('"', "&quot;") if quote == '"' else out.replace("'", "&apos;")
 
 
-_LINE_STARTS: list = [None, []]   # (the bytes, the offset of each of its lines)
+_LINE_STARTS: list[Any] = [None, []]   # (the bytes, the offset of each of its lines)
 
 
 def line_offset(data: bytes, line: int) -> int | None:
@@ -149,7 +153,7 @@ def start_tag_at(data: bytes, line: int, col: int) -> StartTag | None:
     return parse_start_tag(data, off) if off is not None else None
 
 
-def iter_start_tags(data: bytes, local_name: str):
+def iter_start_tags(data: bytes, local_name: str) -> "Iterator[StartTag]":
     """Every start tag whose local name (after any prefix) is ``local_name``, outside comments
     and CDATA."""
     pat = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<([^\s/>!?]+)", re.S)
@@ -196,9 +200,10 @@ def line_col(data: bytes, off: int) -> tuple[int, int]:
     return line, len(data[start:off].decode("utf-8", "replace")) + 1
 
 
-def apply_edits(data: bytes, edits) -> bytes:
+def apply_edits(data: bytes, edits: Iterable["Edit"]) -> bytes:
     """``data`` with non-overlapping edits applied (raises ValueError on an overlap)."""
-    out, pos = [], 0
+    out: list[bytes] = []
+    pos = 0
     for e in sorted(edits, key=lambda e: (e.start, e.end)):
         if e.start < pos:
             raise ValueError(f"overlapping edits at byte {e.start}")
@@ -209,7 +214,7 @@ def apply_edits(data: bytes, edits) -> bytes:
     return b"".join(out)
 
 
-def inside(path: str, paths, resolved: bool = False) -> bool:
+def inside(path: str, paths: Iterable[str], resolved: bool = False) -> bool:
     """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
     (``resolved``: the ``paths`` are already real paths)."""
     from urdf_lint.core.tree import inside as below

@@ -49,7 +49,7 @@ or an include); the formatter touches ``.urdf`` and ``.xacro`` files only.
 """
 from __future__ import annotations
 
-from urdf_lint.formatting.layout import STRUCTURAL
+from urdf_lint.formatting.layout import STRUCTURAL, Node
 
 # the parents that keep a child element an element around its own children
 KEEPING = ("xacro:macro", "xacro:if", "xacro:unless")
@@ -58,8 +58,8 @@ KEEPING = ("xacro:macro", "xacro:if", "xacro:unless")
 QUIET = ("xacro:attribute", "xacro:insert_block")
 
 
-def _joined(nodes: list) -> list:
-    out: list = []
+def _joined(nodes: list[Node]) -> list[Node]:
+    out: list[Node] = []
     for n in nodes:
         if n[0] == "text" and out and out[-1][0] == "text":
             out[-1] = ("text", out[-1][1] + n[1])
@@ -68,23 +68,24 @@ def _joined(nodes: list) -> list:
     return out
 
 
-def _kept(el, parent) -> bool:
+def _kept(el: Node, parent: Node | None) -> bool:
     """Is the element an element around its own children in every expansion (a plain
     element, not the root, which an include splices, nor a block of a macro call)?"""
     return not el[1].startswith("xacro:") and parent is not None and (
         not parent[1].startswith("xacro:") or parent[1] in KEEPING)
 
 
-def _reaches(n) -> bool:
+def _reaches(n: Node) -> bool:
     """Does the node reach the robot with the rest of its level, whatever xacro does?"""
     return n[0] == "text" or (n[0] == "el" and not n[1].startswith("xacro:"))
 
 
-def _shape(nodes: list) -> list:
+def _shape(nodes: list[Node]) -> list[Node]:
     return [("t", n[1].count("\n") > 1) if n[0] == "text" else n[0] for n in nodes]
 
 
-def _changed_level(el, parent, ka: list, kb: list, quiet_reads: bool) -> str | None:
+def _changed_level(el: Node, parent: Node | None, ka: list[Node], kb: list[Node],
+                   quiet_reads: bool) -> str | None:
     """None when the new text of the level ``ka`` -> ``kb`` (the children of ``el``) cannot
     reach the robot."""
     if any(n[1].strip() for n in ka + kb if n[0] == "text"):
@@ -106,17 +107,17 @@ def _changed_level(el, parent, ka: list, kb: list, quiet_reads: bool) -> str | N
     return None
 
 
-def _reaching(nodes: list) -> int:
+def _reaching(nodes: list[Node]) -> int:
     """How many of the nodes reach the robot."""
     return sum(1 for n in nodes if _reaches(n))
 
 
-def _with_element(nodes: list) -> bool:
+def _with_element(nodes: list[Node]) -> bool:
     """Does an element among the nodes reach the robot?"""
     return any(n[0] == "el" and _reaches(n) for n in nodes)
 
 
-def _lands_in_an_element(el, parent, ka: list, kb: list) -> bool:
+def _lands_in_an_element(el: Node, parent: Node | None, ka: list[Node], kb: list[Node]) -> bool:
     """Whether a level that reaches the robot with an element (``ka`` -> ``kb``) keeps its
     new whitespace out of it. The element it lands in is written with its whitespace-only
     text left out, wherever that is. xacro reads where the text is next to its own elements
@@ -129,7 +130,7 @@ def _lands_in_an_element(el, parent, ka: list, kb: list) -> bool:
     return (quiet or _shape(ka) == _shape(kb)) and (_kept(el, parent) or ends)
 
 
-def _pairs(xs: list, ys: list, parent, quiet_reads: bool) -> str | None:
+def _pairs(xs: list[Node], ys: list[Node], parent: Node | None, quiet_reads: bool) -> str | None:
     """None when the nodes (one level, its text left out) read the same to xacro."""
     if len(xs) != len(ys):
         return "the structure differs"
@@ -147,7 +148,7 @@ def _pairs(xs: list, ys: list, parent, quiet_reads: bool) -> str | None:
     return None
 
 
-def _same(a, b, parent, quiet_reads: bool) -> str | None:
+def _same(a: Node, b: Node, parent: Node | None, quiet_reads: bool) -> str | None:
     ka, kb = _joined(a[3]), _joined(b[3])
     why = _pairs([n for n in ka if n[0] != "text"], [n for n in kb if n[0] != "text"], a,
                  quiet_reads)
@@ -156,7 +157,7 @@ def _same(a, b, parent, quiet_reads: bool) -> str | None:
     return _changed_level(a, parent, ka, kb, quiet_reads)
 
 
-def proven(old_doc: list, new_doc: list, quiet_reads: bool = False) -> str | None:
+def proven(old_doc: list[Node], new_doc: list[Node], quiet_reads: bool = False) -> str | None:
     """None when the new layout provably expands to the same robot in every model that reads
     the file; else why the models must be expanded to prove it. ``old_doc`` and ``new_doc``
     are :func:`urdf_lint.formatting.layout.read_document` of the two layouts.
@@ -172,7 +173,7 @@ def proven(old_doc: list, new_doc: list, quiet_reads: bool = False) -> str | Non
 CONDITIONAL = ("xacro:if", "xacro:unless")
 
 
-def unproven_in_branches(old_doc: list, new_doc: list) -> str | None:
+def unproven_in_branches(old_doc: list[Node], new_doc: list[Node]) -> str | None:
     """None when every level whose whitespace changed inside an ``xacro:if``/``xacro:unless``
     body (at any depth) is proved by the rules of :func:`proven` (which hold whatever the
     condition); else why. Expanding the models proves only the branches their args take:
@@ -182,7 +183,7 @@ def unproven_in_branches(old_doc: list, new_doc: list) -> str | None:
                      [n for n in new_doc if n[0] == "el"], None, False)
 
 
-def _branches(xs: list, ys: list, parent, taken: bool) -> str | None:
+def _branches(xs: list[Node], ys: list[Node], parent: Node | None, taken: bool) -> str | None:
     if len(xs) != len(ys):
         return "the structure differs"
     for a, b in zip(xs, ys, strict=True):
@@ -202,7 +203,7 @@ def _branches(xs: list, ys: list, parent, taken: bool) -> str | None:
     return None
 
 
-def reads_quietly(doc: list) -> bool:
+def reads_quietly(doc: list[Node]) -> bool:
     """Does every element of the document with an xacro element that reads the whitespace
     before it (``remove_previous_comments``) among its children also hold two nodes that reach
     the robot with it (text, plain elements)? Then, in every model whose files all do, what

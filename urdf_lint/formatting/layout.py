@@ -38,8 +38,12 @@ from __future__ import annotations
 import codecs
 import re
 from dataclasses import dataclass
+from typing import Any
 
-ORDERS = ("keep", "canonical")
+
+# A node of read_document: ("el", name, [attribute, value, ...], children), ("text", s),
+# ("comment", s), ("pi", target, data), ("decl", ...), ("doctype", ...).
+Node = tuple[Any, ...]
 
 
 @dataclass(frozen=True)
@@ -54,7 +58,7 @@ class Style:
 class FormatError(Exception):
     """The source cannot be formatted (not well-formed, an encoding it cannot round-trip)."""
 
-    def __init__(self, message: str, line: int = 1, col: int = 1):
+    def __init__(self, message: str, line: int = 1, col: int = 1) -> None:
         super().__init__(message)
         self.message, self.line, self.col = message, line, col
 
@@ -127,7 +131,7 @@ class _Leaf:
     """A token kept as written: text, comment, pi, cdata, doctype."""
     __slots__ = ("kind", "raw", "blank")
 
-    def __init__(self, kind: str, raw: str):
+    def __init__(self, kind: str, raw: str) -> None:
         self.kind, self.raw = kind, raw
         self.blank = kind == "text" and not raw.strip()
 
@@ -135,9 +139,9 @@ class _Leaf:
 class _El:
     __slots__ = ("name", "attrs", "children", "inner", "spaced")
 
-    def __init__(self, name: str, attrs: list):
+    def __init__(self, name: str, attrs: list[tuple[str, str]]) -> None:
         self.name, self.attrs = name, attrs
-        self.children: list = []
+        self.children: list[_El | _Leaf] = []
         self.inner: tuple[int, int] | None = None    # source span of the content; None: <x/>
         self.spaced = False                          # written <x />
 
@@ -162,9 +166,9 @@ def _doctype_end(src: str, i: int) -> int:
     raise ValueError("unterminated DOCTYPE")
 
 
-def _tokenize(src: str) -> list:
+def _tokenize(src: str) -> list[_El | _Leaf]:
     """The document's top-level nodes (elements hold their children)."""
-    top: list = []
+    top: list[_El | _Leaf] = []
     stack: list[_El] = []
     into = top
     i, n = 0, len(src)
@@ -213,7 +217,7 @@ def _newlines(ws: str) -> int:
 
 
 class _Layout:
-    def __init__(self, src: str, style: Style, nl: str, spaced: bool = False):
+    def __init__(self, src: str, style: Style, nl: str, spaced: bool = False) -> None:
         self.src, self.style, self.nl = src, style, nl
         self.out: list[str] = []
         self.empty_close = " />" if spaced else "/>"
@@ -233,13 +237,13 @@ class _Layout:
             return "empty"
         return "verbatim"
 
-    def ordered(self, el: _El) -> list:
+    def ordered(self, el: _El) -> list[tuple[str, str]]:
         attrs = el.attrs
         if self.style.attribute_order != "canonical" or len(attrs) < 2:
             return attrs
         schema = ("name",) + SCHEMA_ORDER.get(el.name, ())
 
-        def key(item):
+        def key(item: tuple[str, str]) -> tuple[int, int]:
             return (0, schema.index(item[0])) if item[0] in schema else (1, 0)
         return sorted(attrs, key=key)    # stable: the rest keep their order
 
@@ -270,7 +274,7 @@ class _Layout:
             out.append(self.nl + indent)
         out.append(f"</{el.name}>")
 
-    def children(self, nodes: list, depth: int, top: bool = False) -> None:
+    def children(self, nodes: list[_El | _Leaf], depth: int, top: bool = False) -> None:
         out, nl = self.out, self.nl
         indent = " " * (self.style.indent * depth)
         ws, first, lined = "", True, False   # lined: a child has a line of its own
@@ -314,7 +318,7 @@ def format_text(src: str, style: Style = Style()) -> str:
     return "".join(lay.out) + nl
 
 
-def _spaced(nodes: list, how: str) -> bool:
+def _spaced(nodes: list[Any], how: str) -> bool:
     """Are empty elements closed with `` />``? ``auto``: when most of the file's self-closed
     tags are written so (a tie, or none: ``/>``), so formatting a repository that writes
     ``<a />`` does not rewrite every such line."""
@@ -353,7 +357,7 @@ def _encoding(data: bytes) -> tuple[str, bytes]:
     return codec, bom
 
 
-def read_document(data: bytes) -> list:
+def read_document(data: bytes) -> list[Node]:
     """The document as xacro's parser (expat, without namespace processing) reads it: a
     list of nodes, elements nested (``("el", name, [attribute, value, ...], children)``);
     raises a located :class:`FormatError` when it is not well-formed."""
@@ -361,11 +365,11 @@ def read_document(data: bytes) -> list:
     p = expat.ParserCreate()
     p.ordered_attributes = True
     p.buffer_text = True
-    top: list = []
-    stack: list = [top]
+    top: list[Node] = []
+    stack: list[list[Node]] = [top]
 
-    def start(name, attrs):
-        kids: list = []
+    def start(name: str, attrs: list[str]) -> None:
+        kids: list[Node] = []
         stack[-1].append(("el", name, attrs, kids))
         stack.append(kids)
     p.XmlDeclHandler = lambda v, e, s: top.append(("decl", v, e, s))
@@ -399,24 +403,16 @@ def _layout(src: str, codec: str, bom: bytes, style: Style) -> bytes:
         raise FormatError(f"internal: the tokenizer could not read the file ({e})") from None
 
 
-def format_bytes(data: bytes, style: Style = Style()) -> bytes:
-    """The file laid out, unguarded (see :func:`format_source`); raises :class:`FormatError`
-    when it is not well-formed XML."""
-    src, codec, bom = _decode(data)
-    read_document(data)
-    return _layout(src, codec, bom, style)
-
-
 class Refused(Exception):
     """The layout was made but is not safe to use: :attr:`reason` says why."""
 
-    def __init__(self, reason: str):
+    def __init__(self, reason: str) -> None:
         super().__init__(reason)
         self.reason = reason
 
 
 def format_source(data: bytes, style: Style = Style(), path: str = "",
-                  docs: dict | None = None) -> bytes:
+                  docs: dict[bytes, list[Node]] | None = None) -> bytes:
     """The formatted file, ``data`` itself when it is formatted already. Raises
     :class:`FormatError` (not well-formed, an encoding it cannot keep) or :class:`Refused`
     (the guard of :func:`check_same` failed). ``docs``, when given, receives the
@@ -425,7 +421,7 @@ def format_source(data: bytes, style: Style = Style(), path: str = "",
     old_doc = read_document(data)
     new = _layout(src, codec, bom, style)
     if new != data:
-        new_doc: list = []
+        new_doc: list[Node] = []
         reason = check_same(data, new, style, path, old_doc, new_doc)
         if reason is not None:
             raise Refused(reason)
@@ -435,7 +431,7 @@ def format_source(data: bytes, style: Style = Style(), path: str = "",
 
 
 # -- the guard ----------------------------------------------------------------------------------
-def normal_nodes(nodes: list, ordered_attrs: bool, comments: bool = True) -> list:
+def normal_nodes(nodes: list[Node], ordered_attrs: bool, comments: bool = True) -> list[Node]:
     """The nodes of :func:`read_document` as a reader of the robot sees them: adjacent text
     joined, whitespace between child elements (layout) dropped, whitespace-only text of a
     :data:`STRUCTURAL` element dropped, attributes sorted unless their order is kept, comments
@@ -443,9 +439,9 @@ def normal_nodes(nodes: list, ordered_attrs: bool, comments: bool = True) -> lis
     return _kids(nodes, ordered_attrs, comments)[0]
 
 
-def _kids(nodes: list, ordered: bool, comments: bool) -> tuple[list, bool, bool]:
+def _kids(nodes: list[Node], ordered: bool, comments: bool) -> tuple[list[Node], bool, bool]:
     """(the normal nodes, whether one is an element, whether all text is whitespace)."""
-    res: list = []
+    res: list[Node] = []
     has_el, blank = False, True
     for node in nodes:
         kind = node[0]
@@ -473,7 +469,7 @@ def _kids(nodes: list, ordered: bool, comments: bool) -> tuple[list, bool, bool]
 
 
 def check_same(old: bytes, new: bytes, style: Style, path: str = "",
-               old_doc: list | None = None, new_doc: list | None = None) -> str | None:
+               old_doc: list[Node] | None = None, new_doc: list[Node] | None = None) -> str | None:
     """None when ``new`` is a safe layout of ``old``; else why not (a formatter bug, or a
     suppression comment whose reach would change). ``new_doc``, when given (empty), receives
     the :func:`read_document` of ``new``."""

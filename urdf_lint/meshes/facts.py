@@ -6,11 +6,12 @@ density). They are measured and cached by content as plain records (JSON on disk
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 Bounds = tuple[tuple[float, float, float], tuple[float, float, float]]   # (lowest, highest)
 
 
-def _bounds(b) -> Bounds | None:
+def _bounds(b: Any) -> Bounds | None:
     if not b:
         return None
     lo, hi = b
@@ -31,7 +32,7 @@ class MeshFacts:
     broken_refs: tuple[str, ...] = ()
 
     @classmethod
-    def from_record(cls, d: dict) -> "MeshFacts":
+    def from_record(cls, d: dict[str, Any]) -> "MeshFacts":
         """From the record the measurement stores (:func:`urdf_lint.meshes.resolve.mesh_facts`)."""
         return cls(bool(d.get("ok")), str(d.get("error") or ""), int(d.get("vertices") or 0),
                    int(d.get("faces") or 0), bool(d.get("finite", True)), _bounds(d.get("bounds")),
@@ -51,7 +52,7 @@ class MassFacts:
     hull: bool = False
 
     @classmethod
-    def from_record(cls, d: dict) -> "MassFacts":
+    def from_record(cls, d: dict[str, Any]) -> "MassFacts":
         """From the record the measurement stores (:func:`urdf_lint.meshes.resolve.mass_facts`)."""
         if not d.get("ok"):
             return cls(False)

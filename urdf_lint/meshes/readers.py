@@ -26,7 +26,7 @@ trimesh as before, so the facts are the same numbers trimesh gives.
 from __future__ import annotations
 
 import re
-from typing import Iterator
+from typing import Any, Iterator
 
 import numpy as np
 
@@ -37,6 +37,12 @@ from urdf_lint.core import lazy
 # pycollada imports Pillow (~14 ms) at start-up for the images of a document, which urdf-lint
 # never decodes (the texture scan reads their names): loaded on first use, if ever
 lazy.defer("PIL.Image")
+
+# vertices and faces of a mesh; a part of a scene: (vertices, faces) and its 4x4 placement
+Arrays = tuple[np.ndarray, np.ndarray]
+Part = tuple[Arrays, np.ndarray]
+# an XML element or a pycollada object (neither library ships type information here)
+Node = Any
 
 STL_RECORD = np.dtype([("n", "<f4", (3,)), ("v", "<f4", (3, 3)), ("a", "<u2")])
 STL_CHUNK_TRIANGLES = 1 << 20        # 50 MB of records per chunk
@@ -78,7 +84,7 @@ def iter_binary_stl(path: str, chunk: int | None = None,
             yield rec["v"]
 
 
-def bounds(points):
+def bounds(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(min, max) per column of (n, 3) points: NaN where a column holds a NaN, like
     ``points.min(axis=0)``, but on a transposed copy (a reduction along the long axis: 20x
     faster than along the first axis of three columns)."""
@@ -86,7 +92,7 @@ def bounds(points):
     return t.min(axis=1), t.max(axis=1)
 
 
-def read_ascii_stl(path: str):
+def read_ascii_stl(path: str) -> Arrays | None:
     """(vertices float64 (n, 3), faces) of an ASCII STL holding exactly one solid, parsed as
     trimesh parses it; None for anything else (the caller lets trimesh decide)."""
     data = fsbound.read_bytes(path, max_bytes=MAX_MESH_READ)
@@ -112,7 +118,7 @@ def read_ascii_stl(path: str):
     return v, np.arange(len(v)).reshape((-1, 3))
 
 
-def scene_arrays(scene):
+def scene_arrays(scene: Node) -> Arrays:
     """(vertices, faces) of every Trimesh instance of a trimesh Scene placed by its transform,
     stacked in graph order: ``Scene.to_mesh()``'s numbers, without building the mesh."""
     from trimesh import Trimesh, transformations, util
@@ -129,7 +135,7 @@ def scene_arrays(scene):
         if not util.allclose(matrix, eye4, 1e-8):
             v = transformations.transform_points(v, matrix=matrix)
             if not util.allclose(matrix[:3, :3], eye3, atol=1e-6) and \
-                    transformations.flips_winding(matrix):
+                    transformations.flips_winding(matrix):  # type: ignore[no-untyped-call]  # trimesh's, unannotated
                 f = np.fliplr(f)
         verts.append(v)
         if len(f):
@@ -140,7 +146,7 @@ def scene_arrays(scene):
     return v.reshape((-1, 3)), f.reshape((-1, 3))
 
 
-def scale_points(v, unit: float):
+def scale_points(v: np.ndarray, unit: float) -> np.ndarray:
     """``Trimesh.apply_scale(unit)`` on vertices: :func:`transform_points` by
     ``trimesh.transformations.scale_and_translate(scale=unit)`` (the same arithmetic)."""
     m = np.eye(4)
@@ -156,7 +162,7 @@ _DIVISORS = np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float6
 _CHUNK = 1 << 15      # triangles per block: the temporaries of a block stay in the CPU's cache
 
 
-def _integrals(t) -> np.ndarray:
+def _integrals(t: np.ndarray) -> np.ndarray:
     """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of each of (n, 3, 3)
     float64 triangles, shape (10, n): ``trimesh.triangles.mass_properties``' formulas, in its
     order of operations (its cross product of (p1 - p0) and (p2 - p1) included), so the same
@@ -199,13 +205,14 @@ def _block_integrals(T: np.ndarray, out: np.ndarray) -> None:
         out[i + 7] = crosses[i] * ((p0[j] * g0[i]) + (p1[j] * g1[i]) + (p2[j] * g2[i]))
 
 
-def volume_integrals(tris) -> np.ndarray:
+def volume_integrals(tris: np.ndarray) -> np.ndarray:
     """The 10 volume integrals of a closed surface's triangles, summed: additive over chunks
     (:func:`moments` turns their sum into volume and moments)."""
-    return _integrals(np.asarray(tris, dtype=np.float64)).sum(axis=1) / _DIVISORS
+    out: np.ndarray = _integrals(np.asarray(tris, dtype=np.float64)).sum(axis=1) / _DIVISORS
+    return out
 
 
-def mass_properties(triangles):
+def mass_properties(triangles: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     """(volume, center of mass, inertia about it) of closed triangles at density 1:
     ``trimesh.triangles.mass_properties`` to the last bit, without importing trimesh."""
     t = np.asanyarray(triangles, dtype=np.float64)
@@ -227,7 +234,7 @@ def mass_properties(triangles):
     return volume, com, inertia * 1.0
 
 
-def merged_ids(points) -> np.ndarray:
+def merged_ids(points: np.ndarray) -> np.ndarray:
     """One id per point, equal for points equal to 8 decimals (the grouping of
     ``trimesh.grouping.unique_rows(points, digits=8)``: its rounding, any injective row key)."""
     q = np.ascontiguousarray(np.round((np.asarray(points, dtype=np.float64) * 10 ** 8) - 1e-6)
@@ -235,7 +242,7 @@ def merged_ids(points) -> np.ndarray:
     return first_of_equal_rows(q)[1]
 
 
-def moments(integrated) -> tuple[float, np.ndarray, np.ndarray]:
+def moments(integrated: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     """(volume, first moment ∫r dV, second moment ∫r rᵀ dV) from summed integrals."""
     vol = float(integrated[0])
     first = np.asarray(integrated[1:4], dtype=float)
@@ -248,7 +255,7 @@ _MIX = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9, 0x94D049BB133111EB, 0xC2B2AE3D27
         0x165667B19E3779F9, 0x27D4EB2F165667C5, 0xD6E8FEB86659FD93, 0xFF51AFD7ED558CCD)
 
 
-def row_mix(rows) -> np.ndarray:
+def row_mix(rows: np.ndarray) -> np.ndarray:
     """One 64-bit mix (uint64) per row of an (n, k) int64 array: equal rows, equal mixes."""
     u = np.ascontiguousarray(rows, dtype=np.int64).view(np.uint64)
     h = np.zeros(len(u), dtype=np.uint64)
@@ -259,7 +266,7 @@ def row_mix(rows) -> np.ndarray:
     return h
 
 
-def first_of_equal_rows(rows):
+def first_of_equal_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(index of the first occurrence of each distinct row, the distinct row of every row) of
     an (n, k) int64 array, as ``np.unique(return_index, return_inverse)`` gives them for the
     rows (distinct rows in another order: callers sort by first occurrence, or only compare).
@@ -273,7 +280,7 @@ def first_of_equal_rows(rows):
     return index, inverse
 
 
-def unique_first(keys):
+def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(index of the first occurrence of each distinct key, the distinct key of every key) of
     a 1-d array: ``np.unique(keys, return_index=True, return_inverse=True)[1:]``, the same
     arrays, from one unstable sort (``np.unique`` sorts stably for its first occurrences: a
@@ -292,7 +299,7 @@ def unique_first(keys):
     return np.minimum.reduceat(order, first).astype(np.int64), inverse
 
 
-def vertex_keys(tris) -> np.ndarray:
+def vertex_keys(tris: np.ndarray) -> np.ndarray:
     """One int64 per vertex of (k, 3, 3) triangles: the vertex rounded to 8 decimals (what
     ``trimesh.grouping.unique_rows(digits=8)`` merges), packed by :func:`row_mix`. Used to test
     closedness of meshes too large for ``unique_rows``."""
@@ -302,7 +309,7 @@ def vertex_keys(tris) -> np.ndarray:
     return row_mix(q).view(np.int64)
 
 
-def edge_codes(tris):
+def edge_codes(tris: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(directed edge codes, their reverses) of the non-degenerate triangles of a (k, 3, 3)
     chunk: one int64 per edge from the two ends' :func:`vertex_keys`. A closed, consistently
     wound surface has every code once and the reverses are the same set."""
@@ -325,7 +332,7 @@ NORMAL_DIGITS = 2       # trimesh.grouping.merge_vertices' digits_norm
 UV_DIGITS = 4           # ... and digits_uv
 
 
-def collada_arrays(data: bytes):
+def collada_arrays(data: bytes) -> Arrays | None:
     """(vertices float64 (n, 3), faces int64 (m, 3)) of a COLLADA document before its unit:
     the numbers ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without
     importing trimesh, decoding textures or building materials.
@@ -355,7 +362,7 @@ def collada_arrays(data: bytes):
         if c.scene is None or not all(_plain_effect(m.effect) for m in c.materials):
             return None
         materials = {m.id for m in c.materials}
-        parts: list = []
+        parts: list[Part] = []
         for node in c.scene.nodes:
             if not _collada_node(node, _EYE4, parts, materials):
                 return None
@@ -371,15 +378,16 @@ def collada_arrays(data: bytes):
         return None
 
 
-def _assemble(parts):
+def _assemble(parts: list[Part]) -> Arrays | None:
     """(vertices, faces) of the merged triangle sets ``parts`` ([((v, f), matrix)]) placed by
     their matrices and stacked, as trimesh's scene does (a mirroring matrix flips the
     winding); None where trimesh's scene graph would refuse a matrix."""
     verts, faces, offset = [], [], 0
     for (v, f), matrix in parts:
-        matrix = _fix_rigid(np.array(matrix, dtype=np.float64))
-        if matrix is None:
+        rigid = _fix_rigid(np.array(matrix, dtype=np.float64))
+        if rigid is None:
             return None
+        matrix = rigid
         if not _allclose(matrix, _EYE4, 1e-8):
             v = transform_points(v, matrix)
             if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
@@ -397,7 +405,7 @@ _OBJ_FORMS = {"v": (r"\d+", 1), "v/t": (r"\d+/\d+", 2), "v//n": (r"\d+//\d+", 2)
               "v/t/n": (r"\d+/\d+/\d+", 3)}
 
 
-def _obj_line_check(form: str, refs: int) -> re.Pattern:
+def _obj_line_check(form: str, refs: int) -> re.Pattern[str]:
     """A line no plain OBJ of one face form holds (searched after each newline)."""
     num = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?"   # (one way to match: linear)
     face = " ".join([_OBJ_FORMS[form][0]] * refs)
@@ -410,7 +418,7 @@ _OBJ_ROWS = re.compile(r"\nv ([^\n]*)")
 _OBJ_FACES = re.compile(r"\nf ([^\n]*)")
 
 
-def obj_arrays(data: bytes):
+def obj_arrays(data: bytes) -> Arrays | None:
     """(vertices float64 (n, 3), faces int64 (m, 3)) of a Wavefront OBJ file: the numbers
     ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without trimesh.
 
@@ -448,7 +456,7 @@ def obj_arrays(data: bytes):
         return None
     rows = _OBJ_ROWS.findall(text)
     has_normals = "\nvn " in text
-    groups: dict = {}
+    groups: dict[Any, Any] = {}
     for k, part in enumerate(text.split("\nusemtl ")):
         name, body = ("", part) if k == 0 else part.split("\n", 1)
         found = _OBJ_FACES.findall("\n" + body)
@@ -489,7 +497,7 @@ def obj_arrays(data: bytes):
     return np.vstack(verts), np.vstack(faces).astype(np.int64)
 
 
-def _unmerge(faces, others):
+def _unmerge(faces: np.ndarray, others: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """(new faces, position index of each new vertex): ``unmerge_faces`` of trimesh, one
     vertex per distinct row of (position, *others) references."""
     stack = np.column_stack([faces.reshape(-1)] + [o.reshape(-1) for o in others])
@@ -511,7 +519,7 @@ def _unmerge(faces, others):
     return remap[inverse].reshape((-1, faces.shape[1])), pairs[order][:, 0]
 
 
-def _plain_effect(effect) -> bool:
+def _plain_effect(effect: Node) -> bool:
     """Whether trimesh turns this effect into a material without failing (colours of four
     components; a texture it cannot load is only logged)."""
     from collada.material import Map
@@ -522,7 +530,8 @@ def _plain_effect(effect) -> bool:
         len(effect.emission) >= 3
 
 
-def _collada_node(node, parent, parts, materials) -> bool:
+def _collada_node(node: Node, parent: np.ndarray, parts: list[Part],
+                  materials: set[str]) -> bool:
     """``trimesh.exchange.dae._parse_node`` for the geometry: ((vertices, faces) merged, matrix)
     of each triangle set under ``node`` appended to ``parts``; False when trimesh might fail
     or differ."""
@@ -571,7 +580,8 @@ def _collada_node(node, parent, parts, materials) -> bool:
     return True
 
 
-def _merge(vertices, normals, uv):
+def _merge(vertices: np.ndarray, normals: np.ndarray | None,
+           uv: np.ndarray | None) -> Arrays | None:
     """(vertices, faces) of the triangle soup ``vertices`` after ``Trimesh.process()``: rows
     equal to trimesh's digits (position, then UV and normal when given for every vertex)
     merged into their first occurrence, faces renumbered (``grouping.merge_vertices`` and
@@ -594,7 +604,7 @@ def _merge(vertices, normals, uv):
     return v[index[order]], faces
 
 
-def _fix_rigid(matrix, max_deviance: float = 1e-5):
+def _fix_rigid(matrix: np.ndarray, max_deviance: float = 1e-5) -> np.ndarray | None:
     """What trimesh's scene graph returns for a node's matrix (``SceneGraph.get`` with its
     default ``repair_rigid``: ``transformations.fix_rigid``, a rotation off by accumulated
     rounding restored by SVD); None where trimesh's own check would fail."""
@@ -608,12 +618,12 @@ def _fix_rigid(matrix, max_deviance: float = 1e-5):
     return matrix
 
 
-def _in_range(index, n: int) -> bool:
+def _in_range(index: np.ndarray, n: int) -> bool:
     index = np.asarray(index)
     return index.size == 0 or (int(index.min()) >= -n and int(index.max()) < n)
 
 
-def _allclose(a, b, atol: float) -> bool:
+def _allclose(a: np.ndarray, b: np.ndarray, atol: float) -> bool:
     """``trimesh.util.allclose`` (the peak-to-peak of the difference)."""
     return bool(float(np.ptp(a - b)) < atol)
 
@@ -621,17 +631,19 @@ def _allclose(a, b, atol: float) -> bool:
 _IDENTITY = np.eye(4)
 
 
-def transform_points(points, matrix):
+def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
     """``trimesh.transformations.transform_points`` (the same arithmetic, without trimesh)."""
     points = np.asanyarray(points, dtype=np.float64)
     if len(points) == 0 or matrix is None:
-        return points.copy()
+        same: np.ndarray = points.copy()
+        return same
     matrix = np.asanyarray(matrix, dtype=np.float64)
     count, dim = points.shape
     if np.abs(matrix - _IDENTITY[: dim + 1, : dim + 1]).max() < 1e-8:
         return np.ascontiguousarray(points.copy())
     stack = np.column_stack((points, np.ones(count)))
-    return np.dot(matrix, stack.T).T[:, :dim]
+    moved: np.ndarray = np.dot(matrix, stack.T).T[:, :dim]
+    return moved
 
 
 # -- COLLADA read with lxml alone (no pycollada objects) --------------------------------------
@@ -640,12 +652,12 @@ _UNSUPPORTED = ("polygons", "tristrips", "trifans", "instance_node", "instance_c
                 "lookat", "skew", "library_nodes", "newparam", "texture")
 
 
-def _local(el) -> str:
+def _local(el: Node) -> str:
     tag = el.tag
     return tag.rpartition("}")[2] if isinstance(tag, str) else ""
 
 
-def _floats(text, dtype=np.float32) -> np.ndarray:
+def _floats(text: str | None, dtype: Any = np.float32) -> np.ndarray:
     """pycollada's parse of a number list (``np.fromstring`` of the text, NaN read as 0)."""
     if text is None or text.isspace() or not text:
         return np.array([], dtype=dtype)
@@ -659,7 +671,7 @@ class _Unsure(Exception):
     """A COLLADA feature the lean reader does not vouch for: pycollada reads the file."""
 
 
-def collada_arrays_lean(data: bytes):
+def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | None:
     """:func:`collada_arrays`' numbers from one lxml parse of the document: the sources'
     ``<float_array>`` (float32, as pycollada reads them), the primitives' ``<p>``/``<vcount>``
     and ``<input>`` offsets, the ``<node>`` transforms (float32 products, as pycollada's
@@ -685,7 +697,7 @@ def collada_arrays_lean(data: bytes):
 _LINES = frozenset(("lines", "linestrips"))
 
 
-def _line_only_instances(root) -> int:
+def _line_only_instances(root: Node) -> int:
     """How many ``<instance_geometry>`` name a mesh of line primitives alone (a sensor's
     outline): trimesh's COLLADA loader makes no mesh of them."""
     byid = {el.get("id"): el for el in root.iter() if el.get("id") is not None}
@@ -700,8 +712,8 @@ def _line_only_instances(root) -> int:
     return n
 
 
-def _lean(root):
-    byid: dict = {}
+def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
+    byid: dict[str, Node] = {}
     for el in root.iter():
         name = _local(el)
         if name in _UNSUPPORTED:
@@ -724,8 +736,8 @@ def _lean(root):
     if len(vs) != 1:
         raise _Unsure("scene")
     visual = _ref(byid, vs[0].get("url"))
-    parts: list = []
-    geometries: dict = {}
+    parts: list[Part] = []
+    geometries: dict[str, Any] = {}
     for node in visual:
         if _local(node) == "node":
             _lean_node(node, _EYE4, parts, materials, byid, geometries)
@@ -737,13 +749,13 @@ def _lean(root):
     return got[0], got[1], len(parts)
 
 
-def _ref(byid, url):
+def _ref(byid: dict[str, Node], url: str | None) -> Node:
     if not url or not url.startswith("#") or url[1:] not in byid:
         raise _Unsure("broken reference")
     return byid[url[1:]]
 
 
-def _check_material(byid, material) -> None:
+def _check_material(byid: dict[str, Node], material: Node) -> None:
     """A material whose effect pycollada loads and trimesh converts (``_plain_effect``)."""
     inst = [el for el in material if _local(el) == "instance_effect"]
     if len(inst) != 1:
@@ -771,7 +783,7 @@ def _check_material(byid, material) -> None:
                 raise _Unsure("colour")
 
 
-def _matrix(node) -> np.ndarray:
+def _matrix(node: Node) -> np.ndarray:
     """pycollada's ``Node.matrix``: the node's transforms multiplied in float32."""
     transforms = []
     for el in node:
@@ -799,14 +811,15 @@ def _matrix(node) -> np.ndarray:
     if not transforms:
         return np.identity(4, dtype=np.float32)
     if len(transforms) == 1:
-        return transforms[0].copy()
+        one: np.ndarray = transforms[0].copy()
+        return one
     out = np.identity(4, dtype=np.float32)
     for m in transforms:
         out = np.dot(out, m)
     return out
 
 
-def _rotation(x, y, z, angle) -> np.ndarray:
+def _rotation(x: float, y: float, z: float, angle: float) -> np.ndarray:
     """pycollada's ``makeRotationMatrix`` (float32)."""
     c, s = np.cos(angle), np.sin(angle)
     t = (1 - c)
@@ -816,7 +829,8 @@ def _rotation(x, y, z, angle) -> np.ndarray:
                      [0, 0, 0, 1]], dtype=np.float32)
 
 
-def _lean_node(node, parent, parts, materials, byid, geometries) -> None:
+def _lean_node(node: Node, parent: np.ndarray, parts: list[Part], materials: set[str],
+               byid: dict[str, Node], geometries: dict[str, Any]) -> None:
     """:func:`_collada_node` on the XML: a ``<node>``'s children in document order."""
     matrix = np.dot(parent, _matrix(node))
     for el in node:
@@ -827,7 +841,8 @@ def _lean_node(node, parent, parts, materials, byid, geometries) -> None:
             _lean_geometry(el, matrix, parts, materials, byid, geometries)
 
 
-def _lean_geometry(inst, matrix, parts, materials, byid, geometries) -> None:
+def _lean_geometry(inst: Node, matrix: np.ndarray, parts: list[Part], materials: set[str],
+                   byid: dict[str, Node], geometries: dict[str, Any]) -> None:
     url = inst.get("url")
     geometry = _ref(byid, url)
     symbols = set()
@@ -854,7 +869,8 @@ def _lean_geometry(inst, matrix, parts, materials, byid, geometries) -> None:
         parts.append((merged, matrix))
 
 
-def _source(byid, url, names) -> np.ndarray:
+def _source(byid: dict[str, Node], url: str | None,
+            names: tuple[tuple[str, ...], ...]) -> np.ndarray:
     """A ``<source>``'s float32 values shaped by its accessor's params (pycollada's
     ``FloatSource``), which must be ``names``."""
     src = _ref(byid, url)
@@ -875,7 +891,7 @@ _XYZ = (("X", "Y", "Z"),)
 _ST = (("S", "T"), ("U", "V"))
 
 
-def _primitives(geometry, byid) -> list:
+def _primitives(geometry: Node, byid: dict[str, Node]) -> list[tuple[Any, ...]]:
     """(vertex, vertex_index (k, 3), normal, normal_index, [(uv, uv_index)], material) of each
     triangle set of a geometry's ``<mesh>`` (a polylist fanned as pycollada fans it); empty
     sets skipped; anything else unsure."""
@@ -903,7 +919,7 @@ def _primitives(geometry, byid) -> list:
     return out
 
 
-def _inputs(prim, byid) -> dict:
+def _inputs(prim: Node, byid: dict[str, Node]) -> dict[str, list[Node]]:
     """{semantic: [(offset, source url)]} of a primitive, in document order, the inputs of its
     ``<vertices>`` in place of its VERTEX input (POSITION as VERTEX), as pycollada lists them."""
     inputs = []
@@ -933,7 +949,7 @@ def _inputs(prim, byid) -> dict:
     return by
 
 
-def _index(prim, kind: str, stride: int) -> np.ndarray:
+def _index(prim: Node, kind: str, stride: int) -> np.ndarray:
     """The index of a primitive's triangles, shape (k, 3, stride): its first ``<p>`` (pycollada
     reads no other), a polylist's fanned."""
     ps = [el for el in prim if _local(el) == "p"]
@@ -950,7 +966,8 @@ def _index(prim, kind: str, stride: int) -> np.ndarray:
     return index.reshape(-1, 3, stride)
 
 
-def _indexed(byid, inp, index, names):
+def _indexed(byid: dict[str, Node], inp: Node, index: np.ndarray,
+             names: tuple[tuple[str, ...], ...]) -> tuple[np.ndarray, np.ndarray]:
     """(the source's values, the (k, 3) indices into them) of one input, every index in range
     (pycollada's ``checkSource``)."""
     offset, url = inp
@@ -960,7 +977,7 @@ def _indexed(byid, inp, index, names):
     return values, at
 
 
-def _fan(prim, index) -> np.ndarray:
+def _fan(prim: Node, index: np.ndarray) -> np.ndarray:
     """pycollada's ``Polylist.triangleset``: polygon k of ``vcount`` corners (start s) gives
     the triangles (s, s+i+1, s+i+2)."""
     vc = [el for el in prim if _local(el) == "vcount"]

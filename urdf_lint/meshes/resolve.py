@@ -6,7 +6,6 @@ cached by file content, so a mesh is read once per change, not once per model or
 """
 from __future__ import annotations
 
-import enum
 import math
 import os
 import re
@@ -15,21 +14,23 @@ import time
 from collections import OrderedDict
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Callable, Iterable
+
+if TYPE_CHECKING:  # pragma: no cover - numpy and trimesh are imported on first use
+    import numpy as np
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.engine.model import Model
 
 from urdf_lint.core import fsbound
 from urdf_lint.core.hashing import memo_read
 from urdf_lint.discovery.packages import PackageNotFound
+from urdf_lint.meshes.status import MeshStatus as MeshStatus
 from urdf_lint.meshes.store import MeshStore
 
-
-class MeshStatus(enum.Enum):
-    """How a mesh or texture reference resolved (the UL4xx rules map these to codes)."""
-    OK = "ok"                          # an existing file inside the package roots
-    UNKNOWN_PACKAGE = "unknown-package"
-    NOT_FOUND = "not-found"
-    CASE_MISMATCH = "case-mismatch"    # exists only with different letter case
-    OUTSIDE_ROOTS = "outside-roots"    # resolves outside the package roots: never read
+Facts = dict[str, Any]          # a mesh's measured facts (a JSON record)
+Mesh = Any                      # a trimesh.Trimesh (trimesh ships no type information here)
+# vertices (n, 3), faces (m, 3) and the broken references of a mesh
+Arrays = tuple["np.ndarray", "np.ndarray", list[str]]
 
 
 @dataclass
@@ -82,7 +83,7 @@ def _case_true_path(path: Path, top: Path | None = None) -> tuple[bool, str | No
     return exact, (None if exact else str(cur))
 
 
-_listings: dict = {}     # folder -> (mtime_ns, names in listdir order, set of names)
+_listings: dict[str, "_Names"] = {}     # folder -> (mtime_ns, names in listdir order, set of names)
 MAX_LISTINGS = 20_000
 RACY_NS = 2_000_000_000  # a folder changed this recently may change again within its mtime tick
 
@@ -109,19 +110,19 @@ def _listing(folder: Path) -> "_Names | None":
     return names
 
 
-class _Names(list):
+class _Names(list[str]):
     """A folder's names in ``os.listdir`` order, with a set for membership tests."""
 
-    def __init__(self, mtime: int, names):
+    def __init__(self, mtime: int, names: Iterable[str]) -> None:
         super().__init__(names)
         self.mtime = mtime
-        self._set = frozenset(names)
+        self._set = frozenset(self)
 
-    def __contains__(self, name) -> bool:
+    def __contains__(self, name: object) -> bool:
         return name in self._set
 
 
-def resolve(model, uri: str) -> MeshRef:
+def resolve(model: "Model", uri: str) -> MeshRef:
     ref = _resolve(model, uri, model.base_dir)
     other = getattr(model, "mesh_base_fallback", None)
     if ref.status is MeshStatus.NOT_FOUND and other and other != model.base_dir \
@@ -139,7 +140,7 @@ def resolve(model, uri: str) -> MeshRef:
     return ref
 
 
-def _found_above(model, uri: str, base_dir: str) -> str:
+def _found_above(model: Any, uri: str, base_dir: str) -> str:
     """Where a relative mesh missing from ``base_dir`` is when read from a folder above it
     (inside the same root): unitree's hand URDFs write ``meshes/x.STL`` one folder below the
     package's ``meshes``. A hint, never a resolution: the loader decides where relative paths
@@ -162,7 +163,7 @@ def _relative(uri: str) -> bool:
     return "://" not in uri and not os.path.isabs(uri)
 
 
-def _resolve(model, uri: str, base_dir: str) -> MeshRef:
+def _resolve(model: "Model", uri: str, base_dir: str) -> MeshRef:
     resolver = model.resolver
     try:
         p = resolver.resolve_uri(uri, base_dir)
@@ -205,7 +206,7 @@ def _resolve(model, uri: str, base_dir: str) -> MeshRef:
     return MeshRef(uri, str(p), MeshStatus.OK)
 
 
-def _root_of(resolver, p: Path) -> Path | None:
+def _root_of(resolver: "PackageResolver", p: Path) -> Path | None:
     """The deepest root that holds ``p`` as written (before symlinks), or None."""
     best = resolver.root_of(p)
     return None if best is None else Path(best)
@@ -215,9 +216,9 @@ _DAE_IMAGE = re.compile(rb"<init_from>\s*([^<]+?)\s*</init_from>")
 _MTL_MAP = re.compile(r"^\s*(?:map_\w+|bump|disp|decal|refl)\s+(?:-\S+\s+\S+\s+)*(\S.*?)\s*$", re.M)
 
 
-_textures: dict = {}
+_textures: dict[Any, list[str]] = {}
 MAX_MESH_BYTES = 1 << 30
-_scan_memory: dict = {}
+_scan_memory: dict[str, Facts] = {}
 TEXTURE_SCAN_VERSION = 1
 
 
@@ -269,7 +270,7 @@ def _texture_refs(path: str, store: MeshStore) -> list[str]:
     return out
 
 
-def _scan_texture_names(path: str) -> dict:
+def _scan_texture_names(path: str) -> Facts:
     """{ok, refs}: the image references of a DAE (``<init_from>``, relative as written) or
     the ``mtllib`` names of an OBJ."""
     refs: list[str] = []
@@ -292,11 +293,11 @@ def _scan_texture_names(path: str) -> dict:
 
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
-_memory: dict = {}
+_memory: dict[str, Facts] = {}
 FACTS_VERSION = 3  # bump when the loader changes what it measures
 
 
-def _version(path: str):
+def _version(path: str) -> tuple[str, int, int]:
     st = os.stat(path)
     return (os.path.realpath(path), st.st_size, st.st_mtime_ns)
 
@@ -338,7 +339,7 @@ def _file_bytes(path: str) -> bytes:
 LIBRARY_LOGGERS = ("trimesh", "collada", "PIL", "yourdfpy")
 
 
-def quiet_libraries():
+def quiet_libraries() -> None:
     import logging
     for name in LIBRARY_LOGGERS:
         lg = logging.getLogger(name)
@@ -348,7 +349,7 @@ def quiet_libraries():
 
 
 
-def load_mesh(path: str):
+def load_mesh(path: str) -> Mesh:
     """A trimesh.Trimesh (scene concatenated) or raises.
 
     A COLLADA file whose geometry is lost to a broken internal reference (a ``<surface>``,
@@ -385,7 +386,8 @@ def load_mesh(path: str):
     assert m is not None
     unit = dae_unit(path) if is_dae else 1.0
     if unit != 1.0:
-        m.apply_scale(unit)  # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
+        # RViz/Gazebo (assimp) honour <unit meter=...>; trimesh does not
+        m.apply_scale(unit)  # type: ignore[no-untyped-call]  # trimesh's, unannotated
     return m
 
 
@@ -408,7 +410,7 @@ def dae_broken_refs(path: str) -> list[str]:
     return out
 
 
-def _load_dae_without_materials(path: str):
+def _load_dae_without_materials(path: str) -> Mesh:
     """The geometry of a COLLADA file with every material binding, effect and image removed
     (what a broken material reference cannot take down)."""
     import io
@@ -461,7 +463,7 @@ _loaded: "OrderedDict[str, Any]" = OrderedDict()
 MAX_LOADED_VERTICES = 4_000_000   # bound the in-memory mesh cache of a long-lived worker
 
 
-def get_mesh(path: str):
+def get_mesh(path: str) -> Mesh:
     """The loaded mesh, shared in memory between the rules and the renderer (by content).
     Least recently used meshes are dropped beyond MAX_LOADED_VERTICES."""
     digest = _digest(path)
@@ -477,7 +479,8 @@ def get_mesh(path: str):
     return mesh
 
 
-def mesh_facts(path: str, cache_dir: str | None = None, store: MeshStore | None = None) -> dict:
+def mesh_facts(path: str, cache_dir: str | None = None,
+               store: MeshStore | None = None) -> Facts:
     """{ok, error, vertices, faces, finite, bounds, broken_refs} for a mesh file, cached by
     content. Measured on the mesh's arrays (:mod:`urdf_lint.meshes.readers`), never on a processed
     trimesh: a binary STL is streamed in chunks, so its size alone is never an error. The run's
@@ -490,7 +493,7 @@ def mesh_facts(path: str, cache_dir: str | None = None, store: MeshStore | None 
                    lambda p: _measure(p, store.keep_loaded))
 
 
-def _over_limit(path: str) -> dict | None:
+def _over_limit(path: str) -> Facts | None:
     """The finding for a mesh file larger than urdf-lint reads (a stat decides it, so it is
     the same on every run without being stored)."""
     try:
@@ -504,7 +507,7 @@ def _over_limit(path: str) -> dict | None:
             "vertices": 0, "faces": 0, "finite": True, "bounds": None}
 
 
-def _measure(path: str, keep_loaded: bool = False) -> dict:
+def _measure(path: str, keep_loaded: bool = False) -> Facts:
     try:
         from urdf_lint.meshes import readers as meshio
         n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
@@ -532,7 +535,7 @@ def _measure(path: str, keep_loaded: bool = False) -> dict:
                 "faces": 0, "finite": True, "bounds": None}
 
 
-def _stl_facts(path: str, n: int) -> dict:
+def _stl_facts(path: str, n: int) -> Facts:
     """The facts of a binary STL of ``n`` triangles, streamed chunk by chunk."""
     import numpy as np
     from urdf_lint.meshes import readers as meshio
@@ -552,11 +555,11 @@ def _stl_facts(path: str, n: int) -> dict:
 
 
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
-_arrays_memo: "OrderedDict[str, tuple]" = OrderedDict()
+_arrays_memo: "OrderedDict[str, Arrays]" = OrderedDict()
 MAX_MEMO_VERTICES = 1_000_000     # the arrays kept between the facts and the mass rules
 
 
-def _arrays(path: str, keep_loaded: bool = False):
+def _arrays(path: str, keep_loaded: bool = False) -> Arrays:
     """(vertices float64 (n, 3), faces int64 (m, 3), broken_refs) of a mesh: what
     ``load_mesh`` gives (scene instances placed and stacked, the COLLADA unit applied), from
     the loaders' raw arrays. A render run (``keep_loaded``: it draws the meshes the rules
@@ -581,7 +584,7 @@ def _arrays(path: str, keep_loaded: bool = False):
     return out
 
 
-def _read_arrays(path: str):
+def _read_arrays(path: str) -> Arrays:
     import numpy as np
     from urdf_lint.meshes import readers as meshio
     low = path.lower()
@@ -600,17 +603,19 @@ def _read_arrays(path: str):
         got = meshio.obj_arrays(_file_bytes(path))   # the same numbers without trimesh
         if got is not None:
             return got[0], got[1], []
-        return _scene_arrays(path, False)
+        scene = _scene_arrays(path, False)
+        assert scene is not None    # (None only for a COLLADA file)
+        return scene
     elif low.endswith(".dae"):
-        got = _scene_arrays(path, True)
-        if got is not None:
-            return got
+        scene = _scene_arrays(path, True)
+        if scene is not None:
+            return scene
     m = load_mesh(path)     # anything unusual: trimesh decides, as before
     return (np.asarray(m.vertices, dtype=np.float64), np.asarray(m.faces, dtype=np.int64),
             list(m.metadata.get("broken_refs", ())))
 
 
-def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
+def _scene_arrays(path: str, is_dae: bool, lean: bool = True) -> Arrays | None:
     """The arrays of ``load_mesh`` for a COLLADA or OBJ file through ``load_scene``, or None
     when the COLLADA geometry is lost to a broken reference (``load_mesh`` handles that).
     A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
@@ -646,12 +651,13 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True):
 class _Uncached(Exception):
     """A result that depends on the environment, not on the file: returned, never cached."""
 
-    def __init__(self, facts):
+    def __init__(self, facts: Facts) -> None:
         super().__init__()
         self.facts = facts
 
 
-def _cached(memory: dict, prefix: str, path: str, store: MeshStore, compute) -> dict:
+def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
+            compute: Callable[[str], Facts]) -> Facts:
     """``compute(path)``, memoized in ``memory`` and in the run's facts store (the user's
     :class:`urdf_lint.meshes.store.FactsStore`, read only here), keyed by the file's content.
     What is measured is noted in ``store.measured`` for the parent to store (a result that
@@ -679,11 +685,12 @@ def _cached(memory: dict, prefix: str, path: str, store: MeshStore, compute) -> 
 
 
 # -- mass properties (for the physical plausibility rules) ----------------------------------
-_mass_memory: dict = {}
+_mass_memory: dict[str, Facts] = {}
 MASS_FACTS_VERSION = 1
 
 
-def mass_facts(path: str, cache_dir: str | None = None, store: MeshStore | None = None) -> dict:
+def mass_facts(path: str, cache_dir: str | None = None,
+               store: MeshStore | None = None) -> Facts:
     """Volume properties of a mesh filled with unit density, cached by content (like
     ``mesh_facts``): {ok, volume, first (∫r dV), second (∫r rᵀ dV, 3x3, mesh frame),
     bounds, hull}. ``hull`` is True when the mesh is not watertight and its convex hull was
@@ -693,7 +700,7 @@ def mass_facts(path: str, cache_dir: str | None = None, store: MeshStore | None 
                    lambda p: _measure_mass(p, store.keep_loaded))
 
 
-def _measure_mass(path: str, keep_loaded: bool = False) -> dict:
+def _measure_mass(path: str, keep_loaded: bool = False) -> Facts:
     try:
         from urdf_lint.meshes import readers as meshio
         n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
@@ -707,13 +714,13 @@ def _measure_mass(path: str, keep_loaded: bool = False) -> dict:
         return {"ok": False}
 
 
-def trimesh_mass_properties(mesh) -> dict:
+def trimesh_mass_properties(mesh: Mesh) -> Facts:
     import numpy as np
     return _mass_arrays(np.asarray(mesh.vertices, dtype=float),
                         np.asarray(mesh.faces, dtype=np.int64))
 
 
-def _mass_arrays(v, f) -> dict:
+def _mass_arrays(v: "np.ndarray", f: "np.ndarray") -> Facts:
     import numpy as np
     from urdf_lint.meshes.readers import mass_properties
     if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
@@ -742,7 +749,7 @@ def _mass_arrays(v, f) -> dict:
             "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}
 
 
-def _closed(v, f) -> bool:
+def _closed(v: "np.ndarray", f: "np.ndarray") -> bool:
     """Whether the triangles bound a volume: with coincident vertices merged, every directed
     edge occurs once and its reverse occurs too (watertight, consistently wound). Cheaper than
     building a processed trimesh.Trimesh for it."""
@@ -750,7 +757,7 @@ def _closed(v, f) -> bool:
     return _closed_faces(merged_ids(v)[f])     # vertices merged as trimesh's unique_rows does
 
 
-def _closed_faces(ff) -> bool:
+def _closed_faces(ff: "np.ndarray") -> bool:
     """``_closed`` on faces already indexing merged vertices."""
     import numpy as np
     ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
@@ -769,7 +776,7 @@ def _closed_faces(ff) -> bool:
 MAX_MASS_TRIANGLES = 6_000_000   # above: no mass facts (~15 s, ~1 GB at 5M; the inertia rules skip it)
 
 
-def _stl_mass_chunked(path: str, n: int) -> dict:
+def _stl_mass_chunked(path: str, n: int) -> Facts:
     """Mass properties of a binary STL too large to hold as one float64 array: the volume
     integrals are summed chunk by chunk, closedness is tested on one int64 code per directed
     edge (from its ends rounded like ``unique_rows``), and an open surface (a second pass)
@@ -820,7 +827,7 @@ def _stl_mass_chunked(path: str, n: int) -> dict:
             "hull": bool(hull)}
 
 
-def _closed_codes(codes, revs) -> bool:
+def _closed_codes(codes: list["np.ndarray"], revs: list["np.ndarray"]) -> bool:
     """``_closed`` for millions of faces, on the chunks' directed edge codes
     (:func:`meshio.edge_codes`): every code once, and sorted they equal their reverses sorted
     (no merge of vertices, no random-access search over the whole array)."""
@@ -836,7 +843,7 @@ def _closed_codes(codes, revs) -> bool:
     return bool(np.array_equal(code, rev))
 
 
-def _convex_hull(points):
+def _convex_hull(points: "np.ndarray") -> Any:   # .vertices, .faces
     """The convex hull of points (``.vertices``, ``.faces``), with manifold3d (a 4 MB wheel
     that imports in milliseconds; trimesh's own hull needs scipy, 100+ MB and ~0.7 s to
     import)."""

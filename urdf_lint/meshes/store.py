@@ -16,7 +16,7 @@ import json
 import os
 import re
 from dataclasses import dataclass, field
-from typing import Callable, Iterable
+from typing import Any, Callable, Iterable
 
 from urdf_lint.core import fsbound
 
@@ -47,7 +47,7 @@ class FactsStore:
     def _path(self, name: str) -> str:
         return os.path.join(self.dir, name + ".json")
 
-    def get(self, name: str) -> dict | None:
+    def get(self, name: str) -> dict[str, Any] | None:
         """The record stored under ``name``, if this user's key signed it there; else None
         (absent, forged, changed, copied from another name: the caller measures again)."""
         data = fsbound.read_regular(self._path(name), MAX_ENTRY_BYTES, nofollow=True)
@@ -63,7 +63,7 @@ class FactsStore:
             return None
         return rec if isinstance(rec, dict) and "ok" in rec else None
 
-    def put(self, name: str, record: dict) -> bool:
+    def put(self, name: str, record: dict[str, Any]) -> bool:
         """Store ``record`` under ``name`` (the parent only). False when it could not."""
         blob = json.dumps(record).encode("utf-8")
         if not ENTRY_NAME.match(name) or len(blob) > MAX_ENTRY_BYTES:
@@ -78,7 +78,7 @@ class FactsStore:
         except OSError:
             return False
 
-    def accept(self, measured: Iterable, inside: Callable[[str], bool] | None = None,
+    def accept(self, measured: Iterable[list[Any]], inside: Callable[[str], bool] | None = None,
                digest_of: Callable[[str], str | None] | None = None) -> int:
         """Store what workers measured (:attr:`MeshStore.measured`: [name, path, digest,
         record]) whose mesh this process hashes to the same digest (``digest_of``; a path
@@ -174,7 +174,7 @@ class MeshStore:
     cache_dir: str | None = None
     keep_loaded: bool = False
     env_failures: int = 0
-    measured: list = field(default_factory=list)
+    measured: list[list[Any]] = field(default_factory=list)
 
     def facts(self) -> FactsStore | None:
         return opened(self.cache_dir)

@@ -52,7 +52,7 @@ class Geometry:
     labels: list = field(default_factory=list)       # (link, world position) of each placeholder
     bones: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 3)))  # joint tree
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         n = len(self.tris)
         self.uvs = list(self.uvs) or [None] * n
         self.texs = list(self.texs) or [None] * n
@@ -84,7 +84,7 @@ def scene_geometry(scene, ctx) -> Geometry:
     g = Geometry(scene.name, [], [], [], np.zeros((1, 3)), len(scene.links))
     g.uvs, g.texs, g.ghost = [], [], []
 
-    def add(part, got, ghost):
+    def add(part, got, ghost) -> None:
         v, f, fc = got
         scale = part.params.get("scale") or (1, 1, 1)
         if np.prod(np.sign(np.asarray(scale, dtype=float))) < 0:  # a mirror flips the winding
@@ -383,7 +383,7 @@ def _raster_ids(solid, which, v: View, Hs, Ws):
     return zbuf, ids
 
 
-def _shade(colour, ids, solid, v: View, g: Geometry):
+def _shade(colour, ids, solid, v: View, g: Geometry) -> None:
     """Colour every covered pixel: its part's colour or its texture at the interpolated UV,
     times a two-sided diffuse term."""
     m = ids >= 0
@@ -425,7 +425,7 @@ def _shade(colour, ids, solid, v: View, g: Geometry):
     colour[m] = out
 
 
-def _outline_edges(colour, ids, zbuf, part, strength=0.6):
+def _outline_edges(colour, ids, zbuf, part, strength=0.6) -> None:
     """Darken silhouettes and part boundaries (lighten them on dark parts): a black robot on a
     dark background, or a white one on a light background, keeps its outline."""
     covered = ids >= 0
@@ -458,7 +458,7 @@ def _outline_edges(colour, ids, zbuf, part, strength=0.6):
     colour[edge] = px.clip(0, 255).astype(np.uint8)
 
 
-def _skeleton(colour, zbuf, bones, v: View):
+def _skeleton(colour, zbuf, bones, v: View) -> None:
     """Thin lines between link origins along the joint tree, hidden where geometry is in
     front of them."""
     Hs, Ws = zbuf.shape
@@ -481,7 +481,7 @@ def _skeleton(colour, zbuf, bones, v: View):
         colour[yi[vis], xi[vis]] = _SKELETON
 
 
-def _triad(dr, v: View):
+def _triad(dr, v: View) -> None:
     """A small x/y/z triad (red/green/blue) in the bottom left corner of a view."""
     cx, cy, L = 26, v.h - 22, 14
     dr.rounded_rectangle((4, cy - L - 10, cx + L + 12, v.h - 2), radius=4, fill=(250, 250, 252),
@@ -497,7 +497,7 @@ def _triad(dr, v: View):
 
 
 # -- captions and files ----------------------------------------------------------------------
-def caption(img, text):
+def caption(img, text) -> None:
     from PIL import ImageDraw
     ImageDraw.Draw(img).text((8, 6), text, fill=(40, 40, 40))
 
@@ -505,7 +505,7 @@ def caption(img, text):
 LEGEND_H = 18   # the strip at the bottom of the difference image that holds the legend
 
 
-def legend(img):
+def legend(img) -> None:
     """The difference image's legend, in the bottom-left corner (``LEGEND_H`` rows)."""
     from PIL import ImageDraw
     d = ImageDraw.Draw(img)
@@ -530,7 +530,7 @@ def drawn_alike(a: "Geometry", b: "Geometry", link: str) -> bool:
     return True
 
 
-def save_png(img, path):
+def save_png(img, path) -> None:
     from urdf_lint.core import fsbound  # the snapshot folder, checked by the CLI (and Landlock here)
     with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".png") as tmp:
         img.save(tmp, format="PNG", optimize=False)
@@ -709,7 +709,7 @@ def same_geometry(a: Geometry, b: Geometry) -> bool:
 
 
 # -- the rasterizer --------------------------------------------------------------------------
-def _write_nearest(zbuf, ids, pix, z, t):
+def _write_nearest(zbuf, ids, pix, z, t) -> None:
     """Depth-test samples (flat pixel index, depth, triangle) into the buffers; nearest wins,
     equal depths go to the later sample (numpy assigns repeated indices in order)."""
     if not len(pix):
@@ -720,7 +720,7 @@ def _write_nearest(zbuf, ids, pix, z, t):
     ids.reshape(-1)[pix[win]] = t[win]
 
 
-def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20):
+def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20) -> None:
     """Z-buffer triangles into ``zbuf``, writing ``tri_ids`` of the nearest triangle to ``ids``.
 
     Vectorized scanline rasterization: every (triangle, row) gets its covered x-span from the
@@ -761,7 +761,7 @@ def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20):
         start = stop
 
 
-def _scan(zbuf, ids, sl, X, Y, ys, rows, pa, pb, pc, tri_ids, Ws):
+def _scan(zbuf, ids, sl, X, Y, ys, rows, pa, pb, pc, tri_ids, Ws) -> None:
     idx = np.arange(sl.start, sl.stop)
     n = rows[idx]
     keep = n > 0

@@ -7,7 +7,14 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import Model
+    from urdf_lint.render.scene import MeshArrays, Part, Scene
+    from urdf_lint.render.sweep import Sweep
 
 import numpy as np
 
@@ -18,10 +25,10 @@ from urdf_lint.render.scene import origin_matrix, part_mesh
 
 
 # -- rerun recording -------------------------------------------------------------------------
-def entity_paths(scene):
+def entity_paths(scene: "Scene") -> tuple[dict[str, str], dict[str, str]]:
     """link -> entity path following the kinematic tree: /robot/<root>/<joint>/<child>/..."""
     paths = {r: f"robot/{_safe(r)}" for r in scene.roots}
-    joints = {}
+    joints: dict[str, str] = {}
     for parent, j, child in scene.tree:
         jp = f"{paths[parent]}/{_safe(j.get('name') or 'joint')}"
         joints[j.get("name")] = jp
@@ -29,11 +36,12 @@ def entity_paths(scene):
     return paths, joints
 
 
-def _safe(s):
+def _safe(s: object) -> str:
     return "".join(ch if ch.isalnum() or ch in "_-." else "_" for ch in str(s)) or "_"
 
 
-def record_rrd(scene, ctx, path, recording_id, prefix="", model=None, base=None):
+def record_rrd(scene: "Scene", ctx: "Context", path: str, recording_id: str, prefix: str = "",
+               model: "Model | None" = None, base: str | None = None) -> dict[str, Any]:
     """Log ``scene`` to ``path`` (its findings are added by the parent later,
     :func:`record_findings`); ``prefix`` (e.g. ``"head/"``) puts every entity under one root.
     With ``model`` the recording gets the ``joint_sweep`` timeline; ``base`` is what file
@@ -47,7 +55,7 @@ def record_rrd(scene, ctx, path, recording_id, prefix="", model=None, base=None)
     return plan_facts(plan)
 
 
-def robot_size(scene, meshes) -> float:
+def robot_size(scene: "Scene", meshes: Sequence[tuple["Part", "MeshArrays | None"]]) -> float:
     """The robot's extent (largest side of the box around link origins and geometry, m)."""
     pts = [T[:3, 3] for T in scene.links.values()]
     for part, got in meshes:
@@ -65,7 +73,7 @@ def robot_size(scene, meshes) -> float:
     return min(max(size, 0.05), 100.0) if size > 0 else 0.5
 
 
-def blueprint_for(prefixes=("",)):
+def blueprint_for(prefixes: Sequence[str] = ("",)) -> Any:   # a rerun Blueprint
     """Opens on a 3D view of the visuals per revision (collision in the tree, hidden: one
     click away), the findings and sweep log beside it."""
     import rerun.blueprint as rrb
@@ -89,7 +97,7 @@ def relative_text(text: str, base: str | None) -> str:
     path of the machine that made the recording ends up in it."""
     from urdf_lint.core.locations import display_path
 
-    def sub(m):
+    def sub(m: "re.Match[str]") -> str:
         p = m.group(0)
         rel = display_path(p, base) if base else p
         return (os.path.basename(p.rstrip("/")) or p) if os.path.isabs(rel) else rel
@@ -101,22 +109,23 @@ class Plan:
     """What a recording logs for one robot, as plain data (entity paths, numpy arrays,
     strings), in logging order: made where the meshes may be read (a worker), written where
     rerun is imported (:func:`write_rrd`, possibly another process, with other revisions)."""
-    ops: list
-    paths: dict                # link -> entity path
-    joint_paths: dict          # joint -> entity path
+    ops: list[tuple[Any, ...]]
+    paths: dict[str, str]      # link -> entity path
+    joint_paths: dict[str, str]   # joint -> entity path
     size: float                # the robot's extent (m): axes and markers scale with it
     meshes: int                # meshes logged
     sweep_segments: int | None = None
 
 
-def plan_facts(plan: Plan) -> dict:
-    out = {"meshes": plan.meshes, "robot_size": plan.size}
+def plan_facts(plan: Plan) -> dict[str, Any]:
+    out: dict[str, Any] = {"meshes": plan.meshes, "robot_size": plan.size}
     if plan.sweep_segments is not None:
         out["sweep_segments"] = plan.sweep_segments
     return out
 
 
-def plan_rrd(scene, ctx, model=None, base=None) -> Plan:
+def plan_rrd(scene: "Scene", ctx: "Context", model: "Model | None" = None,
+             base: str | None = None) -> Plan:
     """The :class:`Plan` of ``scene``: the kinematic tree twice, /robot (frames, axes,
     visuals) and /collision (collision geometry only, so that it toggles as one subtree);
     with ``model``, the ``joint_sweep`` timeline; ``base`` is what file names in labels are
@@ -127,7 +136,7 @@ def plan_rrd(scene, ctx, model=None, base=None) -> Plan:
     size = robot_size(scene, meshes)
     sweep = _sweep(model) if model is not None else None
     moving = sweep.joints if sweep is not None else set()
-    ops: list = []
+    ops: list[tuple[Any, ...]] = []
     # joints the sweep moves get their transform on the joint_sweep timeline instead (static
     # data would hide it)
     for root in ("robot", "collision"):
@@ -177,7 +186,8 @@ def plan_rrd(scene, ctx, model=None, base=None) -> Plan:
                 len(sweep.segments) if sweep is not None else None)
 
 
-def write_rrd(path, recording_id, plans, blueprint=True) -> None:
+def write_rrd(path: str, recording_id: str, plans: Sequence[tuple[str, Plan]],
+              blueprint: bool | Sequence[str] = True) -> None:
     """Write ``plans`` (``(prefix, Plan)`` pairs: one per revision, ``"base/"`` and
     ``"head/"``, or ``("", plan)``) to ``path`` as one recording. ``blueprint``: True for a
     view of each plan's root, or the prefixes to give a view each (``("base/", "head/")``:
@@ -195,7 +205,7 @@ def write_rrd(path, recording_id, plans, blueprint=True) -> None:
     rec.disconnect()
 
 
-def _log_plan(rec, rr, prefix, plan: Plan) -> None:
+def _log_plan(rec: Any, rr: Any, prefix: str, plan: Plan) -> None:   # rerun's objects
     for op in plan.ops:
         kind, entity = op[0], prefix + op[1]
         if kind == "transform":
@@ -221,7 +231,8 @@ def _log_plan(rec, rr, prefix, plan: Plan) -> None:
             raise ValueError(f"unknown recording op {kind!r}")
 
 
-def log_findings(log, findings, paths, joint_paths, base=None, size=1.0):
+def log_findings(log: Any, findings: Iterable["Problem"], paths: dict[str, str],
+                 joint_paths: dict[str, str], base: str | None = None, size: float = 1.0) -> None:
     """Each finding on the entity of the link or joint it concerns (``paths``/``joint_paths``
     from :func:`entity_paths`), file names relative to ``base``, markers scaled to ``size``."""
     import rerun as rr
@@ -242,8 +253,10 @@ def log_findings(log, findings, paths, joint_paths, base=None, size=1.0):
             static=True)
 
 
-def record_findings(findings, paths, joint_paths, path, recording_id, prefix="", base=None,
-                    size=1.0):
+def record_findings(findings: Iterable["Problem"], paths: dict[str, str],
+                    joint_paths: dict[str, str], path: str, recording_id: str, prefix: str = "",
+                    base: str | None = None,
+                    size: float = 1.0) -> None:
     """A recording of ``findings`` alone, with the same entity paths and recording id as the
     model's (written by the parent once the run's findings are final; merged into the
     model's recording)."""
@@ -258,7 +271,7 @@ def record_findings(findings, paths, joint_paths, path, recording_id, prefix="",
         rec.disconnect()
 
 
-def _sweep(model):
+def _sweep(model: "Model") -> "Sweep | None":
     """The joint sweep of ``model`` (yourdfpy kinematics), or None without yourdfpy."""
     try:
         from urdf_lint.render.sweep import build_urdf, plan
@@ -272,13 +285,13 @@ def _sweep(model):
     return plan(urdf) if urdf is not None else None
 
 
-def _sweep_ops(sweep, joint_paths) -> list:
+def _sweep_ops(sweep: "Sweep", joint_paths: dict[str, str]) -> list[tuple[Any, ...]]:
     """Per moving joint, its transform at every step it changes, as columns on the
     ``joint_sweep`` timeline (in both the /robot and the /collision tree); the joint each
     segment moves as a text log on /sweep."""
     from urdf_lint.render.sweep import TIMELINE
-    ops: list = []
-    per_joint: dict = {}
+    ops: list[tuple[Any, ...]] = []
+    per_joint: dict[str, list[tuple[int, np.ndarray]]] = {}
     for step in sorted(sweep.frames):
         for name, T in sweep.frames[step].items():
             per_joint.setdefault(name, []).append((step, T))
@@ -298,7 +311,7 @@ def _sweep_ops(sweep, joint_paths) -> list:
     return ops
 
 
-def _import_rerun():
+def _import_rerun() -> None:
     try:
         import rerun  # noqa: F401
     except Exception:  # noqa: BLE001 - reported by render_model when it imports again
@@ -314,18 +327,19 @@ class Recorder:
     (the snapshot folder), like the parent it was forked from. Forked before any worker or
     thread of the run, so no import or lock is half-held in it."""
 
-    def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB):
+    def __init__(self, out_dir: str, memory_mb: int = DEFAULT_MEMORY_MB) -> None:
         from urdf_lint.runner import forked
         self.out_dir = os.path.realpath(out_dir)
         # (its answers are plain data: ``allowed=frozenset()``)
         self.conn, self.proc = forked.start(_recorder_main, (os.getpid(), self.out_dir, memory_mb),
                                             allowed=frozenset())
-        self.pending: list = []
-        self.failed: list = []      # recordings that could not be sent (the recorder is gone)
+        self.pending: list[str] = []
+        self.failed: list[str] = []      # recordings that could not be sent (the recorder is gone)
         self._queue: Any = None
         self._sender: Any = None
 
-    def write(self, path, recording_id, plans, blueprint=True) -> None:
+    def write(self, path: str, recording_id: str, plans: Sequence[tuple[str, Plan]],
+              blueprint: bool | Sequence[str] = True) -> None:
         """Queue a recording (:func:`write_rrd`) to ``path``; :meth:`results` says how it went.
         Returns at once: one thread sends the plans in order (a plan is larger than the pipe,
         and the recorder may still be importing rerun or writing the previous one)."""
@@ -350,7 +364,7 @@ class Recorder:
         self.proc.join(0.5)
         return f"the recorder died (exit code {self.proc.exitcode})"
 
-    def results(self, timeout=120.0) -> dict:
+    def results(self, timeout: float = 120.0) -> dict[str, str | None]:
         """path -> None (written) or why not ("rerun-sdk is not installed", an error), for
         every queued recording."""
         from urdf_lint.runner import forked
@@ -358,8 +372,8 @@ class Recorder:
             self._queue.put(None)          # every plan queued so far, then the thread ends
             self._sender.join(timeout)
             if self._sender.is_alive():    # stuck sending: the recorder reads nothing
-                out = {p: f"the recorder did not answer within {timeout:g} s"
-                       for p in self.pending}
+                out: dict[str, str | None] = {
+                    p: f"the recorder did not answer within {timeout:g} s" for p in self.pending}
                 self.pending = []
                 return out
             self._sender = None
@@ -396,7 +410,8 @@ class Recorder:
 NO_RERUN = "rerun-sdk is not installed (pip install 'urdf-lint[render]')"
 
 
-def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
+def write_recording(path: str, recording_id: str, plans: Sequence[tuple[str, Plan]],
+                    blueprint: bool | Sequence[str] = True) -> str | None:
     """:func:`write_rrd` to ``path`` (atomically): None when written, else why not
     (:data:`NO_RERUN`, or the error)."""
     try:
@@ -412,7 +427,7 @@ def write_recording(path, recording_id, plans, blueprint=True) -> str | None:
     return None
 
 
-def _recorder_main(conn, parent_pid, out_dir, memory_mb):
+def _recorder_main(conn: Any, parent_pid: int, out_dir: str, memory_mb: int) -> None:
     """The recorder: hardened like a worker (memory limit, scrubbed environment, then
     Landlock, seccomp and the audit hook: it reads no file of the repository and writes only
     into ``out_dir``, the folder the user named)."""

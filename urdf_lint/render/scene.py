@@ -8,18 +8,27 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
 from urdf_lint.meshes.resolve import MeshStatus
 from urdf_lint.engine.api import numbers
 
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import Model
+
+Element = Any      # an lxml element (lxml ships no type information here)
+# a part's triangles: vertices (n, 3), faces (m, 3), per-face colours (m, 3) or None
+MeshArrays = tuple[np.ndarray, np.ndarray, "np.ndarray | None"]
+
 MAX_TEXTURE = 1024
 DEFAULT_RGBA = (0.72, 0.74, 0.78, 1.0)
 
 
 # -- kinematics ------------------------------------------------------------------------------
-def rpy_matrix(rpy):
+def rpy_matrix(rpy: Sequence[float]) -> np.ndarray:
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
     return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -27,7 +36,7 @@ def rpy_matrix(rpy):
                      [-sp, cp * sr, cp * cr]])
 
 
-def origin_matrix(el):
+def origin_matrix(el: Element | None) -> np.ndarray:
     T = np.eye(4)
     o = el.find("origin") if el is not None else None
     if o is not None:
@@ -45,8 +54,8 @@ class Part:
     T: np.ndarray              # world transform of the geometry frame
     local: np.ndarray          # transform relative to the link frame
     shape: str                 # box | cylinder | sphere | mesh | missing
-    params: dict = field(default_factory=dict)
-    rgba: tuple = DEFAULT_RGBA
+    params: dict[str, Any] = field(default_factory=dict)
+    rgba: tuple[float, ...] = DEFAULT_RGBA
     problem: str = ""
 
 
@@ -54,14 +63,15 @@ class Part:
 class Scene:
     """A robot ready to draw: link transforms, the kinematic tree, and its geometry parts."""
     name: str
-    links: dict                # link -> world transform
-    tree: list                 # (parent_link, joint_element, child_link) in DFS order
-    roots: list
-    parts: list
+    links: dict[str, np.ndarray]   # link -> world transform
+    tree: list[tuple[str, Element, str]]   # (parent_link, joint_element, child_link), DFS
+    roots: list[str]
+    parts: list[Part]
 
 
-def kinematic_tree(model):
-    joints_by_parent: dict = {}
+def kinematic_tree(model: "Model"
+                   ) -> tuple[dict[str, np.ndarray], list[tuple[str, Element, str]], list[str]]:
+    joints_by_parent: dict[str, list[Element]] = {}
     has_parent = set()
     for j in model.top_joints():
         p, c = j.find("parent"), j.find("child")
@@ -71,9 +81,11 @@ def kinematic_tree(model):
         has_parent.add(c.get("link"))
     names = [lk.get("name") for lk in model.top_links() if lk.get("name")]
     roots = [n for n in dict.fromkeys(names) if n not in has_parent] or names[:1]
-    world, tree, seen = {}, [], set()
+    world: dict[str, np.ndarray] = {}
+    tree: list[tuple[str, Element, str]] = []
+    seen: set[str] = set()
 
-    def visit(link, T):
+    def visit(link: str, T: np.ndarray) -> None:
         if link in seen:
             return
         seen.add(link)
@@ -93,8 +105,8 @@ def kinematic_tree(model):
     return world, tree, roots
 
 
-def material_colors(model):
-    out = {}
+def material_colors(model: "Model") -> dict[str, tuple[float, ...]]:
+    out: dict[str, tuple[float, ...]] = {}
     for m in model.root.iter("material"):
         c = m.find("color")
         v = numbers(c.get("rgba"), 4) if c is not None else None
@@ -103,7 +115,7 @@ def material_colors(model):
     return out
 
 
-def build_scene(model, ctx) -> Scene:
+def build_scene(model: "Model", ctx: "Context") -> Scene:
     world, tree, roots = kinematic_tree(model)
     colors = material_colors(model)
     parts = []
@@ -150,15 +162,16 @@ def build_scene(model, ctx) -> Scene:
 
 
 # -- triangles -------------------------------------------------------------------------------
-def part_mesh(part, ctx):
+def part_mesh(part: Part, ctx: "Context") -> MeshArrays | None:
     """(vertices in the part frame, faces, per-face rgb or None) or None when unavailable.
     Prepared once per part: the picture and the recording of a render draw the same parts."""
     if "arrays" not in part.params:
         part.params["arrays"] = _part_mesh(part, ctx)
-    return part.params["arrays"]
+    got: MeshArrays | None = part.params["arrays"]
+    return got
 
 
-def _part_mesh(part, ctx):
+def _part_mesh(part: Part, ctx: "Context") -> MeshArrays | None:
     import trimesh
     if part.shape == "box" and all(s > 0 for s in part.params["size"]):
         m = trimesh.creation.box(extents=part.params["size"])
@@ -200,7 +213,7 @@ def _part_mesh(part, ctx):
     return np.asarray(m.vertices, dtype=float), np.asarray(m.faces), None
 
 
-def _texture(vis):
+def _texture(vis: Any) -> tuple[np.ndarray, np.ndarray] | None:
     """(uv per vertex, RGB image array) of a textured trimesh visual, or None."""
     uv = getattr(vis, "uv", None)
     mat = vis.material
@@ -216,15 +229,17 @@ def _texture(vis):
     return np.asarray(uv, dtype=float), arr
 
 
-def _sample_texture(tex, faces):
+def _sample_texture(tex: tuple[np.ndarray, np.ndarray], faces: np.ndarray) -> np.ndarray:
     """Per-face colour: the texture at each face's centroid UV (wrapped, v flipped)."""
     uv, arr = tex
     h, w = arr.shape[:2]
     c = uv[faces].mean(axis=1) % 1.0
     px = np.clip((c[:, 0] * (w - 1)).astype(int), 0, w - 1)
     py = np.clip(((1.0 - c[:, 1]) * (h - 1)).astype(int), 0, h - 1)
-    return arr[py, px].astype(float) / 255.0
+    colours: np.ndarray = arr[py, px].astype(float) / 255.0
+    return colours
 
 
-def _transform(T, v):
-    return v @ T[:3, :3].T + T[:3, 3]
+def _transform(T: np.ndarray, v: np.ndarray) -> np.ndarray:
+    placed: np.ndarray = v @ T[:3, :3].T + T[:3, 3]
+    return placed

@@ -12,6 +12,14 @@ import os
 import sys
 import threading
 import zlib
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import Model
+    from urdf_lint.run.pipeline import CheckResult
 
 from urdf_lint.render.raster import caption, model_caption, render_image, save_png
 from urdf_lint.render.recording import _import_rerun, entity_paths, record_findings, record_rrd
@@ -21,8 +29,9 @@ from urdf_lint.render.raster import Geometry, frame_for, render_pair, scene_geom
 
 
 # -- orchestration -----------------------------------------------------------------------------
-def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", forward="+x",
-                 refused=()):
+def render_model(model: "Model", ctx: "Context", findings: Sequence["Problem"], out_dir: str,
+                 base: str | None, rrd: bool = True, views: str = "single", forward: str = "+x",
+                 refused: Iterable[str] = ()) -> dict[str, Any]:
     """Draw the picture of ``model`` and write its recording (without findings); return a
     summary dict. Runs in the worker, the only process that reads meshes and textures. The
     parent captions the picture and adds the findings to the recording once the run's
@@ -44,8 +53,9 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
         importer = threading.Thread(target=_import_rerun, daemon=True)
         importer.start()
     scene = build_scene(model, ctx)
-    info = {"name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": [],
-            "image": None, "title": scene.name, "entities": entity_paths(scene)}
+    info: dict[str, Any] = {
+        "name": name, "png": os.path.join(out_dir, name + ".png"), "rrd": None, "problems": [],
+        "image": None, "title": scene.name, "entities": entity_paths(scene)}
     try:
         img, facts = render_image(scene, ctx, views, forward)
         # raw pixels, deflated (a run may hold a hundred of them until its findings are final)
@@ -74,32 +84,34 @@ def render_model(model, ctx, findings, out_dir, base, rrd=True, views="single", 
     return info
 
 
-def finish_snapshots(models, findings, out_dir) -> None:
+def finish_snapshots(models: Iterable["ModelReport"], findings: Iterable["Problem"],
+                     out_dir: str) -> None:
     """In the parent, after the run's policy and the baseline: caption each model's picture
     with its findings and write it, and merge those findings into its recording. Reads only
     what the workers handed back, never a model file. Models are finished in parallel
     threads (PNG encoding and ``rerun rrd merge`` subprocesses do not hold the GIL)."""
     from concurrent.futures import ThreadPoolExecutor
     todo = [m for m in models if m.snapshot]
-    by_model: dict = {m.label: [] for m in todo}
+    by_model: dict[str, list["Problem"]] = {m.label: [] for m in todo}
     for f in findings:
         for label in f.models:
             if label in by_model:
                 by_model[label].append(f)
-    if any(m.snapshot.get("rrd") and by_model[m.label] for m in todo):
+    if any((m.snapshot or {}).get("rrd") and by_model[m.label] for m in todo):
         import rerun  # noqa: F401 - once, before the threads
     with ThreadPoolExecutor(max_workers=max(1, min(len(todo), os.cpu_count() or 1))) as pool:
         list(pool.map(lambda m: _finish_one(m, by_model[m.label], out_dir), todo))
 
 
-def _in_folder(path, out_dir) -> bool:
+def _in_folder(path: object, out_dir: str) -> bool:
     """Is ``path`` (sent back by a worker) a file directly in the output folder?"""
     return isinstance(path, str) and os.path.basename(path) not in ("", ".", "..") and \
         os.path.dirname(os.path.abspath(path)) == os.path.realpath(out_dir)
 
 
-def _finish_one(m, mine, out_dir) -> None:
+def _finish_one(m: "ModelReport", mine: list["Problem"], out_dir: str) -> None:
     snap = m.snapshot
+    assert snap is not None   # (models with a snapshot only: finish_snapshots)
     # a worker's reply is data: the parent writes only files directly in the output folder
     name = snap.get("name")
     for k in ("png", "rrd"):
@@ -114,7 +126,7 @@ def _finish_one(m, mine, out_dir) -> None:
         paths, joints = snap.get("entities") or ({}, {})
         part = os.path.join(out_dir, snap["name"] + ".findings.rrd")
         try:
-            from urdf_lint.render.recording import label_base
+            from urdf_lint.core.locations import label_base
             record_findings(mine, paths, joints, part, recording_id=f"urdf-lint/{snap['name']}",
                             base=label_base(m.entry), size=snap.get("robot_size", 1.0))
             merge_rrd([snap["rrd"], part], snap["rrd"])
@@ -125,7 +137,8 @@ def _finish_one(m, mine, out_dir) -> None:
             snap["rrd"] = None
 
 
-def _finish_png(snap, image, m, findings: int) -> None:
+def _finish_png(snap: dict[str, Any], image: tuple[int, int, bytes], m: "ModelReport",
+                findings: int) -> None:
     if not snap.get("png") or image is None:
         snap["png"] = None
         return
@@ -146,7 +159,7 @@ def _finish_png(snap, image, m, findings: int) -> None:
         snap["png"] = None
 
 
-def merge_rrd(parts, out):
+def merge_rrd(parts: list[str], out: str) -> str:
     """Merge recordings (``rerun rrd merge``) into ``out`` (which may be one of ``parts``),
     then remove the other parts."""
     import shutil
@@ -168,7 +181,7 @@ def merge_rrd(parts, out):
     return out
 
 
-def _remove(path):
+def _remove(path: str) -> None:
     """Remove a file this run wrote in its output folder (a regular file, not a link)."""
     from urdf_lint.core import fsbound
     fsbound.remove(path, os.path.dirname(os.path.abspath(path)))
@@ -179,7 +192,7 @@ MANIFEST = ".urdf-lint-snapshots.json"
 _OUTPUT_SUFFIXES = (".png", ".rrd", ".md")
 
 
-def _digest(path) -> str | None:
+def _digest(path: str) -> str | None:
     from urdf_lint.core import fsbound
     try:   # a snapshot: a regular file, not a link, bounded
         data = fsbound.read_bytes(path, max_bytes=fsbound.MAX_DATA_BYTES * 4, nofollow=True)
@@ -188,7 +201,7 @@ def _digest(path) -> str | None:
     return hashlib.blake2b(data, digest_size=16).hexdigest()
 
 
-def clear_stale(out_dir, base=None) -> None:
+def clear_stale(out_dir: str, base: str | None = None) -> None:
     """Remove what an earlier run wrote in ``out_dir`` (listed in its manifest), so no stale
     picture survives. A file is removed only when it is a regular file directly in ``out_dir``
     with an output suffix and the very bytes that run wrote (the manifest keeps a digest), so
@@ -215,7 +228,7 @@ def clear_stale(out_dir, base=None) -> None:
     _remove(path)
 
 
-def write_manifest(out_dir, files) -> None:
+def write_manifest(out_dir: str, files: Iterable[str]) -> None:
     """Record the files this run wrote in ``out_dir`` with their digests (the next run
     removes them first, if they are unchanged)."""
     import json
@@ -230,10 +243,10 @@ def write_manifest(out_dir, files) -> None:
                        json.dumps({"files": dict(sorted(out.items()))}, indent=1) + "\n", out_dir)
 
 
-def write_summary(result, out_dir):
+def write_summary(result: "CheckResult", out_dir: str) -> str:
     from collections import Counter
     from urdf_lint.core.locations import display_path
-    from urdf_lint.render.recording import relative_label
+    from urdf_lint.core.locations import relative_label
     from urdf_lint.core.escape import escape_markdown, escape_markdown_code
     lines = ["# urdf-lint snapshots", "",
              "| model | links | joints | meshes | errors | warnings | info |",

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -16,13 +17,17 @@ MOVABLE = ("revolute", "continuous", "prismatic")
 STEPS = 24          # samples of one segment: lower -> upper -> lower (then back to rest)
 TIMELINE = "joint_sweep"
 
+# a yourdfpy URDF, its joints, an lxml element (neither library ships type information here)
+URDF = Any
+Element = Any
 
-def _refuse(fname=None, **_):
+
+def _refuse(fname: str | None = None, **_: Any) -> NoReturn:
     raise PermissionError("urdf-lint: yourdfpy may not resolve files; meshes come from the "
                           "confined package resolver")
 
 
-def build_urdf(root):
+def build_urdf(root: Element) -> URDF | None:
     """A yourdfpy URDF of the expanded ``<robot>`` element (a scene graph, no geometry read),
     or None when yourdfpy cannot take the model (a malformed joint, for example)."""
     import yourdfpy
@@ -40,7 +45,7 @@ def build_urdf(root):
         return None
 
 
-def link_poses(urdf) -> dict:
+def link_poses(urdf: URDF) -> dict[str, np.ndarray]:
     """link -> world (base frame) transform at the current configuration."""
     return {lk.name: np.asarray(urdf.get_transform(lk.name), dtype=float)
             for lk in urdf.robot.links if lk.name in urdf.scene.graph.nodes}
@@ -50,26 +55,26 @@ def link_poses(urdf) -> dict:
 class Segment:
     """One joint moving through its range on the joint_sweep timeline, with its mimic followers."""
     joint: str
-    followers: list            # the mimic joints that move with it
+    followers: list[str]       # the mimic joints that move with it
     start: int                 # first step on the timeline
     end: int                   # last step (the joint is back at rest there)
-    values: list               # the joint's value per step, start..end
+    values: list[float]        # the joint's value per step, start..end
 
 
 @dataclass
 class Sweep:
     """The joint_sweep timeline: segments, and the joint transforms at each step."""
-    segments: list = field(default_factory=list)
+    segments: list[Segment] = field(default_factory=list)
     # step -> {joint name: 4x4 transform parent link -> child link}; step 0 holds every
     # movable and mimic joint at rest, later steps only the joints whose transform changed
-    frames: dict = field(default_factory=dict)
+    frames: dict[int, dict[str, np.ndarray]] = field(default_factory=dict)
 
     @property
-    def joints(self) -> set:
+    def joints(self) -> set[str]:
         return {j for f in self.frames.values() for j in f}
 
 
-def _range(joint):
+def _range(joint: Any) -> tuple[float, float] | None:
     if joint.type == "continuous":
         return -math.pi, math.pi
     lim = joint.limit
@@ -82,7 +87,7 @@ def _range(joint):
     return float(lo), float(hi)
 
 
-def plan(urdf, steps: int = STEPS) -> Sweep:
+def plan(urdf: URDF, steps: int = STEPS) -> Sweep:
     """Sweep every actuated revolute/prismatic/continuous joint (document order) in turn."""
     sweep = Sweep()
     joints = {j.name: j for j in urdf.robot.joints}
@@ -95,7 +100,7 @@ def plan(urdf, steps: int = STEPS) -> Sweep:
     urdf.update_cfg(dict(rest)) if rest else None
     tracked = [j.name for j in moving] + [j.name for j in mimics]
 
-    def local(name):
+    def local(name: str) -> np.ndarray:
         j = joints[name]
         return np.asarray(urdf.scene.graph.get(frame_to=j.child, frame_from=j.parent)[0],
                           dtype=float)
@@ -113,7 +118,7 @@ def plan(urdf, steps: int = STEPS) -> Sweep:
         start = step
         for q in values:
             urdf.update_cfg({j.name: float(q)})
-            changed = {}
+            changed: dict[str, np.ndarray] = {}
             for n in tracked:
                 T = local(n)
                 if not np.allclose(T, current[n], rtol=0, atol=1e-12):

@@ -1,13 +1,19 @@
 """The base of every output format (after flake8's ``BaseFormatter``)."""
 from __future__ import annotations
 
-from typing import Any
-
 from collections import Counter
 from dataclasses import dataclass
+from typing import IO, TYPE_CHECKING, Any, Iterable, Protocol, Sequence, TypeVar
 
+from urdf_lint.core.findings import Finding
 from urdf_lint.core.locations import Origin, display_path, portable
 from urdf_lint.core.escape import escape_text
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+
+__all__ = ["BaseFormatter", "Finding", "Outcome", "ReportOptions"]
 
 _COLORS = {"error": "\033[31m", "warning": "\033[33m", "info": "\033[36m"}
 BOLD, DIM, RESET = "\033[1m", "\033[2m", "\033[0m"
@@ -19,7 +25,7 @@ class ReportOptions:
     """How a report is written: colour, source frames, quiet, model lists."""
     color: bool = False
     show_source: bool = False
-    roots: tuple | None = None      # --show-source reads sources only inside these (fsbound)
+    roots: tuple[str, ...] | None = None     # --show-source reads sources only inside these (fsbound)
     quiet: bool = False            # findings only: no summary line
     show_models: bool = True
     # code -> the rule (its name, summary, doc and severity), for formats that describe the
@@ -28,13 +34,13 @@ class ReportOptions:
     coverage: bool = False          # check --coverage: the branches never taken, per model
 
 
-def coverage_rows(result) -> list[dict[str, Any]]:
+def coverage_rows(result: Any) -> list[dict[str, Any]]:
     """The branch coverage of a run's models (``CheckResult.coverage``), by model label."""
     cov = getattr(result, "coverage", None) or {}
     return [cov[k] for k in sorted(cov)]
 
 
-def coverage_text(result) -> list[str]:
+def coverage_text(result: Any) -> list[str]:
     """``check --coverage`` in text: per model the branches taken, then each one never taken
     with why (escaped by the caller's writer)."""
     from urdf_lint.core.locations import display_path
@@ -54,34 +60,45 @@ def coverage_text(result) -> list[str]:
     return lines
 
 
+class Outcome(Protocol):
+    """What a format writes: a run's findings (each a :class:`Finding`) and its models
+    (``urdf_lint.run.pipeline.CheckResult`` is one)."""
+
+    @property
+    def findings(self) -> Sequence["Problem"]: ...
+    @property
+    def models(self) -> Sequence["ModelReport"]: ...
+
+
 class BaseFormatter:
-    """Subclass, set ``name`` and ``help``, and override :meth:`handle` (one finding) and/or
-    :meth:`start` / :meth:`finish` (the whole report)."""
+    """Subclass, set ``name`` and ``help``, and override :meth:`handle` (one finding, a
+    :class:`Finding`) and/or :meth:`start` / :meth:`finish` (the whole report, an
+    :class:`Outcome`)."""
 
     name = ""
     help = ""
 
-    def __init__(self, stream, options: ReportOptions | None = None):
+    def __init__(self, stream: IO[str], options: ReportOptions | None = None):
         self.stream = stream
         self.options = options or ReportOptions()
 
-    def write(self, result) -> None:
+    def write(self, result: Outcome) -> None:
         result = grouped(result)
         self.start(result)
         for f in result.findings:
             self.handle(f)
         self.finish(result)
 
-    def start(self, result) -> None:
+    def start(self, result: Outcome) -> None:
         pass
 
-    def handle(self, finding) -> None:
+    def handle(self, f: Finding) -> None:
         pass
 
-    def finish(self, result) -> None:
+    def finish(self, result: Outcome) -> None:
         pass
 
-    def statistics(self, result) -> None:
+    def statistics(self, result: Outcome) -> None:
         """``--statistics``: only the count per rule, most frequent first."""
         result = grouped(result)
         for (code, name, sev), n in counts(result):
@@ -100,53 +117,57 @@ class BaseFormatter:
     def severity_color(self, severity: str) -> str:
         return _COLORS.get(severity, "")
 
-    def summary_line(self, result) -> str:
+    def summary_line(self, result: Outcome) -> str:
         s = summary(result)
         if result.findings:
             return (f"Found {len(result.findings)} problem(s) ({s['errors']} error, "
                     f"{s['warnings']} warning, {s['info']} info) in {s['models']} model(s).")
-        if getattr(result, "internal", None):  # never "passed" after an internal error
-            return (f"Checks incomplete: {len(result.internal)} internal error(s), see above; "
+        internal = getattr(result, "internal", None)   # (a result may have none)
+        if internal:  # never "passed" after an internal error
+            return (f"Checks incomplete: {len(internal)} internal error(s), see above; "
                     f"no problems found in {s['models']} model(s).")
         return f"All checks passed: {s['models']} model(s)."
 
 
-def counts(result) -> list:
+def counts(result: Outcome) -> list[tuple[tuple[str, str, str], int]]:
     c = Counter((f.code, f.name, f.severity) for f in result.findings)
     return sorted(c.items(), key=lambda kv: (-kv[1], kv[0]))
 
 
-def summary(result) -> dict:
+def summary(result: Outcome) -> dict[str, int]:
     c = Counter(f.severity for f in result.findings)
     return {"models": len(result.models), "errors": c["error"], "warnings": c["warning"],
             "info": c["info"]}
 
 
-def targets_tag(f) -> str:
+def targets_tag(f: Finding) -> str:
     """`` [mujoco, drake]``: the selected targets that make a finding this severe, or ""."""
     return f" [{', '.join(f.severity_from)}]" if getattr(f, "severity_from", ()) else ""
 
 
-def chain_text(f) -> str:
+def chain_text(f: Finding) -> str:
     """The macro call chain, one visible line (names are the description's)."""
     return escape_text(Origin(f.file, f.line, f.col, f.chain).format_chain()) if f.chain else ""
 
 
-def fold(items, shown: int = MODELS_SHOWN) -> str:
+def fold(names: Iterable[str], shown: int = MODELS_SHOWN) -> str:
     """``a, b, c and 4 more`` (each item escaped to one visible line)."""
-    items = [escape_text(i) for i in items]
+    items = [escape_text(i) for i in names]
     head = ", ".join(items[:shown])
     return head + (f" and {len(items) - shown} more" if len(items) > shown else "")
 
 
-def message(f) -> str:
+def message(f: Finding) -> str:
     """A finding's message as every format shows it: a path in it (``looked for
     /home/.../meshes/x.stl``) is shown as the locations are, relative (see
     :func:`urdf_lint.core.locations.portable`)."""
     return portable(f.message)
 
 
-def grouped(result):
+_O = TypeVar("_O", bound=Outcome)
+
+
+def grouped(result: _O) -> _O:
     """``result`` with its findings grouped (:func:`urdf_lint.core.findings.group`): every format
     counts and shows one finding per source location and rule (and per root cause)."""
     import copy
@@ -154,15 +175,14 @@ def grouped(result):
     if getattr(result, "_grouped", False):
         return result
     out = copy.copy(result)
-    out.findings = group(result.findings)
-    out._grouped = True
+    out.__dict__.update(findings=group(result.findings), _grouped=True)
     return out
 
 
 INSTANCES_SHOWN = 3
 
 
-def fold_instances(f, shown: int = INSTANCES_SHOWN) -> str:
+def fold_instances(f: Finding, shown: int = INSTANCES_SHOWN) -> str:
     """``in 42 links: a, b, c, ... (+39)`` for a grouped finding, "" for a single one."""
     if not f.instances:
         return ""
@@ -175,14 +195,14 @@ def fold_instances(f, shown: int = INSTANCES_SHOWN) -> str:
     return f"in {len(labels)} {noun}: {head}{more}"
 
 
-def value_from_text(f) -> str:
+def value_from_text(f: Finding) -> str:
     """``value from config/joint_limits.yaml:28`` when the value came from elsewhere."""
     if not f.value_from:
         return ""
     return f"value from {escape_text(display_path(f.value_from[0]))}:{f.value_from[1]}"
 
 
-def refused_text(f) -> str:
+def refused_text(f: Finding) -> str:
     """Why the finding's fix is not applied automatically when that names the expression the
     value comes from (``... the value comes from the expression at FILE:LINE``), or ""."""
     if f.fix is None or "comes from" not in f.fix.refused:
@@ -190,5 +210,5 @@ def refused_text(f) -> str:
     return escape_text(f.fix.refused)
 
 
-def location(f) -> str:
+def location(f: Finding) -> str:
     return f"{escape_text(display_path(f.file))}:{f.line}:{f.col}"

@@ -2,8 +2,9 @@
 macro call chain folded into the line, for editors' problem matchers and grep."""
 from __future__ import annotations
 
-from urdf_lint.report.base import (DIM, BaseFormatter, chain_text, fold_instances, location, message,
-                   targets_tag, value_from_text)
+from urdf_lint.report.base import (DIM, BaseFormatter, Finding, Outcome, chain_text,
+                                   fold_instances, location, message, targets_tag,
+                                   value_from_text)
 from urdf_lint.core.escape import escape_text
 
 
@@ -11,7 +12,7 @@ class ConciseFormatter(BaseFormatter):
     name = "concise"
     help = "one line per finding (path:line:col: CODE message), for editors and grep"
 
-    def handle(self, f):
+    def handle(self, f: Finding) -> None:
         code = self.paint(f.code, self.severity_color(f.severity))
         parts = [p for p in (f.detail if not f.instances else "", chain_text(f),
                              value_from_text(f), fold_instances(f)) if p]
@@ -19,6 +20,6 @@ class ConciseFormatter(BaseFormatter):
         name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
         self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {name}{tail}\n")
 
-    def finish(self, result):
+    def finish(self, result: Outcome) -> None:
         if not self.options.quiet:
             self.stream.write(self.summary_line(result) + "\n")

@@ -3,13 +3,13 @@ request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
 from __future__ import annotations
 
 from urdf_lint.core.locations import display_path
-from urdf_lint.report.base import BaseFormatter, chain_text, fold_instances, message, value_from_text
+from urdf_lint.report.base import Finding, BaseFormatter, chain_text, fold_instances, message, value_from_text
 from urdf_lint.core.escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
 
 
-def _gh_escape(s, prop=False):
+def _gh_escape(s: str, prop: bool = False) -> str:
     # one visible line first: a name carrying "\n::error ..." cannot start a workflow command
     s = escape_text(s).replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
     if prop:
@@ -21,7 +21,7 @@ class GithubFormatter(BaseFormatter):
     name = "github"
     help = "GitHub Actions annotations (default when GITHUB_ACTIONS is set)"
 
-    def handle(self, f):
+    def handle(self, f: Finding) -> None:
         msg = message(f)
         for extra in (f.detail if not f.instances else "", chain_text(f), value_from_text(f),
                       fold_instances(f)):

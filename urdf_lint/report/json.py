@@ -2,14 +2,15 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 from urdf_lint import __version__
 from urdf_lint.core.locations import display_path
 from urdf_lint.core.locations import portable
-from urdf_lint.report.base import BaseFormatter, counts, coverage_rows, grouped, summary
+from urdf_lint.report.base import Outcome, BaseFormatter, counts, coverage_rows, grouped, summary
 
 
-def _shown(d: dict) -> dict:
+def _shown(d: dict[str, Any]) -> dict[str, Any]:
     """A finding's dict with its paths as the report shows them (relative to cwd, in the message too)."""
     d["file"] = display_path(d["file"])
     d["message"] = portable(d["message"])
@@ -21,7 +22,7 @@ def _shown(d: dict) -> dict:
     return d
 
 
-def _coverage(c: dict) -> dict:
+def _coverage(c: dict[str, Any]) -> dict[str, Any]:
     """One model's branch coverage as the report shows it (paths relative to cwd)."""
     c = dict(c)
     c["entry"] = display_path(c["entry"])
@@ -35,7 +36,7 @@ class JsonFormatter(BaseFormatter):
     name = "json"
     help = "one JSON document (schema version 1)"
 
-    def write(self, result):
+    def write(self, result: Outcome) -> None:
         result = grouped(result)
         doc = {"version": 1, "tool": "urdf-lint", "tool_version": __version__,
                "models": [{"entry": display_path(m.entry), "args": m.args, "status": m.status,
@@ -50,7 +51,7 @@ class JsonFormatter(BaseFormatter):
         json.dump(doc, self.stream, indent=2)
         self.stream.write("\n")
 
-    def statistics(self, result):
+    def statistics(self, result: Outcome) -> None:
         result = grouped(result)
         json.dump([{"code": code, "name": name, "severity": sev, "count": n}
                    for (code, name, sev), n in counts(result)], self.stream, indent=2)

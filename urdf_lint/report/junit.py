@@ -2,7 +2,8 @@
 from __future__ import annotations
 
 from urdf_lint.core.locations import display_path
-from urdf_lint.report.base import BaseFormatter, chain_text, fold_instances, grouped, message, value_from_text
+from urdf_lint.report.base import (BaseFormatter, Outcome, chain_text, fold_instances, grouped,
+                                   message, value_from_text)
 from urdf_lint.core.escape import escape_xml
 
 
@@ -10,9 +11,9 @@ class JunitFormatter(BaseFormatter):
     name = "junit"
     help = "JUnit XML for CI test reports"
 
-    def write(self, result):
+    def write(self, result: Outcome) -> None:
         result = grouped(result)
-        def quoteattr(s):
+        def quoteattr(s: str) -> str:
             return '"' + escape_xml(s) + '"'
 
         escape = escape_xml  # one line per part: a name cannot add lines to a CI log

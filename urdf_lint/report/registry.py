@@ -5,24 +5,27 @@ from __future__ import annotations
 import importlib
 import os
 import sys
+from typing import IO, Any, Iterable, TypeVar
 
 import urdf_lint.report as _package
-from urdf_lint.report.base import BaseFormatter, ReportOptions
+from urdf_lint.report.base import BaseFormatter, Outcome, ReportOptions
 
 __all__ = ["BaseFormatter", "ReportOptions", "discover", "formats", "names", "write", "use_color"]
 
-_FORMATS: dict | None = None
+_FORMATS: dict[str, type[BaseFormatter]] | None = None
+_T = TypeVar("_T")
 
 
 ORDER = ("text", "concise", "json", "sarif", "github", "junit")
 
 
-def discover(package: str, paths, base: type, order: tuple = ()) -> dict:
+def discover(package: str, paths: Iterable[str], base: type[_T],
+             order: tuple[str, ...] = ()) -> dict[str, type[_T]]:
     """name -> class, for every ``base`` subclass with a ``name`` defined in a module of
     ``package`` (its folders ``paths``), those named in ``order`` first. ``check``'s formats
     and ``diff``'s (:mod:`urdf_lint.report.diff`) are found by it alike."""
     from urdf_lint.core.plugins import submodule_names
-    found: dict = {}
+    found: dict[str, type[_T]] = {}
     for module in submodule_names(paths):
         if module in ("base", "registry"):
             continue
@@ -38,7 +41,7 @@ def discover(package: str, paths, base: type, order: tuple = ()) -> dict:
         order.index(kv[0]) if kv[0] in order else len(order), kv[0])))
 
 
-def formats() -> dict:
+def formats() -> dict[str, type[BaseFormatter]]:
     """name -> formatter class, for every format module in this package."""
     global _FORMATS
     if _FORMATS is None:
@@ -46,11 +49,11 @@ def formats() -> dict:
     return _FORMATS
 
 
-def names() -> tuple:
+def names() -> tuple[str, ...]:
     return tuple(formats())
 
 
-def use_color(mode: str = "auto", stream=None) -> bool:
+def use_color(mode: str = "auto", stream: IO[str] | None = None) -> bool:
     """``--color``: always, never, or auto (NO_COLOR, then FORCE_COLOR, then a terminal)."""
     if mode == "always":
         return True
@@ -62,12 +65,13 @@ def use_color(mode: str = "auto", stream=None) -> bool:
         return True
     stream = stream or sys.stdout
     try:
-        return stream.isatty()
+        return bool(stream.isatty())
     except (AttributeError, ValueError):
         return False
 
 
-def write(result, fmt, stream=None, statistics=False, color=None, **options):
+def write(result: Outcome, fmt: str, stream: IO[str] | None = None, statistics: bool = False,
+          color: bool | None = None, **options: Any) -> None:
     """Write ``result`` in format ``fmt``; with ``statistics`` only the counts per rule."""
     stream = stream or sys.stdout
     if color is None:

@@ -3,22 +3,24 @@ from __future__ import annotations
 
 import json
 import os
+from typing import Any
 
 from urdf_lint import __version__
+from urdf_lint.core.edits import Fix
 from urdf_lint.core.locations import display_path
-from urdf_lint.report.base import BaseFormatter, grouped, message
+from urdf_lint.report.base import BaseFormatter, Finding, Outcome, grouped, message
 
 _SARIF_LEVEL = {"error": "error", "warning": "warning", "info": "note"}
 
 
-def _uri(path):
+def _uri(path: str) -> str:
     rel = display_path(path)
     return rel.replace(os.sep, "/") if not os.path.isabs(rel) else "file://" + rel
 
 
-def _sarif_fix(fix) -> dict:
+def _sarif_fix(fix: Fix) -> dict[str, Any]:
     """A SARIF ``fix``: one ``artifactChange`` per file, byte-offset replacements."""
-    by_file: dict = {}
+    by_file: dict[str, list[Any]] = {}
     for e in fix.edits:
         by_file.setdefault(e.file, []).append(e)
     return {"description": {"text": fix.description + ("" if fix.safe else " (unsafe)")},
@@ -31,12 +33,12 @@ def _sarif_fix(fix) -> dict:
                 for path, edits in sorted(by_file.items())]}
 
 
-def _region(file, line, col) -> dict:
+def _region(file: str, line: int, col: int) -> dict[str, Any]:
     return {"artifactLocation": {"uri": _uri(file)},
             "region": {"startLine": max(1, line), "startColumn": max(1, col)}}
 
 
-def _driver_rule(code, r) -> dict:
+def _driver_rule(code: str, r: Any) -> dict[str, Any]:
     """The ``tool.driver.rules`` entry of ``code`` (rule ``r``, None if unknown)."""
     return {
         "id": code, "name": r.name if r else code,
@@ -47,7 +49,7 @@ def _driver_rule(code, r) -> dict:
     }
 
 
-def _related(f) -> list:
+def _related(f: Finding) -> list[tuple[str, tuple[Any, ...]]]:
     """(text, (file, line, col)) of a finding's related places: the macro calls, where its
     value comes from, its other instances and where their values come from."""
     related = [("macro called here", c) for c in reversed(f.chain)]
@@ -63,8 +65,8 @@ def _related(f) -> list:
     return related
 
 
-def _properties(f) -> dict:
-    props: dict = {}
+def _properties(f: Finding) -> dict[str, Any]:
+    props: dict[str, Any] = {}
     if f.models:
         props["models"] = f.models
     if f.detail and not f.instances:
@@ -81,8 +83,8 @@ def _properties(f) -> dict:
     return props
 
 
-def _sarif_result(f, rule_index: int) -> dict:
-    res = {"ruleId": f.code, "ruleIndex": rule_index, "level": _SARIF_LEVEL[f.severity],
+def _sarif_result(f: Finding, rule_index: int) -> dict[str, Any]:
+    res: dict[str, Any] = {"ruleId": f.code, "ruleIndex": rule_index, "level": _SARIF_LEVEL[f.severity],
            "message": {"text": message(f)},
            "locations": [{"physicalLocation": _region(f.file, f.line, f.col)}]}
     related = _related(f)
@@ -102,7 +104,7 @@ class SarifFormatter(BaseFormatter):
     name = "sarif"
     help = "SARIF 2.1.0 (GitHub code scanning)"
 
-    def write(self, result):
+    def write(self, result: Outcome) -> None:
         result = grouped(result)
         rules = self.options.rules or {}
         used = sorted({f.code for f in result.findings})

@@ -4,20 +4,20 @@ from __future__ import annotations
 
 from urdf_lint.core.locations import display_path
 from urdf_lint.core.escape import escape_text
-from urdf_lint.report.base import (BOLD, DIM, RESET, BaseFormatter, chain_text, fold,
-                                   fold_instances, location, message, refused_text, targets_tag,
-                                   value_from_text)
+from urdf_lint.report.base import (BOLD, DIM, RESET, BaseFormatter, Finding, Outcome,
+                                   chain_text, fold, fold_instances, location, message,
+                                   refused_text, targets_tag, value_from_text)
 
 
 class TextFormatter(BaseFormatter):
     name = "text"
     help = "one finding per block: location, message, call chain, models"
 
-    def start(self, result):
-        self._current = None
-        self._lines: dict = {}
+    def start(self, result: Outcome) -> None:
+        self._current: str | None = None
+        self._lines: dict[str, list[str]] = {}
 
-    def handle(self, f):
+    def handle(self, f: Finding) -> None:
         w = self.stream.write
         path = escape_text(display_path(f.file))
         if self.options.color and path != self._current:
@@ -41,11 +41,11 @@ class TextFormatter(BaseFormatter):
         if why:
             w(f"    {why}\n")
 
-    def finish(self, result):
+    def finish(self, result: Outcome) -> None:
         if not self.options.quiet:
             self.stream.write(self.summary_line(result) + "\n")
 
-    def code_frame(self, f, context: int = 1) -> str:
+    def code_frame(self, f: Finding, context: int = 1) -> str:
         """The source line of a finding with a caret under its column, and ``context`` lines
         around it (like ruff's ``--show-source``)."""
         lines = self._source(f.file)
@@ -64,7 +64,7 @@ class TextFormatter(BaseFormatter):
         out.append(f"{'':>{width}} |")
         return "".join(f"  {ln}\n" for ln in out)
 
-    def _source(self, path):
+    def _source(self, path: str) -> list[str]:
         if path not in self._lines:
             from urdf_lint.core import fsbound
             try:   # what a worker could read: inside the roots, a regular file, bounded

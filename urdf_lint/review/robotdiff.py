@@ -107,7 +107,7 @@ class _Fact:
     """A value with the element that wrote it (for the location)."""
     __slots__ = ("value", "el")
 
-    def __init__(self, value, el):
+    def __init__(self, value, el) -> None:
         self.value, self.el = value, el
 
 

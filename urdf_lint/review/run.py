@@ -184,7 +184,7 @@ class _Reach:
     holds none of them. Any other change (YAML, meshes, manifests, configs) lints every
     model, whose recorded inputs then say which are affected."""
 
-    def __init__(self, changed_abs):
+    def __init__(self, changed_abs) -> None:
         self.changed = {os.path.realpath(p) for p in changed_abs}
         self.active = bool(self.changed) and all(p.endswith(_SOURCE_SUFFIXES)
                                                  for p in self.changed)
@@ -264,7 +264,7 @@ def _unrooted(root: str, message: str) -> str:
     return message.replace(_realpath(root) + os.sep, "").replace(root + os.sep, "")
 
 
-def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True):
+def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True) -> None:
     """Expand the given models once more in workers and build the Model of each (and, for
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     from urdf_lint.core.jobs import LintJob
@@ -292,7 +292,7 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
         _keep_robot(side, k, job.entry, job.args, res, resolver)
 
 
-def _keep_robot(side: Side, k, entry, args, res, resolver):
+def _keep_robot(side: Side, k, entry, args, res, resolver) -> None:
     """The Model of a report that kept its robot (``LintSettings.keep_model``), or why not."""
     from urdf_lint.engine.model import Model, model_from_xml, parse_urdf_bytes
     kept = res.kept_model
@@ -327,14 +327,14 @@ class _Background:
     """``fn(*args)`` in a thread (its workers are processes: the thread only waits on
     them); :meth:`join` raises what it raised."""
 
-    def __init__(self, fn, *args):
+    def __init__(self, fn, *args) -> None:
         import threading
         self.error = None
         self.thread = None
         if args and not args[1]:   # no keys: nothing to do
             return
 
-        def run():
+        def run() -> None:
             try:
                 fn(*args)
             except BaseException as e:  # noqa: BLE001 - raised again by join()
@@ -514,7 +514,7 @@ _BASE_MANIFESTS = ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IG
                    "CATKIN_IGNORE")
 
 
-def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _Changes):
+def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _Changes) -> None:
     """The base needs only what the affected models can read there: their inputs at HEAD
     (through renames), every changed path, and the package manifests and configs."""
     base_files = tracked_files(top, base_sha)

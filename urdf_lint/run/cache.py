@@ -24,6 +24,12 @@ import json
 import os
 import stat as _st
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.meshes.store import FactsStore
 
 from urdf_lint import __version__
 from urdf_lint.core import fsbound, signing
@@ -84,7 +90,7 @@ def key_path() -> Path:
     return Path(base, "urdf-lint", "key")
 
 
-def _load_key(repo_dirs=()) -> bytes | None:
+def _load_key(repo_dirs: Iterable[str] = ()) -> bytes | None:
     """The signing key, created on first use (0600, in a 0700 folder). None when it cannot
     be kept safely: then nothing is cached."""
     p = key_path()
@@ -125,12 +131,13 @@ def _git_tracks(directory: str) -> bool:
 MAX_ENTRY_BYTES = 64 << 20
 
 
-def _read_entry(p) -> bytes | None:
+def _read_entry(p: str) -> bytes | None:
     """The bytes of a cache entry: a regular file (no symlink, device or FIFO), bounded."""
     return read_regular(p, MAX_ENTRY_BYTES, nofollow=True)
 
 
-def facts_store(secret: bytes | None = None, repo_dirs=()):
+def facts_store(secret: bytes | None = None,
+                repo_dirs: Iterable[str] = ()) -> "FactsStore | None":
     """The user's mesh facts store (:class:`urdf_lint.meshes.store.FactsStore`), signed with a
     key derived from the result cache's (``secret``, else loaded), registered for the workers
     this process forks; None when no key can be kept."""
@@ -145,12 +152,12 @@ def facts_store(secret: bytes | None = None, repo_dirs=()):
 
 
 class Cache:
-    def __init__(self, directory: str, repo: str | None = None):
+    def __init__(self, directory: str, repo: str | None = None) -> None:
         self.dir = str(directory)
         self.refused: str | None = None
         self._marked = False
-        self._settings_key: tuple | None = None   # (settings, its part of every key)
-        self._resolver: tuple | None = None       # (settings, its PackageResolver)
+        self._settings_key: tuple[LintSettings, str] | None = None   # (settings, its key part)
+        self._resolver: tuple[LintSettings, "PackageResolver | None"] | None = None
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -164,7 +171,7 @@ class Cache:
             say(f"urdf-lint: note: not using the cache: {self.refused}")
 
     @classmethod
-    def for_paths(cls, paths, cfg) -> "Cache":
+    def for_paths(cls, paths: Sequence[str], cfg: "Config") -> "Cache":
         repo = repo_root(start_dir(paths))
         if os.environ.get("URDF_LINT_CACHE_DIR"):
             return cls(os.environ["URDF_LINT_CACHE_DIR"], repo)
@@ -187,11 +194,11 @@ class Cache:
                            [[n, list(p)] for n, p in job.arg_origins]]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
-    def _path(self, key) -> str:
+    def _path(self, key: str) -> str:
         return os.path.join(self.dir, "results", key[:2], key + ".json")
 
     def get(self, job: LintJob, settings: LintSettings,
-            seen: dict | None = None) -> ModelReport | None:
+            seen: dict[Any, Any] | None = None) -> ModelReport | None:
         """The cached report of ``job``, if every input it read is unchanged. ``seen`` (path ->
         stat) lets one pass over many jobs stat each shared input once (:meth:`get_many`)."""
         if self.refused:
@@ -232,19 +239,14 @@ class Cache:
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 
-    def get_many(self, jobs, settings: LintSettings) -> list:
+    def get_many(self, jobs: Iterable[LintJob],
+                 settings: LintSettings) -> list[ModelReport | None]:
         """:meth:`get` for each job, in one pass: an input shared by many models (a macro
         file, a mesh) is looked at once. The inputs must not change during the pass."""
-        seen: dict = {}
+        seen: dict[Any, Any] = {}   # path or ("missing", path) -> what was seen
         return [self.get(job, settings, seen) for job in jobs]
 
-    def _mac_bytes(self, path: str, blob: bytes) -> bytes:
-        """The signature of ``blob`` stored under ``path``: its file name (the entry's key) is
-        signed too, so an entry copied under another key is no entry there."""
-        assert self._secret is not None
-        return signing.mac(self._secret, os.path.basename(path), blob)
-
-    def put(self, job: LintJob, settings: LintSettings, result: ModelReport):
+    def put(self, job: LintJob, settings: LintSettings, result: ModelReport) -> None:
         """Store ``result``: its inputs' records end up in ``result.digests`` (what the run
         memo keeps), or ``result.cacheable`` turns False when it is not stored."""
         if self.refused:
@@ -286,7 +288,7 @@ class Cache:
         except OSError:
             return False
 
-    def _roots(self, settings: LintSettings):
+    def _roots(self, settings: LintSettings) -> "PackageResolver | None":
         """The run's resolver (for the roots check), built once per settings."""
         memo = self._resolver
         if memo is None or memo[0] is not settings:
@@ -297,7 +299,7 @@ class Cache:
             memo = self._resolver = (settings, resolver)
         return memo[1]
 
-    def _ensure(self):
+    def _ensure(self) -> None:
         if not self._marked:
             ensure_cache_dir(self.dir)
             self._marked = True

@@ -16,7 +16,7 @@ these findings. The language server applies the configured baseline too: an edit
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
+from typing import Any, Callable, Iterable, Sequence
 
 from urdf_lint.config.policy import Policy, code_matches
 from urdf_lint.core.codes import RuleName
@@ -40,17 +40,17 @@ RUN_LABEL = ""
 @dataclass
 class RunView:
     """What a run-scope rule's ``check(run, ctx)`` sees: every linted model of the run."""
-    models: list                                     # ModelReport
-    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
+    models: list[ModelReport]
+    generated: dict[str, str] = field(default_factory=dict)   # generated .urdf -> the xacro it comes from
 
 
 class RunContext:
-    def __init__(self, options: dict):
+    def __init__(self, options: dict[str, Any]) -> None:
         self.options = options
 
 
 
-def with_policy(problems, label: str, policy: Policy) -> list[Problem]:
+def with_policy(problems: Iterable[Problem], label: str, policy: Policy) -> list[Problem]:
     """Problems with their rule name, effective severity and model label. The severity is the
     configured override, else the highest the selected targets give (:mod:`urdf_lint.core.targets`:
     the finding's own target table, else the rule's ``TARGETS``, over the severity the rule
@@ -74,8 +74,9 @@ def with_policy(problems, label: str, policy: Policy) -> list[Problem]:
     return out
 
 
-def split_models(results: list[ModelReport], explicit: "set | frozenset" = frozenset(),
-                  fragments: dict | None = None):
+def split_models(results: list[ModelReport], explicit: "set[str] | frozenset[str]" = frozenset(),
+                 fragments: dict[str, list[str]] | None = None
+                 ) -> tuple[list[ModelReport], list[ModelReport]]:
     """(models, skipped): macro-only files and XML that is not a robot are skipped. A file
     other files include (``fragments``, from the include graph, or a file a model's expansion
     read, for includes only expansion resolves such as ``${prefix}.xacro``) is kept as a model
@@ -105,7 +106,7 @@ def complete_robot(r: ModelReport) -> bool:
         p.code in FRAGMENT_HINT_CODES for p in r.problems)
 
 
-def run_rules_of(run: "RunView", settings: LintSettings, internal: list | None = None
+def run_rules_of(run: "RunView", settings: LintSettings, internal: list[str] | None = None
                  ) -> list[Problem]:
     """The run-scope rules (``SCOPE = "run"``) over every linted model (``internal`` hears a
     rule that failed)."""
@@ -117,7 +118,7 @@ def run_rules_of(run: "RunView", settings: LintSettings, internal: list | None =
                                                         else [], with_table=True)]
 
 
-def suppress(merged: list[Problem], models, settings: LintSettings,
+def suppress(merged: list[Problem], models: Iterable[ModelReport], settings: LintSettings,
               policy: Policy) -> list[Problem]:
     """Drop what inline comments suppress; add a finding for each unused suppression."""
     from urdf_lint.engine import suppress
@@ -152,8 +153,8 @@ def suppress(merged: list[Problem], models, settings: LintSettings,
 
 
 def finish(models: Sequence[ModelReport], run_problems: Sequence[Problem],
-           settings: LintSettings, policy: Policy, generated: dict | None = None,
-           run_rules: bool = True, internal: list | None = None) -> list[Problem]:
+           settings: LintSettings, policy: Policy, generated: dict[str, str] | None = None,
+           run_rules: bool = True, internal: list[str] | None = None) -> list[Problem]:
     """The findings of a run: the models', the run-scope rules' (``run_rules``) and the run's
     own (discovery's, the config's), with the policy's severities, suppressions and selection
     applied, no fix of a generated URDF, sorted."""
@@ -182,7 +183,7 @@ class Scope:
     note: Callable[[str], object] | None = field(default=None, compare=False)
 
 
-def scope(findings: list[Problem], how: Scope, generated: dict | None = None
+def scope(findings: list[Problem], how: Scope, generated: dict[str, str] | None = None
           ) -> tuple[list[Problem], int]:
     """(the findings as ``how`` reports them, how many the baseline hid): a fix that would
     edit a file outside ``how.fix_paths`` or a generated URDF is refused (``check --fix``'s

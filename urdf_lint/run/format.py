@@ -37,9 +37,6 @@ from dataclasses import dataclass
 from urdf_lint.formatting.layout import (FormatError, Refused, Style, format_source, normal_nodes,
                                         read_document)
 
-SUFFIXES = (".urdf", ".xacro")
-
-
 def style_of(cfg, args=None) -> Style:
     """The layout settings: ``[tool.urdf-lint.format]``, then the command line."""
     from urdf_lint.config.schema import FORMAT_KEYS, format_option

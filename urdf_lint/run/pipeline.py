@@ -13,7 +13,7 @@ from collections.abc import Set as AbstractSet
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 from urdf_lint.discovery.discover import discover_models
-from urdf_lint.core.findings import exit_status
+from urdf_lint.core.findings import Problem, exit_status
 from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW, LintJob, LintSettings, ModelReport
 from urdf_lint.config.policy import Policy
 from urdf_lint.core.codes import RuleName
@@ -24,6 +24,8 @@ from urdf_lint.run.finish import FRAGMENT_HINT_CODES, Scope, finish, scope, spli
 ul004_unknown_package = RuleName("ul004_unknown_package")
 
 if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.discovery.discover import IncludeGraph
+    from urdf_lint.meshes.store import FactsStore
     from urdf_lint.run.cache import Cache
     from urdf_lint.config.schema import Config
     from urdf_lint.discovery.packages import PackageResolver
@@ -32,14 +34,14 @@ if TYPE_CHECKING:  # pragma: no cover
 class CheckResult:
     """The outcome of a check run: findings after merging and policy, the linted models,
     the files skipped, and internal errors."""
-    findings: list = field(default_factory=list)     # merged Problems, after policy
-    models: list = field(default_factory=list)       # ModelReport of linted models
-    skipped: list = field(default_factory=list)      # libraries etc.
-    internal: list = field(default_factory=list)     # internal errors (exit 2)
-    unused_files: list = field(default_factory=list)
-    fragments: dict = field(default_factory=dict)    # fragment file -> the files including it
-    gone: list = field(default_factory=list)         # deleted files no model reads any more
-    generated: dict = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
+    findings: list[Problem] = field(default_factory=list)     # merged, after policy
+    models: list[ModelReport] = field(default_factory=list)   # the linted models
+    skipped: list[ModelReport] = field(default_factory=list)  # libraries etc.
+    internal: list[str] = field(default_factory=list)     # internal errors (exit 2)
+    unused_files: list[str] = field(default_factory=list)
+    fragments: dict[str, list[str]] = field(default_factory=dict)   # fragment -> its includers
+    gone: list[str] = field(default_factory=list)         # deleted files no model reads any more
+    generated: dict[str, str] = field(default_factory=dict)    # generated .urdf -> the xacro it comes from
     reused: bool = False                             # the last identical run's result (runcache)
     baselined: int = 0                               # findings the baseline hid (finish.scope)
     # branch coverage per model label (run.explore.coverage), when exploration ran
@@ -218,7 +220,7 @@ def _scoped(out: CheckResult, how: Scope | None) -> CheckResult:
     return out
 
 
-def _facts_store(cache, wanted: str | None):
+def _facts_store(cache: "Cache | None", wanted: str | None) -> "FactsStore | None":
     """The user's mesh facts store for this run: with the result cache (its key), or when the
     caller asks for mesh facts to be kept (``RunRequest.mesh_cache_dir``). ``--no-cache``: none
     (a run without caches measures every mesh)."""
@@ -228,7 +230,8 @@ def _facts_store(cache, wanted: str | None):
     return facts_store(getattr(cache, "_secret", None))
 
 
-def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool, paths, jobs,
+def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool,
+                     paths: Sequence[str], jobs: Sequence[LintJob],
                      cfg: "Config") -> LintSettings:
     """The workers' settings for a run that draws each model's picture into ``render_dir``."""
     from urdf_lint.core import fsbound
@@ -255,8 +258,9 @@ def _keep_affected(out: CheckResult, affected_by: AbstractSet[str]) -> None:
     out.unused_files = [f for f in out.unused_files if os.path.exists(f)]
 
 
-def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
-              progress, in_process=False) -> tuple[list[ModelReport], list[str]]:
+def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
+              cache: "Cache | None", progress: Callable[[int, int], None] | None,
+              in_process: bool = False) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers."""
     results: list[ModelReport] = []
     todo = []
@@ -283,7 +287,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n, cache,
     return results, internal
 
 
-def hint_packages(models, paths) -> None:
+def hint_packages(models: Sequence[ModelReport], paths: Sequence[str]) -> None:
     """An unknown package whose ``package.xml`` is in a folder beside the linted paths (a
     sibling package under the working directory, outside git): its UL004 says
     ``--package-path NAME=DIR`` (``check`` of folders and files, ``expand``). Looked for
@@ -292,7 +296,7 @@ def hint_packages(models, paths) -> None:
     import re
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.workspace import beside
-    found: dict = {}
+    found: dict[str, Any] = {}
     for r in models:
         new = []
         for p in r.problems:
@@ -311,7 +315,7 @@ def hint_packages(models, paths) -> None:
         r.problems = new
 
 
-def _drop_current_outputs(models) -> None:
+def _drop_current_outputs(models: Sequence[ModelReport]) -> None:
     """A generated URDF identical (as XML) to today's expansion of its xacro is not linted
     again: its findings are the xacro's, reported at the xacro lines (a repository that checks
     in robot.urdf next to robot.urdf.xacro got every finding twice). It stays a model."""
@@ -321,7 +325,7 @@ def _drop_current_outputs(models) -> None:
             r.problems = []
 
 
-def _drop_snapshots(reports, render_dir) -> None:
+def _drop_snapshots(reports: Sequence[ModelReport], render_dir: str) -> None:
     """Remove the snapshots the workers wrote for files that turned out not to be reported
     models (fragments, libraries, models a changed file does not affect): regular files in
     the output folder only, whatever path a worker sent back."""
@@ -335,7 +339,7 @@ def _drop_snapshots(reports, render_dir) -> None:
         r.snapshot = None
 
 
-def _hint_fragments(models, graph) -> None:
+def _hint_fragments(models: Sequence[ModelReport], graph: "IncludeGraph") -> None:
     """A model whose entry other files include (a fragment linted on its own, because it was
     named or configured): say which model to lint instead where a finding suggests it."""
     from urdf_lint.core.locations import display_path
@@ -358,7 +362,8 @@ _VARIANT_USE = None
 _BOOL_ARG = None
 
 
-def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
+def variant_args(models: Sequence[ModelReport], cfg: "Config",
+                 resolver: "PackageResolver") -> dict[str, Any]:
     """{entry: [arg, ...]} for the models linted with every arg at its default although args
     select variants there (an arg with a true/false default, or one read in a condition,
     ``if=``/``unless=``/``<xacro:if value=...>``, or an include's ``filename``: a hand, a
@@ -372,11 +377,11 @@ def variant_args(models, cfg: "Config", resolver: "PackageResolver") -> dict:
         _BOOL_ARG = re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
                                rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
     configured = {m.path for m in cfg.models}
-    out: dict = {}
+    out: dict[str, Any] = {}
     for r in models:
         if r.args or r.entry in configured or not r.entry.endswith(".xacro"):
             continue
-        names: dict = {}
+        names: dict[str, Any] = {}
         for f in r.deps:
             if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
                 from urdf_lint.core import fsbound

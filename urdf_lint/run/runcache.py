@@ -24,21 +24,25 @@ from __future__ import annotations
 import json
 import os
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Sequence
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.hashing import blake2b, stat_key
-from urdf_lint.core.jobs import LintJob, ModelReport, env_unchanged
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, env_unchanged
 
 if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.packages import PackageResolver
     from urdf_lint.run.cache import Cache
+    from urdf_lint.run.pipeline import CheckResult
 
 FORMAT = 8
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
 class RunMemo:
-    def __init__(self, cache: "Cache", paths, cfg, resolver, settings):
+    def __init__(self, cache: "Cache", paths: Sequence[str], cfg: "Config",
+                 resolver: "PackageResolver", settings: LintSettings) -> None:
         from urdf_lint.run.cache import build_id
         blob = json.dumps([build_id(), FORMAT, os.getcwd(), [os.path.abspath(p) for p in paths],
                            repr(cfg), resolver.to_dict(), settings.cache_key()],
@@ -48,7 +52,7 @@ class RunMemo:
         self.path = os.path.join(cache.dir, "runs", key + ".json")
         self.started = time.time_ns()   # (before discovery: what changes later is not trusted)
 
-    def load(self) -> dict | None:
+    def load(self) -> dict[str, Any] | None:
         """The fields of the last identical run's ``CheckResult``, or None."""
         if self.cache.refused:
             return None
@@ -81,14 +85,14 @@ class RunMemo:
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 
-    def store(self, out, results: list, folders: list) -> None:
+    def store(self, out: "CheckResult", results: list[ModelReport], folders: list[str]) -> None:
         """Remember ``out`` (a ``pipeline.CheckResult``) with what its ``results`` read."""
         if self.cache.refused or out.internal or \
                 any(r.internal or not r.cacheable for r in results):
             return
-        inputs: dict = {}
-        missing: set = set()
-        env: dict = {}
+        inputs: dict[str, Any] = {}
+        missing: set[str] = set()
+        env: dict[str, bool] = {}
         for r in results:
             env.update(r.env)
             for d in r.deps:
@@ -143,7 +147,7 @@ def _mtime(path: str) -> int | None:
         return None
 
 
-def _report_record(r: ModelReport) -> dict:
+def _report_record(r: ModelReport) -> dict[str, Any]:
     # a reused run's models carry no raw problems: what they found is in the run's findings
     # (merged, suppressed, with the policy applied), which is all a plain check reports
     rec = r.to_record()
@@ -151,7 +155,7 @@ def _report_record(r: ModelReport) -> dict:
     return {"entry": r.entry, "args": r.args, "record": rec}
 
 
-def _report(d: dict) -> ModelReport:
+def _report(d: dict[str, Any]) -> ModelReport:
     r = ModelReport.from_record(LintJob(d["entry"], dict(d["args"])), d["record"])
     r.cached = True
     return r

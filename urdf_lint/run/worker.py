@@ -59,7 +59,7 @@ def _diff_snapshot(model, ctx, settings: LintSettings):
 UNUSED_TRIMESH_EXTRAS = ("scipy", "networkx", "shapely", "rtree", "embreex")
 
 
-def _skip_unused_imports():
+def _skip_unused_imports() -> None:
     for name in UNUSED_TRIMESH_EXTRAS:
         # None in sys.modules: "import fails" (ImportError), so trimesh skips them
         sys.modules.setdefault(name, None)  # type: ignore[arg-type]

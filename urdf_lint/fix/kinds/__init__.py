@@ -50,6 +50,16 @@ class FixKind:
     name: ClassVar[str] = ""
     expectation: ClassVar[str] = ""
 
+    @classmethod
+    def request(cls, *, changes: tuple[tuple[str, str], ...], description: str,
+                safe: bool = True, on_parent: bool = False,
+                elements: tuple[Any, ...] = ()) -> "Request":
+        """A request of this kind (its ``kind`` is this class's ``name``): what the kind's
+        request function (``set_attrs``, ...) returns."""
+        from urdf_lint.fix.request import Request
+        return Request(changes=changes, description=description, safe=safe, kind=cls.name,
+                       on_parent=on_parent, elements=elements)
+
     def resolve(self, site: Site) -> tuple["Edit", ...]:
         raise NotImplementedError
 
@@ -58,7 +68,7 @@ class FixKind:
         default one per change: the attribute and its new value)."""
         return tuple((self.expectation or self.name, index, a, v) for a, v in req.changes)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Any, attr: str, value: str) -> bool:   # el: an lxml element
         """Replay one expected record on ``el`` of the robot before fixing; False when the
         change cannot be predicted (a structural fix: its findings decide alone)."""
         return True
@@ -75,13 +85,13 @@ class StructuralKind(FixKind):
     def expect(self, req: "Request", index: int) -> tuple[Expect, ...]:
         return (("structural", index, "", ""),)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Any, attr: str, value: str) -> bool:   # el: an lxml element
         return False
 
 
 _KINDS: dict[str, FixKind] = {}
 _EXPECTATIONS: dict[str, FixKind] = {}
-_REQUESTS: dict[str, Callable] = {}
+_REQUESTS: dict[str, Callable[..., "Request"]] = {}
 
 
 def _load() -> None:
@@ -89,7 +99,7 @@ def _load() -> None:
         return
     from urdf_lint.core import fsbound
     kinds: dict[str, FixKind] = {}
-    requests: dict[str, Callable] = {}
+    requests: dict[str, Callable[..., "Request"]] = {}
     names = {fn[:-3] for folder in __path__ for fn in fsbound.list_dir(folder)
              if fn.endswith(".py") and not fn.startswith("_")}
     for name in sorted(names):
@@ -135,7 +145,7 @@ def kinds() -> dict[str, FixKind]:
     return dict(_KINDS)
 
 
-def requests() -> dict[str, Callable]:
+def requests() -> dict[str, Callable[..., "Request"]]:
     """{name: function} of the request functions of every kind (``REQUESTS``)."""
     _load()
     return dict(_REQUESTS)

@@ -4,18 +4,20 @@ any value."""
 from __future__ import annotations
 
 import re
+from typing import Sequence
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where, written
+from urdf_lint.fix.fixes import Element, NOT_FIXABLE, Refuse, Request, where, written
 from urdf_lint.fix.kinds import Expect, FixKind, Site
 from urdf_lint.core.edits import Edit
 
 ANY = "\ue000any"   # a private-use marker: "this attribute may take any value"
 
 
-def add_dollar(attr: str, names, safe: bool = True) -> Request:
+def add_dollar(attr: str, names: Sequence[str], safe: bool = True) -> Request:
     """Turn the literal ``{name}`` of each of ``names`` in ``attr`` into ``${name}``."""
-    return Request(((attr, ",".join(names)),), "add the missing '$' of "
-                   + ", ".join("${" + n + "}" for n in names), safe, "add_dollar")
+    return AddDollar.request(changes=((attr, ",".join(names)),), safe=safe,
+                             description="add the missing '$' of "
+                             + ", ".join("${" + n + "}" for n in names))
 
 
 REQUESTS = (add_dollar,)
@@ -40,6 +42,6 @@ class AddDollar(FixKind):
     def expect(self, req: Request, index: int) -> tuple[Expect, ...]:
         return (("any", index, req.changes[0][0], ""),)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         el.set(attr, ANY)
         return True

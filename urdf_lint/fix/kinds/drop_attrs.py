@@ -2,14 +2,17 @@
 tag."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import Request, written
+from typing import Iterable
+
+from urdf_lint.fix.fixes import Element, Request, written
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 
 
-def drop_attrs(names, description: str, safe: bool = False) -> Request:
+def drop_attrs(names: Iterable[str], description: str, safe: bool = False) -> Request:
     """Remove attributes (with the blank before each) from the element's start tag."""
-    return Request(tuple((n, "") for n in names), description, safe, "drop_attrs")
+    return DropAttrs.request(changes=tuple((n, "") for n in names), description=description,
+                             safe=safe)
 
 
 REQUESTS = (drop_attrs,)
@@ -37,6 +40,6 @@ class DropAttrs(FixKind):
             edits.append(Edit(origin.file, start, end, ""))
         return tuple(edits)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         el.attrib.pop(attr, None)
         return True

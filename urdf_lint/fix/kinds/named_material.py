@@ -3,18 +3,21 @@
 first one's file. Structural: verified by its findings alone."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
+from typing import Iterable
+
+from urdf_lint.fix.fixes import Element, NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import Site, StructuralKind
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import end_tag_of, iter_start_tags, parse_start_tag, start_tag_at
 
 
-def named_material(elements, name: str, rgba: str, define: bool) -> Request:
+def named_material(elements: Iterable[Element], name: str, rgba: str, define: bool) -> Request:
     """Unsafe: replace the inline ``<material>`` elements by ``<material name="name"/>`` and
     (``define``) define it once, after the ``<robot>`` tag of the first one's file."""
-    return Request((("name", name), ("rgba", rgba), ("define", "1" if define else "")),
-                   f"use one named material '{name}' for the inline colour {rgba}", False,
-                   "named_material", False, tuple(elements))
+    return NamedMaterial.request(
+        changes=(("name", name), ("rgba", rgba), ("define", "1" if define else "")),
+        description=f"use one named material '{name}' for the inline colour {rgba}",
+        safe=False, elements=tuple(elements))
 
 
 REQUESTS = (named_material,)

@@ -11,7 +11,8 @@ from urdf_lint.core.edits import Edit
 def new_root(description: str, suffix: str = "_root") -> Request:
     """Unsafe: a massless root link joined by a fixed joint, inserted before the link that
     the reported element (its ``<inertial>``) belongs to."""
-    return Request((("suffix", suffix),), description, False, "new_root", True)
+    return NewRoot.request(changes=(("suffix", suffix),), description=description, safe=False,
+                           on_parent=True)
 
 
 REQUESTS = (new_root,)

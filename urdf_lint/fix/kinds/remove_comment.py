@@ -3,7 +3,8 @@
 of the robot: the expanded robot does not change."""
 from __future__ import annotations
 
-from urdf_lint.fix.kinds import FixKind, Site
+from urdf_lint.fix.kinds import Expect, FixKind, Site
+from urdf_lint.fix.request import Request
 from urdf_lint.core.edits import Edit
 
 
@@ -14,5 +15,5 @@ class RemoveComment(FixKind):
     def resolve(self, site: Site) -> tuple[Edit, ...]:
         raise NotImplementedError("made by urdf_lint.fix.fixes.remove_comment")
 
-    def expect(self, req, index: int):
+    def expect(self, req: "Request", index: int) -> tuple[Expect, ...]:
         return (("none", 0, "", ""),)

@@ -2,13 +2,14 @@
 always written literally)."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
+from urdf_lint.fix.fixes import Element, NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 
 
 def rename_attr(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename attribute '{old}' to '{new}'", safe, "rename_attr")
+    return RenameAttr.request(changes=((old, new),), safe=safe,
+                              description=f"rename attribute '{old}' to '{new}'")
 
 
 REQUESTS = (rename_attr,)
@@ -25,7 +26,7 @@ class RenameAttr(FixKind):
                          f"{where(site.origin.file, site.origin.line)}")
         return (Edit(site.origin.file, a.name_start, a.name_start + len(old.encode()), new),)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         v = el.attrib.pop(attr, None)
         if v is not None:
             el.set(value, v)

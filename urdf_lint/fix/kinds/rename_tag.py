@@ -2,14 +2,15 @@
 are always written literally)."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import NOT_FIXABLE, Refuse, Request, where
+from urdf_lint.fix.fixes import Element, NOT_FIXABLE, Refuse, Request, where
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import end_tag_of
 
 
 def rename_tag(old: str, new: str, safe: bool = True) -> Request:
-    return Request(((old, new),), f"rename <{old}> to <{new}>", safe, "rename_tag")
+    return RenameTag.request(changes=((old, new),), description=f"rename <{old}> to <{new}>",
+                             safe=safe)
 
 
 REQUESTS = (rename_tag,)
@@ -33,6 +34,6 @@ class RenameTag(FixKind):
             edits.append(Edit(origin.file, end + 2, end + 2 + len(old.encode()), new))
         return tuple(edits)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         el.tag = value
         return True

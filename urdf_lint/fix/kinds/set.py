@@ -3,16 +3,17 @@ is: the element itself, the macro call's argument, the ``xacro:property`` or the
 (:func:`urdf_lint.fix.fixes.trace`)."""
 from __future__ import annotations
 
-from urdf_lint.fix.fixes import (NOT_FIXABLE, Refuse, Request, same_value, trace, traced_scalar,
+from urdf_lint.fix.fixes import (Element, NOT_FIXABLE, Refuse, Request, same_value, trace, traced_scalar,
                                  where, written, yaml_text)
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import Attr, escape
 
 
-def set_attrs(changes: dict, description: str, safe: bool = True,
+def set_attrs(changes: dict[str, str], description: str, safe: bool = True,
               on_parent: bool = False) -> Request:
-    return Request(tuple(changes.items()), description, safe, "set", on_parent)
+    return SetAttrs.request(changes=tuple(changes.items()), description=description,
+                            safe=safe, on_parent=on_parent)
 
 
 REQUESTS = (set_attrs,)
@@ -43,7 +44,7 @@ class SetAttrs(FixKind):
             raise Refuse(f"{NOT_FIXABLE}: two of the values come from the same literal")
         return tuple(edits)
 
-    def apply(self, el, attr: str, value: str) -> bool:
+    def apply(self, el: Element, attr: str, value: str) -> bool:
         el.set(attr, value)
         return True
 

@@ -5,14 +5,17 @@
 from __future__ import annotations
 
 import os
+from typing import IO
 
-from urdf_lint.report.diff.base import DiffFormatter, DiffOptions
+from urdf_lint.report.diff.base import DiffFormatter, DiffOptions, DiffResult
 
-_FORMATS: dict | None = None
+__all__ = ["DiffFormatter", "DiffOptions", "DiffResult", "formats", "names", "write", "write_file"]
+
+_FORMATS: dict[str, type[DiffFormatter]] | None = None
 ORDER = ("text", "json", "markdown")
 
 
-def formats() -> dict:
+def formats() -> dict[str, type[DiffFormatter]]:
     """name -> formatter class, for every format module in this package."""
     global _FORMATS
     if _FORMATS is None:
@@ -21,15 +24,15 @@ def formats() -> dict:
     return _FORMATS
 
 
-def names() -> tuple:
+def names() -> tuple[str, ...]:
     return tuple(formats())
 
 
-def write(result, fmt: str, stream, options: DiffOptions | None = None) -> None:
+def write(result: DiffResult, fmt: str, stream: IO[str], options: DiffOptions | None = None) -> None:
     stream.write(formats()[fmt](options).render(result))
 
 
-def write_file(result, fmt: str, path: str, base: str | None = None,
+def write_file(result: DiffResult, fmt: str, path: str, base: str | None = None,
                options: DiffOptions | None = None) -> None:
     """The report in ``path``, atomically, written below ``base`` (by default its folder)."""
     from urdf_lint.core import fsbound

@@ -3,8 +3,12 @@ of ``check``'s), and the helpers the formats share."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.escape import escape_markdown, escape_markdown_code
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.core.locations import Origin
 
 
 @dataclass
@@ -12,11 +16,11 @@ class DiffResult:
     """The outcome of ``urdf-lint diff``: the models a change affected, and what it did to each."""
     base: str
     head: str
-    models: list = field(default_factory=list)      # ModelDiff, affected models only
+    models: list[Any] = field(default_factory=list)      # ModelDiff, affected models only
     total_models: int = 0
     base_expanded: int = 0
-    internal: list = field(default_factory=list)
-    snapshot_problems: list = field(default_factory=list)   # (model, why): --render could not
+    internal: list[str] = field(default_factory=list)
+    snapshot_problems: list[Any] = field(default_factory=list)   # (model, why): --render failed
     no_recordings: str = ""     # why --render wrote no .rrd at all (rerun-sdk not installed)
 
 
@@ -45,7 +49,7 @@ ICON = {"added": "+", "removed": "-", "renamed": "~", "changed": "*"}
 MD_ICON = {"added": "🟢", "removed": "🔴", "renamed": "🔁", "changed": "✏️"}
 
 
-def fmt(v) -> str:
+def fmt(v: object) -> str:
     if v is None:
         return "—"
     if isinstance(v, tuple):
@@ -55,47 +59,47 @@ def fmt(v) -> str:
     return str(v)
 
 
-def loc(o, root=None) -> str:
+def loc(o: "Origin | None", root: str | None = None) -> str:
     if o is None:
         return ""
     from urdf_lint.core.locations import display_path
     return f"{display_path(o.file, root)}:{o.line}"
 
 
-def vloc(v, root=None) -> str:
+def vloc(v: tuple[Any, ...], root: str | None = None) -> str:
     """``config/joint_limits.yaml:28``: where a changed value is written."""
     from urdf_lint.core.locations import display_path
     return f"{display_path(v[0], root)}:{v[1]}"
 
 
-def chain(o, root=None) -> str:
+def chain(o: "Origin | None", root: str | None = None) -> str:
     return o.format_chain(root) if o is not None and o.chain else ""
 
 
-def what(c) -> str:
+def what(c: Any) -> str:
     return f"{c.kind} '{c.name}'" + (f" {c.field}" if c.field and c.change != "renamed" else "")
 
 
-def moved(m, n=3) -> str:
+def moved(m: Any, n: int = 3) -> str:
     parts = [f"{link} {d * 1000:.3g} mm" + (f", {a:.3g} rad" if a > 1e-6 else "")
              for link, d, a in m.moved[:n]]
     more = len(m.moved) - n
     return ", ".join(parts) + (f" and {more} more" if more > 0 else "")
 
 
-def finding(fk) -> str:
+def finding(fk: tuple[str, str, str]) -> str:
     code, file, msg = fk
     return f"{code} {file}: {msg}"
 
 
-def md_escape(s) -> str:
+def md_escape(s: object) -> str:
     """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
     renders as that text only: no HTML, link, image, mention, table break or line break
     (the shared helper, :mod:`urdf_lint.core.escape`)."""
     return escape_markdown(str(s).replace("\r", " ").replace("\n", " "))
 
 
-def code(s) -> str:
+def code(s: object) -> str:
     """A code span: shown literally (no link, HTML or mention is made inside one)."""
     s = str(s).replace("\r", " ").replace("\n", " ")
     s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

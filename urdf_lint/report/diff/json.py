@@ -1,6 +1,8 @@
 """``json``: the diff for tools."""
 from __future__ import annotations
 
+from typing import Any
+
 import json
 
 from urdf_lint.report.diff.base import DiffResult, DiffFormatter
@@ -17,9 +19,9 @@ class JsonDiff(DiffFormatter):
 def to_json(r: DiffResult) -> str:
     from urdf_lint.core.locations import display_path
 
-    def rel(p):
+    def rel(p: str) -> str:
         return display_path(p)
-    models: list[dict] = []
+    models: list[dict[str, Any]] = []
     doc = {"version": 1, "base": r.base, "head": r.head, "models_total": r.total_models,
            "base_expanded": r.base_expanded, "models": models}
     for m in r.models:
