@@ -1,13 +1,13 @@
 """The language server's view of one workspace folder, without the protocol.
 
 It loads the config exactly as ``check`` does (``[tool.urdf-lint]``, trust rules, clamps),
-discovers the models and their include graph, lints them in a pool of sandboxed workers that
-stays alive (:mod:`.pool`) with the unsaved buffers as the jobs' overlay, and keeps every
-model's report warm. A change to a file re-lints only the models it can reach: those whose
-entry it is, those whose recorded deps hold it, and those whose entry includes it (the
-include graph, for a model not linted yet). The findings go through the run pipeline's own
-steps (policy, merge across models, inline suppressions) so the editor shows what ``check``
-would print for the same bytes.
+discovers the models and their include graph, lints them in the runner's pool of sandboxed
+workers kept alive (``runner.pool.WorkerPool``, persistent) with the unsaved buffers as the
+jobs' overlay, and keeps every model's report warm. A change to a file re-lints only the
+models it can reach: those whose entry it is, those whose recorded deps hold it, and those
+whose entry includes it (the include graph, for a model not linted yet). The findings go
+through the run pipeline's own steps (policy, merge across models, inline suppressions) so the
+editor shows what ``check`` would print for the same bytes.
 """
 from __future__ import annotations
 
@@ -15,13 +15,53 @@ import os
 import re
 import threading
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any, Callable, Iterator, Protocol
 
 from urdf_lint.core.findings import Problem
-from urdf_lint.core.jobs import LintJob, ModelReport, Status
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
 
-if TYPE_CHECKING:  # pragma: no cover
-    from urdf_lint.lsp.pool import Pool
+
+class Linter(Protocol):
+    """What lints the workspace's jobs: the runner's persistent :class:`WorkerPool`, or (tests
+    only) :class:`InProcessLinter`."""
+    closing: bool
+
+    def start(self) -> None: ...
+
+    def run(self, jobs: list[LintJob], stop: Callable[[], bool] | None = None
+            ) -> Iterator[tuple[LintJob, ModelReport]]: ...
+
+    def wake(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class InProcessLinter:
+    """Lints in this process, outside the sandbox and without limits: for the language
+    server's unit tests only (hover, completion and diagnostics from strings, no process
+    started). Only code makes one (``Workspace(root, in_process=True)``); no config key, command
+    line option or environment variable reaches it (SECURITY.md, "The language server")."""
+
+    def __init__(self, settings: LintSettings):
+        self.settings = settings
+        self.closing = False
+
+    def start(self) -> None:
+        pass
+
+    def run(self, jobs: list[LintJob], stop: Callable[[], bool] | None = None
+            ) -> Iterator[tuple[LintJob, ModelReport]]:
+        from urdf_lint.run.worker import LINT
+        for job in jobs:
+            if stop is not None and stop():
+                return
+            yield job, LINT.run(job, self.settings)
+
+    def wake(self) -> None:
+        pass
+
+    def close(self) -> None:
+        self.closing = True
 
 
 def job_key(job: LintJob) -> tuple:
@@ -46,11 +86,14 @@ class Workspace:
     config_problem: ConfigProblem | None = None
     pool_size: int = 2
     facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
+    # tests only: lint in this process, unsandboxed (InProcessLinter); set by code, never by
+    # a config, the command line or the environment
+    in_process: bool = field(default=False, kw_only=True)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         self.root = os.path.realpath(self.root)
         self.lock = threading.RLock()
-        self.pool: Pool | None = None   # made by load()
+        self.pool: Linter | None = None   # made by load()
         self.cache = None
         self.jobs: list[LintJob] = []
         self.load()
@@ -97,8 +140,16 @@ class Workspace:
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports = {}
-        from urdf_lint.lsp.pool import Pool
-        self.pool = Pool(self.settings, self.pool_size)
+        self.pool = self._linter()
+
+    def _linter(self) -> Linter:
+        """The runner's pool of sandboxed workers, kept alive between edits (forked, limited
+        and sandboxed exactly like ``check``'s)."""
+        if self.in_process:
+            return InProcessLinter(self.settings)
+        from urdf_lint.run.worker import LINT
+        from urdf_lint.runner.pool import WorkerPool
+        return WorkerPool(self.settings, LINT, self.pool_size, persistent=True)
 
     def start(self) -> None:
         """Fork the pool's workers now (from the main thread, before the lint thread exists)."""
@@ -109,6 +160,18 @@ class Workspace:
         """Hand out no further job: the lint under way ends with the jobs it has started."""
         if self.pool is not None:
             self.pool.closing = True
+
+    def interrupt(self) -> None:
+        """Make the lint under way look at its ``stop()`` now (from the server's thread)."""
+        if self.pool is not None:
+            self.pool.wake()
+
+    def forget(self, jobs: list[LintJob]) -> None:
+        """Drop the reports of ``jobs`` (made from older text): until they are linted again,
+        their findings are not shown (a partial result holds only what is current)."""
+        with self.lock:
+            for job in jobs:
+                self.reports.pop(job_key(job), None)
 
     def close(self) -> None:
         if self.pool is not None:
@@ -168,9 +231,11 @@ class Workspace:
         return [j for j in self.jobs if job_key(j) not in self.reports]
 
     # -- linting -------------------------------------------------------------------------------
-    def lint(self, jobs: list[LintJob] | None = None) -> set:
-        """Lint ``jobs`` (default: every job) with the open buffers; returns the files whose
-        findings may have changed."""
+    def lint(self, jobs: list[LintJob] | None = None,
+             stop: Callable[[], bool] | None = None) -> set[str] | None:
+        """Lint ``jobs`` (default: every job, in their order) with the open buffers; returns
+        the files whose findings may have changed, or None when ``stop()`` turned true first
+        (the jobs under way were stopped; the findings are left as they were)."""
         with self.lock:
             jobs = self.jobs if jobs is None else jobs
             overlay = tuple(sorted(self.buffers.items()))
@@ -187,7 +252,7 @@ class Workspace:
                                         overlay=overlay))
             if todo:
                 assert self.pool is not None, "load() makes the pool"
-                for job, rep in self.pool.run(todo):
+                for job, rep in self.pool.run(todo, stop):
                     self.reports[job_key(job)] = rep
                     if self.facts is not None:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
@@ -195,6 +260,8 @@ class Workspace:
                         plain = LintJob(job.entry, job.args, job.kind, job.explicit,
                                         job.display_name, job.output, job.mesh_base)
                         self.cache.put(plain, self.settings, rep)
+            if stop is not None and stop():
+                return None
             self.findings = self._finish()
             return before | {f.file for f in self.findings}
 
