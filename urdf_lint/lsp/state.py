@@ -15,10 +15,14 @@ import os
 import re
 import threading
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterator, Protocol
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Protocol
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.config.schema import Config
+    from urdf_lint.run.cache import Cache
 
 
 class Linter(Protocol):
@@ -64,7 +68,7 @@ class InProcessLinter:
         self.closing = True
 
 
-def job_key(job: LintJob) -> tuple:
+def job_key(job: LintJob) -> tuple[str, tuple[tuple[str, str], ...]]:
     return (job.entry, tuple(sorted(job.args.items())))
 
 
@@ -80,9 +84,10 @@ class ConfigProblem:
 class Workspace:
     """What the language server knows of one workspace: open buffers, latest reports, includes."""
     root: str
-    buffers: dict = field(default_factory=dict)       # path -> bytes (open, maybe unsaved)
-    reports: dict = field(default_factory=dict)       # job_key -> ModelReport
-    findings: list = field(default_factory=list)      # after policy, merge, suppression
+    buffers: dict[str, bytes] = field(default_factory=dict)   # open, maybe unsaved
+    reports: dict[tuple[str, tuple[tuple[str, str], ...]], ModelReport] = \
+        field(default_factory=dict)                   # by job_key
+    findings: list[Problem] = field(default_factory=list)   # after policy, merge, suppression
     config_problem: ConfigProblem | None = None
     pool_size: int = 2
     facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
@@ -300,7 +305,7 @@ class Workspace:
         return [r for r in self.reports.values() if r.status is Status.MODEL]
 
 
-def _load_cfg(root: str):
+def _load_cfg(root: str) -> Config:
     """The config ``check`` would use for ``root`` (no command line): the repository's own
     config may not loosen the guarantees (``trust.py``), limits are clamped."""
     from urdf_lint.config import trust
@@ -317,11 +322,11 @@ def _load_cfg(root: str):
     return cfg
 
 
-def _reads_buffer(report: ModelReport, buffers: dict) -> bool:
+def _reads_buffer(report: ModelReport, buffers: dict[str, bytes]) -> bool:
     return any(d in buffers for d in report.deps)
 
 
-def _cache_for(root: str, cfg):
+def _cache_for(root: str, cfg: Config) -> Cache | None:
     """The on-disk cache of ``check`` (results of unchanged files, mesh facts), where
     ``check`` would keep it; none outside git without a configured folder (the server's
     working directory is wherever the editor started it)."""

@@ -15,9 +15,9 @@ import sys
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Collection, Iterator, Sequence
 
-from urdf_lint.runner import forked
+from urdf_lint.runner import forked, wire
 from urdf_lint.runner.hardening import limit_memory
 from urdf_lint.runner.hardening import inherited_data_bytes as _inherited_data_bytes
 from urdf_lint.runner.hardening import install_audit_hook as _install_audit_hook
@@ -39,7 +39,7 @@ class Handler:
     what it imports)."""
     run: Callable[[LintJob, LintSettings], ModelReport]
     limit_result: Callable[[LintJob, str], ModelReport]
-    allowed: frozenset
+    allowed: frozenset[tuple[str, str]]
     setup: Callable[[], None] | None = None
     warm: Callable[[], None] | None = None
     preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
@@ -48,7 +48,7 @@ class Handler:
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
-def _worker_main(conn, handler: Handler, settings: LintSettings | None):
+def _worker_main(conn: Any, handler: Handler, settings: LintSettings | None) -> None:
     if handler.setup is not None:
         handler.setup()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
@@ -103,7 +103,7 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None):
             conn.send(result)
         except MemoryError:
             conn.send(handler.limit_result(job, "result too large for the memory limit"))
-        except forked.wire.Unencodable as e:   # (a bug: the parent reads only plain data)
+        except wire.Unencodable as e:   # (a bug: the parent reads only plain data)
             unsent = ModelReport.failed(job, internal=[f"the result could not be sent: {e}"])
             unsent.cacheable = False
             conn.send(unsent)
@@ -165,9 +165,9 @@ MAX_WALK = 20000             # files looked at per package to estimate its meshe
 class Block:
     """The jobs of one package (or of one folder outside any package), with a cost estimate."""
     key: str
-    jobs: list
+    jobs: list[LintJob]
     cost: float = 0.0
-    formats: frozenset = frozenset()   # the mesh suffixes found in the package
+    formats: frozenset[str] = frozenset()   # the mesh suffixes found in the package
 
 
 def package_blocks(jobs: list[LintJob], settings: LintSettings,
@@ -194,7 +194,7 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
     return sorted(out, key=lambda b: -b.cost)
 
 
-def job_cost(job: LintJob, roots=None) -> float:
+def job_cost(job: LintJob, roots: Sequence[str] | None = None) -> float:
     """A first-time estimate of one model's expansion and checks, its meshes aside: every
     xacro element of its entry file adds to it (a 200-link robot written as 200 macro calls
     takes ~0.25 s, a model of a few includes ~0.03 s). Scheduled costliest first, such a
@@ -209,7 +209,7 @@ def job_cost(job: LintJob, roots=None) -> float:
 MAX_ENTRY_READ = 4 << 20
 
 
-def _mesh_cost(root: str) -> tuple[float, frozenset]:
+def _mesh_cost(root: str) -> tuple[float, frozenset[str]]:
     """(seconds to measure the meshes under a package root (a first-time estimate), the mesh
     suffixes found)."""
     cost, seen, formats = 0.0, 0, set()
@@ -269,9 +269,9 @@ def _procs_running() -> int | None:
     return None
 
 
-def assign(blocks: list[Block], n: int) -> list[deque]:
+def assign(blocks: list[Block], n: int) -> list[deque[LintJob]]:
     """n queues of jobs: whole blocks, the costliest first, each to the least loaded queue."""
-    queues: list[deque] = [deque() for _ in range(n)]
+    queues: list[deque[LintJob]] = [deque() for _ in range(n)]
     load = [0.0] * n
     for b in blocks:
         i = min(range(n), key=lambda k: (load[k], k))
@@ -288,7 +288,9 @@ def mesh_facts_cached(settings: LintSettings) -> bool:
     return d is not None and fsbound.has_entries(d)
 
 
-def _next_job(mine, queues, block_of=None, running=()):
+def _next_job(mine: deque[LintJob], queues: list[deque[LintJob]],
+              block_of: dict[int, int] | None = None,
+              running: Collection[int | None] = ()) -> LintJob | None:
     """The next job of a worker: the front of its own queue, else from the far end of the
     longest other queue (the models least likely to share meshes with what that worker is
     on): the whole last package block there when no worker has started it (its meshes are
@@ -364,7 +366,7 @@ def _cpu_seconds(pid: int) -> float | None:
         return None
 
 
-def _used(w) -> float | None:
+def _used(w: Worker) -> float | None:
     """CPU seconds worker ``w`` spent on its current job (None: not measurable)."""
     now = _cpu_seconds(w.proc.pid)
     return None if now is None or w.cpu0 is None else now - w.cpu0
@@ -468,7 +470,7 @@ class WorkerPool:
         self.size, self.persistent = max(1, size), persistent
         self.timeout, self.memory_mb = settings.timeout, settings.memory_mb
         self.wall = self.timeout * WALL_FACTOR
-        self.queues: list[deque] = []
+        self.queues: list[deque[LintJob]] = []
         self.block_of: dict[int, int] = {}
         self.workers: list[Worker] = []
         self.busy: dict[Any, Worker] = {}   # connection -> its worker, busy with a job
@@ -495,7 +497,7 @@ class WorkerPool:
         replaced: nothing more is yielded."""
         if not self.workers:
             self.start()
-        shared: deque = deque(jobs)
+        shared: deque[LintJob] = deque(jobs)
         self.queues, self.block_of = [shared], {}
         for w in self.workers:
             w.queue = shared
@@ -568,7 +570,7 @@ class WorkerPool:
                     continue
                 self.busy[w.conn] = w
 
-    def wait(self) -> list:
+    def wait(self) -> list[Any]:
         """The connections of busy workers that sent something, by the next deadline (or the
         next look at CPU times); the wake pipe too when another thread set it."""
         now = time.monotonic()
@@ -576,7 +578,7 @@ class WorkerPool:
                             default=now + POLL_S)
         if any(w.cpu0 is not None for w in self.busy.values()):
             next_deadline = min(next_deadline, now + POLL_S)
-        conns: list = list(self.busy)
+        conns: list[Any] = list(self.busy)
         if self._wake is not None:
             conns.append(self._wake)
         return forked.wait(conns, timeout=max(0.0, next_deadline - now))
