@@ -420,39 +420,6 @@ def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
     return pool
 
 
-class _Wake:
-    """A pipe another thread writes a byte to, to end the pool's wait at once (a newer edit
-    stops the language server's lint under way)."""
-
-    def __init__(self) -> None:
-        self.rfd, self.wfd = os.pipe()
-        os.set_blocking(self.rfd, False)
-        os.set_blocking(self.wfd, False)
-
-    def fileno(self) -> int:
-        return self.rfd
-
-    def set(self) -> None:
-        try:
-            os.write(self.wfd, b"x")
-        except OSError:   # full (woken already) or closed
-            pass
-
-    def clear(self) -> None:
-        try:
-            while os.read(self.rfd, 512):
-                pass
-        except OSError:
-            pass
-
-    def close(self) -> None:
-        for fd in (self.rfd, self.wfd):
-            try:
-                os.close(fd)
-            except OSError:
-                pass
-
-
 class WorkerPool:
     """Forked, limited, sandboxed workers (:class:`Worker`) and their scheduling, with the time
     and memory limits of ``settings``: a job over its limit costs its worker (killed and
@@ -476,7 +443,7 @@ class WorkerPool:
         self.busy: dict[Any, Worker] = {}   # connection -> its worker, busy with a job
         self.closing = False   # set from another thread: hand out no further job
         self.stopped = 0       # jobs stopped under way by a stop() (their workers killed)
-        self._wake = _Wake() if persistent else None
+        self._wake = forked.Wake() if persistent else None
 
     # -- the persistent form -------------------------------------------------------------------
     def start(self) -> None:
