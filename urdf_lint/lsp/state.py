@@ -302,7 +302,8 @@ class Workspace:
                 and os.path.realpath(f.value_from[0]) == path]
 
     def models(self) -> list[ModelReport]:
-        return [r for r in self.reports.values() if r.status is Status.MODEL]
+        # (a copy first: the lint thread adds reports while a request reads them)
+        return [r for r in list(self.reports.values()) if r.status is Status.MODEL]
 
 
 def _load_cfg(root: str) -> Config:

@@ -1,5 +1,5 @@
 """``textDocument/didSave``: a saved config re-reads the workspace and lints every model;
-any other file is linted at once."""
+any other file is linted at once (after the lint under way, which read the same text)."""
 from __future__ import annotations
 
 import os
@@ -18,4 +18,4 @@ async def handle(ls: UrdfLintServer, params: types.DidSaveTextDocumentParams) ->
         old = ws.config_problem.file if ws.config_problem else None
         await ls.reload({path} | ({old} if old else set()))
         return
-    ls.schedule(path, 0.0)
+    ls.schedule(path, 0.0, newer=False)   # (the text of its last change: no newer text)
