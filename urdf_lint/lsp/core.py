@@ -182,12 +182,18 @@ class UrdfLintServer(LanguageServer):
 
 
 def _ordered(ws: Workspace, paths: list[str]) -> list[LintJob]:
-    """The jobs the changes to ``paths`` reach: first the model of the file changed last (the
-    model it is the entry of, else the first that reaches it), then the others."""
+    """The jobs the changes to ``paths`` reach: first a model of the file changed last (the
+    model it is the entry of, else the first model that reaches it), then the other models,
+    then the files that were no model when last linted (a macro library's own job)."""
+    from urdf_lint.core.jobs import Status
+    from urdf_lint.lsp.state import job_key
+
+    def rank(job: LintJob, path: str) -> int:
+        status = ws.last_status.get(job_key(job))
+        model = status is None or status in (Status.MODEL, Status.FRAGMENT)
+        return 2 if not model else 0 if job.entry == path else 1
     seen: dict[tuple[object, ...], LintJob] = {}
     for p in reversed(paths):
-        mine = ws.affected(p)
-        own = [j for j in mine if j.entry == p]
-        for j in own + mine:
-            seen.setdefault((j.entry, tuple(sorted(j.args.items()))), j)
+        for j in sorted(ws.affected(p), key=lambda j: rank(j, p)):
+            seen.setdefault(job_key(j), j)
     return list(seen.values())

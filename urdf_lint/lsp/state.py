@@ -101,6 +101,8 @@ class Workspace:
         self.pool: Linter | None = None   # made by load()
         self.cache = None
         self.jobs: list[LintJob] = []
+        # what each job was when last linted (kept when its report is forgotten)
+        self.last_status: dict[tuple[str, tuple[tuple[str, str], ...]], Status] = {}
         self.load()
 
     # -- set-up ----------------------------------------------------------------------------
@@ -251,6 +253,7 @@ class Workspace:
             for job, hit in zip(jobs, hits, strict=True):
                 if hit is not None and not _reads_buffer(hit, self.buffers):
                     self.reports[job_key(job)] = hit
+                    self.last_status[job_key(job)] = hit.status
                 else:
                     todo.append(LintJob(job.entry, job.args, job.kind, job.explicit,
                                         job.display_name, job.output, job.mesh_base,
@@ -259,6 +262,7 @@ class Workspace:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo, stop):
                     self.reports[job_key(job)] = rep
+                    self.last_status[job_key(job)] = rep.status
                     if self.facts is not None:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
