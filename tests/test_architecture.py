@@ -523,12 +523,9 @@ def test_every_package_folder_is_installed():
     assert found == listed, f"not installed: {sorted(found - listed)}; stale: {sorted(listed - found)}"
 
 
-# a room's private names stay in the room; the one exception left, with its reason
-PRIVATE_ACROSS_ROOMS_ALLOWED = {
-    # the language server keeps its workers warm between edits and schedules them itself; the
-    # runner's pool has no persistent public form yet (issue 35's "one public worker pool")
-    ("urdf_lint/lsp/pool.py", "urdf_lint.runner.pool", "_Worker"),
-}
+# a room's private names stay in the room: no exception (the language server's workers are
+# the runner's public WorkerPool, persistent)
+PRIVATE_ACROSS_ROOMS_ALLOWED: set = set()
 
 
 def _private_imports_across_rooms():

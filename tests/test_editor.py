@@ -17,7 +17,6 @@ X = 'xmlns:xacro="http://wiki.ros.org/xacro"'
 
 
 def _server(root: Path, monkeypatch, tmp_path: Path):
-    import urdf_lint.lsp.server  # noqa: F401 - it adds the methods' hover and completion
     from urdf_lint.lsp.core import UrdfLintServer
     from urdf_lint.lsp.state import Workspace
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
@@ -164,12 +163,12 @@ def test_formatting_lays_out_the_unsaved_buffer_as_format_does(tmp_path, monkeyp
     ls = _server(pkg, monkeypatch, tmp_path)
     try:
         _open(ls, f, UGLY)
-        got = _apply(UGLY, formatting.handle(ls.ws, _fmt_params(f)))
+        got = _apply(UGLY, formatting.handle(ls.services, _fmt_params(f)))
         assert got == format_source(UGLY.encode(), Style(indent=4)).decode()
         assert '\n    <link name="tip" />\n' in got and '<parent link="base" />' in got, got
         assert f.read_text() == "<robot/>\n"   # nothing written
         _open(ls, f, got)
-        assert formatting.handle(ls.ws, _fmt_params(f)) == []
+        assert formatting.handle(ls.services, _fmt_params(f)) == []
     finally:
         ls.ws.close()
 
@@ -182,7 +181,7 @@ def test_range_formatting_changes_only_the_lines_asked_for(tmp_path, monkeypatch
     try:
         _open(ls, f)
         rng = types.Range(types.Position(3, 0), types.Position(3, 5))   # the base link's line
-        edits = range_formatting.handle(ls.ws, _fmt_params(f, rng))
+        edits = range_formatting.handle(ls.services, _fmt_params(f, rng))
         got = _apply(UGLY, edits)
         old, new = UGLY.split("\n"), got.split("\n")
         assert new[:3] == old[:3] and new[-4:] == old[-4:], got   # the rest as it was
@@ -204,7 +203,7 @@ def test_formatting_that_would_change_the_robot_is_refused_with_the_proof(tmp_pa
     try:
         _open(ls, ns, NS_MACRO)   # unsaved: only the buffer holds the macro
         with pytest.raises(Refused) as e:
-            formatting.handle(ls.ws, _fmt_params(ns))
+            formatting.handle(ls.services, _fmt_params(ns))
         assert "would change the robot" in e.value.reason and "robotNamespace" in e.value.reason
         assert e.value.to_response_error().code == -32803   # LSP's RequestFailed
     finally:
@@ -233,8 +232,8 @@ ARGS_TOML = ('[[models]]\npath = "urdf/arm.urdf.xacro"\n'
 
 
 def _hover_text(ls, f: Path, needle: str, delta: int = 0) -> str:
-    from urdf_lint.lsp import features
-    h = features.hover(ls, os.path.realpath(f), _at(f, needle, delta))
+    from urdf_lint.lsp.methods import hover
+    h = hover.hover(ls.services, os.path.realpath(f), _at(f, needle, delta))
     assert h is not None, needle
     return h.contents.value
 
@@ -281,7 +280,7 @@ BODY = (f'<?xml version="1.0"?>\n<robot name="b" {X}>\n'
 
 
 def test_a_block_macro_completes_as_an_open_close_pair(tmp_path, monkeypatch):
-    from urdf_lint.lsp import features
+    from urdf_lint.lsp.methods import completion
     pkg = make_package(tmp_path, "b", {"urdf/b.urdf.xacro": BODY, "urdf/fingers.xacro": MACROS,
                                        "urdf/blocks.xacro": BLOCKS})
     f = pkg / "urdf" / "b.urdf.xacro"
@@ -290,7 +289,8 @@ def test_a_block_macro_completes_as_an_open_close_pair(tmp_path, monkeypatch):
         typed = BODY.replace("</robot>", "  <xacro:\n</robot>")
         path = _open(ls, f, typed)
         line = typed.count("\n", 0, typed.index("<xacro:\n"))
-        items = {i.label: i for i in features.completion(ls, path, types.Position(line, 9))}
+        items = {i.label: i for i in completion.completion(ls.services, path,
+                                                           types.Position(line, 9))}
         assert items["wrap"].insert_text == 'wrap name="${1}">\n\t$0\n</xacro:wrap>', \
             items["wrap"].insert_text
         assert items["finger"].insert_text == 'finger n="${1}" parent="${2}"/>'
@@ -302,7 +302,7 @@ def test_link_names_complete_inside_an_unclosed_attribute(tmp_path, monkeypatch)
     """The user types ``<parent link="`` in a new joint: the buffer is not well-formed (the
     attribute and the tag are open), the model fails to expand on that lint, and the link
     names of the model as it last expanded are offered."""
-    from urdf_lint.lsp import features
+    from urdf_lint.lsp.methods import completion
     pkg = make_package(tmp_path, "b", {"urdf/b.urdf.xacro": BODY, "urdf/fingers.xacro": MACROS,
                                        "urdf/blocks.xacro": BLOCKS})
     f = pkg / "urdf" / "b.urdf.xacro"
@@ -317,7 +317,8 @@ def test_link_names_complete_inside_an_unclosed_attribute(tmp_path, monkeypatch)
         assert not ls.ws.models()          # it does not expand now
         line = typed.count("\n", 0, typed.index('<parent link="'))
         char = len(typed.split("\n")[line])
-        labels = {i.label for i in features.completion(ls, path, types.Position(line, char))}
+        labels = {i.label for i in completion.completion(ls.services, path,
+                                                         types.Position(line, char))}
         assert {"base", "f1"} <= labels, labels
     finally:
         ls.ws.close()
@@ -329,10 +330,10 @@ def _renamed(ls, f: Path, needle: str, delta: int, new: str) -> dict:
     from urdf_lint.lsp.methods import rename
     uri = f.resolve().as_uri()
     pos = _at(f, needle, delta)
-    prep = rename.prepare(ls, types.PrepareRenameParams(
+    prep = rename.prepare(ls.services, types.PrepareRenameParams(
         text_document=types.TextDocumentIdentifier(uri=uri), position=pos))
     assert prep.placeholder
-    got = rename.handle(ls, types.RenameParams(
+    got = rename.handle(ls.services, types.RenameParams(
         text_document=types.TextDocumentIdentifier(uri=uri), position=pos, new_name=new))
     out = {}
     for u, edits in got.changes.items():
@@ -387,11 +388,11 @@ def test_rename_is_refused_where_a_name_is_built_by_an_expression(tmp_path, monk
     try:
         doc = types.TextDocumentIdentifier(uri=arm.resolve().as_uri())
         with pytest.raises(Refused) as e:
-            rename.prepare(ls, types.PrepareRenameParams(
+            rename.prepare(ls.services, types.PrepareRenameParams(
                 text_document=doc, position=_at(arm, '<link name="$(arg side)_palm"', 25)))
         assert "built by an expression" in e.value.reason, e.value.reason
         with pytest.raises(Refused) as e:
-            rename.handle(ls, types.RenameParams(
+            rename.handle(ls.services, types.RenameParams(
                 text_document=doc, new_name="x", position=_at(arm, 'link="left_f1"', 8)))
         assert e.value.reason == ("not renamed: the name 'left_f1' is built by an expression "
                                   'at urdf/arm.urdf.xacro:12 (n="${prefix}f1")'), e.value.reason
@@ -423,7 +424,7 @@ def test_rename_edits_nothing_outside_the_workspace_folder(tmp_path, monkeypatch
     ls = _linted(pkg, f, monkeypatch, tmp_path)
     try:
         with pytest.raises(Refused) as e:
-            rename.handle(ls, types.RenameParams(
+            rename.handle(ls.services, types.RenameParams(
                 text_document=types.TextDocumentIdentifier(uri=f.resolve().as_uri()),
                 new_name="len2", position=_at(f, "${shared_len}", 3)))
         assert "outside the workspace folder" in e.value.reason

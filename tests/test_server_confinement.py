@@ -106,9 +106,8 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
     """Includes leading out of the roots (a symlinked file, a symlinked folder, an absolute
     path): the document index, hover, definition, completion and symbols show nothing of
     them, and the server process opens no file there."""
-    import urdf_lint.lsp.server  # noqa: F401 - with the methods' hover and completion
-    from urdf_lint.lsp import features
-    from urdf_lint.lsp.methods import Refused, rename
+    from urdf_lint.lsp.methods import (Refused, completion, definition, document_symbol,
+                                       hover, references, rename, workspace_symbol)
     secret = tmp_path / "secret"
     pkg, model = _symlinked_workspace(tmp_path / "ws", secret)
     opens = _Opens(secret)
@@ -121,22 +120,24 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
         got, renames = [], []
         for line, char in ((5, 12), (1, 30), (2, 30), (3, 30), (6, 18), (9, 30)):
             p = types.Position(line, char)
-            got.append(features.hover(ls, path, p))
-            got.append(features.definition(ls, path, p))
-            got.append(features.references(ls, path, p, True))
+            sv = ls.services
+            got.append(hover.hover(sv, path, p))
+            got.append(definition.definition(sv, path, p))
+            got.append(references.references(sv, path, p, True))
             try:   # a rename edits and says nothing of a file outside the roots either
-                renames.append(rename.handle(ls, types.RenameParams(
+                renames.append(rename.handle(sv, types.RenameParams(
                     text_document=types.TextDocumentIdentifier(uri=model.as_uri()),
                     position=p, new_name="renamed")))
             except Refused as e:
                 renames.append(e.reason)   # (naming the workspace's own text at most)
         for line, char in ((5, 9), (6, 17)):   # <xacro:|  and ${|
-            got.append(features.completion(ls, path, types.Position(line, char)))
-        got.append(features.workspace_symbols(ls, ""))
-        got.append(features.document_symbols(ls, path))
+            got.append(completion.completion(sv, path, types.Position(line, char)))
+        got.append(workspace_symbol.workspace_symbols(sv, ""))
+        got.append(document_symbol.document_symbols(sv, path))
         for link in ("lib.xacro", "vendor/other.xacro"):   # the editor asks for the symlink
-            got.append(features.document_symbols(ls, os.path.realpath(pkg / "urdf" / link)))
-        got.append(features.INDEX.all_files(ls))
+            got.append(document_symbol.document_symbols(
+                sv, os.path.realpath(pkg / "urdf" / link)))
+        got.append(sv.index.all_files())
         got.append([ls.doc(str(secret / n)).text for n in ("lib.xacro", "values.yaml")])
         opens.on = False
         shown = repr(got)
@@ -147,7 +148,7 @@ def test_hover_definition_and_the_index_never_show_a_file_outside_the_roots(
         assert "declaration of the macro 'secret_macro' is not in the files" in renames[0]
         assert opens.seen == []
         # the workspace's own declarations are still indexed and shown
-        assert [s.name for s in features.document_symbols(ls, path)] == ["a", "${secret_prop}",
+        assert [s.name for s in document_symbol.document_symbols(sv, path)] == ["a", "${secret_prop}",
                                                                       "y", "m"]
     finally:
         opens.on = False
@@ -211,7 +212,7 @@ def test_code_actions_offer_no_edit_of_a_file_check_fix_refuses(tmp_path, monkey
     ``check --fix`` refuses that fix (the file is outside the linted paths) and the editor
     offers it neither as a quick fix nor in "fix all safe"; the other joint's fix, in the
     workspace, is offered by both."""
-    from urdf_lint.lsp import actions
+    from urdf_lint.lsp.methods import code_action
     prefix, robot = _installed(tmp_path)
     props = prefix / "share" / "common" / "urdf" / "props.xacro"
     model = robot / "urdf" / "robot.urdf.xacro"
@@ -226,12 +227,12 @@ def test_code_actions_offer_no_edit_of_a_file_check_fix_refuses(tmp_path, monkey
             text_document=types.TextDocumentIdentifier(uri=model.as_uri()),
             range=types.Range(types.Position(0, 0), types.Position(99, 0)),
             context=types.CodeActionContext(diagnostics=[]))
-        got = actions.code_action(ls, params)
+        got = code_action.handle(ls.services, params)
         edited = {uri for a in got if a.edit for uri in a.edit.changes}
         assert edited == {model.as_uri()}, edited
         fixes = [a for a in got if a.title.startswith("UL302:")]
         assert len(fixes) == 1   # the wrist's, in the workspace
-        (fix_all,) = [a for a in got if a.kind == actions.FIX_ALL]
+        (fix_all,) = [a for a in got if a.kind == code_action.FIX_ALL]
         assert list(fix_all.edit.changes) == [model.as_uri()]
     finally:
         ls.ws.close()

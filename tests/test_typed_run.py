@@ -43,9 +43,9 @@ def test_limits_travel_in_the_settings_with_one_default(tmp_path):
     from urdf_lint.config.schema import KEYS, Config
     from urdf_lint.core.jobs import LintSettings
     from urdf_lint.discovery.packages import PackageResolver
-    from urdf_lint.lsp.pool import Pool
     from urdf_lint.run.pipeline import settings_for, worker_settings
-    from urdf_lint.run.worker import run_jobs
+    from urdf_lint.run.worker import LINT, run_jobs
+    from urdf_lint.runner.pool import WorkerPool
     from urdf_lint.runner.pool import run_jobs as pool_run_jobs
     resolver = PackageResolver.build([str(tmp_path)], extra_roots=[str(tmp_path)])
     cfg = Config(timeout=2.5, memory_mb=300)
@@ -57,8 +57,11 @@ def test_limits_travel_in_the_settings_with_one_default(tmp_path):
     assert list(inspect.signature(run_jobs).parameters) == ["jobs", "settings", "jobs_n"]
     assert list(inspect.signature(pool_run_jobs).parameters) == ["jobs", "settings", "handler",
                                                                  "jobs_n"]
-    assert list(inspect.signature(Pool).parameters) == ["settings", "size"]
-    assert Pool(dataclasses.replace(plain, timeout=4.0)).timeout == 4.0
+    # one pool for check and the language server (persistent there): the limits are the
+    # settings' too
+    assert list(inspect.signature(WorkerPool).parameters) == ["settings", "handler", "size",
+                                                              "persistent"]
+    assert WorkerPool(dataclasses.replace(plain, timeout=4.0), LINT).timeout == 4.0
 
 
 def test_the_expansion_state_is_passed_in_and_the_hooks_find_it_in_one_holder(tmp_path):

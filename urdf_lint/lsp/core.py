@@ -1,67 +1,62 @@
-"""The language server's core: its documents, the debounced lint of what a change reaches,
-and the diagnostics it publishes (the features register in :mod:`.server`).
+"""The language server's core: its documents, the lint of what a change reaches (latest
+wins), and the diagnostics it publishes (the methods register in :mod:`.server`).
 
 ``urdf-lint server`` is a language server (LSP over stdio, on pygls) that knows the real
-expansion.
+expansion. Diagnostics come from the same expansion, rules, policy and suppressions as
+``check``, run in the same sandboxed workers with the same limits, on the unsaved buffers
+(given to the workers as their jobs' overlay, :mod:`urdf_lint.core.overlay`).
 
-Diagnostics come from the same expansion, rules, policy and suppressions as ``check``, run
-in the same sandboxed workers with the same limits, on the unsaved buffers (given to the
-workers as their jobs' overlay, :mod:`urdf_lint.core.overlay`). A finding in an included file (a
-macro library, a fragment, a YAML file) is shown there, with the macro chain as related
-information at each call site. Code actions are the findings' fixes and suppression comments;
-navigation, hover, completion and symbols are in :mod:`.features`.
+**Latest wins.** Every change bumps :attr:`UrdfLintServer.generation`: a lint of an older
+one stops (the jobs not started are dropped, the workers on the others are killed and
+replaced: ``WorkerPool.run``'s ``stop``), and nothing it computed is published. After the
+pause in typing (:data:`DEBOUNCE_S`) the files changed are linted, the edited file's own
+model first (its diagnostics are published at once), the other models it reaches after, then
+the models not linted yet.
 """
 from __future__ import annotations
 
 import asyncio
-import os
 from concurrent.futures import ThreadPoolExecutor
-from urllib.parse import unquote, urlparse
+from typing import Iterable
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 
 from urdf_lint import __version__
+from urdf_lint.core.jobs import LintJob
+from urdf_lint.lsp.methods import diagnostics
+from urdf_lint.lsp.services import Services
 from urdf_lint.lsp.state import Workspace
 from urdf_lint.lsp.text import Doc
+from urdf_lint.lsp.uris import path_uri, uri_path
 
 DEBOUNCE_S = 0.15        # after the last keystroke, before a change is linted
-SOURCE = "urdf-lint"
-SEVERITY = {"error": types.DiagnosticSeverity.Error, "warning": types.DiagnosticSeverity.Warning,
-            "info": types.DiagnosticSeverity.Information}
 
-
-def uri_path(uri: str) -> str:
-    return os.path.realpath(unquote(urlparse(uri).path))
-
-
-def path_uri(path: str) -> str:
-    from pathlib import Path
-    return Path(path).as_uri()
+__all__ = ["DEBOUNCE_S", "UrdfLintServer", "path_uri", "uri_path"]
 
 
 class UrdfLintServer(LanguageServer):
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__("urdf-lint", __version__)
-        self.ws: Workspace | None = None
-        self.pending: dict[str, asyncio.TimerHandle | asyncio.Task] = {}
+        self.services = Services()
         self.executor = ThreadPoolExecutor(max_workers=1)   # one lint at a time, in order
-        self.published: set = set()
-        self.generation = 0
+        self.published: set[str] = set()
+        self.generation = 0      # bumped by every change: a lint of an older one stops
+        self.dirty: dict[str, None] = {}   # files changed and not linted since (oldest first)
+        self.timer: asyncio.TimerHandle | None = None   # the pause in typing under way
+        self.task: asyncio.Task[None] | None = None      # the lint loop
+
+    @property
+    def ws(self) -> Workspace | None:
+        return self.services.ws
+
+    @ws.setter
+    def ws(self, ws: Workspace | None) -> None:
+        self.services.ws = ws
 
     # -- documents -------------------------------------------------------------------------
     def doc(self, path: str) -> Doc:
-        """The file as the editor has it, else as on disk through the boundary with the run's
-        roots (b"" when unreadable or outside them: never a file ``check`` could not read)."""
-        ws = self.ws
-        if ws is None:
-            return Doc(b"")
-        if path in ws.buffers:
-            return Doc(ws.buffers[path])
-        try:
-            return Doc(ws.read(path))
-        except OSError:
-            return Doc(b"")
+        return self.services.doc(path)
 
     def set_buffer(self, uri: str) -> str:
         path = uri_path(uri)
@@ -70,44 +65,106 @@ class UrdfLintServer(LanguageServer):
             self.ws.buffers[path] = text.encode("utf-8")
         return path
 
-    # -- linting ------------------------------------------------------------------------------
-    def schedule(self, path: str, delay: float) -> None:
-        """Lint what a change to ``path`` reaches, ``delay`` seconds from now (a newer change
-        to the same file restarts the wait)."""
-        old = self.pending.pop(path, None)
-        if old is not None:
-            old.cancel()
-        loop = asyncio.get_running_loop()
-        self.pending[path] = loop.call_later(
-            delay, lambda: loop.create_task(self._lint(path)))
-
-    async def _lint(self, path: str) -> None:
-        self.pending.pop(path, None)
-        ws = self.ws
-        if ws is None:
-            return
-        loop = asyncio.get_running_loop()
-        if not ws.readable(path):   # not linted: it gets the diagnostic saying so
-            self.publish({path}, self.versions())
-        else:
-            jobs = ws.affected(path)
-            versions = self.versions()   # what the lint reads: its diagnostics carry these
-            files = await loop.run_in_executor(self.executor, ws.lint, jobs)
-            self.publish(files | {path} | set(ws.buffers), versions)
-        rest = ws.unlinted()
-        if rest:   # then the models this file does not reach, to have them warm
-            versions = self.versions()
-            files = await loop.run_in_executor(self.executor, ws.lint, rest)
-            self.publish(files | set(ws.buffers), versions)
-
-    def versions(self) -> dict:
+    def versions(self) -> dict[str, int | None]:
         """path -> the version of each open document."""
         out = {}
         for uri, doc in list(self.workspace.text_documents.items()):
             out[uri_path(uri)] = doc.version
         return out
 
-    def publish(self, files, versions: dict | None = None) -> None:
+    # -- linting: latest wins ------------------------------------------------------------------
+    def schedule(self, path: str, delay: float, newer: bool = True) -> None:
+        """``path`` changed: stop the lint under way (it read older text), and lint what the
+        change reaches ``delay`` seconds from now (a newer change restarts the wait).
+        ``newer=False`` (a file opened): the lint under way goes on."""
+        self.dirty.pop(path, None)
+        self.dirty[path] = None          # (the last changed, last: its model goes first)
+        if newer:
+            self.generation += 1
+            if self.ws is not None:
+                self.ws.interrupt()
+        if self.timer is not None:
+            self.timer.cancel()
+        self.timer = asyncio.get_running_loop().call_later(delay, self._kick)
+
+    def _kick(self) -> None:
+        self.timer = None
+        if self.task is None or self.task.done():
+            self.task = asyncio.get_running_loop().create_task(self._lint_loop())
+
+    async def _lint_loop(self) -> None:
+        """Lint the files changed, then the models not linted yet, until a newer change waits
+        for its pause (its timer starts the loop again) or nothing is left."""
+        while self.ws is not None and self.timer is None:
+            if self.dirty:
+                paths = list(self.dirty)
+                self.dirty.clear()
+                if not await self._lint_changed(paths):   # a newer change: its text first
+                    again = dict.fromkeys(p for p in paths if p not in self.dirty)
+                    again.update(self.dirty)
+                    self.dirty = again
+                continue
+            rest = self.ws.unlinted()
+            if not rest:
+                return
+            versions = self.versions()
+            files = await self._run(rest, self.generation)
+            if files is not None:
+                self.publish(files | set(self.ws.buffers), versions)
+                return
+
+    async def _lint_changed(self, paths: list[str]) -> bool:
+        """Lint what ``paths`` reach, the last one's own model first; False when a newer
+        change stopped it (nothing of it was published then)."""
+        ws = self.ws
+        assert ws is not None
+        gen, versions = self.generation, self.versions()
+        outside = {p for p in paths if not ws.readable(p)}
+        if outside:   # not linted: each gets the diagnostic saying so
+            self.publish(outside, versions)
+        inside = [p for p in paths if p not in outside]
+        if not inside:
+            return True
+        jobs = _ordered(ws, inside)
+        ws.forget(jobs)   # their reports are of older text: not shown until linted again
+        for batch in (jobs[:1], jobs[1:]):   # the edited file's model, then the others
+            files = await self._run(batch, gen)
+            if files is None:
+                return False
+            self.publish(files | set(inside) | set(ws.buffers), versions)
+        return True
+
+    async def _run(self, jobs: list[LintJob] | None, gen: int) -> set[str] | None:
+        """Lint ``jobs`` in the lint thread; None when a change newer than ``gen`` came
+        first (the lint stopped, or its result is of older text)."""
+        ws = self.ws
+        if ws is None or self.generation != gen:
+            return None
+        if jobs is not None and not jobs:
+            return set()
+        loop = asyncio.get_running_loop()
+        files = await loop.run_in_executor(self.executor, ws.lint, jobs,
+                                           lambda: self.generation != gen)
+        return None if self.generation != gen else files
+
+    async def reload(self, extra: Iterable[str] = ()) -> None:
+        """Read the config, the packages and the models again, then lint every model."""
+        ws = self.ws
+        if ws is None:
+            return
+        self.generation += 1
+        ws.interrupt()
+        gen = self.generation
+        await asyncio.get_running_loop().run_in_executor(self.executor, ws.load)
+        ws.start()   # (forks from the server's thread, not the lint thread)
+        versions = self.versions()
+        files = await self._run(None, gen)
+        if files is not None:
+            self.publish(files | set(extra) | set(ws.buffers), versions)
+
+    # -- publishing ------------------------------------------------------------------------
+    def publish(self, files: Iterable[str], versions: dict[str, int | None] | None = None
+                ) -> None:
         ws = self.ws
         if ws is None:
             return
@@ -121,95 +178,22 @@ class UrdfLintServer(LanguageServer):
             (self.published.add if diags else self.published.discard)(f)
 
     def diagnostics(self, path: str) -> list[types.Diagnostic]:
-        ws = self.ws
-        assert ws is not None
-        if path in ws.buffers and not ws.readable(path):
-            return [not_linted(ws, path)]
-        out = []
-        cp = ws.config_problem
-        if cp is not None and cp.file == path:
-            line = max(cp.line, 1)
-            d = self.doc(path)
-            text = d.line(line - 1)
-            out.append(types.Diagnostic(
-                range=types.Range(types.Position(line - 1, len(text) - len(text.lstrip())),
-                                  types.Position(line - 1, len(text))),
-                message=cp.message, severity=types.DiagnosticSeverity.Error, source=SOURCE,
-                code="config"))
-        findings = ws.findings_in(path)
-        valued = ws.findings_valued_in(path)
-        if not findings and not valued:
-            return out
-        doc = self.doc(path)
-        out.extend(self._value_diagnostics(doc, valued))
-        docs: dict = {}
-        # one diagnostic per finding, as check counts them (core.findings.group): a macro line
-        # that makes 24 links wrong in 10 models is one diagnostic listing them
-        from urdf_lint.core.findings import group
-        from urdf_lint.report.base import fold_instances
-        for f in group(findings):
-            related = []
-            # every instance's call sites (a grouped finding: each call of the macro line)
-            for (cf, cl, cc) in dict.fromkeys(tuple(c) for i in f.each() for c in i.chain):
-                cdoc = docs.get(cf) or docs.setdefault(cf, self.doc(cf))
-                related.append(types.DiagnosticRelatedInformation(
-                    location=types.Location(uri=path_uri(cf), range=cdoc.element_range(cl, cc)),
-                    message="macro called here"))
-            models = [m for m in f.models if m]
-            msg = f.message
-            folded = fold_instances(f)
-            if folded:
-                msg += f" ({folded})"
-            if models and len(ws.models()) > 1:
-                names = [_model_name(m) for m in models]
-                msg += f" (in {', '.join(names[:4])}{' ...' if len(names) > 4 else ''})"
-            out.append(types.Diagnostic(
-                range=doc.element_range(f.line, f.col), message=msg,
-                severity=SEVERITY.get(f.severity, types.DiagnosticSeverity.Error),
-                code=f.code, source=SOURCE, related_information=related or None,
-                data={"name": f.name}))
-        return out
+        return diagnostics.handle(self.services, path)
 
 
-    def _value_diagnostics(self, doc, valued) -> list[types.Diagnostic]:
-        """A finding whose value is written in this file (a YAML scalar): one diagnostic at
-        that value, pointing at the element that uses it (once per value, code and message)."""
-        out, seen = [], set()
-        for f in valued:
-            _, line, col = f.value_from
-            key = (f.code, f.message, line, col)
-            if key in seen:
-                continue
-            seen.add(key)
-            text = doc.line(line - 1)
-            start = max(col - 1, 0)
-            use = self.doc(f.file)
-            out.append(types.Diagnostic(
-                range=types.Range(types.Position(line - 1, start),
-                                  types.Position(line - 1, max(len(text.rstrip()), start))),
-                message=f"{f.message} (the value is used at {os.path.basename(f.file)}:{f.line})",
-                severity=SEVERITY.get(f.severity, types.DiagnosticSeverity.Error),
-                code=f.code, source=SOURCE, data={"name": f.name},
-                related_information=[types.DiagnosticRelatedInformation(
-                    location=types.Location(uri=path_uri(f.file),
-                                            range=use.element_range(f.line, f.col)),
-                    message="the value is used here")]))
-        return out
+def _ordered(ws: Workspace, paths: list[str]) -> list[LintJob]:
+    """The jobs the changes to ``paths`` reach: first a model of the file changed last (the
+    model it is the entry of, else the first model that reaches it), then the other models,
+    then the files that were no model when last linted (a macro library's own job)."""
+    from urdf_lint.core.jobs import Status
+    from urdf_lint.lsp.state import job_key
 
-
-def not_linted(ws: Workspace, path: str) -> types.Diagnostic:
-    """The one diagnostic of an open file outside the run's roots: it is not linted (no
-    diagnostic would look clean), and why."""
-    return types.Diagnostic(
-        range=types.Range(types.Position(0, 0), types.Position(0, 0)),
-        message=f"not linted: this file is outside the roots of the workspace {ws.root} "
-        "(the packages, git repository and colcon workspace holding it); urdf-lint reads "
-        "no file there", severity=types.DiagnosticSeverity.Information, source=SOURCE,
-        code="not-linted")
-
-
-def _model_name(label: str) -> str:
-    """``ur10`` for the model ``urdf/ur10.xacro`` (its args kept: ``ur [robot_model:=ur5e]``)."""
-    entry, _, args = label.partition(" [")
-    name = os.path.splitext(os.path.basename(entry))[0]
-    return f"{name} [{args}" if args else name
+    def rank(job: LintJob, path: str) -> int:
+        status = ws.last_status.get(job_key(job))
+        model = status is None or status in (Status.MODEL, Status.FRAGMENT)
+        return 2 if not model else 0 if job.entry == path else 1
+    seen: dict[tuple[object, ...], LintJob] = {}
+    for p in reversed(paths):
+        for j in sorted(ws.affected(p), key=lambda j: rank(j, p)):
+            seen.setdefault(job_key(j), j)
+    return list(seen.values())

@@ -18,7 +18,7 @@ class Decl:
     file: str
     line: int            # 1-based
     col: int             # 1-based character column of the '<'
-    attrs: dict = field(default_factory=dict)
+    attrs: dict[str, str] = field(default_factory=dict)
     doc: str = ""        # the comment just above (macros)
     depth: int = 0       # nesting: 0 = a child of the root
     in_macro: str = ""   # the macro it is written in
@@ -28,7 +28,7 @@ class Decl:
 class FileIndex:
     """The declarations and references of one source file (for definition, references, completion)."""
     file: str
-    decls: list = field(default_factory=list)
+    decls: list[Decl] = field(default_factory=list)
 
 
 def index_text(path: str, data: bytes) -> FileIndex:
@@ -37,10 +37,10 @@ def index_text(path: str, data: bytes) -> FileIndex:
     import xml.parsers.expat
     out = FileIndex(path)
     p = xml.parsers.expat.ParserCreate()
-    stack: list = []            # (tag, macro name or "")
-    last_comment: list = [None]
+    stack: list[tuple[str, str]] = []   # (tag, macro name or "")
+    last_comment: list[str | None] = [None]
 
-    def start(tag, attrs):
+    def start(tag: str, attrs: dict[str, str]) -> None:
         macro = next((m for _, m in reversed(stack) if m), "")
         local = tag.split(":", 1)[-1]
         xacro = tag.startswith("xacro:")
@@ -61,11 +61,11 @@ def index_text(path: str, data: bytes) -> FileIndex:
         last_comment[0] = None
         stack.append((tag, attrs.get("name", "") if kind == "macro" else ""))
 
-    def end(tag):
+    def end(tag: str) -> None:
         stack.pop()
         last_comment[0] = None
 
-    def comment(text):
+    def comment(text: str) -> None:
         last_comment[0] = text
     p.StartElementHandler = start
     p.EndElementHandler = end

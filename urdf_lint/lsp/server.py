@@ -1,118 +1,66 @@
-"""``urdf-lint server``: the language server's entry point and its document lifecycle
-(open, change, save, close); the lint and diagnostics are :mod:`.core`, the code actions
-:mod:`.actions`, navigation, hover, completion and symbols :mod:`.features`."""
+"""``urdf-lint server``: the language server's entry point. It only registers the methods,
+one module each in :mod:`urdf_lint.lsp.methods` (``handle(services, params)``; the document
+lifecycle is handed the server); the lint, its scheduling and the diagnostics are
+:mod:`.core`, the shared state :mod:`.services` and :mod:`.state`."""
 from __future__ import annotations
 
 import asyncio
-import os
+from typing import Any, Callable
 
 from lsprotocol import types
 
-from urdf_lint.lsp import actions, features
-from urdf_lint.lsp.methods import (completion_xacro, formatting, hover_xacro, preview,
-                                   range_formatting, rename)
-from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
-from urdf_lint.lsp.state import Workspace
+from urdf_lint.lsp.core import UrdfLintServer
+from urdf_lint.lsp.methods import (code_action, completion, definition, did_change,
+                                   did_change_watched_files, did_close, did_open, did_save,
+                                   document_symbol, formatting, hover, initialized, preview,
+                                   range_formatting, references, rename, shutdown,
+                                   workspace_symbol)
 
 server = UrdfLintServer()
 
 
-@server.feature(types.INITIALIZED)
-def _initialized(ls: UrdfLintServer, params: types.InitializedParams) -> None:
-    root = ls.workspace.root_path or os.getcwd()
-    ls.ws = Workspace(root)
-    # fork the pool from the main thread, before the lint thread exists
-    ls.ws.start()
-    ls.publish(set())
-    if ls.ws.config_problem is not None:
-        ls.publish({ls.ws.config_problem.file})
+def request(method: str, handle: Callable[[Any, Any], Any], options: Any = None) -> None:
+    """Register a request answered from the shared services: ``handle(services, params)``."""
+    server.feature(method, options)(lambda ls, params: handle(ls.services, params))
 
 
-@server.feature(types.TEXT_DOCUMENT_DID_OPEN)
-def _did_open(ls: UrdfLintServer, params: types.DidOpenTextDocumentParams) -> None:
-    path = ls.set_buffer(params.text_document.uri)
-    ls.schedule(path, 0.0)
-
-
-@server.feature(types.TEXT_DOCUMENT_DID_CHANGE)
-def _did_change(ls: UrdfLintServer, params: types.DidChangeTextDocumentParams) -> None:
-    path = ls.set_buffer(params.text_document.uri)
-    ls.schedule(path, DEBOUNCE_S)
-
-
-@server.feature(types.TEXT_DOCUMENT_DID_SAVE)
-async def _did_save(ls: UrdfLintServer, params: types.DidSaveTextDocumentParams) -> None:
-    path = ls.set_buffer(params.text_document.uri)
-    ws = ls.ws
-    if ws is not None and os.path.basename(path) in CONFIG_NAMES:
-        old = ws.config_problem.file if ws.config_problem else None
-        loop = asyncio.get_running_loop()
-        await loop.run_in_executor(ls.executor, ws.load)
-        ws.start()
-        files = await loop.run_in_executor(ls.executor, ws.lint, None)
-        ls.publish(files | {path} | ({old} if old else set()))
-        return
-    ls.schedule(path, 0.0)
-
-
-@server.feature(types.TEXT_DOCUMENT_DID_CLOSE)
-def _did_close(ls: UrdfLintServer, params: types.DidCloseTextDocumentParams) -> None:
-    path = uri_path(params.text_document.uri)
-    if ls.ws is not None and ls.ws.buffers.pop(path, None) is not None:
-        ls.schedule(path, 0.0)   # the file on disk is what counts again
-
-
-@server.feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)
-async def _watched(ls: UrdfLintServer, params: types.DidChangeWatchedFilesParams) -> None:
-    """Files changed outside the editor (a checkout, a generator): a new or deleted model or
-    config re-reads the workspace; a changed file re-lints what it reaches."""
-    ws = ls.ws
-    if ws is None:
-        return
-    paths = [(uri_path(c.uri), c.type) for c in params.changes]
-    if any(t != types.FileChangeType.Changed and p.endswith((".xacro", ".urdf")) or
-           os.path.basename(p) in CONFIG_NAMES for p, t in paths):
-        loop = asyncio.get_running_loop()
-        await loop.run_in_executor(ls.executor, ws.load)
-        ws.start()
-        files = await loop.run_in_executor(ls.executor, ws.lint, None)
-        ls.publish(files | set(ws.buffers), ls.versions())
-        return
-    for p, _ in paths:
-        if p not in ws.buffers:
-            ls.schedule(p, 0.0)
-
-
-@server.feature(types.SHUTDOWN)
-async def _shutdown(ls: UrdfLintServer, params) -> None:
-    if ls.ws is not None:
-        ls.ws.stop_soon()   # the lint under way ends with the jobs it has started
-        await asyncio.get_running_loop().run_in_executor(ls.executor, ls.ws.close)
-
-
-CONFIG_NAMES = ("pyproject.toml", ".urdf-lint.toml", "urdf-lint.toml")
-
-actions.register(server)
-features.register(server)
-
-
-def _in_lint_thread(handle):
-    """A method run in the lint thread (it may use the warm pool: one run at a time)."""
-    async def run(ls: UrdfLintServer, params):
+def in_lint_thread(method: str, handle: Callable[[Any, Any], Any]) -> None:
+    """Register a request answered in the lint thread: ``handle(services, params)`` may use
+    the warm pool of workers (one run at a time, after the lint under way)."""
+    async def run(ls: UrdfLintServer, params: Any) -> Any:
         if ls.ws is None:
             return None
-        return await asyncio.get_running_loop().run_in_executor(ls.executor, handle, ls.ws,
-                                                                params)
-    return run
+        return await asyncio.get_running_loop().run_in_executor(ls.executor, handle,
+                                                                ls.services, params)
+    server.feature(method)(run)
 
 
-for _m in (formatting, range_formatting):
-    server.feature(_m.METHOD)(_in_lint_thread(_m.handle))
-server.feature(rename.METHOD, rename.OPTIONS)(rename.handle)
-server.feature(rename.PREPARE)(rename.prepare)
-features.HOVER_FIRST.append(hover_xacro.hover)
-features.COMPLETION_REFINE.append(completion_xacro.refine)
-server.command(preview.COMMAND)(preview.command)
+def command(name: str, handle: Callable[[Any, list[Any]], Any]) -> None:
+    """Register a ``workspace/executeCommand`` command: ``handle(services, arguments)``."""
+    server.command(name)(lambda ls, *args: handle(ls.services, list(args)))
+
+
+# the document lifecycle: handed the server (it schedules the lint and publishes)
+server.feature(types.INITIALIZED)(initialized.handle)
+server.feature(types.TEXT_DOCUMENT_DID_OPEN)(did_open.handle)
+server.feature(types.TEXT_DOCUMENT_DID_CHANGE)(did_change.handle)
+server.feature(types.TEXT_DOCUMENT_DID_SAVE)(did_save.handle)
+server.feature(types.TEXT_DOCUMENT_DID_CLOSE)(did_close.handle)
+server.feature(types.WORKSPACE_DID_CHANGE_WATCHED_FILES)(did_change_watched_files.handle)
+server.feature(types.SHUTDOWN)(shutdown.handle)
+# requests
+request(types.TEXT_DOCUMENT_DEFINITION, definition.handle)
+request(types.TEXT_DOCUMENT_REFERENCES, references.handle)
+request(types.TEXT_DOCUMENT_HOVER, hover.handle)
+request(types.TEXT_DOCUMENT_COMPLETION, completion.handle, completion.OPTIONS)
+request(types.TEXT_DOCUMENT_DOCUMENT_SYMBOL, document_symbol.handle)
+request(types.WORKSPACE_SYMBOL, workspace_symbol.handle)
+request(types.TEXT_DOCUMENT_CODE_ACTION, code_action.handle, code_action.OPTIONS)
+request(types.TEXT_DOCUMENT_RENAME, rename.handle, rename.OPTIONS)
+request(types.TEXT_DOCUMENT_PREPARE_RENAME, rename.prepare)
+in_lint_thread(types.TEXT_DOCUMENT_FORMATTING, formatting.handle)
+in_lint_thread(types.TEXT_DOCUMENT_RANGE_FORMATTING, range_formatting.handle)
+command(preview.COMMAND, preview.handle)
 
 
 def main() -> int:

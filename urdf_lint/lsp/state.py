@@ -1,13 +1,13 @@
 """The language server's view of one workspace folder, without the protocol.
 
 It loads the config exactly as ``check`` does (``[tool.urdf-lint]``, trust rules, clamps),
-discovers the models and their include graph, lints them in a pool of sandboxed workers that
-stays alive (:mod:`.pool`) with the unsaved buffers as the jobs' overlay, and keeps every
-model's report warm. A change to a file re-lints only the models it can reach: those whose
-entry it is, those whose recorded deps hold it, and those whose entry includes it (the
-include graph, for a model not linted yet). The findings go through the run pipeline's own
-steps (policy, merge across models, inline suppressions) so the editor shows what ``check``
-would print for the same bytes.
+discovers the models and their include graph, lints them in the runner's pool of sandboxed
+workers kept alive (``runner.pool.WorkerPool``, persistent) with the unsaved buffers as the
+jobs' overlay, and keeps every model's report warm. A change to a file re-lints only the
+models it can reach: those whose entry it is, those whose recorded deps hold it, and those
+whose entry includes it (the include graph, for a model not linted yet). The findings go
+through the run pipeline's own steps (policy, merge across models, inline suppressions) so the
+editor shows what ``check`` would print for the same bytes.
 """
 from __future__ import annotations
 
@@ -15,16 +15,60 @@ import os
 import re
 import threading
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Protocol
 
 from urdf_lint.core.findings import Problem
-from urdf_lint.core.jobs import LintJob, ModelReport, Status
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
 
 if TYPE_CHECKING:  # pragma: no cover
-    from urdf_lint.lsp.pool import Pool
+    from urdf_lint.config.schema import Config
+    from urdf_lint.run.cache import Cache
 
 
-def job_key(job: LintJob) -> tuple:
+class Linter(Protocol):
+    """What lints the workspace's jobs: the runner's persistent :class:`WorkerPool`, or (tests
+    only) :class:`InProcessLinter`."""
+    closing: bool
+
+    def start(self) -> None: ...
+
+    def run(self, jobs: list[LintJob], stop: Callable[[], bool] | None = None
+            ) -> Iterator[tuple[LintJob, ModelReport]]: ...
+
+    def wake(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class InProcessLinter:
+    """Lints in this process, outside the sandbox and without limits: for the language
+    server's unit tests only (hover, completion and diagnostics from strings, no process
+    started). Only code makes one (``Workspace(root, in_process=True)``); no config key, command
+    line option or environment variable reaches it (SECURITY.md, "The language server")."""
+
+    def __init__(self, settings: LintSettings):
+        self.settings = settings
+        self.closing = False
+
+    def start(self) -> None:
+        pass
+
+    def run(self, jobs: list[LintJob], stop: Callable[[], bool] | None = None
+            ) -> Iterator[tuple[LintJob, ModelReport]]:
+        from urdf_lint.run.worker import LINT
+        for job in jobs:
+            if stop is not None and stop():
+                return
+            yield job, LINT.run(job, self.settings)
+
+    def wake(self) -> None:
+        pass
+
+    def close(self) -> None:
+        self.closing = True
+
+
+def job_key(job: LintJob) -> tuple[str, tuple[tuple[str, str], ...]]:
     return (job.entry, tuple(sorted(job.args.items())))
 
 
@@ -40,20 +84,27 @@ class ConfigProblem:
 class Workspace:
     """What the language server knows of one workspace: open buffers, latest reports, includes."""
     root: str
-    buffers: dict = field(default_factory=dict)       # path -> bytes (open, maybe unsaved)
-    reports: dict = field(default_factory=dict)       # job_key -> ModelReport
-    findings: list = field(default_factory=list)      # after policy, merge, suppression
+    buffers: dict[str, bytes] = field(default_factory=dict)   # open, maybe unsaved
+    reports: dict[tuple[str, tuple[tuple[str, str], ...]], ModelReport] = \
+        field(default_factory=dict)                   # by job_key
+    findings: list[Problem] = field(default_factory=list)   # after policy, merge, suppression
     config_problem: ConfigProblem | None = None
-    last_good: dict = field(default_factory=dict)     # job_key -> the last report that expanded
+    last_good: dict[tuple[str, tuple[tuple[str, str], ...]], ModelReport] = \
+        field(default_factory=dict)   # by job_key: the last report that expanded
     pool_size: int = 2
     facts: Any = None       # the user's mesh facts store (urdf_lint.meshes.store.FactsStore)
+    # tests only: lint in this process, unsandboxed (InProcessLinter); set by code, never by
+    # a config, the command line or the environment
+    in_process: bool = field(default=False, kw_only=True)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         self.root = os.path.realpath(self.root)
         self.lock = threading.RLock()
-        self.pool: Pool | None = None   # made by load()
+        self.pool: Linter | None = None   # made by load()
         self.cache = None
         self.jobs: list[LintJob] = []
+        # what each job was when last linted (kept when its report is forgotten)
+        self.last_status: dict[tuple[str, tuple[tuple[str, str], ...]], Status] = {}
         self.load()
 
     # -- set-up ----------------------------------------------------------------------------
@@ -98,8 +149,16 @@ class Workspace:
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
         self.reports, self.last_good = {}, {}
-        from urdf_lint.lsp.pool import Pool
-        self.pool = Pool(self.settings, self.pool_size)
+        self.pool = self._linter()
+
+    def _linter(self) -> Linter:
+        """The runner's pool of sandboxed workers, kept alive between edits (forked, limited
+        and sandboxed exactly like ``check``'s)."""
+        if self.in_process:
+            return InProcessLinter(self.settings)
+        from urdf_lint.run.worker import LINT
+        from urdf_lint.runner.pool import WorkerPool
+        return WorkerPool(self.settings, LINT, self.pool_size, persistent=True)
 
     def start(self) -> None:
         """Fork the pool's workers now (from the main thread, before the lint thread exists)."""
@@ -110,6 +169,18 @@ class Workspace:
         """Hand out no further job: the lint under way ends with the jobs it has started."""
         if self.pool is not None:
             self.pool.closing = True
+
+    def interrupt(self) -> None:
+        """Make the lint under way look at its ``stop()`` now (from the server's thread)."""
+        if self.pool is not None:
+            self.pool.wake()
+
+    def forget(self, jobs: list[LintJob]) -> None:
+        """Drop the reports of ``jobs`` (made from older text): until they are linted again,
+        their findings are not shown (a partial result holds only what is current)."""
+        with self.lock:
+            for job in jobs:
+                self.reports.pop(job_key(job), None)
 
     def close(self) -> None:
         if self.pool is not None:
@@ -169,9 +240,11 @@ class Workspace:
         return [j for j in self.jobs if job_key(j) not in self.reports]
 
     # -- linting -------------------------------------------------------------------------------
-    def lint(self, jobs: list[LintJob] | None = None) -> set:
-        """Lint ``jobs`` (default: every job) with the open buffers; returns the files whose
-        findings may have changed."""
+    def lint(self, jobs: list[LintJob] | None = None,
+             stop: Callable[[], bool] | None = None) -> set[str] | None:
+        """Lint ``jobs`` (default: every job, in their order) with the open buffers; returns
+        the files whose findings may have changed, or None when ``stop()`` turned true first
+        (the jobs under way were stopped; the findings are left as they were)."""
         with self.lock:
             jobs = self.jobs if jobs is None else jobs
             overlay = tuple(sorted(self.buffers.items()))
@@ -182,12 +255,14 @@ class Workspace:
             for job, hit in zip(jobs, hits, strict=True):
                 if hit is not None and not _reads_buffer(hit, self.buffers):
                     self.reports[job_key(job)] = hit
+                    self.last_status[job_key(job)] = hit.status
                 else:
                     todo.append(replace(job, overlay=overlay))
             if todo:
                 assert self.pool is not None, "load() makes the pool"
-                for job, rep in self.pool.run(todo):
+                for job, rep in self.pool.run(todo, stop):
                     self.reports[job_key(job)] = rep
+                    self.last_status[job_key(job)] = rep.status
                     if rep.status is Status.MODEL and rep.kept_model is not None:
                         self.last_good[job_key(job)] = rep   # (completion while mid-edit)
                     if self.facts is not None:
@@ -195,6 +270,8 @@ class Workspace:
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
                         plain = replace(job, overlay=())
                         self.cache.put(plain, self.settings, rep)
+            if stop is not None and stop():
+                return None
             self.findings = self._finish()
             return before | {f.file for f in self.findings}
 
@@ -230,10 +307,11 @@ class Workspace:
                 and os.path.realpath(f.value_from[0]) == path]
 
     def models(self) -> list[ModelReport]:
-        return [r for r in self.reports.values() if r.status is Status.MODEL]
+        # (a copy first: the lint thread adds reports while a request reads them)
+        return [r for r in list(self.reports.values()) if r.status is Status.MODEL]
 
 
-def _load_cfg(root: str):
+def _load_cfg(root: str) -> Config:
     """The config ``check`` would use for ``root`` (no command line): the repository's own
     config may not loosen the guarantees (``trust.py``), limits are clamped."""
     from urdf_lint.config import trust
@@ -250,11 +328,11 @@ def _load_cfg(root: str):
     return cfg
 
 
-def _reads_buffer(report: ModelReport, buffers: dict) -> bool:
+def _reads_buffer(report: ModelReport, buffers: dict[str, bytes]) -> bool:
     return any(d in buffers for d in report.deps)
 
 
-def _cache_for(root: str, cfg):
+def _cache_for(root: str, cfg: Config) -> Cache | None:
     """The on-disk cache of ``check`` (results of unchanged files, mesh facts), where
     ``check`` would keep it; none outside git without a configured folder (the server's
     working directory is wherever the editor started it)."""

@@ -23,19 +23,21 @@ import signal
 import struct
 import sys
 import time
+from typing import Any, Callable, Iterator, Sequence
 
 from urdf_lint.runner import wire
 from urdf_lint.runner.wire import Refused
 
 _HEADER = struct.Struct("!Q")
-_live: set = set()
+_live: set[Process] = set()
+Allowed = frozenset[tuple[str, str]]   # (module, class) names a message may be made of
 # in a forked child: the pid of the process that forked it (read before the fork, so a parent
 # that dies at once is still known by its pid: the sandbox checks it after PR_SET_PDEATHSIG)
 parent_pid: int | None = None
 
 
-__all__ = ["Conn", "Process", "Refused", "active_children", "messages", "pipe", "start",
-           "stop", "wait"]
+__all__ = ["Conn", "Process", "Refused", "Wake", "active_children", "messages", "pipe",
+           "start", "stop", "wait"]
 MAX_MESSAGE = 1 << 30    # bytes of one message from an untrusted end
 
 
@@ -52,7 +54,7 @@ class Conn:
     made of those classes, never a pickle (which can call any importable function while it
     is read: ``os.system``); with ``plain``, it writes such messages (the other end's)."""
 
-    def __init__(self, rfd: int, wfd: int, allowed: frozenset | None = None,
+    def __init__(self, rfd: int, wfd: int, allowed: Allowed | None = None,
                  plain: bool = False):
         self.rfd, self.wfd = rfd, wfd
         self.allowed = allowed
@@ -65,7 +67,7 @@ class Conn:
     def fds(self) -> tuple[int, int]:
         return self.rfd, self.wfd
 
-    def send(self, obj) -> None:
+    def send(self, obj: Any) -> None:
         """Write ``obj`` (a plain-data end: :class:`~urdf_lint.runner.wire.Unencodable` when
         it has no such form; nothing is written then)."""
         data = (wire.encode(obj) if self.plain
@@ -87,7 +89,7 @@ class Conn:
             got += k
         return buf
 
-    def recv(self, timeout: float | None = None):
+    def recv(self, timeout: float | None = None) -> Any:
         """The next message. On an end with ``allowed``, anything but a whole, readable
         message of at most ``MAX_MESSAGE`` bytes made of those classes, within ``timeout``
         seconds, is :class:`Refused`: the other end is not trusted to keep to the protocol."""
@@ -108,7 +110,31 @@ class Conn:
         self.rfd = self.wfd = -1
 
 
-def pipe(allowed: frozenset | None = None) -> tuple[Conn, Conn]:
+class Wake(Conn):
+    """A pipe another thread writes a byte to (:meth:`set`), to end a :func:`wait` on it at
+    once (a newer edit stops the language server's lint under way)."""
+
+    def __init__(self) -> None:
+        r, w = os.pipe()
+        os.set_blocking(r, False)
+        os.set_blocking(w, False)
+        super().__init__(r, w)
+
+    def set(self) -> None:
+        try:
+            os.write(self.wfd, b"x")
+        except OSError:   # full (woken already) or closed
+            pass
+
+    def clear(self) -> None:
+        try:
+            while os.read(self.rfd, 512):
+                pass
+        except OSError:
+            pass
+
+
+def pipe(allowed: Allowed | None = None) -> tuple[Conn, Conn]:
     """Two connected ends (parent's, child's); with ``allowed``, the child's sends plain data
     and the parent's accepts only that, made of ``allowed``."""
     r1, w1 = os.pipe()   # parent -> child
@@ -120,7 +146,8 @@ class Process:
     """A forked child running ``target(*args)``; the subset of ``multiprocessing.Process``
     the worker pool uses (pid, exitcode, is_alive, join, kill)."""
 
-    def __init__(self, target, args=(), close_in_child=()):
+    def __init__(self, target: Callable[..., Any], args: Sequence[Any] = (),
+                 close_in_child: Sequence[Conn] = ()) -> None:
         self.pid = 0
         self._status: int | None = None
         self._target, self._args = target, args
@@ -217,7 +244,8 @@ def _quiet_stdin() -> None:
         pass
 
 
-def start(target, args=(), allowed: frozenset | None = None):
+def start(target: Callable[..., Any], args: Sequence[Any] = (),
+          allowed: Allowed | None = None) -> tuple[Any, Any]:
     """Fork a child running ``target(conn, *args)``; returns (parent's conn, process). With
     ``allowed``, the child sends plain data and the parent's end reads only messages made of
     those classes (a child that runs untrusted code; ``frozenset()``: plain data only)."""
@@ -240,7 +268,7 @@ def start(target, args=(), allowed: frozenset | None = None):
     return parent, proc
 
 
-def messages(conn):
+def messages(conn: Any) -> Iterator[Any]:
     """A child's messages from its parent, until the parent sends ``None`` or goes away."""
     while True:
         try:
@@ -252,7 +280,7 @@ def messages(conn):
         yield msg
 
 
-def stop(conn, proc, wait: float) -> None:
+def stop(conn: Any, proc: Any, wait: float) -> None:
     """Ask a child to end (a ``None`` message), give it ``wait`` seconds, then kill it; the
     channel is closed either way."""
     try:
@@ -271,7 +299,7 @@ def active_children() -> list[Process]:
     return [p for p in list(_live) if p.is_alive()]
 
 
-def wait(conns, timeout: float | None = None) -> list:
+def wait(conns: Sequence[Any], timeout: float | None = None) -> list[Any]:
     """The conns with data (or end of file) to read, after at most ``timeout`` seconds."""
     import select
     if not hasattr(os, "fork"):   # pragma: no cover - Windows: multiprocessing's connections

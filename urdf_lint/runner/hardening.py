@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import Any, Collection
 
 from urdf_lint.runner import forked
 
@@ -17,7 +18,7 @@ _KEEP_ENV = {"PATH", "HOME", "LANG", "LANGUAGE", "TMPDIR", "TMP", "TEMP", "PYTHO
              "SYSTEMROOT", "OPENBLAS_NUM_THREADS"}   # (the last: set by the command, cli.entry)
 
 
-def scrub_environment(allow):
+def scrub_environment(allow: Collection[str]) -> None:
     for k in list(os.environ):
         if k in _KEEP_ENV or k.startswith("LC_") or k in allow:
             continue
@@ -30,16 +31,16 @@ _DENIED_EVENTS = {"os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", 
                   "os.rename", "os.rmdir", "os.chmod", "os.chown", "os.symlink", "os.link"}
 
 
-def install_audit_hook(*writable):
+def install_audit_hook(*writable: str | None) -> None:
     """Second line of defence: even if an expression escaped the evaluator, the worker may not
     start processes, open sockets or write files outside the cache and snapshot folders."""
     dirs = tuple(os.path.realpath(d) + os.sep for d in writable if d)
 
-    def ok(path):
+    def ok(path: Any) -> bool:
         return bool(dirs) and os.path.realpath(os.fsdecode(path)).startswith(dirs)
     flags_w = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
 
-    def hook(event, args):
+    def hook(event: str, args: tuple[Any, ...]) -> None:
         if event in _DENIED_EVENTS:
             if event in ("os.rename", "os.remove") and args and ok(args[0]):
                 return  # atomic cache / snapshot writes
@@ -65,7 +66,7 @@ def inherited_data_bytes() -> int:
     return 0
 
 
-def limit_memory(memory_mb, inherited: int, rerun: bool = False) -> None:
+def limit_memory(memory_mb: int | float, inherited: int, rerun: bool = False) -> None:
     """The memory limit of a worker (or the recorder): memory-mb is what the job may allocate;
     what the forked process inherited from its parent (a test process that imported rerun, a
     library user's process) is on top, and so is rerun's reserve when it writes recordings."""
@@ -82,7 +83,7 @@ def limit_memory(memory_mb, inherited: int, rerun: bool = False) -> None:
         pass
 
 
-def confine_writer(write_dir: str) -> dict:
+def confine_writer(write_dir: str) -> dict[str, Any]:
     """The worker hardening for a process that reads nothing and writes only below
     ``write_dir`` (the ``diff --render`` recorder): Landlock (the Python runtime readable,
     nothing of the repository or the home folder; writable only ``write_dir``), seccomp and

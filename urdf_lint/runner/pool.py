@@ -15,9 +15,9 @@ import sys
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any, Callable, Collection, Iterator, Sequence
 
-from urdf_lint.runner import forked
+from urdf_lint.runner import forked, wire
 from urdf_lint.runner.hardening import limit_memory
 from urdf_lint.runner.hardening import inherited_data_bytes as _inherited_data_bytes
 from urdf_lint.runner.hardening import install_audit_hook as _install_audit_hook
@@ -39,7 +39,7 @@ class Handler:
     what it imports)."""
     run: Callable[[LintJob, LintSettings], ModelReport]
     limit_result: Callable[[LintJob, str], ModelReport]
-    allowed: frozenset
+    allowed: frozenset[tuple[str, str]]
     setup: Callable[[], None] | None = None
     warm: Callable[[], None] | None = None
     preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
@@ -48,7 +48,7 @@ class Handler:
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
-def _worker_main(conn, handler: Handler, settings: LintSettings | None):
+def _worker_main(conn: Any, handler: Handler, settings: LintSettings | None) -> None:
     if handler.setup is not None:
         handler.setup()
     # an expansion allocates a DOM node per element: collected every 700 allocations, a
@@ -58,7 +58,7 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None):
     # prestarted worker's own imports count against its limit like any job's allocations)
     inherited = _inherited_data_bytes()
     # the parent turns SIGTERM into KeyboardInterrupt; a worker just dies of it (also when
-    # it was forked from a thread, where _Worker could not set the signals around the fork)
+    # it was forked from a thread, where Worker could not set the signals around the fork)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     if settings is None:
         # started ahead of its settings (prestart): import the expansion while the parent
@@ -103,13 +103,13 @@ def _worker_main(conn, handler: Handler, settings: LintSettings | None):
             conn.send(result)
         except MemoryError:
             conn.send(handler.limit_result(job, "result too large for the memory limit"))
-        except forked.wire.Unencodable as e:   # (a bug: the parent reads only plain data)
+        except wire.Unencodable as e:   # (a bug: the parent reads only plain data)
             unsent = ModelReport.failed(job, internal=[f"the result could not be sent: {e}"])
             unsent.cacheable = False
             conn.send(unsent)
 
 
-_prestarted: "_Worker | None" = None
+_prestarted: "Worker | None" = None
 
 
 def prestart(handler: Handler) -> None:
@@ -122,7 +122,7 @@ def prestart(handler: Handler) -> None:
         from urdf_lint.runner.sandbox import disabled
         disabled()   # decided from the parent's environment before the fork (the worker's is scrubbed)
         try:
-            _prestarted = _Worker(handler, None)
+            _prestarted = Worker(handler, None)
         except OSError:   # no fork here, or no process to spare: start later
             _prestarted = None
             return
@@ -137,7 +137,7 @@ def _drop_prestarted() -> None:
         forked.stop(w.conn, w.proc, 0.5)
 
 
-def _take_prestarted(settings: LintSettings) -> "_Worker | None":
+def _take_prestarted(settings: LintSettings) -> "Worker | None":
     global _prestarted
     w, _prestarted = _prestarted, None
     if w is None:
@@ -165,9 +165,9 @@ MAX_WALK = 20000             # files looked at per package to estimate its meshe
 class Block:
     """The jobs of one package (or of one folder outside any package), with a cost estimate."""
     key: str
-    jobs: list
+    jobs: list[LintJob]
     cost: float = 0.0
-    formats: frozenset = frozenset()   # the mesh suffixes found in the package
+    formats: frozenset[str] = frozenset()   # the mesh suffixes found in the package
 
 
 def package_blocks(jobs: list[LintJob], settings: LintSettings,
@@ -194,7 +194,7 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
     return sorted(out, key=lambda b: -b.cost)
 
 
-def job_cost(job: LintJob, roots=None) -> float:
+def job_cost(job: LintJob, roots: Sequence[str] | None = None) -> float:
     """A first-time estimate of one model's expansion and checks, its meshes aside: every
     xacro element of its entry file adds to it (a 200-link robot written as 200 macro calls
     takes ~0.25 s, a model of a few includes ~0.03 s). Scheduled costliest first, such a
@@ -209,7 +209,7 @@ def job_cost(job: LintJob, roots=None) -> float:
 MAX_ENTRY_READ = 4 << 20
 
 
-def _mesh_cost(root: str) -> tuple[float, frozenset]:
+def _mesh_cost(root: str) -> tuple[float, frozenset[str]]:
     """(seconds to measure the meshes under a package root (a first-time estimate), the mesh
     suffixes found)."""
     cost, seen, formats = 0.0, 0, set()
@@ -269,9 +269,9 @@ def _procs_running() -> int | None:
     return None
 
 
-def assign(blocks: list[Block], n: int) -> list[deque]:
+def assign(blocks: list[Block], n: int) -> list[deque[LintJob]]:
     """n queues of jobs: whole blocks, the costliest first, each to the least loaded queue."""
-    queues: list[deque] = [deque() for _ in range(n)]
+    queues: list[deque[LintJob]] = [deque() for _ in range(n)]
     load = [0.0] * n
     for b in blocks:
         i = min(range(n), key=lambda k: (load[k], k))
@@ -288,7 +288,9 @@ def mesh_facts_cached(settings: LintSettings) -> bool:
     return d is not None and fsbound.has_entries(d)
 
 
-def _next_job(mine, queues, block_of=None, running=()):
+def _next_job(mine: deque[LintJob], queues: list[deque[LintJob]],
+              block_of: dict[int, int] | None = None,
+              running: Collection[int | None] = ()) -> LintJob | None:
     """The next job of a worker: the front of its own queue, else from the far end of the
     longest other queue (the models least likely to share meshes with what that worker is
     on): the whole last package block there when no worker has started it (its meshes are
@@ -314,10 +316,14 @@ def _next_job(mine, queues, block_of=None, running=()):
     return taken[-1]
 
 
-class _Worker:
+class Worker:
+    """One forked, limited, sandboxed worker (:func:`_worker_main`) and the job it is on."""
+
     def __init__(self, handler: Handler, settings: LintSettings | None):
         # the child ignores Ctrl-C and dies of SIGTERM from its first instruction (the parent
         # exits 130 for both; its SIGTERM handler must not run in the child)
+        old: Any = None
+        old_term: Any = None
         try:
             old = signal.signal(signal.SIGINT, signal.SIG_IGN)
             old_term = signal.signal(signal.SIGTERM, signal.SIG_DFL)
@@ -335,10 +341,10 @@ class _Worker:
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
 
-    def kill(self):
+    def kill(self) -> None:
         try:
             self.proc.kill()
-        except Exception:
+        except Exception:  # noqa: BLE001 - already gone
             pass
         self.proc.join(1)
         self.conn.close()
@@ -360,13 +366,14 @@ def _cpu_seconds(pid: int) -> float | None:
         return None
 
 
-def _used(w) -> float | None:
+def _used(w: Worker) -> float | None:
     """CPU seconds worker ``w`` spent on its current job (None: not measurable)."""
     now = _cpu_seconds(w.proc.pid)
     return None if now is None or w.cpu0 is None else now - w.cpu0
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs_n=None):
+def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler,
+             jobs_n: int | None = None) -> Iterator[tuple[LintJob, ModelReport]]:
     """Yield (job, ModelReport) for every job, run by ``handler``; results arrive in
     completion order.
 
@@ -379,17 +386,13 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler, jobs
         return
     pool = _start_pool(jobs, settings, handler, jobs_n)
     try:
-        while pool.pending() or pool.busy:
-            pool.dispatch()
-            for conn in pool.wait():
-                yield pool.collect(conn)
-            yield from pool.expire()
+        yield from pool.drain()
     finally:
         pool.close()
 
 
 def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
-                jobs_n) -> "_Pool":
+                jobs_n: int | None) -> "WorkerPool":
     """Plan the pool (package blocks, worker count, queues) and start its workers."""
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
@@ -407,66 +410,147 @@ def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
         # workers forked from here on share what the parent imports (the prestarted one was
         # forked before)
         handler.preload(blocks, settings, n)
-    pool = _Pool(settings, handler, queues,
-                 {id(j): k for k, b in enumerate(blocks) for j in b.jobs})
+    pool = WorkerPool(settings, handler, n)
+    pool.queues = queues
+    pool.block_of = {id(j): k for k, b in enumerate(blocks) for j in b.jobs}
     pool.workers = [pre] if pre is not None else []
-    pool.workers += [_Worker(handler, settings) for _ in range(n - len(pool.workers))]
+    pool.workers += [Worker(handler, settings) for _ in range(n - len(pool.workers))]
     for w, q in zip(pool.workers, queues, strict=True):
         w.queue = q
     return pool
 
 
-class _Pool:
-    """The workers of one :func:`run_jobs`: which is busy with what, and their limits."""
+class WorkerPool:
+    """Forked, limited, sandboxed workers (:class:`Worker`) and their scheduling, with the time
+    and memory limits of ``settings``: a job over its limit costs its worker (killed and
+    replaced) and becomes the handler's limit result.
 
-    def __init__(self, settings: LintSettings, handler: Handler, queues, block_of):
+    :func:`run_jobs` makes one per run (package blocks on per-worker queues, work stealing).
+    ``persistent=True`` keeps the workers between runs (the language server: a fork and
+    sandbox per edit would cost more than the lint): :meth:`run` takes a batch of jobs in
+    priority order, and stops early, killing the workers on jobs that no longer matter, when
+    its ``stop()`` turns true (:meth:`wake` makes the pool look at once)."""
+
+    def __init__(self, settings: LintSettings, handler: Handler, size: int = 1,
+                 persistent: bool = False):
         self.settings, self.handler = settings, handler
+        self.size, self.persistent = max(1, size), persistent
         self.timeout, self.memory_mb = settings.timeout, settings.memory_mb
         self.wall = self.timeout * WALL_FACTOR
-        self.queues, self.block_of = queues, block_of
-        self.workers: list[_Worker] = []
-        self.busy: dict = {}   # connection -> its worker, busy with a job
+        self.queues: list[deque[LintJob]] = []
+        self.block_of: dict[int, int] = {}
+        self.workers: list[Worker] = []
+        self.busy: dict[Any, Worker] = {}   # connection -> its worker, busy with a job
+        self.closing = False   # set from another thread: hand out no further job
+        self.stopped = 0       # jobs stopped under way by a stop() (their workers killed)
+        self._wake = forked.Wake() if persistent else None
+
+    # -- the persistent form -------------------------------------------------------------------
+    def start(self) -> None:
+        """Fork the workers now (they share what the parent imported; from the main thread,
+        where the signals around the fork are ours to set)."""
+        from urdf_lint.runner.sandbox import prepare
+        prepare()
+        if self.handler.preload is not None:
+            self.handler.preload([], self.settings, self.size)
+        while len(self.workers) < self.size:
+            self.workers.append(Worker(self.handler, self.settings))
+
+    def run(self, jobs: list[LintJob],
+            stop: Callable[[], bool] | None = None) -> Iterator[tuple[LintJob, ModelReport]]:
+        """(job, report) for the jobs, handed out in their order, in completion order. When
+        ``stop()`` turns true (looked at between results, and at once after :meth:`wake`),
+        the jobs not started are dropped and the workers on the others are killed and
+        replaced: nothing more is yielded."""
+        if not self.workers:
+            self.start()
+        shared: deque[LintJob] = deque(jobs)
+        self.queues, self.block_of = [shared], {}
+        for w in self.workers:
+            w.queue = shared
+        yield from self.drain(stop)
+
+    def wake(self) -> None:
+        """Make a :meth:`run` under way look at its ``stop()`` now (from any thread)."""
+        if self._wake is not None:
+            self._wake.set()
+
+    def abandon(self) -> None:
+        """Drop the jobs not started and stop the workers on the others."""
+        for q in self.queues:
+            q.clear()
+        for conn, w in list(self.busy.items()):
+            self.busy.pop(conn)
+            self.stopped += 1
+            self.replace(w)
+
+    # -- scheduling ----------------------------------------------------------------------------
+    def drain(self, stop: Callable[[], bool] | None = None
+              ) -> Iterator[tuple[LintJob, ModelReport]]:
+        """Run the queued jobs to the end (or until ``stop()``), yielding their results."""
+        while (self.pending() and not self.closing) or self.busy:
+            if stop is not None and stop():
+                self.abandon()
+                return
+            self.dispatch()
+            for conn in self.wait():
+                if conn is self._wake:
+                    self._wake.clear()
+                    continue
+                yield self.collect(conn)
+            yield from self.expire()
 
     def pending(self) -> bool:
         return any(self.queues)
 
-    def replace(self, old: "_Worker") -> None:
+    def replace(self, old: Worker) -> None:
         """Stop worker ``old`` and start another on its queue."""
         self.retire(old)
-        new = _Worker(self.handler, self.settings)
+        new = Worker(self.handler, self.settings)
         new.queue = old.queue
         self.workers.append(new)
 
-    def retire(self, w: "_Worker") -> None:
-        self.workers.remove(w)
+    def retire(self, w: Worker) -> None:
+        if w in self.workers:
+            self.workers.remove(w)
         w.kill()
 
-    def _limit(self, w: "_Worker") -> float:
+    def _limit(self, w: Worker) -> float:
         return self.wall if w.cpu0 is not None else self.timeout
 
     def dispatch(self) -> None:
         """Send each idle worker its next job."""
-        for w in self.workers:
-            if w.job is None and self.pending():
+        for w in list(self.workers):
+            if w.job is None and self.pending() and not self.closing:
                 w.job = _next_job(w.queue, self.queues, self.block_of,
                                   {self.block_of.get(id(o.job)) for o in self.workers if o.job})
                 if w.job is None:
                     continue
                 w.started = time.monotonic()
                 w.cpu0 = _cpu_seconds(w.proc.pid)
-                w.conn.send(w.job)
+                try:
+                    w.conn.send(w.job)
+                except (OSError, ValueError):   # a worker gone meanwhile: another takes it
+                    w.queue.appendleft(w.job)
+                    w.job = None
+                    self.replace(w)
+                    continue
                 self.busy[w.conn] = w
 
-    def wait(self):
+    def wait(self) -> list[Any]:
         """The connections of busy workers that sent something, by the next deadline (or the
-        next look at CPU times)."""
+        next look at CPU times); the wake pipe too when another thread set it."""
         now = time.monotonic()
-        next_deadline = min(w.started + self._limit(w) for w in self.busy.values())
+        next_deadline = min((w.started + self._limit(w) for w in self.busy.values()),
+                            default=now + POLL_S)
         if any(w.cpu0 is not None for w in self.busy.values()):
             next_deadline = min(next_deadline, now + POLL_S)
-        return forked.wait(list(self.busy), timeout=max(0.0, next_deadline - now))
+        conns: list[Any] = list(self.busy)
+        if self._wake is not None:
+            conns.append(self._wake)
+        return forked.wait(conns, timeout=max(0.0, next_deadline - now))
 
-    def collect(self, conn):
+    def collect(self, conn: Any) -> tuple[LintJob, ModelReport]:
         """(job, result) from the worker on ``conn``; a worker that sent something else or
         died is replaced."""
         w = self.busy.pop(conn)
@@ -494,7 +578,7 @@ class _Pool:
             w.job = None
         return job, result
 
-    def _over(self, w: "_Worker", now: float) -> tuple[bool, str]:
+    def _over(self, w: Worker, now: float) -> tuple[bool, str]:
         """(whether busy worker ``w`` is over its time limit, the limit in words)."""
         timeout, wall = self.timeout, self.wall
         if w.cpu0 is not None:
@@ -504,7 +588,7 @@ class _Pool:
                           "wall-clock time)")
         return now - w.started >= timeout, f"the time limit ({timeout:g} s)"
 
-    def expire(self):
+    def expire(self) -> Iterator[tuple[LintJob, ModelReport]]:
         """Yield (job, limit result) for each busy worker over its time limit, stopped."""
         now = time.monotonic()
         for conn, w in list(self.busy.items()):
@@ -512,7 +596,7 @@ class _Pool:
             if over:
                 self.busy.pop(conn)
                 job = w.job
-                if self.pending() or self.busy:
+                if self.persistent or self.pending() or self.busy:
                     self.replace(w)
                 else:
                     self.retire(w)
@@ -521,6 +605,7 @@ class _Pool:
                     "loop or recursion?")
 
     def close(self) -> None:
+        self.closing = True
         for w in self.workers:
             try:
                 w.conn.send(None)
@@ -532,3 +617,8 @@ class _Pool:
                 w.kill()
             else:
                 w.conn.close()
+        self.workers = []
+        if self._wake is not None:
+            self._wake.close()
+            self._wake = None
+

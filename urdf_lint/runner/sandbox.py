@@ -31,6 +31,7 @@ import ctypes
 import errno
 import os
 import sys
+from typing import Any, Iterable
 
 _PR_SET_PDEATHSIG = 1
 _PR_SET_NO_NEW_PRIVS = 38
@@ -71,14 +72,14 @@ def disabled() -> bool:
 
 
 # -- probing (parent side, cheap, applies nothing) ---------------------------------------------
-def _libc():
+def _libc() -> Any:
     try:
         return ctypes.CDLL(None, use_errno=True)
     except OSError:
         return None
 
 
-def _import_landlock():
+def _import_landlock() -> Any:
     """The ``landlock`` package, imported as it is: nothing of the standard library or of
     another package is swapped around the import (a stub for ``dataclasses``' view of
     ``inspect`` crashed every Python but 3.11)."""
@@ -101,7 +102,7 @@ def landlock_status() -> tuple[bool, str]:
     return True, f"Landlock ABI {abi}"
 
 
-def _import_pyseccomp():
+def _import_pyseccomp() -> Any:
     """The ``pyseccomp`` package, imported as it is (it looks libseccomp up with the standard
     library's ``ctypes.util``; no stand-in is swapped into the standard library)."""
     import pyseccomp
@@ -151,7 +152,7 @@ def summary_line() -> str:
             + (f" (missing: {', '.join(off)})" if off else ""))
 
 
-def note_missing(stream=None) -> None:
+def note_missing(stream: Any = None) -> None:
     """Say once per process which OS protections this machine lacks."""
     global _noted
     if _noted:
@@ -178,7 +179,7 @@ def set_parent_death_signal(parent_pid: int) -> bool:
     return True
 
 
-def close_inherited_fds(keep) -> None:
+def close_inherited_fds(keep: Iterable[int]) -> None:
     keep = sorted({0, 1, 2} | {int(k) for k in keep if k is not None and k >= 0})
     try:
         fds = [int(n) for n in os.listdir("/proc/self/fd")]
@@ -244,8 +245,9 @@ def _runtime_read_paths() -> list[str]:
     return out
 
 
-def _existing(paths):
-    seen, out = set(), []
+def _existing(paths: Iterable[str | None]) -> list[str]:
+    seen: set[str] = set()
+    out: list[str] = []
     for p in paths:
         if not p:
             continue
@@ -260,7 +262,8 @@ def _existing(paths):
     return out
 
 
-def apply_landlock(read_paths, write_paths) -> None:
+def apply_landlock(read_paths: Iterable[str | None],
+                   write_paths: Iterable[str | None]) -> None:
     from landlock import FSAccess, Ruleset
     handled = FSAccess.all()
     ro_file = FSAccess.READ_FILE
@@ -348,7 +351,8 @@ def apply_seccomp() -> None:
     f.load()
 
 
-def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
+def enter(parent_pid: int, read_paths: Iterable[str | None],
+          write_paths: Iterable[str | None], keep_fds: Iterable[int] = ()) -> dict[str, Any]:
     """Lock this (worker) process down. Returns {protection: "on" | reason it is off}."""
     status = {}
     status["pdeathsig"] = "on" if set_parent_death_signal(parent_pid) else "unavailable"
@@ -380,7 +384,7 @@ def enter(parent_pid: int, read_paths, write_paths, keep_fds=()) -> dict:
     return status
 
 
-def enter_worker(conn, settings) -> dict:
+def enter_worker(conn: Any, settings: Any) -> dict[str, Any]:
     """The one call a worker makes at start-up, before it reads its first job (``settings`` is
     the run's :class:`urdf_lint.core.jobs.LintSettings`)."""
     import signal

@@ -52,7 +52,7 @@ class Unencodable(TypeError):
 # -- encoding -----------------------------------------------------------------------------------
 def encode(value: Any) -> bytes:
     """``value`` as a message."""
-    blobs: list = []
+    blobs: list[bytes] = []
     text = _json_out(_Encoder(blobs).enc(value)).encode("ascii")
     return b"".join([MAGIC, _HEAD.pack(len(text), len(blobs)),
                      *(_BLOB.pack(len(b)) for b in blobs), text, *blobs])
@@ -63,7 +63,7 @@ def _name(cls: type) -> str:
 
 
 class _Encoder:
-    def __init__(self, blobs: list):
+    def __init__(self, blobs: list[bytes]):
         self.blobs = blobs
         self.by_type: dict[type, Callable[[Any], Any]] = {
             list: self.seq, tuple: self.tagged("t"), set: self.tagged("s"),
@@ -77,14 +77,14 @@ class _Encoder:
         f = self.by_type.get(t) or self.by_type.setdefault(t, self.for_class(t))
         return f(x)
 
-    def seq(self, x) -> list:
+    def seq(self, x: Any) -> list[Any]:
         enc = self.enc
         return [v if type(v) in _PLAIN else enc(v) for v in x]
 
     def tagged(self, tag: str) -> Callable[[Any], Any]:
         return lambda x: {TAG: tag, "v": self.seq(x)}
 
-    def mapping(self, x: dict) -> Any:
+    def mapping(self, x: dict[Any, Any]) -> Any:
         enc = self.enc
         if TAG not in x and all(type(k) is str for k in x):
             return {k: v if type(v) in _PLAIN else enc(v) for k, v in x.items()}
@@ -94,7 +94,7 @@ class _Encoder:
         self.blobs.append(b)
         return len(self.blobs) - 1
 
-    def raw(self, x) -> Any:
+    def raw(self, x: Any) -> Any:
         return {TAG: "b", "i": self.attach(bytes(x))}
 
     def for_class(self, t: type) -> Callable[[Any], Any]:
@@ -111,7 +111,7 @@ class _Encoder:
             return self.array
         raise Unencodable(f"no plain-data form for a {t.__module__}.{t.__qualname__}")
 
-    def array(self, x) -> Any:
+    def array(self, x: Any) -> Any:
         if x.dtype.hasobject or x.dtype.fields is not None:
             raise Unencodable(f"no plain-data form for an array of {x.dtype}")
         import numpy as np
@@ -120,7 +120,7 @@ class _Encoder:
 
 
 # -- decoding -----------------------------------------------------------------------------------
-def decode(data: bytes | bytearray, allowed: frozenset) -> Any:
+def decode(data: bytes | bytearray, allowed: frozenset[tuple[str, str]]) -> Any:
     """The value of message ``data``, made only of plain data and the classes ``allowed``
     (``(module, name)`` pairs; numpy arrays: ``("numpy", "ndarray")``); anything else, or a
     message that is not one, is :class:`Refused`."""
@@ -154,11 +154,12 @@ _KINDS = {"e": "an enum", "n": "a named tuple", "d": "a dataclass"}
 
 
 class _Decoder:
-    def __init__(self, view: memoryview, offsets: list, allowed: frozenset):
+    def __init__(self, view: memoryview, offsets: list[tuple[int, int]],
+                 allowed: frozenset[tuple[str, str]]):
         self.view, self.offsets, self.allowed = view, offsets, allowed
         self.classes: dict[str, type] = {}
 
-    def hook(self, d: dict) -> Any:
+    def hook(self, d: dict[str, Any]) -> Any:
         tag = d.get(TAG)
         if tag is None:
             return d
@@ -198,7 +199,7 @@ class _Decoder:
         self.classes[name] = cls
         return cls
 
-    def instance(self, tag: str, d: dict) -> Any:
+    def instance(self, tag: str, d: dict[str, Any]) -> Any:
         cls = self.cls(tag, d["c"])
         if tag == "e":
             return cls(d["v"])
@@ -214,7 +215,7 @@ class _Decoder:
         obj.__dict__.update(fields)
         return obj
 
-    def array(self, d: dict) -> Any:
+    def array(self, d: dict[str, Any]) -> Any:
         if ("numpy", "ndarray") not in self.allowed:
             raise Refused("numpy.ndarray")
         import numpy as np
@@ -226,10 +227,10 @@ class _Decoder:
             [int(k) for k in d["s"]])
 
 
-_NAMES: dict[type, frozenset] = {}
+_NAMES: dict[type, frozenset[str]] = {}
 
 
-def _field_names(cls: type) -> frozenset:
+def _field_names(cls: type) -> frozenset[str]:
     names = _NAMES.get(cls)
     if names is None:
         names = _NAMES[cls] = frozenset(f.name for f in dataclasses.fields(cls))

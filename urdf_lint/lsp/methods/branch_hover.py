@@ -11,7 +11,7 @@ from lsprotocol import types
 CONDITIONS = ("xacro:if", "xacro:unless")
 
 
-def outcomes(models: list, path: str, line: int) -> tuple[list[str], list[str]]:
+def outcomes(models: list[Any], path: str, line: int) -> tuple[list[str], list[str]]:
     """(the models whose expansion kept the body of the condition at ``path:line``, those that
     evaluated it and left it out), by name and args."""
     kept: list[str] = []
@@ -29,7 +29,7 @@ def outcomes(models: list, path: str, line: int) -> tuple[list[str], list[str]]:
 
 
 def _name(r: Any) -> str:
-    base = r.name or os.path.basename(r.entry)
+    base: str = r.name or os.path.basename(r.entry)
     if r.args:
         base += " [" + " ".join(f"{k}:={v}" for k, v in sorted(r.args.items())) + "]"
     return base

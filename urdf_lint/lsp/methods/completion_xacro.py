@@ -1,66 +1,63 @@
-"""Completion where the editor is mid-edit (``textDocument/completion``, after the completers
-of :mod:`urdf_lint.lsp.features`):
+"""Completion where the editor is mid-edit (``textDocument/completion``: applied by
+:mod:`urdf_lint.lsp.methods.completion` to the items of the completer that answered):
 
 * a **block macro** (one taking a ``*block`` parameter or writing ``<xacro:insert_block>``)
-  completes as an open/close pair with the cursor between them: its block is the content;
+  completes as an open/close pair with the cursor between them: its block is the content
+  (:func:`block_pairs`, after the macro names);
 * **link and joint names inside an unclosed attribute** (``<parent link="`` with the rest of
   the file not closed yet): the buffer does not expand while it is typed, so the names come
   from the last model of each variant that expanded (:attr:`Workspace.last_good`), not only
-  from the latest lint."""
+  from the latest lint (:func:`with_last_good`, after the link and joint names)."""
 from __future__ import annotations
 
 import re
 
 from lsprotocol import types
 
+from urdf_lint.lsp.cursor import At
+from urdf_lint.lsp.index import Decl, macro_params
+from urdf_lint.lsp.services import Services
+
 _BLOCK_USE = re.compile(r"<xacro:insert_block\b")
 
 
-def refine(ls, path: str, at, completer, items: list) -> list:
-    """The items ``completer`` gave at ``at``, completed as above."""
-    from urdf_lint.lsp import features
-    if completer is features._complete_macros:
-        return [_block_pair(ls, path, it) for it in items]
-    if completer is features._complete_references:
-        return _with_last_good(ls, path, at, items)
-    return items
+def block_pairs(sv: Services, path: str, items: list[types.CompletionItem]
+                ) -> list[types.CompletionItem]:
+    """The macro names ``items``, a block macro's as an open/close pair."""
+    return [_block_pair(sv, path, it) for it in items]
 
 
-def is_block_macro(ls, d) -> bool:
-    from urdf_lint.lsp.index import macro_params
+def is_block_macro(sv: Services, d: Decl) -> bool:
     if any(n.startswith("*") for n, _ in macro_params(d.attrs.get("params", ""))):
         return True
-    text = ls.doc(d.file).text
+    text = sv.doc(d.file).text
     lines = text.split("\n")
     start = sum(len(ln) + 1 for ln in lines[:d.line - 1]) + d.col - 1
     end = text.find("</xacro:macro>", start)
     return bool(_BLOCK_USE.search(text, start, end if end >= 0 else len(text)))
 
 
-def _block_pair(ls, path: str, item: types.CompletionItem) -> types.CompletionItem:
-    from urdf_lint.lsp.features import INDEX
+def _block_pair(sv: Services, path: str, item: types.CompletionItem) -> types.CompletionItem:
     snippet = item.insert_text or ""
-    d = next(iter(INDEX.decls(ls, path, "macro", item.label)), None)
-    if d is None or not snippet.endswith("/>") or not is_block_macro(ls, d):
+    d = next(iter(sv.index.decls(path, "macro", item.label)), None)
+    if d is None or not snippet.endswith("/>") or not is_block_macro(sv, d):
         return item
     item.insert_text = f"{snippet[:-2]}>\n\t$0\n</xacro:{item.label}>"
     item.detail = (item.detail or "macro") + ", takes a block"
     return item
 
 
-def _with_last_good(ls, path: str, at, items: list) -> list:
+def with_last_good(sv: Services, path: str, at: At, items: list[types.CompletionItem]
+                   ) -> list[types.CompletionItem]:
     """Add the names of the last model of each variant that expanded and read ``path``."""
-    from urdf_lint.lsp.features import _model_files, view_of
-    ws = ls.ws
+    ws = sv.ws
     if ws is None:
         return items
     have = {it.label for it in items}
     want = "joint" if at.attr == "joint" else "link"
     for rep in list(ws.last_good.values()):
-        v = view_of(rep)
-        if v is None:
-            continue
-        if path not in _model_files(v):
+        v = sv.view_of(rep)
+        if v is None or path not in v.files:
             continue
         for (k, n) in v.named:
             if (k == want or at.attr == "reference") and n not in have:

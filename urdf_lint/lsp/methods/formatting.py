@@ -12,22 +12,27 @@ from __future__ import annotations
 
 import difflib
 import re
+from typing import Any, Iterator
 
 from lsprotocol import types
 
-from urdf_lint.lsp.core import uri_path
 from urdf_lint.lsp.methods import Refused
+from urdf_lint.lsp.services import Services
+from urdf_lint.lsp.state import Workspace
 from urdf_lint.lsp.text import Doc
+from urdf_lint.lsp.uris import uri_path
 
-METHOD = types.TEXT_DOCUMENT_FORMATTING
 SUFFIXES = (".urdf", ".xacro")
 
 
-def handle(ws, params: types.DocumentFormattingParams) -> list[types.TextEdit] | None:
-    return edits(ws, uri_path(params.text_document.uri), None)
+def handle(sv: Services, params: types.DocumentFormattingParams
+           ) -> list[types.TextEdit] | None:
+    """Run in the lint thread (:func:`urdf_lint.lsp.server.in_lint_thread`): the proof may
+    use the warm pool."""
+    return edits(sv.ws, uri_path(params.text_document.uri), None)
 
 
-def edits(ws, path: str, rng: types.Range | None) -> list[types.TextEdit] | None:
+def edits(ws: Workspace | None, path: str, rng: types.Range | None) -> list[types.TextEdit] | None:
     """The text edits that lay out ``path`` (only the changed lines touching ``rng`` when
     given), proved; [] when it is laid out already; None for a file format does not lay out."""
     from urdf_lint.formatting.layout import FormatError, Refused as Unsafe, check_same, \
@@ -40,7 +45,7 @@ def edits(ws, path: str, rng: types.Range | None) -> list[types.TextEdit] | None
                       "only below the paths it is given)")
     data = ws.buffers[path] if path in ws.buffers else ws.read(path)
     style = style_of(ws.cfg)
-    docs: dict = {}
+    docs: dict[bytes, Any] = {}
     try:
         new = format_source(data, style, path, docs)
     except FormatError as e:
@@ -58,7 +63,7 @@ def edits(ws, path: str, rng: types.Range | None) -> list[types.TextEdit] | None
     return _text_edits(data, new)
 
 
-def _prove(ws, path: str, old: bytes, new: bytes, docs: dict) -> None:
+def _prove(ws: Workspace, path: str, old: bytes, new: bytes, docs: dict[bytes, Any]) -> None:
     """Format's proof for the new layout of ``path`` (raises :class:`Refused` when it fails)."""
     from urdf_lint.run.format import prove
     held = dict(ws.buffers)   # (before: the buffers as they are; after: with the new layout)
@@ -69,7 +74,7 @@ def _prove(ws, path: str, old: bytes, new: bytes, docs: dict) -> None:
         raise Refused(f"not formatted: {proof.refused[path]}")
 
 
-def _hunks(old: bytes, new: bytes):
+def _hunks(old: bytes, new: bytes) -> Iterator[tuple[int, int, list[bytes]]]:
     """(old line from, old line to, new lines) of each change, by lines: a run of changed
     lines is cut where the old and the new lines hold the same markup so far (the layout
     moves only whitespace, and closes an empty element), so that each old line's elements
@@ -106,7 +111,8 @@ def _markup(text: bytes) -> bytes:
 def _within(old: bytes, new: bytes, rng: types.Range) -> bytes:
     """``old`` with only the changes of ``new`` that touch the lines of ``rng``."""
     a = old.splitlines(keepends=True)
-    out, at = [], 0
+    out: list[bytes] = []
+    at = 0
     first, last = rng.start.line, rng.end.line
     for i1, i2, lines in _hunks(old, new):
         if i1 <= last and (i2 > first or i1 == i2 and i1 >= first):

@@ -18,10 +18,12 @@ from typing import Any
 from urllib.parse import quote
 
 from urdf_lint.lsp.methods import Refused
+from urdf_lint.lsp.services import Services
+from urdf_lint.lsp.uris import uri_path
 
 COMMAND = "urdf-lint.preview"
 START_TIMEOUT_S = 120.0
-_running: dict[str, tuple[subprocess.Popen, str]] = {}
+_running: dict[str, tuple[subprocess.Popen[str], str]] = {}
 
 # an opening <link ...> or <joint ...> tag and its literal name
 _OPEN = re.compile(r"<(link|joint)\b[^>]*?\bname\s*=\s*([\"'])([^\"'$]*)\2", re.S)
@@ -49,7 +51,7 @@ def element_at(text: str, line: int, character: int) -> str:
     return best
 
 
-def _start(path: str) -> tuple[subprocess.Popen, str]:
+def _start(path: str) -> tuple[subprocess.Popen[str], str]:
     proc = subprocess.Popen([sys.executable, "-m", "urdf_lint", "preview", path],
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                             stdin=subprocess.DEVNULL, cwd=os.path.dirname(path) or None,
@@ -71,15 +73,14 @@ def _start(path: str) -> tuple[subprocess.Popen, str]:
     raise RuntimeError(f"the preview of {path} did not start")
 
 
-def handle(ws: Any, args: list[Any]) -> dict[str, str]:
+def handle(sv: Services, args: list[Any]) -> dict[str, str]:
     """Start (or reuse) the preview of the file ``args[0]`` and return its URL."""
-    from urdf_lint.lsp.core import uri_path
     if not args:
         raise Refused(f"{COMMAND} needs the file's URI")
     path = uri_path(str(args[0]))
     line = int(args[1]) if len(args) > 1 else 0
     character = int(args[2]) if len(args) > 2 else 0
-    highlight = element_at(_text(ws, path), line, character)
+    highlight = element_at(sv.doc(path).text, line, character)
     running = _running.get(path)
     if running is None or running[0].poll() is not None:
         if not _running:
@@ -87,24 +88,6 @@ def handle(ws: Any, args: list[Any]) -> dict[str, str]:
         running = _running[path] = _start(path)
     url = running[1] + (f"#highlight={quote(highlight)}" if highlight else "")
     return {"url": url, "highlight": highlight}
-
-
-def command(ls: Any, *args: Any) -> dict[str, str]:
-    """The registered command (pygls spreads the arguments)."""
-    return handle(ls.ws, list(args))
-
-
-def _text(ws: Any, path: str) -> str:
-    """The file as the editor has it, else as on disk (through the workspace's roots)."""
-    if ws is None:
-        return ""
-    data = ws.buffers.get(path)
-    if data is None:
-        try:
-            data = ws.read(path)
-        except OSError:
-            data = b""
-    return bytes(data).decode("utf-8", "replace")
 
 
 def stop_all() -> None:

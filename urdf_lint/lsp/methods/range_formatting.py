@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from lsprotocol import types
 
-from urdf_lint.lsp.core import uri_path
 from urdf_lint.lsp.methods.formatting import edits
+from urdf_lint.lsp.services import Services
+from urdf_lint.lsp.uris import uri_path
 
-METHOD = types.TEXT_DOCUMENT_RANGE_FORMATTING
 
-
-def handle(ws, params: types.DocumentRangeFormattingParams) -> list[types.TextEdit] | None:
-    return edits(ws, uri_path(params.text_document.uri), params.range)
+def handle(sv: Services, params: types.DocumentRangeFormattingParams
+           ) -> list[types.TextEdit] | None:
+    """Run in the lint thread, as :func:`.formatting.handle`."""
+    return edits(sv.ws, uri_path(params.text_document.uri), params.range)
