@@ -39,7 +39,8 @@ MEMORY_BYTES = 4 << 30
 CONSUMERS = {"mujoco": "mujoco", "pinocchio": "pinocchio", "pybullet": "pybullet",
              "drake": "drake", "yourdfpy": "yourdfpy", "urdf_parser_py": "urdf_parser_py",
              "urdf_parser_py_0.0.4": "urdf_parser_py", "urchin": "urchin",
-             "idyntree": "idyntree", "sdformat": "gazebo", "isaac": "isaac"}
+             "idyntree": "idyntree", "sdformat": "gazebo", "isaac": "isaac",
+             "check_urdf": "ros"}
 # the consumers the fast part (CI) runs: those that install from the package index into the
 # project's venv with the consumers extra
 PIP_CONSUMERS = ("mujoco", "pinocchio", "pybullet", "yourdfpy", "urdf_parser_py",
@@ -281,10 +282,22 @@ def agrees(verdict: str, findings: list, codes: list) -> tuple[bool, str]:
     return True, ""
 
 
-def run(fast: bool, with_corpus: bool, consumers: list[str]) -> dict:
-    work = Path(tempfile.mkdtemp(prefix="ul-consumers-"))
+def run(fast: bool, with_corpus: bool, consumers: list[str], keep: Path | None = None,
+        lint_only: bool = False) -> dict:
+    """Prepare the inputs, load them in each consumer, lint them. With ``keep`` the inputs and
+    the verdicts stay in that folder, and ``lint_only`` reuses them (after a rule changed)."""
+    work = keep or Path(tempfile.mkdtemp(prefix="ul-consumers-"))
     build = work / "_build"
-    build.mkdir()
+    saved = work / "verdicts-raw.json"
+    if lint_only:
+        raw = json.loads(saved.read_text())
+        items = {i: dict(it, path=Path(it["path"])) for i, it in raw["items"].items()}
+        findings = lint(work / "in", items, {v["target"] for v in raw["info"].values()
+                                             if "version" in v})
+        return summarise(items, raw["results"], findings, raw["info"])
+    if keep is not None and work.exists():
+        shutil.rmtree(work)
+    build.mkdir(parents=True)
     try:
         probe_error = build_probe(build) if "sdformat" in consumers else None
         items = prepare(work / "in", fast, with_corpus)
@@ -301,20 +314,34 @@ def run(fast: bool, with_corpus: bool, consumers: list[str]) -> dict:
                 info[c] = {"target": CONSUMERS[c], "unavailable": w.unavailable}
                 print(f"{c}: unavailable: {w.unavailable}", file=sys.stderr)
                 continue
-            for i, it in items.items():
+            bases = {it["base"]: i for i, it in items.items() if it["kind"] == "base"}
+            order = sorted(items, key=lambda i: items[i]["kind"] != "base")   # bases first
+            for i in order:
+                it = items[i]
                 r = results[i][c] = w.load(it["path"])
-                if r["v"] == "." and it["class"] in mutants.CHANGES_ROBOT:
+                base = results.get(bases.get(it["base"], ""), {}).get(c, {})
+                if r["v"] == "." and "links" in r and "links" in base and \
+                        it["class"] not in mutants.LUMPS and \
+                        r["links"] < base["links"]:
+                    r.update(v="W", msg=f"loads {r['links']} links of the base's "
+                                        f"{base['links']}: links dropped")
+                if r["v"] == "." and (it["class"] in mutants.CHANGES_ROBOT or c in
+                                      mutants.CHANGES_ROBOT_FOR.get(it["class"], ())):
                     r.update(v="W", msg="loads; the class drops or contradicts part of the "
                                         "robot (mutants.CHANGES_ROBOT)")
             info[c] = {"target": CONSUMERS[c], "version": w.version}
             w.stop()
             print(f"{c} {w.version}: {len(items)} models in {time.time() - t0:.0f}s",
                   file=sys.stderr)
+        if keep is not None:
+            saved.write_text(json.dumps({"items": items, "results": results, "info": info},
+                                        default=str))
         targets = {info[c]["target"] for c in info if "version" in info[c]}
         findings = lint(work / "in", items, targets)
         return summarise(items, results, findings, info)
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        if keep is None:
+            shutil.rmtree(work, ignore_errors=True)
 
 
 def summarise(items, results, findings, info) -> dict:
@@ -325,6 +352,8 @@ def summarise(items, results, findings, info) -> dict:
     for i, it in items.items():
         for c, r in results[i].items():
             t = info[c]["target"]
+            if (c, it["class"]) in mutants.NOT_MEASURED or r["v"] == "?":
+                continue
             ok, why = agrees(r["v"], findings[i].get(t, []), it["codes"])
             part = "corpus" if it["kind"] == "corpus" else "mutants"
             a = agreement.setdefault(c, {"mutants": [0, 0], "corpus": [0, 0]})[part]
@@ -338,8 +367,9 @@ def summarise(items, results, findings, info) -> dict:
             else:
                 row = mutants_out.setdefault(it["class"], {"codes": it["codes"],
                                                            "verdicts": {}})
+                msg = re.sub(r"/\S*/in/[mc]\d+/", "", r["msg"])[:200]   # no scratch paths
                 row["verdicts"].setdefault(c, {})[it["base"]] = \
-                    {"v": r["v"], "msg": r["msg"][:200]} if r["v"] != "." else {"v": "."}
+                    {"v": r["v"], "msg": msg} if r["v"] != "." else {"v": "."}
     return {"consumers": info, "mutants": mutants_out, "corpus": corpus_out,
             "agreement": {c: {k: f"{a[0]}/{a[1]}" for k, a in v.items()}
                           for c, v in agreement.items()},
@@ -356,10 +386,14 @@ def main(argv=None) -> int:
     ap.add_argument("--write", action="store_true", help=f"write {VERDICTS.relative_to(REPO)}")
     ap.add_argument("--report", metavar="FILE", help="write the whole result (with the "
                                                      "disagreements) as JSON to FILE")
+    ap.add_argument("--keep", metavar="DIR", help="keep the inputs and the verdicts in DIR")
+    ap.add_argument("--lint-only", action="store_true",
+                    help="with --keep: reuse the verdicts kept there, lint again")
     a = ap.parse_args(argv)
     consumers = a.consumers.split(",") if a.consumers else list(
         PIP_CONSUMERS if a.fast else CONSUMERS)
-    res = run(a.fast, not (a.fast or a.no_corpus), consumers)
+    res = run(a.fast, not (a.fast or a.no_corpus), consumers,
+              Path(a.keep).resolve() if a.keep else None, a.lint_only)
     if a.report:
         Path(a.report).write_text(json.dumps(res, indent=1, default=str))
     for c, v in res["agreement"].items():

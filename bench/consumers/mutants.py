@@ -17,6 +17,7 @@ LIMIT = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
 PROBE = f"""<?xml version="1.0"?>
 <robot name="probe">
   <link name="base">
+    <inertial><mass value="2"/><inertia ixx="0.008" ixy="0" ixz="0" iyy="0.008" iyz="0" izz="0.013"/></inertial>
     <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
     <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
   </link>
@@ -185,6 +186,16 @@ def diagonal_triangle(r):
         return None
     i = lk.find("inertial/inertia")
     i.set("izz", repr(3 * (float(i.get("ixx")) + float(i.get("iyy")))))
+    return r
+
+
+def tiny_dummy(r):
+    """The quadrupeds' dummy links: 1e-6 kg, all six tensor entries 1e-6, on a moving link."""
+    lk = moving_massive(r)
+    if lk is None:
+        return None
+    lk.find("inertial/mass").set("value", "1e-6")
+    set_inertia(lk, **{k: "1e-6" for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")})
     return r
 
 
@@ -460,8 +471,7 @@ def _obj(tris) -> bytes:
 MESH_FILES = {
     "box.stl": _stl(_box_tris(0.05)),
     "box.obj": _obj(_box_tris(0.05)),
-    "tiny.stl": _stl(_box_tris(0.0005)),          # closed, 1.25e-10 m^3
-    "tiny.obj": _obj(_box_tris(0.0005)),
+    "tiny.obj": _obj(_box_tris(2e-6)),            # closed, 8e-18 m^3
     "empty.obj": b"# no vertices\n",
     "flat.obj": _obj([((0, 0, 0), (0.05, 0, 0), (0, 0.05, 0)),
                       ((0.05, 0, 0), (0.05, 0.05, 0), (0, 0.05, 0))]),
@@ -470,7 +480,7 @@ MESH_FILES = {
 # class -> (the codes urdf-lint reports for it, the edit)
 CLASSES: dict[str, tuple[tuple[str, ...], Edit]] = {
     "no <inertial> on a moving leaf link": (("UL601",), no_inertial_leaf),
-    "no <inertial> on any link": (("UL601", "UL614"), no_inertial_anywhere),
+    "no <inertial> on any link": (("UL601",), no_inertial_anywhere),
     "zero mass on a moving link": (("UL602",), _mass("0")),
     "negative mass": (("UL602",), _mass("-0.5")),
     "1e-9 kg on a moving link": (("UL602",), _mass("1e-9")),
@@ -481,6 +491,7 @@ CLASSES: dict[str, tuple[tuple[str, ...], Edit]] = {
     "six equal tiny tensor entries": (("UL603",), _inertia(
         ixx="1e-6", ixy="1e-6", ixz="1e-6", iyy="1e-6", iyz="1e-6", izz="1e-6")),
     "<inertial> without <inertia>": (("UL206",), inertial_without_inertia),
+    "six equal tiny entries on a 1e-6 kg link": (("UL603",), tiny_dummy),
     "massless link without geometry carrying mass": (("UL601",), massless_hub),
     "axis 0 0 0": (("UL307",), _set_axis("0 0 0")),
     "NaN in an origin": (("UL207",), _joint_attr(_nan_origin)),
@@ -525,6 +536,20 @@ CLASSES: dict[str, tuple[tuple[str, ...], Edit]] = {
 CHANGES_ROBOT = {"<orgin> typo in a joint", "duplicate link", "duplicate joint",
                  "joint names a missing link", "NaN in an origin", "kinematic loop",
                  "mimic of a missing joint"}
+# ... and classes where this holds for the consumers that read meshes and load the robot without
+# the part that names a missing or empty mesh (yourdfpy, PyBullet, the Isaac importer: their
+# own warnings say the geometry was dropped)
+MESH_READERS = {"yourdfpy", "pybullet", "isaac"}
+CHANGES_ROBOT_FOR = {"missing collision mesh": MESH_READERS, "missing visual mesh": MESH_READERS,
+                     "empty collision mesh": MESH_READERS}
+# verdicts that say nothing about the class: sdf_probe parses, it opens no mesh file
+NOT_MEASURED = {("sdformat", k) for k in ("missing collision mesh", "missing visual mesh",
+                                          "empty collision mesh", "tiny closed collision mesh",
+                                          "flat collision mesh", "binary STL collision mesh",
+                                          "OBJ collision mesh")}
+# classes that make a joint fixed: sdformat lumps the child into its parent, so a smaller link
+# count there is no dropped link
+LUMPS = {"mimic on a fixed joint"}
 # text edits after serialisation (XML-level defects the tree cannot hold)
 TEXT_CLASSES: dict[str, tuple[tuple[str, ...], Callable[[str], str]]] = {
     "malformed XML declaration": (("UL001",), lambda t: '<?xml verison="1.0"?>\n' + t),
@@ -540,7 +565,10 @@ def mutate(text: str, name: str) -> str | None:
         body = etree.tostring(root, encoding="unicode")
         return TEXT_CLASSES[name][1](body)
     root = etree.fromstring(text.encode())
-    got = CLASSES[name][1](root)
+    try:
+        got = CLASSES[name][1](root)
+    except (IndexError, AttributeError, TypeError, ValueError):
+        return None                       # the base lacks what the class edits
     if got is None:
         return None
     return '<?xml version="1.0"?>\n' + etree.tostring(got, encoding="unicode") + "\n"

@@ -27,7 +27,8 @@ int main() {
     if (errors.empty() && root.Model() == nullptr) {
       std::cout << "{\"v\": \"R\", \"msg\": \"no model\"}" << std::endl;
     } else if (errors.empty()) {
-      std::cout << "{\"v\": \".\", \"msg\": \"\"}" << std::endl;
+      std::cout << "{\"v\": \".\", \"msg\": \"\", \"links\": " << root.Model()->LinkCount()
+                << "}" << std::endl;
     } else {
       std::cout << "{\"v\": \"R\", \"msg\": \"" << esc(errors[0].Message()) << "\"}" << std::endl;
     }

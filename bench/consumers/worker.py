@@ -55,7 +55,6 @@ def _pybullet():
 
 
 def _drake():
-    from pydrake.common import _version  # noqa: F401  (fails early when broken)
     from pydrake.multibody.parsing import Parser
     from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
     from pydrake.systems.framework import DiagramBuilder
@@ -139,9 +138,30 @@ def _isaac():
     return load, version("urdf-usd-converter")
 
 
+def _check_urdf():
+    """urdfdom's check_urdf (Debian's liburdfdom-tools), one process per file."""
+    import shutil
+    import subprocess
+    exe = shutil.which("check_urdf")
+    if exe is None:
+        raise ImportError("check_urdf is not installed (apt-get install liburdfdom-tools)")
+
+    def load(path):
+        p = subprocess.run([exe, path], capture_output=True, text=True, timeout=50)
+        if p.returncode < 0:
+            return {"v": "C", "msg": f"check_urdf died (signal {-p.returncode})"}
+        if p.returncode != 0:
+            raise RuntimeError((p.stderr or p.stdout).strip()[-300:])
+        return None
+    ver = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "liburdfdom-tools"],
+                         capture_output=True, text=True).stdout.strip() or "unknown"
+    return load, ver
+
+
 LOADERS = {"mujoco": _mujoco, "pinocchio": _pinocchio, "pybullet": _pybullet, "drake": _drake,
            "yourdfpy": _yourdfpy, "urdf_parser_py": _urdf_parser_py,
-           "urdf_parser_py_0.0.4": lambda: _urdf_parser_py("urdf_parser_py"), "urchin": _urchin, "idyntree": _idyntree, "isaac": _isaac}
+           "urdf_parser_py_0.0.4": lambda: _urdf_parser_py("urdf_parser_py"), "urchin": _urchin, "idyntree": _idyntree, "isaac": _isaac,
+           "check_urdf": _check_urdf}
 
 
 def main() -> int:
@@ -160,8 +180,7 @@ def main() -> int:
             continue
         os.chdir(os.path.dirname(path))    # MuJoCo writes MUJOCO_LOG.TXT into the cwd
         try:
-            load(path)
-            res = {"v": ".", "msg": ""}
+            res = load(path) or {"v": ".", "msg": ""}
         except BaseException as e:          # noqa: BLE001  (a consumer's refusal, any type)
             res = {"v": "R", "msg": f"{type(e).__name__}: {str(e)[:300]}"}
         out.write(json.dumps(res) + "\n")

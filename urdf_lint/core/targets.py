@@ -69,12 +69,12 @@ def check_table(table: object, where: str) -> dict[str, str]:
 
 def expand(selected: Iterable[str]) -> tuple[str, ...]:
     """The selected targets with each group replaced by its members (order kept, no repeats)."""
-    out: list[str] = []
-    for t in selected:
-        for m in GROUPS.get(t, (t,)):
-            if m not in out:
-                out.append(m)
-    return tuple(out)
+    return tuple(dict.fromkeys(m for _, m in _members(selected)))
+
+
+def _members(selected: Iterable[str]) -> list[tuple[str, str]]:
+    """(the name as selected, one program it stands for) for every selected target."""
+    return [(t, m) for t in selected for m in GROUPS.get(t, (t,))]
 
 
 def entry(table: dict[str, str], target: str, default: str) -> str:
@@ -96,20 +96,26 @@ def resolve(table: dict[str, str] | None, default: str,
     """(effective severity or None when no selected target keeps the finding, the selected
     targets whose own entry raises it above ``default``)."""
     table = table or {}
-    best, by = None, []
-    for t in expand(selected):
+    best: str | None = None
+    by: list[tuple[str, str]] = []      # (as selected, program)
+    seen: set[str] = set()
+    for name, t in _members(selected):
+        if t in seen:
+            continue
+        seen.add(t)
         s = entry(table, t, default)
         if s == OFF:
             continue
         if best is None or SEVERITY_RANK[s] > SEVERITY_RANK[best]:
-            best, by = s, [t]
+            best, by = s, [(name, t)]
         elif s == best:
-            by.append(t)
+            by.append((name, t))
     if best is None:
         return None, ()
     base = table.get("*", default)       # what a target the table does not name gets
     if base == OFF or SEVERITY_RANK[best] > SEVERITY_RANK[base]:
-        return best, tuple(t for t in by if t in table or GROUP_OF.get(t) in table)
+        # named as selected: a group's members raise it under the group's name
+        return best, tuple(dict.fromkeys(n for n, t in by if t in table or GROUP_OF.get(t) in table))
     return best, ()
 
 
