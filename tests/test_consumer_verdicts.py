@@ -106,7 +106,8 @@ def test_the_consumers_still_do_what_was_recorded():
 # -- the misses closed and the false alarms dropped (issue 38) --------------------------------
 INERTIAL = ('<inertial><mass value="{m}"/><inertia ixx="{i}" ixy="{i}" ixz="{i}" iyy="{i}" '
             'iyz="{i}" izz="{i}"/></inertial>')
-DIAG = '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>'
+DIAG = ('<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+        'izz="0.01"/></inertial>')
 LIM = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
 
 

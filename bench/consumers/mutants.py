@@ -550,6 +550,31 @@ NOT_MEASURED = {("sdformat", k) for k in ("missing collision mesh", "missing vis
 # classes that make a joint fixed: sdformat lumps the child into its parent, so a smaller link
 # count there is no dropped link
 LUMPS = {"mimic on a fixed joint"}
+
+
+def different_robot(text: str, consumer: str) -> str | None:
+    """Why a consumer that loads this (real) model cannot hold the robot as written, checked on
+    the model itself (the corpus has no class): a joint naming a link that does not exist, or,
+    for the consumers that read meshes, a mesh file that is not there."""
+    try:
+        r = etree.fromstring(text.encode())
+    except etree.XMLSyntaxError:
+        return None
+    names = {lk.get("name") for lk in r.iter("link")}
+    for j in r.iter("joint"):
+        for end in ("parent", "child"):
+            e = j.find(end)
+            if e is not None and e.get("link") not in names and j.getparent() is r:
+                return f"joint '{j.get('name')}' names a missing link '{e.get('link')}'"
+    if consumer in MESH_READERS:
+        import os
+        for m in r.iter("mesh"):
+            f = m.get("filename") or ""
+            if f.startswith("/") and not os.path.exists(f):
+                return f"mesh '{os.path.basename(f)}' does not exist: the part is dropped"
+    return None
+
+
 # text edits after serialisation (XML-level defects the tree cannot hold)
 TEXT_CLASSES: dict[str, tuple[tuple[str, ...], Callable[[str], str]]] = {
     "malformed XML declaration": (("UL001",), lambda t: '<?xml verison="1.0"?>\n' + t),

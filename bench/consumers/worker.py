@@ -89,7 +89,7 @@ def _urdf_parser_py(dist="urdfdom-py"):
     from urdf_parser_py.urdf import URDF
 
     def load(path):
-        with open(path) as f:
+        with open(path, "rb") as f:          # as from_xml_file does: bytes, not str
             URDF.from_xml_string(f.read())
     from importlib.metadata import PathDistribution
     from pathlib import Path
@@ -160,7 +160,8 @@ def _check_urdf():
 
 LOADERS = {"mujoco": _mujoco, "pinocchio": _pinocchio, "pybullet": _pybullet, "drake": _drake,
            "yourdfpy": _yourdfpy, "urdf_parser_py": _urdf_parser_py,
-           "urdf_parser_py_0.0.4": lambda: _urdf_parser_py("urdf_parser_py"), "urchin": _urchin, "idyntree": _idyntree, "isaac": _isaac,
+           "urdf_parser_py_0.0.4": lambda: _urdf_parser_py("urdf_parser_py"),
+           "urchin": _urchin, "idyntree": _idyntree, "isaac": _isaac,
            "check_urdf": _check_urdf}
 
 
