@@ -167,7 +167,9 @@ E2E_NAMES = frozenset({"run_cli", "terminated", "subprocess", "Popen", "executab
 E2E_FIXTURES = frozenset({"corpus", "corpus_resolver", "corpus_report"})
 # what the names cannot show: servers started by a plugin's fixture, real consumers
 E2E_FILES = {"test_server.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
-             "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess"}
+             "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess",
+             "test_consumer_verdicts.py": "the consumer harness (bench/consumers) runs each "
+                                          "consumer and urdf-lint in subprocesses"}
 _TESTS = Path(__file__).resolve().parent
 
 
