@@ -149,6 +149,10 @@ CASES = {
         arm(b='<inertial><mass value="1"/><inertia ixx="4.7e-3" ixy="0" ixz="2.5e-3" '
               'iyy="3.65e-3" iyz="0" izz="4.7e-3"/></inertial>'), {}, "UL603",
         {"gazebo": "error", "pybullet": "warning"}),
+    "gazebo: a zero principal moment within the triangle inequality": (
+        arm(b='<inertial><mass value="1"/><inertia ixx="1.2e-4" ixy="0" ixz="0" iyy="1.2e-4" '
+              'iyz="0" izz="0"/></inertial>'), {}, "UL603",
+        {"gazebo": "warning", "mujoco": "error", "ros": "error"}),
     "mujoco: six equal tiny entries on a dummy link": (
         arm(b=INERTIAL.format(m="1e-6", i="1e-6")), {}, "UL603", {"mujoco": "error", "ros": None}),
     "mujoco: a massless link without geometry carrying mass": (
