@@ -7,6 +7,8 @@ How to fix: Add the joint that attaches it, or remove it.
 CODE = "UL104"
 NAME = "disconnected-link"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "yourdfpy": "warning", "urdf_parser_py": "warning",
+           "idyntree": "warning", "isaac": "warning", "drake": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/><link name="lonely"/>
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>

@@ -9,6 +9,8 @@ How to fix: Rename one of them, or pass each macro call its own prefix.
 CODE = "UL105"
 NAME = "duplicate-name"
 SEVERITY = "error"
+# a joint named like a link: only sdformat 12 refuses it (measured)
+SHARED = {"*": "off", "gazebo": "error"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/><link name="b"/>
   <joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>
@@ -35,6 +37,12 @@ def check(model, ctx):
             if n in first:
                 yield Report(e, (f"duplicate {tag} name '{n}' (first defined at "
                                  f"{model.origin(first[n]).place()}); give each a unique name"),
-                             targets={"mujoco": "warning"} if tag == "joint" else None)
+                             )
             else:
                 first[n] = e
+    links = {e.get("name"): e for e in model.root if e.tag == "link" and e.get("name")}
+    for j in model.root:
+        if j.tag == "joint" and j.get("name") in links:
+            yield Report(j, (f"joint '{j.get('name')}' has the name of a link (line "
+                             f"{model.origin(links[j.get('name')]).line}): URDF allows it, SDFormat "
+                             "does not (Gazebo: \"Joint with non-unique name\")"), targets=SHARED)

@@ -43,7 +43,7 @@ def check(model, ctx):
             g = geoms[0]
             shapes = [c for c in g if isinstance(c.tag, str)]
             if not shapes:
-                yield Report(g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>", targets={"pinocchio": "warning"})
+                yield Report(g, f"link '{lk.get('name')}': empty <geometry> in <{part.tag}>", targets={"pinocchio": "warning", "isaac": "warning", "gazebo": "warning"})
             for s in shapes:
                 if s.tag not in SHAPES:
                     yield Report(s, (f"link '{lk.get('name')}': unknown shape <{s.tag}>"

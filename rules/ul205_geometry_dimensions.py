@@ -10,7 +10,8 @@ How to fix: Write the dimensions in metres as positive numbers.
 CODE = "UL205"
 NAME = "geometry-dimensions"
 SEVERITY = "error"
-TARGETS = {"pinocchio": "warning", "pybullet": "warning"}
+TARGETS = {"pinocchio": "warning", "pybullet": "warning", "python": "warning", "idyntree": "warning",
+           "isaac": "warning", "gazebo": "warning"}
 FAIL = """<robot name="r">
   <link name="a">
     <visual><geometry><box size="1 1"/></geometry></visual>

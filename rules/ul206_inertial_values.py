@@ -24,6 +24,11 @@ PASS = """<robot name="r">
 """
 from urdf_lint.engine.api import Report, number
 
+# <inertial> without <inertia>: MuJoCo, PyBullet and urchin reject it; Pinocchio, Drake (a
+# point mass), yourdfpy, urdf_parser_py, iDynTree, sdformat and the Isaac importer load it
+POINT_MASS = {"pinocchio": "warning", "drake": "warning", "yourdfpy": "warning",
+              "urdf_parser_py": "warning", "idyntree": "warning", "isaac": "warning",
+              "gazebo": "warning"}
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
@@ -38,7 +43,8 @@ def check(model, ctx):
                 yield Report(m, f"link '{name}': mass value {m.get('value')!r} is not a number")
             i = inr.find("inertia")
             if i is None:
-                yield Report(inr, f"link '{name}': <inertial> has no <inertia .../>")
+                yield Report(inr, f"link '{name}': <inertial> has no <inertia .../>",
+                             targets=POINT_MASS)
                 continue
             missing = [a for a in INERTIA if i.get(a) is None]
             if missing:

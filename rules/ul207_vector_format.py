@@ -35,7 +35,7 @@ import math
 NOT_FINITE = ("nan", "inf", "infinity")
 # a NaN or infinite value: urdfdom 6.0.0 (Pinocchio 4.1.0) rejects it, MuJoCo 4.0.0 and PyBullet
 # 3.2.7 load it (measured)
-LOADS_NAN = {"mujoco": "warning", "pybullet": "warning"}
+LOADS_NAN: dict = {}   # issue 38: loaded with a NaN pose is a different robot: an error
 
 from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter

@@ -10,6 +10,9 @@ them by 255 where `rgba` is written.
 CODE = "UL208"
 NAME = "rgba"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning",
+           "urdf_parser_py": "warning", "urchin": "warning", "idyntree": "warning", "isaac": "warning",
+           "gazebo": "warning"}
 FAIL = """<robot name="r">
   <material name="red"><color rgba="255 0 0 1"/></material>
   <link name="a"/>

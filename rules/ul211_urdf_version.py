@@ -10,7 +10,10 @@ How to fix: Write `1.0`, `1.1` or `1.2`, or omit the attribute for 1.0.
 CODE = "UL211"
 NAME = "urdf-version"
 SEVERITY = "error"
-TARGETS = {"mujoco": "warning", "pybullet": "warning"}
+TARGETS = {"mujoco": "warning", "pybullet": "warning", "yourdfpy": "warning", "urchin": "warning",
+           "idyntree": "warning", "isaac": "warning", "drake": "warning"}
+# 1.1 and 1.2: urdfdom 6 reads them; urdf_parser_py and sdformat 12 (liburdfdom 3) refuse them
+OLD_PARSERS = {"*": "off", "urdf_parser_py": "error", "gazebo": "error"}
 FAIL = """<robot name="r" version="1">
   <link name="a"/>
 </robot>
@@ -34,3 +37,7 @@ def check(model, ctx):
     elif int(m.group(1)) != 1 or int(m.group(2)) > 2:
         yield Report(model.root, (f"robot version '{v}' is not supported (urdfdom 6 knows 1.0, 1.1 and "
                                   "1.2)"))
+    elif int(m.group(2)) > 0:
+        yield Report(model.root, (f"robot version '{v}': urdf_parser_py and Gazebo's sdformat 12 read "
+                                  "only 1.0 and refuse the model (\"only version 1.0 is supported\")"),
+                     targets=OLD_PARSERS)

@@ -26,7 +26,7 @@ CODE = "UL213"
 NAME = "urdf-version-feature"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning", "pinocchio": "warning", "mujoco": "warning",
-           "pybullet": "warning", "python": "warning"}
+           "pybullet": "warning", "python": "warning", "idyntree": "error"}
 EXAMPLE_TARGETS = ["ros", "mujoco"]
 FAIL = """<robot name="r">
   <link name="a"><visual><geometry><capsule radius="0.1" length="0.5"/></geometry></visual></link>
@@ -55,8 +55,10 @@ from urdf_lint.rules._schema import urdf_iter
 QUAT = ("quat_xyzw on <origin>", (1, 1), "the frame keeps the identity orientation",
         {"mujoco": "warning", "pybullet": "warning", "python": "warning"},
         "MuJoCo 4.0.0, PyBullet 3.2.7 and urdf_parser_py ignore it")
-CAPSULE = ("<capsule>", (1, 1), "the geometry is dropped", {"python": "warning"},
-           "urdf_parser_py does not read it (MuJoCo and PyBullet do)")
+CAPSULE = ("<capsule>", (1, 1), "the model is refused",
+           {"python": "error", "idyntree": "error"},
+           "yourdfpy, urdf_parser_py and urchin reject it and iDynTree 15.1 crashes on it (MuJoCo "
+           "and PyBullet read it)")
 LIMITS = ("{attr} on <limit>", (1, 2), "no such limit is applied",
           {"mujoco": "info", "pybullet": "info", "python": "warning"},
           "MuJoCo 4.0.0 and PyBullet 3.2.7 have no such limit, urdf_parser_py does not read it")

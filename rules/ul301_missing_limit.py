@@ -9,7 +9,8 @@ How to fix: Add the limit. If the joint really has no position limits, make it `
 CODE = "UL301"
 NAME = "missing-limit"
 SEVERITY = "error"
-TARGETS = {"mujoco": "warning"}
+TARGETS = {"mujoco": "warning", "yourdfpy": "warning", "urdf_parser_py": "warning",
+           "idyntree": "warning", "isaac": "warning", "drake": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>

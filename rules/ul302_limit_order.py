@@ -13,7 +13,8 @@ Fix: safe. `--fix` swaps the two values where they are written (the element, a
 CODE = "UL302"
 NAME = "limit-order"
 SEVERITY = "error"
-TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"}
+TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning", "python": "warning",
+           "idyntree": "warning", "isaac": "warning", "gazebo": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>

@@ -57,7 +57,7 @@ def check(model, ctx):
             v = lim.get(a)
             if v is None:
                 if required:
-                    yield Report(lim, f"joint '{j.get('name')}': <limit> has no {a}", targets={"mujoco": "warning", "pybullet": "warning"} if a == "effort" else None)
+                    yield Report(lim, f"joint '{j.get('name')}': <limit> has no {a}", targets={"mujoco": "warning", "pybullet": "warning", "yourdfpy": "warning", "idyntree": "warning", "isaac": "warning", "drake": "warning"} if a == "effort" else None)
                 continue
             n = number(v)
             if n is None:

@@ -45,7 +45,7 @@ def check(model, ctx):
             continue  # UL207 reports the format
         n = math.sqrt(sum(x * x for x in v))
         if n == 0:
-            yield Report(ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"), targets={"pinocchio": "warning", "pybullet": "warning"})
+            yield Report(ax, (f"joint '{j.get('name')}': axis xyz=\"{ax.get('xyz')}\" has zero length"), targets={"pinocchio": "warning", "pybullet": "warning", "python": "warning", "idyntree": "warning"})
             continue
         elif abs(n - 1) > tol:
             unit = " ".join(fmt(round(x / n, 6)) for x in v)

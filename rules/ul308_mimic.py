@@ -30,7 +30,7 @@ from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 # consumers that load an unknown mimicked joint and ignore the relation (docstring)
-IGNORED = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"}
+IGNORED: dict = {}   # issue 38: the joint moves on its own, a different robot: an error
 
 
 def check(model, ctx):

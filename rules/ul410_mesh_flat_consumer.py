@@ -1,4 +1,5 @@
-"""A collision mesh whose vertices all lie in one plane (or on one line): it has no volume.
+"""A collision mesh whose vertices all lie in one plane (or on one line): it has no volume; or
+a closed one whose volume is below MuJoCo's `mjMINVAL` (1e-15 m^3).
 
 Why: MuJoCo computes the convex hull of every collision mesh, and of every visual mesh it keeps,
 for contact and inertia. Measured with MuJoCo 4.0.0: a flat collision
@@ -47,6 +48,16 @@ EXAMPLE_FILES = {"meshes/plate.obj": ("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0.05\nv 0.1 0
 # MuJoCo's hull (qhull) on float32 vertices: a plane tilted off the axes is flat to within the
 # float32 rounding of its coordinates, about 1e-7 of the mesh's size
 FLAT = 1e-6
+# MuJoCo's mjMINVAL: a closed mesh enclosing less is refused ("mesh volume is too small",
+# measured with MuJoCo 4.0.0 on a 2 micrometre cube)
+MJ_MINVAL = 1e-15
+
+
+def _scale(m) -> float:
+    """The factor ``<mesh scale>`` applies to a volume (1 when absent or unreadable)."""
+    from urdf_lint.engine.api import numbers
+    s = numbers(m.get("scale") or "1 1 1")
+    return abs(s[0] * s[1] * s[2]) if s and len(s) == 3 else 1.0
 
 
 def flat(vertices) -> bool:
@@ -66,12 +77,27 @@ def check(model, ctx):
     for m, uri, path, kind in geometry_meshes(model, ctx):
         if kind not in kinds or mujoco_problem(path, os.path.splitext(path)[1].lower()):
             continue                      # UL409: MuJoCo does not get as far as the hull
-        if ctx.mass_facts(path).ok:
+        mass = ctx.mass_facts(path)
+        volume = abs(mass.volume) * _scale(m) if mass.ok else None
+        if volume is not None and volume >= MJ_MINVAL:
             continue                      # it has a volume (the common case: no load here)
         facts = ctx.mesh_facts(path)
         if not facts.ok or not facts.vertices or not facts.finite:
             continue                      # UL404 says why
-        if flat(ctx.mesh(path).vertices):
+        mesh = ctx.mesh(path)
+        if flat(mesh.vertices):
             yield Report(m, f"{kind} mesh '{uri}' is flat (all its vertices lie in one plane); "
                          "MuJoCo cannot compute its convex hull and rejects the model",
+                         targets={"*": others, "mujoco": "error"})
+            continue
+        if volume is None:                # urdf-lint's own facts keep no volume below 1e-15
+            closed = mesh.copy()
+            closed.merge_vertices()       # a loader may keep each face's corners apart
+            if not closed.is_watertight:
+                continue                  # an open surface: no volume to judge
+            volume = abs(float(closed.volume)) * _scale(m)
+        if volume < MJ_MINVAL:
+            yield Report(m, (f"{kind} mesh '{uri}' encloses {volume:.3g} m^3, below MuJoCo's "
+                             f"{MJ_MINVAL:g}: MuJoCo rejects the model (\"mesh volume is too "
+                             "small\"); use a primitive or the part's real size"),
                          targets={"*": others, "mujoco": "error"})

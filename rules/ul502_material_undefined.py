@@ -2,9 +2,10 @@
 defined.
 
 Why: the visual is drawn in a default colour: urdfdom 6.0.0 and iDynTree 15.1.0 warn, the
-other consumers measured (MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, Drake 1.51.1, the
-Python parsers) load it silently. A warning for every
-target; a material without a name, colour or texture stays an error.
+other consumers measured (MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7, the Python parsers,
+sdformat 12.3, the Isaac importer) load it silently. A warning for every target but `drake`:
+Drake 1.51.1 rejects it ("Material 'nowhere' not previously defined", measured by
+bench/consumers/harness.py); a material without a name, colour or texture stays an error.
 
 How to fix: Define the material at the top level, or fix the name.
 
@@ -42,4 +43,5 @@ def check(model, ctx):
                 elif n not in defined:
                     fix = reference_fixes([(m, "name", n)], defined).get((m, "name"))
                     yield Report(m, (f"material '{n}' is used but never defined (drawn in a default "
-                                     "colour)" + did_you_mean(n, defined)), severity="warning", fix=fix)
+                                     "colour)" + did_you_mean(n, defined)), severity="warning", fix=fix,
+                                 targets={"drake": "error"})

@@ -28,6 +28,9 @@ CODE = "UL602"
 NAME = "mass"
 SEVERITY = "error"
 OPTIONS = {"min-mass": 1e-6}
+# a zero mass on a moving leaf: MuJoCo rejects it, the others load it as written (measured)
+ZERO_LOADS = {"pinocchio": "warning", "pybullet": "warning", "python": "warning",
+              "idyntree": "warning", "isaac": "warning", "drake": "warning"}
 FAIL = """<robot name="r">
   <link name="base"/>
   <link name="a"><inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>
@@ -62,7 +65,7 @@ def check(model, ctx):
         name = lk.get("name")
         if v < 0:
             yield Report(m, (f"link '{name}': mass {v:g} must not be negative (MuJoCo rejects it; "
-                             "Pinocchio and PyBullet load it with a wrong dynamics)"), targets={"pinocchio": "warning", "pybullet": "warning"})
+                             "Pinocchio and PyBullet load it with a wrong dynamics)"), targets={"pinocchio": "warning", "pybullet": "warning", "python": "warning", "idyntree": "warning", "isaac": "warning", "drake": "warning"})
         elif v == 0:
             bodies = bodies or Bodies(model)
             body = bodies.moving_body(name)
@@ -81,11 +84,11 @@ def check(model, ctx):
             yield Report(m, (f"link '{name}': mass 0 on a body that moves{via} (joint '{j.get('name')}') "
                              "and nothing it carries has mass; give it its real mass (zero mass is only "
                              "valid on frames attached by fixed joints to a body with mass, or on bodies "
-                             "that carry massive links)"))
+                             "that carry massive links)"), targets=ZERO_LOADS)
         elif v < tiny:
             bodies = bodies or Bodies(model)
             root, j = bodies.root_of(name)
             if root != name or j is None:
                 continue  # a frame fixed to its parent (or the root): a placeholder mass
             yield Report(m, (f"link '{name}': mass {v:g} kg is implausibly small (grams?)"
-                             + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else "")), targets={"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning"})
+                             + ("; Gazebo drops links below 1e-6 kg" if v < 1e-6 else "")), targets={"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning", "python": "warning", "idyntree": "warning", "isaac": "warning", "drake": "warning"})

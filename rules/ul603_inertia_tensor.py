@@ -18,14 +18,18 @@ written diagonal already fails is an error (as before) but a warning for `pinocc
 `pybullet`, which load it (measured with MuJoCo 4.0.0, Pinocchio 4.1.0, PyBullet 3.2.7); one that only its
 principal moments show is an error for `mujoco` (MuJoCo 4.0.0 rejects it: "use
 'balanceinertia'") and a warning for the others (urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7
-load it silently, Drake 1.51.1 with a warning).
+load it silently, Drake 1.51.1 with a warning). Under `gazebo` (sdformat 12.3, measured by
+bench/consumers/harness.py) a triangle break is an error, a zero principal moment that keeps
+the inequality (a thin rod: 0, I, I) a warning: sdformat loads it. The Python parsers,
+iDynTree, the Isaac importer and Drake load any tensor: a warning for them.
 
 How to fix: Recompute the tensor from the part's geometry and mass (CAD tools export it).
 """
 CODE = "UL603"
 NAME = "inertia-tensor"
 SEVERITY = "error"
-TARGETS = {"mujoco": "error", "pinocchio": "warning", "pybullet": "warning"}
+TARGETS = {"mujoco": "error", "pinocchio": "warning", "pybullet": "warning", "python": "warning",
+           "idyntree": "warning", "isaac": "warning", "drake": "warning"}
 FAIL = """<robot name="r">
   <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.5"/></inertial></link>
   <link name="b"><inertial><mass value="0.01"/><inertia ixx="4.7e-6" ixy="0" ixz="2.5e-6" iyy="3.65e-6" iyz="0" izz="4.7e-6"/></inertial></link>
@@ -45,7 +49,9 @@ from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
 
 NOISE = 1e-15      # kg m^2: below MuJoCo's mjMINVAL, float noise of a lumped body, not inertia
 RELATIVE = 1e-9    # of the tensor's largest entry: noise in a real tensor
-PRINCIPAL_ONLY = {"*": "warning", "mujoco": "error"}
+PRINCIPAL_ONLY = {"*": "warning", "mujoco": "error", "gazebo": "error"}
+# a placeholder tensor (six equal tiny entries on a dummy link) only MuJoCo refuses
+PLACEHOLDER = {"*": "off", "mujoco": "error", "gazebo": "error"}
 
 
 def _spins_freely(model, bodies, lk):
@@ -122,6 +128,10 @@ def check(model, ctx):
                                  "spin freely: give it the inertia of its geometry"))
             continue  # otherwise an all-zero (or float-noise) tensor is a common placeholder
         if _placeholder(lk, v):
+            yield Report(i, (f"link '{name}': six equal inertia entries ({fmt(v['ixx'])}) on a "
+                             f"{fmt(mass(lk))} kg dummy link: principal moments 0, 0, "
+                             f"{3 * v['ixx']:.3g}; MuJoCo rejects it (\"inertia must have positive "
+                             "eigenvalues\"): write a diagonal tensor"), targets=PLACEHOLDER)
             continue
         a, b, c = v["ixx"], v["iyy"], v["izz"]
         xy, xz, yz = v["ixy"], v["ixz"], v["iyz"]
@@ -135,6 +145,10 @@ def check(model, ctx):
                    f"iyz={fmt(yz)}")
         moments = f"principal moments {e1:.3g}, {e2:.3g}, {e3:.3g}"
         if e1 <= tol:
+            if e1 >= -tol and e1 + e2 >= e3 - tol:
+                # a zero principal moment that keeps the triangle inequality: sdformat 12 loads
+                # it (measured on the corpus's finger links), MuJoCo does not
+                table = {**(table or TARGETS), "gazebo": "warning"}
             yield Report(i, (f"link '{name}': inertia tensor is not positive definite ({written}; "
                              f"{moments})"), targets=table)
         elif e1 + e2 < e3 - tol:

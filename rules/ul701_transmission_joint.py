@@ -11,6 +11,8 @@ writes it where the name is written.
 CODE = "UL701"
 NAME = "transmission-joint"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning", "yourdfpy": "warning",
+           "urdf_parser_py": "warning", "idyntree": "warning", "isaac": "warning"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/>
   <joint name="elbow" type="continuous"><parent link="a"/><child link="b"/></joint>

@@ -11,6 +11,8 @@ writes it where the name is written.
 CODE = "UL703"
 NAME = "gazebo-reference"
 SEVERITY = "error"
+TARGETS = {"mujoco": "warning", "pinocchio": "warning", "pybullet": "warning", "yourdfpy": "warning",
+           "urdf_parser_py": "warning", "urchin": "warning", "idyntree": "warning", "isaac": "warning", "drake": "warning"}
 FAIL = """<robot name="r">
   <link name="base_link"/>
   <gazebo reference="base_lnk"><material>Gazebo/Blue</material></gazebo>

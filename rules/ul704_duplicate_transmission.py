@@ -14,7 +14,7 @@ prefix parameter in the name).
 CODE = "UL704"
 NAME = "duplicate-transmission"
 SEVERITY = "warning"
-TARGETS = {"drake": "error", "python": "error"}
+TARGETS = {"drake": "error", "urchin": "error"}
 FAIL = """<robot name="r">
   <link name="a"/><link name="b"/><link name="c"/>
   <joint name="j1" type="continuous"><parent link="a"/><child link="b"/></joint>
@@ -64,8 +64,8 @@ def check(model, ctx):
             yield Report(t, f"transmission '{n}' is defined twice (first at "
                             f"{model.origin(first).place()}); {who} the model, ros_control "
                             "drives only one",
-                         targets={"drake": "error", "python": "error"} if shared else
-                         {"python": "error"})
+                         targets={"drake": "error", "urchin": "error"} if shared else
+                         {"urchin": "error"})
         elif n:
             seen[n] = t
         for a in t.findall("actuator"):

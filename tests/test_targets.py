@@ -57,10 +57,14 @@ def test_default_target_is_ros_and_mujoco_raises_ul601(tmp_path):
     pkg = pkg_with(tmp_path, MOVING_NO_INERTIAL)
     assert of(lint(pkg), "UL601") == [("warning", [])]
     assert of(lint(pkg, "--target", "mujoco"), "UL601") == [("error", ["mujoco"])]
-    # several targets: the highest wins, and the target that makes it an error is named
-    assert of(lint(pkg, "--target", "ros,gazebo", "--target", "mujoco"), "UL601") == \
+    # several targets: the highest wins, and the targets that make it an error are named
+    # (issue 38: sdformat 12 drops the link, measured: an error for gazebo too)
+    assert of(lint(pkg, "--target", "ros,pybullet", "--target", "mujoco"), "UL601") == \
         [("error", ["mujoco"])]
-    assert of(lint(pkg, "--target", "gazebo"), "UL601") == [("warning", [])]
+    # (and no link at all has an <inertial>: sdformat refuses the model, one more finding)
+    assert of(lint(pkg, "--target", "ros,gazebo", "--target", "mujoco"), "UL601") == \
+        [("error", ["gazebo"]), ("error", ["gazebo", "mujoco"])]
+    assert of(lint(pkg, "--target", "pybullet"), "UL601") == [("warning", [])]
     (pkg / "urdf-lint.toml").write_text('targets = ["ros", "mujoco"]\n')
     assert of(lint(pkg), "UL601") == [("error", ["mujoco"])]
     # a severity override still wins
@@ -84,12 +88,13 @@ def test_rules_page_shows_the_targets_table():
     p = run_cli("rules", "--format", "markdown")
     assert p.returncode == 0, p.stderr
     assert "## Consumer targets" in p.stdout
-    assert "| Code | ros | gazebo | mujoco | drake | pinocchio | pybullet | isaac | python |" \
-        in p.stdout
-    assert "| [UL601](#ul601-missing-inertial) | warn | warn | error | warn | warn | warn | warn " \
-           "| warn |" in p.stdout
+    # (issue 38: the programs behind `python` and iDynTree are targets; gazebo measured)
+    assert "| Code | ros | gazebo | mujoco | drake | pinocchio | pybullet | isaac | python | " \
+           "yourdfpy | urdf_parser_py | urchin | idyntree |" in p.stdout
+    assert "| [UL601](#ul601-missing-inertial) | warn | error | error | warn | warn | warn | warn " \
+           "| warn | warn | warn | warn | warn |" in p.stdout
     p = run_cli("rule", "UL601")
-    assert "Per consumer target (config 'targets'): mujoco error, gazebo warning" in p.stdout
+    assert "Per consumer target (config 'targets'): mujoco error, gazebo error" in p.stdout
 
 
 def test_a_rule_table_is_checked():
@@ -256,7 +261,8 @@ def test_ul001_namespace_and_declaration_are_reported_and_the_rest_linted(tmp_pa
     fs = lint(pkg)
     got = [(f["line"], f["col"], f["severity"]) for f in fs if f["code"] == "UL001"]
     assert got == [(1, 7, "warning"), (3, 45, "warning")], fs
-    assert "the Python parsers (urdf_parser_py, urchin) reject it" in fs[0]["message"]
+    # (issue 38: yourdfpy loads it, measured)
+    assert "yourdfpy load it, urdf_parser_py and urchin reject it" in fs[0]["message"]
     # every other rule ran, at the real lines
     assert [(f["line"], f["col"]) for f in fs if f["code"] == "UL307"] == [(5, 70)]
     assert of(lint(pkg, "--target", "python"), "UL001") == [("error", ["python"])] * 2

@@ -36,6 +36,13 @@ def explain(code: str) -> int:
         print("\nOptions (set under [tool.urdf-lint.rule-options." + r.code + "]):")
         for k, v in r.options.items():
             print(f"  {k} = {v!r}")
+    from urdf_lint.engine.verdicts import evidence, load
+    seen = evidence(r.code)
+    if seen:
+        print(f"\nMeasured (the consumers' verdicts shipped with urdf-lint, "
+              f"{load().get('measured', '?')}; [target]):")
+        for line in seen:
+            print("  " + line)
     print("\nFails:\n" + r.fail.strip())
     print("\nPasses:\n" + r.passing.strip())
     return 0

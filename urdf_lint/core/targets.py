@@ -17,8 +17,13 @@ The effective severity of a finding is the highest among the selected targets; t
 give it (where their entry raises it above the rule's own severity) are named on the finding
 (:attr:`urdf_lint.core.findings.Problem.severity_from`: text ``[mujoco]``, JSON ``severity_from``).
 A ``severity`` override in the config still wins. Each rule's docstring says which consumer
-behaviour (and which version of it) each entry encodes; the measured facts are in the rules
-page and in ``tests/test_consumers.py``.
+behaviour (and which version of it) each entry encodes; the measured verdicts ship in
+``urdf_lint/engine/verdicts.json`` (written by ``bench/consumers/harness.py``, issue 38).
+
+Targets name programs. ``python`` is a group: selecting it selects ``yourdfpy``,
+``urdf_parser_py`` and ``urchin``, which disagree (urdf_parser_py and urchin reject malformed
+XML that yourdfpy loads); a table entry for ``python`` is what each of the three gets unless the
+table names it. iDynTree is a target of its own (``idyntree``), not part of ``ros``.
 """
 from __future__ import annotations
 
@@ -35,8 +40,15 @@ KNOWN: dict[str, str] = {
     "pinocchio": "Pinocchio (model, geometry and dynamics)",
     "pybullet": "PyBullet's loadURDF",
     "isaac": "Isaac Sim's URDF importer",
-    "python": "the Python parsers (urdf_parser_py, urchin, yourdfpy)",
+    "python": "the Python parsers: yourdfpy, urdf_parser_py and urchin together",
+    "yourdfpy": "yourdfpy (URDF.load with meshes)",
+    "urdf_parser_py": "urdf_parser_py (ROS's urdfdom-py, and the older urdf-parser-py)",
+    "urchin": "urchin (URDF.load with meshes)",
+    "idyntree": "iDynTree's ModelLoader",
 }
+# a target that stands for several programs: selecting it selects each
+GROUPS: dict[str, tuple[str, ...]] = {"python": ("yourdfpy", "urdf_parser_py", "urchin")}
+GROUP_OF = {m: g for g, ms in GROUPS.items() for m in ms}
 NAMES = tuple(KNOWN)
 OFF = "off"
 LEVELS = SEVERITIES + (OFF,)
@@ -55,25 +67,55 @@ def check_table(table: object, where: str) -> dict[str, str]:
     return dict(table)
 
 
+def expand(selected: Iterable[str]) -> tuple[str, ...]:
+    """The selected targets with each group replaced by its members (order kept, no repeats)."""
+    return tuple(dict.fromkeys(m for _, m in _members(selected)))
+
+
+def _members(selected: Iterable[str]) -> list[tuple[str, str]]:
+    """(the name as selected, one program it stands for) for every selected target."""
+    return [(t, m) for t in selected for m in GROUPS.get(t, (t,))]
+
+
+def entry(table: dict[str, str], target: str, default: str) -> str:
+    """One target's severity under ``table``: its own entry, else its group's, else ``*``."""
+    if target in table:
+        return table[target]
+    g = GROUP_OF.get(target)
+    if g is not None and g in table:
+        return table[g]
+    if target in GROUPS:      # a group's column: the highest of its members
+        sevs = [entry(table, m, default) for m in GROUPS[target]]
+        kept = [x for x in sevs if x != OFF]
+        return max(kept, key=SEVERITY_RANK.__getitem__) if kept else OFF
+    return table.get("*", default)
+
+
 def resolve(table: dict[str, str] | None, default: str,
             selected: Iterable[str]) -> tuple[str | None, tuple[str, ...]]:
     """(effective severity or None when no selected target keeps the finding, the selected
     targets whose own entry raises it above ``default``)."""
     table = table or {}
-    best, by = None, []
-    for t in selected:
-        s = table.get(t, table.get("*", default))
+    best: str | None = None
+    by: list[tuple[str, str]] = []      # (as selected, program)
+    seen: set[str] = set()
+    for name, t in _members(selected):
+        if t in seen:
+            continue
+        seen.add(t)
+        s = entry(table, t, default)
         if s == OFF:
             continue
         if best is None or SEVERITY_RANK[s] > SEVERITY_RANK[best]:
-            best, by = s, [t]
+            best, by = s, [(name, t)]
         elif s == best:
-            by.append(t)
+            by.append((name, t))
     if best is None:
         return None, ()
     base = table.get("*", default)       # what a target the table does not name gets
     if base == OFF or SEVERITY_RANK[best] > SEVERITY_RANK[base]:
-        return best, tuple(t for t in by if t in table)
+        # named as selected: a group's members raise it under the group's name
+        return best, tuple(dict.fromkeys(n for n, t in by if t in table or GROUP_OF.get(t) in table))
     return best, ()
 
 
@@ -85,4 +127,4 @@ def applies(table: dict[str, str] | None, default: str, selected: Iterable[str])
 def column(table: dict[str, str] | None, default: str) -> dict[str, str]:
     """Every target's severity (or ``off``) under ``table``: the rules page's row."""
     table = table or {}
-    return {t: table.get(t, table.get("*", default)) for t in NAMES}
+    return {t: entry(table, t, default) for t in NAMES}

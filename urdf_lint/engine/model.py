@@ -131,11 +131,15 @@ def model_from_xml(entry: str, args: dict[str, str], xml_text: str, origins: Any
                  value_origins=vmap)
 
 
-# the XML problems tinyxml-based consumers (urdfdom, MuJoCo, Pinocchio, PyBullet, Drake) load
-# and the strict Python parsers reject (measured: /work/shared/notes/consumer-facts.md)
-LENIENT = {"*": "warning", "python": "error"}
-LENIENT_WHY = ("; urdfdom and the C++ consumers load it, the Python parsers (urdf_parser_py, "
-               "urchin) reject it; the rest of the file is still linted")
+# the XML problems tinyxml-based consumers (urdfdom, MuJoCo, Pinocchio, PyBullet, Drake,
+# sdformat) and yourdfpy load, and urdf_parser_py and urchin reject; iDynTree 15.1 segfaults on
+# a malformed declaration, the Isaac importer rejects an unbound prefix (measured: the verdicts
+# in urdf_lint/engine/verdicts.json, bench/consumers/harness.py)
+LENIENT = {"*": "warning", "urdf_parser_py": "error", "urchin": "error"}
+LENIENT_DECLARATION = {**LENIENT, "idyntree": "error"}
+LENIENT_PREFIX = {**LENIENT, "isaac": "error"}
+LENIENT_WHY = ("; urdfdom, the C++ consumers and yourdfpy load it, urdf_parser_py and urchin "
+               "reject it; the rest of the file is still linted")
 
 
 def _blank_declaration(data: bytes) -> bytes | None:
@@ -176,7 +180,8 @@ def parse_urdf_bytes(entry: str, data: bytes) -> tuple[Any, dict[Any, Origin], l
             errors.append(Problem.at(xml_syntax.CODE, f"XML syntax error: {msg}"
                                      + (LENIENT_WHY if lenient else ""),
                                      (entry, line, max(col, 1)),
-                                     consumers=LENIENT if lenient else None))
+                                     consumers=(LENIENT_DECLARATION if blanked is not None
+                                                else LENIENT_PREFIX) if lenient else None))
             if blanked is not None:
                 text = blanked      # then look for a further problem past the declaration
                 continue
