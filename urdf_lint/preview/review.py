@@ -17,7 +17,7 @@ from typing import Any
 
 from urdf_lint.core import fsbound
 from urdf_lint.preview.scene import DEFAULT_MAX_MESH_MB, FileTable, Scene, fill_scene
-from urdf_lint.preview.server import STATIC, page_html
+from urdf_lint.preview.server import REVIEW_CSP, STATIC, page_html
 
 PAGE = "index.html"
 DATA = "review-data.js"
@@ -120,6 +120,7 @@ class ReviewPage:
         js = "window.URDF_LINT_REVIEW = " + \
             json.dumps(doc).replace("</", "<\\/") + ";\n"
         fsbound.write_text(os.path.join(out_dir, DATA), js, base, make_dirs=True)
-        html = page_html(title, scripts=(DATA, "vendor.js", "viewer.js"), css="viewer.css")
+        html = page_html(title, scripts=(DATA, "vendor.js", "viewer.js"), css="viewer.css",
+                         csp=REVIEW_CSP)
         fsbound.write_text(os.path.join(out_dir, PAGE), html, base, make_dirs=True)
         return written + [os.path.join(out_dir, DATA), os.path.join(out_dir, PAGE)]

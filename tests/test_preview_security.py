@@ -1,0 +1,102 @@
+"""A red-team pass on `urdf-lint preview` and the review page of `urdf-lint diff --html`
+(SECURITY.md, "The preview"): what an attacker controlling the repository, or a web page open
+in the user's browser, could try that tests/test_preview.py does not already cover. Plain HTTP
+(the review page's CSP in a browser: tests/test_preview_browser.py)."""
+from __future__ import annotations
+
+import socket
+import time
+
+from support.preview_robot import get, make_robot, serve
+
+OBJ_LINK = ('<link name="shell"><visual><geometry><mesh '
+            'filename="package://arm_description/meshes/shell.obj"/></geometry></visual></link>')
+
+
+def _obj_robot(tmp_path, mtllib: str):
+    entry = make_robot(tmp_path, OBJ_LINK)
+    pkg = entry.parent.parent
+    (pkg / "meshes" / "shell.obj").write_text(
+        f"mtllib {mtllib}\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    return entry, pkg
+
+
+def test_an_mtl_outside_the_package_roots_is_never_read(tmp_path):
+    """An OBJ's ``mtllib`` climbing out of the roots: the MTL is not read, so nothing it names
+    (here a file inside the roots) becomes servable through it."""
+    entry, pkg = _obj_robot(tmp_path, "../../outside.mtl")
+    (pkg / "meshes" / "inner.png").write_bytes(b"\x89PNG inner")
+    (tmp_path / "outside.mtl").write_text(
+        f"newmtl a\nmap_Kd {pkg / 'meshes' / 'inner.png'}\n")
+    with serve(entry) as (server, session):
+        obj = next(f for f in session.table.files if f.path.endswith("shell.obj"))
+        assert obj.textures == {}, obj.textures
+        i = session.table.files.index(obj)
+        for name in ("inner.png", "arm_description/meshes/inner.png", "../outside.mtl",
+                     "_/_/outside.mtl", "outside.mtl"):
+            assert get(server, f"/{server.token}/m/{i}/{name}")[0] == 404, name
+
+
+def test_an_mtl_inside_the_roots_still_gives_its_textures(tmp_path):
+    entry, pkg = _obj_robot(tmp_path, "shell.mtl")
+    (pkg / "meshes" / "skin.png").write_bytes(b"\x89PNG skin")
+    (pkg / "meshes" / "shell.mtl").write_text("newmtl a\nmap_Kd skin.png\n")
+    with serve(entry) as (server, session):
+        obj = next(f for f in session.table.files if f.path.endswith("shell.obj"))
+        i = session.table.files.index(obj)
+        assert get(server, f"/{server.token}/m/{i}/skin.png") == (200, b"\x89PNG skin")
+        status, _ = get(server, f"/{server.token}/m/{i}/shell.mtl")
+        assert status == 200
+
+
+def test_a_repository_file_is_never_served_as_a_page_or_a_script(tmp_path):
+    """A texture named ``*.html``, ``*.js`` or ``*.svg`` (an MTL may name any file in the roots)
+    is served as bytes, in a sandbox: were the user to open it, it runs nothing at the
+    preview's origin (where the token and state.json are)."""
+    entry, pkg = _obj_robot(tmp_path, "shell.mtl")
+    for name, data in (("x.html", b"<script src='x.js'></script>"), ("x.js", b"alert(1)"),
+                       ("x.svg", b"<svg xmlns='http://www.w3.org/2000/svg'><script>1</script>"
+                                 b"</svg>"), ("x.xhtml", b"<html/>")):
+        (pkg / "meshes" / name).write_bytes(data)
+    (pkg / "meshes" / "shell.mtl").write_text(
+        "newmtl a\nmap_Kd x.html\nmap_Ka x.js\nmap_Ks x.svg\nmap_Ns x.xhtml\n")
+    with serve(entry) as (server, session):
+        obj = next(f for f in session.table.files if f.path.endswith("shell.obj"))
+        i = session.table.files.index(obj)
+        for name in ("x.html", "x.js", "x.svg", "x.xhtml", "shell.obj", "shell.mtl"):
+            kind, csp = _headers(server, f"/{server.token}/m/{i}/{name}")
+            assert not any(t in kind for t in ("html", "javascript", "xml", "svg")), (name, kind)
+            assert "sandbox" in csp, (name, csp)
+
+
+def _headers(server, path):
+    import http.client
+    c = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
+    try:
+        c.request("GET", path)
+        r = c.getresponse()
+        r.read()
+        assert r.status == 200, (path, r.status)
+        return r.getheader("Content-Type", ""), r.getheader("Content-Security-Policy", "")
+    finally:
+        c.close()
+
+
+def test_a_slow_client_is_dropped_and_others_are_served_meanwhile(tmp_path):
+    """Slowloris: a connection that never finishes its request is closed after the server's
+    idle timeout (a thread is not held for ever), and a well-formed request is answered while
+    it hangs."""
+    from urdf_lint.preview import server as served
+    limit = getattr(served, "IDLE_TIMEOUT_S", 10)
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, _):
+        slow = socket.create_connection(("127.0.0.1", server.port))
+        slow.sendall(f"GET /{server.token}/state.json HTTP/1.1\r\nHost: 127.0".encode())
+        try:
+            assert get(server, f"/{server.token}/state.json")[0] == 200
+            slow.settimeout(limit + 10)
+            t0 = time.monotonic()
+            assert slow.recv(1024) == b""          # closed by the server, nothing answered
+            assert time.monotonic() - t0 <= limit + 5
+        finally:
+            slow.close()
