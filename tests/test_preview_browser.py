@@ -464,3 +464,56 @@ def test_a_mesh_makes_the_preview_fetch_nothing_elsewhere(tmp_path, browser):
         here = f"http://127.0.0.1:{server.port}/{server.token}/"
         assert page.requests and all(u.startswith(here) for u in page.requests), page.requests
         page.close()
+
+
+# -- names a pull request writes, shown as text -------------------------------------------------
+EVIL = '</script><img src=x onerror="window.pwned=1"><!--\u2028\u2029${x}'
+EVIL_XML = (EVIL.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+            .replace('"', "&quot;").replace("${", "$${"))
+EVIL_LINK = (f'<link name="{EVIL_XML}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
+             f'<material name="{EVIL_XML}"><color rgba="1 0 0 1"/></material></visual></link>'
+             f'<joint name="{EVIL_XML}j" type="fixed"><parent link="tool"/>'
+             f'<child link="{EVIL_XML}"/></joint>')
+NO_MARKUP = """(() => ({pwned: window.pwned === 1,
+    imgs: document.querySelectorAll('img').length,
+    text: document.body.textContent}))()"""
+
+
+def _shown_as_text(page):
+    assert EVIL in page.js("Object.keys(preview.robot.links)")
+    seen = page.js(NO_MARKUP)
+    assert seen["pwned"] is False and seen["imgs"] == 0
+    return seen["text"]
+
+
+def test_markup_in_names_is_text_in_the_preview(tmp_path, browser):
+    entry = make_robot(tmp_path, EVIL_LINK)
+    with serve(entry) as (server, session):
+        page = Page(browser, f"http://127.0.0.1:{server.port}/")
+        page.page.goto(server.url)
+        page.ready()
+        _shown_as_text(page)
+        assert page.errors == [] and page.external == []
+        page.close()
+
+
+def test_markup_in_names_is_text_in_the_review_page(tmp_path, browser):
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    entry = make_robot(repo)
+    (repo / "secret.txt").unlink()
+    _git(repo, "init", "-q", ".")
+    _git(repo, "add", "-A")
+    _git(repo, "commit", "-qm", "base")
+    entry.write_text(entry.read_text().replace("</robot>", EVIL_LINK + "</robot>"))
+    out = tmp_path / "review"
+    _diff_html(repo, out)
+    data = (out / "review-data.js").read_text()
+    assert "</script" not in data.lower() and "\u2028" not in data and "\u2029" not in data
+    page = Page(browser, "file://")
+    page.page.goto((out / "index.html").as_uri())
+    page.ready()
+    text = _shown_as_text(page)
+    assert f"link {EVIL}" in text        # (the table of changes names it, as text)
+    assert page.errors == [] and page.external == []
+    page.close()

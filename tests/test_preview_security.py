@@ -100,3 +100,28 @@ def test_a_slow_client_is_dropped_and_others_are_served_meanwhile(tmp_path):
             assert time.monotonic() - t0 <= limit + 5
         finally:
             slow.close()
+
+
+def test_what_a_page_of_another_site_can_send_is_refused_and_learns_nothing(tmp_path):
+    """Held on the first red-team pass (kept so it stays so): another port of localhost is
+    same-site, not same-origin; no answer grants CORS or names the token or a path."""
+    import http.client
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, _):
+        t = server.token
+        p = f"/{t}/state.json"
+        for headers in ({"Sec-Fetch-Site": "same-site"}, {"Sec-Fetch-Site": "cross-site",
+                                                         "Sec-Fetch-Mode": "no-cors"},
+                        {"Origin": f"http://localhost:{server.port + 1}"}):
+            status, body = get(server, p, headers)
+            assert status == 403 and t.encode() not in body, headers
+        for path in (p, f"/{t}/m/0/arm.stl", f"/{t}/nothing", f"/{t[:-1]}/state.json"):
+            c = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
+            c.request("GET", path, headers={"Origin": "http://evil.example"})
+            r = c.getresponse()
+            body = r.read()
+            c.close()
+            assert r.getheader("Access-Control-Allow-Origin") is None
+            assert t.encode() not in body and str(tmp_path).encode() not in body
+            assert r.getheader("X-Frame-Options") == "DENY"
+            assert "frame-ancestors 'none'" in r.getheader("Content-Security-Policy")

@@ -44,7 +44,7 @@ FILE_TYPES = {".stl": "model/stl", ".dae": "model/vnd.collada+xml", ".obj": "tex
               ".mtl": "text/plain", ".png": "image/png", ".jpg": "image/jpeg",
               ".jpeg": "image/jpeg", ".gif": "image/gif", ".bmp": "image/bmp",
               ".tga": "image/x-tga", ".webp": "image/webp"}
-FILE_CSP = "default-src 'none'; sandbox"
+FILE_CSP = "default-src 'none'; sandbox; frame-ancestors 'none'"
 # a connection that has not sent its whole request by then is closed (a slow client holds
 # its thread no longer); replies are on loopback, a 64 MB mesh leaves in well under a second
 IDLE_TIMEOUT_S = 10
