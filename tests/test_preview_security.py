@@ -125,3 +125,80 @@ def test_what_a_page_of_another_site_can_send_is_refused_and_learns_nothing(tmp_
             assert t.encode() not in body and str(tmp_path).encode() not in body
             assert r.getheader("X-Frame-Options") == "DENY"
             assert "frame-ancestors 'none'" in r.getheader("Content-Security-Policy")
+
+
+def test_the_preview_opens_nothing_outside_the_repository(tmp_path):
+    """``urdf-lint preview`` under strace, its page, scene, meshes and textures fetched, with
+    a repository whose DAE names an image outside it, whose OBJ names an MTL outside it, and a
+    mesh symlinked out of it: every file opened (its workers' too) is the repository's, the
+    cache's, the runtime's or the system's."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    import pytest
+
+    from support import strace
+    why = strace.available()
+    if why:
+        pytest.skip(why)
+    root = tmp_path / "repo"
+    root.mkdir()
+    entry = make_robot(root, OBJ_LINK + (
+        '<link name="body"><visual><geometry><mesh filename="package://arm_description/meshes/'
+        'body.dae"/></geometry></visual></link><link name="leaky"><visual><geometry><mesh '
+        'filename="package://arm_description/meshes/leak.stl"/></geometry></visual></link>'))
+    meshes = entry.parent.parent / "meshes"
+    (meshes / "shell.obj").write_text("mtllib ../../../outside.mtl\nv 0 0 0\nv 1 0 0\n"
+                                      "v 0 1 0\nf 1 2 3\n")
+    (meshes / "body.dae").write_text(
+        "<COLLADA><library_images><image id='b'><init_from>../../../secret.png</init_from>"
+        f"</image><image id='c'><init_from>file://{tmp_path}/secret2.png</init_from></image>"
+        "</library_images></COLLADA>")
+    (root / "secret.txt").unlink()
+    for name in ("outside.mtl", "secret.png", "secret2.png", "secret.txt"):
+        (tmp_path / name).write_text("map_Kd secret.png\nTOKEN=hunter2\n")
+    os.symlink(tmp_path / "secret.txt", meshes / "leak.stl")
+    allowed = [root, tmp_path / "cache", tmp_path / "tmp", tmp_path / "home"]
+    for d in allowed[1:]:
+        d.mkdir()
+    env = dict(os.environ, XDG_CACHE_HOME=str(allowed[1]), TMPDIR=str(allowed[2]),
+               HOME=str(allowed[3]))
+    env.pop("GITHUB_ACTIONS", None)
+    logs = tmp_path / "tmp" / "strace"
+    p = subprocess.Popen(strace.command(logs, [sys.executable, "-m", "urdf_lint", "preview",
+                                               str(entry)]),
+                         cwd=root, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         text=True, start_new_session=True)
+    try:
+        url = p.stdout.readline().strip()
+        assert url.startswith("http://127.0.0.1:"), p.stderr.read() if p.poll() else url
+        import urllib.request
+        base = url
+
+        def fetch(rel):
+            try:
+                with urllib.request.urlopen(base + rel, timeout=60) as r:
+                    return r.read()
+            except OSError:
+                return b""
+        import json
+        state = json.loads(fetch("state.json"))
+        urdf = state["variants"][0]["urdf"]
+        import re
+        names = re.findall(r'filename="(m/[^"]+)"', urdf)
+        assert names, urdf
+        for rel in ["", "static/vendor.js", "static/viewer.js", *names, "m/0/../../secret.png",
+                    "m/1/secret.png", "m/2/_/_/_/secret.png", "m/1/outside.mtl"]:
+            assert b"hunter2" not in fetch(rel), rel
+    finally:
+        os.killpg(p.pid, signal.SIGINT)
+        try:
+            p.wait(30)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+    paths = {o.opened for o in strace.opens(logs) if o.opened}
+    assert any(x.endswith("shell.obj") for x in paths)        # (it traced what it served)
+    assert strace.outside_allowed(paths, *allowed) == []
