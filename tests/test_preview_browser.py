@@ -243,6 +243,18 @@ def _git(repo, *args):
                    check=True, capture_output=True)
 
 
+def _committed_arm(tmp_path: Path) -> tuple[Path, Path]:
+    """(the repository, the entry): the arm committed as the base revision of a diff."""
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    entry = make_robot(repo)
+    (repo / "secret.txt").unlink()
+    _git(repo, "init", "-q", ".")
+    _git(repo, "add", "-A")
+    _git(repo, "commit", "-qm", "base")
+    return repo, entry
+
+
 def _diff_html(repo: Path, out: Path) -> dict:
     """``urdf-lint diff HEAD --html out --format json``: its JSON (the CLI, as CI runs it)."""
     import subprocess
@@ -273,13 +285,7 @@ HIGHLIGHTED = """(() => { const out = new Set(); preview.robot.traverse(c => {
 
 
 def test_the_review_page_opens_from_file_and_shows_the_changed_links(tmp_path, browser):
-    repo = tmp_path / "repo"
-    repo.mkdir()
-    entry = make_robot(repo)
-    (repo / "secret.txt").unlink()
-    _git(repo, "init", "-q", ".")
-    _git(repo, "add", "-A")
-    _git(repo, "commit", "-qm", "base")
+    repo, entry = _committed_arm(tmp_path)
     text = entry.read_text()
     # the tool's joint moves up 10 cm (tool moves), base_link's visual moves
     text = text.replace('<parent link="lower"/><child link="tool"/><origin xyz="0 0 0.4"/>',
@@ -428,13 +434,7 @@ def test_a_mesh_of_the_pull_request_makes_the_review_page_fetch_nothing(tmp_path
     """A DAE naming ``http://…`` and ``file:///…`` images: the review page (no server, no CSP
     header: from file://) has its CSP in a <meta>, so neither is asked for (no beacon telling
     the attacker who opened the artifact, and when)."""
-    repo = tmp_path / "repo"
-    repo.mkdir()
-    entry = make_robot(repo)
-    (repo / "secret.txt").unlink()
-    _git(repo, "init", "-q", ".")
-    _git(repo, "add", "-A")
-    _git(repo, "commit", "-qm", "base")
+    repo, entry = _committed_arm(tmp_path)
     (repo / "arm_description" / "meshes" / "beacon.dae").write_text(BEACON_DAE)
     entry.write_text(entry.read_text().replace("</robot>", BEACON_LINK + "</robot>"))
     out = tmp_path / "review"
@@ -498,13 +498,7 @@ def test_markup_in_names_is_text_in_the_preview(tmp_path, browser):
 
 
 def test_markup_in_names_is_text_in_the_review_page(tmp_path, browser):
-    repo = tmp_path / "repo"
-    repo.mkdir()
-    entry = make_robot(repo)
-    (repo / "secret.txt").unlink()
-    _git(repo, "init", "-q", ".")
-    _git(repo, "add", "-A")
-    _git(repo, "commit", "-qm", "base")
+    repo, entry = _committed_arm(tmp_path)
     entry.write_text(entry.read_text().replace("</robot>", EVIL_LINK + "</robot>"))
     out = tmp_path / "review"
     _diff_html(repo, out)
