@@ -202,3 +202,32 @@ def test_the_preview_opens_nothing_outside_the_repository(tmp_path):
     paths = {o.opened for o in strace.opens(logs) if o.opened}
     assert any(x.endswith("shell.obj") for x in paths)        # (it traced what it served)
     assert strace.outside_allowed(paths, *allowed) == []
+
+
+def test_the_review_page_inlines_at_most_its_total_of_meshes(tmp_path):
+    """Many distinct large meshes (cheap in git, as deltas of each other): the review page
+    inlines them up to its total and refuses the rest, with a reason the page shows, instead
+    of holding them all in the diff's memory and the artifact."""
+    from urdf_lint.preview.review import ReviewPage
+    page = ReviewPage(max_mesh_mb=1, max_total_mb=1)
+    paths = []
+    for i in range(4):
+        p = tmp_path / f"part{i}.stl"
+        p.write_bytes(bytes([i]) * 400_000)          # 0.4 MB each, all different
+        paths.append(str(p))
+        page.table.add(str(p), "mesh", None)
+    notes = page._inline(page.table, [str(tmp_path)])
+    assert len(notes) == 2 and "part2.stl" in notes[0] and "used up" in notes[0], notes
+    got = [page.files[f"m/{i}/part{i}.stl"] for i in range(4)]
+    assert ["data" in g for g in got] == [True, True, False, False], got
+    assert all("used up" in g["refused"] for g in got[2:])
+    assert page.total == 800_000
+    # identical bytes cost nothing more
+    same = tmp_path / "same.stl"
+    same.write_bytes(bytes([0]) * 400_000)
+    page2 = ReviewPage(max_mesh_mb=1, max_total_mb=1)
+    for p in (paths[0], str(same), paths[1]):
+        page2.table.add(p, "mesh", None)
+    page2._inline(page2.table, [str(tmp_path)])
+    assert page2.files["m/1/same.stl"] == {"same": "m/0/part0.stl"}
+    assert "data" in page2.files["m/2/part1.stl"] and page2.total == 800_000
