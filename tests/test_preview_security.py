@@ -231,3 +231,22 @@ def test_the_review_page_inlines_at_most_its_total_of_meshes(tmp_path):
     page2._inline(page2.table, [str(tmp_path)])
     assert page2.files["m/1/same.stl"] == {"same": "m/0/part0.stl"}
     assert "data" in page2.files["m/2/part1.stl"] and page2.total == 800_000
+
+
+def test_the_servers_own_errors_are_plain_text_with_its_headers(tmp_path):
+    """An unknown method or a malformed request line: http.server answered with its HTML error
+    page (the request echoed, no CSP, no nosniff, no framing header)."""
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, _):
+        for line in (f"FOO /{server.token}/<b>x</b> HTTP/1.1", "GET /<svg> x HTTP/1.1",
+                     f"TRACE /{server.token}/ HTTP/1.1"):
+            s = socket.create_connection(("127.0.0.1", server.port), timeout=30)
+            s.sendall(f"{line}\r\nHost: 127.0.0.1:{server.port}\r\n\r\n".encode())
+            reply = b""
+            while chunk := s.recv(65536):
+                reply += chunk
+            s.close()
+            head, _, body = reply.partition(b"\r\n\r\n")
+            assert b"Content-Type: text/plain" in head, (line, reply)
+            assert b"nosniff" in head and b"frame-ancestors 'none'" in head, (line, head)
+            assert b"<" not in body and server.token.encode() not in body, (line, body)

@@ -109,6 +109,14 @@ class Handler(BaseHTTPRequestHandler):
 
     do_POST = do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse_method
 
+    def send_error(self, code: int, message: str | None = None,
+                   explain: str | None = None) -> None:
+        """http.server's own errors (an unknown method, a malformed request line, a slow
+        client's timeout) as plain text with this server's headers: never its HTML page, which
+        echoes the request and goes out without CSP, nosniff or framing headers."""
+        self.close_connection = True
+        self._send(code, f"{code}\n".encode(), "text/plain")
+
     def do_HEAD(self) -> None:
         self._serve(head=True)
 
