@@ -243,6 +243,18 @@ def _git(repo, *args):
                    check=True, capture_output=True)
 
 
+def _committed_arm(tmp_path: Path) -> tuple[Path, Path]:
+    """(the repository, the entry): the arm committed as the base revision of a diff."""
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    entry = make_robot(repo)
+    (repo / "secret.txt").unlink()
+    _git(repo, "init", "-q", ".")
+    _git(repo, "add", "-A")
+    _git(repo, "commit", "-qm", "base")
+    return repo, entry
+
+
 def _diff_html(repo: Path, out: Path) -> dict:
     """``urdf-lint diff HEAD --html out --format json``: its JSON (the CLI, as CI runs it)."""
     import subprocess
@@ -273,13 +285,7 @@ HIGHLIGHTED = """(() => { const out = new Set(); preview.robot.traverse(c => {
 
 
 def test_the_review_page_opens_from_file_and_shows_the_changed_links(tmp_path, browser):
-    repo = tmp_path / "repo"
-    repo.mkdir()
-    entry = make_robot(repo)
-    (repo / "secret.txt").unlink()
-    _git(repo, "init", "-q", ".")
-    _git(repo, "add", "-A")
-    _git(repo, "commit", "-qm", "base")
+    repo, entry = _committed_arm(tmp_path)
     text = entry.read_text()
     # the tool's joint moves up 10 cm (tool moves), base_link's visual moves
     text = text.replace('<parent link="lower"/><child link="tool"/><origin xyz="0 0 0.4"/>',
@@ -375,3 +381,133 @@ def test_a_corpus_robot_with_textured_dae_meshes(browser):
             page.page.wait_for_timeout(300)
             page.png().save(DOCS_IMG / "preview-urdf-tutorial.png")
         page.close()
+
+
+# -- what a pull request's meshes may make the page fetch ---------------------------------------
+BEACON_DAE = """<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+ <asset><unit meter="1"/><up_axis>Z_UP</up_axis></asset>
+ <library_images><image id="img"><init_from>http://beacon.invalid/seen.png</init_from></image>
+  <image id="img2"><init_from>file:///etc/hostname</init_from></image></library_images>
+ <library_effects><effect id="eff"><profile_COMMON>
+  <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
+  <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
+  <newparam sid="surf2"><surface type="2D"><init_from>img2</init_from></surface></newparam>
+  <newparam sid="samp2"><sampler2D><source>surf2</source></sampler2D></newparam>
+  <technique sid="t"><phong><diffuse><texture texture="samp" texcoord="UV"/></diffuse>
+   <specular><texture texture="samp2" texcoord="UV"/></specular></phong></technique>
+ </profile_COMMON></effect></library_effects>
+ <library_materials><material id="mat"><instance_effect url="#eff"/></material></library_materials>
+ <library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="9">0 0 0 0.1 0 0 0 0.1 0</float_array>
+   <technique_common><accessor source="#pa" count="3" stride="3"><param name="X" type="float"/>
+   <param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common>
+  </source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles material="m" count="1"><input semantic="VERTEX" source="#v" offset="0"/>
+   <p>0 1 2</p></triangles>
+ </mesh></geometry></library_geometries>
+ <library_visual_scenes><visual_scene id="vs"><node id="n"><instance_geometry url="#g">
+  <bind_material><technique_common><instance_material symbol="m" target="#mat"/>
+  </technique_common></bind_material></instance_geometry></node></visual_scene>
+ </library_visual_scenes>
+ <scene><instance_visual_scene url="#vs"/></scene>
+</COLLADA>
+"""
+BEACON_LINK = ('<link name="beacon"><visual><geometry><mesh filename="package://arm_description/'
+               'meshes/beacon.dae"/></geometry></visual></link>')
+
+
+class Watched(Page):
+    """A Page that also records every request that went out (answered, or failed for another
+    reason than the page's CSP, which stops it before it leaves)."""
+
+    def __init__(self, browser, allowed: str):
+        super().__init__(browser, allowed)
+        self.requests: list[str] = []
+        self.page.on("requestfinished", lambda r: self.requests.append(r.url))
+        self.page.on("requestfailed", lambda r: r.failure == "csp" or
+                     self.requests.append(r.url))
+
+
+def test_a_mesh_of_the_pull_request_makes_the_review_page_fetch_nothing(tmp_path, browser):
+    """A DAE naming ``http://…`` and ``file:///…`` images: the review page (no server, no CSP
+    header: from file://) has its CSP in a <meta>, so neither is asked for (no beacon telling
+    the attacker who opened the artifact, and when)."""
+    repo, entry = _committed_arm(tmp_path)
+    (repo / "arm_description" / "meshes" / "beacon.dae").write_text(BEACON_DAE)
+    entry.write_text(entry.read_text().replace("</robot>", BEACON_LINK + "</robot>"))
+    out = tmp_path / "review"
+    _diff_html(repo, out)
+    page = Watched(browser, "file://")
+    page.page.goto((out / "index.html").as_uri())
+    page.ready()
+    page.page.wait_for_timeout(500)
+    assert "beacon" in page.js("Object.keys(preview.robot.links)")
+    assert page.errors == []
+    assert page.external == [], page.external
+    assert [u for u in page.requests if "hostname" in u or "beacon.invalid" in u] == []
+    page.close()
+
+
+def test_a_mesh_makes_the_preview_fetch_nothing_elsewhere(tmp_path, browser):
+    entry = make_robot(tmp_path, BEACON_LINK)
+    (entry.parent.parent / "meshes" / "beacon.dae").write_text(BEACON_DAE)
+    with serve(entry) as (server, _):
+        page = Watched(browser, f"http://127.0.0.1:{server.port}/")
+        page.page.goto(server.url)
+        page.ready()
+        page.page.wait_for_timeout(500)
+        assert "beacon" in page.js("Object.keys(preview.robot.links)")
+        # (three.js puts a mesh's image names below the mesh's own URL: m/1/http://…, a 404)
+        assert page.external == [], page.external
+        here = f"http://127.0.0.1:{server.port}/{server.token}/"
+        assert page.requests and all(u.startswith(here) for u in page.requests), page.requests
+        page.close()
+
+
+# -- names a pull request writes, shown as text -------------------------------------------------
+EVIL = '</script><img src=x onerror="window.pwned=1"><!--\u2028\u2029${x}'
+EVIL_XML = (EVIL.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+            .replace('"', "&quot;").replace("${", "$${"))
+EVIL_LINK = (f'<link name="{EVIL_XML}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry>'
+             f'<material name="{EVIL_XML}"><color rgba="1 0 0 1"/></material></visual></link>'
+             f'<joint name="{EVIL_XML}j" type="fixed"><parent link="tool"/>'
+             f'<child link="{EVIL_XML}"/></joint>')
+NO_MARKUP = """(() => ({pwned: window.pwned === 1,
+    imgs: document.querySelectorAll('img').length,
+    text: document.body.textContent}))()"""
+
+
+def _shown_as_text(page):
+    assert EVIL in page.js("Object.keys(preview.robot.links)")
+    seen = page.js(NO_MARKUP)
+    assert seen["pwned"] is False and seen["imgs"] == 0
+    return seen["text"]
+
+
+def test_markup_in_names_is_text_in_the_preview(tmp_path, browser):
+    entry = make_robot(tmp_path, EVIL_LINK)
+    with serve(entry) as (server, session):
+        page = Page(browser, f"http://127.0.0.1:{server.port}/")
+        page.page.goto(server.url)
+        page.ready()
+        _shown_as_text(page)
+        assert page.errors == [] and page.external == []
+        page.close()
+
+
+def test_markup_in_names_is_text_in_the_review_page(tmp_path, browser):
+    repo, entry = _committed_arm(tmp_path)
+    entry.write_text(entry.read_text().replace("</robot>", EVIL_LINK + "</robot>"))
+    out = tmp_path / "review"
+    _diff_html(repo, out)
+    data = (out / "review-data.js").read_text()
+    assert "</script" not in data.lower() and "\u2028" not in data and "\u2029" not in data
+    page = Page(browser, "file://")
+    page.page.goto((out / "index.html").as_uri())
+    page.ready()
+    text = _shown_as_text(page)
+    assert f"link {EVIL}" in text        # (the table of changes names it, as text)
+    assert page.errors == [] and page.external == []
+    page.close()

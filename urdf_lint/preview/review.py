@@ -16,9 +16,13 @@ import os
 from typing import Any
 
 from urdf_lint.core import fsbound
+from urdf_lint.core.locations import display_path
 from urdf_lint.preview.scene import DEFAULT_MAX_MESH_MB, FileTable, Scene, fill_scene
-from urdf_lint.preview.server import STATIC, page_html
+from urdf_lint.preview.server import REVIEW_CSP, STATIC, page_html
 
+# all the meshes of one page together: a pull request of many large, distinct meshes (cheap in
+# git as deltas of each other) would otherwise fill the diff's memory and the artifact
+MAX_TOTAL_MB = 256
 PAGE = "index.html"
 DATA = "review-data.js"
 ASSETS = {"vendor.js": "vendor/vendor.js", "viewer.js": "viewer.js", "viewer.css": "viewer.css",
@@ -55,8 +59,11 @@ def _finding(fk: Any, severity: str) -> dict[str, Any]:
 class ReviewPage:
     """The models of one diff, their robots and meshes, as the page will hold them."""
 
-    def __init__(self, max_mesh_mb: int = DEFAULT_MAX_MESH_MB) -> None:
+    def __init__(self, max_mesh_mb: int = DEFAULT_MAX_MESH_MB,
+                 max_total_mb: int = MAX_TOTAL_MB) -> None:
         self.table = FileTable(max_bytes=max_mesh_mb << 20)
+        self.max_total = max_total_mb << 20
+        self.total = 0                          # the bytes inlined so far
         self.models: list[dict[str, Any]] = []
         self.files: dict[str, dict[str, str]] = {}
         self._by_digest: dict[str, str] = {}   # the same bytes at base and head: sent once
@@ -71,12 +78,12 @@ class ReviewPage:
                 fill_scene(scene, model, model.resolver, self.table)
         roots = [r for m in (head_model, base_model) if m is not None and m.resolver is not None
                  for r in m.resolver.read_paths()]
-        self._inline(self.table, roots or None)
+        full = self._inline(self.table, roots or None)
         self.models.append({
             "label": f"{md.model} ({md.status})", "status": md.status,
             "urdf": head.urdf or base.urdf, "base_urdf": base.urdf if head.urdf else "",
             "error": md.error, "links": head.links or base.links,
-            "joints": head.joints or base.joints, "notes": head.notes + base.notes,
+            "joints": head.joints or base.joints, "notes": head.notes + base.notes + full,
             "findings": [], "changed_links": changed_links(md),
             "changes": [{"element": f"{c.kind} {c.name}", "text": _change_text(c)}
                         for c in md.changes] +
@@ -86,9 +93,11 @@ class ReviewPage:
             "new_findings": [_finding(fk, s) for fk, s in md.findings_introduced],
             "fixed_findings": [_finding(fk, s) for fk, s in md.findings_fixed]})
 
-    def _inline(self, table: FileTable, roots: list[str] | None) -> None:
+    def _inline(self, table: FileTable, roots: list[str] | None) -> list[str]:
         """Each file of the table not yet inlined, read now through the boundary (the base
-        revision's files are gone once the diff returns)."""
+        revision's files are gone once the diff returns); the notes of those left out because
+        the page's total is used up."""
+        notes = []
         for i, served in enumerate(table.files):
             name = f"m/{i}/{served.name}"
             if name in self.files:
@@ -96,8 +105,15 @@ class ReviewPage:
             if served.refused:
                 self.files[name] = {"refused": served.refused}
                 continue
+            left = self.max_total - self.total
+            if served.size > left:
+                why = f"not inlined: the page's {self.max_total >> 20} MB of meshes are used up"
+                self.files[name] = {"refused": why}
+                notes.append(f"{display_path(served.path)}: {why}")
+                continue
             try:
-                data = fsbound.read_bytes(served.path, roots, max_bytes=table.max_bytes)
+                data = fsbound.read_bytes(served.path, roots,
+                                          max_bytes=min(table.max_bytes, left))
             except OSError as e:
                 self.files[name] = {"refused": f"cannot read: {e.strerror or e}"}
                 continue
@@ -105,8 +121,10 @@ class ReviewPage:
             if digest in self._by_digest:
                 self.files[name] = {"same": self._by_digest[digest]}
                 continue
+            self.total += len(data)
             self._by_digest[digest] = name
             self.files[name] = {"data": base64.b64encode(data).decode("ascii")}
+        return notes
 
     def write(self, out_dir: str, base: str, title: str) -> list[str]:
         """index.html, review-data.js and the page's scripts into ``out_dir``; the paths."""
@@ -120,6 +138,7 @@ class ReviewPage:
         js = "window.URDF_LINT_REVIEW = " + \
             json.dumps(doc).replace("</", "<\\/") + ";\n"
         fsbound.write_text(os.path.join(out_dir, DATA), js, base, make_dirs=True)
-        html = page_html(title, scripts=(DATA, "vendor.js", "viewer.js"), css="viewer.css")
+        html = page_html(title, scripts=(DATA, "vendor.js", "viewer.js"), css="viewer.css",
+                         csp=REVIEW_CSP)
         fsbound.write_text(os.path.join(out_dir, PAGE), html, base, make_dirs=True)
         return written + [os.path.join(out_dir, DATA), os.path.join(out_dir, PAGE)]

@@ -79,9 +79,12 @@ def _textures_of(path: str, resolver: Any) -> tuple[str, dict[str, str]]:
     deep (``_/_/mesh.dae``), so that the browser's resolution of the relative name stays below
     ``m/<index>/``."""
     from urdf_lint.meshes.resolve import texture_refs
+    from urdf_lint.meshes.store import MeshStore
     base = os.path.dirname(path)
     rels = {}
-    for ref in texture_refs(path):
+    # (confined: an MTL that the OBJ names outside the roots is not even read)
+    store = MeshStore(inside=resolver.is_inside) if resolver is not None else None
+    for ref in texture_refs(path, store):
         if resolver is not None and not resolver.is_inside(ref):
             continue
         rels[os.path.relpath(ref, base).replace(os.sep, "/")] = ref

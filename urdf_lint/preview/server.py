@@ -9,8 +9,8 @@ mesh and texture files the robot references (``FileTable``), read through the fi
 from __future__ import annotations
 
 import hmac
+import html
 import json
-import mimetypes
 import os
 import secrets
 import threading
@@ -34,15 +34,33 @@ CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' 
        "connect-src 'self' data: blob:; base-uri 'none'; form-action 'none'; "
        "frame-ancestors 'none'")
 LONG_POLL_S = 20.0
+# the review page's (a <meta>: no frame-ancestors there): its own scripts and the meshes it
+# inlines, nothing from any other place, a URL a pull request's DAE names included
+REVIEW_CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src data: blob:; "
+              "connect-src data: blob:; base-uri 'none'; form-action 'none'")
+# a repository's files go out as bytes of a known mesh or image type, else opaque, and in a
+# sandbox: a texture named x.html or x.js, opened by the user, runs nothing at this origin
+FILE_TYPES = {".stl": "model/stl", ".dae": "model/vnd.collada+xml", ".obj": "text/plain",
+              ".mtl": "text/plain", ".png": "image/png", ".jpg": "image/jpeg",
+              ".jpeg": "image/jpeg", ".gif": "image/gif", ".bmp": "image/bmp",
+              ".tga": "image/x-tga", ".webp": "image/webp"}
+FILE_CSP = "default-src 'none'; sandbox; frame-ancestors 'none'"
+# a connection that has not sent its whole request by then is closed (a slow client holds
+# its thread no longer); replies are on loopback, a 64 MB mesh leaves in well under a second
+IDLE_TIMEOUT_S = 10
 
 
 def page_html(title: str, scripts: tuple[str, ...] = ("static/vendor.js", "static/viewer.js"),
-              css: str = "static/viewer.css") -> str:
+              css: str = "static/viewer.css", csp: str = "") -> str:
+    """The page; ``csp``: its policy in a <meta> too (the review page, opened from file://, has
+    no server to send the header)."""
     from urdf_lint.core.escape import escape_html as html_text
     tags = "\n".join(f'<script src="{s}"></script>' for s in scripts)
+    meta = f'\n<meta http-equiv="Content-Security-Policy" content="{html.escape(csp)}">' \
+        if csp else ""
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
-<meta name="referrer" content="no-referrer">
+<meta name="referrer" content="no-referrer">{meta}
 <title>{html_text(title)}</title>
 <link rel="stylesheet" href="{css}">
 </head><body>
@@ -79,6 +97,7 @@ class PreviewServer(ThreadingHTTPServer):
 class Handler(BaseHTTPRequestHandler):
     server: PreviewServer
     server_version = "urdf-lint-preview"
+    timeout = IDLE_TIMEOUT_S
     sys_version = ""
 
     def log_message(self, format: str, *args: Any) -> None:   # noqa: A002
@@ -89,6 +108,14 @@ class Handler(BaseHTTPRequestHandler):
         self._send(405, b"read-only\n", "text/plain", {"Allow": "GET, HEAD"})
 
     do_POST = do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse_method
+
+    def send_error(self, code: int, message: str | None = None,
+                   explain: str | None = None) -> None:
+        """http.server's own errors (an unknown method, a malformed request line, a slow
+        client's timeout) as plain text with this server's headers: never its HTML page, which
+        echoes the request and goes out without CSP, nosniff or framing headers."""
+        self.close_connection = True
+        self._send(code, f"{code}\n".encode(), "text/plain")
 
     def do_HEAD(self) -> None:
         self._serve(head=True)
@@ -181,11 +208,11 @@ class Handler(BaseHTTPRequestHandler):
         except OSError as e:
             self._send(404, f"cannot read: {e.strerror or e}\n".encode(), "text/plain")
             return
-        kind = TYPES.get(os.path.splitext(path)[1].lower()) or \
-            mimetypes.guess_type(path)[0] or "application/octet-stream"
-        self._send(200, data, kind)
+        kind = FILE_TYPES.get(os.path.splitext(path)[1].lower(), "application/octet-stream")
+        self._send(200, data, kind, csp=FILE_CSP)
 
-    def _send(self, code: int, body: bytes, kind: str, extra: dict[str, str] | None = None) -> None:
+    def _send(self, code: int, body: bytes, kind: str, extra: dict[str, str] | None = None,
+              csp: str = CSP) -> None:
         self.send_response(code)
         self.send_header("Content-Type", kind)
         self.send_header("Content-Length", str(len(body)))
@@ -194,7 +221,7 @@ class Handler(BaseHTTPRequestHandler):
         self.send_header("Referrer-Policy", "no-referrer")
         self.send_header("Cross-Origin-Resource-Policy", "same-origin")
         self.send_header("X-Frame-Options", "DENY")
-        self.send_header("Content-Security-Policy", CSP)
+        self.send_header("Content-Security-Policy", csp)
         for k, v in (extra or {}).items():
             self.send_header(k, v)
         self.end_headers()

@@ -101,6 +101,22 @@
     } catch (e) { fail(String(e)); }
   }
 
+  // urdf-loader finds the root link with querySelector(`child[link="${name}"]`): a name with
+  // a quote (a pull request writes any name) made that an invalid selector and the page blank.
+  // The robot element answers that one query by comparing the attribute, not as CSS.
+  function urdfDocument(urdf) {
+    const doc = new DOMParser().parseFromString(urdf, 'text/xml');
+    const robot = doc.documentElement;
+    const asked = /^child\[link="([\s\S]*)"\]$/;
+    robot.querySelector = (sel) => {
+      const m = asked.exec(sel);
+      if (!m) return Element.prototype.querySelector.call(robot, sel);
+      return [...robot.getElementsByTagName('child')]
+        .find((c) => c.getAttribute('link') === m[1]) || null;
+    };
+    return doc;
+  }
+
   function loadRobot(urdf, opts) {
     // resolves once every mesh of the robot loaded or failed (own count: inlined meshes are
     // parsed without the LoadingManager ever hearing of them)
@@ -119,7 +135,7 @@
           check();
         });
       };
-      robot = loader.parse(urdf);
+      robot = loader.parse(urdfDocument(urdf));
       robot.userData.side = opts.side || 'current';
       parsed = true;
       check();
