@@ -64,3 +64,5 @@ _.do_PUT
 _.do_PATCH
 _.do_DELETE
 _.do_OPTIONS
+_.send_error                   # preview/server.py: http.server calls it for a bad request
+_.close_connection

@@ -782,7 +782,7 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
             if not os.path.isfile(spec.path):
-                raise ConfigError(f"{_shown(cfg.path or base)}: model {m['path']!r} does not exist"
+                raise ConfigError(f"{_shown(cfg.path or base)}: [[models]] model {m['path']!r} does not exist"
                                   f"{_did_you_mean_file(m['path'], base)}")
             specs.append(spec)
         value = specs
