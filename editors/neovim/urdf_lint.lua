@@ -18,7 +18,7 @@ local function start(bufnr)
 end
 
 vim.api.nvim_create_autocmd({ "BufReadPost", "BufNewFile" }, {
-  pattern = { "*.xacro", "*.urdf", "*.urdf.xacro" },
+  pattern = { "*.xacro", "*.urdf", "*.urdf.xacro", "*.srdf", "*.yaml" },
   callback = function(args) start(args.buf) end,
 })
 return { start = start }

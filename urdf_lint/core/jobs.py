@@ -56,6 +56,10 @@ class LintJob:
     # urdf-lint server: unsaved editor buffers ((path, bytes), ...) read in place of those
     # files by this job's expansion and lint (urdf_lint/core/overlay.py); such a result is not cached
     overlay: tuple[tuple[str, bytes], ...] = ()
+    # the configuration files tied to this model (urdf_lint.discovery.configs): (kind, path,
+    # how), kind "srdf" | "controllers" | "joint-limits" | "kinematics" | "initial-positions" |
+    # "moveit-controllers", how "explicit" | "setup-assistant" | "package" | "package-shared"
+    configs: tuple[tuple[str, str, str], ...] = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

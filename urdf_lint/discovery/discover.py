@@ -100,6 +100,8 @@ def candidate_files(paths, cfg, folders: list | None = None):
         p = os.path.abspath(p)
         for f in iter_files(Path(p), suffixes=(".urdf", ".xacro"), folders=folders):
             f = os.path.realpath(f) if not os.path.islink(f) else os.path.abspath(f)
+            if f.endswith(".srdf.xacro"):   # a robot's semantic description, not a robot
+                continue
             # an exclude does not apply below a path that is itself excluded and named explicitly
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
@@ -147,6 +149,8 @@ def discover_models(paths, cfg: "Config", resolver: "PackageResolver | None" = N
             continue
         jobs.extend(_configured_jobs(spec, detected.get(f, ()), recorded, graph))
     jobs = _inherit_mesh_base(jobs, graph)
+    from urdf_lint.discovery.configs import attach_configs
+    jobs = attach_configs(jobs, cfg, resolver)
     return Discovery(jobs, fragments, graph, generated, folders, problems)
 
 

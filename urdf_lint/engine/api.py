@@ -47,13 +47,16 @@ class Report:
     ``severity`` raises or lowers the rule's severity for this one problem; ``fix`` is a fix
     request (``set_attrs`` and the other requests here); ``targets`` a severity per consumer
     target for this one problem (:mod:`urdf_lint.core.targets`); ``cause`` the root cause it
-    is an instance of (:class:`Cause`)."""
+    is an instance of (:class:`Cause`); ``related`` the robot's element a finding placed in a
+    configuration file (an ``Origin`` in an SRDF or a controller YAML) is about: its xacro line
+    is shown as the related location."""
     element: Any
     message: str
     severity: str | None = None
     fix: Request | None = None
     targets: dict[str, str] | None = None
     cause: Cause | None = None
+    related: Any = None
 
 
 _LAZY = {"MeshStatus": "urdf_lint.meshes.resolve"}

@@ -184,7 +184,7 @@ class Workspace:
                 else:
                     todo.append(LintJob(job.entry, job.args, job.kind, job.explicit,
                                         job.display_name, job.output, job.mesh_base,
-                                        overlay=overlay))
+                                        overlay=overlay, configs=job.configs))
             if todo:
                 assert self.pool is not None, "load() makes the pool"
                 for job, rep in self.pool.run(todo):
@@ -193,7 +193,8 @@ class Workspace:
                         self.facts.accept(rep.mesh_facts, self.resolver.is_inside)
                     if self.cache and not job.overlay and rep.cacheable and not rep.internal:
                         plain = LintJob(job.entry, job.args, job.kind, job.explicit,
-                                        job.display_name, job.output, job.mesh_base)
+                                        job.display_name, job.output, job.mesh_base,
+                                        configs=job.configs)
                         self.cache.put(plain, self.settings, rep)
             self.findings = self._finish()
             return before | {f.file for f in self.findings}

@@ -3,7 +3,7 @@ macro call chain folded into the line, for editors' problem matchers and grep.""
 from __future__ import annotations
 
 from urdf_lint.report.base import (DIM, BaseFormatter, chain_text, fold_instances, location, message,
-                   targets_tag, value_from_text)
+                   targets_tag, value_from_text, related_text)
 from urdf_lint.core.escape import escape_text
 
 
@@ -14,7 +14,7 @@ class ConciseFormatter(BaseFormatter):
     def handle(self, f):
         code = self.paint(f.code, self.severity_color(f.severity))
         parts = [p for p in (f.detail if not f.instances else "", chain_text(f),
-                             value_from_text(f), fold_instances(f)) if p]
+                             value_from_text(f), related_text(f), fold_instances(f)) if p]
         tail = f" ({'; '.join(escape_text(p) for p in parts)})" if parts else ""
         name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
         self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {name}{tail}\n")

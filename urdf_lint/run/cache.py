@@ -38,7 +38,7 @@ from urdf_lint.discovery.vcs import git_root, repo_root
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached; 14: the
 # $(optenv) variables looked up and whether they were set)
-RECORD_FORMAT = 14
+RECORD_FORMAT = 15
 
 
 def _recorded() -> dict[str, tuple[str, int]]:
@@ -183,7 +183,8 @@ class Cache:
         blob = json.dumps([build_id(), RECORD_FORMAT, job.entry, sorted(job.args.items()),
                            job.kind, bool(job.explicit), job.output, job.mesh_base,
                            list(job.outputs), list(job.untied),
-                           [list(v) for v in job.variants]]) + memo[1]
+                           [list(v) for v in job.variants],
+                           [list(c) for c in job.configs]]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key) -> str:

@@ -33,7 +33,7 @@ from urdf_lint.core.jobs import LintJob, ModelReport, env_unchanged
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
 
-FORMAT = 7
+FORMAT = 8
 RACY_S = 2.0   # inputs changed this recently are not trusted to show a later change
 
 
