@@ -153,6 +153,8 @@ def load_configs(job: LintJob, settings: LintSettings, resolver: Any, model: Any
         if kind == "controllers" and how == "package-shared" and not _names_any(doc.root, model):
             continue   # another robot's controllers (the 2F-85's YAML beside the 2F-140)
         docs.append(doc)
+    if not any(d.kind == "srdf" for d in docs):   # MoveIt's files beside another robot's SRDF
+        docs = [d for d in docs if d.kind == "controllers" or not d.how.startswith("package")]
     return docs
 
 

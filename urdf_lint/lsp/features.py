@@ -185,7 +185,15 @@ def _enclosing_macro(ls, path, at: At) -> Decl | None:
 
 
 # -- definition / references ------------------------------------------------------------------
+# asked first, in order (server.py adds them: the methods' modules import this one)
+DEFINITION_FIRST: list = []
+
+
 def definition(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types.Location]:
+    for first in DEFINITION_FIRST:   # (methods.config_definition: SRDF and controller YAML)
+        got = first(ls, path, pos)
+        if got is not None:
+            return got
     doc = ls.doc(path)
     at = At(doc, pos)
     if not at.word and at.value is None:

@@ -10,6 +10,7 @@ from lsprotocol import types
 
 from urdf_lint.lsp import actions, features
 from urdf_lint.lsp.core import DEBOUNCE_S, UrdfLintServer, uri_path
+from urdf_lint.lsp.methods import config_definition
 from urdf_lint.lsp.state import Workspace
 
 server = UrdfLintServer()
@@ -92,6 +93,7 @@ CONFIG_NAMES = ("pyproject.toml", ".urdf-lint.toml", "urdf-lint.toml")
 
 actions.register(server)
 features.register(server)
+features.DEFINITION_FIRST.append(config_definition.definition)
 
 
 def main() -> int:
