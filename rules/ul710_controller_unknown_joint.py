@@ -9,11 +9,11 @@ renamed, or prefixed, in the xacro.
 A name built by a launch substitution (`$(var tf_prefix)joint1`) is resolved with the model's
 xacro args of the same name; when the prefix is not known, UL714 says the name was not checked.
 
+Consumers: ros and gazebo (gz_ros2_control loads the same controller YAML); the other consumers
+do not read it.
+
 How to fix: Rename the joint in the YAML file (the related location is the closest joint of the
 robot, or the robot).
-
-Targets: ros and gazebo (gz_ros2_control loads the same controller YAML); the other consumers
-do not read it.
 """
 CODE = "UL710"
 NAME = "controller-unknown-joint"

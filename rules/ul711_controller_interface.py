@@ -12,10 +12,10 @@ state broadcaster reads whatever is declared.
 Checked only when the robot declares some `<ros2_control>` block (a URDF without one gets its
 hardware description elsewhere).
 
+Consumers: ros and gazebo (gz_ros2_control loads the same controller YAML).
+
 How to fix: Declare the interface in the xacro's `<ros2_control>` joint (the related location),
 or configure the controller for the interfaces the hardware has.
-
-Targets: ros and gazebo (gz_ros2_control loads the same controller YAML).
 """
 CODE = "UL711"
 NAME = "controller-interface"

@@ -5,10 +5,10 @@ gz_ros2_control) sets it from that joint, and since ros2_control 4 a `<ros2_cont
 joint has no command interface of its own. A controller claiming it fails to activate, or (older
 versions) fights the mimic relation: the gripper finger jitters or the mimic is ignored.
 
+Consumers: ros and gazebo (gz_ros2_control loads the same controller YAML).
+
 How to fix: Command the joint it mimics (the related location is the `<mimic>` element), and
 list the mimic joint only in state broadcasters.
-
-Targets: ros and gazebo (gz_ros2_control loads the same controller YAML).
 """
 CODE = "UL712"
 NAME = "controller-mimic-joint"

@@ -5,9 +5,9 @@ controller then refuses every trajectory that starts out of bounds, and MoveIt r
 state as invalid ("Joint 'X' from the starting state is outside bounds"): the simulated robot
 cannot move until the value is fixed.
 
-How to fix: Use a value within the joint's `<limit lower upper>` (the related location).
+Consumers: ros and gazebo (gz_ros2_control reads the same initial values).
 
-Targets: ros and gazebo (gz_ros2_control reads the same initial values).
+How to fix: Use a value within the joint's `<limit lower upper>` (the related location).
 """
 CODE = "UL713"
 NAME = "initial-value-limits"

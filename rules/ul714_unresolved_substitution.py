@@ -6,10 +6,10 @@ same name (a `[[tool.urdf-lint.models]]` entry with `args = {tf_prefix = "left_"
 resolved with it and checked by UL710-UL712 instead. One information finding per file, at its
 first such name.
 
+Consumers: ros and gazebo.
+
 How to fix: Nothing is wrong. To have the names checked, lint the model with the prefix as a
 xacro arg of the same name.
-
-Targets: ros and gazebo.
 """
 CODE = "UL714"
 NAME = "unresolved-substitution"

@@ -5,10 +5,10 @@ error like "Link 'X' declared as part of a chain in group 'arm' is not known to 
 planning for it fails at start-up, far from the line that caused it. The usual cause is a link
 renamed in the xacro and not in the MoveIt configuration package.
 
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
+
 How to fix: Rename the link in the SRDF (the related location is where the robot's links are
 written), or regenerate the SRDF with the MoveIt Setup Assistant.
-
-Targets: ros (MoveIt) only: the other consumers do not read SRDF files.
 """
 CODE = "UL750"
 NAME = "srdf-unknown-link"

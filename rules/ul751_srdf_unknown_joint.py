@@ -5,10 +5,10 @@ is not known to the URDF"), ignores the value of a group state for it, and a pas
 that does not exist leaves the real one planned as active. The usual cause is a joint renamed
 in the xacro and not in the MoveIt configuration package.
 
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
+
 How to fix: Rename the joint in the SRDF (the related location is where the robot's joints are
 written).
-
-Targets: ros (MoveIt) only: the other consumers do not read SRDF files.
 """
 CODE = "UL751"
 NAME = "srdf-unknown-joint"

@@ -5,10 +5,10 @@ again: the allowed collision matrix is stale, typically after a link was renamed
 planning reports collisions between links that always touch (or it slows down on pairs that
 can never collide).
 
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
+
 How to fix: Rename the link in the pair, or regenerate the collision matrix with the MoveIt
 Setup Assistant.
-
-Targets: ros (MoveIt) only: the other consumers do not read SRDF files.
 """
 CODE = "UL752"
 NAME = "srdf-stale-collision-pair"

@@ -4,9 +4,9 @@ Why: MoveIt builds a chain group by walking from the tip up to the base; when th
 an ancestor of the tip (swapped ends, a link of another branch), the group is dropped ("Links
 'a' and 'b' do not form a chain") and nothing can be planned for it.
 
-How to fix: Swap `base_link` and `tip_link`, or pick a base on the tip's path to the root.
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
 
-Targets: ros (MoveIt) only: the other consumers do not read SRDF files.
+How to fix: Swap `base_link` and `tip_link`, or pick a base on the tip's path to the root.
 """
 CODE = "UL753"
 NAME = "srdf-chain-order"

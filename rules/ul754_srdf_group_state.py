@@ -5,10 +5,10 @@ it is used: a value outside them makes the goal invalid ("goal is not within bou
 joint left out keeps whatever value it happens to have, so the "same" state differs between
 runs. The usual cause is a limit tightened in the xacro, or a joint added to the group.
 
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
+
 How to fix: Give every moving joint of the group a value within its `<limit>` (the related
 location is the joint's limit in the xacro).
-
-Targets: ros (MoveIt) only: the other consumers do not read SRDF files.
 """
 CODE = "UL754"
 NAME = "srdf-group-state"

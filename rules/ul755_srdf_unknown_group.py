@@ -4,9 +4,9 @@ Why: MoveIt ignores the group state or end effector ("Group state 'home' specifi
 'arm', but that group is not known"; an end effector is only dropped, so it is a warning), and a kinematics solver configured for a group that does
 not exist leaves the real group without one (no IK for it). The usual cause is a renamed group.
 
-How to fix: Use the name of a group defined in the SRDF, or define the group.
+Consumers: ros (MoveIt) only: the other consumers do not read these files.
 
-Targets: ros (MoveIt) only: the other consumers do not read these files.
+How to fix: Use the name of a group defined in the SRDF, or define the group.
 """
 CODE = "UL755"
 NAME = "srdf-unknown-group"

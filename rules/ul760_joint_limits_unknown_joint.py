@@ -3,10 +3,10 @@
 Why: MoveIt reads the limits of the robot's joints only, so the entry is silently ignored: the
 joint it was meant for (renamed in the xacro) runs with the URDF's limits, or with none.
 
+Consumers: ros (MoveIt) only.
+
 How to fix: Rename the entry to the joint's new name (the related location is the closest
 joint of the robot), or remove it.
-
-Targets: ros (MoveIt) only.
 """
 CODE = "UL760"
 NAME = "joint-limits-unknown-joint"

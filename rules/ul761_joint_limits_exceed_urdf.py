@@ -5,10 +5,10 @@ interface and the controllers (which read the URDF's limits) reject or clamp mid
 YAML is meant to tighten limits for planning, not to widen them. A value equal to the URDF's
 is fine.
 
+Consumers: ros (MoveIt) only.
+
 How to fix: Lower the YAML value to at most the URDF's (the related location is the joint's
 `<limit>` in the xacro), or raise the URDF's limit if the hardware allows it.
-
-Targets: ros (MoveIt) only.
 """
 CODE = "UL761"
 NAME = "joint-limits-exceed-urdf"

@@ -6,10 +6,10 @@ joint X! You have to define acceleration limits in the URDF or joint_limits.yaml
 moveit/moveit2#3504): planning succeeds and execution fails. Checked for the joints of the
 SRDF's groups, when a `joint_limits.yaml` is tied to the robot.
 
+Consumers: ros (MoveIt) only.
+
 How to fix: Add `has_acceleration_limits: true` and `max_acceleration` for the joint in
 `joint_limits.yaml` (at the reported line), or an `acceleration` to its `<limit>`.
-
-Targets: ros (MoveIt) only.
 """
 CODE = "UL762"
 NAME = "missing-acceleration-limit"

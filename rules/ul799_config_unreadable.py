@@ -3,9 +3,9 @@
 Why: MoveIt or the controller_manager fails on it at launch; urdf-lint cannot check it against
 the robot either, so its other findings (UL710-UL798) are missing for this file.
 
-How to fix: Fix the syntax at the reported line (the message quotes the parser).
+Consumers: ros only: the other consumers do not read these files.
 
-Targets: ros only: the other consumers do not read these files.
+How to fix: Fix the syntax at the reported line (the message quotes the parser).
 """
 CODE = "UL799"
 NAME = "config-unreadable"

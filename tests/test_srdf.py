@@ -292,3 +292,44 @@ def test_an_srdf_of_another_robot_and_another_robots_controllers_are_left_alone(
     pkg = make_package(tmp_path, "arm_config", files)
     got = [(f.code, rel(f, pkg), f.models) for f in lint(pkg, monkeypatch)]
     assert got == [("UL752", "config/arm.srdf", ("urdf/arm.urdf.xacro",))]
+
+
+def _ros_configs():
+    from conftest import SHARED
+    return SHARED / "ros-configs" / "moveit_resources"
+
+
+@pytest.mark.skipif(not (_ros_configs() / "panda_moveit_config").is_dir(),
+                    reason="../shared/ros-configs is not present")
+def test_real_moveit_packages_are_clean_and_a_rename_reaches_every_line(tmp_path, monkeypatch):
+    """moveit_resources' real configuration packages: no error, two warnings (an upstream
+    defect: the dual-arm SRDF's end effectors name groups it never defines). A joint and a link
+    renamed in panda's xacro: every SRDF, YAML and ros2_control line naming them is reported."""
+    import re
+    src = tmp_path / "ws"
+    shutil.copytree(_ros_configs(), src / "moveit_resources")
+    codes = CODES + ["UL702"]
+
+    def findings():
+        monkeypatch.chdir(src)
+        from urdf_lint.config.schema import load_config
+        from urdf_lint.discovery.discover import build_resolver
+        from urdf_lint.run.pipeline import RunRequest, run_check
+        cfg = load_config(None)
+        cfg.select = codes
+        res = run_check(RunRequest(["."], cfg, build_resolver(["."], cfg), in_process=True))
+        return res.findings
+    clean = findings()
+    assert sorted((f.code, f.severity, os.path.basename(f.file), f.line) for f in clean) == [
+        ("UL755", "warning", "panda.srdf", 42), ("UL755", "warning", "panda.srdf", 43)]
+    xacro = src / "moveit_resources" / "panda_description" / "urdf" / "panda.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('"panda_joint3"', '"panda_joint_3"')
+                     .replace('"panda_link4"', '"panda_link4_renamed"'))
+    config = src / "moveit_resources" / "panda_moveit_config" / "config"
+    naming = {(str(f), i) for f in config.iterdir() if f.name != "initial_positions.yaml"
+              for i, t in enumerate(f.read_text().splitlines(), 1)
+              if re.search(r"\bpanda_(joint3|link4)\b", t) and "initial_positions[" not in t}
+    got = findings()
+    reported = {(os.path.realpath(f.file), f.line) for f in got if f not in clean}
+    assert len(naming) == 32
+    assert {(os.path.realpath(f), i) for f, i in naming} <= reported
