@@ -87,6 +87,15 @@ LIMITS = """joint_limits:
     has_acceleration_limits: true
     max_acceleration: 1.0
 """
+MOVEIT_CONTROLLERS = """moveit_simple_controller_manager:
+  controller_names: [arm_controller, hand_controller]
+  arm_controller:
+    type: FollowJointTrajectory
+    joints: [joint1, joint2]
+  hand_controller:
+    type: GripperCommand
+    joints: [finger_a_joint]
+"""
 KINEMATICS = """arm:
   kinematics_solver: kdl_kinematics_plugin/KDLKinematicsPlugin
 """
@@ -96,8 +105,9 @@ INITIAL = """initial_positions:
 """
 FILES = {"urdf/arm.urdf.xacro": XACRO, "config/arm.srdf": SRDF,
          "config/ros2_controllers.yaml": CONTROLLERS, "config/joint_limits.yaml": LIMITS,
-         "config/kinematics.yaml": KINEMATICS, "config/initial_positions.yaml": INITIAL}
-CODES = ["UL710", "UL711", "UL712", "UL713", "UL714", "UL750", "UL751", "UL752", "UL753",
+         "config/kinematics.yaml": KINEMATICS, "config/initial_positions.yaml": INITIAL,
+         "config/moveit_controllers.yaml": MOVEIT_CONTROLLERS}
+CODES = ["UL710", "UL711", "UL712", "UL713", "UL714", "UL715", "UL750", "UL751", "UL752", "UL753",
          "UL754", "UL755", "UL760", "UL761", "UL762", "UL799"]
 
 
@@ -156,6 +166,12 @@ PLANTED = {
                                    [("UL762", "config/joint_limits.yaml", "  joint2:", X["joint2"])]),
     "launch substitution": ("config/ros2_controllers.yaml", "[joint1, joint2]", "[joint1, $(var prefix)joint2]",
                             [("UL714", "config/ros2_controllers.yaml", "$(var prefix)", None)]),
+    "group no controller drives": ("config/moveit_controllers.yaml", "joints: [joint1, joint2]",
+                                   "joints: [joint1]",
+                                   [("UL715", "config/arm.srdf", '<group name="arm">', X["joint2"])]),
+    "moveit controller joint unknown": ("config/moveit_controllers.yaml", "joints: [joint1, joint2]",
+                                        "joints: [joint1, joint2, joint3]",
+                                        [("UL710", "config/moveit_controllers.yaml", "joint3", X["joint2"])]),
     "unreadable YAML": ("config/ros2_controllers.yaml", "joint: finger_a_joint", "joint: [finger_a_joint",
                         [("UL799", "config/ros2_controllers.yaml", None, None)]),
 }
@@ -190,6 +206,7 @@ def test_the_clean_package_has_no_finding(tmp_path, monkeypatch):
         ("initial-positions", "config/initial_positions.yaml", "package"),
         ("joint-limits", "config/joint_limits.yaml", "package"),
         ("kinematics", "config/kinematics.yaml", "package"),
+        ("moveit-controllers", "config/moveit_controllers.yaml", "package"),
         ("srdf", "config/arm.srdf", "package")]
 
 
