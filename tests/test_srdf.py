@@ -350,3 +350,21 @@ def test_real_moveit_packages_are_clean_and_a_rename_reaches_every_line(tmp_path
     reported = {(os.path.realpath(f.file), f.line) for f in got if f not in clean}
     assert len(naming) == 32
     assert {(os.path.realpath(f), i) for f, i in naming} <= reported
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="needs git")
+def test_the_hook_on_a_commit_changing_only_an_srdf(tmp_path):
+    """pre-commit passes only the changed SRDF: the hook lints the robot it configures and
+    shows the SRDF's finding at its line."""
+    import subprocess
+    from conftest import run_cli
+    pkg = make_package(tmp_path, "arm_config", FILES)
+    for cmd in (["init", "-q"], ["add", "-A"],
+                ["-c", "user.email=t@t", "-c", "user.name=t", "commit", "-qm", "init"]):
+        subprocess.run(["git", *cmd], cwd=pkg, check=True)
+    srdf = pkg / "config" / "arm.srdf"
+    srdf.write_text(SRDF.replace('link2="link1"', 'link2="link_1"'))
+    p = run_cli("hook", "--select", ",".join(CODES), "--", "config/arm.srdf", cwd=pkg)
+    line = line_of(srdf.read_text(), "link_1")
+    assert f"config/arm.srdf:{line}:3: UL752" in p.stdout, p.stdout + p.stderr
+    assert f"robot element at urdf/arm.urdf.xacro:{X['link1']}" in p.stdout

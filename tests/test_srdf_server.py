@@ -91,3 +91,10 @@ async def test_controller_yaml_diagnostics_and_definition(client, pkg):
     got = await definition(client, s_uri, at, s_lines[at].index("base_link") + 1)
     base = next(i for i, t in enumerate(xacro) if '<link name="base_link"' in t)
     assert where(got) == [("arm.urdf.xacro", base)]
+    # completion offers the robot's joint and link names in the YAML
+    items = await client.text_document_completion_async(types.CompletionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri),
+        position=types.Position(ok, lines[ok].index("joint2"))))
+    items = items.items if hasattr(items, "items") else items
+    labels = {i.label: i.detail for i in items or ()}
+    assert labels.get("joint3") == "joint of arm.urdf" and labels.get("tool0") == "link of arm.urdf"

@@ -501,7 +501,15 @@ def _md(text: str) -> types.Hover:
 
 
 # -- completion ---------------------------------------------------------------------------------
+# asked first, in order (server.py adds them): (ls, path, pos) -> items or None
+COMPLETION_FIRST: list = []
+
+
 def completion(ls: UrdfLintServer, path: str, pos: types.Position) -> list[types.CompletionItem]:
+    for first in COMPLETION_FIRST:   # (methods.config_definition: SRDF and controller YAML)
+        got = first(ls, path, pos)
+        if got is not None:
+            return got
     at = At(ls.doc(path), pos)
     for complete in _COMPLETERS:
         got = complete(ls, path, at)

@@ -94,6 +94,7 @@ CONFIG_NAMES = ("pyproject.toml", ".urdf-lint.toml", "urdf-lint.toml")
 actions.register(server)
 features.register(server)
 features.DEFINITION_FIRST.append(config_definition.definition)
+features.COMPLETION_FIRST.append(config_definition.completion)
 
 
 def main() -> int:
