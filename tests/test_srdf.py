@@ -29,12 +29,15 @@ XACRO = """<?xml version="1.0"?>
   <joint name="finger_a_joint" type="prismatic"><parent link="link2"/><child link="finger_a"/>
     <axis xyz="0 1 0"/><limit lower="0" upper="0.04" effort="5" velocity="0.1"/></joint>
   <joint name="finger_b_joint" type="prismatic"><parent link="link2"/><child link="finger_b"/>
-    <axis xyz="0 -1 0"/><limit lower="0" upper="0.04" effort="5" velocity="0.1"/><mimic joint="finger_a_joint"/></joint>
+    <axis xyz="0 -1 0"/><limit lower="0" upper="0.04" effort="5" velocity="0.1"/>
+    <mimic joint="finger_a_joint"/></joint>
   <ros2_control name="sys" type="system">
     <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
-    <joint name="joint1"><command_interface name="position"/><state_interface name="position"><param name="initial_value">0.0</param></state_interface></joint>
+    <joint name="joint1"><command_interface name="position"/>
+      <state_interface name="position"><param name="initial_value">0.0</param></state_interface></joint>
     <joint name="joint2"><command_interface name="position"/><state_interface name="position"/></joint>
-    <joint name="finger_a_joint"><command_interface name="position"/><state_interface name="position"/></joint>
+    <joint name="finger_a_joint"><command_interface name="position"/>
+      <state_interface name="position"/></joint>
   </ros2_control>
 </robot>
 """
@@ -117,18 +120,21 @@ def line_of(text: str, needle: str) -> int:
 
 X = {"joint2": line_of(XACRO, 'joint name="joint${n}"'), "link1": line_of(XACRO, 'link name="link${n}"'),
      "limit": line_of(XACRO, "<limit lower=\"-2\""), "robot": line_of(XACRO, "<robot "),
-     "rc_joint1": line_of(XACRO, '<joint name="joint1">'), "finger_a": line_of(XACRO, 'joint name="finger_a_joint"'),
+     "rc_joint1": line_of(XACRO, '<joint name="joint1">'),
+     "finger_a": line_of(XACRO, 'joint name="finger_a_joint"'),
      "finger_b": line_of(XACRO, 'mimic joint')}
 
 # (file, text, its replacement) -> [(code, file, the line holding `at`, related xacro line)]
 PLANTED = {
-    "group joint renamed": ("config/arm.srdf", '<joint name="finger_a_joint"/>', '<joint name="finger_a_jnt"/>',
+    "group joint renamed": ("config/arm.srdf", '<joint name="finger_a_joint"/>',
+                            '<joint name="finger_a_jnt"/>',
                             [("UL751", "config/arm.srdf", "finger_a_jnt", X["finger_a"])]),
     "stale collision pair": ("config/arm.srdf", 'link2="link1"', 'link2="link_1"',
                              [("UL752", "config/arm.srdf", "link_1", X["link1"])]),
     "tip above base": ("config/arm.srdf", 'base_link="base_link" tip_link="link2"',
                        'base_link="link2" tip_link="base_link"',
-                       [("UL753", "config/arm.srdf", 'tip_link="base_link"', line_of(XACRO, '<link name="base_link"'))]),
+                       [("UL753", "config/arm.srdf", 'tip_link="base_link"',
+                         line_of(XACRO, '<link name="base_link"'))]),
     "group state outside limits": ("config/arm.srdf", 'name="joint2" value="1"', 'name="joint2" value="2.5"',
                                    [("UL754", "config/arm.srdf", 'value="2.5"', X["limit"])]),
     "unknown link": ("config/arm.srdf", 'parent_link="link2"', 'parent_link="tool0"',
@@ -140,20 +146,24 @@ PLANTED = {
     "controller joint unknown": ("config/ros2_controllers.yaml", "[joint1, joint2]", "[joint1, joint_2]",
                                  [("UL710", "config/ros2_controllers.yaml", "joint_2", X["joint2"])]),
     "controller joint not in ros2_control": (
-        "urdf/arm.urdf.xacro", '<joint name="joint2"><command_interface name="position"/><state_interface name="position"/></joint>', "",
+        "urdf/arm.urdf.xacro", '<joint name="joint2"><command_interface name="position"/>'
+        '<state_interface name="position"/></joint>', "",
         [("UL711", "config/ros2_controllers.yaml", "[joint1, joint2]", X["joint2"])]),
     "missing command interface": (
         "urdf/arm.urdf.xacro", '<joint name="joint1"><command_interface name="position"/>',
         '<joint name="joint1"><command_interface name="velocity"/>',
         [("UL711", "config/ros2_controllers.yaml", "[joint1, joint2]", X["rc_joint1"])]),
-    "commanded mimic joint": ("config/ros2_controllers.yaml", "joint: finger_a_joint", "joint: finger_b_joint",
+    "commanded mimic joint": ("config/ros2_controllers.yaml", "joint: finger_a_joint",
+                              "joint: finger_b_joint",
                               [("UL712", "config/ros2_controllers.yaml", "finger_b_joint", X["finger_b"]),
                                ("UL711", "config/ros2_controllers.yaml", "finger_b_joint",
                                 line_of(XACRO, 'joint name="finger_b_joint"'))]),
     "max_velocity above the URDF's": ("config/joint_limits.yaml", "max_velocity: 0.5", "max_velocity: 1.5",
-                                      [("UL761", "config/joint_limits.yaml", "max_velocity: 1.5", X["limit"])]),
+                                      [("UL761", "config/joint_limits.yaml", "max_velocity: 1.5",
+                                        X["limit"])]),
     "initial position outside limits": ("config/initial_positions.yaml", "joint2: 0.5", "joint2: 2.5",
-                                        [("UL713", "config/initial_positions.yaml", "joint2: 2.5", X["limit"])]),
+                                        [("UL713", "config/initial_positions.yaml", "joint2: 2.5",
+                                          X["limit"])]),
     "initial_value outside limits": ("urdf/arm.urdf.xacro", "<param name=\"initial_value\">0.0<",
                                      "<param name=\"initial_value\">3.0<",
                                      [("UL713", "urdf/arm.urdf.xacro", "initial_value\">3.0", None)]),
@@ -164,7 +174,8 @@ PLANTED = {
                                    "max_velocity: 0.5\n    has_acceleration_limits: true",
                                    "max_velocity: 0.5\n    has_acceleration_limits: false",
                                    [("UL762", "config/joint_limits.yaml", "  joint2:", X["joint2"])]),
-    "launch substitution": ("config/ros2_controllers.yaml", "[joint1, joint2]", "[joint1, $(var prefix)joint2]",
+    "launch substitution": ("config/ros2_controllers.yaml", "[joint1, joint2]",
+                            "[joint1, $(var prefix)joint2]",
                             [("UL714", "config/ros2_controllers.yaml", "$(var prefix)", None)]),
     "group no controller drives": ("config/moveit_controllers.yaml", "joints: [joint1, joint2]",
                                    "joints: [joint1]",
