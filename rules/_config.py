@@ -4,7 +4,7 @@ with ``kind``, ``path``, ``root`` and ``at(node)``: an Origin at its own line), 
 of a controller YAML, the interfaces ``<ros2_control>`` declares, and the SRDF's tree walks."""
 import re
 
-from urdf_lint.engine.api import did_you_mean, number
+from urdf_lint.engine.api import did_you_mean, number, rename_at, single_candidate
 
 # the consumers that read these files: ROS (MoveIt, ros2_control) and Gazebo's gz_ros2_control,
 # which loads the same controller YAML; the other targets never read them
@@ -257,3 +257,36 @@ def closest(model, name, table):
     ``table`` (the robot's joints or links), else the robot)."""
     near = did_you_mean(name, table)
     return near, table[near.split("'")[1]] if near else model.root
+
+
+def rename_fix(at, name, table, doc):
+    """The unsafe fix renaming ``name`` at ``at`` (an SRDF or YAML line) to the one name of
+    ``table`` close to it that ``doc`` does not name already (the element renamed in the xacro:
+    'panda_joint3' becomes 'panda_joint_3', not 'panda_joint2', which the file still names), or
+    None."""
+    named = doc_names(doc)
+    new = single_candidate(name, [n for n in table if n not in named], 0.75)
+    return rename_at(at, name, new) if new else None
+
+
+def doc_names(doc):
+    """Every name a configuration file writes: SRDF attribute values, YAML keys and strings."""
+    if not hasattr(doc, "_names"):
+        out: set = set()
+        root = doc.root
+        if hasattr(root, "iter"):        # an SRDF element tree
+            for el in root.iter():
+                out.update(getattr(el, "attrib", {}).values())
+        else:
+            todo = [root] if root is not None else []
+            while todo:
+                n = todo.pop()
+                if isinstance(n.value, dict):
+                    out.update(n.value)
+                    todo.extend(n.value.values())
+                elif isinstance(n.value, list):
+                    todo.extend(n.value)
+                elif isinstance(n.value, str):
+                    out.add(n.value)
+        doc._names = out
+    return doc._names

@@ -14,6 +14,9 @@ do not read it.
 
 How to fix: Rename the joint in the YAML file (the related location is the closest joint of the
 robot, or the robot).
+
+Fix: unsafe, when the name has one close candidate among the robot's joints (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
 """
 CODE = "UL710"
 NAME = "controller-unknown-joint"
@@ -44,7 +47,7 @@ forward_position_controller:
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(9, 9)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import closest, named_joints, resolve_name
+from urdf_lint.rules._config import closest, named_joints, rename_fix, resolve_name
 
 
 def check(model, ctx):
@@ -55,4 +58,5 @@ def check(model, ctx):
         near, rel = closest(model, name, model.joints)
         at = doc.key_at(node) if what == "initial_positions.yaml" else doc.at(node)
         yield Report(at, f"{what} names joint '{name}', which robot '{model.name}' does not "
-                     "have" + near, related=rel)
+                     "have" + near, related=rel,
+                             fix=rename_fix(at, name, model.joints, doc))

@@ -9,6 +9,9 @@ Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
 
 How to fix: Rename the link in the SRDF (the related location is where the robot's links are
 written), or regenerate the SRDF with the MoveIt Setup Assistant.
+
+Fix: unsafe, when the name has one close candidate among the robot's links (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
 """
 CODE = "UL750"
 NAME = "srdf-unknown-link"
@@ -34,7 +37,7 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(4, 5), (6, 3)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import closest, srdfs
+from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 WHERE = (("group/link", "name", "group '{g}' link"), ("group/chain", "base_link", "chain base"),
          ("group/chain", "tip_link", "chain tip"),
@@ -55,4 +58,5 @@ def check(model, ctx):
                 label = what.format(g=owner.get("name"), n=el.get("name"))
                 near, rel = closest(model, name, model.links)
                 yield Report(doc.at(el), f"SRDF {label} '{name}' is not a link of robot "
-                             f"'{model.name}'" + near, related=rel)
+                             f"'{model.name}'" + near, related=rel,
+                             fix=rename_fix(doc.at(el), name, model.links, doc))

@@ -9,6 +9,9 @@ Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
 
 How to fix: Rename the joint in the SRDF (the related location is where the robot's joints are
 written).
+
+Fix: unsafe, when the name has one close candidate among the robot's joints (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
 """
 CODE = "UL751"
 NAME = "srdf-unknown-joint"
@@ -38,7 +41,7 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(4, 5), (8, 5), (10, 3)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import closest, srdfs
+from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 WHERE = (("group/joint", "group '{g}' joint"), ("group_state/joint", "group state '{g}' joint"),
          ("passive_joint", "passive joint"))
@@ -55,4 +58,5 @@ def check(model, ctx):
                 # the joint closest by name is the related location, else the robot
                 near, rel = closest(model, name, model.joints)
                 yield Report(doc.at(el), f"SRDF {label} '{name}' is not a joint of robot "
-                             f"'{model.name}'" + near, related=rel)
+                             f"'{model.name}'" + near, related=rel,
+                             fix=rename_fix(doc.at(el), name, model.joints, doc))

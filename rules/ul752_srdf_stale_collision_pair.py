@@ -9,6 +9,9 @@ Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
 
 How to fix: Rename the link in the pair, or regenerate the collision matrix with the MoveIt
 Setup Assistant.
+
+Fix: unsafe, when the name has one close candidate among the robot's links (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
 """
 CODE = "UL752"
 NAME = "srdf-stale-collision-pair"
@@ -31,7 +34,7 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(3, 3)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import closest, srdfs
+from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 
 def check(model, ctx):
@@ -45,4 +48,5 @@ def check(model, ctx):
             yield Report(doc.at(el), f"stale disable_collisions pair ({el.get('link1')}, "
                          f"{el.get('link2')}): {' and '.join(repr(s) for s in stale)} "
                          f"{'is not a link' if len(stale) == 1 else 'are not links'} of robot "
-                         f"'{model.name}'" + near, related=rel)
+                         f"'{model.name}'" + near, related=rel,
+                             fix=rename_fix(doc.at(el), stale[0], model.links, doc))

@@ -7,6 +7,9 @@ Consumers: ros (MoveIt) only.
 
 How to fix: Rename the entry to the joint's new name (the related location is the closest
 joint of the robot), or remove it.
+
+Fix: unsafe, when the name has one close candidate among the robot's joints (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
 """
 CODE = "UL760"
 NAME = "joint-limits-unknown-joint"
@@ -31,7 +34,7 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(2, 3)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import closest, limit_entries
+from urdf_lint.rules._config import closest, limit_entries, rename_fix
 
 
 def check(model, ctx):
@@ -40,4 +43,5 @@ def check(model, ctx):
             continue
         near, rel = closest(model, name, model.joints)
         yield Report(doc.key_at(node), f"joint_limits.yaml sets limits for joint '{name}', which "
-                     f"robot '{model.name}' does not have" + near, related=rel)
+                     f"robot '{model.name}' does not have" + near, related=rel,
+                             fix=rename_fix(doc.key_at(node), name, model.joints, doc))

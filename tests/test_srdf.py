@@ -379,3 +379,22 @@ def test_the_hook_on_a_commit_changing_only_an_srdf(tmp_path):
     line = line_of(srdf.read_text(), "link_1")
     assert f"config/arm.srdf:{line}:3: UL752" in p.stdout, p.stdout + p.stderr
     assert f"robot element at urdf/arm.urdf.xacro:{X['link1']}" in p.stdout
+
+
+def test_unsafe_fix_renames_a_link_renamed_in_the_xacro(tmp_path, monkeypatch, capsys):
+    """A link renamed in the xacro: `--fix --unsafe-fixes` renames its stale uses in the SRDF
+    (the one close name the SRDF does not name yet), verified by re-linting; without
+    --unsafe-fixes nothing is written."""
+    from urdf_lint.cli.main import main
+    files = dict(FILES)
+    files["urdf/arm.urdf.xacro"] = XACRO.replace('"base_link"', '"base_link0"')
+    pkg = make_package(tmp_path, "arm_config", files)
+    monkeypatch.chdir(pkg)
+    srdf = pkg / "config" / "arm.srdf"
+    sel = ["--no-cache", "--select", ",".join(CODES)]
+    assert main(["check", ".", *sel, "--fix"]) == 1
+    assert srdf.read_text() == SRDF
+    main(["check", ".", *sel, "--fix", "--unsafe-fixes"])
+    capsys.readouterr()
+    assert srdf.read_text() == SRDF.replace('"base_link"', '"base_link0"')
+    assert main(["check", ".", *sel]) == 0, capsys.readouterr().out

@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable
 
+from urdf_lint.core.edits import Edit, Fix
 from urdf_lint.core.findings import Cause
 from urdf_lint.core.locations import Origin, display_path
 from urdf_lint.core.suggest import did_you_mean
@@ -36,6 +37,7 @@ __all__ = ["Cause", "MassFacts", "MeshFacts", "MeshStatus", "Origin", "Report", 
            "binary_stl_triangles", "did_you_mean", "read_head",
            "display_path", "drop_attrs", "fmt", "mesh_mass_properties", "named_material",
            "names_in_scope", "new_root", "number", "numbers", "read_source", "reference_fixes",
+           "rename_at",
            "rename_attr", "rename_tag", "set_attrs", "single_candidate", "top"]
 
 
@@ -53,7 +55,7 @@ class Report:
     element: Any
     message: str
     severity: str | None = None
-    fix: Request | None = None
+    fix: Request | Fix | None = None    # a Fix for a place in a configuration file (rename_at)
     targets: dict[str, str] | None = None
     cause: Cause | None = None
     related: Any = None
@@ -77,6 +79,32 @@ def __getattr__(name: str) -> Any:
             raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
     return value
+
+
+def rename_at(at: Origin, old: str, new: str) -> Fix | None:
+    """An unsafe fix of a finding in a configuration file (an SRDF or YAML line, ``at``):
+    the name ``old`` written on that line, from ``at``'s column on, becomes ``new``; None when
+    the line does not hold it (a name an expression builds). Verified by re-linting like every
+    fix: the finding must go and none may appear."""
+    data = read_source(at.file)
+    if data is None:
+        return None
+    lines = data.split(b"\n")
+    if not 1 <= at.line <= len(lines):
+        return None
+    start = sum(len(x) + 1 for x in lines[:at.line - 1])
+    line = lines[at.line - 1]
+    import re
+    name = re.escape(old.encode())
+    col = max(at.col - 1, 0)
+    # a quoted value first (an SRDF attribute: not the attribute of the same name), else a
+    # plain YAML scalar or key
+    m = re.compile(rb"(?<=[\"'])" + name + rb"(?=[\"'])").search(line, col) or \
+        re.compile(rb"(?<![\w/.-])" + name + rb"(?![\w/.-]|\s*=)").search(line, col)
+    if m is None:
+        return None
+    return Fix(f"rename '{old}' to '{new}'", safe=False,
+               edits=(Edit(at.file, start + m.start(), start + m.end(), new),))
 
 
 def mesh_mass_properties(mesh: Any) -> MassFacts:

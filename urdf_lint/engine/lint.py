@@ -396,7 +396,9 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
             "model", settings.selected, settings.options, model, ctx, out.internal,
             f" on {job.entry}", with_fix=True, with_table=True, with_related=True):
         if isinstance(el, Origin):   # a place in a source that no element has (a line)
+            from urdf_lint.core.edits import Fix
             p = Problem.at(rule.code, msg, el, None, sev, consumers=table,
+                           fix=req if isinstance(req, Fix) else None,
                            related=model.origin(related) if related is not None else ())
         else:
             fix = None
