@@ -16,7 +16,7 @@ REPO = Path(__file__).resolve().parent.parent
 # pages other sessions are writing at the same time: a link to one is tolerated only while
 # the page does not exist on this branch (once it does, its links and anchors are checked);
 # empty this set once they are all merged
-PENDING = {"docs/srdf.md"}   # (pages of branches not merged yet)
+PENDING: set[str] = set()
 
 
 def _gen_docs():

@@ -8,7 +8,7 @@ from urdf_lint.engine import api
 from urdf_lint.fix import kinds
 
 BUILT_IN = {"set", "drop_attrs", "rename_attr", "rename_tag", "add_dollar", "named_material",
-            "new_root", "remove_comment"}
+            "new_root", "remove_comment", "rename_at"}
 
 
 def test_the_built_in_kinds_are_discovered_and_their_requests_are_in_the_api():
@@ -17,7 +17,7 @@ def test_the_built_in_kinds_are_discovered_and_their_requests_are_in_the_api():
     assert all(isinstance(k, kinds.FixKind) and k.name == n for n, k in found.items())
     reqs = kinds.requests()
     assert set(reqs) == {"set_attrs", "drop_attrs", "rename_attr", "rename_tag", "add_dollar",
-                         "named_material", "new_root"}
+                         "named_material", "new_root", "rename_at"}
     for name, fn in reqs.items():
         assert getattr(api, name) is fn
     assert api.set_attrs({"a": "1"}, "d").kind == "set"
@@ -27,7 +27,7 @@ def test_the_built_in_kinds_are_discovered_and_their_requests_are_in_the_api():
     assert {n: (k.expectation or k.name) for n, k in found.items()} == {
         "set": "set", "drop_attrs": "drop", "rename_attr": "rename_attr",
         "rename_tag": "rename_tag", "add_dollar": "any", "named_material": "structural",
-        "new_root": "structural", "remove_comment": "none"}
+        "new_root": "structural", "remove_comment": "none", "rename_at": "rename_at"}
     with pytest.raises(AttributeError):
         api.no_such_request   # noqa: B018
 

@@ -13,8 +13,10 @@ from urdf_lint.engine.registry import load_rules
 RULES = load_rules()
 
 
-def _write_example(tmp_path, rule, text):
+def _write_example(tmp_path, rule, text, passing=False):
     files = {k: v for k, v in rule.example_files.items()}
+    if passing:   # a rule about a configuration file may fix the file, not the model
+        files.update(rule.pass_files)
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"
     files[name] = text
     return make_package(tmp_path, "example_pkg", files)
@@ -49,16 +51,17 @@ def test_fail_example_fires(tmp_path, code):
     assert any(f["code"] == code for f in found), f"{code} did not fire on its FAIL example: {found}"
     for f in found:
         if f["code"] == code:
-            assert f["line"] >= 1 and f["col"] >= 1 and f["file"].startswith("urdf/")
+            assert f["line"] >= 1 and f["col"] >= 1 and f["file"].startswith(
+                ("urdf/", "config/") if rule.example_at else "urdf/")
     assert "s3cr3t-value" not in json.dumps(found)
 
 
-def _in_process(tmp_path, monkeypatch, rule, text):
+def _in_process(tmp_path, monkeypatch, rule, text, passing=False):
     """The findings of ``rule`` on one example, linted in this process (fast: no workers)."""
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
     from urdf_lint.run.pipeline import RunRequest, run_check
-    pkg = _write_example(tmp_path, rule, text)
+    pkg = _write_example(tmp_path, rule, text, passing)
     monkeypatch.chdir(pkg)
     monkeypatch.setenv("URDF_LINT_EXAMPLE_SECRET", "s3cr3t-value")
     cfg = load_config(None)
@@ -67,7 +70,8 @@ def _in_process(tmp_path, monkeypatch, rule, text):
     res = run_check(RunRequest(["."], cfg, build_resolver(["."], cfg), in_process=True))
     assert not res.internal, res.internal
     name = "urdf/example.urdf.xacro" if "xmlns:xacro" in text else "urdf/example.urdf"
-    return [f for f in res.findings if f.code == rule.code], str(pkg / name)
+    # a rule about a configuration file (SRDF, controller YAML) pins positions in that file
+    return [f for f in res.findings if f.code == rule.code], str(pkg / (rule.example_at or name))
 
 
 @pytest.mark.parametrize("code", sorted(RULES))
@@ -77,7 +81,7 @@ def test_fail_example_reports_its_pinned_positions(tmp_path, monkeypatch, code):
     found, example = _in_process(tmp_path, monkeypatch, rule, rule.fail)
     at = sorted({(f.line, f.col) for f in found if f.file == example})
     assert at == sorted(rule.fail_at), f"{code} reported at {at}, FAIL_AT says {rule.fail_at}"
-    lines = rule.fail.splitlines()
+    lines = (rule.example_files[rule.example_at] if rule.example_at else rule.fail).splitlines()
     for line, col in rule.fail_at:
         assert 1 <= line <= len(lines) and 1 <= col <= len(lines[line - 1]) + 1, (line, col)
     # a rule that offers a fix (on its own FAIL example) documents it: safe or unsafe
@@ -90,14 +94,14 @@ def test_fail_example_reports_its_pinned_positions(tmp_path, monkeypatch, code):
 @pytest.mark.parametrize("code", sorted(RULES))
 def test_pass_example_is_clean_in_process(tmp_path, monkeypatch, code):
     rule = RULES[code]
-    found, _ = _in_process(tmp_path, monkeypatch, rule, rule.passing)
+    found, _ = _in_process(tmp_path, monkeypatch, rule, rule.passing, passing=True)
     assert not found, found
 
 
 @pytest.mark.parametrize("code", sorted(RULES))
 def test_pass_example_is_clean(tmp_path, code):
     rule = RULES[code]
-    pkg = _write_example(tmp_path, rule, rule.passing)
+    pkg = _write_example(tmp_path, rule, rule.passing, passing=True)
     found = _codes(pkg, code)
     assert not [f for f in found if f["code"] == code], found
 

@@ -158,8 +158,11 @@ def through_models(paths, package_paths: dict, cfg, quiet: bool = False):
     from urdf_lint.engine.lint import classify_xacro
     files = [os.path.realpath(p) for p in paths if os.path.isfile(p)]
     configured = {m.path for m in cfg.models}
-    inputs = [f for f in files if not f.endswith(MODEL_SUFFIXES) and f not in configured]
-    cand = [f for f in files if f.endswith(".xacro") and f not in configured]
+    # (a .srdf.xacro is a robot's configuration, like its YAML: linted through that robot)
+    inputs = [f for f in files if (not f.endswith(MODEL_SUFFIXES) or f.endswith(".srdf.xacro"))
+              and f not in configured]
+    cand = [f for f in files if f.endswith(".xacro") and not f.endswith(".srdf.xacro")
+            and f not in configured]
     if not inputs and not cand:
         return None
     root = repository_root(paths)

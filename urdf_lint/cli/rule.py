@@ -43,6 +43,12 @@ def explain(code: str) -> int:
               f"{load().get('measured', '?')}; [target]):")
         for line in seen:
             print("  " + line)
-    print("\nFails:\n" + r.fail.strip())
+    if r.example_at:   # a rule about a configuration file: the file is the example
+        print(f"\nFails ({r.example_at}):\n" + r.example_files[r.example_at].strip())
+        print("\nagainst the robot:\n" + r.fail.strip())
+        for k, v in r.pass_files.items():
+            print(f"\nPasses with {k}:\n" + v.strip())
+    else:
+        print("\nFails:\n" + r.fail.strip())
     print("\nPasses:\n" + r.passing.strip())
     return 0

@@ -228,14 +228,19 @@ class Models(Type):
         for m in v:
             if not isinstance(m, dict) or not isinstance(m.get("path"), str):
                 raise _Bad("each [[models]] entry to have a string 'path'", m)
-            fields = ("path", "args", "output", "mesh-base")
+            fields = ("path", "args", "output", "mesh-base", "srdf", "controllers", "joint-limits")
             extra = set(m) - set(fields)
             if extra:
-                raise _Bad("only 'path', 'args', 'output' and 'mesh-base' in a [[models]] entry"
+                raise _Bad("only 'path', 'args', 'output', 'mesh-base', 'srdf', 'controllers' "
+                           "and 'joint-limits' in a [[models]] entry"
                            + did_you_mean(sorted(extra)[0], fields), m)
-            for k in ("output", "mesh-base"):
+            for k in ("output", "mesh-base", "srdf", "joint-limits"):
                 if k in m and (not isinstance(m[k], str) or not m[k]):
                     raise _Bad(f"'{k}' to be a path", m)
+            ctl = m.get("controllers", [])
+            ctl = [ctl] if isinstance(ctl, str) else ctl
+            if not isinstance(ctl, list) or not all(isinstance(c, str) and c for c in ctl):
+                raise _Bad("'controllers' to be a path or a list of paths", m)
             args = m.get("args", [{}])
             if isinstance(args, dict):
                 args = [args]
@@ -244,7 +249,9 @@ class Models(Type):
                     for a in args):
                 raise _Bad("'args' to be a table (or a list of tables) of xacro arg = value", args)
             out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args],
-                        "output": m.get("output"), "mesh-base": m.get("mesh-base")})
+                        "output": m.get("output"), "mesh-base": m.get("mesh-base"),
+                        "srdf": m.get("srdf"), "controllers": ctl,
+                        "joint-limits": m.get("joint-limits")})
         return out
 
 
@@ -435,7 +442,8 @@ SCHEMA: tuple[Key, ...] = (
         "where packages that have no package.xml under the linted paths are",
         trust=Trust("inside-repo", "package-paths outside it")),
     Key("models", Models(), [], "entry models and the xacro args to expand them with",
-        trust=Trust("confine", fields=("output", "mesh-base"))),
+        trust=Trust("confine", fields=("output", "mesh-base", "srdf", "controllers",
+                                               "joint-limits"))),
     Key("exclude", StrList("globs"), [], "paths (globs) not to lint"),
     Key("env-allow", StrList("environment variable names"), [],
         "environment variables $(env)/$(optenv) may read", cli_merge="extend",
@@ -523,6 +531,9 @@ class ModelSpec:
     # per arg set, where this config file sets each arg ({name: (file, line, col)}): a value
     # that comes from a passed arg is located there (:mod:`urdf_lint.config.places`)
     arg_places: list[dict[str, tuple[str, int, int]]] = field(default_factory=list)
+    srdf: str | None = None         # absolute: the SRDF (or .srdf.xacro) of this robot
+    controllers: list[str] = field(default_factory=list)  # absolute: its controller YAML
+    joint_limits: str | None = None  # absolute: MoveIt's joint_limits.yaml for it
 
 
 def _default(name: str) -> Any:
@@ -778,9 +789,10 @@ def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
         for n, m in enumerate(value):
             spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"],
                              arg_places=_arg_places(cfg, n, m["args"]))
-            for k in ("output", "mesh-base"):
+            for k in ("output", "mesh-base", "srdf", "joint-limits"):
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
+            spec.controllers = [str((base / c).resolve()) for c in m.get("controllers") or ()]
             if not os.path.isfile(spec.path):
                 raise ConfigError(f"{_shown(cfg.path or base)}: [[models]] model {m['path']!r} does not exist"
                                   f"{_did_you_mean_file(m['path'], base)}")

@@ -57,8 +57,9 @@ def config_root(cfg: Config, repo: str) -> str:
 
 def confine_paths(cfg: Config, repo: str, given: set[Any]) -> None:
     """Raise a located :class:`ConfigError` when a path key of the repository's own config
-    (``output``, ``mesh-base``, ``baseline``) leaves the repository or goes through a
-    symlink; keys in ``given`` (set on the command line) are the user's and not checked."""
+    (``output``, ``mesh-base``, ``srdf``, ``controllers``, ``joint-limits``, ``baseline``)
+    leaves the repository or goes through a symlink; keys in ``given`` (set on the command
+    line) are the user's and not checked."""
     from urdf_lint.config.schema import ConfigError, _line_of, _shown
     from pathlib import Path
     raw = cfg.raw or {}
@@ -73,7 +74,9 @@ def confine_paths(cfg: Config, repo: str, given: set[Any]) -> None:
             found.append((k.name, raw[k.name]))
         for m in (raw.get(k.name) or ()) if k.trust.fields else ():
             if isinstance(m, dict):
-                found += [(f, m[f]) for f in k.trust.fields if isinstance(m.get(f), str)]
+                found += [(f, v) for f in k.trust.fields
+                          for v in (m[f] if isinstance(m.get(f), list) else [m.get(f)])
+                          if isinstance(v, str)]
     for key, value in found:
         p = os.path.normpath(os.path.join(folder, os.path.expanduser(value)))
         why = None

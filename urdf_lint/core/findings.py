@@ -56,6 +56,9 @@ class Finding(Protocol):
     @property
     def value_from(self) -> tuple[Any, ...]: ...
     @property
+    def related(self) -> tuple[Any, ...]: ...  # (file, line, col) of the robot element a
+                                               # finding in a configuration file names, or ()
+    @property
     def instances(self) -> tuple[Any, ...]: ...   # a grouped finding's instances (Findings)
     @property
     def fix(self) -> "Fix | None": ...
@@ -89,11 +92,13 @@ class Problem:
                                             # not from the element's own line (YAML, a property)
     instances: tuple[Any, ...] = ()         # the Problems a grouped finding stands for (set by
                                             # group(); empty for a single instance)
+    related: tuple[Any, ...] = ()           # (file, line, col) of the robot element a finding in
+                                            # a configuration file (SRDF, controller YAML) names
 
     @classmethod
     def at(cls, code: str, message: str, loc: Any, target: Any = None, severity: str = "",
            fix: "Fix | None" = None, consumers: dict[str, str] | None = None,
-           value_from: Any = ()) -> "Problem":
+           value_from: Any = (), related: Any = ()) -> "Problem":
         """A problem at ``loc``: an :class:`Origin` or a ``(file, line, col[, chain])`` tuple.
         ``severity``: set only when the rule chose it for this one problem; ``fix``: a
         :class:`urdf_lint.core.edits.Fix` when the rule has one; ``consumers``: the target table
@@ -103,7 +108,7 @@ class Problem:
                    tuple(target) if target else None,
                    severity=severity if severity in SEVERITIES else "", fix=fix,
                    consumers=tuple(sorted(consumers.items())) if consumers else None,
-                   value_from=_loc3(value_from))
+                   value_from=_loc3(value_from), related=_loc3(related))
 
     # -- the origin, flat ----------------------------------------------------------------------
     @property
@@ -158,6 +163,8 @@ class Problem:
             d["detail"] = self.detail
         if self.value_from:
             d["value_from"] = list(self.value_from)
+        if self.related:
+            d["related"] = list(self.related)
         if self.instances:
             d["count"] = len(self.instances)
             d["instances"] = [dict(i.to_dict(), **({"target": list(i.target)} if i.target
@@ -182,6 +189,8 @@ class Problem:
             d["group"] = self.group
         if self.value_from:
             d["value_from"] = list(self.value_from)
+        if self.related:
+            d["related"] = list(self.related)
         return d
 
     @classmethod
@@ -189,7 +198,8 @@ class Problem:
         return cls._build(d["code"], d["message"], d["file"], d["line"], d["col"],
                           d.get("chain", ()), d.get("target"), "", d.get("severity", ""), (),
                           d.get("fix"), d.get("consumers"), (), d.get("detail", ""),
-                          d.get("group", ""), d.get("value_from", ()))
+                          d.get("group", ""), d.get("value_from", ()), (),
+                          d.get("related", ()))
 
     def to_row(self) -> list[Any]:
         """Everything, the run pipeline's fields too, as one list: the run memo
@@ -200,7 +210,7 @@ class Problem:
                 self.fix.to_record() if self.fix is not None else None,
                 [list(c) for c in self.consumers] if self.consumers is not None else None,
                 list(self.severity_from), self.detail, self.group, list(self.value_from),
-                [i.to_row() for i in self.instances]]
+                [i.to_row() for i in self.instances], list(self.related)]
 
     @classmethod
     def from_row(cls, row: list[Any]) -> "Problem":
@@ -210,7 +220,8 @@ class Problem:
     def _build(cls, code: str, message: str, file: str, line: int, col: int, chain: Any,
                target: Any, name: str, severity: str, models: Any, fix: Any,
                consumers: Any = None, severity_from: Any = (), detail: str = "",
-               group: str = "", value_from: Any = (), instances: Any = ()) -> "Problem":
+               group: str = "", value_from: Any = (), instances: Any = (),
+               related: Any = ()) -> "Problem":
         """From plain data (a record or a row): built directly, without the dataclass init,
         since every field is known here."""
         if fix:
@@ -225,7 +236,8 @@ class Problem:
             fix=fix or None,
             consumers=tuple(tuple(c) for c in consumers) if consumers is not None else None,
             severity_from=tuple(severity_from), detail=detail, group=group,
-            value_from=_loc3(value_from), instances=tuple(cls.from_row(r) for r in instances))
+            value_from=_loc3(value_from), instances=tuple(cls.from_row(r) for r in instances),
+            related=_loc3(related))
         return new
 
 

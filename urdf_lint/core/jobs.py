@@ -59,6 +59,10 @@ class LintJob:
     # where the config sets each of ``args`` ((name, (file, line, col)), ...): a value written
     # as one passed ``$(arg NAME)`` is located there (a finding's ``value_from``)
     arg_origins: tuple[tuple[str, tuple[str, int, int]], ...] = ()
+    # the configuration files tied to this model (urdf_lint.discovery.configs): (kind, path,
+    # how), kind "srdf" | "controllers" | "joint-limits" | "kinematics" | "initial-positions" |
+    # "moveit-controllers", how "explicit" | "setup-assistant" | "package" | "package-shared"
+    configs: tuple[tuple[str, str, str], ...] = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

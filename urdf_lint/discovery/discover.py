@@ -104,6 +104,8 @@ def candidate_files(paths: Iterable[str], cfg: "Config", folders: list[str] | No
         p = os.path.abspath(p)
         for found in iter_files(Path(p), suffixes=(".urdf", ".xacro"), folders=folders):
             f = os.path.realpath(found) if not os.path.islink(found) else os.path.abspath(found)
+            if f.endswith(".srdf.xacro"):   # a robot's semantic description, not a robot
+                continue
             # an exclude does not apply below a path that is itself excluded and named explicitly
             if f in seen or (cfg.is_excluded(f) and not cfg.is_excluded(p)):
                 continue
@@ -151,6 +153,8 @@ def discover_models(paths: Sequence[str], cfg: "Config", resolver: "PackageResol
             continue
         jobs.extend(_configured_jobs(spec, detected.get(f, ()), recorded, graph))
     jobs = _inherit_mesh_base(jobs, graph)
+    from urdf_lint.discovery.configs import attach_configs
+    jobs = attach_configs(jobs, cfg, resolver)
     return Discovery(jobs, fragments, graph, generated, folders, problems)
 
 

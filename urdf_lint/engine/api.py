@@ -36,11 +36,12 @@ from urdf_lint.fix.kinds.add_dollar import add_dollar as add_dollar
 from urdf_lint.fix.kinds.drop_attrs import drop_attrs as drop_attrs
 from urdf_lint.fix.kinds.named_material import named_material as named_material
 from urdf_lint.fix.kinds.new_root import new_root as new_root
+from urdf_lint.fix.kinds.rename_at import rename_at as rename_at
 from urdf_lint.fix.kinds.rename_attr import rename_attr as rename_attr
 from urdf_lint.fix.kinds.rename_tag import rename_tag as rename_tag
 from urdf_lint.fix.kinds.set import set_attrs as set_attrs
-__all__ += ["add_dollar", "drop_attrs", "named_material", "new_root", "rename_attr",
-            "rename_tag", "set_attrs"]
+__all__ += ["add_dollar", "drop_attrs", "named_material", "new_root", "rename_at",
+            "rename_attr", "rename_tag", "set_attrs"]
 # end: requests
 
 
@@ -52,13 +53,16 @@ class Report:
     ``severity`` raises or lowers the rule's severity for this one problem; ``fix`` is a fix
     request (``set_attrs`` and the other requests here); ``targets`` a severity per consumer
     target for this one problem (:mod:`urdf_lint.core.targets`); ``cause`` the root cause it
-    is an instance of (:class:`Cause`)."""
+    is an instance of (:class:`Cause`); ``related`` the robot's element a finding placed in a
+    configuration file (an ``Origin`` in an SRDF or a controller YAML) is about: its xacro line
+    is shown as the related location."""
     element: Any
     message: str
     severity: str | None = None
     fix: Request | None = None
     targets: dict[str, str] | None = None
     cause: Cause | None = None
+    related: Any = None
 
 
 if not TYPE_CHECKING:      # hidden from mypy: a name not defined above is a mistake there

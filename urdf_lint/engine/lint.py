@@ -42,6 +42,8 @@ class Context:
     def __init__(self, options: dict[str, Any], mesh_cache_dir: str | None,
                  meshes: MeshStore | None = None, targets: tuple[str, ...] = ("ros",)):
         self.options = options
+        self.configs: list[Any] = []    # engine.configs.ConfigDoc of the job's configuration
+        self.config_args: dict[str, str] = {}   # the model's xacro args, with their defaults
         self.targets = targets          # the run's consumer targets (LintSettings.targets)
         self.mesh_cache_dir = mesh_cache_dir
         if meshes is None:   # (the mesh modules load where a rule reads a mesh: not in the parent)
@@ -398,11 +400,21 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
 
     from urdf_lint.engine.registry import run_rules
     fixer = None
-    for rule, el, msg, sev, req, cause, table in run_rules(
+    if job.configs:   # the SRDF and YAML files that configure this robot (discovery.configs)
+        from urdf_lint.engine.configs import known_args, load_configs
+        ctx.configs = load_configs(job, settings, resolver, model, out)
+        ctx.config_args = known_args(job)
+    for rule, el, msg, sev, req, cause, table, related in run_rules(
             "model", settings.selected, settings.options, model, ctx, out.internal,
-            f" on {job.entry}", with_fix=True, with_table=True):
+            f" on {job.entry}", with_fix=True, with_table=True, with_related=True):
         if isinstance(el, Origin):   # a place in a source that no element has (a line)
-            p = Problem.at(rule.code, msg, el, None, sev, consumers=table)
+            line_fix = None
+            if req is not None and req.kind == "rename_at":
+                from urdf_lint.engine.api import read_source
+                from urdf_lint.fix.kinds.rename_at import fix_at
+                line_fix = fix_at(el, read_source(el.file), req)
+            p = Problem.at(rule.code, msg, el, None, sev, consumers=table, fix=line_fix,
+                           related=model.origin(related) if related is not None else ())
         else:
             fix = None
             from urdf_lint.fix.fixes import Fixer

@@ -63,6 +63,9 @@ class Rule:
     fail_at: tuple[tuple[int, int], ...] = ()   # ((line, col), ...) the FAIL example must report
     targets: dict[str, str] = field(default_factory=dict)   # target -> severity | "off" (core.targets)
     example_targets: tuple[str, ...] = ("ros",)  # the targets its FAIL and PASS examples are linted with
+    example_at: str = ""               # the EXAMPLE_FILES file FAIL_AT is in ("": the FAIL model)
+    pass_files: dict[str, str] = field(default_factory=dict)  # PASS_FILES: the PASS example's
+                                       # files where they differ from EXAMPLE_FILES (a config file)
 
     @property
     def summary(self) -> str:
@@ -97,7 +100,9 @@ def rule_from_module(mod: ModuleType) -> Rule:
                 example_files=dict(getattr(mod, "EXAMPLE_FILES", {})),
                 module=mod.__name__, scope=scope, origin=origin,
                 fail_at=tuple(tuple(p) for p in getattr(mod, "FAIL_AT", ())),
-                example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))))
+                example_targets=tuple(getattr(mod, "EXAMPLE_TARGETS", ("ros",))),
+                example_at=getattr(mod, "EXAMPLE_AT", ""),
+                pass_files=dict(getattr(mod, "PASS_FILES", {})))
 
 
 def load_rules() -> dict[str, Rule]:
@@ -242,7 +247,7 @@ def as_report(item: Any, code: str) -> Report:
 
 def run_rules(scope: str, selected: Iterable[str], options: dict[str, dict[str, Any]], subject: Any,
               ctx: Any, internal: list[str], where: str = "", with_fix: bool = False,
-              with_table: bool = False) -> Iterator[tuple[Any, ...]]:
+              with_table: bool = False, with_related: bool = False) -> Iterator[tuple[Any, ...]]:
     """Yield (rule, first item, message, severity or "") for every problem that a selected rule
     of ``scope`` finds in ``subject`` (a Model, or a run), each rule with its options (defaults,
     then ``options[code]``) in ``ctx.options``; with ``with_fix`` also the fix request or None
@@ -268,7 +273,8 @@ def run_rules(scope: str, selected: Iterable[str], options: dict[str, dict[str, 
                     from urdf_lint.core.targets import check_table
                     table = check_table(table, f"rule {code}")
                 yield ((rule, r.element, r.message, r.severity or "")
-                       + ((r.fix, r.cause) if with_fix else ()) + ((table,) if with_table else ()))
+                       + ((r.fix, r.cause) if with_fix else ()) + ((table,) if with_table else ())
+                       + ((r.related,) if with_related else ()))
         except Exception:  # noqa: BLE001 - a crashing rule must not hide the others
             internal.append(f"rule {code} crashed{where}:\n{traceback.format_exc()}")
 

@@ -110,6 +110,14 @@ def rule_body(code: str, r: Any) -> list[str]:
         lines += ["", "**Options** (under `[tool.urdf-lint.rule-options." + code + "]`). "
                   + s.get("options", "")]
     at = ", ".join(f"line {ln}, col {c}" for ln, c in r.fail_at)
+    if r.example_at:   # a rule about a configuration file: the file is the example
+        lines += ["", f"**Example.** `{r.example_at}`, reported" + (f" at {at}" if at else "")
+                  + ":", "", "```", r.example_files[r.example_at].rstrip("\n"), "```", "",
+                  "against the robot:", "", "```xml", r.fail.rstrip("\n"), "```", "",
+                  "Passes with:", "", "```xml", r.passing.rstrip("\n"), "```"]
+        lines += [x for k, v in r.pass_files.items()
+                  for x in ("", f"and `{k}`:", "", "```", v.rstrip("\n"), "```")]
+        return lines
     lines += ["", "**Example.** Reported" + (f" at {at}" if at else "") + ":", "",
               "```xml", r.fail.rstrip("\n"), "```", "", "Passes:", "",
               "```xml", r.passing.rstrip("\n"), "```"]

@@ -202,6 +202,14 @@ def value_from_text(f: Finding) -> str:
     return f"value from {escape_text(display_path(f.value_from[0]))}:{f.value_from[1]}"
 
 
+def related_text(f: Finding) -> str:
+    """``robot element at urdf/robot.urdf.xacro:12`` for a finding in a configuration file
+    (SRDF, controller YAML) about an element of the robot."""
+    if not f.related:
+        return ""
+    return f"robot element at {escape_text(display_path(f.related[0]))}:{f.related[1]}"
+
+
 def refused_text(f: Finding) -> str:
     """Why the finding's fix is not applied automatically when that names the expression the
     value comes from (``... the value comes from the expression at FILE:LINE``), or ""."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from urdf_lint.report.base import (DIM, BaseFormatter, Finding, Outcome, chain_text,
                                    fold_instances, location, message, targets_tag,
-                                   value_from_text)
+                                   value_from_text, related_text)
 from urdf_lint.core.escape import escape_text
 
 
@@ -15,7 +15,7 @@ class ConciseFormatter(BaseFormatter):
     def handle(self, f: Finding) -> None:
         code = self.paint(f.code, self.severity_color(f.severity))
         parts = [p for p in (f.detail if not f.instances else "", chain_text(f),
-                             value_from_text(f), fold_instances(f)) if p]
+                             value_from_text(f), related_text(f), fold_instances(f)) if p]
         tail = f" ({'; '.join(escape_text(p) for p in parts)})" if parts else ""
         name = self.paint(f"[{f.name}]", DIM) + targets_tag(f)
         self.stream.write(f"{location(f)}: {code} {escape_text(message(f))} {name}{tail}\n")

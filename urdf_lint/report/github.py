@@ -3,7 +3,8 @@ request; chosen automatically when ``GITHUB_ACTIONS`` is set."""
 from __future__ import annotations
 
 from urdf_lint.core.locations import display_path
-from urdf_lint.report.base import Finding, BaseFormatter, chain_text, fold_instances, message, value_from_text
+from urdf_lint.report.base import (Finding, BaseFormatter, chain_text, fold_instances, message,
+                                   related_text, value_from_text)
 from urdf_lint.core.escape import escape_text
 
 _LEVEL = {"error": "error", "warning": "warning", "info": "notice"}
@@ -24,7 +25,7 @@ class GithubFormatter(BaseFormatter):
     def handle(self, f: Finding) -> None:
         msg = message(f)
         for extra in (f.detail if not f.instances else "", chain_text(f), value_from_text(f),
-                      fold_instances(f)):
+                      related_text(f), fold_instances(f)):
             if extra:
                 msg += f" ({extra})"
         self.stream.write(f"::{_LEVEL[f.severity]} file={_gh_escape(display_path(f.file), True)},"

@@ -17,6 +17,8 @@ def _shown(d: dict[str, Any]) -> dict[str, Any]:
     d["chain"] = [[display_path(c[0]), c[1], c[2]] for c in d["chain"]]
     if "value_from" in d:
         d["value_from"] = [display_path(d["value_from"][0])] + d["value_from"][1:]
+    if "related" in d:
+        d["related"] = [display_path(d["related"][0])] + d["related"][1:]
     if "instances" in d:
         d["instances"] = [_shown(i) for i in d["instances"]]
     return d

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from urdf_lint.core.locations import display_path
 from urdf_lint.report.base import (BaseFormatter, Outcome, chain_text, fold_instances, grouped,
-                                   message, value_from_text)
+                                   message, related_text, value_from_text)
 from urdf_lint.core.escape import escape_xml
 
 
@@ -21,7 +21,7 @@ class JunitFormatter(BaseFormatter):
         for f in result.findings:
             name = f"{f.code} {display_path(f.file)}:{f.line}:{f.col}"
             body = escape(f"{display_path(f.file)}:{f.line}:{f.col}: {f.code} {message(f)}") \
-                + "".join("\n" + escape(x) for x in (chain_text(f), value_from_text(f),
+                + "".join("\n" + escape(x) for x in (chain_text(f), value_from_text(f), related_text(f),
                                                       fold_instances(f)) if x)
             tag = "failure"
             cases.append(f'    <testcase classname={quoteattr("urdf-lint." + f.code)} name={quoteattr(name)}>'

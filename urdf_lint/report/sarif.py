@@ -55,6 +55,8 @@ def _related(f: Finding) -> list[tuple[str, tuple[Any, ...]]]:
     related = [("macro called here", c) for c in reversed(f.chain)]
     if f.value_from:
         related.append(("value from here", f.value_from))
+    if f.related:
+        related.append(("robot element here", f.related))
     places = list(dict.fromkeys((i.file, i.line, i.col) for i in f.instances))
     related += [(i.detail or i.message, (i.file, i.line, i.col)) for i in
                 {(i.file, i.line, i.col): i for i in f.instances}.values()

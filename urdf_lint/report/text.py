@@ -6,7 +6,7 @@ from urdf_lint.core.locations import display_path
 from urdf_lint.core.escape import escape_text
 from urdf_lint.report.base import (BOLD, DIM, RESET, BaseFormatter, Finding, Outcome,
                                    chain_text, fold, fold_instances, location, message,
-                                   refused_text, targets_tag, value_from_text)
+                                   refused_text, targets_tag, value_from_text, related_text)
 
 
 class TextFormatter(BaseFormatter):
@@ -32,7 +32,7 @@ class TextFormatter(BaseFormatter):
             w(f"    {escape_text(f.detail)}\n")
         if self.options.show_source:
             w(self.code_frame(f))
-        for line in (chain_text(f), value_from_text(f), fold_instances(f)):
+        for line in (chain_text(f), value_from_text(f), related_text(f), fold_instances(f)):
             if line:
                 w(f"    {line}\n")
         if self.options.show_models and len(f.models) > 1:

@@ -44,7 +44,7 @@ from urdf_lint.discovery.vcs import git_root, repo_root
 # holding suppression comments, and folders read as files recorded as missing; 8: results of
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached; 14: the
 # $(optenv) variables looked up and whether they were set)
-RECORD_FORMAT = 14
+RECORD_FORMAT = 15
 
 
 def _recorded() -> dict[str, tuple[str, int]]:
@@ -191,7 +191,8 @@ class Cache:
                            job.kind, bool(job.explicit), job.output, job.mesh_base,
                            list(job.outputs), list(job.untied),
                            [list(v) for v in job.variants],
-                           [[n, list(p)] for n, p in job.arg_origins]]) + memo[1]
+                           [[n, list(p)] for n, p in job.arg_origins],
+                           [list(c) for c in job.configs]]) + memo[1]
         return blake2b(blob.encode(), digest_size=20).hexdigest()
 
     def _path(self, key: str) -> str:

@@ -24,11 +24,12 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     documentSelector: [
       { scheme: "file", pattern: "**/*.xacro" },
       { scheme: "file", pattern: "**/*.urdf" },
+      { scheme: "file", pattern: "**/*.srdf" },
       { scheme: "file", language: "yaml" },
       { scheme: "file", pattern: "**/pyproject.toml" },
     ],
     synchronize: {
-      fileEvents: vscode.workspace.createFileSystemWatcher("**/*.{xacro,urdf,yaml,toml}"),
+      fileEvents: vscode.workspace.createFileSystemWatcher("**/*.{xacro,urdf,srdf,yaml,toml}"),
     },
   };
   client = new LanguageClient("urdf-lint", "urdf-lint", serverOptions, clientOptions);

@@ -12,7 +12,7 @@ from lsprotocol import types
 
 from urdf_lint.lsp.cursor import At, enclosing_macro, params_of
 from urdf_lint.lsp.index import macro_params
-from urdf_lint.lsp.methods import completion_xacro
+from urdf_lint.lsp.methods import completion_xacro, config_definition
 from urdf_lint.lsp.services import Services
 
 Items = list[types.CompletionItem]
@@ -25,6 +25,9 @@ def handle(sv: Services, params: types.CompletionParams) -> types.CompletionList
 
 
 def completion(sv: Services, path: str, pos: types.Position) -> Items:
+    first = config_definition.completion(sv, path, pos)   # an SRDF or controller YAML
+    if first is not None:
+        return first
     at = At(sv.doc(path), pos)
     for complete in COMPLETERS:
         got = complete(sv, path, at)

@@ -12,12 +12,16 @@ from lsprotocol import types
 from urdf_lint.lsp.cursor import At, enclosing_macro, params_of
 from urdf_lint.lsp.elements import named, ref_kind, targets
 from urdf_lint.lsp.index import macro_params
+from urdf_lint.lsp.methods import config_definition
 from urdf_lint.lsp.services import Services
 from urdf_lint.lsp.uris import path_uri
 
 
 def handle(sv: Services, params: types.DefinitionParams) -> list[types.Location] | None:
     path, pos = params_of(params)
+    first = config_definition.definition(sv, path, pos)   # an SRDF or controller YAML
+    if first is not None:
+        return first
     return definition(sv, path, pos) or None
 
 

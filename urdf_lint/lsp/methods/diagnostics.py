@@ -68,6 +68,12 @@ def _finding_diagnostics(sv: Services, ws: Workspace, doc: Doc,
             related.append(types.DiagnosticRelatedInformation(
                 location=types.Location(uri=path_uri(cf), range=cdoc.element_range(cl, cc)),
                 message="macro called here"))
+        if f.related:   # a finding in an SRDF or a controller YAML: the robot's element
+            rf, rl, rc = f.related
+            rdoc = docs.get(rf) or docs.setdefault(rf, sv.doc(rf))
+            related.append(types.DiagnosticRelatedInformation(
+                location=types.Location(uri=path_uri(rf), range=rdoc.element_range(rl, rc)),
+                message="robot element here"))
         models = [m for m in f.models if m]
         msg = f.message
         folded = fold_instances(f)

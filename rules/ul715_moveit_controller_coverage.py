@@ -1,0 +1,89 @@
+"""A planning group's joints are not all driven by the controllers MoveIt executes with: no controller in `moveit_controllers.yaml` (or, with MoveIt's ros2_control manager, in the controller YAML) commands some of them.
+
+Why: MoveIt plans for the group and then cannot execute the trajectory ("Unable to identify any
+set of controllers that can actuate the specified joints"): the configuration lists the joints
+of an older robot, or a group was added without its controller. Mimic and passive joints
+follow others and need no controller; groups of fixed joints are skipped. With several MoveIt
+controller files (`moveit_controllers.yaml`, `gripper_moveit_controllers.yaml`: alternatives a
+launch file picks from), a joint driven in any of them counts.
+
+Consumers: ros (MoveIt) only.
+
+How to fix: Add the missing joints to the controller serving the group (the related location is
+the first uncovered joint), or add a controller for them.
+"""
+CODE = "UL715"
+NAME = "moveit-controller-coverage"
+SEVERITY = "warning"
+TARGETS = {"*": "off", "ros": "warning"}
+FAIL = """<robot name="r">
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1" acceleration="1"/></joint>
+  <joint name="joint2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1" acceleration="1"/></joint>
+</robot>
+"""
+PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint2" type="fixed">')
+EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
+  <group name="arm">
+    <chain base_link="base" tip_link="l2"/>
+  </group>
+</robot>
+""", "config/moveit_controllers.yaml": """moveit_simple_controller_manager:
+  controller_names:
+    - arm_controller
+  arm_controller:
+    type: FollowJointTrajectory
+    joints:
+      - joint1
+"""}
+EXAMPLE_AT = "config/r.srdf"
+FAIL_AT = [(2, 3)]
+from urdf_lint.engine.api import Report
+from urdf_lint.rules._config import (controller_joints, controllers, docs, group_joints, groups,
+                                     moving_joint, names, resolve_name, srdfs)
+
+EXECUTING = ("joint_trajectory_controller/", "position_controllers/GripperActionController",
+             "effort_controllers/GripperActionController",
+             "parallel_gripper_action_controller/")
+
+
+def driven(ctx):
+    """The joints MoveIt's controllers drive, or None when no controller is configured for
+    MoveIt (nothing to compare with)."""
+    out: set = set()
+    simple = False
+    for doc in docs(ctx, "moveit-controllers"):
+        mscm = doc.root.get("moveit_simple_controller_manager") if doc.root is not None else None
+        for _, node in (mscm.items() if mscm is not None else ()):
+            if isinstance(node.value, dict):
+                simple = True
+                out |= {resolve_name(ctx, n.value)[0] for n in names(node.get("joints"))}
+    if simple:
+        return out
+    if not docs(ctx, "moveit-controllers"):
+        return None
+    # MoveIt's ros2_control manager: the controller_manager's trajectory and gripper controllers
+    for doc in docs(ctx, "controllers"):
+        for _, ctype, params in controllers(doc):
+            if ctype.startswith(EXECUTING):
+                out |= {resolve_name(ctx, n.value)[0] for n in controller_joints(params)}
+    return out or None
+
+
+def check(model, ctx):
+    have = driven(ctx)
+    if have is None:
+        return
+    for doc in srdfs(ctx):
+        passive = {p.get("name") for p in doc.root.iterfind("passive_joint")}
+        for name, g in groups(doc.root).items():
+            active = [j for j in group_joints(model, doc.root, name)
+                      if moving_joint(model, j) and j not in passive
+                      and model.joints[j].find("mimic") is None]
+            missing = [j for j in active if j not in have]
+            if missing:
+                yield Report(doc.at(g), f"no MoveIt controller drives {', '.join(repr(m) for m in missing)}"
+                             f" of group '{name}': its trajectories cannot be executed",
+                             related=model.joints[missing[0]])

@@ -1,0 +1,62 @@
+"""An SRDF names a joint the robot does not have: a group's joint, a group state's joint or a passive joint.
+
+Why: MoveIt drops a group with an unknown joint ("Joint 'X' declared as part of group 'arm'
+is not known to the URDF"), ignores the value of a group state for it, and a passive joint
+that does not exist leaves the real one planned as active. The usual cause is a joint renamed
+in the xacro and not in the MoveIt configuration package.
+
+Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
+
+How to fix: Rename the joint in the SRDF (the related location is where the robot's joints are
+written).
+
+Fix: unsafe, when the name has one close candidate among the robot's joints (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
+"""
+CODE = "UL751"
+NAME = "srdf-unknown-joint"
+SEVERITY = "error"
+TARGETS = {"*": "off", "ros": "error"}
+FAIL = """<robot name="r">
+  <link name="base"/><link name="l1"/><link name="l2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+  <joint name="joint_2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+PASS = FAIL.replace("joint_2", "j2")
+EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
+  <group name="arm">
+    <joint name="j1"/>
+    <joint name="j2"/>
+  </group>
+  <group_state name="home" group="arm">
+    <joint name="j1" value="0"/>
+    <joint name="j2" value="0"/>
+  </group_state>
+  <passive_joint name="j2"/>
+</robot>
+"""}
+EXAMPLE_AT = "config/r.srdf"
+FAIL_AT = [(4, 5), (8, 5), (10, 3)]
+from urdf_lint.engine.api import Report
+from urdf_lint.rules._config import closest, rename_fix, srdfs
+
+WHERE = (("group/joint", "group '{g}' joint"), ("group_state/joint", "group state '{g}' joint"),
+         ("passive_joint", "passive joint"))
+
+
+def check(model, ctx):
+    for doc in srdfs(ctx):
+        for path, what in WHERE:
+            for el in doc.root.iterfind(path):
+                name = el.get("name")
+                if not name or name in model.joints:
+                    continue
+                label = what.format(g=el.getparent().get("name"))
+                # the joint closest by name is the related location, else the robot
+                near, rel = closest(model, name, model.joints)
+                yield Report(doc.at(el), f"SRDF {label} '{name}' is not a joint of robot "
+                             f"'{model.name}'" + near, related=rel,
+                             fix=rename_fix(doc.at(el), name, model.joints, doc))

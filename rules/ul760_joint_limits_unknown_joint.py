@@ -1,0 +1,47 @@
+"""MoveIt's `joint_limits.yaml` sets limits for a joint the robot does not have.
+
+Why: MoveIt reads the limits of the robot's joints only, so the entry is silently ignored: the
+joint it was meant for (renamed in the xacro) runs with the URDF's limits, or with none.
+
+Consumers: ros (MoveIt) only.
+
+How to fix: Rename the entry to the joint's new name (the related location is the closest
+joint of the robot), or remove it.
+
+Fix: unsafe, when the name has one close candidate among the robot's joints (the element renamed
+in the xacro): `--fix --unsafe-fixes` renames it on the reported line, verified by re-linting.
+"""
+CODE = "UL760"
+NAME = "joint-limits-unknown-joint"
+SEVERITY = "warning"
+TARGETS = {"*": "off", "ros": "warning"}
+FAIL = """<robot name="r">
+  <link name="base"/><link name="l1"/>
+  <joint name="joint_1" type="revolute"><parent link="base"/><child link="l1"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
+</robot>
+"""
+PASS = FAIL.replace("joint_1", "joint1")
+EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
+</robot>
+""", "config/joint_limits.yaml": """joint_limits:
+  joint1:
+    has_velocity_limits: true
+    max_velocity: 0.5
+    has_acceleration_limits: true
+    max_acceleration: 1.0
+"""}
+EXAMPLE_AT = "config/joint_limits.yaml"
+FAIL_AT = [(2, 3)]
+from urdf_lint.engine.api import Report
+from urdf_lint.rules._config import closest, limit_entries, rename_fix
+
+
+def check(model, ctx):
+    for doc, name, node in limit_entries(ctx):
+        if name in model.joints:
+            continue
+        near, rel = closest(model, name, model.joints)
+        yield Report(doc.key_at(node), f"joint_limits.yaml sets limits for joint '{name}', which "
+                     f"robot '{model.name}' does not have" + near, related=rel,
+                             fix=rename_fix(doc.key_at(node), name, model.joints, doc))
