@@ -118,27 +118,24 @@ class Analysis:
 _TOKENS = (b":if", b":unless", b"$(arg", b":arg")
 
 
-def _may_branch(f: str, resolver: Any) -> bool:
-    """Whether the file can hold anything :func:`analyse` reads (a condition, an arg, a value
-    built from one): a file without these bytes is not parsed (a cached run of a robot with
-    no branches needs no lxml)."""
+def _parse(f: str, resolver: Any) -> Any:
+    """The root of a source that can hold anything :func:`analyse` reads (a condition, an arg,
+    a value built from one), read once through the boundary; None for a file without these
+    bytes (not parsed: a cached run of a robot with no branches needs no lxml) or one that does
+    not parse."""
     from urdf_lint.core import fsbound
     try:
         data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
                                   resolved=True)
     except (OSError, ValueError):
-        return True   # (_parse says what it can)
-    return any(t in data for t in _TOKENS)
-
-
-def _parse(f: str, resolver: Any) -> Any:
+        return None
+    if not any(t in data for t in _TOKENS):
+        return None
     from lxml import etree
-    from urdf_lint.core import fsbound
     try:
-        return fsbound.parse_xml(f, etree.XMLParser(resolve_entities=False, no_network=True,
-                                                    load_dtd=False),
-                                 resolver.roots if resolver is not None else None, resolved=True)
-    except (etree.XMLSyntaxError, OSError, ValueError):
+        return etree.fromstring(data, etree.XMLParser(resolve_entities=False, no_network=True,
+                                                      load_dtd=False), base_url=f)
+    except etree.XMLSyntaxError:
         return None
 
 
@@ -163,8 +160,6 @@ def analyse(files: Iterable[str], resolver: Any, max_files: int = 200) -> Analys
         if f in seen:
             continue
         seen.add(f)
-        if not _may_branch(f, resolver):
-            continue
         root = _parse(f, resolver)
         if root is None:
             continue

@@ -688,7 +688,9 @@ def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | Non
         got = _lean(root)
         # (as collada_arrays: an instance that gives no triangle set: trimesh decides; but a
         # geometry of lines alone gives none in trimesh either, without error)
-        want = data.count(b"<instance_geometry") - _line_only_instances(root)
+        want = data.count(b"<instance_geometry")
+        if got is not None and got[2] < want:   # (the tree is walked again only then)
+            want -= _line_only_instances(root)
         return got if got is None or got[2] >= want else None
     except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
         return None
