@@ -635,14 +635,12 @@ else:
 
 
 # -- reading files ----------------------------------------------------------------------------
-def _arg_places(cfg: Config, entry: int, arg_sets: list[Any]) -> list[dict[str, Any]]:
-    """Where the config file sets each arg of the ``entry``-th ``[[models]]`` entry."""
+def _arg_places(cfg: Config, entry: int, arg_sets: list[Any], text: str | None
+                ) -> list[dict[str, Any]]:
+    """Where the config file (its ``text``, as read to load it) sets each arg of the
+    ``entry``-th ``[[models]]`` entry."""
     from urdf_lint.config.places import arg_places
-    if not cfg.path or not os.path.isfile(cfg.path):
-        return [{} for _ in arg_sets]
-    try:
-        text = _read_config(Path(cfg.path))
-    except (OSError, UnicodeDecodeError):
+    if not cfg.path or text is None:
         return [{} for _ in arg_sets]
     return arg_places(os.path.abspath(cfg.path), text, entry, arg_sets)
 
@@ -654,6 +652,11 @@ def _read_config(path: Path) -> str:
 
 
 def _parse_toml(path: Path) -> dict[str, Any]:
+    return _read_toml(path)[1]
+
+
+def _read_toml(path: Path) -> tuple[str, dict[str, Any]]:
+    """(the text of a config file, its TOML data), read once."""
     try:
         text = _read_config(path)
     except UnicodeDecodeError as e:
@@ -664,7 +667,7 @@ def _parse_toml(path: Path) -> dict[str, Any]:
         raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
     try:
         data: dict[str, Any] = tomllib.loads(text)
-        return data
+        return text, data
     except RecursionError:   # 50,000 nested arrays or tables: tomllib recurses per level
         raise ConfigError(f"{_shown(path)}: invalid TOML: nested too deeply") from None
     except tomllib.TOMLDecodeError as e:
@@ -781,14 +784,14 @@ def _line_of(path: Path, key: str) -> str:
 
 
 # -- validation -------------------------------------------------------------------------------
-def _set(cfg: Config, key: Key, value: Any, base: Path) -> None:
+def _set(cfg: Config, key: Key, value: Any, base: Path, text: str | None = None) -> None:
     if key.name == "package-paths":
         value = {k: str((base / v).resolve()) for k, v in value.items()}
     elif key.name == "models":
         specs = []
         for n, m in enumerate(value):
             spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"],
-                             arg_places=_arg_places(cfg, n, m["args"]))
+                             arg_places=_arg_places(cfg, n, m["args"], text))
             for k in ("output", "mesh-base", "srdf", "joint-limits"):
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
@@ -819,7 +822,7 @@ def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = No
     if path is None:
         return Config(root=os.getcwd())
     path = Path(path)
-    data = _parse_toml(path)
+    text, data = _read_toml(path)
     table = "[tool.urdf-lint]"
     if path.name == "pyproject.toml":
         data = _pyproject_table(path, data) or {}
@@ -849,7 +852,7 @@ def load_config(path: str | Path | None, known_codes: dict[str, Any] | None = No
             line = (_line_of(path, e.where) if e.where else "") or _line_of(path, k)
             raise ConfigError(f"{_shown(path)}{line}: invalid value for {inner}: {shown} "
                               f"(expected {e.expected})") from None
-        _set(cfg, key, value, path.parent)
+        _set(cfg, key, value, path.parent, text)
     if known_codes is not None:
         validate_codes(cfg, known_codes, str(path), rules)
     return cfg
