@@ -78,6 +78,10 @@ def handle(sv: Services, args: list[Any]) -> dict[str, str]:
     if not args:
         raise Refused(f"{COMMAND} needs the file's URI")
     path = uri_path(str(args[0]))
+    if sv.ws is None or not sv.ws.readable(path):
+        # (what the server may read: the preview lints and serves what it previews)
+        raise Refused(f"{COMMAND}: the file is outside the workspace's package roots; "
+                      "it is not previewed")
     line = int(args[1]) if len(args) > 1 else 0
     character = int(args[2]) if len(args) > 2 else 0
     highlight = element_at(sv.doc(path).text, line, character)
