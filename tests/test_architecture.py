@@ -511,12 +511,8 @@ def test_every_package_folder_is_installed():
     """pyproject.toml lists the packages by hand (``rules/`` is installed as
     ``urdf_lint.rules``): a new room or sub-room missing from that list would be left out of
     the wheel, and the installed tool would fail where the checkout works."""
-    try:
-        import tomllib
-    except ModuleNotFoundError:   # Python 3.10
-        import tomli as tomllib
-    pyproject = tomllib.loads((REPO / "pyproject.toml").read_text())
-    listed = set(pyproject["tool"]["setuptools"]["packages"])
+    from pyproject import pyproject as read_pyproject
+    listed = set(read_pyproject()["tool"]["setuptools"]["packages"])
     found = {".".join(("urdf_lint", *p.parent.relative_to(PKG).parts))
              for p in PKG.rglob("__init__.py") if "__pycache__" not in p.parts}
     found.add("urdf_lint.rules")

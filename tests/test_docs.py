@@ -209,11 +209,8 @@ def room_doc_errors(pkg: Path, contracts: list[dict]) -> list[str]:
 
 
 def _contracts() -> list[dict]:
-    try:
-        import tomllib
-    except ModuleNotFoundError:      # Python 3.10
-        import tomli as tomllib
-    return tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["importlinter"]["contracts"]
+    from pyproject import pyproject
+    return pyproject()["tool"]["importlinter"]["contracts"]
 
 
 def test_each_room_says_what_it_owns_and_may_import():

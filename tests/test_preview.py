@@ -189,9 +189,9 @@ def test_the_wheel_ships_every_file_of_the_page():
     """Each file under urdf_lint/preview/static (the vendored bundle and its licences too)
     matches pyproject's package data: the installed page has all its scripts."""
     import fnmatch
-    import tomllib
     from conftest import REPO
-    data = tomllib.loads((REPO / "pyproject.toml").read_text())["tool"]["setuptools"]
+    from pyproject import pyproject
+    data = pyproject()["tool"]["setuptools"]
     globs = data["package-data"]["urdf_lint.preview"]
     assert "urdf_lint.preview" in data["packages"]
     static = REPO / "urdf_lint" / "preview"
