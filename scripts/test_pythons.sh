@@ -37,7 +37,11 @@ find_python() {   # python3.X on PATH (a real one, not a pyenv shim without it),
 SUBSET=(tests/test_architecture.py tests/test_sandbox.py tests/test_cli_conventions.py
         tests/test_startup.py tests/test_pytest_plugin.py tests/test_expand_corpus.py
         tests/test_wire.py
-        "tests/test_accuracy.py::test_broken_demo_shows_every_class")
+        "tests/test_accuracy.py::test_broken_demo_shows_every_class"
+        # YAML/arg tracing, fresh-repository patterns, branch exploration, the SRDF checks
+        # and the preview server: what the last issues added, on every Python
+        tests/test_value_tracing.py tests/test_fresh_repository_patterns.py
+        tests/test_explore.py tests/test_srdf.py tests/test_preview.py)
 
 for v in $PYTHONS; do
   py=$(find_python "$v") || { echo "test_pythons: Python $v is not installed (system: or it" \
