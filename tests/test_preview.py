@@ -201,3 +201,33 @@ def test_the_wheel_ships_every_file_of_the_page():
             "static/vendor/LICENSE.urdf-loader.txt", "static/viewer.js"} <= set(files)
     for f in files:
         assert any(fnmatch.fnmatch(f, g) for g in globs), f
+
+
+PADS = """
+  <xacro:macro name="pad" params="n">
+    <link name="pad${n}"/>
+    <joint name="pad${n}_joint" type="revolute"><parent link="tool"/><child link="pad${n}"/>
+      <axis xyz="0 0 1"/><limit lower="2" upper="1" effort="1" velocity="1"/></joint>
+  </xacro:macro>
+  <xacro:pad n="1"/>
+  <xacro:pad n="2"/>
+"""
+
+
+def test_the_summary_counts_problems_as_check_does(tmp_path, capsys):
+    # one macro line wrong in two joints: two markers on the page, one problem, as `check`
+    # says (the summary said "N findings", counting each instance)
+    from urdf_lint.cli.check import CheckOptions, check
+    from urdf_lint.cli.common import ConfigOptions
+    from urdf_lint.cli.preview import scene_summary
+    entry = make_robot(tmp_path, PADS)
+    with serve(entry) as (_, session):
+        scene = session.scenes[0]
+    assert len([f for f in scene.findings if f["code"] == "UL302"]) == 2
+    capsys.readouterr()
+    check(CheckOptions(config=ConfigOptions(isolated=True, values={"output-format": "json"}),
+                       paths=[str(entry)], quiet=True, no_cache=True))
+    report = json.loads(capsys.readouterr().out)
+    n = len(report["findings"])
+    assert n == scene.problems < len(scene.findings)
+    assert f" {n} problem(s) ({len(scene.findings)} marker(s))" in scene_summary(scene)

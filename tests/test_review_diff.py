@@ -660,3 +660,23 @@ def test_the_markdown_names_the_pictures_of_each_model(repo, tmp_path, capsys):
     text = out.read_text()
     assert f"Pictures (in the review's artifact): `{R2D2}.before.png`, `{R2D2}.after.png`, " \
         f"`{R2D2}.diff.png` (changed: nothing visible; not drawn: joint" in text, text
+
+
+def test_introduced_and_fixed_findings_name_their_line_as_check_does(repo, capsys):
+    # the diff said "UL302 r2d2_description/urdf/r2d2.urdf.xacro: joint ..." with no line,
+    # where check names file:line:col; now each names its line in the revision that has it
+    edit(repo / "r2d2_description" / "config" / "joint_limits.yaml",
+         "gripper: {lower: 0.0, upper: 0.548", "gripper: {lower: 0.6, upper: 0.548")
+    main(["check", ".", "--format", "json", "--no-cache"])
+    [want] = [f for f in json.loads(capsys.readouterr().out)["findings"] if f["code"] == "UL302"]
+    _, doc = run_json(capsys, "HEAD")
+    [got] = doc["models"][0]["findings_introduced"]
+    assert (got["file"], got["line"], got["col"]) == (want["file"], want["line"], want["col"])
+    main(["diff", "HEAD", "--no-cache"])
+    text = capsys.readouterr().out
+    assert f"introduced error: UL302 {want['file']}:{want['line']}:{want['col']}: " in text
+    git(repo, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qam", "bad")
+    edit(repo / "r2d2_description" / "config" / "joint_limits.yaml", "lower: 0.6", "lower: 0.0")
+    _, doc = run_json(capsys, "HEAD")
+    [fixed] = doc["models"][0]["findings_fixed"]
+    assert (fixed["file"], fixed["line"]) == (want["file"], want["line"])

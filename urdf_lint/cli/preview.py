@@ -90,14 +90,19 @@ def page_url(server, highlight: str = "") -> str:
     return server.url + (f"#highlight={quote(highlight)}" if highlight else "")
 
 
+def scene_summary(s) -> str:
+    """The line said for a scene: its problems counted as ``check`` counts them."""
+    return (f"urdf-lint: {s.label}: {len(s.links)} links, {len(s.joints)} joints, "
+            f"{s.problems} problem(s) ({len(s.findings)} marker(s))")
+
+
 def preview(o: PreviewOptions) -> int:
     server, session = start(o)
     server.start()
     session.watch(on_error=lambda e: say(f"urdf-lint: preview: reload failed: {e}"))
     url = page_url(server, o.highlight)
     for s in session.scenes:
-        say(f"urdf-lint: {s.label}: {len(s.links)} links, {len(s.joints)} joints, "
-            f"{len(s.findings)} findings")
+        say(scene_summary(s))
     tell(url)
     if o.open:
         import webbrowser

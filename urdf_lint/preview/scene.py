@@ -105,6 +105,9 @@ class Scene:
     links: dict[str, list[Any]] = field(default_factory=dict)    # name -> [file, line]
     joints: dict[str, list[Any]] = field(default_factory=dict)
     findings: list[dict[str, Any]] = field(default_factory=list)
+    # the findings as ``check`` counts them (core.findings.group): a macro line wrong in two
+    # links is one problem with two markers
+    problems: int = 0
     notes: list[str] = field(default_factory=list)
     deps: list[str] = field(default_factory=list)
 
@@ -149,8 +152,10 @@ def build_scene(report: Any, findings: list[Any], resolver: Any, table: FileTabl
     are kept, by its label)."""
     label = report.label
     scene = Scene(label, report.entry, dict(report.args), deps=list(report.deps))
-    scene.findings = [finding_json(p) for p in findings
-                      if not p.models or label in p.models]
+    from urdf_lint.core.findings import group
+    own = [p for p in findings if not p.models or label in p.models]
+    scene.findings = [finding_json(p) for p in own]
+    scene.problems = len(group(own))
     model, why = model_of(report, resolver)
     if model is None:
         scene.error = why

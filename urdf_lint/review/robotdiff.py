@@ -59,6 +59,7 @@ class ModelDiff:
     moved: list = field(default_factory=list)     # (link, metres, radians), largest first
     findings_introduced: list = field(default_factory=list)
     findings_fixed: list = field(default_factory=list)
+    finding_lines: dict = field(default_factory=dict)   # finding key -> (line, col) in its revision
     error: str = ""
     snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
     picture: str = ""              # the file name stem of its pictures (locations.picture_name)

@@ -152,6 +152,7 @@ class Side:
     models: dict = field(default_factory=dict)      # key -> ModelResult
     findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
     severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
+    lines: dict = field(default_factory=dict)       # (code, file, message) -> (line, col)
     robots: dict = field(default_factory=dict)      # key -> Model | None
     geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
     rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
@@ -255,6 +256,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
             more = f" (and {len(own) - 1} more like it)" if len(own) > 1 else ""
             fk = (g.code, _rel(side.root, g.file), _unrooted(side.root, own[0].message) + more)
             side.severities[fk] = g.severity
+            side.lines.setdefault(fk, (own[0].line, own[0].col))
             side.findings[labels[label]][fk] += 1
     return resolver, result
 
@@ -735,6 +737,10 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> Model
                               for fk in sorted((hf - bf).elements())]
     md.findings_fixed = [(fk, base.severities.get(fk, "error"))
                          for fk in sorted((bf - hf).elements())]
+    # where each is in its revision (the key has no line: an edit above it moves it)
+    md.finding_lines = {**{fk: base.lines[fk] for fk, _ in md.findings_fixed if fk in base.lines},
+                        **{fk: head.lines[fk] for fk, _ in md.findings_introduced
+                           if fk in head.lines}}
     if status == "changed" and not md.changes and not md.moved and not md.findings_introduced \
             and not md.findings_fixed and not md.error:
         md.status = "unchanged"

@@ -87,9 +87,11 @@ def moved(m: Any, n: int = 3) -> str:
     return ", ".join(parts) + (f" and {more} more" if more > 0 else "")
 
 
-def finding(fk: tuple[str, str, str]) -> str:
+def finding(fk: tuple[str, str, str], at: tuple[int, int] | None = None) -> str:
+    """``at``: its (line, col) in the revision that has it, when known."""
     code, file, msg = fk
-    return f"{code} {file}: {msg}"
+    where = f"{file}:{at[0]}:{at[1]}" if at and at[0] else file
+    return f"{code} {where}: {msg}"
 
 
 def md_escape(s: object) -> str:

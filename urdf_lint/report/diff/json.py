@@ -29,8 +29,16 @@ def to_json(r: DiffResult) -> str:
             "model": m.model, "status": m.status, "error": m.error, "picture": m.picture,
             "changes": [c.to_dict(rel) for c in m.changes],
             "moved": [{"link": link, "distance": d, "angle": a} for link, d, a in m.moved],
-            "findings_introduced": [{"code": fk[0], "file": fk[1], "message": fk[2],
-                                     "severity": s} for fk, s in m.findings_introduced],
-            "findings_fixed": [{"code": fk[0], "file": fk[1], "message": fk[2], "severity": s}
-                               for fk, s in m.findings_fixed]})
+            "findings_introduced": [_finding(m, fk, s) for fk, s in m.findings_introduced],
+            "findings_fixed": [_finding(m, fk, s) for fk, s in m.findings_fixed]})
     return json.dumps(doc, indent=2) + "\n"
+
+
+def _finding(m: Any, fk: tuple[str, str, str], severity: str) -> dict[str, Any]:
+    """A finding introduced or fixed (``m`` its ModelDiff), with its line in the revision
+    that has it (when known)."""
+    out: dict[str, Any] = {"code": fk[0], "file": fk[1], "message": fk[2], "severity": severity}
+    at = m.finding_lines.get(fk)
+    if at and at[0]:
+        out["line"], out["col"] = at
+    return out

@@ -67,8 +67,8 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
                              ("Fixed findings", m.findings_fixed)):
             if items:
                 rows += [f"**{title}**", ""]
-                rows += [f"- {s} {code(fk[0])} {code(fk[1])}: {md_escape(fk[2])}"
-                         for fk, s in items]
+                rows += [f"- {s} {code(fk[0])} {code(_at(fk[1], m.finding_lines.get(fk)))}: "
+                         f"{md_escape(fk[2])}" for fk, s in items]
                 rows.append("")
         rows += ["</details>", ""]
         sections.append(rows)
@@ -91,3 +91,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
     if len(out) > limit:  # even the table is too long: summarise it
         out = "\n".join(head) + f"\n{len(r.models)} models changed; see the JSON report.\n"
     return out
+
+
+def _at(file: str, at: tuple[int, int] | None) -> str:
+    return f"{file}:{at[0]}" if at and at[0] else file

@@ -34,8 +34,8 @@ def to_text(r: DiffResult) -> str:
         if m.moved:
             out.append(f"  moved at zero configuration: {moved(m, 5)}")
         for fk, sev in m.findings_introduced:
-            out.append(f"  introduced {sev}: {finding(fk)}")
+            out.append(f"  introduced {sev}: {finding(fk, m.finding_lines.get(fk))}")
         for fk, sev in m.findings_fixed:
-            out.append(f"  fixed {sev}: {finding(fk)}")
+            out.append(f"  fixed {sev}: {finding(fk, m.finding_lines.get(fk))}")
     # names, values and messages are the description's: each line one visible line
     return "\n".join(escape_text(line) for line in out) + "\n"
