@@ -25,25 +25,9 @@ pytestmark = pytest.mark.skipif(not (UR / "package.xml").is_file(),
                                 reason="the corpus UR description is not present")
 aio = pytest.mark.asyncio(loop_scope="function")
 
-
-@pytest.fixture
-def ur(tmp_path) -> Path:
-    dst = tmp_path / "ur_description"
-    shutil.copytree(UR, dst)
-    return dst
-
-
-client = lsp_client.client       # the pytest-lsp fixture, on lsp_root
-
-
-@pytest.fixture
-def lsp_root(ur) -> Path:
-    return ur
-
-
-@pytest.fixture
-def lsp_root_name() -> str:
-    return "ur"
+ur = lsp_client.copy_of(UR, "ur")
+LSP_WORKSPACE = "ur"             # the fixture the client's server works on
+client = lsp_client.client
 
 
 def change(client: LanguageClient, uri: str, text: str, version: int) -> None:

@@ -3,7 +3,6 @@ findings in the YAML file (with the robot's element as related information), and
 definition from a joint name in the YAML or the SRDF lands on the xacro line writing it."""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import pytest
@@ -19,25 +18,9 @@ from support.lsp_client import diagnostics_for  # noqa: E402
 DEMO = Path(__file__).resolve().parents[1] / "descriptions" / "broken" / "broken_moveit_config"
 aio = pytest.mark.asyncio(loop_scope="function")
 
-
-@pytest.fixture
-def pkg(tmp_path) -> Path:
-    dst = tmp_path / "broken_moveit_config"
-    shutil.copytree(DEMO, dst)
-    return dst
-
-
-client = lsp_client.client       # the pytest-lsp fixture, on lsp_root
-
-
-@pytest.fixture
-def lsp_root(pkg) -> Path:
-    return pkg
-
-
-@pytest.fixture
-def lsp_root_name() -> str:
-    return "pkg"
+pkg = lsp_client.copy_of(DEMO, "pkg")
+LSP_WORKSPACE = "pkg"             # the fixture the client's server works on
+client = lsp_client.client
 
 
 def open_doc(client: LanguageClient, path: Path) -> str:

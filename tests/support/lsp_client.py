@@ -1,11 +1,11 @@
 """A real language-server client for the end-to-end tests (pytest-lsp over stdio): the
-``client`` fixture starts ``urdf-lint server`` on the workspace the test module's ``lsp_root``
-fixture gives (a directory, named ``lsp_root_name`` in the session), and the helpers open a
-document and wait for its diagnostics. A test module imports ``client`` and defines
-``lsp_root`` (and ``lsp_root_name``)."""
+``client`` fixture starts ``urdf-lint server`` on the workspace of the fixture the test
+module's ``LSP_WORKSPACE`` names (``copy_of`` makes one: a copy of a directory), and the
+helpers open a document and wait for its diagnostics."""
 from __future__ import annotations
 
 import asyncio
+import shutil
 import sys
 from pathlib import Path
 
@@ -15,17 +15,26 @@ from lsprotocol import types
 from pytest_lsp import ClientServerConfig, LanguageClient
 
 
-@pytest.fixture
-def lsp_root_name() -> str:
-    return "ws"
+def copy_of(src: Path, name: str):
+    """The fixture ``name``: a copy of the directory ``src`` in the test's tmp_path."""
+    @pytest.fixture(name=name)
+    def copy(tmp_path) -> Path:
+        dst = tmp_path / src.name
+        shutil.copytree(src, dst)
+        return dst
+    return copy
 
 
 @pytest_lsp.fixture(config=ClientServerConfig(
     server_command=[sys.executable, "-m", "urdf_lint", "server"]))
-async def client(lsp_client: LanguageClient, lsp_root: Path, lsp_root_name: str):
+async def client(lsp_client: LanguageClient, request):
+    """The server on the workspace of the fixture the test module's ``LSP_WORKSPACE`` names
+    (a folder of that name in the session)."""
+    name = request.module.LSP_WORKSPACE
+    root = request.getfixturevalue(name)
     await lsp_client.initialize_session(types.InitializeParams(
-        capabilities=types.ClientCapabilities(), root_uri=lsp_root.as_uri(),
-        workspace_folders=[types.WorkspaceFolder(uri=lsp_root.as_uri(), name=lsp_root_name)]))
+        capabilities=types.ClientCapabilities(), root_uri=root.as_uri(),
+        workspace_folders=[types.WorkspaceFolder(uri=root.as_uri(), name=name)]))
     yield
     await lsp_client.shutdown_session()
 
