@@ -224,11 +224,9 @@ def named_joints(ctx):
         pos = doc.root.get("initial_positions") if doc.root is not None else None
         for name, node in (pos.items() if pos is not None else ()):
             yield doc, node, name, "initial_positions.yaml"
-    for doc in docs(ctx, "moveit-controllers"):
-        mscm = doc.root.get("moveit_simple_controller_manager") if doc.root is not None else None
-        for name, node in (mscm.items() if mscm is not None else ()):
-            for n in names(node.get("joints")):
-                yield doc, n, n.value, f"MoveIt controller '{name}'"
+    for doc, name, node in moveit_controllers(ctx):
+        for n in names(node.get("joints")):
+            yield doc, n, n.value, f"MoveIt controller '{name}'"
 
 
 # -- MoveIt's joint_limits.yaml ----------------------------------------------------------------
@@ -288,3 +286,67 @@ def doc_names(doc):
                     out.add(n.value)
         doc._names = out
     return doc._names
+
+
+def moveit_controllers(ctx):
+    """(doc, controller name, its node) of every controller ``moveit_controllers.yaml`` files
+    give ``moveit_simple_controller_manager``."""
+    for doc in docs(ctx, "moveit-controllers"):
+        mscm = doc.root.get("moveit_simple_controller_manager") if doc.root is not None else None
+        for name, node in (mscm.items() if mscm is not None else ()):
+            yield doc, name, node
+
+
+def actuated(model, name):
+    """Whether a joint is moved on its own: a moving joint that mimics no other."""
+    return moving_joint(model, name) and model.joints[name].find("mimic") is None
+
+
+# -- the rules' FAIL/PASS examples -------------------------------------------------------------
+LIMIT = 'lower="-1" upper="1" effort="10" velocity="1"'
+ROS2_CONTROL_EXAMPLE = """  <ros2_control name="sys" type="system">
+    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+    <joint name="joint1"><command_interface name="position"/><state_interface name="position"/></joint>
+  </ros2_control>
+"""
+ARM_SRDF_EXAMPLE = """<robot name="r">
+  <group name="arm">
+    <chain base_link="base" tip_link="l2"/>
+  </group>
+</robot>
+"""
+LIMITS_EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
+</robot>
+""", "config/joint_limits.yaml": """joint_limits:
+  joint1:
+    has_velocity_limits: true
+    max_velocity: 0.5
+    has_acceleration_limits: true
+    max_acceleration: 1.0
+"""}
+
+
+def example_robot(*joints, links=("base", "l1"), tail=""):
+    """The URDF of a rule's example: robot 'r' with ``links`` on one line, a revolute joint
+    about z per (name, parent, child[, its ``<limit>`` attributes]) of ``joints``, ``tail``."""
+    out = ['<robot name="r">', "  " + "".join(f'<link name="{n}"/>' for n in links)]
+    for name, parent, child, *lim in joints:
+        out += [f'  <joint name="{name}" type="revolute"><parent link="{parent}"/>'
+                f'<child link="{child}"/>',
+                f'    <axis xyz="0 0 1"/><limit {lim[0] if lim else LIMIT}/></joint>']
+    return "\n".join(out) + "\n" + tail + "</robot>\n"
+
+
+def forward_controller_example(joint):
+    """A controller YAML configuring a forward position controller of ``joint``."""
+    return f"""controller_manager:
+  ros__parameters:
+    forward_position_controller:
+      type: forward_command_controller/ForwardCommandController
+
+forward_position_controller:
+  ros__parameters:
+    joints:
+      - {joint}
+    interface_name: position
+"""

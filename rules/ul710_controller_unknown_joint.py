@@ -22,28 +22,10 @@ CODE = "UL710"
 NAME = "controller-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint_1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <ros2_control name="sys" type="system">
-    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
-    <joint name="joint_1"><command_interface name="position"/><state_interface name="position"/></joint>
-  </ros2_control>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, forward_controller_example, ROS2_CONTROL_EXAMPLE
+FAIL = example_robot(("joint_1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE.replace("joint1", "joint_1"))
 PASS = FAIL.replace("joint_1", "joint1")
-EXAMPLE_FILES = {"config/r_controllers.yaml": """controller_manager:
-  ros__parameters:
-    forward_position_controller:
-      type: forward_command_controller/ForwardCommandController
-
-forward_position_controller:
-  ros__parameters:
-    joints:
-      - joint1
-    interface_name: position
-"""}
+EXAMPLE_FILES = {"config/r_controllers.yaml": forward_controller_example("joint1")}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(9, 9)]
 from urdf_lint.engine.api import Report

@@ -21,16 +21,8 @@ CODE = "UL711"
 NAME = "controller-interface"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <ros2_control name="sys" type="system">
-    <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
-    <joint name="joint1"><command_interface name="position"/><state_interface name="position"/></joint>
-  </ros2_control>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, ROS2_CONTROL_EXAMPLE
+FAIL = example_robot(("joint1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE)
 PASS = FAIL.replace('<command_interface name="position"/>',
                     '<command_interface name="position"/><command_interface name="velocity"/>')
 EXAMPLE_FILES = {"config/r_controllers.yaml": """controller_manager:

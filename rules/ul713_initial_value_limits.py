@@ -13,12 +13,8 @@ CODE = "UL713"
 NAME = "initial-value-limits"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning", "gazebo": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("joint1", "base", "l1"))
 PASS = FAIL.replace('upper="1"', 'upper="2"')
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 </robot>

@@ -15,12 +15,8 @@ CODE = "UL714"
 NAME = "unresolved-substitution"
 SEVERITY = "info"
 TARGETS = {"*": "off", "ros": "info", "gazebo": "info"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, forward_controller_example
+FAIL = example_robot(("joint1", "base", "l1"))
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="tf_prefix" default=""/>
   <link name="base"/><link name="l1"/>
@@ -28,17 +24,7 @@ PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
 </robot>
 """
-EXAMPLE_FILES = {"config/r_controllers.yaml": """controller_manager:
-  ros__parameters:
-    forward_position_controller:
-      type: forward_command_controller/ForwardCommandController
-
-forward_position_controller:
-  ros__parameters:
-    joints:
-      - $(var tf_prefix)joint1
-    interface_name: position
-"""}
+EXAMPLE_FILES = {"config/r_controllers.yaml": forward_controller_example("$(var tf_prefix)joint1")}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(9, 9)]
 from urdf_lint.engine.api import Report

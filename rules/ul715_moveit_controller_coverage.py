@@ -16,21 +16,11 @@ CODE = "UL715"
 NAME = "moveit-controller-coverage"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1" acceleration="1"/></joint>
-  <joint name="joint2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1" acceleration="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot, LIMIT
+FAIL = example_robot(*((j, p, c, LIMIT + ' acceleration="1"') for j, p, c in
+                       (("joint1", "base", "l1"), ("joint2", "l1", "l2"))), links=("base", "l1", "l2"))
 PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint2" type="fixed">')
-EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
-  <group name="arm">
-    <chain base_link="base" tip_link="l2"/>
-  </group>
-</robot>
-""", "config/moveit_controllers.yaml": """moveit_simple_controller_manager:
+EXAMPLE_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE, "config/moveit_controllers.yaml": """moveit_simple_controller_manager:
   controller_names:
     - arm_controller
   arm_controller:
@@ -41,8 +31,8 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(2, 3)]
 from urdf_lint.engine.api import Report
-from urdf_lint.rules._config import (controller_joints, controllers, docs, group_joints, groups,
-                                     moving_joint, names, resolve_name, srdfs)
+from urdf_lint.rules._config import (actuated, controller_joints, controllers, docs, group_joints,
+                                     groups, moveit_controllers, names, resolve_name, srdfs)
 
 EXECUTING = ("joint_trajectory_controller/", "position_controllers/GripperActionController",
              "effort_controllers/GripperActionController",
@@ -54,12 +44,10 @@ def driven(ctx):
     MoveIt (nothing to compare with)."""
     out: set = set()
     simple = False
-    for doc in docs(ctx, "moveit-controllers"):
-        mscm = doc.root.get("moveit_simple_controller_manager") if doc.root is not None else None
-        for _, node in (mscm.items() if mscm is not None else ()):
-            if isinstance(node.value, dict):
-                simple = True
-                out |= {resolve_name(ctx, n.value)[0] for n in names(node.get("joints"))}
+    for _, _, node in moveit_controllers(ctx):
+        if isinstance(node.value, dict):
+            simple = True
+            out |= {resolve_name(ctx, n.value)[0] for n in names(node.get("joints"))}
     if simple:
         return out
     if not docs(ctx, "moveit-controllers"):
@@ -80,8 +68,7 @@ def check(model, ctx):
         passive = {p.get("name") for p in doc.root.iterfind("passive_joint")}
         for name, g in groups(doc.root).items():
             active = [j for j in group_joints(model, doc.root, name)
-                      if moving_joint(model, j) and j not in passive
-                      and model.joints[j].find("mimic") is None]
+                      if actuated(model, j) and j not in passive]
             missing = [j for j in active if j not in have]
             if missing:
                 yield Report(doc.at(g), f"no MoveIt controller drives {', '.join(repr(m) for m in missing)}"

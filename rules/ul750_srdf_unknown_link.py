@@ -17,14 +17,8 @@ CODE = "UL750"
 NAME = "srdf-unknown-link"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="link2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="link2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link2"), links=("base", "l1", "link2"))
 PASS = FAIL.replace("link2", "l2")
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base"/>

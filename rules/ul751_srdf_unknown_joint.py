@@ -17,14 +17,8 @@ CODE = "UL751"
 NAME = "srdf-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="joint_2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("j1", "base", "l1"), ("joint_2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace("joint_2", "j2")
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <group name="arm">

@@ -17,14 +17,8 @@ CODE = "UL752"
 NAME = "srdf-stale-collision-pair"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="link_2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="link_2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link_2"), links=("base", "l1", "link_2"))
 PASS = FAIL.replace("link_2", "l2")
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <disable_collisions link1="base" link2="l1" reason="Adjacent"/>

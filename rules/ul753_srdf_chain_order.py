@@ -12,22 +12,9 @@ CODE = "UL753"
 NAME = "srdf-chain-order"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l2"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("j1", "base", "l2"), ("j2", "l2", "l1"), links=("base", "l1", "l2"))
+PASS = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), links=("base", "l1", "l2"))
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <group name="arm">
     <chain base_link="l1" tip_link="l2"/>

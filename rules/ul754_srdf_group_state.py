@@ -14,25 +14,11 @@ CODE = "UL754"
 NAME = "srdf-group-state"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j3" type="revolute"><parent link="l2"/><child link="l3"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <link name="l3"/>
-</robot>
-"""
-PASS = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="2" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, LIMIT
+FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), ("j3", "l2", "l3"), links=("base", "l1", "l2"),
+                     tail='  <link name="l3"/>\n')
+PASS = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2", LIMIT.replace('upper="1"', 'upper="2"')),
+                     links=("base", "l1", "l2"))
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <group name="arm">
     <chain base_link="base" tip_link="l2"/>
@@ -47,7 +33,7 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(6, 3), (8, 5)]
 from urdf_lint.engine.api import Report, fmt, number
-from urdf_lint.rules._config import group_joints, joint_limits, moving_joint, srdfs
+from urdf_lint.rules._config import actuated, group_joints, joint_limits, srdfs
 
 SLACK = 1e-9
 
@@ -68,8 +54,7 @@ def check(model, ctx):
                                  f"'{name}' to {fmt(v)}, outside its limits [{fmt(lo)}, "
                                  f"{fmt(hi)}]", related=model.joints[name].find("limit"))
             missing = [j for j in group_joints(model, doc.root, gs.get("group"))
-                       if moving_joint(model, j) and j not in named
-                       and model.joints[j].find("mimic") is None]
+                       if actuated(model, j) and j not in named]
             if missing:
                 yield Report(doc.at(gs), f"group state '{gs.get('name')}' of group "
                              f"'{gs.get('group')}' gives no value for "

@@ -12,12 +12,8 @@ CODE = "UL755"
 NAME = "srdf-unknown-group"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot
+FAIL = example_robot(("j1", "base", "l1"))
 PASS = FAIL
 EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
   <group name="arm">

@@ -15,22 +15,10 @@ CODE = "UL760"
 NAME = "joint-limits-unknown-joint"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint_1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, LIMITS_EXAMPLE_FILES
+FAIL = example_robot(("joint_1", "base", "l1"))
 PASS = FAIL.replace("joint_1", "joint1")
-EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
-</robot>
-""", "config/joint_limits.yaml": """joint_limits:
-  joint1:
-    has_velocity_limits: true
-    max_velocity: 0.5
-    has_acceleration_limits: true
-    max_acceleration: 1.0
-"""}
+EXAMPLE_FILES = LIMITS_EXAMPLE_FILES
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(2, 3)]
 from urdf_lint.engine.api import Report

@@ -14,22 +14,10 @@ CODE = "UL761"
 NAME = "joint-limits-exceed-urdf"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="0.25"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import example_robot, LIMIT, LIMITS_EXAMPLE_FILES
+FAIL = example_robot(("joint1", "base", "l1", LIMIT.replace('velocity="1"', 'velocity="0.25"')))
 PASS = FAIL.replace('velocity="0.25"', 'velocity="1"')
-EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
-</robot>
-""", "config/joint_limits.yaml": """joint_limits:
-  joint1:
-    has_velocity_limits: true
-    max_velocity: 0.5
-    has_acceleration_limits: true
-    max_acceleration: 1.0
-"""}
+EXAMPLE_FILES = LIMITS_EXAMPLE_FILES
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(4, 19)]
 from urdf_lint.engine.api import Report, fmt

@@ -15,21 +15,10 @@ CODE = "UL762"
 NAME = "missing-acceleration-limit"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-FAIL = """<robot name="r">
-  <link name="base"/><link name="l1"/><link name="l2"/>
-  <joint name="joint1" type="revolute"><parent link="base"/><child link="l1"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-  <joint name="joint2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
-</robot>
-"""
+from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot
+FAIL = example_robot(("joint1", "base", "l1"), ("joint2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint2" type="fixed">')
-EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
-  <group name="arm">
-    <chain base_link="base" tip_link="l2"/>
-  </group>
-</robot>
-""", "config/joint_limits.yaml": """joint_limits:
+EXAMPLE_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE, "config/joint_limits.yaml": """joint_limits:
   joint1:
     has_acceleration_limits: true
     max_acceleration: 1.0
@@ -40,8 +29,8 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(5, 3)]
 from urdf_lint.engine.api import Origin, Report
-from urdf_lint.rules._config import (group_joints, groups, joint_limits, limit_entries,
-                                     moving_joint, scalar, srdfs)
+from urdf_lint.rules._config import (actuated, group_joints, groups, joint_limits, limit_entries,
+                                     scalar, srdfs)
 
 
 def check(model, ctx):
@@ -55,7 +44,7 @@ def check(model, ctx):
             for j in group_joints(model, sd.root, g):
                 planned.setdefault(j, g)
     for j, g in planned.items():
-        if not moving_joint(model, j) or model.joints[j].find("mimic") is not None:
+        if not actuated(model, j):
             continue
         if joint_limits(model, j)[4]:
             continue

@@ -24,7 +24,10 @@ from pathlib import Path
 
 import pytest
 
-from conftest import make_package, run_cli
+from conftest import REPO, make_package, run_cli
+
+sys.path.insert(0, str(REPO / "bench" / "consumers"))
+import mutants  # noqa: E402
 
 # Drake (pip install drake, about 200 MB) is not in the extra; where installed it takes part in
 # the clean robots and the mesh classes (DRAKE_CLASSES). On the other classes Drake 1.51.1's
@@ -39,42 +42,24 @@ pytestmark = pytest.mark.skipif(not {"mujoco", "pinocchio"} <= set(CONSUMERS),
 
 INERTIAL = ('<inertial><mass value="{m}"/><inertia ixx="{i}" ixy="0" ixz="0" iyy="{i}" iyz="0" '
             'izz="{z}"/></inertial>')
-LIMIT = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
-CLEAN = f"""<?xml version="1.0"?>
-<robot name="probe">
-  <link name="base">
-    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
-    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
-  </link>
-  <link name="upper">
-    <inertial><origin xyz="0 0 0.25"/><mass value="1"/>
-      <inertia ixx="0.0215" ixy="0" ixz="0" iyy="0.0215" iyz="0" izz="0.00125"/></inertial>
-    <visual><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.05" length="0.5"/></geometry></visual>
-    <collision><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.05" length="0.5"/></geometry></collision>
-  </link>
-  <link name="lower">
-    <inertial><origin xyz="0 0 0.2"/><mass value="0.5"/>
-      <inertia ixx="0.0068" ixy="0" ixz="0" iyy="0.0068" iyz="0" izz="0.0002"/></inertial>
-    <visual><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></visual>
-    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision>
-  </link>
-  <link name="tool">{INERTIAL.format(m=0.1, i=0.0001, z=0.0001)}</link>
-  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
-    <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>{LIMIT}</joint>
-  <joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>
-    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>{LIMIT}</joint>
-  <joint name="wrist" type="revolute"><parent link="lower"/><child link="tool"/>
-    <origin xyz="0 0 0.4"/><axis xyz="0 0 1"/>{LIMIT}</joint>
-  <transmission name="shoulder_trans"><type>transmission_interface/SimpleTransmission</type>
-    <joint name="shoulder"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
-    <actuator name="shoulder_motor"/></transmission>
-</robot>
-"""
+# the harness's probe robot (bench/consumers/mutants.py), with no <inertial> on its base and
+# the tool's inertial on one line (TOOL, which the defects below edit)
+LIMIT = mutants.LIMIT
+TOOL = '<link name="tool">' + INERTIAL.format(m=0.1, i=0.0001, z=0.0001) + '</link>'
+
+
+def _once(text: str, old: str, new: str) -> str:
+    assert text.count(old) == 1, f"the probe robot changed: {old!r} is not in it once"
+    return text.replace(old, new)
+
+
+CLEAN = _once(_once(mutants.PROBE, "\n    " + INERTIAL.format(m=2, i=0.008, z=0.013), ""),
+              TOOL.replace("</inertial>", "</inertial>\n  ").replace("<inertial>", "\n    <inertial>"),
+              TOOL)
 ELBOW = '<joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>'
 LOWER_INERTIAL = ('<inertia ixx="0.0068" ixy="0" ixz="0" iyy="0.0068" iyz="0" izz="0.0002"/>'
                   '</inertial>')
 LOWER_MASS = '<inertial><origin xyz="0 0 0.2"/><mass value="0.5"/>\n      '
-TOOL = '<link name="tool">' + INERTIAL.format(m=0.1, i=0.0001, z=0.0001) + '</link>'
 
 # defect class -> (the code urdf-lint reports, how to make the variant from CLEAN)
 DEFECTS = {

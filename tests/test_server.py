@@ -16,6 +16,8 @@ from lsprotocol import types  # noqa: E402
 from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
 
 from conftest import CORPUS  # noqa: E402
+from support import lsp_client  # noqa: E402
+from support.lsp_client import diagnostics_for, open_doc  # noqa: E402
 
 # (a worktree beside the checkout: URDF_LINT_CORPUS names the corpus)
 UR = Path(os.environ.get("URDF_LINT_CORPUS") or CORPUS) / "ur_description"
@@ -23,41 +25,9 @@ pytestmark = pytest.mark.skipif(not (UR / "package.xml").is_file(),
                                 reason="the corpus UR description is not present")
 aio = pytest.mark.asyncio(loop_scope="function")
 
-
-@pytest.fixture
-def ur(tmp_path) -> Path:
-    dst = tmp_path / "ur_description"
-    shutil.copytree(UR, dst)
-    return dst
-
-
-@pytest_lsp.fixture(config=ClientServerConfig(
-    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
-async def client(lsp_client: LanguageClient, ur):
-    await lsp_client.initialize_session(types.InitializeParams(
-        capabilities=types.ClientCapabilities(), root_uri=ur.as_uri(),
-        workspace_folders=[types.WorkspaceFolder(uri=ur.as_uri(), name="ur")]))
-    yield
-    await lsp_client.shutdown_session()
-
-
-def open_doc(client: LanguageClient, path: Path, text: str | None = None) -> str:
-    uri = path.as_uri()
-    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
-        uri=uri, language_id="xml", version=1, text=path.read_text() if text is None else text)))
-    return uri
-
-
-async def diagnostics_for(client: LanguageClient, uri: str, want=lambda ds: True,
-                          timeout: float = 60.0) -> list:
-    """The diagnostics of ``uri`` once ``want`` holds for them."""
-    async def wait():
-        while True:
-            got = client.diagnostics.get(uri)
-            if got is not None and want(got):
-                return got
-            await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
-    return await asyncio.wait_for(wait(), timeout)
+ur = lsp_client.copy_of(UR, "ur")
+LSP_WORKSPACE = "ur"             # the fixture the client's server works on
+client = lsp_client.client
 
 
 def change(client: LanguageClient, uri: str, text: str, version: int) -> None:

@@ -3,9 +3,6 @@ findings in the YAML file (with the robot's element as related information), and
 definition from a joint name in the YAML or the SRDF lands on the xacro line writing it."""
 from __future__ import annotations
 
-import asyncio
-import shutil
-import sys
 from pathlib import Path
 
 import pytest
@@ -13,44 +10,21 @@ import pytest
 pytest.importorskip("pygls")
 pytest_lsp = pytest.importorskip("pytest_lsp")
 from lsprotocol import types  # noqa: E402
-from pytest_lsp import ClientServerConfig, LanguageClient  # noqa: E402
+from pytest_lsp import LanguageClient  # noqa: E402
+
+from support import lsp_client  # noqa: E402
+from support.lsp_client import diagnostics_for  # noqa: E402
 
 DEMO = Path(__file__).resolve().parents[1] / "descriptions" / "broken" / "broken_moveit_config"
 aio = pytest.mark.asyncio(loop_scope="function")
 
-
-@pytest.fixture
-def pkg(tmp_path) -> Path:
-    dst = tmp_path / "broken_moveit_config"
-    shutil.copytree(DEMO, dst)
-    return dst
-
-
-@pytest_lsp.fixture(config=ClientServerConfig(
-    server_command=[sys.executable, "-m", "urdf_lint", "server"]))
-async def client(lsp_client: LanguageClient, pkg):
-    await lsp_client.initialize_session(types.InitializeParams(
-        capabilities=types.ClientCapabilities(), root_uri=pkg.as_uri(),
-        workspace_folders=[types.WorkspaceFolder(uri=pkg.as_uri(), name="pkg")]))
-    yield
-    await lsp_client.shutdown_session()
+pkg = lsp_client.copy_of(DEMO, "pkg")
+LSP_WORKSPACE = "pkg"             # the fixture the client's server works on
+client = lsp_client.client
 
 
 def open_doc(client: LanguageClient, path: Path) -> str:
-    uri = path.as_uri()
-    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
-        uri=uri, language_id="yaml", version=1, text=path.read_text())))
-    return uri
-
-
-async def diagnostics_for(client: LanguageClient, uri: str, want, timeout: float = 90.0):
-    async def wait():
-        while True:
-            got = client.diagnostics.get(uri)
-            if got is not None and want(got):
-                return got
-            await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
-    return await asyncio.wait_for(wait(), timeout)
+    return lsp_client.open_doc(client, path, language_id="yaml")
 
 
 async def definition(client, uri, line, char):
@@ -69,7 +43,8 @@ async def test_controller_yaml_diagnostics_and_definition(client, pkg):
     lines = yaml_path.read_text().splitlines()
     stale = next(i for i, t in enumerate(lines) if t.strip() == "- joint_3")
     uri = open_doc(client, yaml_path)
-    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL710" for d in ds))
+    ds = await diagnostics_for(client, uri, lambda ds: any(d.code == "UL710" for d in ds),
+                               timeout=90.0)
     d = next(d for d in ds if d.code == "UL710")
     # at the YAML line naming the stale joint, the robot's joint3 as related information
     assert (d.range.start.line, d.range.start.character) == (stale, lines[stale].index("joint_3"))
