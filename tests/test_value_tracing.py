@@ -137,6 +137,120 @@ def test_per_link_macro_dict_locates_a_mass(tmp_path):
     assert mass[0]["value_from"][1] == 3
 
 
+# Franka's real per-link pattern (robots/common/utils.xacro): the macro's dict parameter
+# defaults to the outer property (``inertial:=^``), a property of the same name shadows it
+# with the link's sub-dict, attribute access two levels down, block and flow YAML alike
+PER_LINK_YAML = """link1:
+  origin: {xyz: 0 0 0, rpy: 0 0 0}
+  mass: 2.0
+  inertia: {xx: 0.01, xy: 0, xz: 0, yy: 0.01, yz: 0, zz: 0.5}
+link2:
+  origin:
+    xyz: 0 0 0
+    rpy: 0 0 0
+  mass: -1.0
+  inertia:
+    xx: 0.01
+    xy: 0
+    xz: 0
+    yy: 0.01
+    yz: 0
+    zz: 0.01
+"""
+PER_LINK = """<?xml version="1.0"?>
+<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="inertial"
+      value="${xacro.load_yaml('$(find arm_description)/config/inertial.yaml')}"/>
+  <xacro:macro name="inertial_props" params="name inertial:=^">
+    <xacro:if value="${name in inertial}">
+      <xacro:property name="inertial" value="${inertial[name]}" lazy_eval="false"/>
+      <inertial>
+        <origin rpy="${inertial.origin.rpy}" xyz="${inertial.origin.xyz}"/>
+        <mass value="${inertial.mass}"/>
+        <xacro:property name="I" value="${inertial.inertia}"/>
+        <inertia ixx="${I.xx}" ixy="${I.xy}" ixz="${I.xz}" iyy="${I.yy}" iyz="${I.yz}"
+                 izz="${I.zz}"/>
+      </inertial>
+    </xacro:if>
+  </xacro:macro>
+  <xacro:macro name="arm_link" params="name">
+    <link name="${name}">
+      <xacro:inertial_props name="${name}"/>
+      <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>
+    </link>
+  </xacro:macro>
+  <link name="base"/>
+  <xacro:arm_link name="link1"/>
+  <xacro:arm_link name="link2"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="link1"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="link1"/><child link="link2"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_franka_per_link_macro_with_a_caret_default_names_each_links_yaml_line(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/inertial.yaml": PER_LINK_YAML,
+                                       "urdf/arm.urdf.xacro": PER_LINK})
+    found = {f["code"]: f for f in _lint(pkg)}
+    # link2's negative mass is at line 9 of the YAML; link1's izz (flow mapping) at line 4
+    assert found["UL602"]["line"] == 10, found["UL602"]
+    assert found["UL602"]["value_from"][:2] == ["config/inertial.yaml", 9], found["UL602"]
+    assert found["UL603"]["value_from"][:2] == ["config/inertial.yaml", 4], found["UL603"]
+    text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
+    assert "value from config/inertial.yaml:9" in text, text
+
+
+# Motoman (motoman_es_support): ``velocity="${radians(velocities['joint_1_s'])}"``, a YAML
+# value through a math function; Kinova (kortex_description): the loaded file handed straight
+# to a macro parameter and read in an element's text (``<param>``), not an attribute
+CALLS_YAML = "velocities:\n  joint_1: -100\n  joint_2: 100\ninitial_positions:\n  joint_1: 4.0\n"
+CALLS = """<?xml version="1.0"?>
+<robot name="k" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="arm" params="cfg">
+    <link name="base"/>
+    <xacro:macro name="j" params="n">
+      <link name="l${n}"/>
+      <joint name="joint_${n}" type="revolute">
+        <parent link="base"/><child link="l${n}"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1"
+               velocity="${radians(cfg['velocities']['joint_' + str(n)])}"/>
+      </joint>
+    </xacro:macro>
+    <xacro:j n="1"/>
+    <xacro:j n="2"/>
+    <ros2_control name="s" type="system">
+      <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
+      <joint name="joint_1">
+        <command_interface name="position"/>
+        <state_interface name="position">
+          <param name="initial_value">${cfg['initial_positions']['joint_1']}</param>
+        </state_interface>
+      </joint>
+    </ros2_control>
+  </xacro:macro>
+  <xacro:arm cfg="${xacro.load_yaml('$(find arm_description)/config/arm.yaml')}"/>
+</robot>
+"""
+
+
+def test_a_value_through_a_math_function_names_the_yaml_line_but_is_not_written_back(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/arm.yaml": CALLS_YAML,
+                                       "urdf/k.urdf.xacro": CALLS})
+    (f,) = [f for f in _lint(pkg) if f["code"] == "UL304"]
+    assert f["value_from"][:2] == ["config/arm.yaml", 2], f
+    run_main("check", ".", "--no-cache", "--fix", "--unsafe-fixes", cwd=pkg)
+    assert (pkg / "config/arm.yaml").read_text() == CALLS_YAML   # radians(-100) is not there
+
+
+def test_a_value_in_an_elements_text_names_the_yaml_line(tmp_path):
+    pkg = make_package(tmp_path, PKG, {"config/arm.yaml": CALLS_YAML,
+                                       "urdf/k.urdf.xacro": CALLS})
+    (f,) = [f for f in _lint(pkg) if f["code"] == "UL713"]
+    assert f["line"] == 20 and f["value_from"][:2] == ["config/arm.yaml", 5], f
+
+
 def test_the_expansion_is_unchanged_by_tracing(tmp_path):
     """Traced values print as the plain ones: the expanded URDF is stock xacro's, byte for
     byte (here against the same expansion with the values made plain)."""

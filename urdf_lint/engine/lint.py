@@ -421,7 +421,7 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
             fixer = fixer or Fixer(model)
             if req is not None:
                 fix = fixer.fix(el, req)
-            value_from = fixer.value_from(el, fixer.traced(req))
+            value_from = fixer.value_from(el, fixer.traced(req), msg)
             p = Problem.at(rule.code, msg, model.origin(el), target_of(el), sev, fix=fix,
                            consumers=table, value_from=value_from)
         if cause is not None:   # one finding per root cause, this problem one instance of it

@@ -283,17 +283,27 @@ def _hook_abs_filename_spec(filename_spec):
     return path
 
 
+TEXT_KEY = "#text"   # Expansion.values: the source of an element's text, beside its attributes
+
+
 def _hook_eval_all(node, macros, symbols) -> None:
     st = _active()
     st.stack.append(node)
     st.touched = None
     attrs = list(node.attributes.items()) if node.attributes else []
+    # the element's own text (``<param name="initial_value">${ip['joint_1']}</param>``) is
+    # evaluated in this frame too: noted as ``#text``
+    texts = [c.data for c in node.childNodes
+             if c.nodeType == c.TEXT_NODE and "$" in c.data] if node.childNodes else []
     frame: dict[str, Any] = {}
     st.value_frames.append(frame)
     _orig["eval_all"](node, macros, symbols)
     st.value_frames.pop()
     if frame:
         got = {name: frame[text] for name, text in attrs if text in frame}
+        for text in texts:
+            if text in frame:
+                got.setdefault(TEXT_KEY, frame[text])
         if got:
             st.values[node] = got
     st.stack.pop()

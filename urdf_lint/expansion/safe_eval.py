@@ -108,6 +108,24 @@ for _k, _f in math.__dict__.items():
         _allow(_f)
 
 
+# the numeric functions whose result is computed from their argument: a YAML value passed
+# through one keeps its source (expansion.traced), marked derived unless it is the same number
+_NUMERIC_IDS = frozenset([id(float), id(int), id(round), id(abs)] + [
+    id(f) for k, f in math.__dict__.items() if not k.startswith("_") and callable(f)])
+
+
+def _keep_trace(fn, args, result):
+    from urdf_lint.expansion import traced
+    if type(result) not in (float, int):
+        return result
+    for a in args:
+        src = traced.source_of(a)
+        if src is not None:
+            same = fn in (float, int) and result == a and not src[1]
+            return traced.rewrap(result, src[0], not same)
+    return result
+
+
 class SafeCallable:
     """Marks a callable made by this module as callable from expressions.
 
@@ -311,6 +329,8 @@ class Evaluator:
             if fn is not range and len(result) > _MAX_SEQ:
                 raise UnsafeExpression("sequence too large")
             return result
+        if id(fn) in _NUMERIC_IDS and args:   # radians(v['j1']): the result keeps v's YAML line
+            return _keep_trace(fn, args, fn(*args, **kwargs))
         return fn(*args, **kwargs)
 
     def binop(self, op, a, b):

@@ -80,6 +80,12 @@ def traced(value: Any, loc: Loc) -> Any:
     return _wrap(value, loc, False)
 
 
+def rewrap(value: Any, loc: Loc, derived: bool) -> Any:
+    """``value`` (a number a function computed from a traced one: ``radians(v)``) carrying
+    ``loc``; derived unless it is that very number (``float(v)``)."""
+    return _wrap(value, loc, derived)
+
+
 def source_of(value: Any) -> tuple[Loc, bool] | None:
     """``((file, line, col), derived)`` of a traced value, else None."""
     loc = getattr(value, "ul_from", None) if isinstance(value, _Traced) else None

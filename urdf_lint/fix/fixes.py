@@ -344,7 +344,8 @@ class Fixer:
         i: int = self._index[el]
         return i
 
-    def value_from(self, el: Element, attrs: tuple[str, ...] = ()) -> tuple[Any, ...]:
+    def value_from(self, el: Element, attrs: tuple[str, ...] = (),
+                   message: str = "") -> tuple[Any, ...]:
         """``(file, line, col)`` of where the value of ``el`` comes from when that is not the
         element's own line: the YAML scalar read by ``load_yaml``, the ``xacro:property`` or the
         macro call's argument that holds the literal. The attributes ``attrs`` (a fix's) are
@@ -354,7 +355,9 @@ class Fixer:
         properties, sub-dicts, macro parameters, arithmetic) names that scalar."""
         got = getattr(self.model, "value_origins", {}).get(el)
         if got:
-            for name in attrs or sorted(got):
+            # the attributes the message names first (``limit velocity=-1.7``), the text last
+            named = set(re.findall(r"[A-Za-z_]+", message))
+            for name in attrs or sorted(got, key=lambda n: (n not in named, n.startswith("#"), n)):
                 if name in got:
                     return tuple(got[name][0])
         origin = self.model.origins.get(el)
