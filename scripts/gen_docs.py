@@ -12,7 +12,9 @@ pages of ``docs/`` (each block in one page; :data:`PAGES` says where):
 * ``diff-formats``: the output formats of ``diff`` (``urdf_lint/report/diff/``), docs/review.md;
 * ``demo``: what the demo (``urdf-lint check descriptions/``) lints, which rules fire and its
   summary line, from a real run (:func:`demo_paragraph`; tests/test_accuracy.py checks it),
-  in README.md; ``demo-yaml``: its first value read from YAML, docs/checking.md.
+  in README.md; ``demo-yaml``: its first value read from YAML, docs/checking.md;
+  ``r2d2-yaml``: the seed R2D2 with a limit swapped in its YAML, checked and fixed
+  (:func:`r2d2_example`), in README.md.
 
 Whole pages (:func:`pages`): ``docs/rules/ULnnn.md``, one per rule, from the rule module's
 docstring and examples (``urdf_lint/engine/rulesdoc.py``), and their index
@@ -42,7 +44,7 @@ def use_root(root: Path) -> None:
     DOCS = root / "docs"
     RULES_DIR = DOCS / "rules"
     # the page holding each generated block
-    PAGES = {"demo": README, "demo-yaml": DOCS / "checking.md",
+    PAGES = {"demo": README, "r2d2-yaml": README, "demo-yaml": DOCS / "checking.md",
              "config-keys": DOCS / "configuration.md", "format-keys": DOCS / "formatter.md",
              "output-formats": DOCS / "output.md", "diff-formats": DOCS / "review.md"}
 
@@ -137,7 +139,47 @@ def tables(demo: bool = True) -> dict[str, str]:
         output = run_demo()
         out["demo"] = demo_paragraph(output)
         out["demo-yaml"] = yaml_example(output)
+        out["r2d2-yaml"] = r2d2_example()
     return out
+
+
+R2D2_SWAP = ("gripper_extension: {lower: -0.38, upper: 0.0,",
+             "gripper_extension: {lower: 0.0, upper: -0.38,")
+
+
+def r2d2_example() -> str:
+    """The seed R2D2 with its gripper extension's limits swapped in its YAML (a copy, in a
+    temporary folder): what ``check`` says (the xacro line, ``value from`` the YAML line) and
+    what ``--fix`` then does to the YAML, as the runs print them."""
+    import shutil
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        pkg = Path(tmp) / "r2d2_description"
+        shutil.copytree(REPO / "descriptions" / "r2d2_description", pkg)
+        limits = pkg / "config" / "joint_limits.yaml"
+        before = limits.read_text()
+        if R2D2_SWAP[0] not in before:
+            raise SystemExit(f"{limits.name} no longer holds {R2D2_SWAP[0]!r}")
+        limits.write_text(before.replace(*R2D2_SWAP))
+
+        def run(*args: str) -> subprocess.CompletedProcess:
+            return subprocess.run([sys.executable, "-m", "urdf_lint", "check",
+                                   "r2d2_description/", "--no-cache", *args], cwd=tmp,
+                                  capture_output=True, text=True, timeout=600,
+                                  env={**os.environ, "NO_COLOR": "1"})
+        checked, fixed = run(), run("--fix")
+        after = limits.read_text()
+    if checked.returncode != 1 or "value from" not in checked.stdout or after != before:
+        raise SystemExit(f"the R2D2 example did not find and fix its YAML:\n{checked.stdout}"
+                         f"{checked.stderr}\n{fixed.stderr}\n{after}")
+    line = next(i for i, t in enumerate(before.splitlines(), 1) if t.startswith(R2D2_SWAP[0]))
+    return "\n".join([
+        "```console",
+        f"$ sed -i 's/{R2D2_SWAP[0]}/{R2D2_SWAP[1]}/' r2d2_description/config/joint_limits.yaml",
+        "$ urdf-lint check r2d2_description/", checked.stdout.rstrip(),
+        "$ urdf-lint check r2d2_description/ --fix", fixed.stderr.rstrip(),
+        f"$ sed -n {line}p r2d2_description/config/joint_limits.yaml",
+        before.splitlines()[line - 1], "```"])
 
 
 def yaml_example(output: str) -> str:
