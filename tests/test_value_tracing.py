@@ -198,8 +198,9 @@ def test_franka_per_link_macro_with_a_caret_default_names_each_links_yaml_line(t
     assert found["UL602"]["line"] == 10, found["UL602"]
     assert found["UL602"]["value_from"][:2] == ["config/inertial.yaml", 9], found["UL602"]
     assert found["UL603"]["value_from"][:2] == ["config/inertial.yaml", 4], found["UL603"]
-    text = run_main("check", ".", "--no-cache", cwd=pkg).stdout
-    assert "value from config/inertial.yaml:9" in text, text
+    for fmt in ("text", "github", "junit", "concise"):   # every format names the YAML line
+        out = run_main("check", ".", "--no-cache", "--output-format", fmt, cwd=pkg).stdout
+        assert "value from config/inertial.yaml:9" in out, (fmt, out)
 
 
 # Motoman (motoman_es_support): ``velocity="${radians(velocities['joint_1_s'])}"``, a YAML
