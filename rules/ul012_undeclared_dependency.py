@@ -25,6 +25,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any, Iterator
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import os
 import re
 
@@ -48,7 +52,7 @@ _COMMENT = re.compile(r"<!--.*?-->", re.S)
 _FIND = re.compile(r"\$\(\s*find\s+([^)\s]+)\s*\)")
 
 
-def own_package(model):
+def own_package(model: "Model") -> tuple[str, str, set[str]] | None:
     """(name, package.xml path, declared dependencies) of the package holding the model's
     entry (the nearest package.xml above it, inside the package roots), or None."""
     resolver = model.resolver
@@ -71,7 +75,7 @@ def own_package(model):
         d = up
 
 
-def _package_of(resolver, path: str):
+def _package_of(resolver: Any, path: str) -> str | None:
     """The name of the known package whose folder holds ``path`` (the deepest), or None."""
     best, name = "", None
     for n, where in list(resolver.scanned.items()) + list(resolver.explicit.items()):
@@ -81,13 +85,13 @@ def _package_of(resolver, path: str):
     return name
 
 
-def _cause(own, pxml, name):
+def _cause(own: str, pxml: str, name: str) -> Cause:
     return Cause(CODE, f"undeclared-dependency:{own}:{name}",
                  f"package '{name}' is used but {display_path(pxml)} does not declare it: add "
                  f"<exec_depend>{name}</exec_depend> (or <depend>)")
 
 
-def _known(resolver, pkg: str) -> bool:
+def _known(resolver: Any, pkg: str) -> bool:
     try:
         resolver.find(pkg)
         return True
@@ -95,7 +99,7 @@ def _known(resolver, pkg: str) -> bool:
         return False
 
 
-def _finds(model, top: str, ok: set):
+def _finds(model: "Model", top: str, ok: set[str]) -> Iterator[tuple[str, Origin]]:
     """(package, Origin) of every `$(find NAME)` written in the model's own sources (the files
     it read below ``top``, its package's folder; not in comments) for a known package that is
     not in ``ok``: in an include, an arg's default or an element's text (a controllers file
@@ -116,7 +120,7 @@ def _finds(model, top: str, ok: set):
                 yield pkg, Origin(path, line, m.start() - text.rfind("\n", 0, m.start()))
 
 
-def _own_place(o, top: str):
+def _own_place(o: Any, top: str) -> Origin | None:
     """The innermost macro call in the linted package that made an element (its own line when
     it is there), or None."""
     if o.file.startswith(top + os.sep):
@@ -127,7 +131,7 @@ def _own_place(o, top: str):
     return None
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     own = own_package(model)
     if own is None or model.resolver is None:
         return
@@ -141,13 +145,13 @@ def check(model, ctx):
                 pkg = uri[len("package://"):].partition("/")[0]
                 if pkg and pkg not in ok and ctx.mesh_ref(model, uri).path:
                     yield Report(m, f"{tag} '{uri}'", cause=_cause(name, pxml, pkg))
-    seen = set()
+    seen: set[str] = set()
     for pkg, at in _finds(model, top, ok):
         seen.add(pkg)
         yield Report(at, f"$(find {pkg})", cause=_cause(name, pxml, pkg))
     # files read otherwise (package:// includes): at the first element they made, or at the
     # macro call in the linted package that made it
-    firsts: dict = {}
+    firsts: dict[str, str] = {}
     for dep in model.deps[1:]:
         pkg = _package_of(model.resolver, os.path.abspath(dep))
         if pkg and pkg not in ok and pkg not in firsts and pkg not in seen:

@@ -26,16 +26,20 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     links = model.top_links()
     names = [lk.get("name") for lk in links if lk.get("name")]
     if not names:
         return
     children = model.parents_of_links()
-    parents_of_joints: dict = {}
+    parents_of_joints: dict[str, list[Any]] = {}
     for j in model.top_joints():
         p = j.find("parent")
         if p is not None and p.get("link"):
@@ -52,7 +56,7 @@ def check(model, ctx):
         return
     if len(tree_roots) > 1:
         # the main tree is the largest; every other root is reported where it is defined
-        def size(n, seen=None):
+        def size(n: str, seen: set[str] | None = None) -> int:
             seen = seen if seen is not None else set()
             if n in seen:
                 return 0

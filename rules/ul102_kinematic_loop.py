@@ -27,10 +27,14 @@ PASS = """<robot name="linkage">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for child, joints in model.parents_of_links().items():
         if len(joints) > 1:
             names = ", ".join(f"'{j.get('name')}'" for j in joints)

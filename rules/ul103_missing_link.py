@@ -19,10 +19,14 @@ PASS = """<robot name="r">
   <joint name="j" type="fixed"><parent link="base_link"/><child link="arm"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j in model.top_joints():
         for role in ("parent", "child"):
             e = j.find(role)

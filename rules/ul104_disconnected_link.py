@@ -22,10 +22,14 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     links = model.top_links()
     if len(links) < 2:
         return

@@ -24,12 +24,16 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for tag in ("link", "joint"):
-        first: dict = {}
+        first: dict[Any, Any] = {}
         for e in model.root:
             if e.tag != tag or not e.get("name"):
                 continue

@@ -23,11 +23,16 @@ PASS = """<robot name="unique_name_for_this_example">
 EXAMPLE_FILES = {"urdf/other.urdf": '<robot name="visual">\n  <link name="a"/>\n</robot>\n'}
 
 
+from typing import TYPE_CHECKING, Any
+
 from urdf_lint.engine.api import Report, display_path
 
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked
 
-def check(run, ctx):
-    by_name: dict = {}
+
+def check(run: Any, ctx: Any) -> "Checked":
+    by_name: dict[str, dict[str, dict[str, Any]]] = {}
     generated = getattr(run, "generated", {})   # a generated URDF is the same robot as its xacro
     for m in run.models:
         if m.name and m.name_origin:

@@ -19,10 +19,14 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     if not (model.root.get("name") or "").strip():
         yield Report(model.root, "<robot> has no name attribute")
     for e in model.root:

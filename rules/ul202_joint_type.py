@@ -18,12 +18,16 @@ PASS = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean
 
 TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j in model.top_joints():
         t = j.get("type")
         if t is None:

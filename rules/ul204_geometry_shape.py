@@ -24,12 +24,16 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for lk in model.top_links():
         for part in lk:
             if part.tag not in ("visual", "collision"):

@@ -27,11 +27,15 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, number, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 
-def _positive(model, el, attr, what):
+def _positive(model: "Model", el: Any, attr: str, what: str) -> Any:
     v = el.get(attr)
     if v is None:
         return f"{what}: <{el.tag}> needs a '{attr}' attribute"
@@ -43,7 +47,7 @@ def _positive(model, el, attr, what):
     return None
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for g in urdf_iter(model, "geometry"):
         lk = g.getparent().getparent() if g.getparent() is not None else None
         what = f"link '{lk.get('name')}'" if lk is not None and lk.tag == "link" else "geometry"

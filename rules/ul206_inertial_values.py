@@ -22,6 +22,10 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, number
 
 # <inertial> without <inertia>: MuJoCo, PyBullet and urchin reject it; Pinocchio, Drake (a
@@ -32,7 +36,7 @@ POINT_MASS = {"pinocchio": "warning", "drake": "warning", "yourdfpy": "warning",
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for lk in model.top_links():
         for inr in lk.findall("inertial"):
             name = lk.get("name")

@@ -30,18 +30,22 @@ PASS = """<robot name="r">
   </joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import math
 
 NOT_FINITE = ("nan", "inf", "infinity")
 # a NaN or infinite value: urdfdom 6.0.0 (Pinocchio 4.1.0) rejects it, MuJoCo 4.0.0 and PyBullet
 # 3.2.7 load it (measured)
-LOADS_NAN: dict = {}   # issue 38: loaded with a NaN pose is a different robot: an error
+LOADS_NAN: dict[str, str] = {}   # issue 38: loaded with a NaN pose is a different robot: an error
 
 from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for tag, attrs in (("origin", ("xyz", "rpy")), ("axis", ("xyz",))):
         for e in urdf_iter(model, tag):
             for a in attrs:

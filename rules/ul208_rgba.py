@@ -24,11 +24,15 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, numbers, set_attrs
 from urdf_lint.rules._schema import urdf_iter
 
 
-def _by_255(vals):
+def _by_255(vals: list[float]) -> str | None:
     """The 0-1 colour of a 0-255 one (alpha above 1 is 0-255 too), or None."""
     rgb, a = vals[:3], vals[3]
     if not all(float(x).is_integer() and 0 <= x <= 255 for x in rgb) or max(rgb) <= 1:
@@ -39,7 +43,7 @@ def _by_255(vals):
     return " ".join(f"{round(x, 4):g}" for x in out)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for c in urdf_iter(model, "color"):
         if c.getparent() is None or c.getparent().tag != "material":
             continue

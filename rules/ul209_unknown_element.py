@@ -37,6 +37,10 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean, rename_tag, single_candidate
 from urdf_lint.rules._schema import CHILDREN, SINGLE, XACRO_WORDS, checked_elements, macro_names
 
@@ -47,7 +51,7 @@ DROPS_DATA = {"origin", "axis", "parent", "child", "mass", "inertia", "geometry"
 PRODUCES = {"joint", "inertial", "visual", "collision", "geometry"}
 
 
-def _lost_prefix(model, el, c):
+def _lost_prefix(model: "Model", el: Any, c: Any) -> Any:
     """(message, severity) when ``c`` is a xacro directive or a macro call without its prefix."""
     macro = c.tag in macro_names(model)
     if c.tag not in XACRO_WORDS and not macro:
@@ -61,12 +65,12 @@ def _lost_prefix(model, el, c):
             + f"; write <xacro:{c.tag}>"), ("error" if lost else "warning")
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for el in checked_elements(model):
         allowed = CHILDREN.get(el.tag)
         if allowed is None:
             continue
-        once: set = set()
+        once: set[Any] = set()
         for c in el:
             if not isinstance(c.tag, str) or c.tag.startswith("{") or ":" in c.tag:
                 continue

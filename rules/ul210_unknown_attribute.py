@@ -27,6 +27,10 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean, number, rename_attr, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 
@@ -35,7 +39,7 @@ from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 LOWER = {"iyx": "ixy", "izx": "ixz", "izy": "iyz"}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for el in checked_elements(model):
         allowed = ATTRIBUTES.get(el.tag)
         if allowed is None:

@@ -23,11 +23,15 @@ PASS = """<robot name="r" version="1.0">
   <link name="a"/>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import re
 
 from urdf_lint.engine.api import Report
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     v = model.root.get("version")
     if v is None:
         return

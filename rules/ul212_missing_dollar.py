@@ -25,13 +25,17 @@ FAIL = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
 FAIL_AT = [(4, 3), (6, 3)]
 PASS = FAIL.replace('<link name="{prefix}tool"/>', '<link name="${prefix}tool"/>').replace(
     '<link name="arm_{prefix}tip"/>', '<link name="arm_${prefix}tip"/>')
+from typing import TYPE_CHECKING, Any, Iterator
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, add_dollar, names_in_scope
 from urdf_lint.rules._schema import BRACED, checked_elements, literal_names, urdf_iter
 
 ATTRS = ("name", "reference", "link")
 
 
-def _elements(model):
+def _elements(model: "Model") -> Iterator[Any]:
     """The URDF part, the extension blocks' own tags (``<gazebo reference>``), and the joints
     and links that ``<transmission>`` and ``<ros2_control>`` blocks name (their content is
     not URDF, but its names are the robot's); SDF inside ``<gazebo>`` is left alone."""
@@ -43,7 +47,7 @@ def _elements(model):
                     yield el
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     known = None
     for el in _elements(model):
         for a in ATTRS:

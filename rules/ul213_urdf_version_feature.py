@@ -45,6 +45,10 @@ PASS = """<robot name="r" version="1.2">
     <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import re
 
 from urdf_lint.engine.api import Report
@@ -64,12 +68,12 @@ LIMITS = ("{attr} on <limit>", (1, 2), "no such limit is applied",
           "MuJoCo 4.0.0 and PyBullet 3.2.7 have no such limit, urdf_parser_py does not read it")
 
 
-def _version(model):
+def _version(model: "Model") -> tuple[int, int] | None:
     m = re.fullmatch(r"(\d+)\.(\d+)", model.root.get("version") or "1.0")
     return (int(m.group(1)), int(m.group(2))) if m else None
 
 
-def _finding(feature, declared, attr=""):
+def _finding(feature: Any, declared: Any, attr: str = "") -> Any:
     what, since, lost, table, who = feature
     what = what.format(attr=attr)
     table = {"*": "off", **table}
@@ -85,7 +89,7 @@ def _finding(feature, declared, attr=""):
     return msg, table
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     declared = _version(model)
     for o in urdf_iter(model, "origin"):
         if o.get("quat_xyzw") is not None:

@@ -23,11 +23,15 @@ PASS = """<robot name="r">
     <limit lower="-1" upper="1" effort="10" velocity="1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 from urdf_lint.rules._joints import moving
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j in model.top_joints():
         if moving(j) and j.find("limit") is None:
             yield Report(j, (f"{j.get('type')} joint '{j.get('name')}' has no <limit>; add "

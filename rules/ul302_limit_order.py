@@ -28,11 +28,15 @@ PASS = """<robot name="r">
     <limit lower="-2.1" upper="2.1" effort="10" velocity="1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, fmt, set_attrs
 from urdf_lint.rules._joints import ranged
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j, lim, lo, hi in ranged(model):
         if lo > hi:
             yield Report(lim, (f"joint '{j.get('name')}': lower {fmt(lo)} > upper {fmt(hi)} "

@@ -20,11 +20,15 @@ PASS = """<robot name="r">
     <limit lower="0" upper="0.2" effort="10" velocity="1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, fmt
 from urdf_lint.rules._joints import ranged
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j, lim, lo, hi in ranged(model):
         if lo == hi:
             why = " (both default to 0)" if lim.get("lower") is None and lim.get("upper") is None else ""

@@ -38,6 +38,10 @@ PASS = """<robot name="r">
     <limit lower="-1" upper="1" effort="30" velocity="2"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, number
 
 ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but effort-based "
@@ -45,7 +49,7 @@ ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but ef
                "or force if you know it")
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     zero_effort = str(ctx.options.get("zero-effort", "warning")).lower()
     zero_effort = zero_effort if zero_effort in ("warning", "error", "info") else "warning"
     for j in model.top_joints():

@@ -30,10 +30,14 @@ PASS = """<robot name="r">
 
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, drop_attrs, set_attrs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     how = ctx.options.get("fix", "drop-limits")
     for j in model.top_joints():
         lim = j.find("limit")

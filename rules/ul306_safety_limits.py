@@ -25,11 +25,15 @@ PASS = """<robot name="r">
     <safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_position="100" k_velocity="10"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, fmt, number, set_attrs
 from urdf_lint.rules._joints import limits
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j in model.top_joints():
         sc = j.find("safety_controller")
         if sc is None:

@@ -27,12 +27,16 @@ PASS = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import math
 
 from urdf_lint.engine.api import Report, fmt, numbers, set_attrs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     tol = float(ctx.options.get("tolerance", 1e-3))
     for j in model.top_joints():
         if j.get("type") in ("fixed", "floating"):

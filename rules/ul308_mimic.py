@@ -26,14 +26,18 @@ PASS = """<robot name="r">
   <joint name="j2" type="continuous"><parent link="a"/><child link="c"/><mimic joint="j1" multiplier="-1"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 # consumers that load an unknown mimicked joint and ignore the relation (docstring)
-IGNORED: dict = {}   # issue 38: the joint moves on its own, a different robot: an error
+IGNORED: dict[str, str] = {}   # issue 38: the joint moves on its own, a different robot: an error
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     follows = {}
     for j in model.top_joints():
         m = j.find("mimic")

@@ -32,9 +32,13 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
-def _set(value) -> bool:
+def _set(value: Any) -> bool:
     """A damping or friction that is there and not zero (a malformed number is UL207's)."""
     try:
         return value is not None and float(value) != 0.0
@@ -42,7 +46,7 @@ def _set(value) -> bool:
         return False
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for j in model.top_joints():
         for d in j.findall("dynamics"):
             what = [a for a in ("damping", "friction") if _set(d.get(a))]

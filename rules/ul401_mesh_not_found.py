@@ -25,6 +25,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import NOT_FOUND, TETRA_STL, resolution_problems
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
@@ -36,7 +40,7 @@ NOT_READ = {"urdf_parser_py": "warning", "idyntree": "warning"}
 VISUAL_NOT_READ = {**NOT_READ, "mujoco": "warning"}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     import dataclasses
     for r in resolution_problems(model, ctx, NOT_FOUND):
         if r.cause is not None:

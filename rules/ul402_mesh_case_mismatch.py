@@ -17,10 +17,14 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import MeshStatus, TETRA_STL, resolution_problems
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     yield from resolution_problems(model, ctx, {MeshStatus.CASE_MISMATCH})

@@ -26,6 +26,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, read_source
 
 # an empty mesh: urdf_parser_py and iDynTree never open it (measured; the others refuse it or
@@ -37,7 +41,7 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
                  "meshes/broken.stl": "version https://git-lfs.github.com/spec/v1\noid sha256:00\nsize 12\n"}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
         if not facts.ok:

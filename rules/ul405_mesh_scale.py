@@ -16,6 +16,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter
@@ -23,7 +27,7 @@ from urdf_lint.rules._schema import urdf_iter
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for m in urdf_iter(model, "mesh"):
         s = m.get("scale")
         if s is None:

@@ -19,6 +19,10 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import os
 from dataclasses import replace
 
@@ -26,7 +30,7 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_meshes
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for m, uri, path in resolved_meshes(model, ctx):
         for t in ctx.texture_refs(path):   # (references outside the roots are not read)
             if not os.path.exists(t):

@@ -25,6 +25,10 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/plain.dae"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import re
 
 from urdf_lint.engine.api import Report, read_source
@@ -33,7 +37,7 @@ from urdf_lint.rules._meshes import BROKEN_SURFACE_DAE, PLAIN_DAE, resolved_mesh
 EXAMPLE_FILES = {"meshes/skin.dae": BROKEN_SURFACE_DAE, "meshes/plain.dae": PLAIN_DAE}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for m, uri, path in resolved_meshes(model, ctx):
         facts = ctx.mesh_facts(path)
         broken = facts.broken_refs
@@ -61,7 +65,7 @@ def _number(word: bytes) -> bool:
     return True
 
 
-def _malformed_value(path: str, broken) -> str:
+def _malformed_value(path: str, broken: Any) -> str:
     """The first malformed ``<color>`` or ``<float>`` value (a word that is no number) of an effect
     pycollada reports missing, quoted (``""`` when there is none: the reference is broken)."""
     ids = [m.group(1) for b in broken for m in [_MISSING_EFFECT.search(b)] if m]

@@ -44,6 +44,10 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import os
 
 from urdf_lint.engine.api import Report
@@ -55,7 +59,7 @@ TETRA_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL, "meshes/part.obj": TETRA_OBJ,
                  "meshes/skin.dae": PLAIN_DAE}
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     if not wanted(model, ctx, ("mujoco", "drake")):
         return                            # every finding would be off in this run
     kinds, others = mujoco_loads(model)

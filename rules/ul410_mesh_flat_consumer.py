@@ -36,6 +36,10 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import os
 
 from urdf_lint.engine.api import Report
@@ -53,14 +57,14 @@ FLAT = 1e-6
 MJ_MINVAL = 1e-15
 
 
-def _scale(m) -> float:
+def _scale(m: Any) -> float:
     """The factor ``<mesh scale>`` applies to a volume (1 when absent or unreadable)."""
     from urdf_lint.engine.api import numbers
     s = numbers(m.get("scale") or "1 1 1")
     return abs(s[0] * s[1] * s[2]) if s and len(s) == 3 else 1.0
 
 
-def flat(vertices) -> bool:
+def flat(vertices: Any) -> bool:
     """Whether the vertices span less than three dimensions (relative to their extent)."""
     import numpy as np
     v = np.asarray(vertices, dtype=float)
@@ -70,7 +74,7 @@ def flat(vertices) -> bool:
     return bool(s[0] == 0 or s[2] <= FLAT * s[0])
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     if not wanted(model, ctx, ("mujoco",)):
         return                            # every finding would be off in this run
     kinds, others = mujoco_loads(model)

@@ -25,6 +25,10 @@ PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.rules._schema import urdf_iter
 from urdf_lint.engine.api import Report, display_path
@@ -39,7 +43,7 @@ EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,
 """}
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for tag in ("mesh", "texture"):
         for m in urdf_iter(model, tag):
             uri = m.get("filename")
@@ -48,7 +52,7 @@ def check(model, ctx):
                 yield Report(m, f"relative {tag} path '{uri}' is not in "
                              f"{display_path(ref.assumed)}/ (the folder of the generated URDF, "
                              f"where relative paths were assumed to start); it was found from "
-                             f"the xacro's folder, {display_path(model.mesh_base_fallback)}/, "
+                             f"the xacro's folder, {display_path(model.mesh_base_fallback or '')}/, "
                              f"as for models of the same macros without a generated URDF. "
                              f"Set 'mesh-base' in this model's [[tool.urdf-lint.models]] entry "
                              f"to say which folder relative paths start from")

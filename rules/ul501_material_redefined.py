@@ -22,12 +22,16 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, display_path
 from urdf_lint.rules._materials import all_materials
 
 
-def check(model, ctx):
-    first: dict = {}
+def check(model: "Model", ctx: "Context") -> "Checked":
+    first: dict[Any, Any] = {}
     for el, name, rgba, _top in all_materials(model):
         if not name or rgba is None:
             continue

@@ -25,11 +25,15 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><box size="1 1 1"/></geometry><material name="blue"/></visual></link>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 from urdf_lint.rules._schema import urdf_iter
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     defined = set()
     for m in urdf_iter(model, "material"):
         if m.get("name") and (m.find("color") is not None or m.find("texture") is not None):

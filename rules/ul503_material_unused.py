@@ -21,10 +21,14 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 from urdf_lint.rules._schema import urdf_iter
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     used = {m.get("name") for v in urdf_iter(model, "visual") for m in v.findall("material")}
     seen = set()
     for m in model.root:

@@ -37,19 +37,24 @@ PASS = """<robot name="r">
 """
 from collections import Counter
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, named_material
 from urdf_lint.rules._materials import all_materials, rgba as rgba_of
 
 
-def _fix(model, rgba, items):
+def _fix(model: "Model", rgba: Any, items: Any) -> Any:
     for name, m in model.materials.items():
         if rgba_of(m) == rgba:
             return named_material([el for el, _ in items], name, m.find("color").get("rgba"),
                                   define=False)
     named = Counter(nm for _, nm in items if nm)
     taken = set(model.materials)
-    name = next((nm for nm, _ in named.most_common() if nm not in taken), None)
-    if name is None:
+    found = next((nm for nm, _ in named.most_common() if nm not in taken), None)
+    name = found if found is not None else ""
+    if found is None:
         name = "rgba_" + "".join(f"{round(x * 255):02x}" for x in rgba)
     if name in taken:
         return None
@@ -57,9 +62,9 @@ def _fix(model, rgba, items):
                           define=True)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     n = int(ctx.options.get("min-repeats", 3))
-    groups: dict = {}
+    groups: dict[Any, Any] = {}
     for el, name, rgba, top in all_materials(model):
         if not top and rgba is not None:
             groups.setdefault(rgba, []).append((el, name))

@@ -34,10 +34,14 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     from urdf_lint.rules._inertial import Bodies
     links = model.top_links()
     if links and all(lk.find("inertial") is None for lk in links):

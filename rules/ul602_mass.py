@@ -48,11 +48,15 @@ PASS = """<robot name="r">
   <joint name="cam" type="fixed"><parent link="a"/><child link="camera_frame"/></joint>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, number
 from urdf_lint.rules._inertial import Bodies, mass
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     tiny = float(ctx.options.get("min-mass", 1e-6))
     bodies = None
     for lk in model.top_links():

@@ -42,6 +42,10 @@ PASS = """<robot name="r">
   <link name="dummy"><inertial><mass value="1e-6"/><inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/></inertial></link>
 </robot>
 """
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 import math
 
 from urdf_lint.engine.api import Report, fmt, number
@@ -54,7 +58,7 @@ PRINCIPAL_ONLY = {"*": "warning", "mujoco": "error", "gazebo": "error"}
 PLACEHOLDER = {"*": "off", "mujoco": "error", "gazebo": "error"}
 
 
-def _spins_freely(model, bodies, lk):
+def _spins_freely(model: "Model", bodies: Any, lk: Any) -> Any:
     """The joint that moves this massive, inertia-less link's body, when nothing in the body
     has inertia; else None."""
     if not (mass(lk) or 0) > 0:
@@ -67,18 +71,19 @@ def _spins_freely(model, bodies, lk):
     return body[1]
 
 
-def _negligible(t) -> bool:
-    return is_zero(t) or max(abs(x) for x in t.values()) <= NOISE
+def _negligible(t: dict[str, float]) -> bool:
+    return bool(is_zero(t)) or max(abs(x) for x in t.values()) <= NOISE
 
 
-def _placeholder(lk, v) -> bool:
+def _placeholder(lk: Any, v: dict[str, float]) -> bool:
     """All six entries equal and tiny on a dummy link of at most 1e-6 kg: a placeholder."""
     m = mass(lk)
     return m is not None and 0 <= m <= 1e-6 and len(set(v.values())) == 1 and \
         0 < v["ixx"] <= 1e-6
 
 
-def principal_moments(xx, yy, zz, xy, xz, yz) -> list[float]:
+def principal_moments(xx: float, yy: float, zz: float, xy: float, xz: float,
+                      yz: float) -> list[float]:
     """The eigenvalues of the symmetric tensor, ascending (closed form, Smith 1961: no numpy in
     a worker that lints a model without meshes)."""
     p1 = xy * xy + xz * xz + yz * yz
@@ -97,7 +102,7 @@ def principal_moments(xx, yy, zz, xy, xz, yz) -> list[float]:
     return sorted((small, 3 * q - big - small, big))
 
 
-def _diagonal_test(a, b, c, xy, xz, yz) -> bool:
+def _diagonal_test(a: float, b: float, c: float, xy: float, xz: float, yz: float) -> bool:
     """The test on the written entries (Sylvester's criterion, the triangle inequality on the
     diagonal): what urdf-lint reported before it looked at the principal moments."""
     d2 = a * b - xy * xy
@@ -108,7 +113,7 @@ def _diagonal_test(a, b, c, xy, xz, yz) -> bool:
     return a + b < c - tol or a + c < b - tol or b + c < a - tol
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     bodies = None
     for lk in model.top_links():
         i = lk.find("inertial/inertia")

@@ -29,17 +29,21 @@ PASS = """<robot name="r">
 
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, new_root
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     children = model.parents_of_links()
     links = model.top_links()
     if len(links) < 2:
         return
     for lk in links:
         n = lk.get("name")
-        if n and n not in children and lk.find("inertial") is not None \
-                and model.links.get(n) is lk:
-            yield Report(lk.find("inertial"), (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
+        inertial = lk.find("inertial")
+        if n and n not in children and inertial is not None and model.links.get(n) is lk:
+            yield Report(inertial, (f"root link '{n}' has an <inertial>, which KDL ignores; add a "
                                                "massless root link joined by a fixed joint"), fix=new_root("add a massless root link joined by a fixed joint"))

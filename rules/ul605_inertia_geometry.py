@@ -23,6 +23,10 @@ NAME = "inertia-geometry-mismatch"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"min-ratio": 0.1, "max-ratio": 10.0}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, declared_matrix, hull_note, measured_links
 FAIL = example(1, 0.5, 0.5, 0.5)
 FAIL_AT = [(4, 32)]
@@ -32,12 +36,12 @@ from urdf_lint.engine.api import Report, fmt
 WHICH = ("smallest", "middle", "largest")
 
 
-def _axis(vec):
+def _axis(vec: Any) -> Any:
     i = max(range(3), key=lambda k: abs(vec[k]))
     return "xyz"[i] if abs(vec[i]) > 0.9 else "a tilted axis"
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     lo_r = float(ctx.options.get("min-ratio", 0.1))
     hi_r = float(ctx.options.get("max-ratio", 10.0))
     for lk, m, t, inr, g in measured_links(model, ctx):

@@ -23,6 +23,10 @@ NAME = "com-outside-geometry"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"tolerance": 0.02}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, hull_note, measured_links, pose
 FAIL = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.5")
 FAIL_AT = [(4, 15)]
@@ -30,11 +34,11 @@ PASS = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.02")
 from urdf_lint.engine.api import Report, fmt
 
 
-def _outside(com, g, tol):
+def _outside(com: Any, g: Any, tol: float) -> list[int]:
     return [k for k in range(3) if com[k] < g.lo[k] - tol or com[k] > g.hi[k] + tol]
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     tol = float(ctx.options.get("tolerance", 0.02))
     for lk, _m, _t, inr, g in measured_links(model, ctx):
         import numpy as np

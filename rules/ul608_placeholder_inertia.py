@@ -17,6 +17,10 @@ CODE = "UL608"
 NAME = "placeholder-inertia"
 SEVERITY = "warning"
 OPTIONS = {"min-links": 3}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, is_identity, moving_links
 FAIL = example(1, 1, 1, 1)
 FAIL_AT = [(4, 32)]
@@ -40,7 +44,7 @@ def _unmirrored(name: str, value: str) -> str:
     return value
 
 
-def _shape(lk):
+def _shape(lk: Any) -> Any:
     """What the link looks like (its collision, else visual, geometry without placement):
     identical parts, like the four wheels of a cart, rightly share one tensor, also when
     their meshes are mirrored."""
@@ -50,7 +54,7 @@ def _shape(lk):
                         if isinstance(s.tag, str)))
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     need = int(ctx.options.get("min-links", 3))
     links = [(lk, tensor(lk)) for lk, _j in moving_links(model)]
     links = [(lk, t) for lk, t in links if t is not None and not is_zero(t)]

@@ -37,9 +37,13 @@ PASS = """<robot name="r">
 PARTS = ("inertial", "visual", "collision")
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     links = model.top_links()
     has_parent = model.parents_of_links()
     roots = [lk for lk in links if lk.get("name") and lk.get("name") not in has_parent]

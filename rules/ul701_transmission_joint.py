@@ -30,11 +30,15 @@ PASS = """<robot name="r">
     <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     pairs = [(t, j) for t in model.root.iter("transmission") for j in t.findall("joint")]
     for t, j, n, fix in unknown_joint_refs(model, pairs):
         yield Report(j, (f"transmission '{t.get('name')}' names unknown joint '{n}'"

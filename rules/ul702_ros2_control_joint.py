@@ -25,11 +25,15 @@ PASS = """<robot name="r">
     <joint name="joint1"><command_interface name="position"/></joint></ros2_control>
 </robot>
 """
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report, did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     pairs = [(rc, j) for rc in model.root.iter("ros2_control") for j in rc.iter("joint")]
     for rc, j, n, fix in unknown_joint_refs(model, pairs):
         yield Report(j, (f"ros2_control '{rc.get('name')}' names unknown joint '{n}'"

@@ -45,15 +45,19 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     """A transmission named like an earlier one (urchin rejects it; Drake too when an actuator
     name repeats as well, as it does when one macro is called twice), and an actuator named
     like one of another transmission (Drake rejects it)."""
-    seen: dict = {}
-    actuators: dict = {}
+    seen: dict[Any, Any] = {}
+    actuators: dict[Any, Any] = {}
     for t in model.root.findall("transmission"):
         n = t.get("name")
         first = seen.get(n) if n else None

@@ -38,9 +38,13 @@ PASS = """<robot name="r">
 KEEPS = ("preserveFixedJoint", "disableFixedJointLumping")
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
-def _kept(model) -> set:
+def _kept(model: "Model") -> set[str]:
     """The joints whose own <gazebo> block turns lumping off."""
     out = set()
     for g in model.root:
@@ -51,7 +55,7 @@ def _kept(model) -> set:
     return out
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     kept = _kept(model)
     lumped = {}                          # child link -> (fixed joint, parent link)
     for j in model.top_joints():

@@ -22,6 +22,10 @@ CODE = "UL710"
 NAME = "controller-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, forward_controller_example, ROS2_CONTROL_EXAMPLE
 FAIL = example_robot(("joint_1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE.replace("joint1", "joint_1"))
 PASS = FAIL.replace("joint_1", "joint1")
@@ -32,7 +36,7 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import closest, named_joints, rename_fix, resolve_name
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc, node, raw, what in named_joints(ctx):
         name, left = resolve_name(ctx, raw)
         if left or name in model.joints:

@@ -21,6 +21,10 @@ CODE = "UL711"
 NAME = "controller-interface"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, ROS2_CONTROL_EXAMPLE
 FAIL = example_robot(("joint1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE)
 PASS = FAIL.replace('<command_interface name="position"/>',
@@ -43,7 +47,7 @@ from urdf_lint.rules._config import (controller_joints, controllers, docs, neede
                                      resolve_name, ros2_control_joints)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     declared = ros2_control_joints(model)
     if model.root.find("ros2_control") is None:
         return

@@ -35,13 +35,17 @@ hand_controller:
 """}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(8, 23)]
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import controller_joints, controllers, docs, resolve_name
 
 READ_ONLY = ("joint_state_broadcaster/",)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in docs(ctx, "controllers"):
         for cname, ctype, params in controllers(doc):
             if ctype.startswith(READ_ONLY):

@@ -13,6 +13,10 @@ CODE = "UL713"
 NAME = "initial-value-limits"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning", "gazebo": "warning"}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("joint1", "base", "l1"))
 PASS = FAIL.replace('upper="1"', 'upper="2"')
@@ -29,14 +33,14 @@ from urdf_lint.rules._config import docs, joint_limits, resolve_name, ros2_contr
 SLACK = 1e-9
 
 
-def _outside(model, name, v):
+def _outside(model: "Model", name: str, v: float | None) -> Any:
     lo, hi, *_ = joint_limits(model, name)
     if lo is None or hi is None or v is None or lo - SLACK <= v <= hi + SLACK:
         return None
     return f"outside the limits [{fmt(lo)}, {fmt(hi)}] of joint '{name}'"
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for name, (el, _, _) in ros2_control_joints(model).items():
         for p in el.iterfind("state_interface[@name='position']/param"):
             if p.get("name") != "initial_value":

@@ -15,6 +15,10 @@ CODE = "UL714"
 NAME = "unresolved-substitution"
 SEVERITY = "info"
 TARGETS = {"*": "off", "ros": "info", "gazebo": "info"}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, forward_controller_example
 FAIL = example_robot(("joint1", "base", "l1"))
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -31,9 +35,9 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import named_joints, resolve_name
 
 
-def check(model, ctx):
-    first: dict = {}
-    count: dict = {}
+def check(model: "Model", ctx: "Context") -> "Checked":
+    first: dict[Any, Any] = {}
+    count: dict[Any, int] = {}
     for doc, node, raw, _ in named_joints(ctx):
         _, left = resolve_name(ctx, raw)
         if left:

@@ -16,6 +16,10 @@ CODE = "UL715"
 NAME = "moveit-controller-coverage"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot, LIMIT
 FAIL = example_robot(*((j, p, c, LIMIT + ' acceleration="1"') for j, p, c in
                        (("joint1", "base", "l1"), ("joint2", "l1", "l2"))), links=("base", "l1", "l2"))
@@ -39,10 +43,10 @@ EXECUTING = ("joint_trajectory_controller/", "position_controllers/GripperAction
              "parallel_gripper_action_controller/")
 
 
-def driven(ctx):
+def driven(ctx: "Context") -> set[str] | None:
     """The joints MoveIt's controllers drive, or None when no controller is configured for
     MoveIt (nothing to compare with)."""
-    out: set = set()
+    out: set[str] = set()
     simple = False
     for _, _, node in moveit_controllers(ctx):
         if isinstance(node.value, dict):
@@ -60,7 +64,7 @@ def driven(ctx):
     return out or None
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     have = driven(ctx)
     if have is None:
         return

@@ -17,6 +17,10 @@ CODE = "UL750"
 NAME = "srdf-unknown-link"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link2"), links=("base", "l1", "link2"))
 PASS = FAIL.replace("link2", "l2")
@@ -39,7 +43,7 @@ WHERE = (("group/link", "name", "group '{g}' link"), ("group/chain", "base_link"
          ("virtual_joint", "child_link", "virtual joint '{n}' child link"))
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
         seen = set()
         for path, attr, what in WHERE:

@@ -17,6 +17,10 @@ CODE = "UL751"
 NAME = "srdf-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("joint_2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace("joint_2", "j2")
@@ -41,7 +45,7 @@ WHERE = (("group/joint", "group '{g}' joint"), ("group_state/joint", "group stat
          ("passive_joint", "passive joint"))
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
         for path, what in WHERE:
             for el in doc.root.iterfind(path):

@@ -17,6 +17,10 @@ CODE = "UL752"
 NAME = "srdf-stale-collision-pair"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link_2"), links=("base", "l1", "link_2"))
 PASS = FAIL.replace("link_2", "l2")
@@ -31,7 +35,7 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
         for el in doc.root.iterfind("disable_collisions"):
             stale = [el.get(a) for a in ("link1", "link2") if el.get(a) and

@@ -12,6 +12,10 @@ CODE = "UL753"
 NAME = "srdf-chain-order"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l2"), ("j2", "l2", "l1"), links=("base", "l1", "l2"))
 PASS = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), links=("base", "l1", "l2"))
@@ -27,7 +31,7 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import chain, srdfs
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
         for el in doc.root.iterfind("group/chain"):
             base, tip = el.get("base_link"), el.get("tip_link")

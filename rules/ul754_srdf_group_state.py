@@ -14,6 +14,10 @@ CODE = "UL754"
 NAME = "srdf-group-state"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMIT
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), ("j3", "l2", "l3"), links=("base", "l1", "l2"),
                      tail='  <link name="l3"/>\n')
@@ -38,7 +42,7 @@ from urdf_lint.rules._config import actuated, group_joints, joint_limits, srdfs
 SLACK = 1e-9
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
         for gs in doc.root.iterfind("group_state"):
             named = {}

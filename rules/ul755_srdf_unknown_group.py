@@ -12,6 +12,10 @@ CODE = "UL755"
 NAME = "srdf-unknown-group"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"))
 PASS = FAIL
@@ -37,8 +41,8 @@ WHERE = (("group_state", "group", "group state '{n}'"), ("end_effector", "group"
          ("group/group", "name", "subgroup of '{p}'"))
 
 
-def check(model, ctx):
-    defined: dict = {}
+def check(model: "Model", ctx: "Context") -> "Checked":
+    defined: dict[Any, Any] = {}
     for doc in srdfs(ctx):
         known = groups(doc.root)
         defined.update(known)

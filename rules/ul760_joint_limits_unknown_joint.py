@@ -15,6 +15,10 @@ CODE = "UL760"
 NAME = "joint-limits-unknown-joint"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMITS_EXAMPLE_FILES
 FAIL = example_robot(("joint_1", "base", "l1"))
 PASS = FAIL.replace("joint_1", "joint1")
@@ -25,7 +29,7 @@ from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import closest, limit_entries, rename_fix
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc, name, node in limit_entries(ctx):
         if name in model.joints:
             continue

@@ -14,6 +14,10 @@ CODE = "UL761"
 NAME = "joint-limits-exceed-urdf"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMIT, LIMITS_EXAMPLE_FILES
 FAIL = example_robot(("joint1", "base", "l1", LIMIT.replace('velocity="1"', 'velocity="0.25"')))
 PASS = FAIL.replace('velocity="0.25"', 'velocity="1"')
@@ -26,7 +30,7 @@ from urdf_lint.rules._config import joint_limits, limit_entries, scalar
 SLACK = 1e-9
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for doc, name, node in limit_entries(ctx):
         if name not in model.joints:
             continue

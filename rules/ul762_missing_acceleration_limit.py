@@ -15,6 +15,10 @@ CODE = "UL762"
 NAME = "missing-acceleration-limit"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot
 FAIL = example_robot(("joint1", "base", "l1"), ("joint2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint2" type="fixed">')
@@ -33,12 +37,12 @@ from urdf_lint.rules._config import (actuated, group_joints, groups, joint_limit
                                      scalar, srdfs)
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     entries = {name: (doc, node) for doc, name, node in limit_entries(ctx)}
     if not entries or not srdfs(ctx):
         return
     doc0 = next(iter(entries.values()))[0]
-    planned: dict = {}
+    planned: dict[Any, Any] = {}
     for sd in srdfs(ctx):
         for g in groups(sd.root):
             for j in group_joints(model, sd.root, g):

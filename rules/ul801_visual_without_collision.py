@@ -21,10 +21,14 @@ PASS = """<robot name="r">
 """
 
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.engine.api import Report
 
 
-def check(model, ctx):
+def check(model: "Model", ctx: "Context") -> "Checked":
     for lk in model.top_links():
         if lk.find("visual") is not None and lk.find("collision") is None:
             yield Report(lk, f"link '{lk.get('name')}' has a visual but no collision")

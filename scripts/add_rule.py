@@ -38,10 +38,15 @@ PASS = """<robot name="r">
   <link name="base_link"/>
 </robot>
 """
+from typing import TYPE_CHECKING
+
 from urdf_lint.engine.api import Report
 
+if TYPE_CHECKING:   # the rule API's types, for mypy and editors
+    from urdf_lint.engine.api import Checked, Context, Model
 
-def check(model, ctx):
+
+def check(model: "Model", ctx: "Context") -> "Checked":
     # what the rule looks at: model.top_links(), model.root.iter("joint"), ... (engine/api.py)
     for link in model.top_links():
         if False:  # TODO: the condition under which this element is wrong

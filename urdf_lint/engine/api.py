@@ -65,6 +65,14 @@ class Report:
     related: Any = None
 
 
+if TYPE_CHECKING:   # what a rule's ``check`` is typed with (rules import them the same way)
+    from collections.abc import Iterator
+
+    from urdf_lint.engine.lint import Context as Context
+    from urdf_lint.engine.model import Model as Model
+    Checked = Iterator[Report]   # def check(model: Model, ctx: Context) -> Checked
+
+
 if not TYPE_CHECKING:      # hidden from mypy: a name not defined above is a mistake there
     def __getattr__(name: str) -> Any:
         """The request function of a fix kind added at run time (``REQUESTS`` of a module in
