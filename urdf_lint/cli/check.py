@@ -3,19 +3,19 @@
 from __future__ import annotations
 
 import os
-import re
 import sys
 from dataclasses import dataclass, field
 
-from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, color_mode, load_cfg,
-                                  no_models_warning, note_unused, options_from,
-                                  parse_package_paths, refuse_symlinked_out, report_snapshots,
-                                  safe_text, through_models, write_base)
-from urdf_lint.cli.output import FindingsOutput
+from urdf_lint.cli.common import (ConfigOptions, Out, color_mode, no_models_warning,
+                                  note_unused, options_from, safe_text, say_snapshots)
+from urdf_lint.cli.output import FindingsOutput, write_findings
 from urdf_lint.cli.parser import (add_fix, add_inputs, add_key_flags, add_limits, add_output,
                                   add_selection, add_views)
-from urdf_lint.core.emit import say
+from urdf_lint.core.findings import exit_status
+from urdf_lint.core.emit import report_internal, say
 from urdf_lint.core.errors import UsageError
+from urdf_lint.run.check import CheckRequest, Checked, Prepared, prepare
+from urdf_lint.run.check import check as run_checked
 
 
 NAME = "check"
@@ -108,137 +108,78 @@ def _progress(out: Out):
     return progress
 
 
-def _scope(o: CheckOptions, cfg) -> tuple[list, set | None, set]:
-    """(the paths to lint, the files whose models to report or None for all, the files the
-    user named that are not models)."""
-    paths, affected_by, named = list(o.paths), None, set()
-    if o.files is None and not o.changed_since:
-        redirect = through_models(o.paths, parse_package_paths(o.package_path), cfg, o.quiet)
-        if redirect is not None:
-            paths, affected_by, named = [redirect[0]], redirect[1], redirect[2]
-    if o.changed_since:
-        affected_by = changed_since(o.changed_since, paths[0])
-    if o.files is not None:
-        affected_by = {os.path.abspath(f) for f in o.files}
-    return paths, affected_by, named
-
-
-def _cache(o: CheckOptions, paths, cfg):
-    if o.no_cache:
-        return None
-    from urdf_lint.run.cache import Cache
-    cache = Cache.for_paths(paths, cfg)
-    return None if cache.refused else cache   # (refused: said why on stderr)
+def request(o: CheckOptions) -> CheckRequest:
+    """The run's request, parsed from the options (the flags that need each other checked)."""
+    return CheckRequest(paths=tuple(o.paths), config=o.config,
+                        package_path=tuple(o.package_path or ()),
+                        files=None if o.files is None else tuple(o.files),
+                        changed_since=o.changed_since, no_cache=o.no_cache, render=o.render,
+                        write_baseline=o.write_baseline, fixing=fix_mode(o))
 
 
 def check(o: CheckOptions) -> int:
-    from urdf_lint.core.locations import display_path
-    from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.pipeline import RunRequest, run_check
+    """Parse (:func:`request`), run (:mod:`urdf_lint.run.check`), print."""
     out = Out(o.quiet, o.verbose)
     mode = color_mode(o.color)
-    for p in o.paths:
-        if not os.path.exists(p):
-            raise UsageError(f"no such file or directory: {p}")
-    cfg = load_cfg(o.config, o.paths)
-    out.info(f"config: {display_path(cfg.path) if cfg.path else 'none (defaults)'}")
-    paths, affected_by, named = _scope(o, cfg)
-    resolver = build_resolver(paths, cfg, parse_package_paths(o.package_path))
-    cache = _cache(o, paths, cfg)
-    refuse_symlinked_out(o.render, paths)
-    if fix_mode(o):
-        return _fix(o, paths, named, cfg, resolver, affected_by, out, mode)
-    if o.render:
-        clear_stale(o.render, paths)
-    from urdf_lint.run.finish import Scope
-    # a fix offered in JSON / SARIF edits only the linted files; a baseline being written
-    # records every finding, one being read hides its own
-    how = Scope(tuple(paths), None if o.write_baseline else cfg.baseline, out.note)
-    result = run_check(RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs, cache=cache,
-                                  progress=_progress(out), affected_by=affected_by,
-                                  render_dir=o.render, scope=how))
+    req = request(o)
+    prep = prepare(req, out)
+    if req.fixing:
+        return _fix(o, prep, out, mode)
+    done = run_checked(prep, out, _progress(out))
+    result = done.result
     if result.reused:
         out.info("nothing changed since the last identical run: showing its result")
     if out.verbose:
         list_models(result, out)
-    from urdf_lint.core.emit import report_internal
     report_internal(result.internal)
-    if o.write_baseline:
-        return _write_baseline(o, paths, result, out)
-    from urdf_lint.cli.output import write_findings
-    write_findings(o.report(paths), cfg, result, out, mode, resolver.roots)
-    if o.coverage and (cfg.output_format or "text") not in ("json",):
-        from urdf_lint.core.emit import tell
+    if done.baseline is not None:
+        return _baseline_written(o, done, out)
+    write_findings(o.report(prep.paths), prep.cfg, result, out, mode, prep.resolver.roots)
+    if o.coverage and (prep.cfg.output_format or "text") not in ("json",):
         from urdf_lint.report.base import coverage_text
         for line in coverage_text(result):
-            tell(line)
-    _notes_after(o, result, cfg, resolver, out, named)
-    if o.exit_zero:
-        return 2 if result.internal else 0
-    from urdf_lint.run.pipeline import exit_code
-    return exit_code(result, cfg.fail_on)
-
-
-def _fix(o: CheckOptions, paths, named, cfg, resolver, affected_by, out, mode) -> int:
-    from urdf_lint.core.locations import display_path
-    from urdf_lint.cli.fix import FixRequest, check_fix
-    if named:
-        raise UsageError(
-            "--fix/--diff/--add-suppressions on a file that models include: run it on "
-            f"the folder ({safe_text(display_path(paths[0]))}), so that every fix "
-            "is checked against every model that uses the file")
-    request = FixRequest(report=o.report(paths), write_baseline=o.write_baseline,
-                         add_suppressions=o.add_suppressions, no_cache=o.no_cache,
-                         unsafe_fixes=o.unsafe_fixes, diff=o.diff, exit_zero=o.exit_zero,
-                         exit_non_zero_on_fix=o.exit_non_zero_on_fix)
-    return check_fix(request, cfg, resolver, affected_by, o.render, out, mode)
-
-
-def _write_baseline(o: CheckOptions, paths, result, out) -> int:
-    from urdf_lint.core.locations import display_path
-    from urdf_lint.engine.baseline import write_baseline
-    assert o.write_baseline is not None
-    from urdf_lint.core.findings import tally
-    write_baseline(o.write_baseline, result.findings, write_base(o.write_baseline, paths))
-    files = len({f.file for f in result.findings})
-    out.note(f"urdf-lint: wrote {tally(result.findings).phrase()} in {files} file(s) to "
-             f"{display_path(os.path.abspath(o.write_baseline))}; "
-             f"lint with --baseline {o.write_baseline} to report only new ones")
-    if o.render:
-        report_snapshots(result, o.render, out)
-    return 2 if result.internal else 0
-
-
-def _notes_after(o: CheckOptions, result, cfg, resolver, out, named) -> None:
-    """What is said after the findings: the hook's line, unused files, folders without
-    models, variants left at their defaults, the snapshots."""
+            say(line)
     if o.hook_summary:
         hook_summary(result, o.files or [])
-    note_unused(result, out, named)
+    note_unused(result, out, prep.named)
     if o.files is None and not o.changed_since:
         no_models_warning(o.paths, result, out)
-    note_variants(result, cfg, resolver, out)
-    if o.render:
-        report_snapshots(result, o.render, out)
+    note_variants(result, done.variants, out)
+    if done.snapshots is not None:
+        say_snapshots(done.snapshots, o.render, out)
+    if o.exit_zero:
+        return 2 if result.internal else 0
+    return exit_status([f.severity for f in result.findings], bool(result.internal),
+                       prep.cfg.fail_on)
 
 
-def changed_since(ref, first_path):
-    from urdf_lint.discovery.vcs import GitError, changed_files
-    cwd = first_path if os.path.isdir(first_path) else os.path.dirname(os.path.abspath(first_path))
-    try:
-        return changed_files(ref, cwd)
-    except (GitError, OSError) as e:
-        lines = [ln.strip() for ln in str(e).splitlines() if ln.strip()]
-        text = " ".join(lines).lower()
-        if "not a git repository" in text:
-            why = f"{os.path.abspath(cwd)} is not inside a git repository"
-        elif "unknown revision" in text or "bad revision" in text or "ambiguous argument" in text:
-            why = f"no commit, branch or tag named {ref!r} (try e.g. origin/main or HEAD~1)"
-        elif isinstance(e, OSError):
-            why = f"cannot run git: {e.strerror or e}"
-        else:
-            why = re.sub(r"^(fatal|error): ", "", lines[0]) if lines else "git failed"
-        raise UsageError(f"--changed-since {ref}: {why}") from None
+def _fix(o: CheckOptions, prep: Prepared, out: Out, mode: str) -> int:
+    from urdf_lint.core.locations import display_path
+    from urdf_lint.cli.fix import FixRequest, check_fix
+    if prep.named:
+        raise UsageError(
+            "--fix/--diff/--add-suppressions on a file that models include: run it on "
+            f"the folder ({safe_text(display_path(prep.paths[0]))}), so that every fix "
+            "is checked against every model that uses the file")
+    fix_request = FixRequest(report=o.report(prep.paths), write_baseline=o.write_baseline,
+                             add_suppressions=o.add_suppressions, no_cache=o.no_cache,
+                             unsafe_fixes=o.unsafe_fixes, diff=o.diff, exit_zero=o.exit_zero,
+                             exit_non_zero_on_fix=o.exit_non_zero_on_fix)
+    return check_fix(fix_request, prep, out, mode)
+
+
+def _baseline_written(o: CheckOptions, done: Checked, out: Out) -> int:
+    from urdf_lint.core.findings import tally
+    from urdf_lint.core.locations import display_path
+    assert done.baseline is not None
+    result = done.result
+    files = len({f.file for f in result.findings})
+    out.note(f"urdf-lint: wrote {tally(result.findings).phrase()} in {files} file(s) to "
+             f"{display_path(os.path.abspath(done.baseline))}; "
+             f"lint with --baseline {done.baseline} to report only new ones")
+    if done.snapshots is not None:
+        say_snapshots(done.snapshots, o.render, out)
+    return 2 if result.internal else 0
 
 
 def list_models(result, out) -> None:
@@ -253,24 +194,21 @@ def list_models(result, out) -> None:
         out.info(f"skipped: {safe_text(display_path(m.entry))} ({m.status})")
 
 
-def note_variants(result, cfg, resolver, out) -> None:
-    """One info line: the models linted with args left at defaults that select variants, and
-    how to lint the variants (``[[models]] args``)."""
+def note_variants(result, variants: dict, out) -> None:
+    """One info line: the models linted with args left at defaults that select variants
+    (``variants``, :attr:`urdf_lint.run.check.Checked.variants`), and how to lint the variants
+    (``[[models]] args``); and when the explore budget cut exploration short."""
     from urdf_lint.core.locations import display_path
-    from urdf_lint.run.pipeline import variant_args
-    explored = {c["entry"] for c in result.coverage.values()}
     cut = [c for c in result.coverage.values() if c["cut_by_budget"]]
     if cut:
         n = sum(c["cut_by_budget"] for c in cut)
         out.note(f"note: the explore budget cut exploration short: {n} variant(s) of "
                  f"{len(cut)} model(s) not linted (raise --explore-budget, or see --coverage)")
-    found = {e: v for e, v in variant_args(result.models, cfg, resolver).items()
-             if e not in explored}
-    if not found:
+    if not variants:
         return
-    entry, names = next(iter(found.items()))
+    entry, names = next(iter(variants.items()))
     shown = ", ".join(names[:4]) + (" ..." if len(names) > 4 else "")
-    more = f" and {len(found) - 1} more model(s)" if len(found) > 1 else ""
+    more = f" and {len(variants) - 1} more model(s)" if len(variants) > 1 else ""
     out.note(f"note: {safe_text(display_path(entry))}{more} linted with args at their defaults "
              f"that select variants ({safe_text(shown)}); to lint the variants, list them: "
              f"[[tool.urdf-lint.models]] path = \"{safe_text(display_path(entry))}\" "

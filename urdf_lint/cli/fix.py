@@ -4,9 +4,16 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 
+from typing import TYPE_CHECKING
+
 from urdf_lint.cli.output import FindingsOutput, write_findings
 from urdf_lint.core.emit import report_internal, say
 from urdf_lint.core.errors import UsageError
+from urdf_lint.core.findings import exit_status
+
+if TYPE_CHECKING:
+    from urdf_lint.cli.common import Out
+    from urdf_lint.run.check import Prepared
 
 
 @dataclass(frozen=True)
@@ -45,51 +52,42 @@ def _summary(outcome) -> list[str]:
     return lines
 
 
-def _add_suppressions(req: FixRequest, cfg, resolver, out, color_mode) -> int:
-    from urdf_lint.fix.addsuppress import add_suppressions
+def _add_suppressions(req: FixRequest, prep: Prepared, out: Out, color_mode: str) -> int:
     from urdf_lint.core.locations import display_path
-    from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
-    from dataclasses import replace
-    from urdf_lint.run.finish import Scope
-    paths = req.report.paths
-    request = RunRequest(paths, cfg, resolver, jobs_n=cfg.jobs)
-    result = run_check(request)   # every finding gets its comment, the baseline's too
-    if result.internal:
-        report_internal(result.internal)
-        return 2
-    n, files, _ = add_suppressions(result.findings, paths)
-    result = run_check(replace(request, scope=Scope(tuple(paths), cfg.baseline, out.note)))
+    from urdf_lint.run.check import add_suppressions
+    done = add_suppressions(prep, out)
+    result = done.result
     report_internal(result.internal)
+    if done.failed:
+        return 2
     if result.findings:
-        write_findings(req.report, cfg, result, out, color_mode, resolver.roots)
+        write_findings(req.report, prep.cfg, result, out, color_mode, prep.resolver.roots)
+    n, files = done.added, done.files
     say(f"Added {n} suppression comment{'s' if n != 1 else ''} in {len(files)} "
         f"file{'s' if len(files) != 1 else ''}")
     for f in files:
         say(f"  {display_path(f)}")
-    return exit_code(result, cfg.fail_on)
+    return _exit(result, prep.cfg.fail_on)
 
 
-def check_fix(req: FixRequest, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
-    from urdf_lint.run.fix import run_fix
-    from urdf_lint.run.pipeline import exit_code
-    if render_dir:
+def _exit(result, fail_on: str) -> int:
+    return exit_status([f.severity for f in result.findings], bool(result.internal), fail_on)
+
+
+def check_fix(req: FixRequest, prep: Prepared, out: Out, color_mode: str) -> int:
+    """``check --fix``/``--diff``/``--add-suppressions`` of a prepared run: the flags checked,
+    the work done by :mod:`urdf_lint.run.check`, what it did printed."""
+    from urdf_lint.run.check import fix
+    if prep.request.render:
         raise UsageError("--fix/--diff/--add-suppressions cannot be combined with --render")
-    if affected_by is not None:
+    if prep.affected_by is not None:
         raise UsageError("--fix/--diff/--add-suppressions lint every model (a fix must be right "
                          "for all of them); drop --changed-since")
     if req.write_baseline:
         raise UsageError("--fix/--diff cannot be combined with --write-baseline")
     if req.add_suppressions:
-        return _add_suppressions(req, cfg, resolver, out, color_mode)
-    memo = None
-    paths = req.report.paths
-    if not req.no_cache:
-        from urdf_lint.run.cache import Cache
-        from urdf_lint.fix.memo import FixMemo
-        cache = Cache.for_paths(paths, cfg)
-        memo = FixMemo(cache) if not cache.refused else None
-    outcome = run_fix(paths, cfg, resolver, jobs_n=cfg.jobs,
-                      unsafe=req.unsafe_fixes, diff_only=req.diff, memo=memo, note=out.note)
+        return _add_suppressions(req, prep, out, color_mode)
+    outcome = fix(prep, out, unsafe=req.unsafe_fixes, diff_only=req.diff)
     report_internal(outcome.result.internal)
     if req.diff:
         sys.stdout.write(outcome.diff)
@@ -99,12 +97,12 @@ def check_fix(req: FixRequest, cfg, resolver, affected_by, render_dir, out, colo
         if outcome.result.internal:
             return 2
         return 1 if outcome.diff else 0
-    write_findings(req.report, cfg, outcome.result, out, color_mode, resolver.roots)
+    write_findings(req.report, prep.cfg, outcome.result, out, color_mode, prep.resolver.roots)
     for line in _summary(outcome):   # also with -q: what --fix did to the sources
         say(line)
     if req.exit_zero:
         return 2 if outcome.result.internal else 0
-    code = exit_code(outcome.result, cfg.fail_on)
+    code = _exit(outcome.result, prep.cfg.fail_on)
     if code == 0 and req.exit_non_zero_on_fix and outcome.changed_files:
         return 1
     return code

@@ -8,19 +8,7 @@ from dataclasses import dataclass, field
 
 from urdf_lint.core.emit import safe_lines
 from urdf_lint.core.errors import UsageError
-
-
-def write_base(target, paths) -> str:
-    """The folder a write to ``target`` (named on the command line) is checked from
-    (:func:`urdf_lint.core.fsbound.output_base`): the repository of the linted paths (their
-    folder outside git) or the git work tree of the working directory when ``target`` is in
-    one, else the nearest existing folder above it (the user's own, as named)."""
-    from urdf_lint.core import fsbound
-    from urdf_lint.discovery.discover import start_dir
-    from urdf_lint.discovery.vcs import git_root, repo_root
-    repos: list[str | None] = [repo_root(start_dir(paths))] if paths else []
-    repos.append(git_root(os.getcwd()))
-    return fsbound.output_base(target, repos)
+from urdf_lint.run.check import write_base as write_base
 
 
 @dataclass(frozen=True)
