@@ -211,3 +211,50 @@ def test_diff_shows_a_change_inside_a_branch_the_defaults_do_not_take(tmp_path):
     assert len(new) == 1 and "mass -3" in new[0] and new[0].endswith("(only with sim:=true)"), m
     [gone] = [x["message"] for x in m["findings_fixed"]]
     assert "mass -1" in gone and gone.endswith("(only with sim:=true)"), m
+
+
+def test_explore_keys_per_models_entry(tmp_path):
+    """``explore`` and ``explore-args`` in a ``[[models]]`` entry apply to that model only,
+    over the config's ``explore-args`` arg by arg."""
+    files = dict(FILES)
+    files["urdf/other.urdf.xacro"] = ROBOT.replace('name="r"', 'name="o"')
+    files["pyproject.toml"] = """[tool.urdf-lint]
+explore-args = {gripper = []}
+
+[[tool.urdf-lint.models]]
+path = "urdf/robot.urdf.xacro"
+explore-args = {sim = [], camera = ["d455"]}
+
+[[tool.urdf-lint.models]]
+path = "urdf/other.urdf.xacro"
+explore = false
+"""
+    pkg = make_package(tmp_path, "robot", files)
+    doc = _check(pkg)
+    labels = {f["message"].rpartition("(only with ")[2] for f in doc["findings"]
+              if "(only with" in f["message"] and f["file"].endswith(FILE)}
+    assert "camera:=d455)" in labels and "size:=big)" in labels, labels
+    assert not any(x.startswith(("sim:=", "gripper:=")) or "camera:=d435" in x
+                   for x in labels), labels
+    assert not [f for f in doc["findings"] if f["file"].endswith("other.urdf.xacro")
+                and "(only with" in f["message"]]
+    [cov] = doc["coverage"]    # the other model is not explored
+    assert cov["entry"].endswith(FILE)
+    whys = {r["line"]: r["why"] for r in cov["not_taken"]}
+    assert whys[16] == whys[23] == "its args are fixed", whys
+
+
+def test_a_bad_explore_key_in_a_models_entry_is_a_config_error(tmp_path):
+    from urdf_lint.config.schema import ConfigError, load_config
+    (tmp_path / "r.xacro").write_text("<robot/>")
+    for bad, said in (('explore = "no"', "(expected 'explore' to be true or false)"),
+                      ('explore-args = {sim = "true"}', "(expected 'explore-args' to be a list"),
+                      ('explor = false', "(did you mean 'explore'?)")):
+        cfg = tmp_path / "urdf-lint.toml"
+        cfg.write_text(f'[[models]]\npath = "r.xacro"\n{bad}\n')
+        try:
+            load_config(cfg)
+        except ConfigError as e:
+            assert said in str(e), str(e)
+        else:
+            raise AssertionError(f"accepted: {bad}")

@@ -204,11 +204,13 @@ def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver"
     """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
     coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
     from urdf_lint.run import explore
-    plans = explore.plan(cfg, out.models, found.graph, resolver)
-    jobs = explore.select(plans, cfg.explore_budget, len(out.models))
-    reports, internal = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process) \
-        if jobs else ([], [])
-    out.coverage = explore.merge(plans, reports)
+    internal: list[str] = []
+
+    def lint(jobs: list[LintJob]) -> list[ModelReport]:
+        reports, errors = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process)
+        internal.extend(errors)
+        return reports
+    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint)
     return reports, internal
 
 
