@@ -258,3 +258,22 @@ def test_a_bad_explore_key_in_a_models_entry_is_a_config_error(tmp_path):
             assert said in str(e), str(e)
         else:
             raise AssertionError(f"accepted: {bad}")
+
+
+def test_statistics_give_the_branches_taken_per_model_in_text_and_json(tmp_path):
+    pkg = make_package(tmp_path, "robot", FILES)
+    text = run_cli("check", ".", "--no-cache", "--statistics", cwd=pkg).stdout
+    doc = _check(pkg, "--statistics", coverage=False)
+    (row,) = [r for r in doc if "model" in r]
+    [cov] = _check(pkg)["coverage"]
+    assert row == {"model": cov["model"], "entry": "urdf/robot.urdf.xacro",
+                   "branches": cov["branches"], "taken": cov["taken"],
+                   "taken_at_defaults": cov["taken_at_defaults"],
+                   "variants": len(cov["variants"]), "cut_by_budget": 0}
+    assert row["taken_at_defaults"] < row["taken"] == row["branches"] - 1
+    assert (f"branches {row['taken']}/{row['branches']} taken ({row['taken_at_defaults']} at "
+            f"the defaults, {row['variants']} variant(s)): {cov['model']}") in text, text
+    # the counts per rule stay as they were, first
+    assert all("code" in r and "count" in r for r in doc[:-1])
+    off = _check(pkg, "--statistics", "--explore", "false", coverage=False)
+    assert not [r for r in off if "model" in r]
