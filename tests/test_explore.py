@@ -277,3 +277,43 @@ def test_statistics_give_the_branches_taken_per_model_in_text_and_json(tmp_path)
     assert all("code" in r and "count" in r for r in doc[:-1])
     off = _check(pkg, "--statistics", "--explore", "false", coverage=False)
     assert not [r for r in off if "model" in r]
+
+
+def _git(*args, cwd):
+    import subprocess
+    subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *args], cwd=cwd,
+                   check=True, capture_output=True)
+
+
+def test_a_change_only_an_explored_variant_reads_relints_its_model(tmp_path):
+    """``--changed-since`` and the hook: the only changed file is the hand ``hand:=fancy``
+    includes, or a file included inside a branch the defaults leave out; its model is linted
+    (explored), not reported as a file no model uses."""
+    files = dict(FILES)
+    files[FILE] = ROBOT.replace('  <xacro:if value="false">', '''  <xacro:if value="$(arg sim)">
+    <xacro:include filename="gazebo.xacro"/>
+  </xacro:if>
+  <xacro:if value="false">''')
+    files["urdf/gazebo.xacro"] = f'<?xml version="1.0"?>\n<robot {X}/>\n'
+    pkg = make_package(tmp_path, "robot", files)
+    _git("init", "-q", cwd=pkg)
+    _git("add", "-A", cwd=pkg)
+    _git("commit", "-qm", "init", cwd=pkg)
+    fancy = pkg / "urdf/hands/fancy.xacro"
+    fancy.write_text(fancy.read_text().replace("hand_j", "hand_joint"))
+    doc = _check(pkg, "--changed-since", "HEAD", coverage=False)
+    assert [m["entry"] for m in doc["models"]] == [FILE]
+    hand = [f for f in doc["findings"] if f["file"].endswith("hands/fancy.xacro")]
+    assert [(f["code"], f["message"].endswith("(only with hand:=fancy)")) for f in hand] == \
+        [("UL103", True)], hand
+    p = run_cli("hook", "--", "urdf/hands/fancy.xacro", cwd=pkg)
+    assert p.returncode == 1 and "hand_joint" in p.stdout, (p.stdout, p.stderr)
+    assert "is not used by any model" not in p.stderr, p.stderr
+    _git("checkout", "-q", "--", ".", cwd=pkg)
+    (pkg / "urdf/gazebo.xacro").write_text(
+        f'<?xml version="1.0"?>\n<robot {X}>\n  <link name="gz"/>\n</robot>\n')
+    doc = _check(pkg, "--changed-since", "HEAD", coverage=False)
+    assert [m["entry"] for m in doc["models"]] == [FILE]
+    # the model's branch findings come with it; with exploration off it is not linted
+    off = _check(pkg, "--changed-since", "HEAD", "--explore", "false", coverage=False)
+    assert off["models"] == []

@@ -93,12 +93,10 @@ def explore(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
 
 def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) -> list[ModelPlan]:
     """A plan for every explored model (see the module's doc)."""
-    from urdf_lint.discovery import branches as br
     plans = []
     for entry, base in sorted(explored_models(cfg, models).items()):
-        files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
-        a = br.analyse(files, resolver)
-        p = ModelPlan(entry, base, a)
+        p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver))
+        a = p.analysis
         given = explore_args(cfg, entry)
         listed = {k: list(v) for k, v in given.items()}
         for r in base:
@@ -113,6 +111,35 @@ def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) ->
         p.variants = _variants(p, values)
         plans.append(p)
     return plans
+
+
+def _analysis(entry: str, base: list[ModelReport], graph: Any, resolver: Any) -> "Analysis":
+    """The branches of the model ``entry``, from its sources: the include graph's files from
+    it, and what its reports read."""
+    from urdf_lint.discovery import branches as br
+    files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
+    return br.analyse(files, resolver)
+
+
+def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
+                   resolver: Any) -> dict[str, set[str]]:
+    """entry -> the files an explored variant of the model may read (``--changed-since``, the
+    hook: a change to one of them re-lints the model): every file the include graph reaches
+    from it (an include inside a branch its args leave out), every file a path built from an
+    arg not fixed by ``explore-args`` may name, and what those include. Read from the sources,
+    as :func:`plan` reads them; a superset of what the variants will read."""
+    out = {}
+    for entry, base in explored_models(cfg, models).items():
+        a = _analysis(entry, base, graph, resolver)
+        fixed = {k for k, v in explore_args(cfg, entry).items() if not v}
+        files = set(_closure(entry, graph))
+        for ch in a.choices:
+            if ch.arg not in fixed:
+                for path in ch.values.values():
+                    files.add(path)
+                    files.update(_closure(path, graph))
+        out[entry] = files
+    return out
 
 
 def _closure(entry: str, graph: Any) -> list[str]:
