@@ -242,6 +242,12 @@ explore = false
     assert cov["entry"].endswith(FILE)
     whys = {r["line"]: r["why"] for r in cov["not_taken"]}
     assert whys[16] == whys[23] == "its args are fixed", whys
+    # the command line wins over the entry for the args it names
+    doc = _check(pkg, "--explore-arg", "camera=d435")
+    labels = {f["message"].rpartition("(only with ")[2] for f in doc["findings"]
+              if "(only with" in f["message"] and f["file"].endswith(FILE)}
+    assert "camera:=d435)" in labels and "camera:=d455)" not in labels, labels
+    assert not any(x.startswith("sim:=") for x in labels), labels
 
 
 def test_a_bad_explore_key_in_a_models_entry_is_a_config_error(tmp_path):

@@ -903,6 +903,9 @@ def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line")
                               f"(expected {e.expected})") from None
         if key.cli_merge == "extend":
             value = list(getattr(cfg, key.attr)) + value
+        if name == "explore-args":   # the command line's args win over a [[models]] entry's
+            for m in cfg.models:
+                m.explore_args = {k: v for k, v in m.explore_args.items() if k not in value}
         setattr(cfg, key.attr, value)
     return cfg
 
