@@ -3,7 +3,6 @@ args leave out is published as a diagnostic labelled with the args that reach it
 ``check`` labels it), once, after the defaults' diagnostics (docs/coverage.md)."""
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
@@ -14,9 +13,7 @@ from lsprotocol import types  # noqa: E402
 
 from support import lsp_client  # noqa: E402
 from support.lsp_client import diagnostics_for, open_doc  # noqa: E402
-
-sys.path.insert(0, str(Path(__file__).parent / "lsp"))
-from test_explore_diagnostics import ROBOT  # noqa: E402
+from support.lsp_workspace import BRANCHY as ROBOT  # noqa: E402
 
 aio = pytest.mark.asyncio(loop_scope="function")
 LSP_WORKSPACE = "pkg"
@@ -41,7 +38,7 @@ async def test_a_defect_in_an_unexplored_branch_is_published_labelled_once(clien
     (neg,) = [d for d in ds if d.code == "UL602"]
     assert (neg.range.start.line, neg.message.endswith("(only with sim:=true)")) == (6, True)
     grip = [d for d in ds if d.code == "UL103"]
-    assert [d.range.start.line for d in grip] == [10], grip
+    assert [d.range.start.line for d in grip] == [11], grip
     assert grip[0].message.endswith("(only with gripper:=robotiq)")
     assert len({(d.code, d.range.start.line, d.message) for d in ds}) == len(ds)
     # an edit inside the branch (unsaved): linted again, the defect gone, the other kept
@@ -51,4 +48,4 @@ async def test_a_defect_in_an_unexplored_branch_is_published_labelled_once(clien
             text=ROBOT.replace('<mass value="-1"/>', '<mass value="1"/>'))]))
     ds = await diagnostics_for(client, uri, lambda ds: not any(d.code == "UL602" for d in ds)
                                and any(d.code == "UL103" for d in ds), timeout=90.0)
-    assert [d.range.start.line for d in ds if d.code == "UL103"] == [10]
+    assert [d.range.start.line for d in ds if d.code == "UL103"] == [11]

@@ -5,25 +5,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from lsp_workspace import X, editor  # noqa: F401 (the fixture)
-from test_explore import INERTIAL
+from lsp_workspace import BRANCHY as ROBOT, editor  # noqa: F401 (the fixture)
 
 from urdf_lint.lsp.methods import diagnostics
 
-ROBOT = f"""<?xml version="1.0"?>
-<robot name="r" {X}>
-  <xacro:arg name="sim" default="false"/>
-  <xacro:arg name="gripper" default="none"/>
-  <link name="base"/>
-  <xacro:if value="$(arg sim)">
-    <link name="sim_link">{INERTIAL.format(m=-1)}</link>
-    <joint name="sim_j" type="fixed"><parent link="base"/><child link="sim_link"/></joint>
-  </xacro:if>
-  <xacro:if value="${{'$(arg gripper)' == 'robotiq'}}">
-    <joint name="grip_j" type="fixed"><parent link="base"/><child link="no_grip"/></joint>
-  </xacro:if>
-</robot>
-"""
 
 
 def _diags(ed, name="robot.urdf.xacro"):
@@ -45,7 +30,7 @@ def test_a_defect_in_a_branch_the_defaults_leave_out_is_a_labelled_diagnostic(ed
     (neg,) = [m for c, _, m in got if c == "UL602"]
     assert neg.endswith("(only with sim:=true)"), neg
     (grip,) = [(line, m) for c, line, m in got if c == "UL103"]
-    assert grip[0] == 10 and grip[1].endswith("(only with gripper:=robotiq)"), grip
+    assert grip[0] == 11 and grip[1].endswith("(only with gripper:=robotiq)"), grip
     # a finding the defaults have (base has no inertial) is not repeated per variant
     assert [d for d in got if d[0] == "UL601" and "'base'" in d[2]] == \
         [d for d in defaults if d[0] == "UL601" and "'base'" in d[2]]
