@@ -170,6 +170,8 @@ E2E_FILES = {"test_server.py": "the language server runs as a subprocess (pytest
              "test_consumers.py": "MuJoCo, Pinocchio and PyBullet load each model in a subprocess",
              "test_lsp_preview.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
              "test_srdf_server.py": "the language server runs as a subprocess (pytest-lsp's fixture)",
+             "test_server_explore.py": "the language server runs as a subprocess (pytest-lsp's "
+                                       "fixture)",
              "test_preview.py": "the preview lints in sandboxed workers and serves over HTTP",
              "test_preview_browser.py": "headless Chromium loads the preview and review pages",
              "test_consumer_verdicts.py": "the consumer harness (bench/consumers) runs each "

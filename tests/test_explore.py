@@ -211,3 +211,115 @@ def test_diff_shows_a_change_inside_a_branch_the_defaults_do_not_take(tmp_path):
     assert len(new) == 1 and "mass -3" in new[0] and new[0].endswith("(only with sim:=true)"), m
     [gone] = [x["message"] for x in m["findings_fixed"]]
     assert "mass -1" in gone and gone.endswith("(only with sim:=true)"), m
+
+
+def test_explore_keys_per_models_entry(tmp_path):
+    """``explore`` and ``explore-args`` in a ``[[models]]`` entry apply to that model only,
+    over the config's ``explore-args`` arg by arg."""
+    files = dict(FILES)
+    files["urdf/other.urdf.xacro"] = ROBOT.replace('name="r"', 'name="o"')
+    files["pyproject.toml"] = """[tool.urdf-lint]
+explore-args = {gripper = []}
+
+[[tool.urdf-lint.models]]
+path = "urdf/robot.urdf.xacro"
+explore-args = {sim = [], camera = ["d455"]}
+
+[[tool.urdf-lint.models]]
+path = "urdf/other.urdf.xacro"
+explore = false
+"""
+    pkg = make_package(tmp_path, "robot", files)
+    doc = _check(pkg)
+    labels = {f["message"].rpartition("(only with ")[2] for f in doc["findings"]
+              if "(only with" in f["message"] and f["file"].endswith(FILE)}
+    assert "camera:=d455)" in labels and "size:=big)" in labels, labels
+    assert not any(x.startswith(("sim:=", "gripper:=")) or "camera:=d435" in x
+                   for x in labels), labels
+    assert not [f for f in doc["findings"] if f["file"].endswith("other.urdf.xacro")
+                and "(only with" in f["message"]]
+    [cov] = doc["coverage"]    # the other model is not explored
+    assert cov["entry"].endswith(FILE)
+    whys = {r["line"]: r["why"] for r in cov["not_taken"]}
+    assert whys[16] == whys[23] == "its args are fixed", whys
+    # the command line wins over the entry for the args it names
+    doc = _check(pkg, "--explore-arg", "camera=d435")
+    labels = {f["message"].rpartition("(only with ")[2] for f in doc["findings"]
+              if "(only with" in f["message"] and f["file"].endswith(FILE)}
+    assert "camera:=d435)" in labels and "camera:=d455)" not in labels, labels
+    assert not any(x.startswith("sim:=") for x in labels), labels
+
+
+def test_a_bad_explore_key_in_a_models_entry_is_a_config_error(tmp_path):
+    from urdf_lint.config.schema import ConfigError, load_config
+    (tmp_path / "r.xacro").write_text("<robot/>")
+    for bad, said in (('explore = "no"', "(expected 'explore' to be true or false)"),
+                      ('explore-args = {sim = "true"}', "(expected 'explore-args' to be a list"),
+                      ('explor = false', "(did you mean 'explore'?)")):
+        cfg = tmp_path / "urdf-lint.toml"
+        cfg.write_text(f'[[models]]\npath = "r.xacro"\n{bad}\n')
+        try:
+            load_config(cfg)
+        except ConfigError as e:
+            assert said in str(e), str(e)
+        else:
+            raise AssertionError(f"accepted: {bad}")
+
+
+def test_statistics_give_the_branches_taken_per_model_in_text_and_json(tmp_path):
+    pkg = make_package(tmp_path, "robot", FILES)
+    text = run_cli("check", ".", "--no-cache", "--statistics", cwd=pkg).stdout
+    doc = _check(pkg, "--statistics", coverage=False)
+    (row,) = [r for r in doc if "model" in r]
+    [cov] = _check(pkg)["coverage"]
+    assert row == {"model": cov["model"], "entry": "urdf/robot.urdf.xacro",
+                   "branches": cov["branches"], "taken": cov["taken"],
+                   "taken_at_defaults": cov["taken_at_defaults"],
+                   "variants": len(cov["variants"]), "cut_by_budget": 0}
+    assert row["taken_at_defaults"] < row["taken"] == row["branches"] - 1
+    assert (f"branches {row['taken']}/{row['branches']} taken ({row['taken_at_defaults']} at "
+            f"the defaults, {row['variants']} variant(s)): {cov['model']}") in text, text
+    # the counts per rule stay as they were, first
+    assert all("code" in r and "count" in r for r in doc[:-1])
+    off = _check(pkg, "--statistics", "--explore", "false", coverage=False)
+    assert not [r for r in off if "model" in r]
+
+
+def _git(*args, cwd):
+    import subprocess
+    subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", *args], cwd=cwd,
+                   check=True, capture_output=True)
+
+
+def test_a_change_only_an_explored_variant_reads_relints_its_model(tmp_path):
+    """``--changed-since`` and the hook: the only changed file is the hand ``hand:=fancy``
+    includes, or a file included inside a branch the defaults leave out; its model is linted
+    (explored), not reported as a file no model uses."""
+    files = dict(FILES)
+    files[FILE] = ROBOT.replace('  <xacro:if value="false">', '''  <xacro:if value="$(arg sim)">
+    <xacro:include filename="gazebo.xacro"/>
+  </xacro:if>
+  <xacro:if value="false">''')
+    files["urdf/gazebo.xacro"] = f'<?xml version="1.0"?>\n<robot {X}/>\n'
+    pkg = make_package(tmp_path, "robot", files)
+    _git("init", "-q", cwd=pkg)
+    _git("add", "-A", cwd=pkg)
+    _git("commit", "-qm", "init", cwd=pkg)
+    fancy = pkg / "urdf/hands/fancy.xacro"
+    fancy.write_text(fancy.read_text().replace("hand_j", "hand_joint"))
+    doc = _check(pkg, "--changed-since", "HEAD", coverage=False)
+    assert [m["entry"] for m in doc["models"]] == [FILE]
+    hand = [f for f in doc["findings"] if f["file"].endswith("hands/fancy.xacro")]
+    assert [(f["code"], f["message"].endswith("(only with hand:=fancy)")) for f in hand] == \
+        [("UL103", True)], hand
+    p = run_cli("hook", "--", "urdf/hands/fancy.xacro", cwd=pkg)
+    assert p.returncode == 1 and "hand_joint" in p.stdout, (p.stdout, p.stderr)
+    assert "is not used by any model" not in p.stderr, p.stderr
+    _git("checkout", "-q", "--", ".", cwd=pkg)
+    (pkg / "urdf/gazebo.xacro").write_text(
+        f'<?xml version="1.0"?>\n<robot {X}>\n  <link name="gz"/>\n</robot>\n')
+    doc = _check(pkg, "--changed-since", "HEAD", coverage=False)
+    assert [m["entry"] for m in doc["models"]] == [FILE]
+    # the model's branch findings come with it; with exploration off it is not linted
+    off = _check(pkg, "--changed-since", "HEAD", "--explore", "false", coverage=False)
+    assert off["models"] == []

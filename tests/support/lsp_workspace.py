@@ -39,6 +39,23 @@ SHORT = f"""<?xml version="1.0"?>
 </robot>
 """
 
+# issue 39: a defect behind a boolean arg and one behind a compared literal, none at the defaults
+BRANCHY = f"""<?xml version="1.0"?>
+<robot name="r" {X}>
+  <xacro:arg name="sim" default="false"/>
+  <xacro:arg name="gripper" default="none"/>
+  <link name="base"/>
+  <xacro:if value="$(arg sim)">
+    <link name="sim_link"><inertial><mass value="-1"/><inertia ixx="1e-3" ixy="0" ixz="0"
+      iyy="2e-3" iyz="0" izz="3e-3"/></inertial></link>
+    <joint name="sim_j" type="fixed"><parent link="base"/><child link="sim_link"/></joint>
+  </xacro:if>
+  <xacro:if value="${{'$(arg gripper)' == 'robotiq'}}">
+    <joint name="grip_j" type="fixed"><parent link="base"/><child link="no_grip"/></joint>
+  </xacro:if>
+</robot>
+"""
+
 
 class Editor:
     """The language server's services over a package written from strings; ``open`` makes a

@@ -228,12 +228,19 @@ class Models(Type):
         for m in v:
             if not isinstance(m, dict) or not isinstance(m.get("path"), str):
                 raise _Bad("each [[models]] entry to have a string 'path'", m)
-            fields = ("path", "args", "output", "mesh-base", "srdf", "controllers", "joint-limits")
+            fields = ("path", "args", "output", "mesh-base", "srdf", "controllers", "joint-limits",
+                      "explore", "explore-args")
             extra = set(m) - set(fields)
             if extra:
-                raise _Bad("only 'path', 'args', 'output', 'mesh-base', 'srdf', 'controllers' "
-                           "and 'joint-limits' in a [[models]] entry"
+                raise _Bad("only 'path', 'args', 'output', 'mesh-base', 'srdf', 'controllers', "
+                           "'joint-limits', 'explore' and 'explore-args' in a [[models]] entry"
                            + did_you_mean(sorted(extra)[0], fields), m)
+            if not isinstance(m.get("explore", True), bool):
+                raise _Bad("'explore' to be true or false", m)
+            try:
+                explore_args = ArgValues().check(m.get("explore-args", {}))
+            except _Bad as e:
+                raise _Bad(f"'explore-args' to be {e.expected}", m) from None
             for k in ("output", "mesh-base", "srdf", "joint-limits"):
                 if k in m and (not isinstance(m[k], str) or not m[k]):
                     raise _Bad(f"'{k}' to be a path", m)
@@ -251,7 +258,8 @@ class Models(Type):
             out.append({"path": m["path"], "args": [{k: str(x) for k, x in a.items()} for a in args],
                         "output": m.get("output"), "mesh-base": m.get("mesh-base"),
                         "srdf": m.get("srdf"), "controllers": ctl,
-                        "joint-limits": m.get("joint-limits")})
+                        "joint-limits": m.get("joint-limits"), "explore": m.get("explore"),
+                        "explore-args": explore_args})
         return out
 
 
@@ -534,6 +542,9 @@ class ModelSpec:
     srdf: str | None = None         # absolute: the SRDF (or .srdf.xacro) of this robot
     controllers: list[str] = field(default_factory=list)  # absolute: its controller YAML
     joint_limits: str | None = None  # absolute: MoveIt's joint_limits.yaml for it
+    # branch exploration of this model (docs/coverage.md): False: none; None: as the config
+    explore: bool | None = None
+    explore_args: dict[str, list[str]] = field(default_factory=dict)   # over explore-args
 
 
 def _default(name: str) -> Any:
@@ -791,7 +802,8 @@ def _set(cfg: Config, key: Key, value: Any, base: Path, text: str | None = None)
         specs = []
         for n, m in enumerate(value):
             spec = ModelSpec(path=str((base / m["path"]).resolve()), arg_sets=m["args"],
-                             arg_places=_arg_places(cfg, n, m["args"], text))
+                             arg_places=_arg_places(cfg, n, m["args"], text),
+                             explore=m.get("explore"), explore_args=m.get("explore-args") or {})
             for k in ("output", "mesh-base", "srdf", "joint-limits"):
                 if m.get(k):
                     setattr(spec, k.replace("-", "_"), str((base / m[k]).resolve()))
@@ -891,6 +903,9 @@ def apply_cli(cfg: Config, values: dict[str, Any], source: str = "command line")
                               f"(expected {e.expected})") from None
         if key.cli_merge == "extend":
             value = list(getattr(cfg, key.attr)) + value
+        if name == "explore-args":   # the command line's args win over a [[models]] entry's
+            for m in cfg.models:
+                m.explore_args = {k: v for k, v in m.explore_args.items() if k not in value}
         setattr(cfg, key.attr, value)
     return cfg
 

@@ -12,6 +12,12 @@ replaced: ``WorkerPool.run``'s ``stop``), and nothing it computed is published. 
 pause in typing (:data:`DEBOUNCE_S`) the files changed are linted, the edited file's own
 model first (its diagnostics are published at once), the other models it reaches after, then
 the models not linted yet.
+
+**Explored variants** (docs/coverage.md) come last: once the models' own diagnostics are
+published, the variants that take the branches their args leave out are linted through
+``check``'s own path (:meth:`Workspace.explore`, within ``explore-budget``) and the
+diagnostics published again, a finding only a variant has labelled ``(only with a:=x)``. A
+change stops that lint like any other.
 """
 from __future__ import annotations
 
@@ -105,13 +111,29 @@ class UrdfLintServer(LanguageServer):
                     self.dirty = again
                 continue
             rest = self.ws.unlinted()
-            if not rest:
-                return
-            versions = self.versions()
-            files = await self._run(rest, self.generation)
-            if files is not None:
+            if rest:
+                versions = self.versions()
+                files = await self._run(rest, self.generation)
+                if files is None:
+                    continue
                 self.publish(files | set(self.ws.buffers), versions)
+            if await self._explore():
                 return
+
+    async def _explore(self) -> bool:
+        """Lint the explored variants not held yet and publish what they change; False when a
+        change newer than the models' lint came first (nothing of it was published)."""
+        ws = self.ws
+        if ws is None or not ws.explores():
+            return True
+        gen, versions = self.generation, self.versions()
+        files = await asyncio.get_running_loop().run_in_executor(
+            self.executor, ws.explore, lambda: self.generation != gen)
+        if files is None or self.generation != gen:
+            return False
+        if files:
+            self.publish(files | set(ws.buffers), versions)
+        return True
 
     async def _lint_changed(self, paths: list[str]) -> bool:
         """Lint what ``paths`` reach, the last one's own model first; False when a newer
@@ -161,6 +183,7 @@ class UrdfLintServer(LanguageServer):
         files = await self._run(None, gen)
         if files is not None:
             self.publish(files | set(extra) | set(ws.buffers), versions)
+            await self._explore()
 
     # -- publishing ------------------------------------------------------------------------
     def publish(self, files: Iterable[str], versions: dict[str, int | None] | None = None

@@ -105,6 +105,9 @@ class Workspace:
         self.jobs: list[LintJob] = []
         # what each job was when last linted (kept when its report is forgotten)
         self.last_status: dict[tuple[str, tuple[tuple[str, str], ...]], Status] = {}
+        # the explored variants' reports (run.explore, as check's), by job_key: linted after
+        # the models' own (:meth:`explore`), forgotten with their model's report
+        self.variants: dict[tuple[str, tuple[tuple[str, str], ...]], ModelReport] = {}
         self.load()
 
     # -- set-up ----------------------------------------------------------------------------
@@ -148,7 +151,7 @@ class Workspace:
         self.jobs, self.graph, self.fragments = found.jobs, found.graph, found.fragments
         self.generated, self.discovery_problems = dict(found.generated), list(found.problems)
         self.explicit = {j.entry for j in self.jobs if j.explicit}
-        self.reports, self.last_good = {}, {}
+        self.reports, self.last_good, self.variants = {}, {}, {}
         self.pool = self._linter()
 
     def _linter(self) -> Linter:
@@ -179,8 +182,12 @@ class Workspace:
         """Drop the reports of ``jobs`` (made from older text): until they are linted again,
         their findings are not shown (a partial result holds only what is current)."""
         with self.lock:
+            entries = set()
             for job in jobs:
                 self.reports.pop(job_key(job), None)
+                entries.add(job.entry)
+            for k in [k for k, r in self.variants.items() if r.entry in entries]:
+                del self.variants[k]
 
     def close(self) -> None:
         if self.pool is not None:
@@ -221,10 +228,13 @@ class Workspace:
         # the graph (or an include only expansion resolves); anything else (a YAML file): any
         known = path.endswith(".xacro") and path in self.graph.includes
         includers = set(self.graph.includers(path)) if known else set()
+        # a file only an explored variant reads (an include an arg chooses)
+        explored = {r.entry for r in list(self.variants.values())
+                    if path in r.deps or path in r.missing}
         out = []
         for job in self.jobs:
             r = self.reports.get(job_key(job))
-            if job.entry == path:
+            if job.entry == path or job.entry in explored:
                 out.append(job)
             elif r is None:
                 if not known or job.entry in includers or \
@@ -275,18 +285,74 @@ class Workspace:
             self.findings = self._finish()
             return before | {f.file for f in self.findings}
 
+    def explores(self) -> bool:
+        """Whether the models' variants are explored (``explore``, ``explore-budget``: the
+        config as ``check`` reads it)."""
+        return bool(self.cfg.explore and self.cfg.explore_budget > 0)
+
+    def explore(self, stop: Callable[[], bool] | None = None) -> set[str] | None:
+        """Lint the variants that take the branches the models held leave out, through
+        ``check``'s own path (:func:`urdf_lint.run.explore.explore`: plan, budget, merge), the
+        variants not held yet in the pool with the open buffers. Returns the files whose
+        findings may have changed (empty: nothing new to lint), or None when ``stop()``
+        turned true first."""
+        if not self.explores():
+            return set()
+        from urdf_lint.core import overlay
+        from urdf_lint.run.explore import explore
+        with self.lock:
+            buffers = tuple(sorted(self.buffers.items()))
+            linted: list[ModelReport] = []
+
+            def lint(jobs: list[LintJob]) -> list[ModelReport]:
+                todo = [replace(j, overlay=buffers) for j in jobs
+                        if job_key(j) not in self.variants]
+                assert self.pool is not None, "load() makes the pool"
+                for job, rep in self.pool.run(todo, stop) if todo else ():
+                    self.variants[job_key(job)] = rep
+                    linted.append(rep)
+                return []   # (merged by _finish, into the reports it holds)
+            with overlay.using(self.buffers):
+                explore(self.cfg, self._models(), self.graph, self.resolver, lint)
+            if stop is not None and stop():
+                return None
+            if not linted:
+                return set()
+            before = {f.file for f in self.findings}
+            self.findings = self._finish()
+            return before | {f.file for f in self.findings}
+
+    def _models(self) -> list[ModelReport]:
+        """Copies of the models' reports held (a fragment decided again over them), which
+        :meth:`_finish` may add to (the explored variants' findings and files)."""
+        from urdf_lint.run.finish import split_models
+        import copy
+        reports = []
+        for r in list(self.reports.values()):
+            r = copy.copy(r)
+            r.problems, r.deps = list(r.problems), list(r.deps)
+            if r.directive_files is not None:
+                r.directive_files = list(r.directive_files)
+            if r.status is Status.FRAGMENT:
+                r.status = Status.MODEL   # (decided again below, over the reports held now)
+            reports.append(r)
+        models, _ = split_models(reports, self.explicit, self.fragments)
+        return models
+
     def _finish(self) -> list[Problem]:
         """What ``check`` would report from the reports held: the models' findings, the
         run-scope rules over every model held, and discovery's own (the config's args)."""
         from urdf_lint.core import overlay
-        from urdf_lint.run.finish import Scope, finish, scope, split_models
-        import copy
-        reports = [copy.copy(r) for r in self.reports.values()]
-        for r in reports:
-            if r.status is Status.FRAGMENT:
-                r.status = Status.MODEL   # (decided again below, over the reports held now)
-        models, _ = split_models(reports, self.explicit, self.fragments)
+        from urdf_lint.run.finish import Scope, finish, scope
+        models = self._models()
         with overlay.using(self.buffers):   # suppression comments of the unsaved buffers
+            if self.variants and self.explores():
+                # what only a variant found, labelled once (check's merge); a variant not
+                # held (not linted yet, or forgotten) adds nothing
+                from urdf_lint.run.explore import explore
+                held = self.variants
+                explore(self.cfg, models, self.graph, self.resolver,
+                        lambda jobs: [held[k] for j in jobs for k in [job_key(j)] if k in held])
             final = finish(models, self.discovery_problems, self.settings, self.policy,
                            self.generated)
         # the end check gives: the fixes check --fix would refuse (an edit outside the

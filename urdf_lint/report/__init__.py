@@ -33,7 +33,8 @@ JSON schema (``--format json``), version 1::
       "summary": {"models": int, "errors": int, "warnings": int, "info": int}
     }
 
-With ``--statistics``, ``--format json`` prints ``[{"code", "name", "severity", "count"}]``.
+With ``--statistics``, ``--format json`` prints ``[{"code", "name", "severity", "count"}]``,
+then one ``{"model", "entry", "branches", "taken", ...}`` per explored model with branches.
 
 May import: ``core`` (the rooms below it, ``[tool.importlinter]`` in pyproject.toml; never a
 room above).

@@ -54,7 +54,16 @@ class JsonFormatter(BaseFormatter):
         self.stream.write("\n")
 
     def statistics(self, result: Outcome) -> None:
+        """The count per rule, then (when exploration ran) one row per model that has
+        branches: ``{"model", "entry", "branches", "taken", "taken_at_defaults", "variants",
+        "cut_by_budget"}`` (the text's ``branches N/M taken`` lines)."""
         result = grouped(result)
-        json.dump([{"code": code, "name": name, "severity": sev, "count": n}
-                   for (code, name, sev), n in counts(result)], self.stream, indent=2)
+        rows: list[dict[str, Any]] = [{"code": code, "name": name, "severity": sev, "count": n}
+                                      for (code, name, sev), n in counts(result)]
+        rows += [{"model": c["model"], "entry": display_path(c["entry"]),
+                  "branches": c["branches"], "taken": c["taken"],
+                  "taken_at_defaults": c["taken_at_defaults"], "variants": len(c["variants"]),
+                  "cut_by_budget": c["cut_by_budget"]}
+                 for c in coverage_rows(result) if c["branches"]]
+        json.dump(rows, self.stream, indent=2)
         self.stream.write("\n")

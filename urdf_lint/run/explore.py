@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable
 
 from urdf_lint.core.jobs import LintJob, ModelReport
 
@@ -50,13 +50,25 @@ def shown(args: dict[str, str]) -> str:
     return " ".join(f"{k}:={v}" for k, v in sorted(args.items()))
 
 
+def explore_args(cfg: "Config", entry: str) -> dict[str, list[str]]:
+    """The ``explore-args`` of the model ``entry``: the config's, with those of its
+    ``[[models]]`` entries over them (arg by arg)."""
+    out = {k: list(v) for k, v in cfg.explore_args.items()}
+    for m in cfg.models:
+        if m.path == entry:
+            out.update({k: list(v) for k, v in m.explore_args.items()})
+    return out
+
+
 def explored_models(cfg: "Config", models: list[ModelReport]) -> dict[str, list[ModelReport]]:
-    """entry -> its reports, for the xacro models exploration applies to."""
+    """entry -> its reports, for the xacro models exploration applies to (not excluded by
+    ``explore-exclude`` nor by ``explore = false`` in a ``[[models]]`` entry of it)."""
     import fnmatch
     import os
     out: dict[str, list[ModelReport]] = {}
+    off = {m.path for m in cfg.models if m.explore is False}
     for r in models:
-        if not r.entry.endswith(".xacro"):
+        if not r.entry.endswith(".xacro") or r.entry in off:
             continue
         rel = os.path.relpath(r.entry, cfg.root)
         if any(fnmatch.fnmatch(rel, g) or fnmatch.fnmatch(r.entry, g)
@@ -66,27 +78,68 @@ def explored_models(cfg: "Config", models: list[ModelReport]) -> dict[str, list[
     return out
 
 
+def explore(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
+            lint: Callable[[list[LintJob]], list[ModelReport]]
+            ) -> tuple[list[ModelReport], dict[str, dict[str, Any]]]:
+    """The one path of exploration, ``check``'s and the language server's: :func:`plan`,
+    :func:`select` within ``cfg.explore_budget``, ``lint(jobs)`` (the caller's workers, cache
+    or reports held), :func:`merge` into ``models``. Returns (the variants' reports, the
+    coverage per model label)."""
+    plans = plan(cfg, models, graph, resolver)
+    jobs = select(plans, cfg.explore_budget, len(models))
+    reports = lint(jobs) if jobs else []
+    return reports, merge(plans, reports)
+
+
 def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) -> list[ModelPlan]:
     """A plan for every explored model (see the module's doc)."""
-    from urdf_lint.discovery import branches as br
     plans = []
     for entry, base in sorted(explored_models(cfg, models).items()):
-        files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
-        a = br.analyse(files, resolver)
-        p = ModelPlan(entry, base, a)
-        listed = {k: list(v) for k, v in cfg.explore_args.items()}
+        p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver))
+        a = p.analysis
+        given = explore_args(cfg, entry)
+        listed = {k: list(v) for k, v in given.items()}
         for r in base:
             for k, v in r.args.items():
                 listed.setdefault(k, []).append(v)
-        p.fixed = {k for k, v in cfg.explore_args.items() if not v}
-        p.listed = {k: list(v) for k, v in cfg.explore_args.items()}
+        p.fixed = {k for k, v in given.items() if not v}
+        p.listed = {k: list(v) for k, v in given.items()}
         values = {k: v for k, v in a.values(listed).items() if k not in p.fixed}
         # an arg whose values are listed takes only those
         values.update({k: [x for x in v if x != a.defaults.get(k)]
-                       for k, v in cfg.explore_args.items() if v})
+                       for k, v in given.items() if v})
         p.variants = _variants(p, values)
         plans.append(p)
     return plans
+
+
+def _analysis(entry: str, base: list[ModelReport], graph: Any, resolver: Any) -> "Analysis":
+    """The branches of the model ``entry``, from its sources: the include graph's files from
+    it, and what its reports read."""
+    from urdf_lint.discovery import branches as br
+    files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
+    return br.analyse(files, resolver)
+
+
+def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
+                   resolver: Any) -> dict[str, set[str]]:
+    """entry -> the files an explored variant of the model may read (``--changed-since``, the
+    hook: a change to one of them re-lints the model): every file the include graph reaches
+    from it (an include inside a branch its args leave out), every file a path built from an
+    arg not fixed by ``explore-args`` may name, and what those include. Read from the sources,
+    as :func:`plan` reads them; a superset of what the variants will read."""
+    out = {}
+    for entry, base in explored_models(cfg, models).items():
+        a = _analysis(entry, base, graph, resolver)
+        fixed = {k for k, v in explore_args(cfg, entry).items() if not v}
+        files = set(_closure(entry, graph))
+        for ch in a.choices:
+            if ch.arg not in fixed:
+                for path in ch.values.values():
+                    files.add(path)
+                    files.update(_closure(path, graph))
+        out[entry] = files
+    return out
 
 
 def _closure(entry: str, graph: Any) -> list[str]:

@@ -173,7 +173,7 @@ def run_check(request: RunRequest) -> CheckResult:
     hint_packages(out.models, paths)
 
     if req.affected_by is not None:
-        _keep_affected(out, req.affected_by)
+        _keep_affected(out, req.affected_by, _variant_inputs(req, cfg, found, resolver))
     if _explores(req, cfg):
         more, more_internal = _explore(out, found, cfg, resolver, settings, req)
         results += more
@@ -204,11 +204,13 @@ def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver"
     """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
     coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
     from urdf_lint.run import explore
-    plans = explore.plan(cfg, out.models, found.graph, resolver)
-    jobs = explore.select(plans, cfg.explore_budget, len(out.models))
-    reports, internal = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process) \
-        if jobs else ([], [])
-    out.coverage = explore.merge(plans, reports)
+    internal: list[str] = []
+
+    def lint(jobs: list[LintJob]) -> list[ModelReport]:
+        reports, errors = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process)
+        internal.extend(errors)
+        return reports
+    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint)
     return reports, internal
 
 
@@ -249,10 +251,37 @@ def _render_settings(settings: LintSettings, render_dir: str, render_rrd: bool,
                                render_forward=cfg.forward_axis)
 
 
-def _keep_affected(out: CheckResult, affected_by: AbstractSet[str]) -> None:
-    """Only the models whose inputs include a changed file; the files no model uses."""
+def _variant_inputs(req: RunRequest, cfg: "Config", found: Any, resolver: "PackageResolver"
+                    ) -> Callable[[list[ModelReport]], dict[str, set[str]]] | None:
+    """When the run explores: what the explored variants of some models may read
+    (:func:`urdf_lint.run.explore.variant_inputs`), else None."""
+    if not _explores(req, cfg):
+        return None
+    from urdf_lint.run import explore
+    return lambda models: explore.variant_inputs(cfg, models, found.graph, resolver)
+
+
+def _keep_affected(out: CheckResult, affected_by: AbstractSet[str],
+                   variant_inputs: Callable[[list[ModelReport]], dict[str, set[str]]] | None
+                   = None) -> None:
+    """Only the models whose inputs include a changed file (or, when the run explores, the
+    inputs their explored variants may read: an include an arg chooses); the files no model
+    uses."""
     from urdf_lint.discovery.changes import affected
-    out.models, out.unused_files = affected(out.models, affected_by)
+    models = out.models
+    out.models, out.unused_files = affected(models, affected_by)
+    if variant_inputs is not None and out.unused_files:
+        rest = [m for m in models if m not in out.models]
+        unused = set(out.unused_files)
+        reach = variant_inputs(rest)
+        kept = {id(m) for m in out.models}
+        for m in rest:
+            hit = {os.path.realpath(f) for f in reach.get(m.entry, ())} & unused
+            if hit:
+                kept.add(id(m))
+                unused -= hit
+        out.models = [m for m in models if id(m) in kept]
+        out.unused_files = sorted(unused)
     # a deleted file no model reads any more: a removed model (or an unused file) is gone
     out.gone = [f for f in out.unused_files if not os.path.exists(f)]
     out.unused_files = [f for f in out.unused_files if os.path.exists(f)]

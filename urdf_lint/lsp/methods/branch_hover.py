@@ -1,6 +1,6 @@
-"""Hover on an ``<xacro:if>``/``<xacro:unless>``: which linted models (and variants) expand
-its body, which evaluate it and leave it out (the workers record every condition's outcome:
-``ModelReport.branches``; docs/coverage.md)."""
+"""Hover on an ``<xacro:if>``/``<xacro:unless>``: which linted models (and the variants
+explored for them) expand its body, which evaluate it and leave it out (the workers record
+every condition's outcome: ``ModelReport.branches``; docs/coverage.md)."""
 from __future__ import annotations
 
 import os
@@ -40,7 +40,8 @@ def branch_hover(ls: Any, path: str, tag: str | None, tag_line: int | None
     """The hover of a condition's start tag, or None (not a condition, or no model reads it)."""
     if tag not in CONDITIONS or not tag_line or ls.ws is None:
         return None
-    kept, left = outcomes(list(ls.ws.models()), path, tag_line)
+    # the models and their explored variants (Workspace.explore)
+    kept, left = outcomes(list(ls.ws.models()) + list(ls.ws.variants.values()), path, tag_line)
     if not kept and not left:
         return None
     rows = [f"**{tag}**"]
