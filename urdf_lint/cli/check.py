@@ -136,9 +136,10 @@ def check(o: CheckOptions) -> int:
         return _baseline_written(o, done, out)
     write_findings(o.report(prep.paths), prep.cfg, result, out, mode, prep.resolver.roots)
     if o.coverage and (prep.cfg.output_format or "text") not in ("json",):
+        from urdf_lint.core.emit import tell
         from urdf_lint.report.base import coverage_text
         for line in coverage_text(result):
-            say(line)
+            tell(line)
     if o.hook_summary:
         hook_summary(result, o.files or [])
     note_unused(result, out, prep.named)
