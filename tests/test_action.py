@@ -346,7 +346,7 @@ def _workflows_in_readme() -> list[str]:
     return [b for b in re.findall(r"```yaml\n(.*?)```", text, re.S) if "runs-on:" in b]
 
 
-def test_the_readme_workflow_is_least_privilege():
+def test_the_documented_workflow_is_least_privilege():
     """docs/ci.md's workflow: no pull_request_target, minimal permissions, no credentials
     left in the checkout, the SARIF uploaded from the action's output."""
     flows = _workflows_in_readme()
@@ -387,7 +387,7 @@ def _checked_copy(tmp_path: Path) -> list[Path]:
     return files
 
 
-def test_zizmor_finds_nothing_in_the_action_or_the_readme_workflows(tmp_path):
+def test_zizmor_finds_nothing_in_the_action_or_the_documented_workflows(tmp_path):
     zizmor = shutil.which("zizmor", path=f"{Path(sys.executable).parent}{os.pathsep}"
                                          f"{os.environ.get('PATH', '')}")
     if zizmor is None:
@@ -398,7 +398,7 @@ def test_zizmor_finds_nothing_in_the_action_or_the_readme_workflows(tmp_path):
     assert p.returncode == 0, p.stdout + p.stderr
 
 
-def test_actionlint_and_shellcheck_find_nothing_in_the_action_or_the_readme(tmp_path):
+def test_actionlint_and_shellcheck_find_nothing_in_the_action_or_the_documented_workflow(tmp_path):
     actionlint = shutil.which("actionlint") or shutil.which(
         "actionlint", path=str(Path.home() / "go" / "bin"))
     shellcheck = shutil.which("shellcheck")

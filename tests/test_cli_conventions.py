@@ -273,7 +273,7 @@ def test_ctrl_c_during_a_real_run_exits_130(corpus, tmp_path):
     assert "Traceback" not in err and "interrupted" in err
 
 
-def readme_precommit_config(kind: str = "remote") -> str:
+def documented_precommit_config(kind: str = "remote") -> str:
     """docs/ci.md's ``.pre-commit-config.yaml`` of ``kind``: "local" (a repository where
     urdf-lint is installed) or "remote" (pre-commit installs it from its repository)."""
     text = (REPO / "docs" / "ci.md").read_text()
@@ -285,15 +285,15 @@ def readme_precommit_config(kind: str = "remote") -> str:
     return local[0] if kind == "local" else next(b for b in found if b is not local[0])
 
 
-def test_readme_precommit_snippets_are_complete_configs():
+def test_documented_precommit_snippets_are_complete_configs():
     hooks = {h["id"]: h for h in yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())}
-    doc = yaml.safe_load(readme_precommit_config("remote"))
+    doc = yaml.safe_load(documented_precommit_config("remote"))
     assert list(doc) == ["repos"]
     (repo,) = doc["repos"]
     assert repo["repo"].endswith("/urdf-lint") and repo["rev"] == "v0.1.0"
     assert [h["id"] for h in repo["hooks"]] == ["urdf-lint"] and "urdf-lint" in hooks
     # the local form runs the same hook as the published one
-    (local,) = yaml.safe_load(readme_precommit_config("local"))["repos"]
+    (local,) = yaml.safe_load(documented_precommit_config("local"))["repos"]
     (hook,) = local["hooks"]
     published = hooks["urdf-lint"]
     for key in ("entry", "args", "files", "always_run", "require_serial", "verbose"):

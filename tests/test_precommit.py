@@ -37,8 +37,8 @@ def hook_repo(tmp_path_factory):
     work.mkdir()
     shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
     # docs/ci.md's snippet as pasted, pointed at this checkout and its HEAD
-    from test_cli_conventions import readme_precommit_config
-    snippet = readme_precommit_config()
+    from test_cli_conventions import documented_precommit_config
+    snippet = documented_precommit_config()
     repo_url = re.search(r"repo: (\S+)", snippet).group(1)
     (work / ".pre-commit-config.yaml").write_text(
         snippet.replace(repo_url, str(REPO)).replace("rev: v0.1.0", f"rev: {head}"))
@@ -186,8 +186,8 @@ def test_a_file_named_like_an_option_is_only_a_file(tmp_path):
                "pyproject.toml", ".pre-commit-hooks.yaml", cwd=REPO).stdout.strip()
     if dirty and not os.environ.get("CI"):
         pytest.skip("the pre-commit test installs the hook from HEAD: commit first")
-    from test_cli_conventions import readme_precommit_config
-    snippet = readme_precommit_config()
+    from test_cli_conventions import documented_precommit_config
+    snippet = documented_precommit_config()
     repo_url = re.search(r"repo: (\S+)", snippet).group(1)
     config = snippet.replace(repo_url, str(REPO)).replace("rev: v0.1.0", f"rev: {head}")
     work = tmp_path / "robots"
@@ -241,14 +241,14 @@ def test_a_file_named_like_an_option_is_only_a_file(tmp_path):
     assert f"{OPTION_NAMED} is a file, not an option" in out, out
 
 
-def test_readme_local_hook_works_as_pasted(tmp_path):
+def test_documented_local_hook_works_as_pasted(tmp_path):
     """docs/ci.md's ``repo: local`` snippet, pasted unchanged into a repository where urdf-lint
     is installed (on PATH, as `pip install` puts it): a clean commit passes, a broken joint
     fails at its xacro line."""
-    from test_cli_conventions import readme_precommit_config
+    from test_cli_conventions import documented_precommit_config
     work = tmp_path / "robots"
     shutil.copytree(DESCRIPTIONS / "r2d2_description", work / "r2d2_description")
-    (work / ".pre-commit-config.yaml").write_text(readme_precommit_config("local"))
+    (work / ".pre-commit-config.yaml").write_text(documented_precommit_config("local"))
     (work / ".gitignore").write_text(".urdf_lint_cache/\n")
     sh("git", "init", "-q", cwd=work)
     sh("git", "config", "user.email", "t@example.invalid", cwd=work)

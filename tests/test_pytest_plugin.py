@@ -194,7 +194,7 @@ def _package_xml(name: str, build_type: str, test_depend: str) -> str:
             f"  <export><build_type>{build_type}</build_type></export>\n</package>\n")
 
 
-def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
+def test_the_documented_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
     """docs/ci.md's ament_python recipe, pasted into a package, under real ``colcon build`` and
     ``colcon test`` (colcon-common-extensions from the package index; the ``consumers`` extra):
     each model is a test with its own findings; the package's clean model passes."""
@@ -231,7 +231,7 @@ def test_the_readme_colcon_recipe_works_as_pasted_with_real_colcon(tmp_path):
     assert "'h_joint'" not in cases["urdf/dual.urdf.xacro"][2]
 
 
-def test_the_readme_ament_cmake_recipe_runs_the_models(tmp_path):
+def test_the_documented_ament_cmake_recipe_runs_the_models(tmp_path):
     """What ``ament_add_pytest_test(urdf_lint test WORKING_DIRECTORY ...)`` runs (ament_cmake's
     generated command: ``python -m pytest <pkg>/test -o cache_dir=... --junit-xml=...
     --junit-prefix=PKG`` in the package folder) with docs/ci.md's ``pytest.ini``."""
