@@ -12,6 +12,8 @@ May import: ``runner``, ``discovery``, ``config``, ``report``, ``core`` (the roo
 """
 from __future__ import annotations
 
+from typing import Any
+
 from urdf_lint.core import lazy
 from urdf_lint.expansion.sourcemap import SourceMap
 
@@ -21,7 +23,7 @@ lazy.defer("yaml")
 __all__ = ["Expansion", "SourceMap", "expand_file"]
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     if name in ("Expansion", "expand_file"):
         from urdf_lint.expansion import expand
         return getattr(expand, name)

@@ -31,7 +31,7 @@ import os
 import re
 
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any, Callable, Iterable
 
 import xacro
 import xacro.substitution_args as _subst
@@ -54,16 +54,17 @@ ul903_unsafe_expression = RuleName("ul903_unsafe_expression")
 ul904_resource_limit = RuleName("ul904_resource_limit")
 
 
-class XmlSyntaxError(xacro.XacroException):
-    def __init__(self, msg, file, line, col, chain=()) -> None:
+class XmlSyntaxError(xacro.XacroException):  # type: ignore[misc]  # xacro has no stubs
+    def __init__(self, msg: str, file: str, line: int, col: int,
+                 chain: Iterable[Any] = ()) -> None:
         super().__init__(msg)
         self.loc = (file, line, col, tuple(chain))
 
 
-class RefusedInput(xacro.XacroException):
+class RefusedInput(xacro.XacroException):  # type: ignore[misc]  # xacro has no stubs
     """Input refused for safety (entity declarations, files outside the roots, ...); ``rule``
     names the rule (its code) it is reported as."""
-    def __init__(self, msg, rule: RuleName, loc=None) -> None:
+    def __init__(self, msg: str, rule: RuleName, loc: Any = None) -> None:
         super().__init__(msg)
         self.rule = rule
         self.loc = loc
@@ -72,7 +73,7 @@ class RefusedInput(xacro.XacroException):
 @dataclass(frozen=True)
 class ErrorRow:
     """How one kind of xacro failure becomes a finding: what it catches and the rule it names."""
-    catches: type | tuple
+    catches: type | tuple[type, ...]
     rule: RuleName | None                # None: the exception names its rule (RefusedInput)
     message: Callable[..., str]
     looks_at: str = "either"             # "raised" | "wrapped" | "either"
@@ -82,7 +83,7 @@ class ErrorRow:
     needs_deps: bool = False             # the message also gets the files read so far
 
 
-def _arg_declared_later(name: str, deps) -> str | None:
+def _arg_declared_later(name: str, deps: Iterable[str]) -> str | None:
     """``file:line`` of an ``<xacro:arg name=... default=...>`` in a file read so far: the
     default exists, but xacro reached a use of the arg first."""
     import re
@@ -102,7 +103,7 @@ def _arg_declared_later(name: str, deps) -> str | None:
     return None
 
 
-def _missing_arg(e, deps=()) -> str:
+def _missing_arg(e: BaseException, deps: Iterable[str] = ()) -> str:
     name = str(e)
     later = _arg_declared_later(name, deps)
     if later:
@@ -112,7 +113,7 @@ def _missing_arg(e, deps=()) -> str:
             "list the model with its args under [tool.urdf-lint] models")
 
 
-def _missing_file(e, deps=()) -> str:
+def _missing_file(e: OSError, deps: Iterable[str] = ()) -> str:
     # load_yaml records its file before opening it; an include is recorded only once read
     yaml = os.path.abspath(str(e.filename)) in set(deps)
     what = "YAML" if yaml else "included"
@@ -147,7 +148,7 @@ def _empty_args_hint(path: str, folder: bool = False) -> str:
             "[[tool.urdf-lint.models]] args)")
 
 
-def _generic(e) -> str:
+def _generic(e: BaseException) -> str:
     return " ".join((str(e).strip() or repr(e)).split())
 
 
@@ -173,7 +174,7 @@ ERROR_TABLE: tuple[ErrorRow, ...] = (
 )
 
 
-def wrapped(e: BaseException):
+def wrapped(e: BaseException) -> Any:
     """The innermost exception xacro wrapped in ``e`` (lazily evaluated properties wrap errors
     more than once), or None."""
     inner = getattr(e, "exc", None)
@@ -182,7 +183,8 @@ def wrapped(e: BaseException):
     return inner
 
 
-def problem_for(e: BaseException, here, macros=(), deps=()) -> Problem:
+def problem_for(e: BaseException, here: Any, macros: Iterable[str] = (),
+                deps: Iterable[str] = ()) -> Problem:
     """The one located problem for a failed expansion. ``here`` is the origin of the innermost
     element being evaluated, ``macros`` the names of the macros being expanded, innermost
     first."""
@@ -192,7 +194,8 @@ def problem_for(e: BaseException, here, macros=(), deps=()) -> Problem:
         ([f"... ({len(macros)} levels)"] if len(macros) > 3 else [])
     suffix = (" (in macro " + " < ".join(shown) + ")") if macros else ""
     for row in ERROR_TABLE:
-        candidates: tuple = {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
+        candidates: tuple[Any, ...] = \
+            {"raised": (e,), "wrapped": (inner,), "either": (e, inner)}[row.looks_at]
         hit: Any = next((x for x in candidates if isinstance(x, row.catches) and row.when(x)), None)
         if hit is None:
             continue

@@ -32,7 +32,7 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 from xml.dom import expatbuilder
 
 import xacro
@@ -62,29 +62,32 @@ ul902_outside_roots = RuleName("ul902_outside_roots")
 class Expansion:
     """The result of expanding one entry file (plain data: it pickles)."""
     entry: str
-    args: dict
+    args: dict[str, Any]
     xml: str | None = None
     origins: SourceMap = field(default_factory=SourceMap)   # per output element, document order
-    deps: list = field(default_factory=list)      # files read (absolute), entry first
+    deps: list[str] = field(default_factory=list)  # files read (absolute), entry first
     error: Problem | None = None                  # why it failed (see expansion.errors)
-    notes: list = field(default_factory=list)     # Problems that did not stop the expansion
-    missing: list = field(default_factory=list)   # files looked for and not found
-    digests: dict = field(default_factory=dict)   # file -> [stat before read, digest of bytes read]
+    notes: list[Problem] = field(default_factory=list)  # Problems that did not stop the expansion
+    missing: list[str] = field(default_factory=list)  # files looked for and not found
+    # file -> [stat before read, digest of bytes read]
+    digests: dict[str, list[Any]] = field(default_factory=dict)
     # per output element (document order, as ``origins``): {attribute: ((file, line, col),
     # derived)} for the attributes whose value came from a YAML scalar (expansion.traced)
-    values: tuple = ()
+    values: tuple[dict[str, Any] | None, ...] = ()
     # the variables $(optenv) looked up that are not allow-listed -> whether each was set (the
     # result holds while that stays so: run/cache.py)
-    env: dict = field(default_factory=dict)
+    env: dict[str, bool] = field(default_factory=dict)
     # every <xacro:if>/<xacro:unless> evaluated: [file, line, col, kept] (kept: its body was
     # expanded), one per source element and outcome (urdf_lint.run.explore: branch coverage)
-    branches: list = field(default_factory=list)
+    branches: list[list[Any]] = field(default_factory=list)
 
 
 # ---------------------------------------------------------------------------------------------
 # per-expansion state
 # (file, line, col, chain) of an element; a chain is ((file, line, col), ...) of macro calls
-Origin4 = tuple[str, int, int, tuple]
+Origin4 = tuple[str, int, int, tuple[Any, ...]]
+# the user data stamped on an element: its Origin4 and whether it is in a macro body
+Stamp = tuple[str, int, int, tuple[Any, ...], bool]
 
 
 class ExpansionState:
@@ -101,12 +104,12 @@ class ExpansionState:
         self.env: dict[str, bool] = {}             # Expansion.env
         self.env_noted: set[tuple[str, str]] = set()   # (file, variable) warned about
         self.deps: dict[str, None] = {}
-        self.digests: dict[str, list] = {}
+        self.digests: dict[str, list[Any]] = {}
         self.notes: list[Problem] = []
         self.stack: list[Any] = []     # nodes being evaluated (eval_all / macro calls)
         self.touched: Any = None       # a child node being handled inline by its parent
-        self.pending_chain: tuple = ()  # chain to give to the macro body being cloned
-        self.include_chain: tuple = ()  # chain of the include element being processed
+        self.pending_chain: tuple[Any, ...] = ()  # chain to give to the macro body being cloned
+        self.include_chain: tuple[Any, ...] = ()  # chain of the include element being processed
         self.expr_policy = expr_policy
         # expansion.traced: the text -> source of the values eval_text gave in each eval_all
         # being run (innermost last), and per element the attributes that came from YAML
@@ -114,13 +117,13 @@ class ExpansionState:
         self.values: dict[Any, dict[str, Any]] = {}
         # where each arg got its value when no one passed it: its first <xacro:arg default>
         # (file, line, col); the args passed (a [[models]] entry, the command line) are known
-        self.arg_origins: dict[str, tuple] = {}
+        self.arg_origins: dict[str, tuple[Any, ...]] = {}
         self.passed_args: set[str] = set()
-        self.passed_origins: dict[str, tuple] = {}
+        self.passed_origins: dict[str, tuple[Any, ...]] = {}
         # the <xacro:if>/<xacro:unless> whose value xacro checks now, and every outcome seen:
         # (file, line, col, kept)
         self.pending_cond: Any = None
-        self.branches: dict[tuple, None] = {}
+        self.branches: dict[tuple[str, int, int, bool], None] = {}
 
     def current_node(self) -> Any:
         if self.touched is not None:
@@ -153,11 +156,11 @@ def _active() -> ExpansionState:
     return st
 
 
-def origin_of(node):
+def origin_of(node: Any) -> Origin4:
     """(file, line, col, chain) of a minidom node, or of its nearest stamped ancestor."""
     while node is not None:
         if node.nodeType == xml.dom.Node.ELEMENT_NODE:
-            data = node.getUserData(KEY)
+            data: Stamp | None = node.getUserData(KEY)
             if data is not None:
                 return data[:4]
         node = node.parentNode
@@ -168,7 +171,7 @@ def origin_of(node):
 class _CloneHandler:
     """Copies the origin to clones; a macro body being instantiated gets the call chain."""
 
-    def handle(self, operation, key, data, src, dst) -> None:
+    def handle(self, operation: int, key: str, data: Stamp, src: Any, dst: Any) -> None:
         if operation == xml.dom.UserDataHandler.NODE_CLONED and dst is not None:
             file, line, col, chain, template = data
             st = CURRENT.get()
@@ -183,12 +186,12 @@ _HANDLER = _CloneHandler()
 class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
     _parser: Any   # expat's parser (ExpatBuilder.createParser; not in the typeshed stubs)
 
-    def __init__(self, file, chain) -> None:
+    def __init__(self, file: str, chain: tuple[Any, ...]) -> None:
         super().__init__()
         self._file = file
         self._chain = chain
 
-    def install(self, parser) -> None:
+    def install(self, parser: Any) -> None:
         super().install(parser)
         parser.EntityDeclHandler = self._refuse_entity
         parser.StartDoctypeDeclHandler = self._doctype
@@ -197,13 +200,14 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
         except Exception:  # pragma: no cover - very old expat
             pass
 
-    def _refuse_entity(self, name, *args):
+    def _refuse_entity(self, name: str, *args: Any) -> None:
         p = self._parser
         raise RefusedInput(f"XML entity declaration '{name}' refused (entities can read files "
                            f"or blow up memory)", ul007_doctype,
                            (self._file, p.CurrentLineNumber, p.CurrentColumnNumber + 1, self._chain))
 
-    def _doctype(self, name, system_id, public_id, has_subset):
+    def _doctype(self, name: str, system_id: str | None, public_id: str | None,
+                 has_subset: bool) -> None:
         p = self._parser
         st = CURRENT.get()
         if st is not None:
@@ -216,14 +220,14 @@ class _LocatingBuilder(expatbuilder.ExpatBuilderNS):
                                          p.CurrentColumnNumber + 1, self._chain))
         return super().start_doctype_decl_handler(name, system_id, public_id, has_subset)
 
-    def start_element_handler(self, name, attributes) -> None:
+    def start_element_handler(self, name: str, attributes: Any) -> None:
         super().start_element_handler(name, attributes)
         p = self._parser
         self.curNode.setUserData(KEY, (self._file, p.CurrentLineNumber,
                                        p.CurrentColumnNumber + 1, self._chain, False), _HANDLER)
 
 
-def parse_bytes(data: bytes, file: str, chain=()):
+def parse_bytes(data: bytes, file: str, chain: tuple[Any, ...] = ()) -> Any:
     builder = _LocatingBuilder(file, chain)
     try:
         return builder.parseString(data)
@@ -238,9 +242,9 @@ def parse_bytes(data: bytes, file: str, chain=()):
 _orig: dict[str, Any] = {}
 
 
-def _hook_parse(inp, filename=None):
+def _hook_parse(inp: Any, filename: str | None = None) -> Any:
     if inp is None:
-        path = os.path.join(xacro.root_dir, filename)
+        path = os.path.join(xacro.root_dir, cast(str, filename))   # xacro passes one with inp None
         absolute = os.path.abspath(path)
         st = CURRENT.get()
         chain = st.include_chain if st else ()
@@ -265,7 +269,7 @@ def _hook_parse(inp, filename=None):
     return inp
 
 
-def _hook_abs_filename_spec(filename_spec):
+def _hook_abs_filename_spec(filename_spec: Any) -> str:
     spec = str(filename_spec)
     st = CURRENT.get()
     if spec.startswith("package://") and st is not None:
@@ -273,7 +277,7 @@ def _hook_abs_filename_spec(filename_spec):
                    spec[len("package://"):].partition("/")[2])
     if spec.startswith("file://"):
         spec = spec[len("file://"):]
-    path = _orig["abs_filename_spec"](spec)
+    path: str = _orig["abs_filename_spec"](spec)
     if st is not None and not any(c in path for c in "*?["):
         # a path the package's build installs from another folder of its source tree
         mapped, via = st.resolver.installed(path)
@@ -286,7 +290,7 @@ def _hook_abs_filename_spec(filename_spec):
 TEXT_KEY = "#text"   # Expansion.values: the source of an element's text, beside its attributes
 
 
-def _hook_eval_all(node, macros, symbols) -> None:
+def _hook_eval_all(node: Any, macros: Any, symbols: Any) -> None:
     st = _active()
     st.stack.append(node)
     st.touched = None
@@ -310,7 +314,7 @@ def _hook_eval_all(node, macros, symbols) -> None:
     st.touched = None
 
 
-def _hook_eval_text(text, symbols):
+def _hook_eval_text(text: str, symbols: Any) -> Any:
     """xacro's ``eval_text``; a result read from YAML (:mod:`.traced`) is noted for the element
     whose ``eval_all`` runs (its attributes are evaluated first, so the first note of a text
     is the attribute's)."""
@@ -333,7 +337,7 @@ def _hook_eval_text(text, symbols):
 _ARG_ONLY = re.compile(r"\$\(arg\s+([^\s()]+)\s*\)")
 
 
-def _hook_handle_macro_call(node, macros, symbols):
+def _hook_handle_macro_call(node: Any, macros: Any, symbols: Any) -> Any:
     st = _active()
     if node.tagName != "xacro:call" and not node.tagName.startswith("xacro:"):
         return False
@@ -352,7 +356,7 @@ def _hook_handle_macro_call(node, macros, symbols):
     return result
 
 
-def _mark_template(elt) -> None:
+def _mark_template(elt: Any) -> None:
     stack = [elt]
     while stack:
         n = stack.pop()
@@ -363,7 +367,7 @@ def _mark_template(elt) -> None:
             stack.extend(n.childNodes)
 
 
-def _hook_grab_macro(elt, macros) -> None:
+def _hook_grab_macro(elt: Any, macros: Any) -> None:
     st = _active()
     st.touched = elt
     _mark_template(elt)
@@ -371,14 +375,14 @@ def _hook_grab_macro(elt, macros) -> None:
     st.touched = None
 
 
-def _hook_grab_property(elt, table) -> None:
+def _hook_grab_property(elt: Any, table: Any) -> None:
     st = _active()
     st.touched = elt
     _orig["grab_property"](elt, table)
     st.touched = None
 
 
-def _hook_process_include(elt, macros, symbols, func) -> None:
+def _hook_process_include(elt: Any, macros: Any, symbols: Any, func: Any) -> None:
     st = _active()
     st.touched = elt
     saved = st.include_chain
@@ -388,7 +392,7 @@ def _hook_process_include(elt, macros, symbols, func) -> None:
     st.touched = None
 
 
-def _hook_check_attrs(tag, required, optional):
+def _hook_check_attrs(tag: Any, required: Any, optional: Any) -> Any:
     st = _active()
     st.touched = tag
     if getattr(tag, "tagName", "") == "xacro:arg" and tag.hasAttribute("name"):
@@ -401,7 +405,7 @@ def _hook_check_attrs(tag, required, optional):
 _CONDS = ("xacro:if", "xacro:unless")
 
 
-def _hook_get_boolean_value(value, condition):
+def _hook_get_boolean_value(value: Any, condition: Any) -> Any:
     """xacro's ``get_boolean_value``; for the condition of the ``<xacro:if>``/``<xacro:unless>``
     being handled (:func:`_hook_check_attrs` saw it), the outcome is recorded: whether its body
     is kept (branch coverage, :mod:`urdf_lint.run.explore`)."""
@@ -428,12 +432,12 @@ _CONSTANT = re.compile(r"\s*(?:true|false|True|False|[01]|\$\{\s*(?:True|False|t
                        r"\s*\})\s*")
 
 
-def _hook_reqd_attrs(tag, attrs):
+def _hook_reqd_attrs(tag: Any, attrs: Any) -> Any:
     _active().touched = tag
     return _orig["reqd_attrs"](tag, attrs)
 
 
-def _hook_load_yaml(filename):
+def _hook_load_yaml(filename: Any) -> Any:
     st = _active()
     path = os.path.abspath(xacro.abs_filename_spec(filename))
     if not st.resolver.is_inside(path):
@@ -450,7 +454,7 @@ def _hook_load_yaml(filename):
     # read through the boundary: a regular file, bounded (a FIFO never blocks); the stream
     # keeps the file's name for YAML's error marks, and open()'s newline translation
     f = io.StringIO(fsbound.read_text(filename), newline=None)
-    f.name = filename   # type: ignore[misc]
+    f.name = filename
     xacro.filestack.append(filename)
     try:
         return xacro.YamlListWrapper.wrap(traced.load(f, loader, filename))
@@ -459,10 +463,10 @@ def _hook_load_yaml(filename):
         xacro.all_includes.append(filename)
 
 
-_YAML_LOADER: list = []
+_YAML_LOADER: list[Any] = []
 
 
-def _yaml_loader():
+def _yaml_loader() -> Any:
     """A SafeLoader on libyaml (``yaml.CSafeLoader``) with xacro's unit constructors
     (``!degrees``, ``!millimeters``, ...), or None when PyYAML was built without libyaml."""
     if not _YAML_LOADER:
@@ -478,11 +482,11 @@ def _yaml_loader():
 
 
 
-def _hook_eval_find(pkg):
+def _hook_eval_find(pkg: str) -> str:
     return str(_active().resolver.find(pkg))
 
 
-def _hook_eval_env(name):
+def _hook_eval_env(name: str) -> Any:
     st = _active()
     if name in st.env_allow:
         return _orig["eval_env"](name)
@@ -491,7 +495,7 @@ def _hook_eval_env(name):
     return ""
 
 
-def _hook_eval_optenv(name, default=""):
+def _hook_eval_optenv(name: str, default: Any = "") -> Any:
     """An allow-listed variable is read; another one never is: its default is used, which is
     what xacro makes where the variable is unset (nothing to say), and differs from it where it
     is set (a warning, once per file and variable)."""
@@ -510,7 +514,7 @@ def _hook_eval_optenv(name, default=""):
     return default
 
 
-def _hook_warning(*args, **kwargs) -> str:
+def _hook_warning(*args: Any, **kwargs: Any) -> str:
     st = CURRENT.get()
     if st is not None:
         msg = " ".join(str(a) for a in args).strip()
@@ -519,16 +523,16 @@ def _hook_warning(*args, **kwargs) -> str:
     return ""
 
 
-def _hook_print_location(*args, **kwargs) -> str:
+def _hook_print_location(*args: Any, **kwargs: Any) -> str:
     return ""
 
 
-def _said(*args, **kwargs):
+def _said(*args: Any, **kwargs: Any) -> str:
     """What ``${xacro.error(...)}`` and its kin print: their arguments, as xacro joins them."""
     return " ".join(str(a) for a in args).strip()
 
 
-def _hook_xacro_error(*args, **kwargs) -> str:
+def _hook_xacro_error(*args: Any, **kwargs: Any) -> str:
     """``${xacro.error(...)}``: stock xacro prints the message (with the location) and goes
     on; here a located error with the message (UL013)."""
     st = CURRENT.get()
@@ -537,12 +541,12 @@ def _hook_xacro_error(*args, **kwargs) -> str:
     return ""
 
 
-def _hook_xacro_warning(*args, **kwargs):
+def _hook_xacro_warning(*args: Any, **kwargs: Any) -> str:
     """``${xacro.warning(...)}``: a located warning, as xacro's own warnings (UL008)."""
     return _hook_warning(_said(*args))
 
 
-def _hook_xacro_message(*args, **kwargs) -> str:
+def _hook_xacro_message(*args: Any, **kwargs: Any) -> str:
     """``${xacro.message(...)}``: xacro prints it; no finding."""
     return ""
 
@@ -616,7 +620,7 @@ def _session(state: ExpansionState) -> Iterator[ExpansionState]:
 
 
 # ---------------------------------------------------------------------------------------------
-def _elements(node, out):
+def _elements(node: Any, out: list[tuple[Any, ...] | None]) -> list[tuple[Any, ...] | None]:
     for c in node.childNodes:
         if c.nodeType == xml.dom.Node.ELEMENT_NODE:
             data = c.getUserData(KEY)
@@ -625,7 +629,8 @@ def _elements(node, out):
     return out
 
 
-def _element_values(node, values, out):
+def _element_values(node: Any, values: dict[Any, dict[str, Any]],
+                    out: list[dict[str, Any] | None]) -> list[dict[str, Any] | None]:
     """Per output element (document order, as :func:`_elements`): its YAML-sourced
     attributes, or None."""
     for c in node.childNodes:
@@ -635,8 +640,8 @@ def _element_values(node, values, out):
     return out
 
 
-def _macro_context():
-    names = []
+def _macro_context() -> list[str]:
+    names: list[str] = []
     for m in reversed(xacro.macrostack or []):
         try:
             names.append(m.body.getAttribute("name"))
@@ -658,9 +663,9 @@ def classify_error(e: BaseException, st: ExpansionState, entry: str = "",
     return problem_for(e, here, _macro_context(), deps=list(st.deps))
 
 
-def expand_file(path: str, args: dict | None = None, resolver: PackageResolver | None = None,
-                env_allow=DEFAULT_ENV_ALLOW, display_name: str | None = None,
-                expr_policy=None, env_set: Iterable[str] | None = None,
+def expand_file(path: str, args: dict[str, Any] | None = None, resolver: PackageResolver | None = None,
+                env_allow: Iterable[str] = DEFAULT_ENV_ALLOW, display_name: str | None = None,
+                expr_policy: object = None, env_set: Iterable[str] | None = None,
                 arg_origins: dict[str, tuple[str, int, int]] | None = None) -> Expansion:
     """Expand one xacro (or URDF) file in process. Never raises for bad input. Bytes to read
     instead of a file's (an editor's buffer, a layout ``format`` proves) come from

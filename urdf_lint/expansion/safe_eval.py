@@ -34,7 +34,7 @@ import math
 import operator
 import string
 from contextlib import contextmanager
-from typing import Any, Callable
+from typing import Any, Callable, Iterator, Mapping, Sequence, Union, cast
 
 
 class UnsafeExpression(Exception):
@@ -65,16 +65,19 @@ _TUPLE_METHODS = frozenset({"count", "index"})
 _NUM_ATTRS = frozenset({"real", "imag", "conjugate", "is_integer", "as_integer_ratio",
                         "bit_length", "numerator", "denominator"})
 
-_BIN = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
-        ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
-        ast.Pow: operator.pow, ast.LShift: operator.lshift, ast.RShift: operator.rshift,
-        ast.BitAnd: operator.and_, ast.BitOr: operator.or_, ast.BitXor: operator.xor}
-_UN: dict[type, Callable[[Any], Any]] = {ast.UAdd: operator.pos, ast.USub: operator.neg,
-                                         ast.Not: operator.not_, ast.Invert: operator.invert}
-_CMP = {ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
-        ast.Gt: operator.gt, ast.GtE: operator.ge, ast.Is: operator.is_,
-        ast.IsNot: operator.is_not, ast.In: lambda a, b: a in b,
-        ast.NotIn: lambda a, b: a not in b}
+_BIN: dict[type[ast.operator], Callable[[Any, Any], Any]] = {
+    ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+    ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv, ast.Mod: operator.mod,
+    ast.Pow: operator.pow, ast.LShift: operator.lshift, ast.RShift: operator.rshift,
+    ast.BitAnd: operator.and_, ast.BitOr: operator.or_, ast.BitXor: operator.xor}
+_UN: dict[type[ast.unaryop], Callable[[Any], Any]] = {
+    ast.UAdd: operator.pos, ast.USub: operator.neg, ast.Not: operator.not_,
+    ast.Invert: operator.invert}
+_CMP: dict[type[ast.cmpop], Callable[[Any, Any], Any]] = {
+    ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
+    ast.Gt: operator.gt, ast.GtE: operator.ge, ast.Is: operator.is_,
+    ast.IsNot: operator.is_not, ast.In: lambda a, b: a in b,
+    ast.NotIn: lambda a, b: a not in b}
 
 _SAFE_BUILTINS = {
     "abs": abs, "all": all, "any": any, "bool": bool, "chr": chr, "complex": complex,
@@ -95,7 +98,7 @@ _DENIED_IDS = frozenset(id(f) for f in DENIED)
 ALLOWED: dict[int, object] = {}
 
 
-def _allow(obj):
+def _allow(obj: object) -> None:
     if id(obj) in _DENIED_IDS:
         raise ValueError(f"{obj!r} may never be allowed")
     ALLOWED[id(obj)] = obj
@@ -114,7 +117,7 @@ _NUMERIC_IDS = frozenset([id(float), id(int), id(round), id(abs)] + [
     id(f) for k, f in math.__dict__.items() if not k.startswith("_") and callable(f)])
 
 
-def _keep_trace(fn, args, result):
+def _keep_trace(fn: object, args: Sequence[Any], result: Any) -> Any:
     from urdf_lint.expansion import traced
     if type(result) not in (float, int):
         return result
@@ -133,11 +136,11 @@ class SafeCallable:
     ``sorted``) cannot smuggle a foreign callable in."""
     __slots__ = ("_fn", "_name")
 
-    def __init__(self, fn, name) -> None:
+    def __init__(self, fn: Callable[..., Any], name: str) -> None:
         self._fn = fn
         self._name = name
 
-    def __call__(self, *args, **kwargs):
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
         _check_args(args, kwargs)
         return self._fn(*args, **kwargs)
 
@@ -145,20 +148,20 @@ class SafeCallable:
         return f"<function {self._name}>"
 
 
-_value_types: tuple = (str, int, float, complex, bool, list, tuple, dict, set, frozenset,
+_value_types: tuple[type[Any], ...] = (str, int, float, complex, bool, list, tuple, dict, set, frozenset,
                        range, slice, type(None))
-_namespace_types: tuple = ()
-_yaml_dict_types: tuple = ()
+_namespace_types: tuple[type[Any], ...] = ()
+_yaml_dict_types: tuple[type[Any], ...] = ()
 
 _policy = {"max_steps": _MAX_STEPS}
 _removed: set[str] = set()   # names install_xacro_symbols took out of xacro's namespaces
 
 
-def is_allowed_callable(fn) -> bool:
+def is_allowed_callable(fn: object) -> bool:
     return isinstance(fn, (SafeCallable, _Lambda)) or ALLOWED.get(id(fn)) is fn
 
 
-def _check_args(args, kwargs):
+def _check_args(args: Sequence[Any], kwargs: Mapping[str, Any]) -> None:
     for a in args:
         if callable(a) and not is_allowed_callable(a):
             raise UnsafeExpression(f"passing {_name_of(a)} to a function is not allowed")
@@ -167,16 +170,17 @@ def _check_args(args, kwargs):
             raise UnsafeExpression(f"passing {_name_of(a)} to a function is not allowed")
 
 
-def _name_of(fn):
+def _name_of(fn: object) -> str:
     n = getattr(fn, "__name__", None)
     return n if isinstance(n, str) else type(fn).__name__
 
 
 @contextmanager
-def policy(p):
+def policy(p: object) -> Iterator[None]:
+    """Evaluate with ``p`` (``{"max_steps": n}``; None: the defaults) for the time of the block."""
     saved = dict(_policy)
     if p:
-        _policy.update(p)
+        _policy.update(cast("Mapping[str, int]", p))
     try:
         yield
     finally:
@@ -184,7 +188,7 @@ def policy(p):
         _policy.update(saved)
 
 
-def install_xacro_symbols(global_symbols) -> None:
+def install_xacro_symbols(global_symbols: dict[str, Any]) -> None:
     """Make xacro's expression namespaces safe: drop the introspection builtins xacro exposes
     (``python.type``, ``python.vars``) and allow everything callable that remains, by identity."""
     global _namespace_types, _yaml_dict_types, _value_types
@@ -194,7 +198,7 @@ def install_xacro_symbols(global_symbols) -> None:
     if xacro.YamlListWrapper not in _value_types:
         _value_types = _value_types + (xacro.YamlListWrapper, xacro.YamlDictWrapper)
 
-    def walk(d) -> None:
+    def walk(d: dict[str, Any]) -> None:
         for k, v in list(dict.items(d)):
             if isinstance(v, xacro.Table):
                 walk(v)
@@ -208,7 +212,8 @@ def install_xacro_symbols(global_symbols) -> None:
 
 
 class _SafeFormatter(string.Formatter):
-    def get_field(self, field_name, args, kwargs):
+    def get_field(self, field_name: str, args: Sequence[Any],
+                  kwargs: Mapping[str, Any]) -> Any:
         for part in field_name.replace("[", ".").split("."):
             if part.startswith("_"):
                 raise UnsafeExpression(f"format field '{field_name}' is not allowed")
@@ -221,17 +226,17 @@ class _SafeFormatter(string.Formatter):
 _FORMATTER = _SafeFormatter()
 
 
-def _safe_format(s):
+def _safe_format(s: str) -> SafeCallable:
     return SafeCallable(functools.partial(_FORMATTER.format, s), "str.format")
 
 
 class _Lambda:
     __slots__ = ("node", "ev", "scope")
 
-    def __init__(self, node, ev, scope) -> None:
+    def __init__(self, node: ast.Lambda, ev: Evaluator, scope: _Scope) -> None:
         self.node, self.ev, self.scope = node, ev, scope
 
-    def __call__(self, *args):
+    def __call__(self, *args: Any) -> Any:
         params = [a.arg for a in self.node.args.args]
         if len(args) != len(params):
             raise TypeError(f"lambda takes {len(params)} arguments ({len(args)} given)")
@@ -241,15 +246,15 @@ class _Lambda:
 class _Scope:
     __slots__ = ("vars", "parent")
 
-    def __init__(self, vars, parent) -> None:
+    def __init__(self, vars: dict[str, Any], parent: _Scope | None) -> None:
         self.vars, self.parent = vars, parent
 
 
-def _method(obj, a):
+def _method(obj: object, a: str) -> SafeCallable:
     return SafeCallable(getattr(obj, a), f"{type(obj).__name__}.{a}")
 
 
-def _gate(value, what):
+def _gate(value: Any, what: str) -> Any:
     """Whatever an expression reads (a name, an attribute, an item) must be a value, a namespace
     or an allowed callable; anything else is refused before it can be used."""
     if callable(value) and not is_allowed_callable(value):
@@ -257,17 +262,21 @@ def _gate(value, what):
     return value
 
 
+# the comprehension nodes (:meth:`Evaluator._ev_comprehension`)
+_Comprehension = Union[ast.ListComp, ast.SetComp, ast.GeneratorExp, ast.DictComp]
+
+
 class Evaluator:
-    def __init__(self, lookup) -> None:
+    def __init__(self, lookup: Callable[[str], Any]) -> None:
         self.lookup = lookup  # name -> value, raises KeyError
         self.steps = 0
 
-    def tick(self):
+    def tick(self) -> None:
         self.steps += 1
         if self.steps > _policy["max_steps"]:
             raise UnsafeExpression("expression too expensive (evaluation step limit reached)")
 
-    def name(self, n, scope):
+    def name(self, n: str, scope: _Scope | None) -> Any:
         while scope is not None:
             if n in scope.vars:
                 return scope.vars[n]
@@ -280,11 +289,12 @@ class Evaluator:
             raise NameError(f"name '{n}' is not defined") from None
         return _gate(value, f"'{n}'")
 
-    def eval(self, node, vars=None, parent=None):
+    def eval(self, node: ast.expr, vars: dict[str, Any] | None = None,
+             parent: _Scope | None = None) -> Any:
         return self._ev(node, _Scope(vars or {}, parent))
 
     # -- attribute / call gates --------------------------------------------------------------
-    def attr(self, obj, a):
+    def attr(self, obj: Any, a: str) -> Any:
         if a.startswith("_"):
             raise UnsafeExpression(f"access to attribute '{a}' is not allowed")
         if _namespace_types and isinstance(obj, _namespace_types):
@@ -320,7 +330,7 @@ class Evaluator:
             return SafeCallable(v, f"{type(obj).__name__}.{a}") if callable(v) else v
         raise UnsafeExpression(f"attribute '{a}' of a {type(obj).__name__} value is not allowed")
 
-    def call(self, fn, args, kwargs):
+    def call(self, fn: Any, args: Sequence[Any], kwargs: Mapping[str, Any]) -> Any:
         if not is_allowed_callable(fn):
             raise UnsafeExpression(f"calling {_name_of(fn)} is not allowed")
         _check_args(args, kwargs)
@@ -333,7 +343,7 @@ class Evaluator:
             return _keep_trace(fn, args, fn(*args, **kwargs))
         return fn(*args, **kwargs)
 
-    def binop(self, op, a, b):
+    def binop(self, op: type[ast.operator], a: Any, b: Any) -> Any:
         if op is ast.Pow and isinstance(a, int) and isinstance(b, int) and not isinstance(a, bool):
             if b > 0 and abs(a) > 1 and a.bit_length() * b > _MAX_POW_BITS:
                 raise UnsafeExpression(f"integer power too large ({a}**{b})")
@@ -349,27 +359,27 @@ class Evaluator:
         return _BIN[op](a, b)
 
     # -- the walk ----------------------------------------------------------------------------
-    def _ev(self, n, sc):
+    def _ev(self, n: ast.expr, sc: _Scope) -> Any:
         """Evaluate node ``n``: one handler per allowed node type (``_NODES``, matched by exact
         type); any other node is refused."""
         self.tick()
         t = type(n)
         if t is ast.Constant:       # the commonest nodes skip the table lookup
-            return n.value
+            return n.value   # type: ignore[attr-defined]  # t is type(n): an ast.Constant
         if t is ast.Name:
-            return self.name(n.id, sc)
+            return self.name(n.id, sc)   # type: ignore[attr-defined]  # an ast.Name
         handler = _NODES.get(t)
         if handler is None:
             raise UnsafeExpression(f"{t.__name__} is not allowed in xacro expressions")
         return handler(self, n, sc)
 
-    def _ev_binop(self, n, sc):
+    def _ev_binop(self, n: ast.BinOp, sc: _Scope) -> Any:
         return self.binop(type(n.op), self._ev(n.left, sc), self._ev(n.right, sc))
 
-    def _ev_unaryop(self, n, sc):
+    def _ev_unaryop(self, n: ast.UnaryOp, sc: _Scope) -> Any:
         return _UN[type(n.op)](self._ev(n.operand, sc))
 
-    def _ev_boolop(self, n, sc):
+    def _ev_boolop(self, n: ast.BoolOp, sc: _Scope) -> Any:
         if isinstance(n.op, ast.And):
             v = True
             for x in n.values:
@@ -384,7 +394,7 @@ class Evaluator:
                 return v
         return v
 
-    def _ev_compare(self, n, sc) -> bool:
+    def _ev_compare(self, n: ast.Compare, sc: _Scope) -> bool:
         left = self._ev(n.left, sc)
         for op, c in zip(n.ops, n.comparators, strict=True):
             right = self._ev(c, sc)
@@ -393,13 +403,13 @@ class Evaluator:
             left = right
         return True
 
-    def _ev_ifexp(self, n, sc):
+    def _ev_ifexp(self, n: ast.IfExp, sc: _Scope) -> Any:
         return self._ev(n.body, sc) if self._ev(n.test, sc) else self._ev(n.orelse, sc)
 
-    def _ev_attribute(self, n, sc):
+    def _ev_attribute(self, n: ast.Attribute, sc: _Scope) -> Any:
         return self.attr(self._ev(n.value, sc), n.attr)
 
-    def _ev_subscript(self, n, sc):
+    def _ev_subscript(self, n: ast.Subscript, sc: _Scope) -> Any:
         obj = self._ev(n.value, sc)
         key = self._ev(n.slice, sc)
         if not isinstance(obj, _value_types + _namespace_types):
@@ -408,14 +418,14 @@ class Evaluator:
             raise UnsafeExpression(f"access to '{key}' is not allowed")
         return _gate(obj[key], "that item")
 
-    def _ev_slice(self, n, sc):
+    def _ev_slice(self, n: ast.Slice, sc: _Scope) -> slice:
         return slice(*(self._ev(x, sc) if x is not None else None
                        for x in (n.lower, n.upper, n.step)))
 
-    def _ev_call(self, n, sc):
+    def _ev_call(self, n: ast.Call, sc: _Scope) -> Any:
         fn = self._ev(n.func, sc)
         args = self._items(n.args, sc)
-        kwargs = {}
+        kwargs: dict[str, Any] = {}
         for k in n.keywords:
             if k.arg is None:
                 kwargs.update(self._ev(k.value, sc))
@@ -423,9 +433,9 @@ class Evaluator:
                 kwargs[k.arg] = self._ev(k.value, sc)
         return self.call(fn, args, kwargs)
 
-    def _items(self, nodes, sc):
+    def _items(self, nodes: Sequence[ast.expr], sc: _Scope) -> list[Any]:
         """The values of ``nodes`` (call arguments, display elements), ``*x`` spread in."""
-        items = []
+        items: list[Any] = []
         for e in nodes:
             if isinstance(e, ast.Starred):
                 items.extend(self._ev(e.value, sc))
@@ -433,17 +443,17 @@ class Evaluator:
                 items.append(self._ev(e, sc))
         return items
 
-    def _ev_list(self, n, sc):
+    def _ev_list(self, n: ast.List, sc: _Scope) -> list[Any]:
         return self._items(n.elts, sc)
 
-    def _ev_tuple(self, n, sc):
+    def _ev_tuple(self, n: ast.Tuple, sc: _Scope) -> tuple[Any, ...]:
         return tuple(self._items(n.elts, sc))
 
-    def _ev_set(self, n, sc):
+    def _ev_set(self, n: ast.Set, sc: _Scope) -> set[Any]:
         return set(self._items(n.elts, sc))
 
-    def _ev_dict(self, n, sc):
-        d = {}
+    def _ev_dict(self, n: ast.Dict, sc: _Scope) -> dict[Any, Any]:
+        d: dict[Any, Any] = {}
         for k, v in zip(n.keys, n.values, strict=True):
             if k is None:
                 d.update(self._ev(v, sc))
@@ -451,18 +461,18 @@ class Evaluator:
                 d[self._ev(k, sc)] = self._ev(v, sc)
         return d
 
-    def _ev_comprehension(self, n, sc):
+    def _ev_comprehension(self, n: _Comprehension, sc: _Scope) -> Any:
         out: list[Any] = []
         self._comp(n.generators, 0, _Scope({}, sc), n, out)
         return _COMPREHENSIONS[type(n)](out)
 
-    def _ev_joinedstr(self, n, sc):
+    def _ev_joinedstr(self, n: ast.JoinedStr, sc: _Scope) -> str:
         parts: list[Any] = []
         for v in n.values:
             parts.append(v.value if isinstance(v, ast.Constant) else self._ev(v, sc))
         return "".join(parts)
 
-    def _ev_formattedvalue(self, n, sc):
+    def _ev_formattedvalue(self, n: ast.FormattedValue, sc: _Scope) -> str:
         v = self._ev(n.value, sc)
         if n.conversion == ord("r"):
             v = repr(v)
@@ -473,13 +483,14 @@ class Evaluator:
         spec = self._ev(n.format_spec, sc) if n.format_spec is not None else ""
         return format(v, spec)
 
-    def _ev_lambda(self, n, sc):
+    def _ev_lambda(self, n: ast.Lambda, sc: _Scope) -> _Lambda:
         a = n.args
         if a.vararg or a.kwarg or a.kwonlyargs or a.defaults or a.posonlyargs:
             raise UnsafeExpression("only simple lambdas are supported")
         return _Lambda(n, self, sc)
 
-    def _comp(self, gens, i, sc, node, out):
+    def _comp(self, gens: Sequence[ast.comprehension], i: int, sc: _Scope,
+              node: _Comprehension, out: list[Any]) -> None:
         if i == len(gens):
             self.tick()
             if isinstance(node, ast.DictComp):
@@ -497,7 +508,7 @@ class Evaluator:
             if all(self._ev(c, inner) for c in g.ifs):
                 self._comp(gens, i + 1, inner, node, out)
 
-    def _assign(self, target, value, sc):
+    def _assign(self, target: ast.expr, value: Any, sc: _Scope) -> None:
         if isinstance(target, ast.Name):
             sc.vars[target.id] = value
         elif isinstance(target, (ast.Tuple, ast.List)):
@@ -512,7 +523,7 @@ class Evaluator:
 
 # the node types an expression may contain (besides Constant and Name, which _ev handles
 # first), each with its handler; a node of any other type is refused
-_NODES = {
+_NODES: dict[type[ast.expr], Callable[[Evaluator, Any, _Scope], Any]] = {
     ast.BinOp: Evaluator._ev_binop, ast.UnaryOp: Evaluator._ev_unaryop,
     ast.BoolOp: Evaluator._ev_boolop, ast.Compare: Evaluator._ev_compare,
     ast.IfExp: Evaluator._ev_ifexp, ast.Attribute: Evaluator._ev_attribute,
@@ -525,24 +536,24 @@ _NODES = {
     ast.Lambda: Evaluator._ev_lambda,
 }
 # what each comprehension builds from its items (a generator expression: an iterator over them)
-_COMPREHENSIONS = {ast.ListComp: lambda out: out, ast.SetComp: set, ast.DictComp: dict,
-                   ast.GeneratorExp: iter}
+_COMPREHENSIONS: dict[type[ast.expr], Callable[[list[Any]], Any]] = {
+    ast.ListComp: lambda out: out, ast.SetComp: set, ast.DictComp: dict, ast.GeneratorExp: iter}
 
 
 @functools.lru_cache(maxsize=8192)
-def _parse(expr: str):
+def _parse(expr: str) -> ast.expr:
     """Expressions repeat (every macro call evaluates its body again); the AST is read-only."""
     return ast.parse(expr.strip(), mode="eval").body
 
 
-def evaluate(expr: str, lookup):
+def evaluate(expr: str, lookup: Callable[[str], Any]) -> Any:
     return Evaluator(lookup).eval(_parse(expr))
 
 
-def xacro_safe_eval(expr, globals, locals=None):
+def xacro_safe_eval(expr: str, globals: Any, locals: Any = None) -> Any:
     """Drop-in for ``xacro.safe_eval``: names resolve through xacro's symbol Table."""
     if locals is not None:
-        def lookup(name):
+        def lookup(name: str) -> Any:
             try:
                 return locals[name]
             except KeyError:
@@ -552,7 +563,7 @@ def xacro_safe_eval(expr, globals, locals=None):
     return evaluate(expr, lookup)
 
 
-def substitution_eval(s, context):
+def substitution_eval(s: str, context: dict[str, Any]) -> str:
     """Drop-in for ``xacro.substitution_args._eval`` (``$(eval ...)``)."""
     from xacro import substitution_args as sa
     if "arg" not in context:
@@ -570,7 +581,7 @@ def substitution_eval(s, context):
             v = SafeCallable(v, k)  # find/env/optenv: our hooks
         functions[k] = v
 
-    def lookup(name):
+    def lookup(name: str) -> Any:
         if name in functions:
             return functions[name]
         if name in context["arg"]:

@@ -19,7 +19,7 @@ It is like sqlfluff's ``TemplatedFile`` slice map, at element rather than charac
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Iterator, Sequence
+from typing import Any, Iterable, Iterator, Sequence, overload
 
 from urdf_lint.core.locations import Origin
 
@@ -27,13 +27,13 @@ KEY = "urdf_lint.origin"   # the minidom user-data key of an element's stamp
 
 
 @dataclass(frozen=True)
-class SourceMap(Sequence):
+class SourceMap(Sequence["Origin | None"]):
     """One :class:`Origin` per output element, in document order (None only before the first
     stamped element, which never happens for a parsed document)."""
     origins: tuple[Origin | None, ...] = ()
 
     @classmethod
-    def from_stamps(cls, stamps) -> "SourceMap":
+    def from_stamps(cls, stamps: Iterable[Sequence[Any] | None]) -> "SourceMap":
         """From the ``(file, line, col, chain, ...)`` stamps of the output elements (None for
         an element without one: it takes the origin of the element before it)."""
         out: list[Origin | None] = []
@@ -44,7 +44,7 @@ class SourceMap(Sequence):
             out.append(last)
         return cls(tuple(out))
 
-    def align(self, elements) -> dict:
+    def align(self, elements: Iterable[Any]) -> dict[Any, Origin]:
         """{element: Origin} for the output elements in document order. The counts must agree:
         a mismatch would silently shift every location, so it raises ``ValueError``."""
         return {el: o for el, o in zip(elements, self.origins, strict=True) if o is not None}
@@ -52,12 +52,18 @@ class SourceMap(Sequence):
     def __len__(self) -> int:
         return len(self.origins)
 
-    def __getitem__(self, i):
+    @overload
+    def __getitem__(self, i: int) -> Origin | None: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> tuple[Origin | None, ...]: ...
+
+    def __getitem__(self, i: int | slice) -> Origin | None | tuple[Origin | None, ...]:
         return self.origins[i]
 
     def __iter__(self) -> Iterator[Origin | None]:
         return iter(self.origins)
 
 
-def as_source_map(origins: Sequence) -> SourceMap:
+def as_source_map(origins: Sequence[Any]) -> SourceMap:
     return origins if isinstance(origins, SourceMap) else SourceMap.from_stamps(origins)

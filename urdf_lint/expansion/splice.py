@@ -24,7 +24,7 @@ _COMMENT = xml.dom.Node.COMMENT_NODE
 _WINDOW_BACK, _WINDOW_AHEAD = 16, 48
 
 # id(parent) -> (parent, index of the last edit); the parent is held so its id is not reused.
-_hints: dict[int, tuple] = {}
+_hints: dict[int, tuple[Any, int]] = {}
 _orig: dict[str, Any] = {}
 
 
@@ -33,7 +33,7 @@ def reset() -> None:
     _hints.clear()
 
 
-def _index_of(parent, node) -> int:
+def _index_of(parent: Any, node: Any) -> int:
     kids = parent.childNodes
     h = _hints.get(id(parent))
     if h is not None and h[0] is parent:
@@ -41,10 +41,11 @@ def _index_of(parent, node) -> int:
         for j in range(max(0, i - _WINDOW_BACK), min(len(kids), i + _WINDOW_AHEAD)):
             if kids[j] is node:
                 return j
-    return kids.index(node)
+    index: int = kids.index(node)
+    return index
 
 
-def _splice(parent, i: int, new: list) -> None:
+def _splice(parent: Any, i: int, new: list[Any]) -> None:
     """Replace ``parent.childNodes[i]`` (or insert before it when ``i`` is past a removal) by
     ``new``, fixing the sibling links and parent pointers exactly as minidom would."""
     kids = parent.childNodes
@@ -69,7 +70,7 @@ def _splice(parent, i: int, new: list) -> None:
         minidom._clear_id_cache(parent)  # type: ignore[attr-defined]
 
 
-def _detach_children(doc) -> list:
+def _detach_children(doc: Any) -> list[Any]:
     kids = list(doc.childNodes)
     del doc.childNodes[:]
     for c in kids:
@@ -80,7 +81,7 @@ def _detach_children(doc) -> list:
     return kids
 
 
-def replace_node(node, by, content_only=False):
+def replace_node(node: Any, by: Any, content_only: bool = False) -> Any:
     parent = node.parentNode
     docs = [] if by is None else (by if isinstance(by, list) else [by])
     fast = parent is not None and parent.nodeType == _ELEMENT
@@ -95,23 +96,24 @@ def replace_node(node, by, content_only=False):
                 break
     if not fast:
         return _orig["replace_node"](node, by, content_only)
-    new: list = []
+    new: list[Any] = []
     for doc in docs:
         if content_only:
             new.extend(_detach_children(doc))
         else:
             new.append(doc)
     _splice(parent, _index_of(parent, node), new)
+    return None
 
 
-def _remove_child(parent, child) -> None:
+def _remove_child(parent: Any, child: Any) -> None:
     if parent.nodeType != _ELEMENT:
         parent.removeChild(child)
         return
     _splice(parent, _index_of(parent, child), [])
 
 
-def _insert_before(parent, new, ref) -> None:
+def _insert_before(parent: Any, new: Any, ref: Any) -> None:
     if parent.nodeType != _ELEMENT or new.nodeType not in parent._child_node_types:
         parent.insertBefore(new, ref)
         return
@@ -130,7 +132,7 @@ def _insert_before(parent, new, ref) -> None:
     _hints[id(parent)] = (parent, i + 1)
 
 
-def remove_previous_comments(node) -> None:
+def remove_previous_comments(node: Any) -> None:
     """xacro's ``remove_previous_comments`` with the linear-time edits above."""
     import xacro
     next = node.nextSibling

@@ -14,18 +14,18 @@ that attribute names the YAML line (``value from config/joint_limits.yaml:28``).
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Callable
 
-Loc = tuple  # (file, line, col), 1-based
+Loc = tuple[str, int, int]  # (file, line, col), 1-based
 
 
 class _Traced:
     """What the three traced types share: the source and whether the value was computed."""
-    ul_from: Loc = ()
+    ul_from: Loc | tuple[()] = ()
     ul_derived: bool = False
 
 
-def _wrap(value: Any, loc: Loc, derived: bool) -> Any:
+def _wrap(value: Any, loc: Loc | tuple[()], derived: bool) -> Any:
     if value is NotImplemented or isinstance(value, bool):
         return value
     if type(value) is float:
@@ -38,10 +38,10 @@ def _wrap(value: Any, loc: Loc, derived: bool) -> Any:
     return out
 
 
-def _arith(name: str, base: type):
+def _arith(name: str, base: type) -> Callable[..., Any]:
     op = getattr(base, name)
 
-    def method(self, *other):
+    def method(self: Any, *other: Any) -> Any:
         return _wrap(op(self, *other), self.ul_from, True)
     method.__name__ = name
     return method
