@@ -14,10 +14,17 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Collection, Iterable, Mapping, Sequence, TypeVar, cast
 
 import numpy as np
 
 from urdf_lint.render.scene import _transform, part_mesh
+
+if TYPE_CHECKING:  # pragma: no cover
+    from PIL import Image, ImageDraw
+
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.render.scene import MeshArrays, Part, Scene
 
 PNG_SIZE = (960, 720)           # the long side of a single view is PNG_SIZE[0]
 CELL = 560                      # the long side of one view of a sheet
@@ -39,17 +46,19 @@ class Geometry:
     """What a PNG shows, in world coordinates: plain arrays, so a worker can compute it from
     the meshes it may read and the parent can draw several revisions with one framing."""
     name: str
-    tris: list                 # per part: (faces, 3, 3) float array
-    cols: list                 # per part: (faces, 3) rgb in 0..1
-    wires: list                # world positions of placeholders for missing geometry
+    tris: list[np.ndarray]     # per part: (faces, 3, 3) float array
+    cols: list[np.ndarray]     # per part: (faces, 3) rgb in 0..1
+    wires: list[np.ndarray]    # world positions of placeholders for missing geometry
     link_pts: np.ndarray       # (links, 3) link origins
     links: int
-    part_links: list = field(default_factory=list)   # the link of each entry of ``tris``
-    wire_links: list = field(default_factory=list)   # the link of each entry of ``wires``
-    uvs: list = field(default_factory=list)          # per part: (faces, 3, 2) or None
-    texs: list = field(default_factory=list)         # per part: (h, w, 3) uint8 or None
-    ghost: list = field(default_factory=list)        # per part: collision shown for a missing visual
-    labels: list = field(default_factory=list)       # (link, world position) of each placeholder
+    part_links: list[str] = field(default_factory=list)   # the link of each entry of ``tris``
+    wire_links: list[str] = field(default_factory=list)   # the link of each entry of ``wires``
+    uvs: list[np.ndarray | None] = field(default_factory=list)   # per part: (faces, 3, 2) or None
+    texs: list[np.ndarray | None] = field(default_factory=list)  # per part: (h, w, 3) uint8 or None
+    # per part: collision shown for a missing visual
+    ghost: list[bool] = field(default_factory=list)
+    # (link, world position) of each placeholder
+    labels: list[tuple[str, np.ndarray]] = field(default_factory=list)
     bones: np.ndarray = field(default_factory=lambda: np.zeros((0, 2, 3)))  # joint tree
 
     def __post_init__(self) -> None:
@@ -58,7 +67,7 @@ class Geometry:
         self.texs = list(self.texs) or [None] * n
         self.ghost = list(self.ghost) or [False] * n
 
-    def only(self, links) -> "Geometry":
+    def only(self, links: Collection[str]) -> "Geometry":
         """The parts of the given links in black (for highlight masks: a white part would be
         too close to the background to tell)."""
         keep = [i for i, lk in enumerate(self.part_links) if lk in links]
@@ -70,21 +79,21 @@ class Geometry:
                         [None] * len(keep), [None] * len(keep), [False] * len(keep))
 
     @property
-    def placeholders(self) -> list:
+    def placeholders(self) -> list[str]:
         return sorted({lk for lk, _ in self.labels})
 
 
-def scene_geometry(scene, ctx) -> Geometry:
+def scene_geometry(scene: Scene, ctx: Context) -> Geometry:
     """The visual parts of ``scene``; a link whose visual cannot be drawn shows its collision
     geometry (ghosted) instead, or a red wire box when it has none."""
-    visual: dict = {}
-    collision: dict = {}
+    visual: dict[str, list[Part]] = {}
+    collision: dict[str, list[Part]] = {}
     for part in scene.parts:
         (visual if part.kind == "visual" else collision).setdefault(part.link, []).append(part)
     g = Geometry(scene.name, [], [], [], np.zeros((1, 3)), len(scene.links))
     g.uvs, g.texs, g.ghost = [], [], []
 
-    def add(part, got, ghost) -> None:
+    def add(part: Part, got: MeshArrays, ghost: bool) -> None:
         v, f, fc = got
         scale = part.params.get("scale") or (1, 1, 1)
         if np.prod(np.sign(np.asarray(scale, dtype=float))) < 0:  # a mirror flips the winding
@@ -107,7 +116,7 @@ def scene_geometry(scene, ctx) -> Geometry:
             g.texs.append(None)
 
     for link, parts in visual.items():
-        missing = []
+        missing: list[Part] = []
         for part in parts:
             got = part_mesh(part, ctx) if part.shape != "missing" else None
             if got is None:
@@ -163,8 +172,8 @@ class View:
 class Frame:
     """The framing of one picture: one or four views, the image size and the placeholder box
     size. Before/after images of ``diff`` share one Frame."""
-    views: list
-    size: tuple
+    views: list[View]
+    size: tuple[int, int]
     box: float
 
 
@@ -172,11 +181,13 @@ _BOX_EDGES = ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (2, 6), (3, 7), (4
               (5, 7), (6, 7))
 
 
-def _box_corners(c, box):
-    return np.array([[x, y, z] for x in (-box, box) for y in (-box, box) for z in (-box, box)]) + c
+def _box_corners(c: np.ndarray, box: float) -> np.ndarray:
+    corners: np.ndarray = \
+        np.array([[x, y, z] for x in (-box, box) for y in (-box, box) for z in (-box, box)]) + c
+    return corners
 
 
-def view_axes(name: str, forward: str = "+x"):
+def view_axes(name: str, forward: str = "+x") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(right, up, towards-camera) of a named view for a robot facing ``forward``."""
     f = np.array({"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0)}[forward],
                  dtype=float)
@@ -197,14 +208,15 @@ def view_axes(name: str, forward: str = "+x"):
     return right, up, d
 
 
-def _points(geoms):
-    pts = []
+def _points(geoms: Iterable[Geometry]) -> list[np.ndarray]:
+    pts: list[np.ndarray] = []
     for g in geoms:
         pts += [np.asarray(t, dtype=float).reshape(-1, 3) for t in g.tris] + [g.link_pts]
     return pts
 
 
-def frame_for(geoms, size=None, views="single", forward="+x") -> Frame:
+def frame_for(geoms: Sequence[Geometry], size: tuple[int, int] | None = None, views: str = "single",
+              forward: str = "+x") -> Frame:
     """One framing for all ``geoms``, fitted to their union: a 3/4 view (``single``) or a 2x2
     sheet of front, side, top and 3/4 views. The image is cropped to the robot's shape, so
     tall robots fill it."""
@@ -226,8 +238,9 @@ def frame_for(geoms, size=None, views="single", forward="+x") -> Frame:
         px, py = q @ right, q @ up
         spans.append((name, right, up, d, px.min(), px.max(), py.min(), py.max()))
 
-    def aspect(s):
-        return max(s[5] - s[4], 1e-6) / max(s[7] - s[6], 1e-6)
+    def aspect(s: tuple[Any, ...]) -> float:
+        ratio: float = max(s[5] - s[4], 1e-6) / max(s[7] - s[6], 1e-6)
+        return ratio
     if views == "single":
         a = min(2.0, max(0.5, aspect(spans[0])))
         long_side = size[0] if size else PNG_SIZE[0]
@@ -256,13 +269,13 @@ def frame_for(geoms, size=None, views="single", forward="+x") -> Frame:
 
 
 # -- drawing ---------------------------------------------------------------------------------
-def draw(g: Geometry, fr: Frame, annotate: bool = True):
+def draw(g: Geometry, fr: Frame, annotate: bool = True) -> Image.Image:
     """The anti-aliased image of one geometry through one frame (no caption); without
     ``annotate``, the parts alone (no view names, triads, labels or skeleton)."""
     return draw_many({0: (g, annotate)}, fr, threads=1)[0]
 
 
-def _prepare(g: Geometry):
+def _prepare(g: Geometry) -> dict[str, Any] | None:
     """All triangles of ``g`` in one array, with their part, colour, texture and ghost flag."""
     if not g.tris:
         return None
@@ -296,12 +309,13 @@ def _prepare(g: Geometry):
             "uv": uv, "tex": tex_id, "ghost": ghost}
 
 
-def _project(v: View, p):
+def _project(v: View, p: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     q = np.asarray(p, dtype=float) - v.center
     return (v.ox + v.scale * (q @ v.right), v.oy - v.scale * (q @ v.up), q @ v.fwd)
 
 
-def _draw_view(g: Geometry, solid, v: View, fr: Frame, annotate: bool = True):
+def _draw_view(g: Geometry, solid: dict[str, Any] | None, v: View, fr: Frame,
+               annotate: bool = True) -> Image.Image:
     from PIL import Image, ImageDraw
     S = _SS
     Ws, Hs = v.w * S, v.h * S
@@ -346,7 +360,7 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame, annotate: bool = True):
         box = dr.textbbox((0, 0), text)
         dr.text(((v.w - box[2]) / 2, v.h / 2 + 12), text, fill=(90, 90, 100))
     _triad(dr, v)
-    taken: list = []
+    taken: list[tuple[float, float, float, float]] = []
     for link, pos in g.labels:
         X, Y, _ = _project(v, np.asarray(pos, dtype=float)[None, :])
         x, y = float(X[0]) / S + 6, float(Y[0]) / S - 6
@@ -365,7 +379,8 @@ def _draw_view(g: Geometry, solid, v: View, fr: Frame, annotate: bool = True):
     return img
 
 
-def _raster_ids(solid, which, v: View, Hs, Ws):
+def _raster_ids(solid: dict[str, Any], which: np.ndarray, v: View, Hs: int,
+                Ws: int) -> tuple[np.ndarray, np.ndarray]:
     """(depth, triangle index) per supersampled pixel of the triangles selected by ``which``."""
     idx = np.nonzero(which)[0]
     zbuf = np.full((Hs, Ws), np.inf)
@@ -383,7 +398,8 @@ def _raster_ids(solid, which, v: View, Hs, Ws):
     return zbuf, ids
 
 
-def _shade(colour, ids, solid, v: View, g: Geometry) -> None:
+def _shade(colour: np.ndarray, ids: np.ndarray, solid: dict[str, Any], v: View,
+           g: Geometry) -> None:
     """Colour every covered pixel: its part's colour or its texture at the interpolated UV,
     times a two-sided diffuse term."""
     m = ids >= 0
@@ -415,7 +431,7 @@ def _shade(colour, ids, solid, v: View, g: Geometry) -> None:
         uv = (uvt[:, 0] * l0[:, None] + uvt[:, 1] * l1[:, None] + uvt[:, 2] * l2[:, None]) % 1.0
         sampled = np.zeros((len(tri), 3))
         for i in np.unique(tt[has]):
-            arr = g.texs[int(i)]
+            arr = cast(np.ndarray, g.texs[int(i)])   # a part with a texture id has one
             sel = tt[has] == i
             h, w = arr.shape[:2]
             px = np.clip((uv[sel, 0] * w).astype(np.int64), 0, w - 1)
@@ -425,7 +441,8 @@ def _shade(colour, ids, solid, v: View, g: Geometry) -> None:
     colour[m] = out
 
 
-def _outline_edges(colour, ids, zbuf, part, strength=0.6) -> None:
+def _outline_edges(colour: np.ndarray, ids: np.ndarray, zbuf: np.ndarray, part: np.ndarray,
+                   strength: float = 0.6) -> None:
     """Darken silhouettes and part boundaries (lighten them on dark parts): a black robot on a
     dark background, or a white one on a light background, keeps its outline."""
     covered = ids >= 0
@@ -458,7 +475,7 @@ def _outline_edges(colour, ids, zbuf, part, strength=0.6) -> None:
     colour[edge] = px.clip(0, 255).astype(np.uint8)
 
 
-def _skeleton(colour, zbuf, bones, v: View) -> None:
+def _skeleton(colour: np.ndarray, zbuf: np.ndarray, bones: np.ndarray, v: View) -> None:
     """Thin lines between link origins along the joint tree, hidden where geometry is in
     front of them."""
     Hs, Ws = zbuf.shape
@@ -481,7 +498,7 @@ def _skeleton(colour, zbuf, bones, v: View) -> None:
         colour[yi[vis], xi[vis]] = _SKELETON
 
 
-def _triad(dr, v: View) -> None:
+def _triad(dr: ImageDraw.ImageDraw, v: View) -> None:
     """A small x/y/z triad (red/green/blue) in the bottom left corner of a view."""
     cx, cy, L = 26, v.h - 22, 14
     dr.rounded_rectangle((4, cy - L - 10, cx + L + 12, v.h - 2), radius=4, fill=(250, 250, 252),
@@ -497,7 +514,7 @@ def _triad(dr, v: View) -> None:
 
 
 # -- captions and files ----------------------------------------------------------------------
-def caption(img, text) -> None:
+def caption(img: Image.Image, text: str) -> None:
     from PIL import ImageDraw
     ImageDraw.Draw(img).text((8, 6), text, fill=(40, 40, 40))
 
@@ -505,7 +522,7 @@ def caption(img, text) -> None:
 LEGEND_H = 18   # the strip at the bottom of the difference image that holds the legend
 
 
-def legend(img) -> None:
+def legend(img: Image.Image) -> None:
     """The difference image's legend, in the bottom-left corner (``LEGEND_H`` rows)."""
     from PIL import ImageDraw
     d = ImageDraw.Draw(img)
@@ -518,7 +535,7 @@ def legend(img) -> None:
 
 def drawn_alike(a: "Geometry", b: "Geometry", link: str) -> bool:
     """Is ``link`` drawn the same in ``a`` and ``b`` (the same parts and placeholders)?"""
-    def parts(g):
+    def parts(g: Geometry) -> tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray]]:
         return ([g.tris[i] for i, lk in enumerate(g.part_links) if lk == link],
                 [g.cols[i] for i, lk in enumerate(g.part_links) if lk == link],
                 [g.wires[i] for i, lk in enumerate(g.wire_links) if lk == link])
@@ -530,13 +547,14 @@ def drawn_alike(a: "Geometry", b: "Geometry", link: str) -> bool:
     return True
 
 
-def save_png(img, path) -> None:
+def save_png(img: Image.Image, path: str) -> None:
     from urdf_lint.core import fsbound  # the snapshot folder, checked by the CLI (and Landlock here)
     with fsbound.temp_path(path, os.path.dirname(os.path.abspath(path)), ".png") as tmp:
         img.save(tmp, format="PNG", optimize=False)
 
 
-def model_caption(name, links, placeholders, findings=None) -> str:
+def model_caption(name: str | None, links: int, placeholders: int,
+                  findings: int | None = None) -> str:
     text = f"{name or 'robot'}  ({links} links"
     if placeholders:
         text += f", {placeholders} without visual shown as placeholders"
@@ -545,7 +563,8 @@ def model_caption(name, links, placeholders, findings=None) -> str:
     return text + ")"
 
 
-def render_image(scene, ctx, views="single", forward="+x"):
+def render_image(scene: Scene, ctx: Context, views: str = "single",
+                 forward: str = "+x") -> tuple[Image.Image, dict[str, int]]:
     """(uncaptioned image, facts) of one model: drawn in the worker, captioned by the parent
     once the run's findings are final."""
     g = scene_geometry(scene, ctx)
@@ -554,20 +573,24 @@ def render_image(scene, ctx, views="single", forward="+x"):
                  "placeholders": len(g.placeholders), "links": len(scene.links)}
 
 
-def _mask(img) -> np.ndarray:
-    return np.abs(np.asarray(img.convert("RGB"), dtype=np.int16) - _BACKGROUND).max(axis=2) > 12
+def _mask(img: Image.Image) -> np.ndarray:
+    mask: np.ndarray = \
+        np.abs(np.asarray(img.convert("RGB"), dtype=np.int16) - _BACKGROUND).max(axis=2) > 12
+    return mask
 
 
-def _outline(mask) -> np.ndarray:
+def _outline(mask: np.ndarray) -> np.ndarray:
     inner = mask.copy()
     inner[1:, :] &= mask[:-1, :]
     inner[:-1, :] &= mask[1:, :]
     inner[:, 1:] &= mask[:, :-1]
     inner[:, :-1] &= mask[:, 1:]
-    return mask & ~inner
+    edge: np.ndarray = mask & ~inner
+    return edge
 
 
-def difference_image(after, before_changed, after_changed):
+def difference_image(after: Image.Image, before_changed: np.ndarray,
+                     after_changed: np.ndarray) -> Image.Image:
     """The after image washed out, the changed links tinted magenta where they are now, and
     outlined in blue where they were: what moved stands out, the rest stays as context."""
     from PIL import Image
@@ -582,8 +605,9 @@ def difference_image(after, before_changed, after_changed):
 
 
 def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
-                changed_links=frozenset(), views="sheet", forward="+x", threads=None,
-                unseen: str = "") -> dict:
+                changed_links: Collection[str] = frozenset(), views: str = "sheet",
+                forward: str = "+x", threads: int | None = None,
+                unseen: str = "") -> dict[str, Any]:
     """``stem.before.png`` and ``stem.after.png`` with identical framing (byte-identical when
     nothing changed), and ``stem.diff.png`` highlighting ``changed_links``; ``unseen``: what
     changed that no picture shows (limits, masses, ...), said in the difference's caption.
@@ -596,10 +620,10 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
         # a link drawn alike on both sides (its mesh missing on both, a change no picture
         # shows) is not marked changed
         changed_links = frozenset(lk for lk in asked if not drawn_alike(before, after, lk))
-    out: dict = {}
+    out: dict[str, Any] = {}
     blank = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
     same = before is not None and after is not None and same_geometry(before, after)
-    wanted: dict = {}
+    wanted: dict[str, tuple[Geometry, bool]] = {}
     for side, g in (("before", before), ("after", None if same else after)):
         if g is not None:
             wanted[side] = (g, True)
@@ -610,9 +634,9 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
         drawn["after"] = drawn["before"]
         if changed_links:
             drawn["after.mask"] = drawn["before.mask"]
-    masks: dict = {}
+    masks: dict[str, np.ndarray] = {}
     after_img = blank
-    pngs: dict = {}
+    pngs: dict[str, Image.Image] = {}
     for side, g in (("before", before), ("after", after)):
         if g is None:
             img = blank.copy()
@@ -651,7 +675,7 @@ def render_pair(before: Geometry | None, after: Geometry | None, stem: str,
     return out
 
 
-def _save_same(pngs: dict) -> None:
+def _save_same(pngs: Mapping[str, Image.Image]) -> None:
     """Save path -> image for equal images: encoded once, written to every path."""
     import io
     from urdf_lint.core import fsbound
@@ -661,7 +685,11 @@ def _save_same(pngs: dict) -> None:
         fsbound.write_bytes(path, buf.getvalue(), os.path.dirname(os.path.abspath(path)))
 
 
-def draw_many(items: dict, fr: Frame, threads=None) -> dict:
+_Key = TypeVar("_Key")   # what draw_many's caller names its pictures by
+
+
+def draw_many(items: Mapping[_Key, tuple[Geometry, bool]], fr: Frame,
+              threads: int | None = None) -> dict[_Key, Image.Image]:
     """name -> the image :func:`draw` gives, for ``items`` (name -> (geometry, annotate)).
     Every view is drawn on its own, by ``threads`` threads (default: two on a machine with
     two cores or more; numpy lets go of the GIL in the rasterizer's array operations), and
@@ -670,7 +698,7 @@ def draw_many(items: dict, fr: Frame, threads=None) -> dict:
     solids = {name: _prepare(g) for name, (g, _annotate) in items.items()}
     tasks = [(name, i) for name in items for i in range(len(fr.views))]
 
-    def one(task):
+    def one(task: tuple[_Key, int]) -> Image.Image:
         name, i = task
         g, annotate = items[name]
         return _draw_view(g, solids[name], fr.views[i], fr, annotate)
@@ -682,7 +710,7 @@ def draw_many(items: dict, fr: Frame, threads=None) -> dict:
             views = dict(zip(tasks, pool.map(one, tasks), strict=True))
     else:
         views = {t: one(t) for t in tasks}
-    out = {}
+    out: dict[_Key, Image.Image] = {}
     for name in items:
         img = Image.new("RGB", fr.size, tuple(int(x) for x in _BACKGROUND))
         for i, v in enumerate(fr.views):
@@ -693,7 +721,7 @@ def draw_many(items: dict, fr: Frame, threads=None) -> dict:
 
 def same_geometry(a: Geometry, b: Geometry) -> bool:
     """Would ``a`` and ``b`` draw the same picture (so it is drawn once)?"""
-    def arrays(g):
+    def arrays(g: Geometry) -> list[list[Any]]:
         return [g.tris, g.cols, g.uvs, g.texs, g.wires]
     if (a.name, a.links, a.part_links, a.wire_links, a.ghost, [lk for lk, _ in a.labels]) != \
             (b.name, b.links, b.part_links, b.wire_links, b.ghost, [lk for lk, _ in b.labels]):
@@ -709,7 +737,8 @@ def same_geometry(a: Geometry, b: Geometry) -> bool:
 
 
 # -- the rasterizer --------------------------------------------------------------------------
-def _write_nearest(zbuf, ids, pix, z, t) -> None:
+def _write_nearest(zbuf: np.ndarray, ids: np.ndarray, pix: np.ndarray, z: np.ndarray,
+                   t: np.ndarray) -> None:
     """Depth-test samples (flat pixel index, depth, triangle) into the buffers; nearest wins,
     equal depths go to the later sample (numpy assigns repeated indices in order)."""
     if not len(pix):
@@ -720,7 +749,8 @@ def _write_nearest(zbuf, ids, pix, z, t) -> None:
     ids.reshape(-1)[pix[win]] = t[win]
 
 
-def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20) -> None:
+def raster_ids(zbuf: np.ndarray, ids: np.ndarray, X: np.ndarray, Y: np.ndarray, Z: np.ndarray,
+               tri_ids: Any, pixels_per_batch: int = 1 << 20) -> None:
     """Z-buffer triangles into ``zbuf``, writing ``tri_ids`` of the nearest triangle to ``ids``.
 
     Vectorized scanline rasterization: every (triangle, row) gets its covered x-span from the
@@ -761,7 +791,9 @@ def raster_ids(zbuf, ids, X, Y, Z, tri_ids, pixels_per_batch=1 << 20) -> None:
         start = stop
 
 
-def _scan(zbuf, ids, sl, X, Y, ys, rows, pa, pb, pc, tri_ids, Ws) -> None:
+def _scan(zbuf: np.ndarray, ids: np.ndarray, sl: slice, X: np.ndarray, Y: np.ndarray,
+          ys: np.ndarray, rows: np.ndarray, pa: np.ndarray, pb: np.ndarray, pc: np.ndarray,
+          tri_ids: np.ndarray, Ws: int) -> None:
     idx = np.arange(sl.start, sl.stop)
     n = rows[idx]
     keep = n > 0

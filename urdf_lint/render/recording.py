@@ -19,7 +19,8 @@ if TYPE_CHECKING:  # pragma: no cover
 import numpy as np
 
 from urdf_lint.core.jobs import DEFAULT_MEMORY_MB
-from urdf_lint.core.locations import label_base, relative_label  # noqa: F401 - (where they are used from)
+# (re-exported: where they are used from)
+from urdf_lint.core.locations import label_base as label_base, relative_label as relative_label
 from urdf_lint.engine.api import numbers
 from urdf_lint.render.scene import origin_matrix, part_mesh
 

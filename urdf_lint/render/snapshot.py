@@ -23,9 +23,11 @@ if TYPE_CHECKING:  # pragma: no cover
 
 from urdf_lint.render.raster import caption, model_caption, render_image, save_png
 from urdf_lint.render.recording import _import_rerun, entity_paths, record_findings, record_rrd
-from urdf_lint.render.scene import build_scene
-# what the worker (diff --render) and review.py use through this module
-from urdf_lint.render.raster import Geometry, frame_for, render_pair, scene_geometry  # noqa: F401,E402
+from urdf_lint.render.scene import build_scene as build_scene
+# what the worker (diff --render) and review.py use through this module (``X as X``: re-exported)
+from urdf_lint.render.raster import (Geometry as Geometry, frame_for as frame_for,  # noqa: E402
+                                     render_pair as render_pair,
+                                     scene_geometry as scene_geometry)
 
 
 # -- orchestration -----------------------------------------------------------------------------
