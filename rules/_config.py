@@ -2,31 +2,40 @@
 controllers, UL750-UL799 SRDF and MoveIt): the files tied to the model (``ctx.configs``, each
 with ``kind``, ``path``, ``root`` and ``at(node)``: an Origin at its own line), the controllers
 of a controller YAML, the interfaces ``<ros2_control>`` declares, and the SRDF's tree walks."""
-import re
+from __future__ import annotations
 
-from urdf_lint.engine.api import did_you_mean, number, rename_at, single_candidate
+import re
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, Mapping, Sequence
+
+from urdf_lint.engine.api import Request, did_you_mean, number, rename_at, single_candidate
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.api import ConfigDoc, Context, Model, YNode
+
+# (lower, upper, velocity, effort, acceleration) of a joint's <limit>
+Limits = tuple[float | None, float | None, float | None, float | None, float | None]
 
 SUBST = re.compile(r"\$\((var|arg|env|optenv|find)\s[^)]*\)")
 
 
-def targets(severity, gazebo=False):
+def targets(severity: str, gazebo: bool = False) -> dict[str, str]:
     """The TARGETS table of a configuration rule: ``severity`` for ros (and gazebo)."""
     return {"*": "off", "ros": severity, **({"gazebo": severity} if gazebo else {})}
 
 
-def docs(ctx, *kinds):
+def docs(ctx: Context, *kinds: str) -> list[ConfigDoc]:
     return [d for d in getattr(ctx, "configs", ()) if d.kind in kinds]
 
 
-def srdfs(ctx):
+def srdfs(ctx: Context) -> list[ConfigDoc]:
     return docs(ctx, "srdf")
 
 
 # -- the robot ---------------------------------------------------------------------------------
-def joint_limits(model, name):
+def joint_limits(model: Model, name: str) -> Limits:
     """(lower, upper, velocity, effort, acceleration) of a joint's ``<limit>`` (None where it
     does not say, or the joint is not limited in position: continuous)."""
-    j = model.joints.get(name)
+    j: Any = model.joints.get(name)   # an lxml element, or None
     lim = j.find("limit") if j is not None else None
     if lim is None:
         return None, None, None, None, None
@@ -37,9 +46,9 @@ def joint_limits(model, name):
             number(lim.get("acceleration")))
 
 
-def parent_of(model):
+def parent_of(model: Model) -> dict[str, tuple[Any, str | None]]:
     """child link -> (joint, parent link) of the robot's tree."""
-    out: dict = {}
+    out: dict[str, tuple[Any, str | None]] = {}
     for j in model.top_joints():
         p, c = j.find("parent"), j.find("child")
         if p is not None and c is not None and c.get("link"):
@@ -47,10 +56,10 @@ def parent_of(model):
     return out
 
 
-def ros2_control_joints(model):
+def ros2_control_joints(model: Model) -> dict[str, tuple[Any, set[str], set[str]]]:
     """joint name -> (``<ros2_control>`` joint element, command interfaces, state interfaces),
     over every ``<ros2_control>`` block."""
-    out: dict = {}
+    out: dict[str, tuple[Any, set[str], set[str]]] = {}
     for rc in model.root.iterfind("ros2_control"):
         for j in rc.iter("joint"):
             n = j.get("name")
@@ -63,12 +72,12 @@ def ros2_control_joints(model):
     return out
 
 
-def resolve_name(ctx, name):
+def resolve_name(ctx: Context, name: str) -> tuple[str, bool]:
     """(the name with the launch substitutions the model's xacro args give (``$(var
     tf_prefix)`` with the arg ``tf_prefix``, given or its default), whether one was left)."""
-    args = getattr(ctx, "config_args", {})
+    args: dict[str, str] = getattr(ctx, "config_args", {})
 
-    def sub(m):
+    def sub(m: re.Match[str]) -> str:
         word = m.group(0)[2:-1].split()
         if word[0] in ("var", "arg") and len(word) == 2 and word[1] in args:
             return args[word[1]]
@@ -78,7 +87,7 @@ def resolve_name(ctx, name):
 
 
 # -- controller YAML ---------------------------------------------------------------------------
-def controllers(doc):
+def controllers(doc: ConfigDoc) -> list[tuple[str, str, YNode]]:
     """(name, type or "", the node of its ``ros__parameters``) of every controller a
     ros2_control controller YAML configures (types from ``controller_manager`` or the
     controller's own ``type``)."""
@@ -88,12 +97,12 @@ def controllers(doc):
     root = _unwrap(root)
     cm = root.get("controller_manager")
     cm = cm.get("ros__parameters") if cm is not None else None
-    types = {}
+    types: dict[str, str] = {}
     for name, node in (cm.items() if cm is not None else ()):
         t = node.get("type") if isinstance(node.value, dict) else None
         if t is not None and isinstance(t.value, str):
             types[name] = t.value
-    out = []
+    out: list[tuple[str, str, YNode]] = []
     for name, node in root.items():
         if name == "controller_manager":
             continue
@@ -105,7 +114,7 @@ def controllers(doc):
     return out
 
 
-def _unwrap(root):
+def _unwrap(root: YNode) -> YNode:
     """The document below a ``/**:`` or namespace wrapper holding the controllers."""
     if root.get("controller_manager") is None:
         for _, v in root.items():
@@ -114,7 +123,7 @@ def _unwrap(root):
     return root
 
 
-def names(node):
+def names(node: YNode | None) -> list[YNode]:
     """The string scalars of a node (``joint: j1`` and ``joints: [j1, j2]`` alike)."""
     return [n for n in (node.seq() if node is not None else ()) if isinstance(n.value, str)]
 
@@ -122,7 +131,7 @@ def names(node):
 # command interfaces, state interfaces per well-known controller type (the type's package and
 # class, as the controller_manager names it); None: read from its parameters
 _POS, _VEL, _EFF = "position", "velocity", "effort"
-KNOWN_TYPES = {
+KNOWN_TYPES: dict[str, tuple[tuple[str, ...] | None, tuple[str, ...] | None]] = {
     "joint_trajectory_controller/JointTrajectoryController": (None, None),
     "forward_command_controller/ForwardCommandController": (None, ()),
     "forward_command_controller/MultiInterfaceForwardCommandController": (None, ()),
@@ -138,13 +147,14 @@ KNOWN_TYPES = {
 JOINT_KEYS = ("joints", "joint", "left_wheel_names", "right_wheel_names")
 
 
-def controller_joints(params):
+def controller_joints(params: YNode) -> list[YNode]:
     """The joint-name scalars a controller's parameters list (``joints``, ``joint``, the
     wheels of a diff drive)."""
     return [n for k in JOINT_KEYS for n in names(params.get(k))]
 
 
-def needed_interfaces(ctype, params):
+def needed_interfaces(ctype: str, params: YNode
+                      ) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
     """(command interfaces, state interfaces) a well-known controller type needs for each of
     its joints, or None for a type urdf-lint does not know (its joints are still checked)."""
     if ctype not in KNOWN_TYPES:
@@ -164,12 +174,12 @@ def needed_interfaces(ctype, params):
 
 
 # -- SRDF --------------------------------------------------------------------------------------
-def groups(root):
+def groups(root: Any) -> dict[str, Any]:
     """name -> ``<group>`` element of an SRDF (top level)."""
     return {g.get("name"): g for g in root if getattr(g, "tag", None) == "group" and g.get("name")}
 
 
-def group_joints(model, root, name, seen=None):
+def group_joints(model: Model, root: Any, name: str, seen: set[str] | None = None) -> list[str]:
     """The joints a group contains, as MoveIt computes them: its joints, the parent joints of
     its links, the joints along its chains, its subgroups' (unknown names skipped)."""
     seen = set() if seen is None else seen
@@ -178,7 +188,7 @@ def group_joints(model, root, name, seen=None):
         return []
     seen.add(name)
     par = parent_of(model)
-    out = []
+    out: list[str] = []
     for el in g:
         tag = getattr(el, "tag", None)
         if tag == "joint" and el.get("name") in model.joints:
@@ -193,13 +203,14 @@ def group_joints(model, root, name, seen=None):
     return list(dict.fromkeys(out))
 
 
-def chain(model, base, tip):
+def chain(model: Model, base: str | None, tip: str | None) -> list[Any] | None:
     """The joints from ``base`` down to ``tip`` (a list), or None when ``tip`` is not below
     ``base``."""
     par = parent_of(model)
-    out, link, steps = [], tip, 0
+    out: list[Any] = []
+    link, steps = tip, 0
     while link != base:
-        up = par.get(link)
+        up = par.get(link) if link is not None else None
         if up is None or steps > len(par):
             return None
         out.append(up[0])
@@ -208,12 +219,12 @@ def chain(model, base, tip):
     return list(reversed(out))
 
 
-def moving_joint(model, name):
+def moving_joint(model: Model, name: str) -> bool:
     j = model.joints.get(name)
     return j is not None and j.get("type") not in ("fixed", None)
 
 
-def named_joints(ctx):
+def named_joints(ctx: Context) -> Iterator[tuple[ConfigDoc, YNode, str, str]]:
     """(config doc, YAML node of a joint name, the name, what names it) for every joint a
     controller YAML, ``initial_positions.yaml`` or ``moveit_controllers.yaml`` names."""
     for doc in docs(ctx, "controllers"):
@@ -230,7 +241,7 @@ def named_joints(ctx):
 
 
 # -- MoveIt's joint_limits.yaml ----------------------------------------------------------------
-def limit_entries(ctx):
+def limit_entries(ctx: Context) -> Iterator[tuple[ConfigDoc, str, YNode]]:
     """(doc, joint name, its YAML node) of every ``joint_limits:`` entry of the MoveIt
     ``joint_limits.yaml`` files tied to the model."""
     for doc in docs(ctx, "joint-limits"):
@@ -240,21 +251,21 @@ def limit_entries(ctx):
                 yield doc, name, node
 
 
-def scalar(node):
+def scalar(node: YNode | None) -> float | None:
     """A YAML node's number (None for anything else, booleans too)."""
     if node is None or isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
         return None
     return float(node.value)
 
 
-def closest(model, name, table):
+def closest(model: Model, name: str, table: Mapping[str, Any]) -> tuple[str, Any]:
     """(" (did you mean 'x'?)" or "", the element to relate the finding to: the closest of
     ``table`` (the robot's joints or links), else the robot)."""
     near = did_you_mean(name, table)
     return near, table[near.split("'")[1]] if near else model.root
 
 
-def rename_fix(at, name, table, doc):
+def rename_fix(at: Any, name: str, table: Iterable[str], doc: ConfigDoc) -> Request | None:
     """The unsafe fix renaming ``name`` at ``at`` (an SRDF or YAML line) to the one name of
     ``table`` close to it that ``doc`` does not name already (the element renamed in the xacro:
     'panda_joint3' becomes 'panda_joint_3', not 'panda_joint2', which the file still names), or
@@ -265,10 +276,10 @@ def rename_fix(at, name, table, doc):
     return rename_at(name, new) if new else None
 
 
-def doc_names(doc):
+def doc_names(doc: ConfigDoc) -> set[str]:
     """Every name a configuration file writes: SRDF attribute values, YAML keys and strings."""
     if not hasattr(doc, "_names"):
-        out: set = set()
+        out: set[str] = set()
         root = doc.root
         if hasattr(root, "iter"):        # an SRDF element tree
             for el in root.iter():
@@ -284,11 +295,12 @@ def doc_names(doc):
                     todo.extend(n.value)
                 elif isinstance(n.value, str):
                     out.add(n.value)
-        doc._names = out
-    return doc._names
+        doc._names = out   # type: ignore[attr-defined]  # a memo on the document
+    got: set[str] = doc._names   # type: ignore[attr-defined]  # (set above)
+    return got
 
 
-def moveit_controllers(ctx):
+def moveit_controllers(ctx: Context) -> Iterator[tuple[ConfigDoc, str, YNode]]:
     """(doc, controller name, its node) of every controller ``moveit_controllers.yaml`` files
     give ``moveit_simple_controller_manager``."""
     for doc in docs(ctx, "moveit-controllers"):
@@ -297,7 +309,7 @@ def moveit_controllers(ctx):
             yield doc, name, node
 
 
-def actuated(model, name):
+def actuated(model: Model, name: str) -> bool:
     """Whether a joint is moved on its own: a moving joint that mimics no other."""
     return moving_joint(model, name) and model.joints[name].find("mimic") is None
 
@@ -326,7 +338,8 @@ LIMITS_EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 
 
-def example_robot(*joints, links=("base", "l1"), tail=""):
+def example_robot(*joints: tuple[str, ...], links: Sequence[str] = ("base", "l1"),
+                  tail: str = "") -> str:
     """The URDF of a rule's example: robot 'r' with ``links`` on one line, a revolute joint
     about z per (name, parent, child[, its ``<limit>`` attributes]) of ``joints``, ``tail``."""
     out = ['<robot name="r">', "  " + "".join(f'<link name="{n}"/>' for n in links)]
@@ -337,7 +350,7 @@ def example_robot(*joints, links=("base", "l1"), tail=""):
     return "\n".join(out) + "\n" + tail + "</robot>\n"
 
 
-def forward_controller_example(joint):
+def forward_controller_example(joint: str) -> str:
     """A controller YAML configuring a forward position controller of ``joint``."""
     return f"""controller_manager:
   ros__parameters:

@@ -6,38 +6,45 @@ the unit that moves is a *body*: a link that is the child of a non-fixed joint (
 together with everything fixed to it. A massless sensor frame fixed to a heavy link is valid;
 a body that moves and has no mass at all is not.
 """
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, cast
+
 from urdf_lint.engine.api import number
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.api import Model
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
-def mass(lk):
+def mass(lk: Any) -> float | None:
     """The declared mass (float) of a link, or None when absent or not a number."""
     m = lk.find("inertial/mass")
     return number(m.get("value")) if m is not None else None
 
 
-def tensor(lk):
+def tensor(lk: Any) -> dict[str, float] | None:
     """{ixx..izz} of a link's declared inertia (missing values are 0), or None when absent or
     any value is not a number (UL206 reports those)."""
     i = lk.find("inertial/inertia")
     if i is None:
         return None
     v = {a: number(i.get(a, "0")) for a in INERTIA}
-    return None if any(x is None for x in v.values()) else v
+    return None if any(x is None for x in v.values()) else cast("dict[str, float]", v)
 
 
-def is_zero(t):
+def is_zero(t: dict[str, float] | None) -> bool:
     return t is not None and all(x == 0 for x in t.values())
 
 
 class Bodies:
     """The fixed-merged bodies of a model."""
 
-    def __init__(self, model) -> None:
+    def __init__(self, model: Model) -> None:
         self.model = model
-        self.parent_joint: dict = {}    # child link name -> first joint naming it as child
-        self.children: dict = {}        # parent link name -> [(joint, child name)]
+        self.parent_joint: dict[str, Any] = {}    # child link name -> first joint naming it as child
+        self.children: dict[str, list[tuple[Any, str]]] = {}   # parent link name -> [(joint, child name)]
         for j in model.top_joints():
             p, c = j.find("parent"), j.find("child")
             if p is None or c is None or not p.get("link") or not c.get("link"):
@@ -45,10 +52,10 @@ class Bodies:
             self.parent_joint.setdefault(c.get("link"), j)
             self.children.setdefault(p.get("link"), []).append((j, c.get("link")))
 
-    def root_of(self, name):
+    def root_of(self, name: str) -> tuple[str, Any]:
         """(body root link name, the non-fixed joint that moves it or None), following fixed
         joints up from ``name``."""
-        seen = set()
+        seen: set[str] = set()
         while name not in seen:
             seen.add(name)
             j = self.parent_joint.get(name)
@@ -59,9 +66,10 @@ class Bodies:
             name = j.find("parent").get("link")
         return name, None  # a loop (UL102 reports it)
 
-    def members(self, root):
+    def members(self, root: str) -> list[str]:
         """Link names of the body rooted at ``root`` (the root and everything fixed below it)."""
-        out, todo = [], [root]
+        out: list[str] = []
+        todo = [root]
         while todo:
             n = todo.pop()
             if n in out:
@@ -70,9 +78,10 @@ class Bodies:
             todo.extend(c for j, c in self.children.get(n, ()) if j.get("type") == "fixed")
         return out
 
-    def subtree_mass(self, root):
+    def subtree_mass(self, root: str) -> float:
         """Total declared mass of ``root`` and every link below it, through any joint."""
-        total, todo, seen = 0.0, [root], set()
+        total, todo = 0.0, [root]
+        seen: set[str] = set()
         while todo:
             n = todo.pop()
             if n in seen:
@@ -83,7 +92,7 @@ class Bodies:
             todo.extend(c for _j, c in self.children.get(n, ()))
         return total
 
-    def moving_body(self, name):
+    def moving_body(self, name: str) -> tuple[str, Any, list[Any]] | None:
         """(root, joint, member link elements) when the link belongs to a body that a non-fixed
         joint moves, else None."""
         root, j = self.root_of(name)

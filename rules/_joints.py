@@ -1,8 +1,15 @@
 """Helpers for the joint-limit rules (not a rule)."""
-from urdf_lint.engine.api import number, reference_fixes
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Iterable, Iterator
+
+from urdf_lint.engine.api import Request, number, reference_fixes
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.api import Model
 
 
-def limits(j):
+def limits(j: Any) -> tuple[Any, float | None, float | None, float | None, float | None]:
     """(limit element or None, lower, upper, effort, velocity) with URDF defaults (0) applied."""
     lim = j.find("limit")
     if lim is None:
@@ -11,11 +18,11 @@ def limits(j):
             number(lim.get("effort")), number(lim.get("velocity")))
 
 
-def moving(j) -> bool:
+def moving(j: Any) -> bool:
     return j.get("type") in ("revolute", "prismatic")
 
 
-def ranged(model):
+def ranged(model: Model) -> Iterator[tuple[Any, Any, float, float]]:
     """(joint, limit, lower, upper) of revolute/prismatic joints with numeric limits."""
     for j in model.top_joints():
         if moving(j):
@@ -24,10 +31,12 @@ def ranged(model):
                 yield j, lim, lo, hi
 
 
-def unknown_joint_refs(model, pairs):
+def unknown_joint_refs(model: Model, pairs: Iterable[tuple[Any, Any]]
+                       ) -> list[tuple[Any, Any, str, Request | None]]:
     """(block, joint element, name, fix request or None) for each ``(block, <joint name>)`` of
     ``pairs`` naming a joint the model does not have (transmission, ros2_control)."""
-    found, taken = [], set()
+    found: list[tuple[Any, Any, str]] = []
+    taken: set[str] = set()
     for blk, j in pairs:
         n = j.get("name")
         if n and n not in model.joints:

@@ -1,6 +1,13 @@
 """Mesh helpers shared by the UL4xx rules, and a tiny ASCII STL for their examples (not a rule)."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Collection, Iterator
+
 from urdf_lint.engine.api import Cause, MeshStatus, Report
 from urdf_lint.rules._schema import urdf_iter
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.api import Context, Model
 
 UNKNOWN_PACKAGE = "UL004"   # the root cause of references to an unknown package (ul004)
 # the resolution statuses that mean "there is no such file" (UL401, and UL407 for textures)
@@ -100,7 +107,7 @@ PLAIN_DAE = BROKEN_SURFACE_DAE.replace(
     '<texture texture="skin-sampler" texcoord="UVMap"/>', "<color>0.8 0.8 0.8 1</color>")
 
 
-def scaled(factor):
+def scaled(factor: float) -> str:
     out = []
     for line in TETRA_STL.splitlines():
         s = line.strip()
@@ -111,7 +118,8 @@ def scaled(factor):
     return "\n".join(out) + "\n"
 
 
-def resolution_problems(model, ctx, statuses, tag="mesh"):
+def resolution_problems(model: Model, ctx: Context, statuses: Collection[MeshStatus],
+                        tag: str = "mesh") -> Iterator[Report]:
     """(element, message) for every ``<tag filename>`` in the URDF part of the document whose
     resolution ended in one of ``statuses`` (:class:`urdf_lint.meshes.resolve.MeshStatus`). A
     reference to an unknown package is an instance of that package's root cause (one
@@ -128,7 +136,7 @@ def resolution_problems(model, ctx, statuses, tag="mesh"):
                     yield Report(m, ref.message)
 
 
-def resolved_meshes(model, ctx):
+def resolved_meshes(model: Model, ctx: Context) -> Iterator[tuple[Any, str, str]]:
     """(mesh element, uri, path) for every <mesh> that resolved inside the roots."""
     for m in urdf_iter(model, "mesh"):
         uri = m.get("filename")

@@ -15,27 +15,40 @@ scale, origin rotation and translation, and several geometries on one link combi
 from __future__ import annotations
 
 import math
-from typing import Any
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
 
 from urdf_lint.engine.api import mesh_mass_properties, number, numbers
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
+
+if TYPE_CHECKING:  # pragma: no cover
+    from numpy import ndarray
+    from numpy.typing import ArrayLike
+
+    from urdf_lint.engine.api import Context, Model
+
+# (volume, first, second, corners) of a piece of geometry in its own frame
+Piece = tuple[float, "ArrayLike", "ArrayLike", "ArrayLike"]
+# (link, mass, declared tensor, inertial element, Geometry) of a measured link
+Measured = tuple[Any, float, dict[str, float], Any, "Geometry"]
 
 
 class Geometry:
     """Unit-density volume integrals of a link's geometry, in the link frame."""
 
-    def __init__(self, np) -> None:
+    def __init__(self, np: ModuleType) -> None:
         self.np = np
         self.volume = 0.0
-        self.first = np.zeros(3)
-        self.second = np.zeros((3, 3))
-        self.lo = np.full(3, np.inf)
-        self.hi = np.full(3, -np.inf)
+        self.first: ndarray = np.zeros(3)
+        self.second: ndarray = np.zeros((3, 3))
+        self.lo: ndarray = np.full(3, np.inf)
+        self.hi: ndarray = np.full(3, -np.inf)
         self.hull: list[str] = []   # uris of open meshes measured through their convex hull
         self.source = "collision"
         self.note = ""          # how it was chosen, when not simply the collision geometry
 
-    def add(self, vol, first, second, corners, rot, t) -> None:
+    def add(self, vol: float, first: ArrayLike, second: ArrayLike, corners: ArrayLike,
+            rot: ndarray, t: ndarray) -> None:
         """Add a piece given in its own frame, placed by rotation ``rot`` and offset ``t``."""
         np = self.np
         first = np.asarray(first, float)
@@ -49,26 +62,28 @@ class Geometry:
         self.hi = np.maximum(self.hi, pts.max(axis=0))
 
     @property
-    def com(self):
+    def com(self) -> ndarray:
         return self.first / self.volume
 
-    def inertia(self, m):
+    def inertia(self, m: float) -> ndarray:
         """Inertia tensor about the geometry's centre of mass, for mass ``m`` spread uniformly."""
         np = self.np
         c = self.com
         s = self.second - self.volume * np.outer(c, c)
-        return (m / self.volume) * (np.trace(s) * np.eye(3) - s)
+        tensor: ndarray = (m / self.volume) * (np.trace(s) * np.eye(3) - s)
+        return tensor
 
 
-def rotation(rpy, np):
+def rotation(rpy: Sequence[float], np: ModuleType) -> ndarray:
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
+    rot: ndarray = np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                             [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                             [-sp, cp * sr, cp * cr]])
+    return rot
 
 
-def pose(el, np):
+def pose(el: Any, np: ModuleType) -> tuple[ndarray, ndarray] | None:
     """(rotation, translation) of the ``<origin>`` child of ``el`` (identity when absent)."""
     o = el.find("origin") if el is not None else None
     xyz = numbers(o.get("xyz", "0 0 0"), 3) if o is not None else [0, 0, 0]
@@ -78,12 +93,13 @@ def pose(el, np):
     return rotation(rpy, np), np.asarray(xyz, float)
 
 
-def _box_corners(half, np):
-    return np.array([[sx * half[0], sy * half[1], sz * half[2]]
-                     for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+def _box_corners(half: Sequence[float], np: ModuleType) -> ndarray:
+    corners: ndarray = np.array([[sx * half[0], sy * half[1], sz * half[2]]
+                                 for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    return corners
 
 
-def _primitive(shape, np):
+def _primitive(shape: Any, np: ModuleType) -> Piece | None:
     """(volume, first, second, corners) of a box / cylinder / sphere centred at its origin, or
     None (capsules and bad values)."""
     if shape.tag == "box":
@@ -110,7 +126,7 @@ def _primitive(shape, np):
     return None
 
 
-def _capsule(shape, np):
+def _capsule(shape: Any, np: ModuleType) -> Piece | None:
     r, h = number(shape.get("radius")), number(shape.get("length"))
     if r is None or h is None or r <= 0 or h <= 0:
         return None
@@ -121,7 +137,8 @@ def _capsule(shape, np):
     return f.volume, f.first, f.second, _box_corners([r, r, h / 2 + r], np)
 
 
-def link_geometry(model, ctx, lk, np, kind=None):
+def link_geometry(model: Model, ctx: Context, lk: Any, np: ModuleType,
+                  kind: str | None = None) -> Geometry | None:
     """The link's Geometry (its collision, else visual, pieces; or those of ``kind``), or None
     when any piece cannot be measured (a missing or broken mesh, a bad value): no guess is
     better than a wrong one."""
@@ -165,36 +182,37 @@ def link_geometry(model, ctx, lk, np, kind=None):
     return g if g.volume > 0 else None
 
 
-def moving_links(model):
+def moving_links(model: Model) -> Iterator[tuple[Any, Any]]:
     """(link, joint) for every link that a non-fixed joint moves (first joint naming it)."""
-    seen = set()
+    seen: set[str | None] = set()
     for j in model.top_joints():
         if j.get("type") in (None, "fixed"):
             continue
         c = j.find("child")
         name = c.get("link") if c is not None else None
-        lk = model.links.get(name)
+        lk = model.links.get(name) if name is not None else None
         if lk is not None and name not in seen:
             seen.add(name)
             yield lk, j
 
 
-def is_identity(t):
+def is_identity(t: Mapping[str, float] | None) -> bool:
     return t is not None and t["ixx"] == t["iyy"] == t["izz"] == 1 and \
         t["ixy"] == t["ixz"] == t["iyz"] == 0
 
 
-def measured_links(model, ctx):
+def measured_links(model: Model, ctx: Context) -> list[Measured]:
     """(link, mass, declared tensor, inertial element, Geometry) for every moving link whose
     declared inertial and geometry can both be measured. Memoized per model on the context."""
     key = id(model)
     cache = getattr(ctx, "_physics_links", None)
     if cache is None:
         cache = {}
-        ctx._physics_links = cache
+        ctx._physics_links = cache   # type: ignore[attr-defined]  # a memo on the context
     if key in cache:
-        return cache[key]
-    out = []
+        cached: list[Measured] = cache[key]
+        return cached
+    out: list[Measured] = []
     np: Any = None
     for lk, _j in moving_links(model):
         m, t, inr = mass(lk), tensor(lk), lk.find("inertial")
@@ -224,12 +242,12 @@ PROXY_SPHERE_M = 0.01     # collision spheres this small are contact points or p
 PROXY_FRACTION = 1 / 8    # a collision box this much smaller than the visual one is partial
 
 
-def _box_volume(g):
+def _box_volume(g: Geometry) -> float:
     return float(max(0.0, g.hi[0] - g.lo[0]) * max(0.0, g.hi[1] - g.lo[1])
                  * max(0.0, g.hi[2] - g.lo[2]))
 
 
-def proxy_reason(model, ctx, lk, g, np) -> str:
+def proxy_reason(model: Model, ctx: Context, lk: Any, g: Geometry, np: ModuleType) -> str:
     """Why the link's collision geometry ``g`` is clearly a proxy, not the body (``""`` when
     it is not): only spheres of at most 1 cm (contact spheres, a placeholder), or a bounding
     box under an eighth of the visual geometry's (a cylinder around only the motor of a hip)."""
@@ -251,26 +269,28 @@ def proxy_reason(model, ctx, lk, g, np) -> str:
     return ""
 
 
-def declared_matrix(t, inr, np):
+def declared_matrix(t: Mapping[str, float], inr: Any, np: ModuleType) -> ndarray:
     """The declared inertia in link axes (rotated by the inertial origin's rpy)."""
     m = np.array([[t["ixx"], t["ixy"], t["ixz"]], [t["ixy"], t["iyy"], t["iyz"]],
                   [t["ixz"], t["iyz"], t["izz"]]])
     p = pose(inr, np)
     rot = p[0] if p else np.eye(3)
-    return rot @ m @ rot.T
+    declared: ndarray = rot @ m @ rot.T
+    return declared
 
 
-def hull_note(g):
+def hull_note(g: Geometry) -> str:
     """What the rules' messages add about how the geometry was measured: a proxy collision
     shape replaced by the visual geometry, open meshes measured by their convex hull."""
-    note = getattr(g, "note", "")
+    note: str = getattr(g, "note", "")
     if not g.hull:
         return note
     return note + (f"; '{g.hull[0]}' is not watertight, so its convex hull was measured"
                    + (f" (and {len(g.hull) - 1} more)" if len(g.hull) > 1 else ""))
 
 
-def example(mass, ixx, iyy, izz, origin="", box="0.1 0.1 0.1") -> str:
+def example(mass: float | str, ixx: float | str, iyy: float | str, izz: float | str,
+            origin: str = "", box: str = "0.1 0.1 0.1") -> str:
     """FAIL/PASS text for the physics rules: a moving link 'arm' with a box collision."""
     o = f'<origin xyz="{origin}"/>' if origin else ""
     return f"""<robot name="r">

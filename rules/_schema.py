@@ -1,8 +1,14 @@
 """The URDF element/attribute schema shared by UL209 and UL210, and the names a xacro source
 writes (not a rule: starts with _)."""
+from __future__ import annotations
+
 import re
+from typing import TYPE_CHECKING, Any, Iterator
 
 from urdf_lint.engine.api import names_in_scope, read_source
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.api import Model
 
 CHILDREN = {
     "robot": {"link", "joint", "material", "transmission", "gazebo", "ros2_control", "mujoco",
@@ -50,7 +56,7 @@ ATTRIBUTES = {
 
 
 
-def is_foreign(el) -> bool:
+def is_foreign(el: Any) -> bool:
     """Namespaced (``drake:...``) or under a free-form extension element."""
     tag = el.tag if isinstance(el.tag, str) else ""
     if tag.startswith("{") or ":" in tag:
@@ -75,19 +81,19 @@ SINGLE = {
     "joint": {"origin", "parent", "child", "axis", "calibration", "dynamics", "limit", "mimic",
               "safety_controller"},
 }
-_MACRO_DEF = None
+_MACRO_DEF: re.Pattern[bytes] | None = None
 
 
-def macro_names(model) -> set:
+def macro_names(model: Model) -> set[str]:
     """The names of the xacro macros defined in the files the model was expanded from (read
     again here, as xacro read them; an empty set for a plain URDF)."""
-    cached = getattr(model, "_macro_names", None)
+    cached: set[str] | None = getattr(model, "_macro_names", None)
     if cached is not None:
         return cached
     global _MACRO_DEF
     import re
     _MACRO_DEF = _MACRO_DEF or re.compile(rb"<[A-Za-z_][\w.-]*:macro\s[^>]*?name\s*=\s*[\"']([^\"'$]+)")
-    names: set = set()
+    names: set[str] = set()
     for f in [model.entry, *model.deps]:
         if not str(f).endswith(".xacro"):
             continue
@@ -95,20 +101,20 @@ def macro_names(model) -> set:
         if data:
             names.update(n.decode("utf-8", "replace") for n in _MACRO_DEF.findall(data))
     try:
-        model._macro_names = names
+        model._macro_names = names   # type: ignore[attr-defined]  # a memo on the model
     except AttributeError:
         pass
     return names
 
 
-def checked_elements(model):
+def checked_elements(model: Model) -> Iterator[Any]:
     """Elements of the URDF schema (not namespaced, not inside extension blocks)."""
     for el in model.root.iter():
         if isinstance(el.tag, str) and not is_foreign(el):
             yield el
 
 
-def urdf_iter(model, tag):
+def urdf_iter(model: Model, tag: str) -> Iterator[Any]:
     """The ``<tag>`` elements of the URDF part of the document: what ``model.root.iter(tag)``
     gives, minus anything inside ``<gazebo>`` (SDF), ``<ros2_control>``, ``<transmission>`` and
     the other extension blocks, and minus namespaced elements. Every rule about URDF elements
@@ -123,7 +129,7 @@ def urdf_iter(model, tag):
 BRACED = re.compile(r"(?<![$}]){([A-Za-z_]\w*)}")
 
 
-def literal_names(model, value: str, known: set | None = None) -> list:
+def literal_names(model: Model, value: str, known: set[str] | None = None) -> list[str]:
     """The property / parameter names written as a literal ``{name}`` in ``value``."""
     hits = BRACED.findall(value) if value and "{" in value else []
     if not hits:

@@ -68,6 +68,7 @@ class Report:
 if TYPE_CHECKING:   # what a rule's ``check`` is typed with (rules import them the same way)
     from collections.abc import Iterator
 
+    from urdf_lint.engine.configs import ConfigDoc as ConfigDoc, YNode as YNode   # ctx.configs
     from urdf_lint.engine.lint import Context as Context
     from urdf_lint.engine.model import Model as Model
     Checked = Iterator[Report]   # def check(model: Model, ctx: Context) -> Checked
