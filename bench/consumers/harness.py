@@ -426,6 +426,21 @@ def summarise(items, results, findings, info) -> dict:
             "disagreements": disagreements}
 
 
+def merge_verdicts(old: dict, new: dict) -> dict:
+    """The recorded verdicts ``old`` with the consumers measured in ``new`` replaced (their
+    versions, and their verdict on every mutant and corpus model ``new`` has)."""
+    out = json.loads(json.dumps(old))
+    for c, v in new["consumers"].items():   # the date of each re-measured consumer
+        out["consumers"][c] = dict(v, measured=new["measured"])
+    for name, row in new["mutants"].items():
+        mine = out["mutants"].setdefault(name, {"codes": row["codes"], "verdicts": {}})
+        mine["codes"] = row["codes"]
+        mine["verdicts"].update(row["verdicts"])
+    for name, row in new["corpus"].items():
+        out["corpus"].setdefault(name, {}).update(row)
+    return out   # ("measured": the date of the last full run)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--fast", action="store_true",
@@ -451,6 +466,8 @@ def main(argv=None) -> int:
     if a.write:
         keep = {k: res[k] for k in ("consumers", "mutants", "corpus")}
         keep["measured"] = time.strftime("%Y-%m-%d")
+        if a.consumers:   # some consumers measured again: the others' verdicts are kept
+            keep = merge_verdicts(json.loads(VERDICTS.read_text()), keep)
         VERDICTS.write_text(json.dumps(keep, indent=1, sort_keys=True) + "\n")
     return 0
 

@@ -556,9 +556,11 @@ def different_robot(text: str, consumer: str) -> str | None:
     """Why a consumer that loads this (real) model cannot hold the robot as written, checked on
     the model itself (the corpus has no class): a joint naming a link that does not exist, or,
     for the consumers that read meshes, a mesh file that is not there."""
-    try:
-        r = etree.fromstring(text.encode())
+    try:   # recovering: a consumer that loads it read past an undeclared prefix (drake:)
+        r = etree.fromstring(text.encode(), etree.XMLParser(recover=True))
     except etree.XMLSyntaxError:
+        return None
+    if r is None:
         return None
     names = {lk.get("name") for lk in r.iter("link")}
     for j in r.iter("joint"):
