@@ -156,3 +156,53 @@ def test_a_pair_with_a_link_without_collision_geometry_and_a_repeated_pair(tmp_p
     assert found(tmp_path / "b", monkeypatch, config_arm_srdf=srdf) == [
         ("UL757", "info", "config/arm.srdf", line_of(SRDF, pair) + 1, "urdf/arm.urdf.xacro",
          line_of(XACRO, '<link name="link${n}"'))]
+
+
+# -- one model file checked alone, and `diff` ------------------------------------------------------
+def test_checking_the_model_file_alone_checks_its_configuration(tmp_path, monkeypatch):
+    """`check urdf/arm.urdf.xacro` (what the hook and diff's base revision do) ties the
+    package's SRDF and YAML as `check .` does: the file's own folder, a root of the run, does
+    not hide the package.xml above it."""
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    srdf = SRDF.replace(VJ, VJ.replace('parent_frame="world"', 'parent_frame="link2"'))
+    pkg = make_package(tmp_path, "arm_config", {**FILES, "urdf/arm.urdf.xacro": SOLID,
+                                                "config/arm.srdf": srdf})
+    monkeypatch.chdir(pkg)
+    cfg = load_config(None)
+    cfg.select = CODES
+    paths = ["urdf/arm.urdf.xacro"]
+    res = run_check(RunRequest(paths, cfg, build_resolver(paths, cfg), in_process=True))
+    assert [(f.code, os.path.relpath(f.file, pkg)) for f in res.findings] == [
+        ("UL756", "config/arm.srdf")]
+
+
+def test_diff_of_an_srdf_change_shows_the_robot_element(tmp_path, monkeypatch, capsys):
+    """Only the SRDF changes: diff reports just the pair it broke, not the virtual joint
+    finding both revisions have (the base revision is checked against its configuration too),
+    with the robot element's xacro line, in text, JSON and markdown."""
+    import json
+    import subprocess
+    from urdf_lint.cli.main import main
+    base = SRDF.replace(VJ, VJ.replace('parent_frame="world"', 'parent_frame="link2"'))
+    pkg = make_package(tmp_path, "arm_config", {**FILES, "urdf/arm.urdf.xacro": SOLID,
+                                                "config/arm.srdf": base})
+    for cmd in (["init", "-q"], ["add", "-A"],
+                ["-c", "user.email=t@t", "-c", "user.name=t", "commit", "-qm", "base"]):
+        subprocess.run(["git", *cmd], cwd=pkg, check=True)
+    srdf = base.replace('link2="link1"', 'link2="link_1"')
+    (pkg / "config" / "arm.srdf").write_text(srdf)
+    monkeypatch.chdir(pkg)
+    at = "urdf/arm.urdf.xacro:" + str(line_of(SOLID, 'link name="link${n}"'))
+    main(["diff", "HEAD", "--no-cache", "--format", "json"])
+    (m,) = json.loads(capsys.readouterr().out)["models"]
+    assert [(f["code"], f["file"], f["line"], f["related"][:2]) for f in m["findings_introduced"]] == [
+        ("UL752", "config/arm.srdf", line_of(srdf, "link_1"), [at.split(":")[0], int(at.split(":")[1])])]
+    assert m["findings_fixed"] == []
+    main(["diff", "HEAD", "--no-cache"])
+    out = capsys.readouterr().out
+    assert f"UL752 config/arm.srdf:{line_of(srdf, 'link_1')}:3" in out and \
+        f"\n      robot element at {at}\n" in out, out
+    main(["diff", "HEAD", "--no-cache", "--format", "markdown"])
+    assert f"<sub>robot element at {at}</sub>" in capsys.readouterr().out

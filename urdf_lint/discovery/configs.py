@@ -129,7 +129,11 @@ def attach_configs(jobs: list[LintJob], cfg: Any, resolver: Any) -> list[LintJob
         return jobs
     ties = _Ties(resolver)
     _explicit(ties, cfg)
-    roots = tuple(str(r) for r in resolver.roots)
+    # the walk up to a model's package stops at the outermost roots only: checking one file
+    # (`check urdf/arm.urdf.xacro`, the hook, diff's base) makes its own folder a root too,
+    # which must not hide the package.xml above it
+    all_roots = [str(r) for r in resolver.roots]
+    roots = tuple(r for r in all_roots if not any(o != r and inside(r, o) for o in all_roots))
     entries = {j.entry for j in jobs if j.kind in ("xacro", "urdf")}
     by_pkg: dict[str, list[str]] = {}
     for e in entries:
