@@ -206,3 +206,17 @@ def test_diff_of_an_srdf_change_shows_the_robot_element(tmp_path, monkeypatch, c
         f"\n      robot element at {at}\n" in out, out
     main(["diff", "HEAD", "--no-cache", "--format", "markdown"])
     assert f"<sub>robot element at {at}</sub>" in capsys.readouterr().out
+
+
+def test_a_moveit_controller_split_over_groups(tmp_path, monkeypatch):
+    """One controller for the arm and the finger, an arm group and a hand group but none of
+    both: reported once at the controller's `joints` key, related to the arm group; a group
+    of both (a subgroup set) makes it fine."""
+    yaml = MOVEIT_CONTROLLERS.replace("joints: [joint1, joint2]", "joints: [joint1, joint2, finger_a_joint]")
+    assert found(tmp_path, monkeypatch, config_moveit_controllers_yaml=yaml) == [
+        ("UL717", "warning", "config/moveit_controllers.yaml", line_of(yaml, "finger_a_joint]"),
+         "config/arm.srdf", line_of(SRDF, '<group name="arm">'))]
+    both = SRDF.replace("  <group_state", '  <group name="arm_hand">\n    <group name="arm"/>\n'
+                        '    <group name="hand"/>\n  </group>\n  <group_state')
+    assert found(tmp_path / "b", monkeypatch, config_moveit_controllers_yaml=yaml,
+                 config_arm_srdf=both) == []
