@@ -220,3 +220,20 @@ def test_a_moveit_controller_split_over_groups(tmp_path, monkeypatch):
                         '    <group name="hand"/>\n  </group>\n  <group_state')
     assert found(tmp_path / "b", monkeypatch, config_moveit_controllers_yaml=yaml,
                  config_arm_srdf=both) == []
+
+
+def test_a_related_srdf_line_is_not_called_a_robot_element(tmp_path, monkeypatch, capsys):
+    """UL717's related location is the SRDF group: the text and SARIF say "related
+    configuration line", not "robot element"."""
+    import json
+    from urdf_lint.cli.main import main
+    srdf = SRDF.replace('<chain base_link="base_link" tip_link="link2"/>', '<joint name="joint1"/>')
+    pkg = make_package(tmp_path, "arm_config", {**FILES, "urdf/arm.urdf.xacro": SOLID,
+                                                "config/arm.srdf": srdf})
+    monkeypatch.chdir(pkg)
+    at = "config/arm.srdf:" + str(line_of(srdf, '<group name="arm">'))
+    main(["check", ".", "--no-cache", "--select", "UL717"])
+    assert f"related configuration line at {at}" in capsys.readouterr().out
+    main(["check", ".", "--no-cache", "--select", "UL717", "--output-format", "sarif"])
+    (res,) = json.loads(capsys.readouterr().out)["runs"][0]["results"]
+    assert [r["message"]["text"] for r in res["relatedLocations"]] == ["related configuration line here"]

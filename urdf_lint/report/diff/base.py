@@ -98,7 +98,8 @@ def related(m: Any, fk: tuple[str, str, str]) -> str:
     """``robot element at urdf/arm.urdf.xacro:9``: the robot element an SRDF or YAML finding
     is about (``m`` its ModelDiff), or ""."""
     r = m.finding_related.get(fk)
-    return f"robot element at {r[0]}:{r[1]}" if r else ""
+    from urdf_lint.core.locations import related_label
+    return f"{related_label(r[0])} at {r[0]}:{r[1]}" if r else ""
 
 
 def md_escape(s: object) -> str:
