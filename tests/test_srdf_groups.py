@@ -237,3 +237,28 @@ def test_a_related_srdf_line_is_not_called_a_robot_element(tmp_path, monkeypatch
     main(["check", ".", "--no-cache", "--select", "UL717", "--output-format", "sarif"])
     (res,) = json.loads(capsys.readouterr().out)["runs"][0]["results"]
     assert [r["message"]["text"] for r in res["relatedLocations"]] == ["related configuration line here"]
+
+
+def test_checking_one_of_several_robots_keeps_the_others_controllers_apart(tmp_path, monkeypatch):
+    """A package with two robots (the 2F-85 and 2F-140 grippers of robotiq_description) and a
+    controller YAML for one: checking the other robot's file alone does not check that YAML
+    against it, as `check .` does not (the package holds several robot files)."""
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    other = '<robot name="other"><link name="o"/><link name="p"/>\n<joint name="o_joint" ' \
+            'type="fixed"><parent link="o"/><child link="p"/></joint></robot>\n'
+    pkg = make_package(tmp_path, "grippers", {"urdf/arm.urdf.xacro": SOLID, "urdf/other.urdf": other,
+                                              "config/arm_controllers.yaml": FILES["config/ros2_controllers.yaml"]})
+    monkeypatch.chdir(pkg)
+    cfg = load_config(None)
+    cfg.select = ["UL710", "UL711"]
+    for paths in (["."], ["urdf/other.urdf"]):
+        res = run_check(RunRequest(paths, cfg, build_resolver(paths, cfg), in_process=True))
+        assert [f.code for f in res.findings] == [], paths
+    # the YAML is still checked against the robot it names
+    (pkg / "config" / "arm_controllers.yaml").write_text(
+        FILES["config/ros2_controllers.yaml"].replace("[joint1, joint2]", "[joint1, joint_2]"))
+    paths = ["urdf/arm.urdf.xacro"]
+    res = run_check(RunRequest(paths, cfg, build_resolver(paths, cfg), in_process=True))
+    assert [f.code for f in res.findings] == ["UL710"]

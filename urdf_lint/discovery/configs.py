@@ -50,12 +50,14 @@ def package_dir(path: str, stop: tuple[str, ...] = ()) -> str | None:
         d = parent
 
 
-def package_files(pkg: str) -> list[str]:
-    """The SRDF and YAML files of a package (mesh folders skipped, at most MAX_PACKAGE_FILES)."""
+def package_files(pkg: str, suffixes: tuple[str, ...] = (*SRDF_SUFFIXES, ".yaml", ".yml"),
+                  names: frozenset[str] = frozenset({".setup_assistant"})) -> list[str]:
+    """The SRDF and YAML files of a package (or those with other ``suffixes``; mesh folders
+    skipped, at most MAX_PACKAGE_FILES)."""
     from urdf_lint.core import fsbound
     out = []
-    for f in fsbound.walk_files(pkg, suffixes=(*SRDF_SUFFIXES, ".yaml", ".yml"),
-                                names={".setup_assistant"}, skip=lambda d: d in _SKIP):
+    for f in fsbound.walk_files(pkg, suffixes=suffixes, names=set(names),
+                                skip=lambda d: d in _SKIP):
         if os.path.dirname(f) != pkg and os.path.isfile(os.path.join(os.path.dirname(f),
                                                                      "package.xml")):
             continue   # a nested package's own files
@@ -183,7 +185,12 @@ def _package_ties(ties: _Ties, pkg: str, models: list[str]) -> None:
     models (the worker keeps those about the model: discovery cannot tell)."""
     files = package_files(pkg)
     srdf_dirs = {os.path.dirname(f) for f in files if f.endswith(SRDF_SUFFIXES)}
-    how = "package" if len(models) == 1 else "package-shared"
+    # shared: the package holds other robot files than the run's one model (`check` of one
+    # file, the hook, diff's base): what `check .` of the package would count as its models
+    shared = len(models) > 1 or any(
+        not f.endswith(SRDF_SUFFIXES) and os.path.realpath(f) not in models
+        for f in package_files(pkg, (".urdf", ".xacro"), frozenset()))
+    how = "package-shared" if shared else "package"
     for f in files:
         k = _kind(f, os.path.dirname(f) in srdf_dirs)
         if k is not None:
