@@ -327,6 +327,20 @@ ARM_SRDF_EXAMPLE = """<robot name="r">
   </group>
 </robot>
 """
+PAIRS_SRDF_EXAMPLE = """<robot name="r">
+  <disable_collisions link1="base" link2="l1" reason="Adjacent"/>
+  <disable_collisions link1="l1" link2="l2" reason="Adjacent"/>
+</robot>
+"""
+
+
+def moveit_controllers_example(*joints: str) -> str:
+    """A ``moveit_controllers.yaml`` whose one trajectory controller drives ``joints``."""
+    return ("moveit_simple_controller_manager:\n  controller_names:\n    - arm_controller\n"
+            "  arm_controller:\n    type: FollowJointTrajectory\n    joints:\n"
+            + "".join(f"      - {j}\n" for j in joints))
+
+
 LIMITS_EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 </robot>
 """, "config/joint_limits.yaml": """joint_limits:

@@ -3,7 +3,8 @@
 Why: MoveIt drops a group with an unknown joint ("Joint 'X' declared as part of group 'arm'
 is not known to the URDF"), ignores the value of a group state for it, and a passive joint
 that does not exist leaves the real one planned as active. The usual cause is a joint renamed
-in the xacro and not in the MoveIt configuration package.
+in the xacro and not in the MoveIt configuration package. The SRDF's own virtual joint is a
+joint MoveIt knows (the `base` group of a mobile manipulator names it): not reported.
 
 Consumers: ros (MoveIt) only: the other consumers do not read SRDF files.
 
@@ -47,10 +48,13 @@ WHERE = (("group/joint", "group '{g}' joint"), ("group_state/joint", "group stat
 
 def check(model: "Model", ctx: "Context") -> "Checked":
     for doc in srdfs(ctx):
+        # a group (a state, a passive joint) may name the SRDF's own virtual joint: MoveIt's
+        # SRDF parser accepts it (the base group of a mobile manipulator)
+        virtual = {v.get("name") for v in doc.root.iterfind("virtual_joint")}
         for path, what in WHERE:
             for el in doc.root.iterfind(path):
                 name = el.get("name")
-                if not name or name in model.joints:
+                if not name or name in model.joints or name in virtual:
                     continue
                 label = what.format(g=el.getparent().get("name"))
                 # the joint closest by name is the related location, else the robot

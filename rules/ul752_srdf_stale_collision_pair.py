@@ -21,14 +21,10 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._config import example_robot
+from urdf_lint.rules._config import PAIRS_SRDF_EXAMPLE, example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link_2"), links=("base", "l1", "link_2"))
 PASS = FAIL.replace("link_2", "l2")
-EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
-  <disable_collisions link1="base" link2="l1" reason="Adjacent"/>
-  <disable_collisions link1="l1" link2="l2" reason="Adjacent"/>
-</robot>
-"""}
+EXAMPLE_FILES = {"config/r.srdf": PAIRS_SRDF_EXAMPLE}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(3, 3)]
 from urdf_lint.engine.api import Report

@@ -79,6 +79,16 @@ def display_path(path: str, base: str | None = None) -> str:
     return shown
 
 
+CONFIG_SUFFIXES = (".srdf", ".srdf.xacro", ".yaml", ".yml")
+
+
+def related_label(path: str) -> str:
+    """What a finding's related location is: the robot element it is about (its xacro line),
+    or a line of another configuration file (UL717: the SRDF group a MoveIt controller
+    serves)."""
+    return "related configuration line" if path.endswith(CONFIG_SUFFIXES) else "robot element"
+
+
 def label_base(entry: str) -> str:
     """What file names in a recording's labels are relative to: the folder holding the
     entry's package (so labels read ``ur_description/urdf/ur5e.xacro``), else the entry's

@@ -50,12 +50,14 @@ def package_dir(path: str, stop: tuple[str, ...] = ()) -> str | None:
         d = parent
 
 
-def package_files(pkg: str) -> list[str]:
-    """The SRDF and YAML files of a package (mesh folders skipped, at most MAX_PACKAGE_FILES)."""
+def package_files(pkg: str, suffixes: tuple[str, ...] = (*SRDF_SUFFIXES, ".yaml", ".yml"),
+                  names: frozenset[str] = frozenset({".setup_assistant"})) -> list[str]:
+    """The SRDF and YAML files of a package (or those with other ``suffixes``; mesh folders
+    skipped, at most MAX_PACKAGE_FILES)."""
     from urdf_lint.core import fsbound
     out = []
-    for f in fsbound.walk_files(pkg, suffixes=(*SRDF_SUFFIXES, ".yaml", ".yml"),
-                                names={".setup_assistant"}, skip=lambda d: d in _SKIP):
+    for f in fsbound.walk_files(pkg, suffixes=suffixes, names=set(names),
+                                skip=lambda d: d in _SKIP):
         if os.path.dirname(f) != pkg and os.path.isfile(os.path.join(os.path.dirname(f),
                                                                      "package.xml")):
             continue   # a nested package's own files
@@ -129,7 +131,11 @@ def attach_configs(jobs: list[LintJob], cfg: Any, resolver: Any) -> list[LintJob
         return jobs
     ties = _Ties(resolver)
     _explicit(ties, cfg)
-    roots = tuple(str(r) for r in resolver.roots)
+    # the walk up to a model's package stops at the outermost roots only: checking one file
+    # (`check urdf/arm.urdf.xacro`, the hook, diff's base) makes its own folder a root too,
+    # which must not hide the package.xml above it
+    all_roots = [str(r) for r in resolver.roots]
+    roots = tuple(r for r in all_roots if not any(o != r and inside(r, o) for o in all_roots))
     entries = {j.entry for j in jobs if j.kind in ("xacro", "urdf")}
     by_pkg: dict[str, list[str]] = {}
     for e in entries:
@@ -179,7 +185,12 @@ def _package_ties(ties: _Ties, pkg: str, models: list[str]) -> None:
     models (the worker keeps those about the model: discovery cannot tell)."""
     files = package_files(pkg)
     srdf_dirs = {os.path.dirname(f) for f in files if f.endswith(SRDF_SUFFIXES)}
-    how = "package" if len(models) == 1 else "package-shared"
+    # shared: the package holds other robot files than the run's one model (`check` of one
+    # file, the hook, diff's base): what `check .` of the package would count as its models
+    shared = len(models) > 1 or any(
+        not f.endswith(SRDF_SUFFIXES) and os.path.realpath(f) not in models
+        for f in package_files(pkg, (".urdf", ".xacro"), frozenset()))
+    how = "package-shared" if shared else "package"
     for f in files:
         k = _kind(f, os.path.dirname(f) in srdf_dirs)
         if k is not None:

@@ -414,7 +414,7 @@ def _lint_model(job: LintJob, settings: LintSettings) -> tuple[ModelReport, Mode
                 from urdf_lint.fix.kinds.rename_at import fix_at
                 line_fix = fix_at(el, read_source(el.file), req)
             p = Problem.at(rule.code, msg, el, None, sev, consumers=table, fix=line_fix,
-                           related=model.origin(related) if related is not None else ())
+                           related=_related(model, related))
         else:
             fix = None
             from urdf_lint.fix.fixes import Fixer
@@ -462,3 +462,12 @@ def _mesh_deps(model: Model, ctx: Context, deps: list[str]) -> tuple[list[str], 
 def run_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job in process (no rendering)."""
     return lint_model(job, settings)[0]
+
+
+def _related(model: Any, related: Any) -> Any:
+    """Where a configuration finding's related location is: the robot element's xacro line,
+    or a place in another configuration file a rule gives as an Origin (the SRDF group a
+    MoveIt controller serves)."""
+    if related is None:
+        return ()
+    return related if isinstance(related, Origin) else model.origin(related)

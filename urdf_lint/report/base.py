@@ -207,7 +207,9 @@ def related_text(f: Finding) -> str:
     (SRDF, controller YAML) about an element of the robot."""
     if not f.related:
         return ""
-    return f"robot element at {escape_text(display_path(f.related[0]))}:{f.related[1]}"
+    from urdf_lint.core.locations import related_label
+    return (f"{related_label(f.related[0])} at {escape_text(display_path(f.related[0]))}:"
+            f"{f.related[1]}")
 
 
 def refused_text(f: Finding) -> str:

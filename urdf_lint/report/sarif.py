@@ -56,7 +56,8 @@ def _related(f: Finding) -> list[tuple[str, tuple[Any, ...]]]:
     if f.value_from:
         related.append(("value from here", f.value_from))
     if f.related:
-        related.append(("robot element here", f.related))
+        from urdf_lint.core.locations import related_label
+        related.append((f"{related_label(f.related[0])} here", f.related))
     places = list(dict.fromkeys((i.file, i.line, i.col) for i in f.instances))
     related += [(i.detail or i.message, (i.file, i.line, i.col)) for i in
                 {(i.file, i.line, i.col): i for i in f.instances}.values()

@@ -60,6 +60,8 @@ class ModelDiff:
     findings_introduced: list = field(default_factory=list)
     findings_fixed: list = field(default_factory=list)
     finding_lines: dict = field(default_factory=dict)   # finding key -> (line, col) in its revision
+    finding_related: dict = field(default_factory=dict)  # finding key -> (file, line, col) of the
+                                   # robot element an SRDF or YAML finding is about, in its revision
     error: str = ""
     snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
     picture: str = ""              # the file name stem of its pictures (locations.picture_name)

@@ -153,6 +153,8 @@ class Side:
     findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
     severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
     lines: dict = field(default_factory=dict)       # (code, file, message) -> (line, col)
+    related: dict = field(default_factory=dict)     # (code, file, message) -> (file relative
+                                                    # to root, line, col) of the robot element
     robots: dict = field(default_factory=dict)      # key -> Model | None
     geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
     rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
@@ -257,6 +259,9 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
             fk = (g.code, _rel(side.root, g.file), _unrooted(side.root, own[0].message) + more)
             side.severities[fk] = g.severity
             side.lines.setdefault(fk, (own[0].line, own[0].col))
+            if own[0].related:     # an SRDF or YAML finding's robot element (its xacro line)
+                side.related.setdefault(fk, (_rel(side.root, own[0].related[0]),
+                                             *own[0].related[1:3]))
             side.findings[labels[label]][fk] += 1
     return resolver, result
 
@@ -731,20 +736,26 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> Model
         md.changes = [_rebase(c, base.root, head.root, top) for c in changes]
     except Exception as e:  # noqa: BLE001 - a malformed model still gets its findings diff
         md.error = f"could not compare: {type(e).__name__}: {e}"
-    hf = head.findings.get(k, Counter()) if not removed else Counter()
-    bf = base.findings.get(bk, Counter()) if bk else Counter()
-    md.findings_introduced = [(fk, head.severities.get(fk, "error"))
-                              for fk in sorted((hf - bf).elements())]
-    md.findings_fixed = [(fk, base.severities.get(fk, "error"))
-                         for fk in sorted((bf - hf).elements())]
-    # where each is in its revision (the key has no line: an edit above it moves it)
-    md.finding_lines = {**{fk: base.lines[fk] for fk, _ in md.findings_fixed if fk in base.lines},
-                        **{fk: head.lines[fk] for fk, _ in md.findings_introduced
-                           if fk in head.lines}}
+    _findings_diff(md, head.findings.get(k, Counter()) if not removed else Counter(),
+                   base.findings.get(bk, Counter()) if bk else Counter(), head, base)
     if status == "changed" and not md.changes and not md.moved and not md.findings_introduced \
             and not md.findings_fixed and not md.error:
         md.status = "unchanged"
     return md
+
+
+def _findings_diff(md: ModelDiff, hf: Counter, bf: Counter, head: Side, base: Side) -> None:
+    """The findings only HEAD has (introduced) and only BASE has (fixed), with where each is
+    in its revision (the key has no line: an edit above it moves it) and the robot element
+    an SRDF or YAML finding is about."""
+    md.findings_introduced = [(fk, head.severities.get(fk, "error"))
+                              for fk in sorted((hf - bf).elements())]
+    md.findings_fixed = [(fk, base.severities.get(fk, "error"))
+                         for fk in sorted((bf - hf).elements())]
+    for side, items in ((base, md.findings_fixed), (head, md.findings_introduced)):
+        md.finding_lines.update({fk: side.lines[fk] for fk, _ in items if fk in side.lines})
+        md.finding_related.update({fk: side.related[fk] for fk, _ in items
+                                   if fk in side.related})
 
 
 def _rebase(c, base_root, head_root, top=None):

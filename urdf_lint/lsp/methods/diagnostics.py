@@ -10,6 +10,7 @@ import os
 from lsprotocol import types
 
 from urdf_lint.core.findings import Problem
+from urdf_lint.core.locations import related_label
 from urdf_lint.lsp.services import Services
 from urdf_lint.lsp.state import Workspace
 from urdf_lint.lsp.text import Doc
@@ -73,7 +74,7 @@ def _finding_diagnostics(sv: Services, ws: Workspace, doc: Doc,
             rdoc = docs.get(rf) or docs.setdefault(rf, sv.doc(rf))
             related.append(types.DiagnosticRelatedInformation(
                 location=types.Location(uri=path_uri(rf), range=rdoc.element_range(rl, rc)),
-                message="robot element here"))
+                message=f"{related_label(rf)} here"))
         models = [m for m in f.models if m]
         msg = f.message
         folded = fold_instances(f)

@@ -94,6 +94,14 @@ def finding(fk: tuple[str, str, str], at: tuple[int, int] | None = None) -> str:
     return f"{code} {where}: {msg}"
 
 
+def related(m: Any, fk: tuple[str, str, str]) -> str:
+    """``robot element at urdf/arm.urdf.xacro:9``: the robot element an SRDF or YAML finding
+    is about (``m`` its ModelDiff), or ""."""
+    r = m.finding_related.get(fk)
+    from urdf_lint.core.locations import related_label
+    return f"{related_label(r[0])} at {r[0]}:{r[1]}" if r else ""
+
+
 def md_escape(s: object) -> str:
     """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
     renders as that text only: no HTML, link, image, mention, table break or line break

@@ -41,4 +41,7 @@ def _finding(m: Any, fk: tuple[str, str, str], severity: str) -> dict[str, Any]:
     at = m.finding_lines.get(fk)
     if at and at[0]:
         out["line"], out["col"] = at
+    rel = m.finding_related.get(fk)
+    if rel:      # the robot element (its xacro line) an SRDF or YAML finding is about
+        out["related"] = list(rel)
     return out

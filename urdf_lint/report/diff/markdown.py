@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from urdf_lint.core.escape import escape_html
 from urdf_lint.report.diff.base import (MD_ICON, DiffFormatter, DiffResult, chain, code, fmt, loc,
-                                        md_escape, moved, vloc)
+                                        md_escape, moved, related, vloc)
 
 MARKDOWN_LIMIT = 60_000   # characters of a job summary
 
@@ -68,7 +68,8 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
             if items:
                 rows += [f"**{title}**", ""]
                 rows += [f"- {s} {code(fk[0])} {code(_at(fk[1], m.finding_lines.get(fk)))}: "
-                         f"{md_escape(fk[2])}" for fk, s in items]
+                         f"{md_escape(fk[2])}" + (f" <sub>{md_escape(related(m, fk))}</sub>"
+                                                  if related(m, fk) else "") for fk, s in items]
                 rows.append("")
         rows += ["</details>", ""]
         sections.append(rows)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from urdf_lint.core.escape import escape_text
 from urdf_lint.report.diff.base import (ICON, DiffFormatter, DiffResult, chain, finding, fmt, loc,
-                                        moved, vloc, what)
+                                        moved, related, vloc, what)
 
 
 class TextDiff(DiffFormatter):
@@ -33,9 +33,10 @@ def to_text(r: DiffResult) -> str:
                 out.append(f"      value from {vloc(c.value_from)}")
         if m.moved:
             out.append(f"  moved at zero configuration: {moved(m, 5)}")
-        for fk, sev in m.findings_introduced:
-            out.append(f"  introduced {sev}: {finding(fk, m.finding_lines.get(fk))}")
-        for fk, sev in m.findings_fixed:
-            out.append(f"  fixed {sev}: {finding(fk, m.finding_lines.get(fk))}")
+        for word, items in (("introduced", m.findings_introduced), ("fixed", m.findings_fixed)):
+            for fk, sev in items:
+                out.append(f"  {word} {sev}: {finding(fk, m.finding_lines.get(fk))}")
+                if related(m, fk):
+                    out.append(f"      {related(m, fk)}")
     # names, values and messages are the description's: each line one visible line
     return "\n".join(escape_text(line) for line in out) + "\n"
