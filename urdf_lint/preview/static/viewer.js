@@ -247,10 +247,23 @@
 
   function current() { return state.data ? state.data.variants[state.variant] : null; }
 
+  // opened from the language server: a click also shows the element's xacro line in the
+  // editor (POST jump: the server finds the line from the element's name; the page names no file)
+  state.jumps = [];
+  function jump(what) {
+    if (REVIEW || !state.data || !state.data.editor) return;
+    const body = Object.assign({ version: state.version, variant: state.variant }, what);
+    fetch('jump', { method: 'POST', cache: 'no-store', body: JSON.stringify(body),
+                    headers: { 'Content-Type': 'application/json' } })
+      .then((r) => r.json().then((j) => state.jumps.push([r.status, j.result])))
+      .catch((e) => state.jumps.push([0, String(e)]));
+  }
+
   function pickFinding(i) {
     const f = current().findings[i];
     state.picked = { finding: i, target: f.target };
     showInfo([findingText(f)]);
+    jump({ finding: i });
   }
   window.previewPickFinding = pickFinding;
 
@@ -262,6 +275,15 @@
       .forEach((f) => lines.push(findingText(f)));
     state.picked = { link: name };
     showInfo(lines);
+    jump({ element: 'link:' + name });
+  }
+  window.previewPickLink = pickLink;
+
+  function pickJoint(name) {
+    const at = current().joints[name];
+    state.picked = { joint: name };
+    showInfo([`joint ${name}` + (at ? ` (${at[0]}:${at[1]})` : '')]);
+    jump({ element: 'joint:' + name });
   }
 
   // -- controls ---------------------------------------------------------------------------
@@ -307,7 +329,9 @@
                               step: String((hi - lo) / 200), 'data-joint': j.name });
       s.value = v;
       s.addEventListener('input', () => setJoint(j.name, Number(s.value)));
-      joints.appendChild(el('div', { class: 'joint' }, el('span', { text: j.name }), s));
+      const label = el('span', { text: j.name, class: 'joint-name' });
+      label.addEventListener('click', () => pickJoint(j.name));
+      joints.appendChild(el('div', { class: 'joint' }, label, s));
       setJoint(j.name, v);
     });
     box.appendChild(joints);
@@ -341,6 +365,11 @@
     const v = current();
     world.clear();
     state.robots = [];
+    if (!v) {   // (from the language server, before the file's models are linted)
+      $('title').textContent = 'urdf-lint: waiting for the lint of this file';
+      state.ready = true;
+      return;
+    }
     $('title').textContent = v.label || 'urdf-lint';
     if (v.error || !v.urdf) {
       buildFindings(v);
@@ -401,7 +430,8 @@
         if (version !== state.version) {
           state.data = await fetchState();
           state.version = state.data.version;
-          state.variant = Math.min(state.variant, state.data.variants.length - 1);
+          state.variant = Math.max(0, Math.min(state.variant, state.data.variants.length - 1));
+          if (state.data.editor) state.highlight = state.data.highlight || '';
           await show();
         }
       } catch (e) {
@@ -424,6 +454,7 @@
     }
     state.data = await fetchState();
     state.version = state.data.version;
+    if (state.data.editor) state.highlight = state.data.highlight || '';
     await show();
     follow();
   }
