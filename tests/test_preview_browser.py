@@ -206,6 +206,62 @@ def test_the_highlighted_link_is_tinted(tmp_path, browser):
     assert tints["upper"] == 0x0077ff and tints["lower"] != 0x0077ff
 
 
+def _tints(page):
+    return page.js("""(() => { const out = {}; for (const [n, l] of
+        Object.entries(preview.robot.links)) l.traverse(c => { if (c.isMesh &&
+        c.userData.link === n && !c.userData.collision && c.material.emissive) out[n] =
+        c.material.emissive.getHex(); }); return out; })()""")
+
+
+def test_clicks_in_a_page_opened_from_the_editor_jump_there(tmp_path, browser):
+    """The page of a preview the language server opened (``session.editor`` set, as
+    lsp/methods/preview.py sets it): clicking a link in the 3D view, a marker and a joint's
+    name POSTs the element, and the editor is asked for its xacro line; the highlight the
+    server sets (the command again, the cursor elsewhere) is the link tinted."""
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, session):
+        asked = []
+        session.editor = lambda f, line, col: asked.append((f, line, col)) or ""
+        page = Page(browser, f"http://127.0.0.1:{server.port}/")
+        page.page.goto(server.url)
+        page.ready()
+        assert page.js("preview.data.editor") is True
+        src = session.scenes[0].sources
+        # a link's mesh in the 3D view: the middle of "upper"'s segment
+        x, y = page.js("""(() => { const V = window.URDFV, p = window.preview;
+            const v = new V.Vector3(0, 0, 0.1); p.robot.links.upper.localToWorld(v);
+            v.project(p.camera); const r = document.querySelector('#view canvas')
+            .getBoundingClientRect();
+            return [r.left + (v.x + 1) / 2 * r.width, r.top + (1 - v.y) / 2 * r.height]; })()""")
+        page.page.mouse.click(x, y)
+        page.until("preview.jumps.length === 1")
+        assert page.js("preview.picked") == {"link": "upper"}
+        assert asked == [src["link:upper"]] and page.js("preview.jumps[0][0]") == 200
+        # the marker on base_link (drawn over it): that finding's line
+        bx, by = page.screen_of("base_link")
+        page.page.mouse.click(bx, by)
+        page.until("preview.jumps.length === 2")
+        i = page.js("preview.picked.finding")
+        f = session.scenes[0].findings[i]
+        assert f["target"] == ["link", "base_link"]
+        assert asked[1] == session.scenes[0].finding_sources[i]
+        assert asked[1][1] == f["line"]
+        # a joint's name in the panel
+        page.js("[...document.querySelectorAll('.joint-name')].find(e => e.textContent === "
+                "'lower_joint').click()")
+        page.until("preview.jumps.length === 3")
+        assert asked[2] == src["joint:lower_joint"]
+        # the server moves the highlight: the page reloads it and tints that link
+        assert "upper" not in {n for n, t in _tints(page).items() if t == 0x0077ff}
+        v0 = page.js("preview.version")
+        session.set_highlight("link:upper")
+        page.until(f"preview.version > {v0} && preview.ready")
+        tints = _tints(page)
+        assert tints["upper"] == 0x0077ff and tints["lower"] != 0x0077ff
+        assert page.errors == [] and page.external == []
+        page.close()
+
+
 def test_a_request_without_the_token_gets_no_page(tmp_path, browser):
     entry = make_robot(tmp_path)
     with serve(entry) as (server, _):
