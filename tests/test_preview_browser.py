@@ -371,6 +371,58 @@ def test_the_review_page_opens_from_file_and_shows_the_changed_links(tmp_path, b
     page.close()
 
 
+def _stl(triangles: int, seed: int) -> bytes:
+    """A binary STL of ``triangles`` triangles (84 + 50 per triangle bytes), its own bytes
+    per ``seed`` (the review page inlines identical files once)."""
+    import random
+    import struct
+    rnd = random.Random(seed)
+    out = bytearray(b"urdf-lint size fixture".ljust(80, b" ")) + struct.pack("<I", triangles)
+    for _ in range(triangles):
+        out += struct.pack("<12f", 0, 0, 0, *(rnd.uniform(-0.04, 0.04) for _ in range(9)))
+        out += b"\0\0"
+    return bytes(out)
+
+
+def test_the_review_page_of_a_30_link_robot_and_its_size(tmp_path, browser):
+    """The size docs/review.md states: a 30-link chain, each link its own 1,000-triangle STL
+    (50 KB, a simplified arm segment), one joint moved; the page shows both 30-link robots."""
+    from support.repo_shapes import joint, link, package_xml
+    repo = tmp_path / "repo"
+    pkg = repo / "chain_description"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "urdf").mkdir()
+    (pkg / "package.xml").write_text(package_xml("chain_description"))
+    parts = []
+    for i in range(30):
+        (pkg / "meshes" / f"l{i}.stl").write_bytes(_stl(1000, i))
+        parts.append(link(f"l{i}", f"package://chain_description/meshes/l{i}.stl"))
+        if i:
+            parts.append(joint(f"j{i}", f"l{i - 1}", f"l{i}"))
+    entry = pkg / "urdf" / "chain.urdf"
+    entry.write_text('<?xml version="1.0"?>\n<robot name="chain">\n' + "".join(parts)
+                     + "</robot>\n")
+    for args in (("init", "-q", "."), ("add", "-A"), ("commit", "-qm", "base")):
+        _git(repo, *args)
+    entry.write_text(entry.read_text().replace(
+        '<parent link="l14"/><child link="l15"/>\n    <origin xyz="0 0 0.1"',
+        '<parent link="l14"/><child link="l15"/>\n    <origin xyz="0 0 0.12"', 1))
+    out = tmp_path / "review"
+    [model] = _diff_html(repo, out)["models"]
+    assert "l15" in _json_changed_links(model)
+    page = _open_review(browser, out)
+    assert page.external == [] and page.errors == []
+    assert page.js("preview.robots.map(r => Object.keys(r.links).length)") == [30, 30]
+    page.close()
+    sizes = {f.name: f.stat().st_size for f in out.iterdir()}
+    meshes = sum((pkg / "meshes" / f"l{i}.stl").stat().st_size for i in range(30))
+    total = sum(sizes.values())
+    print(f"30-link review page: {total} bytes ({sizes}); meshes {meshes} bytes")
+    # the meshes once, as base64 (4/3), plus the page's scripts: the size is the meshes'
+    assert meshes * 4 // 3 < sizes["review-data.js"] < meshes * 4 // 3 + 200_000
+    assert total < 3_000_000
+
+
 @pytest.mark.skipif(not os.environ.get("URDF_LINT_DOCS_IMG"),
                     reason="writes docs/img (URDF_LINT_DOCS_IMG=1)")
 @pytest.mark.skipif(not (CORPUS / "franka_description").is_dir(), reason="no corpus")
