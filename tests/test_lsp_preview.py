@@ -54,6 +54,9 @@ def test_the_vscode_client_declares_the_command():
     assert 'registerCommand("urdf-lint.showPreview"' in src
     assert 'command: "urdf-lint.preview"' in src     # sent to the server (executeCommand)
     assert "openExternal" in src
+    # the highlight follows the cursor of a previewed file
+    assert "onDidChangeTextEditorSelection" in src
+    assert 'command: "urdf-lint.previewHighlight"' in src
 
 
 @pytest.fixture
@@ -211,3 +214,30 @@ async def test_a_forged_click_is_refused_and_shows_nothing(client, robot):
     assert status == 403
     await asyncio.sleep(0.5)
     assert client.shown_documents == []
+
+
+@aio
+async def test_the_highlight_follows_the_cursor(client, robot):
+    text, url = await _open_preview(client, robot)
+    first = _fetch(url, "state.json")
+    assert first["highlight"] == ""
+    lines = text.split("\n")
+    mimic = next(n for n, s in enumerate(lines) if "<mimic" in s)
+
+    async def cursor(line, character):
+        return await client.workspace_execute_command_async(types.ExecuteCommandParams(
+            command="urdf-lint.previewHighlight", arguments=[robot.as_uri(), line, character]))
+    got = await cursor(mimic, 6)
+    assert got == {"highlight": "joint:tool_joint"}
+    state = _fetch(url, "state.json")
+    assert state["highlight"] == "joint:tool_joint" and state["version"] > first["version"]
+    assert state["scene_version"] == first["scene_version"]   # the page restyles, no reload
+    assert (await cursor(lines.index('  <link name="base_link">') + 1, 8)) == \
+        {"highlight": "link:base_link"}
+    assert _fetch(url, "state.json")["highlight"] == "link:base_link"
+    # a file no preview shows: nothing happens, nothing starts
+    other = robot.parent / "other.urdf"
+    other.write_text('<robot name="o"><link name="a"/></robot>\n')
+    got = await client.workspace_execute_command_async(types.ExecuteCommandParams(
+        command="urdf-lint.previewHighlight", arguments=[other.as_uri(), 0, 20]))
+    assert got == {"highlight": ""}

@@ -251,13 +251,19 @@ def test_clicks_in_a_page_opened_from_the_editor_jump_there(tmp_path, browser):
                 "'lower_joint').click()")
         page.until("preview.jumps.length === 3")
         assert asked[2] == src["joint:lower_joint"]
-        # the server moves the highlight: the page reloads it and tints that link
+        # the server moves the highlight (the cursor moved in the editor): the page tints that
+        # link, a joint's child link, without building the robot again
         assert "upper" not in {n for n, t in _tints(page).items() if t == 0x0077ff}
-        v0 = page.js("preview.version")
-        session.set_highlight("link:upper")
-        page.until(f"preview.version > {v0} && preview.ready")
-        tints = _tints(page)
-        assert tints["upper"] == 0x0077ff and tints["lower"] != 0x0077ff
+        page.js("preview.robot.userData.same = true")
+        for name, tinted in (("link:upper", "upper"), ("joint:lower_joint", "lower"),
+                             ("", None)):
+            v0 = page.js("preview.version")
+            session.set_highlight(name)
+            page.until(f"preview.version > {v0} && preview.highlight === {json.dumps(name)}")
+            page.page.wait_for_timeout(100)
+            blue = {n for n, t in _tints(page).items() if t == 0x0077ff}
+            assert blue == ({tinted} if tinted else set()), name
+        assert page.js("preview.robot.userData.same") is True
         assert page.errors == [] and page.external == []
         page.close()
 

@@ -56,6 +56,7 @@ request(types.TEXT_DOCUMENT_PREPARE_RENAME, rename.prepare)
 in_lint_thread(types.TEXT_DOCUMENT_FORMATTING, formatting.handle)
 in_lint_thread(types.TEXT_DOCUMENT_RANGE_FORMATTING, range_formatting.handle)
 server.command(preview.COMMAND)(preview.command)   # (async: it waits for the scenes)
+server.command(preview.HIGHLIGHT_COMMAND)(lambda ls, *a: preview.highlight(ls.services, list(a)))
 
 
 def main() -> int:

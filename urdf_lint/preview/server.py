@@ -218,7 +218,9 @@ class Handler(BaseHTTPRequestHandler):
         s = self.server.session
         with s.changed:
             scenes, version, internal = list(s.scenes), s.version, list(s.internal)
-        body = {"version": version, "internal": internal, "highlight": s.highlight,
+            scene_version = s.scene_version
+        body = {"version": version, "scene_version": scene_version, "internal": internal,
+                "highlight": s.highlight,
                 "editor": s.editor is not None,
                 "variants": [sc.to_json() for sc in scenes]}
         self._send(200, json.dumps(body).encode(), TYPES[".json"])

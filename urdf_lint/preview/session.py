@@ -30,6 +30,7 @@ class Session:
         self.scenes: list[Scene] = []
         self.internal: list[str] = []
         self.version = 0
+        self.scene_version = 0     # the version of the last scenes (a highlight bumps version only)
         self.stamps: dict[str, tuple[int, int] | None] = {}
         self.changed = threading.Condition()
         self._stop = threading.Event()
@@ -56,6 +57,7 @@ class Session:
             self.internal = internal
             self.stamps = {d: _stamp(d) for d in deps}
             self.version += 1
+            self.scene_version = self.version
             self.changed.notify_all()
 
     def set_highlight(self, highlight: str) -> None:

@@ -29,6 +29,9 @@ from urdf_lint.lsp.uris import path_uri, uri_path
 from urdf_lint.preview.session import Session
 
 COMMAND = "urdf-lint.preview"
+# moves the highlight of a preview already open to the element at [uri, line, character]
+# (a client sends it as the cursor moves; it starts nothing)
+HIGHLIGHT_COMMAND = "urdf-lint.previewHighlight"
 START_TIMEOUT_S = 120.0
 SHOW_TIMEOUT_S = 5.0
 _running: dict[str, tuple[Any, EditorSession]] = {}   # path -> (PreviewServer, its session)
@@ -176,6 +179,25 @@ def handle(sv: Services, args: list[Any], ls: Any = None) -> dict[str, str]:
     running[1].set_highlight(highlight)
     url = running[0].url + (f"#highlight={quote(highlight)}" if highlight else "")
     return {"url": url, "highlight": highlight}
+
+
+def highlight(sv: Services, args: list[Any]) -> dict[str, str]:
+    """``urdf-lint.previewHighlight``: the open previews of ``args[0]`` (the file's own, and
+    those of the models that read it) highlight the element at the position; {"highlight":
+    ...} ("" and nothing done when no preview shows the file)."""
+    if not args:
+        raise Refused(f"{HIGHLIGHT_COMMAND} needs the file's URI")
+    path = uri_path(str(args[0]))
+    shown = [s for _, s in list(_running.values())
+             if s.path == path or any(path in sc.deps for sc in s.scenes)]
+    if not shown or sv.ws is None or not sv.ws.readable(path):
+        return {"highlight": ""}
+    line = int(args[1]) if len(args) > 1 else 0
+    character = int(args[2]) if len(args) > 2 else 0
+    name = element_at(sv.doc(path).text, line, character)
+    for s in shown:
+        s.set_highlight(name)
+    return {"highlight": name}
 
 
 async def command(ls: Any, *args: Any) -> dict[str, str]:

@@ -169,12 +169,36 @@
         } else if (changed && changed.has(c.userData.link)) {
           n.emissive = new V.Color(CHANGED); n.emissiveIntensity = 0.8;
         }
-        if (state.highlight === 'link:' + c.userData.link && n.emissive) {
-          n.emissive = new V.Color(0x0077ff); n.emissiveIntensity = 0.6;
-        }
+        if (n.emissive) n.userData.base = [n.emissive.getHex(), n.emissiveIntensity];
         return n;
       });
       c.material = Array.isArray(c.material) ? out : out[0];
+    });
+  }
+
+  // the highlighted element (state.highlight: "link:NAME", or "joint:NAME": its child link)
+  // tinted blue; from the language server it follows the editor's cursor without a reload
+  const HIGHLIGHT = 0x0077ff;
+  function highlightedLink(robot) {
+    const [kind, name] = state.highlight.split(/:(.*)/s);
+    if (kind === 'link') return name;
+    const j = kind === 'joint' && robot.joints[name];
+    const child = j && j.children.find((c) => c.isURDFLink);
+    return child ? child.name : null;
+  }
+  function applyHighlight() {
+    state.robots.forEach((robot) => {
+      if (robot.userData.side === 'base') return;
+      const target = highlightedLink(robot);
+      robot.traverse((c) => {
+        if (!c.isMesh || c.userData.marker) return;
+        (Array.isArray(c.material) ? c.material : [c.material]).forEach((m) => {
+          if (!m || !m.emissive || !m.userData.base) return;
+          const on = target !== null && c.userData.link === target;
+          m.emissive.setHex(on ? HIGHLIGHT : m.userData.base[0]);
+          m.emissiveIntensity = on ? 0.6 : m.userData.base[1];
+        });
+      });
     });
   }
 
@@ -395,6 +419,7 @@
     buildControls(robot);
     buildFindings(v);
     applyVisibility();
+    applyHighlight();
     frameCamera(first);
     if (REVIEW) buildChanges(v);
     state.ready = true;
@@ -428,11 +453,16 @@
         const r = await fetch('version?v=' + state.version, { cache: 'no-store' });
         const { version } = await r.json();
         if (version !== state.version) {
+          const before = state.data;
           state.data = await fetchState();
           state.version = state.data.version;
           state.variant = Math.max(0, Math.min(state.variant, state.data.variants.length - 1));
           if (state.data.editor) state.highlight = state.data.highlight || '';
-          await show();
+          if (before && before.scene_version === state.data.scene_version) {
+            applyHighlight();   // (the same scenes: only the highlight moved)
+          } else {
+            await show();
+          }
         }
       } catch (e) {
         await new Promise((res) => setTimeout(res, 1000));
