@@ -169,7 +169,8 @@ async def test_a_click_in_the_page_shows_its_line_in_the_editor(client, robot):
     lines = text.split("\n")
     base = lines.index('  <link name="base_link">')
     status, body = await asyncio.to_thread(
-        _click, url, {"version": state["version"], "variant": 0, "element": "link:base_link"})
+        _click, url, {"version": state["scene_version"], "variant": 0,
+                       "element": "link:base_link"})
     assert status == 200, body
     shown = client.shown_documents[-1]
     assert shown.uri == robot.as_uri() and not shown.external
@@ -183,7 +184,7 @@ async def test_a_click_in_the_page_shows_its_line_in_the_editor(client, robot):
     v = state["variants"][0]
     i = next(n for n, f in enumerate(v["findings"]) if f["target"] == ["link", "tool"])
     assert (await asyncio.to_thread(
-        _click, url, {"version": state["version"], "variant": 0, "finding": i}))[0] == 200
+        _click, url, {"version": state["scene_version"], "variant": 0, "finding": i}))[0] == 200
     assert client.shown_documents[-1].selection.start.line == v["findings"][i]["line"] - 1
 
 

@@ -262,7 +262,10 @@ def test_a_click_names_an_element_and_never_a_line_outside_the_roots(tmp_path):
                   {"version": v, "variant": 0, "finding": 2}):
         assert session.jump(asked)[0] == 400, asked
     assert session.jump({"version": v - 1, "variant": 0, "finding": 1})[0] == 409
-    assert len(shown) == 2
+    session.set_highlight("link:a")   # (the cursor moved: the scenes, their indexes, did not)
+    assert session.version > v and session.jump({"version": v, "variant": 0, "finding": 1})[0] \
+        == 200
+    assert len(shown) == 3
 
 
 def test_the_cli_preview_takes_no_click(tmp_path):

@@ -264,6 +264,11 @@ def test_clicks_in_a_page_opened_from_the_editor_jump_there(tmp_path, browser):
             blue = {n for n, t in _tints(page).items() if t == 0x0077ff}
             assert blue == ({tinted} if tinted else set()), name
         assert page.js("preview.robot.userData.same") is True
+        # a finding of the list, clicked after the highlight moved (the scenes did not change)
+        page.js("document.querySelectorAll('#findings .finding')[1].click()")
+        page.until("preview.jumps.length === 4")
+        assert page.js("preview.jumps[3][0]") == 200
+        assert asked[3] == session.scenes[0].finding_sources[1]
         assert page.errors == [] and page.external == []
         page.close()
 

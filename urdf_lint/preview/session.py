@@ -69,14 +69,15 @@ class Session:
 
     def jump(self, asked: Any) -> tuple[int, str]:
         """The page's click: ``{"version", "variant", "element": "link:NAME"}`` or ``{...,
-        "finding": i}`` shows that element's (or finding's) xacro line in the editor, found
-        here from the scene (the page names no file). (HTTP status, what happened)."""
+        "finding": i}`` (``version``: the scenes' ``scene_version``) shows that element's (or
+        finding's) xacro line in the editor, found here from the scene (the page names no
+        file). (HTTP status, what happened)."""
         if self.editor is None:
             return 404, "no editor: this preview was not opened from the language server"
         if not isinstance(asked, dict):
             return 400, "expected a JSON object"
         with self.changed:
-            scenes, version = list(self.scenes), self.version
+            scenes, version = list(self.scenes), self.scene_version
         variant = asked.get("variant")
         if not isinstance(variant, int) or not 0 <= variant < len(scenes):
             return 400, "no such variant"

@@ -276,7 +276,9 @@
   state.jumps = [];
   function jump(what) {
     if (REVIEW || !state.data || !state.data.editor) return;
-    const body = Object.assign({ version: state.version, variant: state.variant }, what);
+    // (version: of the scenes, which a moved highlight does not change)
+    const body = Object.assign({ version: state.data.scene_version, variant: state.variant },
+                               what);
     fetch('jump', { method: 'POST', cache: 'no-store', body: JSON.stringify(body),
                     headers: { 'Content-Type': 'application/json' } })
       .then((r) => r.json().then((j) => state.jumps.push([r.status, j.result])))
