@@ -242,3 +242,70 @@ async def test_the_highlight_follows_the_cursor(client, robot):
     got = await client.workspace_execute_command_async(types.ExecuteCommandParams(
         command="urdf-lint.previewHighlight", arguments=[other.as_uri(), 0, 20]))
     assert got == {"highlight": ""}
+
+
+@aio
+async def test_an_unsaved_edit_reaches_the_open_page_in_chromium(client, robot, tmp_path):
+    """The page itself (Debian's Chromium, as tests/test_preview_browser.py drives it) shows
+    the link a didChange added, without a save. Playwright's sync API lives in one thread of
+    its own (the client's loop runs here)."""
+    import concurrent.futures
+    import os
+    chromium = "/usr/bin/chromium"
+    if not os.access(chromium, os.X_OK):
+        pytest.skip("no /usr/bin/chromium")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    text, url = await _open_preview(client, robot)
+    one = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+    loop = asyncio.get_running_loop()
+    held = {}
+
+    def until(expr, timeout):
+        # (page.evaluate goes through DevTools: wait_for_function's eval is what the CSP forbids)
+        end = time.monotonic() + timeout
+        while not held["page"].evaluate(expr):
+            assert time.monotonic() < end, (expr, held["errors"])
+            time.sleep(0.1)
+
+    def open_page():
+        held["pw"] = sync_api.sync_playwright().start()
+        b = held["browser"] = held["pw"].chromium.launch(
+            executable_path=chromium, args=["--headless", "--no-sandbox", "--disable-gpu"])
+        page = held["page"] = b.new_page(viewport={"width": 1000, "height": 700})
+        held["errors"] = []
+        page.on("pageerror", lambda e: held["errors"].append(str(e)))
+        page.goto(url)
+        until("!!(window.preview && window.preview.ready)", 60)
+        return page.evaluate("Object.keys(preview.robot.links).sort()")
+
+    def wait_for_probe():
+        page = held["page"]
+        until("preview.ready && !!preview.robot && !!preview.robot.links.probe", 90)
+        page.screenshot(path=str(tmp_path / "after-edit.png"))
+        return (page.evaluate("Object.keys(preview.robot.links).sort()"),
+                page.evaluate("preview.robot.joints.probe_joint.parent.name"))
+
+    def close():
+        held["browser"].close()
+        held["pw"].stop()
+    try:
+        assert await loop.run_in_executor(one, open_page) == ["base_link", "lower", "tool",
+                                                               "upper"]
+        edited = text.replace('<link name="tool"/>', '<link name="tool"/>\n  <link name="probe">'
+                              '<visual><geometry><sphere radius="0.08"/></geometry></visual>'
+                              '</link>\n  <joint name="probe_joint" type="fixed"><parent '
+                              'link="tool"/><child link="probe"/><origin xyz="0 0 0.1"/>'
+                              '</joint>')
+        client.text_document_did_change(types.DidChangeTextDocumentParams(
+            text_document=types.VersionedTextDocumentIdentifier(uri=robot.as_uri(), version=2),
+            content_changes=[types.TextDocumentContentChangeWholeDocument(text=edited)]))
+        links, parent = await loop.run_in_executor(one, wait_for_probe)
+        assert links == ["base_link", "lower", "probe", "tool", "upper"]
+        assert parent == "tool" and held["errors"] == []
+        if os.environ.get("URDF_LINT_PREVIEW_SHOT"):
+            import shutil
+            shutil.copy(tmp_path / "after-edit.png", os.environ["URDF_LINT_PREVIEW_SHOT"])
+    finally:
+        await loop.run_in_executor(one, close)
+        one.shutdown()
+    assert robot.read_text() == text   # nothing was saved
