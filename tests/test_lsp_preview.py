@@ -309,3 +309,59 @@ async def test_an_unsaved_edit_reaches_the_open_page_in_chromium(client, robot, 
         await loop.run_in_executor(one, close)
         one.shutdown()
     assert robot.read_text() == text   # nothing was saved
+
+
+def test_in_neovim_a_click_moves_the_cursor_and_the_cursor_the_highlight(robot, tmp_path):
+    """Neovim's own LSP client (headless, editors/neovim/urdf_lint.lua: :UrdfLintPreview, its
+    window/showDocument handler, its CursorHold hook): a click on base_link in the page puts
+    Neovim's cursor on that link's line; the cursor moved to tool_joint's <mimic> line moves
+    the page's highlight."""
+    import os
+    import shutil
+    import subprocess
+    if not shutil.which("nvim"):
+        pytest.skip("nvim is not installed (apt: neovim)")
+    out = tmp_path / "nvim.json"
+    env = dict(os.environ, URDF_LINT_NVIM_OUT=str(out), URDF_LINT_PY=sys.executable,
+               URDF_LINT_NVIM_PLUGIN=str(REPO / "editors" / "neovim" / "urdf_lint.lua"))
+    lines = robot.read_text().split("\n")
+    base = lines.index('  <link name="base_link">')
+    mimic = next(n for n, s in enumerate(lines) if "<mimic" in s)
+    nvim = subprocess.Popen(
+        ["nvim", "--headless", "-u", "NONE", "-i", "NONE", "-n", str(robot),
+         "-c", f"luafile {REPO / 'tests' / 'support' / 'nvim_preview_probe.lua'}"],
+        cwd=robot.parent, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL)
+
+    def seen(pred, timeout=90):
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            try:
+                s = json.loads(out.read_text())
+            except (OSError, ValueError):
+                s = None
+            if s and pred(s):
+                return s
+            assert nvim.poll() is None, "nvim ended"
+            time.sleep(0.1)
+        raise AssertionError(f"timed out; last: {out.read_text() if out.exists() else None}")
+    try:
+        url = seen(lambda s: s["url"])["url"].split("#")[0]
+        assert seen(lambda s: True)["cursor"] == [1, 0]
+        status, body = _click(url, {"variant": 0, "element": "link:base_link"})
+        assert status == 200, body
+        s = seen(lambda s: s["cursor"] != [1, 0])
+        assert s["cursor"] == [base + 1, 2] and s["file"] == str(robot)
+        (tmp_path / "nvim.json.move").write_text(str(mimic + 1))
+        seen(lambda s: s["moved"])
+        end = time.monotonic() + 30
+        while _fetch(url, "state.json")["highlight"] != "joint:tool_joint":
+            assert time.monotonic() < end, _fetch(url, "state.json")["highlight"]
+            time.sleep(0.1)
+    finally:
+        (tmp_path / "nvim.json.quit").write_text("")
+        try:
+            nvim.wait(20)
+        except subprocess.TimeoutExpired:
+            nvim.kill()
+            nvim.wait()
