@@ -147,6 +147,21 @@ async def test_an_unsaved_edit_reaches_the_open_preview(client, robot):
     lines = edited.split("\n")
     assert v["links"]["probe"][1] == lines.index('  <link name="probe"/>') + 1
     assert robot.read_text() == text   # nothing was saved
+    # mid-edit, the buffer does not expand (an unclosed tag): the page keeps the last robot
+    # that did, and says so
+    client.text_document_did_change(types.DidChangeTextDocumentParams(
+        text_document=types.VersionedTextDocumentIdentifier(uri=robot.as_uri(), version=3),
+        content_changes=[types.TextDocumentContentChangeWholeDocument(
+            text=edited.replace("</robot>", ""))]))
+    end = time.monotonic() + 90
+    while True:
+        await asyncio.to_thread(_fetch, url, f"version?v={state['version']}")
+        state = _fetch(url, "state.json")
+        v = state["variants"][0]
+        if any("does not expand" in n for n in v["notes"]) or time.monotonic() > end:
+            break
+    assert any("the last version that expanded is shown" in n for n in v["notes"]), v
+    assert "probe" in v["links"] and v["error"] == ""
 
 
 def _click(url: str, body: dict, origin: str | None = "own", token: str | None = None,

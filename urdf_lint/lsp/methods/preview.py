@@ -104,13 +104,27 @@ class EditorSession(Session):
                                self.findings_shown and all(map(operator.is_, reports,
                                                                self.shown))):
             return   # (being linted again: the page keeps what it shows)
-        from urdf_lint.preview.scene import build_scene
         self.cfg, self.resolver = ws.cfg, ws.resolver
-        scenes = [build_scene(r, findings, ws.resolver, self.table, self._mesh_base(r.entry))
-                  for r in reports]
+        scenes = [self._scene(ws, r, findings) for r in reports]
         self.shown, self.findings_shown = reports, findings
         self.publish(scenes, [])
         self.loaded.set()
+
+
+    def _scene(self, ws: Any, r: ModelReport, findings: list[Any]) -> Any:
+        """The scene of ``r``; of the last version that expanded when ``r`` did not (a buffer
+        mid-edit: the page keeps the robot, and says why it is not the latest)."""
+        from urdf_lint.preview.scene import build_scene
+        good = None if r.kept_model is not None else \
+            ws.last_good.get((r.entry, tuple(sorted(r.args.items()))))
+        scene = build_scene(good or r, findings, ws.resolver, self.table,
+                            self._mesh_base(r.entry))
+        if good is not None:
+            errors = [p.message for p in r.problems if p.severity in ("", "error")]
+            scene.notes.insert(0, "the text in the editor does not expand now ("
+                               f"{errors[0] if errors else 'no robot'}): the last version "
+                               "that expanded is shown")
+        return scene
 
 
 def _reports(ws: Any, path: str) -> list[ModelReport] | None:
