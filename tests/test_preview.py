@@ -231,3 +231,47 @@ def test_the_summary_counts_problems_as_check_does(tmp_path, capsys):
     n = len(report["findings"])
     assert n == scene.problems < len(scene.findings)
     assert f" {n} problem(s) ({len(scene.findings)} marker(s))" in scene_summary(scene)
+
+
+def test_a_click_names_an_element_and_never_a_line_outside_the_roots(tmp_path):
+    """``Session.jump`` (the page's POST jump, when the language server opened the preview):
+    the line comes from the scene, and one outside the run's roots is never shown."""
+    from types import SimpleNamespace
+
+    from urdf_lint.preview.scene import Scene
+    from urdf_lint.preview.session import Session
+    inside = str(tmp_path / "pkg" / "a.urdf.xacro")
+    resolver = SimpleNamespace(is_inside=lambda p: p.startswith(str(tmp_path / "pkg")))
+    session = Session([inside], None, resolver, 1)
+    scene = Scene("a", inside, {}, sources={"link:a": (inside, 3, 3),
+                                            "link:b": ("/etc/passwd", 1, 1)},
+                  finding_sources=[("/etc/shadow", 1, 1), (inside, 9, 5)])
+    session.publish([scene], [])
+    assert session.jump({"variant": 0, "element": "link:a"})[0] == 404   # no editor: no jump
+    shown = []
+    session.editor = lambda f, line, col: shown.append((f, line, col)) or ""
+    v = session.version
+    assert session.jump({"variant": 0, "element": "link:a"}) == (200, "shown")
+    assert session.jump({"version": v, "variant": 0, "finding": 1})[0] == 200
+    assert shown == [(inside, 3, 3), (inside, 9, 5)]
+    for asked in ({"variant": 0, "element": "link:b"},
+                  {"version": v, "variant": 0, "finding": 0}):
+        assert session.jump(asked)[0] == 403, asked
+    for asked in ({"variant": 0, "file": "/etc/passwd", "line": 1}, [], "link:a",
+                  {"variant": "0", "element": "link:a"}, {"variant": 0, "finding": True},
+                  {"version": v, "variant": 0, "finding": 2}):
+        assert session.jump(asked)[0] == 400, asked
+    assert session.jump({"version": v - 1, "variant": 0, "finding": 1})[0] == 409
+    session.set_highlight("link:a")   # (the cursor moved: the scenes, their indexes, did not)
+    assert session.version > v and session.jump({"version": v, "variant": 0, "finding": 1})[0] \
+        == 200
+    assert len(shown) == 3
+
+
+def test_the_cli_preview_takes_no_click(tmp_path):
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, _):
+        status, _ = get(server, f"/{server.token}/jump", {
+            "Origin": f"http://127.0.0.1:{server.port}", "Content-Type": "application/json"},
+            method="POST", body=b'{"variant": 0, "element": "link:base_link"}')
+    assert status == 405

@@ -206,6 +206,73 @@ def test_the_highlighted_link_is_tinted(tmp_path, browser):
     assert tints["upper"] == 0x0077ff and tints["lower"] != 0x0077ff
 
 
+def _tints(page):
+    return page.js("""(() => { const out = {}; for (const [n, l] of
+        Object.entries(preview.robot.links)) l.traverse(c => { if (c.isMesh &&
+        c.userData.link === n && !c.userData.collision && c.material.emissive) out[n] =
+        c.material.emissive.getHex(); }); return out; })()""")
+
+
+def test_clicks_in_a_page_opened_from_the_editor_jump_there(tmp_path, browser):
+    """The page of a preview the language server opened (``session.editor`` set, as
+    lsp/methods/preview.py sets it): clicking a link in the 3D view, a marker and a joint's
+    name POSTs the element, and the editor is asked for its xacro line; the highlight the
+    server sets (the command again, the cursor elsewhere) is the link tinted."""
+    entry = make_robot(tmp_path)
+    with serve(entry) as (server, session):
+        asked = []
+        session.editor = lambda f, line, col: asked.append((f, line, col)) or ""
+        page = Page(browser, f"http://127.0.0.1:{server.port}/")
+        page.page.goto(server.url)
+        page.ready()
+        assert page.js("preview.data.editor") is True
+        src = session.scenes[0].sources
+        # a link's mesh in the 3D view: the middle of "upper"'s segment
+        x, y = page.js("""(() => { const V = window.URDFV, p = window.preview;
+            const v = new V.Vector3(0, 0, 0.1); p.robot.links.upper.localToWorld(v);
+            v.project(p.camera); const r = document.querySelector('#view canvas')
+            .getBoundingClientRect();
+            return [r.left + (v.x + 1) / 2 * r.width, r.top + (1 - v.y) / 2 * r.height]; })()""")
+        page.page.mouse.click(x, y)
+        page.until("preview.jumps.length === 1")
+        assert page.js("preview.picked") == {"link": "upper"}
+        assert asked == [src["link:upper"]] and page.js("preview.jumps[0][0]") == 200
+        # the marker on base_link (drawn over it): that finding's line
+        bx, by = page.screen_of("base_link")
+        page.page.mouse.click(bx, by)
+        page.until("preview.jumps.length === 2")
+        i = page.js("preview.picked.finding")
+        f = session.scenes[0].findings[i]
+        assert f["target"] == ["link", "base_link"]
+        assert asked[1] == session.scenes[0].finding_sources[i]
+        assert asked[1][1] == f["line"]
+        # a joint's name in the panel
+        page.js("[...document.querySelectorAll('.joint-name')].find(e => e.textContent === "
+                "'lower_joint').click()")
+        page.until("preview.jumps.length === 3")
+        assert asked[2] == src["joint:lower_joint"]
+        # the server moves the highlight (the cursor moved in the editor): the page tints that
+        # link, a joint's child link, without building the robot again
+        assert "upper" not in {n for n, t in _tints(page).items() if t == 0x0077ff}
+        page.js("preview.robot.userData.same = true")
+        for name, tinted in (("link:upper", "upper"), ("joint:lower_joint", "lower"),
+                             ("", None)):
+            v0 = page.js("preview.version")
+            session.set_highlight(name)
+            page.until(f"preview.version > {v0} && preview.highlight === {json.dumps(name)}")
+            page.page.wait_for_timeout(100)
+            blue = {n for n, t in _tints(page).items() if t == 0x0077ff}
+            assert blue == ({tinted} if tinted else set()), name
+        assert page.js("preview.robot.userData.same") is True
+        # a finding of the list, clicked after the highlight moved (the scenes did not change)
+        page.js("document.querySelectorAll('#findings .finding')[1].click()")
+        page.until("preview.jumps.length === 4")
+        assert page.js("preview.jumps[3][0]") == 200
+        assert asked[3] == session.scenes[0].finding_sources[1]
+        assert page.errors == [] and page.external == []
+        page.close()
+
+
 def test_a_request_without_the_token_gets_no_page(tmp_path, browser):
     entry = make_robot(tmp_path)
     with serve(entry) as (server, _):
@@ -313,6 +380,58 @@ def test_the_review_page_opens_from_file_and_shows_the_changed_links(tmp_path, b
     size = sum(f.stat().st_size for f in out.iterdir())
     assert size < 2_000_000
     page.close()
+
+
+def _stl(triangles: int, seed: int) -> bytes:
+    """A binary STL of ``triangles`` triangles (84 + 50 per triangle bytes), its own bytes
+    per ``seed`` (the review page inlines identical files once)."""
+    import random
+    import struct
+    rnd = random.Random(seed)
+    out = bytearray(b"urdf-lint size fixture".ljust(80, b" ")) + struct.pack("<I", triangles)
+    for _ in range(triangles):
+        out += struct.pack("<12f", 0, 0, 0, *(rnd.uniform(-0.04, 0.04) for _ in range(9)))
+        out += b"\0\0"
+    return bytes(out)
+
+
+def test_the_review_page_of_a_30_link_robot_and_its_size(tmp_path, browser):
+    """The size docs/review.md states: a 30-link chain, each link its own 1,000-triangle STL
+    (50 KB, a simplified arm segment), one joint moved; the page shows both 30-link robots."""
+    from support.repo_shapes import joint, link, package_xml
+    repo = tmp_path / "repo"
+    pkg = repo / "chain_description"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "urdf").mkdir()
+    (pkg / "package.xml").write_text(package_xml("chain_description"))
+    parts = []
+    for i in range(30):
+        (pkg / "meshes" / f"l{i}.stl").write_bytes(_stl(1000, i))
+        parts.append(link(f"l{i}", f"package://chain_description/meshes/l{i}.stl"))
+        if i:
+            parts.append(joint(f"j{i}", f"l{i - 1}", f"l{i}"))
+    entry = pkg / "urdf" / "chain.urdf"
+    entry.write_text('<?xml version="1.0"?>\n<robot name="chain">\n' + "".join(parts)
+                     + "</robot>\n")
+    for args in (("init", "-q", "."), ("add", "-A"), ("commit", "-qm", "base")):
+        _git(repo, *args)
+    entry.write_text(entry.read_text().replace(
+        '<parent link="l14"/><child link="l15"/>\n    <origin xyz="0 0 0.1"',
+        '<parent link="l14"/><child link="l15"/>\n    <origin xyz="0 0 0.12"', 1))
+    out = tmp_path / "review"
+    [model] = _diff_html(repo, out)["models"]
+    assert "l15" in _json_changed_links(model)
+    page = _open_review(browser, out)
+    assert page.external == [] and page.errors == []
+    assert page.js("preview.robots.map(r => Object.keys(r.links).length)") == [30, 30]
+    page.close()
+    sizes = {f.name: f.stat().st_size for f in out.iterdir()}
+    meshes = sum((pkg / "meshes" / f"l{i}.stl").stat().st_size for i in range(30))
+    total = sum(sizes.values())
+    print(f"30-link review page: {total} bytes ({sizes}); meshes {meshes} bytes")
+    # the meshes once, as base64 (4/3), plus the page's scripts: the size is the meshes'
+    assert meshes * 4 // 3 < sizes["review-data.js"] < meshes * 4 // 3 + 200_000
+    assert total < 3_000_000
 
 
 @pytest.mark.skipif(not os.environ.get("URDF_LINT_DOCS_IMG"),

@@ -8,6 +8,10 @@
 -- the file, else the nearest folder with a package.xml or pyproject.toml, else the working
 -- directory. A xacro, URDF or SRDF file starts the server of its root; a YAML or config file
 -- joins the server of its root once one runs (a YAML file alone starts nothing).
+--
+-- :UrdfLintPreview opens the 3D preview of the current file (docs/preview.md): it follows the
+-- unsaved buffer, its highlight follows the cursor (CursorHold), and a click in the page moves
+-- the cursor here (window/showDocument, answered below where Neovim has no handler of its own).
 local M = {}
 local clients = {} -- root -> client id
 
@@ -80,12 +84,18 @@ function M.start(bufnr)
     if what ~= "robot" then
       return
     end
+    local capabilities = vim.lsp.protocol.make_client_capabilities()
+    capabilities.window = capabilities.window or {}
+    capabilities.window.showDocument = { support = true }
     id = vim.lsp.start_client({
       name = "urdf-lint",
       cmd = vim.g.urdf_lint_cmd or { "urdf-lint", "server" },
       root_dir = root,
       workspace_folders = { { uri = vim.uri_from_fname(root), name = root } },
-      handlers = vim.g.urdf_lint_handlers,
+      capabilities = capabilities,
+      handlers = vim.tbl_extend("keep", vim.g.urdf_lint_handlers or {}, {
+        ["window/showDocument"] = vim.lsp.handlers["window/showDocument"] or M.show_document,
+      }),
       on_exit = function()
         clients[root] = nil
       end,
@@ -105,6 +115,54 @@ function M.start(bufnr)
   vim.lsp.buf_attach_client(bufnr, id) -- (once per buffer and client: Neovim ignores a repeat)
 end
 
+-- window/showDocument (Neovim before 0.8 has no handler): a file of the workspace at the
+-- selection's start; never an external program
+function M.show_document(_, result)
+  if not result or result.external or not result.uri:match("^file://") then
+    return { success = false }
+  end
+  local fname = vim.uri_to_fname(result.uri)
+  local bufnr = vim.fn.bufadd(fname)
+  vim.fn.bufload(bufnr)
+  vim.api.nvim_win_set_buf(0, bufnr)
+  if result.selection then
+    local pos = result.selection.start
+    pcall(vim.api.nvim_win_set_cursor, 0, { pos.line + 1, pos.character })
+  end
+  return { success = true }
+end
+
+local previewed = {} -- bufnr -> true once its preview is open: CursorHold moves the highlight
+
+local function at_cursor(bufnr)
+  local p = vim.api.nvim_win_get_cursor(0)
+  return { vim.uri_from_bufnr(bufnr), p[1] - 1, p[2] }
+end
+
+function M.preview(bufnr, done)
+  bufnr = bufnr or vim.api.nvim_get_current_buf()
+  local args = at_cursor(bufnr)
+  vim.lsp.buf_request(bufnr, "workspace/executeCommand",
+    { command = "urdf-lint.preview", arguments = args }, function(err, result)
+      if err or not result then
+        vim.notify("urdf-lint preview: " .. (err and err.message or "no answer"), vim.log.levels.ERROR)
+        return
+      end
+      previewed[bufnr] = true
+      vim.notify("urdf-lint preview: " .. result.url)
+      if vim.g.urdf_lint_open_preview ~= false and vim.ui and vim.ui.open then
+        vim.ui.open(result.url) -- (Neovim 0.10+; before it, open the printed URL)
+      end
+      if done then
+        done(result)
+      end
+    end)
+end
+
+vim.api.nvim_create_user_command("UrdfLintPreview", function()
+  M.preview()
+end, {})
+
 -- one autocmd, its patterns together: a file matching two (`*.urdf.xacro`) fires it once
 vim.api.nvim_create_augroup("urdf_lint", { clear = true })
 vim.api.nvim_create_autocmd({ "BufReadPost", "BufNewFile" }, {
@@ -113,6 +171,16 @@ vim.api.nvim_create_autocmd({ "BufReadPost", "BufNewFile" }, {
     "urdf-lint.toml", ".urdf-lint.toml" },
   callback = function(args)
     M.start(args.buf)
+  end,
+})
+vim.api.nvim_create_autocmd("CursorHold", {
+  group = "urdf_lint",
+  callback = function(args)
+    if previewed[args.buf] then
+      vim.lsp.buf_request(args.buf, "workspace/executeCommand",
+        { command = "urdf-lint.previewHighlight", arguments = at_cursor(args.buf) },
+        function() end)
+    end
   end,
 })
 return M

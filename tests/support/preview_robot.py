@@ -76,15 +76,18 @@ def serve(entry: Path, **options):
 
 
 def get(server, path: str, headers: dict | None = None, method: str = "GET",
-        host: str | None = None):
-    """(status, body) of one raw request: ``headers`` exactly as given (Host included)."""
+        host: str | None = None, body: bytes | None = None):
+    """(status, body) of one raw request: ``headers`` exactly as given (Host included; a
+    ``body`` adds its Content-Length)."""
     c = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
     try:
         c.putrequest(method, path, skip_host=True, skip_accept_encoding=True)
         c.putheader("Host", host if host is not None else f"127.0.0.1:{server.port}")
         for k, v in (headers or {}).items():
             c.putheader(k, v)
-        c.endheaders()
+        if body is not None:
+            c.putheader("Content-Length", str(len(body)))
+        c.endheaders(body)
         r = c.getresponse()
         return r.status, r.read()
     finally:

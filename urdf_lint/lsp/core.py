@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import asyncio
 from concurrent.futures import ThreadPoolExecutor
-from typing import Iterable
+from typing import Callable, Iterable
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
@@ -51,6 +51,8 @@ class UrdfLintServer(LanguageServer):
         self.dirty: dict[str, None] = {}   # files changed and not linted since (oldest first)
         self.timer: asyncio.TimerHandle | None = None   # the pause in typing under way
         self.task: asyncio.Task[None] | None = None      # the lint loop
+        # called after each publish (an open preview builds its scenes from the new reports)
+        self.after_publish: list[Callable[[], None]] = []
 
     @property
     def ws(self) -> Workspace | None:
@@ -199,6 +201,8 @@ class UrdfLintServer(LanguageServer):
             self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
                 uri=path_uri(f), diagnostics=diags, version=versions.get(f)))
             (self.published.add if diags else self.published.discard)(f)
+        for hook in list(self.after_publish):
+            hook()
 
     def diagnostics(self, path: str) -> list[types.Diagnostic]:
         return diagnostics.handle(self.services, path)

@@ -35,11 +35,6 @@ def in_lint_thread(method: str, handle: Callable[[Any, Any], Any]) -> None:
     server.feature(method)(run)
 
 
-def command(name: str, handle: Callable[[Any, list[Any]], Any]) -> None:
-    """Register a ``workspace/executeCommand`` command: ``handle(services, arguments)``."""
-    server.command(name)(lambda ls, *args: handle(ls.services, list(args)))
-
-
 # the document lifecycle: handed the server (it schedules the lint and publishes)
 server.feature(types.INITIALIZED)(initialized.handle)
 server.feature(types.TEXT_DOCUMENT_DID_OPEN)(did_open.handle)
@@ -60,7 +55,8 @@ request(types.TEXT_DOCUMENT_RENAME, rename.handle, rename.OPTIONS)
 request(types.TEXT_DOCUMENT_PREPARE_RENAME, rename.prepare)
 in_lint_thread(types.TEXT_DOCUMENT_FORMATTING, formatting.handle)
 in_lint_thread(types.TEXT_DOCUMENT_RANGE_FORMATTING, range_formatting.handle)
-command(preview.COMMAND, preview.handle)
+server.command(preview.COMMAND)(preview.command)   # (async: it waits for the scenes)
+server.command(preview.HIGHLIGHT_COMMAND)(lambda ls, *a: preview.highlight(ls.services, list(a)))
 
 
 def main() -> int:

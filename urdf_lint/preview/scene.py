@@ -110,6 +110,10 @@ class Scene:
     problems: int = 0
     notes: list[str] = field(default_factory=list)
     deps: list[str] = field(default_factory=list)
+    # where each element and finding was written, the real path (kept here, never sent: the
+    # page names an element, the server finds its line; ``Session.jump``)
+    sources: dict[str, tuple[str, int, int]] = field(default_factory=dict)   # "link:NAME" ->
+    finding_sources: list[tuple[str, int, int]] = field(default_factory=list)   # (file, line, col)
 
     def to_json(self) -> dict[str, Any]:
         return {"label": self.label, "entry": display_path(self.entry), "args": self.args,
@@ -155,6 +159,7 @@ def build_scene(report: Any, findings: list[Any], resolver: Any, table: FileTabl
     from urdf_lint.core.findings import group
     own = [p for p in findings if not p.models or label in p.models]
     scene.findings = [finding_json(p) for p in own]
+    scene.finding_sources = [(p.origin.file, p.origin.line, p.origin.col) for p in own]
     scene.problems = len(group(own))
     model, why = model_of(report, resolver)
     if model is None:
@@ -175,6 +180,7 @@ def fill_scene(scene: Scene, model: Any, resolver: Any, table: FileTable) -> Non
             if el.getparent() is model.root and el.get("name"):
                 o = model.origin(el)
                 out[el.get("name")] = [display_path(o.file), o.line]
+                scene.sources[f"{kind}:{el.get('name')}"] = (o.file, o.line, o.col)
     _serve_files(model, resolver, table, scene)
     scene.urdf = etree.tostring(model.root, encoding="unicode")
 

@@ -34,6 +34,7 @@ CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' 
        "connect-src 'self' data: blob:; base-uri 'none'; form-action 'none'; "
        "frame-ancestors 'none'")
 LONG_POLL_S = 20.0
+MAX_POST_BYTES = 4096    # a click: {"version", "variant", "element" | "finding"}
 # the review page's (a <meta>: no frame-ancestors there): its own scripts and the meshes it
 # inlines, nothing from any other place, a URL a pull request's DAE names included
 REVIEW_CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src data: blob:; "
@@ -103,11 +104,45 @@ class Handler(BaseHTTPRequestHandler):
     def log_message(self, format: str, *args: Any) -> None:   # noqa: A002
         pass   # (quiet: the terminal shows the URL and the reloads)
 
-    # -- read-only ------------------------------------------------------------------------
+    # -- read-only (but for the one click a page opened from the editor sends) -------------
     def _refuse_method(self) -> None:
         self._send(405, b"read-only\n", "text/plain", {"Allow": "GET, HEAD"})
 
-    do_POST = do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse_method
+    do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse_method
+
+    def do_POST(self) -> None:
+        """``POST /<token>/jump`` (only when the language server opened the preview): the page's
+        click, a small JSON object, shows that element's line in the editor
+        (``Session.jump``). Token, Host and Origin as every request; the Origin must be sent
+        (a browser's POST always sends it) and be this server's; the body is JSON."""
+        self._head = False
+        path = urllib.parse.urlsplit(self.path).path
+        if path.split("/", 2)[2:] != ["jump"] or self.server.session.editor is None:
+            self._refuse_method()
+            return
+        why = self._refused()
+        if not why and self.headers.get("Origin") not in self.server.origins:
+            why = "origin"
+        if why:
+            self._send(403 if why != "token" else 404,
+                       b"not found\n" if why == "token" else f"refused: {why}\n".encode(),
+                       "text/plain")
+            return
+        self.close_connection = True   # (the body is not read when refused below)
+        if self.headers.get_content_type() != "application/json":
+            self._send(415, b"expected application/json\n", "text/plain")
+            return
+        n = _int(self.headers.get("Content-Length", ""))
+        if not 0 <= n <= MAX_POST_BYTES:
+            self._send(413, b"too large\n", "text/plain")
+            return
+        try:
+            asked = json.loads(self.rfile.read(n))
+        except ValueError:
+            self._send(400, b"not JSON\n", "text/plain")
+            return
+        code, what = self.server.session.jump(asked)
+        self._send(code, json.dumps({"result": what}).encode(), TYPES[".json"])
 
     def send_error(self, code: int, message: str | None = None,
                    explain: str | None = None) -> None:
@@ -183,7 +218,10 @@ class Handler(BaseHTTPRequestHandler):
         s = self.server.session
         with s.changed:
             scenes, version, internal = list(s.scenes), s.version, list(s.internal)
-        body = {"version": version, "internal": internal,
+            scene_version = s.scene_version
+        body = {"version": version, "scene_version": scene_version, "internal": internal,
+                "highlight": s.highlight,
+                "editor": s.editor is not None,
                 "variants": [sc.to_json() for sc in scenes]}
         self._send(200, json.dumps(body).encode(), TYPES[".json"])
 

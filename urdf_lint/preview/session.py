@@ -30,9 +30,14 @@ class Session:
         self.scenes: list[Scene] = []
         self.internal: list[str] = []
         self.version = 0
+        self.scene_version = 0     # the version of the last scenes (a highlight bumps version only)
         self.stamps: dict[str, tuple[int, int] | None] = {}
         self.changed = threading.Condition()
         self._stop = threading.Event()
+        # the editor the page's clicks jump (set by the language server: ``editor(file, line,
+        # col)`` shows that line, returns "" or why not); None: the page only shows the line
+        self.editor: Callable[[str, int, int], str] | None = None
+        self.highlight = ""     # "link:NAME" | "joint:NAME": tinted on the page
 
     def load(self) -> None:
         """Lint the path(s) again and replace the scenes (the file table only grows: a page
@@ -42,13 +47,57 @@ class Session:
                                       jobs_n=self.jobs_n or 1, keep_models=True))
         scenes = [build_scene(m, result.findings, self.resolver, self.table,
                               self._mesh_base(m.entry)) for m in result.models]
+        self.publish(scenes, list(result.internal))
+
+    def publish(self, scenes: list[Scene], internal: list[str]) -> None:
+        """Show ``scenes`` from now on (a new version: open pages fetch them)."""
         deps = sorted({d for s in scenes for d in s.deps} | set(_files(self.paths)))
         with self.changed:
             self.scenes = scenes
-            self.internal = list(result.internal)
+            self.internal = internal
             self.stamps = {d: _stamp(d) for d in deps}
             self.version += 1
+            self.scene_version = self.version
             self.changed.notify_all()
+
+    def set_highlight(self, highlight: str) -> None:
+        with self.changed:
+            if highlight != self.highlight:
+                self.highlight = highlight
+                self.version += 1
+                self.changed.notify_all()
+
+    def jump(self, asked: Any) -> tuple[int, str]:
+        """The page's click: ``{"version", "variant", "element": "link:NAME"}`` or ``{...,
+        "finding": i}`` (``version``: the scenes' ``scene_version``) shows that element's (or
+        finding's) xacro line in the editor, found here from the scene (the page names no
+        file). (HTTP status, what happened)."""
+        if self.editor is None:
+            return 404, "no editor: this preview was not opened from the language server"
+        if not isinstance(asked, dict):
+            return 400, "expected a JSON object"
+        with self.changed:
+            scenes, version = list(self.scenes), self.scene_version
+        variant = asked.get("variant")
+        if not isinstance(variant, int) or not 0 <= variant < len(scenes):
+            return 400, "no such variant"
+        scene = scenes[variant]
+        element, finding = asked.get("element"), asked.get("finding")
+        if isinstance(element, str) and element in scene.sources:
+            file, line, col = scene.sources[element]
+        elif isinstance(finding, int) and not isinstance(finding, bool):
+            if asked.get("version") != version:
+                return 409, "the scene changed since: reload"
+            if not 0 <= finding < len(scene.finding_sources):
+                return 400, "no such finding"
+            file, line, col = scene.finding_sources[finding]
+        else:
+            return 400, "no such element"
+        # (a source map names only files the expansion read; still, never outside the roots)
+        if self.resolver is None or not self.resolver.is_inside(file):
+            return 403, "outside the run's roots: not shown"
+        why = self.editor(file, line, col)
+        return (409, why) if why else (200, "shown")
 
     def _mesh_base(self, entry: str) -> str | None:
         for spec in getattr(self.cfg, "models", None) or []:

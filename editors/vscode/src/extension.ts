@@ -35,8 +35,10 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
   client = new LanguageClient("urdf-lint", "urdf-lint", serverOptions, clientOptions);
   context.subscriptions.push(client);
   await client.start();
-  // the 3D preview of the current file (the server's `urdf-lint.preview` command starts
-  // `urdf-lint preview` and answers its URL, the link or joint under the cursor highlighted)
+  // the 3D preview of the current file (the server's `urdf-lint.preview` command serves it
+  // from its own lint, unsaved edits included, and answers its URL, the link or joint under
+  // the cursor highlighted); then the highlight follows the cursor in that file
+  const previewed = new Set<string>();
   context.subscriptions.push(
     vscode.commands.registerCommand("urdf-lint.showPreview", async () => {
       const editor = vscode.window.activeTextEditor;
@@ -49,8 +51,28 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
         arguments: [editor.document.uri.toString(), pos.line, pos.character],
       })) as { url: string; highlight: string } | null;
       if (result && result.url) {
+        previewed.add(editor.document.uri.toString());
         await vscode.env.openExternal(vscode.Uri.parse(result.url, true));
       }
+    }),
+  );
+  let pause: ReturnType<typeof setTimeout> | undefined;
+  context.subscriptions.push(
+    vscode.window.onDidChangeTextEditorSelection((event) => {
+      const uri = event.textEditor.document.uri.toString();
+      if (!client || !previewed.has(uri)) {
+        return;
+      }
+      const pos = event.selections[0].active;
+      if (pause) {
+        clearTimeout(pause);
+      }
+      pause = setTimeout(() => {
+        void client?.sendRequest(ExecuteCommandRequest.type, {
+          command: "urdf-lint.previewHighlight",
+          arguments: [uri, pos.line, pos.character],
+        });
+      }, 250);
     }),
   );
 }

@@ -169,12 +169,36 @@
         } else if (changed && changed.has(c.userData.link)) {
           n.emissive = new V.Color(CHANGED); n.emissiveIntensity = 0.8;
         }
-        if (state.highlight === 'link:' + c.userData.link && n.emissive) {
-          n.emissive = new V.Color(0x0077ff); n.emissiveIntensity = 0.6;
-        }
+        if (n.emissive) n.userData.base = [n.emissive.getHex(), n.emissiveIntensity];
         return n;
       });
       c.material = Array.isArray(c.material) ? out : out[0];
+    });
+  }
+
+  // the highlighted element (state.highlight: "link:NAME", or "joint:NAME": its child link)
+  // tinted blue; from the language server it follows the editor's cursor without a reload
+  const HIGHLIGHT = 0x0077ff;
+  function highlightedLink(robot) {
+    const [kind, name] = state.highlight.split(/:(.*)/s);
+    if (kind === 'link') return name;
+    const j = kind === 'joint' && robot.joints[name];
+    const child = j && j.children.find((c) => c.isURDFLink);
+    return child ? child.name : null;
+  }
+  function applyHighlight() {
+    state.robots.forEach((robot) => {
+      if (robot.userData.side === 'base') return;
+      const target = highlightedLink(robot);
+      robot.traverse((c) => {
+        if (!c.isMesh || c.userData.marker) return;
+        (Array.isArray(c.material) ? c.material : [c.material]).forEach((m) => {
+          if (!m || !m.emissive || !m.userData.base) return;
+          const on = target !== null && c.userData.link === target;
+          m.emissive.setHex(on ? HIGHLIGHT : m.userData.base[0]);
+          m.emissiveIntensity = on ? 0.6 : m.userData.base[1];
+        });
+      });
     });
   }
 
@@ -247,10 +271,25 @@
 
   function current() { return state.data ? state.data.variants[state.variant] : null; }
 
+  // opened from the language server: a click also shows the element's xacro line in the
+  // editor (POST jump: the server finds the line from the element's name; the page names no file)
+  state.jumps = [];
+  function jump(what) {
+    if (REVIEW || !state.data || !state.data.editor) return;
+    // (version: of the scenes, which a moved highlight does not change)
+    const body = Object.assign({ version: state.data.scene_version, variant: state.variant },
+                               what);
+    fetch('jump', { method: 'POST', cache: 'no-store', body: JSON.stringify(body),
+                    headers: { 'Content-Type': 'application/json' } })
+      .then((r) => r.json().then((j) => state.jumps.push([r.status, j.result])))
+      .catch((e) => state.jumps.push([0, String(e)]));
+  }
+
   function pickFinding(i) {
     const f = current().findings[i];
     state.picked = { finding: i, target: f.target };
     showInfo([findingText(f)]);
+    jump({ finding: i });
   }
   window.previewPickFinding = pickFinding;
 
@@ -262,6 +301,15 @@
       .forEach((f) => lines.push(findingText(f)));
     state.picked = { link: name };
     showInfo(lines);
+    jump({ element: 'link:' + name });
+  }
+  window.previewPickLink = pickLink;
+
+  function pickJoint(name) {
+    const at = current().joints[name];
+    state.picked = { joint: name };
+    showInfo([`joint ${name}` + (at ? ` (${at[0]}:${at[1]})` : '')]);
+    jump({ element: 'joint:' + name });
   }
 
   // -- controls ---------------------------------------------------------------------------
@@ -307,7 +355,9 @@
                               step: String((hi - lo) / 200), 'data-joint': j.name });
       s.value = v;
       s.addEventListener('input', () => setJoint(j.name, Number(s.value)));
-      joints.appendChild(el('div', { class: 'joint' }, el('span', { text: j.name }), s));
+      const label = el('span', { text: j.name, class: 'joint-name' });
+      label.addEventListener('click', () => pickJoint(j.name));
+      joints.appendChild(el('div', { class: 'joint' }, label, s));
       setJoint(j.name, v);
     });
     box.appendChild(joints);
@@ -341,6 +391,11 @@
     const v = current();
     world.clear();
     state.robots = [];
+    if (!v) {   // (from the language server, before the file's models are linted)
+      $('title').textContent = 'urdf-lint: waiting for the lint of this file';
+      state.ready = true;
+      return;
+    }
     $('title').textContent = v.label || 'urdf-lint';
     if (v.error || !v.urdf) {
       buildFindings(v);
@@ -366,6 +421,7 @@
     buildControls(robot);
     buildFindings(v);
     applyVisibility();
+    applyHighlight();
     frameCamera(first);
     if (REVIEW) buildChanges(v);
     state.ready = true;
@@ -399,10 +455,16 @@
         const r = await fetch('version?v=' + state.version, { cache: 'no-store' });
         const { version } = await r.json();
         if (version !== state.version) {
+          const before = state.data;
           state.data = await fetchState();
           state.version = state.data.version;
-          state.variant = Math.min(state.variant, state.data.variants.length - 1);
-          await show();
+          state.variant = Math.max(0, Math.min(state.variant, state.data.variants.length - 1));
+          if (state.data.editor) state.highlight = state.data.highlight || '';
+          if (before && before.scene_version === state.data.scene_version) {
+            applyHighlight();   // (the same scenes: only the highlight moved)
+          } else {
+            await show();
+          }
         }
       } catch (e) {
         await new Promise((res) => setTimeout(res, 1000));
@@ -424,6 +486,7 @@
     }
     state.data = await fetchState();
     state.version = state.data.version;
+    if (state.data.editor) state.highlight = state.data.highlight || '';
     await show();
     follow();
   }
