@@ -16,6 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.engine.api import Model
 
 INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+# sdformat's URDF conversion drops a link of at most this mass (measured with sdformat 12.3)
+SDF_DROPPED = 1e-6
 
 
 def mass(lk: Any) -> float | None:
@@ -91,6 +93,24 @@ class Bodies:
             total += max(mass(lk) or 0.0, 0.0) if lk is not None else 0.0
             todo.extend(c for _j, c in self.children.get(n, ()))
         return total
+
+    def merged_mass(self, name: str) -> float:
+        """The mass Gazebo's URDF conversion (sdformat) gives the link: its own plus that of
+        the links fixed below it which it merges in, from the leaves up; a link of at most
+        :data:`SDF_DROPPED` kg is dropped instead, with everything below it."""
+        memo: dict[str, float] = self.__dict__.setdefault("_merged", {})
+
+        def walk(n: str, seen: frozenset[str]) -> float:
+            if n not in memo:
+                lk = self.model.links.get(n)
+                total = max(mass(lk) or 0.0, 0.0) if lk is not None else 0.0
+                for j, c in self.children.get(n, ()):
+                    if j.get("type") == "fixed" and c not in seen:
+                        m = walk(c, seen | {n})
+                        total += m if m > SDF_DROPPED else 0.0
+                memo[n] = total
+            return memo[n]
+        return walk(name, frozenset())
 
     def moving_body(self, name: str) -> tuple[str, Any, list[Any]] | None:
         """(root, joint, member link elements) when the link belongs to a body that a non-fixed

@@ -9,7 +9,9 @@ for `mujoco` when the link has no collision geometry, even when the links it car
 (issue 38: the earlier claim that MuJoCo accepts that was wrong). MuJoCo 4.0.0 computes a
 missing inertial from the collision geometry (visuals are discarded): a warning then. When no
 link at all has an `<inertial>`, sdformat 12 drops them all and refuses the model ("A model
-must have at least one link"): an error for `gazebo` (measured, bench/consumers/harness.py). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
+must have at least one link"): an error for `gazebo` (measured, bench/consumers/harness.py).
+A moving link without `<inertial>` that has links with mass fixed to it is kept by both:
+MuJoCo (`fusestatic`) and sdformat merge those links into it (measured: a warning then). urdfdom 6.0.0, Pinocchio 4.1.0, PyBullet 3.2.7 and the Python parsers load it
 (measured): a warning for the others. A link is "moving" when it
 is the child of a non-fixed joint.
 
@@ -20,6 +22,8 @@ NAME = "missing-inertial"
 SEVERITY = "warning"
 TARGETS = {"mujoco": "error", "gazebo": "error"}
 NO_LINK_LEFT = {"*": "off", "gazebo": "error"}
+# a link whose fixed children have mass: MuJoCo (fusestatic) and sdformat merge them into it
+MERGED = {"mujoco": "warning", "gazebo": "warning"}
 FAIL = """<robot name="r">
   <link name="base"/><link name="arm"/>
   <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
@@ -42,7 +46,7 @@ from urdf_lint.engine.api import Report
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":
-    from urdf_lint.rules._inertial import Bodies
+    from urdf_lint.rules._inertial import SDF_DROPPED, Bodies
     links = model.top_links()
     if links and all(lk.find("inertial") is None for lk in links):
         # sdformat 12 drops every link without <inertial>, then refuses the empty model
@@ -58,6 +62,12 @@ def check(model: "Model", ctx: "Context") -> "Checked":
         lk = model.links.get(c.get("link")) if c is not None else None
         if lk is not None and lk.find("inertial") is None:
             bodies = bodies or Bodies(model)
+            if bodies.merged_mass(lk.get("name")) > SDF_DROPPED:
+                # Gazebo merges the links fixed to it into it: it keeps the link, with their mass
+                yield Report(lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
+                                  "<inertial> of its own; MuJoCo and Gazebo give it the mass of the "
+                                  "links fixed to it"), targets=MERGED)
+                continue
             if lk.find("collision/geometry") is not None:   # MuJoCo: inertia from the geometry
                 yield Report(lk, (f"link '{lk.get('name')}' moves (joint '{j.get('name')}') but has no "
                                   "<inertial>; Gazebo drops the link, MuJoCo computes one from its "

@@ -186,6 +186,26 @@ CASES = {
     "drake: <inertial> without <inertia>": (
         arm(b='<inertial><mass value="1"/></inertial>'), {}, "UL206",
         {"drake": "warning", "mujoco": "error", "ros": "error"}),
+    # robot_properties_fingers' fingerpro: sdformat drops a massless link fixed to the base
+    # with the finger below it (the model loads as one link); trifingerpro's massless base:
+    # sdformat loads no link at all
+    "gazebo: a massless link fixed to the base carries a finger": (
+        robot(f'  <link name="base">{DIAG}</link>\n  <link name="finger_base"/>\n'
+              f'  <link name="finger">{DIAG}</link>\n'
+              '  <joint name="mount" type="fixed"><parent link="base"/>'
+              '<child link="finger_base"/></joint>\n'
+              '  <joint name="j" type="revolute"><parent link="finger_base"/>'
+              f'<child link="finger"/><axis xyz="0 0 1"/>{LIM}</joint>'), {}, "UL610",
+        {"gazebo": "error", "mujoco": None, "ros": None}),
+    "gazebo: a massless root that a joint moves a link from": (
+        arm().replace(f'<link name="base">{DIAG}</link>', '<link name="base"/>'), {}, "UL610",
+        {"gazebo": "error", "pinocchio": None, "ros": None}),
+    # airo's schunk_egk40_magneto: a finger mount without <inertial> carries a fingertip fixed
+    # to it, whose mass MuJoCo (fusestatic) and sdformat merge into the mount
+    "gazebo, mujoco: a moving link whose fixed child has the mass": (
+        arm(a="", extra=f'  <link name="tip">{DIAG}</link>\n  <joint name="jt" type="fixed">'
+                        '<parent link="a"/><child link="tip"/></joint>\n'), {}, "UL601",
+        {"gazebo": "warning", "mujoco": "warning", "ros": "warning"}),
     "python: a duplicate transmission name (urchin only)": (
         arm(extra=TRANSMISSION.replace("nope", "j1") + TRANSMISSION.replace("nope", "j2")
             .replace('"m"', '"m2"')), {}, "UL704",

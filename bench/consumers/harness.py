@@ -371,9 +371,14 @@ def run(fast: bool, with_corpus: bool, consumers: list[str], keep: Path | None =
                     r.update(v="W", msg="loads; the class drops or contradicts part of the "
                                         "robot (mutants.CHANGES_ROBOT)")
                 elif r["v"] == "." and it["kind"] == "corpus":
-                    why = mutants.different_robot(Path(it["path"]).read_text(), c)
+                    text = Path(it["path"]).read_text()
+                    why = mutants.different_robot(text, c)
+                    made = mutants.bodies(text)
                     if why:
                         r.update(v="W", msg="loads; " + why)
+                    elif "links" in r and made is not None and r["links"] < made:
+                        r.update(v="W", msg=f"loads {r['links']} links of the {made} the "
+                                            "model's joints make: links dropped")
             info[c] = {"target": CONSUMERS[c], "version": w.version}
             w.stop()
             print(f"{c} {w.version}: {len(items)} models in {time.time() - t0:.0f}s",

@@ -552,6 +552,22 @@ NOT_MEASURED = {("sdformat", k) for k in ("missing collision mesh", "missing vis
 LUMPS = {"mimic on a fixed joint"}
 
 
+def bodies(text: str) -> int | None:
+    """How many links a consumer that merges fixed joints (sdformat) must keep of this model to
+    hold it as written: one per root link (a root named world is the world, not a link) and
+    one per joint that is not fixed. None when the XML does not parse."""
+    try:
+        r = etree.fromstring(text.encode(), etree.XMLParser(recover=True))
+    except etree.XMLSyntaxError:
+        return None
+    if r is None:
+        return None
+    children = {c.get("link") for j in r.findall("joint") for c in j.findall("child")}
+    roots = [lk for lk in r.findall("link") if lk.get("name") not in children
+             and lk.get("name") != "world"]
+    return len(roots) + sum(1 for j in r.findall("joint") if j.get("type") != "fixed")
+
+
 def different_robot(text: str, consumer: str) -> str | None:
     """Why a consumer that loads this (real) model cannot hold the robot as written, checked on
     the model itself (the corpus has no class): a joint naming a link that does not exist, or,
