@@ -101,7 +101,7 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     todo = [r for r in results if r.new is not None]
     if args.diff:
         from urdf_lint.run.fix import unified_diff
-        sys.stdout.write(unified_diff({r.path: r.new for r in todo},
+        sys.stdout.write(unified_diff({r.path: r.new for r in todo if r.new is not None},
                                       {r.path: r.old for r in todo}))
     elif args.check:
         from urdf_lint.core.emit import tell

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -74,7 +75,7 @@ class Geometry:
         return sorted({lk for lk, _ in self.labels})
 
 
-def scene_geometry(scene, ctx) -> Geometry:
+def scene_geometry(scene: Any, ctx: Any) -> Geometry:
     """The visual parts of ``scene``; a link whose visual cannot be drawn shows its collision
     geometry (ghosted) instead, or a red wire box when it has none."""
     visual: dict = {}
