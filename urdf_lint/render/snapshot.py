@@ -25,7 +25,8 @@ from urdf_lint.render.raster import caption, model_caption, render_image, save_p
 from urdf_lint.render.recording import _import_rerun, entity_paths, record_findings, record_rrd
 from urdf_lint.render.scene import build_scene
 # what the worker (diff --render) and review.py use through this module
-from urdf_lint.render.raster import Geometry, frame_for, render_pair, scene_geometry  # noqa: F401,E402
+from urdf_lint.render.raster import Geometry, frame_for, scene_geometry  # noqa: F401,E402
+from urdf_lint.render.raster import render_pair as render_pair  # noqa: E402 - (re-exported)
 
 
 # -- orchestration -----------------------------------------------------------------------------
