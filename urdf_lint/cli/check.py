@@ -6,22 +6,31 @@ import os
 import re
 import sys
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, color_mode, load_cfg,
                                   no_models_warning, note_unused, options_from,
                                   parse_package_paths, refuse_symlinked_out, report_snapshots,
-                                  safe_text, through_models, write_base)
-from urdf_lint.cli.output import FindingsOutput
+                                  safe_text, through_models)
+from urdf_lint.cli.output import FindingsOutput, write_base
 from urdf_lint.cli.parser import (add_fix, add_inputs, add_key_flags, add_limits, add_output,
                                   add_selection, add_views)
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Callable, Iterable, Sequence
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.run.pipeline import CheckResult
 
 NAME = "check"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS",
                        formatter_class=raw,
                        description="Find, expand and lint every robot model under PATHS.")
@@ -53,8 +62,8 @@ def add_parser(sub, raw) -> None:
 class CheckOptions:
     """What ``check`` (and ``hook``, which runs it) was asked to do."""
     config: ConfigOptions = field(default_factory=ConfigOptions)
-    paths: list = field(default_factory=lambda: ["."])
-    package_path: list | None = None
+    paths: list[str] = field(default_factory=lambda: ["."])
+    package_path: list[str] | None = None
     output: str | None = None
     show_source: bool = False
     statistics: bool = False
@@ -72,15 +81,15 @@ class CheckOptions:
     diff: bool = False
     add_suppressions: bool = False
     exit_non_zero_on_fix: bool = False
-    files: list | None = None            # hook: the committed files whose models to report
+    files: list[str] | None = None       # hook: the committed files whose models to report
     hook_summary: bool = False           # hook: one line on every run
 
-    def report(self, paths) -> FindingsOutput:
+    def report(self, paths: Iterable[str]) -> FindingsOutput:
         return FindingsOutput(paths=list(paths), output=self.output, statistics=self.statistics,
                               show_source=self.show_source, coverage=self.coverage)
 
 
-def run(args) -> int:
+def run(args: Any) -> int:
     return check(options_from(CheckOptions, args, config=ConfigOptions.from_args(args)))
 
 
@@ -95,12 +104,12 @@ def fix_mode(o: CheckOptions) -> bool:
     return bool(o.fix or o.diff or o.add_suppressions)
 
 
-def _progress(out: Out):
+def _progress(out: Out) -> Callable[[int, int], None] | None:
     """The progress counter on a terminal (not in CI, not with -q), or None."""
     if not sys.stderr.isatty() or os.environ.get("CI") or out.quiet:
         return None
 
-    def progress(n, total) -> None:
+    def progress(n: int, total: int) -> None:
         sys.stderr.write(f"\rlinting {n}/{total} models" + (" " * 10))
         if n == total:
             sys.stderr.write("\r" + " " * 40 + "\r")
@@ -108,10 +117,11 @@ def _progress(out: Out):
     return progress
 
 
-def _scope(o: CheckOptions, cfg) -> tuple[list, set | None, set]:
+def _scope(o: CheckOptions, cfg: Config) -> tuple[list[str], set[str] | None, set[str]]:
     """(the paths to lint, the files whose models to report or None for all, the files the
     user named that are not models)."""
-    paths, affected_by, named = list(o.paths), None, set()
+    paths, named = list(o.paths), set()
+    affected_by: set[str] | None = None
     if o.files is None and not o.changed_since:
         redirect = through_models(o.paths, parse_package_paths(o.package_path), cfg, o.quiet)
         if redirect is not None:
@@ -123,7 +133,7 @@ def _scope(o: CheckOptions, cfg) -> tuple[list, set | None, set]:
     return paths, affected_by, named
 
 
-def _cache(o: CheckOptions, paths, cfg):
+def _cache(o: CheckOptions, paths: Sequence[str], cfg: Config) -> Cache | None:
     if o.no_cache:
         return None
     from urdf_lint.run.cache import Cache
@@ -179,7 +189,8 @@ def check(o: CheckOptions) -> int:
     return exit_code(result, cfg.fail_on)
 
 
-def _fix(o: CheckOptions, paths, named, cfg, resolver, affected_by, out, mode) -> int:
+def _fix(o: CheckOptions, paths: list[str], named: set[str], cfg: Config,
+         resolver: PackageResolver, affected_by: set[str] | None, out: Out, mode: str) -> int:
     from urdf_lint.core.locations import display_path
     from urdf_lint.cli.fix import FixRequest, check_fix
     if named:
@@ -194,7 +205,7 @@ def _fix(o: CheckOptions, paths, named, cfg, resolver, affected_by, out, mode) -
     return check_fix(request, cfg, resolver, affected_by, o.render, out, mode)
 
 
-def _write_baseline(o: CheckOptions, paths, result, out) -> int:
+def _write_baseline(o: CheckOptions, paths: Sequence[str], result: CheckResult, out: Out) -> int:
     from urdf_lint.core.locations import display_path
     from urdf_lint.engine.baseline import write_baseline
     assert o.write_baseline is not None
@@ -209,7 +220,8 @@ def _write_baseline(o: CheckOptions, paths, result, out) -> int:
     return 2 if result.internal else 0
 
 
-def _notes_after(o: CheckOptions, result, cfg, resolver, out, named) -> None:
+def _notes_after(o: CheckOptions, result: CheckResult, cfg: Config, resolver: PackageResolver,
+                 out: Out, named: set[str]) -> None:
     """What is said after the findings: the hook's line, unused files, folders without
     models, variants left at their defaults, the snapshots."""
     if o.hook_summary:
@@ -222,7 +234,7 @@ def _notes_after(o: CheckOptions, result, cfg, resolver, out, named) -> None:
         report_snapshots(result, o.render, out)
 
 
-def changed_since(ref, first_path):
+def changed_since(ref: str, first_path: str) -> set[str]:
     from urdf_lint.discovery.vcs import GitError, changed_files
     cwd = first_path if os.path.isdir(first_path) else os.path.dirname(os.path.abspath(first_path))
     try:
@@ -241,7 +253,7 @@ def changed_since(ref, first_path):
         raise UsageError(f"--changed-since {ref}: {why}") from None
 
 
-def list_models(result, out) -> None:
+def list_models(result: CheckResult, out: Out) -> None:
     from urdf_lint.core.locations import display_path
     for m in result.models:
         state = "cached" if m.cached else m.status
@@ -253,7 +265,7 @@ def list_models(result, out) -> None:
         out.info(f"skipped: {safe_text(display_path(m.entry))} ({m.status})")
 
 
-def note_variants(result, cfg, resolver, out) -> None:
+def note_variants(result: CheckResult, cfg: Config, resolver: PackageResolver, out: Out) -> None:
     """One info line: the models linted with args left at defaults that select variants, and
     how to lint the variants (``[[models]] args``)."""
     from urdf_lint.core.locations import display_path
@@ -277,7 +289,7 @@ def note_variants(result, cfg, resolver, out) -> None:
              f"args = [{{{safe_text(names[0])} = \"...\"}}, ...]")
 
 
-def hook_summary(result, files) -> None:
+def hook_summary(result: CheckResult, files: Sequence[str]) -> None:
     """``hook``: one line on every run, passed or failed, with the warnings and infos that do
     not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
     from urdf_lint.core.findings import group, tally

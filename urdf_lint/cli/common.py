@@ -8,18 +8,30 @@ import dataclasses
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
-from urdf_lint.cli.output import write_base
+from urdf_lint.cli.output import write_base as write_base   # (re-exported: the commands use it)
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Iterable, Sequence
+
+    from _typeshed import DataclassInstance
+
+    from urdf_lint.config.schema import Config
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.pipeline import CheckResult
+
+    Options = TypeVar("Options", bound=DataclassInstance)   # a command's options dataclass
 
 
 @dataclass(frozen=True)
 class ConfigOptions:
     """What the command line says about the config: the file (or none), whether the
     repository's config is trusted, and what was typed for each schema key's flag."""
-    values: dict = field(default_factory=dict)   # schema key -> as typed (None: not given)
+    values: dict[str, Any] = field(default_factory=dict)   # schema key -> as typed (None: not given)
     config: str | None = None                    # --config
     isolated: bool = False                       # --isolated: no config file at all
     trust_config: bool = False
@@ -35,12 +47,12 @@ class ConfigOptions:
                    isolated=bool(given.get("isolated")),
                    trust_config=bool(given.get("trust_config")), quiet=bool(given.get("quiet")))
 
-    def given(self) -> set:
+    def given(self) -> set[str]:
         """The schema keys set on the command line."""
         return {k for k, v in self.values.items() if v}
 
 
-def options_from(cls, args: Any, **extra):
+def options_from(cls: type[Options], args: Any, **extra: Any) -> Options:
     """A command's options dataclass ``cls`` from its parsed arguments: each field from the
     argument of the same name when the command has it (else the field's default)."""
     given = vars(args)
@@ -48,7 +60,7 @@ def options_from(cls, args: Any, **extra):
     return cls(**{n: given[n] for n in names if n in given}, **extra)
 
 
-def parse_package_paths(items):
+def parse_package_paths(items: Iterable[str] | None) -> dict[str, str]:
     out = {}
     for it in items or []:
         name, sep, d = it.partition("=")
@@ -59,7 +71,7 @@ def parse_package_paths(items):
 
 
 # -- config -----------------------------------------------------------------------------------
-def load_cfg(opts: ConfigOptions, paths):
+def load_cfg(opts: ConfigOptions, paths: Sequence[str]) -> Config:
     from urdf_lint.config.schema import find_config, load_config, validate_codes
     from urdf_lint.engine.registry import codes_to_names, load_rules
     known = codes_to_names()
@@ -74,7 +86,7 @@ def load_cfg(opts: ConfigOptions, paths):
     return cfg
 
 
-def apply_cli_values(cfg, opts: ConfigOptions) -> None:
+def apply_cli_values(cfg: Config, opts: ConfigOptions) -> None:
     """What the user set on the command line wins (through the schema), clamped like the rest."""
     from urdf_lint.config.schema import apply_cli
     from urdf_lint.config import trust
@@ -82,7 +94,7 @@ def apply_cli_values(cfg, opts: ConfigOptions) -> None:
     trust.clamp(cfg)
 
 
-def apply_trust(cfg, opts: ConfigOptions, paths) -> None:
+def apply_trust(cfg: Config, opts: ConfigOptions, paths: Sequence[str]) -> None:
     """The repository's config may not loosen the guarantees (see urdf_lint/config/trust.py)."""
     from urdf_lint.discovery.discover import start_dir
     from urdf_lint.discovery.vcs import repo_root
@@ -93,12 +105,12 @@ def apply_trust(cfg, opts: ConfigOptions, paths) -> None:
             say(f"urdf-lint: {n}")
 
 
-def safe_text(s) -> str:
+def safe_text(s: object) -> str:
     from urdf_lint.core.escape import escape_text
     return escape_text(str(s))
 
 
-def refuse_symlinked_out(d, paths=()):
+def refuse_symlinked_out(d: str | None, paths: Sequence[str] = ()) -> None:
     """Snapshots are written where the user said, never through a link a repository planted:
     no component of the folder from the repository down (the folder itself included) may be
     a symlink."""
@@ -123,11 +135,11 @@ class Out:
     def __init__(self, quiet: bool = False, verbose: bool = False) -> None:
         self.quiet, self.verbose = quiet, verbose
 
-    def note(self, text) -> None:
+    def note(self, text: str) -> None:
         if not self.quiet:
             say(text)
 
-    def info(self, text) -> None:
+    def info(self, text: str) -> None:
         if self.verbose:
             say(text)
 
@@ -146,7 +158,8 @@ def color_mode(mode: str | None) -> str:
 MODEL_SUFFIXES = (".urdf", ".xacro")
 
 
-def through_models(paths, package_paths: dict, cfg, quiet: bool = False):
+def through_models(paths: Sequence[str], package_paths: dict[str, str], cfg: Config,
+                   quiet: bool = False) -> tuple[str, set[str], set[str]] | None:
     """Files that are not models themselves, linted through the models that use them, as the
     hook does: a fragment or macro library that models include, and any other file (a YAML
     file, a mesh, a texture: ``check $(git diff --name-only)``). Returns (the repository root
@@ -167,7 +180,7 @@ def through_models(paths, package_paths: dict, cfg, quiet: bool = False):
         return None
     root = repository_root(paths)
     redirect = list(inputs)
-    by: dict = {}
+    by: dict[str, list[str]] = {}
     if cand:
         resolver = build_resolver([root], cfg, package_paths)
         graph = discover_models([root], cfg, resolver).graph
@@ -190,7 +203,7 @@ def through_models(paths, package_paths: dict, cfg, quiet: bool = False):
     return root, report, set(files)
 
 
-def no_models_warning(paths, result, out) -> None:
+def no_models_warning(paths: Sequence[str], result: CheckResult, out: Out) -> None:
     """A folder the user named that holds no robot model: said, like ruff's "No Python files
     found" (the run still exits 0: nothing failed)."""
     entries = [os.path.realpath(m.entry) for m in [*result.models, *result.skipped]]
@@ -203,7 +216,7 @@ def no_models_warning(paths, result, out) -> None:
                      ".xacro file that expands to a robot)")
 
 
-def note_unused(result, out, named=()) -> None:
+def note_unused(result: CheckResult, out: Out, named: Iterable[str] = ()) -> None:
     """Deleted files no remaining model reads (always said), unused files (under -v, or always
     when the user named the file)."""
     from urdf_lint.core.locations import display_path
@@ -219,7 +232,7 @@ def note_unused(result, out, named=()) -> None:
             out.info(f"note: {safe_text(display_path(f))} is not used by any model")
 
 
-def clear_stale(out_dir, paths):
+def clear_stale(out_dir: str, paths: Sequence[str]) -> None:
     from urdf_lint.render.snapshot import clear_stale
     try:
         clear_stale(out_dir, write_base(out_dir, paths))
@@ -228,7 +241,7 @@ def clear_stale(out_dir, paths):
                          f"{safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
-def report_snapshots(result, out_dir, out=None) -> int:
+def report_snapshots(result: CheckResult, out_dir: str, out: Out | None = None) -> int:
     """Caption and finish the snapshots with the run's final findings, write summary.md and
     the manifest, and say (one located line each) which requested snapshot could not be
     made; returns how many could not."""
@@ -236,7 +249,8 @@ def report_snapshots(result, out_dir, out=None) -> int:
     from urdf_lint.core.locations import display_path
     from urdf_lint.render.recording import NO_RERUN
     finish_snapshots(result.models, result.findings, out_dir)
-    written, missed, files = 0, 0, []
+    written, missed = 0, 0
+    files: list[str] = []
     no_rerun = False
     for m in result.models:
         snap = m.snapshot or {}
@@ -267,7 +281,7 @@ def report_snapshots(result, out_dir, out=None) -> int:
     return missed
 
 
-def no_recordings_note(why) -> None:
+def no_recordings_note(why: str) -> None:
     """The .rrd recordings are optional (rerun-sdk, the ``render`` extra): without them the
     pictures are still made and the run does not fail; said once (``render`` and
     ``diff --render`` alike)."""
@@ -275,7 +289,8 @@ def no_recordings_note(why) -> None:
         "(--no-rrd: no recordings, no note)")
 
 
-def expand_in_workers(jobs: list, resolver, cfg) -> list:
+def expand_in_workers(jobs: list[LintJob], resolver: PackageResolver, cfg: Config
+                      ) -> list[ModelReport]:
     """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
     workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""

@@ -3,10 +3,19 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.output import FindingsOutput, write_findings
 from urdf_lint.core.emit import report_internal, say
 from urdf_lint.core.errors import UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Set as AbstractSet
+
+    from urdf_lint.cli.common import Out
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.fix import FixOutcome
 
 
 @dataclass(frozen=True)
@@ -22,7 +31,7 @@ class FixRequest:
     exit_non_zero_on_fix: bool = False
 
 
-def _summary(outcome) -> list[str]:
+def _summary(outcome: FixOutcome) -> list[str]:
     """What ``--fix`` did, one message per line (each written through :func:`say`)."""
     from urdf_lint.core.locations import display_path
     lines = []
@@ -45,7 +54,8 @@ def _summary(outcome) -> list[str]:
     return lines
 
 
-def _add_suppressions(req: FixRequest, cfg, resolver, out, color_mode) -> int:
+def _add_suppressions(req: FixRequest, cfg: Config, resolver: PackageResolver, out: Out,
+                      color_mode: str) -> int:
     from urdf_lint.fix.addsuppress import add_suppressions
     from urdf_lint.core.locations import display_path
     from urdf_lint.run.pipeline import RunRequest, exit_code, run_check
@@ -69,7 +79,9 @@ def _add_suppressions(req: FixRequest, cfg, resolver, out, color_mode) -> int:
     return exit_code(result, cfg.fail_on)
 
 
-def check_fix(req: FixRequest, cfg, resolver, affected_by, render_dir, out, color_mode) -> int:
+def check_fix(req: FixRequest, cfg: Config, resolver: PackageResolver,
+              affected_by: AbstractSet[str] | None, render_dir: str | None, out: Out,
+              color_mode: str) -> int:
     from urdf_lint.run.fix import run_fix
     from urdf_lint.run.pipeline import exit_code
     if render_dir:
