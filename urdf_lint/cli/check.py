@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.cli.common import (ConfigOptions, Out, color_mode, no_models_warning,
                                   note_unused, options_from, safe_text, say_snapshots)
@@ -17,11 +18,16 @@ from urdf_lint.core.errors import UsageError
 from urdf_lint.run.check import CheckRequest, Checked, Prepared, prepare
 from urdf_lint.run.check import check as run_checked
 
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Callable, Iterable, Sequence
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.run.pipeline import CheckResult
 
 NAME = "check"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     c = sub.add_parser("check", help="find, expand and lint every robot model under PATHS",
                        formatter_class=raw,
                        description="Find, expand and lint every robot model under PATHS.")
@@ -53,8 +59,8 @@ def add_parser(sub, raw) -> None:
 class CheckOptions:
     """What ``check`` (and ``hook``, which runs it) was asked to do."""
     config: ConfigOptions = field(default_factory=ConfigOptions)
-    paths: list = field(default_factory=lambda: ["."])
-    package_path: list | None = None
+    paths: list[str] = field(default_factory=lambda: ["."])
+    package_path: list[str] | None = None
     output: str | None = None
     show_source: bool = False
     statistics: bool = False
@@ -72,15 +78,15 @@ class CheckOptions:
     diff: bool = False
     add_suppressions: bool = False
     exit_non_zero_on_fix: bool = False
-    files: list | None = None            # hook: the committed files whose models to report
+    files: list[str] | None = None       # hook: the committed files whose models to report
     hook_summary: bool = False           # hook: one line on every run
 
-    def report(self, paths) -> FindingsOutput:
+    def report(self, paths: Iterable[str]) -> FindingsOutput:
         return FindingsOutput(paths=list(paths), output=self.output, statistics=self.statistics,
                               show_source=self.show_source, coverage=self.coverage)
 
 
-def run(args) -> int:
+def run(args: Any) -> int:
     return check(options_from(CheckOptions, args, config=ConfigOptions.from_args(args)))
 
 
@@ -95,12 +101,12 @@ def fix_mode(o: CheckOptions) -> bool:
     return bool(o.fix or o.diff or o.add_suppressions)
 
 
-def _progress(out: Out):
+def _progress(out: Out) -> Callable[[int, int], None] | None:
     """The progress counter on a terminal (not in CI, not with -q), or None."""
     if not sys.stderr.isatty() or os.environ.get("CI") or out.quiet:
         return None
 
-    def progress(n, total) -> None:
+    def progress(n: int, total: int) -> None:
         sys.stderr.write(f"\rlinting {n}/{total} models" + (" " * 10))
         if n == total:
             sys.stderr.write("\r" + " " * 40 + "\r")
@@ -147,7 +153,7 @@ def check(o: CheckOptions) -> int:
         no_models_warning(o.paths, result, out)
     note_variants(result, done.variants, out)
     if done.snapshots is not None:
-        say_snapshots(done.snapshots, o.render, out)
+        say_snapshots(done.snapshots, o.render or "", out)
     if o.exit_zero:
         return 2 if result.internal else 0
     return exit_status([f.severity for f in result.findings], bool(result.internal),
@@ -179,11 +185,11 @@ def _baseline_written(o: CheckOptions, done: Checked, out: Out) -> int:
              f"{display_path(os.path.abspath(done.baseline))}; "
              f"lint with --baseline {done.baseline} to report only new ones")
     if done.snapshots is not None:
-        say_snapshots(done.snapshots, o.render, out)
+        say_snapshots(done.snapshots, o.render or "", out)
     return 2 if result.internal else 0
 
 
-def list_models(result, out) -> None:
+def list_models(result: CheckResult, out: Out) -> None:
     from urdf_lint.core.locations import display_path
     for m in result.models:
         state = "cached" if m.cached else m.status
@@ -195,7 +201,7 @@ def list_models(result, out) -> None:
         out.info(f"skipped: {safe_text(display_path(m.entry))} ({m.status})")
 
 
-def note_variants(result, variants: dict, out) -> None:
+def note_variants(result: CheckResult, variants: dict[str, list[str]], out: Out) -> None:
     """One info line: the models linted with args left at defaults that select variants
     (``variants``, :attr:`urdf_lint.run.check.Checked.variants`), and how to lint the variants
     (``[[models]] args``); and when the explore budget cut exploration short."""
@@ -216,7 +222,7 @@ def note_variants(result, variants: dict, out) -> None:
              f"args = [{{{safe_text(names[0])} = \"...\"}}, ...]")
 
 
-def hook_summary(result, files) -> None:
+def hook_summary(result: CheckResult, files: Sequence[str]) -> None:
     """``hook``: one line on every run, passed or failed, with the warnings and infos that do
     not fail it (pre-commit shows it with ``verbose: true``, set in .pre-commit-hooks.yaml)."""
     from urdf_lint.core.findings import group, tally

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from urdf_lint.cli.output import write_base as write_base
 from urdf_lint.core.emit import say
@@ -22,8 +22,20 @@ from urdf_lint.run.check import (MODEL_SUFFIXES as MODEL_SUFFIXES,
                                  refuse_symlinked_out as refuse_symlinked_out,
                                  through_models as through_models)
 
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Iterable, Sequence
 
-def options_from(cls, args: Any, **extra):
+    from _typeshed import DataclassInstance
+
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.config.schema import Config
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.pipeline import CheckResult
+
+    Options = TypeVar("Options", bound=DataclassInstance)   # a command's options dataclass
+
+
+def options_from(cls: type[Options], args: Any, **extra: Any) -> Options:
     """A command's options dataclass ``cls`` from its parsed arguments: each field from the
     argument of the same name when the command has it (else the field's default)."""
     given = vars(args)
@@ -31,7 +43,7 @@ def options_from(cls, args: Any, **extra):
     return cls(**{n: given[n] for n in names if n in given}, **extra)
 
 
-def safe_text(s) -> str:
+def safe_text(s: object) -> str:
     from urdf_lint.core.escape import escape_text
     return escape_text(str(s))
 
@@ -42,11 +54,11 @@ class Out:
     def __init__(self, quiet: bool = False, verbose: bool = False) -> None:
         self.quiet, self.verbose = quiet, verbose
 
-    def note(self, text) -> None:
+    def note(self, text: str) -> None:
         if not self.quiet:
             say(text)
 
-    def info(self, text) -> None:
+    def info(self, text: str) -> None:
         if self.verbose:
             say(text)
 
@@ -61,7 +73,7 @@ def color_mode(mode: str | None) -> str:
     return mode
 
 
-def no_models_warning(paths, result, out) -> None:
+def no_models_warning(paths: Sequence[str], result: CheckResult, out: Out) -> None:
     """A folder the user named that holds no robot model: said, like ruff's "No Python files
     found" (the run still exits 0: nothing failed)."""
     entries = [os.path.realpath(m.entry) for m in [*result.models, *result.skipped]]
@@ -74,7 +86,7 @@ def no_models_warning(paths, result, out) -> None:
                      ".xacro file that expands to a robot)")
 
 
-def note_unused(result, out, named=()) -> None:
+def note_unused(result: CheckResult, out: Out, named: Iterable[str] = ()) -> None:
     """Deleted files no remaining model reads (always said), unused files (under -v, or always
     when the user named the file)."""
     from urdf_lint.core.locations import display_path
@@ -90,13 +102,13 @@ def note_unused(result, out, named=()) -> None:
             out.info(f"note: {safe_text(display_path(f))} is not used by any model")
 
 
-def report_snapshots(result, out_dir, out=None) -> int:
+def report_snapshots(result: CheckResult, out_dir: str, out: Out | None = None) -> int:
     """Finish the snapshots (:func:`urdf_lint.run.check.finish_snapshots`) and say what they
     are; returns how many requested snapshots could not be made."""
     return say_snapshots(finish_snapshots(result, out_dir), out_dir, out)
 
 
-def say_snapshots(snaps: Snapshots, out_dir, out=None) -> int:
+def say_snapshots(snaps: Snapshots, out_dir: str, out: Out | None = None) -> int:
     """Say (one located line each) which requested snapshot could not be made, and where the
     snapshots are; returns how many could not."""
     from urdf_lint.core.locations import display_path
@@ -113,7 +125,7 @@ def say_snapshots(snaps: Snapshots, out_dir, out=None) -> int:
     return len(snaps.missed)
 
 
-def no_recordings_note(why) -> None:
+def no_recordings_note(why: str) -> None:
     """The .rrd recordings are optional (rerun-sdk, the ``render`` extra): without them the
     pictures are still made and the run does not fail; said once (``render`` and
     ``diff --render`` alike)."""
@@ -121,7 +133,8 @@ def no_recordings_note(why) -> None:
         "(--no-rrd: no recordings, no note)")
 
 
-def expand_in_workers(jobs: list, resolver, cfg) -> list:
+def expand_in_workers(jobs: list[LintJob], resolver: PackageResolver, cfg: Config
+                      ) -> list[ModelReport]:
     """The ModelReport of each ``expand`` job, in the jobs' order: expanded in sandboxed
     workers (time and memory limits, scrubbed environment, Landlock, seccomp) with the run's
     one snapshot of the roots; the XML comes back as data (``kept_model.xml``)."""

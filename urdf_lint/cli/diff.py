@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import (ConfigOptions, load_cfg, no_recordings_note, options_from,
                                   parse_package_paths, refuse_symlinked_out, safe_text,
@@ -13,11 +14,20 @@ from urdf_lint.cli.parser import add_target, add_views
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+    from collections.abc import Sequence
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.config.schema import Config
+    from urdf_lint.preview.review import ReviewPage
+    from urdf_lint.report.diff.base import DiffResult
+
 
 NAME = "diff"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     df = sub.add_parser("diff", help="what a change did to the robots: a semantic diff of "
                         "every affected model between two git revisions", formatter_class=raw,
                         description="Compare every model a change affects between two git "
@@ -65,12 +75,12 @@ class ReviewOptions:
     tool: the same typed options, no command line in between)."""
     base: str
     head: str | None = None
-    paths: list | None = None
+    paths: list[str] | None = None
     format: str = "text"
     output: str | None = None
     image_base_url: str | None = None
     fail_on: str | None = None
-    package_path: list | None = None
+    package_path: list[str] | None = None
     no_cache: bool = False
     render: str | None = None
     no_rrd: bool = False
@@ -78,7 +88,7 @@ class ReviewOptions:
     config: ConfigOptions = field(default_factory=ConfigOptions)
 
 
-def _write_page(page, out_dir: str, paths, result) -> None:
+def _write_page(page: ReviewPage, out_dir: str, paths: Sequence[str], result: DiffResult) -> None:
     title = f"urdf-lint review: {result.base} .. {result.head}"
     try:
         page.write(out_dir, write_base(os.path.join(out_dir, "index.html"), paths), title)
@@ -87,7 +97,7 @@ def _write_page(page, out_dir: str, paths, result) -> None:
                          f"{safe_text(getattr(e, 'why', None) or e.strerror or e)}") from None
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     return diff(options_from(ReviewOptions, args, config=ConfigOptions.from_args(args)))
 
 
@@ -105,9 +115,9 @@ def diff(o: ReviewOptions) -> int:
     if o.html:
         from urdf_lint.preview.review import ReviewPage
         page = ReviewPage()
-    cfgs = []
+    cfgs: list[Config] = []
 
-    def load(ps):
+    def load(ps: list[str]) -> Config:
         cfgs.append(load_cfg(o.config, ps))
         return cfgs[-1]
     try:

@@ -4,6 +4,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import (ConfigOptions, apply_cli_values, apply_trust, expand_in_workers,
                                   options_from, parse_package_paths, safe_text, write_base)
@@ -11,11 +12,17 @@ from urdf_lint.cli.parser import add_inputs, add_key_flags
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+    from collections.abc import Iterable
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+
 
 NAME = "expand"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     e = sub.add_parser("expand", help="expand one xacro file to URDF (no ROS needed)",
                        description="Expand one xacro file to URDF, byte-identical to xacro 2.1.1.")
     e.add_argument("file", help="the .xacro file")
@@ -27,8 +34,9 @@ def add_parser(sub, raw) -> None:
     add_key_flags(e, "limits")
 
 
-def parse_mappings(items):
-    args, rest = {}, []
+def parse_mappings(items: Iterable[str]) -> tuple[dict[str, str], list[str]]:
+    args: dict[str, str] = {}
+    rest: list[str] = []
     for it in items:
         if ":=" in it:
             k, _, v = it.partition(":=")
@@ -43,13 +51,13 @@ class ExpandOptions:
     """What ``expand`` was asked to do (from the command line, or the MCP server's ``expand``
     tool: the same typed options, no command line in between)."""
     file: str
-    mappings: dict = field(default_factory=dict)     # xacro arg name -> value
+    mappings: dict[str, str] = field(default_factory=dict)     # xacro arg name -> value
     output: str | None = None
-    package_path: list | None = None
+    package_path: list[str] | None = None
     config: ConfigOptions = field(default_factory=ConfigOptions)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     mappings, rest = parse_mappings(args.mappings)
     if rest:
         raise UsageError(f"expected name:=value, got {' '.join(rest)}")

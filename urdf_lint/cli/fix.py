@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass
-
 from typing import TYPE_CHECKING
 
 from urdf_lint.cli.output import FindingsOutput, write_findings
@@ -11,9 +10,11 @@ from urdf_lint.core.emit import report_internal, say
 from urdf_lint.core.errors import UsageError
 from urdf_lint.core.findings import exit_status
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.cli.common import Out
     from urdf_lint.run.check import Prepared
+    from urdf_lint.run.fix import FixOutcome
+    from urdf_lint.run.pipeline import CheckResult
 
 
 @dataclass(frozen=True)
@@ -29,7 +30,7 @@ class FixRequest:
     exit_non_zero_on_fix: bool = False
 
 
-def _summary(outcome) -> list[str]:
+def _summary(outcome: FixOutcome) -> list[str]:
     """What ``--fix`` did, one message per line (each written through :func:`say`)."""
     from urdf_lint.core.locations import display_path
     lines = []
@@ -70,7 +71,7 @@ def _add_suppressions(req: FixRequest, prep: Prepared, out: Out, color_mode: str
     return _exit(result, prep.cfg.fail_on)
 
 
-def _exit(result, fail_on: str) -> int:
+def _exit(result: "CheckResult", fail_on: str) -> int:
     return exit_status([f.severity for f in result.findings], bool(result.internal), fail_on)
 
 

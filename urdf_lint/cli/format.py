@@ -5,16 +5,27 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import ConfigOptions, load_cfg, options_from, parse_package_paths
 from urdf_lint.cli.parser import add_inputs
 from urdf_lint.core.escape import escape_text
 from urdf_lint.run.format import Proof, files_to_format, format_files, prove, style_of
 
+if TYPE_CHECKING:  # pragma: no cover
+    import argparse
+    from argparse import Namespace
+    from collections.abc import Callable, Sequence
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.config.schema import Config
+    from urdf_lint.formatting.layout import Node
+    from urdf_lint.run.format import FileResult
+
 NAME = "format"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     p = sub.add_parser("format", help="lay out xacro and URDF sources (never changes a robot)",
                        description="Format xacro and URDF files: one element per line, "
                                    "children indented, long tags wrapped; comments, text and "
@@ -40,7 +51,7 @@ def add_parser(sub, raw) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="print only errors")
 
 
-def _add_style_flags(p) -> None:
+def _add_style_flags(p: argparse.ArgumentParser) -> None:
     """One flag per layout key of ``[tool.urdf-lint.format]`` (``--line-length``), from its
     schema entry: its help, choices and default."""
     from urdf_lint.config.schema import FORMAT_KEYS
@@ -58,8 +69,8 @@ def _add_style_flags(p) -> None:
 class FormatOptions:
     """What ``format`` was asked to do (the formatter reads these by name)."""
     config: ConfigOptions = field(default_factory=ConfigOptions)
-    paths: list = field(default_factory=lambda: ["."])
-    package_path: list | None = None
+    paths: list[str] = field(default_factory=lambda: ["."])
+    package_path: list[str] | None = None
     check: bool = False
     diff: bool = False
     quiet: bool = False
@@ -69,12 +80,14 @@ class FormatOptions:
     self_closing: str | None = None
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     opts = options_from(FormatOptions, args, config=ConfigOptions.from_args(args))
     return cmd_format(opts, lambda o, paths: load_cfg(o.config, paths), parse_package_paths)
 
 
-def cmd_format(args, load_cfg, parse_package_paths) -> int:
+def cmd_format(args: FormatOptions,
+               load_cfg: Callable[[FormatOptions, list[str]], Config],
+               parse_package_paths: Callable[[list[str] | None], dict[str, str]]) -> int:
     from urdf_lint.core.errors import UsageError
     from urdf_lint.discovery.discover import repository_root
     for p in args.paths:
@@ -86,7 +99,7 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
         return status
     cfg = load_cfg(args, paths)
     style = style_of(cfg, args)
-    docs: dict = {}
+    docs: dict[bytes, list[Node]] = {}
     results = format_files(files_to_format(paths, cfg), style, paths, docs, repo)
     changed = {r.path: r.new for r in results if r.new is not None}
     proof = Proof()
@@ -101,7 +114,7 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     todo = [r for r in results if r.new is not None]
     if args.diff:
         from urdf_lint.run.fix import unified_diff
-        sys.stdout.write(unified_diff({r.path: r.new for r in todo},
+        sys.stdout.write(unified_diff({r.path: r.new for r in todo if r.new is not None},
                                       {r.path: r.old for r in todo}))
     elif args.check:
         from urdf_lint.core.emit import tell
@@ -117,7 +130,7 @@ def cmd_format(args, load_cfg, parse_package_paths) -> int:
     return 1 if todo and (args.check or args.diff) else 0
 
 
-def _inside_repository(paths, repo) -> tuple[list, int]:
+def _inside_repository(paths: Sequence[str], repo: str) -> tuple[list[str], int]:
     """(the named paths to format, 2 when one was refused else 0): a named path that is a
     symlink (or in the repository through one) resolving outside the repository is refused
     with one located error and nothing of it is read or written."""
@@ -132,7 +145,7 @@ def _inside_repository(paths, repo) -> tuple[list, int]:
     return keep, 2 if len(keep) < len(paths) else 0
 
 
-def _say_problems(results) -> int:
+def _say_problems(results: Sequence[FileResult]) -> int:
     """Say each file that could not be formatted or was left alone; 2 for an error or an
     internal problem, else 0."""
     from urdf_lint.core.emit import say
@@ -148,7 +161,7 @@ def _say_problems(results) -> int:
     return status
 
 
-def _write(todo, paths, repo) -> int:
+def _write(todo: Sequence[FileResult], paths: Sequence[str], repo: str) -> int:
     """Write the new layouts, only below the formatted paths, atomically (the boundary's
     rewrite: a file saved since it was read is skipped, exit 1); 2 when one cannot be
     written, else 0."""
@@ -170,7 +183,8 @@ def _write(todo, paths, repo) -> int:
     return status
 
 
-def _say_summary(results, todo, args, proof: Proof | None) -> None:
+def _say_summary(results: Sequence[FileResult], todo: Sequence[FileResult], args: FormatOptions,
+                 proof: Proof | None) -> None:
     from urdf_lint.core.emit import say
     left = sum(1 for r in results if r.refused)
     same = sum(1 for r in results if r.new is None and not r.refused and not r.error)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import (ConfigOptions, expand_in_workers, load_cfg, parse_package_paths,
                                   safe_text, write_base)
@@ -9,11 +10,21 @@ from urdf_lint.cli.parser import add_inputs
 from urdf_lint.core.emit import say, tell
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.config.schema import Config
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.discovery.packages import PackageResolver
+
+    JobKey = tuple[str, tuple[tuple[str, str], ...]]   # (entry, sorted args)
+
 
 NAME = "generate"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     g = sub.add_parser("generate", help="rewrite every stale generated URDF (the 'output' of a "
                        "models entry, or a .urdf whose header names its xacro)",
                        description="Rewrite every generated URDF that no longer equals what its "
@@ -25,7 +36,7 @@ def add_parser(sub, raw) -> None:
     add_inputs(g)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     """Regenerate stale outputs in place (atomically); exit 1 when a file was (or, with
     --check, would be) rewritten, was refused or a xacro did not expand, like a formatter
     hook. Each xacro is expanded in a sandboxed worker with the run's limits, like ``check``
@@ -47,7 +58,7 @@ def run(args) -> int:
     jobs = [job for job in discover_models(args.paths, cfg, resolver).jobs if job.output]
     # every variant an output is compared with, expanded once (xacro opens the path the
     # header names)
-    wanted: dict = {}
+    wanted: dict[JobKey, LintJob] = {}
     for job in jobs:
         for a in (job.args, *(dict(v) for v in job.variants)):
             wanted.setdefault(_key(job.entry, a), dataclasses.replace(
@@ -80,18 +91,20 @@ def run(args) -> int:
     return status
 
 
-def _key(entry: str, args: dict) -> tuple:
+def _key(entry: str, args: dict[str, str]) -> JobKey:
     return entry, tuple(sorted(args.items()))
 
 
-def _xml_of(res) -> str | None:
+def _xml_of(res: ModelReport) -> str | None:
     from urdf_lint.core.jobs import Status
     if res.status is Status.FAILED or res.kept_model is None:
         return None
     return res.kept_model.xml
 
 
-def _one_output(args, cfg, job, output: str, variants: list, tally: dict, resolver) -> int:
+def _one_output(args: Namespace, cfg: Config, job: LintJob, output: str,
+                variants: list[tuple[dict[str, str], str]], tally: dict[str, int],
+                resolver: PackageResolver) -> int:
     """Compare one output with its variant and rewrite it when stale; the exit status."""
     from urdf_lint.config import trust
     from urdf_lint.core.locations import display_path
@@ -140,7 +153,7 @@ def _one_output(args, cfg, job, output: str, variants: list, tally: dict, resolv
     return 1
 
 
-def _generate_summary(tally: dict, check: bool) -> str:
+def _generate_summary(tally: dict[str, int], check: bool) -> str:
     """``generate``: one line, also when everything was up to date."""
     if not tally["outputs"] and not tally["failed"]:
         return ("urdf-lint generate: no generated URDF found (a models entry with 'output', or a "

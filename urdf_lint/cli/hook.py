@@ -4,16 +4,22 @@ from __future__ import annotations
 
 import dataclasses
 import os
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import ConfigOptions, options_from
 from urdf_lint.cli.parser import add_inputs, add_limits, add_output, add_selection
 from urdf_lint.core.emit import say
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+
 
 NAME = "hook"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     h = sub.add_parser("hook", help="pre-commit: lint the models that the given files affect",
                        formatter_class=raw,
                        description="Lint the models that the given (changed) files affect; "
@@ -26,7 +32,7 @@ def add_parser(sub, raw) -> None:
     add_limits(h)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     """Lint the whole repository (cached) and report the models that the files affect."""
     from urdf_lint.cli.check import CheckOptions, check
     from urdf_lint.discovery.vcs import GitError, repo_root, staged_removals

@@ -18,29 +18,38 @@ import argparse
 import importlib
 import os
 import sys
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.parser import Parser
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+    from collections.abc import Callable, Sequence
+    from types import ModuleType
+    from typing import Any, NoReturn
 
 # the subcommands in the order of `urdf-lint --help`: each is the module urdf_lint.cli.<name>
 
 
 COMMANDS = ("check", "hook", "expand", "rules", "rule", "render", "diff", "generate", "format",
             "mcp", "doctor", "clean", "server", "preview")
-SUBPARSERS: dict = {}
+SUBPARSERS: dict[str, argparse.ArgumentParser] = {}
 
 
-def command_module(name: str):
+def command_module(name: str) -> ModuleType:
     return importlib.import_module(f"urdf_lint.cli.{name}")
 
 
-def _runner(name: str):
+def _runner(name: str) -> Callable[[Namespace], int]:
     mod = command_module(name)
-    return getattr(mod, "run", None) or getattr(mod, f"cmd_{name}")
+    run: Callable[[Namespace], int] = (getattr(mod, "run", None)
+                                                or getattr(mod, f"cmd_{name}"))
+    return run
 
 
-def build_parser(only: str | None = None):
+def build_parser(only: str | None = None) -> Parser:
     """The command-line parser; with ``only`` (a known command) just that subcommand's parser
     is built: building all of them imports the format registry and the config schema, which
     ``urdf-lint expand`` does not need (it stays under 0.15 s)."""
@@ -57,7 +66,7 @@ def build_parser(only: str | None = None):
     return p
 
 
-def _command_of(argv) -> str | None:
+def _command_of(argv: Sequence[str]) -> str | None:
     """The subcommand named on the command line (the first word that is not an option), when
     it is a known one; None otherwise (then the whole parser is built, for help and hints)."""
     for a in argv:
@@ -68,7 +77,7 @@ def _command_of(argv) -> str | None:
     return None
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     from urdf_lint.core import lazy
     lazy.enable()   # modules few runs use load on first use (PyYAML, Pillow): in this process only
     try:
@@ -106,7 +115,7 @@ def exit_now(code: int) -> None:
     os._exit(code)
 
 
-def _hook_arguments(argv) -> tuple[list, list]:
+def _hook_arguments(argv: list[str]) -> tuple[list[str], list[str]]:
     """``urdf-lint hook``: (the arguments to parse, the file names). pre-commit appends the
     names of the commit's files to the hook's arguments, and a committed file may be named
     like an option (``--env-allow=TOKEN,x.yaml``). Everything after the first ``--`` is a file
@@ -123,10 +132,10 @@ def _hook_arguments(argv) -> tuple[list, list]:
     return argv[:i + 1] + [a for a in rest if a not in taken], taken + files
 
 
-def _main(argv) -> int:
+def _main(argv: Sequence[str] | None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)
-    hook_files: list = []
+    hook_files: list[str] = []
     if command == "hook":
         argv, hook_files = _hook_arguments(argv)
     if command in ("expand", "generate") and "-h" not in argv and "--help" not in argv:
@@ -155,14 +164,15 @@ def _main(argv) -> int:
     return guarded(_runner(args.command), args)
 
 
-def guarded(command, *args) -> int:
+def guarded(command: Callable[..., int], *args: Any) -> int:
     """Run one command (``command(*args)``, its exit status) as ``urdf-lint`` does: SIGTERM
     handled like Ctrl-C, a usage or config error is one line and 2, any other exception an
     internal error and 2 (the command line, and each call of the MCP server's tools)."""
     from urdf_lint.config.schema import ConfigError   # (a BaselineError is a UsageError)
     import signal
 
-    def _terminate(signum, frame):  # SIGTERM is handled like Ctrl-C: workers are stopped
+    # SIGTERM is handled like Ctrl-C: workers are stopped
+    def _terminate(signum: int, frame: object) -> NoReturn:
         raise KeyboardInterrupt
     try:
         signal.signal(signal.SIGTERM, _terminate)

@@ -29,6 +29,16 @@ import re
 import subprocess
 import sys
 import tempfile
+from typing import TYPE_CHECKING, Any, Callable
+
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from mcp.types import CallToolResult
+
+    from urdf_lint.cli.common import ConfigOptions
+    from urdf_lint.cli.parser import Formatter, SubParsers
+
 
 TIMEOUT_S = 900
 # the child's fixed command line: the repository (its working directory) is taken off sys.path
@@ -69,7 +79,7 @@ def _plain_word(what: str, value: str | None) -> str | None:
     return value
 
 
-def arg_mappings(args: dict | None) -> dict:
+def arg_mappings(args: dict[Any, Any] | None) -> dict[str, str]:
     """xacro args: names are identifiers (as xacro accepts them), values are text."""
     out = {}
     for k, v in (args or {}).items():
@@ -82,7 +92,7 @@ def arg_mappings(args: dict | None) -> dict:
     return out
 
 
-def _report(stdout: str):
+def _report(stdout: str) -> Any:
     try:
         return json.loads(stdout or "null")
     except ValueError:
@@ -96,19 +106,19 @@ class Tools:
     def __init__(self, root: str) -> None:
         self.root = os.path.realpath(root)
 
-    def paths(self, paths) -> list[str]:
+    def paths(self, paths: list[str] | None) -> list[str]:
         if paths is not None and not isinstance(paths, list):
             raise Refused("paths must be a list of paths")
         return [_inside(self.root, p) for p in (paths or ["."])]
 
-    def call(self, request: dict) -> dict:
+    def call(self, request: dict[str, Any]) -> dict[str, Any]:
         """Run one typed request in a child interpreter in the root (see :data:`CHILD`)."""
         p = subprocess.run(CHILD, cwd=self.root, input=json.dumps(request),
                            capture_output=True, text=True, timeout=TIMEOUT_S)
         return {"exit_code": p.returncode, "stdout": p.stdout, "stderr": p.stderr}
 
     def check(self, paths: list[str] | None = None, select: str | None = None,
-              targets: list[str] | None = None) -> dict:
+              targets: list[str] | None = None) -> dict[str, Any]:
         for t in targets or ():
             _plain_word("--target", t)
         res = self.call({"tool": "check", "paths": self.paths(paths),
@@ -116,20 +126,20 @@ class Tools:
                          "targets": list(targets or ()) or None})
         return _findings(res)
 
-    def explain_rule(self, code: str) -> dict:
+    def explain_rule(self, code: str) -> dict[str, Any]:
         res = self.call({"tool": "explain_rule", "code": _plain_word("code", code)})
         # urdf-lint's own documentation of its rules (no repository text)
         return {"exit_code": res["exit_code"], "text": res["stdout"],
                 "untrusted": {"messages": res["stderr"]}}
 
-    def expand(self, file: str, args: dict | None = None) -> dict:
+    def expand(self, file: str, args: dict[Any, Any] | None = None) -> dict[str, Any]:
         res = self.call({"tool": "expand", "file": _inside(self.root, file),
                          "mappings": arg_mappings(args)})
         return {"exit_code": res["exit_code"],
                 "untrusted": {"urdf": res["stdout"], "messages": res["stderr"]}}
 
     def fix(self, paths: list[str] | None = None, apply: bool = False,
-            unsafe: bool = False) -> dict:
+            unsafe: bool = False) -> dict[str, Any]:
         res = self.call({"tool": "fix", "paths": self.paths(paths), "apply": bool(apply),
                          "unsafe": bool(unsafe)})
         if apply:
@@ -137,13 +147,14 @@ class Tools:
         return {"exit_code": res["exit_code"],
                 "untrusted": {"patch": res["stdout"], "messages": res["stderr"]}}
 
-    def diff(self, base: str, head: str | None = None, paths: list[str] | None = None) -> dict:
+    def diff(self, base: str, head: str | None = None, paths: list[str] | None = None
+             ) -> dict[str, Any]:
         res = self.call({"tool": "diff", "base": _plain_word("a revision", base),
                          "head": _plain_word("a revision", head) or None,
                          "paths": self.paths(paths) if paths else None})
         return _findings(res)
 
-    def render(self, paths: list[str] | None = None, out: str | None = None) -> dict:
+    def render(self, paths: list[str] | None = None, out: str | None = None) -> dict[str, Any]:
         # outside the repository unless asked: a new temporary folder, whose path is returned
         folder = (os.path.join(self.root, _inside(self.root, out)) if out
                   else tempfile.mkdtemp(prefix="urdf-lint-mcp-render-"))
@@ -154,47 +165,47 @@ class Tools:
                 "untrusted": {"pngs": pngs, "messages": res["stderr"]}}
 
 
-def _findings(res: dict) -> dict:
+def _findings(res: dict[str, Any]) -> dict[str, Any]:
     return {"exit_code": res["exit_code"],
             "untrusted": {"report": _report(res["stdout"]), "messages": res["stderr"]}}
 
 
 # -- the child: one typed request, the command line's own entry points -------------------------
-def _config(**values):
+def _config(**values: Any) -> ConfigOptions:
     from urdf_lint.cli.common import ConfigOptions
     return ConfigOptions(values={k.replace("_", "-"): v for k, v in values.items()}, quiet=True)
 
 
-def _check(r: dict) -> int:
+def _check(r: dict[str, Any]) -> int:
     from urdf_lint.cli.check import CheckOptions, check
     return check(CheckOptions(config=_config(select=r["select"], targets=r["targets"],
                                              output_format="json"),
                               paths=r["paths"], quiet=True))
 
 
-def _fix(r: dict) -> int:
+def _fix(r: dict[str, Any]) -> int:
     from urdf_lint.cli.check import CheckOptions, check
     return check(CheckOptions(config=_config(output_format="json"), paths=r["paths"],
                               quiet=True, fix=r["apply"], diff=not r["apply"],
                               unsafe_fixes=r["unsafe"]))
 
 
-def _expand(r: dict) -> int:
+def _expand(r: dict[str, Any]) -> int:
     from urdf_lint.cli.expand import ExpandOptions, expand
     return expand(ExpandOptions(file=r["file"], mappings=r["mappings"]))
 
 
-def _diff(r: dict) -> int:
+def _diff(r: dict[str, Any]) -> int:
     from urdf_lint.cli.diff import ReviewOptions, diff
     return diff(ReviewOptions(base=r["base"], head=r["head"], paths=r["paths"], format="json"))
 
 
-def _render(r: dict) -> int:
+def _render(r: dict[str, Any]) -> int:
     from urdf_lint.cli.render import RenderOptions, render
     return render(RenderOptions(paths=r["paths"], out=r["out"], no_rrd=True))
 
 
-def _explain(r: dict) -> int:
+def _explain(r: dict[str, Any]) -> int:
     from urdf_lint.cli.rule import explain
     return explain(r["code"])
 
@@ -223,7 +234,7 @@ def child() -> None:
 
 
 # -- the server ---------------------------------------------------------------------------------
-def _tool_result(res: dict):
+def _tool_result(res: dict[str, Any]) -> CallToolResult:
     """An MCP tool result: the dict as structured content (and as JSON text); an exit status of
     2 or more (a refusal, a usage, config or internal error) is a tool error."""
     from mcp.types import CallToolResult, TextContent
@@ -232,7 +243,7 @@ def _tool_result(res: dict):
         "structuredContent": res, "isError": res["exit_code"] >= 2})
 
 
-def build_server(root: str):
+def build_server(root: str) -> Any:   # (mcp 2's MCPServer, or mcp 1's FastMCP)
     try:
         from mcp.server.mcpserver import MCPServer as Server   # mcp 2
         from mcp.server.mcpserver.exceptions import ToolError
@@ -247,11 +258,11 @@ def build_server(root: str):
         """The tools, a refused path or argument reported to the agent as the tool's error,
         an exit status of 2 or more as an error result."""
 
-        def __getattr__(self, name):
+        def __getattr__(self, name: str) -> Callable[..., CallToolResult]:
             fn = getattr(plain, name)
 
             @functools.wraps(fn)
-            def call(*a, **kw):
+            def call(*a: Any, **kw: Any) -> CallToolResult:
                 try:
                     return _tool_result(fn(*a, **kw))
                 except (ValueError, subprocess.TimeoutExpired) as e:
@@ -267,6 +278,8 @@ def build_server(root: str):
         server = Server("urdf-lint", instructions=instructions)
         server._mcp_server.version = __version__  # type: ignore[attr-defined]
 
+    # The tools have no return annotation (hence the ignores): the MCP SDK derives an output
+    # schema from one, and these return the CallToolResult _tool_result builds, unchanged.
     @server.tool(description=_doc(
         "Lint the robot models under the paths. untrusted.report: urdf-lint's JSON report "
         "(file, line, column, code, message, macro chain, fixes); exit_code 1: findings. "
@@ -274,40 +287,40 @@ def build_server(root: str):
         "the robot is for, as --target (ros, gazebo, mujoco, drake, ...: `urdf-lint rules` "
         "lists them), which set each finding's severity (severity_from names the target that "
         "raised it)."))
-    def check(paths: list[str] | None = None, select: str | None = None,
+    def check(paths: list[str] | None = None, select: str | None = None,  # type: ignore[no-untyped-def]
               targets: list[str] | None = None):
         return tools.check(paths, select, targets)
 
     @server.tool(description=_doc(
         "What a rule (UL302 or limit-order) checks, why, and how to fix it (text: urdf-lint's "
         "own documentation)."))
-    def explain_rule(code: str):
+    def explain_rule(code: str):  # type: ignore[no-untyped-def]
         return tools.explain_rule(code)
 
     @server.tool(description=_doc(
         "Expand one xacro file to URDF in urdf-lint's sandboxed worker (args: xacro arg name "
         "-> value; names are identifiers). untrusted.urdf is the URDF, untrusted.messages "
         "the findings that stopped or marked it."))
-    def expand(file: str, args: dict[str, str] | None = None):
+    def expand(file: str, args: dict[str, str] | None = None):  # type: ignore[no-untyped-def]
         return tools.expand(file, args)
 
     @server.tool(description=_doc(
         "The safe fixes as a unified diff (untrusted.patch); apply=true writes them (then "
         "re-lints and rolls back any that did not work; untrusted.report: what remains)."))
-    def fix(paths: list[str] | None = None, apply: bool = False, unsafe: bool = False):
+    def fix(paths: list[str] | None = None, apply: bool = False, unsafe: bool = False):  # type: ignore[no-untyped-def]
         return tools.fix(paths, apply, unsafe)
 
     @server.tool(description=_doc(
         "What a change did to the robots between two git revisions (head: the working tree "
         "by default): the semantic change list as JSON (untrusted.report)."))
-    def diff(base: str, head: str | None = None, paths: list[str] | None = None):
+    def diff(base: str, head: str | None = None, paths: list[str] | None = None):  # type: ignore[no-untyped-def]
         return tools.diff(base, head, paths)
 
     @server.tool(description=_doc(
         "Draw a PNG snapshot of each model into the folder out (a folder inside the root), "
         "by default a new temporary folder outside the repository; returns the folder (out) "
         "and the PNGs' paths (untrusted.pngs)."))
-    def render(paths: list[str] | None = None, out: str | None = None):
+    def render(paths: list[str] | None = None, out: str | None = None):  # type: ignore[no-untyped-def]
         return tools.render(paths, out)
     return server
 
@@ -317,7 +330,7 @@ def _doc(text: str) -> str:
             + UNTRUSTED_NOTE)
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     p = sub.add_parser("mcp", help="a Model Context Protocol server on stdio (for coding agents)",
                        description="Serve check, explain_rule, expand, fix, diff and render to "
                                    "a coding agent over MCP on stdio. Every tool runs "
@@ -328,7 +341,7 @@ def add_parser(sub, raw) -> None:
     p.add_argument("--root", default=".", help="the folder the tools may reach (default: .)")
 
 
-def cmd_mcp(args) -> int:
+def cmd_mcp(args: Namespace) -> int:
     from urdf_lint.core.errors import UsageError
     if not os.path.isdir(args.root):
         raise UsageError(f"no such folder: {args.root}")

@@ -9,7 +9,12 @@ from __future__ import annotations
 import argparse
 import difflib
 import re
-from typing import NoReturn
+from typing import TYPE_CHECKING, NoReturn
+
+if TYPE_CHECKING:  # pragma: no cover
+    # what main.build_parser hands each command's add_parser(sub, raw)
+    SubParsers = argparse._SubParsersAction["Parser"]
+    Formatter = type[argparse.HelpFormatter]
 
 
 class Parser(argparse.ArgumentParser):
@@ -37,11 +42,11 @@ class Parser(argparse.ArgumentParser):
                 message += " (" + "; ".join(hints) + ")"
         self.exit(2, f"{self.prog}: error: {message}; see '{self.prog} --help'\n")
 
-    def flags(self) -> list:
+    def flags(self) -> list[str]:
         return [s for a in self._actions for s in a.option_strings]
 
 
-def add_key_flags(p, group: str) -> None:
+def add_key_flags(p: argparse.ArgumentParser, group: str) -> None:
     """The flags of the config keys in ``group`` (each key's ``flag`` in the schema)."""
     from urdf_lint.config.schema import FLAG_KEYS
     for k in FLAG_KEYS:
@@ -52,13 +57,13 @@ def add_key_flags(p, group: str) -> None:
                            action="append" if f.repeat else "store", help=k.cli_help())
 
 
-def add_selection(p) -> None:
+def add_selection(p: argparse.ArgumentParser) -> None:
     add_key_flags(p, "selection")
     p.add_argument("--exit-zero", action="store_true",
                    help="exit 0 even when there are findings (still 2 on errors)")
 
 
-def add_target(p) -> None:
+def add_target(p: argparse.ArgumentParser) -> None:
     from urdf_lint.config.schema import KEYS
     f = KEYS["targets"].flag
     assert f is not None
@@ -66,7 +71,7 @@ def add_target(p) -> None:
                    help=KEYS["targets"].cli_help())
 
 
-def add_inputs(p, config=True) -> None:
+def add_inputs(p: argparse.ArgumentParser, config: bool = True) -> None:
     p.add_argument("--package-path", action="append", metavar="NAME=DIR",
                    help="where package NAME is, for $(find NAME) and package://NAME; "
                         "repeatable (default: package.xml files under the paths and the "
@@ -79,7 +84,7 @@ def add_inputs(p, config=True) -> None:
     add_trust(p)
 
 
-def add_trust(p) -> None:
+def add_trust(p: argparse.ArgumentParser) -> None:
     """The keys a repository's own config may not set (urdf_lint/config/trust.py), and the switch
     that lets it."""
     from urdf_lint.config.schema import trust_config_help
@@ -87,16 +92,16 @@ def add_trust(p) -> None:
     p.add_argument("--trust-config", action="store_true", help=trust_config_help())
 
 
-def add_views(p) -> None:
+def add_views(p: argparse.ArgumentParser) -> None:
     add_key_flags(p, "views")
 
 
-def add_limits(p) -> None:
+def add_limits(p: argparse.ArgumentParser) -> None:
     add_key_flags(p, "limits")
     add_key_flags(p, "cache")
 
 
-def add_output(p) -> None:
+def add_output(p: argparse.ArgumentParser) -> None:
     from urdf_lint.report.registry import formats
     fmts = formats()
     add_key_flags(p, "output")
@@ -119,7 +124,7 @@ def add_output(p) -> None:
                         "no model uses")
 
 
-def add_fix(p) -> None:
+def add_fix(p: argparse.ArgumentParser) -> None:
     """``check --fix`` and friends (issue 14; :mod:`urdf_lint.cli.fix`)."""
     p.add_argument("--fix", action="store_true",
                    help="apply the safe fixes to the xacro sources, then report what remains "

@@ -5,17 +5,27 @@ from __future__ import annotations
 import os
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import ConfigOptions, load_cfg, options_from, parse_package_paths
 from urdf_lint.cli.parser import add_inputs
 from urdf_lint.core.emit import say, tell
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+    from urdf_lint.config.schema import Config
+    from urdf_lint.preview.scene import Scene
+    from urdf_lint.preview.server import PreviewServer
+    from urdf_lint.preview.session import Session
+
 
 NAME = "preview"
 
 
-def add_parser(sub, raw):
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     p = sub.add_parser("preview", help="show the expanded robot in 3D in a local web page",
                        description="Serve a live 3D view of the expanded robot (joint sliders, "
                                    "findings as markers) on 127.0.0.1; it follows saved files.")
@@ -37,20 +47,20 @@ def add_parser(sub, raw):
 class PreviewOptions:
     """What `urdf-lint preview` was asked: the robot, its args, the port and the limits."""
     path: str = "."
-    mappings: list = field(default_factory=list)
+    mappings: list[str] = field(default_factory=list)
     port: int = 0
     open: bool = False
     highlight: str = ""
     max_mesh_mb: int = 64
-    package_path: list | None = None
+    package_path: list[str] | None = None
     config: ConfigOptions = field(default_factory=ConfigOptions)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     return preview(options_from(PreviewOptions, args, config=ConfigOptions.from_args(args)))
 
 
-def start(o: PreviewOptions):
+def start(o: PreviewOptions) -> tuple[PreviewServer, Session]:
     """(server, session): the first expansion done and the server listening (not serving
     yet: ``server.start()``)."""
     from urdf_lint.cli.expand import parse_mappings
@@ -73,7 +83,7 @@ def start(o: PreviewOptions):
     return PreviewServer(session, port=o.port), session
 
 
-def _with_variant(cfg, entry: str, args: dict) -> None:
+def _with_variant(cfg: Config, entry: str, args: dict[str, str]) -> None:
     """The command line's args as the first variant of ``entry`` (before the configured ones)."""
     from urdf_lint.config.schema import ModelSpec
     specs = list(getattr(cfg, "models", None) or [])
@@ -85,12 +95,12 @@ def _with_variant(cfg, entry: str, args: dict) -> None:
     cfg.models = specs
 
 
-def page_url(server, highlight: str = "") -> str:
+def page_url(server: PreviewServer, highlight: str = "") -> str:
     from urllib.parse import quote
     return server.url + (f"#highlight={quote(highlight)}" if highlight else "")
 
 
-def scene_summary(s) -> str:
+def scene_summary(s: Scene) -> str:
     """The line said for a scene: its problems counted as ``check`` counts them."""
     return (f"urdf-lint: {s.label}: {len(s.links)} links, {len(s.joints)} joints, "
             f"{s.problems} problem(s) ({len(s.findings)} marker(s))")

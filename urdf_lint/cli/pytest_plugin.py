@@ -19,8 +19,12 @@ import json
 import os
 import subprocess
 import sys
+from typing import TYPE_CHECKING, Any
 
 import pytest
+
+if TYPE_CHECKING:  # pragma: no cover
+    from _pytest._code.code import TerminalRepr, TracebackStyle
 
 _RANK = {"info": 0, "warning": 1, "error": 2, "never": 3}
 
@@ -46,7 +50,8 @@ class UrdfLintError(Exception):
 class ModelItem(pytest.Item):
     """One robot model (one entry file with one set of xacro args)."""
 
-    def __init__(self, *, label: str, findings: list, fail_on: str, failed: bool, **kw) -> None:
+    def __init__(self, *, label: str, findings: list[dict[str, Any]], fail_on: str, failed: bool,
+                 **kw: Any) -> None:
         super().__init__(**kw)
         self.label = label
         self.findings = findings
@@ -59,7 +64,8 @@ class ModelItem(pytest.Item):
         if bad or self.failed:
             raise UrdfLintError(bad)
 
-    def repr_failure(self, excinfo, style=None):  # type: ignore[override]
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException],
+                     style: TracebackStyle | None = None) -> str | TerminalRepr:
         if isinstance(excinfo.value, UrdfLintError):
             bad = excinfo.value.args[0]
             own = [i for f in bad for i in _own_instances(f, self.label)]
@@ -71,7 +77,7 @@ class ModelItem(pytest.Item):
             return "\n".join(lines)
         return super().repr_failure(excinfo)
 
-    def reportinfo(self):
+    def reportinfo(self) -> tuple[os.PathLike[str] | str, int | None, str]:
         return self.path, None, f"urdf-lint {self.label}"
 
 
@@ -79,7 +85,7 @@ class RunItem(pytest.Item):
     """The run itself: fails when urdf-lint could not complete (a usage or config error, an
     internal error), with what it said."""
 
-    def __init__(self, *, problem: str, **kw) -> None:
+    def __init__(self, *, problem: str, **kw: Any) -> None:
         super().__init__(**kw)
         self.problem = problem
 
@@ -87,23 +93,24 @@ class RunItem(pytest.Item):
         if self.problem:
             raise UrdfLintError(self.problem)
 
-    def repr_failure(self, excinfo, style=None):  # type: ignore[override]
+    def repr_failure(self, excinfo: pytest.ExceptionInfo[BaseException],
+                     style: TracebackStyle | None = None) -> str | TerminalRepr:
         if isinstance(excinfo.value, UrdfLintError):
             return str(excinfo.value.args[0])
         return super().repr_failure(excinfo)
 
-    def reportinfo(self):
+    def reportinfo(self) -> tuple[os.PathLike[str] | str, int | None, str]:
         return self.path, None, "urdf-lint run"
 
 
-def _finding_line(f: dict) -> str:
+def _finding_line(f: dict[str, Any]) -> str:
     s = f"  {f['file']}:{f['line']}:{f['col']}: {f['code']} {f['severity']}: {f['message']}"
     for file, line, *_ in f.get("chain") or ():
         s += f"\n      called from {file}:{line}"
     return s
 
 
-def _own_instances(finding: dict, label: str) -> list[dict]:
+def _own_instances(finding: dict[str, Any], label: str) -> list[dict[str, Any]]:
     """What ``finding`` is in the model ``label``: a finding at a macro line that several
     models reach is one finding whose ``instances`` say which element, message and call chain
     belong to which model; a model's item shows its own (all of them), never another model's."""
@@ -111,10 +118,10 @@ def _own_instances(finding: dict, label: str) -> list[dict]:
     return own or [finding]
 
 
-def _label(model: dict) -> str:
+def _label(model: dict[str, Any]) -> str:
     """The label urdf-lint gives a model (``jobs.ModelReport.label``): its entry, then its
     args as ``[k:=v ...]``."""
-    label = model["entry"]
+    label: str = model["entry"]
     if model.get("args"):
         label += " [" + " ".join(f"{k}:={v}" for k, v in sorted(model["args"].items())) + "]"
     return label
@@ -127,7 +134,7 @@ def _fail_on(path: str) -> str:
     return load_config(find_config(path)).fail_on
 
 
-def _run(paths: list, rootdir: str) -> tuple[dict | None, str]:
+def _run(paths: list[str], rootdir: str) -> tuple[dict[str, Any] | None, str]:
     """(the JSON report, what went wrong): one ``urdf-lint check`` of ``paths``."""
     cmd = [sys.executable, "-m", "urdf_lint", "check", "--format", "json", "--exit-zero",
            "--", *paths]
@@ -151,7 +158,7 @@ def _nodeid(name: str) -> str:
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config,
-                                  items: list) -> None:
+                                  items: list[pytest.Item]) -> None:
     """Add one item per model before ``-k``/``-m`` selection (which then applies to them)."""
     if not _enabled(config):
         return
@@ -163,7 +170,7 @@ def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config
                                          problem=problem))
         return
     fail_on = _fail_on(os.path.join(rootdir, paths[0]))
-    by_model: dict[str, list] = {}
+    by_model: dict[str, list[dict[str, Any]]] = {}
     for f in report["findings"]:
         for label in f.get("models") or [""]:
             by_model.setdefault(label, []).append(f)

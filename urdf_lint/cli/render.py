@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from urdf_lint.cli.common import (ConfigOptions, Out, clear_stale, load_cfg, no_models_warning,
                                   note_unused, options_from, parse_package_paths,
@@ -11,11 +12,16 @@ from urdf_lint.cli.parser import add_inputs, add_limits, add_target, add_views
 from urdf_lint.core.emit import tell
 from urdf_lint.core.errors import UsageError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
+
 
 NAME = "render"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     rd = sub.add_parser("render", help="write .rrd recordings and PNG snapshots",
                         description="Write a .rrd recording and a PNG snapshot per model.")
     rd.add_argument("paths", nargs="*", default=["."], metavar="PATH",
@@ -33,14 +39,14 @@ def add_parser(sub, raw) -> None:
 class RenderOptions:
     """What ``render`` was asked to do (from the command line, or the MCP server's ``render``
     tool: the same typed options, no command line in between)."""
-    paths: list = field(default_factory=lambda: ["."])
+    paths: list[str] = field(default_factory=lambda: ["."])
     out: str = "snapshots"
     no_rrd: bool = False
-    package_path: list | None = None
+    package_path: list[str] | None = None
     config: ConfigOptions = field(default_factory=ConfigOptions)
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     return render(options_from(RenderOptions, args, config=ConfigOptions.from_args(args)))
 
 

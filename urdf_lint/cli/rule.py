@@ -1,19 +1,26 @@
 """``urdf-lint rule CODE``: one rule's documentation."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdf_lint.cli.rules import plain
 from urdf_lint.core.errors import UsageError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
 
 
 NAME = "rule"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     r = sub.add_parser("rule", help="explain one rule", description="Explain one rule.")
     r.add_argument("code", help="a rule code (UL302) or name (limit-order)")
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     return explain(args.code)
 
 

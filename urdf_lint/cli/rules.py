@@ -3,12 +3,18 @@ from __future__ import annotations
 
 import re
 import sys
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # pragma: no cover
+    from argparse import Namespace
+
+    from urdf_lint.cli.parser import Formatter, SubParsers
 
 
 NAME = "rules"
 
 
-def add_parser(sub, raw) -> None:
+def add_parser(sub: SubParsers, raw: Formatter) -> None:
     rl = sub.add_parser("rules", help="list the rule catalogue", description="List the rule catalogue.")
     rl.add_argument("--format", choices=["text", "markdown"], default="text",
                     help="text: one line per rule; markdown: the full rules page (default: text)")
@@ -26,7 +32,7 @@ def first_sentence(doc: str) -> str:
     return para if m is None else para[:m.start() + 1]
 
 
-def run(args) -> int:
+def run(args: Namespace) -> int:
     from urdf_lint.engine.registry import load_rules
     if args.format == "markdown":
         from urdf_lint.engine.rulesdoc import markdown

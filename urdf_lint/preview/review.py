@@ -39,7 +39,7 @@ def changed_links(md: Any) -> list[str]:
 
 
 def _change_text(c: Any) -> str:
-    what = c.change + (f" {c.field}" if c.field else "")
+    what: str = c.change + (f" {c.field}" if c.field else "")
     if c.change == "changed":
         what += f": {_short(c.before)} -> {_short(c.after)}"
     return what

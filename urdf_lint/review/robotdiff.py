@@ -15,8 +15,21 @@ import hashlib
 import math
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable
 
 from urdf_lint.core.locations import Origin
+
+if TYPE_CHECKING:  # pragma: no cover
+    from urdf_lint.engine.model import Model
+
+Element = Any   # an lxml element (lxml ships no type information here)
+Vec = tuple[float, ...]
+Rot = tuple[Vec, ...]
+Pose = tuple[Rot, Vec]             # (rotation, translation)
+Key = tuple[str, str]              # (kind, name)
+FindingKey = tuple[str, str, str]  # (code, file relative to its revision, message)
+Locate = Callable[[Element], "Origin | None"]
+ValueSource = Callable[["_Fact | None", str], tuple[Any, ...]]
 
 _TOL = 1e-9          # relative/absolute float tolerance for "unchanged"
 _MOVE_TOL = 1e-6     # metres / radians below which a link has not moved
@@ -34,12 +47,12 @@ class Change:
     after: object = None
     head: Origin | None = None     # where HEAD writes it (None when removed)
     base: Origin | None = None     # where BASE wrote it (None when added)
-    value_from: tuple = ()         # (file, line, col) HEAD's value comes from (a YAML scalar,
+    value_from: tuple[Any, ...] = ()   # (file, line, col) HEAD's value comes from (a YAML scalar,
                                    # a property elsewhere), () when written at ``head``
 
-    def to_dict(self, rel=None) -> dict:
+    def to_dict(self, rel: Callable[[str], str] | None = None) -> dict[str, Any]:
         rel = rel or (lambda p: p)
-        def loc(o):
+        def loc(o: Origin | None) -> dict[str, Any] | None:
             return None if o is None else {"file": rel(o.file), "line": o.line, "col": o.col,
                                            "chain": [[rel(c[0]), c[1], c[2]] for c in o.chain]}
         return {"kind": self.kind, "name": self.name, "change": self.change, "field": self.field,
@@ -55,19 +68,23 @@ class ModelDiff:
     findings introduced and fixed."""
     model: str                     # display label of the model
     status: str                    # changed | unchanged | added | removed | failed
-    changes: list = field(default_factory=list)
-    moved: list = field(default_factory=list)     # (link, metres, radians), largest first
-    findings_introduced: list = field(default_factory=list)
-    findings_fixed: list = field(default_factory=list)
-    finding_lines: dict = field(default_factory=dict)   # finding key -> (line, col) in its revision
-    finding_related: dict = field(default_factory=dict)  # finding key -> (file, line, col) of the
-                                   # robot element an SRDF or YAML finding is about, in its revision
+    changes: list[Change] = field(default_factory=list)
+    # (link, metres, radians), largest first
+    moved: list[tuple[str, float, float]] = field(default_factory=list)
+    # (finding key, severity); a key is (code, file relative to its revision, message)
+    findings_introduced: list[tuple[FindingKey, str]] = field(default_factory=list)
+    findings_fixed: list[tuple[FindingKey, str]] = field(default_factory=list)
+    # finding key -> (line, col) in its revision
+    finding_lines: dict[FindingKey, tuple[int, int]] = field(default_factory=dict)
+    # finding key -> (file, line, col) of the robot element an SRDF or YAML finding is about,
+    # in its revision
+    finding_related: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
     error: str = ""
-    snapshot: dict = field(default_factory=dict)   # diff --render: png/diff/rrd paths
+    snapshot: dict[str, Any] = field(default_factory=dict)   # diff --render: png/diff/rrd paths
     picture: str = ""              # the file name stem of its pictures (locations.picture_name)
 
 
-def _jsonable(v):
+def _jsonable(v: Any) -> Any:
     if isinstance(v, tuple):
         return [_jsonable(x) for x in v]
     if isinstance(v, float) and not math.isfinite(v):
@@ -76,14 +93,14 @@ def _jsonable(v):
 
 
 # -- facts ------------------------------------------------------------------------------------
-def _num(s):
+def _num(s: Any) -> Any:
     try:
         return float(s)
     except (TypeError, ValueError):
         return s
 
 
-def _vec(s, n=3):
+def _vec(s: str | None, n: int = 3) -> Vec | str | None:
     if s is None:
         return None
     parts = s.split()
@@ -94,14 +111,14 @@ def _vec(s, n=3):
     return v if len(v) == n else s
 
 
-def _origin(el):
+def _origin(el: Element) -> dict[str, Any]:
     o = el.find("origin") if el is not None else None
     xyz = _vec(o.get("xyz")) if o is not None and o.get("xyz") is not None else (0.0, 0.0, 0.0)
     rpy = _vec(o.get("rpy")) if o is not None and o.get("rpy") is not None else (0.0, 0.0, 0.0)
     return {"xyz": xyz, "rpy": rpy}
 
 
-def _el(el, fallback):
+def _el(el: Element, fallback: Element) -> Element:
     """lxml elements are falsy without children: never use ``or`` on them."""
     return el if el is not None else fallback
 
@@ -110,11 +127,16 @@ class _Fact:
     """A value with the element that wrote it (for the location)."""
     __slots__ = ("value", "el")
 
-    def __init__(self, value, el) -> None:
+    def __init__(self, value: Any, el: Element) -> None:
         self.value, self.el = value, el
 
 
-def _mesh_digest(model, uri, cache):
+FactMap = dict[str, _Fact]                           # field -> its value and element
+Facts = dict[Key, tuple[Element, FactMap]]           # (kind, name) -> (element, its facts)
+
+
+def _mesh_digest(model: "Model", uri: str, cache: dict[tuple[str, str], str | None]
+                 ) -> str | None:
     if model.resolver is None:
         return None
     from urdf_lint.meshes import resolve as meshes
@@ -134,13 +156,14 @@ def _mesh_digest(model, uri, cache):
     return cache[key]
 
 
-def _geometry(model, g, cache):
+def _geometry(model: "Model", g: Element, cache: dict[tuple[str, str], str | None]
+              ) -> dict[str, Any]:
     if g is None:
         return {}
     shape = next((c for c in g if isinstance(c.tag, str)), None)
     if shape is None:
         return {}
-    out = {"type": shape.tag}
+    out: dict[str, Any] = {"type": shape.tag}
     for a in ("size", "scale"):
         if shape.get(a) is not None:
             out[a] = _vec(shape.get(a))
@@ -155,10 +178,10 @@ def _geometry(model, g, cache):
     return out
 
 
-def robot_facts(model) -> dict:
+def robot_facts(model: "Model") -> "Facts":
     """{(kind, name): {field: _Fact}} plus the element of each link/joint (for locations)."""
-    facts: dict = {}
-    cache: dict = {}
+    facts: Facts = {}
+    cache: dict[tuple[str, str], str | None] = {}
     for lk in model.top_links():
         facts[("link", lk.get("name"))] = (lk, _link_facts(model, lk, cache))
     for j in model.top_joints():
@@ -168,8 +191,9 @@ def robot_facts(model) -> dict:
     return facts
 
 
-def _link_facts(model, lk, cache) -> dict:
-    f: dict = {}
+def _link_facts(model: "Model", lk: Element, cache: dict[tuple[str, str], str | None]
+                ) -> "FactMap":
+    f: FactMap = {}
     inertial = lk.find("inertial")
     if inertial is not None:
         _inertial_facts(inertial, f)
@@ -179,7 +203,7 @@ def _link_facts(model, lk, cache) -> dict:
     return f
 
 
-def _inertial_facts(inertial, f: dict) -> None:
+def _inertial_facts(inertial: Element, f: "FactMap") -> None:
     m = inertial.find("mass")
     f["inertial.mass"] = _Fact(_num(m.get("value")) if m is not None else None, _el(m, inertial))
     o = _origin(inertial)
@@ -191,7 +215,8 @@ def _inertial_facts(inertial, f: dict) -> None:
                                             ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")), i)
 
 
-def _part_facts(model, part: str, key: str, el, cache, f: dict) -> None:
+def _part_facts(model: "Model", part: str, key: str, el: Element,
+                cache: dict[tuple[str, str], str | None], f: "FactMap") -> None:
     """The facts of one ``<visual>`` or ``<collision>`` (``key``: ``visual[0]``...)."""
     geometry = el.find("geometry")
     shape = next((c for c in geometry if isinstance(c.tag, str)), geometry) \
@@ -216,8 +241,8 @@ _JOINT_ATTRS = (("limit", ("lower", "upper", "effort", "velocity")),
                                        "k_position", "k_velocity")))
 
 
-def _joint_facts(j) -> dict:
-    f = {"type": _Fact(j.get("type"), j)}
+def _joint_facts(j: Element) -> "FactMap":
+    f: FactMap = {"type": _Fact(j.get("type"), j)}
     for k in ("parent", "child"):
         e = j.find(k)
         f[k] = _Fact(e.get("link") if e is not None else None, e if e is not None else j)
@@ -238,8 +263,8 @@ def _joint_facts(j) -> dict:
     return f
 
 
-def _material_facts(el) -> dict:
-    f = {}
+def _material_facts(el: Element) -> "FactMap":
+    f: FactMap = {}
     c = el.find("color")
     if c is not None:
         f["rgba"] = _Fact(_vec(c.get("rgba"), 4), c)
@@ -250,7 +275,7 @@ def _material_facts(el) -> dict:
 
 
 # -- kinematics at the zero configuration ------------------------------------------------------
-def _rot(rpy):
+def _rot(rpy: Vec) -> Rot:
     r, p, y = rpy
     cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
     return ((cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
@@ -258,16 +283,16 @@ def _rot(rpy):
             (-sp, cp * sr, cp * cr))
 
 
-def _mul(a, b):
+def _mul(a: Pose, b: Pose) -> Pose:
     (ra, ta), (rb, tb) = a, b
     r = tuple(tuple(sum(ra[i][k] * rb[k][j] for k in range(3)) for j in range(3)) for i in range(3))
     t = tuple(sum(ra[i][k] * tb[k] for k in range(3)) + ta[i] for i in range(3))
     return r, t
 
 
-def world_poses(facts) -> dict:
+def world_poses(facts: "Facts") -> dict[str, Pose]:
     """link -> (rotation, translation) at the zero configuration, from every tree root."""
-    children: dict = {}
+    children: dict[str, list[tuple[str, Pose]]] = {}
     is_child = set()
     for (kind, _), (_, f) in facts.items():
         if kind != "joint":
@@ -278,8 +303,8 @@ def world_poses(facts) -> dict:
         parent, child = f["parent"].value, f["child"].value
         children.setdefault(parent, []).append((child, (_rot(rpy), xyz)))
         is_child.add(child)
-    ident = (((1.0, 0, 0), (0, 1.0, 0), (0, 0, 1.0)), (0.0, 0.0, 0.0))
-    poses: dict = {}
+    ident: Pose = (((1.0, 0, 0), (0, 1.0, 0), (0, 0, 1.0)), (0.0, 0.0, 0.0))
+    poses: dict[str, Pose] = {}
     roots = [n for (k, n) in facts if k == "link" and n not in is_child]
     stack = [(r, ident) for r in roots]
     while stack:
@@ -292,14 +317,14 @@ def world_poses(facts) -> dict:
     return poses
 
 
-def _angle_between(ra, rb) -> float:
+def _angle_between(ra: Rot, rb: Rot) -> float:
     # angle of ra^T rb
     tr = sum(ra[k][i] * rb[k][i] for i in range(3) for k in range(3))
     return math.acos(max(-1.0, min(1.0, (tr - 1.0) / 2.0)))
 
 
 # -- comparison --------------------------------------------------------------------------------
-def _same(a, b) -> bool:
+def _same(a: object, b: object) -> bool:
     if isinstance(a, tuple) and isinstance(b, tuple):
         return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
     if isinstance(a, float) and isinstance(b, float):
@@ -307,7 +332,7 @@ def _same(a, b) -> bool:
     return a == b
 
 
-def _signature(f: dict, rename: dict) -> tuple:
+def _signature(f: "FactMap", rename: dict[str, str]) -> tuple[tuple[str, Any], ...]:
     items = []
     for k, v in sorted(f.items()):
         val = v.value
@@ -317,7 +342,7 @@ def _signature(f: dict, rename: dict) -> tuple:
     return tuple(items)
 
 
-def _round(v):
+def _round(v: Any) -> Any:
     if isinstance(v, float):
         return round(v, 9)
     if isinstance(v, tuple):
@@ -325,29 +350,30 @@ def _round(v):
     return v
 
 
-def diff_facts(base: dict, head: dict, base_model, head_model) -> tuple[list, list]:
+def diff_facts(base: "Facts", head: "Facts", base_model: "Model | None",
+               head_model: "Model | None") -> tuple[list[Change], list[tuple[str, float, float]]]:
     """(changes, moved links) between two fact sets of one robot."""
-    hloc = head_model.origin if head_model is not None else (lambda el: None)
-    bloc = base_model.origin if base_model is not None else (lambda el: None)
+    hloc: Locate = head_model.origin if head_model is not None else (lambda el: None)
+    bloc: Locate = base_model.origin if base_model is not None else (lambda el: None)
     renames = _match_renames(base, head)
     changes = _presence_changes(base, head, renames, hloc, bloc)
     changes += _field_changes(base, head, renames, hloc, bloc, _value_source(head_model))
     return changes, _moved_links(base, head, renames)
 
 
-def _link_map(renames: dict) -> dict:
+def _link_map(renames: dict[Key, str]) -> dict[str, str]:
     return {o: n for (k, o), n in renames.items() if k == "link"}
 
 
-def _match_renames(base: dict, head: dict) -> dict:
+def _match_renames(base: "Facts", head: "Facts") -> dict[Key, str]:
     """``(kind, old name) -> new name`` for each element removed at BASE whose facts match
     one added at HEAD (links first, so joints and materials match through renamed links)."""
-    renames: dict = {}   # (kind, old) -> new
+    renames: dict[Key, str] = {}   # (kind, old) -> new
     for kind in ("link", "joint", "material"):
         removed = [n for (k, n) in base if k == kind and (k, n) not in head]
         added = [n for (k, n) in head if k == kind and (k, n) not in base]
         link_map = _link_map(renames)
-        by_sig: dict = {}
+        by_sig: dict[tuple[tuple[str, Any], ...], list[str]] = {}
         for n in added:
             by_sig.setdefault(_signature(head[(kind, n)][1], {}), []).append(n)
         for o in removed:
@@ -360,7 +386,8 @@ def _match_renames(base: dict, head: dict) -> dict:
     return renames
 
 
-def _match_joints_by_links(base, head, removed, added, link_map, renames) -> None:
+def _match_joints_by_links(base: "Facts", head: "Facts", removed: list[str], added: list[str],
+                           link_map: dict[str, str], renames: dict[Key, str]) -> None:
     """Joints also match by structure: the same parent and child links."""
     left = [o for o in removed if ("joint", o) not in renames]
     taken = set(renames.values())
@@ -376,7 +403,8 @@ def _match_joints_by_links(base, head, removed, added, link_map, renames) -> Non
                 break
 
 
-def _presence_changes(base, head, renames, hloc, bloc) -> list[Change]:
+def _presence_changes(base: "Facts", head: "Facts", renames: dict[Key, str], hloc: Locate,
+                      bloc: Locate) -> list[Change]:
     """The elements added, renamed and removed."""
     changes: list[Change] = []
     new_names = {(k, n) for (k, _), n in renames.items()}
@@ -395,7 +423,8 @@ def _presence_changes(base, head, renames, hloc, bloc) -> list[Change]:
     return changes
 
 
-def _field_changes(base, head, renames, hloc, bloc, value_from) -> list[Change]:
+def _field_changes(base: "Facts", head: "Facts", renames: dict[Key, str], hloc: Locate,
+                   bloc: Locate, value_from: ValueSource) -> list[Change]:
     """The fields whose value differs, for each element on both sides (renamed included)."""
     changes: list[Change] = []
     pairs = [((k, n), (k, n)) for (k, n) in head if (k, n) in base]
@@ -414,12 +443,13 @@ def _field_changes(base, head, renames, hloc, bloc, value_from) -> list[Change]:
     return changes
 
 
-def _moved_links(base, head, renames) -> list:
+def _moved_links(base: "Facts", head: "Facts", renames: dict[Key, str]
+                 ) -> list[tuple[str, float, float]]:
     """(link, distance, angle) of each link whose pose at the zero configuration moved,
     the farthest first."""
     bp, hp = world_poses(base), world_poses(head)
     link_map = _link_map(renames)
-    moved = []
+    moved: list[tuple[str, float, float]] = []
     for old, (rb, tb) in bp.items():
         new = link_map.get(old, old)
         if new not in hp:
@@ -433,7 +463,7 @@ def _moved_links(base, head, renames) -> list:
     return moved
 
 
-def _value_source(model):
+def _value_source(model: "Model | None") -> ValueSource:
     """``(fact, field) -> (file, line, col) | ()``: where HEAD's value of ``field`` comes from
     when not from the element's own line (the YAML line a person edits, a property elsewhere):
     :meth:`urdf_lint.fix.fixes.Fixer.value_from` on the attribute the field names
@@ -443,7 +473,7 @@ def _value_source(model):
     from urdf_lint.fix.fixes import Fixer
     fixer = Fixer(model)
 
-    def source(fact, field: str) -> tuple:
+    def source(fact: _Fact | None, field: str) -> tuple[Any, ...]:
         attr = field.rsplit(".", 1)[-1]
         if fact is None or fact.el is None or fact.el.get(attr) is None:
             return ()
@@ -451,9 +481,10 @@ def _value_source(model):
     return source
 
 
-def diff_models(base_model, head_model) -> tuple[list, list]:
-    base = robot_facts(base_model) if base_model is not None else {}
-    head = robot_facts(head_model) if head_model is not None else {}
+def diff_models(base_model: "Model | None", head_model: "Model | None"
+                ) -> tuple[list[Change], list[tuple[str, float, float]]]:
+    base: Facts = robot_facts(base_model) if base_model is not None else {}
+    head: Facts = robot_facts(head_model) if head_model is not None else {}
     changes, moved = diff_facts(base, head, base_model, head_model)
     if base_model is not None and head_model is not None and base_model.name != head_model.name:
         changes.insert(0, Change("robot", head_model.name, "changed", "name", base_model.name,

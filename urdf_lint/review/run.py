@@ -21,10 +21,33 @@ import tarfile
 import tempfile
 from collections import Counter
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal, cast, overload
 
 from urdf_lint.report.diff.base import DiffResult
 from urdf_lint.review.robotdiff import ModelDiff, diff_models
 from urdf_lint.core.codes import RuleName
+
+if TYPE_CHECKING:  # pragma: no cover
+    import threading
+    from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+
+    from urdf_lint.config.schema import Config
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.core.locations import Origin
+    from urdf_lint.discovery.discover import Discovery
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.engine.model import Model
+    from urdf_lint.render.raster import Geometry
+    from urdf_lint.render.recording import Plan, Recorder
+    from urdf_lint.review.robotdiff import Change, FindingKey
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.run.pipeline import CheckResult
+
+    CfgLoader = Callable[[list[str]], Config]       # the config of a revision's paths
+    # on_model(model_diff, head_model, base_model)
+    OnModel = Callable[[ModelDiff, "Model | None", "Model | None"], object]
+    # .rrd path -> (model key, its snapshot info, recording id, the revisions' plans)
+    Recordings = dict[str, tuple[str, dict[str, Any], str, list[tuple[str, Plan]]]]
 
 # the rules whose findings say a revision did not expand, by name (core.codes: importing the
 # rule modules would load the rule API, which this command's parent does not need)
@@ -50,12 +73,21 @@ class ReviewError(Exception):
     pass
 
 
-def _git(top, *args, binary=False):
+@overload
+def _git(top: str, *args: str, binary: Literal[False] = False) -> str: ...
+
+
+@overload
+def _git(top: str, *args: str, binary: Literal[True]) -> bytes: ...
+
+
+def _git(top: str, *args: str, binary: bool = False) -> str | bytes:
     """git in ``top`` (:func:`urdf_lint.discovery.vcs.git`); a failure is a ReviewError with
     git's last line."""
     from urdf_lint.discovery.vcs import GitError, git
     try:
-        return git(*args, cwd=top, timeout=120, binary=binary)
+        out: str | bytes = git(*args, cwd=top, timeout=120, binary=binary)
+        return out
     except GitError as e:
         raise ReviewError(str(e).strip().splitlines()[-1]) from None
 
@@ -68,7 +100,7 @@ def verify_rev(top: str, rev: str) -> str:
                           f"'git fetch origin {rev}')") from None
 
 
-def materialize(top: str, rev: str, dest: str, only=None) -> None:
+def materialize(top: str, rev: str, dest: str, only: "Iterable[str] | None" = None) -> None:
     """The tracked files of ``rev`` (or just ``only``, paths relative to the top) under
     ``dest``; links and paths that would leave ``dest`` are refused by tarfile's data filter."""
     from urdf_lint.core import fsbound
@@ -91,7 +123,7 @@ def materialize(top: str, rev: str, dest: str, only=None) -> None:
                 tf.extractall(dest, members=_inside(tf, dest))
 
 
-def _data_or_skip(member, path):
+def _data_or_skip(member: tarfile.TarInfo, path: str) -> tarfile.TarInfo | None:
     """tarfile's ``data`` filter, but a member it refuses (an absolute symlink, a link out of
     the tree, a device) is left out instead of ending the run: what reads it later finds it
     missing, as the linted tree would not hold it either (inside the roots)."""
@@ -101,7 +133,7 @@ def _data_or_skip(member, path):
         return None
 
 
-def _inside(tf, dest):
+def _inside(tf: tarfile.TarFile, dest: str) -> "Iterator[tarfile.TarInfo]":
     """What :func:`_data_or_skip` keeps, where tarfile has no filters: folders, regular files
     and symlinks whose path, and a symlink's target, stay inside ``dest`` after symlinks (the
     members already extracted included), without setuid bits or group/other write."""
@@ -149,30 +181,35 @@ def name_status(top: str, base: str, head: str | None) -> list[tuple[str, str, s
 class Side:
     """One revision of a ``diff`` run: its models, findings, robots and pictures."""
     root: str
-    models: dict = field(default_factory=dict)      # key -> ModelResult
-    findings: dict = field(default_factory=dict)    # key -> Counter of (code, file, message)
-    severities: dict = field(default_factory=dict)  # (code, file, message) -> severity
-    lines: dict = field(default_factory=dict)       # (code, file, message) -> (line, col)
-    related: dict = field(default_factory=dict)     # (code, file, message) -> (file relative
-                                                    # to root, line, col) of the robot element
-    robots: dict = field(default_factory=dict)      # key -> Model | None
-    geometry: dict = field(default_factory=dict)    # key -> render.Geometry (diff --render)
-    rrd: dict = field(default_factory=dict)         # key -> recording.Plan of this revision
-    errors: dict = field(default_factory=dict)      # key -> message
-    pictures: dict = field(default_factory=dict)    # key -> its pictures' name (as `render`'s)
+    models: dict[str, ModelReport] = field(default_factory=dict)      # key -> ModelResult
+    # key -> Counter of (code, file, message)
+    findings: dict[str, Counter[FindingKey]] = field(default_factory=dict)
+    # (code, file, message) -> severity
+    severities: dict[FindingKey, str] = field(default_factory=dict)
+    # (code, file, message) -> (line, col)
+    lines: dict[FindingKey, tuple[int, int]] = field(default_factory=dict)
+    # (code, file, message) -> (file relative to root, line, col) of the robot element
+    related: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
+    robots: dict[str, Model | None] = field(default_factory=dict)      # key -> Model | None
+    # key -> render.Geometry (diff --render)
+    geometry: dict[str, Geometry] = field(default_factory=dict)
+    rrd: dict[str, Plan] = field(default_factory=dict)    # key -> recording.Plan of this revision
+    errors: dict[str, str] = field(default_factory=dict)      # key -> message
+    # key -> its pictures' name (as `render`'s)
+    pictures: dict[str, str] = field(default_factory=dict)
 
 
-def _key(rel_entry: str, args: dict) -> str:
+def _key(rel_entry: str, args: dict[str, str]) -> str:
     return rel_entry + ("" if not args else " [" + " ".join(
         f"{k}:={v}" for k, v in sorted(args.items())) + "]")
 
 
 @functools.lru_cache(maxsize=65536)
-def _realpath(path):
+def _realpath(path: str) -> str:
     return os.path.realpath(path)
 
 
-def _rel(root, path):
+def _rel(root: str, path: str) -> str:
     # memoised: every dependency of every model goes through here (thousands of paths)
     return os.path.relpath(_realpath(path), _realpath(root))
 
@@ -187,13 +224,13 @@ class _Reach:
     holds none of them. Any other change (YAML, meshes, manifests, configs) lints every
     model, whose recorded inputs then say which are affected."""
 
-    def __init__(self, changed_abs) -> None:
+    def __init__(self, changed_abs: "Iterable[str]") -> None:
         self.changed = {os.path.realpath(p) for p in changed_abs}
         self.active = bool(self.changed) and all(p.endswith(_SOURCE_SUFFIXES)
                                                  for p in self.changed)
         self.skipped = 0   # models not linted (counted in the total)
 
-    def __call__(self, jobs, found):
+    def __call__(self, jobs: "list[LintJob]", found: "Discovery") -> "list[LintJob]":
         if not self.active:
             return jobs
         keep = []
@@ -204,12 +241,12 @@ class _Reach:
                 self.skipped += 1
         return keep
 
-    def _may_reach(self, job, found) -> bool:
+    def _may_reach(self, job: "LintJob", found: "Discovery") -> bool:
         graph = found.graph
         # a xacro with generated outputs reads those files too (UL011 compares them); a
         # generated URDF is a model of its own, whose only source is itself
         todo = [job.entry] + ([job.output] if job.output else []) + list(job.outputs)
-        seen: set = set()
+        seen: set[str] = set()
         while todo:
             f = todo.pop()
             real = _realpath(f)
@@ -225,8 +262,13 @@ class _Reach:
         return False
 
 
-def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models=False,
-               mesh_cache_dir=None, select_jobs=None, settings_overrides=None, explore=False):
+def _lint_side(side: Side, paths: "Sequence[str]", cfg: "Config",
+               package_paths: dict[str, str] | None, jobs_n: int | None,
+               cache: "Cache | None", keep_models: bool = False,
+               mesh_cache_dir: str | None = None,
+               select_jobs: "Callable[[list[LintJob], Any], list[LintJob]] | None" = None,
+               settings_overrides: "Mapping[str, Any] | None" = None, explore: bool = False
+               ) -> "tuple[PackageResolver, CheckResult]":
     """Lint one revision as ``check`` would; with ``keep_models`` the robots come back from
     the same expansion (no second pass in :func:`_load_robots`). Packages resolve from the
     whole revision (``side.root``), as they do at HEAD, even when only a few entries are
@@ -239,7 +281,7 @@ def _lint_side(side: Side, paths, cfg, package_paths, jobs_n, cache, keep_models
                                   keep_models=keep_models, mesh_cache_dir=mesh_cache_dir,
                                   select_jobs=select_jobs,
                                   settings_overrides=settings_overrides, explore=explore))
-    labels = {}
+    labels: dict[str, str] = {}
     for m in result.models:
         k = _key(_rel(side.root, m.entry), m.args)
         side.models[k] = m
@@ -271,13 +313,15 @@ def _unrooted(root: str, message: str) -> str:
     return message.replace(_realpath(root) + os.sep, "").replace(root + os.sep, "")
 
 
-def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True) -> None:
+def _load_robots(side: Side, keys: "Iterable[str]", resolver: "PackageResolver", cfg: "Config",
+                 jobs_n: int | None, render: bool = False, rrd: bool = True) -> None:
     """Expand the given models once more in workers and build the Model of each (and, for
     ``--render``, the geometry of its picture and its half of the shared recording)."""
     from urdf_lint.core.jobs import LintJob
     from urdf_lint.run.pipeline import settings_for
     from urdf_lint.run.worker import run_jobs
-    jobs, key_of = [], {}
+    jobs: list[LintJob] = []
+    key_of: dict[int, str] = {}
     for k in keys:
         m = side.models.get(k)
         if m is None:
@@ -293,13 +337,14 @@ def _load_robots(side: Side, keys, resolver, cfg, jobs_n, render=False, rrd=True
     for job, res in run_jobs(jobs, settings, jobs_n=jobs_n or cfg.jobs):
         k = key_of[id(job)]
         if res.diff_geometry is not None:
-            side.geometry[k] = res.diff_geometry
+            side.geometry[k] = cast("Geometry", res.diff_geometry)
         if res.diff_rrd:
-            side.rrd[k] = res.diff_rrd
+            side.rrd[k] = cast("Plan", res.diff_rrd)
         _keep_robot(side, k, job.entry, job.args, res, resolver)
 
 
-def _keep_robot(side: Side, k, entry, args, res, resolver) -> None:
+def _keep_robot(side: Side, k: str, entry: str, args: dict[str, str], res: "ModelReport",
+                resolver: "PackageResolver | None") -> None:
     """The Model of a report that kept its robot (``LintSettings.keep_model``), or why not."""
     from urdf_lint.engine.model import Model, model_from_xml, parse_urdf_bytes
     kept = res.kept_model
@@ -325,7 +370,7 @@ def _keep_robot(side: Side, k, entry, args, res, resolver) -> None:
                           if root is not None else None)
 
 
-def _half(jobs_n, cfg) -> int:
+def _half(jobs_n: int | None, cfg: "Config") -> int:
     """Workers for one of two revisions that are linted / drawn at the same time."""
     return max(1, (jobs_n or cfg.jobs or os.cpu_count() or 2) // 2)
 
@@ -334,10 +379,10 @@ class _Background:
     """``fn(*args)`` in a thread (its workers are processes: the thread only waits on
     them); :meth:`join` raises what it raised."""
 
-    def __init__(self, fn, *args) -> None:
+    def __init__(self, fn: "Callable[..., object]", *args: Any) -> None:
         import threading
-        self.error = None
-        self.thread = None
+        self.error: BaseException | None = None
+        self.thread: threading.Thread | None = None
         if args and not args[1]:   # no keys: nothing to do
             return
 
@@ -349,16 +394,17 @@ class _Background:
         self.thread = threading.Thread(target=run, name="urdf-lint-diff", daemon=True)
         self.thread.start()
 
-    def join(self):
+    def join(self) -> None:
         if self.thread is not None:
             self.thread.join()
         if self.error is not None:
             raise self.error
 
 
-def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_paths=None,
-             jobs_n=None, use_cache=True, render_dir: str | None = None,
-             rrd: bool = True, on_model=None) -> DiffResult:
+def run_diff(base_rev: str, head_rev: str | None, paths: "Sequence[str]",
+             cfg_loader: CfgLoader, package_paths: dict[str, str] | None = None,
+             jobs_n: int | None = None, use_cache: bool = True, render_dir: str | None = None,
+             rrd: bool = True, on_model: OnModel | None = None) -> DiffResult:
     """``on_model(model_diff, head_model, base_model)``, when given, is called for each model
     diff at the end, while both revisions are still on disk (``diff --html`` reads the
     meshes then); it may change the models."""
@@ -382,7 +428,7 @@ def run_diff(base_rev: str, head_rev: str | None, paths, cfg_loader, package_pat
             recorder.close()
 
 
-def _start_recorder(render_dir: str):
+def _start_recorder(render_dir: str) -> "Recorder | None":
     from urdf_lint.render.recording import Recorder
     try:
         return Recorder(render_dir)
@@ -393,13 +439,13 @@ def _start_recorder(render_dir: str):
 @dataclass
 class _Changes:
     """What git says changed between the revisions (paths relative to the top)."""
-    entries: list            # (status letter, old path, new path)
-    head: set                # paths present at HEAD that changed
-    base: set                # paths present at BASE that changed
-    renamed: dict            # new path -> old path
+    entries: list[tuple[str, str, str]]   # (status letter, old path, new path)
+    head: set[str]                # paths present at HEAD that changed
+    base: set[str]                # paths present at BASE that changed
+    renamed: dict[str, str]       # new path -> old path
 
     @classmethod
-    def between(cls, top, base_sha, head_sha) -> _Changes:
+    def between(cls, top: str, base_sha: str, head_sha: str | None) -> _Changes:
         changes = name_status(top, base_sha, head_sha)
         return cls(changes, {new for st, _, new in changes if st != "D"},
                    {old for st, old, _ in changes if st != "A"},
@@ -410,13 +456,16 @@ class _Changes:
         return self.renamed.get(rel, rel)
 
 
-def _inputs(root, m) -> list:
+def _inputs(root: str, m: "ModelReport") -> list[str]:
     """Every path (relative to ``root``) model result ``m`` read or looked for, entry included."""
     return [_rel(root, d) for d in list(m.deps) + list(getattr(m, "missing", [])) + [m.entry]]
 
 
-def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths, jobs_n,
-              use_cache, render_dir, rrd, recorder, tmp, on_model=None) -> DiffResult:
+def _run_diff(result: DiffResult, top: str, base_sha: str, head_sha: str | None,
+              paths: "Sequence[str]", cfg_loader: CfgLoader,
+              package_paths: dict[str, str] | None, jobs_n: int | None, use_cache: bool,
+              render_dir: str | None, rrd: bool, recorder: "Recorder | None", tmp: str,
+              on_model: OnModel | None = None) -> DiffResult:
     changed = _Changes.between(top, base_sha, head_sha)
     head_root = top
     if head_sha:
@@ -482,7 +531,8 @@ def _run_diff(result, top, base_sha, head_sha, paths, cfg_loader, package_paths,
     return result
 
 
-def _hand_robots(on_model, result, head: Side, base: Side, base_keys, affected, deleted):
+def _hand_robots(on_model: OnModel | None, result: DiffResult, head: Side, base: Side,
+                 base_keys: dict[str, str], affected: list[str], deleted: list[str]) -> None:
     """``on_model(model_diff, head_model, base_model)`` for each model diff (in the order
     ``_run_diff`` appended them), when ``on_model`` is given."""
     if on_model is None:
@@ -494,14 +544,15 @@ def _hand_robots(on_model, result, head: Side, base: Side, base_keys, affected, 
         on_model(md, hm, bm)
 
 
-def _head_cache(head_paths, cfg):
+def _head_cache(head_paths: "Sequence[str]", cfg: "Config") -> "Cache | None":
     """The working tree's cache, or None when it is refused (said why on stderr)."""
     from urdf_lint.run.cache import Cache
     cache = Cache.for_paths(head_paths, cfg)
     return None if cache.refused else cache
 
 
-def _keep_affected_robots(head: Side, affected, resolver, render_dir) -> list:
+def _keep_affected_robots(head: Side, affected: list[str], resolver: "PackageResolver",
+                          render_dir: str | None) -> list[str]:
     """Keep the robots the head's lint brought back for the affected models; the keys of
     those that must be expanded again (all of them with ``render_dir``: pictures are drawn
     from a fresh expansion) are returned. Every other kept model is dropped."""
@@ -521,7 +572,8 @@ _BASE_MANIFESTS = ("package.xml", "pyproject.toml", "urdf-lint.toml", "COLCON_IG
                    "CATKIN_IGNORE")
 
 
-def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _Changes) -> None:
+def _materialize_base(top: str, base_sha: str, base_root: str, head: Side, affected: list[str],
+                      changed: _Changes) -> None:
     """The base needs only what the affected models can read there: their inputs at HEAD
     (through renames), every changed path, and the package manifests and configs."""
     base_files = tracked_files(top, base_sha)
@@ -540,11 +592,12 @@ def _materialize_base(top, base_sha, base_root, head: Side, affected, changed: _
             materialize(top, base_sha, base_root, only=(named & base_files) - need)
 
 
-def _base_entries(base_root, head: Side, affected, changed: _Changes, rel_paths) -> set:
+def _base_entries(base_root: str, head: Side, affected: list[str], changed: _Changes,
+                  rel_paths: list[str]) -> set[str]:
     """The models to expand at BASE: the affected ones (through renames) and the deleted
     model files under the paths asked for."""
     from urdf_lint.engine.lint import classify_xacro
-    base_entries = set()
+    base_entries: set[str] = set()
     for k in affected:
         rel = changed.at_base(_rel(head.root, head.models[k].entry))
         if os.path.exists(os.path.join(base_root, rel)):
@@ -564,10 +617,10 @@ class _BaseSelect:
     """The base's jobs worth linting: the wanted variants (keys) of the affected entries,
     every job of any other entry (a deleted one)."""
     root: str
-    wanted: set
-    entries: set
+    wanted: set[str]
+    entries: set[str]
 
-    def __call__(self, jobs, found):
+    def __call__(self, jobs: "list[LintJob]", found: Any) -> "list[LintJob]":
         keep = []
         for j in jobs:
             rel = _rel(self.root, j.entry)
@@ -576,8 +629,10 @@ class _BaseSelect:
         return keep
 
 
-def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs_n,
-               mesh_cache_dir, render_dir, rrd, select=None) -> None:
+def _lint_base(result: DiffResult, base: Side, base_entries: set[str], cfg_loader: CfgLoader,
+               package_paths: dict[str, str] | None, jobs_n: int | None,
+               mesh_cache_dir: str | None, render_dir: str | None, rrd: bool,
+               select: _BaseSelect | None = None) -> None:
     """Lint the base entries and keep their robots (and with --render their pictures'
     geometry and half recordings): all from this one expansion; mesh facts (keyed by
     content) are shared with the working tree's cache."""
@@ -592,18 +647,18 @@ def _lint_base(result, base: Side, base_entries, cfg_loader, package_paths, jobs
     for k, m in base.models.items():
         _keep_robot(base, k, m.entry, m.args, m, base_resolver)
         if m.diff_geometry is not None:
-            base.geometry[k] = m.diff_geometry
+            base.geometry[k] = cast("Geometry", m.diff_geometry)
         if m.diff_rrd:
-            base.rrd[k] = m.diff_rrd
+            base.rrd[k] = cast("Plan", m.diff_rrd)
 
 
-def _render_snapshots(result, head: Side, base: Side, base_keys, render_dir, cfg,
-                      recorder) -> None:
+def _render_snapshots(result: DiffResult, head: Side, base: Side, base_keys: dict[str, str],
+                      render_dir: str, cfg: "Config", recorder: "Recorder | None") -> None:
     """Draw each model's before/after pictures (and recordings) and write the manifest; two
     models whose pictures would share a name are not drawn (a snapshot problem)."""
     from urdf_lint.core.locations import clashing_names
     from urdf_lint.render.snapshot import write_manifest
-    recordings: dict = {}
+    recordings: Recordings = {}
     clash = clashing_names({md.model: md.picture for md in result.models})
     for name, models in clash.items():
         result.snapshot_problems += [(k, f"another model ({', '.join(o for o in models if o != k)}) "
@@ -623,7 +678,7 @@ def _render_snapshots(result, head: Side, base: Side, base_keys, render_dir, cfg
     write_manifest(render_dir, files)
 
 
-def _clear_snapshots(render_dir):
+def _clear_snapshots(render_dir: str) -> None:
     """Remove what an earlier diff --render wrote here (its manifest), so no stale picture
     survives; files this tool did not write stay."""
     from urdf_lint.render.snapshot import clear_stale
@@ -634,14 +689,15 @@ def _clear_snapshots(render_dir):
     clear_stale(render_dir)
 
 
-def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
-              recorder=None, recordings=None) -> dict:
+def _snapshot(key: str, head: Side, base: Side, hk: str | None, bk: str | None, render_dir: str,
+              result: DiffResult, cfg: "Config | None" = None, recorder: "Recorder | None" = None,
+              recordings: "Recordings | None" = None) -> dict[str, Any]:
     from urdf_lint.render import snapshot as render
     md = next(m for m in result.models if m.model == key)
     stem = os.path.join(render_dir, md.picture)
     before = base.geometry.get(bk) if bk else None
     after = head.geometry.get(hk) if hk else None
-    info: dict = {}
+    info: dict[str, Any] = {}
     lost = [side for side, g, wanted in (("base", before, md.status != "added"),
                                          ("head", after, md.status != "removed"))
             if wanted and g is None]
@@ -675,12 +731,12 @@ def _snapshot(key, head: Side, base: Side, hk, bk, render_dir, result, cfg=None,
 _DRAWN = ("origin", "axis", "parent", "child", "visual", "collision", "geometry")
 
 
-def _unseen(md, most: int = 3) -> str:
+def _unseen(md: ModelDiff, most: int = 3) -> str:
     """What changed in a model that its pictures do not show: joint limits, masses and
     inertia, materials, mimic and dynamics (``joint 'elbow' limit.lower, limit.upper``), and the
     findings the change introduced, so a picture never reads 'changed: nothing' beside a
     table of changes."""
-    fields: dict = {}
+    fields: dict[str, list[str]] = {}
     for c in md.changes:
         if c.change == "changed" and c.field and not c.field.startswith(_DRAWN):
             fields.setdefault(f"{c.kind} '{c.name}'", []).append(c.field)
@@ -692,7 +748,8 @@ def _unseen(md, most: int = 3) -> str:
     return "; ".join(parts)
 
 
-def _finish_recordings(result, recorder, recordings) -> None:
+def _finish_recordings(result: DiffResult, recorder: "Recorder | None",
+                       recordings: "Recordings") -> None:
     """Wait for the recorder (or write here without one); a recording that could not be
     written is a snapshot problem, except when rerun is not installed (no .rrd then, as
     ``--no-rrd``, and ``result.no_recordings`` says why once)."""
@@ -714,7 +771,8 @@ def _finish_recordings(result, recorder, recordings) -> None:
             result.snapshot_problems.append((key, f"no recording: {why}"))
 
 
-def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> ModelDiff:
+def _model_diff(k: str, head: Side, base: Side, bk: str | None, removed: bool = False,
+                top: str | None = None) -> ModelDiff:
     """``top``: the repository, where locations are shown when HEAD is a revision (its
     files are in a temporary folder)."""
     hm = None if removed else head.robots.get(k)
@@ -725,8 +783,9 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> Model
         status = "added"
     else:
         status = "changed"
+    shown = base.pictures.get(bk, "") if bk is not None else ""
     md = ModelDiff(model=k, status=status,
-                   picture=base.pictures.get(bk, "") if removed else head.pictures.get(k, ""))
+                   picture=shown if removed else head.pictures.get(k, ""))
     if not removed and hm is None:
         md.status, md.error = "failed", head.errors.get(k, "")
     elif bk is not None and bm is None and not removed:
@@ -744,7 +803,8 @@ def _model_diff(k, head: Side, base: Side, bk, removed=False, top=None) -> Model
     return md
 
 
-def _findings_diff(md: ModelDiff, hf: Counter, bf: Counter, head: Side, base: Side) -> None:
+def _findings_diff(md: ModelDiff, hf: "Counter[FindingKey]", bf: "Counter[FindingKey]",
+                   head: Side, base: Side) -> None:
     """The findings only HEAD has (introduced) and only BASE has (fixed), with where each is
     in its revision (the key has no line: an edit above it moves it) and the robot element
     an SRDF or YAML finding is about."""
@@ -758,7 +818,7 @@ def _findings_diff(md: ModelDiff, hf: Counter, bf: Counter, head: Side, base: Si
                                    if fk in side.related})
 
 
-def _rebase(c, base_root, head_root, top=None):
+def _rebase(c: "Change", base_root: str, head_root: str, top: str | None = None) -> "Change":
     """Locations name the file where it is in the repository (``top``), not in a temporary
     copy of a revision: base-side ones always, head-side ones too when HEAD is a revision."""
     from dataclasses import replace
@@ -767,14 +827,14 @@ def _rebase(c, base_root, head_root, top=None):
     moves = [(root, to) for root, to in [(base_root, top or head_root)]
              + ([(head_root, top)] if top else []) for root in (root, _realpath(root))]
 
-    def move(p):
+    def move(p: str) -> str:
         for root, to in moves:
             rel = os.path.relpath(p, root)
             if not rel.startswith(".."):
                 return os.path.join(to, rel)
         return p
 
-    def origin(o):
+    def origin(o: "Origin | None") -> "Origin | None":
         return o if o is None else Origin(move(o.file), o.line, o.col,
                                           tuple((move(x[0]),) + tuple(x[1:]) for x in o.chain))
     return replace(c, base=origin(c.base), head=origin(c.head),

@@ -169,7 +169,7 @@ def _variants(p: ModelPlan, values: dict[str, list[str]]) -> list[dict[str, str]
     done = taken(p.base)
     read = {d for r in p.base for d in r.deps}
     by_key = {(c.file, c.line): c for c in a.conds}
-    serves: dict[tuple, int] = {}
+    serves: dict[tuple[tuple[str, str], ...], int] = {}
 
     listed = {k: v for k, v in p.listed.items() if v}
 
@@ -282,7 +282,8 @@ def coverage(p: ModelPlan) -> dict[str, Any]:
             "cut_by_budget": len(p.variants) - p.kept, "not_taken": rows, "takers": takers}
 
 
-def _why(p: ModelPlan, c: Any, seen_any: set, cut_args: set, tried: set) -> str:
+def _why(p: ModelPlan, c: Any, seen_any: set[tuple[str, int]], cut_args: set[str],
+         tried: set[str]) -> str:
     """Why the condition ``c`` never kept its body."""
     from urdf_lint.discovery.branches import guesses
     if c.constant is not None:
@@ -298,7 +299,8 @@ def _why(p: ModelPlan, c: Any, seen_any: set, cut_args: set, tried: set) -> str:
     return WHY_NO_VALUE
 
 
-def _cond_rows(p: ModelPlan, rows: list, takers: dict) -> tuple[int, int, int]:
+def _cond_rows(p: ModelPlan, rows: list[dict[str, Any]],
+               takers: dict[str, list[str]]) -> tuple[int, int, int]:
     """(conditions, kept at the defaults, kept by a run); ``rows`` hears the others."""
     at_default = taken(p.base)
     explored = taken(p.base + p.reports)
@@ -319,7 +321,7 @@ def _cond_rows(p: ModelPlan, rows: list, takers: dict) -> tuple[int, int, int]:
     return len(p.analysis.conds), n0, n1
 
 
-def _choice_rows(p: ModelPlan, rows: list) -> tuple[int, int, int]:
+def _choice_rows(p: ModelPlan, rows: list[dict[str, Any]]) -> tuple[int, int, int]:
     """(files an arg-built path may name, read at the defaults, read by a run)."""
     read0 = {d for r in p.base for d in r.deps}
     read = read0 | {d for r in p.reports for d in r.deps}

@@ -16,7 +16,7 @@ from __future__ import annotations
 import difflib
 import os
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Callable
 
 from lxml import etree
 
@@ -26,7 +26,19 @@ from urdf_lint.fix.kinds.add_dollar import ANY
 from urdf_lint.fix.sourceedit import apply_edits, line_offset
 
 if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Iterable, Sequence
+
+    from urdf_lint.config.schema import Config
+    from urdf_lint.core.edits import Edit, Fix
+    from urdf_lint.core.findings import Problem
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.fix.memo import FixMemo
     from urdf_lint.run.pipeline import CheckResult
+
+    FKey = tuple[str, str, int, int, str]       # a finding's identity (_fkey)
+    LineMaps = dict[str, Callable[[int], int]]  # file -> new line -> old line (line_maps)
+    Snapshot = dict[str, tuple[ModelReport, Any]]   # label -> (report, robot tree) (_snapshot)
 
 MAX_ROUNDS = 4
 
@@ -35,39 +47,45 @@ MAX_ROUNDS = 4
 class FixOutcome:
     """What ``--fix`` did: the fixes written, those rolled back or refused, and the run after."""
     result: "CheckResult"                            # the CheckResult after fixing
-    applied: list = field(default_factory=list)      # Problems whose fix was written
-    rolled_back: list = field(default_factory=list)  # (Problem, reason)
-    changed_files: list = field(default_factory=list)
+    applied: list[Problem] = field(default_factory=list)   # Problems whose fix was written
+    rolled_back: list[tuple[Problem, str]] = field(default_factory=list)  # (Problem, reason)
+    changed_files: list[str] = field(default_factory=list)
     diff: str = ""
-    refused: list = field(default_factory=list)      # (Problem, reason): never written
+    refused: list[tuple[Problem, str]] = field(default_factory=list)  # never written
 
 
-def _fkey(p):
+def _fkey(p: "Problem") -> "FKey":
     return (p.code, p.file, p.line, p.col, p.message)
 
 
-def _lkey(p, line_maps=None):
+def _fix(p: "Problem") -> "Fix":
+    assert p.fix is not None   # (only findings with a fix get here: candidates())
+    return p.fix
+
+
+def _lkey(p: "Problem", line_maps: "LineMaps | None" = None) -> tuple[str, str, int, str]:
     """A finding's identity across an edit: code, file, line (in the numbering before the
     edits, through ``line_maps``) and message (columns move when a line is edited)."""
     m = (line_maps or {}).get(p.file)
     return (p.code, p.file, m(p.line) if m else p.line, p.message)
 
 
-def line_maps(fixed, originals: dict) -> dict:
+def line_maps(fixed: "Iterable[Problem]", originals: dict[str, bytes]) -> "LineMaps":
     """{file: new line -> old line} for the edits of ``fixed``: the old line of the first byte
     of the new line (a line made by an edit maps to where the edit starts)."""
-    out = {}
+    out: LineMaps = {}
     for f, edits in _edits_by_file(fixed).items():
         old = originals[f]
         new = apply_edits(old, edits)
-        spans = []            # (new start, new end, old start, old end) of each edit
+        spans: list[tuple[int, int, int, int]] = []   # (new start, new end, old start, old end) of each edit
         shift = 0
         for e in sorted(edits, key=lambda e: (e.start, e.end)):
             n = len(e.text.encode("utf-8"))
             spans.append((e.start + shift, e.start + shift + n, e.start, e.end))
             shift += n - (e.end - e.start)
 
-        def back(line, old=old, new=new, spans=spans):
+        def back(line: int, old: bytes = old, new: bytes = new,
+                 spans: list[tuple[int, int, int, int]] = spans) -> int:
             x = line_offset(new, line)
             if x is None:
                 return line
@@ -84,16 +102,18 @@ def line_maps(fixed, originals: dict) -> dict:
     return out
 
 
-def candidates(findings, unsafe: bool):
+def candidates(findings: "Iterable[Problem]", unsafe: bool
+               ) -> "tuple[list[Problem], list[Problem], list[tuple[Problem, str]]]":
     """(chosen, deferred, refused): applicable fixes without overlapping edits, in finding
     order; a fix that overlaps an earlier one waits for the next run (deferred), and two fixes
     that want different text on the same bytes (one macro line, several models or instances
     that need different values) are both refused, with the reason."""
     from urdf_lint.core.locations import display_path
-    chosen: list = []
-    deferred: list = []
-    refused: list = []
-    taken: dict = {}      # file -> [(start, end, text, finding)]
+    chosen: list[Problem] = []
+    deferred: list[Problem] = []
+    refused: list[tuple[Problem, str]] = []
+    # file -> [(start, end, text, finding)]
+    taken: dict[str, list[tuple[int, int, str, Problem]]] = {}
     for p in findings:
         fx = p.fix
         if fx is None or not fx.applicable or (not fx.safe and not unsafe):
@@ -126,16 +146,16 @@ def candidates(findings, unsafe: bool):
     return chosen, deferred, refused
 
 
-def _edits_by_file(fixed) -> dict:
+def _edits_by_file(fixed: "Iterable[Problem]") -> "dict[str, set[Edit]]":
     """{file: {Edit}} of the fixes of ``fixed`` (an edit two findings share, once)."""
-    per_file: dict = {}
+    per_file: dict[str, set[Edit]] = {}
     for p in fixed:
-        for e in p.fix.edits:
+        for e in _fix(p).edits:
             per_file.setdefault(e.file, set()).add(e)
     return per_file
 
 
-def edited_sources(fixed, originals: dict) -> dict:
+def edited_sources(fixed: "Iterable[Problem]", originals: dict[str, bytes]) -> dict[str, bytes]:
     """{file: new bytes} for the fixes of ``fixed`` (each edit once)."""
     out = {}
     for f, edits in _edits_by_file(fixed).items():
@@ -145,7 +165,7 @@ def edited_sources(fixed, originals: dict) -> dict:
     return out
 
 
-def unified_diff(new: dict, originals: dict) -> str:
+def unified_diff(new: dict[str, bytes], originals: dict[str, bytes]) -> str:
     from urdf_lint.core.locations import display_path
     from urdf_lint.core.escape import escape_text
     out: list[str] = []
@@ -161,7 +181,7 @@ def unified_diff(new: dict, originals: dict) -> str:
 
 
 # -- verification --------------------------------------------------------------------------------
-def _tree(report, xml_or_none):
+def _tree(report: "ModelReport", xml_or_none: str | None) -> Any:
     if report.kept_model is None:
         return None
     xml = report.kept_model.xml if xml_or_none is None else xml_or_none
@@ -177,7 +197,7 @@ def _tree(report, xml_or_none):
 
 
 
-def _values_equal(a, b) -> bool:
+def _values_equal(a: str | None, b: str | None) -> bool:
     if a == b or a == ANY:
         return True
     if a is None or b is None:
@@ -190,7 +210,7 @@ def _values_equal(a, b) -> bool:
         return False
 
 
-def _same_robot(a, b) -> bool:
+def _same_robot(a: Any, b: Any) -> bool:
     ea = list(a.iter(tag=etree.Element))
     eb = list(b.iter(tag=etree.Element))
     if len(ea) != len(eb):
@@ -205,22 +225,23 @@ def _same_robot(a, b) -> bool:
     return True
 
 
-def _snapshot(result) -> dict:
+def _snapshot(result: "CheckResult") -> Snapshot:
     """{label: (report, tree)} of the models of a run, with their robots parsed now (a plain
     .urdf is read from disk, so this runs before anything is written)."""
     return {r.label: (r, _tree(r, None)) for r in result.models}
 
 
-def verify(before: dict, before_findings, after, fixed, maps=None) -> dict:
+def verify(before: Snapshot, before_findings: "Iterable[Problem]", after: "CheckResult",
+           fixed: "Sequence[Problem]", maps: "LineMaps | None" = None) -> "dict[FKey, str]":
     """{finding key: reason} for the fixes of ``fixed`` that must be rolled back (``maps``:
     :func:`line_maps` of the edits, to compare findings on lines that moved)."""
     from urdf_lint.core.locations import display_path
-    bad: dict = {}
+    bad: dict[FKey, str] = {}
     fixed_keys = {_fkey(p): p for p in fixed}
 
-    def touches(p, report):
+    def touches(p: "Problem", report: "ModelReport") -> bool:
         deps = {os.path.realpath(d) for d in report.deps}
-        return any(os.path.realpath(e.file) in deps for e in p.fix.edits)
+        return any(os.path.realpath(e.file) in deps for e in _fix(p).edits)
 
     # 1. the finding must be gone
     after_keys = {_lkey(f, maps) for f in after.findings}
@@ -266,7 +287,7 @@ def verify(before: dict, before_findings, after, fixed, maps=None) -> dict:
     return bad
 
 
-def _expected(tree, rep, fixed_keys):
+def _expected(tree: Any, rep: "ModelReport", fixed_keys: "dict[FKey, Problem]") -> Any:
     """The robot of ``rep`` before fixing with the attribute values of its fixed findings (each
     fix's expected results replayed by its kind); None when a fix changes the structure."""
     import copy
@@ -286,8 +307,10 @@ def _expected(tree, rep, fixed_keys):
     return out
 
 
-def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: bool = False,
-            in_process: bool = False, memo=None, note=None) -> FixOutcome:
+def run_fix(paths: "Sequence[str]", cfg: "Config", resolver: "PackageResolver",
+            jobs_n: int | None = None, unsafe: bool = False, diff_only: bool = False,
+            in_process: bool = False, memo: "FixMemo | None" = None,
+            note: Callable[[str], object] | None = None) -> FixOutcome:
     """``memo`` (a :class:`urdf_lint.fix.memo.FixMemo`): the fixes earlier runs rolled back,
     not tried again while nothing they depend on changed; this run's rollbacks are added.
     Every fix within ``paths`` is tried (a baselined finding's too); the findings that remain
@@ -297,16 +320,16 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     from urdf_lint.run.pipeline import RunRequest, run_check
     request = RunRequest(paths, cfg, resolver, jobs_n=jobs_n, in_process=in_process)
 
-    def check(keep_models: bool = False):
+    def check(keep_models: bool = False) -> "CheckResult":
         return run_check(replace(request, keep_models=keep_models))
     # the fixes check --fix may make: those editing only the linted paths (run.finish.scope)
     before_result = run_check(replace(request, keep_models=True,
                                       scope=Scope(tuple(str(p) for p in paths))))
     chosen, _, refused = candidates(before_result.findings, unsafe)
-    keys: dict = {}
+    keys: dict[FKey, str | None] = {}
     if memo is not None:
         chosen, keys = _skip_rolled_back(chosen, refused, memo, before_result.models)
-    originals: dict = {}
+    originals: dict[str, bytes] = {}
     if diff_only:
         new = edited_sources(chosen, originals)
         return FixOutcome(before_result, chosen, [], sorted(
@@ -323,7 +346,9 @@ def run_fix(paths, cfg, resolver, jobs_n=None, unsafe: bool = False, diff_only: 
     return FixOutcome(result, chosen, rolled, changed, "", refused)
 
 
-def _skip_rolled_back(chosen, refused: list, memo, models) -> tuple[list, dict]:
+def _skip_rolled_back(chosen: "list[Problem]", refused: "list[tuple[Problem, str]]",
+                      memo: "FixMemo", models: "Iterable[ModelReport]"
+                      ) -> "tuple[list[Problem], dict[FKey, str | None]]":
     """(the fixes to try, each fix's memo key): a fix an earlier run rolled back, while
     nothing it depends on changed, joins ``refused`` instead."""
     from urdf_lint.fix.memo import fix_key
@@ -338,7 +363,10 @@ CHANGED = ("its file changed while urdf-lint worked on it; not written (the newe
            "is kept: run --fix again)")
 
 
-def _fix_rounds(check, paths, before_result, chosen, originals: dict):
+def _fix_rounds(check: "Callable[..., CheckResult]", paths: "Sequence[str]",
+                before_result: "CheckResult", chosen: "list[Problem]",
+                originals: dict[str, bytes]
+                ) -> "tuple[CheckResult, list[Problem], list[tuple[Problem, str]], set[str]]":
     """Write the fixes and check again, rolling back those that do not verify, until the
     rest do (at most ``MAX_ROUNDS``): (result, fixes kept, (fix, why) rolled back, files
     written). ``originals`` receives each edited file's text; a failure restores them. Every
@@ -347,7 +375,7 @@ def _fix_rounds(check, paths, before_result, chosen, originals: dict):
     are given up."""
     from urdf_lint.discovery.discover import repository_root
     before = _snapshot(before_result)
-    rolled: list = []
+    rolled: list[tuple[Problem, str]] = []
     result = before_result
     out = _Writes(paths, repository_root(paths), originals)
     try:
@@ -379,11 +407,11 @@ class _Writes:
     """The sources --fix has written, and what each holds now (what the next write of it
     expects to find there)."""
 
-    def __init__(self, paths, repo: str, originals: dict) -> None:
+    def __init__(self, paths: "Sequence[str]", repo: str, originals: dict[str, bytes]) -> None:
         self.paths, self.repo, self.originals = paths, repo, originals
-        self.on_disk: dict = {}     # real path -> the bytes it holds (as read, or as written)
-        self.written: set = set()
-        self.skipped: set = set()   # real paths someone else changed: never written again
+        self.on_disk: dict[str, bytes] = {}  # real path -> the bytes it holds (as read or written)
+        self.written: set[str] = set()
+        self.skipped: set[str] = set()   # real paths someone else changed: never written again
 
     def put(self, f: str, data: bytes) -> bool:
         """Write one file if it still holds what urdf-lint last saw there; False (and said)
@@ -404,7 +432,8 @@ class _Writes:
         self.on_disk[real] = data
         return True
 
-    def write(self, chosen: list, rolled: list) -> list:
+    def write(self, chosen: "list[Problem]", rolled: "list[tuple[Problem, str]]"
+              ) -> "list[Problem]":
         """Write this round's sources (a file whose fixes were all rolled back is restored);
         the fixes kept, those that edit a file someone changed added to ``rolled``."""
         while True:
@@ -416,7 +445,7 @@ class _Writes:
                 if os.path.realpath(f) not in self.skipped and self.put(f, data):
                     self.written.add(f)
             gone = [p for p in chosen
-                    if any(os.path.realpath(e.file) in self.skipped for e in p.fix.edits)]
+                    if any(os.path.realpath(e.file) in self.skipped for e in _fix(p).edits)]
             if not gone:
                 return chosen
             rolled += [(p, CHANGED) for p in gone]

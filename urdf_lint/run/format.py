@@ -33,12 +33,27 @@ from __future__ import annotations
 import dataclasses
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from urdf_lint.formatting.layout import (FormatError, Refused, Style, format_source, normal_nodes,
                                         read_document)
 
-def style_of(cfg, args=None) -> Style:
-    """The layout settings: ``[tool.urdf-lint.format]``, then the command line."""
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Callable, Iterable, Sequence
+
+    from urdf_lint.config.schema import Config
+    from urdf_lint.core.fsbound import Roots
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.discovery.discover import Discovery, IncludeGraph
+    from urdf_lint.formatting.layout import Node
+
+    Reach = Callable[[str], set[str]]
+    Parsed = Callable[[bytes], list[Node]]
+    Key = tuple[str, tuple[tuple[str, str], ...]]
+
+def style_of(cfg: "Config", args: object | None = None) -> Style:
+    """The layout settings: ``[tool.urdf-lint.format]``, then the command line (``args``:
+    any object with the format flags as attributes, read with getattr)."""
     from urdf_lint.config.schema import FORMAT_KEYS, format_option
     opts = {k: FORMAT_KEYS[k].default for k in STYLE_KEYS}
     opts.update({k: v for k, v in cfg.format_options.items() if k in opts})
@@ -64,14 +79,15 @@ class FileResult:
     refused: str | None = None  # left alone: why
 
 
-def files_to_format(paths, cfg) -> list[str]:
+def files_to_format(paths: "Iterable[str]", cfg: "Config") -> list[str]:
     from urdf_lint.discovery.discover import candidate_files
     excludes = list(cfg.exclude) + list(cfg.format_options.get("exclude", []))
     scoped = dataclasses.replace(cfg, exclude=excludes)
     return [f for f, _ in candidate_files(paths, scoped)]
 
 
-def format_files(files, style: Style, paths, docs: dict | None = None,
+def format_files(files: "Iterable[str]", style: Style, paths: "Iterable[str]",
+                 docs: "dict[bytes, list[Node]] | None" = None,
                  repo: str | None = None) -> list[FileResult]:
     """Read and lay out each file (not written); ``docs`` receives the documents read of the
     files that change, before and after (:func:`urdf_lint.formatting.layout.format_source`).
@@ -112,14 +128,14 @@ def format_files(files, style: Style, paths, docs: dict | None = None,
 
 
 # -- the proof ------------------------------------------------------------------------------------
-def canonical_robot(xml: str) -> list:
+def canonical_robot(xml: str) -> "list[Node]":
     """An expanded robot as canonical nodes: comments and layout whitespace dropped,
     attributes sorted, all other text exact."""
     return normal_nodes([n for n in read_document(xml.encode("utf-8")) if n[0] == "el"], False,
                    comments=False)
 
 
-def first_difference(a: list, b: list, path: str = "") -> str:
+def first_difference(a: "list[Node]", b: "list[Node]", path: str = "") -> str:
     """Where two canonical robots first differ, as ``<joint 'j1'>``."""
     for x, y in zip(a, b, strict=False):
         if x == y:
@@ -131,12 +147,12 @@ def first_difference(a: list, b: list, path: str = "") -> str:
     return f"the number of children of {path or 'the document'}"
 
 
-def _describe(node) -> str:
+def _describe(node: "Node") -> str:
     name = dict(node[2]).get("name")
     return f"<{node[1]}{' ' + repr(name) if name else ''}>"
 
 
-def _outcome(report):
+def _outcome(report: "ModelReport") -> "tuple[list[Node] | None, str | None]":
     """(canonical robot or None, the failure or None) of an expansion."""
     from urdf_lint.core.jobs import Status
     xml = report.kept_model.xml if report.kept_model is not None else None
@@ -153,14 +169,17 @@ def _outcome(report):
 @dataclass
 class Proof:
     """What the proof of a run found."""
-    refused: dict = dataclasses.field(default_factory=dict)   # real path -> why left alone
+    refused: dict[str, str] = dataclasses.field(default_factory=dict)   # real path -> why left alone
     compared: int = 0        # models expanded before and after
     by_file: int = 0         # changed files proved from the file itself (formatting.inert)
 
 
-def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
-          old: dict | None = None, docs: dict | None = None, held: dict | None = None,
-          runner=None) -> Proof:
+def prove(changed: dict[str, bytes], paths: "Sequence[str]", cfg: "Config",
+          package_paths: dict[str, str] | None, jobs_n: int | None = None,
+          old: dict[str, bytes] | None = None, docs: "dict[bytes, list[Node]] | None" = None,
+          held: dict[str, bytes] | None = None,
+          runner: "Callable[[list[LintJob]], Iterable[tuple[LintJob, ModelReport]]] | None"
+          = None) -> Proof:
     """The proof for the new layouts ``changed`` ({real path: bytes}); ``old`` ({real path:
     bytes}, the files as they are) lets a file be proved from itself
     (:mod:`urdf_lint.formatting.inert`): the models are expanded for the others only;
@@ -184,7 +203,12 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     disc = discover_models(scan, every, resolver)
     graph = disc.graph
     reach = _reach(graph)
-    unproven, relaxed, is_quiet = _by_file(changed, old, docs, disc, reach, resolver.roots)
+    unproven, relaxed, quiet_test = _by_file(changed, old, docs, disc, reach, resolver.roots)
+
+    def is_quiet(f: str) -> bool:
+        # (asked only where a file of ``relaxed`` is read: then _by_file gave the test)
+        assert quiet_test is not None
+        return quiet_test(f)
     proof.by_file = len(changed) - len(unproven)
     # expanding proves only the branches the models' args take: a file whose changed
     # whitespace in an xacro:if/unless body the file's own rules do not prove is left alone
@@ -194,11 +218,11 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     if not unproven and not relaxed:
         return proof
 
-    def needed(files_read: set) -> bool:
+    def needed(files_read: set[str]) -> bool:
         """Must a model that reads these files be expanded before and after?"""
         return bool(files_read & unproven) or bool(files_read & relaxed) and not all(
             is_quiet(f) for f in sorted(files_read))
-    jobs = {}
+    jobs: "dict[Key, LintJob]" = {}
     for job in disc.jobs:
         if job.kind != "xacro":   # a .urdf model is the file itself: the guard compared it
             continue
@@ -207,7 +231,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
             jobs[key] = LintJob(job.entry, dict(job.args), "expand", explicit=True)
     base = worker_settings(cfg, resolver)
 
-    def expand(keys, overlay):
+    def expand(keys: "Iterable[Key]", overlay: dict[str, bytes]) -> "dict[Key, ModelReport]":
         """Each model of ``keys`` expanded with the new layouts ``overlay`` read in place of
         the files (the job's overlay, as the language server's unsaved buffers: nothing is
         written while it is proved)."""
@@ -231,7 +255,7 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     proof.compared = len(pending)
     while pending:
         after = expand(pending, overlay)
-        removed: set = set()
+        removed: set[str] = set()
         for k in pending:
             deps[k] |= {os.path.realpath(d) for d in after[k].deps}
             why = _difference(before[k], after[k])
@@ -249,9 +273,9 @@ def prove(changed: dict, paths, cfg, package_paths, jobs_n=None,
     return proof
 
 
-def _reach(graph):
+def _reach(graph: "IncludeGraph") -> Reach:
     """The files a model's entry reads by the static include graph (itself included)."""
-    def reach(entry):
+    def reach(entry: str) -> set[str]:
         seen, todo = {entry}, [entry]
         while todo:
             for g in graph.includes.get(todo.pop(), ()):
@@ -262,8 +286,10 @@ def _reach(graph):
     return reach
 
 
-def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach,
-             roots=None) -> tuple:
+def _by_file(changed: dict[str, bytes], old: dict[str, bytes] | None,
+             docs: "dict[bytes, list[Node]] | None", disc: "Discovery", reach: Reach,
+             roots: "Roots" = None
+             ) -> "tuple[set[str], set[str], Callable[[str], bool] | None]":
     """(the changed files not proved from the file itself, those proved only where every
     file of their models reads quietly, the per-file quiet test) (:mod:`urdf_lint.formatting.inert`)."""
     unproven = set(changed)
@@ -274,7 +300,7 @@ def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach,
     from urdf_lint.formatting.inert import proven
     read = lru_cache(maxsize=None)(read_document)
 
-    def parsed(data: bytes) -> list:   # (each layout read once: format_files read most)
+    def parsed(data: bytes) -> "list[Node]":   # (each layout read once: format_files read most)
         return (docs or {}).get(data) or read(data)
     for f in sorted(changed):
         if f in old and proven(parsed(old[f]), parsed(changed[f])) is None:
@@ -283,7 +309,9 @@ def _by_file(changed: dict, old: dict | None, docs: dict | None, disc, reach,
     return unproven - relaxed, relaxed, is_quiet
 
 
-def _in_branches(files: set, old: dict | None, docs: dict | None, changed: dict) -> dict:
+def _in_branches(files: set[str], old: dict[str, bytes] | None,
+                 docs: "dict[bytes, list[Node]] | None",
+                 changed: dict[str, bytes]) -> dict[str, str]:
     """{file: why} for the changed files whose new whitespace inside an xacro:if/unless body
     the rules of :mod:`urdf_lint.formatting.inert` do not prove: expanding the models proves
     only the branches their args take, so they are left alone."""
@@ -302,7 +330,7 @@ def _in_branches(files: set, old: dict | None, docs: dict | None, changed: dict)
     return out
 
 
-def _difference(before, after) -> str | None:
+def _difference(before: "ModelReport", after: "ModelReport") -> str | None:
     """None when a model's expansion before and after the new layouts is the same robot
     (or fails the same way); else how they differ."""
     (a, why_a), (b, why_b) = _outcome(before), _outcome(after)
@@ -315,8 +343,9 @@ def _difference(before, after) -> str | None:
         (f" ({why_b})" if why_b else "")
 
 
-def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed,
-                    roots=None) -> tuple:
+def _proven_quietly(files: set[str], changed: dict[str, bytes], old: dict[str, bytes],
+                    disc: "Discovery", reach: Reach, parsed: Parsed, roots: "Roots" = None
+                    ) -> "tuple[set[str], Callable[[str], bool]]":
     """Those of ``files`` :func:`urdf_lint.formatting.inert.proven` holds for when xacro's
     reading of whitespace is quiet in every model that reads them: every file of those models
     (as it is and as it will be) :func:`~urdf_lint.formatting.inert.reads_quietly`; and the
@@ -327,7 +356,7 @@ def _proven_quietly(files: set, changed: dict, old: dict, disc, reach, parsed,
     from urdf_lint.formatting.inert import proven, reads_quietly
     ok = {f for f in files if f in old and proven(parsed(old[f]), parsed(changed[f]),
                                                  True) is None}
-    quiet: dict = {}
+    quiet: dict[str, bool] = {}
 
     def is_quiet(f: str) -> bool:
         if f not in quiet:

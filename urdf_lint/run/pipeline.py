@@ -24,7 +24,7 @@ from urdf_lint.run.finish import FRAGMENT_HINT_CODES, Scope, finish, scope, spli
 ul004_unknown_package = RuleName("ul004_unknown_package")
 
 if TYPE_CHECKING:  # pragma: no cover
-    from urdf_lint.discovery.discover import IncludeGraph
+    from urdf_lint.discovery.discover import Discovery, IncludeGraph
     from urdf_lint.meshes.store import FactsStore
     from urdf_lint.run.cache import Cache
     from urdf_lint.config.schema import Config
@@ -45,7 +45,7 @@ class CheckResult:
     reused: bool = False                             # the last identical run's result (runcache)
     baselined: int = 0                               # findings the baseline hid (finish.scope)
     # branch coverage per model label (run.explore.coverage), when exploration ran
-    coverage: dict = field(default_factory=dict)
+    coverage: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
 def worker_settings(cfg: "Config", resolver: "PackageResolver", **fields: Any) -> LintSettings:
@@ -199,8 +199,9 @@ def _explores(req: RunRequest, cfg: "Config") -> bool:
     return not req.keep_models and not req.settings_overrides and req.select_jobs is None
 
 
-def _explore(out: CheckResult, found, cfg: "Config", resolver: "PackageResolver",
-             settings: LintSettings, req: RunRequest) -> tuple[list, list]:
+def _explore(out: CheckResult, found: "Discovery", cfg: "Config", resolver: "PackageResolver",
+             settings: LintSettings, req: RunRequest
+             ) -> tuple[list[ModelReport], list[str]]:
     """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
     coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
     from urdf_lint.run import explore

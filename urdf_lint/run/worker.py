@@ -4,12 +4,21 @@ what the workers will share, and a job stopped by a limit is a ``UL904`` finding
 from __future__ import annotations
 
 import sys
+from typing import TYPE_CHECKING
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
 from urdf_lint.core.codes import RuleName
 from urdf_lint.runner import pool
 from urdf_lint.runner.pool import Block, Handler, mesh_facts_cached
+
+if TYPE_CHECKING:  # pragma: no cover
+    from collections.abc import Iterator
+
+    from urdf_lint.engine.lint import Context
+    from urdf_lint.engine.model import Model
+    from urdf_lint.render.raster import Geometry
+    from urdf_lint.render.recording import Plan
 
 resource_limit = RuleName("ul904_resource_limit")   # (by name: no rule module in the parent)
 
@@ -39,16 +48,19 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     return report
 
 
-def _diff_snapshot(model, ctx, settings: LintSettings):
+def _diff_snapshot(model: "Model", ctx: "Context", settings: LintSettings
+                   ) -> tuple["Geometry", "Plan | None"]:
     """``urdf-lint diff --render``: the picture's geometry (drawn by the parent with the other
     revision's framing) and the plan of this revision's part of the shared recording
     (written with the other revision's by the parent's recorder: no rerun import here)."""
-    from urdf_lint.render import snapshot as render
-    scene = render.build_scene(model, ctx)
-    geometry = render.scene_geometry(scene, ctx)
+    from urdf_lint.render.raster import scene_geometry
+    from urdf_lint.render.scene import build_scene
+    scene = build_scene(model, ctx)
+    geometry = scene_geometry(scene, ctx)
     plan = None
     if settings.diff_rrd:
-        from urdf_lint.render.recording import label_base, plan_rrd
+        from urdf_lint.core.locations import label_base
+        from urdf_lint.render.recording import plan_rrd
         plan = plan_rrd(scene, ctx, model, label_base(model.entry))
     return geometry, plan
 
@@ -113,7 +125,7 @@ TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
 LEAN_FORMATS = (".stl", ".dae", ".obj")      # read without trimesh (unusual files aside)
 
 
-def _mesh_modules(blocks: list[Block]) -> tuple:
+def _mesh_modules(blocks: list[Block]) -> tuple[str, ...]:
     """The loaders the packages' meshes need: trimesh (~0.35 s to import) only for formats
     urdf-lint does not read itself."""
     formats = set().union(*(b.formats for b in blocks)) if blocks else set()
@@ -168,7 +180,8 @@ LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
                setup=_skip_unused_imports, warm=warm, preload=preload)
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n=None):
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = None
+             ) -> Iterator[tuple[LintJob, ModelReport]]:
     """:func:`urdf_lint.runner.pool.run_jobs` with the lint handler (the limits are the
     settings')."""
     return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n)
