@@ -195,7 +195,7 @@ def _rz(a):
 def _stem(entry) -> str:
     """The name `render` gives the pictures of ``entry``, run from the checkout (REPO)."""
     from urdf_lint.core.locations import snapshot_name
-    return snapshot_name(str(entry), {}, str(REPO))
+    return snapshot_name(os.path.realpath(entry), {}, str(REPO))   # render names the real path
 
 
 GRIPPER = CORPUS / "robotiq_description" / "urdf" / "robotiq_2f_85_gripper.urdf.xacro"
