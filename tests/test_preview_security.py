@@ -82,12 +82,14 @@ def _headers(server, path):
         c.close()
 
 
-def test_a_slow_client_is_dropped_and_others_are_served_meanwhile(tmp_path):
+def test_a_slow_client_is_dropped_and_others_are_served_meanwhile(tmp_path, monkeypatch):
     """Slowloris: a connection that never finishes its request is closed after the server's
     idle timeout (a thread is not held for ever), and a well-formed request is answered while
-    it hangs."""
+    it hangs. (The timeout is the handler's, 10 s: made 2 s here to keep the test short.)"""
     from urdf_lint.preview import server as served
-    limit = getattr(served, "IDLE_TIMEOUT_S", 10)
+    assert served.Handler.timeout == served.IDLE_TIMEOUT_S == 10
+    monkeypatch.setattr(served.Handler, "timeout", 2)
+    limit = 2
     entry = make_robot(tmp_path)
     with serve(entry) as (server, _):
         slow = socket.create_connection(("127.0.0.1", server.port))
