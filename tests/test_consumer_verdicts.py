@@ -172,6 +172,9 @@ CASES = {
     "idyntree: a malformed XML declaration": (
         arm(decl='<?xml verison="1.0"?>'), {}, "UL001",
         {"idyntree": "error", "yourdfpy": "warning", "urdf_parser_py": "error"}),
+    # Isaac Sim 6.2's importer (isaacsim-asset-isolated) reads the file with ElementTree first
+    "isaac: a malformed XML declaration": (
+        arm(decl='<?xml verison="1.0"?>'), {}, "UL001", {"isaac": "error", "mujoco": "warning"}),
     "mujoco: a missing visual mesh": (
         arm(b=DIAG + '<visual><geometry><mesh filename="nowhere.stl"/></geometry></visual>'), {},
         "UL401", {"mujoco": "warning", "pybullet": "error", "urdf_parser_py": "warning"}),

@@ -40,11 +40,15 @@ CONSUMERS = {"mujoco": "mujoco", "pinocchio": "pinocchio", "pybullet": "pybullet
              "drake": "drake", "yourdfpy": "yourdfpy", "urdf_parser_py": "urdf_parser_py",
              "urdf_parser_py_0.0.4": "urdf_parser_py", "urchin": "urchin",
              "idyntree": "idyntree", "sdformat": "gazebo", "isaac": "isaac",
-             "check_urdf": "ros"}
+             "isaac_isolated": "isaac", "check_urdf": "ros"}
 # recorded, not a source of severities: Debian 12's urdfdom 3.0.1 is older than what ROS 2
 # ships (urdfdom 4 to 6 read URDF 1.1), and `ros` stands for KDL, robot_state_publisher,
 # MoveIt and ros2_control as well (docs/consumers.md)
-INFORMATIONAL = {"check_urdf"}
+# urdf-usd-converter alone (`isaac`, 0.3.4) is recorded too, but the `isaac` target follows
+# Isaac Sim's importer itself (`isaac_isolated`, isaacsim-asset-isolated 6.2.0.0, which runs
+# the converter 0.3.2 after reading the file with ElementTree: it refuses a malformed XML
+# declaration the converter alone reads)
+INFORMATIONAL = {"check_urdf", "isaac"}
 # the consumers the fast part (CI) runs: those that install from the package index into the
 # project's venv with the consumers extra
 PIP_CONSUMERS = ("mujoco", "pinocchio", "pybullet", "yourdfpy", "urdf_parser_py",
@@ -55,6 +59,7 @@ REPOSITORY_CODES = {"UL002", "UL003", "UL004", "UL005", "UL008", "UL009", "UL010
                     "UL012", "UL106", "UL403", "UL901", "UL902", "UL903", "UL904"}
 OLD_UPP = Path(sys.prefix) / "consumers" / "urdf-parser-py-0.0.4"   # pip install --target
 ISAAC_VENV = REPO / ".venv-isaac"
+ISAAC_ISOLATED_VENV = REPO / ".venv-isaac-isolated"
 CORPUS = REPO.parent / "shared" / "corpus"
 if not CORPUS.is_dir():
     CORPUS = Path("/work/shared/corpus")
@@ -75,6 +80,12 @@ def _command(consumer: str, build: Path) -> tuple[list[str], dict] | str:
             return ".venv-isaac is missing (python3.12 -m venv .venv-isaac; pip install " \
                    "urdf-usd-converter)"
         return [str(py), str(HERE / "worker.py"), "isaac"], env
+    if consumer == "isaac_isolated":
+        py = ISAAC_ISOLATED_VENV / "bin" / "python"
+        if not py.exists():
+            return ".venv-isaac-isolated is missing (python3.12 -m venv .venv-isaac-isolated; " \
+                   "pip install isaacsim-asset-isolated)"
+        return [str(py), str(HERE / "worker.py"), "isaac_isolated"], env
     if consumer == "urdf_parser_py_0.0.4":
         if not OLD_UPP.is_dir():
             return f"urdf-parser-py 0.0.4 is not installed in {OLD_UPP}"

@@ -539,7 +539,7 @@ CHANGES_ROBOT = {"<orgin> typo in a joint", "duplicate link", "duplicate joint",
 # ... and classes where this holds for the consumers that read meshes and load the robot without
 # the part that names a missing or empty mesh (yourdfpy, PyBullet, the Isaac importer: their
 # own warnings say the geometry was dropped)
-MESH_READERS = {"yourdfpy", "pybullet", "isaac"}
+MESH_READERS = {"yourdfpy", "pybullet", "isaac", "isaac_isolated"}
 CHANGES_ROBOT_FOR = {"missing collision mesh": MESH_READERS, "missing visual mesh": MESH_READERS,
                      "empty collision mesh": MESH_READERS}
 # verdicts that say nothing about the class: sdf_probe parses, it opens no mesh file

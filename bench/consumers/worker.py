@@ -138,6 +138,25 @@ def _isaac():
     return load, version("urdf-usd-converter")
 
 
+def _isaac_isolated():
+    """Isaac Sim 6's URDF importer itself, from the package index (``isaacsim-asset-isolated``:
+    ``URDFImporter`` with its default ``URDFImporterConfig``, which runs urdf-usd-converter and
+    then Isaac Sim's own passes: fixed-joint merging, drives, the MuJoCo-PhysX conversion),
+    into a scratch folder that is emptied each time."""
+    import shutil
+    import tempfile
+
+    from isaacsim.asset.importer.urdf import URDFImporter, URDFImporterConfig
+    out = tempfile.mkdtemp(prefix="ul-isaac-isolated-")
+
+    def load(path):
+        shutil.rmtree(out, ignore_errors=True)
+        os.makedirs(out)
+        URDFImporter(URDFImporterConfig(urdf_path=path, usd_path=out)).import_urdf()
+    from importlib.metadata import version
+    return load, version("isaacsim-asset-isolated")
+
+
 def _check_urdf():
     """urdfdom's check_urdf (Debian's liburdfdom-tools), one process per file."""
     import shutil
@@ -162,7 +181,7 @@ LOADERS = {"mujoco": _mujoco, "pinocchio": _pinocchio, "pybullet": _pybullet, "d
            "yourdfpy": _yourdfpy, "urdf_parser_py": _urdf_parser_py,
            "urdf_parser_py_0.0.4": lambda: _urdf_parser_py("urdf_parser_py"),
            "urchin": _urchin, "idyntree": _idyntree, "isaac": _isaac,
-           "check_urdf": _check_urdf}
+           "isaac_isolated": _isaac_isolated, "check_urdf": _check_urdf}
 
 
 def main() -> int:
