@@ -323,3 +323,26 @@ def test_a_change_only_an_explored_variant_reads_relints_its_model(tmp_path):
     # the model's branch findings come with it; with exploration off it is not linted
     off = _check(pkg, "--changed-since", "HEAD", "--explore", "false", coverage=False)
     assert off["models"] == []
+
+
+def test_the_default_pass_and_the_exploration_pass_share_their_workers(tmp_path, monkeypatch):
+    """Issue 34: exploration lints its variants on the workers of the default pass (forked,
+    preloaded and sandboxed once per run), and finds what it found with a pool of its own."""
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    from urdf_lint.runner import pool
+    pkg = make_package(tmp_path, "robot", FILES)
+    forked: list[int] = []
+    real = pool.Worker.__init__
+
+    def counting(self, *a, **k):
+        forked.append(1)
+        real(self, *a, **k)
+    monkeypatch.setattr(pool.Worker, "__init__", counting)
+    cfg = load_config(None)
+    resolver = build_resolver([str(pkg)], cfg, {})
+    result = run_check(RunRequest([str(pkg)], cfg, resolver, jobs_n=1))
+    assert result.coverage, "nothing was explored"
+    assert any("only with" in f.message for f in result.findings), result.findings
+    assert len(forked) == 1, f"{len(forked)} workers forked for one run at -j1"

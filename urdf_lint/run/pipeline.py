@@ -29,6 +29,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
     from urdf_lint.config.schema import Config
     from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.runcache import RunMemo
+    from urdf_lint.run.worker import RunPool
 
 @dataclass
 class CheckResult:
@@ -158,8 +160,27 @@ def run_check(request: RunRequest) -> CheckResult:
         settings = dataclasses.replace(settings, **req.settings_overrides)
     if req.render_dir:
         settings = _render_settings(settings, req.render_dir, req.render_rrd, paths, jobs, cfg)
+    # the workers of the default pass lint the explored variants too (forked once)
+    from urdf_lint.run.worker import RunPool
+    workers = None if req.in_process or not _explores(req, cfg) else RunPool(settings,
+                                                                             req.jobs_n)
+    try:
+        return _run_passes(req, cfg, resolver, cache, found, jobs, settings, policy, facts,
+                           memo, workers)
+    finally:
+        if workers is not None:
+            workers.close()
+
+
+def _run_passes(req: RunRequest, cfg: "Config", resolver: "PackageResolver",
+                cache: "Cache | None", found: "Discovery", jobs: list[LintJob],
+                settings: LintSettings, policy: Policy, facts: "FactsStore | None",
+                memo: "RunMemo | None", workers: "RunPool | None") -> CheckResult:
+    """The default pass, then the exploration pass (on the same ``workers``), then the end
+    of the run (:func:`urdf_lint.run.finish.finish`)."""
+    paths = list(req.paths)
     results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
-                                  req.in_process)
+                                  req.in_process, workers)
     if facts is not None:   # what the workers measured: stored by this process only
         facts.accept((m for r in results for m in r.mesh_facts),
                      getattr(resolver, "is_inside", None))
@@ -175,7 +196,7 @@ def run_check(request: RunRequest) -> CheckResult:
     if req.affected_by is not None:
         _keep_affected(out, req.affected_by, _variant_inputs(req, cfg, found, resolver))
     if _explores(req, cfg):
-        more, more_internal = _explore(out, found, cfg, resolver, settings, req)
+        more, more_internal = _explore(out, found, cfg, resolver, settings, req, workers)
         results += more
         out.internal += more_internal
     if req.render_dir:
@@ -200,7 +221,7 @@ def _explores(req: RunRequest, cfg: "Config") -> bool:
 
 
 def _explore(out: CheckResult, found: "Discovery", cfg: "Config", resolver: "PackageResolver",
-             settings: LintSettings, req: RunRequest
+             settings: LintSettings, req: RunRequest, workers: "RunPool | None" = None
              ) -> tuple[list[ModelReport], list[str]]:
     """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
     coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
@@ -208,7 +229,8 @@ def _explore(out: CheckResult, found: "Discovery", cfg: "Config", resolver: "Pac
     internal: list[str] = []
 
     def lint(jobs: list[LintJob]) -> list[ModelReport]:
-        reports, errors = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process)
+        reports, errors = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process,
+                                    workers)
         internal.extend(errors)
         return reports
     reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint)
@@ -290,8 +312,10 @@ def _keep_affected(out: CheckResult, affected_by: AbstractSet[str],
 
 def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
               cache: "Cache | None", progress: Callable[[int, int], None] | None,
-              in_process: bool = False) -> tuple[list[ModelReport], list[str]]:
-    """A ModelReport for every job: from the cache, or linted by the workers."""
+              in_process: bool = False, workers: "RunPool | None" = None
+              ) -> tuple[list[ModelReport], list[str]]:
+    """A ModelReport for every job: from the cache, or linted by the workers (``workers``:
+    the run's, kept between its passes; else a pool for these jobs alone)."""
     results: list[ModelReport] = []
     todo = []
     # snapshots need the model itself, so a render pass expands everything once
@@ -306,7 +330,7 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
     if todo:
         from urdf_lint.run.worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
-            run_jobs(todo, settings, jobs_n=jobs_n)
+            workers.run(todo) if workers is not None else run_jobs(todo, settings, jobs_n=jobs_n)
         for n, (job, res) in enumerate(done, 1):
             internal.extend(res.internal)
             results.append(res)

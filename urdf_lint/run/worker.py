@@ -187,6 +187,31 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = N
     return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n)
 
 
+class RunPool:
+    """The lint workers of one check run, kept from its default pass for its exploration
+    pass: forked, preloaded and sandboxed once (:meth:`urdf_lint.runner.pool.WorkerPool.more`).
+    :meth:`close` ends them."""
+
+    def __init__(self, settings: LintSettings, jobs_n: int | None = None) -> None:
+        self.settings, self.jobs_n = settings, jobs_n
+        self.pool: pool.WorkerPool | None = None
+
+    def run(self, jobs: list[LintJob]) -> Iterator[tuple[LintJob, ModelReport]]:
+        """(job, report) for ``jobs``, in completion order, on the run's workers."""
+        if not jobs:
+            return
+        if self.pool is None:
+            self.pool = pool.start_pool(jobs, self.settings, LINT, self.jobs_n)
+            yield from self.pool.drain()
+        else:
+            yield from self.pool.more(jobs, self.jobs_n)
+
+    def close(self) -> None:
+        if self.pool is not None:
+            self.pool.close()
+            self.pool = None
+
+
 def prestart() -> None:
     """:func:`urdf_lint.runner.pool.prestart` with the lint handler."""
     pool.prestart(LINT)

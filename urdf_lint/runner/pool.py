@@ -384,16 +384,18 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler,
     jobs = list(jobs)
     if not jobs:
         return
-    pool = _start_pool(jobs, settings, handler, jobs_n)
+    pool = start_pool(jobs, settings, handler, jobs_n)
     try:
         yield from pool.drain()
     finally:
         pool.close()
 
 
-def _start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
-                jobs_n: int | None) -> "WorkerPool":
-    """Plan the pool (package blocks, worker count, queues) and start its workers."""
+def start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
+               jobs_n: int | None) -> "WorkerPool":
+    """Plan the pool for ``jobs`` (package blocks, worker count, queues) and start its
+    workers; :meth:`WorkerPool.drain` runs them, :meth:`WorkerPool.more` a further batch on
+    the same workers, :meth:`WorkerPool.close` ends them."""
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
     pre = _take_prestarted(settings)
@@ -469,6 +471,21 @@ class WorkerPool:
         for w in self.workers:
             w.queue = shared
         yield from self.drain(stop)
+
+    def more(self, jobs: list[LintJob], jobs_n: int | None = None
+             ) -> Iterator[tuple[LintJob, ModelReport]]:
+        """A further batch on the workers of a :func:`start_pool` whose jobs are done (check's
+        exploration after its default pass: no second fork, preload and sandbox set-up), in
+        one shared queue; workers are added up to ``jobs_n`` (default: one per core), never
+        more than the jobs."""
+        shared: deque[LintJob] = deque(jobs)
+        self.queues, self.block_of = [shared], {}
+        want = min(jobs_n or os.cpu_count() or 1, len(jobs))
+        while len(self.workers) < want:
+            self.workers.append(Worker(self.handler, self.settings))
+        for w in self.workers:
+            w.queue = shared
+        yield from self.drain()
 
     def wake(self) -> None:
         """Make a :meth:`run` under way look at its ``stop()`` now (from any thread)."""
