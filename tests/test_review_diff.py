@@ -397,6 +397,14 @@ def expanded(monkeypatch):
         seen.extend(j.entry for j in jobs)
         return real(jobs, *a, **kw)
     monkeypatch.setattr(worker, "run_jobs", spy)
+    # a run that explores lints both its passes on one pool (worker.RunPool)
+    real_pool = worker.RunPool.run
+
+    def pool_spy(self, jobs):
+        jobs = list(jobs)
+        seen.extend(j.entry for j in jobs)
+        return real_pool(self, jobs)
+    monkeypatch.setattr(worker.RunPool, "run", pool_spy)
     return seen
 
 
