@@ -53,6 +53,7 @@ class Bodies:
                 continue
             self.parent_joint.setdefault(c.get("link"), j)
             self.children.setdefault(p.get("link"), []).append((j, c.get("link")))
+        self._merged: dict[str, float] = {}   # merged_mass, per link
 
     def root_of(self, name: str) -> tuple[str, Any]:
         """(body root link name, the non-fixed joint that moves it or None), following fixed
@@ -98,7 +99,7 @@ class Bodies:
         """The mass Gazebo's URDF conversion (sdformat) gives the link: its own plus that of
         the links fixed below it which it merges in, from the leaves up; a link of at most
         :data:`SDF_DROPPED` kg is dropped instead, with everything below it."""
-        memo: dict[str, float] = self.__dict__.setdefault("_merged", {})
+        memo = self._merged
 
         def walk(n: str, seen: frozenset[str]) -> float:
             if n not in memo:

@@ -25,14 +25,14 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
-from typing import TYPE_CHECKING, Any, Iterator
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 import os
 import re
 
+from typing import TYPE_CHECKING, Any, Iterator
 from urdf_lint.engine.api import Cause, Origin, Report, display_path, read_source
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import TETRA_STL
 from urdf_lint.rules._schema import urdf_iter
 

@@ -28,10 +28,10 @@ PASS = """<robot name="linkage">
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

@@ -20,10 +20,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

@@ -22,10 +22,10 @@ PASS = """<robot name="r">
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

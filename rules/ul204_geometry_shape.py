@@ -25,10 +25,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")   # capsule: URDF 1.1 (UL213)
 

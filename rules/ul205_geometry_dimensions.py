@@ -28,10 +28,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, number, numbers
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, number, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 

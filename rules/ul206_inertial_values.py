@@ -23,10 +23,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, number
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, number
 
 # <inertial> without <inertia>: MuJoCo, PyBullet and urchin reject it; Pinocchio, Drake (a
 # point mass), yourdfpy, urdf_parser_py, iDynTree, sdformat and the Isaac importer load it

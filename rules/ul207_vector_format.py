@@ -30,10 +30,6 @@ PASS = """<robot name="r">
   </joint>
 </robot>
 """
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 import math
 
 NOT_FINITE = ("nan", "inf", "infinity")
@@ -41,7 +37,11 @@ NOT_FINITE = ("nan", "inf", "infinity")
 # 3.2.7 load it (measured)
 LOADS_NAN: dict[str, str] = {}   # issue 38: loaded with a NaN pose is a different robot: an error
 
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report, numbers
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._schema import urdf_iter
 
 

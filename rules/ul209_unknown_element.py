@@ -38,10 +38,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, did_you_mean, rename_tag, single_candidate
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean, rename_tag, single_candidate
 from urdf_lint.rules._schema import CHILDREN, SINGLE, XACRO_WORDS, checked_elements, macro_names
 
 # a misspelling of one of these, where it is, changes the robot's kinematics or dynamics

@@ -28,10 +28,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean, number, rename_attr, single_candidate
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean, number, rename_attr, single_candidate
 from urdf_lint.rules._schema import ATTRIBUTES, checked_elements
 
 

@@ -23,13 +23,13 @@ PASS = """<robot name="r" version="1.0">
   <link name="a"/>
 </robot>
 """
+import re
+
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import re
-
-from urdf_lint.engine.api import Report
 
 def check(model: "Model", ctx: "Context") -> "Checked":
     v = model.root.get("version")

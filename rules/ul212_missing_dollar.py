@@ -26,10 +26,10 @@ FAIL_AT = [(4, 3), (6, 3)]
 PASS = FAIL.replace('<link name="{prefix}tool"/>', '<link name="${prefix}tool"/>').replace(
     '<link name="arm_{prefix}tip"/>', '<link name="arm_${prefix}tip"/>')
 from typing import TYPE_CHECKING, Any, Iterator
+from urdf_lint.engine.api import Report, add_dollar, names_in_scope
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, add_dollar, names_in_scope
 from urdf_lint.rules._schema import BRACED, checked_elements, literal_names, urdf_iter
 
 ATTRS = ("name", "reference", "link")

@@ -45,13 +45,13 @@ PASS = """<robot name="r" version="1.2">
     <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
+import re
+
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import re
-
-from urdf_lint.engine.api import Report
 from urdf_lint.rules._schema import urdf_iter
 
 # what a feature is, the version that defines it, and per target what happens where it is not

@@ -29,10 +29,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, fmt, set_attrs
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, fmt, set_attrs
 from urdf_lint.rules._joints import ranged
 
 

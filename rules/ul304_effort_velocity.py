@@ -39,10 +39,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, number
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, number
 
 ZERO_EFFORT = ("a ROS-Industrial convention for position-controlled arms, but effort-based "
                "controllers and simulators cannot move the joint; write the drive's rated torque "

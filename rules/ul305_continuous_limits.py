@@ -31,10 +31,10 @@ PASS = """<robot name="r">
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, drop_attrs, set_attrs
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, drop_attrs, set_attrs
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

@@ -26,10 +26,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, fmt, number, set_attrs
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, fmt, number, set_attrs
 from urdf_lint.rules._joints import limits
 
 

@@ -27,13 +27,13 @@ PASS = """<robot name="r">
   <joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
 </robot>
 """
+import math
+
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, fmt, numbers, set_attrs
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import math
-
-from urdf_lint.engine.api import Report, fmt, numbers, set_attrs
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

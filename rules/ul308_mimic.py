@@ -27,10 +27,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 # consumers that load an unknown mimicked joint and ignore the relation (docstring)

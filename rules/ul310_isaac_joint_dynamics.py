@@ -33,10 +33,10 @@ PASS = """<robot name="r">
 
 
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 
 def _set(value: Any) -> bool:
     """A damping or friction that is there and not zero (a malformed number is UL207's)."""

@@ -19,10 +19,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.rules._meshes import MeshStatus, TETRA_STL, resolution_problems
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._meshes import MeshStatus, TETRA_STL, resolution_problems
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}
 

@@ -27,10 +27,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, read_source
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, read_source
 
 # an empty mesh: urdf_parser_py and iDynTree never open it (measured; the others refuse it or
 # load the robot without the part)

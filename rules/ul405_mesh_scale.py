@@ -16,12 +16,12 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>
 """
+from urdf_lint.rules._meshes import TETRA_STL
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, numbers
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._meshes import TETRA_STL
-from urdf_lint.engine.api import Report, numbers
 from urdf_lint.rules._schema import urdf_iter
 
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL}

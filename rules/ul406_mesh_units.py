@@ -22,12 +22,12 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part_mm.stl" scale="0.001 0.001 0.001"/></geometry></visual></link>
 </robot>
 """
+from urdf_lint.rules._meshes import resolved_meshes, scaled
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, numbers
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._meshes import resolved_meshes, scaled
-from urdf_lint.engine.api import Report, numbers
 
 EXAMPLE_FILES = {"meshes/part_mm.stl": scaled(1000.0)}
 

@@ -19,14 +19,14 @@ PASS = """<robot name="r">
   <link name="a"/>
 </robot>
 """
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 import os
 from dataclasses import replace
 
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._meshes import NOT_FOUND, resolution_problems, resolved_meshes
 
 

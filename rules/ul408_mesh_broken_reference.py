@@ -25,13 +25,13 @@ PASS = """<robot name="r">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/plain.dae"/></geometry></visual></link>
 </robot>
 """
+import re
+
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, read_source
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import re
-
-from urdf_lint.engine.api import Report, read_source
 from urdf_lint.rules._meshes import BROKEN_SURFACE_DAE, PLAIN_DAE, resolved_meshes
 
 EXAMPLE_FILES = {"meshes/skin.dae": BROKEN_SURFACE_DAE, "meshes/plain.dae": PLAIN_DAE}

@@ -44,13 +44,13 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+import os
+
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import os
-
-from urdf_lint.engine.api import Report
 from urdf_lint.rules._consumers import (DRAKE_FORMATS, geometry_meshes, mujoco_loads,
                                         mujoco_problem, wanted)
 from urdf_lint.rules._meshes import PLAIN_DAE, TETRA_STL

@@ -36,13 +36,13 @@ PASS = """<robot name="r">
   </link>
 </robot>
 """
+import os
+
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import os
-
-from urdf_lint.engine.api import Report
 from urdf_lint.rules._consumers import geometry_meshes, mujoco_loads, mujoco_problem, wanted
 
 # a tilted square plate: no two coordinates constant, every vertex in one plane

@@ -25,13 +25,13 @@ PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="a"><visual><geometry><mesh filename="package://example_pkg/meshes/part.stl"/></geometry></visual></link>
 </robot>
 """
+from urdf_lint.rules._meshes import TETRA_STL
+from urdf_lint.rules._schema import urdf_iter
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, display_path
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._meshes import TETRA_STL
-from urdf_lint.rules._schema import urdf_iter
-from urdf_lint.engine.api import Report, display_path
 
 # the generated URDF, one folder deeper than the xacro its header names
 EXAMPLE_FILES = {"meshes/part.stl": TETRA_STL,

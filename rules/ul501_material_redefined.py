@@ -23,10 +23,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, display_path
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, display_path
 from urdf_lint.rules._materials import all_materials
 
 

@@ -38,10 +38,10 @@ PASS = """<robot name="r">
 from collections import Counter
 
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, named_material
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, named_material
 from urdf_lint.rules._materials import all_materials, rgba as rgba_of
 
 

@@ -42,13 +42,13 @@ PASS = """<robot name="r">
   <link name="dummy"><inertial><mass value="1e-6"/><inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/></inertial></link>
 </robot>
 """
+import math
+
 from typing import TYPE_CHECKING, Any
+from urdf_lint.engine.api import Report, fmt, number
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-import math
-
-from urdf_lint.engine.api import Report, fmt, number
 from urdf_lint.rules._inertial import Bodies, is_zero, mass, tensor
 
 NOISE = 1e-15      # kg m^2: below MuJoCo's mjMINVAL, float noise of a lumped body, not inertia

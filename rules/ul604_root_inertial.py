@@ -30,10 +30,10 @@ PASS = """<robot name="r">
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, new_root
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, new_root
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

@@ -23,15 +23,15 @@ NAME = "inertia-geometry-mismatch"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"min-ratio": 0.1, "max-ratio": 10.0}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, declared_matrix, hull_note, measured_links
 FAIL = example(1, 0.5, 0.5, 0.5)
 FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, fmt
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 
 WHICH = ("smallest", "middle", "largest")
 

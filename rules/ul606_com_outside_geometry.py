@@ -23,15 +23,15 @@ NAME = "com-outside-geometry"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"tolerance": 0.02}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, hull_note, measured_links, pose
 FAIL = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.5")
 FAIL_AT = [(4, 15)]
 PASS = example(1, 0.0017, 0.0017, 0.0017, origin="0 0 0.02")
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, fmt
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 
 
 def _outside(com: Any, g: Any, tol: float) -> list[int]:

@@ -20,15 +20,15 @@ NAME = "implausible-density"
 SEVERITY = "warning"
 NEEDS = {"meshes"}
 OPTIONS = {"min-density": 50.0, "max-density": 25000.0}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, hull_note, measured_links
 FAIL = example(1000, 1.7, 1.7, 1.7)
 FAIL_AT = [(4, 15)]
 PASS = example(2.7, 0.0045, 0.0045, 0.0045)
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report, fmt
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

@@ -17,17 +17,17 @@ CODE = "UL608"
 NAME = "placeholder-inertia"
 SEVERITY = "warning"
 OPTIONS = {"min-links": 3}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._physics import example, is_identity, moving_links
 FAIL = example(1, 1, 1, 1)
 FAIL_AT = [(4, 32)]
 PASS = example(1, 0.0017, 0.0017, 0.0017)
 import re
 
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, fmt
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 

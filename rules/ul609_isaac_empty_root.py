@@ -38,10 +38,10 @@ PARTS = ("inertial", "visual", "collision")
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 
 def check(model: "Model", ctx: "Context") -> "Checked":
     links = model.top_links()

@@ -26,10 +26,10 @@ PASS = """<robot name="r">
 </robot>
 """
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report, did_you_mean
 from urdf_lint.rules._joints import unknown_joint_refs
 
 

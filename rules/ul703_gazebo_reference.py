@@ -24,12 +24,12 @@ PASS = """<robot name="r">
   <gazebo reference="base_link"><material>Gazebo/Blue</material></gazebo>
 </robot>
 """
+from urdf_lint.rules._schema import literal_names
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.rules._schema import literal_names
-from urdf_lint.engine.api import Report, did_you_mean, reference_fixes
 
 
 def check(model: "Model", ctx: "Context") -> "Checked":

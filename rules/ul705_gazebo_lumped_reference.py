@@ -39,10 +39,10 @@ KEEPS = ("preserveFixedJoint", "disableFixedJointLumping")
 
 
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 
 def _kept(model: "Model") -> set[str]:
     """The joints whose own <gazebo> block turns lumping off."""

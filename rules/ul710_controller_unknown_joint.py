@@ -22,17 +22,17 @@ CODE = "UL710"
 NAME = "controller-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, forward_controller_example, ROS2_CONTROL_EXAMPLE
 FAIL = example_robot(("joint_1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE.replace("joint1", "joint_1"))
 PASS = FAIL.replace("joint_1", "joint1")
 EXAMPLE_FILES = {"config/r_controllers.yaml": forward_controller_example("joint1")}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(9, 9)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import closest, named_joints, rename_fix, resolve_name
 
 

@@ -21,10 +21,6 @@ CODE = "UL711"
 NAME = "controller-interface"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error", "gazebo": "error"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, ROS2_CONTROL_EXAMPLE
 FAIL = example_robot(("joint1", "base", "l1"), tail=ROS2_CONTROL_EXAMPLE)
 PASS = FAIL.replace('<command_interface name="position"/>',
@@ -42,7 +38,11 @@ arm_controller:
 """}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(8, 14)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import (controller_joints, controllers, docs, needed_interfaces,
                                      resolve_name, ros2_control_joints)
 

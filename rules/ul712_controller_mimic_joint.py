@@ -36,10 +36,10 @@ hand_controller:
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(8, 23)]
 from typing import TYPE_CHECKING
+from urdf_lint.engine.api import Report
 
 if TYPE_CHECKING:
     from urdf_lint.engine.api import Checked, Context, Model
-from urdf_lint.engine.api import Report
 from urdf_lint.rules._config import controller_joints, controllers, docs, resolve_name
 
 READ_ONLY = ("joint_state_broadcaster/",)

@@ -13,10 +13,6 @@ CODE = "UL713"
 NAME = "initial-value-limits"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning", "gazebo": "warning"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("joint1", "base", "l1"))
 PASS = FAIL.replace('upper="1"', 'upper="2"')
@@ -27,7 +23,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/initial_positions.yaml"
 FAIL_AT = [(2, 11)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, fmt, number
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import docs, joint_limits, resolve_name, ros2_control_joints, scalar
 
 SLACK = 1e-9

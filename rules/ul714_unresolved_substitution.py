@@ -15,10 +15,6 @@ CODE = "UL714"
 NAME = "unresolved-substitution"
 SEVERITY = "info"
 TARGETS = {"*": "off", "ros": "info", "gazebo": "info"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, forward_controller_example
 FAIL = example_robot(("joint1", "base", "l1"))
 PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -31,7 +27,11 @@ PASS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
 EXAMPLE_FILES = {"config/r_controllers.yaml": forward_controller_example("$(var tf_prefix)joint1")}
 EXAMPLE_AT = "config/r_controllers.yaml"
 FAIL_AT = [(9, 9)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import named_joints, resolve_name
 
 

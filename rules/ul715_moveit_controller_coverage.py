@@ -16,10 +16,6 @@ CODE = "UL715"
 NAME = "moveit-controller-coverage"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot, LIMIT, moveit_controllers_example
 FAIL = example_robot(*((j, p, c, LIMIT + ' acceleration="1"') for j, p, c in
                        (("joint1", "base", "l1"), ("joint2", "l1", "l2"))), links=("base", "l1", "l2"))
@@ -27,7 +23,11 @@ PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint
 EXAMPLE_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE, "config/moveit_controllers.yaml": moveit_controllers_example("joint1")}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(2, 3)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import (actuated, controller_joints, controllers, docs, group_joints,
                                      groups, moveit_controllers, names, resolve_name, srdfs)
 

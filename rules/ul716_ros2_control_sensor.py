@@ -32,15 +32,15 @@ _GAZEBO = """  <gazebo reference="l1">
     <sensor name="imu"><state_interface name="orientation.x"/></sensor>
   </ros2_control>
 """
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("joint1", "base", "l1"), tail=_GAZEBO)
 FAIL_AT = [(10, 5)]
 PASS = FAIL.replace('<sensor name="imu">', '<sensor name="imu_sensor">')
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, did_you_mean
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 
 PLUGINS = ("gz_ros2_control/GazeboSimSystem", "ign_ros2_control/IgnitionSystem",
            "gazebo_ros2_control/GazeboSystem")

@@ -21,10 +21,6 @@ CODE = "UL717"
 NAME = "moveit-controller-group"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot, moveit_controllers_example
 FAIL = example_robot(("joint1", "base", "l1"), ("joint2", "l1", "l2"), ("joint3", "l2", "l3"),
                      links=("base", "l1", "l2", "l3"))
@@ -34,7 +30,11 @@ EXAMPLE_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE, "config/moveit_controllers.y
 PASS_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE.replace('tip_link="l2"', 'tip_link="l3"')}
 EXAMPLE_AT = "config/moveit_controllers.yaml"
 FAIL_AT = [(9, 9)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import group_joints, groups, moveit_controllers, names, resolve_name, srdfs
 
 

@@ -17,10 +17,6 @@ CODE = "UL750"
 NAME = "srdf-unknown-link"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link2"), links=("base", "l1", "link2"))
 PASS = FAIL.replace("link2", "l2")
@@ -34,7 +30,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(4, 5), (6, 3)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 WHERE = (("group/link", "name", "group '{g}' link"), ("group/chain", "base_link", "chain base"),

@@ -18,10 +18,6 @@ CODE = "UL751"
 NAME = "srdf-unknown-joint"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("joint_2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace("joint_2", "j2")
@@ -39,7 +35,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(4, 5), (8, 5), (10, 3)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 WHERE = (("group/joint", "group '{g}' joint"), ("group_state/joint", "group state '{g}' joint"),

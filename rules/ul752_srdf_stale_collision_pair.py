@@ -17,17 +17,17 @@ CODE = "UL752"
 NAME = "srdf-stale-collision-pair"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import PAIRS_SRDF_EXAMPLE, example_robot
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "link_2"), links=("base", "l1", "link_2"))
 PASS = FAIL.replace("link_2", "l2")
 EXAMPLE_FILES = {"config/r.srdf": PAIRS_SRDF_EXAMPLE}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(3, 3)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import closest, rename_fix, srdfs
 
 

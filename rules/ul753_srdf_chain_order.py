@@ -12,10 +12,6 @@ CODE = "UL753"
 NAME = "srdf-chain-order"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l2"), ("j2", "l2", "l1"), links=("base", "l1", "l2"))
 PASS = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), links=("base", "l1", "l2"))
@@ -27,7 +23,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(3, 5)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import chain, srdfs
 
 

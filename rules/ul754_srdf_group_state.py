@@ -14,10 +14,6 @@ CODE = "UL754"
 NAME = "srdf-group-state"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMIT
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), ("j3", "l2", "l3"), links=("base", "l1", "l2"),
                      tail='  <link name="l3"/>\n')
@@ -36,7 +32,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(6, 3), (8, 5)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report, fmt, number
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import actuated, group_joints, joint_limits, srdfs
 
 SLACK = 1e-9

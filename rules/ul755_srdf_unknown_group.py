@@ -12,10 +12,6 @@ CODE = "UL755"
 NAME = "srdf-unknown-group"
 SEVERITY = "error"
 TARGETS = {"*": "off", "ros": "error"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"))
 PASS = FAIL
@@ -33,7 +29,11 @@ EXAMPLE_FILES = {"config/r.srdf": """<robot name="r">
 PASS_FILES = {"config/r.srdf": EXAMPLE_FILES["config/r.srdf"].replace("manipulator", "arm")}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(5, 3)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report, did_you_mean
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import docs, groups, srdfs
 
 WHERE = (("group_state", "group", "group state '{n}'"), ("end_effector", "group", "end effector '{n}'"),

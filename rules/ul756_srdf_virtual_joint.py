@@ -20,10 +20,6 @@ CODE = "UL756"
 NAME = "srdf-virtual-joint"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot
 FAIL = example_robot(("j1", "base", "l1"))
 PASS = FAIL
@@ -37,7 +33,11 @@ PASS_FILES = {"config/r.srdf": """<robot name="r">
 """}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(2, 3)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import parent_of, srdfs
 
 

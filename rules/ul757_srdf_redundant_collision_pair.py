@@ -19,10 +19,6 @@ CODE = "UL757"
 NAME = "srdf-redundant-collision-pair"
 SEVERITY = "info"
 TARGETS = {"*": "off", "ros": "info"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, PAIRS_SRDF_EXAMPLE
 _BOX = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
 FAIL = example_robot(("j1", "base", "l1"), ("j2", "l1", "l2"), links=("base", "l1", "l2")).replace(
@@ -32,7 +28,11 @@ PASS = FAIL.replace('<link name="l2"/>', f'<link name="l2">{_BOX}</link>')
 EXAMPLE_FILES = {"config/r.srdf": PAIRS_SRDF_EXAMPLE}
 EXAMPLE_AT = "config/r.srdf"
 FAIL_AT = [(3, 3)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import srdfs
 
 

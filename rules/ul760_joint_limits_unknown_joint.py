@@ -15,17 +15,17 @@ CODE = "UL760"
 NAME = "joint-limits-unknown-joint"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMITS_EXAMPLE_FILES
 FAIL = example_robot(("joint_1", "base", "l1"))
 PASS = FAIL.replace("joint_1", "joint1")
 EXAMPLE_FILES = LIMITS_EXAMPLE_FILES
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(2, 3)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import closest, limit_entries, rename_fix
 
 

@@ -14,17 +14,17 @@ CODE = "UL761"
 NAME = "joint-limits-exceed-urdf"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import example_robot, LIMIT, LIMITS_EXAMPLE_FILES
 FAIL = example_robot(("joint1", "base", "l1", LIMIT.replace('velocity="1"', 'velocity="0.25"')))
 PASS = FAIL.replace('velocity="0.25"', 'velocity="1"')
 EXAMPLE_FILES = LIMITS_EXAMPLE_FILES
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(4, 19)]
+from typing import TYPE_CHECKING
 from urdf_lint.engine.api import Report, fmt
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import joint_limits, limit_entries, scalar
 
 SLACK = 1e-9

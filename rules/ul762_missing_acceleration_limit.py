@@ -15,10 +15,6 @@ CODE = "UL762"
 NAME = "missing-acceleration-limit"
 SEVERITY = "warning"
 TARGETS = {"*": "off", "ros": "warning"}
-from typing import TYPE_CHECKING, Any
-
-if TYPE_CHECKING:
-    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import ARM_SRDF_EXAMPLE, example_robot
 FAIL = example_robot(("joint1", "base", "l1"), ("joint2", "l1", "l2"), links=("base", "l1", "l2"))
 PASS = FAIL.replace('<joint name="joint2" type="revolute">', '<joint name="joint2" type="fixed">')
@@ -32,7 +28,11 @@ EXAMPLE_FILES = {"config/r.srdf": ARM_SRDF_EXAMPLE, "config/joint_limits.yaml": 
 """}
 EXAMPLE_AT = "config/joint_limits.yaml"
 FAIL_AT = [(5, 3)]
+from typing import TYPE_CHECKING, Any
 from urdf_lint.engine.api import Origin, Report
+
+if TYPE_CHECKING:
+    from urdf_lint.engine.api import Checked, Context, Model
 from urdf_lint.rules._config import (actuated, group_joints, groups, joint_limits, limit_entries,
                                      scalar, srdfs)
 

@@ -174,60 +174,24 @@ MESH_CLEAN = {"OBJ collision mesh": lower_collision_mesh("box.obj")}
 ERROR_BY_INTENT = {"<orgin> typo in a joint", "NaN in an origin", "duplicate joint",
                    "mimic of a missing joint"}
 
-LOADER = r'''
-import os
-import sys
-path, which = sys.argv[1], sys.argv[2]
-if which == "mujoco":
-    import mujoco
-    m = mujoco.MjModel.from_xml_path(path)
-    d = mujoco.MjData(m)
-    mujoco.mj_step(m, d)
-elif which == "pinocchio":
-    import numpy as np
-    import pinocchio as pin
-    model = pin.buildModelFromUrdf(path)
-    for kind in (pin.GeometryType.COLLISION, pin.GeometryType.VISUAL):
-        # a relative mesh path is looked up in package_dirs, not in the model's folder
-        pin.buildGeomFromUrdf(model, path, kind, package_dirs=[os.path.dirname(path)])
-    data = model.createData()
-    q = pin.neutral(model)
-    pin.computeAllTerms(model, data, q, np.zeros(model.nv))
-    pin.aba(model, data, q, np.zeros(model.nv), np.zeros(model.nv))
-elif which == "pybullet":
-    import pybullet as p
-    p.connect(p.DIRECT)
-    p.loadURDF(path)
-    for _ in range(240):
-        p.stepSimulation()
-elif which == "drake":
-    from pydrake.multibody.parsing import Parser
-    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
-    from pydrake.systems.framework import DiagramBuilder
-    builder = DiagramBuilder()
-    plant, scene_graph = AddMultibodyPlantSceneGraph(builder, 0.0)
-    Parser(plant).AddModels(path)
-    plant.Finalize()
-    diagram = builder.Build()
-    context = diagram.CreateDefaultContext()
-    query = scene_graph.get_query_output_port().Eval(scene_graph.GetMyContextFromRoot(context))
-    query.ComputePointPairPenetration()
-    plant.CalcMassMatrix(plant.GetMyContextFromRoot(context))
-print("loaded")
-'''
+# the consumers' loaders are the consumer harness's (bench/consumers/worker.py): one process per
+# file here, the path on its standard input, one JSON verdict a line on its standard output
+WORKER = Path(__file__).resolve().parents[1] / "bench" / "consumers" / "worker.py"
 
 
 def verdict(path: Path, consumer: str) -> str:
     """R (rejects), C (crashes or hangs) or . (loads)."""
     try:
         # in the model's folder: MuJoCo writes MUJOCO_LOG.TXT into the working directory
-        r = subprocess.run([sys.executable, "-c", LOADER, str(path), consumer],
+        r = subprocess.run([sys.executable, str(WORKER), consumer], input=f"{path}\n",
                            capture_output=True, text=True, timeout=60, cwd=path.parent)
     except subprocess.TimeoutExpired:
         return "C"
-    if r.returncode == 0 and "loaded" in r.stdout:
-        return "."
-    return "C" if r.returncode < 0 else "R"
+    lines = [json.loads(ln) for ln in r.stdout.splitlines() if ln.strip()]
+    assert lines and "unavailable" not in lines[0], (consumer, r.stdout, r.stderr[-500:])
+    if r.returncode != 0 or len(lines) < 2:
+        return "C"
+    return str(lines[1]["v"])
 
 
 def variant(edits) -> str:

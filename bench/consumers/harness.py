@@ -58,8 +58,9 @@ PIP_CONSUMERS = ("mujoco", "pinocchio", "pybullet", "yourdfpy", "urdf_parser_py"
 REPOSITORY_CODES = {"UL002", "UL003", "UL004", "UL005", "UL008", "UL009", "UL010", "UL011",
                     "UL012", "UL106", "UL403", "UL901", "UL902", "UL903", "UL904"}
 OLD_UPP = Path(sys.prefix) / "consumers" / "urdf-parser-py-0.0.4"   # pip install --target
-ISAAC_VENV = REPO / ".venv-isaac"
-ISAAC_ISOLATED_VENV = REPO / ".venv-isaac-isolated"
+# the consumers that need Python 3.12 and a venv of their own: (the venv, what it installs)
+OWN_VENVS = {"isaac": (REPO / ".venv-isaac", "urdf-usd-converter==0.3.4"),
+             "isaac_isolated": (REPO / ".venv-isaac-isolated", "isaacsim-asset-isolated==6.2.0.0")}
 CORPUS = REPO.parent / "shared" / "corpus"
 if not CORPUS.is_dir():
     CORPUS = Path("/work/shared/corpus")
@@ -74,18 +75,13 @@ def _command(consumer: str, build: Path) -> tuple[list[str], dict] | str:
         if not exe.exists():
             return "libsdformat-dev is not installed (apt-get install libsdformat-dev)"
         return [str(exe)], env
-    if consumer == "isaac":
-        py = ISAAC_VENV / "bin" / "python"
+    if consumer in OWN_VENVS:
+        venv, package = OWN_VENVS[consumer]
+        py = venv / "bin" / "python"
         if not py.exists():
-            return ".venv-isaac is missing (python3.12 -m venv .venv-isaac; pip install " \
-                   "urdf-usd-converter)"
-        return [str(py), str(HERE / "worker.py"), "isaac"], env
-    if consumer == "isaac_isolated":
-        py = ISAAC_ISOLATED_VENV / "bin" / "python"
-        if not py.exists():
-            return ".venv-isaac-isolated is missing (python3.12 -m venv .venv-isaac-isolated; " \
-                   "pip install isaacsim-asset-isolated)"
-        return [str(py), str(HERE / "worker.py"), "isaac_isolated"], env
+            return (f"{venv.name} is missing (python3.12 -m venv {venv.name}; "
+                    f"{venv.name}/bin/pip install {package})")
+        return [str(py), str(HERE / "worker.py"), consumer], env
     if consumer == "urdf_parser_py_0.0.4":
         if not OLD_UPP.is_dir():
             return f"urdf-parser-py 0.0.4 is not installed in {OLD_UPP}"

@@ -36,6 +36,8 @@ import string
 from contextlib import contextmanager
 from typing import Any, Callable, Iterator, Mapping, Sequence, Union, cast
 
+from urdf_lint.expansion import traced
+
 
 class UnsafeExpression(Exception):
     pass
@@ -118,7 +120,6 @@ _NUMERIC_IDS = frozenset([id(float), id(int), id(round), id(abs)] + [
 
 
 def _keep_trace(fn: object, args: Sequence[Any], result: Any) -> Any:
-    from urdf_lint.expansion import traced
     if type(result) not in (float, int):
         return result
     for a in args:

@@ -373,14 +373,12 @@ def check(prep: Prepared, out: Say,
 # -- fix ------------------------------------------------------------------------------------------
 def fix(prep: Prepared, out: Say, unsafe: bool = False, diff_only: bool = False) -> Any:
     """``--fix``/``--diff``: :func:`urdf_lint.run.fix.run_fix` over every model of the paths,
-    with the fix memo of the result cache; returns its outcome."""
+    with the fix memo of the prepared run's result cache; returns its outcome."""
     from urdf_lint.run.fix import run_fix
     memo = None
-    if not prep.request.no_cache:
-        from urdf_lint.run.cache import Cache
+    if prep.cache is not None:
         from urdf_lint.fix.memo import FixMemo
-        cache = Cache.for_paths(prep.paths, prep.cfg)
-        memo = FixMemo(cache) if not cache.refused else None
+        memo = FixMemo(prep.cache)
     return run_fix(prep.paths, prep.cfg, prep.resolver, jobs_n=prep.cfg.jobs, unsafe=unsafe,
                    diff_only=diff_only, memo=memo, note=out.note)
 
