@@ -4,6 +4,7 @@ reach it; ``--coverage`` says which branches stay out and why."""
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 from conftest import make_package, run_cli
@@ -161,6 +162,42 @@ def test_the_branches_read_from_the_source(tmp_path):
     assert values["hand"] == ["fancy"] and values["size"] == ["big"]
     assert branches.guesses(conds[9], a.defaults, values) == [{"use_gazebo": "false"}] or \
         a.defaults["use_gazebo"] == "false"
+
+
+def test_the_yaml_files_a_load_yaml_names_are_read_from_the_source(tmp_path):
+    """Static: the YAML a ``load_yaml`` reads, through a property holding ``$(find pkg)/...``
+    (defined in another file), a ``${...}`` join of literals and properties, a relative path
+    (from the call's file and from the property's), ``package://``; an arg or a macro
+    parameter leaves the path out, and nothing is read of a call that cannot be told."""
+    from urdf_lint.discovery import branches
+    from urdf_lint.discovery.packages import PackageResolver
+    pkg = make_package(tmp_path, "robot", {
+        "urdf/paths.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:property name="cfg" value="$(find robot)/config"/>
+  <xacro:property name="inertial_config" value="${{cfg + '/inertial.yaml'}}"/>
+  <xacro:property name="near" value="limits/near.yaml"/>
+</robot>
+""",
+        "urdf/robot.urdf.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:arg name="size" default="small"/>
+  <xacro:macro name="m" params="file">
+    <xacro:property name="i" value="${{xacro.load_yaml(inertial_config)}}"/>
+    <link name="a" type="${{xacro.load_yaml(near)['t']}}"/>
+    <xacro:property name="p" value="${{xacro.load_yaml('package://robot/config/p.yaml')}}"/>
+    <xacro:property name="q" value="${{xacro.load_yaml(file)}}"/>
+    <xacro:property name="s" value="${{xacro.load_yaml('$(arg size).yaml')}}"/>
+  </xacro:macro>
+  <origin xyz="${{xacro.load_yaml(cfg + '/origin.yaml')['xyz']}}"/>
+</robot>
+"""})
+    resolver = PackageResolver.build([str(tmp_path)])
+    files = [str(pkg / "urdf/robot.urdf.xacro"), str(pkg / "urdf/paths.xacro")]
+    got = branches.yaml_reads([branches.yaml_sources(f, resolver) for f in files], resolver)
+    root = os.path.realpath(pkg)
+    assert got == {f"{root}/config/inertial.yaml", f"{root}/config/origin.yaml",
+                   f"{root}/config/p.yaml", f"{root}/urdf/limits/near.yaml"}, got
 
 
 def test_the_budget_is_shared_round_robin_and_variant_findings_are_labelled_once():
