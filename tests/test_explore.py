@@ -4,6 +4,7 @@ reach it; ``--coverage`` says which branches stay out and why."""
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 from conftest import make_package, run_cli
@@ -161,6 +162,42 @@ def test_the_branches_read_from_the_source(tmp_path):
     assert values["hand"] == ["fancy"] and values["size"] == ["big"]
     assert branches.guesses(conds[9], a.defaults, values) == [{"use_gazebo": "false"}] or \
         a.defaults["use_gazebo"] == "false"
+
+
+def test_the_yaml_files_a_load_yaml_names_are_read_from_the_source(tmp_path):
+    """Static: the YAML a ``load_yaml`` reads, through a property holding ``$(find pkg)/...``
+    (defined in another file), a ``${...}`` join of literals and properties, a relative path
+    (from the call's file and from the property's), ``package://``; an arg or a macro
+    parameter leaves the path out, and nothing is read of a call that cannot be told."""
+    from urdf_lint.discovery import branches
+    from urdf_lint.discovery.packages import PackageResolver
+    pkg = make_package(tmp_path, "robot", {
+        "urdf/paths.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:property name="cfg" value="$(find robot)/config"/>
+  <xacro:property name="inertial_config" value="${{cfg + '/inertial.yaml'}}"/>
+  <xacro:property name="near" value="limits/near.yaml"/>
+</robot>
+""",
+        "urdf/robot.urdf.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:arg name="size" default="small"/>
+  <xacro:macro name="m" params="file">
+    <xacro:property name="i" value="${{xacro.load_yaml(inertial_config)}}"/>
+    <link name="a" type="${{xacro.load_yaml(near)['t']}}"/>
+    <xacro:property name="p" value="${{xacro.load_yaml('package://robot/config/p.yaml')}}"/>
+    <xacro:property name="q" value="${{xacro.load_yaml(file)}}"/>
+    <xacro:property name="s" value="${{xacro.load_yaml('$(arg size).yaml')}}"/>
+  </xacro:macro>
+  <origin xyz="${{xacro.load_yaml(cfg + '/origin.yaml')['xyz']}}"/>
+</robot>
+"""})
+    resolver = PackageResolver.build([str(tmp_path)])
+    files = [str(pkg / "urdf/robot.urdf.xacro"), str(pkg / "urdf/paths.xacro")]
+    got = branches.yaml_reads([branches.yaml_sources(f, resolver) for f in files], resolver)
+    root = os.path.realpath(pkg)
+    assert got == {f"{root}/config/inertial.yaml", f"{root}/config/origin.yaml",
+                   f"{root}/config/p.yaml", f"{root}/urdf/limits/near.yaml"}, got
 
 
 def test_the_budget_is_shared_round_robin_and_variant_findings_are_labelled_once():
@@ -323,6 +360,93 @@ def test_a_change_only_an_explored_variant_reads_relints_its_model(tmp_path):
     # the model's branch findings come with it; with exploration off it is not linted
     off = _check(pkg, "--changed-since", "HEAD", "--explore", "false", coverage=False)
     assert off["models"] == []
+
+
+# franka_description's pattern: the inertials come from a YAML file whose path a property holds
+# (`$(find pkg)/config/inertial.yaml`), loaded lazily by a property only a macro reads, and that
+# macro is called only under `gazebo:=true`: no default pass reads the YAML
+LAZY_YAML = {
+    "urdf/utils.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:property name="inertial_config" value="$(find arm)/config/inertial.yaml"/>
+  <xacro:property name="inertial" value="${{xacro.load_yaml(inertial_config)}}"/>
+  <xacro:macro name="inertial_props" params="name inertial:=^">
+    <xacro:property name="i" value="${{inertial[name]}}" lazy_eval="false"/>
+    <inertial>
+      <mass value="${{i.mass}}"/>
+      <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/>
+    </inertial>
+  </xacro:macro>
+</robot>
+""",
+    "urdf/arm.xacro": f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:macro name="arm" params="prefix gazebo:=false">
+    <xacro:include filename="$(find arm)/urdf/utils.xacro"/>
+    <link name="${{prefix}}base"/>
+    <link name="${{prefix}}link1">
+      <xacro:if value="${{gazebo}}">
+        <xacro:inertial_props name="link1"/>
+      </xacro:if>
+    </link>
+    <joint name="${{prefix}}joint1" type="fixed">
+      <parent link="${{prefix}}base"/><child link="${{prefix}}link1"/>
+    </joint>
+  </xacro:macro>
+</robot>
+""",
+    "config/inertial.yaml": "link0:\n  mass: 1.0\nlink1:\n  mass: 2.0\n",
+}
+for _name in ("a", "b"):   # two models: a change re-lints each model that may read it
+    LAZY_YAML[f"urdf/{_name}.urdf.xacro"] = f"""<?xml version="1.0"?>
+<robot name="{_name}" {X}>
+  <xacro:arg name="gazebo" default="false"/>
+  <xacro:include filename="$(find arm)/urdf/arm.xacro"/>
+  <xacro:arm prefix="{_name}_" gazebo="$(arg gazebo)"/>
+</robot>
+"""
+LAZY_MASS_LINE = 4     # of config/inertial.yaml: link1's mass
+
+
+def lazy_yaml_repo(root: Path) -> Path:
+    """The package of :data:`LAZY_YAML`, committed in a git repository of its own."""
+    pkg = make_package(root, "arm", LAZY_YAML)
+    _git("init", "-q", cwd=pkg)
+    _git("add", "-A", cwd=pkg)
+    _git("commit", "-qm", "init", cwd=pkg)
+    return pkg
+
+
+def test_a_yaml_only_an_explored_variant_loads_through_a_property_relints(tmp_path):
+    """franka_description: link1's mass made negative in a YAML file that only ``gazebo:=true``
+    loads, through ``load_yaml(inertial_config)`` where the property holds
+    ``$(find arm)/config/inertial.yaml``. The hook and ``--changed-since`` re-lint every model
+    that may read it (both, not only the first) and report the error at its YAML line; they
+    said "0 model(s) affected" and passed."""
+    pkg = lazy_yaml_repo(tmp_path)
+    yaml = pkg / "config/inertial.yaml"
+    yaml.write_text(yaml.read_text().replace("mass: 2.0", "mass: -2.0"))
+    p = run_cli("hook", "--", "config/inertial.yaml", cwd=pkg)
+    assert p.returncode == 1, (p.stdout, p.stderr)
+    assert "2 model(s) affected" in p.stderr, p.stderr
+    assert "UL602 link 'a_link1': mass -2 must not be negative" in p.stdout, p.stdout
+    assert f"value from config/inertial.yaml:{LAZY_MASS_LINE}" in p.stdout, p.stdout
+    doc = _check(pkg, "--changed-since", "HEAD", coverage=False)
+    assert sorted(m["entry"] for m in doc["models"]) == ["urdf/a.urdf.xacro",
+                                                        "urdf/b.urdf.xacro"], doc["models"]
+    [f] = [f for f in doc["findings"] if f["code"] == "UL602"]
+    assert f["value_from"][:2] == ["config/inertial.yaml", LAZY_MASS_LINE], f
+    assert f["message"].endswith("(only with gazebo:=true)"), f
+    # read by the default pass (gazebo on by default): its recorded inputs name the YAML,
+    # with exploration off too
+    for name in ("a", "b"):
+        xacro = pkg / f"urdf/{name}.urdf.xacro"
+        xacro.write_text(xacro.read_text().replace('default="false"', 'default="true"'))
+    _git("commit", "-qam", "gazebo by default", cwd=pkg)
+    yaml.write_text(yaml.read_text().replace("mass: -2.0", "mass: -3.0"))
+    off = _check(pkg, "--changed-since", "HEAD", "--explore", "false", coverage=False)
+    assert sorted(m["entry"] for m in off["models"]) == ["urdf/a.urdf.xacro",
+                                                        "urdf/b.urdf.xacro"], off["models"]
 
 
 def test_the_default_pass_and_the_exploration_pass_share_their_workers(tmp_path, monkeypatch):

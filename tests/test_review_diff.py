@@ -688,3 +688,38 @@ def test_introduced_and_fixed_findings_name_their_line_as_check_does(repo, capsy
     _, doc = run_json(capsys, "HEAD")
     [fixed] = doc["models"][0]["findings_fixed"]
     assert (fixed["file"], fixed["line"]) == (want["file"], want["line"])
+
+
+def test_an_introduced_or_fixed_finding_names_the_yaml_line_of_its_value(tmp_path, monkeypatch,
+                                                                         capsys):
+    """franka_description: link1's mass made negative in a YAML file only ``gazebo:=true``
+    loads (through a property holding ``$(find arm)/config/inertial.yaml``). The introduced
+    UL602 names the YAML line its value comes from, as ``check`` does, in text, JSON and
+    markdown (the diff said only the xacro line); the fixed one names BASE's line."""
+    from test_explore import LAZY_MASS_LINE, lazy_yaml_repo
+    pkg = lazy_yaml_repo(tmp_path)
+    monkeypatch.chdir(pkg)
+    edit(pkg / "config/inertial.yaml", "mass: 2.0", "mass: -2.0")
+    rc, d = run_json(capsys, "HEAD")
+    assert rc == 1
+    where = ["config/inertial.yaml", LAZY_MASS_LINE]
+    for m in d["models"]:
+        [f] = m["findings_introduced"]
+        assert (f["code"], f["file"], f["value_from"][:2]) == ("UL602", "urdf/utils.xacro",
+                                                              where), f
+    main(["diff", "HEAD", "--no-cache"])
+    text = capsys.readouterr().out
+    said = f"      value from config/inertial.yaml:{LAZY_MASS_LINE}\n"
+    assert text.count("introduced error: UL602 urdf/utils.xacro:") == 2, text
+    assert text.count(said) == 2, text
+    main(["diff", "HEAD", "--no-cache", "--format", "markdown"])
+    md = capsys.readouterr().out
+    assert md.count(f"<sub>value from `config/inertial.yaml:{LAZY_MASS_LINE}`</sub>") == 2, md
+    # fixed: the value came from BASE's YAML line (the fix moved it one line down)
+    git(pkg, "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qam", "bad")
+    edit(pkg / "config/inertial.yaml", "link1:\n  mass: -2.0", "link1:\n  # kg\n  mass: 2.0")
+    _, d = run_json(capsys, "HEAD")
+    for m in d["models"]:
+        assert m["findings_introduced"] == [], m
+        [f] = m["findings_fixed"]
+        assert (f["code"], f["value_from"][:2]) == ("UL602", where), f

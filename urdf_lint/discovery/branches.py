@@ -118,18 +118,18 @@ class Analysis:
 _TOKENS = (b":if", b":unless", b"$(arg", b":arg")
 
 
-def _parse(f: str, resolver: Any) -> Any:
+def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS) -> Any:
     """The root of a source that can hold anything :func:`analyse` reads (a condition, an arg,
-    a value built from one), read once through the boundary; None for a file without these
-    bytes (not parsed: a cached run of a robot with no branches needs no lxml) or one that does
-    not parse."""
+    a value built from one; ``tokens``: the bytes that say so), read once through the
+    boundary; None for a file without these bytes (not parsed: a cached run of a robot with
+    no branches needs no lxml) or one that does not parse."""
     from urdf_lint.core import fsbound
     try:
         data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
                                   resolved=True)
     except (OSError, ValueError):
         return None
-    if not any(t in data for t in _TOKENS):
+    if not any(t in data for t in tokens):
         return None
     from lxml import etree
     try:
@@ -365,3 +365,177 @@ def merged(a: dict[str, Any], b: dict[str, Any]) -> dict[str, Any] | None:
     if any(k in b and b[k] != v for k, v in a.items()):
         return None
     return {**a, **b}
+
+
+# -- the YAML files a load_yaml reads, resolved from the text ----------------------------------
+_YAML_TOKENS = (b"load_yaml", b"property")
+_SUBST_RE = re.compile(r"\$\{([^}]*)\}|\$\(([^)]*)\)")     # xacro's ${expr} and $(extension)
+_IDENT_RE = re.compile(r"[A-Za-z_]\w*")
+_MAX_PATHS = 32      # the values one text may stand for (a property defined in many scopes)
+_MAX_DEPTH = 6       # properties set from properties
+
+
+@dataclass
+class YamlSources:
+    """What one file says of the YAML it may load: ``load_yaml(...)``'s argument texts and the
+    properties it defines (name -> value texts), each with the file."""
+    calls: list[tuple[str, str]] = field(default_factory=list)        # (argument, file)
+    props: dict[str, list[tuple[str, str]]] = field(default_factory=dict)   # name -> (value, file)
+
+
+def yaml_sources(f: str, resolver: Any) -> YamlSources:
+    """The ``load_yaml`` calls and the property definitions of the xacro file ``f`` (lxml, read
+    through the boundary; nothing evaluated)."""
+    out = YamlSources()
+    root = _parse(f, resolver, _YAML_TOKENS) if f.endswith(".xacro") else None
+    if root is None:
+        return out
+    for el in root.iter():
+        if not isinstance(el.tag, str):
+            continue
+        if _local(el) == "property" and el.get("name"):
+            value = el.get("value", el.get("default", el.text or ""))
+            out.props.setdefault(el.get("name"), []).append((value, f))
+        for text in [*el.attrib.values(), el.text or ""]:
+            out.calls.extend((arg, f) for arg in _call_args(text, "load_yaml"))
+    return out
+
+
+def yaml_reads(sources: Iterable[YamlSources], resolver: Any) -> set[str]:
+    """The YAML files the ``load_yaml`` calls of ``sources`` (a model's files) may read, as far
+    as the text alone says: a literal path (``load_yaml('$(find pkg)/a.yaml')``), or a
+    property whose value is one (``<xacro:property name="cfg" value="$(find pkg)/a.yaml"/>``
+    then ``load_yaml(cfg)``; ``${...}`` joins of literals and such properties too), wherever
+    the call stands (a macro, a branch the defaults leave out). A relative path counts from the
+    call's file and from the property's. A superset: a property defined twice gives both;
+    what only expansion can tell (an arg, a macro parameter) is left out."""
+    sources = list(sources)
+    props: dict[str, list[tuple[str, str]]] = {}
+    for src in sources:
+        for name, values in src.props.items():
+            props.setdefault(name, []).extend(values)
+    out: set[str] = set()
+    for src in sources:
+        for arg, f in src.calls:
+            for path, base in _expr_values(arg, f, props, resolver, _MAX_DEPTH):
+                out.update(_absolute(path, {os.path.dirname(f), os.path.dirname(base)}, resolver))
+    return out
+
+
+def _call_args(text: str, func: str) -> list[str]:
+    """The argument text of each call of ``func`` in ``text`` (quotes kept, parentheses
+    matched outside quotes)."""
+    out = []
+    start = text.find(func + "(")
+    while start >= 0:
+        i = start + len(func) + 1
+        depth, quote, arg_start = 1, "", i
+        while i < len(text) and depth:
+            c = text[i]
+            if quote:
+                quote = "" if c == quote else quote
+            elif c in "'\"":
+                quote = c
+            elif c == "(":
+                depth += 1
+            elif c == ")":
+                depth -= 1
+            i += 1
+        if depth == 0:
+            out.append(text[arg_start:i - 1].strip())
+        start = text.find(func + "(", i)
+    return out
+
+
+def _split_plus(expr: str) -> list[str] | None:
+    """The terms of ``a + 'b' + c`` (None for anything but literals and names joined by +)."""
+    terms, cur, quote = [], "", ""
+    for c in expr:
+        if quote:
+            quote = "" if c == quote else quote
+        elif c in "'\"":
+            quote = c
+        elif c == "+":
+            terms.append(cur.strip())
+            cur = ""
+            continue
+        elif c in "()[]{},":
+            return None
+        cur += c
+    terms.append(cur.strip())
+    return terms
+
+
+Values = list[tuple[str, str]]   # (a string the text may evaluate to, the file it was written in)
+
+
+def _join(a: Values, b: Values) -> Values:
+    return [(x + y, fb or fa) for x, fa in a for y, fb in b][:_MAX_PATHS]
+
+
+def _expr_values(expr: str, f: str, props: dict[str, list[tuple[str, str]]], resolver: Any,
+                 depth: int) -> Values:
+    """The strings a ``${...}`` expression (or load_yaml's argument) may give: literals and
+    properties joined by ``+``; [] when it holds anything else."""
+    terms = _split_plus(expr)
+    if not terms or depth <= 0:
+        return []
+    got: Values = [("", "")]
+    for t in terms:
+        if len(t) >= 2 and t[0] == t[-1] and t[0] in "'\"":
+            vals = _text_values(t[1:-1], f, props, resolver, depth)
+        elif _IDENT_RE.fullmatch(t):
+            vals = [v for value, pf in props.get(t, ())
+                    for v in _text_values(value, pf, props, resolver, depth - 1)]
+        else:
+            return []
+        if not vals:
+            return []
+        got = _join(got, vals)
+    return got
+
+
+def _text_values(text: str, f: str, props: dict[str, list[tuple[str, str]]], resolver: Any,
+                 depth: int) -> Values:
+    """The strings a xacro text may give: its literal parts, ``$(find pkg)`` and ``${...}``
+    (:func:`_expr_values`); [] when another substitution (an arg, an env) is in it."""
+    got: Values = [("", f)]
+    pos = 0
+    for m in _SUBST_RE.finditer(text):
+        got = _join(got, [(text[pos:m.start()], f)])
+        pos = m.end()
+        if m.group(1) is not None:
+            vals = _expr_values(m.group(1).strip(), f, props, resolver, depth)
+        else:
+            ext = m.group(2).split()
+            vals = [(p, f) for p in _find(ext, resolver)]
+        if not vals:
+            return []
+        got = _join(got, vals)
+    return _join(got, [(text[pos:], f)])
+
+
+def _find(ext: list[str], resolver: Any) -> list[str]:
+    if len(ext) != 2 or ext[0] != "find" or resolver is None:
+        return []
+    try:
+        return [str(resolver.find(ext[1]))]
+    except Exception:  # noqa: BLE001 - an unknown package: expansion reports it
+        return []
+
+
+def _absolute(path: str, bases: set[str], resolver: Any) -> set[str]:
+    """The files a load_yaml path names: ``package://``, absolute, or relative to one of
+    ``bases`` (real paths; the file need not exist: a deleted YAML still re-lints)."""
+    path = path.strip()
+    if not path or "$" in path:
+        return set()
+    if path.startswith("package://"):
+        pkg, _, rel = path[len("package://"):].partition("/")
+        found = _find(["find", pkg], resolver)
+        return {os.path.realpath(os.path.join(found[0], rel))} if found else set()
+    if path.startswith("file://"):
+        path = path[len("file://"):]
+    if os.path.isabs(path):
+        return {os.path.realpath(path)}
+    return {os.path.realpath(os.path.join(b, path)) for b in bases if b}

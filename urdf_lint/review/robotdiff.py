@@ -79,6 +79,9 @@ class ModelDiff:
     # finding key -> (file, line, col) of the robot element an SRDF or YAML finding is about,
     # in its revision
     finding_related: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
+    # finding key -> (file, line, col) its value comes from (a YAML scalar, a property
+    # elsewhere), in its revision: HEAD's for an introduced finding, BASE's for a fixed one
+    finding_value_from: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
     error: str = ""
     snapshot: dict[str, Any] = field(default_factory=dict)   # diff --render: png/diff/rrd paths
     picture: str = ""              # the file name stem of its pictures (locations.picture_name)

@@ -190,6 +190,9 @@ class Side:
     lines: dict[FindingKey, tuple[int, int]] = field(default_factory=dict)
     # (code, file, message) -> (file relative to root, line, col) of the robot element
     related: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
+    # (code, file, message) -> (file relative to root, line, col) its value comes from (a YAML
+    # scalar, a property elsewhere: the finding's value_from)
+    value_from: dict[FindingKey, tuple[str, int, int]] = field(default_factory=dict)
     robots: dict[str, Model | None] = field(default_factory=dict)      # key -> Model | None
     # key -> render.Geometry (diff --render)
     geometry: dict[str, Geometry] = field(default_factory=dict)
@@ -304,6 +307,9 @@ def _lint_side(side: Side, paths: "Sequence[str]", cfg: "Config",
             if own[0].related:     # an SRDF or YAML finding's robot element (its xacro line)
                 side.related.setdefault(fk, (_rel(side.root, own[0].related[0]),
                                              *own[0].related[1:3]))
+            if own[0].value_from:  # the YAML line (or property) its value comes from
+                side.value_from.setdefault(fk, (_rel(side.root, own[0].value_from[0]),
+                                                *own[0].value_from[1:3]))
             side.findings[labels[label]][fk] += 1
     return resolver, result
 
@@ -806,8 +812,8 @@ def _model_diff(k: str, head: Side, base: Side, bk: str | None, removed: bool = 
 def _findings_diff(md: ModelDiff, hf: "Counter[FindingKey]", bf: "Counter[FindingKey]",
                    head: Side, base: Side) -> None:
     """The findings only HEAD has (introduced) and only BASE has (fixed), with where each is
-    in its revision (the key has no line: an edit above it moves it) and the robot element
-    an SRDF or YAML finding is about."""
+    in its revision (the key has no line: an edit above it moves it), the robot element
+    an SRDF or YAML finding is about and where its value comes from (a YAML line)."""
     md.findings_introduced = [(fk, head.severities.get(fk, "error"))
                               for fk in sorted((hf - bf).elements())]
     md.findings_fixed = [(fk, base.severities.get(fk, "error"))
@@ -816,6 +822,8 @@ def _findings_diff(md: ModelDiff, hf: "Counter[FindingKey]", bf: "Counter[Findin
         md.finding_lines.update({fk: side.lines[fk] for fk, _ in items if fk in side.lines})
         md.finding_related.update({fk: side.related[fk] for fk, _ in items
                                    if fk in side.related})
+        md.finding_value_from.update({fk: side.value_from[fk] for fk, _ in items
+                                      if fk in side.value_from})
 
 
 def _rebase(c: "Change", base_root: str, head_root: str, top: str | None = None) -> "Change":

@@ -127,8 +127,13 @@ def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
     hook: a change to one of them re-lints the model): every file the include graph reaches
     from it (an include inside a branch its args leave out), every file a path built from an
     arg not fixed by ``explore-args`` may name, and what those include. Read from the sources,
-    as :func:`plan` reads them; a superset of what the variants will read."""
+    as :func:`plan` reads them; a superset of what the variants will read. The YAML files a
+    ``load_yaml`` of those sources names (a literal path, or a property holding one, as
+    ``$(find pkg)/config/inertial.yaml``: :func:`urdf_lint.discovery.branches.yaml_reads`)
+    are among them: a call in a macro only a branch calls is read by no default pass."""
+    from urdf_lint.discovery import branches as br
     out = {}
+    sources: dict[str, br.YamlSources] = {}    # file -> its load_yaml calls and properties
     for entry, base in explored_models(cfg, models).items():
         a = _analysis(entry, base, graph, resolver)
         fixed = {k for k, v in explore_args(cfg, entry).items() if not v}
@@ -138,6 +143,11 @@ def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
                 for path in ch.values.values():
                     files.add(path)
                     files.update(_closure(path, graph))
+        read = dict.fromkeys([entry, *sorted(files), *a.files, *(d for r in base for d in r.deps)])
+        for f in read:
+            if f not in sources:
+                sources[f] = br.yaml_sources(f, resolver)
+        files |= br.yaml_reads((sources[f] for f in read), resolver)
         out[entry] = files
     return out
 

@@ -298,13 +298,15 @@ def _keep_affected(out: CheckResult, affected_by: AbstractSet[str],
         unused = set(out.unused_files)
         reach = variant_inputs(rest)
         kept = {id(m) for m in out.models}
+        used: set[str] = set()
         for m in rest:
+            # (every model that may read a changed file, not only the first one)
             hit = {os.path.realpath(f) for f in reach.get(m.entry, ())} & unused
             if hit:
                 kept.add(id(m))
-                unused -= hit
+                used |= hit
         out.models = [m for m in models if id(m) in kept]
-        out.unused_files = sorted(unused)
+        out.unused_files = sorted(unused - used)
     # a deleted file no model reads any more: a removed model (or an unused file) is gone
     out.gone = [f for f in out.unused_files if not os.path.exists(f)]
     out.unused_files = [f for f in out.unused_files if os.path.exists(f)]

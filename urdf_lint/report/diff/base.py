@@ -102,6 +102,13 @@ def related(m: Any, fk: tuple[str, str, str]) -> str:
     return f"{related_label(r[0])} at {r[0]}:{r[1]}" if r else ""
 
 
+def value_source(m: Any, fk: tuple[str, str, str]) -> str:
+    """``value from config/inertial.yaml:25``: the line a finding's value comes from (a YAML
+    scalar, a property elsewhere; ``m`` its ModelDiff), as ``check`` says it, or ""."""
+    v = m.finding_value_from.get(fk)
+    return f"value from {v[0]}:{v[1]}" if v else ""
+
+
 def md_escape(s: object) -> str:
     """Untrusted text (names, values, messages such as ``xacro.fatal``'s) as Markdown that
     renders as that text only: no HTML, link, image, mention, table break or line break

@@ -44,4 +44,7 @@ def _finding(m: Any, fk: tuple[str, str, str], severity: str) -> dict[str, Any]:
     rel = m.finding_related.get(fk)
     if rel:      # the robot element (its xacro line) an SRDF or YAML finding is about
         out["related"] = list(rel)
+    source = m.finding_value_from.get(fk)
+    if source:   # the line its value comes from (a YAML scalar), as check's value_from
+        out["value_from"] = list(source)
     return out

@@ -2,6 +2,8 @@
 comment (always under 60,000 characters; with --image-base-url, the --render pictures)."""
 from __future__ import annotations
 
+from typing import Any
+
 from urdf_lint.core.escape import escape_html
 from urdf_lint.report.diff.base import (MD_ICON, DiffFormatter, DiffResult, chain, code, fmt, loc,
                                         md_escape, moved, related, vloc)
@@ -68,8 +70,7 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
             if items:
                 rows += [f"**{title}**", ""]
                 rows += [f"- {s} {code(fk[0])} {code(_at(fk[1], m.finding_lines.get(fk)))}: "
-                         f"{md_escape(fk[2])}" + (f" <sub>{md_escape(related(m, fk))}</sub>"
-                                                  if related(m, fk) else "") for fk, s in items]
+                         f"{md_escape(fk[2])}" + _notes(m, fk) for fk, s in items]
                 rows.append("")
         rows += ["</details>", ""]
         sections.append(rows)
@@ -92,6 +93,14 @@ def to_markdown(r: DiffResult, image_base_url: str | None = None,
     if len(out) > limit:  # even the table is too long: summarise it
         out = "\n".join(head) + f"\n{len(r.models)} models changed; see the JSON report.\n"
     return out
+
+
+def _notes(m: Any, fk: tuple[str, str, str]) -> str:
+    """Where a finding's value comes from (a YAML line, as ``check`` says it) and the robot
+    element it is about (``m`` its ModelDiff)."""
+    v = m.finding_value_from.get(fk)
+    src = f" <sub>value from {code(f'{v[0]}:{v[1]}')}</sub>" if v else ""
+    return src + (f" <sub>{md_escape(related(m, fk))}</sub>" if related(m, fk) else "")
 
 
 def _at(file: str, at: tuple[int, int] | None) -> str:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from urdf_lint.core.escape import escape_text
 from urdf_lint.report.diff.base import (ICON, DiffFormatter, DiffResult, chain, finding, fmt, loc,
-                                        moved, related, vloc, what)
+                                        moved, related, value_source, vloc, what)
 
 
 class TextDiff(DiffFormatter):
@@ -36,7 +36,8 @@ def to_text(r: DiffResult) -> str:
         for word, items in (("introduced", m.findings_introduced), ("fixed", m.findings_fixed)):
             for fk, sev in items:
                 out.append(f"  {word} {sev}: {finding(fk, m.finding_lines.get(fk))}")
-                if related(m, fk):
-                    out.append(f"      {related(m, fk)}")
+                for extra in (value_source(m, fk), related(m, fk)):
+                    if extra:
+                        out.append(f"      {extra}")
     # names, values and messages are the description's: each line one visible line
     return "\n".join(escape_text(line) for line in out) + "\n"
