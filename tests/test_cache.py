@@ -396,6 +396,30 @@ def test_a_signed_entry_copied_under_another_key_is_refused(tmp_path):
     assert cache.read_signed(there) is None
 
 
+def test_the_wheels_record_is_read_as_importlib_metadata_reads_it(tmp_path):
+    """``build_id`` keys the caches on the hashes pip's RECORD gives the installed modules; it
+    reads the RECORD itself (importing importlib.metadata cost ~11 ms of every run): the same
+    paths, hashes and sizes, a quoted path with a comma and lines without a hash included."""
+    from importlib import metadata
+    from urdf_lint import __version__
+    from urdf_lint.run import cache
+    info = tmp_path / f"urdf_lint-{__version__}.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: urdf-lint\nVersion: {__version__}\n")
+    (info / "RECORD").write_text(
+        "urdf_lint/__init__.py,sha256=AAAAabcd_-x,120\n"
+        '"urdf_lint/odd,name.py",sha256=BBBB,7\n'
+        "urdf_lint/data.json,sha256=CCCC,9\n"
+        f"urdf_lint-{__version__}.dist-info/RECORD,,\n"
+        "urdf_lint/__pycache__/x.cpython-311.pyc,,\n")
+    dist = metadata.Distribution.at(info)
+    want = {os.path.realpath(str(f.locate())): (f.hash.value, f.size) for f in dist.files or []
+            if f.hash is not None and f.size is not None and str(f).endswith(".py")}
+    assert len(want) == 2
+    assert cache._recorded(str(tmp_path)) == want
+    assert cache._recorded(str(tmp_path / "nowhere")) == {}
+
+
 def test_a_result_cached_by_other_code_is_not_reused(tmp_path, monkeypatch):
     """The caches are keyed by the code that made a result, not only by the version number: an
     install from a newer commit (still 0.1.0) or an edited rule must not show the old findings

@@ -9,6 +9,7 @@ set points at the first. A name that cannot be found has no place (the finding t
 element's own line, as before)."""
 from __future__ import annotations
 
+import functools
 import re
 from typing import Any
 
@@ -30,13 +31,20 @@ def _header(line: str, pyproject: bool) -> tuple[bool, bool] | None:
     return (entry, name.startswith("models."))
 
 
+@functools.lru_cache(maxsize=4)
+def _entries(text: str, pyproject: bool) -> tuple[list[str], list[int]]:
+    """(the lines of a config text, the index of each ``[[models]]`` header): scanned once per
+    text, not once per entry (a config listing a hundred models)."""
+    lines = text.splitlines()
+    return lines, [i for i, ln in enumerate(lines) if (_header(ln, pyproject) or (False,))[0]]
+
+
 def arg_places(file: str, text: str, entry: int, arg_sets: list[dict[str, Any]]
                ) -> list[dict[str, Place]]:
     """Per arg set of the ``entry``-th ``[[models]]`` entry of the config ``text``, the place of
     each arg it sets."""
-    lines = text.splitlines()
     pyproject = file.endswith("pyproject.toml")
-    starts = [i for i, ln in enumerate(lines) if (_header(ln, pyproject) or (False,))[0]]
+    lines, starts = _entries(text, pyproject)
     if entry < len(starts):
         lo, hi = starts[entry] + 1, len(lines)
         for i in range(lo, len(lines)):

@@ -118,11 +118,17 @@ class Analysis:
 _TOKENS = (b":if", b":unless", b"$(arg", b":arg")
 
 
-def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS) -> Any:
+def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS,
+           memo: dict[tuple[str, tuple[bytes, ...]], Any] | None = None) -> Any:
     """The root of a source that can hold anything :func:`analyse` reads (a condition, an arg,
     a value built from one; ``tokens``: the bytes that say so), read once through the
     boundary; None for a file without these bytes (not parsed: a cached run of a robot with
-    no branches needs no lxml) or one that does not parse."""
+    no branches needs no lxml) or one that does not parse. ``memo``: the roots one run has
+    parsed already (the models of a run share their macro files; the roots are only read)."""
+    if memo is not None:
+        if (f, tokens) not in memo:
+            memo[(f, tokens)] = _parse(f, resolver, tokens)
+        return memo[(f, tokens)]
     from urdf_lint.core import fsbound
     try:
         data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
@@ -147,9 +153,11 @@ def _local(el: Any) -> str | None:
     return q.localname if q.namespace and _XACRO in q.namespace else None
 
 
-def analyse(files: Iterable[str], resolver: Any, max_files: int = 200) -> Analysis:
+def analyse(files: Iterable[str], resolver: Any, max_files: int = 200,
+            parsed: dict[tuple[str, tuple[bytes, ...]], Any] | None = None) -> Analysis:
     """The branches of the xacro ``files`` (a model's sources; files an arg-built include may
-    name are added and read too, up to ``max_files``)."""
+    name are added and read too, up to ``max_files``; ``parsed``: the run's memo of parsed
+    sources, :func:`_parse`)."""
     out = Analysis()
     props: dict[str, set[str]] = {}      # property -> the args its value reads
     todo = [f for f in dict.fromkeys(files) if f.endswith(".xacro")]
@@ -160,7 +168,7 @@ def analyse(files: Iterable[str], resolver: Any, max_files: int = 200) -> Analys
         if f in seen:
             continue
         seen.add(f)
-        root = _parse(f, resolver)
+        root = _parse(f, resolver, memo=parsed)
         if root is None:
             continue
         roots.append((f, root))

@@ -318,6 +318,10 @@ def _hook_eval_text(text: str, symbols: Any) -> Any:
     """xacro's ``eval_text``; a result read from YAML (:mod:`.traced`) is noted for the element
     whose ``eval_all`` runs (its attributes are evaluated first, so the first note of a text
     is the attribute's)."""
+    if type(text) is str and "$" not in text:
+        # what xacro's lexer returns for plain text (one TEXT token: the text itself), without
+        # lexing it: most attribute values and texts of a robot hold no expression
+        return text
     result = _orig["eval_text"](text, symbols)
     st = CURRENT.get()
     if type(result) is str and "$(arg" in text and st is not None:

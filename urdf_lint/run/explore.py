@@ -94,8 +94,9 @@ def explore(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
 def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) -> list[ModelPlan]:
     """A plan for every explored model (see the module's doc)."""
     plans = []
+    parsed: dict[Any, Any] = {}     # the sources parsed for one model serve the next
     for entry, base in sorted(explored_models(cfg, models).items()):
-        p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver))
+        p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver, parsed))
         a = p.analysis
         given = explore_args(cfg, entry)
         listed = {k: list(v) for k, v in given.items()}
@@ -113,12 +114,13 @@ def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) ->
     return plans
 
 
-def _analysis(entry: str, base: list[ModelReport], graph: Any, resolver: Any) -> "Analysis":
+def _analysis(entry: str, base: list[ModelReport], graph: Any, resolver: Any,
+              parsed: dict[Any, Any] | None = None) -> "Analysis":
     """The branches of the model ``entry``, from its sources: the include graph's files from
-    it, and what its reports read."""
+    it, and what its reports read (``parsed``: the run's parsed sources)."""
     from urdf_lint.discovery import branches as br
     files = [entry] + _closure(entry, graph) + [d for r in base for d in r.deps]
-    return br.analyse(files, resolver)
+    return br.analyse(files, resolver, parsed=parsed)
 
 
 def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
@@ -134,8 +136,9 @@ def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
     from urdf_lint.discovery import branches as br
     out = {}
     sources: dict[str, br.YamlSources] = {}    # file -> its load_yaml calls and properties
+    parsed: dict[Any, Any] = {}
     for entry, base in explored_models(cfg, models).items():
-        a = _analysis(entry, base, graph, resolver)
+        a = _analysis(entry, base, graph, resolver, parsed)
         fixed = {k for k, v in explore_args(cfg, entry).items() if not v}
         files = set(_closure(entry, graph))
         for ch in a.choices:

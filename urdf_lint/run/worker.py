@@ -119,7 +119,9 @@ def preload(blocks: list[Block] | None = None, settings: LintSettings | None = N
 
 MESH_MODULES = ("numpy", "manifold3d", "_hashlib",    # STL facts, volumes, hulls, mesh hashes
                 "urdf_lint.meshes.resolve", "urdf_lint.meshes.readers")
-DAE_MODULES = ("collada",)                   # COLLADA facts (meshio.collada_arrays)
+# (COLLADA: meshio.collada_arrays_lean reads it with lxml; pycollada, ~30 ms to import with
+# its dateutil and Pillow, only for a document the lean reader leaves to it: the worker that
+# meets one imports it then, so it is not preloaded)
 TRIMESH_MODULES = ("PIL.Image", "collada", "trimesh", "trimesh.exchange.load",
                    "trimesh.exchange.dae", "trimesh.exchange.obj")   # any other format
 LEAN_FORMATS = (".stl", ".dae", ".obj")      # read without trimesh (unusual files aside)
@@ -129,8 +131,7 @@ def _mesh_modules(blocks: list[Block]) -> tuple[str, ...]:
     """The loaders the packages' meshes need: trimesh (~0.35 s to import) only for formats
     urdf-lint does not read itself."""
     formats = set().union(*(b.formats for b in blocks)) if blocks else set()
-    out = MESH_MODULES + (DAE_MODULES if ".dae" in formats else ())
-    return out + (TRIMESH_MODULES if formats - set(LEAN_FORMATS) else ())
+    return MESH_MODULES + (TRIMESH_MODULES if formats - set(LEAN_FORMATS) else ())
 
 
 def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
