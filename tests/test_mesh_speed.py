@@ -460,6 +460,30 @@ def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
     assert "trimesh" in worker._mesh_modules(ply)
 
 
+def test_a_variant_goes_to_the_worker_that_linted_its_model():
+    """Exploration's variants (:meth:`WorkerPool.more`): each on the worker that linted its
+    model in the default pass (its meshes are measured there), the costliest first, unless
+    that worker is loaded enough that another ends it sooner at twice the cost; a model
+    whose worker is gone goes to the least loaded."""
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.runner.pool import affine_queues
+
+    def job(entry, **args):
+        return LintJob(entry, args, "xacro", explicit=True, mesh_base=None)
+    heavy = [job("/r/arm.xacro", gazebo="true"), job("/r/arm.xacro", hand="true")]
+    light = [job(f"/r/m{i}.xacro", x="1") for i in range(6)]
+    home = {"/r/arm.xacro": 1, **{f"/r/m{i}.xacro": 2 for i in range(6)}}
+    took = {"/r/arm.xacro": 0.3, **{f"/r/m{i}.xacro": 0.01 for i in range(6)}}
+    q = affine_queues(light + heavy, [1, 2], home, took)
+    assert list(q[1]) == heavy and list(q[2]) == light
+    # a worker loaded with twice the work: the cheap models of its own still stay, the other
+    # worker takes the second heavy job (0.6 there against 0.6 + 0.3 here)
+    q = affine_queues(heavy + [job("/r/arm.xacro", tool="true")], [1, 2], home, took)
+    assert [len(q[1]), len(q[2])] == [2, 1]
+    gone = affine_queues(heavy, [2, 3], home, took)        # worker 1 was replaced
+    assert [len(gone[2]), len(gone[3])] == [1, 1]
+
+
 # -- item 2: big meshes are streamed, not errors ---------------------------------------------
 def test_binary_stl_is_streamed_in_chunks(tmp_path, fresh, monkeypatch):
     from urdf_lint.meshes import readers as meshio

@@ -422,6 +422,26 @@ def start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
     return pool
 
 
+def affine_queues(jobs: list[LintJob], workers: list[int], home: dict[str, int],
+                  took: dict[str, float]) -> dict[int, deque[LintJob]]:
+    """A queue per worker (``workers``: their keys) for a batch whose entries were linted
+    before (``home``: entry -> the key of the worker that did, ``took``: entry -> the seconds
+    it took): the costliest job first, each where it ends soonest, on its entry's worker at
+    that cost, elsewhere at twice it (its meshes measured and its sources parsed again); so
+    the cheap jobs are last, at the far end where an idle worker steals (:func:`_next_job`)."""
+    queues: dict[int, deque[LintJob]] = {k: deque() for k in workers}
+    load = dict.fromkeys(queues, 0.0)
+    for job in sorted(jobs, key=lambda j: -took.get(j.entry, JOB_COST_S)):
+        d = took.get(job.entry, JOB_COST_S)
+        mine = home.get(job.entry)
+        mine = mine if mine in queues else None     # (its worker is gone: anywhere alike)
+        cost = {k: d if mine in (None, k) else 2 * d for k in queues}
+        key = min(queues, key=lambda k: load[k] + cost[k])
+        load[key] += cost[key]
+        queues[key].append(job)
+    return queues
+
+
 class WorkerPool:
     """Forked, limited, sandboxed workers (:class:`Worker`) and their scheduling, with the time
     and memory limits of ``settings``: a job over its limit costs its worker (killed and
@@ -445,6 +465,8 @@ class WorkerPool:
         self.busy: dict[Any, Worker] = {}   # connection -> its worker, busy with a job
         self.closing = False   # set from another thread: hand out no further job
         self.stopped = 0       # jobs stopped under way by a stop() (their workers killed)
+        self.linted: dict[str, Worker] = {}   # entry -> the worker that linted it last
+        self.took: dict[str, float] = {}      # entry -> the seconds that took
         self._wake = forked.Wake() if persistent else None
 
     # -- the persistent form -------------------------------------------------------------------
@@ -475,16 +497,21 @@ class WorkerPool:
     def more(self, jobs: list[LintJob], jobs_n: int | None = None
              ) -> Iterator[tuple[LintJob, ModelReport]]:
         """A further batch on the workers of a :func:`start_pool` whose jobs are done (check's
-        exploration after its default pass: no second fork, preload and sandbox set-up), in
-        one shared queue; workers are added up to ``jobs_n`` (default: one per core), never
-        more than the jobs."""
-        shared: deque[LintJob] = deque(jobs)
-        self.queues, self.block_of = [shared], {}
+        exploration after its default pass: no second fork, preload and sandbox set-up);
+        workers are added up to ``jobs_n`` (default: one per core), never more than the jobs.
+        A job whose entry a worker linted before goes to that worker's queue (a variant of a
+        model: its meshes are measured and its sources parsed there already; on another
+        worker they were measured again, and ``-j 2`` gained nothing on exploration), the
+        others to the least loaded; an idle worker takes from the far end of the longest
+        queue (:func:`_next_job`)."""
         want = min(jobs_n or os.cpu_count() or 1, len(jobs))
         while len(self.workers) < want:
             self.workers.append(Worker(self.handler, self.settings))
+        homes = {e: id(w) for e, w in self.linted.items()}
+        queues = affine_queues(jobs, [id(w) for w in self.workers], homes, self.took)
         for w in self.workers:
-            w.queue = shared
+            w.queue = queues[id(w)]
+        self.queues, self.block_of = list(queues.values()), {}
         yield from self.drain()
 
     def wake(self) -> None:
@@ -593,6 +620,8 @@ class WorkerPool:
             self.replace(w)
         else:
             w.job = None
+            self.linted[job.entry] = w
+            self.took[job.entry] = time.monotonic() - w.started
         return job, result
 
     def _over(self, w: Worker, now: float) -> tuple[bool, str]:
