@@ -121,6 +121,52 @@ def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, 
     assert store.get(name) == rec
 
 
+def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp_path, fresh,
+                                                                           monkeypatch):
+    """Within a run, what one worker measured is handed to the others with their next job
+    (``Handler.share`` in the parent, ``LintJob.shared``, ``resolve.remember`` in the worker):
+    a stolen job or a model's variant on another worker measures none of its meshes again.
+    The parent keeps only facts of content it hashed itself, inside the run's roots, and
+    hands none back to the worker that measured them."""
+    from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+    from urdf_lint.meshes import resolve
+    from urdf_lint.run import worker
+    from urdf_lint.runner import pool
+    mesh = tmp_path / "roots" / "part.stl"
+    mesh.parent.mkdir()
+    mesh.write_text(TETRA_STL)
+    measured = resolve.MeshStore()
+    facts = resolve.mesh_facts(str(mesh), store=measured)
+    assert facts["ok"] and len(measured.measured) == 1        # noted for the parent
+    name, path, digest, record = measured.measured[0]
+    report = ModelReport.failed(LintJob(str(mesh)))
+    other = "0" * len(digest)
+    report.mesh_facts = [[name, path, digest, record],
+                         [f"v3-{other}", path, other, dict(record, bounds=None)],   # forged
+                         [name, "/etc/hostname", digest, record]]                   # outside
+    settings = LintSettings(resolver={"roots": [str(tmp_path / "roots")]})
+    assert worker.share(report, settings) == [(name, record)]
+
+    # the pool: learnt from worker a's result, handed to b's next job, not back to a
+    p = pool.WorkerPool(settings, worker.LINT, size=2)
+    a, b = (object.__new__(pool.Worker) for _ in range(2))
+    for w in (a, b):
+        w.told = 0
+    p.workers = [a, b]
+    p._learn(a, report)
+    job = LintJob(str(tmp_path / "m.urdf"))
+    assert p._with_shared(a, job).shared == ()
+    assert p._with_shared(b, job).shared == ((name, record),)
+    assert p._with_shared(b, job) is job                      # told once
+
+    # the worker that gets them does not measure that mesh
+    fresh()
+    monkeypatch.setattr(resolve, "_measure", lambda *a: pytest.fail("measured again"))
+    resolve.remember(((name, record), ("v3-" + other, {"ok": True}), ("garbage", 1)))
+    assert resolve.mesh_facts(str(mesh), store=resolve.MeshStore()) == record
+    assert resolve._memory[other] == {"ok": True}   # (a name it never looks up: harmless)
+
+
 def test_measuring_never_writes_the_store(tmp_path, fresh):
     """A worker only notes what it measured; the store is the parent's to write."""
     from urdf_lint.meshes import resolve as meshes

@@ -63,6 +63,10 @@ class LintJob:
     # how), kind "srdf" | "controllers" | "joint-limits" | "kinematics" | "initial-positions" |
     # "moveit-controllers", how "explicit" | "setup-assistant" | "package" | "package-shared"
     configs: tuple[tuple[str, str, str], ...] = ()
+    # what the run's other workers measured that this worker has not been told yet
+    # ((name, record), ...: mesh facts under the content digest the parent computed,
+    # urdf_lint.run.worker.share): set by the pool when it hands the job over
+    shared: tuple[tuple[str, Any], ...] = ()
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

@@ -656,6 +656,19 @@ class _Uncached(Exception):
         self.facts = facts
 
 
+def remember(shared: Iterable[tuple[str, Any]]) -> None:
+    """Take in what the run's other workers measured (``LintJob.shared``: (``{prefix}-{digest}``,
+    record) under the digest the parent computed): looked up by content like what this
+    worker measured itself."""
+    memories = {f"v{FACTS_VERSION}": _memory, f"mass{MASS_FACTS_VERSION}": _mass_memory,
+                f"tex{TEXTURE_SCAN_VERSION}": _scan_memory}
+    for name, record in shared:
+        prefix, _, digest = str(name).partition("-")
+        memory = memories.get(prefix)
+        if memory is not None and digest and isinstance(record, dict) and "ok" in record:
+            memory.setdefault(digest, record)
+
+
 def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
             compute: Callable[[str], Facts]) -> Facts:
     """``compute(path)``, memoized in ``memory`` and in the run's facts store (the user's
@@ -679,8 +692,8 @@ def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
         store.env_failures += 1     # the model's result must not be cached either
         return e.facts
     memory[digest] = facts
-    if store.cache_dir:
-        store.measured.append([name, path, digest, facts])
+    # for the parent: stored (cache_dir), and handed to the run's other workers
+    store.measured.append([name, path, digest, facts])
     return facts
 
 

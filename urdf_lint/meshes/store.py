@@ -16,7 +16,7 @@ import json
 import os
 import re
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, Iterator
 
 from urdf_lint.core import fsbound
 
@@ -84,21 +84,8 @@ class FactsStore:
         record]) whose mesh this process hashes to the same digest (``digest_of``; a path
         outside ``inside`` is not read); then keep the store within its bound. How many
         entries were written."""
-        digest_of = digest_of or _digest_of
         written = 0
-        for item in measured:
-            try:
-                name, path, digest, record = item
-            except (TypeError, ValueError):
-                continue
-            if not (isinstance(name, str) and isinstance(path, str) and isinstance(digest, str)
-                    and isinstance(record, dict) and ENTRY_NAME.match(name)
-                    and name.endswith("-" + digest)):
-                continue
-            if inside is not None and not inside(path):
-                continue
-            if digest_of(path) != digest:     # changed since, or not what the worker says
-                continue
+        for name, _, record in verified(measured, inside, digest_of):
             written += self.put(name, record)
         if written:
             self.evict()
@@ -140,6 +127,29 @@ class FactsStore:
             fsbound.remove_tree(self.dir)
             return self.dir
         return None
+
+
+def verified(measured: Iterable[list[Any]], inside: Callable[[str], bool] | None = None,
+             digest_of: Callable[[str], str | None] | None = None
+             ) -> Iterator[tuple[str, str, dict[str, Any]]]:
+    """(name, path, record) of what workers measured (:attr:`MeshStore.measured`: [name,
+    path, digest, record]) whose mesh this process hashes to the digest the name carries
+    (``digest_of``, memoized per file version; a path outside ``inside`` is not read)."""
+    digest_of = digest_of or _digest_of
+    for item in measured:
+        try:
+            name, path, digest, record = item
+        except (TypeError, ValueError):
+            continue
+        if not (isinstance(name, str) and isinstance(path, str) and isinstance(digest, str)
+                and isinstance(record, dict) and ENTRY_NAME.match(name)
+                and name.endswith("-" + digest)):
+            continue
+        if inside is not None and not inside(path):
+            continue
+        if digest_of(path) != digest:     # changed since, or not what the worker says
+            continue
+        yield name, path, record
 
 
 def _digest_of(path: str) -> str | None:

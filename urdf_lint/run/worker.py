@@ -4,7 +4,7 @@ what the workers will share, and a job stopped by a limit is a ``UL904`` finding
 from __future__ import annotations
 
 import sys
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
 from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
@@ -27,6 +27,9 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from urdf_lint.engine.lint import lint_model
     from urdf_lint.core import overlay
+    if job.shared:   # what the run's other workers measured (share): not measured again here
+        from urdf_lint.meshes.resolve import remember
+        remember(job.shared)
     with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
         report, model, ctx = lint_model(job, settings)
     if ctx.meshes.env_failures or job.overlay:
@@ -177,8 +180,21 @@ def _run(job: LintJob, settings: LintSettings) -> ModelReport:
     return process_job(job, settings)   # (looked up when called: a test may replace it)
 
 
+def share(report: ModelReport, settings: LintSettings) -> list[tuple[str, Any]]:
+    """In the parent: the mesh facts ``report``'s worker measured, for the run's other workers
+    (a model's variant or a stolen job on another worker then measures none of them again).
+    Kept only under the digest this process computes of the file (inside the run's roots),
+    as the facts store keeps them (:meth:`urdf_lint.meshes.store.FactsStore.accept`): a
+    worker cannot file facts under content it did not measure."""
+    from urdf_lint.meshes.store import verified
+    roots = (settings.resolver or {}).get("roots")
+    from urdf_lint.core import fsbound
+    inside = (lambda p: fsbound.within(p, roots)) if roots else None
+    return [(name, record) for name, _, record in verified(report.mesh_facts, inside)]
+
+
 LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
-               setup=_skip_unused_imports, warm=warm, preload=preload)
+               setup=_skip_unused_imports, warm=warm, preload=preload, share=share)
 
 
 def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = None

@@ -8,6 +8,7 @@ and render one is :data:`urdf_lint.run.worker.LINT`).
 """
 from __future__ import annotations
 
+import dataclasses
 import gc
 import os
 import signal
@@ -36,15 +37,19 @@ class Handler:
     :mod:`urdf_lint.runner.wire`; the parent reads nothing else). ``setup()``: first
     thing in a new worker; ``warm()``: the imports of a worker started ahead of its settings;
     ``preload(blocks, settings, n)``: in the parent before it forks ``n`` workers (they share
-    what it imports)."""
+    what it imports). ``share(report, settings)``: in the parent, what a report measured that
+    the other workers may reuse ((name, value) pairs, checked by the parent): the pool hands
+    each worker the pairs it has not had with its next job (``LintJob.shared``)."""
     run: Callable[[LintJob, LintSettings], ModelReport]
     limit_result: Callable[[LintJob, str], ModelReport]
     allowed: frozenset[tuple[str, str]]
     setup: Callable[[], None] | None = None
     warm: Callable[[], None] | None = None
     preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
+    share: "Callable[[ModelReport, LintSettings], list[tuple[str, Any]]] | None" = None
 
 
+MAX_SHARED = 50_000   # items a pool passes between its workers (a language server's lives long)
 WORKER_GC_THRESHOLD = 10_000   # allocations between young collections (Python's default: 700)
 
 
@@ -340,6 +345,7 @@ class Worker:
         self.started = 0.0
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
+        self.told = 0     # how much of the pool's shared list this worker has been handed
 
     def kill(self) -> None:
         try:
@@ -467,6 +473,10 @@ class WorkerPool:
         self.stopped = 0       # jobs stopped under way by a stop() (their workers killed)
         self.linted: dict[str, Worker] = {}   # entry -> the worker that linted it last
         self.took: dict[str, float] = {}      # entry -> the seconds that took
+        # what the workers measured that the others may reuse (Handler.share): (worker, name,
+        # value), in the order learnt, and the names in it
+        self.shared: list[tuple[Worker, str, Any]] = []
+        self.shared_names: set[str] = set()
         self._wake = forked.Wake() if persistent else None
 
     # -- the persistent form -------------------------------------------------------------------
@@ -573,13 +583,29 @@ class WorkerPool:
                 w.started = time.monotonic()
                 w.cpu0 = _cpu_seconds(w.proc.pid)
                 try:
-                    w.conn.send(w.job)
+                    w.conn.send(self._with_shared(w, w.job))
                 except (OSError, ValueError):   # a worker gone meanwhile: another takes it
                     w.queue.appendleft(w.job)
                     w.job = None
                     self.replace(w)
                     continue
                 self.busy[w.conn] = w
+
+    def _with_shared(self, w: Worker, job: LintJob) -> LintJob:
+        """``job`` with what the other workers measured since ``w`` was last handed a job."""
+        new = [(name, value) for by, name, value in self.shared[w.told:] if by is not w]
+        w.told = len(self.shared)
+        return dataclasses.replace(job, shared=tuple(new)) if new else job
+
+    def _learn(self, w: Worker, result: ModelReport) -> None:
+        """Keep what ``w``'s result measured for the other workers (when there are others)."""
+        if self.handler.share is None or len(self.workers) < 2 and self.size < 2 \
+                or len(self.shared) >= MAX_SHARED:
+            return
+        for name, value in self.handler.share(result, self.settings):
+            if name not in self.shared_names:
+                self.shared_names.add(name)
+                self.shared.append((w, name, value))
 
     def wait(self) -> list[Any]:
         """The connections of busy workers that sent something, by the next deadline (or the
@@ -622,6 +648,7 @@ class WorkerPool:
             w.job = None
             self.linted[job.entry] = w
             self.took[job.entry] = time.monotonic() - w.started
+            self._learn(w, result)
         return job, result
 
     def _over(self, w: Worker, now: float) -> tuple[bool, str]:
