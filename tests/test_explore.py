@@ -470,3 +470,27 @@ def test_the_default_pass_and_the_exploration_pass_share_their_workers(tmp_path,
     assert result.coverage, "nothing was explored"
     assert any("only with" in f.message for f in result.findings), result.findings
     assert len(forked) == 1, f"{len(forked)} workers forked for one run at -j1"
+
+
+def test_a_run_whose_variants_read_a_file_of_their_own_is_remembered(tmp_path):
+    """The run memo keeps a whole unchanged run when it knows what every input was when read.
+    A file only an explored variant reads (franka's inertial YAML under ``gazebo:=true``) was
+    added to its model's inputs without that record, so no run of such a robot was ever
+    remembered: every warm ``check`` linted again (0.26 s instead of 0.16 s on the corpus)."""
+    import time
+    pkg = lazy_yaml_repo(tmp_path)
+    yaml = pkg / "config/inertial.yaml"
+    yaml.write_text(yaml.read_text().replace("mass: 2.0", "mass: -2.0"))
+    assert run_cli("check", ".", cwd=pkg).returncode == 1      # (makes the cache folder)
+    t = time.time() - 60     # (the memo trusts no input changed in its last seconds)
+    for d, dirs, files in os.walk(pkg):
+        for n in dirs + files:
+            os.utime(os.path.join(d, n), (t, t), follow_symlinks=False)
+    os.utime(pkg, (t, t))
+    runs = [run_cli("check", ".", "--format", "json", "-v", cwd=pkg) for _ in range(2)]
+    assert all(p.returncode == 1 for p in runs), [p.stderr for p in runs]
+    said = ["nothing changed since the last identical run" in p.stderr for p in runs]
+    assert said == [False, True], [p.stderr for p in runs]
+    docs = [json.loads(p.stdout) for p in runs]
+    assert docs[1]["findings"] == docs[0]["findings"]
+    assert any(f["message"].endswith("(only with gazebo:=true)") for f in docs[1]["findings"])

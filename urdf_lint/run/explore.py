@@ -274,6 +274,10 @@ def _add_findings(p: ModelPlan) -> None:
     base = p.base[0]
     for r in p.reports:
         base.deps += [d for d in r.deps if d not in base.deps]
+        # (with what was read of them: the run memo keeps a run only when it knows every
+        # input's stat, and a file only a variant reads kept every such run from it)
+        base.digests.update({d: r.digests[d] for d in r.deps
+                             if d in r.digests and d not in base.digests})
         if base.directive_files is not None:
             if r.directive_files is None:
                 base.directive_files = None
