@@ -162,19 +162,23 @@ def report_sides(runs: dict, n_models: int, doc) -> None:
         print(f"  {label} wall {median_of(r, 0):6.2f} s  cpu {median_of(r, 1):6.2f} s{extra}")
 
 
-def measure(rows, label, models, pmap, paths, extra, repeat, tmp):
+def measure(rows, label, models, pmap, paths, extra, repeat, tmp, defaults_only=False):
     """Issue 34's goals on one set of models, interleaved: stock, cold at the default -j and
-    at -j1, and warm (result cache and mesh facts store filled by a run before)."""
+    at -j1, and warm (result cache and mesh facts store filled by a run before); with
+    ``defaults_only`` also cold with ``--explore false`` (stock's work: no variants)."""
     home = Path(tmp, f"cache-{label}")
     lint(paths, extra, cache_home=home)          # fills the caches for the warm side
     # (the run memo keeps no run whose folders changed within its last 2 s: the first run
     # just made the cache folder; the second is remembered, so every warm side is alike)
     time.sleep(2.5)
     lint(paths, extra, cache_home=home)
-    runs = interleaved({"stock": lambda: stock_all(models, pmap),
-                        "lint": lambda: lint(paths, extra),
-                        "lint1": lambda: lint(paths, [*extra, "-j1"]),
-                        "warm": lambda: lint(paths, extra, cache_home=home)}, repeat)
+    sides = {"stock": lambda: stock_all(models, pmap),
+             "lint": lambda: lint(paths, extra),
+             "lint1": lambda: lint(paths, [*extra, "-j1"]),
+             "warm": lambda: lint(paths, extra, cache_home=home)}
+    if defaults_only:
+        sides["defaults"] = lambda: lint(paths, [*extra, "--explore", "false"])
+    runs = interleaved(sides, repeat)
     doc, doc1, docw = runs["lint"][-1][2], runs["lint1"][-1][2], runs["warm"][-1][2]
     assert doc1["findings"] == doc["findings"], "-j1 and -j disagree"
     assert docw["findings"] == doc["findings"], "warm and cold disagree"
@@ -184,6 +188,11 @@ def measure(rows, label, models, pmap, paths, extra, repeat, tmp):
     cpu = median_ratio(runs["lint"], runs["stock"], 1, "cold CPU / stock")
     warm = median_ratio(runs["warm"], runs["stock"], 0, "warm wall / stock")
     speed = 1 / median_ratio(runs["lint"], runs["lint1"], 0, "-j wall / -j1 wall")
+    if defaults_only:
+        dw = median_ratio(runs["defaults"], runs["stock"], 0, "--explore false: wall / stock")
+        dc = median_ratio(runs["defaults"], runs["stock"], 1, "--explore false: CPU / stock")
+        print(f"  (at the defaults only, stock's work: wall / stock {dw:.2f}, CPU / stock "
+              f"{dc:.2f})")
     row(rows, f"{label}: cold wall / stock wall", "<= 0.35", f"{wall:.2f}", wall <= 0.35)
     row(rows, f"{label}: cold CPU / stock CPU", "<= 0.50", f"{cpu:.2f}", cpu <= 0.5)
     row(rows, f"{label}: warm wall / stock wall", "<= 0.05", f"{warm:.3f}", warm <= 0.05)
@@ -260,7 +269,8 @@ def main():
             models = [(Path(m["entry"]), m["args"]) for m in found["models"]
                       if m.get("status") == "model"]
             pmap = PackageResolver.build([ws / "src"]).scanned
-            measure(rows, "workspace", models, pmap, [ws], [], a.repeat, tmp)
+            measure(rows, "workspace", models, pmap, [ws], [], a.repeat, tmp,
+                    defaults_only=True)
         if a.huge:
             from heavy_repo import package_xml, sphere, write_binary_stl
             pkg = tmp / "huge" / "huge_description"
