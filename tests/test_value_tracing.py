@@ -103,6 +103,46 @@ def test_fix_swaps_the_yaml_scalars_keeping_comments_and_flow_style(tmp_path):
     assert not _ul302(_lint(pkg))
 
 
+def test_fix_swaps_unit_tagged_yaml_scalars_in_their_unit(tmp_path):
+    """The real UR writes its limits as ``!degrees  360.0`` (xacro reads them in radians).
+    ``--fix`` writes the swapped limits back in degrees, after the tag, only the numbers'
+    bytes changed; it refused before ("the literal '370.0' is not the expanded value")."""
+    yml = UR_YAML.replace("min_position: 1.5   #", "min_position: !degrees  370.0   #").replace(
+        "max_position: -1.5\n", "max_position: !degrees -12.5\n")
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": yml, "urdf/ur.urdf.xacro": UR})
+    (f,) = _ul302(_lint(pkg))
+    assert f["value_from"][1] == 4, f
+    p = run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    assert "Fixed 1 finding" in p.stderr, p.stderr
+    assert (pkg / "config/limits.yaml").read_text() == yml.replace(
+        "!degrees  370.0   #", "!degrees  -12.5   #").replace(
+        "!degrees -12.5\n", "!degrees 370.0\n")
+    assert not _ul302(_lint(pkg))
+
+
+def test_a_unit_literal_is_the_shortest_number_read_back_exactly():
+    import math
+    from urdf_lint.fix.fixes import Refuse, YamlScalar, unit_literal
+    deg = YamlScalar("-360.0", 0, 6, "", "!degrees")
+    assert unit_literal(deg, str(math.radians(-360.0)), str(math.radians(360.0))) == "360.0"
+    assert unit_literal(deg, str(math.radians(-360.0)), str(math.radians(-13.75))) == "-13.75"
+    mm = YamlScalar("5", 0, 1, "", "!millimeters")
+    assert unit_literal(mm, "0.005", "0.25") == "250"
+    for expanded in ("0.1", None):                       # not what the literal gives
+        try:
+            unit_literal(deg, expanded, "1.0")
+        except Refuse:
+            pass
+        else:
+            raise AssertionError(expanded)
+    try:
+        unit_literal(YamlScalar("pi", 0, 2, "", "!degrees"), "0.05", "1.0")   # an expression
+    except Refuse:
+        pass
+    else:
+        raise AssertionError("an expression is not written back")
+
+
 def test_a_value_computed_from_yaml_is_located_but_not_written_back(tmp_path):
     pkg = make_package(tmp_path, PKG, {"config/limits.yaml": UR_YAML,
                                        "urdf/fr.urdf.xacro": ARITH})

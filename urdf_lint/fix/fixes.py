@@ -21,6 +21,7 @@ checks that a fix is right for every model and arg set that uses the edited line
 """
 from __future__ import annotations
 
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -220,11 +221,58 @@ def _property(src: _Sources, name: str, file: str, data: bytes, a: Attr,
 
 @dataclass(frozen=True)
 class YamlScalar:
-    """A scalar value in a YAML file, with its span in the text and its quoting style."""
+    """A scalar value in a YAML file, with its span in the text (the value's own text, after a
+    tag), its quoting style and its tag (``!degrees``: one of xacro's units, else "")."""
     value: str
     value_start: int
     value_end: int
     style: str          # "" (plain), "'" or '"'
+    tag: str = ""
+
+
+# xacro's YAML units (xacro.ConstructUnits): the expansion reads float(value) * factor
+UNITS = {"!radians": 1.0, "!degrees": math.pi / 180.0, "!meters": 1.0,
+         "!millimeters": 0.001, "!foot": 0.3048, "!inches": 0.0254}
+
+
+def _scalar(node: Any, text: str) -> "YamlScalar":
+    """The :class:`YamlScalar` of a PyYAML scalar node of ``text`` (byte offsets; PyYAML's
+    marks count characters; a node's span starts at its tag: the value's text follows it)."""
+    start, end = node.start_mark.index, node.end_mark.index
+    tag = node.tag if node.tag in UNITS else ""
+    if tag and text.startswith(tag, start):
+        start += len(tag)
+        while start < end and text[start] in " \t":
+            start += 1
+    s = len(text[:start].encode("utf-8"))
+    e = len(text[:end].encode("utf-8"))
+    return YamlScalar(node.value, s, e, node.style or "", tag)
+
+
+def unit_literal(lit: "YamlScalar", expanded: str | None, new: str) -> str:
+    """The text to write in place of a YAML scalar tagged with one of xacro's units
+    (``!degrees 370.0``, read as radians) for the expanded value ``new``: the shortest number
+    the expansion reads back as exactly ``new``. :class:`Refuse` when the literal is not a
+    number giving ``expanded``, or no such number exists."""
+    k = UNITS[lit.tag]
+    try:
+        if expanded is None or float(lit.value) * k != float(expanded):
+            raise ValueError
+        want = float(new)
+    except ValueError:
+        raise Refuse(f"{NOT_FIXABLE}: the {lit.tag} value {lit.value!r} is not a number giving "
+                     f"the expanded value {expanded!r}") from None
+    x = want / k
+    tries = [f"{x:.{d}f}" for d in range(0, 18)] + [repr(x)] + [f"{x:.{d}g}" for d in range(1, 18)]
+    for text in tries:
+        if "." in text and "e" not in text:
+            text = text.rstrip("0")
+            text += "0" if text.endswith(".") else ""
+        elif "." in lit.value and not any(c in text for c in ".en"):
+            text += ".0"      # (written like the literal it replaces)
+        if float(text) * k == want:
+            return text
+    raise Refuse(f"{NOT_FIXABLE}: no {lit.tag} number gives {new!r} exactly")
 
 
 def _yaml_scalar(src: _Sources, m: "re.Match[str]", file: str, data: bytes,
@@ -285,9 +333,7 @@ def _yaml_node_at(ydata: bytes, line: int, col: int) -> "YamlScalar | None":
         if isinstance(node, yaml.ScalarNode):
             m = node.start_mark
             if (m.line + 1, m.column + 1) == (line, col):
-                s = len(text[:m.index].encode("utf-8"))
-                e = len(text[:node.end_mark.index].encode("utf-8"))
-                return YamlScalar(node.value, s, e, node.style or "")
+                return _scalar(node, text)
         elif isinstance(node, yaml.SequenceNode):
             stack.extend(node.value)
         elif isinstance(node, yaml.MappingNode):
@@ -313,11 +359,7 @@ def _yaml_node(ydata: bytes, keys: list[str | int]) -> "YamlScalar | None":
             return None
     if not isinstance(node, yaml.ScalarNode):
         return None
-    # byte offsets: PyYAML marks count characters
-    text = ydata.decode("utf-8")
-    s = len(text[:node.start_mark.index].encode("utf-8"))
-    e = len(text[:node.end_mark.index].encode("utf-8"))
-    return YamlScalar(node.value, s, e, node.style or "")
+    return _scalar(node, ydata.decode("utf-8"))
 
 
 def yaml_text(new: str, lit: YamlScalar) -> str:

@@ -4,7 +4,7 @@ is: the element itself, the macro call's argument, the ``xacro:property`` or the
 from __future__ import annotations
 
 from urdf_lint.fix.fixes import (Element, NOT_FIXABLE, Refuse, Request, same_value, trace, traced_scalar,
-                                 where, written, yaml_text)
+                                 where, written, yaml_text, YamlScalar, unit_literal)
 from urdf_lint.fix.kinds import FixKind, Site
 from urdf_lint.core.edits import Edit
 from urdf_lint.fix.sourceedit import Attr, escape
@@ -34,6 +34,10 @@ class SetAttrs(FixKind):
                 if found is None:
                     raise
                 file, lit = found
+            if isinstance(lit, YamlScalar) and lit.tag:   # !degrees 370.0: a number in a unit
+                edits.append(Edit(file, lit.value_start, lit.value_end,
+                                  yaml_text(unit_literal(lit, el.get(attr), new), lit)))
+                continue
             if not same_value(lit.value, el.get(attr)):
                 raise Refuse(f"{NOT_FIXABLE}: the literal at {where(file)} "
                              f"({lit.value!r}) is not the expanded value {el.get(attr)!r}")
