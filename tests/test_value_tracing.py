@@ -120,6 +120,20 @@ def test_fix_swaps_unit_tagged_yaml_scalars_in_their_unit(tmp_path):
     assert not _ul302(_lint(pkg))
 
 
+def test_a_grouped_finding_names_each_yaml_line_its_instances_come_from(tmp_path):
+    """Two joints of one macro line, each with its limits swapped in its own YAML line: one
+    finding "in 2 joints", and the text names both lines (it named none: the instances'
+    values come from different places)."""
+    yml = UR_YAML.replace("{min_position: -3.0, max_position: 3.0}",
+                          "{min_position: 3.0, max_position: -3.0}")
+    pkg = make_package(tmp_path, PKG, {"config/limits.yaml": yml, "urdf/ur.urdf.xacro": UR})
+    (f,) = _ul302(_lint(pkg))
+    assert sorted(i["value_from"][1] for i in f["instances"]) == [4, 6], f
+    for fmt in ("text", "github", "concise"):
+        out = run_main("check", ".", "--no-cache", "--output-format", fmt, cwd=pkg).stdout
+        assert "values from config/limits.yaml:4, config/limits.yaml:6" in out, (fmt, out)
+
+
 def test_a_unit_literal_is_the_shortest_number_read_back_exactly():
     import math
     from urdf_lint.fix.fixes import Refuse, YamlScalar, unit_literal

@@ -195,11 +195,18 @@ def fold_instances(f: Finding, shown: int = INSTANCES_SHOWN) -> str:
     return f"in {len(labels)} {noun}: {head}{more}"
 
 
-def value_from_text(f: Finding) -> str:
-    """``value from config/joint_limits.yaml:28`` when the value came from elsewhere."""
-    if not f.value_from:
-        return ""
-    return f"value from {escape_text(display_path(f.value_from[0]))}:{f.value_from[1]}"
+def value_from_text(f: Finding, shown: int = 3) -> str:
+    """``value from config/joint_limits.yaml:28`` when the value came from elsewhere; for a
+    finding grouped over instances whose values come from different places, ``values from``
+    each of them (``a.yaml:10, a.yaml:12, ... (+2)``)."""
+    places = sorted({(str(i.value_from[0]), int(i.value_from[1]))
+                     for i in getattr(f, "instances", ()) or () if getattr(i, "value_from", None)})
+    if len(places) < 2:
+        got = f.value_from or (places[0] if places else None)
+        return f"value from {escape_text(display_path(got[0]))}:{got[1]}" if got else ""
+    head = ", ".join(f"{escape_text(display_path(p))}:{n}" for p, n in places[:shown])
+    more = f", ... (+{len(places) - shown})" if len(places) > shown else ""
+    return f"values from {head}{more}"
 
 
 def related_text(f: Finding) -> str:
