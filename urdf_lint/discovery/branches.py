@@ -118,31 +118,41 @@ class Analysis:
 _TOKENS = (b":if", b":unless", b"$(arg", b":arg")
 
 
+Parsed = dict[str, tuple[bytes | None, Any]]   # a run's sources: file -> (bytes, root)
+_UNPARSED = object()
+
+
 def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS,
-           memo: dict[tuple[str, tuple[bytes, ...]], Any] | None = None) -> Any:
-    """The root of a source that can hold anything :func:`analyse` reads (a condition, an arg,
-    a value built from one; ``tokens``: the bytes that say so), read once through the
-    boundary; None for a file without these bytes (not parsed: a cached run of a robot with
-    no branches needs no lxml) or one that does not parse. ``memo``: the roots one run has
-    parsed already (the models of a run share their macro files; the roots are only read)."""
-    if memo is not None:
-        if (f, tokens) not in memo:
-            memo[(f, tokens)] = _parse(f, resolver, tokens)
-        return memo[(f, tokens)]
-    from urdf_lint.core import fsbound
-    try:
-        data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
-                                  resolved=True)
-    except (OSError, ValueError):
+           memo: Parsed | None = None) -> Any:
+    """The root of a source that can hold anything the caller reads (``tokens``: the bytes
+    that say so: a condition, an arg, a value built from one for :func:`analyse`; a
+    ``load_yaml`` or a property for :func:`yaml_sources`), read once through the boundary;
+    None for a file without these bytes (not parsed: a cached run of a robot with no branches
+    needs no lxml) or one that does not parse. ``memo``: what one run has read and parsed
+    already (the models of a run share their macro files, and both readers read them: each
+    file is read and parsed once; the roots are only read)."""
+    data, root = (memo or {}).get(f, (None, _UNPARSED))
+    if data is None and root is _UNPARSED:
+        from urdf_lint.core import fsbound
+        try:
+            data = fsbound.read_bytes(f, resolver.roots if resolver is not None else None,
+                                      resolved=True)
+        except (OSError, ValueError):
+            root = None
+        if memo is not None:
+            memo[f] = (data, root)
+    if data is None or not any(t in data for t in tokens):
         return None
-    if not any(t in data for t in tokens):
-        return None
-    from lxml import etree
-    try:
-        return etree.fromstring(data, etree.XMLParser(resolve_entities=False, no_network=True,
-                                                      load_dtd=False), base_url=f)
-    except etree.XMLSyntaxError:
-        return None
+    if root is _UNPARSED:
+        from lxml import etree
+        try:
+            root = etree.fromstring(data, etree.XMLParser(
+                resolve_entities=False, no_network=True, load_dtd=False), base_url=f)
+        except etree.XMLSyntaxError:
+            root = None
+        if memo is not None:
+            memo[f] = (data, root)
+    return root
 
 
 def _local(el: Any) -> str | None:
@@ -154,7 +164,7 @@ def _local(el: Any) -> str | None:
 
 
 def analyse(files: Iterable[str], resolver: Any, max_files: int = 200,
-            parsed: dict[tuple[str, tuple[bytes, ...]], Any] | None = None) -> Analysis:
+            parsed: Parsed | None = None) -> Analysis:
     """The branches of the xacro ``files`` (a model's sources; files an arg-built include may
     name are added and read too, up to ``max_files``; ``parsed``: the run's memo of parsed
     sources, :func:`_parse`)."""
@@ -391,11 +401,11 @@ class YamlSources:
     props: dict[str, list[tuple[str, str]]] = field(default_factory=dict)   # name -> (value, file)
 
 
-def yaml_sources(f: str, resolver: Any) -> YamlSources:
+def yaml_sources(f: str, resolver: Any, parsed: Parsed | None = None) -> YamlSources:
     """The ``load_yaml`` calls and the property definitions of the xacro file ``f`` (lxml, read
     through the boundary; nothing evaluated)."""
     out = YamlSources()
-    root = _parse(f, resolver, _YAML_TOKENS) if f.endswith(".xacro") else None
+    root = _parse(f, resolver, _YAML_TOKENS, parsed) if f.endswith(".xacro") else None
     if root is None:
         return out
     for el in root.iter():

@@ -21,7 +21,7 @@ checks that a fix is right for every model and arg set that uses the edited line
 """
 from __future__ import annotations
 
-import math
+import functools
 import os
 import re
 from dataclasses import dataclass
@@ -230,16 +230,19 @@ class YamlScalar:
     tag: str = ""
 
 
-# xacro's YAML units (xacro.ConstructUnits): the expansion reads float(value) * factor
-UNITS = {"!radians": 1.0, "!degrees": math.pi / 180.0, "!meters": 1.0,
-         "!millimeters": 0.001, "!foot": 0.3048, "!inches": 0.0254}
+@functools.lru_cache(maxsize=None)
+def _units() -> dict[str, float]:
+    """xacro's YAML units, tag -> factor (``xacro.ConstructUnits``: the expansion reads a
+    scalar tagged so as ``float(value) * factor``)."""
+    import xacro
+    return {u.value.tag: u.value.conversion_constant for u in xacro.ConstructUnits}
 
 
 def _scalar(node: Any, text: str) -> "YamlScalar":
     """The :class:`YamlScalar` of a PyYAML scalar node of ``text`` (byte offsets; PyYAML's
     marks count characters; a node's span starts at its tag: the value's text follows it)."""
     start, end = node.start_mark.index, node.end_mark.index
-    tag = node.tag if node.tag in UNITS else ""
+    tag = node.tag if node.tag.startswith("!") and node.tag in _units() else ""
     if tag and text.startswith(tag, start):
         start += len(tag)
         while start < end and text[start] in " \t":
@@ -254,7 +257,7 @@ def unit_literal(lit: "YamlScalar", expanded: str | None, new: str) -> str:
     (``!degrees 370.0``, read as radians) for the expanded value ``new``: the shortest number
     the expansion reads back as exactly ``new``. :class:`Refuse` when the literal is not a
     number giving ``expanded``, or no such number exists."""
-    k = UNITS[lit.tag]
+    k = _units()[lit.tag]
     try:
         if expanded is None or float(lit.value) * k != float(expanded):
             raise ValueError

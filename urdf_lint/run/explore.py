@@ -149,7 +149,7 @@ def variant_inputs(cfg: "Config", models: list[ModelReport], graph: Any,
         read = dict.fromkeys([entry, *sorted(files), *a.files, *(d for r in base for d in r.deps)])
         for f in read:
             if f not in sources:
-                sources[f] = br.yaml_sources(f, resolver)
+                sources[f] = br.yaml_sources(f, resolver, parsed)
         files |= br.yaml_reads((sources[f] for f in read), resolver)
         out[entry] = files
     return out
