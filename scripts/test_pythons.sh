@@ -41,7 +41,10 @@ SUBSET=(tests/test_architecture.py tests/test_sandbox.py tests/test_cli_conventi
         # YAML/arg tracing, fresh-repository patterns, branch exploration, the SRDF checks
         # and the preview server: what the last issues added, on every Python
         tests/test_value_tracing.py tests/test_fresh_repository_patterns.py
-        tests/test_explore.py tests/test_srdf.py tests/test_preview.py)
+        tests/test_explore.py tests/test_srdf.py tests/test_preview.py
+        tests/test_mesh_store.py tests/test_review_diff.py
+        "tests/test_cache.py::test_the_wheels_record_is_read_as_importlib_metadata_reads_it"
+        "tests/test_mesh_speed.py::test_a_variant_goes_to_the_worker_that_linted_its_model")
 
 for v in $PYTHONS; do
   py=$(find_python "$v") || { echo "test_pythons: Python $v is not installed (system: or it" \

@@ -412,6 +412,9 @@ def test_the_wheels_record_is_read_as_importlib_metadata_reads_it(tmp_path):
         "urdf_lint/data.json,sha256=CCCC,9\n"
         f"urdf_lint-{__version__}.dist-info/RECORD,,\n"
         "urdf_lint/__pycache__/x.cpython-311.pyc,,\n")
+    (tmp_path / "urdf_lint").mkdir()   # (Python >= 3.12 lists only the files that exist)
+    for name in ("__init__.py", "odd,name.py", "data.json"):
+        (tmp_path / "urdf_lint" / name).write_text("")
     dist = metadata.Distribution.at(info)
     want = {os.path.realpath(str(f.locate())): (f.hash.value, f.size) for f in dist.files or []
             if f.hash is not None and f.size is not None and str(f).endswith(".py")}
