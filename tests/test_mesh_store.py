@@ -146,6 +146,7 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
                          [name, "/etc/hostname", digest, record]]                   # outside
     settings = LintSettings(resolver={"roots": [str(tmp_path / "roots")]})
     assert worker.share(report, settings) == [(name, record)]
+    assert worker.share(report, LintSettings(resolver=None)) == []   # no roots: not confined
 
     # the pool: learnt from worker a's result, handed to b's next job, not back to a
     p = pool.WorkerPool(settings, worker.LINT, size=2)

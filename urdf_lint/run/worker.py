@@ -188,9 +188,11 @@ def share(report: ModelReport, settings: LintSettings) -> list[tuple[str, Any]]:
     worker cannot file facts under content it did not measure."""
     from urdf_lint.meshes.store import verified
     roots = (settings.resolver or {}).get("roots")
+    if not roots:        # (nothing to confine the paths a worker names to: nothing shared)
+        return []
     from urdf_lint.core import fsbound
-    inside = (lambda p: fsbound.within(p, roots)) if roots else None
-    return [(name, record) for name, _, record in verified(report.mesh_facts, inside)]
+    return [(name, record) for name, _, record
+            in verified(report.mesh_facts, lambda p: fsbound.within(p, roots))]
 
 
 LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
