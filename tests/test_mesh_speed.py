@@ -861,3 +861,22 @@ def test_mass_properties_are_trimeshs_bits_across_blocks():
         vol, com, inertia = readers.mass_properties(t)
         assert vol == want["volume"], n
         assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"]), n
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity") or len(os.sched_getaffinity(0)) < 2,
+                    reason="needs a process allowed on more than one CPU")
+def test_a_hull_is_computed_on_one_cpu_and_the_others_are_given_back():
+    """manifold3d's thread pool (TBB) starts with as many threads as the process has CPUs:
+    a hull is computed with this thread held to the CPU it is on (no thread to hand work to;
+    the run's other workers hold the other cores), and every CPU is allowed again after."""
+    from urdf_lint.meshes import resolve
+    before = os.sched_getaffinity(0)
+    with resolve._one_cpu():
+        inside = os.sched_getaffinity(0)
+    assert len(inside) == 1 and inside <= before
+    assert os.sched_getaffinity(0) == before
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    pts = np.concatenate([cube, np.random.default_rng(1).random((5000, 3))])
+    h = resolve._convex_hull(pts)
+    assert os.sched_getaffinity(0) == before
+    assert sorted(map(tuple, np.round(h.vertices, 12))) == sorted(map(tuple, cube))
