@@ -145,8 +145,8 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
                          [f"v3-{other}", path, other, dict(record, bounds=None)],   # forged
                          [name, "/etc/hostname", digest, record]]                   # outside
     settings = LintSettings(resolver={"roots": [str(tmp_path / "roots")]})
-    assert worker.share(report.mesh_facts, settings) == [(name, record)]
-    assert worker.share(report.mesh_facts, LintSettings(resolver=None)) == []   # no roots
+    assert worker.share(report, settings) == [(name, record)]
+    assert worker.share(report, LintSettings(resolver=None)) == []   # no roots: not confined
 
     # the pool: learnt from worker a's result, handed to b's next job, not back to a
     p = pool.WorkerPool(settings, worker.LINT, size=2)
@@ -154,11 +154,11 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
     for w in (a, b):
         w.told = 0
     p.workers = [a, b]
-    p._learn(a, report.mesh_facts)
+    p._learn(a, report)
     job = LintJob(str(tmp_path / "m.urdf"))
     assert p._with_shared(a, job).shared == ()
     assert p._with_shared(b, job).shared == ((name, record),)
-    assert p._with_shared(b, job).shared == ()                # told once
+    assert p._with_shared(b, job) is job                      # told once
 
     # the worker that gets them does not measure that mesh
     fresh()
@@ -166,119 +166,6 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
     resolve.remember(((name, record), ("v3-" + other, {"ok": True}), ("garbage", 1)))
     assert resolve.mesh_facts(str(mesh), store=resolve.MeshStore()) == record
     assert resolve._memory[other] == {"ok": True}   # (a name it never looks up: harmless)
-
-
-def _sphere_stl(n: int = 200) -> bytes:
-    """A closed binary STL sphere of about 2 n² triangles (n=200: 4 MB, measured in tens of
-    milliseconds)."""
-    lat, lon = np.linspace(0, np.pi, n + 1), np.linspace(0, 2 * np.pi, n + 1)[:-1]
-    la, lo = np.meshgrid(lat, lon, indexing="ij")
-    v = (np.stack([np.sin(la) * np.cos(lo), np.sin(la) * np.sin(lo), np.cos(la)], -1)
-         * 0.05).reshape(-1, 3)
-    v[:n], v[-n:] = [0, 0, 0.05], [0, 0, -0.05]
-    i, j = np.arange(n)[:, None] * n, np.arange(n)[None, :]
-    a, b = i + j, i + (j + 1) % n
-    f = np.concatenate([np.stack([a, a + n, b], -1).reshape(-1, 3),
-                        np.stack([b, a + n, b + n], -1).reshape(-1, 3)])
-    rec = np.zeros(len(f), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    rec["v"] = v[f]
-    return b"sphere".ljust(80) + np.uint32(len(f)).tobytes() + rec.tobytes()
-
-
-def _robot(name: str) -> str:
-    return (f'<robot name="{name}"><link name="base"/><link name="ball"><inertial>'
-            '<mass value="1"/><inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/>'
-            '</inertial><collision><geometry><mesh filename="package://p/meshes/ball.stl"/>'
-            '</geometry></collision></link><joint name="j" type="revolute"><parent link="base"/>'
-            '<child link="ball"/><axis xyz="0 0 1"/>'
-            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>\n')
-
-
-@pytest.mark.parametrize("relay", [True, False])
-def test_two_workers_reaching_one_large_mesh_measure_it_once(tmp_path, fresh, monkeypatch,
-                                                             relay):
-    """Two models of a package, linted at the same time on two workers, reach the same large
-    mesh: the first to get there measures it (``Claim``), the other waits for its facts
-    (``Shared``, kept by the parent under the digest it computes) instead of measuring it
-    too. Without the relay (``relay=False``: no mesh is large enough to claim), both measure
-    it: what the test shows is the relay's doing."""
-    from urdf_lint.config.schema import load_config
-    from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.meshes import resolve
-    from urdf_lint.run.pipeline import RunRequest, run_check
-    if not relay:
-        monkeypatch.setattr(resolve, "CLAIM_BYTES", 1 << 40)
-    make_package(tmp_path / "ws", "p", {"urdf/one.urdf": _robot("one"),
-                                        "meshes/ball.stl": _sphere_stl()})
-    make_package(tmp_path / "ws", "q", {"urdf/two.urdf": _robot("two")}, depends=("p",))
-    ws = str(tmp_path / "ws")
-    cfg = load_config(None)
-    out = run_check(RunRequest([ws], cfg, build_resolver([ws], cfg), jobs_n=2))
-    assert sorted(m.entry.rsplit("/", 1)[1] for m in out.models) == ["one.urdf", "two.urdf"]
-    measured = [m[0] for r in out.models for m in r.mesh_facts]
-    assert {n.split("-")[0] for n in measured} == {"v3", "mass1"}
-    if relay:
-        assert len(measured) == len(set(measured))     # each fact of the mesh, by one worker
-    else:
-        assert len(measured) == 2 * len(set(measured))
-    assert not [f for f in out.findings if f.code in ("UL404", "UL900")]
-
-
-def test_the_parent_answers_every_claim_and_passes_on_only_what_it_checked(tmp_path, fresh):
-    """The parent's side of a claim: the first worker to claim a mesh measures it; a second
-    waits, and is answered when the first sends facts the parent checked (the facts come
-    too), or when the first's job ends without them (then it measures the mesh itself). A
-    forged record is not passed on; a claim that is not a name is ignored."""
-    from urdf_lint.core.jobs import Claim, LintJob, LintSettings, Shared
-    from urdf_lint.meshes import resolve
-    from urdf_lint.run import worker
-    from urdf_lint.runner import forked, pool
-    mesh = tmp_path / "roots" / "ball.stl"
-    mesh.parent.mkdir()
-    mesh.write_bytes(_sphere_stl(20))
-    facts = resolve.MeshStore()
-    resolve.mesh_facts(str(mesh), store=facts)
-    name, path, digest, record = facts.measured[0]
-    p = pool.WorkerPool(LintSettings(resolver={"roots": [str(tmp_path / "roots")]}),
-                        worker.LINT, size=3)
-    ends = {}
-    for key in "abc":
-        w = object.__new__(pool.Worker)
-        w.conn, ends[key] = forked.pipe(worker.LINT.allowed)
-        w.told, w.relaying, w.job = 0, True, LintJob(f"/{key}.urdf")
-        p.workers.append(w)
-        p.busy[w.conn] = w
-    a, b, c = p.workers
-
-    def got(key):
-        out = []
-        while ends[key].pending():
-            out.append(ends[key].recv())
-        return out
-    p._claim(a, Claim(name))
-    assert got("a") == [Claim(name)]            # a measures it
-    p._claim(b, Claim(name))
-    p._claim(c, Claim(name))
-    assert got("b") == got("c") == []           # b and c wait for a
-    p._claim(a, Claim(123))                     # type: ignore[arg-type]
-    assert got("a") == []
-    # a's job ends without the facts (a limit): b measures it, c waits on
-    p.busy.pop(a.conn)
-    p._release(a)
-    assert got("b") == [Claim(name)] and got("c") == []
-    # b sends a forged record, then the real one: c gets the real one, then its answer
-    p._learn(b, [[f"v3-{'0' * len(digest)}", path, "0" * len(digest), record]])
-    assert f"v3-{'0' * len(digest)}" not in p.shared_names
-    p._learn(b, [[name, path, digest, record]])
-    p._answered(name)
-    assert got("c") == [Shared([(name, record)]), Claim(name)]
-    assert not p.claims and not p.waiting
-    p._claim(c, Claim(name))                    # known by now: answered with the facts
-    assert got("c") == [Shared([(name, record)]), Claim(name)]
-    for w in p.workers:
-        w.conn.close()
-    for end in ends.values():
-        end.close()
 
 
 def test_measuring_never_writes_the_store(tmp_path, fresh):

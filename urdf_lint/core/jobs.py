@@ -67,31 +67,6 @@ class LintJob:
     # ((name, record), ...: mesh facts under the content digest the parent computed,
     # urdf_lint.run.worker.share): set by the pool when it hands the job over
     shared: tuple[tuple[str, Any], ...] = ()
-    # set by the pool when other workers run beside this one: what this job measures is sent
-    # to the parent at once (Shared), and what they measure meanwhile is taken in before a
-    # mesh is measured here (the same mesh is not measured by two workers at the same time)
-    relay: bool = False
-
-
-@dataclass
-class Shared:
-    """Mesh facts passed during a job (:attr:`LintJob.relay`): from a worker, what it has just
-    measured (``[name, path, digest, record]`` items, checked by the parent as a report's
-    ``mesh_facts`` are); from the parent, what the other workers measured (``(name, record)``
-    pairs under the digest the parent computed, as :attr:`LintJob.shared`)."""
-    items: list[Any]
-
-
-@dataclass
-class Claim:
-    """Between a worker whose job shares as it goes and the parent: from the worker, "about to
-    measure the mesh of facts ``name``" (the worker waits for the answer), or with ``done``,
-    "measured nothing for it after all"; from the parent, the answer: look again (the facts
-    may have come meanwhile, :class:`Shared`), then measure what is still missing. While
-    another worker measures that mesh, the answer waits for its facts: two workers do not
-    measure the same mesh at the same time."""
-    name: str
-    done: bool = False
 
 
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:

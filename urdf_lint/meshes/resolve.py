@@ -670,34 +670,6 @@ def remember(shared: Iterable[tuple[str, Any]]) -> None:
             memory.setdefault(digest, record)
 
 
-# a worker's pool.Relay while its job shares what it measures with the run's other workers
-# (LintJob.relay): set by urdf_lint.run.worker around such a job
-_live: Any = None
-_measuring = 0           # meshes being measured now (one inside another's measure: nested)
-CLAIM_BYTES = 256 * 1024   # a smaller mesh is measured at once, without asking the parent
-
-
-def _worth_claiming(path: str) -> bool:
-    """Whether a second worker measuring this mesh at the same time would cost more than a
-    word with the parent (:meth:`urdf_lint.runner.pool.Relay.claim`)."""
-    try:
-        return os.stat(path).st_size >= CLAIM_BYTES
-    except OSError:
-        return False
-
-
-@contextlib.contextmanager
-def relaying(relay: Any) -> Iterator[None]:
-    """Within: what is measured is sent to the parent at once (``relay.send``), and what the
-    other workers sent meanwhile is taken in before a mesh is measured (``relay.take``)."""
-    global _live
-    before, _live = _live, relay
-    try:
-        yield
-    finally:
-        _live = before
-
-
 def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
             compute: Callable[[str], Facts]) -> Facts:
     """``compute(path)``, memoized in ``memory`` and in the run's facts store (the user's
@@ -705,7 +677,6 @@ def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
     What is measured is noted in ``store.measured`` for the parent to store (a result that
     depends on the environment is neither kept nor noted: it is counted in
     ``store.env_failures``)."""
-    global _measuring
     digest = _digest(path)
     if digest in memory:
         return memory[digest]
@@ -716,32 +687,14 @@ def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
         if got is not None:
             memory[digest] = got
             return got
-    claimed = False
-    if _live is not None:       # another worker may have measured it meanwhile
-        _live.take()
-        if digest in memory:
-            return memory[digest]
-        if not _measuring and _worth_claiming(path):  # (one measuring never waits on others)
-            _live.claim(name)   # (returns once no other worker is measuring it)
-            if digest in memory:
-                return memory[digest]
-            claimed = True
-    _measuring += 1
-    facts: Facts | None = None
     try:
         facts = compute(path)
     except _Uncached as e:
         store.env_failures += 1     # the model's result must not be cached either
         return e.facts
-    finally:
-        _measuring -= 1
-        if claimed and facts is None:
-            _live.give_up(name)
     memory[digest] = facts
     # for the parent: stored (cache_dir), and handed to the run's other workers
     store.measured.append([name, path, digest, facts])
-    if claimed:   # (a small mesh goes with the report: at once it would cost the parent more)
-        _live.send([[name, path, digest, facts]])
     return facts
 
 

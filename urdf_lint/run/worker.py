@@ -13,7 +13,7 @@ from urdf_lint.runner import pool
 from urdf_lint.runner.pool import Block, Handler, mesh_facts_cached
 
 if TYPE_CHECKING:  # pragma: no cover
-    from collections.abc import Iterator, Sequence
+    from collections.abc import Iterator
 
     from urdf_lint.engine.lint import Context
     from urdf_lint.engine.model import Model
@@ -27,12 +27,10 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from urdf_lint.engine.lint import lint_model
     from urdf_lint.core import overlay
-    from urdf_lint.meshes.resolve import relaying, remember
     if job.shared:   # what the run's other workers measured (share): not measured again here
+        from urdf_lint.meshes.resolve import remember
         remember(job.shared)
-    # unsaved editor buffers, read in place of the files; with other workers beside this one,
-    # each mesh measured here is passed on to them at once, and theirs taken in meanwhile
-    with overlay.using(job.overlay), relaying(_relay if job.relay and not job.overlay else None):
+    with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
         report, model, ctx = lint_model(job, settings)
     if ctx.meshes.env_failures or job.overlay:
         # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
@@ -182,10 +180,9 @@ def _run(job: LintJob, settings: LintSettings) -> ModelReport:
     return process_job(job, settings)   # (looked up when called: a test may replace it)
 
 
-def share(items: "Sequence[Any]", settings: LintSettings) -> list[tuple[str, Any]]:
-    """In the parent: the mesh facts a worker measured (its report's ``mesh_facts``, or what
-    it sent during its job), for the run's other workers (a model's variant, a stolen job or a
-    model beside it on another worker then measures none of them again).
+def share(report: ModelReport, settings: LintSettings) -> list[tuple[str, Any]]:
+    """In the parent: the mesh facts ``report``'s worker measured, for the run's other workers
+    (a model's variant or a stolen job on another worker then measures none of them again).
     Kept only under the digest this process computes of the file (inside the run's roots),
     as the facts store keeps them (:meth:`urdf_lint.meshes.store.FactsStore.accept`): a
     worker cannot file facts under content it did not measure."""
@@ -195,26 +192,11 @@ def share(items: "Sequence[Any]", settings: LintSettings) -> list[tuple[str, Any
         return []
     from urdf_lint.core import fsbound
     return [(name, record) for name, _, record
-            in verified(items, lambda p: fsbound.within(p, roots))]
-
-
-def take(pairs: "Sequence[tuple[str, Any]]") -> None:
-    """In a worker: what the parent passed on during a job (:func:`share`'s pairs)."""
-    from urdf_lint.meshes.resolve import remember
-    remember(pairs)
-
-
-_relay: pool.Relay | None = None   # this worker's channel for sharing during a job
-
-
-def _set_relay(relay: pool.Relay) -> None:
-    global _relay
-    _relay = relay
+            in verified(report.mesh_facts, lambda p: fsbound.within(p, roots))]
 
 
 LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
-               setup=_skip_unused_imports, warm=warm, preload=preload, share=share,
-               take=take, relay=_set_relay)
+               setup=_skip_unused_imports, warm=warm, preload=preload, share=share)
 
 
 def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = None

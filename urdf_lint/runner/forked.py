@@ -19,7 +19,6 @@ from __future__ import annotations
 import gc
 import os
 import pickle
-import select
 import signal
 import struct
 import sys
@@ -42,12 +41,8 @@ __all__ = ["Conn", "Process", "Refused", "Wake", "active_children", "messages", 
 MAX_MESSAGE = 1 << 30    # bytes of one message from an untrusted end
 
 
-def _pipe_buf() -> int:
-    """The size up to which a pipe write is atomic (POSIX ``PIPE_BUF``: 4096 on Linux)."""
-    return int(getattr(select, "PIPE_BUF", 512))
-
-
 def _readable(fd: int, timeout: float) -> bool:
+    import select
     p = select.poll()
     p.register(fd, select.POLLIN | select.POLLHUP | select.POLLERR)
     return bool(p.poll(max(0.0, timeout) * 1000))
@@ -80,28 +75,6 @@ class Conn:
         view = memoryview(_HEADER.pack(len(data)) + data)
         while view:
             view = view[os.write(self.wfd, view):]
-
-    def offer(self, obj: Any) -> bool:
-        """Write ``obj`` only if that cannot block: a message of at most ``PIPE_BUF`` bytes
-        written whole to a non-blocking pipe, or nothing (False: too large, or the pipe is
-        full because the other end reads it only later). For messages to a child that is busy
-        with something else: the parent never waits on it, so neither can wait on the other."""
-        data = (wire.encode(obj) if self.plain
-                else pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL))
-        message = _HEADER.pack(len(data)) + data
-        if len(message) > _pipe_buf():
-            return False
-        os.set_blocking(self.wfd, False)
-        try:
-            return os.write(self.wfd, message) == len(message)   # (atomic: all or EAGAIN)
-        except (BlockingIOError, InterruptedError):
-            return False
-        finally:
-            os.set_blocking(self.wfd, True)
-
-    def pending(self) -> bool:
-        """Whether a message (or the end of the channel) waits to be read now."""
-        return _readable(self.rfd, 0.0)
 
     def _read(self, n: int, deadline: float | None = None) -> bytearray:
         buf = bytearray(n)
@@ -328,6 +301,7 @@ def active_children() -> list[Process]:
 
 def wait(conns: Sequence[Any], timeout: float | None = None) -> list[Any]:
     """The conns with data (or end of file) to read, after at most ``timeout`` seconds."""
+    import select
     if not hasattr(os, "fork"):   # pragma: no cover - Windows: multiprocessing's connections
         from multiprocessing.connection import wait as mp_wait
         return mp_wait(conns, timeout)

@@ -23,7 +23,7 @@ from urdf_lint.runner.hardening import limit_memory
 from urdf_lint.runner.hardening import inherited_data_bytes as _inherited_data_bytes
 from urdf_lint.runner.hardening import install_audit_hook as _install_audit_hook
 from urdf_lint.runner.hardening import scrub_environment as _scrub_environment
-from urdf_lint.core.jobs import Claim, LintJob, LintSettings, ModelReport, Shared
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
 
 
 @dataclass(frozen=True)
@@ -37,98 +37,16 @@ class Handler:
     :mod:`urdf_lint.runner.wire`; the parent reads nothing else). ``setup()``: first
     thing in a new worker; ``warm()``: the imports of a worker started ahead of its settings;
     ``preload(blocks, settings, n)``: in the parent before it forks ``n`` workers (they share
-    what it imports). ``share(items, settings)``: in the parent, what a worker measured (a
-    report's ``mesh_facts``, or a :class:`Shared` it sent during its job) that the other
-    workers may reuse ((name, value) pairs, checked by the parent): the pool hands each worker
-    the pairs it has not had with its next job (``LintJob.shared``), and during a job as soon
-    as they are learnt (:class:`Relay`). ``take(pairs)``: in a worker, take in such pairs;
-    ``relay(relay)``: in a worker before its first job, the :class:`Relay` of its channel."""
+    what it imports). ``share(report, settings)``: in the parent, what a report measured that
+    the other workers may reuse ((name, value) pairs, checked by the parent): the pool hands
+    each worker the pairs it has not had with its next job (``LintJob.shared``)."""
     run: Callable[[LintJob, LintSettings], ModelReport]
     limit_result: Callable[[LintJob, str], ModelReport]
     allowed: frozenset[tuple[str, str]]
     setup: Callable[[], None] | None = None
     warm: Callable[[], None] | None = None
     preload: "Callable[[list[Block], LintSettings, int], None] | None" = None
-    share: "Callable[[Sequence[Any], LintSettings], list[tuple[str, Any]]] | None" = None
-    take: "Callable[[Sequence[tuple[str, Any]]], None] | None" = None
-    relay: "Callable[[Relay], None] | None" = None
-
-
-class Relay:
-    """A worker's side of what its job shares with the other workers while it runs (a job
-    with ``LintJob.relay``): :meth:`send` what it has just measured to the parent, and
-    :meth:`take` what the parent has passed on from the others since (never waiting: the
-    parent writes such a message only when that cannot block, :meth:`forked.Conn.offer`).
-    A message other than :class:`Shared` read meanwhile is kept for :meth:`messages`."""
-
-    def __init__(self, conn: Any, handler: Handler) -> None:
-        self.conn, self.handler = conn, handler
-        self.later: deque[Any] = deque()
-
-    def messages(self) -> Iterator[Any]:
-        """The jobs from the parent (:func:`forked.messages`), taking in what it shares."""
-        while True:
-            if self.later:
-                msg = self.later.popleft()
-            else:
-                try:
-                    msg = self.conn.recv()
-                except (EOFError, OSError):
-                    return
-            if msg is None:
-                return
-            if isinstance(msg, Shared):
-                self._take(msg)
-                continue
-            yield msg
-
-    def take(self) -> None:
-        """Take in, without waiting, what the parent has passed on since."""
-        while not self.later and self.conn.pending():
-            self._next(None)
-
-    def send(self, items: list[Any]) -> None:
-        self._send(Shared(items))
-
-    def claim(self, name: str) -> None:
-        """Tell the parent this worker is about to measure the mesh of facts ``name``, and
-        wait for its answer, taking in what it shares meanwhile: at once when no other worker
-        is measuring it, else once that one has sent its facts (or given up). The caller then
-        looks again before it measures."""
-        if self._send(Claim(name)):
-            while not self._next(name):
-                pass
-
-    def _next(self, answer: str | None) -> bool:
-        """Read one message from the parent: what it shares is taken in (False); True for the
-        answer to the claim of ``answer``, and for any other message (a job, the end: kept for
-        :meth:`messages`)."""
-        try:
-            msg = self.conn.recv()
-        except (EOFError, OSError):
-            msg = None
-        if isinstance(msg, Shared):
-            self._take(msg)
-            return False
-        if isinstance(msg, Claim):
-            return msg.name == answer
-        self.later.append(msg)
-        return True
-
-    def give_up(self, name: str) -> None:
-        """The mesh of a :meth:`claim` gave no facts to share (a limit, not the file)."""
-        self._send(Claim(name, done=True))
-
-    def _send(self, msg: Any) -> bool:
-        try:
-            self.conn.send(msg)
-            return True
-        except (OSError, ValueError, wire.Unencodable):   # (its report carries them too)
-            return False
-
-    def _take(self, msg: Shared) -> None:
-        if self.handler.take is not None:
-            self.handler.take(msg.items)
+    share: "Callable[[ModelReport, LintSettings], list[tuple[str, Any]]] | None" = None
 
 
 MAX_SHARED = 50_000   # items a pool passes between its workers (a language server's lives long)
@@ -176,10 +94,7 @@ def _worker_main(conn: Any, handler: Handler, settings: LintSettings | None) -> 
     sys.dont_write_bytecode = True
     _install_audit_hook(settings.render_dir)   # (the mesh facts store: read only)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    relay = Relay(conn, handler)
-    if handler.relay is not None:
-        handler.relay(relay)
-    for job in relay.messages():
+    for job in forked.messages(conn):
         try:
             result = handler.run(job, settings)
         except MemoryError:
@@ -421,7 +336,7 @@ class Worker:
             old = old_term = None
         try:
             self.conn, self.proc = forked.start(_worker_main, (handler, settings),
-                                                allowed=handler.allowed | _SHARED)
+                                                allowed=handler.allowed)
         finally:
             if old is not None:
                 signal.signal(signal.SIGINT, old)
@@ -431,7 +346,6 @@ class Worker:
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
         self.told = 0     # how much of the pool's shared list this worker has been handed
-        self.relaying = False   # its job shares as it goes (LintJob.relay)
 
     def kill(self) -> None:
         try:
@@ -442,8 +356,6 @@ class Worker:
         self.conn.close()
 
 
-# what a worker sends during a job that shares as it goes
-_SHARED = frozenset({("urdf_lint.core.jobs", "Shared"), ("urdf_lint.core.jobs", "Claim")})
 WALL_FACTOR = 4      # the wall-clock limit of a job: this many times its CPU-time limit
 POLL_S = 0.25        # how often the parent looks at the CPU time of busy workers
 
@@ -564,11 +476,7 @@ class WorkerPool:
         # what the workers measured that the others may reuse (Handler.share): (worker, name,
         # value), in the order learnt, and the names in it
         self.shared: list[tuple[Worker, str, Any]] = []
-        self.shared_names: dict[str, Any] = {}
-        # the meshes being measured (Claim): name -> the worker measuring it, and the workers
-        # waiting for its facts
-        self.claims: dict[str, Worker] = {}
-        self.waiting: dict[str, list[Worker]] = {}
+        self.shared_names: set[str] = set()
         self._wake = forked.Wake() if persistent else None
 
     # -- the persistent form -------------------------------------------------------------------
@@ -627,7 +535,6 @@ class WorkerPool:
             q.clear()
         for conn, w in list(self.busy.items()):
             self.busy.pop(conn)
-            self._release(w)
             self.stopped += 1
             self.replace(w)
 
@@ -644,9 +551,7 @@ class WorkerPool:
                 if conn is self._wake:
                     self._wake.clear()
                     continue
-                got = self.collect(conn)
-                if got is not None:
-                    yield got
+                yield self.collect(conn)
             yield from self.expire()
 
     def pending(self) -> bool:
@@ -678,9 +583,7 @@ class WorkerPool:
                 w.started = time.monotonic()
                 w.cpu0 = _cpu_seconds(w.proc.pid)
                 try:
-                    sent = self._with_shared(w, w.job)
-                    w.relaying = bool(getattr(sent, "relay", False))
-                    w.conn.send(sent)
+                    w.conn.send(self._with_shared(w, w.job))
                 except (OSError, ValueError):   # a worker gone meanwhile: another takes it
                     w.queue.appendleft(w.job)
                     w.job = None
@@ -689,89 +592,20 @@ class WorkerPool:
                 self.busy[w.conn] = w
 
     def _with_shared(self, w: Worker, job: LintJob) -> LintJob:
-        """``job`` with what the other workers measured since ``w`` was last handed any, and
-        told to share as it goes when others run beside it."""
+        """``job`` with what the other workers measured since ``w`` was last handed a job."""
         new = [(name, value) for by, name, value in self.shared[w.told:] if by is not w]
         w.told = len(self.shared)
-        if not isinstance(job, LintJob):     # (a job of another handler: nothing to share)
-            return job
-        relay = self.handler.take is not None and self._sharing()
-        if new or relay != job.relay:
-            return dataclasses.replace(job, shared=tuple(new), relay=relay)
-        return job
+        return dataclasses.replace(job, shared=tuple(new)) if new else job
 
-    def _sharing(self) -> bool:
-        return (len(self.workers) > 1 or self.size > 1) and len(self.shared) < MAX_SHARED
-
-    def _learn(self, w: Worker, items: Sequence[Any]) -> None:
-        """Keep what ``w`` measured (a result's ``mesh_facts``, or what it sent during its
-        job) for the other workers (when there are others)."""
-        if self.handler.share is None or not items or not self._sharing():
+    def _learn(self, w: Worker, result: ModelReport) -> None:
+        """Keep what ``w``'s result measured for the other workers (when there are others)."""
+        if self.handler.share is None or len(self.workers) < 2 and self.size < 2 \
+                or len(self.shared) >= MAX_SHARED:
             return
-        for name, value in self.handler.share(items, self.settings):
+        for name, value in self.handler.share(result, self.settings):
             if name not in self.shared_names:
-                self.shared_names[name] = value
+                self.shared_names.add(name)
                 self.shared.append((w, name, value))
-
-    def _claim(self, w: Worker, msg: Claim) -> None:
-        """A worker is about to measure a mesh (or, ``done``, gave up on it): answer it now
-        unless another worker is measuring it; then it waits for that one's facts."""
-        name = msg.name
-        if not isinstance(name, str) or len(name) > 200:
-            return
-        holder = self.claims.get(name)
-        if msg.done:
-            if holder is w:
-                self._answered(name)
-            return
-        if name in self.shared_names:
-            w.conn.offer(Shared([(name, self.shared_names[name])]))
-        elif holder is not None and holder is not w and holder.conn in self.busy:
-            if len(self.waiting.setdefault(name, [])) < len(self.workers):
-                self.waiting[name].append(w)
-                return
-        else:
-            self.claims[name] = w
-        w.conn.offer(Claim(name))
-
-    def _answered(self, name: str) -> None:
-        """The worker measuring ``name`` is done with it: those waiting look again (its facts
-        were offered to them, :meth:`_pass_on`); with no facts, the first measures it."""
-        self.claims.pop(name, None)
-        waiting = self.waiting.pop(name, [])
-        for w in waiting:
-            if w.conn not in self.busy:
-                continue
-            if name in self.shared_names:
-                w.conn.offer(Shared([(name, self.shared_names[name])]))
-            elif name not in self.claims:
-                self.claims[name] = w
-            elif w is not self.claims[name]:
-                self.waiting.setdefault(name, []).append(w)
-                continue
-            w.conn.offer(Claim(name))
-
-    def _release(self, w: Worker) -> None:
-        """``w``'s job ended (or it was stopped): what it was measuring, others measure."""
-        for ws in self.waiting.values():
-            if w in ws:
-                ws.remove(w)
-        for name in [n for n, h in self.claims.items() if h is w]:
-            self._answered(name)
-
-    def _pass_on(self, source: Worker) -> None:
-        """Hand the busy workers but ``source`` what they have not had yet, now, one item per
-        message that cannot block (:meth:`forked.Conn.offer`; a worker reads them before it
-        measures a mesh). What cannot go now (a full pipe, a large record) goes with the
-        worker's next job."""
-        for w in list(self.busy.values()):
-            if w is source or not w.relaying:
-                continue
-            while w.told < len(self.shared):
-                by, name, value = self.shared[w.told]
-                if by is not w and not w.conn.offer(Shared([(name, value)])):
-                    break
-                w.told += 1
 
     def wait(self) -> list[Any]:
         """The connections of busy workers that sent something, by the next deadline (or the
@@ -786,27 +620,13 @@ class WorkerPool:
             conns.append(self._wake)
         return forked.wait(conns, timeout=max(0.0, next_deadline - now))
 
-    def collect(self, conn: Any) -> tuple[LintJob, ModelReport] | None:
-        """(job, result) from the worker on ``conn``; None for what it shared during its job
-        (:class:`Shared`); a worker that sent something else or died is replaced."""
+    def collect(self, conn: Any) -> tuple[LintJob, ModelReport]:
+        """(job, result) from the worker on ``conn``; a worker that sent something else or
+        died is replaced."""
         w = self.busy.pop(conn)
         job = w.job
         try:
             result = w.conn.recv(timeout=max(1.0, w.started + self._limit(w) - time.monotonic()))
-            if isinstance(result, (Shared, Claim)) and w.relaying:
-                self.busy[conn] = w      # (during its job)
-                if isinstance(result, Claim):
-                    self._claim(w, result)
-                    return None
-                # what it has just measured: for the others at once, those waiting for it first
-                items = result.items if isinstance(result.items, list) else []
-                self._learn(w, items)
-                for item in items:
-                    name = item[0] if isinstance(item, list) and item else None
-                    if isinstance(name, str) and self.claims.get(name) is w:
-                        self._answered(name)
-                self._pass_on(w)
-                return None
             if not isinstance(result, ModelReport):
                 raise forked.Refused(f"a {type(result).__name__}")
         except forked.Refused as e:
@@ -828,8 +648,7 @@ class WorkerPool:
             w.job = None
             self.linted[job.entry] = w
             self.took[job.entry] = time.monotonic() - w.started
-            self._learn(w, result.mesh_facts)
-        self._release(w)
+            self._learn(w, result)
         return job, result
 
     def _over(self, w: Worker, now: float) -> tuple[bool, str]:
@@ -849,7 +668,6 @@ class WorkerPool:
             over, what = self._over(w, now)
             if over:
                 self.busy.pop(conn)
-                self._release(w)
                 job = w.job
                 if self.persistent or self.pending() or self.busy:
                     self.replace(w)
