@@ -658,7 +658,7 @@ def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):
     mesh_dir = tmp_path / "arm_description" / "meshes"
     mesh_dir.mkdir()
     with open(mesh_dir / "a.stl", "wb") as f:
-        f.truncate(30 << 20)                     # 30 MB of binary STL (sparse)
+        f.truncate(10 << 20)                     # 10 MB of binary STL (sparse)
     jobs = [LintJob(str(tmp_path / "arm_description" / "urdf" / n)) for n in ("arm.urdf", "arm2.urdf")]
     jobs.append(LintJob(str(tmp_path / "snake_description" / "urdf" / "snake.urdf.xacro")))
     assert pool.job_cost(jobs[2]) > 5 * pool.job_cost(jobs[0])

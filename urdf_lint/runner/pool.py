@@ -157,10 +157,15 @@ def _take_prestarted(settings: LintSettings) -> "Worker | None":
 
 # -- scheduling: the models of one package go to one worker ---------------------------------
 MESH_SUFFIXES = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf")
-JOB_COST_S = 0.04            # expanding and checking a small model, meshes aside
-XACRO_ELEMENT_COST_S = 0.001 # each xacro element of the entry file (a macro call: links, joints)
-STL_COST_S_PER_MB = 0.003    # numpy reads binary STL (hash, bounds, volume)
-MESH_COST_S_PER_MB = 0.025   # COLLADA / OBJ go through their parsers
+# first-time estimates, fitted to the time each package took (one worker, cold) on the corpus
+# and on bench/heavy_repo.py's repository (bench/fit_costs.py); checked on the corpus laid out
+# as a workspace. The costliest package starts first: a large one started late runs alone
+# at the end while the other workers idle (0.04 s a model ranked a package of 31 small models
+# above one of 6 large ones, and the corpus's -j 2 run ended 0.1 s later)
+JOB_COST_S = 0.007           # expanding and checking a small model, meshes aside
+XACRO_ELEMENT_COST_S = 0.0008  # each xacro element of the entry file (a macro call: links, joints)
+STL_COST_S_PER_MB = 0.0075   # numpy reads binary STL (hash, bounds, volume)
+MESH_COST_S_PER_MB = 0.05    # COLLADA / OBJ go through their parsers
 WORKER_COST_S = 0.15         # a worker's fork and sandbox (it shares what the parent preloaded)
 WARM_WORKER_COST_S = 0.1     # the same when the mesh facts are cached (few meshes are read)
 MAX_WALK = 20000             # files looked at per package to estimate its meshes
