@@ -166,8 +166,11 @@ JOB_COST_S = 0.007           # expanding and checking a small model, meshes asid
 XACRO_ELEMENT_COST_S = 0.0008  # each xacro element of the entry file (a macro call: links, joints)
 STL_COST_S_PER_MB = 0.0075   # numpy reads binary STL (hash, bounds, volume)
 MESH_COST_S_PER_MB = 0.05    # COLLADA / OBJ go through their parsers
-WORKER_COST_S = 0.15         # a worker's fork and sandbox (it shares what the parent preloaded)
-WARM_WORKER_COST_S = 0.1     # the same when the mesh facts are cached (few meshes are read)
+# a second worker's fork, sandbox and what it measures again (it shares what the parent
+# preloaded), on the estimates' scale: descriptions/ (0.4 s estimated) lints in 0.43 s on two
+# workers and 0.50 s on one
+WORKER_COST_S = 0.05
+WARM_WORKER_COST_S = 0.035   # the same when the mesh facts are cached (few meshes are read)
 MAX_WALK = 20000             # files looked at per package to estimate its meshes
 
 
