@@ -494,3 +494,49 @@ def test_a_run_whose_variants_read_a_file_of_their_own_is_remembered(tmp_path):
     docs = [json.loads(p.stdout) for p in runs]
     assert docs[1]["findings"] == docs[0]["findings"]
     assert any(f["message"].endswith("(only with gazebo:=true)") for f in docs[1]["findings"])
+
+
+def test_every_models_first_variant_is_linted_during_the_default_pass(tmp_path, monkeypatch):
+    """Issue 34: a model's first variant is planned as soon as its default report arrives and
+    linted on the default pass's workers, while the other models are still linted; the end of
+    the pass lints only the rest. No job is linted twice, and the run finds what exploring
+    after the pass finds (in process: no workers, nothing early)."""
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.explore import args_key
+    from urdf_lint.run.pipeline import RunRequest, run_check
+    from urdf_lint.run.worker import RunPool
+    files = dict(FILES)
+    files["urdf/other.urdf.xacro"] = ROBOT.replace('name="r"', 'name="o"', 1)
+    pkg = make_package(tmp_path, "robot", files)
+    passes: list[list] = []
+    added: list = []
+    run, add = RunPool.run, RunPool.add
+
+    def runs(self, jobs):
+        passes.append(list(jobs))
+        return run(self, jobs)
+
+    def adds(self, jobs):
+        added.extend(jobs)
+        return add(self, jobs)
+    monkeypatch.setattr(RunPool, "run", runs)
+    monkeypatch.setattr(RunPool, "add", adds)
+    cfg = load_config(None)
+
+    def check(**kw):
+        return run_check(RunRequest([str(pkg)], cfg, build_resolver([str(pkg)], cfg, {}), **kw))
+    result = check(jobs_n=2)
+    assert sorted(j.entry.rsplit("/", 1)[1] for j in added) == ["other.urdf.xacro",
+                                                                "robot.urdf.xacro"]
+    assert all(j.args for j in added)
+    later = passes[1] if len(passes) > 1 else []
+    linted = [args_key(j) for j in added + later]
+    assert later and len(linted) == len(set(linted))        # each variant once
+    alone = check(in_process=True)
+
+    def shown(r):
+        return sorted((f.file, f.line, f.code, f.message) for f in r.findings)
+    assert shown(result) == shown(alone)
+    assert any("(only with" in m for *_, m in shown(result))
+    assert result.coverage == alone.coverage

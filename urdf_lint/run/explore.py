@@ -8,6 +8,8 @@ the defaults did not read. :func:`select` keeps what the budget allows (round ro
 models: every model gets its first variant before any gets a second). The variants are linted
 as any job (sandboxed workers, cache); :func:`merge` adds what only a variant found to the
 model's own findings, once, labelled ``(only with a:=x b:=y)``, and computes the coverage.
+In ``check``, :class:`Early` plans each model and lints its first variant as soon as the
+model's default reports are in, while the default pass still runs on the same workers.
 """
 from __future__ import annotations
 
@@ -79,39 +81,133 @@ def explored_models(cfg: "Config", models: list[ModelReport]) -> dict[str, list[
 
 
 def explore(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
-            lint: Callable[[list[LintJob]], list[ModelReport]]
+            lint: Callable[[list[LintJob]], list[ModelReport]],
+            ready: "dict[Any, ModelPlan] | None" = None
             ) -> tuple[list[ModelReport], dict[str, dict[str, Any]]]:
     """The one path of exploration, ``check``'s and the language server's: :func:`plan`,
     :func:`select` within ``cfg.explore_budget``, ``lint(jobs)`` (the caller's workers, cache
     or reports held), :func:`merge` into ``models``. Returns (the variants' reports, the
-    coverage per model label)."""
-    plans = plan(cfg, models, graph, resolver)
+    coverage per model label). ``ready``: plans made already of the same reports
+    (:class:`Early`)."""
+    plans = plan(cfg, models, graph, resolver, ready)
     jobs = select(plans, cfg.explore_budget, len(models))
     reports = lint(jobs) if jobs else []
     return reports, merge(plans, reports)
 
 
-def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any) -> list[ModelPlan]:
-    """A plan for every explored model (see the module's doc)."""
+def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
+         ready: "dict[Any, ModelPlan] | None" = None) -> list[ModelPlan]:
+    """A plan for every explored model (see the module's doc); one in ``ready`` under
+    :func:`plan_key` is the plan of the same reports, made before."""
     plans = []
     parsed: dict[Any, Any] = {}     # the sources parsed for one model serve the next
     for entry, base in sorted(explored_models(cfg, models).items()):
-        p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver, parsed))
-        a = p.analysis
-        given = explore_args(cfg, entry)
-        listed = {k: list(v) for k, v in given.items()}
-        for r in base:
-            for k, v in r.args.items():
-                listed.setdefault(k, []).append(v)
-        p.fixed = {k for k, v in given.items() if not v}
-        p.listed = {k: list(v) for k, v in given.items()}
-        values = {k: v for k, v in a.values(listed).items() if k not in p.fixed}
-        # an arg whose values are listed takes only those
-        values.update({k: [x for x in v if x != a.defaults.get(k)]
-                       for k, v in given.items() if v})
-        p.variants = _variants(p, values)
-        plans.append(p)
+        p = (ready or {}).get(plan_key(entry, base))
+        plans.append(p if p is not None else plan_one(cfg, entry, base, graph, resolver, parsed))
     return plans
+
+
+def plan_key(entry: str, base: list[ModelReport]) -> tuple[str, tuple[int, ...]]:
+    """What a plan is made of: the model and its very reports, in order."""
+    return entry, tuple(id(r) for r in base)
+
+
+def plan_one(cfg: "Config", entry: str, base: list[ModelReport], graph: Any, resolver: Any,
+             parsed: dict[Any, Any]) -> ModelPlan:
+    """The plan of one model from its reports (``base``, in the order of the run's models)."""
+    p = ModelPlan(entry, base, _analysis(entry, base, graph, resolver, parsed))
+    a = p.analysis
+    given = explore_args(cfg, entry)
+    listed = {k: list(v) for k, v in given.items()}
+    for r in base:
+        for k, v in r.args.items():
+            listed.setdefault(k, []).append(v)
+    p.fixed = {k for k, v in given.items() if not v}
+    p.listed = {k: list(v) for k, v in given.items()}
+    values = {k: v for k, v in a.values(listed).items() if k not in p.fixed}
+    # an arg whose values are listed takes only those
+    values.update({k: [x for x in v if x != a.defaults.get(k)]
+                   for k, v in given.items() if v})
+    p.variants = _variants(p, values)
+    return p
+
+
+def variant_job(entry: str, args: dict[str, str]) -> LintJob:
+    """The job of one variant of a model."""
+    return LintJob(entry, dict(args), "xacro", explicit=True, mesh_base=None)
+
+
+def args_key(job: LintJob) -> tuple[str, tuple[tuple[str, str], ...]]:
+    return job.entry, tuple(sorted(job.args.items()))
+
+
+class Early:
+    """Every model's first variant, linted while the default pass still runs (``check`` on
+    its workers): planned as soon as the last of the model's default reports arrives, as
+    :func:`plan` plans it from the same reports at the end of the pass, and linted after the
+    jobs queued on the worker that linted the model (an idle worker takes it sooner). With a
+    budget of at least one variant per model, :func:`select` keeps every model's first
+    variant, so the end of the pass lints no job twice: it reuses these plans (``ready``) and
+    reports (:meth:`take`), and lints the rest. A report it does not ask for (a model found
+    to be a fragment at the end) is left out; what the run reports is the same either way."""
+
+    def __init__(self, cfg: "Config", jobs: list[LintJob], graph: Any, resolver: Any) -> None:
+        self.cfg, self.graph, self.resolver = cfg, graph, resolver
+        self.left: dict[str, int] = {}
+        for j in jobs:
+            self.left[j.entry] = self.left.get(j.entry, 0) + 1
+        self.base: dict[str, list[ModelReport]] = {}
+        self.plans: dict[Any, ModelPlan] = {}
+        self.reports: dict[Any, ModelReport] = {}
+        self.jobs: dict[int, LintJob] = {}
+        self.parsed: dict[Any, Any] = {}
+
+    @staticmethod
+    def applies(cfg: "Config") -> bool:
+        return bool(cfg.explore) and cfg.explore_budget >= 1
+
+    def arrived(self, job: LintJob, report: ModelReport | None) -> list[LintJob]:
+        """A default report (None: one read from the cache: that model is explored at the end
+        of the pass, from the cache too); the first variant of its model once all are in."""
+        from urdf_lint.core.jobs import Status
+        e = job.entry
+        if report is None or e not in self.left:
+            self.left.pop(e, None)
+            return []
+        self.left[e] -= 1
+        self.base.setdefault(e, []).append(report)
+        if self.left[e]:
+            return []
+        del self.left[e]
+        base = sorted(self.base.pop(e), key=lambda r: sorted(r.args.items()))
+        if any(r.status in (Status.LIBRARY, Status.NOT_ROBOT) for r in base) or \
+                not explored_models(self.cfg, base):
+            return []
+        p = plan_one(self.cfg, e, base, self.graph, self.resolver, self.parsed)
+        self.plans[plan_key(e, base)] = p
+        if not p.variants:
+            return []
+        first = variant_job(e, p.variants[0])
+        self.jobs[id(first)] = first
+        return [first]
+
+    def done(self, job: LintJob, report: ModelReport) -> bool:
+        """Keep the report of one of :meth:`arrived`'s jobs (False: not one of them)."""
+        if self.jobs.pop(id(job), None) is None:
+            return False
+        self.reports[args_key(job)] = report
+        return True
+
+    def take(self, jobs: list[LintJob]) -> tuple[list[ModelReport], list[LintJob]]:
+        """(the reports linted already of ``jobs``, the jobs still to lint)."""
+        got, rest = [], []
+        for j in jobs:
+            r = self.reports.pop(args_key(j), None)
+            if r is None:
+                rest.append(j)
+            else:
+                got.append(r)
+        return got, rest
 
 
 def _analysis(entry: str, base: list[ModelReport], graph: Any, resolver: Any,
@@ -237,8 +333,7 @@ def select(plans: list[ModelPlan], budget: float, n_models: int) -> list[LintJob
     while len(jobs) < allowed and any(rnd < len(p.variants) for p in plans):
         for p in plans:
             if rnd < len(p.variants) and len(jobs) < allowed:
-                jobs.append(LintJob(p.entry, dict(p.variants[rnd]), "xacro", explicit=True,
-                                    mesh_base=None))
+                jobs.append(variant_job(p.entry, p.variants[rnd]))
                 p.kept = rnd + 1
         rnd += 1
     return jobs

@@ -29,6 +29,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.run.cache import Cache
     from urdf_lint.config.schema import Config
     from urdf_lint.discovery.packages import PackageResolver
+    from urdf_lint.run.explore import Early
     from urdf_lint.run.runcache import RunMemo
     from urdf_lint.run.worker import RunPool
 
@@ -179,8 +180,13 @@ def _run_passes(req: RunRequest, cfg: "Config", resolver: "PackageResolver",
     """The default pass, then the exploration pass (on the same ``workers``), then the end
     of the run (:func:`urdf_lint.run.finish.finish`)."""
     paths = list(req.paths)
+    early = None
+    if workers is not None and req.affected_by is None and _explores(req, cfg):
+        from urdf_lint.run.explore import Early
+        if Early.applies(cfg):   # (every model's first variant, linted as the pass runs)
+            early = Early(cfg, jobs, found.graph, resolver)
     results, internal = _lint_all(jobs, settings, req.jobs_n, cache, req.progress,
-                                  req.in_process, workers)
+                                  req.in_process, workers, early)
     if facts is not None:   # what the workers measured: stored by this process only
         facts.accept((m for r in results for m in r.mesh_facts),
                      getattr(resolver, "is_inside", None))
@@ -196,7 +202,7 @@ def _run_passes(req: RunRequest, cfg: "Config", resolver: "PackageResolver",
     if req.affected_by is not None:
         _keep_affected(out, req.affected_by, _variant_inputs(req, cfg, found, resolver))
     if _explores(req, cfg):
-        more, more_internal = _explore(out, found, cfg, resolver, settings, req, workers)
+        more, more_internal = _explore(out, found, cfg, resolver, settings, req, workers, early)
         results += more
         out.internal += more_internal
     if req.render_dir:
@@ -221,19 +227,24 @@ def _explores(req: RunRequest, cfg: "Config") -> bool:
 
 
 def _explore(out: CheckResult, found: "Discovery", cfg: "Config", resolver: "PackageResolver",
-             settings: LintSettings, req: RunRequest, workers: "RunPool | None" = None
-             ) -> tuple[list[ModelReport], list[str]]:
+             settings: LintSettings, req: RunRequest, workers: "RunPool | None" = None,
+             early: "Early | None" = None) -> tuple[list[ModelReport], list[str]]:
     """Plan, lint (workers, cache) and merge the explored variants of ``out.models``; the
-    coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors)."""
+    coverage lands in ``out.coverage``. Returns (the variants' reports, internal errors).
+    ``early``: the plans and reports of the first variants, made during the default pass."""
     from urdf_lint.run import explore
     internal: list[str] = []
 
     def lint(jobs: list[LintJob]) -> list[ModelReport]:
+        done, jobs = early.take(jobs) if early is not None else ([], jobs)
+        for r in done:
+            internal.extend(r.internal)
         reports, errors = _lint_all(jobs, settings, req.jobs_n, req.cache, None, req.in_process,
                                     workers)
         internal.extend(errors)
-        return reports
-    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint)
+        return done + reports
+    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint,
+                                            early.plans if early is not None else None)
     return reports, internal
 
 
@@ -314,10 +325,12 @@ def _keep_affected(out: CheckResult, affected_by: AbstractSet[str],
 
 def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
               cache: "Cache | None", progress: Callable[[int, int], None] | None,
-              in_process: bool = False, workers: "RunPool | None" = None
-              ) -> tuple[list[ModelReport], list[str]]:
+              in_process: bool = False, workers: "RunPool | None" = None,
+              early: "Early | None" = None) -> tuple[list[ModelReport], list[str]]:
     """A ModelReport for every job: from the cache, or linted by the workers (``workers``:
-    the run's, kept between its passes; else a pool for these jobs alone)."""
+    the run's, kept between its passes; else a pool for these jobs alone). ``early``: each
+    report passed on as it arrives, and the jobs it gives back linted on the same workers
+    (their reports kept there, not returned)."""
     results: list[ModelReport] = []
     todo = []
     # snapshots need the model itself, so a render pass expands everything once
@@ -326,6 +339,8 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
     for job, hit in zip(jobs, hits, strict=True):
         if hit is not None:
             results.append(hit)
+            if early is not None:
+                early.arrived(job, None)
         else:
             todo.append(job)
     internal: list[str] = []
@@ -333,13 +348,19 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
         from urdf_lint.run.worker import process_job, run_jobs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
             workers.run(todo) if workers is not None else run_jobs(todo, settings, jobs_n=jobs_n)
-        for n, (job, res) in enumerate(done, 1):
-            internal.extend(res.internal)
-            results.append(res)
+        n = 0
+        for job, res in done:
             if cache and not res.internal and res.cacheable:
                 cache.put(job, settings, res)
+            if early is not None and early.done(job, res):
+                continue
+            internal.extend(res.internal)
+            results.append(res)
+            n += 1
             if progress:
                 progress(n, len(todo))
+            if early is not None and workers is not None:
+                workers.add(early.arrived(job, res))
     return results, internal
 
 

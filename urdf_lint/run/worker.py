@@ -225,6 +225,11 @@ class RunPool:
         else:
             yield from self.pool.more(jobs, self.jobs_n)
 
+    def add(self, jobs: list[LintJob]) -> None:
+        """More jobs for the pass under way (:meth:`urdf_lint.runner.pool.WorkerPool.add`)."""
+        if jobs and self.pool is not None:
+            self.pool.add(jobs)
+
     def close(self) -> None:
         if self.pool is not None:
             self.pool.close()

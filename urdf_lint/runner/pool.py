@@ -532,6 +532,19 @@ class WorkerPool:
         self.queues, self.block_of = list(queues.values()), {}
         yield from self.drain()
 
+    def add(self, jobs: list[LintJob]) -> None:
+        """More jobs for the :meth:`drain` under way: each at the end of the queue of the
+        worker that linted its entry (its sources parsed, its meshes measured there), else of
+        the shortest queue; an idle worker takes them from there (:func:`_next_job`)."""
+        for job in jobs:
+            w = self.linted.get(job.entry)
+            if w is None or w not in self.workers or w.queue is None:
+                queued = [o for o in self.workers if o.queue is not None]
+                if not queued:
+                    continue
+                w = min(queued, key=lambda o: len(o.queue))
+            w.queue.append(job)
+
     def wake(self) -> None:
         """Make a :meth:`run` under way look at its ``stop()`` now (from any thread)."""
         if self._wake is not None:
