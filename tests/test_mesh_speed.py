@@ -880,3 +880,22 @@ def test_a_hull_is_computed_on_one_cpu_and_the_others_are_given_back():
     h = resolve._convex_hull(pts)
     assert os.sched_getaffinity(0) == before
     assert sorted(map(tuple, np.round(h.vertices, 12))) == sorted(map(tuple, cube))
+
+
+def test_a_worker_that_dies_is_reported_with_its_exit_code(tmp_path, monkeypatch):
+    """A worker that dies mid-job: its UL904 names the exit code every time (the code was read
+    before the process was reaped, and said ``None`` at random: the same run reported two
+    messages, and Issue 34's early exploration changed which)."""
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.run import worker
+    from urdf_lint.run.pipeline import settings_for
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.discovery.discover import build_resolver
+    pkg = make_package(tmp_path, "p", {f"urdf/m{i}.urdf": '<robot name="m"><link name="a"/></robot>\n'
+                                       for i in range(24)})
+    monkeypatch.setattr(worker, "process_job", lambda job, settings: os._exit(7))
+    cfg = load_config(None)
+    settings = settings_for(cfg, build_resolver([str(pkg)], cfg, {}), None)
+    jobs = [LintJob(str(p)) for p in sorted((pkg / "urdf").iterdir())]
+    msgs = [p.message for _, r in worker.run_jobs(jobs, settings, jobs_n=1) for p in r.problems]
+    assert len(msgs) == 24 and all("exit code 7" in m for m in msgs), msgs

@@ -660,6 +660,7 @@ class WorkerPool:
             result.cacheable = False
             self.replace(w)
         except (EOFError, OSError):
+            w.proc.join(1)    # (reaped: its exit code, not None while it is still exiting)
             code = w.proc.exitcode
             result = self.handler.limit_result(
                 job, f"the expansion worker died (exit code {code}); likely the memory limit "
