@@ -540,3 +540,27 @@ def test_every_models_first_variant_is_linted_during_the_default_pass(tmp_path, 
     assert shown(result) == shown(alone)
     assert any("(only with" in m for *_, m in shown(result))
     assert result.coverage == alone.coverage
+
+
+def test_first_variants_wait_for_the_next_pass_when_the_default_pass_has_one_worker(
+        monkeypatch):
+    """A default pass the work gave one worker (on a machine with more cores) does not take
+    the early first variants: the pass after it may start more workers for them."""
+    import os
+    from urdf_lint.core.jobs import LintJob
+    from urdf_lint.run.worker import RunPool
+
+    class Pool:
+        def __init__(self, n):
+            self.workers, self.added = [object()] * n, []
+
+        def add(self, jobs):
+            self.added += jobs
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    job = [LintJob("/r.urdf.xacro", {"sim": "true"})]
+    for jobs_n, workers, taken in ((None, 1, False), (None, 2, True), (1, 1, True),
+                                   (2, 1, False)):
+        runs = RunPool(None, jobs_n)    # type: ignore[arg-type]
+        runs.pool = Pool(workers)       # type: ignore[assignment]
+        runs.add(job)
+        assert bool(runs.pool.added) is taken, (jobs_n, workers)

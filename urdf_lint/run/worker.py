@@ -226,8 +226,12 @@ class RunPool:
             yield from self.pool.more(jobs, self.jobs_n)
 
     def add(self, jobs: list[LintJob]) -> None:
-        """More jobs for the pass under way (:meth:`urdf_lint.runner.pool.WorkerPool.add`)."""
-        if jobs and self.pool is not None:
+        """More jobs for the pass under way (:meth:`urdf_lint.runner.pool.WorkerPool.add`),
+        when it runs on as many workers as a further pass would: a pass the work gave one
+        worker leaves them to the next pass, which may start more (:meth:`WorkerPool.more`)."""
+        import os
+        want = self.jobs_n or os.cpu_count() or 1
+        if jobs and self.pool is not None and len(self.pool.workers) >= want:
             self.pool.add(jobs)
 
     def close(self) -> None:

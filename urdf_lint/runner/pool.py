@@ -167,9 +167,10 @@ XACRO_ELEMENT_COST_S = 0.0008  # each xacro element of the entry file (a macro c
 STL_COST_S_PER_MB = 0.0075   # numpy reads binary STL (hash, bounds, volume)
 MESH_COST_S_PER_MB = 0.05    # COLLADA / OBJ go through their parsers
 # a second worker's fork, sandbox and what it measures again (it shares what the parent
-# preloaded), on the estimates' scale: descriptions/ (0.4 s estimated) lints in 0.43 s on two
-# workers and 0.50 s on one
-WORKER_COST_S = 0.05
+# preloaded), on the estimates' scale: two workers from 0.16 s of estimated work. Measured:
+# descriptions/ (0.4 s estimated) takes 0.43 s on two workers and 0.50 s on one, the corpus's
+# turtlebot3_description (0.19 s) 0.275 s and 0.300 s; urdf_tutorial (0.1 s) the same on both
+WORKER_COST_S = 0.04
 WARM_WORKER_COST_S = 0.035   # the same when the mesh facts are cached (few meshes are read)
 MAX_WALK = 20000             # files looked at per package to estimate its meshes
 
