@@ -156,8 +156,23 @@ def check(o: CheckOptions) -> int:
         say_snapshots(done.snapshots, o.render or "", out)
     if o.exit_zero:
         return 2 if result.internal else 0
-    return exit_status([f.severity for f in result.findings], bool(result.internal),
-                       prep.cfg.fail_on)
+    status = exit_status([f.severity for f in result.findings], bool(result.internal),
+                         prep.cfg.fail_on)
+    note_fail_on(result, prep.cfg, status, out)
+    return status
+
+
+def note_fail_on(result: CheckResult, cfg: Any, status: int, out: Out) -> None:
+    """A run that exits 0 with errors (``fail-on = "never"``) says so, and where that was set:
+    a config file found by looking up from the linted paths can sit in a folder above the
+    repository."""
+    if status != 0 or cfg.fail_on != "never" or \
+            not any(f.severity == "error" for f in result.findings):
+        return
+    from urdf_lint.core.locations import display_path
+    where = (f"set in {safe_text(display_path(cfg.path))}"
+             if cfg.path and "fail-on" in (cfg.raw or {}) else "set on the command line")
+    out.note(f"note: exit 0 although errors were found: fail-on = \"never\" ({where})")
 
 
 def _fix(o: CheckOptions, prep: Prepared, out: Out, mode: str) -> int:
