@@ -163,16 +163,16 @@ def check(o: CheckOptions) -> int:
 
 
 def note_fail_on(result: CheckResult, cfg: Any, status: int, out: Out) -> None:
-    """A run that exits 0 with errors (``fail-on = "never"``) says so, and where that was set:
-    a config file found by looking up from the linted paths can sit in a folder above the
-    repository."""
-    if status != 0 or cfg.fail_on != "never" or \
+    """A run that a config file's ``fail-on = "never"`` makes exit 0 despite errors says so,
+    naming the file: one found by looking up from the linted paths can sit in a folder above
+    the repository (``--fail-on never`` typed on the command line is not repeated back)."""
+    if status != 0 or cfg.fail_on != "never" or not cfg.path \
+            or cfg.raw.get("fail-on") != "never" or \
             not any(f.severity == "error" for f in result.findings):
         return
     from urdf_lint.core.locations import display_path
-    where = (f"set in {safe_text(display_path(cfg.path))}"
-             if cfg.path and "fail-on" in (cfg.raw or {}) else "set on the command line")
-    out.note(f"note: exit 0 although errors were found: fail-on = \"never\" ({where})")
+    out.note(f"note: exit 0 although errors were found: fail-on = \"never\" is set in "
+             f"{safe_text(display_path(cfg.path))}")
 
 
 def _fix(o: CheckOptions, prep: Prepared, out: Out, mode: str) -> int:
