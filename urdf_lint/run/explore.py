@@ -82,27 +82,29 @@ def explored_models(cfg: "Config", models: list[ModelReport]) -> dict[str, list[
 
 def explore(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
             lint: Callable[[list[LintJob]], list[ModelReport]],
-            ready: "dict[Any, ModelPlan] | None" = None
+            early: "Early | None" = None
             ) -> tuple[list[ModelReport], dict[str, dict[str, Any]]]:
     """The one path of exploration, ``check``'s and the language server's: :func:`plan`,
     :func:`select` within ``cfg.explore_budget``, ``lint(jobs)`` (the caller's workers, cache
     or reports held), :func:`merge` into ``models``. Returns (the variants' reports, the
-    coverage per model label). ``ready``: plans made already of the same reports
-    (:class:`Early`)."""
-    plans = plan(cfg, models, graph, resolver, ready)
+    coverage per model label). ``early``: the plans made during the default pass, and the
+    sources they parsed."""
+    plans = plan(cfg, models, graph, resolver, early)
     jobs = select(plans, cfg.explore_budget, len(models))
     reports = lint(jobs) if jobs else []
     return reports, merge(plans, reports)
 
 
 def plan(cfg: "Config", models: list[ModelReport], graph: Any, resolver: Any,
-         ready: "dict[Any, ModelPlan] | None" = None) -> list[ModelPlan]:
-    """A plan for every explored model (see the module's doc); one in ``ready`` under
-    :func:`plan_key` is the plan of the same reports, made before."""
+         early: "Early | None" = None) -> list[ModelPlan]:
+    """A plan for every explored model (see the module's doc); one ``early`` made of the same
+    reports (:func:`plan_key`) is taken as it is, and the sources it parsed serve the rest."""
     plans = []
-    parsed: dict[Any, Any] = {}     # the sources parsed for one model serve the next
+    # the sources parsed for one model serve the next
+    parsed: dict[Any, Any] = early.parsed if early is not None else {}
+    ready = early.plans if early is not None else {}
     for entry, base in sorted(explored_models(cfg, models).items()):
-        p = (ready or {}).get(plan_key(entry, base))
+        p = ready.get(plan_key(entry, base))
         plans.append(p if p is not None else plan_one(cfg, entry, base, graph, resolver, parsed))
     return plans
 
@@ -147,9 +149,10 @@ class Early:
     :func:`plan` plans it from the same reports at the end of the pass, and linted after the
     jobs queued on the worker that linted the model (an idle worker takes it sooner). With a
     budget of at least one variant per model, :func:`select` keeps every model's first
-    variant, so the end of the pass lints no job twice: it reuses these plans (``ready``) and
-    reports (:meth:`take`), and lints the rest. A report it does not ask for (a model found
-    to be a fragment at the end) is left out; what the run reports is the same either way."""
+    variant, so the end of the pass lints no job twice: it reuses these plans, the sources
+    they parsed (:func:`plan`) and these reports (:meth:`take`), and lints the rest. A report
+    it does not ask for (a model found to be a fragment at the end) is left out; what the run
+    reports is the same either way."""
 
     def __init__(self, cfg: "Config", jobs: list[LintJob], graph: Any, resolver: Any) -> None:
         self.cfg, self.graph, self.resolver = cfg, graph, resolver

@@ -243,8 +243,7 @@ def _explore(out: CheckResult, found: "Discovery", cfg: "Config", resolver: "Pac
                                     workers)
         internal.extend(errors)
         return done + reports
-    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint,
-                                            early.plans if early is not None else None)
+    reports, out.coverage = explore.explore(cfg, out.models, found.graph, resolver, lint, early)
     return reports, internal
 
 
