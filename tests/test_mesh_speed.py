@@ -368,18 +368,34 @@ def test_corpus_obj_read_without_trimesh_gives_the_same_arrays():
         assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), p
 
 
-def test_mass_properties_and_vertex_grouping_equal_trimesh_bitwise():
-    from trimesh.grouping import unique_rows
+def _closed_noisy_sphere(subdivisions: int, offset=(1.0, 2.0, -0.5)):
+    """(vertices, faces) of a closed, lumpy sphere away from the origin (its vertices moved
+    at random: still watertight, no symmetry to hide an error)."""
+    import trimesh
+    m = trimesh.creation.icosphere(subdivisions=subdivisions, radius=0.3)
+    rng = np.random.default_rng(1)
+    v = np.asarray(m.vertices) * rng.uniform(0.9, 1.1, size=(len(m.vertices), 1)) + offset
+    return v, np.asarray(m.faces)
+
+
+def _assert_trimeshs_mass(tris):
+    """readers.mass_properties equals trimesh's on closed triangles, within rounding."""
     from trimesh.triangles import mass_properties
     from urdf_lint.meshes import readers as meshio
-    v, f = sphere(5000, radius=0.3, center=(1.0, 2.0, -0.5))
-    rng = np.random.default_rng(1)
-    v = v + rng.normal(scale=1e-3, size=v.shape)
-    tris = v[f]
     want = mass_properties(tris, density=1.0)
     vol, com, inertia = meshio.mass_properties(tris)
-    assert vol == want["volume"]
-    assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"])
+    assert vol == pytest.approx(want["volume"], rel=1e-13)
+    assert np.allclose(com, want["center_mass"], rtol=1e-13, atol=0)
+    scale = np.abs(want["inertia"]).max()
+    assert np.allclose(inertia, want["inertia"], rtol=1e-11, atol=1e-11 * scale)
+
+
+def test_mass_properties_equal_trimesh_and_vertex_grouping_bitwise():
+    from trimesh.grouping import unique_rows
+    from urdf_lint.meshes import readers as meshio
+    v, f = _closed_noisy_sphere(3)
+    _assert_trimeshs_mass(v[f])
+    _assert_trimeshs_mass(v[f][:, ::-1])        # inside out: every integral changes sign
     # repeated vertices (and ones equal to 8 decimals): grouped like unique_rows(digits=8)
     v = np.vstack([v, v[:50], v[50:60] + 1e-12])
     ids = meshio.merged_ids(v)
@@ -849,18 +865,22 @@ def test_the_corpus_is_linted_without_importing_trimesh():
     assert int(out[0]) > 0 and out[1] == "False", out
 
 
-def test_mass_properties_are_trimeshs_bits_across_blocks():
-    """The block-wise integrals (contiguous coordinate rows) give trimesh's volume, centre of
-    mass and inertia to the last bit, for sizes below, at and across a block's end."""
-    import trimesh.triangles
+def test_mass_properties_are_trimeshs_across_blocks(monkeypatch):
+    """The block-wise integrals give trimesh's volume, centre of mass and inertia (within
+    rounding) for a closed surface larger than two blocks, and the blocks do not change them:
+    any triangles, any block size, the same sums within rounding."""
     from urdf_lint.meshes import readers
+    v, f = _closed_noisy_sphere(6)                  # 81920 triangles
+    assert len(f) > 2 * readers._CHUNK
+    _assert_trimeshs_mass(v[f])
     rng = np.random.default_rng(7)
     for n in (1, 3, readers._CHUNK, readers._CHUNK + 1, 2 * readers._CHUNK + 5):
         t = rng.normal(size=(n, 3, 3)) * 10 ** rng.uniform(-3, 3)
-        want = trimesh.triangles.mass_properties(t, skip_inertia=False)
-        vol, com, inertia = readers.mass_properties(t)
-        assert vol == want["volume"], n
-        assert np.array_equal(com, want["center_mass"]) and np.array_equal(inertia, want["inertia"]), n
+        whole = readers.volume_integrals(t)
+        monkeypatch.setattr(readers, "_CHUNK", 7)
+        blocks = readers.volume_integrals(t)
+        monkeypatch.undo()
+        assert np.allclose(blocks, whole, rtol=1e-9, atol=1e-12 * np.abs(whole).max()), n
 
 
 @pytest.mark.skipif(not hasattr(os, "sched_setaffinity") or len(os.sched_getaffinity(0)) < 2,

@@ -156,69 +156,60 @@ def scale_points(v: np.ndarray, unit: float) -> np.ndarray:
 
 
 # -- mass properties over chunks ---------------------------------------------------------------
-_DIVISORS = np.array([6, 24, 24, 24, 60, 60, 60, 120, 120, 120], dtype=np.float64)
+# Each closed triangle (a, b, c) with the origin bounds a signed tetrahedron; the volume
+# integrals of the surface are those of its tetrahedra, summed. With d = a . (b x c) and
+# s = a + b + c: volume d/6, first moment d s/24, second moment d (a aT + b bT + c cT + s sT)/120
+# (the divergence theorem gives the same sums; this form takes a fraction of the operations).
+_DIVISORS = np.array([6, 24, 24, 24, 120, 120, 120, 120, 120, 120], dtype=np.float64)
+_PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0))   # xx yy zz xy yz zx
 
 
 _CHUNK = 1 << 15      # triangles per block: the temporaries of a block stay in the CPU's cache
 
 
-def _integrals(t: np.ndarray) -> np.ndarray:
-    """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of each of (n, 3, 3)
-    float64 triangles, shape (10, n): ``trimesh.triangles.mass_properties``' formulas, in its
-    order of operations (its cross product of (p1 - p0) and (p2 - p1) included), so the same
-    bits. Computed block by block on coordinate rows (every operation on contiguous memory,
-    about twice as fast); the per-triangle values do not depend on the blocks, and the caller
-    sums whole rows as trimesh does."""
-    n = len(t)
-    out = np.empty((10, n))
-    for s in range(0, n, _CHUNK):
-        e = min(n, s + _CHUNK)
-        _block_integrals(np.ascontiguousarray(np.asarray(t[s:e]).transpose(1, 2, 0)),
-                         out[:, s:e])
-    return out
-
-
-def _block_integrals(T: np.ndarray, out: np.ndarray) -> None:
-    """:func:`_integrals` of one block ``T`` (3 vertices, 3 coordinates, m) into ``out``."""
-    p0, p1, p2 = T[0], T[1], T[2]
-    v0, v1 = p1 - p0, p2 - p1
-    # np.cross(v0, v1), as numpy computes it: a1*b2 - a2*b1, a2*b0 - a0*b2, a0*b1 - a1*b0
-    c0 = v0[1] * v1[2]
-    c0 -= v0[2] * v1[1]
-    c1 = v0[2] * v1[0]
-    c1 -= v0[0] * v1[2]
-    c2 = v0[0] * v1[1]
-    c2 -= v0[1] * v1[0]
-    crosses = (c0, c1, c2)
-    f1 = p0 + p1 + p2
-    f2 = p0 ** 2 + p1 ** 2 + p0 * p1 + p2 * f1
-    f3 = (p0 ** 3) + (p0 ** 2) * p1 + p0 * (p1 ** 2) + (p1 ** 3) + (p2 * f2)
-    g0 = f2 + (p0 + f1) * p0
-    g1 = f2 + (p1 + f1) * p1
-    g2 = f2 + (p2 + f1) * p2
-    out[0] = c0 * f1[0]
+def _block_sums(T: np.ndarray, out: np.ndarray) -> None:
+    """Add the 10 undivided integrals (1, x, y, z, x², y², z², xy, yz, zx) of one block ``T``
+    (3 vertices, 3 coordinates, m triangles; contiguous rows) to ``out``."""
+    a, b, c = T[0], T[1], T[2]
+    d = a[0] * (b[1] * c[2] - b[2] * c[1])
+    d += a[1] * (b[2] * c[0] - b[0] * c[2])
+    d += a[2] * (b[0] * c[1] - b[1] * c[0])
+    s = a + b
+    s += c
+    out[0] += d.sum()
     for i in range(3):
-        out[1 + i] = crosses[i] * f2[i]
-        out[4 + i] = crosses[i] * f3[i]
-    for i in range(3):
-        j = (i + 1) % 3
-        out[i + 7] = crosses[i] * ((p0[j] * g0[i]) + (p1[j] * g1[i]) + (p2[j] * g2[i]))
+        out[1 + i] += (s[i] * d).sum()
+    for k, (i, j) in enumerate(_PAIRS):
+        m = a[i] * a[j]
+        m += b[i] * b[j]
+        m += c[i] * c[j]
+        m += s[i] * s[j]
+        m *= d
+        out[4 + k] += m.sum()
 
 
 def volume_integrals(tris: np.ndarray) -> np.ndarray:
-    """The 10 volume integrals of a closed surface's triangles, summed: additive over chunks
-    (:func:`moments` turns their sum into volume and moments)."""
-    out: np.ndarray = _integrals(np.asarray(tris, dtype=np.float64)).sum(axis=1) / _DIVISORS
-    return out
+    """The 10 volume integrals (1, x, y, z, x², y², z², xy, yz, zx) of a closed surface of
+    (n, 3, 3) triangles, summed block by block (on coordinate rows: every operation on
+    contiguous memory). Additive over chunks: :func:`moments` turns their sum into volume and
+    moments. Equal to ``trimesh.triangles.mass_properties``' integrals within rounding
+    (its formulas take about ten times the time: ``x ** 3`` is a ``pow`` call per element)."""
+    t = np.asarray(tris, dtype=np.float64)
+    out = np.zeros(10)
+    for s in range(0, len(t), _CHUNK):
+        _block_sums(np.ascontiguousarray(t[s:s + _CHUNK].transpose(1, 2, 0)), out)
+    result: np.ndarray = out / _DIVISORS
+    return result
 
 
 def mass_properties(triangles: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     """(volume, center of mass, inertia about it) of closed triangles at density 1:
-    ``trimesh.triangles.mass_properties`` to the last bit, without importing trimesh."""
+    ``trimesh.triangles.mass_properties``' results (within rounding), without importing
+    trimesh."""
     t = np.asanyarray(triangles, dtype=np.float64)
     if t.ndim != 3 or t.shape[1:] != (3, 3):
         raise ValueError("Triangles must be (n, 3, 3)!")
-    integrated = _integrals(t).sum(axis=1) / _DIVISORS
+    integrated = volume_integrals(t)
     volume = integrated[0]
     com = integrated[1:4] / volume
     inertia = np.zeros((3, 3))
@@ -273,7 +264,9 @@ def first_of_equal_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     Grouped on :func:`row_mix`, several times faster than comparing the rows as bytes; every
     group is checked to hold one row only, else the rows are compared whole."""
     index, inverse = unique_first(row_mix(rows))
-    if not (rows[index][inverse] == rows).all():   # two rows share a mix: compare them whole
+    first = index[inverse]          # the first row equal to each row, if no two mixes collide
+    if not all((col.take(first) == col).all() for col in rows.T):   # (column by column:
+        # 1-d takes, 3x faster than taking whole rows) two rows share a mix: compare whole rows
         whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).reshape(-1)
         _, index, inverse = np.unique(whole, return_index=True, return_inverse=True)
         inverse = inverse.reshape(-1)

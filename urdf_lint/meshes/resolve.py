@@ -700,7 +700,7 @@ def _cached(memory: dict[str, Facts], prefix: str, path: str, store: MeshStore,
 
 # -- mass properties (for the physical plausibility rules) ----------------------------------
 _mass_memory: dict[str, Facts] = {}
-MASS_FACTS_VERSION = 1
+MASS_FACTS_VERSION = 2
 
 
 def mass_facts(path: str, cache_dir: str | None = None,
@@ -736,9 +736,10 @@ def trimesh_mass_properties(mesh: Mesh) -> Facts:
 
 def _mass_arrays(v: "np.ndarray", f: "np.ndarray") -> Facts:
     import numpy as np
-    from urdf_lint.meshes.readers import mass_properties
+    from urdf_lint.meshes.readers import bounds, mass_properties
     if len(v) == 0 or len(f) == 0 or not np.isfinite(v).all():
         return {"ok": False}
+    lo, hi = bounds(v)
     hull = not _closed(v, f)
     if hull:
         try:
@@ -760,7 +761,7 @@ def _mass_arrays(v: "np.ndarray", f: "np.ndarray") -> Facts:
     s_com = np.trace(inertia) / 2.0 * np.eye(3) - inertia
     second = s_com + vol * np.outer(com, com)
     return {"ok": True, "volume": vol, "first": (vol * com).tolist(), "second": second.tolist(),
-            "bounds": [v.min(axis=0).tolist(), v.max(axis=0).tolist()], "hull": bool(hull)}
+            "bounds": [lo.tolist(), hi.tolist()], "hull": bool(hull)}
 
 
 def _closed(v: "np.ndarray", f: "np.ndarray") -> bool:
@@ -811,9 +812,9 @@ def _stl_mass_chunked(path: str, n: int) -> Facts:
         code, rev = meshio.edge_codes(t)
         codes.append(code)
         revs.append(rev)
-        pts = t.reshape(-1, 3)
-        lo = pts.min(axis=0) if lo is None else np.minimum(lo, pts.min(axis=0))
-        hi = pts.max(axis=0) if hi is None else np.maximum(hi, pts.max(axis=0))
+        clo, chi = meshio.bounds(t.reshape(-1, 3))
+        lo = clo if lo is None else np.minimum(lo, clo)
+        hi = chi if hi is None else np.maximum(hi, chi)
     if lo is None:
         return {"ok": False}
     hull = not _closed_codes(codes, revs)
