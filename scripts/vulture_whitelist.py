@@ -51,6 +51,8 @@ _.verbosity
 
 # expansion/expand.py: xacro's condition check, replaced by the branch-recording hook
 _.get_boolean_value
+# expansion/clone.py: minidom node fields set on a clone, read by minidom
+_.nodeName
 # preview/server.py: http.server's hooks and settings, called or read by the standard library
 _.daemon_threads
 _.allow_reuse_address

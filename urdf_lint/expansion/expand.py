@@ -33,7 +33,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Any, cast
-from xml.dom import expatbuilder
+from xml.dom import expatbuilder, minidom
 
 import xacro
 import xacro.substitution_args as _subst
@@ -45,7 +45,7 @@ from urdf_lint.discovery.packages import PackageResolver
 from urdf_lint.expansion import safe_eval
 from urdf_lint.core.hashing import read_recorded
 from urdf_lint.core.codes import RuleName
-from urdf_lint.expansion import splice, traced
+from urdf_lint.expansion import clone, splice, traced
 from urdf_lint.expansion.errors import RefusedInput, XmlSyntaxError, problem_for
 from urdf_lint.expansion.sourcemap import KEY, SourceMap
 
@@ -173,11 +173,16 @@ class _CloneHandler:
 
     def handle(self, operation: int, key: str, data: Stamp, src: Any, dst: Any) -> None:
         if operation == xml.dom.UserDataHandler.NODE_CLONED and dst is not None:
-            file, line, col, chain, template = data
+            dst.setUserData(key, self.cloned(data), self)
+
+    def cloned(self, data: Stamp) -> Stamp:
+        """The stamp of a clone of a node stamped ``data`` (also :func:`clone.clone_tree`'s)."""
+        file, line, col, chain, template = data
+        if template:
             st = CURRENT.get()
-            if template and st is not None:
+            if st is not None:
                 chain = st.pending_chain
-            dst.setUserData(key, (file, line, col, chain, False), self)
+        return (file, line, col, chain, False)
 
 
 _HANDLER = _CloneHandler()
@@ -371,11 +376,16 @@ def _mark_template(elt: Any) -> None:
             stack.extend(n.childNodes)
 
 
+FAST_CLONE = True    # macro bodies cloned by clone.clone_tree (False: by minidom, for tests)
+
+
 def _hook_grab_macro(elt: Any, macros: Any) -> None:
     st = _active()
     st.touched = elt
     _mark_template(elt)
     _orig["grab_macro"](elt, macros)
+    if type(elt) is minidom.Element and FAST_CLONE and clone.usable(elt):
+        elt.__class__ = clone.MacroBody     # xacro clones it at every call: the fast clone
     st.touched = None
 
 
