@@ -425,6 +425,26 @@ def test_rows_are_grouped_exactly_even_when_their_mixes_collide(monkeypatch):
     assert grouping(*got) == want and sorted(got[0]) == sorted(want_index)
 
 
+def test_unique_first_is_np_uniques_even_when_keys_share_their_high_bits():
+    """unique_first sorts mixes with their positions packed in the low 24 bits: its first
+    occurrences and inverse are np.unique's, also for keys equal in their high 40 bits only
+    (they fall back to an argsort), for signed keys, and for one key."""
+    from urdf_lint.meshes import readers as meshio
+    rng = np.random.default_rng(5)
+    mixes = rng.integers(0, 2**63, size=3000, dtype=np.uint64) * np.uint64(2) + np.uint64(1)
+    near = (mixes[:50] & ~np.uint64(0xFFFFFF)) | np.uint64(7)      # same high bits, not equal
+    cases = {"mixes": np.concatenate([mixes, mixes[::3], mixes[:10]]),
+             "near": np.concatenate([mixes, near, mixes[::5]]),
+             "signed": rng.integers(-20, 20, size=500).astype(np.int64),
+             "one": mixes[:1]}
+    assert meshio._packed_order(cases["mixes"]) is not None
+    assert meshio._packed_order(cases["near"]) is None
+    for name, keys in cases.items():
+        _, index, inverse = np.unique(keys, return_index=True, return_inverse=True)
+        got = meshio.unique_first(keys)
+        assert np.array_equal(got[0], index) and np.array_equal(got[1], inverse.reshape(-1)), name
+
+
 def test_stl_collada_and_obj_facts_import_no_trimesh(tmp_path):
     """A worker measuring STL, COLLADA and OBJ meshes (facts, volumes, texture scans) never
     imports trimesh (~0.35 s per process)."""

@@ -276,12 +276,16 @@ def first_of_equal_rows(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(index of the first occurrence of each distinct key, the distinct key of every key) of
     a 1-d array: ``np.unique(keys, return_index=True, return_inverse=True)[1:]``, the same
-    arrays, from one unstable sort (``np.unique`` sorts stably for its first occurrences: a
-    merge sort, 2-3x slower) and the least position of each run of equal keys."""
+    arrays, from one sort (``np.unique`` sorts stably for its first occurrences: a merge sort,
+    2-3x slower) and the least position of each run of equal keys. The sort is
+    :func:`_packed_order` for mixes (uint64), else an unstable argsort."""
     keys = np.asarray(keys).reshape(-1)
     if not len(keys):
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    order = np.argsort(keys)
+    packed = keys.dtype == np.uint64 and len(keys) <= 1 << _POSITION_BITS
+    order = _packed_order(keys) if packed else None
+    if order is None:
+        order = np.argsort(keys)
     ordered = keys[order]
     starts = np.empty(len(keys), dtype=bool)
     starts[0] = True
@@ -290,6 +294,27 @@ def unique_first(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     inverse = np.empty(len(keys), dtype=np.int64)
     inverse[order] = np.cumsum(starts) - 1
     return np.minimum.reduceat(order, first).astype(np.int64), inverse
+
+
+_POSITION_BITS = 24
+
+
+def _packed_order(keys: np.ndarray) -> np.ndarray | None:
+    """A stable argsort of uint64 ``keys`` (at most 2**24) from one plain sort, 3-4x faster
+    than ``argsort``: each key's high 40 bits with its position in the low 24, sorted. None
+    when two different keys share their high bits (the caller then argsorts): the order
+    groups equal keys only if equal high bits mean equal keys."""
+    n = len(keys)
+    low = np.uint64((1 << _POSITION_BITS) - 1)
+    packed = keys & ~low
+    packed |= np.arange(n, dtype=np.uint64)
+    packed.sort()
+    order = (packed & low).astype(np.int64)
+    high = packed >> np.uint64(_POSITION_BITS)
+    ordered = keys[order]
+    if ((high[1:] == high[:-1]) & (ordered[1:] != ordered[:-1])).any():
+        return None
+    return order
 
 
 def vertex_keys(tris: np.ndarray) -> np.ndarray:
