@@ -309,7 +309,7 @@ def _packed_order(keys: np.ndarray) -> np.ndarray | None:
     packed = keys & ~low
     packed |= np.arange(n, dtype=np.uint64)
     packed.sort()
-    order = (packed & low).astype(np.int64)
+    order: np.ndarray = (packed & low).astype(np.int64)
     high = packed >> np.uint64(_POSITION_BITS)
     ordered = keys[order]
     if ((high[1:] == high[:-1]) & (ordered[1:] != ordered[:-1])).any():
