@@ -156,11 +156,13 @@ def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS,
 
 
 def _local(el: Any) -> str | None:
-    from lxml import etree
-    if not isinstance(el.tag, str):
+    """The local name of an lxml element in the xacro namespace, else None (``el.tag`` is
+    ``{namespace}local``, as ``etree.QName`` reads it; comments and entities have no str tag)."""
+    tag = el.tag
+    if not isinstance(tag, str) or not tag.startswith("{"):
         return None
-    q = etree.QName(el)
-    return q.localname if q.namespace and _XACRO in q.namespace else None
+    namespace, _, local = tag[1:].partition("}")
+    return local if namespace and _XACRO in namespace else None
 
 
 def analyse(files: Iterable[str], resolver: Any, max_files: int = 200,
