@@ -2,6 +2,8 @@
 
 * :mod:`.expand`: the hooks into the pinned xacro's internals and :func:`expand_file`;
 * :mod:`.sourcemap`: the :class:`SourceMap` (file, line, col, chain per output element);
+* :mod:`.clone`: macro bodies cloned field by field (xacro clones one per call), checked once
+  per process against minidom's clone;
 * :mod:`.errors`: the table of how xacro's failures map to codes.
 
 Importing :mod:`.expand` (``expand_file``, ``Expansion``) imports xacro, so it is loaded on
