@@ -885,6 +885,27 @@ def test_the_corpus_is_linted_without_importing_trimesh():
     assert int(out[0]) > 0 and out[1] == "False", out
 
 
+def test_a_small_part_far_from_its_origin_keeps_its_precision():
+    """A 1 mm part 1 m (and 1 km) from its mesh's origin, as parts exported in an assembly's
+    frame are: its volume and inertia about its centre of mass are those of the same part at
+    the origin (products of absolute coordinates would lose them: 1% at 1 m), at least as
+    close as trimesh's."""
+    import trimesh
+    from urdf_lint.meshes import readers as meshio
+    m = trimesh.creation.icosphere(subdivisions=3, radius=0.001)
+    v, f = np.asarray(m.vertices), np.asarray(m.faces)
+    vol0, _, inertia0 = meshio.mass_properties(v[f])
+    for offset, rtol in ((1.0, 1e-8), (1000.0, 1e-2)):
+        t = (v + offset)[f]
+        vol, com, inertia = meshio.mass_properties(t)
+        theirs = trimesh.triangles.mass_properties(t)
+        assert vol == pytest.approx(vol0, rel=1e-10)
+        assert np.allclose(com, offset, rtol=1e-12)
+        err = np.abs(inertia - inertia0).max() / np.abs(inertia0).max()
+        assert err < rtol, (offset, err)
+        assert err <= np.abs(theirs["inertia"] - inertia0).max() / np.abs(inertia0).max()
+
+
 def test_mass_properties_are_trimeshs_across_blocks(monkeypatch):
     """The block-wise integrals give trimesh's volume, centre of mass and inertia (within
     rounding) for a closed surface larger than two blocks, and the blocks do not change them:
