@@ -93,11 +93,8 @@ def _same_expansion(a, b):
     return dataclasses.asdict(a) == dataclasses.asdict(b)
 
 
-def test_the_expansion_is_the_same_with_the_fast_clone(tmp_path):
-    """Macros calling macros, blocks, comments, CDATA: the same text, origins, chains and
-    values, and the fast clone did the cloning."""
-    p = tmp_path / "m.urdf.xacro"
-    p.write_bytes(MACROS)
+def _expand_counting(path):
+    """(the fast expansion of ``path``, the name of each macro body clone_tree cloned)."""
     calls = []
     real = clone.clone_tree
 
@@ -108,9 +105,17 @@ def test_the_expansion_is_the_same_with_the_fast_clone(tmp_path):
 
     clone.clone_tree = counting
     try:
-        fast = _expand(str(p))
+        return _expand(path), calls
     finally:
         clone.clone_tree = real
+
+
+def test_the_expansion_is_the_same_with_the_fast_clone(tmp_path):
+    """Macros calling macros, blocks, comments, CDATA: the same text, origins, chains and
+    values, and the fast clone did the cloning."""
+    p = tmp_path / "m.urdf.xacro"
+    p.write_bytes(MACROS)
+    fast, calls = _expand_counting(str(p))
     slow = _expand(str(p), fast=False)
     assert fast.error is None and fast.xml.count("<link ") == 5
     assert sorted(calls) == ["leg"] * 4 + ["two"] * 2
@@ -126,3 +131,60 @@ def test_corpus_expansions_are_the_same_with_the_fast_clone(entry, args, corpus,
     fast = _expand(path, args, corpus_resolver)
     slow = _expand(path, args, corpus_resolver, fast=False)
     assert _same_expansion(fast, slow), entry
+
+
+X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+NESTED = f"""<?xml version="1.0"?>
+<robot name="r" {X} xmlns:foo="http://foo">
+  <xacro:include filename="parts.xacro"/>
+  <xacro:macro name="outer" params="p" xmlns:bar="http://bar">
+    <!-- outer -->
+    <xacro:macro name="inner" params="q">
+      <link name="${{p}}_${{q}}" bar:x="${{q}}" xml:lang="en"><?pi ${{q}}?><![CDATA[ <raw> ]]></link>
+    </xacro:macro>
+    <xacro:inner q="a"/>
+    <xacro:call macro="inner" q="b"/>
+    <xacro:element xacro:name="gen_${{p}}" k="${{p}}">
+      <xacro:attribute name="foo:d" value="v${{p}}"/></xacro:element>
+  </xacro:macro>
+  <xacro:outer p="x"/>
+  <xacro:outer p="y"/>
+  <xacro:macro name="rd"><link name="rd1"/></xacro:macro>
+  <xacro:rd/>
+  <xacro:macro name="rd"><link name="rd2" xmlns:q="http://q" q:z="1"/></xacro:macro>
+  <xacro:property name="mn" value="rd"/>
+  <xacro:call macro="${{mn}}"/>
+  <xacro:wrap><defs><xacro:macro name="fromblock" params="k"><link name="fb_${{k}}"/></xacro:macro>
+    <xacro:fromblock k="1"/><xacro:part n="inblock"/></defs></xacro:wrap>
+  <xacro:part n="top"/>
+</robot>
+"""
+PARTS = f"""<?xml version="1.0"?>
+<robot {X}>
+  <xacro:macro name="part" params="n"><link name="part_${{n}}"><!-- c --></link></xacro:macro>
+  <xacro:macro name="wrap" params="**b">
+    <xacro:insert_block name="b"/><xacro:insert_block name="b"/></xacro:macro>
+  <xacro:part n="inc"/>
+</robot>
+"""
+
+
+def test_nested_redefined_dynamic_and_included_macros_expand_the_same(tmp_path):
+    """Macros defined inside macros (their body is itself a fast clone), redefined, called by
+    xacro:call, defined in a block, from an included file, with namespaces on the macro and in
+    its body, xacro:element/attribute: the same expansion as with minidom's clone."""
+    (tmp_path / "parts.xacro").write_text(PARTS)
+    p = tmp_path / "n.urdf.xacro"
+    p.write_text(NESTED)
+    fast, calls = _expand_counting(str(p))
+    slow = _expand(str(p), fast=False)
+    assert fast.error is None, fast.error
+    for name in ("x_a", "x_b", "y_a", "y_b", "rd1", "rd2", "fb_1", "part_inblock", "part_top"):
+        assert f'name="{name}"' in fast.xml
+    assert fast.xml.count('name="fb_1"') == 2 and 'foo:d="vy"' in fast.xml
+    # the inner macro's body came from the outer's fast clone, and was fast-cloned in turn
+    assert sorted(set(calls)) == ["fromblock", "inner", "outer", "part", "rd", "wrap"]
+    assert calls.count("inner") == 4
+    assert _same_expansion(fast, slow)
+    chains = {len(o[3]) for o in fast.origins if o is not None}
+    assert {0, 1, 2} <= chains
