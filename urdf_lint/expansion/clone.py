@@ -43,8 +43,7 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
         c.parentNode = parent
         c.tagName = c.nodeName = node.tagName
         c.prefix = node.prefix
-        c.namespaceURI = node.namespaceURI
-        c._localName = node.localName
+        c.namespaceURI = node.namespaceURI     # (no _localName: createElementNS sets none)
         c.nextSibling = c.previousSibling = None
         src = node._attrs
         if src:
@@ -131,6 +130,8 @@ def same_tree(a: Any, b: Any) -> bool:
     if a.ownerDocument is not b.ownerDocument or \
             getattr(a, "_user_data", None) != getattr(b, "_user_data", None):
         return False
+    if getattr(a, "_localName", None) != getattr(b, "_localName", None):
+        return False          # (a local name kept apart from the tag: a renamed clone's)
     if a.nodeType == _ELEMENT and not _same_attributes(a, b):
         return False
     return _same_children(a, b)
