@@ -503,7 +503,7 @@ def test_every_models_first_variant_is_linted_during_the_default_pass(tmp_path, 
     after the pass finds (in process: no workers, nothing early)."""
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
-    from urdf_lint.run.explore import args_key
+    from urdf_lint.core.jobs import job_key
     from urdf_lint.run.pipeline import RunRequest, run_check
     from urdf_lint.run.worker import RunPool
     files = dict(FILES)
@@ -531,7 +531,7 @@ def test_every_models_first_variant_is_linted_during_the_default_pass(tmp_path, 
                                                                 "robot.urdf.xacro"]
     assert all(j.args for j in added)
     later = passes[1] if len(passes) > 1 else []
-    linted = [args_key(j) for j in added + later]
+    linted = [job_key(j) for j in added + later]
     assert later and len(linted) == len(set(linted))        # each variant once
     alone = check(in_process=True)
 

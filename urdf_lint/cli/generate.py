@@ -9,16 +9,15 @@ from urdf_lint.cli.common import (ConfigOptions, expand_in_workers, load_cfg, pa
 from urdf_lint.cli.parser import add_inputs
 from urdf_lint.core.emit import say, tell
 from urdf_lint.core.errors import UsageError
+from urdf_lint.core.jobs import model_key
 
 if TYPE_CHECKING:  # pragma: no cover
     from argparse import Namespace
 
     from urdf_lint.cli.parser import Formatter, SubParsers
     from urdf_lint.config.schema import Config
-    from urdf_lint.core.jobs import LintJob, ModelReport
+    from urdf_lint.core.jobs import JobKey, LintJob, ModelReport
     from urdf_lint.discovery.packages import PackageResolver
-
-    JobKey = tuple[str, tuple[tuple[str, str], ...]]   # (entry, sorted args)
 
 
 NAME = "generate"
@@ -61,7 +60,7 @@ def run(args: Namespace) -> int:
     wanted: dict[JobKey, LintJob] = {}
     for job in jobs:
         for a in (job.args, *(dict(v) for v in job.variants)):
-            wanted.setdefault(_key(job.entry, a), dataclasses.replace(
+            wanted.setdefault(model_key(job.entry, a), dataclasses.replace(
                 job, args=dict(a), kind="expand", display_name=os.path.relpath(job.entry),
                 output=None, outputs=(), untied=(), variants=()))
     todo = list(wanted.values())
@@ -69,7 +68,7 @@ def run(args: Namespace) -> int:
     tally = {"stale": 0, "failed": 0, "refused": 0, "outputs": 0}
     status = 0
     for job in jobs:
-        res = done[_key(job.entry, job.args)]
+        res = done[model_key(job.entry, job.args)]
         if report_internal(res.internal):
             status = 2
             continue
@@ -81,7 +80,7 @@ def run(args: Namespace) -> int:
             status = max(status, 1)
             tally["failed"] += 1
             continue
-        others = [(dict(v), _xml_of(done[_key(job.entry, dict(v))])) for v in job.variants]
+        others = [(dict(v), _xml_of(done[model_key(job.entry, dict(v))])) for v in job.variants]
         variants = [(job.args, xml)] + [(a, x) for a, x in others if x is not None]
         assert job.output is not None   # (jobs with an output only, above)
         for output in (job.output, *job.outputs):
@@ -89,10 +88,6 @@ def run(args: Namespace) -> int:
             status = max(status, _one_output(args, cfg, job, output, variants, tally, resolver))
     tell(_generate_summary(tally, args.check))
     return status
-
-
-def _key(entry: str, args: dict[str, str]) -> JobKey:
-    return entry, tuple(sorted(args.items()))
 
 
 def _xml_of(res: ModelReport) -> str | None:

@@ -69,6 +69,19 @@ class LintJob:
     shared: tuple[tuple[str, Any], ...] = ()
 
 
+JobKey = tuple[str, tuple[tuple[str, str], ...]]   # (entry, sorted args)
+
+
+def model_key(entry: str, args: dict[str, str]) -> JobKey:
+    """One variant of a model, as a key: its entry and its args, sorted."""
+    return entry, tuple(sorted(args.items()))
+
+
+def job_key(job: LintJob) -> JobKey:
+    """:func:`model_key` of a job."""
+    return model_key(job.entry, job.args)
+
+
 # environment variables $(env)/$(optenv) may read without configuration (here, not in config.py:
 # the expansion reads it in a worker that never needs the config schema)
 DEFAULT_ENV_ALLOW = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION", "ROS_DOMAIN_ID",

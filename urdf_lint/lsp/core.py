@@ -213,7 +213,7 @@ def _ordered(ws: Workspace, paths: list[str]) -> list[LintJob]:
     model it is the entry of, else the first model that reaches it), then the other models,
     then the files that were no model when last linted (a macro library's own job)."""
     from urdf_lint.core.jobs import Status
-    from urdf_lint.lsp.state import job_key
+    from urdf_lint.core.jobs import job_key
 
     def rank(job: LintJob, path: str) -> int:
         status = ws.last_status.get(job_key(job))

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Callable, Iterator, Protocol
 
 from urdf_lint.core.findings import Problem
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status
+from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, Status, job_key
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.config.schema import Config
@@ -66,10 +66,6 @@ class InProcessLinter:
 
     def close(self) -> None:
         self.closing = True
-
-
-def job_key(job: LintJob) -> tuple[str, tuple[tuple[str, str], ...]]:
-    return (job.entry, tuple(sorted(job.args.items())))
 
 
 @dataclass

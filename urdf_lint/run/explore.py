@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
-from urdf_lint.core.jobs import LintJob, ModelReport
+from urdf_lint.core.jobs import LintJob, ModelReport, job_key
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.config.schema import Config
@@ -139,10 +139,6 @@ def variant_job(entry: str, args: dict[str, str]) -> LintJob:
     return LintJob(entry, dict(args), "xacro", explicit=True, mesh_base=None)
 
 
-def args_key(job: LintJob) -> tuple[str, tuple[tuple[str, str], ...]]:
-    return job.entry, tuple(sorted(job.args.items()))
-
-
 class Early:
     """Every model's first variant, linted while the default pass still runs (``check`` on
     its workers): planned as soon as the last of the model's default reports arrives, as
@@ -198,14 +194,14 @@ class Early:
         """Keep the report of one of :meth:`arrived`'s jobs (False: not one of them)."""
         if self.jobs.pop(id(job), None) is None:
             return False
-        self.reports[args_key(job)] = report
+        self.reports[job_key(job)] = report
         return True
 
     def take(self, jobs: list[LintJob]) -> tuple[list[ModelReport], list[LintJob]]:
         """(the reports linted already of ``jobs``, the jobs still to lint)."""
         got, rest = [], []
         for j in jobs:
-            r = self.reports.pop(args_key(j), None)
+            r = self.reports.pop(job_key(j), None)
             if r is None:
                 rest.append(j)
             else:

@@ -229,8 +229,7 @@ class RunPool:
         """More jobs for the pass under way (:meth:`urdf_lint.runner.pool.WorkerPool.add`),
         when it runs on as many workers as a further pass would: a pass the work gave one
         worker leaves them to the next pass, which may start more (:meth:`WorkerPool.more`)."""
-        import os
-        want = self.jobs_n or os.cpu_count() or 1
+        want = pool.max_workers(self.jobs_n)
         if jobs and self.pool is not None and len(self.pool.workers) >= want:
             self.pool.add(jobs)
 

@@ -156,6 +156,11 @@ def _take_prestarted(settings: LintSettings) -> "Worker | None":
 
 
 # -- scheduling: the models of one package go to one worker ---------------------------------
+def max_workers(jobs_n: int | None) -> int:
+    """The workers a pass may run at most: ``-j`` (``jobs_n``), else one per core."""
+    return jobs_n or os.cpu_count() or 1
+
+
 MESH_SUFFIXES = (".stl", ".dae", ".obj", ".ply", ".glb", ".gltf")
 # first-time estimates, fitted to the time each package took (one worker, cold) on the corpus
 # and on bench/heavy_repo.py's repository (bench/fit_costs.py); checked on the corpus laid out
@@ -523,7 +528,7 @@ class WorkerPool:
         worker they were measured again, and ``-j 2`` gained nothing on exploration), the
         others to the least loaded; an idle worker takes from the far end of the longest
         queue (:func:`_next_job`)."""
-        want = min(jobs_n or os.cpu_count() or 1, len(jobs))
+        want = min(max_workers(jobs_n), len(jobs))
         while len(self.workers) < want:
             self.workers.append(Worker(self.handler, self.settings))
         homes = {e: id(w) for e, w in self.linted.items()}

@@ -131,7 +131,7 @@ def _reports(ws: Any, path: str) -> list[ModelReport] | None:
     """The reports the preview of ``path`` shows: of the jobs whose entry it is (every
     configured variant), else of the models that read it; None while one of them is not linted
     (yet, or again after an edit)."""
-    from urdf_lint.lsp.state import job_key
+    from urdf_lint.core.jobs import job_key
     own = [ws.reports.get(job_key(j)) for j in ws.jobs if j.entry == path]
     if any(r is None for r in own):
         return None
