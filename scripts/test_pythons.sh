@@ -46,7 +46,14 @@ SUBSET=(tests/test_architecture.py tests/test_sandbox.py tests/test_cli_conventi
         "tests/test_cache.py::test_the_wheels_record_is_read_as_importlib_metadata_reads_it"
         "tests/test_mesh_speed.py::test_a_variant_goes_to_the_worker_that_linted_its_model"
         "tests/test_mesh_speed.py::test_a_hull_is_computed_on_one_cpu_and_the_others_are_given_back"
-        "tests/test_mesh_speed.py::test_a_model_of_many_macro_calls_is_scheduled_first")
+        "tests/test_mesh_speed.py::test_a_model_of_many_macro_calls_is_scheduled_first"
+        # macro bodies cloned from minidom's node fields, checked against minidom's clone,
+        # and the mass integrals: minidom and numpy differ between the Pythons
+        tests/test_expansion_clone.py
+        "tests/test_mesh_speed.py::test_mass_properties_equal_trimesh_and_vertex_grouping_bitwise"
+        "tests/test_mesh_speed.py::test_a_small_part_far_from_its_origin_keeps_its_precision"
+        "tests/test_mesh_speed.py::test_mass_properties_are_trimeshs_across_blocks"
+        "tests/test_mesh_speed.py::test_unique_first_is_np_uniques_even_when_keys_share_their_high_bits")
 
 for v in $PYTHONS; do
   py=$(find_python "$v") || { echo "test_pythons: Python $v is not installed (system: or it" \
