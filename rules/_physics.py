@@ -25,7 +25,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from numpy import ndarray
     from numpy.typing import ArrayLike
 
-    from urdf_lint.engine.api import Context, Model
+    from urdf_lint.engine.api import Context, MassFacts, MeshFacts, Model
 
 # (volume, first, second, corners) of a piece of geometry in its own frame
 Piece = tuple[float, "ArrayLike", "ArrayLike", "ArrayLike"]
@@ -138,10 +138,14 @@ def _capsule(shape: Any, np: ModuleType) -> Piece | None:
 
 
 def link_geometry(model: Model, ctx: Context, lk: Any, np: ModuleType,
-                  kind: str | None = None) -> Geometry | None:
+                  kind: str | None = None, box_only: bool = False) -> Geometry | None:
     """The link's Geometry (its collision, else visual, pieces; or those of ``kind``), or None
     when any piece cannot be measured (a missing or broken mesh, a bad value): no guess is
-    better than a wrong one."""
+    better than a wrong one. ``box_only``: only its bounding box is wanted (``lo``, ``hi``;
+    no volumes), from the meshes' bounds (``ctx.mesh_facts``), without their volume
+    integrals, which a visual mesh that is not closed would take a convex hull for. Its
+    corners are those of the full Geometry whenever that can be measured: a mesh's bounds
+    are the same in both facts."""
     kind = kind or ("collision" if lk.findall("collision") else "visual")
     pieces = lk.findall(kind)
     if not pieces:
@@ -160,18 +164,23 @@ def link_geometry(model: Model, ctx: Context, lk: Any, np: ModuleType,
             ref = ctx.mesh_ref(model, uri) if uri else None
             if ref is None or ref.problem is not None or not ref.path:
                 return None
-            f = ctx.mass_facts(ref.path)
+            f: MeshFacts | MassFacts = ctx.mesh_facts(ref.path) if box_only \
+                else ctx.mass_facts(ref.path)
             scale = numbers(shape.get("scale", "1 1 1"), 3)
             if not f.ok or f.bounds is None or not scale or any(s == 0 for s in scale):
                 return None
-            a = np.diag(scale)
-            det = abs(scale[0] * scale[1] * scale[2])
             lo, hi = f.bounds
             corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]) * np.asarray(scale)
-            g.add(det * f.volume, det * (a @ np.asarray(f.first)),
-                  det * (a @ np.asarray(f.second) @ a.T), corners, rot, t)
-            if f.hull:
+            if box_only:
+                g.add(0.0, np.zeros(3), np.zeros((3, 3)), corners, rot, t)
+                continue
+            m = ctx.mass_facts(ref.path)     # (the record above: looked up once per model)
+            a = np.diag(scale)
+            det = abs(scale[0] * scale[1] * scale[2])
+            g.add(det * m.volume, det * (a @ np.asarray(m.first)),
+                  det * (a @ np.asarray(m.second) @ a.T), corners, rot, t)
+            if m.hull:
                 g.hull.append(uri)
         else:
             prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)
@@ -179,7 +188,7 @@ def link_geometry(model: Model, ctx: Context, lk: Any, np: ModuleType,
                 return None
             vol, first, second, corners = prim
             g.add(vol, first, second, corners, rot, t)
-    return g if g.volume > 0 else None
+    return g if box_only or g.volume > 0 else None
 
 
 def moving_links(model: Model) -> Iterator[tuple[Any, Any]]:
@@ -259,14 +268,24 @@ def proxy_reason(model: Model, ctx: Context, lk: Any, g: Geometry, np: ModuleTyp
                 "(contact points or a placeholder)")
     if not lk.findall("visual"):
         return ""
+    # the visual's bounding box decides, and the volume facts behind it are measured only
+    # when the box calls the collision a proxy (they may still find the visual unmeasurable)
+    box = link_geometry(model, ctx, lk, np, kind="visual", box_only=True)
+    if box is not None and not _partial(g, box):
+        return ""
     vis = link_geometry(model, ctx, lk, np, kind="visual")
-    if vis is None:
+    if vis is None or not _partial(g, vis):
         return ""
     cv, vv = _box_volume(g), _box_volume(vis)
-    if vv > 0 and cv < vv * PROXY_FRACTION:
-        return (f"covers only part of the link (its bounding box is {cv / vv:.0%} of the "
-                "visual geometry's)")
-    return ""
+    return (f"covers only part of the link (its bounding box is {cv / vv:.0%} of the "
+            "visual geometry's)")
+
+
+def _partial(g: Geometry, vis: Geometry) -> bool:
+    """Whether collision geometry ``g``'s bounding box is under :data:`PROXY_FRACTION` of the
+    visual geometry ``vis``'s."""
+    cv, vv = _box_volume(g), _box_volume(vis)
+    return vv > 0 and cv < vv * PROXY_FRACTION
 
 
 def declared_matrix(t: Mapping[str, float], inr: Any, np: ModuleType) -> ndarray:

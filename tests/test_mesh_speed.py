@@ -960,3 +960,62 @@ def test_a_worker_that_dies_is_reported_with_its_exit_code(tmp_path, monkeypatch
     jobs = [LintJob(str(p)) for p in sorted((pkg / "urdf").iterdir())]
     msgs = [p.message for _, r in worker.run_jobs(jobs, settings, jobs_n=1) for p in r.problems]
     assert len(msgs) == 24 and all("exit code 7" in m for m in msgs), msgs
+
+
+# -- issue 34: a visual mesh's volume facts only when they decide -----------------------------
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_every_corpus_mesh_has_the_same_bounds_in_its_mesh_facts_and_mass_facts(fresh):
+    """The physics rules decide whether a collision shape is a proxy from the visual meshes'
+    bounds in their mesh facts, measuring their volumes only when those call it one: the
+    same numbers as the mass facts' bounds, for every mesh whose volume can be measured."""
+    paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() in (".stl", ".dae", ".obj"))
+    measured = 0
+    for p in paths:
+        mass = fresh.mass_facts(str(p))
+        if mass.get("ok"):
+            facts = fresh.mesh_facts(str(p))
+            assert facts["ok"] and facts["bounds"] == mass["bounds"], p
+            measured += 1
+    assert measured > 100
+
+
+def _link_with_visual_mesh(collision: str) -> str:
+    return f"""<robot name="r">
+  <link name="base"/>
+  <link name="arm">
+    <inertial><mass value="1"/>
+      <inertia ixx="0.5" iyy="0.5" izz="0.5" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><geometry><mesh filename="package://shell_description/meshes/shell.stl"/></geometry></visual>
+    <collision><geometry>{collision}</geometry></collision>
+  </link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_a_visual_mesh_is_not_measured_for_volume_when_its_box_decides(tmp_path, fresh,
+                                                                        monkeypatch):
+    """A collision box as large as the open visual shell: not a proxy, so the shell's volume
+    (its convex hull: it is open) is never measured. A collision cylinder around a sliver of
+    it: a proxy by the shell's bounds, and then the shell's volume facts are measured and the
+    link (its declared inertia 100 times too large) is judged against them."""
+    v, f = sphere(4000, radius=0.1)
+    measured = []
+    real = fresh._measure_mass
+    monkeypatch.setattr(fresh, "_measure_mass",
+                        lambda p, *a, **k: measured.append(os.path.basename(p)) or real(p, *a, **k))
+    for name, collision in (("whole", '<box size="0.2 0.2 0.2"/>'),
+                            ("sliver", '<cylinder radius="0.01" length="0.02"/>')):
+        root = tmp_path / name
+        pkg = make_package(root, "shell_description",
+                           {"urdf/r.urdf": _link_with_visual_mesh(collision)})
+        (pkg / "meshes").mkdir()
+        binary_stl(pkg / "meshes" / "shell.stl", np.delete(v[f], range(100, 140), axis=0))
+        found = lint_in_process(root)
+        if name == "whole":
+            assert measured == [], "the open shell's volume was measured for nothing"
+        else:
+            assert measured == ["shell.stl"]
+            assert any("judged against the visual geometry: the collision shape covers only "
+                       "part of the link" in x.message for x in found), [x.message for x in found]
