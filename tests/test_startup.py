@@ -95,6 +95,54 @@ def test_join_with_a_timeout_returns_and_kill_ends_the_child():
         conn.close()
 
 
+def _end_later(conn):
+    conn.recv()
+    time.sleep(0.1)
+
+
+def test_join_wakes_when_the_child_ends_without_polling(monkeypatch):
+    """``join`` waits on the child's pidfd: it returns when the child ends, not at the next
+    of a series of growing sleeps (each ~10 ms late on average at the end of every run)."""
+    from urdf_lint.runner import forked
+    if not hasattr(os, "pidfd_open"):
+        pytest.skip("no pidfd on this system")
+    conn, proc = forked_start(_end_later)
+    slept = []
+    monkeypatch.setattr(forked.time, "sleep", lambda s: slept.append(s))
+    try:
+        conn.send("go")
+        proc.join(5)
+        assert proc.exitcode == 0 and slept == []
+        assert proc not in forked_active()
+    finally:
+        conn.close()
+
+
+def test_a_released_pool_s_workers_end_before_it_is_closed(monkeypatch):
+    """After the run's last pass the workers are told there is no further job: they exit
+    while the parent finishes the run, and closing the pool only reaps them."""
+    from urdf_lint.runner import forked
+    from urdf_lint.run import worker
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.discovery.packages import PackageResolver
+    monkeypatch.setattr(worker, "process_job", lambda job, settings: carried(job, job.entry))
+    resolver = PackageResolver.build([str(DESCRIPTIONS)], extra_roots=[str(DESCRIPTIONS)])
+    runs = worker.RunPool(LintSettings(resolver=resolver.to_dict(), timeout=30), 2)
+    jobs = [LintJob(f"m{i}.urdf", kind="urdf") for i in range(4)]
+    try:
+        assert sorted(carried_data(r) for _, r in runs.run(jobs)) == [j.entry for j in jobs]
+        assert runs.pool is not None
+        procs = [w.proc for w in runs.pool.workers]
+        assert len(procs) == 2 and all(p.is_alive() for p in procs)
+        runs.release()
+        if hasattr(os, "pidfd_open"):   # (ended, not reaped yet: closing the pool reaps them)
+            assert all(forked._ended_within(p.pid, 5) for p in procs)
+    finally:
+        runs.close()
+    assert not any(p in forked_active() for p in procs)
+    assert all(p.exitcode == 0 for p in procs)
+
+
 def _pipe_ends(conn):
     conn.recv()
     import fcntl

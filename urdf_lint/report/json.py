@@ -50,7 +50,7 @@ class JsonFormatter(BaseFormatter):
                "summary": summary(result)}
         if self.options.coverage:
             doc["coverage"] = [_coverage(c) for c in coverage_rows(result)]
-        json.dump(doc, self.stream, indent=2)
+        self.stream.write(json.dumps(doc, indent=2))   # (one write: not one per token)
         self.stream.write("\n")
 
     def statistics(self, result: Outcome) -> None:
@@ -65,5 +65,5 @@ class JsonFormatter(BaseFormatter):
                   "taken_at_defaults": c["taken_at_defaults"], "variants": len(c["variants"]),
                   "cut_by_budget": c["cut_by_budget"]}
                  for c in coverage_rows(result) if c["branches"]]
-        json.dump(rows, self.stream, indent=2)
+        self.stream.write(json.dumps(rows, indent=2))
         self.stream.write("\n")

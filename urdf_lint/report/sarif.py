@@ -119,5 +119,5 @@ class SarifFormatter(BaseFormatter):
                                              "informationUri": "https://pypi.org/project/urdf-lint/",
                                              "rules": driver_rules}},
                          "results": results}]}
-        json.dump(doc, self.stream, indent=2)
+        self.stream.write(json.dumps(doc, indent=2))   # (one write: not one per token)
         self.stream.write("\n")

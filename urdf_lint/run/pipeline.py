@@ -205,6 +205,8 @@ def _run_passes(req: RunRequest, cfg: "Config", resolver: "PackageResolver",
         more, more_internal = _explore(out, found, cfg, resolver, settings, req, workers, early)
         results += more
         out.internal += more_internal
+    if workers is not None:
+        workers.release()     # (no further pass: they exit while the run is finished here)
     if req.render_dir:
         _drop_snapshots([r for r in results if r not in out.models], req.render_dir)
     out.findings = finish(out.models, found.problems, settings, policy, out.generated,

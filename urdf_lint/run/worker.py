@@ -233,6 +233,12 @@ class RunPool:
         if jobs and self.pool is not None and len(self.pool.workers) >= want:
             self.pool.add(jobs)
 
+    def release(self) -> None:
+        """The run's last pass is done: the idle workers exit while the run finishes
+        (:meth:`urdf_lint.runner.pool.WorkerPool.release`); :meth:`close` reaps them."""
+        if self.pool is not None:
+            self.pool.release()
+
     def close(self) -> None:
         if self.pool is not None:
             self.pool.close()

@@ -219,6 +219,9 @@ class Process:
         if timeout is None:
             self._reap(0)
             return
+        if self._reap(os.WNOHANG) or _ended_within(self.pid, timeout) is not None:
+            self._reap(os.WNOHANG)
+            return
         deadline = time.monotonic() + timeout
         pause = 0.0005
         while not self._reap(os.WNOHANG) and time.monotonic() < deadline:
@@ -231,6 +234,22 @@ class Process:
                 os.kill(self.pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
+
+
+def _ended_within(pid: int, timeout: float) -> bool | None:
+    """Whether child ``pid`` (not reaped) ended within ``timeout`` seconds, waited for on a
+    pidfd, which wakes at its exit; None where there is no pidfd (then the caller polls)."""
+    import select
+    try:
+        fd = os.pidfd_open(pid)
+    except (AttributeError, OSError):
+        return None
+    try:
+        p = select.poll()
+        p.register(fd, select.POLLIN)
+        return bool(p.poll(int(max(0.0, timeout) * 1000) + 1))
+    finally:
+        os.close(fd)
 
 
 def _quiet_stdin() -> None:

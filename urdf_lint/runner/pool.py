@@ -360,6 +360,7 @@ class Worker:
         self.cpu0: float | None = None   # the worker's CPU time when its job started
         self.queue: Any = None
         self.told = 0     # how much of the pool's shared list this worker has been handed
+        self.released = False   # sent the end of its jobs
 
     def kill(self) -> None:
         try:
@@ -368,6 +369,16 @@ class Worker:
             pass
         self.proc.join(1)
         self.conn.close()
+
+
+def _tell_end(w: Worker) -> None:
+    """Send worker ``w`` the end of its jobs (once)."""
+    if not w.released:
+        w.released = True
+        try:
+            w.conn.send(None)
+        except Exception:  # noqa: BLE001 - a dead worker: killed by close
+            pass
 
 
 WALL_FACTOR = 4      # the wall-clock limit of a job: this many times its CPU-time limit
@@ -705,13 +716,18 @@ class WorkerPool:
                     job, f"expansion/lint did not finish within {what}; a huge expression, "
                     "loop or recursion?")
 
+    def release(self) -> None:
+        """Tell the idle workers that no job will follow (the pool takes none after this):
+        they exit while the caller finishes its run, and :meth:`close` finds them gone."""
+        self.closing = True
+        for w in self.workers:
+            if w.job is None:
+                _tell_end(w)
+
     def close(self) -> None:
         self.closing = True
         for w in self.workers:
-            try:
-                w.conn.send(None)
-            except Exception:  # noqa: BLE001 - a dead worker: killed below
-                pass
+            _tell_end(w)
         for w in self.workers:
             w.proc.join(0.5)
             if w.proc.is_alive():
