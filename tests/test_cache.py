@@ -342,6 +342,28 @@ def test_a_file_has_one_digest_whichever_way_it_is_read(tmp_path, monkeypatch):
         assert hashing.memo_digest(str(p))[1] == want
 
 
+@pytest.mark.parametrize("delta", [-1, 1, -(1 << 20)])
+def test_a_file_that_changes_size_while_hashed_has_no_digest(tmp_path, monkeypatch, delta):
+    """The streamed hash reads at most one byte more than the size the file had when opened:
+    a file that grew or shrank meanwhile (here: its size said smaller or larger than its
+    content) has no digest, rather than the digest of bytes it no longer holds."""
+    import contextlib
+    from urdf_lint.core import fsbound, hashing
+    p = tmp_path / "m.stl"
+    p.write_bytes(os.urandom((3 << 20) + 7))
+    real = fsbound.open_regular
+
+    @contextlib.contextmanager
+    def resized(path, *a, **k):
+        with real(path, *a, **k) as (f, st):
+            fields = list(st)
+            fields[6] = st.st_size + delta          # st_size
+            yield f, os.stat_result(fields)
+    assert hashing.file_digest(str(p)) is not None
+    monkeypatch.setattr(fsbound, "open_regular", resized)
+    assert hashing.file_digest(str(p)) is None
+
+
 def test_a_result_the_cache_refuses_is_not_remembered_by_the_run_memo(tmp_path):
     """A worker that reports reading a file outside the package roots: the cache stores
     nothing, and says so on the result, so the run memo does not keep the run either."""
