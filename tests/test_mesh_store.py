@@ -293,7 +293,7 @@ def _pycollada(readers, data):
 
 
 def _untextured(data: bytes) -> bytes:
-    """The document with its textures replaced by a colour (the lean reader refuses those)."""
+    """The document with its textures replaced by a colour."""
     from lxml import etree
     root = etree.fromstring(data)
     for el in list(root.iter("{*}newparam")):
@@ -306,9 +306,9 @@ def _untextured(data: bytes) -> bytes:
 
 
 def test_generated_collada_read_by_lxml_alone_equals_pycollada_or_is_refused(tmp_path):
-    """Nested and mirrored nodes, several transforms, polylists of quads and pentagons: the
-    same arrays as through pycollada, bit for bit; textures, a broken reference, lines only:
-    refused (pycollada and trimesh decide, as before)."""
+    """Nested and mirrored nodes, several transforms, polylists of quads and pentagons, with
+    textures and without: the same arrays as through pycollada, bit for bit; a broken
+    reference: refused (pycollada and trimesh decide, as before)."""
     from test_mesh_speed import _generated_daes
     from urdf_lint.meshes import readers
     daes = _generated_daes(tmp_path)
@@ -324,7 +324,12 @@ def test_generated_collada_read_by_lxml_alone_equals_pycollada_or_is_refused(tmp
         assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), name
     assert {"nested.dae", "metres.dae", "lines.dae"} <= read   # (lines alone: no mesh)
     assert "broken.dae" not in read
-    assert readers.collada_arrays_lean(daes["nested.dae"].read_bytes()) is None   # textured
+    for name in ("nested.dae", "metres.dae"):     # textured as generated: the same arrays
+        data = daes[name].read_bytes()
+        assert b"<texture " in data
+        got, want = readers.collada_arrays_lean(data), _pycollada(readers, data)
+        assert got is not None and want is not None
+        assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1]), name
     # more transforms on the outer node (a float32 product of five, mirrored)
     rotated = _untextured(daes["nested.dae"].read_bytes()).replace(
         b'<node id="a">', b'<node id="a"><rotate>0.3 0.4 0.866 33</rotate><scale>1 2 -1</scale>'

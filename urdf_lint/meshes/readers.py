@@ -689,7 +689,12 @@ def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
 # -- COLLADA read with lxml alone (no pycollada objects) --------------------------------------
 _SHADINGS = ("constant", "lambert", "phong", "blinn")
 _UNSUPPORTED = ("polygons", "tristrips", "trifans", "instance_node", "instance_controller",
-                "lookat", "skew", "library_nodes", "newparam", "texture")
+                "lookat", "skew", "library_nodes")
+_TEXTURING = ("newparam", "texture")     # vouched for by _check_textures, or unsure
+# the shading properties pycollada reads (``Effect.supported``): a texture elsewhere is unsure
+_PROPERTIES = frozenset(("emission", "ambient", "diffuse", "specular", "shininess",
+                         "reflective", "reflectivity", "transparent", "transparency",
+                         "index_of_refraction"))
 
 
 def _local(el: Node) -> str:
@@ -717,9 +722,10 @@ def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | Non
     and ``<input>`` offsets, the ``<node>`` transforms (float32 products, as pycollada's
     ``Node.matrix``) and ``<instance_geometry>``/``<instance_material>`` bindings, assembled
     and merged exactly as :func:`collada_arrays` does on pycollada's objects (same float32
-    values, same index arrays, same order). None for anything else (textures, parameters,
-    polygons with holes, strips and fans, node instances, controllers, a broken reference,
-    any doubt): the caller reads the file through pycollada."""
+    values, same index arrays, same order). Textures count only where pycollada loads them
+    (:func:`_check_textures`). None for anything else (other effect parameters, polygons
+    with holes, strips and fans, node instances, controllers, a broken reference, any
+    doubt): the caller reads the file through pycollada."""
     from lxml import etree
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              huge_tree=True, remove_comments=True)
@@ -756,10 +762,13 @@ def _line_only_instances(root: Node) -> int:
 
 def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
     byid: dict[str, Node] = {}
+    texturing = 0
     for el in root.iter():
         name = _local(el)
         if name in _UNSUPPORTED:
             raise _Unsure(name)
+        if name in _TEXTURING:
+            texturing += 1
         if name == "input" and el.get("semantic") == "COLOR":
             raise _Unsure("vertex colours")
         i = el.get("id")
@@ -767,6 +776,8 @@ def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
             if i in byid:
                 raise _Unsure("duplicate id")
             byid[i] = el
+    if texturing and _check_textures(root) != texturing:
+        raise _Unsure("texture")
     materials = {m.get("id") for lib in root if _local(lib) == "library_materials"
                  for m in lib if _local(m) == "material"}
     for mid in materials:
@@ -814,6 +825,9 @@ def _check_material(byid: dict[str, Node], material: Node) -> None:
         raise _Unsure("effect")
     for prop in shading[0]:
         kids = [el for el in prop if isinstance(el.tag, str)]
+        if len(kids) == 1 and _local(kids[0]) == "texture":
+            continue        # (a sampler pycollada finds: _check_textures; trimesh only logs
+            # an image it cannot load)
         if len(kids) != 1 or _local(kids[0]) not in ("color", "float"):
             raise _Unsure("effect property")
         values = _floats(kids[0].text, np.float64)
@@ -823,6 +837,86 @@ def _check_material(byid: dict[str, Node], material: Node) -> None:
             need = 3 if _local(prop) == "emission" else 4
             if len(values) < need or (need == 4 and len(values) != 4) or len(values) > 4:
                 raise _Unsure("colour")
+
+
+def _check_textures(root: Node) -> int:
+    """How many ``<newparam>`` and ``<texture>`` elements pycollada loads without an error in
+    the document's effects, all of them vouched for: in an effect's ``profile_COMMON`` (or
+    its technique), each parameter a 2D ``<surface>`` of an image of ``<library_images>`` or a
+    ``<sampler2D>`` of a surface declared before it, each texture the value of a shading
+    property, naming such a sampler (pycollada's ``Surface``, ``Sampler2D`` and ``Map``;
+    what trimesh makes of a texture does not change the geometry). Any other use, here or
+    elsewhere in the document, is not counted: the caller is then unsure."""
+    images = {el.get("id"): el for lib in root if _local(lib) == "library_images"
+              for el in lib if _local(el) == "image"}
+    found = 0
+    for lib in root:
+        if _local(lib) == "library_effects":
+            for effect in lib:
+                if _local(effect) == "effect":
+                    found += _effect_textures(effect, images)
+    return found
+
+
+def _effect_textures(effect: Node, images: dict[str | None, Node]) -> int:
+    profiles = [el for el in effect if _local(el) == "profile_COMMON"]
+    if len(profiles) != 1 or any(_local(el) == "image" for el in profiles[0]):
+        return 0
+    techniques = [el for el in profiles[0] if _local(el) == "technique"]
+    scope: dict[str, str] = {}
+    found = 0
+    for parent in (profiles[0], *techniques[:1]):
+        for param in parent:
+            if _local(param) == "newparam":
+                kind = _parameter(param, scope, images)
+                if kind is None:
+                    return found
+                scope[param.get("sid")] = kind
+                found += 1
+    return found + _sampled(techniques[:1], scope) + _bump_maps(effect, scope)
+
+
+def _parameter(param: Node, scope: dict[str, str], images: dict[str | None, Node]) -> str | None:
+    """What a ``<newparam>`` is to pycollada when it loads it: ``"surface"`` (2D, of an image
+    of the library) or ``"sampler"`` (of a surface in ``scope``); None for anything else."""
+    kids = [el for el in param if isinstance(el.tag, str)]
+    sid = param.get("sid")
+    if len(kids) != 1 or not sid or sid in scope:
+        return None
+    kind = _local(kids[0])
+    source = [el for el in kids[0] if _local(el) in ("init_from", "source")]
+    if len(source) != 1:
+        return None
+    ref = source[0].text or ""
+    if kind == "surface" and kids[0].get("type") == "2D" and _local(source[0]) == "init_from" \
+            and ref not in scope and any(_local(el) == "init_from" for el in images.get(ref, ())):
+        return "surface"
+    if kind == "sampler2D" and _local(source[0]) == "source" and scope.get(ref) == "surface":
+        return "sampler"
+    return None
+
+
+def _sampled(techniques: list[Node], scope: dict[str, str]) -> int:
+    """The ``<texture>`` values of the shading properties that name a sampler of ``scope``."""
+    found = 0
+    shading = [el for el in techniques[0] if _local(el) in _SHADINGS] if techniques else []
+    for prop in shading[:1]:
+        for value in prop:
+            kids = [el for el in value if isinstance(el.tag, str)]
+            if _local(value) in _PROPERTIES and len(kids) == 1 and \
+                    _local(kids[0]) == "texture" and scope.get(kids[0].get("texture")) == "sampler":
+                found += 1
+    return found
+
+
+def _bump_maps(effect: Node, scope: dict[str, str]) -> int:
+    """The textures under an ``<extra>`` of the effect (an exporter's bump map), when the
+    first of them, which pycollada loads (and fails on the whole document when it names no
+    sampler), names a sampler of ``scope``."""
+    bumps = {id(el): el for el in effect.iterfind(".//{*}extra//{*}texture")}
+    first = effect.find(".//{*}extra//{*}texture")
+    return len(bumps) if first is not None and scope.get(first.get("texture")) == "sampler" \
+        else 0
 
 
 def _matrix(node: Node) -> np.ndarray:
