@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import struct
 import sys
 from pathlib import Path
@@ -248,6 +249,10 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
     assert len(lean["nested.dae"][1]) == 2 * len(sf) + 2 * quads + 6
 
 
+_UNUSED_EFFECT = ('<effect id="unused"><profile_COMMON><newparam sid="s1"><surface type="2D">'
+                  '<init_from>img</init_from></surface></newparam><newparam sid="s2"><sampler2D>'
+                  '<source>s1</source></sampler2D></newparam></profile_COMMON></effect>'
+                  '</library_effects>')
 _TEXTURED = {
     # (how the effect of _dae is changed, whether the lxml reader vouches for it)
     "as written": ((), True),
@@ -268,6 +273,13 @@ _TEXTURED = {
     "an image without a file": ((("<init_from>skin.png</init_from>", ""),), False),
     "a float parameter": ((('<newparam sid="samp">', '<newparam sid="f"><float>1</float>'
                            '</newparam><newparam sid="samp">'),), False),
+    # pycollada loads effects no material uses, and fails on a profile without technique
+    # (AttributeError, not a DaeError: trimesh does not ignore it)
+    "an unused effect without technique": ((("</library_effects>", _UNUSED_EFFECT),), False),
+    # pycollada finds the technique in the document's namespace only
+    "a technique in another namespace": ((
+        ('<technique sid="common">', '<x:technique xmlns:x="urn:x" sid="common">'),
+        ("</phong></technique>", "</phong></x:technique>")), False),
 }
 
 
@@ -297,6 +309,28 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
         got = _trimesh_arrays(fresh, p)
         v = meshio.scale_points(lean[0], fresh._unit_of(text.encode()))
         assert np.array_equal(v, got[0]) and np.array_equal(lean[1], got[1]), case
+
+
+@pytest.mark.parametrize("effect", [
+    '<effect id="unused"><profile_COMMON/></effect>',
+    '<effect id="unused"><profile_COMMON><technique sid="c"><phong><shininess><float>abc'
+    '</float></shininess></phong></technique></profile_COMMON></effect>'])
+def test_collada_effect_no_material_uses_is_checked_like_the_others(tmp_path, fresh, effect):
+    """An untextured document with an effect no material uses that pycollada fails on
+    (no technique: AttributeError; a bad float: TypeError): trimesh cannot load it, so the
+    lxml reader must not vouch for it (the mesh does not load, whichever path reads it)."""
+    from urdf_lint.meshes import readers as meshio
+    p = _generated_daes(tmp_path)["nested.dae"]
+    text = p.read_text()
+    text = text.replace('<texture texture="samp" texcoord="UV"/>', "<color>1 0 0 1</color>")
+    text = re.sub(r"<newparam.*?</newparam>", "", text, flags=re.S)
+    text = text.replace("</library_effects>", effect + "</library_effects>")
+    p.write_text(text)
+    assert "texture" not in text and "newparam" not in text
+    with pytest.raises((AttributeError, TypeError)):     # (not pycollada's DaeError)
+        trimesh_facts(p)
+    assert meshio.collada_arrays_lean(text.encode()) is None
+    assert not fresh.mesh_facts(str(p))["ok"]
 
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")

@@ -780,8 +780,16 @@ def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
         raise _Unsure("texture")
     materials = {m.get("id") for lib in root if _local(lib) == "library_materials"
                  for m in lib if _local(m) == "material"}
+    ns = _namespace(root)
     for mid in materials:
-        _check_material(byid, byid[mid])
+        _check_material(byid, byid[mid], ns)
+    # pycollada loads every effect, used or not, and some fail with errors trimesh does not
+    # ignore (a profile without technique, a bad <float>): each must pass the same check
+    for lib in root:
+        if _local(lib) == "library_effects":
+            for effect in lib:
+                if _local(effect) == "effect":
+                    _check_effect(effect, ns)
     scene = [el for el in root if _local(el) == "scene"]
     if len(scene) != 1:
         raise _Unsure("scene")
@@ -808,17 +816,29 @@ def _ref(byid: dict[str, Node], url: str | None) -> Node:
     return byid[url[1:]]
 
 
-def _check_material(byid: dict[str, Node], material: Node) -> None:
+def _namespace(root: Node) -> str:
+    """The ``{namespace}`` prefix of the tags pycollada looks for (its root's, as it takes
+    it)."""
+    return "{" + str(root.tag).split("}")[0].lstrip("{") + "}"
+
+
+def _check_material(byid: dict[str, Node], material: Node, ns: str) -> None:
     """A material whose effect pycollada loads and trimesh converts (``_plain_effect``)."""
     inst = [el for el in material if _local(el) == "instance_effect"]
     if len(inst) != 1:
         raise _Unsure("material")
-    effect = _ref(byid, inst[0].get("url"))
+    _check_effect(_ref(byid, inst[0].get("url")), ns)
+
+
+def _check_effect(effect: Node, ns: str) -> None:
+    """An effect pycollada loads and trimesh converts; its profile and technique in the
+    document's namespace ``ns``, where pycollada finds them (a technique it does not find
+    fails the whole load)."""
     profiles = [el for el in effect if _local(el) == "profile_COMMON"]
-    if _local(effect) != "effect" or len(profiles) != 1:
+    if _local(effect) != "effect" or len(profiles) != 1 or profiles[0].tag != ns + "profile_COMMON":
         raise _Unsure("effect")
     techniques = [el for el in profiles[0] if _local(el) == "technique"]
-    if len(techniques) != 1:
+    if len(techniques) != 1 or techniques[0].tag != ns + "technique":
         raise _Unsure("effect")
     shading = [el for el in techniques[0] if _local(el) in _SHADINGS]
     if len(shading) != 1:
