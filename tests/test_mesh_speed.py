@@ -280,6 +280,10 @@ _TEXTURED = {
     "a technique in another namespace": ((
         ('<technique sid="common">', '<x:technique xmlns:x="urn:x" sid="common">'),
         ("</phong></technique>", "</phong></x:technique>")), False),
+    # pycollada loads the first bump map in the document's namespace (the other: ignored)
+    "a bump map after one in another namespace": ((("</phong>", (
+        "</phong><extra><technique profile='x'><x:texture xmlns:x='urn:x' texture='samp'/>"
+        "<texture texture='lost' texcoord='UV'/></technique></extra>")),), False),
 }
 
 
@@ -311,22 +315,27 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
         assert np.array_equal(v, got[0]) and np.array_equal(lean[1], got[1]), case
 
 
-@pytest.mark.parametrize("effect", [
-    '<effect id="unused"><profile_COMMON/></effect>',
-    '<effect id="unused"><profile_COMMON><technique sid="c"><phong><shininess><float>abc'
-    '</float></shininess></phong></technique></profile_COMMON></effect>'])
-def test_collada_effect_no_material_uses_is_checked_like_the_others(tmp_path, fresh, effect):
-    """An untextured document with an effect no material uses that pycollada fails on
-    (no technique: AttributeError; a bad float: TypeError): trimesh cannot load it, so the
-    lxml reader must not vouch for it (the mesh does not load, whichever path reads it)."""
+@pytest.mark.parametrize("old,new", [
+    # effects no material uses: pycollada loads them too (no technique: AttributeError;
+    # a bad float: TypeError)
+    ("</library_effects>", '<effect id="unused"><profile_COMMON/></effect></library_effects>'),
+    ("</library_effects>", '<effect id="unused"><profile_COMMON><technique sid="c"><phong>'
+     '<shininess><float>abc</float></shininess></phong></technique></profile_COMMON></effect>'
+     '</library_effects>'),
+    # a float where trimesh takes a colour (its [3], its [:3]: TypeError)
+    ("</diffuse>", "</diffuse><transparent><float>0.5</float></transparent>"),
+    ("</diffuse>", "</diffuse><emission><float>0.5</float></emission>")])
+def test_collada_effect_trimesh_cannot_load_is_left_to_it(tmp_path, fresh, old, new):
+    """An untextured document whose effects pycollada or trimesh fail on with an error
+    trimesh does not ignore (not a DaeError): trimesh cannot load it, so the lxml reader must
+    not vouch for it (the mesh does not load, whichever path reads it)."""
     from urdf_lint.meshes import readers as meshio
     p = _generated_daes(tmp_path)["nested.dae"]
     text = p.read_text()
     text = text.replace('<texture texture="samp" texcoord="UV"/>', "<color>1 0 0 1</color>")
-    text = re.sub(r"<newparam.*?</newparam>", "", text, flags=re.S)
-    text = text.replace("</library_effects>", effect + "</library_effects>")
+    text = re.sub(r"<newparam.*?</newparam>", "", text, flags=re.S).replace(old, new, 1)
     p.write_text(text)
-    assert "texture" not in text and "newparam" not in text
+    assert "texture" not in text and "newparam" not in text and new in text
     with pytest.raises((AttributeError, TypeError)):     # (not pycollada's DaeError)
         trimesh_facts(p)
     assert meshio.collada_arrays_lean(text.encode()) is None

@@ -692,6 +692,8 @@ _UNSUPPORTED = ("polygons", "tristrips", "trifans", "instance_node", "instance_c
                 "lookat", "skew", "library_nodes")
 _TEXTURING = ("newparam", "texture")     # vouched for by _check_textures, or unsure
 # the shading properties pycollada reads (``Effect.supported``): a texture elsewhere is unsure
+# those pycollada reads as a float (the others: trimesh indexes them as a colour)
+_FLOAT_PROPERTIES = frozenset(("shininess", "reflectivity", "transparency", "index_of_refraction"))
 _PROPERTIES = frozenset(("emission", "ambient", "diffuse", "specular", "shininess",
                          "reflective", "reflectivity", "transparent", "transparency",
                          "index_of_refraction"))
@@ -776,11 +778,11 @@ def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
             if i in byid:
                 raise _Unsure("duplicate id")
             byid[i] = el
-    if texturing and _check_textures(root) != texturing:
+    ns = _namespace(root)
+    if texturing and _check_textures(root, ns) != texturing:
         raise _Unsure("texture")
     materials = {m.get("id") for lib in root if _local(lib) == "library_materials"
                  for m in lib if _local(m) == "material"}
-    ns = _namespace(root)
     for mid in materials:
         _check_material(byid, byid[mid], ns)
     # pycollada loads every effect, used or not, and some fail with errors trimesh does not
@@ -850,6 +852,8 @@ def _check_effect(effect: Node, ns: str) -> None:
             # an image it cannot load)
         if len(kids) != 1 or _local(kids[0]) not in ("color", "float"):
             raise _Unsure("effect property")
+        if (_local(kids[0]) == "float") != (_local(prop) in _FLOAT_PROPERTIES):
+            raise _Unsure("effect property")     # (trimesh takes a float's [3] or [:3])
         values = _floats(kids[0].text, np.float64)
         if _local(kids[0]) == "float" and len(values) != 1:
             raise _Unsure("effect property")
@@ -859,7 +863,7 @@ def _check_effect(effect: Node, ns: str) -> None:
                 raise _Unsure("colour")
 
 
-def _check_textures(root: Node) -> int:
+def _check_textures(root: Node, ns: str) -> int:
     """How many ``<newparam>`` and ``<texture>`` elements pycollada loads without an error in
     the document's effects, all of them vouched for: in an effect's ``profile_COMMON`` (or
     its technique), each parameter a 2D ``<surface>`` of an image of ``<library_images>`` or a
@@ -874,11 +878,11 @@ def _check_textures(root: Node) -> int:
         if _local(lib) == "library_effects":
             for effect in lib:
                 if _local(effect) == "effect":
-                    found += _effect_textures(effect, images)
+                    found += _effect_textures(effect, images, ns)
     return found
 
 
-def _effect_textures(effect: Node, images: dict[str | None, Node]) -> int:
+def _effect_textures(effect: Node, images: dict[str | None, Node], ns: str) -> int:
     profiles = [el for el in effect if _local(el) == "profile_COMMON"]
     if len(profiles) != 1 or any(_local(el) == "image" for el in profiles[0]):
         return 0
@@ -893,7 +897,7 @@ def _effect_textures(effect: Node, images: dict[str | None, Node]) -> int:
                     return found
                 scope[param.get("sid")] = kind
                 found += 1
-    return found + _sampled(techniques[:1], scope) + _bump_maps(effect, scope)
+    return found + _sampled(techniques[:1], scope) + _bump_maps(effect, scope, ns)
 
 
 def _parameter(param: Node, scope: dict[str, str], images: dict[str | None, Node]) -> str | None:
@@ -929,12 +933,12 @@ def _sampled(techniques: list[Node], scope: dict[str, str]) -> int:
     return found
 
 
-def _bump_maps(effect: Node, scope: dict[str, str]) -> int:
+def _bump_maps(effect: Node, scope: dict[str, str], ns: str) -> int:
     """The textures under an ``<extra>`` of the effect (an exporter's bump map), when the
-    first of them, which pycollada loads (and fails on the whole document when it names no
-    sampler), names a sampler of ``scope``."""
+    first of them in the document's namespace ``ns``, which pycollada loads (and fails on the
+    whole document when it names no sampler), names a sampler of ``scope``."""
     bumps = {id(el): el for el in effect.iterfind(".//{*}extra//{*}texture")}
-    first = effect.find(".//{*}extra//{*}texture")
+    first = effect.find(f".//{ns}extra//{ns}texture")     # (pycollada's, in its namespace)
     return len(bumps) if first is not None and scope.get(first.get("texture")) == "sampler" \
         else 0
 
