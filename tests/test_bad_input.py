@@ -68,3 +68,25 @@ def test_usage_errors_exit_2(tmp_path):
     (tmp_path / "urdf-lint.toml").write_text("selcet = ['UL1']\n")
     p = run_main("check", ".", cwd=tmp_path)
     assert p.returncode == 2 and "unknown key" in p.stderr and "selcet" in p.stderr
+
+
+def test_a_folder_named_in_another_encoding_is_linted_without_an_internal_error(tmp_path):
+    """A repository folder whose name is not UTF-8 (Latin-1 bytes): its paths reach lxml
+    (include graph, branch analysis), the expansion (``$(find)``, the output header compared
+    with a generated URDF) and every output format. Each model gets its findings and the run
+    its exit code; none is an internal error."""
+    import os
+    import shutil
+    from conftest import DESCRIPTIONS
+    top = os.path.join(os.fsencode(tmp_path), b"\xe9quipe_robots")
+    src = DESCRIPTIONS / "broken" / "broken_robots"
+    pkg = os.path.join(top, b"broken_robots")
+    shutil.copytree(os.fsencode(src / "meshes"), os.path.join(pkg, b"meshes"))
+    os.makedirs(os.path.join(pkg, b"urdf", b"generated"))
+    for name in ("package.xml", "urdf/mesh_base.urdf.xacro", "urdf/generated/mesh_base.urdf",
+                 "urdf/xrefs.urdf.xacro", "urdf/branches.urdf.xacro"):
+        shutil.copy(os.fsencode(src / name), os.path.join(pkg, os.fsencode(name)))
+    for fmt in ("json", "sarif", "text"):
+        p = run_main("check", os.fsdecode(top), "--no-cache", "--format", fmt)
+        assert p.returncode == 1, (fmt, p.stderr[-2000:])
+        assert "internal error" not in p.stderr, (fmt, p.stderr[-2000:])

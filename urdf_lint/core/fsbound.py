@@ -171,7 +171,19 @@ def parse_xml(path: StrPath, parser: Any, roots: Roots = None,
     which would follow a FIFO or a device); lxml's errors are raised as they are."""
     from lxml import etree
     data = read_bytes(path, roots, max_bytes, resolved=resolved)
-    return etree.fromstring(data, parser, base_url=os.fspath(path))
+    return etree.fromstring(data, parser, base_url=xml_base_url(path))
+
+
+def xml_base_url(path: StrPath) -> str:
+    """``path`` as lxml can take it for a document's URL (UTF-8 text): a name that is not
+    UTF-8 on disk (a folder named in Latin-1) has its undecodable bytes written ``\\xff``
+    (lxml would raise; the URL is only shown)."""
+    text = os.fspath(path)
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return os.fsencode(text).decode("utf-8", "backslashreplace")
+    return text
 
 
 def _size(n: int) -> str:

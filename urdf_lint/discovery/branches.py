@@ -145,9 +145,11 @@ def _parse(f: str, resolver: Any, tokens: tuple[bytes, ...] = _TOKENS,
         return None
     if root is _UNPARSED:
         from lxml import etree
+        from urdf_lint.core import fsbound
         try:
             root = etree.fromstring(data, etree.XMLParser(
-                resolve_entities=False, no_network=True, load_dtd=False), base_url=f)
+                resolve_entities=False, no_network=True, load_dtd=False),
+                base_url=fsbound.xml_base_url(f))
         except etree.XMLSyntaxError:
             root = None
         if memo is not None:

@@ -153,7 +153,8 @@ def stale_at(output: str, expanded_xml: str) -> tuple[int, int, str] | None:
     return line, col, what
 
 
-_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
+# (and the lone surrogates standing for the bytes of a file name that is not UTF-8)
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def closest_variant(output: str, variants: list[tuple[dict[str, str], str]]
