@@ -2,6 +2,7 @@
 bounded, emptied by ``urdf-lint clean``; and the COLLADA reader that needs no pycollada."""
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 
@@ -121,6 +122,44 @@ def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, 
     assert store.get(name) == rec
 
 
+def test_without_a_store_the_parent_hashes_only_what_another_worker_may_reuse(tmp_path,
+                                                                              monkeypatch):
+    """A run without a facts store (``--no-cache``) does not hash a mesh for nothing: a
+    worker's measurements are checked (the parent hashes the mesh) only when another worker is
+    handed a job of the same package (a stolen job, a model's variant), and then reach it."""
+    from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+    from urdf_lint.meshes import resolve, store
+    from urdf_lint.run import worker
+    from urdf_lint.runner import pool
+    roots = tmp_path / "roots"
+    packages = {n: roots / n for n in ("arm", "gripper")}
+    for d in packages.values():
+        (d / "meshes").mkdir(parents=True)
+        (d / "meshes" / "part.stl").write_text(TETRA_STL)
+    measured = resolve.MeshStore()
+    resolve.mesh_facts(str(packages["arm"] / "meshes" / "part.stl"), store=measured)
+    report = ModelReport.failed(LintJob(str(packages["arm"] / "a.urdf")))
+    report.mesh_facts = measured.measured
+    hashed = []
+    real = store._digest_of
+    monkeypatch.setattr(store, "_digest_of", lambda p: hashed.append(p) or real(p))
+    settings = LintSettings(resolver={"roots": [str(roots)], "scanned": {
+        n: str(d) for n, d in packages.items()}})
+    p = pool.WorkerPool(settings, worker.LINT, size=2)
+    a, b = (object.__new__(pool.Worker) for _ in range(2))
+    for w in (a, b):
+        w.told = 0
+    p.workers = [a, b]
+    p._learn(a, LintJob(str(packages["arm"] / "a.urdf")), report)
+    assert hashed == [] and p.shared == []
+    assert p._with_shared(a, LintJob(str(packages["arm"] / "b.urdf"))).shared == ()
+    assert p._with_shared(b, LintJob(str(packages["gripper"] / "g.urdf"))).shared == ()
+    assert hashed == []                      # no other worker's job of the arm: nothing hashed
+    stolen = p._with_shared(b, LintJob(str(packages["arm"] / "b.urdf")))
+    assert [n for n, _ in stolen.shared] == [measured.measured[0][0]]
+    assert hashed == [measured.measured[0][1]]
+
+
 def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp_path, fresh,
                                                                            monkeypatch):
     """Within a run, what one worker measured is handed to the others with their next job
@@ -148,17 +187,21 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
     assert worker.share(report, settings) == [(name, record)]
     assert worker.share(report, LintSettings(resolver=None)) == []   # no roots: not confined
 
-    # the pool: learnt from worker a's result, handed to b's next job, not back to a
-    p = pool.WorkerPool(settings, worker.LINT, size=2)
-    a, b = (object.__new__(pool.Worker) for _ in range(2))
-    for w in (a, b):
-        w.told = 0
-    p.workers = [a, b]
-    p._learn(a, report)
+    # the pool: learnt from worker a's result, handed to b's next job, not back to a (with a
+    # facts store, checked as it arrives; without, when b is handed a job)
     job = LintJob(str(tmp_path / "m.urdf"))
-    assert p._with_shared(a, job).shared == ()
-    assert p._with_shared(b, job).shared == ((name, record),)
-    assert p._with_shared(b, job) is job                      # told once
+    for store in (str(tmp_path / "store"), None):
+        p = pool.WorkerPool(dataclasses.replace(settings, mesh_cache_dir=store), worker.LINT,
+                            size=2)
+        a, b = (object.__new__(pool.Worker) for _ in range(2))
+        for w in (a, b):
+            w.told = 0
+        p.workers = [a, b]
+        p._learn(a, job, report)
+        assert len(p.shared) == (1 if store else 0)
+        assert p._with_shared(a, job).shared == ()
+        assert p._with_shared(b, job).shared == ((name, record),)
+        assert p._with_shared(b, job) is job                      # told once
 
     # the worker that gets them does not measure that mesh
     fresh()

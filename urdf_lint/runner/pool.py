@@ -189,18 +189,29 @@ class Block:
     formats: frozenset[str] = frozenset()   # the mesh suffixes found in the package
 
 
+def package_roots(settings: LintSettings) -> list[str]:
+    """The package roots of the run's resolver, the deepest first."""
+    r = settings.resolver or {}
+    return sorted({str(v) for k in ("explicit", "scanned") for v in (r.get(k) or {}).values()},
+                  key=len, reverse=True)
+
+
+def package_of(job: LintJob, roots: list[str]) -> str | None:
+    """The deepest of ``roots`` (:func:`package_roots`) holding the job's entry file."""
+    return next((root for root in roots if job.entry.startswith(root.rstrip(os.sep) + os.sep)),
+                None)
+
+
 def package_blocks(jobs: list[LintJob], settings: LintSettings,
                    meshes: bool = True) -> list[Block]:
     """Jobs grouped by the package holding their entry file (the deepest package root), each
     block sorted by entry and args so models that share meshes are neighbours; a block's cost
     is its models plus the mesh bytes of its package (what its first worker will load)."""
     r = settings.resolver or {}
-    roots = sorted({str(v) for k in ("explicit", "scanned") for v in (r.get(k) or {}).values()},
-                   key=len, reverse=True)
+    roots = package_roots(settings)
     blocks: dict[str, Block] = {}
     for job in jobs:
-        key = next((root for root in roots
-                    if job.entry.startswith(root.rstrip(os.sep) + os.sep)), None)
+        key = package_of(job, roots)
         b = blocks.setdefault(key or os.path.dirname(job.entry), Block(key or "", []))
         b.jobs.append(job)
     out = []
@@ -502,6 +513,13 @@ class WorkerPool:
         # value), in the order learnt, and the names in it
         self.shared: list[tuple[Worker, str, Any]] = []
         self.shared_names: set[str] = set()
+        # a run without a facts store (whose parent would hash every measured mesh anyway, to
+        # store its facts) checks a report's facts only when another worker is handed a job of
+        # the same package (a stolen job, a variant): {package: [(worker, report)]}; a
+        # persistent pool (the language server's) checks them as they come
+        self.lazy_share = settings.mesh_cache_dir is None and not persistent
+        self.unshared: dict[str | None, list[tuple[Worker, ModelReport]]] = {}
+        self._roots: list[str] | None = None
         self._wake = forked.Wake() if persistent else None
 
     # -- the persistent form -------------------------------------------------------------------
@@ -631,19 +649,45 @@ class WorkerPool:
 
     def _with_shared(self, w: Worker, job: LintJob) -> LintJob:
         """``job`` with what the other workers measured since ``w`` was last handed a job."""
+        if self.unshared:
+            self._share_package(w, self._package(job))
         new = [(name, value) for by, name, value in self.shared[w.told:] if by is not w]
         w.told = len(self.shared)
         return dataclasses.replace(job, shared=tuple(new)) if new else job
 
-    def _learn(self, w: Worker, result: ModelReport) -> None:
+    def _learn(self, w: Worker, job: LintJob, result: ModelReport) -> None:
         """Keep what ``w``'s result measured for the other workers (when there are others)."""
         if self.handler.share is None or len(self.workers) < 2 and self.size < 2 \
                 or len(self.shared) >= MAX_SHARED:
             return
-        for name, value in self.handler.share(result, self.settings):
+        if self.lazy_share:
+            if result.mesh_facts:
+                self.unshared.setdefault(self._package(job), []).append((w, result))
+            return
+        self._keep_shared(w, self.handler.share(result, self.settings))
+
+    def _keep_shared(self, w: Worker, pairs: list[tuple[str, Any]]) -> None:
+        for name, value in pairs:
             if name not in self.shared_names:
                 self.shared_names.add(name)
                 self.shared.append((w, name, value))
+
+    def _package(self, job: LintJob) -> str | None:
+        if self._roots is None:
+            self._roots = package_roots(self.settings)
+        return package_of(job, self._roots)
+
+    def _share_package(self, w: Worker, package: str | None) -> None:
+        """Check and keep, for ``w``'s job of ``package``, what the other workers measured
+        for that package's models."""
+        waiting = self.unshared.pop(package, [])
+        mine = [(by, r) for by, r in waiting if by is w]
+        if mine:
+            self.unshared[package] = mine
+        assert self.handler.share is not None
+        for by, result in waiting:
+            if by is not w and len(self.shared) < MAX_SHARED:
+                self._keep_shared(by, self.handler.share(result, self.settings))
 
     def wait(self) -> list[Any]:
         """The connections of busy workers that sent something, by the next deadline (or the
@@ -687,7 +731,7 @@ class WorkerPool:
             w.job = None
             self.linted[job.entry] = w
             self.took[job.entry] = time.monotonic() - w.started
-            self._learn(w, result)
+            self._learn(w, job, result)
         return job, result
 
     def _over(self, w: Worker, now: float) -> tuple[bool, str]:
