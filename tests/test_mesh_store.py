@@ -122,7 +122,7 @@ def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, 
     assert store.get(name) == rec
 
 
-def test_without_a_store_the_parent_hashes_only_what_another_worker_may_reuse(tmp_path,
+def test_without_a_store_the_parent_hashes_only_what_another_worker_may_reuse(tmp_path, fresh,
                                                                               monkeypatch):
     """A run without a facts store (``--no-cache``) does not hash a mesh for nothing: a
     worker's measurements are checked (the parent hashes the mesh) only when another worker is
