@@ -690,13 +690,12 @@ def transform_points(points: np.ndarray, matrix: np.ndarray) -> np.ndarray:
 _SHADINGS = ("constant", "lambert", "phong", "blinn")
 _UNSUPPORTED = ("polygons", "tristrips", "trifans", "instance_node", "instance_controller",
                 "lookat", "skew", "library_nodes")
-_TEXTURING = ("newparam", "texture")     # vouched for by _check_textures, or unsure
-# the shading properties pycollada reads (``Effect.supported``): a texture elsewhere is unsure
-# those pycollada reads as a float (the others: trimesh indexes them as a colour)
+_TEXTURING = ("newparam", "texture")     # vouched for by _check_effects, or unsure
+# the shading properties pycollada reads as a float (the others: trimesh indexes them as a
+# colour), and all it reads (``Effect.supported``: a texture elsewhere is unsure)
 _FLOAT_PROPERTIES = frozenset(("shininess", "reflectivity", "transparency", "index_of_refraction"))
-_PROPERTIES = frozenset(("emission", "ambient", "diffuse", "specular", "shininess",
-                         "reflective", "reflectivity", "transparent", "transparency",
-                         "index_of_refraction"))
+_PROPERTIES = _FLOAT_PROPERTIES | {"emission", "ambient", "diffuse", "specular", "reflective",
+                                   "transparent"}
 
 
 def _local(el: Node) -> str:
@@ -725,7 +724,7 @@ def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | Non
     ``Node.matrix``) and ``<instance_geometry>``/``<instance_material>`` bindings, assembled
     and merged exactly as :func:`collada_arrays` does on pycollada's objects (same float32
     values, same index arrays, same order). Textures count only where pycollada loads them
-    (:func:`_check_textures`). None for anything else (other effect parameters, polygons
+    (:func:`_check_effects`). None for anything else (other effect parameters, polygons
     with holes, strips and fans, node instances, controllers, a broken reference, any
     doubt): the caller reads the file through pycollada."""
     from lxml import etree
@@ -778,20 +777,12 @@ def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
             if i in byid:
                 raise _Unsure("duplicate id")
             byid[i] = el
-    ns = _namespace(root)
-    if texturing and _check_textures(root, ns) != texturing:
+    if _check_effects(root) != texturing:
         raise _Unsure("texture")
     materials = {m.get("id") for lib in root if _local(lib) == "library_materials"
                  for m in lib if _local(m) == "material"}
     for mid in materials:
-        _check_material(byid, byid[mid], ns)
-    # pycollada loads every effect, used or not, and some fail with errors trimesh does not
-    # ignore (a profile without technique, a bad <float>): each must pass the same check
-    for lib in root:
-        if _local(lib) == "library_effects":
-            for effect in lib:
-                if _local(effect) == "effect":
-                    _check_effect(effect, ns)
+        _check_material(byid, byid[mid])
     scene = [el for el in root if _local(el) == "scene"]
     if len(scene) != 1:
         raise _Unsure("scene")
@@ -824,20 +815,41 @@ def _namespace(root: Node) -> str:
     return "{" + str(root.tag).split("}")[0].lstrip("{") + "}"
 
 
-def _check_material(byid: dict[str, Node], material: Node, ns: str) -> None:
-    """A material whose effect pycollada loads and trimesh converts (``_plain_effect``)."""
+def _check_material(byid: dict[str, Node], material: Node) -> None:
+    """A material of one effect of the effect library (each checked: :func:`_check_effects`)."""
     inst = [el for el in material if _local(el) == "instance_effect"]
     if len(inst) != 1:
         raise _Unsure("material")
-    _check_effect(_ref(byid, inst[0].get("url")), ns)
+    effect = _ref(byid, inst[0].get("url"))
+    parent = effect.getparent()
+    if _local(effect) != "effect" or parent is None or _local(parent) != "library_effects":
+        raise _Unsure("material")
 
 
-def _check_effect(effect: Node, ns: str) -> None:
-    """An effect pycollada loads and trimesh converts; its profile and technique in the
-    document's namespace ``ns``, where pycollada finds them (a technique it does not find
-    fails the whole load)."""
+def _check_effects(root: Node) -> int:
+    """Check every effect of the document (:func:`_check_effect`): pycollada loads each one,
+    used or not, and fails the whole document on some errors trimesh does not ignore (a
+    profile without its technique, a bad ``<float>``). Returns how many ``<newparam>`` and
+    ``<texture>`` elements it loads without an error in them (:func:`_effect_textures`):
+    fewer than the document holds, and the caller is unsure."""
+    ns = _namespace(root)
+    images = {el.get("id"): el for lib in root if _local(lib) == "library_images"
+              for el in lib if _local(el) == "image"}
+    found = 0
+    for lib in root:
+        if _local(lib) == "library_effects":
+            for effect in lib:
+                if _local(effect) == "effect":
+                    found += _effect_textures(effect, *_check_effect(effect, ns), images, ns)
+    return found
+
+
+def _check_effect(effect: Node, ns: str) -> tuple[Node, Node, Node]:
+    """(profile, technique, shading) of an effect pycollada loads and trimesh converts
+    (``_plain_effect``); its profile and technique in the document's namespace ``ns``, where
+    pycollada finds them (a technique it does not find fails the whole load)."""
     profiles = [el for el in effect if _local(el) == "profile_COMMON"]
-    if _local(effect) != "effect" or len(profiles) != 1 or profiles[0].tag != ns + "profile_COMMON":
+    if len(profiles) != 1 or profiles[0].tag != ns + "profile_COMMON":
         raise _Unsure("effect")
     techniques = [el for el in profiles[0] if _local(el) == "technique"]
     if len(techniques) != 1 or techniques[0].tag != ns + "technique":
@@ -848,7 +860,7 @@ def _check_effect(effect: Node, ns: str) -> None:
     for prop in shading[0]:
         kids = [el for el in prop if isinstance(el.tag, str)]
         if len(kids) == 1 and _local(kids[0]) == "texture":
-            continue        # (a sampler pycollada finds: _check_textures; trimesh only logs
+            continue        # (a sampler pycollada finds: _effect_textures; trimesh only logs
             # an image it cannot load)
         if len(kids) != 1 or _local(kids[0]) not in ("color", "float"):
             raise _Unsure("effect property")
@@ -861,35 +873,22 @@ def _check_effect(effect: Node, ns: str) -> None:
             need = 3 if _local(prop) == "emission" else 4
             if len(values) < need or (need == 4 and len(values) != 4) or len(values) > 4:
                 raise _Unsure("colour")
+    return profiles[0], techniques[0], shading[0]
 
 
-def _check_textures(root: Node, ns: str) -> int:
-    """How many ``<newparam>`` and ``<texture>`` elements pycollada loads without an error in
-    the document's effects, all of them vouched for: in an effect's ``profile_COMMON`` (or
-    its technique), each parameter a 2D ``<surface>`` of an image of ``<library_images>`` or a
-    ``<sampler2D>`` of a surface declared before it, each texture the value of a shading
-    property, naming such a sampler (pycollada's ``Surface``, ``Sampler2D`` and ``Map``;
-    what trimesh makes of a texture does not change the geometry). Any other use, here or
-    elsewhere in the document, is not counted: the caller is then unsure."""
-    images = {el.get("id"): el for lib in root if _local(lib) == "library_images"
-              for el in lib if _local(el) == "image"}
-    found = 0
-    for lib in root:
-        if _local(lib) == "library_effects":
-            for effect in lib:
-                if _local(effect) == "effect":
-                    found += _effect_textures(effect, images, ns)
-    return found
-
-
-def _effect_textures(effect: Node, images: dict[str | None, Node], ns: str) -> int:
-    profiles = [el for el in effect if _local(el) == "profile_COMMON"]
-    if len(profiles) != 1 or any(_local(el) == "image" for el in profiles[0]):
+def _effect_textures(effect: Node, profile: Node, technique: Node, shading: Node,
+                     images: dict[str | None, Node], ns: str) -> int:
+    """How many of the effect's ``<newparam>`` and ``<texture>`` elements pycollada loads
+    without an error: in its ``profile_COMMON`` (or its technique), each parameter a 2D
+    ``<surface>`` of an image of ``<library_images>`` or a ``<sampler2D>`` of a surface
+    declared before it (:func:`_parameter`), each texture the value of a shading property
+    naming such a sampler, or a bump map (pycollada's ``Surface``, ``Sampler2D`` and ``Map``;
+    what trimesh makes of a texture does not change the geometry)."""
+    if any(_local(el) == "image" for el in profile):
         return 0
-    techniques = [el for el in profiles[0] if _local(el) == "technique"]
     scope: dict[str, str] = {}
     found = 0
-    for parent in (profiles[0], *techniques[:1]):
+    for parent in (profile, technique):
         for param in parent:
             if _local(param) == "newparam":
                 kind = _parameter(param, scope, images)
@@ -897,7 +896,7 @@ def _effect_textures(effect: Node, images: dict[str | None, Node], ns: str) -> i
                     return found
                 scope[param.get("sid")] = kind
                 found += 1
-    return found + _sampled(techniques[:1], scope) + _bump_maps(effect, scope, ns)
+    return found + _sampled(shading, scope) + _bump_maps(effect, scope, ns)
 
 
 def _parameter(param: Node, scope: dict[str, str], images: dict[str | None, Node]) -> str | None:
@@ -920,16 +919,14 @@ def _parameter(param: Node, scope: dict[str, str], images: dict[str | None, Node
     return None
 
 
-def _sampled(techniques: list[Node], scope: dict[str, str]) -> int:
+def _sampled(shading: Node, scope: dict[str, str]) -> int:
     """The ``<texture>`` values of the shading properties that name a sampler of ``scope``."""
     found = 0
-    shading = [el for el in techniques[0] if _local(el) in _SHADINGS] if techniques else []
-    for prop in shading[:1]:
-        for value in prop:
-            kids = [el for el in value if isinstance(el.tag, str)]
-            if _local(value) in _PROPERTIES and len(kids) == 1 and \
-                    _local(kids[0]) == "texture" and scope.get(kids[0].get("texture")) == "sampler":
-                found += 1
+    for value in shading:
+        kids = [el for el in value if isinstance(el.tag, str)]
+        if _local(value) in _PROPERTIES and len(kids) == 1 and \
+                _local(kids[0]) == "texture" and scope.get(kids[0].get("texture")) == "sampler":
+            found += 1
     return found
 
 
