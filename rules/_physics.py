@@ -18,14 +18,14 @@ import math
 from types import ModuleType
 from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
 
-from urdf_lint.engine.api import mesh_mass_properties, number, numbers
+from urdf_lint.engine.api import MeshFacts, mesh_mass_properties, number, numbers
 from urdf_lint.rules._inertial import INERTIA, is_zero, mass, tensor
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy import ndarray
     from numpy.typing import ArrayLike
 
-    from urdf_lint.engine.api import Context, MassFacts, MeshFacts, Model
+    from urdf_lint.engine.api import Context, MassFacts, Model
 
 # (volume, first, second, corners) of a piece of geometry in its own frame
 Piece = tuple[float, "ArrayLike", "ArrayLike", "ArrayLike"]
@@ -172,15 +172,14 @@ def link_geometry(model: Model, ctx: Context, lk: Any, np: ModuleType,
             lo, hi = f.bounds
             corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
                                 for z in (lo[2], hi[2])]) * np.asarray(scale)
-            if box_only:
+            if isinstance(f, MeshFacts):       # (box_only)
                 g.add(0.0, np.zeros(3), np.zeros((3, 3)), corners, rot, t)
                 continue
-            m = ctx.mass_facts(ref.path)     # (the record above: looked up once per model)
             a = np.diag(scale)
             det = abs(scale[0] * scale[1] * scale[2])
-            g.add(det * m.volume, det * (a @ np.asarray(m.first)),
-                  det * (a @ np.asarray(m.second) @ a.T), corners, rot, t)
-            if m.hull:
+            g.add(det * f.volume, det * (a @ np.asarray(f.first)),
+                  det * (a @ np.asarray(f.second) @ a.T), corners, rot, t)
+            if f.hull:
                 g.hull.append(uri)
         else:
             prim = _capsule(shape, np) if shape.tag == "capsule" else _primitive(shape, np)

@@ -219,7 +219,9 @@ class Process:
         if timeout is None:
             self._reap(0)
             return
-        if self._reap(os.WNOHANG) or _ended_within(self.pid, timeout) is not None:
+        if self._reap(os.WNOHANG):
+            return
+        if _ended_within(self.pid, timeout) is not None:   # (woken at its exit, or timed out)
             self._reap(os.WNOHANG)
             return
         deadline = time.monotonic() + timeout

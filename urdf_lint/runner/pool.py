@@ -202,6 +202,11 @@ def package_of(job: LintJob, roots: list[str]) -> str | None:
                 None)
 
 
+def block_key(job: LintJob, roots: list[str]) -> str:
+    """The block a job goes in: its package (:func:`package_of`), else its entry's folder."""
+    return package_of(job, roots) or os.path.dirname(job.entry)
+
+
 def package_blocks(jobs: list[LintJob], settings: LintSettings,
                    meshes: bool = True) -> list[Block]:
     """Jobs grouped by the package holding their entry file (the deepest package root), each
@@ -212,7 +217,7 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
     blocks: dict[str, Block] = {}
     for job in jobs:
         key = package_of(job, roots)
-        b = blocks.setdefault(key or os.path.dirname(job.entry), Block(key or "", []))
+        b = blocks.setdefault(block_key(job, roots), Block(key or "", []))
         b.jobs.append(job)
     out = []
     for b in blocks.values():
@@ -518,7 +523,7 @@ class WorkerPool:
         # the same package (a stolen job, a variant): {package: [(worker, report)]}; a
         # persistent pool (the language server's) checks them as they come
         self.lazy_share = settings.mesh_cache_dir is None and not persistent
-        self.unshared: dict[str | None, list[tuple[Worker, ModelReport]]] = {}
+        self.unshared: dict[str, list[tuple[Worker, ModelReport]]] = {}
         self._roots: list[str] | None = None
         self._wake = forked.Wake() if persistent else None
 
@@ -672,12 +677,12 @@ class WorkerPool:
                 self.shared_names.add(name)
                 self.shared.append((w, name, value))
 
-    def _package(self, job: LintJob) -> str | None:
+    def _package(self, job: LintJob) -> str:
         if self._roots is None:
             self._roots = package_roots(self.settings)
-        return package_of(job, self._roots)
+        return block_key(job, self._roots)
 
-    def _share_package(self, w: Worker, package: str | None) -> None:
+    def _share_package(self, w: Worker, package: str) -> None:
         """Check and keep, for ``w``'s job of ``package``, what the other workers measured
         for that package's models."""
         waiting = self.unshared.pop(package, [])
