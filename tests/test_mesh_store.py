@@ -156,7 +156,7 @@ def test_without_a_store_the_parent_hashes_only_what_another_worker_may_reuse(tm
     assert p._with_shared(b, LintJob(str(packages["gripper"] / "g.urdf"))).shared == ()
     assert hashed == []                      # no other worker's job of the arm: nothing hashed
     stolen = p._with_shared(b, LintJob(str(packages["arm"] / "b.urdf")))
-    assert [n for n, _ in stolen.shared] == [measured.measured[0][0]]
+    assert [n for n, _ in stolen.shared if not n.startswith("at-")] == [measured.measured[0][0]]
     assert hashed == [measured.measured[0][1]]
 
 
@@ -184,7 +184,11 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
                          [f"v3-{other}", path, other, dict(record, bounds=None)],   # forged
                          [name, "/etc/hostname", digest, record]]                   # outside
     settings = LintSettings(resolver={"roots": [str(tmp_path / "roots")]})
-    assert worker.share(report, settings) == [(name, record)]
+    shared = worker.share(report, settings)
+    # the facts, and the parent's digest of the file at its version (hashing.memo_entry)
+    st = os.stat(path)
+    at = (f"at-{digest}-{path}", [path, st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns])
+    assert shared == [(name, record), at]
     assert worker.share(report, LintSettings(resolver=None)) == []   # no roots: not confined
 
     # the pool: learnt from worker a's result, handed to b's next job, not back to a (with a
@@ -198,17 +202,32 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
             w.told = 0
         p.workers = [a, b]
         p._learn(a, job, report)
-        assert len(p.shared) == (1 if store else 0)
+        assert len(p.shared) == (2 if store else 0)
         assert p._with_shared(a, job).shared == ()
-        assert p._with_shared(b, job).shared == ((name, record),)
+        assert p._with_shared(b, job).shared == ((name, record), at)
         assert p._with_shared(b, job) is job                      # told once
 
-    # the worker that gets them does not measure that mesh
+    # the worker that gets them neither measures that mesh nor reads it to hash it
+    from urdf_lint.core import hashing
     fresh()
     monkeypatch.setattr(resolve, "_measure", lambda *a: pytest.fail("measured again"))
-    resolve.remember(((name, record), ("v3-" + other, {"ok": True}), ("garbage", 1)))
+    real_read = hashing.read_regular
+    reads: list[str] = []
+    monkeypatch.setattr(hashing, "read_regular", lambda p, *a, **k: reads.append(p) or
+                        real_read(p, *a, **k))
+    monkeypatch.setattr(hashing, "file_digest", lambda p: reads.append(p) or None)
+    bad_keys = [(f"at-{other}-{path}", [path, 1, 2, 3]), (f"at-{other}-x", "x"),
+                ("at-garbage-" + path, at[1])]
+    resolve.remember(((name, record), at, ("v3-" + other, {"ok": True}), ("garbage", 1),
+                      *bad_keys))
     assert resolve.mesh_facts(str(mesh), store=resolve.MeshStore()) == record
+    assert reads == []
     assert resolve._memory[other] == {"ok": True}   # (a name it never looks up: harmless)
+    assert list(hashing._memo.values()) == [digest]  # the malformed digests were not taken
+    # the file changed since the parent hashed it (another version): read and hashed here
+    os.utime(path, ns=(st.st_atime_ns, st.st_mtime_ns + 1))
+    assert resolve.mesh_facts(str(mesh), store=resolve.MeshStore()) == record
+    assert reads == [path]
 
 
 def test_measuring_never_writes_the_store(tmp_path, fresh):

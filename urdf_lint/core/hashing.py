@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import re
 import stat as _st
 from typing import Any, Protocol
 
@@ -118,6 +119,33 @@ def memo_digest(path: str) -> tuple[list[Any], str] | None:
             return None
         _remember(key, digest)
     return [st.st_size, st.st_mtime_ns], digest
+
+
+def memo_entry(path: str) -> tuple[list[Any], str] | None:
+    """([path, dev, ino, size, mtime_ns], digest) of a file this process hashed at the version
+    it has now, else None (nothing is read): what the run's parent hands a worker with the
+    facts of that file (:func:`known`), so the worker takes them without hashing it again."""
+    try:
+        _, key = _memo_key(path)
+    except OSError:
+        return None
+    digest = _memo.get(key)
+    return None if digest is None else (list(key), digest)
+
+
+def known(key: Any, digest: Any) -> None:
+    """Take the digest the run's parent computed of a file at version ``key``
+    (:func:`memo_entry`): this process's :func:`memo_read` and :func:`memo_digest` give it
+    while the file's stat still matches, without reading the file."""
+    if isinstance(key, list | tuple) and len(key) == 5 and isinstance(key[0], str) \
+            and all(type(x) is int for x in key[1:]) and isinstance(digest, str) \
+            and _DIGEST.fullmatch(digest):
+        k = tuple(key)
+        if k not in _memo:
+            _remember(k, digest)
+
+
+_DIGEST = re.compile("[0-9a-f]{32}")
 
 
 def memo_read(path: str, max_bytes: int) -> tuple[str, bytes | None] | None:

@@ -23,7 +23,7 @@ if TYPE_CHECKING:  # pragma: no cover - numpy and trimesh are imported on first 
     from urdf_lint.engine.model import Model
 
 from urdf_lint.core import fsbound
-from urdf_lint.core.hashing import memo_read
+from urdf_lint.core.hashing import known, memo_read
 from urdf_lint.discovery.packages import PackageNotFound
 from urdf_lint.meshes.status import MeshStatus as MeshStatus
 from urdf_lint.meshes.store import MeshStore
@@ -660,11 +660,16 @@ class _Uncached(Exception):
 def remember(shared: Iterable[tuple[str, Any]]) -> None:
     """Take in what the run's other workers measured (``LintJob.shared``: (``{prefix}-{digest}``,
     record) under the digest the parent computed): looked up by content like what this
-    worker measured itself."""
+    worker measured itself. With them come the parent's digests of those files
+    (``at-{digest}-{path}``, [path, dev, ino, size, mtime_ns]): while a file's stat still
+    matches, this worker looks its facts up without reading and hashing it."""
     memories = {f"v{FACTS_VERSION}": _memory, f"mass{MASS_FACTS_VERSION}": _mass_memory,
                 f"tex{TEXTURE_SCAN_VERSION}": _scan_memory}
     for name, record in shared:
         prefix, _, digest = str(name).partition("-")
+        if prefix == "at":   # the parent's digest of a file at a version (hashing.memo_entry)
+            known(record, digest[:32])
+            continue
         memory = memories.get(prefix)
         if memory is not None and digest and isinstance(record, dict) and "ok" in record:
             memory.setdefault(digest, record)

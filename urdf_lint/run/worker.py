@@ -190,9 +190,19 @@ def share(report: ModelReport, settings: LintSettings) -> list[tuple[str, Any]]:
     roots = (settings.resolver or {}).get("roots")
     if not roots:        # (nothing to confine the paths a worker names to: nothing shared)
         return []
-    from urdf_lint.core import fsbound
-    return [(name, record) for name, _, record
-            in verified(report.mesh_facts, lambda p: fsbound.within(p, roots))]
+    from urdf_lint.core import fsbound, hashing
+    out: list[tuple[str, Any]] = []
+    files: set[str] = set()
+    for name, path, record in verified(report.mesh_facts, lambda p: fsbound.within(p, roots)):
+        out.append((name, record))
+        if path not in files:
+            # and the digest this process computed of the file, at its version: the worker
+            # handed these facts finds them without reading and hashing the file again
+            files.add(path)
+            entry = hashing.memo_entry(path)
+            if entry is not None:
+                out.append((f"at-{entry[1]}-{path}", entry[0]))
+    return out
 
 
 LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
