@@ -143,6 +143,43 @@ def test_a_released_pool_s_workers_end_before_it_is_closed(monkeypatch):
     assert all(p.exitcode == 0 for p in procs)
 
 
+_CYCLE: list = []
+
+
+def _cycle_then_look(job, settings):
+    """A job that leaves a reference cycle behind and allocates on (``a_``), then one that
+    looks whether it is still there (``b_``)."""
+    import weakref
+
+    class Node:
+        other = None
+    if job.entry.startswith("a_"):
+        a, b = Node(), Node()
+        a.other, b.other = b, a        # garbage only the cycle collector frees
+        _CYCLE.append(weakref.ref(a))
+        del a, b
+        kept = [[] for _ in range(30_000)]   # past Python's young-collection thresholds
+        return carried(job, [len(kept), _CYCLE[0]() is not None])
+    return carried(job, [0, bool(_CYCLE) and _CYCLE[0]() is not None])
+
+
+def test_a_worker_collects_a_job_s_garbage_after_the_job_not_during_it(monkeypatch):
+    """The collector walks every object still alive; within a job those are mostly the job's
+    own trees, walked again and again for nothing. A worker collects after each job (its
+    cycles do not pile up from job to job) and, within a job, only past
+    ``WORKER_GC_THRESHOLD`` allocations."""
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.run import worker
+    monkeypatch.setattr(worker, "process_job", _cycle_then_look)
+    runs = worker.RunPool(LintSettings(resolver=None, timeout=30), 1)
+    try:
+        got = [carried_data(r) for _, r in runs.run([LintJob("a_make.urdf", kind="urdf"),
+                                                     LintJob("b_look.urdf", kind="urdf")])]
+    finally:
+        runs.close()
+    assert got == [[30_000, True], [0, False]]
+
+
 def _pipe_ends(conn):
     conn.recv()
     import fcntl
