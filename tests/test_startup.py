@@ -180,6 +180,36 @@ def test_a_worker_collects_a_job_s_garbage_after_the_job_not_during_it(monkeypat
     assert got == [[30_000, True], [0, False]]
 
 
+def _return():
+    return None
+
+
+def test_a_one_shot_command_s_parent_keeps_what_it_froze_at_the_fork(monkeypatch, capsys):
+    """A command that ends with its run (check, hook, diff...) keeps the objects it had when
+    it forked its workers frozen: its last full collection walks only what the run made
+    since. The servers, which live on, collect them again."""
+    import gc
+    import urdf_lint.runner as runner
+    from urdf_lint.cli import main
+    from urdf_lint.runner import forked
+    for command, one_shot in (("check", True), ("hook", True), ("server", False),
+                              ("mcp", False), ("preview", False)):
+        monkeypatch.setattr(runner, "ONE_SHOT", False)
+        assert main._main([command, "--help"]) == 0
+        assert runner.ONE_SHOT is one_shot, command
+    capsys.readouterr()
+    try:
+        for one_shot in (True, False):
+            monkeypatch.setattr(runner, "ONE_SHOT", one_shot)
+            gc.unfreeze()
+            p = forked.Process(_return)
+            p.start()
+            assert p.join(10) is None and p.exitcode == 0
+            assert (gc.get_freeze_count() > 0) is one_shot
+    finally:
+        gc.unfreeze()
+
+
 def _pipe_ends(conn):
     conn.recv()
     import fcntl

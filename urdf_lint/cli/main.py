@@ -35,6 +35,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 COMMANDS = ("check", "hook", "expand", "rules", "rule", "render", "diff", "generate", "format",
             "mcp", "doctor", "clean", "server", "preview")
+LONG_LIVED = ("mcp", "server", "preview")   # the others end with their run
 SUBPARSERS: dict[str, argparse.ArgumentParser] = {}
 
 
@@ -135,6 +136,9 @@ def _hook_arguments(argv: list[str]) -> tuple[list[str], list[str]]:
 def _main(argv: Sequence[str] | None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = _command_of(argv)
+    if command not in LONG_LIVED:
+        import urdf_lint.runner
+        urdf_lint.runner.ONE_SHOT = True
     hook_files: list[str] = []
     if command == "hook":
         argv, hook_files = _hook_arguments(argv)

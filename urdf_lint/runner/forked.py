@@ -25,6 +25,7 @@ import sys
 import time
 from typing import Any, Callable, Iterator, Sequence
 
+from urdf_lint import runner
 from urdf_lint.runner import wire
 from urdf_lint.runner.wire import Refused
 
@@ -159,12 +160,13 @@ class Process:
         me = os.getpid()
         # the child's garbage collector leaves what it inherits alone (the preloaded modules:
         # ~100k objects a full collection would walk, and write to, page by page); the
-        # parent's collects its own objects again once the child is forked
+        # parent's collects its own objects again once the child is forked, unless it is a
+        # one-shot command's (urdf_lint.runner.ONE_SHOT)
         gc.freeze()
         try:
             pid = os.fork()
         finally:
-            if os.getpid() == me:
+            if os.getpid() == me and not runner.ONE_SHOT:
                 gc.unfreeze()
         if pid == 0:   # the child: never returns
             global parent_pid
