@@ -1114,3 +1114,56 @@ def test_a_visual_mesh_is_not_measured_for_volume_when_its_box_decides(tmp_path,
             assert measured == ["shell.stl"]
             assert any("judged against the visual geometry: the collision shape covers only "
                        "part of the link" in x.message for x in found), [x.message for x in found]
+
+
+def _scan_line_by_line(path: str) -> list[str]:
+    """The texture scan as it was written first (every match of the regex over the DAE's
+    bytes, every line of the OBJ): what the faster scan must name."""
+    refs: list[str] = []
+    data = Path(path).read_bytes()
+    if path.lower().endswith(".dae"):
+        for m in re.finditer(rb"<init_from>\s*([^<]+?)\s*</init_from>", data):
+            ref = m.group(1).decode("utf-8", "replace").strip()
+            ref = ref[7:] if ref.startswith("file://") else ref
+            if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
+                refs.append(ref)
+        return refs
+    text = data.decode("utf-8", "replace")
+    for line in text.replace("\r\n", "\n").replace("\r", "\n").split("\n"):
+        parts = line.split(None, 1)
+        if line.startswith("mtllib") and len(parts) == 2:
+            refs.append(parts[1].strip())
+    return refs
+
+
+def test_the_texture_scan_names_what_a_scan_of_every_line_names(tmp_path):
+    """The image names of a DAE are found with ``bytes.find`` and the ``mtllib`` lines of an
+    OBJ with one regex; both name exactly what the first, line-by-line scan named, on
+    every corpus mesh and on the odd cases."""
+    from urdf_lint.meshes import resolve
+    odd = {
+        "a.dae": b"<init_from> file://skin.png </init_from><init_from>x.txt</init_from>"
+                 b"<init_from >no.png</init_from><init_from><init_from>b.JPG</init_from>"
+                 b"<init_from>\n  c.tiff\n</init_from><init_from>d.png",
+        "none.dae": b"<COLLADA><library_images/></COLLADA>",
+        "a.obj": "v 0 0 0\r\nmtllib a.mtl\r\n  mtllib indented.mtl\nmtllibx y.mtl\rmtllib\n"
+                 "mtllib  spaced name.mtl  \nmtllib\tt.mtl\x0bz\nmtllib u\u2028v.mtl\n"
+                 "usemtl mtllib\n#mtllib c.mtl\nmtllib".encode(),
+        "none.obj": b"v 0 0 0\nf 1 1 1\n",
+    }
+    paths = []
+    for name, data in odd.items():
+        (tmp_path / name).write_bytes(data)
+        paths.append(str(tmp_path / name))
+    if CORPUS.is_dir():
+        paths += sorted(str(p) for p in CORPUS.rglob("*") if p.suffix.lower() in (".dae", ".obj")
+                        and p.is_file())
+    named = 0
+    for p in paths:
+        want = _scan_line_by_line(p)
+        assert resolve._scan_texture_names(p) == {"ok": True, "refs": want}, p
+        named += bool(want)
+    assert resolve._scan_texture_names(paths[0])["refs"] == ["skin.png", "b.JPG", "c.tiff"]
+    assert resolve._scan_texture_names(paths[2])["refs"] == [
+        "a.mtl", "y.mtl", "spaced name.mtl", "t.mtl\x0bz", "u\u2028v.mtl"]
+    assert named >= 2

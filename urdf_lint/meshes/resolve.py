@@ -277,20 +277,37 @@ def _scan_texture_names(path: str) -> Facts:
     refs: list[str] = []
     if path.lower().endswith(".dae"):
         data = _file_bytes(path)
-        for m in _DAE_IMAGE.finditer(data):
+        # the matches of _DAE_IMAGE.finditer, found by bytes.find (a match can only start
+        # at "<init_from>"; the regex engine tried every byte of a 3 MB mesh)
+        at = data.find(_INIT_FROM)
+        while at >= 0:
+            m = _DAE_IMAGE.match(data, at)
+            if m is None:
+                at = data.find(_INIT_FROM, at + 1)
+                continue
             ref = m.group(1).decode("utf-8", "replace").strip()
             if ref.startswith("file://"):
                 ref = ref[7:]
-            if re.search(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", ref, re.I):
+            if _IMAGE_NAME.search(ref):
                 refs.append(ref)
+            at = data.find(_INIT_FROM, m.end())
     else:
         text = fsbound.read_text(path, max_bytes=MAX_MESH_BYTES, errors="replace")
-        # the lines open() in text mode gives (universal newlines: \r\n and \r become \n)
-        for line in text.replace("\r\n", "\n").replace("\r", "\n").split("\n"):
+        if "mtllib" not in text:     # (a 1 MB OBJ without one: no line looked at)
+            return {"ok": True, "refs": refs}
+        # the lines open() in text mode gives (universal newlines: \r\n and \r become \n),
+        # those starting with "mtllib" (the rest of the line: the name, or what a line like
+        # "mtllibx y" gives, as before)
+        for line in _MTLLIB_LINE.findall(text.replace("\r\n", "\n").replace("\r", "\n")):
             parts = line.split(None, 1)
-            if line.startswith("mtllib") and len(parts) == 2:
+            if len(parts) == 2:
                 refs.append(parts[1].strip())
     return {"ok": True, "refs": refs}
+
+
+_INIT_FROM = b"<init_from>"
+_IMAGE_NAME = re.compile(r"\.(png|jpe?g|tga|bmp|tiff?|gif|dds)$", re.I)
+_MTLLIB_LINE = re.compile(r"^mtllib[^\n]*", re.M)
 
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
