@@ -80,13 +80,13 @@ def test_same_tree_tells_apart_what_a_reader_would_see():
     assert len(link._attrs) == 2 and not clone.same_tree(b, a)
 
 
-def _expand(path, args=None, resolver=None, fast=True):
-    saved = expand.FAST_CLONE
-    expand.FAST_CLONE = fast
+def _expand(path, args=None, resolver=None, fast=True, parse_cache=True):
+    saved = expand.FAST_CLONE, expand.PARSE_CACHE
+    expand.FAST_CLONE, expand.PARSE_CACHE = fast, parse_cache
     try:
         return expand.expand_file(path, args or {}, resolver)
     finally:
-        expand.FAST_CLONE = saved
+        expand.FAST_CLONE, expand.PARSE_CACHE = saved
 
 
 def _same_expansion(a, b):
@@ -98,10 +98,10 @@ def _expand_counting(path):
     calls = []
     real = clone.clone_tree
 
-    def counting(node, doc, parent=None):
-        if parent is None:
+    def counting(node, doc, parent=None, restamp=None):
+        if parent is None and restamp is None:
             calls.append(node.getAttribute("name"))
-        return real(node, doc, parent)
+        return real(node, doc, parent, restamp)
 
     clone.clone_tree = counting
     try:
@@ -188,3 +188,91 @@ def test_nested_redefined_dynamic_and_included_macros_expand_the_same(tmp_path):
     assert _same_expansion(fast, slow)
     chains = {len(o[3]) for o in fast.origins if o is not None}
     assert {0, 1, 2} <= chains
+
+
+# -- a file parsed again and again: copied from its second parse -------------------------------
+def _same_parse(a, b) -> bool:
+    """Whether documents ``a`` and ``b`` are alike node for node in everything the expansion
+    reads: the XML declaration, classes, names, local names, namespaces, values, attributes
+    (in order, with their text), user data, parent and sibling links, each node owned by its
+    own document."""
+    if (a.version, a.encoding, a.standalone, a.doctype) != (b.version, b.encoding,
+                                                            b.standalone, b.doctype):
+        return False
+
+    def walk(x, doc):
+        yield x, doc
+        for k in x.childNodes:
+            yield from walk(k, doc)
+    na, nb = list(walk(a, a)), list(walk(b, b))
+    if len(na) != len(nb):
+        return False
+    for (x, da), (y, db) in zip(na, nb, strict=True):
+        if type(x) is not type(y) or (x is not da and (x.ownerDocument is not da
+                                                        or y.ownerDocument is not db)):
+            return False
+        for f in ("nodeName", "nodeValue", "prefix", "namespaceURI", "localName", "_localName"):
+            if getattr(x, f, None) != getattr(y, f, None):
+                return False
+        if getattr(x, "_user_data", None) != getattr(y, "_user_data", None):
+            return False
+        for link in ("parentNode", "previousSibling", "nextSibling"):
+            px, py = getattr(x, link, None), getattr(y, link, None)
+            ix = next((i for i, (n, _) in enumerate(na) if n is px), None)
+            iy = next((i for i, (n, _) in enumerate(nb) if n is py), None)
+            if ix != iy:
+                return False
+        if x.nodeType == x.ELEMENT_NODE:
+            ax, ay = list((x._attrs or {}).items()), list((y._attrs or {}).items())
+            if [(k, v.value, v.namespaceURI, v.prefix, v.localName, v.ownerElement is x)
+                    for k, v in ax] != \
+                    [(k, v.value, v.namespaceURI, v.prefix, v.localName, v.ownerElement is y)
+                     for k, v in ay]:
+                return False
+            if list(x._attrsNS or {}) != list(y._attrsNS or {}):
+                return False
+    return True
+
+
+def test_a_copied_parse_is_a_new_parse_node_for_node(tmp_path):
+    """From the third parse of the same bytes on, the document is a copy of the second one,
+    stamped with the including chain of the moment: the same document a new parse gives."""
+    for name, data in (("m.xacro", MACROS), ("n.xacro", NESTED.encode()),
+                       ("p.xacro", PARTS.encode()),
+                       ("d.xacro", b'<?xml version="1.0" encoding="UTF-8" standalone="yes"?>'
+                                   b'<?top pi?><!-- top --><robot name="x"/><!-- end -->')):
+        path = str(tmp_path / name)
+        expand._parsed.clear()
+        chains = [((path, 1, 1),), (), (("/a", 2, 3), ("/b", 4, 5))]
+        docs = [expand.parsed(data, path, c, "d" * 32) for c in chains]
+        assert isinstance(expand._parsed[(path, "d" * 32)], tuple), "kept from the second parse"
+        for doc, chain in zip(docs, chains, strict=True):
+            assert _same_parse(doc, expand.parse_bytes(data, path, chain)), (name, chain)
+        assert not _same_parse(docs[2], expand.parse_bytes(data, path, chains[0])), \
+            "the chain is the copy's own"
+        docs[2].documentElement.setAttribute("name", "changed")   # a copy: the kept one is not
+        again = expand.parsed(data, path, (), "d" * 32)
+        assert _same_parse(again, expand.parse_bytes(data, path, ()))
+
+
+def test_a_document_with_a_doctype_is_parsed_every_time(tmp_path):
+    p = tmp_path / "d.urdf.xacro"
+    p.write_text('<?xml version="1.0"?><!DOCTYPE robot><robot name="r"><link name="a"/></robot>')
+    expand._parsed.clear()
+    runs = [_expand(str(p)) for _ in range(4)]
+    assert all(_same_expansion(r, runs[0]) for r in runs)
+    assert any("DOCTYPE" in str(n) for n in dataclasses.astuple(runs[3]))   # noted every time
+    assert not any(isinstance(v, tuple) for v in expand._parsed.values())
+
+
+@pytest.mark.parametrize("entry,args", corpus_entries()[1::2] or [("-", {})])
+def test_corpus_expansions_are_the_same_with_copied_parses(entry, args, corpus, corpus_resolver):
+    """Each of its files parsed twice already: the third expansion reads copies, and is the
+    expansion of fresh parses (text, source lines, macro chains, values, notes)."""
+    path = str(corpus / entry)
+    expand._parsed.clear()
+    copied = [_expand(path, args, corpus_resolver) for _ in range(3)][2]
+    assert copied.error is not None or any(isinstance(v, tuple) for v in
+                                           expand._parsed.values()), "nothing was copied"
+    fresh = _expand(path, args, corpus_resolver, parse_cache=False)
+    assert _same_expansion(copied, fresh), entry

@@ -18,7 +18,7 @@ set by the ``grab_macro`` hook); nothing of minidom or xacro is changed.
 from __future__ import annotations
 
 import xml.dom
-from typing import Any
+from typing import Any, Callable
 from xml.dom import minidom
 
 _ELEMENT, _TEXT = xml.dom.Node.ELEMENT_NODE, xml.dom.Node.TEXT_NODE
@@ -30,11 +30,16 @@ _Attr: Any = minidom.Attr
 _NodeList: Any = minidom.NodeList  # type: ignore[attr-defined]
 
 
-def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
+def clone_tree(node: Any, doc: Any, parent: Any = None,
+               restamp: Callable[[Any], Any] | None = None) -> Any:
     """A deep copy of ``node`` owned by ``doc`` under ``parent``: what minidom's
     ``_clone_node(node, True, doc)`` gives (with ``parentNode`` set as ``appendChild`` sets
     it). Elements and text are built here; any other node (comments, CDATA, processing
-    instructions) is cloned by minidom."""
+    instructions) is cloned by minidom.
+
+    ``restamp``: a copy of a parsed document standing for a new parse of it
+    (:func:`copy_document`): each user datum a handler would clone is ``restamp(value)``,
+    and the other nodes are owned by ``doc`` too, as the parser makes them."""
     kind = node.nodeType
     c: Any
     if kind == _ELEMENT:
@@ -44,6 +49,8 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
         c.tagName = c.nodeName = node.tagName
         c.prefix = node.prefix
         c.namespaceURI = node.namespaceURI     # (no _localName: createElementNS sets none)
+        if restamp is not None and hasattr(node, "_localName"):
+            c._localName = node._localName     # (the parser sets one)
         c.nextSibling = c.previousSibling = None
         src = node._attrs
         if src:
@@ -73,7 +80,7 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
         children = _NodeList()
         prev = None
         for child in node.childNodes:
-            k = clone_tree(child, doc, c)
+            k = clone_tree(child, doc, c, restamp)
             k.previousSibling = prev
             if prev is not None:
                 prev.nextSibling = k
@@ -89,6 +96,8 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
     else:                  # (minidom calls its user data handlers)
         c = node.cloneNode(True)
         c.parentNode = parent
+        if restamp is not None:
+            c.ownerDocument = doc
         return c
     data = getattr(node, "_user_data", None)
     if data:
@@ -96,6 +105,8 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
             if handler is None:
                 continue
             cloned = getattr(handler, "cloned", None)
+            if cloned is not None and restamp is not None:
+                cloned = restamp
             if cloned is not None:      # the expansion's stamps: the clone's stamp, set
                 mine = getattr(c, "_user_data", None)
                 if mine is None:
@@ -104,6 +115,17 @@ def clone_tree(node: Any, doc: Any, parent: Any = None) -> Any:
             else:
                 handler.handle(_CLONED, key, value, node, c)
     return c
+
+
+def copy_document(src: Any, restamp: Callable[[Any], Any]) -> Any:
+    """A new document equal to ``src`` (a parsed document without a DOCTYPE) in everything a
+    new parse of the same bytes gives: its XML declaration, its nodes (:func:`clone_tree`)
+    and their user data, ``restamp(value)`` where a handler would clone it."""
+    doc = minidom.getDOMImplementation().createDocument(None, None, None)
+    doc.version, doc.encoding, doc.standalone = src.version, src.encoding, src.standalone
+    for child in src.childNodes:
+        doc.appendChild(clone_tree(child, doc, None, restamp))
+    return doc
 
 
 class MacroBody(minidom.Element):
