@@ -22,9 +22,9 @@ Prints a table of targets vs measured; the exit code is 0 (a benchmark reports, 
 gate).
 
 ``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
-measures changes: stock, this tree and the other trees run interleaved (in an order that
-rotates with each repeat), and the wall ratio to stock of each is printed (min and median),
-with whether its findings are this tree's. A tree without a virtualenv of its own is run by a
+measures changes on the three sets: stock, this tree and the other trees run interleaved (in
+an order that rotates with each repeat), and the wall and CPU ratios to stock of each are
+printed (min and median), with whether its findings are this tree's. A tree without a virtualenv of its own is run by a
 wrapper script doing ``PYTHONPATH=TREE python -P -m urdf_lint``: without ``-P``, ``python -m``
 imports the ``urdf_lint`` of the working directory (this one). ``--findings DIR`` keeps each
 side's findings there as JSON.
@@ -137,9 +137,11 @@ def ab(label, models, pmap, paths, extra, bases, repeat, findings_dir):
     mine = runs["this"][-1][2]["findings"]
     for side in trees:
         r = [x[0] / y[0] for x, y in zip(runs[side], runs["stock"], strict=True)]
+        c = [x[1] / y[1] for x, y in zip(runs[side], runs["stock"], strict=True)]
         found = runs[side][-1][2]["findings"]
         print(f"  {label} {side:>14s}: wall / stock min {min(r):.2f} median "
-              f"{statistics.median(r):.2f}  ({len(found)} findings"
+              f"{statistics.median(r):.2f}, CPU / stock min {min(c):.2f} median "
+              f"{statistics.median(c):.2f}  ({len(found)} findings"
               f"{'' if found == mine else ', NOT the same as this tree'})")
         if findings_dir:
             Path(findings_dir).mkdir(parents=True, exist_ok=True)
@@ -284,8 +286,11 @@ def main():
             models = [(Path(m["entry"]), m["args"]) for m in found["models"]
                       if m.get("status") == "model"]
             pmap = PackageResolver.build([ws / "src"]).scanned
-            measure(rows, "workspace", models, pmap, [ws], [], a.repeat, tmp,
-                    defaults_only=True)
+            if a.base:
+                ab("workspace", models, pmap, [ws], [], a.base, a.repeat, a.findings)
+            else:
+                measure(rows, "workspace", models, pmap, [ws], [], a.repeat, tmp,
+                        defaults_only=True)
         if a.huge:
             from heavy_repo import package_xml, sphere, write_binary_stl
             pkg = tmp / "huge" / "huge_description"
