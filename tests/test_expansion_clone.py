@@ -276,3 +276,26 @@ def test_corpus_expansions_are_the_same_with_copied_parses(entry, args, corpus, 
                                            expand._parsed.values()), "nothing was copied"
     fresh = _expand(path, args, corpus_resolver, parse_cache=False)
     assert _same_expansion(copied, fresh), entry
+
+
+def test_the_parse_cache_keeps_what_its_bound_says_of_a_file_of_tiny_elements(tmp_path,
+                                                                            monkeypatch):
+    """PARSED_BYTES bounds what the parse cache keeps at ~25 bytes of DOM per byte of source;
+    a file of many tiny elements (``<a/>``: ~120 bytes of DOM per byte) must not keep five
+    times that in a worker between its jobs (it counts against every later job's memory-mb)."""
+    import gc
+    import tracemalloc
+    monkeypatch.setattr(expand, "PARSED_BYTES", 200_000)
+    expand._parsed.clear()
+    data = b"<robot name='r'>" + b"<a/>" * 45_000 + b"</robot>"
+    f = str(tmp_path / "tiny.xacro")
+    tracemalloc.start()
+    try:
+        for _ in range(2):
+            expand.parsed(data, f, (), "0" * 32)
+        gc.collect()      # (the parses returned: cycles)
+        kept = tracemalloc.get_traced_memory()[0]
+    finally:
+        tracemalloc.stop()
+        expand._parsed.clear()
+    assert kept <= 25 * 200_000 * 1.5, kept

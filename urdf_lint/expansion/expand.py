@@ -271,7 +271,10 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
         _parsed[key] = _SEEN
     elif doc.doctype is None and doc.documentElement is not None \
             and clone.usable(doc.documentElement):
-        _parsed[key] = (len(data), clone.copy_document(doc, lambda d: d))
+        # (weighed by its nodes too: a file of tiny elements, ``<a/>``, takes ~120 bytes of
+        # DOM per byte of source, not ~25)
+        _parsed[key] = (max(len(data), NODE_WEIGHT * _count_nodes(doc)),
+                        clone.copy_document(doc, lambda d: d))
         total = sum(v[0] for v in _parsed.values() if v is not _SEEN)
         while total > PARSED_BYTES:
             old = _parsed.popitem(last=False)[1]
@@ -282,6 +285,17 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
 
 
 MAX_PARSED_KEYS = 4096
+NODE_WEIGHT = 20   # source bytes a DOM node counts as (~500 bytes of DOM, at ~25 per byte)
+
+
+def _count_nodes(doc: Any) -> int:
+    """The nodes of a document (elements, their attributes, texts, comments)."""
+    n, todo = 0, [doc]
+    while todo:
+        node = todo.pop()
+        n += 1 + (len(node.attributes) if node.attributes else 0)
+        todo.extend(node.childNodes)
+    return n
 
 
 # ---------------------------------------------------------------------------------------------
