@@ -248,10 +248,11 @@ def parse_bytes(data: bytes, file: str, chain: tuple[Any, ...] = ()) -> Any:
 # third on it is copied from the second parse (clone.copy_document: 0.5 ms for UR's macro
 # file against 1.2 ms to parse it), its stamps given the including chain of the moment.
 # Kept by path and content digest, the least recently used dropped first beyond PARSED_BYTES
-# of source (a DOM takes ~25 times its source's bytes: UR's whole description is 0.1 MB); a
-# document with a DOCTYPE (its parse notes UL007) is parsed every time.
+# (a kept document weighs its source's bytes, or NODE_WEIGHT per node when more: a DOM takes
+# ~25 times its source, and ~120 times a file of tiny elements; UR's whole description is
+# 0.1 MB); a document with a DOCTYPE (its parse notes UL007) is parsed every time.
 PARSE_CACHE = True          # (False: every file parsed, for tests)
-PARSED_BYTES = 2 << 20
+PARSED_BYTES = 1 << 20      # (~25 MB of DOM at most: a fifth of the least memory-mb)
 _SEEN = None                # a key parsed once: the next parse is kept
 _parsed: "OrderedDict[tuple[str, str], Any]" = OrderedDict()   # (path, digest) -> document
 
@@ -275,6 +276,7 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
         # DOM per byte of source, not ~25)
         _parsed[key] = (max(len(data), NODE_WEIGHT * _count_nodes(doc)),
                         clone.copy_document(doc, lambda d: d))
+        _parsed.move_to_end(key)      # (the newest: evicted last)
         total = sum(v[0] for v in _parsed.values() if v is not _SEEN)
         while total > PARSED_BYTES:
             old = _parsed.popitem(last=False)[1]
