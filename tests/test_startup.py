@@ -163,6 +163,41 @@ def _cycle_then_look(job, settings):
     return carried(job, [0, bool(_CYCLE) and _CYCLE[0]() is not None])
 
 
+def _old_cycle_then_look(job, settings):
+    """A job whose cycle outlives three million allocations (moved to the oldest generation by
+    the collections they cause) and then becomes garbage (``a_``); then one that looks."""
+    import weakref
+
+    class Node:
+        other = None
+    if job.entry.startswith("a_"):
+        a, b = Node(), Node()
+        a.other, b.other = b, a
+        _CYCLE[:] = [weakref.ref(a)]
+        for _ in range(3_000_000):      # garbage cycles: the count only grows, collections run
+            x: list = []
+            x.append(x)
+        del a, b, x
+        return carried(job, [_CYCLE[0]() is not None])
+    return carried(job, [_CYCLE[0]() is not None])
+
+
+def test_a_big_job_s_garbage_is_gone_before_the_next_job(monkeypatch):
+    """A job that allocates past ``WORKER_GC_THRESHOLD`` is collected during it, and what those
+    collections moved to the oldest generation and then died is freed after it: the next job
+    starts without it (its memory limit counts what the worker holds)."""
+    from urdf_lint.core.jobs import LintJob, LintSettings
+    from urdf_lint.run import worker
+    monkeypatch.setattr(worker, "process_job", _old_cycle_then_look)
+    runs = worker.RunPool(LintSettings(resolver=None, timeout=60), 1)
+    try:
+        got = [carried_data(r) for _, r in runs.run([LintJob("a_make.urdf", kind="urdf"),
+                                                     LintJob("b_look.urdf", kind="urdf")])]
+    finally:
+        runs.close()
+    assert got == [[True], [False]]
+
+
 def test_a_worker_collects_a_job_s_garbage_after_the_job_not_during_it(monkeypatch):
     """The collector walks every object still alive; within a job those are mostly the job's
     own trees, walked again and again for nothing. A worker collects after each job (its

@@ -56,7 +56,8 @@ MAX_SHARED = 50_000   # items a pool passes between its workers (a language serv
 # the objects still alive, the job's trees among them. A 200-link robot spent a third of its
 # time in the collector at 700 (0.17 vs 0.10 s); on the corpus laid out as a workspace, young
 # collections every 10,000 allocations cost each worker 0.11-0.13 s, one collection per job
-# 0.07 s. Every WORKER_FULL_GC_JOBS jobs a full collection frees what lived past its job.
+# 0.07 s. A full collection frees what lived past its job: every WORKER_FULL_GC_JOBS jobs,
+# and after a job that outgrew the threshold or ran out of memory.
 WORKER_GC_THRESHOLD = 200_000
 WORKER_FULL_GC_JOBS = 100
 
@@ -101,25 +102,41 @@ def _worker_main(conn: Any, handler: Handler, settings: LintSettings | None) -> 
     _install_audit_hook(settings.render_dir)   # (the mesh facts store: read only)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     for done, job in enumerate(forked.messages(conn), 1):
-        try:
-            result = handler.run(job, settings)
-        except MemoryError:
-            result = handler.limit_result(job, "expansion ran out of memory (memory-mb limit "
-                                          f"{memory_mb} MiB)")
-        except BaseException as e:  # noqa: BLE001
-            import traceback
-            result = ModelReport.failed(
-                job, internal=[f"{type(e).__name__}: {e}\n{traceback.format_exc()}"])
-        try:
-            conn.send(result)
-        except MemoryError:
-            conn.send(handler.limit_result(job, "result too large for the memory limit"))
-        except wire.Unencodable as e:   # (a bug: the parent reads only plain data)
-            unsent = ModelReport.failed(job, internal=[f"the result could not be sent: {e}"])
-            unsent.cacheable = False
-            conn.send(unsent)
-        # (sent: the parent goes on meanwhile)
-        gc.collect(2 if done % WORKER_FULL_GC_JOBS == 0 else 1)
+        young = gc.get_stats()[0]["collections"]
+        ran_out = _run_and_send(conn, handler, job, settings, memory_mb)
+        # (sent: the parent goes on meanwhile) after a job that ran out of memory, or whose
+        # own collections (past WORKER_GC_THRESHOLD allocations) moved some of its garbage to
+        # the oldest generation, a full collection: what it left must not count against the
+        # next job's memory limit
+        full = ran_out or gc.get_stats()[0]["collections"] != young \
+            or done % WORKER_FULL_GC_JOBS == 0
+        gc.collect(2 if full else 1)
+
+
+def _run_and_send(conn: Any, handler: Handler, job: Any, settings: LintSettings,
+                  memory_mb: int) -> bool:
+    """Run one job and send its result; whether it ran out of memory."""
+    ran_out = False
+    try:
+        result = handler.run(job, settings)
+    except MemoryError:
+        ran_out = True
+        result = handler.limit_result(job, "expansion ran out of memory (memory-mb limit "
+                                      f"{memory_mb} MiB)")
+    except BaseException as e:  # noqa: BLE001
+        import traceback
+        result = ModelReport.failed(
+            job, internal=[f"{type(e).__name__}: {e}\n{traceback.format_exc()}"])
+    try:
+        conn.send(result)
+    except MemoryError:
+        ran_out = True
+        conn.send(handler.limit_result(job, "result too large for the memory limit"))
+    except wire.Unencodable as e:   # (a bug: the parent reads only plain data)
+        unsent = ModelReport.failed(job, internal=[f"the result could not be sent: {e}"])
+        unsent.cacheable = False
+        conn.send(unsent)
+    return ran_out
 
 
 _prestarted: "Worker | None" = None
