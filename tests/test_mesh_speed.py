@@ -816,6 +816,13 @@ def test_busy_cores_count_a_past_burst_only_while_it_runs(monkeypatch):
     assert pool.busy_cores() == 1.6
     monkeypatch.setattr(pool, "_procs_running", lambda: None)       # no /proc: the average
     assert pool.busy_cores() == 1.6
+    # another process runnable for an instant (exiting, a kernel thread): looked at again,
+    # the fewest count; one that keeps running counts
+    for seen, busy in (([3, 1, 3], 0), ([2, 2, 1], 0), ([3, 2, 2], 1), ([2, 2, 2], 1),
+                       ([2, None, 2], 1)):
+        samples = iter(seen)
+        monkeypatch.setattr(pool, "_procs_running", lambda s=samples: next(s))
+        assert pool.busy_cores() == busy, seen
     monkeypatch.undo()
     assert pool._procs_running() >= 1                               # this test is running
 
