@@ -147,55 +147,42 @@ _CYCLE: list = []
 
 
 def _cycle_then_look(job, settings):
-    """A job that leaves a reference cycle behind and allocates on (``a_``), then one that
-    looks whether it is still there (``b_``)."""
+    """A job that leaves a reference cycle behind (``a_young``: then allocates 30,000 objects
+    it keeps, past Python's young-collection thresholds; ``a_old``: outlives three million
+    allocations of garbage cycles, whose collections move it to the oldest generation, then
+    drops it), or one that looks whether the cycle is still there (``b_look``)."""
     import weakref
 
     class Node:
         other = None
-    if job.entry.startswith("a_"):
-        a, b = Node(), Node()
-        a.other, b.other = b, a        # garbage only the cycle collector frees
-        _CYCLE.append(weakref.ref(a))
+    if job.entry.startswith("b_look"):
+        return carried(job, [0, _CYCLE[0]() is not None])
+    a, b = Node(), Node()
+    a.other, b.other = b, a        # garbage only the cycle collector frees
+    _CYCLE[:] = [weakref.ref(a)]
+    kept: list = []
+    if job.entry.startswith("a_young"):
         del a, b
-        kept = [[] for _ in range(30_000)]   # past Python's young-collection thresholds
-        return carried(job, [len(kept), _CYCLE[0]() is not None])
-    return carried(job, [0, bool(_CYCLE) and _CYCLE[0]() is not None])
-
-
-def _old_cycle_then_look(job, settings):
-    """A job whose cycle outlives three million allocations (moved to the oldest generation by
-    the collections they cause) and then becomes garbage (``a_``); then one that looks."""
-    import weakref
-
-    class Node:
-        other = None
-    if job.entry.startswith("a_"):
-        a, b = Node(), Node()
-        a.other, b.other = b, a
-        _CYCLE[:] = [weakref.ref(a)]
-        for _ in range(3_000_000):      # garbage cycles: the count only grows, collections run
+        kept = [[] for _ in range(30_000)]
+    else:
+        for _ in range(3_000_000):      # the count only grows: collections run
             x: list = []
             x.append(x)
         del a, b, x
-        return carried(job, [_CYCLE[0]() is not None])
-    return carried(job, [_CYCLE[0]() is not None])
+    return carried(job, [len(kept), _CYCLE[0]() is not None])
 
 
-def test_a_big_job_s_garbage_is_gone_before_the_next_job(monkeypatch):
-    """A job that allocates past ``WORKER_GC_THRESHOLD`` is collected during it, and what those
-    collections moved to the oldest generation and then died is freed after it: the next job
-    starts without it (its memory limit counts what the worker holds)."""
+def _first_then_look(monkeypatch, first: str) -> list:
+    """What a job ``first`` and then a ``look`` job report, in order, on one real worker."""
     from urdf_lint.core.jobs import LintJob, LintSettings
     from urdf_lint.run import worker
-    monkeypatch.setattr(worker, "process_job", _old_cycle_then_look)
+    monkeypatch.setattr(worker, "process_job", _cycle_then_look)
     runs = worker.RunPool(LintSettings(resolver=None, timeout=60), 1)
-    try:
-        got = [carried_data(r) for _, r in runs.run([LintJob("a_make.urdf", kind="urdf"),
-                                                     LintJob("b_look.urdf", kind="urdf")])]
+    try:   # (one block of jobs outside any package: run in the order of their names)
+        return [carried_data(r) for _, r in runs.run([LintJob(first, kind="urdf"),
+                                                      LintJob("b_look.urdf", kind="urdf")])]
     finally:
         runs.close()
-    assert got == [[True], [False]]
 
 
 def test_a_worker_collects_a_job_s_garbage_after_the_job_not_during_it(monkeypatch):
@@ -203,16 +190,14 @@ def test_a_worker_collects_a_job_s_garbage_after_the_job_not_during_it(monkeypat
     own trees, walked again and again for nothing. A worker collects after each job (its
     cycles do not pile up from job to job) and, within a job, only past
     ``WORKER_GC_THRESHOLD`` allocations."""
-    from urdf_lint.core.jobs import LintJob, LintSettings
-    from urdf_lint.run import worker
-    monkeypatch.setattr(worker, "process_job", _cycle_then_look)
-    runs = worker.RunPool(LintSettings(resolver=None, timeout=30), 1)
-    try:
-        got = [carried_data(r) for _, r in runs.run([LintJob("a_make.urdf", kind="urdf"),
-                                                     LintJob("b_look.urdf", kind="urdf")])]
-    finally:
-        runs.close()
-    assert got == [[30_000, True], [0, False]]
+    assert _first_then_look(monkeypatch, "a_young.urdf") == [[30_000, True], [0, False]]
+
+
+def test_a_big_job_s_garbage_is_gone_before_the_next_job(monkeypatch):
+    """A job that allocates past ``WORKER_GC_THRESHOLD`` is collected during it, and what those
+    collections moved to the oldest generation and then died is freed after it: the next job
+    starts without it (its memory limit counts what the worker holds)."""
+    assert _first_then_look(monkeypatch, "a_old.urdf") == [[0, True], [0, False]]
 
 
 def _return():
