@@ -253,8 +253,8 @@ def parse_bytes(data: bytes, file: str, chain: tuple[Any, ...] = ()) -> Any:
 # 0.1 MB); a document with a DOCTYPE (its parse notes UL007) is parsed every time.
 PARSE_CACHE = True          # (False: every file parsed, for tests)
 PARSED_BYTES = 1 << 20      # (~25 MB of DOM at most: a fifth of the least memory-mb)
-_SEEN = None                # a key parsed once: the next parse is kept
-_parsed: "OrderedDict[tuple[str, str], Any]" = OrderedDict()   # (path, digest) -> document
+# (path, digest) -> None once parsed, then (weight, the document kept from the second parse)
+_parsed: "OrderedDict[tuple[str, str], tuple[int, Any] | None]" = OrderedDict()
 
 
 def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
@@ -263,13 +263,13 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
     if not PARSE_CACHE:
         return parse_bytes(data, file, chain)
     key = (file, digest)
-    kept = _parsed.get(key, _SEEN)
-    if kept is not _SEEN:
+    kept = _parsed.get(key)
+    if kept is not None:
         _parsed.move_to_end(key)
         return clone.copy_document(kept[1], lambda d: (d[0], d[1], d[2], chain, d[4]))
     doc = parse_bytes(data, file, chain)
     if key not in _parsed:
-        _parsed[key] = _SEEN
+        _parsed[key] = None
     elif doc.doctype is None and doc.documentElement is not None \
             and clone.usable(doc.documentElement):
         # (weighed by its nodes too: a file of tiny elements, ``<a/>``, takes ~120 bytes of
@@ -277,10 +277,10 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
         _parsed[key] = (max(len(data), NODE_WEIGHT * _count_nodes(doc)),
                         clone.copy_document(doc, lambda d: d))
         _parsed.move_to_end(key)      # (the newest: evicted last)
-        total = sum(v[0] for v in _parsed.values() if v is not _SEEN)
+        total = sum(v[0] for v in _parsed.values() if v is not None)
         while total > PARSED_BYTES:
             old = _parsed.popitem(last=False)[1]
-            total -= old[0] if old is not _SEEN else 0
+            total -= old[0] if old is not None else 0
     if len(_parsed) > MAX_PARSED_KEYS:
         _parsed.popitem(last=False)
     return doc
