@@ -56,19 +56,6 @@ ATTRIBUTES = {
 
 
 
-def is_foreign(el: Any) -> bool:
-    """Namespaced (``drake:...``) or under a free-form extension element."""
-    tag = el.tag if isinstance(el.tag, str) else ""
-    if tag.startswith("{") or ":" in tag:
-        return True
-    p = el.getparent()
-    while p is not None:
-        if p.tag in FREE_FORM:
-            return True
-        p = p.getparent()
-    return False
-
-
 # xacro directives: written without their prefix, xacro copies them into the URDF as they are
 XACRO_WORDS = {"macro", "property", "arg", "include", "insert_block", "if", "unless", "call",
                "element", "attribute", "eval-comments"}
@@ -107,11 +94,37 @@ def macro_names(model: Model) -> set[str]:
     return names
 
 
+def _checked(model: Model) -> tuple[list[Any], dict[str, list[Any]]]:
+    """(the elements of the URDF schema: not namespaced (``drake:...``), not inside a free-form
+    extension element (``FREE_FORM``); in document order, and the same by tag),
+    found in one walk of the model's tree, once per model: every rule that walks the URDF
+    part of the document shares it (no rule changes the tree)."""
+    memo = getattr(model, "_checked_memo", None)
+    if memo is not None and memo[0] is model.root:
+        return memo[1], memo[2]
+    elements: list[Any] = []
+    by_tag: dict[str, list[Any]] = {}
+    within: dict[Any, bool] = {}     # element -> its children are inside an extension block
+    for el in model.root.iter():
+        tag = el.tag
+        if not isinstance(tag, str):
+            continue
+        parent = el.getparent()
+        inside = parent is not None and within[parent]
+        within[el] = inside or tag in FREE_FORM
+        if not (inside or tag.startswith("{") or ":" in tag):
+            elements.append(el)
+            by_tag.setdefault(tag, []).append(el)
+    try:
+        model._checked_memo = (model.root, elements, by_tag)  # type: ignore[attr-defined]
+    except AttributeError:
+        pass
+    return elements, by_tag
+
+
 def checked_elements(model: Model) -> Iterator[Any]:
     """Elements of the URDF schema (not namespaced, not inside extension blocks)."""
-    for el in model.root.iter():
-        if isinstance(el.tag, str) and not is_foreign(el):
-            yield el
+    return iter(_checked(model)[0])
 
 
 def urdf_iter(model: Model, tag: str) -> Iterator[Any]:
@@ -119,9 +132,7 @@ def urdf_iter(model: Model, tag: str) -> Iterator[Any]:
     gives, minus anything inside ``<gazebo>`` (SDF), ``<ros2_control>``, ``<transmission>`` and
     the other extension blocks, and minus namespaced elements. Every rule about URDF elements
     walks the document through this (or ``checked_elements``)."""
-    for el in model.root.iter(tag):
-        if not is_foreign(el):
-            yield el
+    return iter(_checked(model)[1].get(tag, ()))
 
 
 # a literal {name} anywhere in the value, also after a word character (arm_{side}_link); not

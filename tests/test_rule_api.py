@@ -189,3 +189,60 @@ def test_every_name_of_the_rule_api_is_real_and_mypy_sees_the_requests():
     assert gen.render(text) == text, "api.py is stale: run python scripts/gen_docs.py"
     stale = text.replace("from urdf_lint.fix.kinds.set import set_attrs as set_attrs\n", "")
     assert stale != text and gen.render(stale) == text
+
+
+def _foreign(el) -> bool:
+    """The per-element definition the shared walk must agree with: namespaced, or below a
+    free-form extension element."""
+    from urdf_lint.rules._schema import FREE_FORM
+    if el.tag.startswith("{") or ":" in el.tag:
+        return True
+    p = el.getparent()
+    while p is not None:
+        if p.tag in FREE_FORM:
+            return True
+        p = p.getparent()
+    return False
+
+
+_BLOCKS = """<robot name="r" xmlns:drake="http://drake.mit.edu">
+  <!-- a comment --><link name="a"><visual><geometry><mesh filename="a.stl"/></geometry>
+    </visual><sensor name="s"><camera><image width="1"/></camera><origin xyz="0 0 0"/></sensor>
+  </link>
+  <gazebo reference="a"><link name="sdf"><visual><geometry><mesh filename="b.dae"/></geometry>
+    </visual></link><plugin name="p"><origin xyz="1"/></plugin></gazebo>
+  <drake:joint name="d"><origin xyz="2 2 2"/><drake:child/></drake:joint>
+  <transmission name="t"><joint name="j"><hardwareInterface>x</hardwareInterface></joint>
+  </transmission>
+  <ros2_control name="c"><joint name="j"><param name="p">1</param></joint></ros2_control>
+  <joint name="j" type="fixed"><parent link="a"/><child link="b"/><origin xyz="0 0 0"/></joint>
+  <link name="b"><collision><geometry><mesh filename="c.stl"/></geometry></collision></link>
+</robot>"""
+
+
+@pytest.mark.unit
+def test_the_walk_rules_share_keeps_the_elements_no_ancestor_makes_foreign():
+    """``checked_elements`` and ``urdf_iter`` come from one walk per model: they give what a
+    look at every element's own tag and ancestors gives, in document order, on a document of
+    every kind of extension block and on the seed and broken models."""
+    from urdf_lint.rules._schema import checked_elements, urdf_iter
+    roots = [etree.fromstring(_BLOCKS)]
+    for f in sorted(Path(__file__).parent.parent.glob("descriptions/**/*.urdf")):
+        try:   # (a broken model that is not XML has no tree to walk)
+            roots.append(etree.parse(str(f), etree.XMLParser(resolve_entities=False)).getroot())
+        except etree.XMLSyntaxError:
+            continue
+    assert len(roots) > 5
+    for root in roots:
+        model = Model(entry="/r.urdf", args={}, root=root, origins={}, deps=[])
+        want = [el for el in root.iter() if isinstance(el.tag, str) and not _foreign(el)]
+        assert list(checked_elements(model)) == want
+        for tag in {el.tag for el in root.iter() if isinstance(el.tag, str)} | {"nothing"}:
+            assert list(urdf_iter(model, tag)) == [el for el in root.iter(tag)
+                                                   if not _foreign(el)], tag
+        assert list(checked_elements(model)) == want      # (the second walk is the memo)
+    first = roots[0]
+    got = {el.get("name") or el.get("filename") or el.get("xyz") for el in
+           checked_elements(Model(entry="/r.urdf", args={}, root=first, origins={}, deps=[]))}
+    assert {"a", "a.stl", "s", "j", "b", "c.stl", "2 2 2"} <= got
+    assert not got & {"sdf", "b.dae", "1", "p"}      # inside <gazebo>, <plugin>, <ros2_control>
