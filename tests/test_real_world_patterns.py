@@ -401,6 +401,39 @@ def test_args_left_at_defaults_that_select_variants_get_one_note(tmp_path):
     assert "select variants" not in p.stderr, p.stderr
 
 
+def test_the_variant_note_reads_each_shared_source_once_and_skips_explored_models(
+        tmp_path, monkeypatch):
+    """The note's scan (``variant_args``): three robots include one macro file, which is read
+    once, not once per robot; an explored robot (``skip``) is neither scanned nor noted."""
+    from urdf_lint.config.schema import load_config
+    from urdf_lint.core import fsbound
+    from urdf_lint.core.jobs import ModelReport, Status
+    from urdf_lint.discovery.discover import build_resolver
+    from urdf_lint.run.pipeline import variant_args
+    macro = (f'<robot {X}><xacro:arg name="use_gripper" default="false"/>'
+             '<xacro:macro name="arm"><link name="a"/></xacro:macro></robot>\n')
+    files = {"urdf/arm.xacro": macro}
+    for n in ("a", "b", "c"):
+        files[f"urdf/{n}.urdf.xacro"] = (
+            f'<robot name="{n}" {X}><xacro:arg name="sim_{n}" default="true"/>'
+            f'<xacro:include filename="arm.xacro"/><xacro:arm/></robot>\n')
+    pkg = make_package(tmp_path, "shared", files)
+    cfg = load_config(None)
+    resolver = build_resolver([str(pkg)], cfg)
+    models = [ModelReport(str(pkg / f"urdf/{n}.urdf.xacro"), {}, Status.MODEL,
+                          deps=[str(pkg / f"urdf/{n}.urdf.xacro"), str(pkg / "urdf/arm.xacro")])
+              for n in ("a", "b", "c")]
+    reads: list[str] = []
+    real = fsbound.read_regular
+    monkeypatch.setattr(fsbound, "read_regular",
+                        lambda path, *a, **k: reads.append(os.path.basename(path)) or
+                        real(path, *a, **k))
+    got = variant_args(models, cfg, resolver, skip={models[1].entry})
+    assert got == {models[0].entry: ["sim_a", "use_gripper"],
+                   models[2].entry: ["sim_c", "use_gripper"]}
+    assert sorted(reads) == ["a.urdf.xacro", "arm.xacro", "c.urdf.xacro"]
+
+
 def test_diff_picture_marks_only_visible_changes_and_has_a_legend(tmp_path):
     """Item 23: a link drawn alike before and after (its mesh missing on both sides) is not
     marked changed; the difference image has a legend."""

@@ -362,9 +362,7 @@ def check(prep: Prepared, out: Say,
         done.baseline = req.write_baseline
     else:
         explored = {c["entry"] for c in result.coverage.values()}
-        done.variants = {e: v for e, v in
-                         variant_args(result.models, prep.cfg, prep.resolver).items()
-                         if e not in explored}
+        done.variants = variant_args(result.models, prep.cfg, prep.resolver, skip=explored)
     if req.render:
         done.snapshots = finish_snapshots(result, req.render)
     return done

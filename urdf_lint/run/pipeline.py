@@ -441,11 +441,14 @@ _BOOL_ARG = None
 
 
 def variant_args(models: Sequence[ModelReport], cfg: "Config",
-                 resolver: "PackageResolver") -> dict[str, Any]:
+                 resolver: "PackageResolver", skip: AbstractSet[str] = frozenset()
+                 ) -> dict[str, Any]:
     """{entry: [arg, ...]} for the models linted with every arg at its default although args
     select variants there (an arg with a true/false default, or one read in a condition,
     ``if=``/``unless=``/``<xacro:if value=...>``, or an include's ``filename``: a hand, a
-    simulation mode, an arm type), and no ``[[models]]`` entry lists the file."""
+    simulation mode, an arm type), and no ``[[models]]`` entry lists the file; not for the
+    entries in ``skip`` (explored). Each source is read and scanned once, however many
+    models include it."""
     import re
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
     global _VARIANT_USE, _BOOL_ARG
@@ -456,25 +459,39 @@ def variant_args(models: Sequence[ModelReport], cfg: "Config",
                                rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
     configured = {m.path for m in cfg.models}
     out: dict[str, Any] = {}
+    scanned: dict[str, list[str]] = {}
     for r in models:
-        if r.args or r.entry in configured or not r.entry.endswith(".xacro"):
+        if r.args or r.entry in configured or r.entry in skip or not r.entry.endswith(".xacro"):
             continue
         names: dict[str, Any] = {}
         for f in r.deps:
-            if f.endswith(".xacro") and resolver.readable(f, MAX_SOURCE_BYTES):
-                from urdf_lint.core import fsbound
-                data = fsbound.read_regular(f, MAX_SOURCE_BYTES)
-                if data is None:
-                    continue
-                for m in _BOOL_ARG.finditer(data):
-                    names[m.group(1).decode("utf-8", "replace")] = None
-                for m in _VARIANT_USE.finditer(data):
-                    if not data.startswith(b"value", m.start()) or re.search(
-                            rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
-                        names[m.group(2).decode("utf-8", "replace")] = None
+            if f.endswith(".xacro"):
+                if f not in scanned:
+                    scanned[f] = _variant_names(f, resolver, MAX_SOURCE_BYTES)
+                names.update(dict.fromkeys(scanned[f]))
         if names:
             out[r.entry] = list(names)
     return out
+
+
+def _variant_names(f: str, resolver: "PackageResolver", limit: int) -> list[str]:
+    """The args one xacro source may select variants with (:func:`variant_args`)."""
+    import re
+    if not resolver.readable(f, limit):
+        return []
+    from urdf_lint.core import fsbound
+    data = fsbound.read_regular(f, limit)
+    if data is None:
+        return []
+    assert _BOOL_ARG is not None and _VARIANT_USE is not None
+    names: dict[str, Any] = {}
+    for m in _BOOL_ARG.finditer(data):
+        names[m.group(1).decode("utf-8", "replace")] = None
+    for m in _VARIANT_USE.finditer(data):
+        if not data.startswith(b"value", m.start()) or re.search(
+                rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
+            names[m.group(2).decode("utf-8", "replace")] = None
+    return list(names)
 
 
 def exit_code(result: CheckResult, fail_on: str) -> int:
