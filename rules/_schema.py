@@ -99,9 +99,9 @@ def _checked(model: Model) -> tuple[list[Any], dict[str, list[Any]]]:
     extension element (``FREE_FORM``); in document order, and the same by tag),
     found in one walk of the model's tree, once per model: every rule that walks the URDF
     part of the document shares it (no rule changes the tree)."""
-    memo = getattr(model, "_checked_memo", None)
-    if memo is not None and memo[0] is model.root:
-        return memo[1], memo[2]
+    memo: tuple[list[Any], dict[str, list[Any]]] | None = getattr(model, "_urdf_elements", None)
+    if memo is not None:
+        return memo
     elements: list[Any] = []
     by_tag: dict[str, list[Any]] = {}
     within: dict[Any, bool] = {}     # element -> its children are inside an extension block
@@ -116,7 +116,7 @@ def _checked(model: Model) -> tuple[list[Any], dict[str, list[Any]]]:
             elements.append(el)
             by_tag.setdefault(tag, []).append(el)
     try:
-        model._checked_memo = (model.root, elements, by_tag)  # type: ignore[attr-defined]
+        model._urdf_elements = (elements, by_tag)   # type: ignore[attr-defined]  # a memo on the model
     except AttributeError:
         pass
     return elements, by_tag

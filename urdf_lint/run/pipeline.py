@@ -7,6 +7,7 @@ workers, :mod:`urdf_lint.runner.pool`), what is kept and at what severity :mod:`
 from __future__ import annotations
 
 import dataclasses
+import functools
 import os
 from dataclasses import dataclass, field
 from collections.abc import Set as AbstractSet
@@ -24,6 +25,7 @@ from urdf_lint.run.finish import FRAGMENT_HINT_CODES, Scope, finish, scope, spli
 ul004_unknown_package = RuleName("ul004_unknown_package")
 
 if TYPE_CHECKING:  # pragma: no cover
+    import re
     from urdf_lint.discovery.discover import Discovery, IncludeGraph
     from urdf_lint.meshes.store import FactsStore
     from urdf_lint.run.cache import Cache
@@ -436,10 +438,6 @@ def _hint_fragments(models: Sequence[ModelReport], graph: "IncludeGraph") -> Non
                       for p in r.problems]
 
 
-_VARIANT_USE = None
-_BOOL_ARG = None
-
-
 def variant_args(models: Sequence[ModelReport], cfg: "Config",
                  resolver: "PackageResolver", skip: AbstractSet[str] = frozenset()
                  ) -> dict[str, Any]:
@@ -449,14 +447,6 @@ def variant_args(models: Sequence[ModelReport], cfg: "Config",
     simulation mode, an arm type), and no ``[[models]]`` entry lists the file; not for the
     entries in ``skip`` (explored). Each source is read and scanned once, however many
     models include it."""
-    import re
-    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
-    global _VARIANT_USE, _BOOL_ARG
-    if _VARIANT_USE is None:
-        _VARIANT_USE = re.compile(rb"""\b(?:if|unless|filename|value)\s*=\s*(["'])[^"']*?"""
-                                  rb"""\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)""")
-        _BOOL_ARG = re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
-                               rb"""default\s*=\s*["'](?:true|false|True|False)["']""")
     configured = {m.path for m in cfg.models}
     out: dict[str, Any] = {}
     scanned: dict[str, list[str]] = {}
@@ -467,31 +457,45 @@ def variant_args(models: Sequence[ModelReport], cfg: "Config",
         for f in r.deps:
             if f.endswith(".xacro"):
                 if f not in scanned:
-                    scanned[f] = _variant_names(f, resolver, MAX_SOURCE_BYTES)
+                    scanned[f] = _variant_names(f, resolver)
                 names.update(dict.fromkeys(scanned[f]))
         if names:
             out[r.entry] = list(names)
     return out
 
 
-def _variant_names(f: str, resolver: "PackageResolver", limit: int) -> list[str]:
-    """The args one xacro source may select variants with (:func:`variant_args`)."""
-    import re
-    if not resolver.readable(f, limit):
-        return []
+def _variant_names(f: str, resolver: "PackageResolver") -> list[str]:
+    """The args one xacro source may select variants with (:func:`variant_args`), read
+    through the boundary."""
     from urdf_lint.core import fsbound
-    data = fsbound.read_regular(f, limit)
+    from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
+    if not resolver.readable(f, MAX_SOURCE_BYTES):
+        return []
+    data = fsbound.read_regular(f, MAX_SOURCE_BYTES)
     if data is None:
         return []
-    assert _BOOL_ARG is not None and _VARIANT_USE is not None
+    bool_arg, variant_use, condition_before = _variant_patterns()
     names: dict[str, Any] = {}
-    for m in _BOOL_ARG.finditer(data):
+    for m in bool_arg.finditer(data):
         names[m.group(1).decode("utf-8", "replace")] = None
-    for m in _VARIANT_USE.finditer(data):
-        if not data.startswith(b"value", m.start()) or re.search(
-                rb"xacro:(?:if|unless)\s+$", data[max(0, m.start() - 20):m.start()]):
+    for m in variant_use.finditer(data):
+        if not data.startswith(b"value", m.start()) or \
+                condition_before.search(data[max(0, m.start() - 20):m.start()]):
             names[m.group(2).decode("utf-8", "replace")] = None
     return list(names)
+
+
+@functools.lru_cache(maxsize=1)
+def _variant_patterns() -> tuple["re.Pattern[bytes]", "re.Pattern[bytes]", "re.Pattern[bytes]"]:
+    """(an arg with a true/false default; an arg read in a condition, a value or an include's
+    filename; a ``value=`` that belongs to ``<xacro:if>``/``<xacro:unless>``), compiled when
+    a run first asks."""
+    import re
+    return (re.compile(rb"""<xacro:arg\s+name\s*=\s*["']([A-Za-z_][\w-]*)["']\s+"""
+                       rb"""default\s*=\s*["'](?:true|false|True|False)["']"""),
+            re.compile(rb"""\b(?:if|unless|filename|value)\s*=\s*(["'])[^"']*?"""
+                       rb"""\$\(\s*arg\s+([A-Za-z_][\w-]*)\s*\)"""),
+            re.compile(rb"xacro:(?:if|unless)\s+$"))
 
 
 def exit_code(result: CheckResult, fail_on: str) -> int:
