@@ -466,3 +466,84 @@ def test_a_result_cached_by_other_code_is_not_reused(tmp_path, monkeypatch):
     cache.build_id.cache_clear()
     assert cache.build_id() not in (before, edited)
     cache.build_id.cache_clear()
+
+
+def test_a_relinted_model_is_planned_at_the_seconds_it_took_when_last_linted(repo, monkeypatch):
+    """Each cached result keeps what linting the model took in its worker. When an input
+    changes, the result is not reused, but its seconds plan the run's workers in place of the
+    first-time estimate (``runner.pool.package_blocks``: a UR macro's nine models take ~0.6 s
+    where the estimate said 0.1 s, and got one worker)."""
+    from conftest import run_main
+    from urdf_lint.core.jobs import job_key
+    from urdf_lint.run.cache import Cache
+    from urdf_lint.runner import pool
+    stored: dict = {}
+    real_put = Cache.put
+
+    def put(self, job, settings, result):
+        stored[job_key(job)] = round(result.seconds, 4)
+        return real_put(self, job, settings, result)
+    monkeypatch.setattr(Cache, "put", put)
+    planned: list = []
+    real = pool.start_pool
+
+    def spy(jobs, settings, handler, jobs_n, costs=None):
+        planned.append({job_key(j): (costs or {}).get(job_key(j)) for j in jobs})
+        return real(jobs, settings, handler, jobs_n, costs)
+    monkeypatch.setattr(pool, "start_pool", spy)
+
+    def check(*extra):
+        p = run_main("check", ".", "--format", "json", *extra, cwd=repo)
+        assert p.returncode in (0, 1), p.stderr
+        return [m["cached"] for m in json.loads(p.stdout)["models"]]
+    assert check() == [False]
+    entry = (str((repo / ENTRY).resolve()), ())
+    took = stored[entry]
+    # (the default pass lints the entry and the candidates that turn out to be fragments)
+    assert 0 < took < 60 and entry in planned[0]
+    assert set(planned[0].values()) == {None}        # nothing recorded yet: estimated
+    first, planned[:] = dict(stored), []
+    edit(repo / "r2d2_description/urdf/r2d2_macros.xacro", 'mass="0.05"', 'mass="0.06"')
+    assert check() == [False]
+    assert planned[0][entry] == took      # the default pass: the entry, at what it took
+    # every pass is planned at the seconds its models took when last linted
+    assert all(c == first[k] for p in planned for k, c in p.items())
+    assert stored[entry] > 0
+    # a run without the exploration pass (its own pool, not the run's RunPool) alike
+    second, planned[:] = dict(stored), []
+    edit(repo / "r2d2_description/urdf/r2d2_macros.xacro", 'mass="0.06"', 'mass="0.065"')
+    assert check("--explore", "false") == [False]
+    assert planned[0][entry] == second[entry]
+    edit(repo / "r2d2_description/urdf/r2d2_macros.xacro", 'mass="0.065"', 'mass="0.06"')
+    # --no-cache reads no record: the estimates plan the run
+    planned.clear()
+    edit(repo / "r2d2_description/urdf/r2d2_macros.xacro", 'mass="0.06"', 'mass="0.07"')
+    check("--no-cache")
+    assert entry in planned[0] and set(planned[0].values()) == {None}
+
+
+@pytest.mark.parametrize("took", [-1, 0, 1e9, float("inf"), float("nan"), "0.5", None, True,
+                                  [0.5]])
+def test_a_recorded_cost_that_is_no_number_of_seconds_is_not_believed(tmp_path, took):
+    """Neither read from a record nor stored from a worker's report (a worker's message is
+    plain data of any shape: a compromised one must not break the run's end)."""
+    from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, job_key
+    from urdf_lint.run.cache import Cache
+    cache = Cache(str(tmp_path / "cache"))
+    (tmp_path / "a.urdf").write_text('<robot name="a"><link name="l"/></robot>\n')
+    job, settings = LintJob(str(tmp_path / "a.urdf")), LintSettings(resolver={})
+    cache._cost_of(job, {"took": took})
+    cache._cost_of(job, ["took", 0.5])
+    assert cache.costs == {}
+    cache._cost_of(job, {"took": 0.25})
+    assert cache.costs == {job_key(job): 0.25}
+
+    def stored(value):
+        report = ModelReport(job.entry, {}, deps=[job.entry])
+        report.seconds = value
+        cache.put(job, settings, report)
+        blob = cache.read_signed(cache._path(cache._key(job, settings)))
+        assert blob is not None
+        return json.loads(blob).get("took")
+    assert stored(took) is None
+    assert stored(0.123456) == 0.1235

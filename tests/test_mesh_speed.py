@@ -742,8 +742,8 @@ def _robot(mesh=None):
     return f'<robot name="r"><link name="a"><visual><geometry>{geo}</geometry></visual></link></robot>\n'
 
 
-def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
-    from urdf_lint.runner import pool
+def _four_small_models(tmp_path):
+    """(settings, jobs) of two packages of two small models each, the jobs out of order."""
     from urdf_lint.core.jobs import LintJob
     settings = _settings_for(tmp_path, {
         "small_description": {"urdf/a.urdf": _robot(), "urdf/b.urdf": _robot()},
@@ -751,6 +751,12 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     jobs = [LintJob(str(tmp_path / p / "urdf" / f)) for p, f in (
         ("small_description", "b.urdf"), ("other_description", "z.urdf"),
         ("small_description", "a.urdf"), ("other_description", "y.urdf"))]
+    return settings, jobs
+
+
+def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_work(tmp_path):
+    from urdf_lint.runner import pool
+    settings, jobs = _four_small_models(tmp_path)
     blocks = pool.package_blocks(jobs, settings)
     assert sorted([os.path.basename(j.entry) for j in b.jobs] for b in blocks) == \
         [["a.urdf", "b.urdf"], ["y.urdf", "z.urdf"]]
@@ -771,6 +777,37 @@ def test_jobs_are_grouped_by_package_and_the_default_worker_count_follows_the_wo
     queues = pool.assign(blocks, 2)
     assert [sorted({os.path.basename(os.path.dirname(os.path.dirname(j.entry))) for j in q})
             for q in queues] == [["other_description"], ["small_description"]]
+
+
+def test_the_seconds_models_took_before_plan_the_workers_in_place_of_the_estimates(tmp_path):
+    """A re-lint plans its workers at what each model took when last linted (the result
+    cache keeps it): four models estimated at a worker's worth of work, which took 0.3 s each
+    last time, get two; a package whose models all took a known time gets no mesh estimate
+    on top (their seconds include the meshes they measured), one with a model never linted
+    does."""
+    from urdf_lint.runner import pool
+    from urdf_lint.core.jobs import job_key
+    settings, jobs = _four_small_models(tmp_path)
+    assert pool.default_workers(pool.package_blocks(jobs, settings), cores=2, load=0.0) == 1
+    took = {job_key(j): 0.3 for j in jobs}
+    blocks = pool.package_blocks(jobs, settings, costs=took)
+    assert [b.cost for b in blocks] == [pytest.approx(0.6)] * 2
+    assert pool.default_workers(blocks, cores=2, load=0.0) == 2
+    assert pool.default_workers(blocks, cores=2, load=2.0) == 1   # a busy machine still says
+    mesh_dir = tmp_path / "other_description" / "meshes"
+    mesh_dir.mkdir()
+    with open(mesh_dir / "big.dae", "wb") as f:
+        f.truncate(20 << 20)                     # sparse: only its size is looked at
+    estimate = pool._mesh_cost(str(tmp_path / "other_description"))[0]
+    assert estimate > 0.5
+    by_key = {b.key.rsplit(os.sep, 1)[1]: b for b in pool.package_blocks(jobs, settings, costs=took)}
+    assert by_key["other_description"].cost == pytest.approx(0.6)
+    assert by_key["other_description"].formats == {".dae"}   # (what the parent preloads)
+    del took[job_key(jobs[1])]                   # z.urdf never linted: estimated, and the meshes
+    by_key = {b.key.rsplit(os.sep, 1)[1]: b for b in pool.package_blocks(jobs, settings, costs=took)}
+    assert by_key["other_description"].cost == pytest.approx(
+        0.3 + pool.job_cost(jobs[1]) + estimate)
+    assert by_key["small_description"].cost == pytest.approx(0.6)
 
 
 def test_a_model_of_many_macro_calls_is_scheduled_first(tmp_path):

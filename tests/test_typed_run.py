@@ -54,9 +54,11 @@ def test_limits_travel_in_the_settings_with_one_default(tmp_path):
     plain = LintSettings(resolver={})
     assert (plain.timeout, plain.memory_mb) == (Config().timeout, Config().memory_mb) == \
         (KEYS["timeout"].default, KEYS["memory-mb"].default)
-    assert list(inspect.signature(run_jobs).parameters) == ["jobs", "settings", "jobs_n"]
+    # (``costs``: what the models took before, which plans the workers; no limit)
+    assert list(inspect.signature(run_jobs).parameters) == ["jobs", "settings", "jobs_n",
+                                                            "costs"]
     assert list(inspect.signature(pool_run_jobs).parameters) == ["jobs", "settings", "handler",
-                                                                 "jobs_n"]
+                                                                 "jobs_n", "costs"]
     # one pool for check and the language server (persistent there): the limits are the
     # settings' too
     assert list(inspect.signature(WorkerPool).parameters) == ["settings", "handler", "size",

@@ -178,6 +178,7 @@ class ModelReport:
     # the <xacro:if>/<xacro:unless> outcomes of the expansion: [file, line, col, kept]
     # (expansion.expand.Expansion.branches; branch coverage, urdf_lint.run.explore)
     branches: list[list[Any]] = field(default_factory=list)
+    seconds: float = 0.0     # what linting it took in the worker (the next run's cost estimate)
 
     @classmethod
     def failed(cls, job: LintJob, problems: Iterable[Problem] = (),

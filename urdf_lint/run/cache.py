@@ -35,7 +35,8 @@ from urdf_lint import __version__
 from urdf_lint.core import fsbound, signing
 from urdf_lint.discovery.discover import start_dir
 from urdf_lint.core.hashing import blake2b, file_digest, file_record, memo_digest, read_regular, stat_key
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport, env_unchanged
+from urdf_lint.core.jobs import (JobKey, LintJob, LintSettings, ModelReport, env_unchanged,
+                                  job_key)
 from urdf_lint.core.cachedir import ensure as ensure_cache_dir
 from urdf_lint.discovery.vcs import git_root, repo_root
 
@@ -45,6 +46,16 @@ from urdf_lint.discovery.vcs import git_root, repo_root
 # the stream-read mesh facts, a mesh refused by the memory limit is never cached; 14: the
 # $(optenv) variables looked up and whether they were set)
 RECORD_FORMAT = 15
+MAX_COST_S = 3600.0    # the most a model's recorded seconds may say (more: not a cost)
+
+
+def seconds(value: Any) -> float | None:
+    """``value`` as a model's cost in seconds: a number above 0 and at most
+    :data:`MAX_COST_S`; None for anything else."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool) \
+            and 0 < value <= MAX_COST_S:
+        return float(value)
+    return None
 
 
 def _recorded(site: str | None = None) -> dict[str, tuple[str, int]]:
@@ -178,6 +189,9 @@ class Cache:
         self._marked = False
         self._settings_key: tuple[LintSettings, str] | None = None   # (settings, its key part)
         self._resolver: tuple[LintSettings, "PackageResolver | None"] | None = None
+        # the seconds each model read took when last linted, stored or not reusable: what
+        # a run costs its re-linted models at (urdf_lint.runner.pool.package_blocks)
+        self.costs: dict[JobKey, float] = {}
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
             self.refused = (f"no signing key could be kept at {key_path()} (outside the "
@@ -231,6 +245,7 @@ class Cache:
             if blob is None:
                 return None  # absent, or not written by this user's urdf-lint
             rec = json.loads(blob)
+            self._cost_of(job, rec)
             if rec.get("version") != build_id() or not isinstance(rec.get("deps"), dict):
                 return None
             deps = rec["deps"]
@@ -260,6 +275,12 @@ class Cache:
         except (OSError, ValueError, KeyError, TypeError, AttributeError, IndexError):
             return None
 
+    def _cost_of(self, job: LintJob, rec: Any) -> None:
+        """Keep the seconds ``rec`` (a record :meth:`put` wrote) says ``job`` took."""
+        took = seconds(rec.get("took")) if isinstance(rec, dict) else None
+        if took is not None:
+            self.costs[job_key(job)] = took
+
     def get_many(self, jobs: Iterable[LintJob],
                  settings: LintSettings) -> list[ModelReport | None]:
         """:meth:`get` for each job, in one pass: an input shared by many models (a macro
@@ -286,6 +307,9 @@ class Cache:
         result.digests = deps
         rec = {"version": build_id(), "deps": deps, "missing": list(result.missing),
                "result": result.to_record()}
+        took = seconds(result.seconds)   # (what a worker says: checked like the rest)
+        if took is not None:
+            rec["took"] = round(took, 4)
         self.write_signed(self._path(self._key(job, settings)), json.dumps(rec).encode("utf-8"))
 
     def read_signed(self, path: str) -> bytes | None:

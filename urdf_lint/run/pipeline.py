@@ -349,8 +349,13 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
     internal: list[str] = []
     if todo:
         from urdf_lint.run.worker import process_job, run_jobs
+        # what the models took when last linted plans the workers (cache.get_many read it)
+        costs = dict(cache.costs) if cache else {}
+        if workers is not None:
+            workers.costs.update(costs)
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
-            workers.run(todo) if workers is not None else run_jobs(todo, settings, jobs_n=jobs_n)
+            workers.run(todo) if workers is not None else \
+            run_jobs(todo, settings, jobs_n=jobs_n, costs=costs)
         n = 0
         for job, res in done:
             if cache and not res.internal and res.cacheable:

@@ -4,6 +4,7 @@ what the workers will share, and a job stopped by a limit is a ``UL904`` finding
 from __future__ import annotations
 
 import sys
+import time
 from typing import TYPE_CHECKING, Any
 
 from urdf_lint.core.findings import Problem
@@ -13,8 +14,9 @@ from urdf_lint.runner import pool
 from urdf_lint.runner.pool import Block, Handler, mesh_facts_cached
 
 if TYPE_CHECKING:  # pragma: no cover
-    from collections.abc import Iterator
+    from collections.abc import Iterator, Mapping
 
+    from urdf_lint.core.jobs import JobKey
     from urdf_lint.engine.lint import Context
     from urdf_lint.engine.model import Model
     from urdf_lint.render.raster import Geometry
@@ -27,6 +29,7 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     """Lint one job; on a render run, hand the linted model to the renderer too."""
     from urdf_lint.engine.lint import lint_model
     from urdf_lint.core import overlay
+    started = time.perf_counter()
     if job.shared:   # what the run's other workers measured (share): not measured again here
         from urdf_lint.meshes.resolve import remember
         remember(job.shared)
@@ -48,6 +51,7 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
                                        views=settings.render_views,
                                        forward=settings.render_forward,
                                        refused=settings.render_refused)
+    report.seconds = time.perf_counter() - started
     return report
 
 
@@ -209,28 +213,31 @@ LINT = Handler(run=_run, limit_result=limit_result, allowed=RESULT_CLASSES,
                setup=_skip_unused_imports, warm=warm, preload=preload, share=share)
 
 
-def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = None
+def run_jobs(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None = None,
+             costs: Mapping[JobKey, float] | None = None
              ) -> Iterator[tuple[LintJob, ModelReport]]:
     """:func:`urdf_lint.runner.pool.run_jobs` with the lint handler (the limits are the
-    settings')."""
-    return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n)
+    settings'; ``costs``: the seconds models took before, which plan the workers)."""
+    return pool.run_jobs(jobs, settings, LINT, jobs_n=jobs_n, costs=costs)
 
 
 class RunPool:
     """The lint workers of one check run, kept from its default pass for its exploration
     pass: forked, preloaded and sandboxed once (:meth:`urdf_lint.runner.pool.WorkerPool.more`).
-    :meth:`close` ends them."""
+    :meth:`close` ends them. ``costs``: the seconds models took when last linted, which
+    plan the workers of the first pass (:func:`urdf_lint.runner.pool.package_blocks`)."""
 
     def __init__(self, settings: LintSettings, jobs_n: int | None = None) -> None:
         self.settings, self.jobs_n = settings, jobs_n
         self.pool: pool.WorkerPool | None = None
+        self.costs: dict[JobKey, float] = {}
 
     def run(self, jobs: list[LintJob]) -> Iterator[tuple[LintJob, ModelReport]]:
         """(job, report) for ``jobs``, in completion order, on the run's workers."""
         if not jobs:
             return
         if self.pool is None:
-            self.pool = pool.start_pool(jobs, self.settings, LINT, self.jobs_n)
+            self.pool = pool.start_pool(jobs, self.settings, LINT, self.jobs_n, self.costs)
             yield from self.pool.drain()
         else:
             yield from self.pool.more(jobs, self.jobs_n)

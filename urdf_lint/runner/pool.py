@@ -16,14 +16,14 @@ import sys
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Any, Callable, Collection, Iterator, Sequence
+from typing import Any, Callable, Collection, Iterator, Mapping, Sequence
 
 from urdf_lint.runner import forked, wire
 from urdf_lint.runner.hardening import limit_memory
 from urdf_lint.runner.hardening import inherited_data_bytes as _inherited_data_bytes
 from urdf_lint.runner.hardening import install_audit_hook as _install_audit_hook
 from urdf_lint.runner.hardening import scrub_environment as _scrub_environment
-from urdf_lint.core.jobs import LintJob, LintSettings, ModelReport
+from urdf_lint.core.jobs import JobKey, LintJob, LintSettings, ModelReport, job_key
 
 
 @dataclass(frozen=True)
@@ -235,11 +235,15 @@ def block_key(job: LintJob, roots: list[str]) -> str:
     return package_of(job, roots) or os.path.dirname(job.entry)
 
 
-def package_blocks(jobs: list[LintJob], settings: LintSettings,
-                   meshes: bool = True) -> list[Block]:
+def package_blocks(jobs: list[LintJob], settings: LintSettings, meshes: bool = True,
+                   costs: Mapping[JobKey, float] | None = None) -> list[Block]:
     """Jobs grouped by the package holding their entry file (the deepest package root), each
     block sorted by entry and args so models that share meshes are neighbours; a block's cost
-    is its models plus the mesh bytes of its package (what its first worker will load)."""
+    is its models plus the mesh bytes of its package (what its first worker will load).
+    ``costs``: the seconds a model took when it was last linted (the result cache keeps them),
+    used in place of its first-time estimate; a block whose models all have one gets no mesh
+    estimate (their seconds include the meshes they measured)."""
+    costs = costs or {}
     r = settings.resolver or {}
     roots = package_roots(settings)
     blocks: dict[str, Block] = {}
@@ -252,7 +256,11 @@ def package_blocks(jobs: list[LintJob], settings: LintSettings,
         b.jobs.sort(key=lambda j: (j.entry, sorted(j.args.items())))
         # (``meshes=False``: the mesh facts are cached, the packages' meshes cost nothing)
         mesh_cost, b.formats = _mesh_cost(b.key) if b.key and meshes else (0.0, frozenset())
-        b.cost = sum(job_cost(j, r.get("roots")) for j in b.jobs) + mesh_cost
+        known = [costs.get(job_key(j)) for j in b.jobs]
+        if all(c is not None for c in known):
+            mesh_cost = 0.0
+        b.cost = sum(job_cost(j, r.get("roots")) if c is None else c
+                     for j, c in zip(b.jobs, known, strict=True)) + mesh_cost
         out.append(b)
     return sorted(out, key=lambda b: -b.cost)
 
@@ -461,18 +469,19 @@ def _used(w: Worker) -> float | None:
 
 
 def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler,
-             jobs_n: int | None = None) -> Iterator[tuple[LintJob, ModelReport]]:
+             jobs_n: int | None = None, costs: Mapping[JobKey, float] | None = None
+             ) -> Iterator[tuple[LintJob, ModelReport]]:
     """Yield (job, ModelReport) for every job, run by ``handler``; results arrive in
     completion order.
 
     ``settings.timeout`` limits the CPU time a job uses (a loaded CI machine does not make a
     model that lints in 2 s hit it), and ``WALL_FACTOR`` times it the wall-clock time (a job
     waiting on I/O); where CPU time cannot be measured, it is wall-clock time.
-    ``settings.memory_mb`` limits each worker's memory."""
+    ``settings.memory_mb`` limits each worker's memory. ``costs``: :func:`package_blocks`'."""
     jobs = list(jobs)
     if not jobs:
         return
-    pool = start_pool(jobs, settings, handler, jobs_n)
+    pool = start_pool(jobs, settings, handler, jobs_n, costs)
     try:
         yield from pool.drain()
     finally:
@@ -480,17 +489,19 @@ def run_jobs(jobs: list[LintJob], settings: LintSettings, handler: Handler,
 
 
 def start_pool(jobs: list[LintJob], settings: LintSettings, handler: Handler,
-               jobs_n: int | None) -> "WorkerPool":
-    """Plan the pool for ``jobs`` (package blocks, worker count, queues) and start its
-    workers; :meth:`WorkerPool.drain` runs them, :meth:`WorkerPool.more` a further batch on
-    the same workers, :meth:`WorkerPool.close` ends them."""
+               jobs_n: int | None, costs: Mapping[JobKey, float] | None = None
+               ) -> "WorkerPool":
+    """Plan the pool for ``jobs`` (package blocks, worker count, queues; ``costs``: the
+    seconds models took before, :func:`package_blocks`) and start its workers;
+    :meth:`WorkerPool.drain` runs them, :meth:`WorkerPool.more` a further batch on the same
+    workers, :meth:`WorkerPool.close` ends them."""
     # a worker forked ahead (prestart) gets its settings first: it enters the sandbox while
     # the parent probes the protections and plans the pool
     pre = _take_prestarted(settings)
     from urdf_lint.runner.sandbox import prepare
     prepare()
     warm_meshes = mesh_facts_cached(settings)
-    blocks = package_blocks(jobs, settings, meshes=not warm_meshes)
+    blocks = package_blocks(jobs, settings, meshes=not warm_meshes, costs=costs)
     cores = os.cpu_count() or 1
     n = max(1, min(jobs_n or default_workers(
         blocks, cores, worker_cost=WARM_WORKER_COST_S if warm_meshes else WORKER_COST_S),
