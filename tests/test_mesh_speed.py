@@ -6,6 +6,7 @@ import json
 import os
 import re
 import struct
+import subprocess
 import sys
 from pathlib import Path
 
@@ -589,6 +590,24 @@ def test_the_parent_preloads_trimesh_only_for_formats_read_through_it():
     assert "trimesh" not in worker._mesh_modules(obj)
     ply = lean + [worker.Block("b", [], 1.0, frozenset({".ply"}))]
     assert "trimesh" in worker._mesh_modules(ply)
+
+
+def test_the_parent_preloads_numpy_for_the_geometry_rules_even_with_no_mesh_to_read():
+    """A re-lint whose mesh facts are stored reads no mesh, but the rules that measure
+    geometry (``NEEDS = {"meshes"}``: UL605 on a box or on stored facts) compute with numpy:
+    imported once by the parent before it forks two workers, not by each worker's first job
+    (~0.1 s of CPU each); not when no such rule is selected. (A fresh interpreter: numpy is
+    imported in this one.)"""
+    code = ("import sys\n"
+            "from urdf_lint.core.jobs import LintSettings\n"
+            "from urdf_lint.run import worker\n"
+            "for sel in (('UL101', 'UL201'), ('UL101', 'UL605')):\n"
+            "    worker._preload_mesh_modules([], LintSettings(resolver={}, selected=sel))\n"
+            "    print('numpy' in sys.modules, 'urdf_lint.meshes.readers' in sys.modules)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    # (no package holds a mesh format: the readers are not preloaded)
+    assert p.stdout.split("\n")[:2] == ["False False", "True False"]
 
 
 def test_a_variant_goes_to_the_worker_that_linted_its_model():

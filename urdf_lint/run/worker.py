@@ -144,15 +144,18 @@ def _mesh_modules(blocks: list[Block]) -> tuple[str, ...]:
 def _preload_mesh_modules(blocks: list[Block], settings: LintSettings) -> None:
     """Import the mesh loaders once in the parent before forking several workers, when the
     selected rules read meshes and the packages hold some: the workers share the imported
-    modules instead of each importing them again."""
-    if not any(b.formats for b in blocks):
-        return
-    if mesh_facts_cached(settings):
-        return   # a run after the first: the workers find the facts and seldom load a mesh
+    modules instead of each importing them again. numpy whenever those rules are selected:
+    they compute with it on primitive shapes and stored facts too (each worker of a re-lint
+    imported it again, ~0.1 s of CPU)."""
     from urdf_lint.engine.registry import load_rules
     rules = load_rules()
     if not any("meshes" in getattr(rules.get(c), "needs", ()) for c in settings.selected):
         return
+    import numpy  # noqa: F401
+    if not any(b.formats for b in blocks):
+        return
+    if mesh_facts_cached(settings):
+        return   # a run after the first: the workers find the facts and seldom load a mesh
     import importlib
     # without trimesh's optional accelerators, like the workers (~0.4 s of scipy & co. the
     # parent would import for nothing); the markers are removed again afterwards, so the
