@@ -189,8 +189,8 @@ class Cache:
         self._marked = False
         self._settings_key: tuple[LintSettings, str] | None = None   # (settings, its key part)
         self._resolver: tuple[LintSettings, "PackageResolver | None"] | None = None
-        # the seconds each model read took when last linted, stored or not reusable: what
-        # a run costs its re-linted models at (urdf_lint.runner.pool.package_blocks)
+        # job key -> the seconds its model took when last linted, from each record read,
+        # reusable or not: what a run plans a re-linted model at (runner.pool.package_blocks)
         self.costs: dict[JobKey, float] = {}
         self._secret = _load_key([repo] if repo else [])
         if self._secret is None:
