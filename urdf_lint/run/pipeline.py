@@ -350,9 +350,9 @@ def _lint_all(jobs: list[LintJob], settings: LintSettings, jobs_n: int | None,
     if todo:
         from urdf_lint.run.worker import process_job, run_jobs
         # what the models took when last linted plans the workers (cache.get_many read it)
-        costs = dict(cache.costs) if cache else {}
+        costs = cache.costs if cache else {}
         if workers is not None:
-            workers.costs.update(costs)
+            workers.costs = costs
         done = ((job, process_job(job, settings)) for job in todo) if in_process else \
             workers.run(todo) if workers is not None else \
             run_jobs(todo, settings, jobs_n=jobs_n, costs=costs)
