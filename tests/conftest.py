@@ -247,6 +247,20 @@ def kind_of(item) -> tuple[str, str]:
 
 
 @pytest.hookimpl(tryfirst=True)
+def pytest_cmdline_main(config):
+    """``pytest -m unit`` over the whole suite (no test paths given) runs on every core with
+    pytest-xdist (``-n auto``): the inner loop's minute (issue 34) is a CPU-bound minute and a
+    half on one core. ``-n 0`` runs it in one process; the e2e half and runs of chosen files
+    stay in one process. (Called before xdist's own hook, which resolves ``auto``; not in
+    xdist's workers, which have ``workerinput``.)"""
+    if (config.pluginmanager.has_plugin("xdist") and not hasattr(config, "workerinput")
+            and config.option.markexpr.strip() == "unit"
+            and config.option.numprocesses is None
+            and config.args_source == pytest.Config.ArgsSource.TESTPATHS):
+        config.option.numprocesses = "auto"
+
+
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     """Mark every test unit or e2e before ``-m`` deselects (tryfirst)."""
     for item in items:

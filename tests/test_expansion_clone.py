@@ -285,9 +285,9 @@ def test_the_parse_cache_keeps_what_its_bound_says_of_a_file_of_tiny_elements(tm
     times that in a worker between its jobs (it counts against every later job's memory-mb)."""
     import gc
     import tracemalloc
-    monkeypatch.setattr(expand, "PARSED_BYTES", 200_000)
+    monkeypatch.setattr(expand, "PARSED_BYTES", 20_000)
     expand._parsed.clear()
-    data = b"<robot name='r'>" + b"<a/>" * 45_000 + b"</robot>"
+    data = b"<robot name='r'>" + b"<a/>" * 4_500 + b"</robot>"     # (18 kB: under the bound)
     f = str(tmp_path / "tiny.xacro")
     tracemalloc.start()
     try:
@@ -298,4 +298,4 @@ def test_the_parse_cache_keeps_what_its_bound_says_of_a_file_of_tiny_elements(tm
     finally:
         tracemalloc.stop()
         expand._parsed.clear()
-    assert kept <= 25 * 200_000 * 1.5, kept
+    assert kept <= 25 * 20_000 * 1.5, kept

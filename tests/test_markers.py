@@ -39,3 +39,29 @@ def test_the_rule_follows_what_a_test_uses():
     assert _why("test_fixes", "test_fix_options_are_checked") is None
     assert _why("test_accuracy", "test_negative_mass_is_always_an_error") is None
     assert _why("test_fixes", "test_start_tag_tokeniser_on_raw_bytes") is None
+
+
+def test_the_whole_unit_half_runs_on_every_core_and_chosen_files_in_one_process():
+    """``pytest -m unit`` with no paths (the inner loop) is spread over the machine's cores by
+    pytest-xdist; ``-m e2e`` and a run of chosen files stay in one process."""
+    import os
+    import subprocess
+    import sys
+    import pytest
+    from conftest import REPO
+    pytest.importorskip("xdist")
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    if (cores or 1) < 2:
+        pytest.skip("one core: xdist's auto is one worker")
+    env = {k: v for k, v in os.environ.items() if k != "PYTEST_XDIST_AUTO_NUM_WORKERS"}
+
+    def run(*args):     # (xdist does not distribute --collect-only: one quick test is run)
+        p = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider",
+                            "-k", "test_the_rule_follows_what_a_test_uses", *args], cwd=REPO,
+                           capture_output=True, text=True, env=env, timeout=300)
+        assert p.returncode in (0, 5), p.stdout[-2000:] + p.stderr[-2000:]  # (5: none chosen)
+        return p.stdout
+    assert f"created: {cores}/{cores} workers" in run("-m", "unit")
+    out = run("-m", "unit", "tests/test_markers.py")
+    assert "1 passed" in out and "workers" not in out
+    assert "workers" not in run("-m", "e2e")

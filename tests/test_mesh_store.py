@@ -101,6 +101,38 @@ def test_a_forged_or_changed_store_entry_changes_no_finding(tmp_path, fresh):
     assert not any(code == "UL406" for code, *_ in _check(pkg, tmp_path / "c9"))
 
 
+def test_the_editors_lints_store_the_facts_of_meshes_no_buffer_stands_for(tmp_path, fresh):
+    """The language server's jobs carry the open buffers: the mesh facts they measure are
+    stored (and shared with its other workers) like check's, so a worker started after a
+    keystroke stopped the one before finds them (before, none was stored: each such worker
+    measured every mesh again). Not when a buffer of a mesh, a material or a texture is
+    open (a fact is keyed by its mesh's content alone), nor a buffer's mesh itself."""
+    import shutil
+    from urdf_lint.lsp.state import Workspace
+    pkg = _package(tmp_path)
+    robot = pkg / "urdf" / "r.urdf"
+    big, part = pkg / "meshes" / "big.stl", pkg / "meshes" / "part.stl"
+
+    def lint(buffers):
+        fresh()
+        store = _store()
+        shutil.rmtree(store.dir, ignore_errors=True)
+        ws = Workspace(str(pkg), in_process=True)
+        try:
+            ws.buffers.update({str(p): data for p, data in buffers.items()})
+            ws.lint()
+        finally:
+            ws.close()
+        return {p.name for p in (big, part) if store.get(_name(p)) is not None}
+    edited = ROBOT.replace("</robot>", "<!-- typing -->\n</robot>").encode()
+    assert lint({robot: edited}) == {"big.stl", "part.stl"}
+    mtl = pkg / "meshes" / "part.mtl"
+    mtl.write_text("newmtl a\n")
+    assert lint({robot: edited, mtl: b"newmtl b\n"}) == set()
+    # a buffer standing for a mesh (its facts are the buffer's, its digest the file's)
+    assert lint({robot: edited, part: scaled(2.0).encode()}) == set()
+
+
 def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, fresh):
     from urdf_lint.meshes.store import FactsStore
     store = FactsStore(str(tmp_path / "facts"), b"k" * 32)

@@ -446,8 +446,11 @@ def test_the_real_franka_names_its_yaml_line(tmp_path):
                                    "lower:      2.3093\n    upper:       -2.3093", 1))
     (pkg / "urdf-lint.toml").write_text(
         '[[models]]\npath = "robots/fr3/fr3.urdf.xacro"\n')
-    found = _ul302(_lint(pkg))
+    # (the limit rules alone: the others read 11 MB of meshes, three seconds of the test; the
+    # swap changes the soft limits derived from the same values too, which UL306 flags: with
+    # UL302 alone the fix changes more than its finding and is rolled back)
+    found = _ul302(_lint(pkg, "--select", "UL302,UL306"))
     assert found and all(f["value_from"][:2] == ["robots/fr3/joint_limits.yaml", 3]
                          for f in found), found
-    run_main("check", ".", "--no-cache", "--fix", cwd=pkg)
+    run_main("check", ".", "--no-cache", "--fix", "--select", "UL302,UL306", cwd=pkg)
     assert limits.read_text() == good

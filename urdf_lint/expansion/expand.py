@@ -273,9 +273,11 @@ def parsed(data: bytes, file: str, chain: tuple[Any, ...], digest: str) -> Any:
     elif doc.doctype is None and doc.documentElement is not None \
             and clone.usable(doc.documentElement):
         # (weighed by its nodes too: a file of tiny elements, ``<a/>``, takes ~120 bytes of
-        # DOM per byte of source, not ~25)
-        _parsed[key] = (max(len(data), NODE_WEIGHT * _count_nodes(doc)),
-                        clone.copy_document(doc, lambda d: d))
+        # DOM per byte of source, not ~25; one heavier than the whole bound is never copied)
+        weight = max(len(data), NODE_WEIGHT * _count_nodes(doc))
+        if weight > PARSED_BYTES:
+            return doc
+        _parsed[key] = (weight, clone.copy_document(doc, lambda d: d))
         _parsed.move_to_end(key)      # (the newest: evicted last)
         total = sum(v[0] for v in _parsed.values() if v is not None)
         while total > PARSED_BYTES:
