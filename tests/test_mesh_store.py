@@ -105,10 +105,11 @@ def test_the_editors_lints_store_the_facts_of_meshes_no_buffer_stands_for(tmp_pa
     """The language server's jobs carry the open buffers: the mesh facts they measure are
     stored (and shared with its other workers) like check's, so a worker started after a
     keystroke stopped the one before finds them (before, none was stored: each such worker
-    measured every mesh again). Not when a buffer of a mesh, a material or a texture is
-    open (a fact is keyed by its mesh's content alone), nor a buffer's mesh itself."""
+    measured every mesh again). A buffer standing for a mesh is measured under its own
+    digest: its facts are never stored as the file's, and the file's facts stay right."""
     import shutil
     from urdf_lint.lsp.state import Workspace
+    from urdf_lint.meshes import resolve
     pkg = _package(tmp_path)
     robot = pkg / "urdf" / "r.urdf"
     big, part = pkg / "meshes" / "big.stl", pkg / "meshes" / "part.stl"
@@ -123,14 +124,22 @@ def test_the_editors_lints_store_the_facts_of_meshes_no_buffer_stands_for(tmp_pa
             ws.lint()
         finally:
             ws.close()
-        return {p.name for p in (big, part) if store.get(_name(p)) is not None}
+        return {p.name: store.get(_name(p)) for p in (big, part) if store.get(_name(p))}
+    fresh()
+    truth = {p.name: resolve.mesh_facts(str(p), store=resolve.MeshStore()) for p in (big, part)}
     edited = ROBOT.replace("</robot>", "<!-- typing -->\n</robot>").encode()
-    assert lint({robot: edited}) == {"big.stl", "part.stl"}
-    mtl = pkg / "meshes" / "part.mtl"
-    mtl.write_text("newmtl a\n")
-    assert lint({robot: edited, mtl: b"newmtl b\n"}) == set()
-    # a buffer standing for a mesh (its facts are the buffer's, its digest the file's)
-    assert lint({robot: edited, part: scaled(2.0).encode()}) == set()
+    assert lint({robot: edited}) == truth
+    # an unsaved part.stl twice the size: linted as such, and nothing of it stored
+    assert lint({robot: edited, part: scaled(2.0).encode()}) == {"big.stl": truth["big.stl"]}
+    assert _facts_of(scaled(2.0), tmp_path) != truth["part.stl"]   # (the case means something)
+
+
+def _facts_of(text, tmp_path):
+    from urdf_lint.meshes import resolve
+    f = tmp_path / "elsewhere" / "part.stl"
+    f.parent.mkdir(exist_ok=True)
+    f.write_text(text)
+    return resolve.mesh_facts(str(f), store=resolve.MeshStore())
 
 
 def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, fresh):

@@ -22,8 +22,8 @@ if TYPE_CHECKING:  # pragma: no cover - numpy and trimesh are imported on first 
     from urdf_lint.discovery.packages import PackageResolver
     from urdf_lint.engine.model import Model
 
-from urdf_lint.core import fsbound
-from urdf_lint.core.hashing import known, memo_read
+from urdf_lint.core import fsbound, overlay
+from urdf_lint.core.hashing import content_digest, known, memo_read
 from urdf_lint.discovery.packages import PackageNotFound
 from urdf_lint.meshes.status import MeshStatus as MeshStatus
 from urdf_lint.meshes.store import MeshStore
@@ -324,11 +324,18 @@ def _digest(path: str) -> str:
     """Content hash of a file, computed once per file version in this process (shared with
     the worker's record of what a model read, :func:`hashing.memo_digest`). A mesh up to
     ``READ_WHOLE_BYTES`` hashed for the first time is read once: its bytes are kept for the
-    readers and scans that follow (:func:`_file_bytes`)."""
-    got = memo_read(path, READ_WHOLE_BYTES)
-    if got is None:
-        raise OSError(f"cannot read {path}")
-    digest, data = got
+    readers and scans that follow (:func:`_file_bytes`). An unsaved editor buffer standing
+    for the mesh (``urdf-lint server``, :mod:`urdf_lint.core.overlay`) is what the readers
+    get: its digest is the buffer's, so its facts are memoized under that content, and the
+    parent, which hashes the file itself, never stores them as the file's."""
+    data: bytes | None = overlay.get(path) if overlay.active() else None
+    if data is not None:
+        digest = content_digest(data)
+    else:
+        got = memo_read(path, READ_WHOLE_BYTES)
+        if got is None:
+            raise OSError(f"cannot read {path}")
+        digest, data = got
     if data is not None:
         _kept_bytes[digest] = data
         _kept_bytes.move_to_end(digest)

@@ -3,7 +3,6 @@ is expanded and linted and, on a render run, its model drawn; the parent imports
 what the workers will share, and a job stopped by a limit is a ``UL904`` finding."""
 from __future__ import annotations
 
-import os
 import sys
 import time
 from typing import TYPE_CHECKING, Any
@@ -39,7 +38,8 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     if ctx.meshes.env_failures or job.overlay:
         # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
         report.cacheable = False
-    report.mesh_facts = facts_of_the_files(ctx.meshes.measured, job.overlay)
+    # (an editor's unsaved mesh is measured under its buffer's digest: never stored)
+    report.mesh_facts = ctx.meshes.measured
     if settings.diff_render and model is not None and report.kept_model is not None:
         report.diff_geometry, report.diff_rrd = _diff_snapshot(model, ctx, settings)
     if settings.render_dir and model is not None:
@@ -53,26 +53,6 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
                                        refused=settings.render_refused)
     report.seconds = time.perf_counter() - started
     return report
-
-
-# What an editor's unsaved buffers (``LintJob.overlay``) may be and leave the mesh facts a job
-# measured those of the files on disk: description sources. A fact is keyed by the digest of
-# its mesh file on disk alone (the one the parent checks), so a buffer of a mesh, a material
-# (``.mtl``) or a texture, read in place of its file, makes none of the job's facts storable.
-SOURCE_SUFFIXES = frozenset({".xacro", ".urdf", ".srdf", ".sdf", ".xml", ".yaml", ".yml",
-                             ".toml", ".json", ".launch", ".py"})
-
-
-def facts_of_the_files(measured: list[list[Any]],
-                       overlay: tuple[tuple[str, bytes], ...]) -> list[list[Any]]:
-    """The mesh facts a job measured that the parent may store and share with the run's
-    other workers: all of them, unless the job read an unsaved buffer other than a
-    description source's. (The language server's jobs always carry the open buffers: before,
-    none of their facts was stored, and each worker it started after a keystroke stopped the
-    one before measured every mesh again, 0.6 s for a UR arm.)"""
-    if any(os.path.splitext(path)[1].lower() not in SOURCE_SUFFIXES for path, _ in overlay):
-        return []
-    return measured
 
 
 def _diff_snapshot(model: "Model", ctx: "Context", settings: LintSettings
