@@ -1,9 +1,13 @@
-"""Start-up stays light: a warm (cached) run imports none of xacro, trimesh, yourdfpy, rerun."""
+"""Start-up stays light: a warm (cached) run imports none of xacro, trimesh, yourdfpy, rerun;
+one that reuses the last run's whole result not the fix machinery either (the fix-scope rule,
+which every run's end applies, is a light module of its own)."""
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import sys
+import time
 
 from conftest import DESCRIPTIONS
 
@@ -11,17 +15,32 @@ CODE = """
 import sys
 from urdf_lint.cli.main import main
 rc = main(["check", ".", "-q"])
-heavy = sorted(m for m in ("xacro", "trimesh", "yourdfpy", "rerun", "collada", "PIL") if m in sys.modules)
+heavy = sorted(m for m in ("xacro", "trimesh", "yourdfpy", "rerun", "collada", "PIL",
+                           "urdf_lint.fix.fixes") if m in sys.modules)
 print(rc, heavy)
 """
 
 
+def _settled(root):
+    """Every file and folder under ``root`` last changed an hour ago: a run remembers its
+    whole result only when no input changed within the last seconds (run/runcache.py)."""
+    then = time.time() - 3600
+    for p in [root, *root.rglob("*")]:
+        os.utime(p, (then, then))
+
+
 def test_warm_run_imports_nothing_heavy(tmp_path):
     shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
-    first = subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path, capture_output=True, text=True)
-    assert first.stdout.strip() == "0 ['xacro']", first.stdout + first.stderr  # cold: expands
-    warm = subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path, capture_output=True, text=True)
-    assert warm.stdout.strip() == "0 []", warm.stdout + warm.stderr
+    run = lambda: subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path,  # noqa: E731
+                                 capture_output=True, text=True)
+    first = run()
+    # cold: expands, and the rules loaded ahead of the workers attach fix requests
+    assert first.stdout.strip() == "0 ['urdf_lint.fix.fixes', 'xacro']", first.stdout + first.stderr
+    _settled(tmp_path)     # (the first run made the cache folder)
+    warm = run()           # every model's result from the cache; the run's end made again
+    assert warm.returncode == 0 and "xacro" not in warm.stdout, warm.stdout + warm.stderr
+    memo = run()           # the whole result of the last run
+    assert memo.stdout.strip() == "0 []", memo.stdout + memo.stderr
 
 
 LINT_IN_PROCESS = """

@@ -8,10 +8,11 @@ quote character that surrounds them.
 """
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable, Iterator
+
+from urdf_lint.fix.scope import inside as inside   # (part of this module's API)
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.core.edits import Edit
@@ -214,10 +215,3 @@ def apply_edits(data: bytes, edits: Iterable["Edit"]) -> bytes:
     return b"".join(out)
 
 
-def inside(path: str, paths: Iterable[str], resolved: bool = False) -> bool:
-    """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
-    (``resolved``: the ``paths`` are already real paths)."""
-    from urdf_lint.core.tree import inside as below
-    real = os.path.realpath(path)
-    roots = paths if resolved else (os.path.realpath(p) for p in paths)
-    return any(below(real, r) for r in roots)

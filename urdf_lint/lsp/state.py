@@ -211,9 +211,9 @@ class Workspace:
     def writable(self, path: str) -> bool:
         """May a code action edit ``path``? The rule of ``check --fix`` and
         ``--add-suppressions`` for the linted path (the workspace folder): its real path is
-        inside it (:func:`urdf_lint.fix.sourceedit.inside`), never an installed package or a
+        inside it (:func:`urdf_lint.fix.scope.inside`), never an installed package or a
         file a symlink leads out to."""
-        from urdf_lint.fix.sourceedit import inside
+        from urdf_lint.fix.scope import inside
         return inside(path, [self.root], resolved=True)
 
     # -- which models a file reaches ---------------------------------------------------------

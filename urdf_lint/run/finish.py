@@ -168,7 +168,7 @@ def finish(models: Sequence[ModelReport], run_problems: Sequence[Problem],
     kept = suppress(merge(problems), models, settings, policy)
     final = [f for f in kept if policy.is_selected(f.code, f.name)
              and not policy.ignored_for_file(f.code, f.name, f.file)]
-    from urdf_lint.fix.fixes import not_in_generated
+    from urdf_lint.fix.scope import not_in_generated
     return sorted(not_in_generated(final, generated or {}),
                   key=lambda f: (f.file, f.line, f.col, f.code))
 
@@ -189,7 +189,7 @@ def scope(findings: list[Problem], how: Scope, generated: dict[str, str] | None 
     edit a file outside ``how.fix_paths`` or a generated URDF is refused (``check --fix``'s
     rule), then the baseline's findings are left out."""
     if how.fix_paths is not None:
-        from urdf_lint.fix.fixes import inside_paths
+        from urdf_lint.fix.scope import inside_paths
         findings = inside_paths(findings, list(how.fix_paths), generated)
     hidden = 0
     if how.baseline:

@@ -98,7 +98,7 @@ def format_files(files: "Iterable[str]", style: Style, paths: "Iterable[str]",
     from urdf_lint.core.hashing import read_regular
     from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.packages import MAX_SOURCE_BYTES
-    from urdf_lint.fix.sourceedit import inside
+    from urdf_lint.fix.scope import inside
     real_paths = write_roots(paths, repo)
     out = []
     for f in files:
