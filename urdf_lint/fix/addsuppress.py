@@ -13,7 +13,8 @@ from typing import TYPE_CHECKING, Iterable
 from urdf_lint.core import fsbound
 from urdf_lint.core.codes import RuleName
 from urdf_lint.core.edits import Edit
-from urdf_lint.fix.sourceedit import apply_edits, inside, line_offset
+from urdf_lint.fix.scope import inside
+from urdf_lint.fix.sourceedit import apply_edits, line_offset
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.core.findings import Problem

@@ -27,10 +27,10 @@ def inside_paths(findings: Iterable["Problem"], paths: list[str],
     """The findings, with the fixes that would edit a file outside the linted ``paths`` (an
     installed package, a dependency elsewhere in the workspace) refused, and those that would
     edit a generated URDF (:func:`not_in_generated`)."""
-    from urdf_lint.core.locations import display_path
-    out = []
     from urdf_lint.core.fsbound import write_roots
+    from urdf_lint.core.locations import display_path
     from urdf_lint.discovery.discover import repository_root
+    out = []
     # once, not once per edit; a named symlink out of the repository stands for nothing
     real_paths = write_roots(paths, repository_root(paths))
     known: dict[str, bool] = {}   # file -> inside? (once per file, not once per fix)

@@ -12,8 +12,6 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable, Iterator
 
-from urdf_lint.fix.scope import inside as inside   # (part of this module's API)
-
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.core.edits import Edit
 
