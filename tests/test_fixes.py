@@ -630,3 +630,28 @@ def test_a_rolled_back_fix_is_not_retried_until_its_inputs_change(tmp_path):
     (pkg / "urdf/b.urdf.xacro").write_text(robot("3", "  <!-- edited -->\n"))
     f = run_main("check", ".", "--fix", "--isolated", *cache, cwd=pkg)
     assert "UL302 fix rolled back: the edited source is also used by" in f.stderr, f.stderr
+
+
+def test_a_fix_rolled_back_alone_is_tried_again_beside_the_fix_it_needs(tmp_path):
+    """The soft limits are written from the same properties as the limits: the swap UL302
+    asks for also changes the safety controller, so with UL302 alone it is rolled back; with
+    UL306 selected too, its swap of the same values verifies beside it. The memory of the first
+    run's rollback must not keep the second run from trying (the fixes tried together are part
+    of what a rollback depended on)."""
+    src = (HEAD + '  <xacro:property name="lo" value="2.0"/>\n'
+           '  <xacro:property name="hi" value="-2.0"/>\n' + LINKS
+           + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>\n'
+                   '    <safety_controller soft_lower_limit="${lo}" soft_upper_limit="${hi}" '
+                   'k_position="1" k_velocity="1"/>') + "</robot>\n")
+    pkg = make_package(tmp_path, "p", {"urdf/r.urdf.xacro": src})
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    f = run_main("check", ".", "--fix", "--isolated", "--select", "UL302", *cache, cwd=pkg)
+    assert "UL302 fix rolled back: the fix changes more of" in f.stderr, f.stderr
+    assert (pkg / "urdf/r.urdf.xacro").read_text() == src
+    # the same run again: remembered, not tried
+    f = run_main("check", ".", "--fix", "--isolated", "--select", "UL302", *cache, cwd=pkg)
+    assert "UL302 fix not applied: rolled back on an earlier run" in f.stderr, f.stderr
+    f = run_main("check", ".", "--fix", "--isolated", "--select", "UL302,UL306", *cache, cwd=pkg)
+    assert "Fixed 2 findings in 1 file (0 remaining)" in f.stderr, f.stderr
+    fixed = (pkg / "urdf/r.urdf.xacro").read_text()
+    assert 'name="lo" value="-2.0"' in fixed and 'name="hi" value="2.0"' in fixed

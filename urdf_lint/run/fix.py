@@ -352,7 +352,7 @@ def _skip_rolled_back(chosen: "list[Problem]", refused: "list[tuple[Problem, str
     """(the fixes to try, each fix's memo key): a fix an earlier run rolled back, while
     nothing it depends on changed, joins ``refused`` instead."""
     from urdf_lint.fix.memo import fix_key
-    keys = {_fkey(p): fix_key(p, models) for p in chosen}
+    keys = {_fkey(p): fix_key(p, models, chosen) for p in chosen}
     earlier = [(p, memo.reason(keys[_fkey(p)])) for p in chosen]
     refused += [(p, f"rolled back on an earlier run ({why}); not tried again until a file "
                     "it depends on changes") for p, why in earlier if why]
