@@ -439,7 +439,10 @@ def test_repeated_inline_colour_becomes_one_named_material(tmp_path):
 
 def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     """The property lives in another package of the workspace: linting only the robot's
-    package fixes nothing there (and says why); linting the workspace fixes it."""
+    package fixes nothing there, and says which fix and why in the summary of --fix and
+    --diff, not only "Fixed 0" (the real franka description's limits live in a YAML file
+    beside its entry: `check fr3.urdf.xacro --fix` said nothing more); linting the workspace
+    fixes it."""
     props = HEAD + '  <xacro:property name="lo" value="1.5"/>\n  <xacro:property name="hi" value="-0.5"/>\n</robot>\n'
     src = (HEAD + '  <xacro:include filename="$(find common)/urdf/props.xacro"/>\n' + LINKS
            + joint('<limit lower="${lo}" upper="${hi}" effort="1" velocity="1"/>') + "</robot>\n")
@@ -448,7 +451,13 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     robot = make_package(ws, "robot", {"urdf/robot.urdf.xacro": src})
     p = run_main("check", "robot", "--fix", "--no-cache", "--isolated", "--package-path",
                 f"common={ws / 'common'}", cwd=ws)
-    assert "Fixed 0 findings" in p.stderr, p.stderr
+    why = ("robot/urdf/robot.urdf.xacro:6:5: UL302 fix not applied: common/urdf/props.xacro "
+           "is outside the linted paths\n")
+    assert why + "Fixed 0 findings in 0 files (3 remaining, 1 fix(es) not applied)." \
+        in p.stderr, p.stderr
+    p = run_main("check", "robot", "--diff", "--no-cache", "--isolated", "--package-path",
+                 f"common={ws / 'common'}", cwd=ws)
+    assert why + "Would fix 0 findings in 0 file(s)." in p.stderr, p.stderr
     assert (ws / "common/urdf/props.xacro").read_text() == props
     p = run_main("check", "robot", "--format", "json", "--no-cache", "--isolated",
                 "--package-path", f"common={ws / 'common'}", cwd=ws)
@@ -655,3 +664,4 @@ def test_a_fix_rolled_back_alone_is_tried_again_beside_the_fix_it_needs(tmp_path
     assert "Fixed 2 findings in 1 file (0 remaining)" in f.stderr, f.stderr
     fixed = (pkg / "urdf/r.urdf.xacro").read_text()
     assert 'name="lo" value="-2.0"' in fixed and 'name="hi" value="2.0"' in fixed
+

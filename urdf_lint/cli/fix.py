@@ -30,13 +30,17 @@ class FixRequest:
     exit_non_zero_on_fix: bool = False
 
 
+def _refusals(outcome: FixOutcome) -> list[str]:
+    """The fixes not applied (or, with --diff, not proposed), each with why."""
+    from urdf_lint.core.locations import display_path
+    return [f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: {reason}"
+            for p, reason in outcome.refused]
+
+
 def _summary(outcome: FixOutcome) -> list[str]:
     """What ``--fix`` did, one message per line (each written through :func:`say`)."""
     from urdf_lint.core.locations import display_path
-    lines = []
-    for p, reason in outcome.refused:
-        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: "
-                     f"{reason}")
+    lines = _refusals(outcome)
     for p, reason in outcome.rolled_back:
         lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
                      f"{reason}")
@@ -93,6 +97,8 @@ def check_fix(req: FixRequest, prep: Prepared, out: Out, color_mode: str) -> int
     if req.diff:
         sys.stdout.write(outcome.diff)
         n = len(outcome.applied)
+        for line in _refusals(outcome):
+            say(line)
         say(f"Would fix {n} finding{'s' if n != 1 else ''} in "
             f"{len(outcome.changed_files)} file(s).")
         if outcome.result.internal:

@@ -13,6 +13,20 @@ if TYPE_CHECKING:
     from urdf_lint.core.findings import Problem
 
 
+OUTSIDE = "is outside the linted paths"
+GENERATED = "fix the source and run urdf-lint generate"
+
+
+def scope_refusal(fix: Fix | None) -> str:
+    """Why :func:`inside_paths` or :func:`not_in_generated` refused ``fix`` (the file it would
+    edit, and why that file is not edited), or "" when they did not: a run asked to fix says
+    so, since the fix exists and another command line would apply it."""
+    if fix is None or fix.applicable or not fix.refused.startswith(NOT_FIXABLE + ": "):
+        return ""
+    why = fix.refused[len(NOT_FIXABLE) + 2:]
+    return why if why.endswith((OUTSIDE, GENERATED)) else ""
+
+
 def inside(path: str, paths: Iterable[str], resolved: bool = False) -> bool:
     """Whether ``path`` (symlinks followed) is one of ``paths`` or below one of them
     (``resolved``: the ``paths`` are already real paths)."""
@@ -43,7 +57,7 @@ def inside_paths(findings: Iterable["Problem"], paths: list[str],
             outside = [e.file for e in fx.edits if not known[e.file]]
             if outside:
                 p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
-                                      f"{display_path(outside[0])} is outside the linted paths"))
+                                      f"{display_path(outside[0])} {OUTSIDE}"))
         out.append(p)
     return out
 
@@ -65,7 +79,6 @@ def not_in_generated(findings: Iterable["Problem"],
             src = outputs[os.path.realpath(made[0])]
             p = p.replace(fix=Fix(fx.description, fx.safe, (), f"{NOT_FIXABLE}: "
                                   f"{display_path(made[0])} is generated from "
-                                  f"{display_path(src)}; fix the source and run "
-                                  "urdf-lint generate"))
+                                  f"{display_path(src)}; {GENERATED}"))
         out.append(p)
     return out

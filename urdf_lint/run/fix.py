@@ -107,8 +107,10 @@ def candidates(findings: "Iterable[Problem]", unsafe: bool
     """(chosen, deferred, refused): applicable fixes without overlapping edits, in finding
     order; a fix that overlaps an earlier one waits for the next run (deferred), and two fixes
     that want different text on the same bytes (one macro line, several models or instances
-    that need different values) are both refused, with the reason."""
+    that need different values) are both refused, with the reason; so is a fix the run's
+    scope took back (a file outside the linted paths, a generated URDF: fix.scope)."""
     from urdf_lint.core.locations import display_path
+    from urdf_lint.fix.scope import scope_refusal
     chosen: list[Problem] = []
     deferred: list[Problem] = []
     refused: list[tuple[Problem, str]] = []
@@ -116,7 +118,12 @@ def candidates(findings: "Iterable[Problem]", unsafe: bool
     taken: dict[str, list[tuple[int, int, str, Problem]]] = {}
     for p in findings:
         fx = p.fix
-        if fx is None or not fx.applicable or (not fx.safe and not unsafe):
+        if fx is None or (not fx.safe and not unsafe):
+            continue
+        if not fx.applicable:
+            why = scope_refusal(fx)
+            if why:
+                refused.append((p, why))
             continue
         clash, rival = False, None
         for e in fx.edits:
