@@ -83,3 +83,37 @@ def test_parallel_equals_serial(corpus, tmp_path):
     b = run_cli("check", *sub, "--no-cache", "-j", "2", "--format", "json", "--fail-on", "never", cwd=corpus)
     assert json.loads(a.stdout)["findings"] == json.loads(b.stdout)["findings"]
     assert json.loads(a.stdout)["models"] == json.loads(b.stdout)["models"]
+
+
+def test_affected_resolves_each_file_as_realpath_does(tmp_path, monkeypatch):
+    """The hook's "which models does this commit touch" resolves every file a model read once
+    per folder (a workspace's models share most of their folders); each file must still be
+    matched exactly as ``os.path.realpath`` would: through a symlinked folder, a symlinked
+    file, a dangling symlink, a file that is gone, a relative name and ``..``."""
+    import os
+
+    from urdf_lint.core.jobs import ModelReport
+    from urdf_lint.discovery.changes import _real, affected
+    real = tmp_path / "real"
+    (real / "urdf").mkdir(parents=True)
+    (real / "urdf" / "a.xacro").write_text("<robot/>")
+    (real / "urdf" / "b.xacro").write_text("<robot/>")
+    (tmp_path / "link").symlink_to(real)                             # a symlinked folder
+    (real / "urdf" / "c.xacro").symlink_to(real / "urdf" / "b.xacro")   # a symlinked file
+    (real / "urdf" / "d.xacro").symlink_to(tmp_path / "nowhere")     # dangling
+    monkeypatch.chdir(real / "urdf")
+    names = [str(tmp_path / "link/urdf/a.xacro"), str(tmp_path / "link/urdf/c.xacro"),
+             str(tmp_path / "link/urdf/d.xacro"), str(tmp_path / "link/urdf/gone.xacro"),
+             "a.xacro", "c.xacro", "gone.xacro", str(tmp_path / "link/urdf/.."),
+             str(tmp_path / "link/urdf/../urdf/b.xacro"), str(tmp_path / "link/urdf/")]
+    folders: dict[str, str] = {}
+    for f in names:
+        want = os.path.realpath(f) if os.path.exists(f) else \
+            os.path.join(os.path.realpath(os.path.dirname(f)), os.path.basename(f))
+        assert _real(f, folders) == _real(f) == want, f
+    m = ModelReport(str(tmp_path / "link/urdf/a.xacro"), {},
+                    deps=[str(tmp_path / "link/urdf/c.xacro")],
+                    missing=[str(tmp_path / "link/urdf/gone.xacro")])
+    other = ModelReport(str(real / "urdf" / "d.xacro"), {})
+    hit, unused = affected([m, other], ["b.xacro", "gone.xacro", "../urdf/x.yaml"])
+    assert hit == [m] and unused == [str(real / "urdf" / "x.yaml")]

@@ -11,11 +11,22 @@ if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.core.jobs import ModelReport
 
 
-def _real(f: str) -> str:
-    """realpath of a file that may be gone (its folder resolved)."""
+def _real(f: str, folders: dict[str, str] | None = None) -> str:
+    """realpath of a file that may be gone (its folder resolved). ``folders``: the real paths
+    of folders resolved before (a run's models share most of their folders: resolving each
+    folder once, not once per file under it, saves a stat of every folder above it per file)."""
     if os.path.exists(f):
-        return os.path.realpath(f)
-    return os.path.join(os.path.realpath(os.path.dirname(f)), os.path.basename(f))
+        d, name = os.path.split(f)
+        if folders is None or name in ("", ".", "..") or os.path.islink(f):
+            return os.path.realpath(f)
+    else:
+        d, name = os.path.dirname(f), os.path.basename(f)
+        if folders is None:
+            return os.path.join(os.path.realpath(d), name)
+    real = folders.get(d)
+    if real is None:
+        real = folders[d] = os.path.realpath(d)
+    return os.path.join(real, name)
 
 
 def affected(models: Iterable["ModelReport"], files: Iterable[str]
@@ -23,11 +34,19 @@ def affected(models: Iterable["ModelReport"], files: Iterable[str]
     """(models whose recorded inputs intersect ``files``, files no model uses). A model's
     inputs are its entry, every file it read and every file it looked for and did not find,
     so a deleted or renamed-away include, YAML file or mesh re-lints the models that used it."""
-    real = {_real(f) for f in files}
+    folders: dict[str, str] = {}
+    done: dict[str, str] = {}
+
+    def real_of(f: str) -> str:
+        r = done.get(f)
+        if r is None:
+            r = done[f] = _real(f, folders)
+        return r
+    real = {real_of(f) for f in files}
     hit: list["ModelReport"] = []
     used: set[str] = set()
     for m in models:
-        deps = {_real(d) for d in [*m.deps, *m.missing, m.entry]}
+        deps = {real_of(d) for d in [*m.deps, *m.missing, m.entry]}
         inter = deps & real
         if inter:
             hit.append(m)
