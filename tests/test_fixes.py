@@ -470,6 +470,34 @@ def test_files_outside_the_linted_paths_are_not_edited(tmp_path):
     assert (robot / "urdf/robot.urdf.xacro").read_text() == src
 
 
+
+def test_a_refused_fix_of_a_shared_macro_is_named_once(tmp_path):
+    """A macro outside the linted paths called three times gives one finding of three
+    instances, and one fix at one place: the summary names it once and counts one, as the
+    report counts the finding once (not three identical lines, nor "3 fix(es) not
+    applied" beside "1 remaining")."""
+    arm = ('<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+           '  <xacro:macro name="arm" params="prefix">\n'
+           '    <link name="${prefix}link"/>\n'
+           '    <joint name="${prefix}joint" type="revolute"><parent link="base"/>'
+           '<child link="${prefix}link"/><axis xyz="0 0 1"/>\n'
+           '      <limit lower="1" upper="-1" effort="1" velocity="1"/>\n'
+           '    </joint>\n  </xacro:macro>\n</robot>\n')
+    src = (HEAD + '  <xacro:include filename="$(find common)/urdf/arm.xacro"/>\n'
+           '  <link name="base"/>\n' + "".join(f'  <xacro:arm prefix="{p}_"/>\n' for p in "lrm")
+           + "</robot>\n")
+    ws = tmp_path / "ws" / "src"
+    make_package(ws, "common", {"urdf/arm.xacro": arm})
+    make_package(ws, "robot", {"urdf/robot.urdf.xacro": src})
+    why = ("common/urdf/arm.xacro:6:7: UL302 fix not applied: common/urdf/arm.xacro is outside "
+           "the linted paths\n")
+    for how, end in (("--fix", "Fixed 0 findings in 0 files (1 remaining, 1 fix(es) not "
+                               "applied)."), ("--diff", "Would fix 0 findings in 0 file(s).")):
+        p = run_main("check", "robot", how, "--select", "UL302", "--no-cache", "--isolated",
+                     "--package-path", f"common={ws / 'common'}", cwd=ws)
+        assert p.stderr.count("fix not applied") == 1 and why + end in p.stderr, p.stderr
+    assert (ws / "common/urdf/arm.xacro").read_text() == arm
+
 def test_start_tag_tokeniser_on_raw_bytes():
     from urdf_lint.core.edits import Edit
     from urdf_lint.fix.sourceedit import apply_edits, end_tag_of, escape, start_tag_at

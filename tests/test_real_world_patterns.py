@@ -106,6 +106,12 @@ def test_unsafe_fixes_never_rewrite_a_generated_urdf(tmp_path):
                                    "generate"), f
     p = run_cli("check", ".", "--fix", "--unsafe-fixes", "--no-cache", "--isolated", cwd=pkg)
     assert (pkg / "urdf/robot.urdf").read_bytes() == urdf, p.stderr
+    # the summary says which fix and why (an unsafe one only when unsafe fixes were asked for)
+    why = (f"urdf/robot.urdf:{f['line']}:{f['col']}: UL604 fix not applied: urdf/robot.urdf is "
+           "generated from urdf/robot.urdf.xacro; fix the source and run urdf-lint generate\n")
+    assert why in p.stderr, p.stderr
+    p = run_cli("check", ".", "--fix", "--no-cache", "--isolated", cwd=pkg)
+    assert "UL604 fix not applied" not in p.stderr, p.stderr
 
 
 def test_current_generated_urdf_is_not_linted_again(tmp_path):

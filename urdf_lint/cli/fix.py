@@ -12,6 +12,7 @@ from urdf_lint.core.findings import exit_status
 
 if TYPE_CHECKING:  # pragma: no cover
     from urdf_lint.cli.common import Out
+    from urdf_lint.core.findings import Problem
     from urdf_lint.run.check import Prepared
     from urdf_lint.run.fix import FixOutcome
     from urdf_lint.run.pipeline import CheckResult
@@ -30,31 +31,28 @@ class FixRequest:
     exit_non_zero_on_fix: bool = False
 
 
-def _refusals(outcome: FixOutcome) -> list[str]:
-    """The fixes not applied (or, with --diff, not proposed), each with why."""
+def _lines(fixes: "list[tuple[Problem, str]]", what: str) -> list[str]:
+    """One line per fix ``what`` (not applied, rolled back) with why: a finding of many
+    instances (a macro called for each finger, a YAML value every variant reads) has one fix
+    at one place, named once, as the report names the finding once."""
     from urdf_lint.core.locations import display_path
-    return [f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix not applied: {reason}"
-            for p, reason in outcome.refused]
+    return list(dict.fromkeys(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix {what}: "
+                              f"{reason}" for p, reason in fixes))
 
 
 def _summary(outcome: FixOutcome) -> list[str]:
     """What ``--fix`` did, one message per line (each written through :func:`say`)."""
-    from urdf_lint.core.locations import display_path
-    lines = _refusals(outcome)
-    for p, reason in outcome.rolled_back:
-        lines.append(f"{display_path(p.file)}:{p.line}:{p.col}: {p.code} fix rolled back: "
-                     f"{reason}")
+    refused = _lines(outcome.refused, "not applied")
+    rolled = _lines(outcome.rolled_back, "rolled back")
     from urdf_lint.core.findings import tally
     fixed = tally(outcome.applied)
     files = len(outcome.changed_files)
     remaining = tally(outcome.result.findings).findings
-    lines.append(f"Fixed {fixed.phrase('finding' if fixed.findings == 1 else 'findings')} "
-                 f"in {files} file{'s' if files != 1 else ''} ({remaining} remaining"
-                 + (f", {len(outcome.rolled_back)} fix(es) rolled back" if outcome.rolled_back
-                    else "")
-                 + (f", {len(outcome.refused)} fix(es) not applied" if outcome.refused else "")
-                 + ").")
-    return lines
+    return refused + rolled + [
+        f"Fixed {fixed.phrase('finding' if fixed.findings == 1 else 'findings')} "
+        f"in {files} file{'s' if files != 1 else ''} ({remaining} remaining"
+        + (f", {len(rolled)} fix(es) rolled back" if rolled else "")
+        + (f", {len(refused)} fix(es) not applied" if refused else "") + ")."]
 
 
 def _add_suppressions(req: FixRequest, prep: Prepared, out: Out, color_mode: str) -> int:
@@ -97,7 +95,7 @@ def check_fix(req: FixRequest, prep: Prepared, out: Out, color_mode: str) -> int
     if req.diff:
         sys.stdout.write(outcome.diff)
         n = len(outcome.applied)
-        for line in _refusals(outcome):
+        for line in _lines(outcome.refused, "not applied"):
             say(line)
         say(f"Would fix {n} finding{'s' if n != 1 else ''} in "
             f"{len(outcome.changed_files)} file(s).")
