@@ -153,6 +153,18 @@ def make_package(root: Path, name: str, files: dict, depends=()) -> Path:
     return write(pkg, files)
 
 
+def age(root: Path, seconds: float = 60) -> None:
+    """Make ``root`` and every file and folder under it look last edited ``seconds`` ago: the
+    run memo (urdf_lint/run/runcache.py) ignores inputs that changed in the last seconds (a
+    coarse clock could hide a later edit)."""
+    import time
+    t = time.time() - seconds
+    for d, dirs, files in os.walk(root):
+        for n in dirs + files:
+            os.utime(os.path.join(d, n), (t, t), follow_symlinks=False)
+    os.utime(root, (t, t))
+
+
 # -- unit and e2e ------------------------------------------------------------------------------
 # Every test is marked by what it uses, never by a hand-kept list of names: `e2e` when it (its
 # body, the module-level helpers it calls, transitively, or its fixtures) runs a subprocess

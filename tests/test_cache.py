@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from conftest import DESCRIPTIONS, run_cli
+from conftest import DESCRIPTIONS, age, run_cli
 
 
 @pytest.fixture()
@@ -182,16 +182,6 @@ def test_the_values_of_allowed_environment_variables_key_the_cache(repo):
 
 
 # -- the run memo (urdf_lint/run/runcache.py): a whole unchanged run reused, every change seen ------
-def _age(root, seconds=60):
-    """Make every file and folder look edited a minute ago (the memo ignores inputs that
-    changed in the last seconds: a coarse clock could hide a later edit)."""
-    t = time.time() - seconds
-    for d, dirs, files in os.walk(root):
-        for n in dirs + files:
-            os.utime(os.path.join(d, n), (t, t), follow_symlinks=False)
-    os.utime(root, (t, t))
-
-
 def _reused(repo, *extra):
     p = run_cli("check", ".", "--format", "json", "-v", *extra, cwd=repo)
     assert p.returncode in (0, 1), p.stderr
@@ -200,7 +190,7 @@ def _reused(repo, *extra):
 
 def _settle(repo, *extra):
     """Age the tree, run once (the memo is written), and check the next run reuses it."""
-    _age(repo)
+    age(repo)
     run(repo, *extra)
     reused, doc = _reused(repo, *extra)
     assert reused, "an unchanged run should reuse the last result"
@@ -247,7 +237,7 @@ def test_run_memo_reuses_an_unchanged_run_and_sees_every_change(repo):
     assert [f for f in doc["findings"] if f["code"] == "UL003" and "wants" in f["file"]]
     (pkg / "urdf" / "later.xacro").write_text(
         '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>\n')
-    _age(pkg / "urdf" / "later.xacro")            # even with an old time stamp
+    age(pkg / "urdf" / "later.xacro")            # even with an old time stamp
     reused, doc = _reused(repo)
     assert not reused
     assert not [f for f in doc["findings"] if f["code"] == "UL003" and "wants" in f["file"]]
@@ -255,7 +245,7 @@ def test_run_memo_reuses_an_unchanged_run_and_sees_every_change(repo):
     # the configuration (and the command line) are part of what a memo is for
     _settle(repo)
     (repo / "pyproject.toml").write_text('[tool.urdf-lint]\nignore = ["UL401"]\n')
-    _age(repo / "pyproject.toml")
+    age(repo / "pyproject.toml")
     reused, doc = _reused(repo)
     assert not reused and not _codes(doc, "UL401")
     reused, doc = _reused(repo, "--select", "UL1")
@@ -279,7 +269,7 @@ def test_run_memo_is_not_written_when_a_folder_changes_during_the_run(repo, monk
     from urdf_lint.cli import main as cli
     from urdf_lint.run import runcache
     run(repo)          # (the cache folder exists: the repository's folder is settled)
-    _age(repo)
+    age(repo)
     late = repo / "r2d2_description" / "urdf" / "late.urdf"
     real_init, real_store = runcache.RunMemo.__init__, runcache.RunMemo.store
 

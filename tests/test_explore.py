@@ -7,7 +7,7 @@ import json
 import os
 from pathlib import Path
 
-from conftest import make_package, run_cli
+from conftest import age, make_package, run_cli
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 INERTIAL = ('<inertial><mass value="{m}"/><inertia ixx="1e-3" ixy="0" ixz="0" iyy="2e-3" '
@@ -477,16 +477,11 @@ def test_a_run_whose_variants_read_a_file_of_their_own_is_remembered(tmp_path):
     A file only an explored variant reads (franka's inertial YAML under ``gazebo:=true``) was
     added to its model's inputs without that record, so no run of such a robot was ever
     remembered: every warm ``check`` linted again (0.26 s instead of 0.16 s on the corpus)."""
-    import time
     pkg = lazy_yaml_repo(tmp_path)
     yaml = pkg / "config/inertial.yaml"
     yaml.write_text(yaml.read_text().replace("mass: 2.0", "mass: -2.0"))
     assert run_cli("check", ".", cwd=pkg).returncode == 1      # (makes the cache folder)
-    t = time.time() - 60     # (the memo trusts no input changed in its last seconds)
-    for d, dirs, files in os.walk(pkg):
-        for n in dirs + files:
-            os.utime(os.path.join(d, n), (t, t), follow_symlinks=False)
-    os.utime(pkg, (t, t))
+    age(pkg)     # (the memo trusts no input changed in its last seconds)
     runs = [run_cli("check", ".", "--format", "json", "-v", cwd=pkg) for _ in range(2)]
     assert all(p.returncode == 1 for p in runs), [p.stderr for p in runs]
     said = ["nothing changed since the last identical run" in p.stderr for p in runs]

@@ -3,13 +3,11 @@ one that reuses the last run's whole result not the fix machinery either (the fi
 which every run's end applies, is a light module of its own)."""
 from __future__ import annotations
 
-import os
 import shutil
 import subprocess
 import sys
-import time
 
-from conftest import DESCRIPTIONS
+from conftest import DESCRIPTIONS, age
 
 CODE = """
 import sys
@@ -20,14 +18,6 @@ print(rc, heavy, "urdf_lint.fix.fixes" in sys.modules)
 """
 
 
-def _settled(root):
-    """Every file and folder under ``root`` last changed an hour ago: a run remembers its
-    whole result only when no input changed within the last seconds (run/runcache.py)."""
-    then = time.time() - 3600
-    for p in [root, *root.rglob("*")]:
-        os.utime(p, (then, then))
-
-
 def test_warm_run_imports_nothing_heavy(tmp_path):
     shutil.copytree(DESCRIPTIONS / "r2d2_description", tmp_path / "r2d2_description")
     run = lambda: subprocess.run([sys.executable, "-c", CODE], cwd=tmp_path,  # noqa: E731
@@ -35,7 +25,7 @@ def test_warm_run_imports_nothing_heavy(tmp_path):
     first = run()
     # cold: expands, and the rules loaded ahead of the workers attach fix requests
     assert first.stdout.strip() == "0 ['xacro'] True", first.stdout + first.stderr
-    _settled(tmp_path)     # (the first run made the cache folder)
+    age(tmp_path, 3600)    # (the first run made the cache folder; the memo trusts old inputs)
     warm = run()           # every model's result from the cache; the run's end made again
     assert warm.stdout.startswith("0 [] "), warm.stdout + warm.stderr
     memo = run()           # the whole result of the last run
