@@ -174,6 +174,30 @@ def test_help_lists_every_registered_format(capsys):
                                                      diff_formats.ORDER)
 
 
+@pytest.mark.parametrize("env", [{}, {"COLUMNS": "50"}, {"COLUMNS": "0"}, {"COLUMNS": "wide"},
+                                 {"COLUMNS": "-3"}, {"COLUMNS": "300"}])
+def test_help_is_as_wide_as_argparses_own(env, monkeypatch):
+    """The parser's formatter takes its width as argparse's own does (through ``shutil``,
+    which urdf-lint no longer imports on every run): ``COLUMNS``, else the terminal, else 80."""
+    from urdf_lint.cli.parser import Parser, RawDescriptionHelpFormatter, columns
+    monkeypatch.delenv("COLUMNS", raising=False)
+    for k, v in env.items():
+        monkeypatch.setenv(k, v)
+    assert columns() == shutil.get_terminal_size().columns
+    for ours, theirs in ((Parser, None), (RawDescriptionHelpFormatter,
+                                          argparse.RawDescriptionHelpFormatter)):
+        made = []
+        for cls, kw in ((Parser, {} if theirs is None else {"formatter_class": ours}),
+                        (argparse.ArgumentParser, {} if theirs is None else
+                         {"formatter_class": theirs})):
+            p = cls(prog="x", description="word " * 40 + "\n  a kept line " * 3, **kw)
+            p.add_argument("--flag", metavar="VALUE", help="what it does " * 20)
+            made.append(p.format_help())
+        assert made[0] == made[1], env
+        if theirs is None:     # (the raw one keeps the description's lines as they are)
+            assert max(map(len, made[0].splitlines())) <= max(columns() - 2, 40), env
+
+
 def _declared_formats(folder, order) -> tuple:
     """The format names the modules of ``folder`` declare (read as text, not imported), in
     the registry's order: those in ``order`` first, then by name."""

@@ -20,7 +20,7 @@ import os
 import sys
 from typing import TYPE_CHECKING
 
-from urdf_lint.cli.parser import Parser
+from urdf_lint.cli.parser import Parser, RawDescriptionHelpFormatter
 from urdf_lint.core.emit import say
 from urdf_lint.core.errors import UsageError
 
@@ -58,7 +58,7 @@ def build_parser(only: str | None = None) -> Parser:
                "descriptions at their xacro source lines, and render review snapshots.")
     p.add_argument("--version", action="store_true", help="print the version and exit")
     sub = p.add_subparsers(dest="command", parser_class=Parser, metavar="COMMAND")
-    raw = argparse.RawDescriptionHelpFormatter   # keeps the epilog's table of formats
+    raw = RawDescriptionHelpFormatter   # keeps the epilog's table of formats
     for name in COMMANDS:
         if only is None or name == only:
             command_module(name).add_parser(sub, raw)

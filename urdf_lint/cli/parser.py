@@ -7,9 +7,12 @@ new key with a flag is on every command that takes its group, with nothing to ad
 from __future__ import annotations
 
 import argparse
-import difflib
+import os
 import re
-from typing import TYPE_CHECKING, NoReturn
+import sys
+from typing import TYPE_CHECKING, Any, NoReturn
+
+from urdf_lint.core.suggest import close_matches
 
 if TYPE_CHECKING:  # pragma: no cover
     # what main.build_parser hands each command's add_parser(sub, raw)
@@ -17,15 +20,49 @@ if TYPE_CHECKING:  # pragma: no cover
     Formatter = type[argparse.HelpFormatter]
 
 
+def columns() -> int:
+    """``shutil.get_terminal_size().columns``: ``COLUMNS``, else the width of the terminal on
+    standard output, else 80; without importing shutil, which argparse's formatter does for
+    it (~3 ms with the compression modules shutil loads: every run builds a parser, which
+    makes a formatter per argument, and few print help)."""
+    try:
+        width = int(os.environ.get("COLUMNS", "0"))
+    except ValueError:
+        width = 0
+    if width <= 0:
+        try:
+            width = os.get_terminal_size(sys.__stdout__.fileno()).columns  # type: ignore[union-attr]
+        except (AttributeError, ValueError, OSError):
+            width = 0
+    return width if width > 0 else 80
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """argparse's formatter, its width from :func:`columns`."""
+
+    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
+                 width: int | None = None) -> None:
+        super().__init__(prog, indent_increment, max_help_position,
+                         columns() - 2 if width is None else width)
+
+
+class RawDescriptionHelpFormatter(argparse.RawDescriptionHelpFormatter, HelpFormatter):
+    """:class:`HelpFormatter` keeping the description's and epilog's lines (a table)."""
+
+
 class Parser(argparse.ArgumentParser):
     """A command-line mistake is one line: what is wrong, the closest known flag or command,
     and where the usage is (like ruff; the whole usage buried the suggestion)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
         m = re.match(r"argument (\S+): invalid choice: '([^']*)' \(choose from (.*)\)", message)
         if m:
             choices = re.findall(r"'([^']*)'", m.group(3))
-            close = difflib.get_close_matches(m.group(2), choices, n=1, cutoff=0.6)
+            close = close_matches(m.group(2), choices, n=1, cutoff=0.6)
             if close:
                 message += f" (did you mean {close[0]}?)"
         m = re.match(r"unrecognized arguments: (.*)", message)
@@ -33,7 +70,7 @@ class Parser(argparse.ArgumentParser):
             hints = []
             args = [a for a in m.group(1).split() if a.startswith("-")]
             for arg in args:
-                close = difflib.get_close_matches(arg.split("=")[0], self.flags(), n=1,
+                close = close_matches(arg.split("=")[0], self.flags(), n=1,
                                                   cutoff=0.6)
                 if close:
                     hints.append(f"did you mean {close[0]}?" if len(args) == 1

@@ -11,7 +11,6 @@ types with ``OPTION_TYPES = {"name": (int, float)}``.
 from __future__ import annotations
 
 import copy
-import difflib
 import fnmatch
 import json
 import os
@@ -21,14 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from urdf_lint.config.policy import code_matches
-from urdf_lint.core.suggest import did_you_mean
-
-
-try:
-    import tomllib
-except ImportError:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
+from urdf_lint.core.suggest import close_matches, did_you_mean
 
 from urdf_lint.core.jobs import DEFAULT_ENV_ALLOW as DEFAULT_ENV_ALLOW  # noqa: E402 - a run's setting; config shows it
 from urdf_lint.core.jobs import DEFAULT_MEMORY_MB, DEFAULT_TIMEOUT  # noqa: E402 - the workers' limits
@@ -114,7 +106,7 @@ class Choice(Type):
 
     def check(self, v: Any) -> Any:
         if not isinstance(v, str) or v not in self.choices:
-            close = difflib.get_close_matches(v, self.choices, n=1, cutoff=0.6) \
+            close = close_matches(v, self.choices, n=1, cutoff=0.6) \
                 if isinstance(v, str) else []
             raise _Bad(self.expected + (f"; did you mean {show(close[0])}?" if close else ""))
         return v
@@ -676,6 +668,11 @@ def _read_toml(path: Path) -> tuple[str, dict[str, Any]]:
         from urdf_lint.core.escape import escape_text
         why = getattr(e, "why", None) or e.strerror or e
         raise ConfigError(f"{_shown(path)}: cannot read config: {escape_text(str(why))}") from None
+    # (tomllib, with datetime, ~4 ms to import: only a run that reads a TOML file needs it)
+    try:
+        import tomllib
+    except ImportError:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
     try:
         data: dict[str, Any] = tomllib.loads(text)
         return text, data
@@ -701,7 +698,7 @@ def _near_miss_table(tool: dict[str, Any]) -> str | None:
         if not isinstance(k, str) or k == "urdf-lint":
             continue
         norm = re.sub(r"[-_. ]", "", k.lower())
-        if norm in ("urdflint", "urdflinter") or difflib.get_close_matches(
+        if norm in ("urdflint", "urdflinter") or close_matches(
                 k.lower(), ["urdf-lint"], n=1, cutoff=0.8):
             return k
     return None
@@ -922,12 +919,11 @@ def format_option(name: str, s: str) -> Any:
 
 def _did_you_mean_file(rel: str, root: Path) -> str:
     """" (did you mean 'X'?)" for the robot file under ``root`` closest to ``rel``."""
-    import difflib
     from urdf_lint.core import fsbound
     from urdf_lint.core.tree import SKIP_DIRS
     files = [os.path.relpath(f, root) for f in fsbound.walk_files(
         root, suffixes=(".xacro", ".urdf"), skip=lambda d: d in SKIP_DIRS or d.startswith("."))]
-    best = difflib.get_close_matches(rel, files, n=1, cutoff=0.5) or difflib.get_close_matches(
+    best = close_matches(rel, files, n=1, cutoff=0.5) or close_matches(
         os.path.basename(rel), [os.path.basename(f) for f in files], n=1, cutoff=0.5)
     if not best:
         return ""

@@ -13,7 +13,6 @@ added at run time (a folder appended to :mod:`urdf_lint.fix.kinds`) is found on 
 """
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable
@@ -156,6 +155,7 @@ def single_candidate(word: str, candidates: Iterable[str], cutoff: float = 0.6) 
     ``CLEAR_MARGIN`` of the first makes two: 'left_finger'
     (0.79 to left_finger_joint, 0.67 to left_inner_joint) is not fixed, 'bse_link' (0.94 to
     base_link, 0.63 to arm_link) is."""
+    import difflib   # (only for a name that is not found)
     m = difflib.get_close_matches(word, list(candidates), n=2, cutoff=min(cutoff, 0.6))
     if not m:
         return None
