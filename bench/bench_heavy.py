@@ -24,16 +24,18 @@ gate).
 ``--base OTHER/.venv/bin/urdf-lint`` (e.g. ``/work/main/.venv/bin/urdf-lint``; repeatable)
 measures changes on the three sets: stock, this tree and the other trees run interleaved (in
 an order that rotates with each repeat), and the wall and CPU ratios to stock of each are
-printed (min and median), with whether its findings are this tree's. A tree without a virtualenv of its own is run by a
-wrapper script doing ``PYTHONPATH=TREE python -P -m urdf_lint``: without ``-P``, ``python -m``
-imports the ``urdf_lint`` of the working directory (this one). ``--findings DIR`` keeps each
-side's findings there as JSON.
+printed (min and median), with whether its findings are this tree's. A tree without a
+virtualenv of its own is run by a wrapper script doing ``PYTHONPATH=TREE python -P -m
+urdf_lint``: without ``-P``, ``python -m`` imports the ``urdf_lint`` of the working directory
+(this one). Every tree measured, a wrapper's too, has its bytecode written first.
+``--findings DIR`` keeps each side's findings there as JSON.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import os
+import re
 import resource
 import shutil
 import statistics
@@ -223,12 +225,26 @@ def compile_bytecode(exes) -> None:
     worktree with none) is compiled again on every run and in every measurement."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     for exe in exes:
-        p = Path(exe).resolve()
-        tree = p.parents[2] if p.parent.name == "bin" else p.parent
-        dirs = [str(tree / d) for d in ("urdf_lint", "rules") if (tree / d).is_dir()]
-        if dirs:
-            subprocess.run([sys.executable, "-m", "compileall", "-q", *dirs], env=env,
-                           stdout=subprocess.DEVNULL, check=False)
+        for tree in trees_of(exe):
+            dirs = [str(tree / d) for d in ("urdf_lint", "rules") if (tree / d).is_dir()]
+            if dirs:
+                subprocess.run([sys.executable, "-m", "compileall", "-q", *dirs], env=env,
+                               stdout=subprocess.DEVNULL, check=False)
+
+
+def trees_of(exe) -> list[Path]:
+    """The source trees an ``urdf-lint`` runs: its virtualenv's checkout, and the
+    ``PYTHONPATH=TREE`` of a wrapper script (``--base``: ``PYTHONPATH=TREE python -P -m
+    urdf_lint``), whose modules were otherwise compiled again on every run."""
+    p = Path(exe).resolve()
+    trees = [p.parents[2] if p.parent.name == "bin" else p.parent]
+    try:
+        head = p.read_bytes()[:4096]
+    except OSError:
+        return trees
+    if head.startswith(b"#!"):
+        trees += [Path(os.fsdecode(m)) for m in re.findall(rb"PYTHONPATH=([^\s:]+)", head)]
+    return trees
 
 
 def main():
