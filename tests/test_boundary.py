@@ -49,8 +49,6 @@ ALLOWED = {
         "reads /proc/self/status: this process's inherited memory, never a repository path",
     ("urdf_lint/runner/hardening.py", "os.listdir"):
         "lists /proc/self/fd to keep a worker's (or the recorder's) own descriptors",
-    ("urdf_lint/runner/forked.py", "os.open"):
-        "opens os.devnull as a worker's stdin",
     ("urdf_lint/run/cache.py", "os.open"):
         "the HMAC key in the user's own ~/.cache/urdf-lint (refused inside the repository), "
         "created O_CREAT|O_EXCL|O_NOFOLLOW 0600 and read O_NOFOLLOW",

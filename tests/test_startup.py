@@ -393,10 +393,12 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
     assert p.returncode == 1, p.stderr
     doc = json.loads(p.stdout)
     assert len(doc["findings"]) > 50 and len(p.stdout) > 30000
-    # a reader that leaves early (`| head -1`) is no error
-    sh = subprocess.run(f"{' '.join(LINT)} check {broken} --no-cache | head -1",
-                        shell=True, capture_output=True, text=True, cwd=tmp_path)
-    assert sh.stdout.count("\n") == 1 and "Traceback" not in sh.stderr, sh.stderr
+    # a reader that leaves early (`| head -1`) is no error, and the run still exits 1 for its
+    # findings (a `set -o pipefail` CI step must not pass: it exited 0)
+    sh = subprocess.run(["bash", "-c", f"{' '.join(LINT)} check {broken} --no-cache | head -1; "
+                         "exit ${PIPESTATUS[0]}"], capture_output=True, text=True, cwd=tmp_path)
+    assert sh.stdout.count("\n") == 1 and sh.stderr == "", sh.stderr
+    assert sh.returncode == 1, sh.returncode
 
 
 # -- what a cached run loads ---------------------------------------------------------------------

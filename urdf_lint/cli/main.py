@@ -189,7 +189,9 @@ def guarded(command: Callable[..., int], *args: Any) -> int:
         return 2
     except KeyboardInterrupt:
         raise
-    except BrokenPipeError:
+    except BrokenPipeError:   # a reader that left early (`| head`): not an error of the run
+        from urdf_lint.core.emit import reader_left
+        reader_left()
         return 0
     except Exception as e:  # noqa: BLE001
         import traceback

@@ -55,5 +55,10 @@ def write_findings(opts: FindingsOutput, cfg: Config, result: CheckResult, out: 
             raise UsageError(f"cannot write {safe_lines(opts.output)}: {safe_lines(why)}") from None
     elif not (out.quiet and not result.findings and fmt in ("text", "concise", "github")
               and not opts.statistics):
-        report.write(result, fmt, sys.stdout, color=report.use_color(color_mode, sys.stdout),
-                     **options)
+        try:
+            report.write(result, fmt, sys.stdout,
+                         color=report.use_color(color_mode, sys.stdout), **options)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            from urdf_lint.core.emit import reader_left
+            reader_left()     # (the exit status is still the findings')

@@ -20,6 +20,15 @@ def tell(text: object) -> None:
     say(text, sys.stdout)
 
 
+def reader_left() -> None:
+    """Standard output's reader has gone (``urdf-lint check . | head``): what is still to be
+    printed goes nowhere, without an error, and the command keeps the exit status of what it
+    found (a pipeline with ``pipefail`` must not pass a run with errors because its reader
+    left early)."""
+    from urdf_lint.core.fsbound import null_onto
+    null_onto(sys.stdout.fileno(), write=True)
+
+
 def safe_lines(s: object) -> str:
     """Text from a model or a traceback, each line escaped for the terminal and every line
     after the first indented, so that none can start a CI workflow command."""

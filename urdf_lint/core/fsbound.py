@@ -570,6 +570,19 @@ def rewrite(path: StrPath, data: bytes, bases: Iterable[StrPath], old: Old,
                         "repository (a symlink?); it was not written")
 
 
+def null_onto(fd: int, write: bool) -> None:
+    """Point descriptor ``fd`` at the null device (``os.devnull``): a worker's stdin, so that
+    it never reads the parent's, or standard output whose reader has gone (nothing from a
+    repository is opened)."""
+    null = os.open(os.devnull, os.O_WRONLY if write else os.O_RDONLY)
+    try:
+        if null != fd:
+            os.dup2(null, fd)
+    finally:
+        if null != fd:
+            os.close(null)
+
+
 def remove(path: StrPath, base: StrPath) -> bool:
     """Remove the regular file ``path`` below ``base`` (no component a symlink); False when it
     is not there or is not a regular file."""

@@ -258,11 +258,9 @@ def _ended_within(pid: int, timeout: float) -> bool | None:
 
 def _quiet_stdin() -> None:
     """The child must not read the parent's stdin: descriptor 0 becomes /dev/null."""
+    from urdf_lint.core.fsbound import null_onto
     try:
-        fd = os.open(os.devnull, os.O_RDONLY)
-        if fd != 0:
-            os.dup2(fd, 0)
-            os.close(fd)
+        null_onto(0, write=False)
     except OSError:
         pass
 
