@@ -401,6 +401,23 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
     assert sh.returncode == 1, sh.returncode
 
 
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full here")
+@pytest.mark.parametrize("argv", [["check", "broken"], ["check", "broken", "--format", "json"],
+                                  ["check", "r2d2_description"], ["rules"], ["--version"]])
+def test_output_that_cannot_be_written_is_one_error_and_status_2(tmp_path, argv):
+    """Standard output on a full disk (``> /dev/full``): the report is lost, so the run says so
+    in one line and exits 2; not an internal error "to report", not a traceback, and never
+    the status of a run whose report was read (it gave 2 with "please report", and 1 with a
+    traceback for --version)."""
+    cmd = [*LINT, *argv, "--no-cache"] if argv[0] == "check" else [*LINT, *argv]
+    with open("/dev/full", "w") as full:
+        p = subprocess.run(cmd, stdout=full, stderr=subprocess.PIPE, text=True,
+                           cwd=DESCRIPTIONS)
+    assert p.stderr == "urdf-lint: error: cannot write to standard output: No space left on " \
+        "device\n", p.stderr
+    assert p.returncode == 2
+
+
 # -- what a cached run loads ---------------------------------------------------------------------
 def test_no_rule_modules_is_an_error_not_a_clean_run(tmp_path):
     import urdf_lint.engine.registry as registry

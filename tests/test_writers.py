@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import make_package, run_main
+from conftest import DESCRIPTIONS, make_package, run_main
 from support import strace
 
 X = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -240,3 +240,33 @@ def test_format_opens_nothing_outside_the_repository_through_symlinks(repo):
     assert p.returncode == 2, p.stderr
     assert "urdf-lint.toml is a symlink leading out of its folder" in p.stderr, p.stderr
     assert strace.outside_allowed(paths, *allowed) == []
+
+
+# -- a full disk ----------------------------------------------------------------------------
+def _file_size_limit(n: int):
+    """For a child: writes past ``n`` bytes fail with EFBIG, as on a full disk (SIGXFSZ off)."""
+    import resource
+    import signal
+
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (n, n))
+    return limit
+
+
+def test_fix_on_a_full_disk_is_one_error_and_leaves_every_source_whole(tmp_path):
+    """``check --fix`` whose writes fail (a full disk: here a file size limit) says which file
+    it could not write, exits 2 and leaves every source as it was, with no temporary file;
+    it was an "internal error (please report)" naming no file."""
+    import shutil
+    import sys
+    shutil.copytree(DESCRIPTIONS / "broken", tmp_path / "broken")
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    p = subprocess.run([sys.executable, "-m", "urdf_lint", "check", ".", "--fix", "--no-cache",
+                        "-q"], cwd=tmp_path / "broken", capture_output=True, text=True,
+                       preexec_fn=_file_size_limit(64))
+    lines = p.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("urdf-lint: error: cannot write "), p.stderr
+    assert lines[0].endswith(".xacro: File too large") and p.returncode == 2, p.stderr
+    after = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    assert after == before

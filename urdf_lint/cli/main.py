@@ -86,6 +86,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         sys.stderr.write("\nurdf-lint: interrupted\n")
         return 130
+    except OSError as e:    # `--version > /dev/full` (a command's own is handled by guarded)
+        from urdf_lint.core.emit import stdout_failed, drop_stdout
+        if not stdout_failed(e):
+            raise
+        say(f"urdf-lint: error: {drop_stdout(e)}")
+        return 2
 
 
 def entry() -> None:
@@ -93,14 +99,22 @@ def entry() -> None:
     # numpy's BLAS starts a thread per core when loaded (~15 ms); the matrices urdf-lint
     # multiplies are 3x3 (a command setting, unless the user chose: not for library users)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    exit_now(main())
+    try:
+        code = main()
+    except SystemExit as e:   # argparse's --help and usage errors: their output is flushed too
+        if not (e.code is None or isinstance(e.code, int)):
+            raise
+        code = e.code or 0
+    exit_now(code)
 
 
 def exit_now(code: int) -> None:
     """End the process without tearing the interpreter down: freeing every module and object
     one by one takes ~20 ms after a run (a tenth of ``urdf-lint expand``), and the OS frees
-    them anyway. Exit handlers still run and the output streams are flushed; when a thread
-    that is not a daemon is still running, exit the usual way (it is waited for)."""
+    them anyway. Exit handlers still run and the output streams are flushed (when standard
+    output cannot take what is left, a full disk, the error says so and the status is 2);
+    when a thread that is not a daemon is still running, exit the usual way (it is waited
+    for)."""
     threading = sys.modules.get("threading")
     if threading is not None and any(
             t.is_alive() and not t.daemon and t is not threading.main_thread()
@@ -111,7 +125,13 @@ def exit_now(code: int) -> None:
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()
-        except (OSError, ValueError):   # the reader is gone (`| head`): nothing more to say
+        except OSError as e:
+            from urdf_lint.core.emit import stdout_failed, drop_stdout
+            if stream is sys.stdout and stdout_failed(e):
+                say(f"urdf-lint: error: {drop_stdout(e)}")
+                code = 2
+            # else: the reader is gone (`| head`): nothing more to say
+        except ValueError:   # (closed)
             pass
     os._exit(code)
 
@@ -194,6 +214,10 @@ def guarded(command: Callable[..., int], *args: Any) -> int:
         reader_left()
         return 0
     except Exception as e:  # noqa: BLE001
+        from urdf_lint.core.emit import stdout_failed, drop_stdout
+        if isinstance(e, OSError) and stdout_failed(e):   # `> /dev/full`: not an internal error
+            say(f"urdf-lint: error: {drop_stdout(e)}")
+            return 2
         import traceback
         say(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}")
         if os.environ.get("URDF_LINT_DEBUG"):

@@ -62,3 +62,8 @@ def write_findings(opts: FindingsOutput, cfg: Config, result: CheckResult, out: 
         except BrokenPipeError:
             from urdf_lint.core.emit import reader_left
             reader_left()     # (the exit status is still the findings')
+        except OSError as e:
+            from urdf_lint.core.emit import stdout_failed, drop_stdout
+            if not stdout_failed(e):
+                raise
+            raise UsageError(drop_stdout(e)) from None

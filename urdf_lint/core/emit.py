@@ -2,8 +2,13 @@
 (:mod:`urdf_lint.core.escape`), so that no name in them can forge a line."""
 from __future__ import annotations
 
+import errno
 import sys
 from typing import Iterable, TextIO
+
+# a write to standard output that fails for want of room or of a working device (``>
+# /dev/full``, a full disk or quota, an I/O error): the run cannot say what it found
+OUTPUT_ERRNOS = frozenset((errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO))
 
 
 def say(text: object, stream: TextIO | None = None) -> None:
@@ -27,6 +32,22 @@ def reader_left() -> None:
     left early)."""
     from urdf_lint.core.fsbound import null_onto
     null_onto(sys.stdout.fileno(), write=True)
+
+
+def drop_stdout(e: OSError) -> str:
+    """Standard output could not be written (:data:`OUTPUT_ERRNOS`): what is still to be
+    printed goes nowhere (:func:`reader_left`, so the interpreter's last flush does not fail
+    again) and the error that says so, without "please report": the run did nothing wrong, and
+    its exit status is 2 (the report is lost)."""
+    reader_left()
+    return f"cannot write to standard output: {e.strerror or e}"
+
+
+def stdout_failed(e: BaseException) -> bool:
+    """Whether ``e`` is a failed write to standard output of :func:`drop_stdout`'s kind (an
+    error of a file urdf-lint opened names that file)."""
+    return isinstance(e, OSError) and not isinstance(e, BrokenPipeError) \
+        and e.errno in OUTPUT_ERRNOS and e.filename is None
 
 
 def safe_lines(s: object) -> str:

@@ -471,9 +471,11 @@ def _temp_in(path: StrPath, base: StrPath, make_dirs: bool, suffix: str = "",
         if not isinstance(old, _Unchecked) and not _holds(target, old):
             raise ChangedError(target)
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as e:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(e, OSError) and e.filename is None:
+            e.filename = target     # (a write's error names no file: a full disk names this one)
         raise
 
 

@@ -436,6 +436,11 @@ class _Writes:
             self.skipped.add(real)
             self.written.discard(f)
             return False
+        except OSError as e:   # a full disk, a file size limit, a refused path: the run stops
+            from urdf_lint.core.errors import UsageError
+            why = getattr(e, "why", None) or e.strerror or e
+            raise UsageError(f"cannot write {escape_text(display_path(f))}: {escape_text(why)}"
+                             ) from None
         self.on_disk[real] = data
         return True
 
@@ -459,6 +464,15 @@ class _Writes:
             chosen = [p for p in chosen if p not in gone]
 
     def restore(self) -> None:
+        """Put every source written back as it was read: each is tried, whatever the others
+        do (then the first failure is raised)."""
+        from urdf_lint.core.errors import UsageError
+        failed: UsageError | None = None
         for f in sorted(self.written):
-            self.put(f, self.originals[f])
+            try:
+                self.put(f, self.originals[f])
+            except UsageError as e:
+                failed = failed or e
         self.written = set()
+        if failed is not None:
+            raise failed
