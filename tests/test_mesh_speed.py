@@ -343,6 +343,58 @@ def test_collada_effect_trimesh_cannot_load_is_left_to_it(tmp_path, fresh, old, 
     assert not fresh.mesh_facts(str(p))["ok"]
 
 
+def _fromstring(text: str) -> np.ndarray | str:
+    """pycollada's own parse of a ``<float_array>`` (NaN read as 0), or the error it raises."""
+    try:
+        out = np.fromstring(text, dtype=np.float32, sep=" ")
+    except ValueError as e:
+        return f"ValueError: {e}"
+    out[np.isnan(out)] = 0
+    return out
+
+
+@pytest.mark.parametrize("text", [
+    "1 2 3", "  1\t2\n3\r4\v5\f6  ", ".5 5. -.5 +.5 1.e5 .1e-2 1E-5 00012 -0 +0",
+    "inf -inf nan -nan +nan NaN INF Infinity -infinity", "1e39 -1e39 1e-46 1e-45 1e400 -1e-400",
+    "3.4028235e38 3.4028236e38 1.17549435e-38 1.4e-45 7e-46",
+    # what numpy's text reader refuses or reads otherwise: fromstring decides, as before
+    "nan(0x7) 1", "1 2 junk", "1,2", "1_0 2", "0x1p3", "1 # 2", "1d5", "- 1", "1e 2",
+    "1\xa02", "\u0663 1", "1 2\x00 3", "+-1"])
+def test_collada_float_arrays_are_read_as_fromstring_reads_them(text):
+    """The lean COLLADA reader's fast parse of a ``<float_array>`` gives fromstring's float32
+    values bit for bit, or its very error (then the file goes to pycollada)."""
+    from urdf_lint.meshes import readers as meshio
+    want = _fromstring(text)
+    try:
+        got: np.ndarray | str = meshio._floats(text)
+    except ValueError as e:
+        got = f"ValueError: {e}"
+    if isinstance(want, str):
+        assert got == want
+    else:
+        assert isinstance(got, np.ndarray) and got.dtype == np.float32
+        assert got.tobytes() == want.tobytes(), (got, want)
+
+
+def test_collada_float_arrays_round_like_fromstring_near_every_float32_boundary():
+    """Decimals halfway between float32 neighbours (and a hair either side), in every format
+    exporters write, read to the same float32 bits as fromstring's."""
+    from urdf_lint.meshes import readers as meshio
+    rng = np.random.default_rng(7)
+    f = rng.standard_normal(20000).astype(np.float32) * np.float32(10.0) ** rng.integers(
+        -40, 39, 20000).astype(np.float32)
+    f = f[np.isfinite(f)]
+    up = np.nextafter(f, np.float32(np.inf))
+    mid = (f.astype(np.float64) + up.astype(np.float64)) / 2
+    values = np.concatenate([mid, np.nextafter(mid, np.inf), np.nextafter(mid, -np.inf),
+                             f.astype(np.float64)])
+    for fmt in ("%.17g", "%.9g", "%.8e", "%.6f", "%r"):
+        text = " \n".join(fmt % v for v in values) if fmt != "%r" else \
+            "\t".join(repr(float(v)) for v in values)
+        got, want = meshio._floats(text), _fromstring(text)
+        assert isinstance(want, np.ndarray) and got.tobytes() == want.tobytes(), fmt
+
+
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
 def test_corpus_collada_read_without_trimesh_gives_the_same_arrays(fresh):
     from urdf_lint.meshes import readers as meshio

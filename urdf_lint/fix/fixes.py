@@ -76,9 +76,12 @@ class _Sources:
     def __init__(self, model: "Model") -> None:
         self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
         self.data: dict[str, bytes] = {}
+        self._real: dict[str, str] = {}   # path as asked -> its real path (asked per value)
 
     def get(self, path: str) -> bytes:
-        real = os.path.realpath(path)
+        real = self._real.get(path)
+        if real is None:
+            real = self._real[path] = os.path.realpath(path)
         if real not in self.allowed:
             raise Refuse(f"{NOT_FIXABLE}: {where(path)} was not read by the model")
         if real not in self.data:
