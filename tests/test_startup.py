@@ -403,19 +403,34 @@ def test_the_command_flushes_everything_and_keeps_its_exit_code(tmp_path):
 
 @pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full here")
 @pytest.mark.parametrize("argv", [["check", "broken"], ["check", "broken", "--format", "json"],
-                                  ["check", "r2d2_description"], ["rules"], ["--version"]])
+                                  ["check", "r2d2_description"], ["rules"], ["--version"],
+                                  ["--help"], ["check", "--help"]])
 def test_output_that_cannot_be_written_is_one_error_and_status_2(tmp_path, argv):
     """Standard output on a full disk (``> /dev/full``): the report is lost, so the run says so
     in one line and exits 2; not an internal error "to report", not a traceback, and never
     the status of a run whose report was read (it gave 2 with "please report", and 1 with a
     traceback for --version)."""
-    cmd = [*LINT, *argv, "--no-cache"] if argv[0] == "check" else [*LINT, *argv]
+    cmd = [*LINT, *argv, "--no-cache"] if argv[:1] == ["check"] and "--help" not in argv \
+        else [*LINT, *argv]
     with open("/dev/full", "w") as full:
         p = subprocess.run(cmd, stdout=full, stderr=subprocess.PIPE, text=True,
                            cwd=DESCRIPTIONS)
     assert p.stderr == "urdf-lint: error: cannot write to standard output: No space left on " \
         "device\n", p.stderr
     assert p.returncode == 2
+
+
+@pytest.mark.parametrize("argv", [["--help"], ["check", "--help"], ["--version"], ["rules"]])
+def test_output_nobody_reads_is_no_error(argv):
+    """Standard output whose reader has already gone (a closed pipe) is no error: exit 0,
+    nothing on stderr (not a traceback)."""
+    r, w = os.pipe()
+    os.close(r)
+    try:
+        p = subprocess.run([*LINT, *argv], stdout=w, stderr=subprocess.PIPE, text=True)
+    finally:
+        os.close(w)
+    assert (p.returncode, p.stderr) == (0, "")
 
 
 # -- what a cached run loads ---------------------------------------------------------------------

@@ -87,7 +87,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stderr.write("\nurdf-lint: interrupted\n")
         return 130
     except OSError as e:    # `--version > /dev/full` (a command's own is handled by guarded)
-        from urdf_lint.core.emit import stdout_failed, drop_stdout
+        from urdf_lint.core.emit import drop_stdout, reader_left, stdout_failed
+        if isinstance(e, BrokenPipeError):    # `--help | head -1`
+            reader_left()
+            return 0
         if not stdout_failed(e):
             raise
         say(f"urdf-lint: error: {drop_stdout(e)}")

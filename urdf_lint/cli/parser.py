@@ -82,6 +82,11 @@ class Parser(argparse.ArgumentParser):
     def flags(self) -> list[str]:
         return [s for a in self._actions for s in a.option_strings]
 
+    def print_help(self, file: Any = None) -> None:
+        """The help on standard output; a write that fails (``--help > /dev/full``) is the
+        one error every command gives for it (argparse's own printing ignores it, exit 0)."""
+        (file or sys.stdout).write(self.format_help())
+
 
 def add_key_flags(p: argparse.ArgumentParser, group: str) -> None:
     """The flags of the config keys in ``group`` (each key's ``flag`` in the schema)."""
