@@ -124,7 +124,7 @@ def preload(blocks: list[Block] | None = None, settings: LintSettings | None = N
         _preload_mesh_modules(blocks, settings)
 
 
-MESH_MODULES = ("numpy", "manifold3d", "_hashlib",    # STL facts, volumes, hulls, mesh hashes
+MESH_MODULES = ("numpy", "manifold3d", "blake3",    # STL facts, volumes, hulls, mesh hashes
                 "urdf_lint.meshes.resolve", "urdf_lint.meshes.readers")
 # (COLLADA: meshio.collada_arrays_lean reads it with lxml; pycollada, ~30 ms to import with
 # its dateutil and Pillow, only for a document the lean reader leaves to it: the worker that
