@@ -181,3 +181,29 @@ def test_the_resolver_is_an_immutable_snapshot(tmp_path, monkeypatch):
     assert not fresh.is_inside(tmp_path / "elsewhere")
     import pickle
     assert pickle.loads(pickle.dumps(res)).to_dict() == before
+
+
+def test_a_jobs_real_paths_are_asked_once_and_forgotten_with_it(tmp_path, monkeypatch):
+    """Within one lint job (``paths_fixed``, entered by the worker per job) the roots test
+    resolves a path's symlinks once; the next job (or the language server's next edit) sees a
+    symlink that changed meanwhile."""
+    from urdf_lint.core import tree
+    from urdf_lint.discovery.packages import PackageResolver
+    pkg, outside = tmp_path / "pkg", tmp_path / "outside"
+    (pkg / "meshes").mkdir(parents=True)
+    outside.mkdir()
+    link = pkg / "meshes" / "m"
+    link.symlink_to(pkg / "meshes")
+    res = PackageResolver(roots=(pkg,))
+    asked = []
+    real = os.path.realpath
+    monkeypatch.setattr(tree.os.path, "realpath", lambda p: asked.append(p) or real(p))
+    with tree.paths_fixed():
+        assert res.is_inside(link) and res.is_inside(link) and res.is_inside(str(link))
+        assert len(asked) == 1
+        link.unlink()
+        link.symlink_to(outside)
+        assert res.is_inside(link)     # (the job's first answer)
+    assert not res.is_inside(link)     # the next job: outside the roots
+    with tree.paths_fixed():
+        assert not res.is_inside(link)

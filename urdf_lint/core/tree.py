@@ -4,6 +4,7 @@ or below it, and the colcon/catkin workspace around a folder (a folder with a ``
 holding packages)."""
 from __future__ import annotations
 
+import contextlib
 import functools
 import os
 from collections.abc import Iterator
@@ -14,6 +15,35 @@ SKIP_DIRS = {".git", ".hg", ".svn", "node_modules", ".venv", "venv", "__pycache_
 IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 # how far below a workspace's src/ packages are looked for (src/repo/group/package)
 MAX_DEPTH = 4
+
+
+_real_paths: dict[str, str] | None = None   # within paths_fixed(): path -> its real path
+
+
+@contextlib.contextmanager
+def paths_fixed() -> Iterator[None]:
+    """One lint job: a path whose real path was asked for gets the same answer again, without
+    walking its symlinks again (the roots test asks per include, mesh, texture and finding's
+    source). A job's files do not move under it, and the answers end with it: a symlink
+    changed between two jobs, or two edits in the language server, is seen."""
+    global _real_paths
+    saved, _real_paths = _real_paths, {}
+    try:
+        yield
+    finally:
+        _real_paths = saved
+
+
+def real_path(path: str | os.PathLike[str]) -> str:
+    """``os.path.realpath(path)``, remembered within :func:`paths_fixed`."""
+    memo = _real_paths
+    if memo is None:
+        return os.path.realpath(path)
+    key = os.fspath(path)
+    got = memo.get(key)
+    if got is None:
+        got = memo[key] = os.path.realpath(key)
+    return got
 
 
 def inside(f: str, p: str) -> bool:

@@ -28,6 +28,7 @@ from typing import Any, Callable
 
 from urdf_lint.core.tree import SKIP_DIRS
 from urdf_lint.core.tree import inside as inside   # (part of this API)
+from urdf_lint.core.tree import real_path
 
 _NAME_RE = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 # REP 144 (lower case letters, digits and underscores, starting with a letter), leniently:
@@ -302,7 +303,7 @@ class PackageResolver:
         return rules
 
     def is_inside(self, path: str | os.PathLike[str]) -> bool:
-        real = os.path.realpath(path)
+        real = real_path(path)
         # string prefixes of the normalised roots (what Path.relative_to tests, 20x cheaper)
         return any(inside(real, r) for r in map(str, self.roots)) or \
             self._environment_root(real) is not None

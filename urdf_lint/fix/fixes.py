@@ -76,12 +76,10 @@ class _Sources:
     def __init__(self, model: "Model") -> None:
         self.allowed = {os.path.realpath(p) for p in list(model.deps) + [model.entry]}
         self.data: dict[str, bytes] = {}
-        self._real: dict[str, str] = {}   # path as asked -> its real path (asked per value)
 
     def get(self, path: str) -> bytes:
-        real = self._real.get(path)
-        if real is None:
-            real = self._real[path] = os.path.realpath(path)
+        from urdf_lint.core.tree import real_path
+        real = real_path(path)     # (asked per value located: remembered within the job)
         if real not in self.allowed:
             raise Refuse(f"{NOT_FIXABLE}: {where(path)} was not read by the model")
         if real not in self.data:

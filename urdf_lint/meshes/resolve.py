@@ -317,7 +317,8 @@ FACTS_VERSION = 3  # bump when the loader changes what it measures
 
 def _version(path: str) -> tuple[str, int, int]:
     st = os.stat(path)
-    return (os.path.realpath(path), st.st_size, st.st_mtime_ns)
+    from urdf_lint.core.tree import real_path
+    return (real_path(path), st.st_size, st.st_mtime_ns)
 
 
 def _digest(path: str) -> str:

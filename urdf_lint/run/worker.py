@@ -33,7 +33,9 @@ def process_job(job: LintJob, settings: LintSettings) -> ModelReport:
     if job.shared:   # what the run's other workers measured (share): not measured again here
         from urdf_lint.meshes.resolve import remember
         remember(job.shared)
-    with overlay.using(job.overlay):   # unsaved editor buffers, read in place of the files
+    from urdf_lint.core.tree import paths_fixed
+    # unsaved editor buffers, read in place of the files; the job's real paths asked once
+    with overlay.using(job.overlay), paths_fixed():
         report, model, ctx = lint_model(job, settings)
     if ctx.meshes.env_failures or job.overlay:
         # e.g. a mesh refused by the memory limit: not the file's fault; or it read buffers
