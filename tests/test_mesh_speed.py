@@ -988,6 +988,33 @@ def test_run_jobs_gives_one_worker_a_package_and_shares_the_rest(tmp_path, monke
     assert len(stolen) < len(names) - 1
 
 
+def test_a_worker_starts_its_next_job_while_the_parent_handles_its_last_result(tmp_path,
+                                                                              monkeypatch):
+    """Real forked worker: the next job is sent as soon as a result is read, not after the
+    parent has handled it (hashed its meshes, cached it, planned its variants: here a slow
+    reader of the results); before, the worker stood idle all that time."""
+    import time
+    from urdf_lint.run import worker
+    from urdf_lint.core.jobs import LintJob, ModelReport
+    names = [f"m{i}.urdf" for i in range(3)]
+    settings = _settings_for(tmp_path, {"a_description": {f"urdf/{n}": _robot() for n in names}})
+
+    def fake(job, settings):            # inherited by the forked worker
+        started = time.monotonic()      # (CLOCK_MONOTONIC: one clock for both processes)
+        time.sleep(0.05)
+        return ModelReport(job.entry, {}, name=repr(started))
+    monkeypatch.setattr(worker, "process_job", fake)
+    jobs = [LintJob(str(tmp_path / "a_description" / "urdf" / n)) for n in names]
+    started, read = [], []
+    for _, report in worker.run_jobs(jobs, settings, jobs_n=1):
+        read.append(time.monotonic())
+        started.append(float(report.name))
+        time.sleep(0.4)                 # the parent's handling of the result
+    assert len(started) == 3
+    for k in (1, 2):
+        assert started[k] < read[k - 1] + 0.2, (started, read)
+
+
 # -- item 5: hash and list once ------------------------------------------------------------------
 def _textured_repo(tmp_path):
     v, f = sphere(400)
