@@ -270,3 +270,22 @@ def test_fix_on_a_full_disk_is_one_error_and_leaves_every_source_whole(tmp_path)
     assert lines[0].endswith(".xacro: File too large") and p.returncode == 2, p.stderr
     after = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
     assert after == before
+
+
+def test_only_a_write_to_standard_output_is_called_one():
+    """A full disk or quota (ENOSPC, EDQUOT, EFBIG) with no file named is standard output's; an
+    I/O error only where the failing call was a write to it (a read fails with EIO too), and an
+    error naming a file never (the boundary names the file of every read and write)."""
+    import errno
+    from urdf_lint.core import fsbound
+    from urdf_lint.core.emit import stdout_failed
+    assert stdout_failed(OSError(errno.ENOSPC, "No space left on device"))
+    assert stdout_failed(OSError(errno.EDQUOT, "Disk quota exceeded"))
+    assert not stdout_failed(OSError(errno.EIO, "Input/output error"))
+    assert stdout_failed(OSError(errno.EIO, "Input/output error"), certain=True)
+    assert not stdout_failed(OSError(errno.ENOSPC, "No space left on device", "a.urdf"))
+    assert not stdout_failed(BrokenPipeError(errno.EPIPE, "Broken pipe"))
+    with pytest.raises(OSError) as got:
+        with fsbound._named("meshes/m.stl"):
+            raise OSError(errno.EIO, "Input/output error")    # (a read of a failing disk)
+    assert got.value.filename == "meshes/m.stl" and not stdout_failed(got.value, certain=True)

@@ -130,7 +130,7 @@ def exit_now(code: int) -> None:
             stream.flush()
         except OSError as e:
             from urdf_lint.core.emit import stdout_failed, drop_stdout
-            if stream is sys.stdout and stdout_failed(e):
+            if stream is sys.stdout and stdout_failed(e, certain=True):
                 say(f"urdf-lint: error: {drop_stdout(e)}")
                 code = 2
             # else: the reader is gone (`| head`): nothing more to say

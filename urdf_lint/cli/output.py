@@ -64,6 +64,6 @@ def write_findings(opts: FindingsOutput, cfg: Config, result: CheckResult, out: 
             reader_left()     # (the exit status is still the findings')
         except OSError as e:
             from urdf_lint.core.emit import stdout_failed, drop_stdout
-            if not stdout_failed(e):
+            if not stdout_failed(e, certain=True):
                 raise
             raise UsageError(drop_stdout(e)) from None

@@ -6,9 +6,11 @@ import errno
 import sys
 from typing import Iterable, TextIO
 
-# a write to standard output that fails for want of room or of a working device (``>
-# /dev/full``, a full disk or quota, an I/O error): the run cannot say what it found
-OUTPUT_ERRNOS = frozenset((errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EIO))
+# a write to standard output that fails for want of room (``> /dev/full``, a full disk or
+# quota, a file size limit): the run cannot say what it found. Only a write fails so; an I/O
+# error (EIO: a terminal hung up) counts only where the failing call was a write to standard
+# output (``certain``), since a read can fail with it too
+OUTPUT_ERRNOS = frozenset((errno.ENOSPC, errno.EDQUOT, errno.EFBIG))
 
 
 def say(text: object, stream: TextIO | None = None) -> None:
@@ -43,11 +45,13 @@ def drop_stdout(e: OSError) -> str:
     return f"cannot write to standard output: {e.strerror or e}"
 
 
-def stdout_failed(e: BaseException) -> bool:
+def stdout_failed(e: BaseException, certain: bool = False) -> bool:
     """Whether ``e`` is a failed write to standard output of :func:`drop_stdout`'s kind (an
-    error of a file urdf-lint opened names that file)."""
+    error of a file urdf-lint opened names that file); ``certain``: the failing call was such
+    a write (then an I/O error counts too)."""
     return isinstance(e, OSError) and not isinstance(e, BrokenPipeError) \
-        and e.errno in OUTPUT_ERRNOS and e.filename is None
+        and e.filename is None \
+        and (e.errno in OUTPUT_ERRNOS or certain and e.errno == errno.EIO)
 
 
 def safe_lines(s: object) -> str:

@@ -77,6 +77,19 @@ def within(path: StrPath, roots: Iterable[StrPath], resolved: bool = False) -> b
 
 
 # -- reads ------------------------------------------------------------------------------------
+@contextlib.contextmanager
+def _named(path: StrPath) -> Iterator[None]:
+    """An error of a read (or write) of ``path`` names it: a read's own names no file (EIO on a
+    failing disk), and must not pass for standard output's (:func:`urdf_lint.core.emit.
+    stdout_failed`)."""
+    try:
+        yield
+    except OSError as e:
+        if e.filename is None:
+            e.filename = os.fspath(path)
+        raise
+
+
 def _open_regular(path: StrPath, roots: Roots, nofollow: bool,
                   resolved: bool = False) -> tuple[IO[bytes], os.stat_result]:
     """(a file object of a regular file, its stat); raises BoundaryError / OSError."""
@@ -103,7 +116,7 @@ def open_regular(path: StrPath, roots: Roots = None,
     """(a binary file object, its ``fstat``) of a regular file (inside ``roots`` when given),
     opened without blocking; for readers that stream (hashes, meshes in chunks)."""
     f, st = _open_regular(path, roots, nofollow)
-    with f:
+    with f, _named(path):
         yield f, st
 
 
@@ -125,7 +138,7 @@ def read_bytes(path: StrPath, roots: Roots = None, max_bytes: int = MAX_SOURCE_B
                                 errno.EFBIG)
         return buffer
     f, st = _open_regular(path, roots, nofollow, resolved)
-    with f:
+    with f, _named(path):
         if st.st_size > max_bytes:
             raise BoundaryError(path, f"is larger than {_size(max_bytes)}; it was not read",
                                 errno.EFBIG)
@@ -146,7 +159,7 @@ def read_head(path: StrPath, n: int, roots: Roots = None, resolved: bool = False
     """At most the first ``n`` bytes of a regular file (inside ``roots`` when given;
     ``resolved`` as for :func:`within`)."""
     f, _ = _open_regular(path, roots, False, resolved)
-    with f:
+    with f, _named(path):
         return f.read(n)
 
 
