@@ -87,14 +87,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stderr.write("\nurdf-lint: interrupted\n")
         return 130
     except OSError as e:    # `--version > /dev/full` (a command's own is handled by guarded)
-        from urdf_lint.core.emit import drop_stdout, reader_left, stdout_failed
+        from urdf_lint.core.emit import lost_stdout, reader_left, stdout_failed
         if isinstance(e, BrokenPipeError):    # `--help | head -1`
             reader_left()
             return 0
         if not stdout_failed(e):
             raise
-        say(f"urdf-lint: error: {drop_stdout(e)}")
-        return 2
+        return lost_stdout(e)
 
 
 def entry() -> None:
@@ -129,10 +128,9 @@ def exit_now(code: int) -> None:
         try:
             stream.flush()
         except OSError as e:
-            from urdf_lint.core.emit import stdout_failed, drop_stdout
+            from urdf_lint.core.emit import lost_stdout, stdout_failed
             if stream is sys.stdout and stdout_failed(e, certain=True):
-                say(f"urdf-lint: error: {drop_stdout(e)}")
-                code = 2
+                code = lost_stdout(e)
             # else: the reader is gone (`| head`): nothing more to say
         except ValueError:   # (closed)
             pass
@@ -217,10 +215,9 @@ def guarded(command: Callable[..., int], *args: Any) -> int:
         reader_left()
         return 0
     except Exception as e:  # noqa: BLE001
-        from urdf_lint.core.emit import stdout_failed, drop_stdout
+        from urdf_lint.core.emit import lost_stdout, stdout_failed
         if isinstance(e, OSError) and stdout_failed(e):   # `> /dev/full`: not an internal error
-            say(f"urdf-lint: error: {drop_stdout(e)}")
-            return 2
+            return lost_stdout(e)
         import traceback
         say(f"urdf-lint: internal error (please report): {type(e).__name__}: {e}")
         if os.environ.get("URDF_LINT_DEBUG"):

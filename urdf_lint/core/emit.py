@@ -45,6 +45,12 @@ def drop_stdout(e: OSError) -> str:
     return f"cannot write to standard output: {e.strerror or e}"
 
 
+def lost_stdout(e: OSError) -> int:
+    """Say that standard output could not be written (:func:`drop_stdout`); the exit status."""
+    say(f"urdf-lint: error: {drop_stdout(e)}")
+    return 2
+
+
 def stdout_failed(e: BaseException, certain: bool = False) -> bool:
     """Whether ``e`` is a failed write to standard output of :func:`drop_stdout`'s kind (an
     error of a file urdf-lint opened names that file); ``certain``: the failing call was such
