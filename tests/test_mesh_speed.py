@@ -737,6 +737,31 @@ def test_non_finite_vertex_in_a_later_chunk(tmp_path, fresh, monkeypatch):
     assert got == trimesh_facts(p)
 
 
+def test_stl_bounds_gathered_per_triangle_equal_the_corners_bounds():
+    """readers.triangle_bounds on a binary STL's records (50 bytes apart) gives bounds() of
+    its corners bit for bit: signed zeros, subnormals, the extremes, and a NaN or an
+    infinity in one column only."""
+    from urdf_lint.meshes import readers
+    rng = np.random.default_rng(7)
+    v, f = sphere(3000)
+    base = (v[f] * rng.uniform(-1e3, 1e3, size=(len(f), 3, 3))).astype(np.float32)
+    specials = [(0, 0, 0, -0.0), (1, 2, 1, np.float32(1e-45)), (2, 1, 2, np.finfo(np.float32).max),
+                (3, 0, 0, np.finfo(np.float32).min)]
+    for bad in (None, np.nan, np.inf, -np.inf):
+        tris = base.copy()
+        for i, j, k, x in specials:
+            tris[i, j, k] = x
+        if bad is not None:
+            tris[len(tris) // 2, 1, 1] = bad
+        rec = np.zeros(len(tris), dtype=readers.STL_RECORD)
+        rec["v"] = tris
+        got = readers.triangle_bounds(rec["v"])
+        want = readers.bounds(rec["v"].reshape(-1, 3))
+        for g, w in zip(got, want, strict=True):
+            assert g.dtype == w.dtype and g.tobytes() == w.tobytes()
+        assert (np.isfinite(got[0]).all() and np.isfinite(got[1]).all()) == (bad is None)
+
+
 def test_a_mesh_over_the_limit_is_a_clear_finding(tmp_path, monkeypatch):
     from urdf_lint.meshes import resolve as meshes
     v, f = sphere(4000)

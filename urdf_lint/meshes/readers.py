@@ -92,6 +92,18 @@ def bounds(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t.min(axis=1), t.max(axis=1)
 
 
+def triangle_bounds(tris: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`bounds` of the corners of (k, 3, 3) triangles (a binary STL's records, 50 bytes
+    apart): each triangle's nine numbers are one row, so a single transposed copy gathers
+    them (``tris.reshape(-1, 3)`` of the records copied them once more, for 40% of the time),
+    and the three corners' minima are then compared. The same values: min and max are
+    exact, and a NaN or infinity stays in its column."""
+    t = np.asarray(tris).reshape(len(tris), 9).T.copy()
+    lo: np.ndarray = t.min(axis=1).reshape(3, 3).min(axis=0)
+    hi: np.ndarray = t.max(axis=1).reshape(3, 3).max(axis=0)
+    return lo, hi
+
+
 def read_ascii_stl(path: str) -> Arrays | None:
     """(vertices float64 (n, 3), faces) of an ASCII STL holding exactly one solid, parsed as
     trimesh parses it; None for anything else (the caller lets trimesh decide)."""

@@ -568,7 +568,7 @@ def _stl_facts(path: str, n: int) -> Facts:
     finite, lo, hi = True, None, None
     for tris in meshio.iter_binary_stl(path, STL_CHUNK, _kept_bytes.get(_digest(path))):
         # a NaN makes its column's minimum NaN, an infinity a minimum or maximum infinite
-        clo, chi = meshio.bounds(tris.reshape(-1, 3))
+        clo, chi = meshio.triangle_bounds(tris)
         if not (np.isfinite(clo).all() and np.isfinite(chi).all()):
             finite = False
             break
