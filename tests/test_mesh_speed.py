@@ -250,6 +250,44 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
     assert len(lean["nested.dae"][1]) == 2 * len(sf) + 2 * quads + 6
 
 
+def test_collada_sources_shared_by_triangle_sets_are_parsed_once(tmp_path, fresh, monkeypatch):
+    """Two triangle sets of one geometry (an exporter writes one per material) index the same
+    positions, normals and UVs: each <float_array> is parsed once, and the arrays are still
+    trimesh's."""
+    from urdf_lint.meshes import readers as meshio
+    write_png(tmp_path / "skin.png")
+    v, f = sphere(600, radius=40.0)
+    half = len(f) // 2
+    one = _geometry("g", v, f.tolist())
+    head, _, rest = one.partition("<triangles")
+    body = "<triangles" + rest[:rest.index("</triangles>")] + "</triangles>"
+    tail = rest[rest.index("</triangles>") + len("</triangles>"):]
+    first = _geometry("g", v, f[:half].tolist())
+    second = _geometry("g", v, f[half:].tolist())
+    sets = [x[x.index("<triangles"):x.index("</triangles>") + len("</triangles>")]
+            for x in (first, second)]
+    assert body not in sets
+    p = _dae(tmp_path / "two_sets.dae", head + "".join(sets) + tail,
+             f"<node>{_inst('g')}</node>")
+    data = p.read_bytes()
+    parsed = []
+    real = meshio._floats
+
+    def counting(text, dtype=np.float32):
+        if dtype == np.float32:
+            parsed.append(len(text or ""))
+        return real(text, dtype)
+    monkeypatch.setattr(meshio, "_floats", counting)
+    got = meshio.collada_arrays_lean(data)
+    assert got is not None and len(parsed) == data.count(b"<float_array")
+    monkeypatch.setattr(meshio, "_floats", real)
+    want = _trimesh_arrays(fresh, p)
+    unit = fresh._unit_of(data)
+    assert np.array_equal(meshio.scale_points(got[0], unit), want[0])
+    assert np.array_equal(got[1], want[1]) and len(got[1]) == len(f)
+    assert fresh.mesh_facts(str(p)) == trimesh_facts(p)
+
+
 _UNUSED_EFFECT = ('<effect id="unused"><profile_COMMON><newparam sid="s1"><surface type="2D">'
                   '<init_from>img</init_from></surface></newparam><newparam sid="s2"><sampler2D>'
                   '<source>s1</source></sampler2D></newparam></profile_COMMON></effect>'
@@ -374,6 +412,24 @@ def test_collada_float_arrays_are_read_as_fromstring_reads_them(text):
     else:
         assert isinstance(got, np.ndarray) and got.dtype == np.float32
         assert got.tobytes() == want.tobytes(), (got, want)
+
+
+def test_obj_vertex_numbers_are_read_as_fromstring_reads_them():
+    """The OBJ reader's parse of its ``v`` rows (numpy's text reader) gives fromstring's
+    float64 values bit for bit: decimals halfway between doubles and a hair either side, every
+    spelling the reader's pattern lets through (``1.``, ``.5``, ``+3``, exponents), subnormals
+    and the largest doubles."""
+    from urdf_lint.meshes import readers as meshio
+    rng = np.random.default_rng(11)
+    f = rng.standard_normal(20000) * 10.0 ** rng.integers(-300, 300, 20000)
+    up = np.nextafter(f, np.inf)
+    words = [f"{x:.17g}" for x in f] + [f"{x:.25e}" for x in (f + up) / 2] + \
+        ["1.", ".5", "+3", "-0", "+.25e-3", "1E5", "4.9e-324", "2.4e-324", "1.7976931348623157e308",
+         "2.2250738585072011e-308", "0.1", "123456789012345678901234567890"]
+    text = " ".join(w.replace("e+", "e") for w in words)
+    got = meshio._obj_numbers(text)
+    want = np.fromstring(text, sep=" ", dtype=np.float64)
+    assert got.dtype == np.float64 and got.tobytes() == want.tobytes()
 
 
 def test_collada_float_arrays_round_like_fromstring_near_every_float32_boundary():
