@@ -258,17 +258,12 @@ def test_collada_sources_shared_by_triangle_sets_are_parsed_once(tmp_path, fresh
     write_png(tmp_path / "skin.png")
     v, f = sphere(600, radius=40.0)
     half = len(f) // 2
-    one = _geometry("g", v, f.tolist())
-    head, _, rest = one.partition("<triangles")
-    body = "<triangles" + rest[:rest.index("</triangles>")] + "</triangles>"
-    tail = rest[rest.index("</triangles>") + len("</triangles>"):]
-    first = _geometry("g", v, f[:half].tolist())
-    second = _geometry("g", v, f[half:].tolist())
-    sets = [x[x.index("<triangles"):x.index("</triangles>") + len("</triangles>")]
-            for x in (first, second)]
-    assert body not in sets
-    p = _dae(tmp_path / "two_sets.dae", head + "".join(sets) + tail,
-             f"<node>{_inst('g')}</node>")
+    # the same sources (of v) in both; each half of the faces in a <triangles> of its own
+    first, second = (_geometry("g", v, part.tolist()) for part in (f[:half], f[half:]))
+    end = first.index("</triangles>") + len("</triangles>")
+    geometry = first[:end] + second[second.index("<triangles"):]
+    assert geometry.count("<triangles") == 2 and geometry.count("<float_array") == 3
+    p = _dae(tmp_path / "two_sets.dae", geometry, f"<node>{_inst('g')}</node>")
     data = p.read_bytes()
     parsed = []
     real = meshio._floats
@@ -427,7 +422,7 @@ def test_obj_vertex_numbers_are_read_as_fromstring_reads_them():
         ["1.", ".5", "+3", "-0", "+.25e-3", "1E5", "4.9e-324", "2.4e-324", "1.7976931348623157e308",
          "2.2250738585072011e-308", "0.1", "123456789012345678901234567890"]
     text = " ".join(w.replace("e+", "e") for w in words)
-    got = meshio._obj_numbers(text)
+    got = meshio.number_row(text, np.float64)
     want = np.fromstring(text, sep=" ", dtype=np.float64)
     assert got.dtype == np.float64 and got.tobytes() == want.tobytes()
 
