@@ -47,6 +47,27 @@ def trimesh_facts(path) -> dict:
             "broken_refs": list(m.metadata.get("broken_refs", ()))}
 
 
+def counted(facts: dict, path) -> dict:
+    """``facts`` as compared with trimesh's: a COLLADA file's vertex count only says whether it
+    has any (urdf-lint counts the positions its triangles use, read without merging them;
+    trimesh's mesh, its merged corners; the rules ask nothing more of it)."""
+    if str(path).lower().endswith(".dae"):
+        return {**facts, "vertices": bool(facts["vertices"])}
+    return facts
+
+
+def same_as_trimesh(got: dict, want: dict, path) -> bool:
+    """urdf-lint's facts ``got`` are trimesh's ``want`` (:func:`counted`), a COLLADA file's
+    bounds within 1e-12: its positions are placed by their node's matrix as trimesh places
+    its merged vertices, but in another array, and a BLAS may round a product's last bit
+    by where a row lies in it (equal on this machine's OpenBLAS)."""
+    got, want = counted(got, path), counted(want, path)
+    if not str(path).lower().endswith(".dae") or got["bounds"] is None or want["bounds"] is None:
+        return got == want
+    return {**got, "bounds": None} == {**want, "bounds": None} and \
+        bool(np.allclose(got["bounds"], want["bounds"], rtol=1e-12, atol=1e-15))
+
+
 def lint_in_process(path, cache=None):
     from urdf_lint.config.schema import load_config
     from urdf_lint.discovery.discover import build_resolver
@@ -104,7 +125,7 @@ def test_dae_unit_and_obj_facts_equal_trimesh(tmp_path, fresh):
     write_obj(tmp_path / "m.obj", v, f, "m.mtl", "skin.png")
     for name in ("m.dae", "m.obj"):
         got = fresh.mesh_facts(str(tmp_path / name))
-        assert got == trimesh_facts(tmp_path / name)
+        assert same_as_trimesh(got, trimesh_facts(tmp_path / name), name)
         assert got["ok"] and got["vertices"] > 0
     # the COLLADA file is in millimetres: the facts are in metres (<unit meter="0.001">)
     assert fresh.mesh_facts(str(tmp_path / "m.dae"))["bounds"][1][0] == pytest.approx(0.15, abs=2e-3)
@@ -121,7 +142,7 @@ def test_corpus_mesh_facts_equal_trimesh(fresh):
             want = trimesh_facts(p)
         except Exception:  # noqa: BLE001 - unloadable meshes: checked by the UL404 tests
             continue
-        assert fresh.mesh_facts(str(p)) == want, p
+        assert same_as_trimesh(fresh.mesh_facts(str(p)), want, p), p
         got, want = fresh.mass_facts(str(p)), fresh.trimesh_mass_properties(fresh.load_mesh(str(p)))
         # (the convex hull of an open mesh can differ in the last bit between calls)
         assert got.keys() == want.keys() and got.get("hull") == want.get("hull"), p
@@ -131,12 +152,16 @@ def test_corpus_mesh_facts_equal_trimesh(fresh):
 
 
 # -- COLLADA without trimesh: pycollada's scene assembled like trimesh's loader ----------------
-def _geometry(gid, v, polys, with_uv=True, kind="triangles", material="m"):
+def _geometry(gid, v, polys, with_uv=True, kind="triangles", material="m", normals=None,
+              uv=None, exact=False):
     """A <geometry> of positions ``v`` and polygons (lists of vertex indices), with normals
-    and UVs, as a <triangles> or a <polylist>."""
-    uv = (v[:, :2] - v[:, :2].min(0)) / max(float(np.ptp(v[:, :2])), 1e-9)
-    nrm = v / np.linalg.norm(v, axis=1, keepdims=True).clip(1e-9)
-    fl = lambda a: " ".join(f"{x:.6f}" for x in a.ravel())  # noqa: E731
+    and UVs (``normals``, ``uv``: those given, one per position), as a <triangles> or a
+    <polylist>; ``exact``: the numbers as float32, written to their last digit."""
+    if uv is None:
+        uv = (v[:, :2] - v[:, :2].min(0)) / max(float(np.ptp(v[:, :2])), 1e-9)
+    nrm = v / np.linalg.norm(v, axis=1, keepdims=True).clip(1e-9) if normals is None else normals
+    fl = (lambda a: " ".join(f"{float(x):.9g}" for x in np.asarray(a, dtype=np.float32).ravel())) \
+        if exact else (lambda a: " ".join(f"{x:.6f}" for x in a.ravel()))
     inputs = [("VERTEX", f"#{gid}-v"), ("NORMAL", f"#{gid}-n")] + \
         ([("TEXCOORD", f"#{gid}-uv")] if with_uv else [])
     p = " ".join(" ".join(str(i) for _ in inputs) for poly in polys for i in poly)
@@ -234,7 +259,7 @@ def test_collada_reader_gives_trimesh_arrays_and_facts(tmp_path, fresh):
             v = meshio.scale_points(lean[name][0], unit) if unit != 1.0 else lean[name][0]
             assert np.array_equal(v, want[0]) and np.array_equal(lean[name][1], want[1]), name
         # whichever path reads it: the facts and mass properties of trimesh's mesh
-        assert fresh.mesh_facts(str(p)) == trimesh_facts(p), name
+        assert same_as_trimesh(fresh.mesh_facts(str(p)), trimesh_facts(p), p), name
         assert fresh.mass_facts(str(p)) == fresh.trimesh_mass_properties(fresh.load_mesh(str(p))), name
     # read without trimesh where it can be, left to trimesh where a geometry is lost
     assert lean["nested.dae"] is not None and lean["metres.dae"] is not None
@@ -280,7 +305,7 @@ def test_collada_sources_shared_by_triangle_sets_are_parsed_once(tmp_path, fresh
     unit = fresh._unit_of(data)
     assert np.array_equal(meshio.scale_points(got[0], unit), want[0])
     assert np.array_equal(got[1], want[1]) and len(got[1]) == len(f)
-    assert fresh.mesh_facts(str(p)) == trimesh_facts(p)
+    assert same_as_trimesh(fresh.mesh_facts(str(p)), trimesh_facts(p), p)
 
 
 _UNUSED_EFFECT = ('<effect id="unused"><profile_COMMON><newparam sid="s1"><surface type="2D">'
@@ -342,7 +367,7 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
     except Exception:  # noqa: BLE001 - trimesh cannot load it: neither can urdf-lint
         assert not vouched and not fresh.mesh_facts(str(p))["ok"]
         return
-    assert fresh.mesh_facts(str(p)) == want, case
+    assert same_as_trimesh(fresh.mesh_facts(str(p)), want, p), case
     if lean is not None:
         got = _trimesh_arrays(fresh, p)
         v = meshio.scale_points(lean[0], fresh._unit_of(text.encode()))
@@ -444,6 +469,96 @@ def test_collada_float_arrays_round_like_fromstring_near_every_float32_boundary(
             "\t".join(repr(float(v)) for v in values)
         got, want = meshio._floats(text), _fromstring(text)
         assert isinstance(want, np.ndarray) and got.tobytes() == want.tobytes(), fmt
+
+
+def same_bounds(got, want) -> bool:
+    """Bounds equal but for the last bits a matrix product may round otherwise: a node's
+    matrix places the positions used in one array and the merged vertices in another, and a
+    BLAS may sum a product differently by where a row lies (bit for bit equal with this
+    machine's OpenBLAS). A vertex kept wrongly is ~1e-8 of the size off, 1e7 times that."""
+    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
+    return bool(np.allclose(got, want, rtol=0,
+                            atol=8 * np.finfo(np.float64).eps * max(1.0, float(np.abs(want).max()))))
+
+
+def _hair_apart(sign, first_hair, same_normal=True):
+    """A tetrahedron-like set whose lowest (``sign`` 1) or highest (-1) x is held by two
+    positions 4e-9 apart, which the merge groups (8 decimals) unless their normals differ;
+    ``first_hair``: the one a hair inside comes first in the corners' order, so the merge
+    keeps it and the merged bounds are not the positions' bounds."""
+    v = np.array([[0, 0, 0], [4e-9, 0, 0], [1, 0, 0], [1, 1, 0], [1, 0, 1], [1, 1, 1]],
+                 dtype=np.float32) * sign
+    normals = np.tile(np.float32([0, 0, 1]), (6, 1))
+    if not same_normal:
+        normals[1] = (0, 1, 0)
+    uv = np.zeros((6, 2), dtype=np.float32)
+    exact, hair = ([1, 2, 3], [0, 4, 5]) if first_hair else ([0, 2, 3], [1, 4, 5])
+    return v, normals, uv, [exact, hair, [2, 3, 4], [3, 4, 5]]
+
+
+def test_collada_bounds_without_merging_are_the_merged_vertices_bounds(tmp_path, fresh):
+    """meshio.collada_bounds (the facts of a COLLADA file, no vertex merge) gives the bounds of
+    the merged vertices bit for bit: where two positions a hair apart hold an extreme, those
+    corners are grouped as the merge groups them (the kept one decides), also through a
+    rotating, scaling node; its counts are the triangles and the positions they use."""
+    from urdf_lint.meshes import readers as meshio
+    write_png(tmp_path / "skin.png")
+    cases = {}
+    for sign in (1, -1):
+        for first_hair in (True, False):
+            for same in (True, False):
+                v, n, uv, tris = _hair_apart(sign, first_hair, same)
+                geometry = _geometry("g", v, tris, normals=n, uv=uv, exact=True)
+                for placed, node in (("plain", _inst("g")),
+                                     ("rotated", f"<rotate>0 0 1 90</rotate><scale>2 2 2</scale>"
+                                                 f"{_inst('g')}")):
+                    name = f"{sign}-{first_hair}-{same}-{placed}"
+                    cases[name] = (_dae(tmp_path / f"{name}.dae", geometry, f"<node>{node}</node>"),
+                                   sign, first_hair and same, placed)
+    moved = 0
+    for name, (path, sign, kept_hair, placed) in cases.items():
+        data = path.read_bytes()
+        merged = meshio.collada_arrays_lean(data)
+        got = meshio.collada_bounds(data)
+        assert merged is not None and got is not None, name
+        lo, hi = meshio.bounds(merged[0])
+        assert same_bounds((got[0], got[1]), (lo, hi)), name
+        assert got[2:] == (6, 4), name        # the positions used, the triangles
+        want = _trimesh_arrays(fresh, path)
+        assert np.allclose(meshio.scale_points(np.array([lo, hi]), fresh._unit_of(data)),
+                           meshio.bounds(want[0]), rtol=0, atol=1e-15), name
+        # the case is what it claims: the merge kept the position a hair inside the extreme
+        # (x, which the node turns to y), else the exact one at 0
+        axis = 1 if placed == "rotated" else 0
+        extreme = lo[axis] if sign == 1 else hi[axis]
+        assert (extreme != 0) == kept_hair and abs(extreme) < 1e-8, (name, extreme)
+        moved += kept_hair
+    assert moved == 4
+    # the facts: the merged bounds in metres, the triangles, positions counted once
+    facts = fresh.mesh_facts(str(cases["1-True-True-plain"][0]))
+    assert facts["ok"] and facts["faces"] == 4 and facts["vertices"] == 6
+    assert facts["bounds"][0][0] == float(np.float32(4e-9)) * 0.001
+
+
+@pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
+def test_corpus_collada_bounds_without_merging_are_the_merged_bounds():
+    """Every COLLADA file of the real robots the lean reader reads: the bounds without
+    merging are those of the merged vertices, bit for bit."""
+    from urdf_lint.meshes import readers as meshio
+    paths = sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() == ".dae")
+    read = 0
+    for p in paths:
+        data = p.read_bytes()
+        merged = meshio.collada_arrays_lean(data)
+        got = meshio.collada_bounds(data)
+        assert (merged is None) == (got is None), p
+        if merged is None:
+            continue
+        read += 1
+        lo, hi = meshio.bounds(merged[0])
+        assert same_bounds((got[0], got[1]), (lo, hi)), p
+        assert got[3] == len(merged[1]), p
+    assert read >= 30, read
 
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")
@@ -1170,12 +1285,16 @@ def test_texture_scan_is_cached_on_disk_with_the_mesh_facts(tmp_path, fresh, mon
 def test_only_a_render_run_keeps_loaded_meshes(tmp_path, fresh, monkeypatch):
     pkg = _textured_repo(tmp_path / "ws")
     dae = str(pkg / "meshes" / "m.dae")
-    plain = fresh.mesh_facts(dae)
+    plain, plain_mass = fresh.mesh_facts(dae), fresh.mass_facts(dae)
     assert fresh._loaded == {}, "plain linting keeps no trimesh in memory"
-    monkeypatch.setattr(fresh, "_memory", {})
+    for name in ("_memory", "_mass_memory"):
+        monkeypatch.setattr(fresh, name, {})
     monkeypatch.setattr(fresh, "_arrays_memo", type(fresh._arrays_memo)())
     from urdf_lint.meshes.store import MeshStore
-    assert fresh.mesh_facts(dae, store=MeshStore(keep_loaded=True)) == plain   # a render run
+    render = MeshStore(keep_loaded=True)                 # a render run
+    assert fresh.mesh_facts(dae, store=render) == plain, "the bytes decide the facts"
+    assert fresh._loaded == {}, "its bounds are read without trimesh"
+    assert fresh.mass_facts(dae, store=render) == plain_mass    # the volume needs the mesh
     assert len(fresh._loaded) == 1
     assert fresh.get_mesh(dae) is next(iter(fresh._loaded.values())), "the renderer reuses it"
 

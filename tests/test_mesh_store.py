@@ -10,7 +10,10 @@ import numpy as np
 import pytest
 
 from conftest import CORPUS, make_package, run_cli
+from urdf_lint.meshes.resolve import FACTS_VERSION
 from urdf_lint.rules._meshes import TETRA_STL, scaled
+
+FACTS = f"v{FACTS_VERSION}"   # the facts' prefix in the store
 
 ROBOT = ('<robot name="r"><link name="a"><visual><geometry>'
          '<mesh filename="package://p/meshes/big.stl"/></geometry></visual></link>'
@@ -62,7 +65,7 @@ def _store():
     return FactsStore(facts_dir(), derive(key, KEY_PURPOSE))
 
 
-def _name(path, prefix="v3"):
+def _name(path, prefix=FACTS):
     from urdf_lint.core.hashing import memo_digest
     got = memo_digest(str(path))
     assert got is not None
@@ -153,7 +156,7 @@ def test_the_parent_stores_only_facts_of_the_content_it_hashed_itself(tmp_path, 
     rec = {"ok": True, "vertices": 3}
     inside = lambda p: p.startswith(str(tmp_path / "roots"))  # noqa: E731
     other = "0" * len(digest)
-    assert store.accept([[f"v3-{other}", str(mesh), other, rec]], inside) == 0  # not its bytes
+    assert store.accept([[f"{FACTS}-{other}", str(mesh), other, rec]], inside) == 0  # not its bytes
     assert store.accept([[name, "/etc/hostname", digest, rec]], inside) == 0    # outside
     assert store.accept([[name, str(mesh), digest, "not a record"]], inside) == 0
     assert store.accept([["../x-" + digest, str(mesh), digest, rec]], inside) == 0
@@ -222,7 +225,7 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
     report = ModelReport.failed(LintJob(str(mesh)))
     other = "0" * len(digest)
     report.mesh_facts = [[name, path, digest, record],
-                         [f"v3-{other}", path, other, dict(record, bounds=None)],   # forged
+                         [f"{FACTS}-{other}", path, other, dict(record, bounds=None)],   # forged
                          [name, "/etc/hostname", digest, record]]                   # outside
     settings = LintSettings(resolver={"roots": [str(tmp_path / "roots")]})
     shared = worker.share(report, settings)
@@ -259,7 +262,7 @@ def test_facts_one_worker_measured_reach_the_others_under_the_parents_digest(tmp
     monkeypatch.setattr(hashing, "file_digest", lambda p: reads.append(p) or None)
     bad_keys = [(f"at-{other}-{path}", [path, 1, 2, 3]), (f"at-{other}-x", "x"),
                 ("at-garbage-" + path, at[1])]
-    resolve.remember(((name, record), at, ("v3-" + other, {"ok": True}), ("garbage", 1),
+    resolve.remember(((name, record), at, (f"{FACTS}-" + other, {"ok": True}), ("garbage", 1),
                       *bad_keys))
     assert resolve.mesh_facts(str(mesh), store=resolve.MeshStore()) == record
     assert reads == []
@@ -283,7 +286,7 @@ def test_measuring_never_writes_the_store(tmp_path, fresh):
     assert meshes.mesh_facts(str(p), store=run)["vertices"] == 12
     assert meshes.mass_facts(str(p), store=run)["ok"]
     assert not os.path.exists(facts.dir)
-    assert sorted(m[0].split("-")[0] for m in run.measured) == [f"mass{meshes.MASS_FACTS_VERSION}", "v3"]
+    assert sorted(m[0].split("-")[0] for m in run.measured) == [f"mass{meshes.MASS_FACTS_VERSION}", FACTS]
     assert facts.accept(run.measured) == 2
     fresh()
     again = MeshStore(cache_dir=facts.dir)
@@ -294,7 +297,7 @@ def test_measuring_never_writes_the_store(tmp_path, fresh):
 def test_the_store_is_bounded_and_evicts_the_oldest(tmp_path):
     from urdf_lint.meshes.store import FactsStore
     store = FactsStore(str(tmp_path / "facts"), b"k" * 32)
-    names = [f"v3-{i:032x}" for i in range(10)]
+    names = [f"{FACTS}-{i:032x}" for i in range(10)]
     for i, name in enumerate(names):
         assert store.put(name, {"ok": True, "pad": "x" * 200})
         os.utime(os.path.join(store.dir, name + ".json"), (1000 + i, 1000 + i))
@@ -314,7 +317,7 @@ def test_clean_empties_the_store(tmp_path):
     p = run_cli("check", str(pkg), "--fail-on", "never", env=env)
     assert p.returncode == 0, p.stderr
     # the workers measured, the parent stored (facts, mass and texture scans of both meshes)
-    assert len(list(store_dir.glob("v3-*.json"))) == 2, list(store_dir.iterdir())
+    assert len(list(store_dir.glob(f"{FACTS}-*.json"))) == 2, list(store_dir.iterdir())
     p = run_cli("clean", str(pkg), env=env)
     assert p.returncode == 0, p.stderr
     assert not store_dir.exists()
@@ -362,7 +365,7 @@ def test_corpus_collada_read_by_lxml_alone_gives_pycolladas_arrays_bit_for_bit()
 def test_every_corpus_mesh_has_trimeshs_facts(monkeypatch):
     """Every .stl/.dae/.obj of the real robots: counts, bounds, finiteness and broken
     references equal to trimesh's mesh, volume, moments and bounds within 1e-12."""
-    from test_mesh_speed import trimesh_facts
+    from test_mesh_speed import counted, trimesh_facts
     from urdf_lint.meshes import resolve as meshes
     paths = _corpus_meshes(".stl", ".dae", ".obj")
     assert len(paths) > 200
@@ -373,8 +376,8 @@ def test_every_corpus_mesh_has_trimeshs_facts(monkeypatch):
             assert not meshes.mesh_facts(str(p))["ok"], p
             continue
         got = meshes.mesh_facts(str(p))
-        assert {k: v for k, v in got.items() if k != "bounds"} == \
-            {k: v for k, v in want.items() if k != "bounds"}, p
+        assert {k: v for k, v in counted(got, p).items() if k != "bounds"} == \
+            {k: v for k, v in counted(want, p).items() if k != "bounds"}, p
         assert (got["bounds"] is None) == (want["bounds"] is None), p
         if want["bounds"] is not None:
             assert np.allclose(got["bounds"], want["bounds"], rtol=1e-12, atol=0), p

@@ -754,7 +754,7 @@ class _Unsure(Exception):
     """A COLLADA feature the lean reader does not vouch for: pycollada reads the file."""
 
 
-def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | None:
+def collada_arrays_lean(data: bytes, merge: bool = True) -> tuple[Any, Any, int] | None:
     """:func:`collada_arrays`' numbers from one lxml parse of the document: the sources'
     ``<float_array>`` (float32, as pycollada reads them), the primitives' ``<p>``/``<vcount>``
     and ``<input>`` offsets, the ``<node>`` transforms (float32 products, as pycollada's
@@ -763,13 +763,14 @@ def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | Non
     values, same index arrays, same order). Textures count only where pycollada loads them
     (:func:`_check_effects`). None for anything else (other effect parameters, polygons
     with holes, strips and fans, node instances, controllers, a broken reference, any
-    doubt): the caller reads the file through pycollada."""
+    doubt): the caller reads the file through pycollada. Not ``merge``: the bounds of those
+    vertices instead (:func:`collada_bounds`)."""
     from lxml import etree
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              huge_tree=True, remove_comments=True)
     try:
         root = etree.fromstring(data, parser)
-        got = _lean(root)
+        got = _lean(root, merge)
         # (as collada_arrays: an instance that gives no triangle set: trimesh decides; but a
         # geometry of lines alone gives none in trimesh either, without error)
         want = data.count(b"<instance_geometry")
@@ -778,6 +779,95 @@ def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | Non
         return got if got is None or got[2] >= want else None
     except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
         return None
+
+
+def collada_bounds(data: bytes) -> tuple[np.ndarray, np.ndarray, int, int] | None:
+    """(lowest, highest corner, positions, triangles) of :func:`collada_arrays`' vertices
+    (before the unit; the positions the triangles use, each counted once), without
+    merging them: a mesh's facts need its bounds, and merging (sorting every corner of every
+    triangle by position, texture coordinate and normal) was a third of reading a COLLADA
+    file: the same values (:func:`_soup_bounds`). None when the lean reader leaves the file
+    to pycollada: the caller then reads the arrays."""
+    got = collada_arrays_lean(data, merge=False)
+    if got is None:
+        return None
+    (lo, hi), (vertices, faces), _ = got
+    return lo, hi, vertices, faces
+
+
+def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] | None:
+    """The bounds of :func:`_assemble` of the merged triangle sets, from the positions their
+    triangles use, placed by their matrices as ``_assemble`` places them, as
+    ((lowest, highest), (positions used, triangles), sets); None where trimesh would not
+    place a set (``_Unsure`` raised) or a position is not finite.
+
+    Merging keeps, of the corners equal to 8 decimals (with their texture coordinate and
+    normal), the first in the set's order; its position is one the triangles use, within
+    1e-8 of the others' in each coordinate. So the lowest value of a coordinate over the
+    merged vertices is the lowest over the used positions unless other values lie within
+    that distance (as placed: times the matrix row) above it; then the corners there are
+    grouped as the merge groups them (:func:`_merged_extreme`)."""
+    lo: np.ndarray | None = None
+    hi: np.ndarray | None = None
+    vertices = faces = 0
+    for soup, matrix in parts:
+        vertex, index = soup[0], soup[1]
+        rigid = _fix_rigid(np.array(matrix, dtype=np.float64))
+        if rigid is None:
+            raise _Unsure("not rigid")
+        used = np.zeros(len(vertex), dtype=bool)
+        used[index.reshape(-1)] = True
+        points = vertex[used].astype(np.float64)
+        vertices += len(points)
+        faces += len(index)
+        if not np.isfinite(points).all():
+            raise _Unsure("not finite")
+        reach = np.full(3, 1.01e-8)
+        if not _allclose(rigid, _EYE4, 1e-8):
+            points = transform_points(points, rigid)
+            reach = 1.01e-8 * np.abs(rigid[:3, :3]).sum(axis=1)
+        plo, phi = bounds(points)
+        at = np.flatnonzero(used)
+        for c in range(3):
+            slack = reach[c] + 1e-12 * (abs(plo[c]) + abs(phi[c]))
+            plo[c] = _merged_extreme(soup, at, points[:, c], plo[c], slack)
+            phi[c] = -_merged_extreme(soup, at, -points[:, c], -phi[c], slack)
+        lo = plo if lo is None else np.minimum(lo, plo)
+        hi = phi if hi is None else np.maximum(hi, phi)
+    return (lo, hi), (vertices, faces), len(parts)
+
+
+def _merged_extreme(soup: Soup, at: np.ndarray, column: np.ndarray, least: float,
+                    slack: float) -> float:
+    """The least of ``column`` (a placed coordinate of the used positions ``at``, whose least
+    is ``least``) over the vertices :func:`_merge` keeps of the set ``soup``. ``slack``
+    bounds how far apart the placed coordinates of two corners it merges lie. The corners
+    within ``slack`` of ``least`` are merged only with corners within twice that: those are
+    grouped on the rows ``_merge`` groups them by, and the least over the first of each group
+    that reaches within ``slack`` is the answer (the first of the lowest corner's group is
+    one)."""
+    near = column <= least + slack
+    if (column[near] == least).all():
+        return least          # (the common case: one value there, whichever corner is kept)
+    vertex, index, normal, normal_index, uv_source, uv_index = soup
+    wide = np.zeros(len(vertex), dtype=bool)
+    wide[at[column <= least + 2 * slack]] = True
+    corners = np.flatnonzero(wide[index.reshape(-1)])     # in the set's order
+    v = vertex[index.reshape(-1)[corners]].astype(np.float64)
+    stacked = [v * (10 ** MERGE_DIGITS)]
+    if uv_source is not None:
+        stacked.append(uv_source[uv_index.reshape(-1)[corners]].astype(np.float64)
+                       * (10 ** UV_DIGITS))
+    if normal is not None:
+        stacked.append(normal[normal_index.reshape(-1)[corners]].astype(np.float64)
+                       * (10 ** NORMAL_DIGITS))
+    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
+    first, group = first_of_equal_rows(rows)
+    position = index.reshape(-1)[corners]                 # each corner's used position
+    row = np.searchsorted(at, position)                   # ... as a row of ``column``
+    reaches = np.zeros(len(first), dtype=bool)
+    reaches[group[near[row]]] = True
+    return float(column[row[first[reaches]]].min())
 
 
 _LINES = frozenset(("lines", "linestrips"))
@@ -798,7 +888,10 @@ def _line_only_instances(root: Node) -> int:
     return n
 
 
-def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
+def _lean(root: Node, merge: bool = True) -> tuple[Any, Any, int] | None:
+    """(vertices, faces, triangle sets) of a COLLADA document (:func:`collada_arrays_lean`);
+    not ``merge``: (lowest, highest, triangle sets), the bounds of those vertices
+    (:func:`_soup_bounds`: None when they cannot be told without merging)."""
     byid: dict[str, Node] = {}
     texturing = 0
     for el in root.iter():
@@ -827,14 +920,16 @@ def _lean(root: Node) -> tuple[np.ndarray, np.ndarray, int] | None:
     if len(vs) != 1:
         raise _Unsure("scene")
     visual = _ref(byid, vs[0].get("url"))
-    parts: list[Part] = []
+    parts: list[tuple[Soup, np.ndarray]] = []
     geometries: dict[str, Any] = {}
     for node in visual:
         if _local(node) == "node":
             _lean_node(node, _EYE4, parts, materials, byid, geometries)
     if not parts:
         return None
-    got = _assemble(parts)
+    if not merge:
+        return _soup_bounds(parts)
+    got = _assemble([(_merge_soup(soup), matrix) for soup, matrix in parts])
     if got is None:
         raise _Unsure("not rigid")
     return got[0], got[1], len(parts)
@@ -1023,7 +1118,7 @@ def _rotation(x: float, y: float, z: float, angle: float) -> np.ndarray:
                      [0, 0, 0, 1]], dtype=np.float32)
 
 
-def _lean_node(node: Node, parent: np.ndarray, parts: list[Part], materials: set[str],
+def _lean_node(node: Node, parent: np.ndarray, parts: list[Any], materials: set[str],
                byid: dict[str, Node], geometries: dict[str, Any]) -> None:
     """:func:`_collada_node` on the XML: a ``<node>``'s children in document order."""
     matrix = np.dot(parent, _matrix(node))
@@ -1035,7 +1130,7 @@ def _lean_node(node: Node, parent: np.ndarray, parts: list[Part], materials: set
             _lean_geometry(el, matrix, parts, materials, byid, geometries)
 
 
-def _lean_geometry(inst: Node, matrix: np.ndarray, parts: list[Part], materials: set[str],
+def _lean_geometry(inst: Node, matrix: np.ndarray, parts: list[Any], materials: set[str],
                    byid: dict[str, Node], geometries: dict[str, Any]) -> None:
     url = inst.get("url")
     geometry = _ref(byid, url)
@@ -1050,17 +1145,22 @@ def _lean_geometry(inst: Node, matrix: np.ndarray, parts: list[Part], materials:
         geometries[url] = _primitives(geometry, byid)
     for prim in geometries[url]:
         vertex, index, normal, normal_index, uvs, material = prim
-        n = len(index) * 3
-        normals = uv = None
-        if normal is not None:
-            normals = normal[normal_index].reshape(-1, 3)
-        if material in symbols and uvs:
-            tc, ti = uvs[0]
-            uv = tc[ti].reshape(-1, 2)
-        merged = _merge(vertex[index].reshape(n, 3), normals, uv)
-        if merged is None:
-            raise _Unsure("not finite")
-        parts.append((merged, matrix))
+        uv = uvs[0] if material in symbols and uvs else (None, None)
+        parts.append(((vertex, index, normal, normal_index) + tuple(uv), matrix))
+
+
+Soup = tuple[Any, ...]   # (vertex, index (k, 3), normal, normal index, uv, uv index) of a set
+
+
+def _merge_soup(soup: Soup) -> Arrays:
+    """The triangle set ``soup`` as trimesh's processed mesh (:func:`_merge` of its corners)."""
+    vertex, index, normal, normal_index, uv_source, uv_index = soup
+    normals = normal[normal_index].reshape(-1, 3) if normal is not None else None
+    uv = uv_source[uv_index].reshape(-1, 2) if uv_source is not None else None
+    merged = _merge(vertex[index].reshape(len(index) * 3, 3), normals, uv)
+    if merged is None:
+        raise _Unsure("not finite")
+    return merged
 
 
 def _source(byid: dict[str, Node], url: str | None,

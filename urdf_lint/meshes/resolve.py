@@ -312,7 +312,7 @@ _MTLLIB_LINE = re.compile(r"^mtllib[^\n]*", re.M)
 
 # -- mesh facts (geometry) -------------------------------------------------------------------
 _memory: dict[str, Facts] = {}
-FACTS_VERSION = 3  # bump when the loader changes what it measures
+FACTS_VERSION = 4  # bump when the loader changes what it measures
 
 
 def _version(path: str) -> tuple[str, int, int]:
@@ -539,6 +539,10 @@ def _measure(path: str, keep_loaded: bool = False) -> Facts:
         n = meshio.binary_stl_triangles(path) if path.lower().endswith(".stl") else None
         if n is not None:
             return _stl_facts(path, n)
+        if path.lower().endswith(".dae"):
+            facts = _collada_facts(path)
+            if facts is not None:
+                return facts
         v, f, broken = _arrays(path, keep_loaded)
         import numpy as np
         finite, bounds = True, None
@@ -578,6 +582,31 @@ def _stl_facts(path: str, n: int) -> Facts:
         if n and finite and lo is not None and hi is not None else None
     return {"ok": True, "error": "", "vertices": 3 * n, "faces": n, "finite": finite,
             "bounds": bounds, "broken_refs": []}
+
+
+def _collada_facts(path: str) -> Facts | None:
+    """The facts of a COLLADA file the lean reader reads, from the bounds of its triangles'
+    positions (:func:`meshio.collada_bounds`: no merging of vertices, a third of reading the
+    arrays), the unit applied as ``_scene_arrays`` applies it (a positive scale: the bounds
+    of the scaled vertices are the scaled bounds). ``vertices`` counts the positions the
+    triangles use (trimesh's mesh merges equal corners; the rules ask only whether there are
+    any). In every run, a render's too, so that the facts of a file depend on its bytes
+    alone. None when the lean reader leaves the file to pycollada: the arrays are read."""
+    import numpy as np
+    from urdf_lint.meshes import readers as meshio
+    data = _file_bytes(path)
+    got = meshio.collada_bounds(data)
+    if got is None:
+        return None
+    lo, hi, vertices, faces = got
+    unit = _unit_of(data)
+    if unit != 1.0:
+        lo, hi = meshio.scale_points(np.array([lo, hi]), unit)
+    if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+        return None
+    return {"ok": True, "error": "", "vertices": int(vertices), "faces": int(faces),
+            "finite": True, "bounds": [list(map(float, lo)), list(map(float, hi))],
+            "broken_refs": []}
 
 
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
