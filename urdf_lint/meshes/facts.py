@@ -22,7 +22,9 @@ def _bounds(b: Any) -> Bounds | None:
 class MeshFacts:
     """A mesh file's facts: ``ok`` (it loads; else ``error`` says why), its vertex and face
     counts, whether every vertex is finite, its bounds in the file's frame (None when empty or
-    not finite) and the broken internal references of a COLLADA file whose geometry loads."""
+    not finite) and the broken internal references of a COLLADA file whose geometry loads.
+    The vertex count says whether there are any: a COLLADA file read without merging its
+    corners counts the positions its triangles use (``meshes.resolve._collada_facts``)."""
     ok: bool
     error: str = ""
     vertices: int = 0

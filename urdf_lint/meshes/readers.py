@@ -8,7 +8,9 @@ vertex and face arrays, without building a processed ``trimesh.Trimesh``.
   ``<p>``, ``<input>`` and node transforms parsed straight into numpy, as pycollada parses
   them) or, for what that reader does not vouch for (textures, strips, node instances...), by
   pycollada, and assembled, placed and merged exactly as trimesh's loader and scene would
-  (:func:`collada_arrays`), without importing trimesh or decoding textures.
+  (:func:`collada_arrays`), without importing trimesh or decoding textures. A mesh's facts
+  need only its bounds: :func:`collada_bounds` gives those of the merged vertices without
+  merging them (grouping, as the merge does, only corners a hair apart at an extreme).
 * A plain Wavefront OBJ is split by material, unmerged by texture and normal references and
   its quads split exactly as trimesh's loader does (:func:`obj_arrays`), without trimesh.
 * Every other format and any COLLADA or OBJ file the readers cannot vouch for is loaded by
