@@ -597,6 +597,9 @@ def _collada_facts(path: str) -> Facts | None:
     data = _file_bytes(path)
     got = meshio.collada_bounds(data)
     if got is None:
+        if len(_lean_refused) >= MAX_MEMO_FILES:
+            _lean_refused.clear()
+        _lean_refused.add(_digest(path))     # (its arrays: not read by the lean reader again)
         return None
     lo, hi, vertices, faces = got
     unit = _unit_of(data)
@@ -607,6 +610,10 @@ def _collada_facts(path: str) -> Facts | None:
     return {"ok": True, "error": "", "vertices": int(vertices), "faces": int(faces),
             "finite": True, "bounds": [list(map(float, lo)), list(map(float, hi))],
             "broken_refs": []}
+
+
+_lean_refused: set[str] = set()   # COLLADA files (digests) the lean reader left to pycollada
+MAX_MEMO_FILES = 10_000
 
 
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
@@ -676,7 +683,7 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True) -> Arrays | None:
     A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
     numbers, without trimesh)."""
     from urdf_lint.meshes import readers as meshio
-    if is_dae and lean:
+    if is_dae and lean and _digest(path) not in _lean_refused:
         data = _file_bytes(path)
         got = meshio.collada_arrays(data)   # the same numbers without trimesh, when it can
         if got is not None:
