@@ -58,14 +58,12 @@ def counted(facts: dict, path) -> dict:
 
 def same_as_trimesh(got: dict, want: dict, path) -> bool:
     """urdf-lint's facts ``got`` are trimesh's ``want`` (:func:`counted`), a COLLADA file's
-    bounds within 1e-12: its positions are placed by their node's matrix as trimesh places
-    its merged vertices, but in another array, and a BLAS may round a product's last bit
-    by where a row lies in it (equal on this machine's OpenBLAS)."""
+    bounds as :func:`same_bounds` compares them."""
     got, want = counted(got, path), counted(want, path)
     if not str(path).lower().endswith(".dae") or got["bounds"] is None or want["bounds"] is None:
         return got == want
     return {**got, "bounds": None} == {**want, "bounds": None} and \
-        bool(np.allclose(got["bounds"], want["bounds"], rtol=1e-12, atol=1e-15))
+        same_bounds(got["bounds"], want["bounds"])
 
 
 def lint_in_process(path, cache=None):
@@ -368,11 +366,16 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
     except Exception:  # noqa: BLE001 - trimesh cannot load it: neither can urdf-lint
         assert not vouched and not fresh.mesh_facts(str(p))["ok"]
         return
-    tried = []
+    tried, scenes = [], []
     real = meshio.collada_arrays_lean
     monkeypatch.setattr(meshio, "collada_arrays_lean", lambda *a, **k: tried.append(1) or real(*a, **k))
+    import trimesh
+    real_scene = trimesh.load_scene
+    monkeypatch.setattr(trimesh, "load_scene", lambda *a, **k: scenes.append(1) or real_scene(*a, **k))
     assert same_as_trimesh(fresh.mesh_facts(str(p)), want, p), case
     assert len(tried) == 1, "a file the lean reader leaves to pycollada is parsed by it once"
+    if meshio.collada_arrays(text.encode(), lean=False) is not None:
+        assert not scenes, "pycollada reads it, not trimesh's scene loader"
     monkeypatch.setattr(meshio, "collada_arrays_lean", real)
     if lean is not None:
         got = _trimesh_arrays(fresh, p)
@@ -481,10 +484,11 @@ def same_bounds(got, want) -> bool:
     """Bounds equal but for the last bits a matrix product may round otherwise: a node's
     matrix places the positions used in one array and the merged vertices in another, and a
     BLAS may sum a product differently by where a row lies (bit for bit equal with this
-    machine's OpenBLAS). A vertex kept wrongly is ~1e-8 of the size off, 1e7 times that."""
+    machine's OpenBLAS), and for a zero's sign. A vertex kept wrongly is ~1e-8 of the
+    coordinate off: ~1e7 times the 8 ulps allowed, axis by axis."""
     got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    return bool(np.allclose(got, want, rtol=0,
-                            atol=8 * np.finfo(np.float64).eps * max(1.0, float(np.abs(want).max()))))
+    scale = np.maximum(np.abs(want).max(axis=0), np.finfo(np.float64).tiny)
+    return bool((np.abs(got - want) <= 8 * np.spacing(scale)).all())
 
 
 def _hair_apart(sign, first_hair, same_normal=True):
@@ -544,6 +548,61 @@ def test_collada_bounds_without_merging_are_the_merged_vertices_bounds(tmp_path,
     facts = fresh.mesh_facts(str(cases["1-True-True-plain"][0]))
     assert facts["ok"] and facts["faces"] == 4 and facts["vertices"] == 6
     assert facts["bounds"][0][0] == float(np.float32(4e-9)) * 0.001
+
+
+def _one_set_dae(path, v, tris, node="", kind="triangles", with_uv=True, normals=None):
+    v = np.asarray(v, dtype=np.float32)
+    normals = np.tile(np.float32([0, 0, 1]), (len(v), 1)) if normals is None else normals
+    geometry = _geometry("g", v, tris, normals=np.asarray(normals, dtype=np.float32),
+                         uv=np.zeros((len(v), 2), dtype=np.float32), exact=True, kind=kind,
+                         with_uv=with_uv)
+    nodes = node if "<node" in node else f"<node>{node}{_inst('g')}</node>"
+    return _dae(path, geometry, nodes, unit="1")
+
+
+def test_collada_bounds_without_merging_hold_where_the_merge_is_unusual(tmp_path, fresh):
+    """What a red-team pass found, and more: a translation cancelling coordinates of 1e9 (the
+    placed corners of one merge group land 1.2e-7 apart, more than 1e-8 times the matrix),
+    the lowest corner in a second instance, hairs in a polylist and in sets without normals
+    or bound UVs; and coordinates so large (1e11) that the merge's integer keys overflow
+    and merge unrelated corners: the merged arrays are read then."""
+    from urdf_lint.meshes import readers as meshio
+    write_png(tmp_path / "skin.png")
+    x, z1, z2 = 1e9, np.float32(5.6e-8), np.float32(6.4e-8)    # (merge keys 6 and 6)
+    cancel = [[x, 0, z2], [x, 0, z1], [x + 64, 1, 0], [x + 64, 0, 1], [x + 128, 1, 1]]
+    hair = [[4e-9, 0, 0], [0, 0, 0], [1, 1, 0], [1, 0, 1], [1, 1, 1]]
+    tris = [[0, 2, 3], [1, 3, 4], [2, 3, 4]]
+    cases = {
+        "cancel": _one_set_dae(tmp_path / "cancel.dae", cancel, tris,
+                               "<matrix>1 0 1 -1e9 0 1 0 0 0 0 1 0 0 0 0 1</matrix>"),
+        "second instance": _one_set_dae(
+            tmp_path / "second.dae", hair, tris,
+            f"<node>{_inst('g')}</node><node><translate>-1 0 0</translate>{_inst('g')}</node>"),
+        "polylist": _one_set_dae(tmp_path / "poly.dae", hair, [[0, 2, 3, 4], [1, 3, 4]],
+                                 kind="polylist"),
+        "no uv": _one_set_dae(tmp_path / "no_uv.dae", hair, tris, with_uv=False),
+    }
+    for name, path in cases.items():
+        data = path.read_bytes()
+        merged = meshio.collada_arrays_lean(data)
+        got = meshio.collada_bounds(data)
+        assert merged is not None and got is not None, name
+        assert same_bounds((got[0], got[1]), meshio.bounds(merged[0])), name
+        assert got[3] == len(merged[1]), name
+    # (the hair is kept: it comes first; the grouping decided, not the lowest position)
+    got = meshio.collada_bounds(cases["polylist"].read_bytes())
+    assert got[0][0] == float(np.float32(4e-9))
+    assert meshio.collada_bounds(cases["cancel"].read_bytes())[0][0] > 0
+    huge = _one_set_dae(tmp_path / "huge.dae", [[-1e11, 0, 0], [1e11, 0, 0], [0, 1, 0]],
+                        [[0, 1, 2]])
+    assert meshio.collada_arrays_lean(huge.read_bytes()) is not None
+    assert meshio.collada_bounds(huge.read_bytes()) is None, "overflowing keys: arrays read"
+    assert same_as_trimesh(fresh.mesh_facts(str(huge)), trimesh_facts(huge), huge)
+    # None exactly where the lean reader declines
+    for name, path in _generated_daes(tmp_path).items():
+        data = path.read_bytes()
+        assert (meshio.collada_bounds(data) is None) == \
+            (meshio.collada_arrays_lean(data) is None), name
 
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")

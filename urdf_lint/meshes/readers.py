@@ -386,7 +386,7 @@ NORMAL_DIGITS = 2       # trimesh.grouping.merge_vertices' digits_norm
 UV_DIGITS = 4           # ... and digits_uv
 
 
-def collada_arrays(data: bytes) -> Arrays | None:
+def collada_arrays(data: bytes, lean: bool = True) -> Arrays | None:
     """(vertices float64 (n, 3), faces int64 (m, 3)) of a COLLADA document before its unit:
     the numbers ``trimesh.load_scene(process=False)`` and :func:`scene_arrays` give, without
     importing trimesh, decoding textures or building materials.
@@ -402,10 +402,11 @@ def collada_arrays(data: bytes) -> Arrays | None:
     None whenever trimesh might do otherwise: a geometry lost to a broken reference (fewer
     sets than ``<instance_geometry>`` elements), an empty set, a non-finite vertex, vertex
     colours, a material trimesh cannot convert, an index out of range, any error. The caller
-    then loads the file through trimesh, as before."""
-    lean = collada_arrays_lean(data)   # one lxml parse, no pycollada objects, when it can
-    if lean is not None:
-        return lean[0], lean[1]
+    then loads the file through trimesh, as before. Not ``lean``: pycollada reads it (the
+    lean reader left it to pycollada already)."""
+    got = collada_arrays_lean(data) if lean else None   # one lxml parse, when it can
+    if got is not None:
+        return got[0], got[1]
     import io
     import collada
     from collada import common
@@ -797,18 +798,26 @@ def collada_bounds(data: bytes) -> tuple[np.ndarray, np.ndarray, int, int] | Non
     return lo, hi, vertices, faces
 
 
+_EPS = float(np.finfo(np.float64).eps)
+
+
 def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] | None:
     """The bounds of :func:`_assemble` of the merged triangle sets, from the positions their
     triangles use, placed by their matrices as ``_assemble`` places them, as
     ((lowest, highest), (positions used, triangles), sets); None where trimesh would not
-    place a set (``_Unsure`` raised) or a position is not finite.
+    place a set or a position is not finite (``_Unsure`` raised), or where a coordinate is so
+    large (4.6e10) that the merge's integer keys overflow and merge unrelated corners.
 
     Merging keeps, of the corners equal to 8 decimals (with their texture coordinate and
     normal), the first in the set's order; its position is one the triangles use, within
     1e-8 of the others' in each coordinate. So the lowest value of a coordinate over the
     merged vertices is the lowest over the used positions unless other values lie within
-    that distance (as placed: times the matrix row) above it; then the corners there are
-    grouped as the merge groups them (:func:`_merged_extreme`)."""
+    that distance (as placed: times the matrix row, plus the rounding of placing them) above
+    it; then the corners there are grouped as the merge groups them
+    (:func:`_merged_extreme`). The same values as the merged vertices' bounds, but that a
+    zero may come with the other sign (they compare equal), and that a matrix product may
+    round a last bit otherwise where every corner of a set merges into one vertex (numpy
+    places one row by another BLAS routine)."""
     lo: np.ndarray | None = None
     hi: np.ndarray | None = None
     vertices = faces = 0
@@ -824,16 +833,22 @@ def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] |
         faces += len(index)
         if not np.isfinite(points).all():
             raise _Unsure("not finite")
-        reach = np.full(3, 1.01e-8)
+        largest = np.abs(points).max(axis=0)
+        if float(largest.max()) * 10 ** MERGE_DIGITS >= 2.0 ** 62:
+            return None     # (the merge's integer keys overflow: unrelated corners merge)
+        slack = np.full(3, 1.01e-8)
         if not _allclose(rigid, _EYE4, 1e-8):
             points = transform_points(points, rigid)
-            reach = 1.01e-8 * np.abs(rigid[:3, :3]).sum(axis=1)
+            # corners 1e-8 apart, placed; and the rounding of the products and sums placing
+            # them, relative to their terms (a translation cancelling large coordinates)
+            terms = np.abs(rigid[:3, :3]) @ largest + np.abs(rigid[:3, 3])
+            slack = 1.01e-8 * np.abs(rigid[:3, :3]).sum(axis=1) + 16 * _EPS * terms
         plo, phi = bounds(points)
         at = np.flatnonzero(used)
         for c in range(3):
-            slack = reach[c] + 1e-12 * (abs(plo[c]) + abs(phi[c]))
-            plo[c] = _merged_extreme(soup, at, points[:, c], plo[c], slack)
-            phi[c] = -_merged_extreme(soup, at, -points[:, c], -phi[c], slack)
+            slack[c] += 16 * _EPS * (abs(plo[c]) + abs(phi[c]))
+            plo[c] = _merged_extreme(soup, at, points[:, c], plo[c], float(slack[c]))
+            phi[c] = -_merged_extreme(soup, at, -points[:, c], -phi[c], float(slack[c]))
         lo = plo if lo is None else np.minimum(lo, plo)
         hi = phi if hi is None else np.maximum(hi, phi)
     return (lo, hi), (vertices, faces), len(parts)

@@ -683,9 +683,11 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True) -> Arrays | None:
     A COLLADA file is read by :func:`meshio.collada_arrays` when it can (``lean``; the same
     numbers, without trimesh)."""
     from urdf_lint.meshes import readers as meshio
-    if is_dae and lean and _digest(path) not in _lean_refused:
+    if is_dae and lean:
         data = _file_bytes(path)
-        got = meshio.collada_arrays(data)   # the same numbers without trimesh, when it can
+        # the same numbers without trimesh, when it can (by pycollada alone where the lean
+        # reader left the file to it already)
+        got = meshio.collada_arrays(data, lean=_digest(path) not in _lean_refused)
         if got is not None:
             unit = _unit_of(data)
             v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
