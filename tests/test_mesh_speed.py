@@ -81,7 +81,7 @@ def fresh(monkeypatch):
     from urdf_lint.core import hashing
     from urdf_lint.meshes import resolve as meshes
     for name in ("_memory", "_mass_memory", "_textures", "_arrays_memo", "_kept_bytes",
-                 "_lean_refused"):
+                 "_lean_read"):
         monkeypatch.setattr(meshes, name, type(getattr(meshes, name))())
     monkeypatch.setattr(hashing, "_memo", {})
     monkeypatch.setattr(meshes, "_loaded", type(meshes._loaded)())
@@ -367,8 +367,8 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
         assert not vouched and not fresh.mesh_facts(str(p))["ok"]
         return
     tried, scenes = [], []
-    real = meshio.collada_arrays_lean
-    monkeypatch.setattr(meshio, "collada_arrays_lean", lambda *a, **k: tried.append(1) or real(*a, **k))
+    real = meshio.collada_soups
+    monkeypatch.setattr(meshio, "collada_soups", lambda *a, **k: tried.append(1) or real(*a, **k))
     import trimesh
     real_scene = trimesh.load_scene
     monkeypatch.setattr(trimesh, "load_scene", lambda *a, **k: scenes.append(1) or real_scene(*a, **k))
@@ -376,7 +376,7 @@ def test_textured_collada_is_read_by_lxml_only_when_pycollada_loads_its_textures
     assert len(tried) == 1, "a file the lean reader leaves to pycollada is parsed by it once"
     if meshio.collada_arrays(text.encode(), lean=False) is not None:
         assert not scenes, "pycollada reads it, not trimesh's scene loader"
-    monkeypatch.setattr(meshio, "collada_arrays_lean", real)
+    monkeypatch.setattr(meshio, "collada_soups", real)
     if lean is not None:
         got = _trimesh_arrays(fresh, p)
         v = meshio.scale_points(lean[0], fresh._unit_of(text.encode()))
@@ -491,6 +491,19 @@ def same_bounds(got, want) -> bool:
     return bool((np.abs(got - want) <= 8 * np.spacing(scale)).all())
 
 
+def _one_set_dae(path, v, tris, node="", kind="triangles", with_uv=True, normals=None,
+                 unit="1"):
+    """A COLLADA file of one triangle set of float32 positions ``v`` written to the last digit
+    (normals +z unless given, UVs 0), instanced in a node holding ``node`` (or ``node`` whole)."""
+    v = np.asarray(v, dtype=np.float32)
+    normals = np.tile(np.float32([0, 0, 1]), (len(v), 1)) if normals is None else normals
+    geometry = _geometry("g", v, tris, normals=np.asarray(normals, dtype=np.float32),
+                         uv=np.zeros((len(v), 2), dtype=np.float32), exact=True, kind=kind,
+                         with_uv=with_uv)
+    nodes = node if "<node" in node else f"<node>{node}{_inst('g')}</node>"
+    return _dae(path, geometry, nodes, unit=unit)
+
+
 def _hair_apart(sign, first_hair, same_normal=True):
     """A tetrahedron-like set whose lowest (``sign`` 1) or highest (-1) x is held by two
     positions 4e-9 apart, which the merge groups (8 decimals) unless their normals differ;
@@ -501,9 +514,8 @@ def _hair_apart(sign, first_hair, same_normal=True):
     normals = np.tile(np.float32([0, 0, 1]), (6, 1))
     if not same_normal:
         normals[1] = (0, 1, 0)
-    uv = np.zeros((6, 2), dtype=np.float32)
     exact, hair = ([1, 2, 3], [0, 4, 5]) if first_hair else ([0, 2, 3], [1, 4, 5])
-    return v, normals, uv, [exact, hair, [2, 3, 4], [3, 4, 5]]
+    return v, normals, [exact, hair, [2, 3, 4], [3, 4, 5]]
 
 
 def test_collada_bounds_without_merging_are_the_merged_vertices_bounds(tmp_path, fresh):
@@ -517,13 +529,12 @@ def test_collada_bounds_without_merging_are_the_merged_vertices_bounds(tmp_path,
     for sign in (1, -1):
         for first_hair in (True, False):
             for same in (True, False):
-                v, n, uv, tris = _hair_apart(sign, first_hair, same)
-                geometry = _geometry("g", v, tris, normals=n, uv=uv, exact=True)
-                for placed, node in (("plain", _inst("g")),
-                                     ("rotated", f"<rotate>0 0 1 90</rotate><scale>2 2 2</scale>"
-                                                 f"{_inst('g')}")):
+                v, n, tris = _hair_apart(sign, first_hair, same)
+                for placed, node in (("plain", ""),
+                                     ("rotated", "<rotate>0 0 1 90</rotate><scale>2 2 2</scale>")):
                     name = f"{sign}-{first_hair}-{same}-{placed}"
-                    cases[name] = (_dae(tmp_path / f"{name}.dae", geometry, f"<node>{node}</node>"),
+                    cases[name] = (_one_set_dae(tmp_path / f"{name}.dae", v, tris, node, normals=n,
+                                                unit="0.001"),
                                    sign, first_hair and same, placed)
     moved = 0
     for name, (path, sign, kept_hair, placed) in cases.items():
@@ -548,16 +559,6 @@ def test_collada_bounds_without_merging_are_the_merged_vertices_bounds(tmp_path,
     facts = fresh.mesh_facts(str(cases["1-True-True-plain"][0]))
     assert facts["ok"] and facts["faces"] == 4 and facts["vertices"] == 6
     assert facts["bounds"][0][0] == float(np.float32(4e-9)) * 0.001
-
-
-def _one_set_dae(path, v, tris, node="", kind="triangles", with_uv=True, normals=None):
-    v = np.asarray(v, dtype=np.float32)
-    normals = np.tile(np.float32([0, 0, 1]), (len(v), 1)) if normals is None else normals
-    geometry = _geometry("g", v, tris, normals=np.asarray(normals, dtype=np.float32),
-                         uv=np.zeros((len(v), 2), dtype=np.float32), exact=True, kind=kind,
-                         with_uv=with_uv)
-    nodes = node if "<node" in node else f"<node>{node}{_inst('g')}</node>"
-    return _dae(path, geometry, nodes, unit="1")
 
 
 def test_collada_bounds_without_merging_hold_where_the_merge_is_unusual(tmp_path, fresh):
@@ -603,6 +604,29 @@ def test_collada_bounds_without_merging_hold_where_the_merge_is_unusual(tmp_path
         data = path.read_bytes()
         assert (meshio.collada_bounds(data) is None) == \
             (meshio.collada_arrays_lean(data) is None), name
+
+
+def test_a_collada_files_facts_and_mass_properties_parse_it_once(tmp_path, fresh, monkeypatch):
+    """A collision mesh's facts (its bounds, read without merging) and then its mass
+    properties (merged arrays) come from one lxml parse of the file: what the facts read is
+    kept for the arrays, and they are trimesh's."""
+    from urdf_lint.meshes import readers as meshio
+    v, f = sphere(500, radius=40.0, center=(5.0, -3.0, 12.0))
+    write_png(tmp_path / "skin.png")
+    p = _dae(tmp_path / "part.dae", _geometry("g", v, f.tolist()),
+             f"<node><rotate>0 0 1 30</rotate>{_inst('g')}</node>")
+    parsed = []
+    real = meshio.collada_soups
+    monkeypatch.setattr(meshio, "collada_soups", lambda *a, **k: parsed.append(1) or real(*a, **k))
+    facts, mass = fresh.mesh_facts(str(p)), fresh.mass_facts(str(p))
+    assert len(parsed) == 1, "parsed again for its arrays"
+    monkeypatch.setattr(meshio, "collada_soups", real)
+    assert same_as_trimesh(facts, trimesh_facts(p), p)
+    want = fresh.trimesh_mass_properties(fresh.load_mesh(str(p)))
+    assert mass.keys() == want.keys() and mass["ok"] and mass.get("hull") == want.get("hull")
+    for k in ("volume", "first", "second", "bounds"):
+        assert np.allclose(mass[k], want[k], rtol=1e-12, atol=0), k
+    assert not fresh._lean_read, "taken by the arrays, not kept"
 
 
 @pytest.mark.skipif(not (CORPUS / "MANIFEST.md").is_file(), reason="../shared/corpus is not present")

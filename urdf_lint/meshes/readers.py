@@ -439,11 +439,11 @@ def _assemble(parts: list[Part]) -> Arrays | None:
     winding); None where trimesh's scene graph would refuse a matrix."""
     verts, faces, offset = [], [], 0
     for (v, f), matrix in parts:
-        rigid = _fix_rigid(np.array(matrix, dtype=np.float64))
-        if rigid is None:
+        placing = _placement(matrix)
+        if placing is None:
             return None
-        matrix = rigid
-        if not _allclose(matrix, _EYE4, 1e-8):
+        matrix, moves = placing
+        if moves:
             v = transform_points(v, matrix)
             if not _allclose(matrix[:3, :3], _EYE3, 1e-6) and \
                     np.linalg.det(matrix[:3, :3]) < 0.0:
@@ -452,6 +452,13 @@ def _assemble(parts: list[Part]) -> Arrays | None:
         faces.append(f + offset)
         offset += len(v)
     return np.vstack(verts).reshape((-1, 3)), np.vstack(faces).astype(np.int64).reshape((-1, 3))
+
+
+def _placement(matrix: np.ndarray) -> tuple[np.ndarray, bool] | None:
+    """(the matrix trimesh's scene graph places a set by, whether it moves it at all), or
+    None where that graph would refuse the matrix."""
+    rigid = _fix_rigid(np.array(matrix, dtype=np.float64))
+    return None if rigid is None else (rigid, not _allclose(rigid, _EYE4, 1e-8))
 
 
 # -- Wavefront OBJ without trimesh ------------------------------------------------------------
@@ -645,18 +652,24 @@ def _merge(vertices: np.ndarray, normals: np.ndarray | None,
     v = np.asarray(vertices, dtype=np.float64)
     if not np.isfinite(v).all():
         return None
-    stacked = [v * (10 ** MERGE_DIGITS)]
+    index, inverse = first_of_equal_rows(_merge_rows(v, normals, uv))
+    order = index.argsort()
+    faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
+    return v[index[order]], faces
+
+
+def _merge_rows(v: np.ndarray, normals: np.ndarray | None, uv: np.ndarray | None
+                ) -> np.ndarray:
+    """The rows :func:`_merge` groups corners by: position (8 decimals), UV (4) and normal (2)
+    as integers, a UV or normal only when given for every corner."""
+    stacked = [np.asarray(v, dtype=np.float64) * (10 ** MERGE_DIGITS)]
     if uv is not None and len(uv) == len(v):
         stacked.append(np.asarray(uv, dtype=np.float64) * (10 ** UV_DIGITS))
     if normals is not None:
         normals = np.asarray(normals, dtype=np.float64)
-        if normals.shape == v.shape:
+        if normals.shape == np.shape(v):
             stacked.append(normals * (10 ** NORMAL_DIGITS))
-    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
-    index, inverse = first_of_equal_rows(rows)
-    order = index.argsort()
-    faces = order.argsort()[inverse.reshape(-1)].reshape((-1, 3))
-    return v[index[order]], faces
+    return np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
 
 
 def _fix_rigid(matrix: np.ndarray, max_deviance: float = 1e-5) -> np.ndarray | None:
@@ -757,54 +770,84 @@ class _Unsure(Exception):
     """A COLLADA feature the lean reader does not vouch for: pycollada reads the file."""
 
 
-def collada_arrays_lean(data: bytes, merge: bool = True) -> tuple[Any, Any, int] | None:
-    """:func:`collada_arrays`' numbers from one lxml parse of the document: the sources'
+Soups = list[tuple[Any, np.ndarray]]   # [(Soup, placing matrix)]: triangle sets, read, unmerged
+
+
+def collada_soups(data: bytes) -> "Soups | None":
+    """A COLLADA document's triangle sets from one lxml parse, not yet merged: the sources'
     ``<float_array>`` (float32, as pycollada reads them), the primitives' ``<p>``/``<vcount>``
     and ``<input>`` offsets, the ``<node>`` transforms (float32 products, as pycollada's
-    ``Node.matrix``) and ``<instance_geometry>``/``<instance_material>`` bindings, assembled
-    and merged exactly as :func:`collada_arrays` does on pycollada's objects (same float32
-    values, same index arrays, same order). Textures count only where pycollada loads them
-    (:func:`_check_effects`). None for anything else (other effect parameters, polygons
-    with holes, strips and fans, node instances, controllers, a broken reference, any
-    doubt): the caller reads the file through pycollada. Not ``merge``: the bounds of those
-    vertices instead (:func:`collada_bounds`)."""
+    ``Node.matrix``) and ``<instance_geometry>``/``<instance_material>`` bindings. Textures
+    count only where pycollada loads them (:func:`_check_effects`). None for anything else
+    (other effect parameters, polygons with holes, strips and fans, node instances,
+    controllers, a broken reference, any doubt): the caller reads the file through
+    pycollada. :func:`soups_arrays` gives their vertices and faces, :func:`soups_bounds`
+    their bounds."""
     from lxml import etree
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              huge_tree=True, remove_comments=True)
     try:
         root = etree.fromstring(data, parser)
-        got = _lean(root, merge)
+        parts = _lean(root)
         # (as collada_arrays: an instance that gives no triangle set: trimesh decides; but a
         # geometry of lines alone gives none in trimesh either, without error)
         want = data.count(b"<instance_geometry")
-        if got is not None and got[2] < want:   # (the tree is walked again only then)
+        if parts is not None and len(parts) < want:   # (the tree is walked again only then)
             want -= _line_only_instances(root)
-        return got if got is None or got[2] >= want else None
+        return parts if parts is not None and len(parts) >= want else None
     except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
         return None
 
 
-def collada_bounds(data: bytes) -> tuple[np.ndarray, np.ndarray, int, int] | None:
-    """(lowest, highest corner, positions, triangles) of :func:`collada_arrays`' vertices
-    (before the unit; the positions the triangles use, each counted once), without
-    merging them: a mesh's facts need its bounds, and merging (sorting every corner of every
-    triangle by position, texture coordinate and normal) was a third of reading a COLLADA
-    file: the same values (:func:`_soup_bounds`). None when the lean reader leaves the file
-    to pycollada: the caller then reads the arrays."""
-    got = collada_arrays_lean(data, merge=False)
+def soups_arrays(parts: "Soups") -> Arrays | None:
+    """:func:`collada_arrays`' numbers from :func:`collada_soups`: each set merged exactly as
+    :func:`collada_arrays` merges pycollada's (same float32 values, same index arrays, same
+    order), placed and stacked; None where pycollada should judge (a vertex not finite, a
+    matrix trimesh's scene would refuse)."""
+    try:
+        return _assemble([(_merge_soup(soup), matrix) for soup, matrix in parts])
+    except Exception:  # noqa: BLE001 - _Unsure, or anything pycollada should judge
+        return None
+
+
+def soups_bounds(parts: "Soups") -> tuple[np.ndarray, np.ndarray, int, int] | None:
+    """(lowest, highest corner, positions, triangles) of :func:`soups_arrays`' vertices (the
+    positions the triangles use, each counted once), without merging them: a mesh's facts
+    need its bounds, and merging (sorting every corner of every triangle by position,
+    texture coordinate and normal) was a third of reading a COLLADA file. The same values
+    (:func:`_soup_bounds`); None where :func:`soups_arrays` is, or where the merge's keys
+    overflow: the caller then reads the arrays."""
+    try:
+        got = _soup_bounds(parts)
+    except Exception:  # noqa: BLE001 - as soups_arrays
+        return None
     if got is None:
         return None
-    (lo, hi), (vertices, faces), _ = got
+    (lo, hi), (vertices, faces) = got
     return lo, hi, vertices, faces
+
+
+def collada_arrays_lean(data: bytes) -> tuple[np.ndarray, np.ndarray, int] | None:
+    """:func:`collada_arrays`' numbers from one lxml parse (:func:`collada_soups`,
+    :func:`soups_arrays`), and the number of triangle sets; None where pycollada reads it."""
+    parts = collada_soups(data)
+    got = None if parts is None else soups_arrays(parts)
+    return None if parts is None or got is None else (got[0], got[1], len(parts))
+
+
+def collada_bounds(data: bytes) -> tuple[np.ndarray, np.ndarray, int, int] | None:
+    """:func:`soups_bounds` of :func:`collada_soups` (the lean reader's bounds of a document)."""
+    parts = collada_soups(data)
+    return None if parts is None else soups_bounds(parts)
 
 
 _EPS = float(np.finfo(np.float64).eps)
 
 
-def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] | None:
+def _soup_bounds(parts: "Soups") -> tuple[Any, Any] | None:
     """The bounds of :func:`_assemble` of the merged triangle sets, from the positions their
     triangles use, placed by their matrices as ``_assemble`` places them, as
-    ((lowest, highest), (positions used, triangles), sets); None where trimesh would not
+    ((lowest, highest), (positions used, triangles)); None where trimesh would not
     place a set or a position is not finite (``_Unsure`` raised), or where a coordinate is so
     large (4.6e10) that the merge's integer keys overflow and merge unrelated corners.
 
@@ -823,9 +866,10 @@ def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] |
     vertices = faces = 0
     for soup, matrix in parts:
         vertex, index = soup[0], soup[1]
-        rigid = _fix_rigid(np.array(matrix, dtype=np.float64))
-        if rigid is None:
+        placing = _placement(matrix)
+        if placing is None:
             raise _Unsure("not rigid")
+        rigid, moves = placing
         used = np.zeros(len(vertex), dtype=bool)
         used[index.reshape(-1)] = True
         points = vertex[used].astype(np.float64)
@@ -837,7 +881,7 @@ def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] |
         if float(largest.max()) * 10 ** MERGE_DIGITS >= 2.0 ** 62:
             return None     # (the merge's integer keys overflow: unrelated corners merge)
         slack = np.full(3, 1.01e-8)
-        if not _allclose(rigid, _EYE4, 1e-8):
+        if moves:
             points = transform_points(points, rigid)
             # corners 1e-8 apart, placed; and the rounding of the products and sums placing
             # them, relative to their terms (a translation cancelling large coordinates)
@@ -851,7 +895,7 @@ def _soup_bounds(parts: list[tuple[Soup, np.ndarray]]) -> tuple[Any, Any, int] |
             phi[c] = -_merged_extreme(soup, at, -points[:, c], -phi[c], float(slack[c]))
         lo = plo if lo is None else np.minimum(lo, plo)
         hi = phi if hi is None else np.maximum(hi, phi)
-    return (lo, hi), (vertices, faces), len(parts)
+    return (lo, hi), (vertices, faces)
 
 
 def _merged_extreme(soup: Soup, at: np.ndarray, column: np.ndarray, least: float,
@@ -866,20 +910,11 @@ def _merged_extreme(soup: Soup, at: np.ndarray, column: np.ndarray, least: float
     near = column <= least + slack
     if (column[near] == least).all():
         return least          # (the common case: one value there, whichever corner is kept)
-    vertex, index, normal, normal_index, uv_source, uv_index = soup
+    vertex, index = soup[0], soup[1]
     wide = np.zeros(len(vertex), dtype=bool)
     wide[at[column <= least + 2 * slack]] = True
     corners = np.flatnonzero(wide[index.reshape(-1)])     # in the set's order
-    v = vertex[index.reshape(-1)[corners]].astype(np.float64)
-    stacked = [v * (10 ** MERGE_DIGITS)]
-    if uv_source is not None:
-        stacked.append(uv_source[uv_index.reshape(-1)[corners]].astype(np.float64)
-                       * (10 ** UV_DIGITS))
-    if normal is not None:
-        stacked.append(normal[normal_index.reshape(-1)[corners]].astype(np.float64)
-                       * (10 ** NORMAL_DIGITS))
-    rows = np.ascontiguousarray(np.column_stack(stacked).round().astype(np.int64))
-    first, group = first_of_equal_rows(rows)
+    first, group = first_of_equal_rows(_merge_rows(*_corners(soup, corners)))
     position = index.reshape(-1)[corners]                 # each corner's used position
     row = np.searchsorted(at, position)                   # ... as a row of ``column``
     reaches = np.zeros(len(first), dtype=bool)
@@ -905,10 +940,9 @@ def _line_only_instances(root: Node) -> int:
     return n
 
 
-def _lean(root: Node, merge: bool = True) -> tuple[Any, Any, int] | None:
-    """(vertices, faces, triangle sets) of a COLLADA document (:func:`collada_arrays_lean`);
-    not ``merge``: (lowest, highest, triangle sets), the bounds of those vertices
-    (:func:`_soup_bounds`: None when they cannot be told without merging)."""
+def _lean(root: Node) -> "Soups | None":
+    """The triangle sets of a COLLADA document (:func:`collada_soups`), None when it has
+    none; ``_Unsure`` where the lean reader does not vouch for it."""
     byid: dict[str, Node] = {}
     texturing = 0
     for el in root.iter():
@@ -937,19 +971,12 @@ def _lean(root: Node, merge: bool = True) -> tuple[Any, Any, int] | None:
     if len(vs) != 1:
         raise _Unsure("scene")
     visual = _ref(byid, vs[0].get("url"))
-    parts: list[tuple[Soup, np.ndarray]] = []
+    parts: Soups = []
     geometries: dict[str, Any] = {}
     for node in visual:
         if _local(node) == "node":
             _lean_node(node, _EYE4, parts, materials, byid, geometries)
-    if not parts:
-        return None
-    if not merge:
-        return _soup_bounds(parts)
-    got = _assemble([(_merge_soup(soup), matrix) for soup, matrix in parts])
-    if got is None:
-        raise _Unsure("not rigid")
-    return got[0], got[1], len(parts)
+    return parts or None
 
 
 def _ref(byid: dict[str, Node], url: str | None) -> Node:
@@ -1169,12 +1196,19 @@ def _lean_geometry(inst: Node, matrix: np.ndarray, parts: list[Any], materials: 
 Soup = tuple[Any, ...]   # (vertex, index (k, 3), normal, normal index, uv, uv index) of a set
 
 
+def _corners(soup: Soup, which: np.ndarray | slice = slice(None)
+             ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """(position, normal, UV) of the triangle set ``soup``'s corners (``which`` of them, in
+    the set's order), as float32 rows; None for a normal or UV it has not."""
+    vertex, index, normal, normal_index, uv_source, uv_index = soup
+    normals = normal[normal_index.reshape(-1)[which]] if normal is not None else None
+    uv = uv_source[uv_index.reshape(-1)[which]] if uv_source is not None else None
+    return vertex[index.reshape(-1)[which]], normals, uv
+
+
 def _merge_soup(soup: Soup) -> Arrays:
     """The triangle set ``soup`` as trimesh's processed mesh (:func:`_merge` of its corners)."""
-    vertex, index, normal, normal_index, uv_source, uv_index = soup
-    normals = normal[normal_index].reshape(-1, 3) if normal is not None else None
-    uv = uv_source[uv_index].reshape(-1, 2) if uv_source is not None else None
-    merged = _merge(vertex[index].reshape(len(index) * 3, 3), normals, uv)
+    merged = _merge(*_corners(soup))
     if merged is None:
         raise _Unsure("not finite")
     return merged

@@ -586,20 +586,20 @@ def _stl_facts(path: str, n: int) -> Facts:
 
 def _collada_facts(path: str) -> Facts | None:
     """The facts of a COLLADA file the lean reader reads, from the bounds of its triangles'
-    positions (:func:`meshio.collada_bounds`: no merging of vertices, a third of reading the
+    positions (:func:`meshio.soups_bounds`: no merging of vertices, a third of reading the
     arrays), the unit applied as ``_scene_arrays`` applies it (a positive scale: the bounds
     of the scaled vertices are the scaled bounds). ``vertices`` counts the positions the
     triangles use (trimesh's mesh merges equal corners; the rules ask only whether there are
     any). In every run, a render's too, so that the facts of a file depend on its bytes
-    alone. None when the lean reader leaves the file to pycollada: the arrays are read."""
+    alone. What was read is kept for the file's arrays (:func:`_scene_arrays`: a collision
+    mesh's mass properties), so it is parsed once. None when the arrays are read instead."""
     import numpy as np
     from urdf_lint.meshes import readers as meshio
     data = _file_bytes(path)
-    got = meshio.collada_bounds(data)
+    soups = meshio.collada_soups(data)
+    _keep_lean(_digest(path), soups)
+    got = None if soups is None else meshio.soups_bounds(soups)
     if got is None:
-        if len(_lean_refused) >= MAX_MEMO_FILES:
-            _lean_refused.clear()
-        _lean_refused.add(_digest(path))     # (its arrays: not read by the lean reader again)
         return None
     lo, hi, vertices, faces = got
     unit = _unit_of(data)
@@ -612,8 +612,20 @@ def _collada_facts(path: str) -> Facts | None:
             "broken_refs": []}
 
 
-_lean_refused: set[str] = set()   # COLLADA files (digests) the lean reader left to pycollada
-MAX_MEMO_FILES = 10_000
+# digest -> the triangle sets the lean reader read of a COLLADA file for its facts, or None
+# where it left the file to pycollada; taken by the file's arrays, at most MAX_KEPT_BYTES kept
+_lean_read: "OrderedDict[str, Any]" = OrderedDict()
+
+
+def _keep_lean(digest: str, soups: Any) -> None:
+    _lean_read[digest] = soups
+    _lean_read.move_to_end(digest)
+
+    def size(parts: Any) -> int:
+        return sum(a.nbytes for soup, _ in parts or () for a in soup if a is not None)
+    total = sum(size(p) for p in _lean_read.values())
+    while total > MAX_KEPT_BYTES and len(_lean_read) > 1:
+        total -= size(_lean_read.popitem(last=False)[1])
 
 
 STL_CHUNK: int | None = None      # triangles per chunk (None: meshio.STL_CHUNK_TRIANGLES)
@@ -685,9 +697,16 @@ def _scene_arrays(path: str, is_dae: bool, lean: bool = True) -> Arrays | None:
     from urdf_lint.meshes import readers as meshio
     if is_dae and lean:
         data = _file_bytes(path)
-        # the same numbers without trimesh, when it can (by pycollada alone where the lean
-        # reader left the file to it already)
-        got = meshio.collada_arrays(data, lean=_digest(path) not in _lean_refused)
+        # the same numbers without trimesh, when it can: from what the facts read, or by
+        # pycollada alone where the lean reader left the file to it already
+        digest = _digest(path)
+        if digest in _lean_read:
+            soups = _lean_read.pop(digest)
+            got = meshio.soups_arrays(soups) if soups is not None else None
+            if got is None:
+                got = meshio.collada_arrays(data, lean=False)
+        else:
+            got = meshio.collada_arrays(data)
         if got is not None:
             unit = _unit_of(data)
             v = meshio.scale_points(got[0], unit) if unit != 1.0 else got[0]
